@@ -1,0 +1,206 @@
+"""Floquet multipliers and characteristic exponents, Eq. (10)-(13).
+
+The multipliers are the eigenvalues of the monodromy matrix; the leading
+one (largest modulus) decides stability. How it leaves the unit circle
+names the instability, as in Fig. 15 of the paper: through +1 the
+response has the dither period (single-period), through -1 twice the
+dither period (double-period), as a complex pair a period unrelated to the
+dither (combination).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import JudderError
+from .monodromy import get_method
+
+__all__ = ["KINDS", "FloquetResult", "classify", "floquet", "system_of",
+           "leading_multipliers"]
+
+#: Names of the stability verdicts, indexed by the integer codes of maps.
+KINDS = ("stable", "single-period", "double-period", "combination")
+
+#: A multiplier whose imaginary part is below this share of its modulus is
+#: real (LAPACK returns exactly zero for real eigenvalues of real matrices).
+_REAL_TOLERANCE = 1e-9
+
+
+def classify(multiplier):
+    """Integer code into :data:`KINDS` for a leading multiplier.
+
+    Parameters
+    ----------
+    multiplier : array_like of complex
+        Leading multipliers (any shape).
+
+    Returns
+    -------
+    ndarray of int8, same shape
+        0 stable (modulus <= 1), 1 single-period (real, > 1),
+        2 double-period (real, < -1), 3 combination (complex).
+    """
+    lam = np.asarray(multiplier, dtype=complex)
+    modulus = np.abs(lam)
+    real = np.abs(lam.imag) <= _REAL_TOLERANCE * modulus
+    code = np.where(real, np.where(lam.real > 0, 1, 2), 3)
+    return np.where(modulus > 1.0, code, 0).astype(np.int8)
+
+
+def leading_multipliers(monodromies):
+    """Eigenvalues and leading eigenvalue of a stack of monodromy matrices.
+
+    Parameters
+    ----------
+    monodromies : ndarray, shape (k, m, m)
+
+    Returns
+    -------
+    multipliers : ndarray of complex, shape (k, m)
+        Sorted by decreasing modulus.
+    leading : ndarray of complex, shape (k,)
+    """
+    lam = np.linalg.eigvals(monodromies)
+    order = np.argsort(-np.abs(lam), axis=-1, kind="stable")
+    lam = np.take_along_axis(lam, order, axis=-1)
+    return lam, lam[:, 0]
+
+
+@dataclass(frozen=True)
+class FloquetResult:
+    """Floquet analysis at one dither frequency and amplitude.
+
+    Attributes
+    ----------
+    freq_hz : float
+        Dither frequency, Hz.
+    p_f : float
+        Dither amplitude, Pa.
+    period : float
+        Dither period ``T``, s.
+    monodromy : ndarray, shape (m, m)
+        Monodromy matrix ``X(T)`` of the system analysed.
+    multipliers : ndarray of complex, shape (m,)
+        Floquet multipliers, decreasing modulus (Eq. 12).
+    exponents : ndarray of complex, shape (m,)
+        Characteristic exponents ``log(lambda)/T``, 1/s, principal branch
+        (Eq. 12-13: the imaginary part is defined modulo ``2 pi/T``).
+    leading : complex
+        Multiplier of largest modulus.
+    leading_abs : float
+    growth_rate : float
+        ``ln|leading| / T``, 1/s: the envelope of the response grows as
+        ``exp(growth_rate * t)``.
+    kind : str
+        One of :data:`KINDS`.
+    """
+
+    freq_hz: float
+    p_f: float
+    period: float
+    monodromy: np.ndarray
+    multipliers: np.ndarray
+    exponents: np.ndarray
+    leading: complex
+    leading_abs: float
+    growth_rate: float
+    kind: str
+
+
+class _Form:
+    """Adapter giving Eq. (6) or Eq. (9) the ``matrix(t, omega, p_f)`` call."""
+
+    def __init__(self, builder):
+        self._builder = builder
+
+    def matrix(self, t, omega, p_f):
+        return self._builder(t, omega / (2 * np.pi), p_f)
+
+
+def system_of(driveline, form="reduced"):
+    """The system whose monodromy is analysed.
+
+    Parameters
+    ----------
+    driveline : stability.model.Driveline
+    form : {'reduced', 'full', 'augmented'}
+        ``'reduced'``: Eq. (6) without the rigid-body angles (default, see
+        :meth:`~stability.model.Driveline.periodic_system`); ``'full'``:
+        Eq. (6) as printed, with two multipliers at exactly 1;
+        ``'augmented'``: Eq. (9), which adds two more at 1.
+        Only ``'reduced'`` works with the ``'dyson'`` engine.
+    """
+    forms = {"reduced": driveline.periodic_system,
+             "full": lambda: _Form(driveline.state_matrix),
+             "augmented": lambda: _Form(driveline.augmented_matrix)}
+    if form not in forms:
+        raise JudderError(f"form = {form!r} is unknown; allowed: "
+                          f"{', '.join(forms)}")
+    return forms[form]()
+
+
+def check_frequency(freq_hz, name="freq"):
+    """Raise JudderError unless ``freq_hz`` is finite and positive."""
+    freq = np.asarray(freq_hz, dtype=float)
+    if not np.all(np.isfinite(freq)) or np.any(freq <= 0):
+        raise JudderError(f"{name} = {freq_hz!r} Hz is not allowed; "
+                          "allowed: finite dither frequencies > 0 Hz")
+
+
+def check_amplitude(p_f, name="p_f"):
+    """Raise JudderError unless ``p_f`` is finite and non-negative."""
+    amp = np.asarray(p_f, dtype=float)
+    if not np.all(np.isfinite(amp)) or np.any(amp < 0):
+        raise JudderError(f"{name} = {p_f!r} Pa is not allowed; "
+                          "allowed: finite dither amplitudes >= 0")
+
+
+def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
+    """Floquet multipliers of the driveline at one dither setting.
+
+    Parameters
+    ----------
+    driveline : stability.model.Driveline
+    freq_hz : float
+        Dither frequency, Hz.
+    p_f : float
+        Dither amplitude, Pa.
+    method : {'dyson', 'solve_ivp'}, optional
+        Monodromy engine, see :mod:`stability.monodromy`. Default
+        ``'dyson'`` for the reduced form, ``'solve_ivp'`` otherwise.
+    form : {'reduced', 'full', 'augmented'}
+        See :func:`system_of`. With ``'full'`` and ``'augmented'`` the
+        trivial multipliers at 1 are part of the result.
+
+    Returns
+    -------
+    FloquetResult
+
+    Examples
+    --------
+    NOTES.md table, tongue 2 of Fig. 14:
+
+    >>> from stability import get_preset, build_driveline
+    >>> r = floquet(build_driveline(get_preset("paper-4dof")), 102.9, 0.3e5)
+    >>> r.kind, round(r.leading_abs, 4)
+    ('single-period', 1.0261)
+    """
+    check_frequency(freq_hz)
+    check_amplitude(p_f)
+    if method is None:
+        method = "dyson" if form == "reduced" else "solve_ivp"
+    if method == "dyson" and form != "reduced":
+        raise JudderError(f"form = {form!r} needs method = 'solve_ivp'; "
+                          "the 'dyson' engine handles the reduced form only")
+    system = system_of(driveline, form)
+    monodromy = get_method(method)(system, freq_hz, [p_f])
+    lam, leading = leading_multipliers(monodromy)
+    period = 1.0 / freq_hz
+    lead = complex(leading[0])
+    return FloquetResult(
+        freq_hz=float(freq_hz), p_f=float(p_f), period=period,
+        monodromy=monodromy[0], multipliers=lam[0],
+        exponents=np.log(lam[0].astype(complex)) / period,
+        leading=lead, leading_abs=abs(lead),
+        growth_rate=float(np.log(abs(lead)) / period),
+        kind=KINDS[int(classify(lead))])

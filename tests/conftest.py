@@ -1,0 +1,16 @@
+"""Shared fixtures: the paper's drivelines."""
+
+import pytest
+
+from stability import build_driveline, get_preset
+
+
+@pytest.fixture(scope="session")
+def paper4():
+    """4-DOF Appendix A values with N_c R_m S = 6e-3 m^3 (NOTES.md)."""
+    return build_driveline(get_preset("paper-4dof"))
+
+
+@pytest.fixture(scope="session")
+def paper3():
+    return build_driveline(get_preset("paper-3dof"))

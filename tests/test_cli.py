@@ -1,0 +1,122 @@
+"""The ``judder`` command line, run as a user runs it (subprocess)."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+BAR = 1e5
+
+
+def judder(*args, check=True):
+    """Run ``python -m stability ARGS``; return the CompletedProcess."""
+    proc = subprocess.run([sys.executable, "-m", "stability", *args],
+                          capture_output=True, text=True, timeout=120)
+    if check:
+        assert proc.returncode == 0, proc.stderr
+    return proc
+
+
+def judder_json(*args):
+    return json.loads(judder(*args, "--json").stdout)
+
+
+def test_eig_json():
+    data = judder_json("eig")
+    assert data["natural_frequencies_hz"] == pytest.approx([18.939, 102.884],
+                                                           abs=5e-4)
+    assert data["damping_factor_12"] == pytest.approx(0.0084, abs=5e-4)
+    data = judder_json("eig", "--model", "3dof")
+    assert data["natural_frequencies_hz"] == pytest.approx([18.047], abs=5e-4)
+
+
+def test_eig_set_is_repeatable():
+    data = judder_json("eig", "--set", "c12=10", "--set", "J2=0.231")
+    assert data["damping_factor_12"] == pytest.approx(0.168, abs=5e-4)
+
+
+def test_floquet_json():
+    data = judder_json("floquet", "--freq", "102.9", "--pf", "0.3")
+    assert data["kind"] == "single-period"
+    assert data["leading"] == pytest.approx([1.0261, 0.0], abs=1e-4)
+    assert data["leading_abs"] == pytest.approx(1.0261, abs=1e-4)
+    assert len(data["multipliers"]) == 6
+    assert all(len(m) == 2 for m in data["multipliers"])
+    literal = judder_json("floquet", "--freq", "102.9", "--pf", "0.5",
+                          "--set", "mean_pressure_damping=1")
+    assert literal["kind"] == "stable"
+
+
+def test_map_writes_npz_and_plot(tmp_path):
+    out, plot = tmp_path / "m.npz", tmp_path / "m.png"
+    data = judder_json("map", "--freq", "80:110:7", "--pf", "0:1:3",
+                       "--out", str(out), "--plot", str(plot))
+    assert data["points"] == 21
+    assert data["counts"]["single-period"] > 0
+    with np.load(out) as npz:
+        assert npz["kind"].shape == (7, 3)
+        assert npz["p_f_bar"] == pytest.approx([0, 0.5, 1.0])
+        assert npz["p_f_pa"] == pytest.approx([0, 0.5e5, 1e5])
+        meta = json.loads(str(npz["parameters"]))
+        assert meta["parameters"]["J4"] == 0.122
+        assert list(npz["kind_names"])[1] == "single-period"
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not list(tmp_path.glob(".*.part"))
+
+
+def test_params_save_load_and_no_overwrite(tmp_path):
+    path = tmp_path / "mine.toml"
+    judder("params", "--preset", "paper-4dof-fitted", "--save", str(path))
+    assert "c12 = 10.0" in path.read_text()
+    first = judder_json("eig", "--params", str(path))
+    assert first["damping_factor_12"] == pytest.approx(0.168, abs=5e-4)
+    before = path.read_text()
+    refused = judder("params", "--save", str(path), check=False)
+    assert refused.returncode == 2 and "exists" in refused.stderr
+    assert path.read_text() == before
+
+
+@pytest.mark.parametrize("args, words", [
+    (["eig", "--set", "J1=-1"], ["J1", "-1", "> 0"]),
+    (["eig", "--set", "J9=1"], ["J9", "unknown"]),
+    (["eig", "--preset", "nope"], ["nope", "paper-4dof"]),
+    (["eig", "--model", "3dof", "--preset", "paper-4dof"], ["--model"]),
+    (["floquet", "--freq", "0", "--pf", "1"], ["freq", "0"]),
+    (["floquet", "--freq", "50", "--pf", "-1"], ["pf", "-1", "bar"]),
+    (["floquet", "--freq", "nan", "--pf", "1"], ["freq", "nan"]),
+    (["map", "--freq", "100:10:5"], ["--freq", "100:10:5", "START <= STOP"]),
+    (["map", "--pf", "0:1:x"], ["--pf", "0:1:x"]),
+    (["map", "--freq", "1:2:3000", "--pf", "0:1:3000"], ["points"]),
+    (["eig", "--params", "/nonexistent/p.toml"], ["/nonexistent/p.toml"]),
+])
+def test_bad_input_gives_clear_error(args, words):
+    proc = judder(*args, check=False)
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr
+    for word in words:
+        assert word in proc.stderr
+
+
+def test_help_explains_units():
+    text = judder("map", "--help").stdout
+    assert "Hz" in text and "bar" in text and "SI" in text
+
+
+def test_ctrl_c_leaves_no_partial_file(tmp_path):
+    out = tmp_path / "big.npz"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "stability", "map", "--freq", "1:250:40000",
+         "--pf", "0:1:50", "--out", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(3.0)
+    assert proc.poll() is None, "the map finished before it was interrupted"
+    proc.send_signal(signal.SIGINT)
+    _, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 130
+    assert "interrupted" in stderr
+    assert os.listdir(tmp_path) == []
