@@ -1,0 +1,99 @@
+"""Benchmarks: each prints one JSON object on its own line.
+
+Every benchmark runs the fast path and its baseline in the same run, and
+reports ``name``, ``points``, ``seconds``, ``baseline_seconds``,
+``speedup`` and ``max_error``. Run with ``make bench``; pass benchmark
+names to run only those.
+"""
+
+import json
+import sys
+import time
+
+import numpy as np
+
+from stability import build_driveline, get_preset
+from stability.floquet import leading_multipliers
+from stability.maps import stability_map
+from stability.monodromy import monodromy_solve_ivp
+
+BAR = 1e5
+#: The map of the issue: 300 frequencies x 150 amplitudes, 4-DOF.
+MAP_FREQ = np.linspace(5.0, 250.0, 300)
+MAP_PF = np.linspace(0.0, 1.5, 150) * BAR
+#: Subset of that grid integrated point by point (baseline and reference).
+SUBSET = (slice(0, None, 25), slice(0, None, 30))
+#: Tolerances of the baseline and of the reference integration.
+BASELINE_TOL = {"rtol": 1e-10, "atol": 1e-12}
+REFERENCE_TOL = {"rtol": 1e-13, "atol": 1e-15}
+
+
+def _timed(function, *args, **kwargs):
+    start = time.perf_counter()
+    result = function(*args, **kwargs)
+    return result, time.perf_counter() - start
+
+
+def _pointwise_leading(system, freqs, amplitudes, tol):
+    """Leading |multiplier| by solve_ivp at every point, shape (nf, np)."""
+    out = np.empty((len(freqs), len(amplitudes)))
+    for i, freq in enumerate(freqs):
+        _, lead = leading_multipliers(
+            monodromy_solve_ivp(system, freq, amplitudes, **tol))
+        out[i] = np.abs(lead)
+        print(f"  solve_ivp {tol['rtol']:.0e}: {i + 1}/{len(freqs)}",
+              file=sys.stderr, end="\r")
+    print(file=sys.stderr)
+    return out
+
+
+def bench_floquet_maps():
+    """Dyson engine against per-point solve_ivp on the 4-DOF map."""
+    driveline = build_driveline(get_preset("paper-4dof"))
+    system = driveline.periodic_system()
+    freqs, amps = MAP_FREQ[SUBSET[0]], MAP_PF[SUBSET[1]]
+    points = len(freqs) * len(amps)
+
+    reference = _pointwise_leading(system, freqs, amps, REFERENCE_TOL)
+    baseline, baseline_seconds = _timed(_pointwise_leading, system, freqs,
+                                        amps, BASELINE_TOL)
+    subset_map, seconds = _timed(stability_map, driveline, freqs, amps)
+    yield {"name": "floquet-map-4dof-same-points", "points": points,
+           "seconds": seconds, "baseline_seconds": baseline_seconds,
+           "speedup": baseline_seconds / seconds,
+           "max_error": float(np.abs(subset_map.leading_abs
+                                     - reference).max()),
+           "baseline_max_error": float(np.abs(baseline - reference).max()),
+           "baseline": f"solve_ivp DOP853 rtol={BASELINE_TOL['rtol']:g} per "
+                       "point", "reference": "solve_ivp DOP853 "
+                       f"rtol={REFERENCE_TOL['rtol']:g}"}
+
+    full, seconds = _timed(stability_map, driveline, MAP_FREQ, MAP_PF)
+    full_points = full.kind.size
+    extrapolated = baseline_seconds / points * full_points
+    yield {"name": "floquet-map-4dof-300x150", "points": full_points,
+           "seconds": seconds, "baseline_seconds": extrapolated,
+           "baseline_extrapolated": True,
+           "speedup": extrapolated / seconds,
+           "max_error": float(np.abs(full.leading_abs[SUBSET]
+                                     - reference).max()),
+           "target_seconds": 10.0, "target_error": 1e-6,
+           "note": f"baseline time scaled from the {points} points above, "
+                   "which lie on this grid; error checked on those points"}
+
+
+BENCHMARKS = {"floquet-maps": bench_floquet_maps}
+
+
+def main(names):
+    unknown = sorted(set(names) - set(BENCHMARKS))
+    if unknown:
+        sys.exit(f"bench: unknown benchmark {unknown[0]!r}; allowed: "
+                 f"{', '.join(BENCHMARKS)}")
+    for name in names or BENCHMARKS:
+        for record in BENCHMARKS[name]():
+            print(json.dumps(record), flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
