@@ -13,6 +13,8 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
+
 from .errors import JudderError
 
 __all__ = ["main", "build_parser", "parse_grid"]
@@ -24,7 +26,7 @@ DEFAULT_PF = "0:1.5:150"
 MAX_MAP_POINTS = 2_000_000
 
 
-def parse_grid(text, option, unit):
+def parse_grid(text, option, unit, allow_negative=False):
     """Parse ``START:STOP:N`` (or a single value) into a linspace.
 
     Raises
@@ -32,9 +34,9 @@ def parse_grid(text, option, unit):
     JudderError
         Naming ``option`` and saying what is allowed.
     """
-    import numpy as np
     parts = text.split(":")
-    allowed = (f"allowed: START:STOP:N with 0 <= START <= STOP in {unit} "
+    lowest = "" if allow_negative else "0 <= "
+    allowed = (f"allowed: START:STOP:N with {lowest}START <= STOP in {unit} "
                f"and N a whole number >= 1, or one value "
                f"(e.g. {option} 10:220:300)")
     try:
@@ -50,7 +52,8 @@ def parse_grid(text, option, unit):
         raise JudderError(f"{option} {text!r} is not a grid; {allowed}") \
             from None
     if not (np.isfinite(start) and np.isfinite(stop)) or start > stop \
-            or start < 0 or count < 1 or (count == 1 and start != stop):
+            or (start < 0 and not allow_negative) or count < 1 \
+            or (count == 1 and start != stop):
         raise JudderError(f"{option} {text!r} is not allowed; {allowed}")
     return np.linspace(start, stop, count)
 
@@ -58,15 +61,15 @@ def parse_grid(text, option, unit):
 def _resolve_parameters(args):
     """Parameters from --params/--preset/--model and --set."""
     from . import parameters as par
-    if args.params is not None:
+    if args.param_file is not None:
         if args.preset is not None:
-            raise JudderError("give either --params FILE or --preset NAME, "
-                              "not both")
-        path = Path(args.params)
+            raise JudderError("give either --param-file FILE or --preset "
+                              "NAME, not both")
+        path = Path(args.param_file)
         try:
             text = path.read_text()
         except OSError as exc:
-            raise JudderError(f"--params {path}: cannot read it "
+            raise JudderError(f"--param-file {path}: cannot read it "
                               f"({exc.strerror})") from None
         params = par.load_toml(text, source=str(path))
     else:
@@ -181,7 +184,7 @@ def cmd_map(args):
         from .output import save_figure
         from .plotting import map_figure
         title = (f"{params.model} stability map, "
-                 f"{args.preset or args.params or 'default parameters'}")
+                 f"{args.preset or args.param_file or 'default parameters'}")
         save_figure(args.plot, map_figure(result, title=title))
     counts = result.counts()
     data = {"model": params.model, "method": args.method,
@@ -196,6 +199,271 @@ def cmd_map(args):
             + ", ".join(f"{k} {v}" for k, v in counts.items())
             + "".join(f"\nwrote {p}" for p in (args.out, args.plot) if p))
     _emit(args, data, text)
+
+
+def _parse_list(text, option, convert=float):
+    """Comma-separated values of ``option``."""
+    items = [item.strip() for item in text.split(",") if item.strip()]
+    try:
+        values = [convert(item) for item in items]
+    except ValueError:
+        raise JudderError(f"{option} {text!r} is not a comma-separated list "
+                          "of numbers") from None
+    if not values:
+        raise JudderError(f"{option} is empty")
+    return values
+
+
+def _positive_bar(value, option):
+    if not math.isfinite(value) or value <= 0:
+        raise JudderError(f"{option} {value:g} bar is not allowed; allowed: "
+                          "a finite amplitude > 0 bar")
+    return value * PA_PER_BAR
+
+
+def _make_parents(*paths):
+    for path in paths:
+        if path is not None:
+            Path(path).parent.mkdir(parents=True, exist_ok=True)
+
+
+def _tongue_record(tongue):
+    return {"number": tongue.number, "kind": tongue.kind,
+            "resonance": tongue.resonance,
+            "resonance_hz": tongue.resonance_hz,
+            "tip_freq_hz": tongue.tip_freq_hz,
+            "tip_p_f_bar": tongue.tip_p_f / PA_PER_BAR,
+            "tip_offset_percent": None if tongue.resonance_hz is None else
+            100 * (tongue.tip_freq_hz / tongue.resonance_hz - 1),
+            "tip_multiplier_error": tongue.tip_multiplier_error,
+            "freq_range_hz": list(tongue.freq_range_hz),
+            "tip_at_edge": tongue.tip_at_edge}
+
+
+def _boundaries_csv(boundaries):
+    lines = ["freq_hz,p_f_bar,single_period_bar,double_period_bar,"
+             "combination_bar"]
+    cell = (lambda v: "" if not math.isfinite(v) else f"{v / PA_PER_BAR:.9g}")
+    for f, lowest, row in zip(boundaries.freq_hz,
+                              boundaries.stability_boundary,
+                              boundaries.amplitude):
+        lines.append(",".join([f"{f:.9g}", cell(lowest)]
+                              + [cell(v) for v in row]))
+    return "\n".join(lines) + "\n"
+
+
+def cmd_tongues(args):
+    """Tongue boundaries, labels and tips."""
+    from .maps import stability_map
+    from .model import build_driveline
+    from .tongues import find_tongues, tongue_boundaries
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    p_max = _positive_bar(args.pf_max, "--pf-max")
+    params = _resolve_parameters(args)
+    driveline = build_driveline(params)
+    _make_parents(args.out, args.plot)
+    started = time.perf_counter()
+    with _progress(len(freqs), "tongue boundaries") as callback:
+        boundaries = tongue_boundaries(driveline, freqs, p_max,
+                                       callback=callback)
+    tongues = find_tongues(driveline, boundaries)
+    seconds = time.perf_counter() - started
+    if args.out:
+        from .output import write_text
+        write_text(args.out, _boundaries_csv(boundaries))
+    if args.plot:
+        from .output import save_figure
+        from .plotting import tongues_figure
+        background = stability_map(driveline, freqs,
+                                   np.linspace(0, p_max, 150))
+        save_figure(args.plot, tongues_figure(
+            boundaries, tongues, background,
+            title=f"{params.model}: tongue boundaries over the map"))
+    records = [_tongue_record(t) for t in tongues]
+    data = {"model": params.model, "seconds": seconds,
+            "freq_hz": [freqs[0], freqs[-1], len(freqs)],
+            "p_max_bar": args.pf_max,
+            "max_boundary_multiplier_error": boundaries.max_multiplier_error,
+            "natural_frequencies_hz": boundaries.natural_frequencies_hz,
+            "tongues": records, "out": args.out, "plot": args.plot}
+    rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
+            f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
+    for r in records:
+        offset = ("" if r["tip_offset_percent"] is None
+                  else f"{r['tip_offset_percent']:+.2f} %")
+        rows.append(f"{r['number'] or '-':>3} {r['kind']:14s} "
+                    f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
+                    f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
+                    + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    rows.append(f"{len(freqs)} frequencies in {seconds:.2f} s; boundary "
+                f"points within {boundaries.max_multiplier_error:.1e} of the "
+                "unit circle")
+    rows += [f"wrote {p}" for p in (args.out, args.plot) if p]
+    _emit(args, data, "\n".join(rows))
+
+
+def cmd_sensitivity(args):
+    """Tongue tips and boundaries with parameters varied (Fig. 17, 18)."""
+    from .parameters import SPECS
+    from .sensitivity import paper_conclusions, sensitivity_study, tip_shifts
+    names = _parse_list(args.params, "--params", str)
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    p_max = _positive_bar(args.pf_max, "--pf-max")
+    params = _resolve_parameters(args)
+    for name in names:
+        if name not in SPECS[params.model]:
+            raise JudderError(f"--params: unknown parameter {name!r} for the "
+                              f"{params.model} model; allowed names: "
+                              f"{', '.join(SPECS[params.model])}")
+    factors = _parse_list(args.factors, "--factors")
+    values = _parse_list(args.values, "--values") if args.values else None
+    if values is None and any(not math.isfinite(f) or f <= 0
+                              for f in factors):
+        raise JudderError(f"--factors {args.factors!r}: allowed: factors > 0")
+    _make_parents(args.out, args.plot)
+    started = time.perf_counter()
+    cases = 1 + len(names) * len(values or factors)
+    with _progress(cases, "sensitivity cases") as callback:
+        study = sensitivity_study(params, names, freqs, p_max,
+                                  factors=factors, values=values,
+                                  workers=args.workers, callback=callback)
+    seconds = time.perf_counter() - started
+    table = tip_shifts(study)
+    conclusions = paper_conclusions(study) if params.model == "4dof" else []
+    if args.out:
+        from .output import write_text
+        columns = list(table[0]) if table else []
+        lines = [",".join(columns)] + [
+            ",".join("" if row[c] is None else str(row[c]) for c in columns)
+            for row in table]
+        write_text(args.out, "\n".join(lines) + "\n")
+    if args.plot:
+        from .output import save_figure
+        save_figure(args.plot, study.plot(
+            title=f"{params.model}: sensitivity of the stability boundary"))
+    data = {"model": params.model, "seconds": seconds, "cases": cases,
+            "nominal_tongues": [_tongue_record(t)
+                                for t in study.nominal.tongues],
+            "tip_shifts": table, "paper_conclusions": conclusions,
+            "out": args.out, "plot": args.plot}
+    rows = [f"{'param':>8} {'factor':>7} {'value':>10} {'#':>2} "
+            f"{'tip f [Hz]':>11} {'df [Hz]':>8} {'tip p_f':>8} {'dp_f':>8}"]
+    for r in table:
+        if r["present"]:
+            rows.append(f"{r['parameter']:>8} {r['factor']:7.3g} "
+                        f"{r['value']:10.4g} {r['tongue']:>2} "
+                        f"{r['tip_freq_hz']:11.3f} {r['d_freq_hz']:+8.2f} "
+                        f"{r['tip_p_f_bar']:8.4f} {r['d_p_f_bar']:+8.4f}")
+        else:
+            rows.append(f"{r['parameter']:>8} {r['factor']:7.3g} "
+                        f"{r['value']:10.4g} {r['tongue']:>2}   above "
+                        f"{args.pf_max:g} bar (gone)")
+    rows += [f"[{'holds' if c['holds'] else 'does NOT hold'}] "
+             f"{c['statement']}: {c['evidence']}" for c in conclusions]
+    rows.append(f"{cases} cases in {seconds:.1f} s")
+    rows += [f"wrote {p}" for p in (args.out, args.plot) if p]
+    _emit(args, data, "\n".join(rows))
+
+
+def cmd_threshold(args):
+    """Friction-gradient threshold without dither (Fig. 19)."""
+    from .threshold import threshold_study
+    mu_g = parse_grid(args.mu_g, "--mu-g", "s/rad", allow_negative=True)
+    damping = parse_grid(args.c_ext, "--c-ext", "N m s/rad")
+    params = _resolve_parameters(args)
+    explicit = any(a.split("=")[0].strip() == "mean_pressure_damping"
+                   for a in args.set)
+    if not explicit:
+        params = params.replace(mean_pressure_damping=1.0)
+    _make_parents(args.out, args.plot)
+    with _progress(len(damping), "threshold") as callback:
+        study = threshold_study(params, mu_g, damping, callback=callback)
+    if args.out:
+        from .output import write_text
+        lines = ["c_ext,mu_g_threshold,mu_g_threshold_closed_form"] + [
+            f"{c:.9g},{m:.9g},{k:.9g}" for c, m, k in
+            zip(study.external_damping, study.thresholds, study.closed_form)]
+        write_text(args.out, "\n".join(lines) + "\n")
+    if args.plot:
+        import matplotlib.pyplot as plt
+        from .output import save_figure
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+        study.plot(axes=axes)
+        save_figure(args.plot, fig)
+    data = {"model": params.model,
+            "mean_pressure_damping": params["mean_pressure_damping"],
+            "mu_g": study.mu_g, "max_real_part_per_s": study.max_real_part,
+            "mu_g_threshold": study.threshold,
+            "external_damping": study.external_damping,
+            "mu_g_thresholds": study.thresholds,
+            "mu_g_thresholds_closed_form": study.closed_form,
+            "out": args.out, "plot": args.plot}
+    slope = np.polyfit(study.external_damping, study.thresholds, 1)[0] \
+        if len(damping) > 1 else float("nan")
+    text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
+            f"(unstable without dither below it)\n"
+            f"threshold against c_i: slope {slope:.4g} s/rad per N m s/rad "
+            f"over c_i = {damping[0]:g}..{damping[-1]:g}"
+            + "".join(f"\nwrote {p}" for p in (args.out, args.plot) if p))
+    _emit(args, data, text)
+
+
+def cmd_fit(args):
+    """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
+    from .fitting import fit_boundary, read_boundary_csv
+    names = _parse_list(args.fit, "--fit", str)
+    p_max = _positive_bar(args.pf_max, "--pf-max")
+    params = _resolve_parameters(args)
+    path = Path(args.boundary)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise JudderError(f"--boundary {path}: cannot read it "
+                          f"({exc.strerror})") from None
+    freqs, measured = read_boundary_csv(text, source=str(path))
+    bounds = {}
+    for item in args.bounds:
+        name, sep, rng = item.partition("=")
+        parts = rng.split(":")
+        try:
+            low, high = float(parts[0]), float(parts[1])
+        except (ValueError, IndexError):
+            raise JudderError(f"--bounds {item!r} is not NAME=LOW:HIGH") \
+                from None
+        bounds[name.strip()] = (low, high)
+    _make_parents(args.plot, args.save_params)
+    started = time.perf_counter()
+    result = fit_boundary(params, freqs, measured, p_max, names=names,
+                          bounds=bounds)
+    seconds = time.perf_counter() - started
+    if args.save_params:
+        from .output import write_text
+        from .parameters import dumps_toml
+        write_text(args.save_params, dumps_toml(result.params),
+                   overwrite=args.force)
+    if args.plot:
+        from .output import save_figure
+        save_figure(args.plot, result.plot()[0].figure)
+    data = {"model": params.model, "seconds": seconds,
+            "success": result.success, "message": result.message,
+            "fitted": {n: {"value": v, "std": s, "start": s0}
+                       for n, v, s, s0 in zip(result.names, result.values,
+                                              result.std, result.start)},
+            "residual_rms_bar": result.residual_rms_bar,
+            "evaluations": result.evaluations,
+            "freq_hz": result.freq_hz, "measured_bar": result.measured_bar,
+            "model_bar": result.model_bar,
+            "saved_params": args.save_params, "plot": args.plot}
+    rows = [f"{n:>8} = {v:.6g} ± {s:.2g}  (start {s0:.6g})"
+            for n, v, s, s0 in zip(result.names, result.values, result.std,
+                                   result.start)]
+    rows.append(f"residual rms {result.residual_rms_bar:.4g} bar over "
+                f"{len(freqs)} points; {result.evaluations} model boundaries "
+                f"in {seconds:.1f} s; {result.message}")
+    rows += [f"wrote {p}" for p in (args.save_params, args.plot) if p]
+    _emit(args, data, "\n".join(rows))
+    if not result.success:
+        raise JudderError("the fit did not converge: " + result.message)
 
 
 class _progress:
@@ -227,7 +495,7 @@ def _model_options(parser):
     group.add_argument("--preset",
                        help="paper-4dof (Appendix A), paper-4dof-fitted "
                             "(section 4.2) or paper-3dof")
-    group.add_argument("--params", metavar="FILE.toml",
+    group.add_argument("--param-file", metavar="FILE.toml",
                        help="parameter file (see `judder params --save`)")
     group.add_argument("--set", action="append", default=[],
                        metavar="NAME=VALUE",
@@ -259,7 +527,7 @@ def build_parser():
     p = sub.add_parser("params", help="show, or save as TOML, a parameter set",
                        description="Show a parameter set with units, or save "
                                    "it (--save FILE.toml) to edit and load "
-                                   "with --params.")
+                                   "with --param-file.")
     _model_options(p)
     p.add_argument("--save", metavar="FILE.toml",
                    help="write the set as TOML (never overwrites unless "
@@ -306,15 +574,115 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     p.set_defaults(handler=cmd_map)
+
+    p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
+                       description="Exact tongue boundaries: single- and "
+                                   "double-period by Hill's method, "
+                                   "combination by Brent's method on the "
+                                   "monodromy; each point checked against "
+                                   "the monodromy. Tongues numbered as in "
+                                   "Fig. 14, with their tips (lowest p_f).")
+    p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 10:220:500)")
+    p.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
+                   help="largest amplitude searched, bar (default 1.5)")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
+                        "if none), then per kind, bar")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="boundaries drawn over the map (Fig. 16)")
+    _model_options(p)
+    p.set_defaults(handler=cmd_tongues)
+
+    p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
+                                           "(Fig. 17, 18)",
+                       description="Vary each parameter (by --factors, or to "
+                                   "--values), recompute the boundaries and "
+                                   "report how each tongue tip moves in "
+                                   "frequency (Hz) and amplitude (bar); "
+                                   "checks the paper's conclusions of "
+                                   "section 4.3. Clutch-damper study: "
+                                   "--params c12 --values 0.5,10.")
+    p.add_argument("--params", required=True, metavar="NAMES",
+                   help="comma-separated parameters, e.g. "
+                        "k12,k24,J1,J2,J3,J4,mu_g,c12")
+    p.add_argument("--factors", default="0.5,2", metavar="F1,F2",
+                   help="multipliers of the nominal value (default 0.5,2)")
+    p.add_argument("--values", metavar="V1,V2",
+                   help="absolute values (SI) instead of --factors")
+    p.add_argument("--freq", default="10:220:200", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 10:220:200)")
+    p.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
+                   help="largest amplitude searched, bar (default 1.5)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes (default: all cores)")
+    p.add_argument("--out", metavar="FILE.csv", help="tip-shift table as CSV")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="one panel per parameter: nominal and varied "
+                        "boundaries")
+    _model_options(p)
+    p.set_defaults(handler=cmd_sensitivity)
+
+    p = sub.add_parser("threshold", help="friction-gradient threshold "
+                                         "without dither (Fig. 19)",
+                       description="Largest real part of the eigenvalues "
+                                   "without dither against mu_g (Fig. 19a), "
+                                   "and the threshold mu_g* against the "
+                                   "external damping c_i (Fig. 19b; every c_i "
+                                   "set to the value). Uses the mean "
+                                   "pressure in the damping "
+                                   "(mean_pressure_damping = 1) unless "
+                                   "--set gives it.")
+    p.add_argument("--mu-g", default="-0.001:0.001:81",
+                   metavar="START:STOP:N",
+                   help="friction gradients for Fig. 19a, s/rad")
+    p.add_argument("--c-ext", default="0:2:41", metavar="START:STOP:N",
+                   help="external damping values for Fig. 19b, N m s/rad")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="threshold against c_i as CSV")
+    p.add_argument("--plot", metavar="FILE.png", help="Fig. 19a and 19b")
+    _model_options(p)
+    p.set_defaults(handler=cmd_threshold)
+
+    p = sub.add_parser("fit", help="fit parameters to a measured boundary "
+                                   "(section 4.2)",
+                       description="Adjust hard-to-know parameters so the "
+                                   "model's stability boundary matches a "
+                                   "measured one (CSV: freq_hz,p_f_bar; "
+                                   "empty p_f_bar = no judder up to "
+                                   "--pf-max). Reports values, standard "
+                                   "uncertainties and the residual.")
+    p.add_argument("--boundary", required=True, metavar="FILE.csv",
+                   help="measured boundary, Hz and bar")
+    p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
+                   help="parameters to fit (default c12,mu_g,k24)")
+    p.add_argument("--bounds", action="append", default=[],
+                   metavar="NAME=LOW:HIGH",
+                   help="search range of a fitted parameter, SI; repeatable "
+                        "(default a factor 100 either way of the start)")
+    p.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
+                   help="largest amplitude tried on the bench, bar")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="measured and fitted boundaries (Fig. 16a)")
+    p.add_argument("--save-params", metavar="FILE.toml",
+                   help="write the fitted set (never overwrites unless "
+                        "--force)")
+    p.add_argument("--force", action="store_true",
+                   help="allow --save-params to replace a file")
+    _model_options(p)
+    p.set_defaults(handler=cmd_fit)
     return parser
 
 
 def main(argv=None):
     """Run ``judder``; returns the exit status."""
+    from threadpoolctl import threadpool_limits
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        args.handler(args)
+        # the kernels work on many tiny matrices: BLAS threads only contend
+        with threadpool_limits(limits=1):
+            args.handler(args)
     except JudderError as exc:
         print(f"judder: error: {exc}", file=sys.stderr)
         return 2

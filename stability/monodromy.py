@@ -37,8 +37,8 @@ from scipy.integrate import solve_ivp
 
 from .errors import JudderError
 
-__all__ = ["METHODS", "monodromy_dyson", "monodromy_solve_ivp",
-           "get_method"]
+__all__ = ["METHODS", "DysonPropagator", "monodromy_dyson",
+           "monodromy_solve_ivp", "get_method"]
 
 #: Chebyshev-Lobatto nodes per sub-interval.
 _NODES = 32
@@ -76,6 +76,70 @@ def _series_degree(strength):
     return max(degree, 1)
 
 
+class DysonPropagator:
+    """Monodromy matrix as a function of ``p_f`` at one dither frequency.
+
+    The series coefficients are computed once (for amplitudes up to
+    ``p_max``); :meth:`monodromy` then evaluates any amplitudes in that
+    range cheaply, which root finders on ``p_f`` use.
+
+    Parameters
+    ----------
+    system : stability.model.PeriodicSystem
+    freq_hz : float
+        Dither frequency, Hz (> 0).
+    p_max : float
+        Largest amplitude that will be evaluated, Pa.
+    """
+
+    def __init__(self, system, freq_hz, p_max):
+        A0, u, v = system.A0, system.u, system.v
+        size = len(u)
+        omega, period = 2 * np.pi * freq_hz, 1.0 / freq_hz
+        radius = np.abs(np.linalg.eigvals(A0)).max()
+        steps = max(1, math.ceil(period * (2 * radius + omega) / _MAX_PHASE))
+        while True:
+            h = period / steps
+            s = (_X + 1.0) * (h / 2)
+            forward = scipy.linalg.expm(A0[None] * s[:, None, None])
+            backward = scipy.linalg.expm(-A0[None] * s[:, None, None])
+            left = backward @ u                         # (Q, m)
+            right = np.einsum("i,qij->qj", v, forward)  # (Q, m)
+            strength = (p_max * h * np.linalg.norm(left, axis=1)
+                        * np.linalg.norm(right, axis=1)).max()
+            if strength <= _MAX_STRENGTH:
+                break
+            steps = math.ceil(steps * strength / _MAX_STRENGTH)
+
+        weights = _INTEGRATION * (h / 2)
+        phase = np.cos(omega * (h * np.arange(steps)[:, None] + s[None, :]))
+        Y = np.broadcast_to(np.eye(size), (steps, _NODES, size, size))
+        coefficients = [np.broadcast_to(np.eye(size), (steps, size, size))]
+        for _ in range(_series_degree(strength)):
+            row = np.einsum("qi,jqik->jqk", right, Y)
+            integrand = (phase[:, :, None, None] * left[None, :, :, None]
+                         * row[:, :, None, :])
+            Y = np.matmul(weights, integrand.reshape(steps, _NODES, -1))
+            Y = Y.reshape(steps, _NODES, size, size)
+            coefficients.append(Y[:, -1])
+        self.p_max = p_max
+        self._step = scipy.linalg.expm(A0 * h)
+        self._coefficients = coefficients
+
+    def monodromy(self, p_f):
+        """Monodromy matrices ``X(T)``, shape (k, m, m), for ``p_f`` (Pa)."""
+        p_f = np.atleast_1d(np.asarray(p_f, dtype=float))
+        steps, size = self._coefficients[0].shape[:2]
+        sub = np.zeros((len(p_f), steps, size, size))
+        for coefficient in reversed(self._coefficients):
+            sub = sub * p_f[:, None, None, None] + coefficient[None]
+        sub = self._step @ sub
+        result = sub[:, 0]
+        for j in range(1, steps):
+            result = sub[:, j] @ result
+        return result
+
+
 def monodromy_dyson(system, freq_hz, p_f):
     """Monodromy matrices by the sub-interval Dyson series.
 
@@ -93,46 +157,8 @@ def monodromy_dyson(system, freq_hz, p_f):
         ``X(T)`` for each amplitude, ``T = 1/freq_hz``.
     """
     p_f = np.atleast_1d(np.asarray(p_f, dtype=float))
-    A0, u, v = system.A0, system.u, system.v
-    size = len(u)
-    omega, period = 2 * np.pi * freq_hz, 1.0 / freq_hz
-    radius = np.abs(np.linalg.eigvals(A0)).max()
-    steps = max(1, math.ceil(period * (2 * radius + omega) / _MAX_PHASE))
-    p_max = np.abs(p_f).max()
-    while True:
-        h = period / steps
-        s = (_X + 1.0) * (h / 2)
-        forward = scipy.linalg.expm(A0[None] * s[:, None, None])
-        backward = scipy.linalg.expm(-A0[None] * s[:, None, None])
-        left = backward @ u                      # (Q, m)
-        right = np.einsum("i,qij->qj", v, forward)  # (Q, m)
-        strength = (p_max * h * np.linalg.norm(left, axis=1)
-                    * np.linalg.norm(right, axis=1)).max()
-        if strength <= _MAX_STRENGTH:
-            break
-        steps = math.ceil(steps * strength / _MAX_STRENGTH)
-    degree = _series_degree(strength)
-
-    weights = _INTEGRATION * (h / 2)
-    phase = np.cos(omega * (h * np.arange(steps)[:, None] + s[None, :]))
-    Y = np.broadcast_to(np.eye(size), (steps, _NODES, size, size))
-    coefficients = [np.broadcast_to(np.eye(size), (steps, size, size))]
-    for _ in range(degree):
-        row = np.einsum("qi,jqik->jqk", right, Y)
-        integrand = (phase[:, :, None, None] * left[None, :, :, None]
-                     * row[:, :, None, :])
-        Y = np.matmul(weights, integrand.reshape(steps, _NODES, -1))
-        Y = Y.reshape(steps, _NODES, size, size)
-        coefficients.append(Y[:, -1])
-
-    sub = np.zeros((len(p_f), steps, size, size))
-    for coefficient in reversed(coefficients):
-        sub = sub * p_f[:, None, None, None] + coefficient[None]
-    sub = scipy.linalg.expm(A0 * h) @ sub
-    result = sub[:, 0]
-    for j in range(1, steps):
-        result = sub[:, j] @ result
-    return result
+    return DysonPropagator(system, freq_hz,
+                           np.abs(p_f).max()).monodromy(p_f)
 
 
 def monodromy_solve_ivp(system, freq_hz, p_f, rtol=1e-10, atol=1e-12):

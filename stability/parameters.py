@@ -192,6 +192,10 @@ class Parameters:
     def __getitem__(self, name):
         return self.values[name]
 
+    def __reduce__(self):
+        # MappingProxyType does not pickle; worker processes need copies
+        return (Parameters, (self.model, dict(self.values)))
+
     def replace(self, **changes):
         """Return a copy with some values changed (validated)."""
         return Parameters(self.model, {**self.values, **changes})

@@ -4,17 +4,17 @@ Functions take an ``ax`` (a new figure is made when it is None), return the
 artists they drew and never call ``plt.show()``.
 """
 
-import itertools
-
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
 from .floquet import KINDS
+from .tongues import resonances
 
 __all__ = ["KIND_COLORS", "plot_map", "plot_growth_rate", "map_figure",
-           "resonance_lines"]
+           "resonance_lines", "plot_boundaries", "tongues_figure",
+           "sensitivity_figure", "plot_threshold", "plot_fit"]
 
 #: Colour of each kind of :data:`~stability.floquet.KINDS`.
 KIND_COLORS = ("#ffffff", "#d62728", "#1f77b4", "#2ca02c")
@@ -23,18 +23,9 @@ PA_PER_BAR = 1e5
 
 
 def resonance_lines(natural_frequencies_hz):
-    """Frequencies where tongues start, by kind, as ``(label, hz, kind)``.
-
-    Single-period at ``f_i``, double-period at ``2 f_i``, combination at
-    ``f_j - f_i`` and ``f_i + f_j`` (section 4.2).
-    """
-    f = np.sort(np.asarray(natural_frequencies_hz))
-    lines = [(f"f{i + 1}", fi, 1) for i, fi in enumerate(f)]
-    lines += [(f"2f{i + 1}", 2 * fi, 2) for i, fi in enumerate(f)]
-    for (i, fi), (j, fj) in itertools.combinations(enumerate(f), 2):
-        lines += [(f"f{j + 1}-f{i + 1}", fj - fi, 3),
-                  (f"f{i + 1}+f{j + 1}", fi + fj, 3)]
-    return lines
+    """Frequencies where tongues start, as ``(label, hz, kind code)``."""
+    return [(label, hz, kind) for _, label, hz, kind
+            in resonances(natural_frequencies_hz)]
 
 
 def _edges(centres):
@@ -116,3 +107,156 @@ def map_figure(stability_map, title=None):
     if title:
         fig.suptitle(title)
     return fig
+
+
+def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None):
+    """Boundary of each kind of tongue as lines (Fig. 16), p_f in bar.
+
+    Parameters
+    ----------
+    boundaries : stability.tongues.Boundaries
+    ax : matplotlib.axes.Axes, optional
+    tongues : sequence of stability.tongues.Tongue
+        Tips to mark and number.
+    style : dict, optional
+        Line properties shared by the three kinds (colour per kind unless
+        ``color`` is given).
+    label : str, optional
+        Legend label (put on the first line drawn).
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    artists = []
+    for column, kind in enumerate((1, 2, 3)):
+        props = {"color": KIND_COLORS[kind], "linewidth": 1.2, **(style or {})}
+        line, = ax.plot(boundaries.freq_hz,
+                        boundaries.amplitude[:, column] / PA_PER_BAR, **props,
+                        label=label if column == 0 else None)
+        artists.append(line)
+    for tongue in tongues:
+        if tongue.number is None:
+            continue
+        artists.append(ax.plot(tongue.tip_freq_hz,
+                               tongue.tip_p_f / PA_PER_BAR, "kv",
+                               markersize=4)[0])
+        artists.append(ax.annotate(str(tongue.number),
+                                   (tongue.tip_freq_hz,
+                                    tongue.tip_p_f / PA_PER_BAR),
+                                   textcoords="offset points", xytext=(0, -11),
+                                   ha="center", fontsize=8))
+    ax.set_xlim(boundaries.freq_hz.min(), boundaries.freq_hz.max())
+    ax.set_ylim(0, boundaries.p_max / PA_PER_BAR)
+    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    return artists
+
+
+def tongues_figure(boundaries, tongues, stability_map=None, title=None):
+    """Boundaries and numbered tips, over the map when one is given."""
+    fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
+    if stability_map is not None:
+        plot_map(stability_map, ax=ax, mark_resonances=False)
+    plot_boundaries(boundaries, ax=ax, tongues=tongues,
+                    style={"color": "k"} if stability_map is not None
+                    else None)
+    if stability_map is None:
+        handles = [Patch(facecolor=KIND_COLORS[k], label=KINDS[k])
+                   for k in (1, 2, 3)]
+        ax.legend(handles=handles, loc="upper left", fontsize=7)
+    ax.set_title(title or "tongue boundaries (numbers as in Fig. 14)")
+    return fig
+
+
+def sensitivity_figure(study, title=None):
+    """One panel per parameter: nominal boundary and the varied ones
+    (Fig. 17, Fig. 18)."""
+    names = list(dict.fromkeys(c.parameter for c in study.cases))
+    columns = min(3, len(names))
+    rows = -(-len(names) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(5 * columns, 3.4 * rows),
+                             layout="constrained", squeeze=False)
+    styles = ("--", ":", "-.", (0, (5, 1)), (0, (1, 3)))
+    for ax, name in zip(axes.flat, names):
+        _plot_lowest(study.nominal.boundaries, ax, "k", "-", "nominal")
+        cases = [c for c in study.cases if c.parameter == name]
+        for index, case in enumerate(cases):
+            _plot_lowest(case.boundaries, ax, f"C{index}",
+                         styles[index % len(styles)],
+                         f"{name} = {case.value:.4g} (x{case.factor:.3g})")
+        ax.set_title(name)
+        ax.legend(fontsize=7, loc="upper right")
+    for ax in list(axes.flat)[len(names):]:
+        ax.set_visible(False)
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def _plot_lowest(boundaries, ax, color, linestyle, label):
+    ax.plot(boundaries.freq_hz, boundaries.stability_boundary / PA_PER_BAR,
+            color=color, linestyle=linestyle, linewidth=1.1, label=label)
+    ax.set_xlim(boundaries.freq_hz.min(), boundaries.freq_hz.max())
+    ax.set_ylim(0, boundaries.p_max / PA_PER_BAR)
+    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_ylabel("$p_f$ [bar]")
+
+
+def plot_threshold(study, axes=None):
+    """Fig. 19a (largest real part against mu_g) and 19b (threshold in the
+    c_i - mu_g plane with regions A and B)."""
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
+    left, right = axes
+    artists = [left.plot(study.mu_g, study.max_real_part, "k-")[0],
+               left.axhline(0, color="0.5", linewidth=0.8),
+               left.axvline(study.threshold, color="C3", linestyle="--",
+                            label=f"threshold {study.threshold:.3g} s/rad")]
+    left.set_xlabel(r"friction gradient $\mu_g$ [s/rad]")
+    left.set_ylabel("largest real part [1/s]")
+    left.set_title("without dither: unstable above the axis")
+    left.legend(fontsize=8)
+    left.ticklabel_format(axis="x", style="sci", scilimits=(0, 0))
+    c, mu = study.external_damping, study.thresholds
+    low = min(mu.min(), study.mu_g.min())
+    high = max(mu.max(), study.mu_g.max())
+    artists += [right.plot(c, mu, "k-", label="threshold (python-control)")[0],
+                right.plot(c, study.closed_form, "C1:",
+                           label="rigid-chain closed form")[0],
+                right.fill_between(c, low, mu, color="C3", alpha=0.25),
+                right.fill_between(c, mu, high, color="C2", alpha=0.2)]
+    right.text(c.mean(), (low + mu.min()) / 2, "A: unstable", ha="center")
+    right.text(c.mean(), (high + mu.max()) / 2,
+               "B: stable without dither", ha="center")
+    right.set_xlabel("external damping $c_i$ [N m s/rad]")
+    right.set_ylabel(r"$\mu_g$ [s/rad]")
+    right.set_ylim(low, high)
+    right.ticklabel_format(axis="y", style="sci", scilimits=(0, 0))
+    right.legend(fontsize=8, loc="lower left")
+    return artists
+
+
+def plot_fit(result, ax=None):
+    """Measured and fitted model boundaries (Fig. 16a)."""
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8, 4.5), layout="constrained")
+    judder = np.isfinite(result.measured_bar)
+    artists = [
+        ax.plot(result.freq_hz[judder], result.measured_bar[judder], "ko",
+                label="measured boundary")[0],
+        ax.plot(result.freq_hz, result.model_bar, "C3-",
+                label="fitted model")[0]]
+    if np.any(~judder):
+        artists.append(ax.plot(result.freq_hz[~judder],
+                               np.zeros(np.count_nonzero(~judder)), "kx",
+                               label="no judder measured")[0])
+    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    ax.set_title("fit: " + ", ".join(
+        f"{n} = {v:.4g} ± {s:.2g}" for n, v, s in
+        zip(result.names, result.values, result.std)), fontsize=9)
+    ax.legend(fontsize=8)
+    return artists

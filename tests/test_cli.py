@@ -73,7 +73,7 @@ def test_params_save_load_and_no_overwrite(tmp_path):
     path = tmp_path / "mine.toml"
     judder("params", "--preset", "paper-4dof-fitted", "--save", str(path))
     assert "c12 = 10.0" in path.read_text()
-    first = judder_json("eig", "--params", str(path))
+    first = judder_json("eig", "--param-file", str(path))
     assert first["damping_factor_12"] == pytest.approx(0.168, abs=5e-4)
     before = path.read_text()
     refused = judder("params", "--save", str(path), check=False)
@@ -92,7 +92,7 @@ def test_params_save_load_and_no_overwrite(tmp_path):
     (["map", "--freq", "100:10:5"], ["--freq", "100:10:5", "START <= STOP"]),
     (["map", "--pf", "0:1:x"], ["--pf", "0:1:x"]),
     (["map", "--freq", "1:2:3000", "--pf", "0:1:3000"], ["points"]),
-    (["eig", "--params", "/nonexistent/p.toml"], ["/nonexistent/p.toml"]),
+    (["eig", "--param-file", "/nonexistent/p.toml"], ["/nonexistent/p.toml"]),
 ])
 def test_bad_input_gives_clear_error(args, words):
     proc = judder(*args, check=False)

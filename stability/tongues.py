@@ -1,0 +1,418 @@
+r"""Tongue boundaries, labels and tips (Fig. 14, Fig. 16).
+
+Boundaries
+----------
+A single-period boundary is where a Floquet multiplier passes +1: the
+system has a T-periodic solution :math:`z = \sum_k c_k e^{ik\omega t}`.
+Substituted in :math:`\dot z = (A_0 + p_f\cos\omega t\, u v^T) z` this is
+Hill's infinite system
+
+.. math:: (ik\omega - A_0) c_k = \tfrac{p_f}{2} u v^T (c_{k-1} + c_{k+1}).
+
+The modulation has rank one, so the block matrix multiplying :math:`p_f`
+is singular and its generalised eigenproblem has infinite eigenvalues.
+Projecting on the modulated channel :math:`w_k = v^T c_k` removes them
+exactly: with the transfer function :math:`G(s) = v^T (sI - A_0)^{-1} u`
+of the constant system,
+
+.. math:: w_k = \tfrac{p_f}{2} G(ik\omega) (w_{k-1} + w_{k+1}),
+
+so :math:`1/p_f` is an eigenvalue of the tridiagonal matrix
+:math:`\tfrac12 \operatorname{diag}(G(ik\omega)) S` (``S`` has ones next to
+the diagonal). Half-integer ``k`` give the double-period boundary
+(multiplier -1). Real eigenvalues give the boundary amplitudes.
+Combination boundaries (a complex pair on the unit circle) add the unknown
+Floquet exponent; they are found by Brent's method on the monodromy
+instead (:class:`~stability.monodromy.DysonPropagator`). Every boundary
+point is checked against the monodromy multiplier.
+
+Tongues
+-------
+Each dip of a boundary curve (a local minimum of the lowest boundary
+amplitude over frequency, with a prominence of at least
+:data:`TIP_PROMINENCE` of ``p_max``) is the tip of a tongue. Neighbouring
+tongues of one kind can merge above their tips (with a stiff clutch damper
+the single-period boundary is one curve dipping at ``f1`` and ``f2``); they
+are separated at the highest point between their tips. A tongue is
+labelled after the resonance it grows from (section 4.2): single-period at the
+natural frequencies ``f_i``, double-period at ``2 f_i``, combination at
+``f_j - f_i`` and ``f_i + f_j``. Numbers follow Fig. 14: 1..n single,
+n+1..2n double, then the combination pairs (difference, then sum).
+"""
+
+from dataclasses import dataclass
+import itertools
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+from scipy.signal import find_peaks
+
+from .errors import JudderError
+from .floquet import KINDS, check_amplitude, check_frequency
+from .modal import natural_frequencies
+from .monodromy import DysonPropagator
+
+__all__ = ["Boundaries", "Tongue", "hill_boundary_amplitudes",
+           "tongue_boundaries", "find_tongues", "resonances"]
+
+#: Harmonics kept on each side in Hill's matrix; the boundary amplitudes
+#: of the paper's model are converged to machine precision from about 4.
+HILL_HARMONICS = 12
+#: Amplitudes scanned per frequency before refining a combination boundary.
+_SCAN_POINTS = 48
+#: A tongue tip farther than this share from every resonance of its kind
+#: is reported without a number.
+_LABEL_TOLERANCE = 0.15
+#: Smallest dip (share of p_max) of a boundary curve counted as a tongue.
+TIP_PROMINENCE = 0.02
+_REAL_TOLERANCE = 1e-8
+
+_SINGLE, _DOUBLE, _COMBINATION = 1, 2, 3
+
+
+def _transfer(system, s):
+    """``G(s) = v^T (s I - A0)^-1 u`` at the complex points ``s``."""
+    size = len(system.u)
+    matrices = s[:, None, None] * np.eye(size) - system.A0
+    rhs = np.broadcast_to(system.u, (len(s), size))[..., None]
+    return np.linalg.solve(matrices, rhs)[..., 0] @ system.v
+
+
+def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
+                             harmonics=HILL_HARMONICS):
+    """Amplitudes at which a multiplier equals +1 or -1 (Hill's method).
+
+    Parameters
+    ----------
+    system : stability.model.PeriodicSystem
+    freq_hz : float
+        Dither frequency, Hz.
+    multiplier : {1, -1}
+        +1: single-period boundary (integer harmonics); -1: double-period
+        (half-integer harmonics).
+    harmonics : int
+        Harmonics kept on each side.
+
+    Returns
+    -------
+    ndarray
+        Distinct positive amplitudes (Pa), ascending.
+
+    Raises
+    ------
+    JudderError
+        If the system without dither has an undamped free rotation (all
+        external damping zero): a multiplier then sits at 1 for every
+        amplitude and the boundary is undefined.
+    """
+    shift = 0.0 if multiplier == 1 else 0.5
+    k = np.arange(-harmonics, harmonics + 1) + shift
+    with np.errstate(all="ignore"):
+        gains = _transfer(system, 1j * 2 * np.pi * freq_hz * k)
+    if not np.all(np.isfinite(gains)):
+        raise JudderError("the driveline without dither turns freely "
+                          "(external damping c_i all zero): the tongue "
+                          "boundaries need some c_i > 0")
+    size = len(k)
+    hill = 0.5 * gains[:, None] * (np.eye(size, k=1) + np.eye(size, k=-1))
+    lam = np.linalg.eigvals(hill)
+    real = lam[(np.abs(lam.imag) <= _REAL_TOLERANCE * np.abs(lam))
+               & (lam.real != 0)].real
+    # +p and -p are the same solution shifted by half a period
+    amplitudes = np.sort(1.0 / np.abs(real))
+    distinct = np.diff(amplitudes, prepend=-np.inf) > 1e-9 * amplitudes
+    return amplitudes[distinct]
+
+
+def _combination_excess(propagator, p_f):
+    """Largest |multiplier| - 1 among the non-real multipliers."""
+    lam = np.linalg.eigvals(propagator.monodromy(p_f))
+    complex_ = np.abs(lam.imag) > _REAL_TOLERANCE * np.abs(lam)
+    return np.where(complex_, np.abs(lam), 0.0).max(axis=-1) - 1.0
+
+
+def _combination_boundary(propagator, p_max):
+    """Lowest amplitude where a complex pair leaves the unit circle, or NaN."""
+    grid = np.linspace(0.0, p_max, _SCAN_POINTS)
+    excess = _combination_excess(propagator, grid)
+    above = np.flatnonzero(excess > 0)
+    if len(above) == 0 or above[0] == 0:
+        return np.nan
+    i = above[0]
+    return brentq(lambda p: _combination_excess(propagator, [p])[0],
+                  grid[i - 1], grid[i], xtol=1e-9 * p_max, rtol=1e-13)
+
+
+def _multiplier_error(propagator, p_f, kind):
+    """Distance of the crossing multiplier from the unit circle at p_f."""
+    lam = np.linalg.eigvals(propagator.monodromy([p_f])[0])
+    if kind == _SINGLE:
+        return float(np.abs(lam - 1.0).min())
+    if kind == _DOUBLE:
+        return float(np.abs(lam + 1.0).min())
+    complex_ = np.abs(lam.imag) > _REAL_TOLERANCE * np.abs(lam)
+    return float(np.abs(np.abs(lam[complex_]) - 1.0).min())
+
+
+def _lowest(amplitudes, p_max):
+    inside = amplitudes[amplitudes <= p_max]
+    return inside[0] if len(inside) else np.nan
+
+
+def _boundary_at(system, freq_hz, p_max, propagator=None):
+    """Lowest boundary amplitude of each kind and its monodromy check."""
+    if propagator is None:
+        propagator = DysonPropagator(system, freq_hz, p_max)
+    amplitudes = np.array([
+        _lowest(hill_boundary_amplitudes(system, freq_hz, 1), p_max),
+        _lowest(hill_boundary_amplitudes(system, freq_hz, -1), p_max),
+        _combination_boundary(propagator, p_max)])
+    errors = np.array([np.nan if np.isnan(p) else
+                       _multiplier_error(propagator, p, kind)
+                       for kind, p in zip((_SINGLE, _DOUBLE, _COMBINATION),
+                                          amplitudes)])
+    return amplitudes, errors
+
+
+@dataclass(frozen=True)
+class Boundaries:
+    """Lowest boundary amplitude of each kind of tongue, per frequency.
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (nf,)
+        Dither frequencies, Hz.
+    p_max : float
+        Largest amplitude searched, Pa.
+    amplitude : ndarray, shape (nf, 3)
+        Lowest ``p_f`` (Pa) at which a multiplier leaves the unit circle
+        through +1 (column 0, single-period), -1 (column 1,
+        double-period) or as a complex pair (column 2, combination); NaN
+        where none does up to ``p_max``.
+    multiplier_error : ndarray, shape (nf, 3)
+        At each boundary point, the distance of the crossing multiplier
+        from +1, -1 or the unit circle, by the monodromy (NaN where no
+        point).
+    natural_frequencies_hz : ndarray
+    """
+
+    freq_hz: np.ndarray
+    p_max: float
+    amplitude: np.ndarray
+    multiplier_error: np.ndarray
+    natural_frequencies_hz: np.ndarray
+
+    @property
+    def stability_boundary(self):
+        """Lowest unstable amplitude of any kind, Pa, shape (nf,)."""
+        with np.errstate(all="ignore"):
+            return np.where(np.all(np.isnan(self.amplitude), axis=1), np.nan,
+                            np.nanmin(np.where(np.isnan(self.amplitude),
+                                               np.inf, self.amplitude),
+                                      axis=1))
+
+    @property
+    def max_multiplier_error(self):
+        """Largest ``multiplier_error`` over all points (0 if none)."""
+        finite = self.multiplier_error[np.isfinite(self.multiplier_error)]
+        return float(finite.max()) if len(finite) else 0.0
+
+
+def tongue_boundaries(driveline, freq_hz, p_max, callback=None):
+    """Boundaries of the single-, double-period and combination tongues.
+
+    Parameters
+    ----------
+    driveline : stability.model.Driveline
+    freq_hz : array_like, shape (nf,)
+        Dither frequencies, Hz.
+    p_max : float
+        Largest amplitude searched, Pa.
+    callback : callable, optional
+        ``callback(done, total)`` after each frequency.
+
+    Returns
+    -------
+    Boundaries
+
+    Examples
+    --------
+    >>> from stability import get_preset, build_driveline
+    >>> b = tongue_boundaries(build_driveline(get_preset("paper-4dof")),
+    ...                       [100.0], 1e5)
+    >>> round(b.amplitude[0, 0] / 1e5, 4)     # single-period, bar
+    0.3642
+    """
+    freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    check_frequency(freq_hz)
+    check_amplitude(p_max, "p_max")
+    if p_max <= 0:
+        raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
+                          "> 0")
+    system = driveline.periodic_system()
+    amplitude = np.empty((len(freq_hz), 3))
+    errors = np.empty((len(freq_hz), 3))
+    for index, freq in enumerate(freq_hz):
+        amplitude[index], errors[index] = _boundary_at(system, freq, p_max)
+        if callback is not None:
+            callback(index + 1, len(freq_hz))
+    return Boundaries(freq_hz=freq_hz, p_max=float(p_max),
+                      amplitude=amplitude, multiplier_error=errors,
+                      natural_frequencies_hz=natural_frequencies(driveline))
+
+
+def resonances(natural_frequencies_hz):
+    """Frequencies tongues grow from: ``(number, label, hz, kind code)``.
+
+    Single-period at ``f_i``, double-period at ``2 f_i``, combination at
+    ``f_j - f_i`` and ``f_i + f_j``, numbered as in Fig. 14.
+    """
+    f = np.sort(np.asarray(natural_frequencies_hz, dtype=float))
+    n = len(f)
+    out = [(i + 1, f"f{i + 1}", fi, _SINGLE) for i, fi in enumerate(f)]
+    out += [(n + i + 1, f"2f{i + 1}", 2 * fi, _DOUBLE)
+            for i, fi in enumerate(f)]
+    number = 2 * n
+    for (i, fi), (j, fj) in itertools.combinations(enumerate(f), 2):
+        out += [(number + 1, f"f{j + 1}-f{i + 1}", fj - fi, _COMBINATION),
+                (number + 2, f"f{i + 1}+f{j + 1}", fi + fj, _COMBINATION)]
+        number += 2
+    return out
+
+
+@dataclass(frozen=True)
+class Tongue:
+    """One instability tongue and its tip.
+
+    Attributes
+    ----------
+    number : int or None
+        Number as in Fig. 14; None when the tongue is far from every
+        first-order resonance of its kind.
+    kind : str
+        ``'single-period'``, ``'double-period'`` or ``'combination'``.
+    resonance : str or None
+        ``'f2'``, ``'2f1'``, ``'f2-f1'``, ... the resonance it grows from.
+    resonance_hz : float or None
+    tip_freq_hz : float
+        Frequency of the lowest boundary point, Hz (refined by Brent's
+        method between grid points).
+    tip_p_f : float
+        Lowest boundary amplitude, Pa.
+    tip_multiplier_error : float
+        Monodromy check at the tip (distance from the unit circle).
+    freq_range_hz : tuple of float
+        Grid frequencies where the tongue is below ``p_max``.
+    tip_at_edge : bool
+        True if the lowest point is at the end of the frequency grid (the
+        true tip may lie outside).
+    """
+
+    number: object
+    kind: str
+    resonance: object
+    resonance_hz: object
+    tip_freq_hz: float
+    tip_p_f: float
+    tip_multiplier_error: float
+    freq_range_hz: tuple
+    tip_at_edge: bool
+
+
+def _runs(mask):
+    """Start and stop indices of the runs of True in ``mask``."""
+    edges = np.diff(np.concatenate([[0], mask.astype(int), [0]]))
+    return zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1))
+
+
+def _tips(amplitude, p_max):
+    """Index ranges and tip index of each tongue along one boundary curve.
+
+    Yields ``(start, stop, tip)`` over the grid indices.
+    """
+    for start, stop in _runs(np.isfinite(amplitude)):
+        # beyond the run (or the grid) the boundary is above p_max
+        curve = np.concatenate([[2 * p_max], amplitude[start:stop],
+                                [2 * p_max]])
+        tips, _ = find_peaks(-curve, prominence=TIP_PROMINENCE * p_max)
+        if len(tips) == 0:
+            tips = [1 + int(np.argmin(curve[1:-1]))]
+        cuts = [0] + [a + int(np.argmax(curve[a:b + 1]))
+                      for a, b in zip(tips[:-1], tips[1:])] + [len(curve) - 1]
+        for tip, low, high in zip(tips, cuts[:-1], cuts[1:]):
+            yield (start + max(low, 1) - 1, start + min(high, len(curve) - 2),
+                   start + tip - 1)
+
+
+def find_tongues(driveline, boundaries):
+    """Label the tongues of ``boundaries`` and refine their tips.
+
+    Parameters
+    ----------
+    driveline : stability.model.Driveline
+        The driveline the boundaries were computed for.
+    boundaries : Boundaries
+
+    Returns
+    -------
+    list of Tongue
+        Ordered by number (unnumbered ones last).
+    """
+    system = driveline.periodic_system()
+    f = boundaries.freq_hz
+    table = resonances(boundaries.natural_frequencies_hz)
+    found = []
+    for column, kind in enumerate((_SINGLE, _DOUBLE, _COMBINATION)):
+        amplitude = boundaries.amplitude[:, column]
+        for start, stop, i in _tips(amplitude, boundaries.p_max):
+            tip_f, tip_p = f[i], amplitude[i]
+            at_edge = i in (0, len(f) - 1)
+            if not at_edge:
+                tip_f, tip_p = _refine_tip(system, kind, f[i - 1], f[i + 1],
+                                           boundaries.p_max, tip_f, tip_p)
+            propagator = DysonPropagator(system, tip_f, boundaries.p_max)
+            error = _multiplier_error(propagator, tip_p, kind)
+            candidates = [r for r in table if r[3] == kind]
+            best = min(candidates, key=lambda r: abs(r[2] - tip_f),
+                       default=None)
+            if best is None or abs(best[2] - tip_f) > _LABEL_TOLERANCE * best[2]:
+                best = (None, None, None, kind)
+            found.append(Tongue(
+                number=best[0], kind=KINDS[kind], resonance=best[1],
+                resonance_hz=best[2], tip_freq_hz=float(tip_f),
+                tip_p_f=float(tip_p), tip_multiplier_error=error,
+                freq_range_hz=(float(f[start]), float(f[stop])),
+                tip_at_edge=bool(at_edge)))
+    return _deduplicate(found)
+
+
+def _deduplicate(tongues):
+    """Keep the lowest tip per number; extra runs lose their number."""
+    tongues = sorted(tongues, key=lambda t: t.tip_p_f)
+    seen, out = set(), []
+    for t in tongues:
+        if t.number is not None and t.number in seen:
+            t = Tongue(None, t.kind, None, None, t.tip_freq_hz, t.tip_p_f,
+                       t.tip_multiplier_error, t.freq_range_hz, t.tip_at_edge)
+        seen.add(t.number)
+        out.append(t)
+    return sorted(out, key=lambda t: (t.number is None, t.number or 0,
+                                      t.tip_freq_hz))
+
+
+def _refine_tip(system, kind, low, high, p_max, grid_f, grid_p):
+    """Minimise the boundary amplitude of ``kind`` over [low, high]."""
+    def amplitude(freq):
+        if kind == _COMBINATION:
+            p = _combination_boundary(DysonPropagator(system, freq, p_max),
+                                      p_max)
+        else:
+            p = _lowest(hill_boundary_amplitudes(
+                system, freq, 1 if kind == _SINGLE else -1), p_max)
+        return p if np.isfinite(p) else 2 * p_max
+
+    best = minimize_scalar(amplitude, bounds=(low, high), method="bounded",
+                           options={"xatol": 1e-7 * grid_f})
+    if best.fun < grid_p:
+        return float(best.x), float(best.fun)
+    return float(grid_f), float(grid_p)
