@@ -240,7 +240,7 @@ def tongue_boundaries(driveline, freq_hz, p_max, callback=None):
     >>> from stability import get_preset, build_driveline
     >>> b = tongue_boundaries(build_driveline(get_preset("paper-4dof")),
     ...                       [100.0], 1e5)
-    >>> round(b.amplitude[0, 0] / 1e5, 4)     # single-period, bar
+    >>> round(float(b.amplitude[0, 0]) / 1e5, 4)   # single-period, bar
     0.3642
     """
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
