@@ -11,11 +11,13 @@ import sys
 import time
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from stability import build_driveline, get_preset
 from stability.floquet import leading_multipliers
 from stability.maps import stability_map
 from stability.monodromy import monodromy_solve_ivp
+from stability.tongues import find_tongues, tongue_boundaries
 
 BAR = 1e5
 #: The map of the issue: 300 frequencies x 150 amplitudes, 4-DOF.
@@ -82,7 +84,59 @@ def bench_floquet_maps():
                    "which lie on this grid; error checked on those points"}
 
 
-BENCHMARKS = {"floquet-maps": bench_floquet_maps}
+#: Boundary benchmark: 500 frequencies over 10-220 Hz up to 1.5 bar, and
+#: points inside tongues 1-6 where the baseline bisects.
+TONGUE_FREQ = np.linspace(10.0, 220.0, 500)
+TONGUE_P_MAX = 1.5 * BAR
+BISECTION_FREQ = np.array([18.0, 20.0, 37.9, 84.0, 100.0, 102.9, 110.0,
+                           121.8, 205.0, 208.0])
+
+
+def _bisect_lowest_unstable(system, freq, p_max, rel_tol=1e-9):
+    """Baseline: lowest unstable p_f by bisection on per-point solve_ivp."""
+    def unstable(p):
+        _, lead = leading_multipliers(
+            monodromy_solve_ivp(system, freq, [p], **BASELINE_TOL))
+        return abs(lead[0]) > 1.0
+    grid = np.linspace(0.0, p_max, 16)
+    first = next(i for i, p in enumerate(grid) if unstable(p))
+    low, high = grid[first - 1], grid[first]
+    while high - low > rel_tol * high:
+        mid = (low + high) / 2
+        low, high = (low, mid) if unstable(mid) else (mid, high)
+    return (low + high) / 2
+
+
+def bench_tongue_boundaries():
+    """Hill + Brent boundaries against per-point solve_ivp bisection."""
+    driveline = build_driveline(get_preset("paper-4dof"))
+    system = driveline.periodic_system()
+    baseline, baseline_seconds = _timed(
+        lambda: np.array([_bisect_lowest_unstable(system, f, TONGUE_P_MAX)
+                          for f in BISECTION_FREQ]))
+    check = tongue_boundaries(driveline, BISECTION_FREQ, TONGUE_P_MAX)
+    error = np.abs(check.stability_boundary - baseline) / baseline
+
+    def fast():
+        boundaries = tongue_boundaries(driveline, TONGUE_FREQ, TONGUE_P_MAX)
+        return boundaries, find_tongues(driveline, boundaries)
+    (boundaries, tongues), seconds = _timed(fast)
+    extrapolated = baseline_seconds / len(BISECTION_FREQ) * len(TONGUE_FREQ)
+    yield {"name": "tongue-boundaries-4dof-500", "points": len(TONGUE_FREQ),
+           "seconds": seconds, "baseline_seconds": extrapolated,
+           "baseline_extrapolated": True, "speedup": extrapolated / seconds,
+           "max_error": float(error.max()),
+           "error_unit": "relative, lowest unstable p_f",
+           "max_boundary_multiplier_error": boundaries.max_multiplier_error,
+           "tongues": len(tongues), "target_seconds": 5.0,
+           "note": f"baseline: bisection to 1e-9 on solve_ivp (rtol "
+                   f"{BASELINE_TOL['rtol']:g}) at {len(BISECTION_FREQ)} "
+                   "frequencies inside tongues 1-6, scaled to 500; seconds "
+                   "include labelling and tip refinement"}
+
+
+BENCHMARKS = {"floquet-maps": bench_floquet_maps,
+              "tongue-boundaries": bench_tongue_boundaries}
 
 
 def main(names):
@@ -96,4 +150,5 @@ def main(names):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    with threadpool_limits(limits=1):   # as the judder command runs
+        main(sys.argv[1:])

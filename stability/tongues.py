@@ -107,8 +107,11 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
     """
     shift = 0.0 if multiplier == 1 else 0.5
     k = np.arange(-harmonics, harmonics + 1) + shift
-    with np.errstate(all="ignore"):
-        gains = _transfer(system, 1j * 2 * np.pi * freq_hz * k)
+    try:
+        with np.errstate(all="ignore"):
+            gains = _transfer(system, 1j * 2 * np.pi * freq_hz * k)
+    except np.linalg.LinAlgError:
+        gains = np.array([np.inf])
     if not np.all(np.isfinite(gains)):
         raise JudderError("the driveline without dither turns freely "
                           "(external damping c_i all zero): the tongue "

@@ -120,3 +120,61 @@ def test_ctrl_c_leaves_no_partial_file(tmp_path):
     assert proc.returncode == 130
     assert "interrupted" in stderr
     assert os.listdir(tmp_path) == []
+
+
+def test_tongues_json_and_csv(tmp_path):
+    out = tmp_path / "b.csv"
+    data = judder_json("tongues", "--freq", "10:220:106", "--out", str(out))
+    numbers = {t["number"]: t for t in data["tongues"]}
+    assert set(numbers) == {1, 2, 3, 4, 5, 6}
+    assert numbers[2]["tip_freq_hz"] == pytest.approx(102.88, rel=5e-3)
+    assert numbers[2]["kind"] == "single-period"
+    assert abs(numbers[5]["tip_offset_percent"]) < 0.5
+    assert data["max_boundary_multiplier_error"] < 1e-6
+    header, first = out.read_text().splitlines()[:2]
+    assert header.startswith("freq_hz,p_f_bar,single_period_bar")
+    assert first.startswith("10,")
+
+
+def test_sensitivity_json_c12_study():
+    data = judder_json("sensitivity", "--params", "c12", "--values", "0.5,10",
+                       "--freq", "10:220:106", "--workers", "1")
+    rows = [r for r in data["tip_shifts"] if r["value"] == 10.0]
+    gone = {r["tongue"] for r in rows if not r["present"]}
+    assert gone == {3}
+
+
+def test_threshold_json():
+    data = judder_json("threshold", "--c-ext", "0:1:3")
+    assert data["mean_pressure_damping"] == 1.0
+    assert data["mu_g_threshold"] == pytest.approx(-1.25e-5, rel=1e-6)
+    assert data["mu_g_thresholds"] == pytest.approx([0, -6.25e-5, -1.25e-4],
+                                                    abs=1e-10)
+
+
+def test_fit_from_tongues_csv(tmp_path):
+    boundary = tmp_path / "measured.csv"
+    judder("tongues", "--preset", "paper-4dof-fitted", "--freq", "70:140:8",
+           "--out", str(boundary))
+    saved = tmp_path / "fitted.toml"
+    data = judder_json("fit", "--boundary", str(boundary), "--fit",
+                       "mu_g,k24", "--set", "c12=10", "--save-params",
+                       str(saved))
+    assert data["fitted"]["mu_g"]["value"] == pytest.approx(0.022, rel=1e-4)
+    assert data["fitted"]["k24"]["value"] == pytest.approx(34858.1, rel=1e-4)
+    assert "mu_g = 0.022" in saved.read_text()
+
+
+@pytest.mark.parametrize("args, words", [
+    (["tongues", "--pf-max", "0"], ["--pf-max", "> 0 bar"]),
+    (["sensitivity", "--params", "k99"], ["k99", "unknown"]),
+    (["sensitivity", "--params", "k12", "--factors", "0,2"], ["--factors"]),
+    (["threshold", "--c-ext", "-1:1:3"], ["--c-ext"]),
+    (["fit", "--boundary", "/nonexistent.csv"], ["/nonexistent.csv"]),
+])
+def test_study_commands_refuse_bad_input(args, words):
+    proc = judder(*args, check=False)
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr
+    for word in words:
+        assert word in proc.stderr

@@ -1,0 +1,135 @@
+"""Tongue boundaries (Hill's method, monodromy) and tips (Fig. 14, 16)."""
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from stability import (KINDS, JudderError, build_driveline, floquet,
+                       get_preset, natural_frequencies)
+from stability.monodromy import monodromy_solve_ivp
+from stability.tongues import (find_tongues, hill_boundary_amplitudes,
+                               tongue_boundaries)
+
+BAR = 1e5
+GRID = np.linspace(10.0, 220.0, 211)
+
+
+@pytest.fixture(scope="module")
+def paper_tongues(paper4):
+    boundaries = tongue_boundaries(paper4, GRID, 1.5 * BAR)
+    return boundaries, find_tongues(paper4, boundaries)
+
+
+@pytest.mark.parametrize("freq, multiplier", [
+    (100.0, 1), (102.9, 1), (110.0, 1), (20.0, 1),
+    (37.9, -1), (205.8, -1), (39.5, -1)])
+def test_hill_boundary_is_a_multiplier_on_the_unit_circle(paper4, freq,
+                                                          multiplier):
+    # independent check: a tight solve_ivp monodromy at the Hill amplitude
+    system = paper4.periodic_system()
+    p = hill_boundary_amplitudes(system, freq, multiplier)[0]
+    lam = np.linalg.eigvals(monodromy_solve_ivp(system, freq, [p],
+                                                rtol=1e-12, atol=1e-14)[0])
+    assert np.abs(lam - multiplier).min() < 1e-6
+
+
+def test_hill_truncation_is_converged(paper4):
+    system = paper4.periodic_system()
+    for freq, mult in [(102.9, 1), (60.0, 1), (205.8, -1)]:
+        few = hill_boundary_amplitudes(system, freq, mult, harmonics=6)[0]
+        many = hill_boundary_amplitudes(system, freq, mult, harmonics=30)[0]
+        assert few == pytest.approx(many, rel=1e-10)
+
+
+def test_every_boundary_point_checked_against_monodromy(paper_tongues):
+    boundaries, _ = paper_tongues
+    # the six tongues span about 74 Hz at 1.5 bar: 72 points of a 1 Hz grid
+    assert np.isfinite(boundaries.amplitude).sum() > 60
+    assert boundaries.max_multiplier_error < 1e-6
+
+
+def test_boundary_separates_stable_from_unstable(paper4, paper_tongues):
+    boundaries, _ = paper_tongues
+    for i in [9, 93, 28, 74, 112, 196]:   # inside tongues 1, 2, 3, 5, 6, 4
+        column = int(np.nanargmin(boundaries.amplitude[i]))
+        p = boundaries.amplitude[i, column]
+        above = floquet(paper4, GRID[i], p * (1 + 1e-4))
+        below = floquet(paper4, GRID[i], p * (1 - 1e-4))
+        assert above.kind == KINDS[column + 1]
+        assert below.kind == "stable"
+
+
+# Tips of Fig. 14 within 0.5 % in frequency of Eq. (15) and its combinations
+@pytest.mark.parametrize("number, kind, resonance", [
+    (1, "single-period", lambda f1, f2: f1),
+    (2, "single-period", lambda f1, f2: f2),
+    (3, "double-period", lambda f1, f2: 2 * f1),
+    (4, "double-period", lambda f1, f2: 2 * f2),
+    (5, "combination", lambda f1, f2: f2 - f1),
+    (6, "combination", lambda f1, f2: f1 + f2),
+])
+def test_tongue_tips_at_the_resonances(paper4, paper_tongues, number, kind,
+                                       resonance):
+    _, tongues = paper_tongues
+    tongue = next(t for t in tongues if t.number == number)
+    expected = resonance(*natural_frequencies(paper4))
+    assert tongue.kind == kind
+    assert tongue.tip_freq_hz == pytest.approx(expected, rel=5e-3)
+    assert tongue.tip_multiplier_error < 1e-6
+    assert 0 < tongue.tip_p_f < 0.3 * BAR   # a few tenths of a bar at most
+    assert not tongue.tip_at_edge
+
+
+def test_tips_are_refined_below_the_grid(paper4, paper_tongues):
+    boundaries, tongues = paper_tongues
+    tip = next(t for t in tongues if t.number == 2)
+    assert tip.tip_p_f <= np.nanmin(boundaries.amplitude[:, 0])
+
+
+def test_boundaries_scale_exactly_with_mu_g(paper4):
+    # mu_g only multiplies p_f when the mean pressure is left out
+    doubled = build_driveline(get_preset("paper-4dof").replace(mu_g=0.034))
+    freqs = [18.0, 37.9, 84.0, 102.9]
+    base = tongue_boundaries(paper4, freqs, 2 * BAR).amplitude
+    scaled = tongue_boundaries(doubled, freqs, 1 * BAR).amplitude
+    finite = np.isfinite(scaled)
+    assert finite.sum() >= 4
+    assert_allclose(scaled[finite], base[finite] / 2, rtol=1e-7)
+
+
+def _tips(preset, **changes):
+    driveline = build_driveline(get_preset(preset).replace(**changes))
+    boundaries = tongue_boundaries(driveline, GRID, 1.5 * BAR)
+    return {t.number: t for t in find_tongues(driveline, boundaries)
+            if t.number}
+
+
+def test_clutch_damper_damping_study(paper_tongues):
+    # Fig. 16b / 18b, c12 from 0.5 to 10 N m s/rad
+    _, tongues = paper_tongues
+    low = {t.number: t for t in tongues}
+    high = _tips("paper-4dof", c12=10.0)
+    assert 3 not in high                                  # tongue 3 vanishes
+    for n in (5, 6):                                      # combination tongues
+        assert high[n].tip_p_f > 0.7 * BAR                # above 0.7 bar
+    for n in (1, 4):                                      # contract strongly
+        assert high[n].tip_p_f > 3 * low[n].tip_p_f
+    # tongue 2 barely moves: same frequency, tip still far below 0.7 bar
+    assert high[2].tip_freq_hz == pytest.approx(low[2].tip_freq_hz, rel=2e-3)
+    assert high[2].tip_p_f < 0.1 * BAR
+
+
+def test_3dof_has_one_single_and_one_double_period_tongue():
+    tips = _tips("paper-3dof")
+    assert set(tips) == {1, 2}
+    assert tips[1].kind == "single-period"
+    assert tips[1].tip_freq_hz == pytest.approx(18.047, rel=5e-3)
+    assert tips[2].kind == "double-period"
+    assert tips[2].tip_freq_hz == pytest.approx(2 * 18.047, rel=5e-3)
+
+
+def test_free_rotation_is_refused():
+    free = build_driveline(get_preset("paper-4dof").replace(
+        c1=0.0, c2=0.0, c3=0.0, c4=0.0))
+    with pytest.raises(JudderError, match="c_i"):
+        hill_boundary_amplitudes(free.periodic_system(), 50.0)
