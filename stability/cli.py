@@ -506,6 +506,11 @@ def _model_options(parser):
                         help="print the result as JSON")
 
 
+def _pf_max_option(parser, meaning):
+    parser.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
+                        help=f"{meaning}, bar (default 1.5)")
+
+
 def _method_option(parser):
     parser.add_argument("--method", default="dyson",
                         choices=("dyson", "solve_ivp"),
@@ -584,8 +589,7 @@ def build_parser():
                                    "Fig. 14, with their tips (lowest p_f).")
     p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
-    p.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
-                   help="largest amplitude searched, bar (default 1.5)")
+    _pf_max_option(p, "largest amplitude searched")
     p.add_argument("--out", metavar="FILE.csv",
                    help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
                         "if none), then per kind, bar")
@@ -612,8 +616,7 @@ def build_parser():
                    help="absolute values (SI) instead of --factors")
     p.add_argument("--freq", default="10:220:200", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:200)")
-    p.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
-                   help="largest amplitude searched, bar (default 1.5)")
+    _pf_max_option(p, "largest amplitude searched")
     p.add_argument("--workers", type=int, default=None,
                    help="processes (default: all cores)")
     p.add_argument("--out", metavar="FILE.csv", help="tip-shift table as CSV")
@@ -660,8 +663,8 @@ def build_parser():
                    metavar="NAME=LOW:HIGH",
                    help="search range of a fitted parameter, SI; repeatable "
                         "(default a factor 100 either way of the start)")
-    p.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
-                   help="largest amplitude tried on the bench, bar")
+    _pf_max_option(p, "largest amplitude tried on the bench (and "
+                      "searched in the model)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="measured and fitted boundaries (Fig. 16a)")
     p.add_argument("--save-params", metavar="FILE.toml",
