@@ -1,0 +1,3 @@
+within Judder;
+package Components "Inertias, couplings, ground and the wet clutch"
+end Components;

@@ -1,0 +1,2 @@
+within Judder.Interfaces;
+connector RealInput = input Real "Real input signal";

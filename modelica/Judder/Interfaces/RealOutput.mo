@@ -1,0 +1,2 @@
+within Judder.Interfaces;
+connector RealOutput = output Real "Real output signal";

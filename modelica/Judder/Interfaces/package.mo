@@ -1,0 +1,3 @@
+within Judder;
+package Interfaces "Connectors and partial models"
+end Interfaces;
