@@ -1,0 +1,6 @@
+"""Modelica to FMU: rumoca front end, the project's own back end.
+
+:mod:`fmu.frontend` reads the flat model rumoca writes for a ``.mo``
+model; :mod:`fmu.backend` eliminates aliases, reduces the index, sorts
+and solves the equations into an explicit ODE (CasADi expressions).
+"""

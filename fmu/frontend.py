@@ -1,0 +1,274 @@
+"""Modelica front end: rumoca flattens, this module reads its flat model.
+
+rumoca (an independent Modelica compiler on PyPI) parses the library,
+expands ``connect`` and ``flow`` and writes the flat model as a JSON-like
+dictionary: variables with their role (state, algebraic, parameter,
+output), attributes (unit, start, fixed, min, max, description) and
+residual equations over an expression graph. :func:`load_flat_model`
+turns that into CasADi SX expressions for the back end. Nothing here
+knows about drivelines: the equations come from the ``.mo`` source.
+"""
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import casadi
+
+__all__ = ["Variable", "FlatModel", "load_flat_model", "FrontEndError"]
+
+
+class FrontEndError(ValueError):
+    """The Modelica source could not be compiled; the message says where."""
+
+
+@dataclass
+class Variable:
+    """One scalar of the flat model.
+
+    Attributes
+    ----------
+    name : str
+        Flat name, e.g. ``inertia1.w``.
+    role : str
+        ``'state'``, ``'algebraic'``, ``'parameter'`` or ``'output'``.
+    symbol : casadi.SX
+    derivative : casadi.SX or None
+        ``der(name)`` for states.
+    unit, description : str
+    start : casadi.SX or None
+        Start value (may depend on parameters).
+    fixed : bool
+    binding : casadi.SX or None
+        Parameter binding (may depend on other parameters).
+    minimum, maximum : casadi.SX or None
+    """
+
+    name: str
+    role: str
+    symbol: object
+    derivative: object = None
+    unit: str = ""
+    description: str = ""
+    start: object = None
+    fixed: bool = False
+    binding: object = None
+    minimum: object = None
+    maximum: object = None
+
+
+@dataclass
+class FlatModel:
+    """Flat DAE ``0 = F(t, der(x), x, z, p)`` of one Modelica model.
+
+    Attributes
+    ----------
+    name : str
+        Full class name.
+    variables : list of Variable
+    residuals : list of casadi.SX
+        One scalar residual per equation.
+    time : casadi.SX
+    experiment : dict
+        ``StopTime`` and ``Interval`` of the experiment annotation.
+    description : str
+    """
+
+    name: str
+    variables: list
+    residuals: list
+    time: object
+    experiment: dict = field(default_factory=dict)
+    description: str = ""
+
+    def by_role(self, role):
+        """Variables of one role, in declaration order."""
+        return [v for v in self.variables if v.role == role]
+
+
+_BINARY = {
+    "add": lambda a, b: a + b, "subtract": lambda a, b: a - b,
+    "multiply": lambda a, b: a * b, "divide": lambda a, b: a / b,
+    "power": lambda a, b: a ** b,
+    "less": lambda a, b: a < b, "less_equal": lambda a, b: a <= b,
+    "greater": lambda a, b: a > b, "greater_equal": lambda a, b: a >= b,
+    "equal": lambda a, b: a == b, "not_equal": lambda a, b: a != b,
+    "and": casadi.logic_and, "or": casadi.logic_or,
+}
+_UNARY = {"negate": lambda a: -a, "plus": lambda a: a,
+          "not": casadi.logic_not}
+_BUILTIN = {
+    "no_event": lambda a: a, "smooth": lambda order, a: a,
+    "tanh": casadi.tanh, "sinh": casadi.sinh, "cosh": casadi.cosh,
+    "sin": casadi.sin, "cos": casadi.cos, "tan": casadi.tan,
+    "asin": casadi.asin, "acos": casadi.acos, "atan": casadi.atan,
+    "atan2": casadi.atan2, "exp": casadi.exp, "log": casadi.log,
+    "log10": casadi.log10, "sqrt": casadi.sqrt, "abs": casadi.fabs,
+    "min": casadi.fmin, "max": casadi.fmax, "sign": casadi.sign,
+}
+
+
+class _Expressions:
+    """Converts rumoca's expression nodes to CasADi SX, memoised."""
+
+    def __init__(self, storage, symbols, derivatives, time):
+        graph = storage["expressions"]
+        self._nodes = graph["nodes"]
+        self._operands = graph["operands"]
+        self._symbols, self._derivatives = symbols, derivatives
+        self._time = time
+        self._cache = {}
+        # nodes with a variable number of operands take them, in node
+        # order, from the flat operand list
+        self._offsets = {}
+        offset = 0
+        for index, node in enumerate(self._nodes):
+            kind, body = next(iter(node.items()))
+            if isinstance(body, dict) and "operand_count" in body:
+                self._offsets[index] = offset
+                offset += body["operand_count"]
+
+    def __call__(self, index):
+        if index is None:
+            return None
+        if index not in self._cache:
+            self._cache[index] = self._convert(index)
+        return self._cache[index]
+
+    def _args(self, index, count):
+        start = self._offsets[index]
+        return [self(i) for i in self._operands[start:start + count]]
+
+    def _convert(self, index):
+        kind, body = next(iter(self._nodes[index].items()))
+        if kind == "literal":
+            value = next(iter(body.values()))
+            return casadi.SX(float(value))
+        if kind == "coordinate":
+            if body == "time":
+                return self._time
+            role, position = next(iter(body.items()))
+            if role == "derivative":
+                return self._derivatives[position]
+            return self._symbols[position]
+        if kind == "binary":
+            op = body["operator"]
+            if op not in _BINARY:
+                raise FrontEndError(f"operator {op!r} is not supported")
+            return _BINARY[op](self(body["lhs"]), self(body["rhs"]))
+        if kind == "unary":
+            op = body["operator"]
+            if op not in _UNARY:
+                raise FrontEndError(f"operator {op!r} is not supported")
+            return _UNARY[op](self(body["operand"]))
+        if kind == "builtin":
+            name = body["builtin"]
+            if name not in _BUILTIN:
+                raise FrontEndError(f"function {name}() is not supported by "
+                                    "the FMU back end")
+            return _BUILTIN[name](*self._args(index, body["operand_count"]))
+        if kind == "conditional":
+            args = self._args(index, body["operand_count"])
+            return _conditional(args)
+        raise FrontEndError(f"expression kind {kind!r} is not supported")
+
+
+def _conditional(args):
+    """``if c1 then v1 elseif c2 then v2 ... else v`` as nested if_else."""
+    *pairs, otherwise = args
+    result = otherwise
+    for condition, value in reversed(list(zip(pairs[::2], pairs[1::2]))):
+        result = casadi.if_else(condition, value, result, True)
+    return result
+
+
+def _flatten(path, model_name, roots):
+    import rumoca
+    diagnostics = rumoca.validate(str(path), model=model_name)
+    errors = [d for d in diagnostics
+              if str(getattr(d, "severity", "error")).lower().endswith(
+                  "error")]
+    if errors:
+        raise FrontEndError("\n".join(str(d) for d in errors))
+    try:
+        session = rumoca.Session(roots=[str(r) for r in roots])
+        model = session.load(str(path), model=model_name)
+    except Exception as exc:   # rumoca raises its own error classes
+        raise FrontEndError(f"{path}: {exc}") from None
+    return model.to_dict()
+
+
+def load_flat_model(path, model_name, roots=()):
+    """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.mo`` file that holds the model.
+    model_name : str
+        Full class name, e.g. ``Judder.Examples.Driveline4DOF``.
+    roots : sequence of paths
+        Library folders the model uses.
+
+    Raises
+    ------
+    FrontEndError
+        With rumoca's diagnostics (file, line, what is wrong).
+    """
+    path = Path(path)
+    flat = _flatten(path, model_name, roots or [path.parent])
+    storage = flat["storage"]
+    time = casadi.SX.sym("time")
+    symbols, derivatives, variables = [], {}, []
+    for index, raw in enumerate(storage["variables"]):
+        symbol = casadi.SX.sym(raw["name"])
+        symbols.append(symbol)
+        if raw["role"] == "state":
+            derivatives[index] = casadi.SX.sym(f"der({raw['name']})")
+    convert = _Expressions(storage, symbols, derivatives, time)
+    for index, raw in enumerate(storage["variables"]):
+        attributes = raw.get("attributes", {})
+        variables.append(Variable(
+            name=raw["name"], role=raw["role"], symbol=symbols[index],
+            derivative=derivatives.get(index),
+            unit=attributes.get("unit") or "",
+            description=attributes.get("description") or "",
+            start=convert(attributes.get("start")),
+            fixed=_is_fixed(attributes.get("fixed")),
+            binding=convert(attributes.get("binding")),
+            minimum=convert(attributes.get("min")),
+            maximum=convert(attributes.get("max"))))
+    residuals = []
+    for operation in storage["continuous_equation_operations"]:
+        kind, body = next(iter(operation.items()))
+        if kind != "residual":
+            raise FrontEndError(f"{model_name}: equations of kind {kind!r} "
+                                "are not supported by the FMU back end")
+        residuals.append(convert(body["residual"]))
+    for name in ("discrete_real_equations", "model_event_transactions",
+                 "clocks", "delays"):
+        if storage.get(name):
+            raise FrontEndError(f"{model_name}: {name.replace('_', ' ')} are "
+                                "not supported by the FMU back end")
+    return FlatModel(name=model_name, variables=variables,
+                     residuals=residuals, time=time,
+                     experiment=_experiment(path, model_name))
+
+
+def _is_fixed(value):
+    """rumoca writes ``fixed`` as a literal list such as ``[true]``."""
+    if isinstance(value, list):
+        return bool(value and value[0])
+    return bool(value)
+
+
+def _experiment(path, model_name):
+    """StopTime and Interval of the experiment annotation in the source."""
+    import re
+    text = Path(path).read_text()
+    found = re.search(r"experiment\s*\(([^)]*)\)", text)
+    values = {}
+    if found:
+        for key, value in re.findall(r"(\w+)\s*=\s*([-+\d.eE]+)",
+                                     found.group(1)):
+            values[key] = float(value)
+    return values
