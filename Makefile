@@ -5,7 +5,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test bench clean
+.PHONY: setup run test bench fmu clean
 
 setup: $(STAMP)
 
@@ -26,5 +26,17 @@ test: setup
 bench: setup
 	$(BIN)/python benchmarks/bench.py
 
+# FMUs of the Modelica examples (FMI 2.0 ME+CS and FMI 3.0 ME) under
+# build/fmu; rebuilt only when the library or the compiler changed.
+MO_SOURCES := $(shell find modelica -name '*.mo' -o -name package.order)
+FMU_COMPILER := $(wildcard fmu/*.py fmu/c/*.c fmu/c/*.h)
+FMU_STAMP := build/fmu/.built
+
+fmu: $(FMU_STAMP)
+
+$(FMU_STAMP): $(STAMP) $(MO_SOURCES) $(FMU_COMPILER)
+	$(BIN)/python -m fmu --out build/fmu
+	@touch $@
+
 clean:
-	rm -rf $(VENV) out
+	rm -rf $(VENV) out build

@@ -193,8 +193,19 @@ def _flatten(path, model_name, roots):
         session = rumoca.Session(roots=[str(r) for r in roots])
         model = session.load(str(path), model=model_name)
     except Exception as exc:   # rumoca raises its own error classes
-        raise FrontEndError(f"{path}: {exc}") from None
+        raise FrontEndError(f"{path}: {exc}{_library_errors(rumoca, roots)}") \
+            from None
     return model.to_dict()
+
+
+def _library_errors(rumoca, roots):
+    """Syntax errors anywhere in the library (rumoca only says 'failed')."""
+    found = []
+    for root in roots:
+        for source in sorted(Path(root).rglob("*.mo")):
+            found += [str(d) for d in rumoca.validate(str(source))
+                      if "error" in str(d).lower()]
+    return ("\n" + "\n".join(found)) if found else ""
 
 
 def load_flat_model(path, model_name, roots=()):

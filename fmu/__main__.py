@@ -1,0 +1,69 @@
+"""``python -m fmu``: compile Modelica models to FMUs (``make fmu``)."""
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .build import DEFAULT_TOLERANCE, build_fmu
+from .frontend import FrontEndError
+
+LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
+EXAMPLES = ("Driveline4DOF", "Driveline3DOF", "TestBenchEngagement")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="python -m fmu",
+        description="Compile Modelica models of the Judder library to FMUs: "
+                    "NAME.fmu (FMI 2.0, Model Exchange and Co-Simulation) "
+                    "and NAME_fmi3.fmu (FMI 3.0, Model Exchange). "
+                    "Co-Simulation integrates with an embedded "
+                    "Dormand-Prince 5(4) at the given tolerance.")
+    parser.add_argument("models", nargs="*", metavar="CLASS",
+                        help="full class names (default: the examples "
+                             + ", ".join(EXAMPLES) + ")")
+    parser.add_argument("--library", default=str(LIBRARY), metavar="DIR",
+                        help="folder holding the Modelica packages")
+    parser.add_argument("--out", default="build/fmu", metavar="DIR",
+                        help="folder for the FMUs (default build/fmu)")
+    parser.add_argument("--fmi", choices=("2.0", "3.0", "both"),
+                        default="both", help="FMI version(s) to build")
+    parser.add_argument("--tolerance", type=float, default=DEFAULT_TOLERANCE,
+                        help="default relative tolerance, also of the "
+                             "co-simulation integrator (default %(default)g)")
+    parser.add_argument("--json", action="store_true",
+                        help="report as JSON lines")
+    args = parser.parse_args(argv)
+    library = Path(args.library)
+    names = args.models or [f"Judder.Examples.{n}" for n in EXAMPLES]
+    versions = ("2.0", "3.0") if args.fmi == "both" else (args.fmi,)
+    try:
+        for name in names:
+            source = library.joinpath(*name.split(".")).with_suffix(".mo")
+            if not source.exists():
+                raise FrontEndError(f"{name}: no file {source}")
+            for version in versions:
+                suffix = "" if version == "2.0" else "_fmi3"
+                target = Path(args.out) / f"{name.split('.')[-1]}{suffix}.fmu"
+                result = build_fmu(source, name, target, version=version,
+                                   roots=[library], tolerance=args.tolerance)
+                report = {"model": name, "fmi": version,
+                          "path": str(result.path),
+                          "states": result.states,
+                          "parameters": result.parameters,
+                          "outputs": result.outputs,
+                          "seconds": round(result.seconds, 3),
+                          "size_bytes": result.size_bytes}
+                print(json.dumps(report) if args.json else
+                      f"{result.path}: FMI {version}, {result.states} states,"
+                      f" {result.parameters} parameters, {result.outputs} "
+                      f"outputs, built in {result.seconds:.2f} s, "
+                      f"{result.size_bytes / 1024:.1f} KiB")
+    except FrontEndError as exc:
+        print(f"fmu: error: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+sys.exit(main())

@@ -1,0 +1,165 @@
+/* Generic model core: evaluation, variable access and the embedded
+ * Dormand-Prince 5(4) integrator used for co-simulation. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "model.h"
+
+#include "model_functions.h"
+
+static const double parameter_defaults[MODEL_NP + 1] = MODEL_PARAMETER_DEFAULTS;
+
+int model_init(Model *m) {
+    casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
+    memset(m, 0, sizeof(*m));
+    memcpy(m->p, parameter_defaults, sizeof(m->p));
+    m->relative_tolerance = MODEL_DEFAULT_TOLERANCE;
+    MODEL_ODE_WORK(&a, &r, &i, &w);
+    sz_arg = a; sz_res = r; sz_iw = i; sz_w = w;
+    MODEL_OUTPUTS_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    MODEL_START_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    MODEL_CALCULATED_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    m->arg = calloc((size_t)sz_arg + 1, sizeof(*m->arg));
+    m->res = calloc((size_t)sz_res + 1, sizeof(*m->res));
+    m->iw = calloc((size_t)sz_iw + 1, sizeof(*m->iw));
+    m->w = calloc((size_t)sz_w + 1, sizeof(*m->w));
+    if (!m->arg || !m->res || !m->iw || !m->w) { model_free(m); return 1; }
+    m->stale = 1;
+    model_start(m);
+    return 0;
+}
+
+void model_free(Model *m) {
+    free(m->arg); free(m->res); free(m->iw); free(m->w);
+    m->arg = NULL; m->res = NULL; m->iw = NULL; m->w = NULL;
+}
+
+void model_start(Model *m) {
+    m->arg[0] = m->p;
+    m->res[0] = m->x;
+    MODEL_START(m->arg, m->res, m->iw, m->w, 0);
+    m->stale = 1;
+}
+
+static void derivatives(Model *m, double t, const double *x, double *xdot) {
+    m->arg[0] = &t; m->arg[1] = x; m->arg[2] = m->p;
+    m->res[0] = xdot;
+    MODEL_ODE(m->arg, m->res, m->iw, m->w, 0);
+}
+
+void model_evaluate(Model *m) {
+    if (!m->stale) return;
+    derivatives(m, m->time, m->x, m->xdot);
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = m->y;
+    MODEL_OUTPUTS(m->arg, m->res, m->iw, m->w, 0);
+    m->arg[0] = m->p;
+    m->res[0] = m->calculated;
+    MODEL_CALCULATED(m->arg, m->res, m->iw, m->w, 0);
+    m->stale = 0;
+}
+
+int model_get(Model *m, unsigned vr, double *value) {
+    if (vr == 0) { *value = m->time; return 0; }
+    if (vr < VR_DERIVATIVES) { *value = m->x[vr - VR_STATES]; return 0; }
+    if (vr < VR_PARAMETERS) {
+        model_evaluate(m); *value = m->xdot[vr - VR_DERIVATIVES]; return 0;
+    }
+    if (vr < VR_CALCULATED) { *value = m->p[vr - VR_PARAMETERS]; return 0; }
+    if (vr < VR_OUTPUTS) {
+        model_evaluate(m); *value = m->calculated[vr - VR_CALCULATED];
+        return 0;
+    }
+    if (vr < VR_END) { model_evaluate(m); *value = m->y[vr - VR_OUTPUTS]; return 0; }
+    return 1;
+}
+
+int model_set(Model *m, unsigned vr, double value, int parameters_only) {
+    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) {
+        m->p[vr - VR_PARAMETERS] = value; m->stale = 1; return 0;
+    }
+    if (!parameters_only && vr >= VR_STATES && vr < VR_DERIVATIVES) {
+        m->x[vr - VR_STATES] = value; m->stale = 1; return 0;
+    }
+    return 1;
+}
+
+/* Dormand-Prince 5(4) coefficients (Hairer, Norsett, Wanner, 1993). */
+static const double C2 = 1.0/5, C3 = 3.0/10, C4 = 4.0/5, C5 = 8.0/9;
+static const double A21 = 1.0/5;
+static const double A31 = 3.0/40, A32 = 9.0/40;
+static const double A41 = 44.0/45, A42 = -56.0/15, A43 = 32.0/9;
+static const double A51 = 19372.0/6561, A52 = -25360.0/2187,
+                    A53 = 64448.0/6561, A54 = -212.0/729;
+static const double A61 = 9017.0/3168, A62 = -355.0/33, A63 = 46732.0/5247,
+                    A64 = 49.0/176, A65 = -5103.0/18656;
+static const double B1 = 35.0/384, B3 = 500.0/1113, B4 = 125.0/192,
+                    B5 = -2187.0/6784, B6 = 11.0/84;
+static const double E1 = 71.0/57600, E3 = -71.0/16695, E4 = 71.0/1920,
+                    E5 = -17253.0/339200, E6 = 22.0/525, E7 = -1.0/40;
+
+int model_integrate(Model *m, double t_end) {
+    enum { N = MODEL_NX + 1 };
+    double k1[N], k2[N], k3[N], k4[N], k5[N], k6[N], k7[N], xs[N], xn[N];
+    double t = m->time, h, rtol = m->relative_tolerance, atol;
+    int i, n = MODEL_NX;
+    if (n == 0) { m->time = t_end; m->stale = 1; return 0; }
+    atol = rtol;
+    h = (t_end - t) > 0 ? (t_end - t) : 0;
+    derivatives(m, t, m->x, k1);
+    {   /* initial step from the derivative scale */
+        double d0 = 0, d1 = 0, sc;
+        for (i = 0; i < n; i++) {
+            sc = atol + rtol * fabs(m->x[i]);
+            d0 += (m->x[i] / sc) * (m->x[i] / sc);
+            d1 += (k1[i] / sc) * (k1[i] / sc);
+        }
+        d0 = sqrt(d0 / n); d1 = sqrt(d1 / n);
+        if (d1 > 1e-15) { double h0 = 0.01 * (d0 > 1e-5 ? d0 : 1e-5) / d1; if (h0 < h) h = h0; }
+    }
+    while (t < t_end) {
+        double err = 0, factor;
+        if (t + h > t_end || t + 1.01 * h >= t_end) h = t_end - t;
+        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * A21 * k1[i];
+        derivatives(m, t + C2 * h, xs, k2);
+        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A31 * k1[i] + A32 * k2[i]);
+        derivatives(m, t + C3 * h, xs, k3);
+        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
+        derivatives(m, t + C4 * h, xs, k4);
+        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
+        derivatives(m, t + C5 * h, xs, k5);
+        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
+        derivatives(m, t + h, xs, k6);
+        for (i = 0; i < n; i++) xn[i] = m->x[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]);
+        derivatives(m, t + h, xn, k7);
+        for (i = 0; i < n; i++) {
+            double e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+            double sc = atol + rtol * fmax(fabs(m->x[i]), fabs(xn[i]));
+            err += (e / sc) * (e / sc);
+        }
+        err = sqrt(err / n);
+        if (!isfinite(err)) return 1;
+        if (err <= 1.0) {
+            t += h;
+            memcpy(m->x, xn, sizeof(double) * n);
+            memcpy(k1, k7, sizeof(double) * n);
+            m->steps++;
+        } else {
+            m->rejected++;
+        }
+        factor = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
+        if (factor > 5.0) factor = 5.0;
+        if (factor < 0.2) factor = 0.2;
+        h *= factor;
+        if (h < 1e-14 * (fabs(t) + 1.0)) return 1;
+    }
+    m->time = t_end;
+    m->stale = 1;
+    return 0;
+}

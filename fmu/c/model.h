@@ -1,0 +1,50 @@
+/* Generic model core of the project's FMUs.
+ *
+ * Nothing here knows a model: sizes, defaults and the equations come from
+ * the generated files model_config.h and model_functions.c (CasADi code of
+ * der(x) = f(t, x, p), y = h(t, x, p) and x0 = s(p), written by the
+ * back end from the Modelica source).
+ */
+#ifndef JUDDER_MODEL_H
+#define JUDDER_MODEL_H
+
+#include <stddef.h>
+#include "model_config.h"
+
+/* Value references: 0 time, then states, derivatives, parameters,
+ * calculated parameters and outputs, in this order. */
+#define VR_STATES 1
+#define VR_DERIVATIVES (VR_STATES + MODEL_NX)
+#define VR_PARAMETERS (VR_DERIVATIVES + MODEL_NX)
+#define VR_CALCULATED (VR_PARAMETERS + MODEL_NP)
+#define VR_OUTPUTS (VR_CALCULATED + MODEL_NC)
+#define VR_END (VR_OUTPUTS + MODEL_NY)
+
+typedef struct {
+    double time;
+    double x[MODEL_NX + 1];
+    double p[MODEL_NP + 1];
+    double xdot[MODEL_NX + 1];
+    double y[MODEL_NY + 1];
+    double calculated[MODEL_NC + 1];
+    int stale;                 /* xdot, y, calculated need evaluating */
+    double relative_tolerance; /* co-simulation integrator */
+    long steps, rejected;      /* co-simulation statistics */
+    /* CasADi work arrays */
+    const double **arg;
+    double **res;
+    long long *iw;
+    double *w;
+} Model;
+
+int model_init(Model *m);            /* defaults; 0 on success */
+void model_free(Model *m);
+void model_start(Model *m);          /* x = x0(p) */
+void model_evaluate(Model *m);       /* xdot, y, calculated from t, x, p */
+int model_get(Model *m, unsigned vr, double *value);
+int model_set(Model *m, unsigned vr, double value, int parameters_only);
+/* Advance from m->time to t_end with Dormand-Prince 5(4) under
+ * relative_tolerance; returns 0 on success. */
+int model_integrate(Model *m, double t_end);
+
+#endif

@@ -1,0 +1,250 @@
+"""modelDescription.xml for FMI 2.0 (ME + CS) and FMI 3.0 (ME).
+
+Value references follow ``fmu/c/model.h``: 0 time, then the states,
+their derivatives, the tunable parameters, the calculated parameters and
+the outputs. States are calculated at initialisation from the parameters
+(their Modelica start values may depend on them), so their start values
+are set through parameters.
+"""
+
+import re
+from xml.sax.saxutils import quoteattr
+
+from .units import base_exponents
+
+__all__ = ["Layout", "model_description"]
+
+
+class Layout:
+    """Value references and names of every FMU variable of an OdeModel."""
+
+    def __init__(self, ode):
+        self.states = ode.states
+        self.parameters = ode.parameters
+        self.calculated = ode.calculated
+        self.outputs = ode.outputs
+        nx, np_, nc = len(ode.states), len(ode.parameters), len(ode.calculated)
+        self.vr_states = 1
+        self.vr_derivatives = 1 + nx
+        self.vr_parameters = 1 + 2 * nx
+        self.vr_calculated = self.vr_parameters + np_
+        self.vr_outputs = self.vr_calculated + nc
+
+    def units(self):
+        names = {q.unit for group in (self.states, self.parameters,
+                                      self.calculated, self.outputs)
+                 for q in group if q.unit}
+        for q in self.states:
+            if q.unit:
+                names.add(_derivative_unit(q.unit))
+        return sorted(names)
+
+
+def _derivative_unit(unit):
+    """Unit of a time derivative: rad -> rad/s, rad/s -> rad/s2."""
+    numerator, slash, denominator = unit.partition("/")
+    if not slash:
+        return "1/s" if unit == "1" else f"{unit}/s"
+    found = re.fullmatch(r"s(\d*)", denominator)
+    if found:
+        return f"{numerator}/s{int(found.group(1) or 1) + 1}"
+    return f"{unit}.s"
+
+
+def _attr(**items):
+    return "".join(f" {k}={quoteattr(str(v))}" for k, v in items.items()
+                   if v is not None and v != "")
+
+
+def _number(value):
+    return repr(float(value))
+
+
+def _unit_definitions(layout):
+    lines = ["  <UnitDefinitions>"]
+    for unit in layout.units():
+        exponents, factor = base_exponents(unit)
+        base = _attr(**{k: v for k, v in exponents.items()},
+                     factor=None if factor == 1.0 else _number(factor))
+        lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit{base}/>"
+                     "</Unit>")
+    lines.append("  </UnitDefinitions>")
+    return lines
+
+
+def _experiment(ode, tolerance):
+    exp = ode.experiment
+    return ["  <DefaultExperiment" + _attr(
+        startTime="0.0", stopTime=_number(exp.get("StopTime", 1.0)),
+        tolerance=_number(tolerance),
+        stepSize=_number(exp.get("Interval", 1e-3))) + "/>"]
+
+
+def model_description(ode, version, identifier, guid, tolerance=1e-10,
+                      tool="judder fmu"):
+    """The XML text of modelDescription.xml.
+
+    Parameters
+    ----------
+    ode : fmu.backend.OdeModel
+    version : {'2.0', '3.0'}
+    identifier : str
+        modelIdentifier (name of the shared library).
+    guid : str
+        GUID (FMI 2) or instantiationToken (FMI 3).
+    tolerance : float
+        Default relative tolerance of the experiment.
+    """
+    layout = Layout(ode)
+    if version == "2.0":
+        return _fmi2(ode, layout, identifier, guid, tolerance, tool)
+    if version == "3.0":
+        return _fmi3(ode, layout, identifier, guid, tolerance, tool)
+    raise ValueError(f"FMI version {version!r}; allowed: 2.0, 3.0")
+
+
+def _variables(layout):
+    """(name, vr, kind, quantity) of every variable in index order."""
+    rows = []
+    for i, q in enumerate(layout.states):
+        rows.append((q.name, layout.vr_states + i, "state", q))
+    for i, q in enumerate(layout.states):
+        rows.append((f"der({q.name})", layout.vr_derivatives + i,
+                     "derivative", q))
+    for i, q in enumerate(layout.parameters):
+        rows.append((q.name, layout.vr_parameters + i, "parameter", q))
+    for i, q in enumerate(layout.calculated):
+        rows.append((q.name, layout.vr_calculated + i, "calculated", q))
+    for i, q in enumerate(layout.outputs):
+        rows.append((q.name, layout.vr_outputs + i, "output", q))
+    return rows
+
+
+def _bounds(q):
+    out = {}
+    for key, value in (("min", q.minimum), ("max", q.maximum)):
+        if value is not None:
+            try:
+                out[key] = _number(float(value))
+            except (TypeError, RuntimeError):
+                pass   # a bound that depends on parameters is not exported
+    return out
+
+
+def _fmi2(ode, layout, identifier, guid, tolerance, tool):
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             "<fmiModelDescription" + _attr(
+                 fmiVersion="2.0", modelName=ode.name, guid=guid,
+                 generationTool=tool, variableNamingConvention="structured",
+                 numberOfEventIndicators="0") + ">",
+             "  <ModelExchange" + _attr(
+                 modelIdentifier=identifier,
+                 canNotUseMemoryManagementFunctions="true") + "/>",
+             "  <CoSimulation" + _attr(
+                 modelIdentifier=identifier,
+                 canHandleVariableCommunicationStepSize="true",
+                 canNotUseMemoryManagementFunctions="true") + "/>"]
+    lines += _unit_definitions(layout)
+    lines += _experiment(ode, tolerance)
+    lines.append("  <ModelVariables>")
+    index_of = {}
+    rows = _variables(layout)
+    for index, (name, vr, kind, q) in enumerate(rows, start=1):
+        index_of[(kind, name)] = index
+        common = dict(name=name, valueReference=vr,
+                      description=q.description or None)
+        if kind == "state":
+            head = _attr(**common, causality="local",
+                         variability="continuous", initial="calculated")
+            real = _attr(unit=q.unit or None)
+        elif kind == "derivative":
+            state = index_of[("state", q.name)]
+            head = _attr(**common, causality="local",
+                         variability="continuous", initial="calculated")
+            real = _attr(unit=_derivative_unit(q.unit) if q.unit else None,
+                         derivative=state)
+        elif kind == "parameter":
+            head = _attr(**common, causality="parameter",
+                         variability="tunable", initial="exact")
+            real = _attr(unit=q.unit or None, start=_number(q.start),
+                         **_bounds(q))
+        elif kind == "calculated":
+            head = _attr(**common, causality="calculatedParameter",
+                         variability="tunable", initial="calculated")
+            real = _attr(unit=q.unit or None)
+        else:
+            head = _attr(**common, causality="output",
+                         variability="continuous", initial="calculated")
+            real = _attr(unit=q.unit or None)
+        lines.append(f"    <ScalarVariable{head}><Real{real}/></ScalarVariable>")
+    lines.append("  </ModelVariables>")
+    outputs = [i for (k, _), i in index_of.items() if k == "output"]
+    derivatives = [i for (k, _), i in index_of.items() if k == "derivative"]
+    initial = sorted(i for (k, _), i in index_of.items()
+                     if k in ("output", "state", "derivative", "calculated"))
+    lines.append("  <ModelStructure>")
+    for tag, indices in (("Outputs", outputs), ("Derivatives", derivatives),
+                         ("InitialUnknowns", initial)):
+        if indices:
+            lines.append(f"    <{tag}>")
+            lines += [f'      <Unknown index="{i}"/>' for i in indices]
+            lines.append(f"    </{tag}>")
+    lines.append("  </ModelStructure>")
+    lines.append("</fmiModelDescription>")
+    return "\n".join(lines) + "\n"
+
+
+def _fmi3(ode, layout, identifier, guid, tolerance, tool):
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             "<fmiModelDescription" + _attr(
+                 fmiVersion="3.0", modelName=ode.name,
+                 instantiationToken=guid, generationTool=tool,
+                 variableNamingConvention="structured") + ">",
+             "  <ModelExchange" + _attr(modelIdentifier=identifier) + "/>"]
+    lines += _unit_definitions(layout)
+    lines += _experiment(ode, tolerance)
+    lines.append("  <ModelVariables>")
+    lines.append('    <Float64 name="time" valueReference="0" '
+                 'causality="independent" variability="continuous" '
+                 'description="Simulation time" unit="s"/>')
+    state_vr = {}
+    for name, vr, kind, q in _variables(layout):
+        common = dict(name=name, valueReference=vr,
+                      description=q.description or None)
+        if kind == "state":
+            state_vr[q.name] = vr
+            attrs = _attr(**common, causality="local",
+                          variability="continuous", initial="calculated",
+                          unit=q.unit or None)
+        elif kind == "derivative":
+            attrs = _attr(**common, causality="local",
+                          variability="continuous", initial="calculated",
+                          unit=_derivative_unit(q.unit) if q.unit else None,
+                          derivative=state_vr[q.name])
+        elif kind == "parameter":
+            attrs = _attr(**common, causality="parameter",
+                          variability="tunable", initial="exact",
+                          unit=q.unit or None, start=_number(q.start),
+                          **_bounds(q))
+        elif kind == "calculated":
+            attrs = _attr(**common, causality="calculatedParameter",
+                          variability="tunable", initial="calculated",
+                          unit=q.unit or None)
+        else:
+            attrs = _attr(**common, causality="output",
+                          variability="continuous", initial="calculated",
+                          unit=q.unit or None)
+        lines.append(f"    <Float64{attrs}/>")
+    lines.append("  </ModelVariables>")
+    lines.append("  <ModelStructure>")
+    rows = _variables(layout)
+    lines += [f'    <Output valueReference="{vr}"/>'
+              for _, vr, kind, _ in rows if kind == "output"]
+    lines += [f'    <ContinuousStateDerivative valueReference="{vr}"/>'
+              for _, vr, kind, _ in rows if kind == "derivative"]
+    lines += [f'    <InitialUnknown valueReference="{vr}"/>'
+              for _, vr, kind, _ in rows
+              if kind in ("state", "derivative", "calculated", "output")]
+    lines.append("  </ModelStructure>")
+    lines.append("</fmiModelDescription>")
+    return "\n".join(lines) + "\n"
