@@ -25,7 +25,7 @@ model Driveline3DOF "3-DOF driveline of Fig. 12: steady slipping with dither (Ap
   Components.Inertia inertia24(J=J24, phi(start=-T_e/k, fixed=true), w(start=w_in, fixed=true));
   Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=w_out, fixed=true));
   Components.SpringDamper damper(c=k, d=c) "Clutch damper";
-  Components.WetClutch clutch(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
+  Components.SlippingClutch clutch(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
     mean_pressure_damping=mean_pressure_damping);
   Components.Damper external1(d=c1);
   Components.Damper external24(d=c24);

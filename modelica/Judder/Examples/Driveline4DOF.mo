@@ -31,7 +31,7 @@ model Driveline4DOF "4-DOF driveline of Fig. 13, Eq. (1)-(5): steady slipping wi
   Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=w_out, fixed=true));
   Components.SpringDamper damper12(c=k12, d=c12) "Clutch damper";
   Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack";
-  Components.WetClutch clutch(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
+  Components.SlippingClutch clutch(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
     mean_pressure_damping=mean_pressure_damping) "EVEN clutch";
   Components.Damper external1(d=c1);
   Components.Damper external2(d=c2);
