@@ -466,6 +466,178 @@ def cmd_fit(args):
         raise JudderError("the fit did not converge: " + result.message)
 
 
+def _bench_values(assignments):
+    values = {}
+    for text in assignments:
+        name, sep, value = text.partition("=")
+        try:
+            values[name.strip()] = float(value)
+        except ValueError:
+            raise JudderError(f"--bench {text!r} is not NAME=VALUE with a "
+                              "number") from None
+        if not sep or not math.isfinite(values[name.strip()]):
+            raise JudderError(f"--bench {text!r} is not NAME=VALUE with a "
+                              "finite number")
+    return values
+
+
+def _run_summary(run, start):
+    from pysim.signals import amplitude_spectrum, dither_envelope
+    keep = run.time >= start
+    if run.p_f > 0:
+        envelope, growth = dither_envelope(run.time, run["w_upstream"],
+                                           run.freq_hz, start)
+    else:
+        envelope, growth = np.zeros(1), float("nan")
+    speed = amplitude_spectrum(run.time[keep], run["w_upstream"][keep])
+    pressure = amplitude_spectrum(run.time[keep],
+                                  run["actuation_pressure"][keep])
+    resolution = 1.0 / max(run.time[keep][-1] - run.time[keep][0], 1e-9)
+    line = int(np.argmin(np.abs(speed.freq_hz - run.freq_hz)))
+    return {"freq_hz": run.freq_hz, "p_f_bar": run.p_f / PA_PER_BAR,
+            "speed_peak_freq_hz": speed.peak_freq_hz,
+            "speed_peak_amplitude_rpm": speed.peak_amplitude * 60 / (2 * np.pi),
+            "speed_amplitude_at_dither_rpm":
+                float(speed.amplitude[line]) * 60 / (2 * np.pi),
+            "pressure_peak_freq_hz": pressure.peak_freq_hz,
+            "pressure_peak_amplitude_bar":
+                pressure.peak_amplitude / PA_PER_BAR,
+            "peak_at_dither_frequency":
+                bool(abs(speed.peak_freq_hz - run.freq_hz) <= 2 * resolution),
+            "judder_growth_per_s": growth,
+            "dither_envelope_max_rpm": float(envelope.max()) * 60 / (2 * np.pi),
+            "final_slip_rad_s": float(run["slip"][-1])}
+
+
+def cmd_simulate(args):
+    """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
+    from pysim.export import write_run
+    from pysim.fmus import ensure_fmu
+    from pysim.runs import SIGNALS, run_fmu
+    if not math.isfinite(args.freq) or args.freq <= 0:
+        raise JudderError(f"--freq {args.freq:g} Hz is not allowed; allowed: "
+                          "a finite frequency > 0 Hz")
+    if not math.isfinite(args.pf) or args.pf < 0:
+        raise JudderError(f"--pf {args.pf:g} bar is not allowed; allowed: "
+                          "a finite amplitude >= 0 bar")
+    if args.duration is not None and not (math.isfinite(args.duration)
+                                          and args.duration > 0):
+        raise JudderError(f"--duration {args.duration:g} s is not allowed; "
+                          "allowed: > 0 s")
+    params = _resolve_parameters(args)
+    if params.model != "4dof":
+        raise JudderError("the bench engagement model is 4-DOF; give a "
+                          "4-DOF preset or parameter file")
+    bench = _bench_values(args.bench)
+    fmu = ensure_fmu("TestBenchEngagement")
+    interval = min(1e-3, 1.0 / (20 * args.freq))
+    settings = [("with dither", args.freq, args.pf * PA_PER_BAR)]
+    if args.compare is not None:
+        settings.append(("without dither", args.freq, 0.0)
+                        if args.compare == "none" else
+                        (f"dither at {float(args.compare):g} Hz",
+                         float(args.compare), args.pf * PA_PER_BAR))
+    _make_parents(args.out, args.plot)
+    runs = []
+    for label, freq, p_f in settings:
+        runs.append((label, run_fmu(fmu, freq, p_f, params=params,
+                                    extra=bench, duration=args.duration,
+                                    output_interval=interval)))
+    start = (bench.get("t_engage", _fmu_default(fmu, "t_engage"))
+             + bench.get("t_ramp", _fmu_default(fmu, "t_ramp")))
+    summaries = [{"label": label, **_run_summary(run, start)}
+                 for label, run in runs]
+    if args.out:
+        run = runs[0][1]
+        write_run(args.out, run.time, run.signals, SIGNALS,
+                  {"model": "Judder.Examples.TestBenchEngagement",
+                   "freq_hz": run.freq_hz, "p_f_bar": run.p_f / PA_PER_BAR,
+                   "start_values": run.start_values})
+    if args.plot:
+        from pysim.plotting import run_figure
+        from .output import save_figure
+        save_figure(args.plot, run_figure(
+            runs, start=start, title="bench engagement, EVEN clutch at "
+                                     "1000 rpm"))
+    data = {"model": "TestBenchEngagement", "fmu": str(fmu),
+            "runs": summaries, "out": args.out, "plot": args.plot}
+    rows = []
+    for s in summaries:
+        rows.append(f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
+                    f"{s['p_f_bar']:g} bar; upstream speed peak "
+                    f"{s['speed_peak_amplitude_rpm']:.3g} rpm at "
+                    f"{s['speed_peak_freq_hz']:.2f} Hz"
+                    + (" (the dither frequency)"
+                       if s["peak_at_dither_frequency"] else "")
+                    + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
+                    + ("" if math.isnan(s["judder_growth_per_s"]) else
+                       f"; oscillation at the dither frequency "
+                       f"{'grows' if s['judder_growth_per_s'] > 0 else 'decays'}"
+                       f" at {s['judder_growth_per_s']:+.2f} 1/s after the "
+                       "ramp"))
+    rows += [f"wrote {p}" for p in (args.out, args.plot) if p]
+    _emit(args, data, "\n".join(rows))
+
+
+def _fmu_default(fmu, name):
+    from fmpy import read_model_description
+    return float(next(v.start for v in read_model_description(
+        str(fmu)).modelVariables if v.name == name))
+
+
+def cmd_crosscheck(args):
+    """FMU growth rates against Floquet exponents on a grid."""
+    from pysim.crosscheck import crosscheck
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    if freqs[0] <= 0:
+        raise JudderError("--freq: allowed: frequencies > 0 Hz")
+    if not (math.isfinite(args.duration) and args.duration > 0):
+        raise JudderError(f"--duration {args.duration:g} s is not allowed; "
+                          "allowed: > 0 s")
+    params = _resolve_parameters(args)
+    _make_parents(args.out, args.plot)
+    started = time.perf_counter()
+    with _progress(len(freqs) * len(amplitudes), "FMU runs") as callback:
+        check = crosscheck(params, freqs, amplitudes * PA_PER_BAR,
+                           duration=args.duration, workers=args.workers,
+                           callback=callback)
+    seconds = time.perf_counter() - started
+    rows = [{"freq_hz": p.freq_hz, "p_f_bar": p.p_f / PA_PER_BAR,
+             "floquet_kind": p.floquet_kind,
+             "floquet_rate_per_s": p.floquet_rate,
+             "fitted_rate_per_s": p.fitted_rate,
+             "floquet_unstable": p.floquet_unstable,
+             "time_unstable": p.time_unstable, "agree": p.agree,
+             "reason": p.reason} for p in check.points]
+    if args.out:
+        from .output import write_text
+        columns = list(rows[0])
+        lines = [",".join(columns)] + [",".join(
+            f'"{r[c]}"' if c == "reason" else str(r[c]) for c in columns)
+            for r in rows]
+        write_text(args.out, "\n".join(lines) + "\n")
+    if args.plot:
+        from pysim.plotting import crosscheck_figure
+        from .output import save_figure
+        save_figure(args.plot, crosscheck_figure(check))
+    worst = check.max_rate_error(above=1.0)
+    data = {"model": params.model, "points": len(rows), "seconds": seconds,
+            "duration_s": args.duration, "agreement": check.agreement,
+            "max_rate_error_above_1_per_s": worst,
+            "disagreements": [r for r in rows if not r["agree"]],
+            "out": args.out, "plot": args.plot}
+    text = (f"{len(rows)} points in {seconds:.1f} s: verdicts agree on "
+            f"{100 * check.agreement:.1f} %; largest rate difference where "
+            f"the exponent > 1/s: "
+            + ("none" if worst is None else f"{100 * worst:.2g} %")
+            + "".join(f"\n  disagree at {r['freq_hz']:g} Hz, "
+                      f"{r['p_f_bar']:g} bar: {r['reason']}"
+                      for r in rows if not r["agree"])
+            + "".join(f"\nwrote {p}" for p in (args.out, args.plot) if p))
+    _emit(args, data, text)
+
+
 class _progress:
     """tqdm bar on stderr (shown on a terminal only) as a map callback."""
 
@@ -674,6 +846,60 @@ def build_parser():
                    help="allow --save-params to replace a file")
     _model_options(p)
     p.set_defaults(handler=cmd_fit)
+
+    p = sub.add_parser("simulate", help="bench engagement with dither "
+                                        "(Fig. 7, 8), run through the FMU",
+                       description="Engagement of the EVEN clutch at 1000 rpm "
+                                   "on the test-bench model "
+                                   "(TestBenchEngagement FMU, built if "
+                                   "needed), run with fmpy. Writes the time "
+                                   "histories (SI units) and reports the "
+                                   "spectrum peak of the upstream speed and "
+                                   "of the pressure.")
+    p.add_argument("--freq", type=float, required=True, metavar="HZ",
+                   help="dither frequency, Hz")
+    p.add_argument("--pf", type=float, required=True, metavar="BAR",
+                   help="dither amplitude, bar")
+    p.add_argument("--duration", type=float, metavar="S",
+                   help="simulated time, s (default: the model's 4 s)")
+    p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
+                   help="also run a correct engagement: without dither, or "
+                        "with dither at HZ; plotted side by side (Fig. 7)")
+    p.add_argument("--bench", action="append", default=[],
+                   metavar="NAME=VALUE",
+                   help="bench parameter of the model (SI): w_motor, "
+                        "t_engage, t_ramp, p_load, S_load, N_c_load, "
+                        "d_control; repeatable")
+    p.add_argument("--out", metavar="run.csv|run.mf4",
+                   help="time histories as CSV or ASAM MDF4")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="time histories and spectra")
+    _model_options(p)
+    p.set_defaults(handler=cmd_simulate)
+
+    p = sub.add_parser("crosscheck", help="FMU growth rates against Floquet "
+                                          "exponents",
+                       description="Run the paper's driveline FMU (Eq. 1) on "
+                                   "a grid, twice per point with initial "
+                                   "speeds 1 rad/s apart; the difference is "
+                                   "the free response, whose Floquet "
+                                   "multipliers are fitted (Prony/Hankel "
+                                   "DMD on samples once per dither period) "
+                                   "and compared with the stability layer's.")
+    p.add_argument("--freq", default="75:130:23", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 75:130:23: tongues "
+                        "5, 2 and 6)")
+    p.add_argument("--pf", default="0.1:0.7:4", metavar="START:STOP:N",
+                   help="dither amplitudes, bar (default 0.1:0.7:4)")
+    p.add_argument("--duration", type=float, default=3.0, metavar="S",
+                   help="length of each run, s (default 3)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes (default: all cores)")
+    p.add_argument("--out", metavar="FILE.csv", help="table of all points")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="fitted against Floquet rates, and the verdicts")
+    _model_options(p)
+    p.set_defaults(handler=cmd_crosscheck)
     return parser
 
 

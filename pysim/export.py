@@ -1,0 +1,57 @@
+"""Writing runs as files a bench engineer opens: CSV and ASAM MDF4.
+
+Both carry the time histories in SI units with their units, and the run's
+metadata (dither frequency and amplitude, parameters). Files are written
+atomically (:func:`stability.output.atomic_write`).
+"""
+
+import io
+import json
+
+from stability.errors import JudderError
+from stability.output import atomic_write
+
+__all__ = ["write_run", "write_csv", "write_mdf"]
+
+
+def write_csv(path, time, signals, units, metadata):
+    """CSV: ``# key: value`` metadata lines, a header ``name [unit]``."""
+    buffer = io.StringIO()
+    for key, value in metadata.items():
+        buffer.write(f"# {key}: {json.dumps(value)}\n")
+    names = list(signals)
+    buffer.write(",".join(["time [s]"] + [f"{n} [{units[n]}]"
+                                          for n in names]) + "\n")
+    for i, t in enumerate(time):
+        buffer.write(",".join([f"{t:.9g}"] + [f"{signals[n][i]:.9g}"
+                                              for n in names]) + "\n")
+    atomic_write(path, lambda stream: stream.write(buffer.getvalue().encode()))
+
+
+def write_mdf(path, time, signals, units, metadata):
+    """ASAM MDF 4.10 with one channel group; metadata in the file comment."""
+    try:
+        from asammdf import MDF, Signal
+    except ImportError:
+        raise JudderError("writing .mf4 needs asammdf (pip install "
+                          "asammdf)") from None
+    mdf = MDF(version="4.10")
+    mdf.append([Signal(samples=signals[n], timestamps=time, name=n,
+                       unit=units[n]) for n in signals],
+               comment=json.dumps(metadata))
+    mdf.header.comment = json.dumps(metadata)
+
+    def write(stream):
+        buffer = io.BytesIO()
+        mdf.save(buffer, overwrite=True)
+        stream.write(buffer.getvalue())
+    atomic_write(path, write)
+
+
+def write_run(path, time, signals, units, metadata):
+    """CSV or MF4 by the file suffix."""
+    suffix = str(path).lower().rsplit(".", 1)[-1]
+    writers = {"csv": write_csv, "mf4": write_mdf}
+    if suffix not in writers:
+        raise JudderError(f"--out {path}: allowed suffixes: .csv, .mf4")
+    writers[suffix](path, time, signals, units, metadata)

@@ -1,0 +1,100 @@
+"""Plots of runs (Fig. 7), spectra (Fig. 8) and cross-checks.
+
+Functions take ``ax``/``axes`` where they draw one panel and return the
+artists; figure builders return the figure. Nothing calls ``plt.show()``.
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from .signals import amplitude_spectrum
+
+__all__ = ["plot_run", "plot_spectrum", "run_figure", "crosscheck_figure"]
+
+RPM_PER_RAD_S = 60 / (2 * np.pi)
+
+
+def plot_run(run, ax=None, title=None):
+    """Speeds upstream and downstream (rpm) and pressure (bar) vs time."""
+    if ax is None:
+        _, ax = plt.subplots()
+    artists = [ax.plot(run.time, run["w_upstream"] * RPM_PER_RAD_S,
+                       label="upstream of the clutch", lw=0.8)[0],
+               ax.plot(run.time, run["w_downstream"] * RPM_PER_RAD_S,
+                       label="downstream of the clutch", lw=0.8)[0]]
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("speed [rpm]")
+    right = ax.twinx()
+    artists.append(right.plot(run.time, run["actuation_pressure"] / 1e5,
+                              color="0.6", lw=0.5, label="pressure")[0])
+    right.set_ylabel("actuation pressure [bar]")
+    ax.legend(loc="upper right", fontsize=7)
+    ax.set_title(title or f"f = {run.freq_hz:g} Hz, p_f = "
+                          f"{run.p_f / 1e5:g} bar", fontsize=9)
+    return artists
+
+
+def plot_spectrum(run, ax=None, start=0.0):
+    """Amplitude spectra of the upstream speed and the pressure (Fig. 8)."""
+    if ax is None:
+        _, ax = plt.subplots()
+    keep = run.time >= start
+    speed = amplitude_spectrum(run.time[keep],
+                               run["w_upstream"][keep] * RPM_PER_RAD_S)
+    pressure = amplitude_spectrum(run.time[keep],
+                                  run["actuation_pressure"][keep] / 1e5)
+    artists = [ax.semilogy(speed.freq_hz, speed.amplitude,
+                           label="upstream speed [rpm]", lw=0.8)[0],
+               ax.semilogy(pressure.freq_hz, pressure.amplitude,
+                           label="pressure [bar]", lw=0.8)[0],
+               ax.axvline(run.freq_hz, color="k", ls=":", lw=0.8,
+                          label="dither frequency")]
+    ax.set_xlim(0, min(speed.freq_hz[-1], 3 * run.freq_hz))
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("amplitude")
+    ax.legend(fontsize=7)
+    return artists
+
+
+def run_figure(runs, start=0.0, title=None):
+    """Time histories (top) and spectra (bottom), one column per run."""
+    fig, axes = plt.subplots(2, len(runs), figsize=(6.5 * len(runs), 7),
+                             layout="constrained", squeeze=False)
+    for column, (label, run) in enumerate(runs):
+        plot_run(run, ax=axes[0, column], title=label)
+        plot_spectrum(run, ax=axes[1, column], start=start)
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def crosscheck_figure(check, title=None):
+    """Fitted against Floquet growth rates, and verdicts on the grid."""
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5),
+                                      layout="constrained")
+    floquet = np.array([p.floquet_rate for p in check.points])
+    fitted = np.array([p.fitted_rate for p in check.points])
+    agree = np.array([p.agree for p in check.points])
+    left.plot(floquet[agree], fitted[agree], "o", ms=4, label="verdicts agree")
+    left.plot(floquet[~agree], fitted[~agree], "rx", ms=6,
+              label="verdicts disagree")
+    span = [min(floquet.min(), fitted.min()), max(floquet.max(), fitted.max())]
+    left.plot(span, span, "k-", lw=0.6, label="equal")
+    left.set_xlabel("Floquet exponent ln|lambda|/T [1/s]")
+    left.set_ylabel("growth rate fitted to the FMU run [1/s]")
+    left.legend(fontsize=8)
+    f = np.array([p.freq_hz for p in check.points])
+    p = np.array([p.p_f for p in check.points]) / 1e5
+    unstable = np.array([q.floquet_unstable for q in check.points])
+    right.scatter(f[unstable & agree], p[unstable & agree], c="C3", s=18,
+                  label="unstable, both")
+    right.scatter(f[~unstable & agree], p[~unstable & agree], c="C2", s=18,
+                  label="stable, both")
+    right.scatter(f[~agree], p[~agree], marker="x", c="k", s=30,
+                  label="disagree")
+    right.set_xlabel("dither frequency [Hz]")
+    right.set_ylabel("dither amplitude $p_f$ [bar]")
+    right.legend(fontsize=8)
+    fig.suptitle(title or f"cross-check: {100 * check.agreement:.1f} % of the "
+                          "verdicts agree")
+    return fig

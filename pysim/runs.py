@@ -1,0 +1,99 @@
+"""Time-domain runs of the FMUs with fmpy.
+
+A run maps a :class:`~stability.parameters.Parameters` set (the names are
+the same in the FMUs) plus the dither setting onto the FMU's start values,
+simulates it with fmpy and returns the time histories in SI units.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from stability.errors import JudderError
+
+__all__ = ["Run", "run_fmu", "SIGNALS"]
+
+#: Outputs of every example model, with units.
+SIGNALS = {"w_upstream": "rad/s", "w_downstream": "rad/s", "slip": "rad/s",
+           "clutch_torque": "N.m", "actuation_pressure": "Pa"}
+
+
+@dataclass(frozen=True)
+class Run:
+    """Time histories of one FMU run.
+
+    Attributes
+    ----------
+    time : ndarray, shape (n,)
+        s.
+    signals : dict of str -> ndarray, shape (n,)
+        Outputs in SI units (see :data:`SIGNALS`) and any extra variables.
+    start_values : dict
+        FMU parameters set for the run (SI).
+    freq_hz, p_f : float
+        Dither frequency (Hz) and amplitude (Pa).
+    """
+
+    time: np.ndarray
+    signals: dict
+    start_values: dict
+    freq_hz: float
+    p_f: float
+
+    def __getitem__(self, name):
+        return self.signals[name]
+
+
+def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
+            output_interval=None, fmi_type="CoSimulation", variables=()):
+    """Simulate an FMU at one dither setting.
+
+    Parameters
+    ----------
+    fmu_path : path
+    freq_hz, p_f : float
+        Dither frequency (Hz) and amplitude (Pa).
+    params : stability.parameters.Parameters, optional
+        Values for the FMU parameters of the same names.
+    extra : dict, optional
+        Further FMU parameters by name (e.g. ``w_motor``, ``t_engage``).
+    duration : float, optional
+        s (default: the FMU's StopTime).
+    output_interval : float, optional
+        s (default: the FMU's Interval).
+    fmi_type : {'CoSimulation', 'ModelExchange'}
+    variables : sequence of str
+        Variables recorded besides :data:`SIGNALS`.
+
+    Raises
+    ------
+    JudderError
+        On an FMU parameter name that does not exist, or a failed run.
+    """
+    from fmpy import read_model_description, simulate_fmu
+    description = read_model_description(str(fmu_path))
+    tunable = {v.name for v in description.modelVariables
+               if v.causality == "parameter"}
+    start = dict(params.as_dict()) if params is not None else {}
+    start = {k: v for k, v in start.items() if k in tunable}
+    start.update({"f_dither": float(freq_hz), "p_f": float(p_f)})
+    for name, value in (extra or {}).items():
+        if name not in tunable:
+            raise JudderError(f"{name!r} is not a parameter of "
+                              f"{description.modelName}; allowed: "
+                              f"{', '.join(sorted(tunable))}")
+        start[name] = float(value)
+    experiment = description.defaultExperiment
+    outputs = list(SIGNALS) + [v for v in variables if v not in SIGNALS]
+    try:
+        result = simulate_fmu(
+            str(fmu_path), fmi_type=fmi_type, start_values=start,
+            stop_time=duration or experiment.stopTime,
+            output_interval=output_interval or experiment.stepSize,
+            output=outputs)
+    except Exception as exc:   # fmpy raises plain Exceptions on FMU errors
+        raise JudderError(f"the FMU run failed at f = {freq_hz:g} Hz, "
+                          f"p_f = {p_f / 1e5:g} bar: {exc}") from None
+    return Run(time=np.asarray(result["time"]),
+               signals={n: np.asarray(result[n]) for n in outputs},
+               start_values=start, freq_hz=float(freq_hz), p_f=float(p_f))
