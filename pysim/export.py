@@ -8,6 +8,8 @@ atomically (:func:`stability.output.atomic_write`).
 import io
 import json
 
+import numpy as np
+
 from stability.errors import JudderError
 from stability.output import atomic_write
 
@@ -28,17 +30,30 @@ def write_csv(path, time, signals, units, metadata):
     atomic_write(path, lambda stream: stream.write(buffer.getvalue().encode()))
 
 
-def write_mdf(path, time, signals, units, metadata):
-    """ASAM MDF 4.10 with one channel group; metadata in the file comment."""
+def write_mdf(path, channels, metadata):
+    """ASAM MDF 4.10; one channel group per time base.
+
+    Parameters
+    ----------
+    channels : sequence of (name, unit, timestamps, samples)
+    metadata : dict
+        Written as JSON into the file comment.
+    """
     try:
         from asammdf import MDF, Signal
     except ImportError:
         raise JudderError("writing .mf4 needs asammdf (pip install "
                           "asammdf)") from None
     mdf = MDF(version="4.10")
-    mdf.append([Signal(samples=signals[n], timestamps=time, name=n,
-                       unit=units[n]) for n in signals],
-               comment=json.dumps(metadata))
+    groups = {}
+    for name, unit, timestamps, samples in channels:
+        key = (len(timestamps), float(timestamps[0]) if len(timestamps) else 0)
+        groups.setdefault(key, []).append(
+            Signal(samples=np.asarray(samples, dtype=float),
+                   timestamps=np.asarray(timestamps, dtype=float), name=name,
+                   unit=unit))
+    for signals in groups.values():
+        mdf.append(signals, comment=json.dumps(metadata))
     mdf.header.comment = json.dumps(metadata)
 
     def write(stream):
@@ -51,7 +66,10 @@ def write_mdf(path, time, signals, units, metadata):
 def write_run(path, time, signals, units, metadata):
     """CSV or MF4 by the file suffix."""
     suffix = str(path).lower().rsplit(".", 1)[-1]
-    writers = {"csv": write_csv, "mf4": write_mdf}
-    if suffix not in writers:
+    if suffix == "csv":
+        write_csv(path, time, signals, units, metadata)
+    elif suffix == "mf4":
+        write_mdf(path, [(n, units[n], time, signals[n]) for n in signals],
+                  metadata)
+    else:
         raise JudderError(f"--out {path}: allowed suffixes: .csv, .mf4")
-    writers[suffix](path, time, signals, units, metadata)

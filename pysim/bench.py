@@ -1,0 +1,250 @@
+"""Bench emulator: campaigns of engagement runs written like acquisitions.
+
+Each run of the bench FMU (``TestBenchEngagement``) is turned into what
+the bench of section 2.2 records:
+
+* the speeds upstream and downstream of the EVEN clutch, as a magnetic
+  pick-up on a toothed wheel measures them: one sample per tooth passage
+  (41 teeth: 684 samples/s at 1000 rpm), speed = tooth pitch / time
+  between passages, plus Gaussian measurement noise;
+* the EVEN actuation pressure at 1 kHz with noise;
+* metadata: dither frequency and amplitude, oil temperature, engine speed,
+  run id and noise seed.
+
+A campaign runs a grid (frequency x amplitude x engine speed x oil
+temperature) in parallel, writes one CSV and/or MF4 file per run and a
+campaign index (``index.csv``) rewritten atomically after each run. A
+failed run is recorded with its message and does not stop the campaign;
+running the same campaign again skips the runs already done.
+"""
+
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+import csv
+import io
+import os
+from pathlib import Path
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+from stability.errors import JudderError
+from stability.output import atomic_write
+
+from .export import write_csv, write_mdf
+from .fmus import ensure_fmu
+from .runs import run_fmu
+
+__all__ = ["Campaign", "pickup_samples", "run_campaign", "TEMPERATURES",
+           "INDEX_COLUMNS"]
+
+#: Oil temperature ranges of Fig. 11, represented by parameter factors.
+#: The paper gives no values: these are illustrative, chosen so the tongue
+#: is longest at 65-70 degC (worst case, section 3.2) and contracts on
+#: either side (more damping when cold, less friction gradient when hot).
+TEMPERATURES = {
+    "55-60": {"c1": 2.0, "c2": 2.0, "c3": 2.0, "c4": 2.0, "mu_g": 0.85},
+    "65-70": {},
+    "75-80": {"mu_g": 0.85},
+    "85-90": {"mu_g": 0.7},
+}
+INDEX_COLUMNS = ("run_id", "status", "freq_hz", "p_f_bar", "engine_rpm",
+                 "oil_temperature", "files", "message")
+
+
+def pickup_samples(time, angle, teeth, noise_rpm=0.0, rng=None):
+    """Speed as a toothed-wheel pick-up measures it.
+
+    Parameters
+    ----------
+    time, angle : ndarray, shape (n,)
+        Finely sampled shaft angle, rad.
+    teeth : int
+        Teeth on the wheel.
+    noise_rpm : float
+        Standard deviation of the measurement noise, rpm.
+    rng : numpy.random.Generator, optional
+
+    Returns
+    -------
+    t, speed_rpm : ndarray
+        Tooth-passage times and the speed over the last tooth pitch, rpm.
+    """
+    pitch = 2 * np.pi / teeth
+    count = np.floor(np.asarray(angle) / pitch)
+    change = np.flatnonzero(np.diff(count) != 0)
+    if len(change) < 2:
+        return np.empty(0), np.empty(0)
+    # passage time by linear interpolation between the fine samples
+    edge = np.where(np.diff(count)[change] > 0, count[change + 1],
+                    count[change]) * pitch
+    fraction = (edge - angle[change]) / (angle[change + 1] - angle[change])
+    t = time[change] + fraction * (time[change + 1] - time[change])
+    speed = pitch / np.diff(t) * 60 / (2 * np.pi)
+    if noise_rpm > 0:
+        rng = rng or np.random.default_rng()
+        speed = speed + rng.normal(0.0, noise_rpm, len(speed))
+    return t[1:], speed
+
+
+@dataclass(frozen=True)
+class Campaign:
+    """A bench campaign.
+
+    Attributes
+    ----------
+    freq_hz, p_f_bar : sequence of float
+        Dither grid.
+    engine_rpm : sequence of float
+        Motor speeds (1000 and 1500 rpm on the bench).
+    temperatures : sequence of str
+        Keys of :data:`TEMPERATURES`.
+    duration : float
+        s per engagement.
+    teeth : int
+        Teeth of the pick-up wheels.
+    noise_rpm, noise_bar : float
+        Measurement noise (standard deviation).
+    formats : tuple of str
+        ``'csv'`` and/or ``'mf4'``.
+    seed : int
+    """
+
+    freq_hz: tuple
+    p_f_bar: tuple
+    engine_rpm: tuple = (1000.0,)
+    temperatures: tuple = ("65-70",)
+    duration: float = 1.5
+    teeth: int = 41
+    noise_rpm: float = 0.5
+    noise_bar: float = 0.01
+    formats: tuple = ("csv", "mf4")
+    seed: int = 1
+    parameters: dict = field(default_factory=dict)
+
+    def runs(self):
+        """Run id and settings of every run, in a fixed order."""
+        out = []
+        for temp in self.temperatures:
+            for rpm in self.engine_rpm:
+                for f in self.freq_hz:
+                    for p in self.p_f_bar:
+                        run_id = (f"T{temp}_n{rpm:g}_f{f:g}_p{p:g}"
+                                  .replace(".", "p"))
+                        out.append((run_id, float(f), float(p), float(rpm),
+                                    temp))
+        return out
+
+
+def _acquire(job):
+    """Simulate one run and write its files; returns the index row."""
+    campaign, params, fmu_path, folder, (run_id, f, p, rpm, temp), index = job
+    row = {"run_id": run_id, "status": "failed", "freq_hz": f,
+           "p_f_bar": p, "engine_rpm": rpm, "oil_temperature": temp,
+           "files": "", "message": ""}
+    try:
+        case = params.replace(**{k: params[k] * v for k, v in
+                                 TEMPERATURES[temp].items()})
+        run = run_fmu(fmu_path, f, p * 1e5, params=case,
+                      extra={"w_motor": rpm * 2 * np.pi / 60},
+                      duration=campaign.duration, output_interval=1e-4,
+                      variables=("inertia4.phi", "inertia3.phi"))
+        rng = np.random.default_rng([campaign.seed, index])
+        t_up, n_up = pickup_samples(run.time, run["inertia4.phi"],
+                                    campaign.teeth, campaign.noise_rpm, rng)
+        t_down, n_down = pickup_samples(run.time, run["inertia3.phi"],
+                                        campaign.teeth, campaign.noise_rpm,
+                                        rng)
+        t_p = np.arange(0.0, run.time[-1], 1e-3)
+        p_bar = np.interp(t_p, run.time, run["actuation_pressure"]) / 1e5 \
+            + rng.normal(0.0, campaign.noise_bar, len(t_p))
+        metadata = {"run_id": run_id, "dither_frequency_hz": f,
+                    "dither_amplitude_bar": p, "engine_speed_rpm": rpm,
+                    "oil_temperature_degC": temp, "pickup_teeth":
+                    campaign.teeth, "noise_rpm": campaign.noise_rpm,
+                    "noise_bar": campaign.noise_bar,
+                    "seed": [campaign.seed, index],
+                    "source": "emulated: Judder.Examples.TestBenchEngagement"}
+        files = []
+        if "csv" in campaign.formats:
+            # one time base, the upstream pick-up (the judder indicator)
+            n_down_i = np.interp(t_up, t_down, n_down, left=np.nan) \
+                if len(t_down) > 1 else np.full(len(t_up), np.nan)
+            write_csv(folder / f"{run_id}.csv", t_up,
+                      {"n_upstream": n_up, "n_downstream": n_down_i,
+                       "p_even": np.interp(t_up, t_p, p_bar)},
+                      {"n_upstream": "rpm", "n_downstream": "rpm",
+                       "p_even": "bar"}, metadata)
+            files.append(f"{run_id}.csv")
+        if "mf4" in campaign.formats:
+            write_mdf(folder / f"{run_id}.mf4",
+                      [("n_upstream", "rpm", t_up, n_up),
+                       ("n_downstream", "rpm", t_down, n_down),
+                       ("p_even", "bar", t_p, p_bar)], metadata)
+            files.append(f"{run_id}.mf4")
+        row.update(status="ok", files=" ".join(files))
+    except Exception as exc:   # a failed run is recorded, not fatal
+        row["message"] = f"{type(exc).__name__}: {exc}"
+    return row
+
+
+def _read_index(path):
+    if not path.exists():
+        return {}
+    with open(path, newline="") as stream:
+        return {row["run_id"]: row for row in csv.DictReader(stream)}
+
+
+def _write_index(path, rows):
+    buffer = io.StringIO()
+    writer = csv.DictWriter(buffer, fieldnames=INDEX_COLUMNS)
+    writer.writeheader()
+    for row in rows:
+        writer.writerow(row)
+    atomic_write(path, lambda stream: stream.write(buffer.getvalue().encode()))
+
+
+def run_campaign(campaign, params, folder, workers=None, callback=None):
+    """Run (or resume) a campaign into ``folder``.
+
+    Returns
+    -------
+    list of dict
+        The index rows (see :data:`INDEX_COLUMNS`), in run order.
+    """
+    if params.model != "4dof":
+        raise JudderError("the bench model is 4-DOF")
+    unknown = sorted(set(campaign.temperatures) - set(TEMPERATURES))
+    if unknown:
+        raise JudderError(f"oil temperature {unknown[0]!r} is unknown; "
+                          f"allowed: {', '.join(TEMPERATURES)}")
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    fmu_path = ensure_fmu("TestBenchEngagement")
+    index_path = folder / "index.csv"
+    done = {k: v for k, v in _read_index(index_path).items()
+            if v["status"] == "ok" and all(
+                (folder / name).exists() for name in v["files"].split())}
+    plan = campaign.runs()
+    rows = {run_id: done[run_id] for run_id, *_ in plan if run_id in done}
+    jobs = [(campaign, params, fmu_path, folder, settings, number)
+            for number, settings in enumerate(plan) if settings[0] not in rows]
+    if callback is not None:
+        callback(len(rows), len(plan))
+    with ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1,
+                             initializer=threadpool_limits,
+                             initargs=(1,)) as pool:
+        futures = [pool.submit(_acquire, job) for job in jobs]
+        try:
+            for future in as_completed(futures):
+                row = future.result()
+                rows[row["run_id"]] = row
+                _write_index(index_path, [rows[r[0]] for r in plan
+                                          if r[0] in rows])
+                if callback is not None:
+                    callback(len(rows), len(plan))
+        except KeyboardInterrupt:
+            for future in futures:
+                future.cancel()
+            raise
+    return [rows[r[0]] for r in plan]
