@@ -135,8 +135,55 @@ def bench_tongue_boundaries():
                    "include labelling and tip refinement"}
 
 
+ENGAGEMENT = {"f_dither": 60.0, "p_f": 0.05e5}
+
+
+def bench_engagement():
+    """One 2 s bench engagement: fmpy ME and CS against scipy."""
+    from fmpy import simulate_fmu
+    from scipy.integrate import solve_ivp
+
+    from fmu.backend import to_ode
+    from fmu.frontend import load_flat_model
+    from pysim.fmus import LIBRARY, ensure_fmu
+
+    fmu_path = str(ensure_fmu("TestBenchEngagement"))
+    ode = to_ode(load_flat_model(
+        LIBRARY / "Judder" / "Examples" / "TestBenchEngagement.mo",
+        "Judder.Examples.TestBenchEngagement", roots=[LIBRARY]))
+    f, outputs, start = ode.functions()
+    p = ode.parameter_vector(**ENGAGEMENT)
+    times = np.linspace(0.0, 2.0, 2001)
+    names = [o.name for o in ode.outputs]
+
+    def scipy_run():
+        sol = solve_ivp(lambda t, x: np.asarray(f(t, x, p)).ravel(),
+                        (0.0, 2.0), np.asarray(start(p)).ravel(),
+                        method="DOP853", rtol=1e-8, atol=1e-8, t_eval=times)
+        return np.array([np.asarray(outputs(t, x, p)).ravel()[
+            names.index("w_upstream")] for t, x in zip(sol.t, sol.y.T)])
+    reference, baseline_seconds = _timed(scipy_run)
+    for kind, options in (("ModelExchange", {"relative_tolerance": 1e-8}),
+                          ("CoSimulation", {})):
+        result, seconds = _timed(
+            simulate_fmu, fmu_path, fmi_type=kind, stop_time=2.0,
+            output_interval=1e-3, start_values=ENGAGEMENT,
+            output=["w_upstream"], **options)
+        error = np.abs(np.interp(times, result["time"], result["w_upstream"])
+                       - reference).max() / np.abs(reference).max()
+        yield {"name": f"engagement-2s-fmpy-{kind}", "points": 1,
+               "seconds": seconds, "baseline_seconds": baseline_seconds,
+               "speedup": baseline_seconds / seconds,
+               "max_error": float(error),
+               "error_unit": "relative, upstream speed, vs the scipy run",
+               "note": "TestBenchEngagement FMU (fmu/ compiler) through "
+                       "fmpy; baseline: scipy DOP853 rtol 1e-8 on the same "
+                       "equations (the back end's CasADi ODE)"}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
-              "tongue-boundaries": bench_tongue_boundaries}
+              "tongue-boundaries": bench_tongue_boundaries,
+              "engagement": bench_engagement}
 
 
 def main(names):

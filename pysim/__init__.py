@@ -1,6 +1,8 @@
-"""Time-domain engagement simulation with fmpy and bench-data processing.
+"""Time-domain simulation of the driveline FMUs with fmpy, and bench data.
 
-Empty until the FMUs exist (see the README's roadmap): it will drive the
-FMUs built by ``make fmu`` and turn bench time histories into experimental
-stability charts.
+:mod:`pysim.runs` runs an FMU at a dither setting, :mod:`pysim.signals`
+analyses time histories (spectrum, growth rates), :mod:`pysim.crosscheck`
+compares FMU growth with the Floquet exponents, :mod:`pysim.bench`
+emulates bench campaigns, :mod:`pysim.export` writes CSV and MF4, and
+:mod:`pysim.plotting` draws them.
 """

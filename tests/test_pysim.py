@@ -1,0 +1,207 @@
+"""Time-domain runs (pysim): signal kernels, cross-check, engagements,
+bench emulator."""
+
+import csv
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from stability import build_driveline, floquet, get_preset
+from pysim.bench import Campaign, pickup_samples, run_campaign
+from pysim.signals import (amplitude_spectrum, dither_envelope,
+                           free_response_growth, stroboscopic_growth)
+
+pytest.importorskip("rumoca")
+pytest.importorskip("fmpy")
+
+BAR = 1e5
+
+
+# --- signal kernels against closed forms ---------------------------------
+
+def test_spectrum_of_a_sine():
+    t = np.arange(0, 2, 1e-3)
+    y = 3.0 * np.sin(2 * np.pi * 50 * t) + 0.1 * t   # trend is removed
+    spectrum = amplitude_spectrum(t, y)
+    assert spectrum.peak_freq_hz == pytest.approx(50, abs=0.5)
+    assert spectrum.peak_amplitude == pytest.approx(3.0, rel=2e-3)
+
+
+def test_stroboscopic_growth_of_forced_plus_growing():
+    # forced periodic part (dither period) + a growing mode at 17 Hz
+    period = 1 / 40
+    t = np.arange(0, 3, period / 16)
+    x = 5 * np.cos(2 * np.pi * 40 * t) + 1e-3 * np.exp(1.7 * t) * np.cos(
+        2 * np.pi * 17 * t)
+    fit = stroboscopic_growth(t, [x], period)
+    assert fit.rate == pytest.approx(1.7, rel=0.05)
+
+
+def test_prony_fit_recovers_multipliers_exactly():
+    # free response of a known linear recurrence, two signals of four states
+    rng = np.random.default_rng(0)
+    lam = np.array([1.03 * np.exp(0.7j), 0.95])
+    A = np.zeros((4, 4))
+    A[:2, :2] = abs(lam[0]) * np.array([[np.cos(0.7), -np.sin(0.7)],
+                                        [np.sin(0.7), np.cos(0.7)]])
+    A[2, 2], A[3, 3] = 0.95, 0.5
+    basis = rng.normal(size=(4, 4))
+    M = basis @ A @ np.linalg.inv(basis)
+    x = [rng.normal(size=4)]
+    for _ in range(200):
+        x.append(M @ x[-1])
+    x = np.array(x).T
+    period = 0.01
+    t = np.repeat(np.arange(x.shape[1]) * period, 2)[::2]
+    fit = free_response_growth(t, x[:2], period)
+    assert fit.rate == pytest.approx(np.log(1.03) / period, rel=1e-8)
+
+
+def test_pickup_wheel_sampling_rate_and_speed():
+    # 1000 rpm on a 41-tooth wheel: 683.3 teeth per second (section 2.2)
+    t = np.arange(0, 1, 1e-5)
+    angle = 1000 * 2 * np.pi / 60 * t
+    times, speed = pickup_samples(t, angle, 41)
+    assert len(times) == pytest.approx(1000 / 60 * 41, abs=2)
+    np.testing.assert_allclose(speed, 1000, rtol=1e-6)
+
+
+def test_dither_envelope_growth():
+    t = np.arange(0, 2, 1e-4)
+    y = np.exp(2.0 * t) * np.sin(2 * np.pi * 100 * t)
+    _, rate = dither_envelope(t, y, 100.0, start=0.5, window=0.8)
+    assert rate == pytest.approx(2.0, rel=0.02)
+
+
+# --- the FMU against the Floquet layer ------------------------------------
+
+def test_crosscheck_on_tongues_2_5_6():
+    from pysim.crosscheck import crosscheck
+    # grid spanning tongue 5 (84 Hz), tongue 2 (103 Hz), tongue 6 (122 Hz)
+    check = crosscheck(get_preset("paper-4dof"), np.linspace(80, 126, 24),
+                       np.array([0.2, 0.45, 0.7]) * BAR, duration=3.0)
+    unstable = [p for p in check.points if p.floquet_unstable]
+    kinds = {p.floquet_kind for p in unstable}
+    assert {"single-period", "combination"} <= kinds
+    assert len(unstable) >= 8 and len(unstable) < len(check.points)
+    assert check.agreement >= 0.95
+    assert check.max_rate_error(above=1.0) < 0.05
+    for p in check.points:
+        assert p.agree or p.reason
+
+
+# --- engagements of the bench model ---------------------------------------
+
+@pytest.fixture(scope="module")
+def engagements():
+    from pysim.fmus import ensure_fmu
+    from pysim.runs import run_fmu
+    fmu = ensure_fmu("TestBenchEngagement")
+    params = get_preset("paper-4dof")
+    return {f: run_fmu(fmu, f, p * BAR, params=params, duration=4.0,
+                       output_interval=2.5e-4)
+            for f, p in ((102.9, 0.05), (60.0, 0.05))}
+
+
+def test_inside_tongue_2_judder_grows_at_the_dither_frequency(engagements):
+    run = engagements[102.9]
+    assert floquet(build_driveline(get_preset("paper-4dof")), 102.9,
+                   0.05 * BAR).kind == "single-period"
+    spectrum = amplitude_spectrum(run.time[run.time > 0.15],
+                                  run["w_upstream"][run.time > 0.15])
+    assert spectrum.peak_freq_hz == pytest.approx(102.9, abs=0.5)
+    _, rate = dither_envelope(run.time, run["w_upstream"], 102.9, 0.15)
+    assert rate > 1.0
+    # the judder is large: tens of rpm and more
+    assert spectrum.peak_amplitude * 60 / (2 * np.pi) > 50
+
+
+def test_outside_the_tongues_the_engagement_is_clean(engagements):
+    run = engagements[60.0]
+    assert floquet(build_driveline(get_preset("paper-4dof")), 60.0,
+                   0.05 * BAR).kind == "stable"
+    _, rate = dither_envelope(run.time, run["w_upstream"], 60.0, 0.15)
+    assert rate < 0
+    assert abs(run["slip"][-1]) < 0.1          # the clutch has locked
+    # what oscillates at the dither frequency is the small forced response
+    spectrum = amplitude_spectrum(run.time[run.time > 0.15],
+                                  run["w_upstream"][run.time > 0.15])
+    line = np.argmin(np.abs(spectrum.freq_hz - 60.0))
+    assert spectrum.amplitude[line] * 60 / (2 * np.pi) < 2
+
+
+# --- bench emulator ---------------------------------------------------------
+
+def test_campaign_files_index_and_resume(tmp_path):
+    campaign = Campaign(freq_hz=(60.0, 102.9), p_f_bar=(0.05,),
+                        engine_rpm=(1000.0, 1500.0), duration=0.5)
+    rows = run_campaign(campaign, get_preset("paper-4dof"), tmp_path,
+                        workers=2)
+    assert [r["status"] for r in rows] == ["ok"] * 4
+    with open(tmp_path / "index.csv", newline="") as stream:
+        index = list(csv.DictReader(stream))
+    assert [r["run_id"] for r in index] == [r["run_id"] for r in rows]
+    first = tmp_path / f"{rows[0]['run_id']}.csv"
+    text = first.read_text()
+    assert "# dither_frequency_hz: 60.0" in text
+    assert "n_upstream [rpm]" in text
+    from asammdf import MDF
+    mdf = MDF(tmp_path / f"{rows[3]['run_id']}.mf4")
+    upstream = mdf.get("n_upstream")
+    assert upstream.unit == "rpm"
+    # 1500 rpm on 41 teeth: about 1025 samples per second
+    assert len(upstream.samples) == pytest.approx(0.5 * 1500 / 60 * 41,
+                                                  rel=0.05)
+    assert json.loads(mdf.header.comment.split("<TX>")[1].split("</TX>")[0]
+                      .replace("&quot;", '"'))["engine_speed_rpm"] == 1500
+    # resume: a deleted file is made again, the others are kept
+    first.unlink()
+    stamp = (tmp_path / f"{rows[1]['run_id']}.csv").stat().st_mtime
+    run_campaign(campaign, get_preset("paper-4dof"), tmp_path, workers=1)
+    assert first.exists()
+    assert (tmp_path / f"{rows[1]['run_id']}.csv").stat().st_mtime == stamp
+
+
+# --- command line -----------------------------------------------------------
+
+def _judder(*args):
+    return subprocess.run([sys.executable, "-m", "stability", *args],
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_simulate_cli_json_and_outputs(tmp_path):
+    out, plot = tmp_path / "run.csv", tmp_path / "run.png"
+    proc = _judder("simulate", "--freq", "102.9", "--pf", "0.05",
+                   "--duration", "1", "--compare", "--out", str(out),
+                   "--plot", str(plot), "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    judder, reference = data["runs"]
+    assert judder["peak_at_dither_frequency"]
+    assert judder["judder_growth_per_s"] > 0
+    assert reference["label"] == "without dither"
+    assert "w_upstream [rad/s]" in out.read_text()
+    assert plot.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("args, words", [
+    (["simulate", "--freq", "-5", "--pf", "0.1"], ["--freq", "> 0"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "w_motor=x"],
+     ["--bench"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "w_moter=1"],
+     ["w_moter", "w_motor"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--out", "a.txt"],
+     [".csv", ".mf4"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--model", "3dof"],
+     ["4-DOF"]),
+    (["campaign", "--out", "x", "--temperatures", "99-100"], ["99-100"]),
+])
+def test_time_domain_commands_refuse_bad_input(args, words):
+    proc = _judder(*args)
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr
+    for word in words:
+        assert word in proc.stderr
