@@ -18,18 +18,16 @@ failed run is recorded with its message and does not stop the campaign;
 running the same campaign again skips the runs already done.
 """
 
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 import csv
 import io
-import os
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from stability.errors import JudderError
 from stability.output import atomic_write
+from stability.parallel import parallel_map
 
 from .export import write_csv, write_mdf
 from .fmus import ensure_fmu
@@ -231,20 +229,9 @@ def run_campaign(campaign, params, folder, workers=None, callback=None):
             for number, settings in enumerate(plan) if settings[0] not in rows]
     if callback is not None:
         callback(len(rows), len(plan))
-    with ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1,
-                             initializer=threadpool_limits,
-                             initargs=(1,)) as pool:
-        futures = [pool.submit(_acquire, job) for job in jobs]
-        try:
-            for future in as_completed(futures):
-                row = future.result()
-                rows[row["run_id"]] = row
-                _write_index(index_path, [rows[r[0]] for r in plan
-                                          if r[0] in rows])
-                if callback is not None:
-                    callback(len(rows), len(plan))
-        except KeyboardInterrupt:
-            for future in futures:
-                future.cancel()
-            raise
+    for row in parallel_map(_acquire, jobs, workers, ordered=False):
+        rows[row["run_id"]] = row
+        _write_index(index_path, [rows[r[0]] for r in plan if r[0] in rows])
+        if callback is not None:
+            callback(len(rows), len(plan))
     return [rows[r[0]] for r in plan]

@@ -10,15 +10,13 @@ stability layer. The two verdicts and rates are compared, and every
 disagreement gets a reason.
 """
 
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
-import os
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from stability.floquet import floquet
 from stability.model import build_driveline
+from stability.parallel import parallel_map
 
 from .fmus import ensure_fmu
 from .runs import run_fmu
@@ -158,11 +156,8 @@ def crosscheck(params, freq_hz, p_f, duration=3.0, workers=None,
     jobs = [(params, fmu_path, float(f), float(p), float(duration))
             for f in np.atleast_1d(freq_hz) for p in np.atleast_1d(p_f)]
     points = []
-    with ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1,
-                             initializer=threadpool_limits,
-                             initargs=(1,)) as pool:
-        for point in pool.map(_point, jobs):
-            points.append(point)
-            if callback is not None:
-                callback(len(points), len(jobs))
+    for point in parallel_map(_point, jobs, workers):
+        points.append(point)
+        if callback is not None:
+            callback(len(points), len(jobs))
     return Crosscheck(points=points, duration=float(duration))

@@ -7,15 +7,13 @@ nominal ones. :func:`paper_conclusions` checks the paper's statements of
 section 4.3 on the result.
 """
 
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
-import os
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from .errors import JudderError
 from .model import build_driveline
+from .parallel import parallel_map
 from .tongues import find_tongues, tongue_boundaries
 
 __all__ = ["SensitivityCase", "SensitivityStudy", "sensitivity_study",
@@ -126,22 +124,11 @@ def sensitivity_study(params, names, freq_hz, p_max, factors=(0.5, 2.0),
         for value in varied:
             params.replace(**{name: float(value)})  # validate early
             jobs.append((params, name, float(value), freq_hz, p_max))
-    workers = workers or os.cpu_count() or 1
     results = []
-    if workers == 1:
-        for case in map(_run_case, jobs):
-            results.append(case)
-            if callback is not None:
-                callback(len(results), len(jobs))
-    else:
-        # the matrices are tiny: threaded BLAS in every worker only contends
-        with ProcessPoolExecutor(max_workers=workers,
-                                 initializer=threadpool_limits,
-                                 initargs=(1,)) as pool:
-            for case in pool.map(_run_case, jobs):
-                results.append(case)
-                if callback is not None:
-                    callback(len(results), len(jobs))
+    for case in parallel_map(_run_case, jobs, workers):
+        results.append(case)
+        if callback is not None:
+            callback(len(results), len(jobs))
     return SensitivityStudy(nominal=results[0], cases=results[1:])
 
 

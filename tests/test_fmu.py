@@ -4,7 +4,6 @@ The FMUs are compiled from modelica/ by the project's compiler (rumoca
 front end, fmu/ back end, gcc); nothing restates the model in C.
 """
 
-import os
 import shutil
 import subprocess
 import sys

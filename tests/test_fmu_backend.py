@@ -17,7 +17,7 @@ from stability import build_driveline, get_preset
 pytest.importorskip("rumoca")
 pytest.importorskip("casadi")
 
-from fmu.backend import BackEndError, to_ode  # noqa: E402
+from fmu.backend import to_ode  # noqa: E402
 from fmu.frontend import FrontEndError, load_flat_model  # noqa: E402
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
