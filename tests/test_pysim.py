@@ -205,3 +205,22 @@ def test_time_domain_commands_refuse_bad_input(args, words):
     assert "Traceback" not in proc.stderr
     for word in words:
         assert word in proc.stderr
+
+
+def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
+                                                           monkeypatch):
+    import pysim.bench
+    # a temperature case whose parameters are invalid (negative inertia):
+    # the workers are forked, so they see the patched table
+    monkeypatch.setitem(pysim.bench.TEMPERATURES, "85-90", {"J1": -1.0})
+    campaign = Campaign(freq_hz=(60.0,), p_f_bar=(0.05,),
+                        temperatures=("65-70", "85-90"), duration=0.3,
+                        formats=("csv",))
+    rows = run_campaign(campaign, get_preset("paper-4dof"), tmp_path,
+                        workers=2)
+    status = {r["oil_temperature"]: r for r in rows}
+    assert status["65-70"]["status"] == "ok"
+    assert status["85-90"]["status"] == "failed"
+    assert "J1" in status["85-90"]["message"]
+    with open(tmp_path / "index.csv", newline="") as stream:
+        assert len(list(csv.DictReader(stream))) == 2
