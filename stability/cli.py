@@ -545,8 +545,15 @@ def cmd_simulate(args):
                                     output_interval=interval)))
     start = (bench.get("t_engage", _fmu_default(fmu, "t_engage"))
              + bench.get("t_ramp", _fmu_default(fmu, "t_ramp")))
-    summaries = [{"label": label, **_run_summary(run, start)}
-                 for label, run in runs]
+    from .floquet import floquet
+    from .model import build_driveline
+    driveline = build_driveline(params)
+    summaries = []
+    for label, run in runs:
+        linear = floquet(driveline, run.freq_hz, run.p_f)
+        summaries.append({"label": label, **_run_summary(run, start),
+                          "floquet_kind": linear.kind,
+                          "floquet_exponent_per_s": linear.growth_rate})
     if args.out:
         run = runs[0][1]
         write_run(args.out, run.time, run.signals, SIGNALS,
@@ -574,7 +581,9 @@ def cmd_simulate(args):
                        f"; oscillation at the dither frequency "
                        f"{'grows' if s['judder_growth_per_s'] > 0 else 'decays'}"
                        f" at {s['judder_growth_per_s']:+.2f} 1/s after the "
-                       "ramp"))
+                       "ramp")
+                    + f"; Floquet at this point: {s['floquet_kind']} "
+                      f"({s['floquet_exponent_per_s']:+.2f} 1/s)")
     rows += [f"wrote {p}" for p in (args.out, args.plot) if p]
     _emit(args, data, "\n".join(rows))
 
