@@ -135,9 +135,7 @@ def cmd_floquet(args):
     """Floquet multipliers at one dither frequency and amplitude."""
     from .floquet import floquet
     from .model import build_driveline
-    if not math.isfinite(args.pf) or args.pf < 0:
-        raise JudderError(f"--pf {args.pf:g} bar is not allowed; allowed: "
-                          "a finite dither amplitude >= 0 bar")
+    _check("--pf", args.pf, "bar", strict=False)
     params = _resolve_parameters(args)
     result = floquet(build_driveline(params), args.freq,
                      args.pf * PA_PER_BAR, method=args.method)
@@ -214,11 +212,20 @@ def _parse_list(text, option, convert=float):
     return values
 
 
+def _check(option, value, unit, strict=True):
+    """Raise JudderError unless ``value`` is finite and > 0 (>= 0)."""
+    if value is None:
+        return value
+    ok = math.isfinite(value) and (value > 0 if strict else value >= 0)
+    if not ok:
+        raise JudderError(f"{option} {value:g} {unit} is not allowed; "
+                          f"allowed: a finite value {'>' if strict else '>='}"
+                          f" 0 {unit}")
+    return value
+
+
 def _positive_bar(value, option):
-    if not math.isfinite(value) or value <= 0:
-        raise JudderError(f"{option} {value:g} bar is not allowed; allowed: "
-                          "a finite amplitude > 0 bar")
-    return value * PA_PER_BAR
+    return _check(option, value, "bar") * PA_PER_BAR
 
 
 def _make_parents(*paths):
@@ -317,9 +324,9 @@ def cmd_sensitivity(args):
                               f"{', '.join(SPECS[params.model])}")
     factors = _parse_list(args.factors, "--factors")
     values = _parse_list(args.values, "--values") if args.values else None
-    if values is None and any(not math.isfinite(f) or f <= 0
-                              for f in factors):
-        raise JudderError(f"--factors {args.factors!r}: allowed: factors > 0")
+    if values is None:
+        for factor in factors:
+            _check("--factors", factor, "(factor)")
     _make_parents(args.out, args.plot)
     started = time.perf_counter()
     cases = 1 + len(names) * len(values or factors)
@@ -514,16 +521,9 @@ def cmd_simulate(args):
     from pysim.export import write_run
     from pysim.fmus import ensure_fmu
     from pysim.runs import SIGNALS, run_fmu
-    if not math.isfinite(args.freq) or args.freq <= 0:
-        raise JudderError(f"--freq {args.freq:g} Hz is not allowed; allowed: "
-                          "a finite frequency > 0 Hz")
-    if not math.isfinite(args.pf) or args.pf < 0:
-        raise JudderError(f"--pf {args.pf:g} bar is not allowed; allowed: "
-                          "a finite amplitude >= 0 bar")
-    if args.duration is not None and not (math.isfinite(args.duration)
-                                          and args.duration > 0):
-        raise JudderError(f"--duration {args.duration:g} s is not allowed; "
-                          "allowed: > 0 s")
+    _check("--freq", args.freq, "Hz")
+    _check("--pf", args.pf, "bar", strict=False)
+    _check("--duration", args.duration, "s")
     params = _resolve_parameters(args)
     if params.model != "4dof":
         raise JudderError("the bench engagement model is 4-DOF; give a "
@@ -601,9 +601,7 @@ def cmd_crosscheck(args):
     amplitudes = parse_grid(args.pf, "--pf", "bar")
     if freqs[0] <= 0:
         raise JudderError("--freq: allowed: frequencies > 0 Hz")
-    if not (math.isfinite(args.duration) and args.duration > 0):
-        raise JudderError(f"--duration {args.duration:g} s is not allowed; "
-                          "allowed: > 0 s")
+    _check("--duration", args.duration, "s")
     params = _resolve_parameters(args)
     _make_parents(args.out, args.plot)
     started = time.perf_counter()
@@ -654,20 +652,15 @@ def cmd_campaign(args):
     amplitudes = parse_grid(args.pf, "--pf", "bar")
     if freqs[0] <= 0:
         raise JudderError("--freq: allowed: frequencies > 0 Hz")
-    rpm = _parse_list(args.rpm, "--rpm")
-    if any(not math.isfinite(n) or n <= 0 for n in rpm):
-        raise JudderError(f"--rpm {args.rpm!r}: allowed: speeds > 0 rpm")
+    rpm = [_check("--rpm", n, "rpm") for n in _parse_list(args.rpm, "--rpm")]
     temperatures = (list(TEMPERATURES) if args.temperatures == "all"
                     else [t.strip() for t in args.temperatures.split(",")])
     formats = tuple(f.strip() for f in args.format.split(","))
     if not set(formats) <= {"csv", "mf4"} or not formats:
         raise JudderError(f"--format {args.format!r}: allowed: csv, mf4 or "
                           "csv,mf4")
-    for name, value in (("--duration", args.duration),
-                        ("--noise-rpm", args.noise_rpm)):
-        if not math.isfinite(value) or value < 0 or (
-                name == "--duration" and value == 0):
-            raise JudderError(f"{name} {value:g} is not allowed")
+    _check("--duration", args.duration, "s")
+    _check("--noise-rpm", args.noise_rpm, "rpm", strict=False)
     params = _resolve_parameters(args)
     campaign = Campaign(freq_hz=tuple(freqs), p_f_bar=tuple(amplitudes),
                         engine_rpm=tuple(rpm), temperatures=tuple(temperatures),
@@ -735,6 +728,11 @@ def _model_options(parser):
 def _pf_max_option(parser, meaning):
     parser.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
+
+
+def _workers_option(parser):
+    parser.add_argument("--workers", type=int, default=None,
+                        help="processes (default: all cores)")
 
 
 def _method_option(parser):
@@ -843,8 +841,7 @@ def build_parser():
     p.add_argument("--freq", default="10:220:200", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:200)")
     _pf_max_option(p, "largest amplitude searched")
-    p.add_argument("--workers", type=int, default=None,
-                   help="processes (default: all cores)")
+    _workers_option(p)
     p.add_argument("--out", metavar="FILE.csv", help="tip-shift table as CSV")
     p.add_argument("--plot", metavar="FILE.png",
                    help="one panel per parameter: nominal and varied "
@@ -947,8 +944,7 @@ def build_parser():
                    help="dither amplitudes, bar (default 0.1:0.7:4)")
     p.add_argument("--duration", type=float, default=3.0, metavar="S",
                    help="length of each run, s (default 3)")
-    p.add_argument("--workers", type=int, default=None,
-                   help="processes (default: all cores)")
+    _workers_option(p)
     p.add_argument("--out", metavar="FILE.csv", help="table of all points")
     p.add_argument("--plot", metavar="FILE.png",
                    help="fitted against Floquet rates, and the verdicts")
@@ -984,8 +980,7 @@ def build_parser():
     p.add_argument("--seed", type=int, default=1, help="noise seed")
     p.add_argument("--format", default="csv,mf4", metavar="csv,mf4",
                    help="file formats per run (default both)")
-    p.add_argument("--workers", type=int, default=None,
-                   help="processes (default: all cores)")
+    _workers_option(p)
     p.add_argument("--out", required=True, metavar="DIR",
                    help="campaign folder (created; an existing campaign "
                         "there is resumed)")
