@@ -342,8 +342,10 @@ def _tips(amplitude, p_max):
             tips = [1 + int(np.argmin(curve[1:-1]))]
         cuts = [0] + [a + int(np.argmax(curve[a:b + 1]))
                       for a, b in zip(tips[:-1], tips[1:])] + [len(curve) - 1]
+        # curve index i is grid index start + i - 1 (one pad in front)
         for tip, low, high in zip(tips, cuts[:-1], cuts[1:]):
-            yield (start + max(low, 1) - 1, start + min(high, len(curve) - 2),
+            yield (start + max(low, 1) - 1,
+                   start + min(high, len(curve) - 2) - 1,
                    start + tip - 1)
 
 

@@ -133,3 +133,22 @@ def test_free_rotation_is_refused():
         c1=0.0, c2=0.0, c3=0.0, c4=0.0))
     with pytest.raises(JudderError, match="c_i"):
         hill_boundary_amplitudes(free.periodic_system(), 50.0)
+
+
+def test_tongue_reaching_the_grid_edges(paper4):
+    # tongue 2 spans the whole 95-110 Hz grid below 1.5 bar
+    freqs = np.linspace(95.0, 110.0, 20)
+    boundaries = tongue_boundaries(paper4, freqs, 1.5 * BAR)
+    tongues = find_tongues(paper4, boundaries)
+    tongue2 = next(t for t in tongues if t.number == 2)
+    assert tongue2.freq_range_hz == (95.0, 110.0)
+    assert not tongue2.tip_at_edge
+
+
+def test_tongue_range_is_where_the_boundary_exists(paper_tongues):
+    boundaries, tongues = paper_tongues
+    for tongue in tongues:
+        low, high = tongue.freq_range_hz
+        inside = (GRID >= low) & (GRID <= high)
+        column = KINDS.index(tongue.kind) - 1
+        assert np.all(np.isfinite(boundaries.amplitude[inside, column]))
