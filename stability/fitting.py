@@ -161,6 +161,9 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                               for n, v, a, b in zip(names, x0, low, high)))
     scale = np.maximum(np.abs(x0), 1e-12)
     censored = np.isnan(measured)
+    if censored.all():
+        raise JudderError("the measured boundary has no point with judder: "
+                          "it cannot determine the parameters")
     count = [0]
 
     def boundary(x):
@@ -182,11 +185,12 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     dof = max(len(freq_hz) - len(names), 1)
     variance = 2 * fit.cost / dof
     jac = fit.jac / scale[None, :]
-    try:
+    # a parameter the data do not determine has an infinite uncertainty
+    if np.linalg.matrix_rank(jac) < len(names):
+        std = np.full(len(names), np.inf)
+    else:
         cov = variance * np.linalg.inv(jac.T @ jac)
         std = np.sqrt(np.clip(np.diag(cov), 0, None))
-    except np.linalg.LinAlgError:
-        std = np.full(len(names), np.inf)
     fitted = params.replace(**dict(zip(names, map(float, values))))
     return FitResult(
         names=names, values=values, start=x0, std=std, params=fitted,

@@ -50,6 +50,9 @@ _MAX_PHASE = 8.0
 _MAX_STRENGTH = 1.5
 #: Relative size of the first neglected series term.
 _SERIES_TOLERANCE = 1e-17
+#: Most sub-intervals one period may need (memory grows with it: about
+#: 0.5 GB at this limit); below about 0.01 Hz use 'solve_ivp'.
+MAX_SUBINTERVALS = 20_000
 
 
 def _lobatto_integration():
@@ -99,6 +102,12 @@ class DysonPropagator:
         radius = np.abs(np.linalg.eigvals(A0)).max()
         steps = max(1, math.ceil(period * (2 * radius + omega) / _MAX_PHASE))
         while True:
+            if steps > MAX_SUBINTERVALS:
+                raise JudderError(
+                    f"freq = {freq_hz:g} Hz with p_f up to {p_max / 1e5:g} bar "
+                    f"needs {steps} sub-intervals per period with method "
+                    f"'dyson' (at most {MAX_SUBINTERVALS}); use a higher "
+                    "frequency or method 'solve_ivp'")
             h = period / steps
             s = (_X + 1.0) * (h / 2)
             forward = scipy.linalg.expm(A0[None] * s[:, None, None])

@@ -186,13 +186,13 @@ def cmd_threshold(args):
             "mu_g_thresholds": study.thresholds,
             "mu_g_thresholds_closed_form": study.closed_form,
             "out": args.out, "plot": args.plot}
-    slope = np.polyfit(study.external_damping, study.thresholds, 1)[0] \
-        if len(damping) > 1 else float("nan")
     text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
-            f"(unstable without dither below it)\n"
-            f"threshold against c_i: slope {slope:.4g} s/rad per N m s/rad "
-            f"over c_i = {damping[0]:g}..{damping[-1]:g}"
-            + "".join(f"\nwrote {p}" for p in (args.out, args.plot) if p))
+            f"(unstable without dither below it)")
+    if len(damping) > 1:
+        slope = np.polyfit(study.external_damping, study.thresholds, 1)[0]
+        text += (f"\nthreshold against c_i: slope {slope:.4g} s/rad per "
+                 f"N m s/rad over c_i = {damping[0]:g}..{damping[-1]:g}")
+    text += "".join(f"\nwrote {p}" for p in (args.out, args.plot) if p)
     emit(args, data, text)
 
 

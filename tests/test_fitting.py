@@ -58,3 +58,9 @@ def test_bad_boundary_csv(text, words):
         read_boundary_csv(text, source="b.csv")
     for word in words:
         assert word in str(info.value)
+
+
+def test_a_boundary_without_judder_cannot_be_fitted():
+    with pytest.raises(JudderError, match="no point with judder"):
+        fit_boundary(get_preset("paper-4dof"), [100.0, 120.0],
+                     [np.nan, np.nan], 1.5 * BAR, names=("mu_g",))

@@ -147,3 +147,9 @@ def test_dyson_refuses_full_form(paper4):
 def test_unknown_method_lists_options(paper4):
     with pytest.raises(JudderError, match="dyson, solve_ivp"):
         floquet(paper4, 50.0, 1e4, method="rk4")
+
+
+def test_dyson_refuses_a_period_too_long_for_its_memory(paper4):
+    # 0.001 Hz would need about 160 000 sub-intervals (GBs of coefficients)
+    with pytest.raises(JudderError, match="solve_ivp"):
+        floquet(paper4, 1e-3, 1e4)
