@@ -308,6 +308,10 @@ def load_toml(text, source="TOML"):
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ParameterError(f"{source}: not valid TOML: {exc}") from None
+    unknown = sorted(set(data) - {"model", "parameters"})
+    if unknown:
+        raise ParameterError(f"{source}: unknown key {unknown[0]!r}; allowed: "
+                             "model and a [parameters] table")
     model = data.get("model")
     if model not in SPECS:
         raise ParameterError(f"{source}: model = {model!r} is not allowed; "

@@ -85,6 +85,8 @@ def test_toml_partial_file_uses_paper_values():
     ('model = "4dof"\n[parameters]\nJ4 = -0.1\n', ["my.toml", "J4"]),
     ('model = "5dof"\n', ["my.toml", "5dof"]),
     ("model = \n", ["my.toml", "TOML"]),
+    # a misspelt table would otherwise be ignored and the paper's values used
+    ('model = "4dof"\n[parameter]\nc12 = 10.0\n', ["my.toml", "parameter"]),
 ])
 def test_toml_errors_name_the_file(text, words):
     with pytest.raises(ParameterError) as info:
