@@ -11,7 +11,7 @@ from .errors import JudderError
 
 __all__ = ["PA_PER_BAR", "parse_grid", "resolve_parameters", "emit",
            "parse_list", "check_number", "bar_to_pa", "make_parents",
-           "Progress"]
+           "read_input", "Progress"]
 
 PA_PER_BAR = 1e5
 
@@ -48,20 +48,24 @@ def parse_grid(text, option, unit, allow_negative=False):
     return np.linspace(start, stop, count)
 
 
+def read_input(path, option):
+    """Text of a file the user named, or JudderError naming the option."""
+    try:
+        return Path(path).read_text()
+    except OSError as exc:
+        raise JudderError(f"{option} {path}: cannot read it "
+                          f"({exc.strerror})") from None
+
+
 def resolve_parameters(args):
-    """Parameters from --params/--preset/--model and --set."""
+    """Parameters from --param-file/--preset/--model, then --set."""
     from . import parameters as par
     if args.param_file is not None:
         if args.preset is not None:
             raise JudderError("give either --param-file FILE or --preset "
                               "NAME, not both")
-        path = Path(args.param_file)
-        try:
-            text = path.read_text()
-        except OSError as exc:
-            raise JudderError(f"--param-file {path}: cannot read it "
-                              f"({exc.strerror})") from None
-        params = par.load_toml(text, source=str(path))
+        params = par.load_toml(read_input(args.param_file, "--param-file"),
+                               source=str(args.param_file))
     else:
         name = args.preset or par.default_preset(args.model or "4dof")
         params = par.get_preset(name)

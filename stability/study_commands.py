@@ -3,13 +3,12 @@ paper's stability studies (sections 4.2-4.3)."""
 
 import math
 import time
-from pathlib import Path
 
 import numpy as np
 
 from .cli_support import (PA_PER_BAR, Progress, bar_to_pa, check_number,
                           emit, make_parents, parse_grid, parse_list,
-                          resolve_parameters)
+                          read_input, resolve_parameters)
 from .errors import JudderError
 
 __all__ = ["cmd_tongues", "cmd_sensitivity", "cmd_threshold", "cmd_fit"]
@@ -202,13 +201,8 @@ def cmd_fit(args):
     names = parse_list(args.fit, "--fit", str)
     p_max = bar_to_pa(args.pf_max, "--pf-max")
     params = resolve_parameters(args)
-    path = Path(args.boundary)
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise JudderError(f"--boundary {path}: cannot read it "
-                          f"({exc.strerror})") from None
-    freqs, measured = read_boundary_csv(text, source=str(path))
+    freqs, measured = read_boundary_csv(
+        read_input(args.boundary, "--boundary"), source=str(args.boundary))
     bounds = {}
     for item in args.bounds:
         name, sep, rng = item.partition("=")
