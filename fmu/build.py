@@ -79,8 +79,8 @@ def fmi_headers():
 
 
 def _c_array(values):
-    return "{" + ", ".join(repr(float(v)) for v in values) + (
-        ", 0.0}" if not values else "}")
+    """C initialiser; the arrays have one spare element, so never empty."""
+    return "{" + ", ".join(repr(float(v)) for v in values or [0.0]) + "}"
 
 
 def _config(ode, guid, tolerance):

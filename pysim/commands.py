@@ -62,7 +62,7 @@ def cmd_simulate(args):
     """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
     from pysim.export import write_run
     from pysim.fmus import ensure_fmu
-    from pysim.runs import SIGNALS, run_fmu
+    from pysim.runs import SIGNALS, parameter_default, run_fmu
     check_number("--freq", args.freq, "Hz")
     check_number("--pf", args.pf, "bar", strict=False)
     check_number("--duration", args.duration, "s")
@@ -85,8 +85,8 @@ def cmd_simulate(args):
         runs.append((label, run_fmu(fmu, freq, p_f, params=params,
                                     extra=bench, duration=args.duration,
                                     output_interval=interval)))
-    start = (bench.get("t_engage", _fmu_default(fmu, "t_engage"))
-             + bench.get("t_ramp", _fmu_default(fmu, "t_ramp")))
+    start = (bench.get("t_engage", parameter_default(fmu, "t_engage"))
+             + bench.get("t_ramp", parameter_default(fmu, "t_ramp")))
     from stability.floquet import floquet
     from stability.model import build_driveline
     driveline = build_driveline(params)
@@ -128,12 +128,6 @@ def cmd_simulate(args):
                       f"({s['floquet_exponent_per_s']:+.2f} 1/s)")
     rows += [f"wrote {p}" for p in (args.out, args.plot) if p]
     emit(args, data, "\n".join(rows))
-
-
-def _fmu_default(fmu, name):
-    from fmpy import read_model_description
-    return float(next(v.start for v in read_model_description(
-        str(fmu)).modelVariables if v.name == name))
 
 
 def cmd_crosscheck(args):

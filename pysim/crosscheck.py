@@ -19,7 +19,7 @@ from stability.model import build_driveline
 from stability.parallel import parallel_map
 
 from .fmus import ensure_fmu
-from .runs import run_fmu
+from .runs import parameter_default, run_fmu
 from .signals import free_response_growth
 
 __all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck", "MODEL_FMU"]
@@ -103,19 +103,14 @@ def _reason(point_rate, fit, duration):
     return "transient too short for the leading mode to dominate"
 
 
-def _initial_speed(fmu_path):
-    from fmpy import read_model_description
-    variables = read_model_description(str(fmu_path)).modelVariables
-    return float(next(v.start for v in variables if v.name == "w_in"))
-
-
 def _point(job):
     params, fmu_path, freq, p_f, duration = job
     period = 1.0 / freq
+    perturbed = {"w_in": parameter_default(fmu_path, "w_in") + SPEED_STEP}
     runs = [run_fmu(fmu_path, freq, p_f, params=params, duration=duration,
                     output_interval=period / SAMPLES_PER_PERIOD,
                     variables=SPEEDS[params.model], extra=extra)
-            for extra in ({}, {"w_in": _initial_speed(fmu_path) + SPEED_STEP})]
+            for extra in ({}, perturbed)]
     fit = free_response_growth(
         runs[0].time, [runs[1][s] - runs[0][s] for s in SPEEDS[params.model]],
         period)

@@ -5,13 +5,17 @@ the same in the FMUs) plus the dither setting onto the FMU's start values,
 simulates it with fmpy and returns the time histories in SI units.
 """
 
+import atexit
 from dataclasses import dataclass
+import functools
+from pathlib import Path
+import shutil
 
 import numpy as np
 
 from stability.errors import JudderError
 
-__all__ = ["Run", "run_fmu", "SIGNALS"]
+__all__ = ["Run", "run_fmu", "parameter_default", "SIGNALS"]
 
 #: Outputs of every example model, with units.
 SIGNALS = {"w_upstream": "rad/s", "w_downstream": "rad/s", "slip": "rad/s",
@@ -44,6 +48,28 @@ class Run:
         return self.signals[name]
 
 
+@functools.lru_cache(maxsize=8)
+def _unpacked(fmu_path, mtime):
+    """Extracted FMU folder and model description, once per file version.
+
+    fmpy would otherwise unzip the FMU and parse its XML on every run
+    (measured: 12 ms against 7 ms a run of the 4-DOF FMU).
+    """
+    from fmpy import extract, read_model_description
+    folder = extract(fmu_path)
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
+    return folder, read_model_description(fmu_path)
+
+
+def parameter_default(fmu_path, name):
+    """Default (start) value of an FMU parameter, SI."""
+    _, description = _unpacked(str(fmu_path), Path(fmu_path).stat().st_mtime)
+    for variable in description.modelVariables:
+        if variable.name == name:
+            return float(variable.start)
+    raise JudderError(f"{description.modelName} has no parameter {name!r}")
+
+
 def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
             output_interval=None, fmi_type="CoSimulation", variables=()):
     """Simulate an FMU at one dither setting.
@@ -70,8 +96,9 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
     JudderError
         On an FMU parameter name that does not exist, or a failed run.
     """
-    from fmpy import read_model_description, simulate_fmu
-    description = read_model_description(str(fmu_path))
+    from fmpy import simulate_fmu
+    folder, description = _unpacked(str(fmu_path),
+                                    Path(fmu_path).stat().st_mtime)
     tunable = {v.name for v in description.modelVariables
                if v.causality == "parameter"}
     start = dict(params.as_dict()) if params is not None else {}
@@ -87,7 +114,8 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
     outputs = list(SIGNALS) + [v for v in variables if v not in SIGNALS]
     try:
         result = simulate_fmu(
-            str(fmu_path), fmi_type=fmi_type, start_values=start,
+            folder, model_description=description, fmi_type=fmi_type,
+            start_values=start,
             stop_time=duration or experiment.stopTime,
             output_interval=output_interval or experiment.stepSize,
             output=outputs)
