@@ -13,7 +13,8 @@ import time
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from stability import build_driveline, get_preset
+from drivelines import get_model, get_preset
+from stability import build_driveline
 from stability.floquet import leading_multipliers
 from stability.maps import stability_map
 from stability.monodromy import monodromy_solve_ivp
@@ -147,7 +148,7 @@ def bench_engagement():
     from fmu.frontend import load_flat_model
     from pysim.fmus import LIBRARY, ensure_fmu
 
-    fmu_path = str(ensure_fmu("TestBenchEngagement"))
+    fmu_path = str(ensure_fmu(get_model("4dof").bench_class))
     ode = to_ode(load_flat_model(
         LIBRARY / "Judder" / "Examples" / "TestBenchEngagement.mo",
         "Judder.Examples.TestBenchEngagement", roots=[LIBRARY]))

@@ -5,6 +5,8 @@ import json
 import sys
 from pathlib import Path
 
+from infra.errors import EXIT_ERROR, EXIT_OK
+
 from .build import DEFAULT_TOLERANCE, build_fmu
 from .frontend import FrontEndError
 
@@ -62,8 +64,8 @@ def main(argv=None):
                       f"{result.size_bytes / 1024:.1f} KiB")
     except FrontEndError as exc:
         print(f"fmu: error: {exc}", file=sys.stderr)
-        return 2
-    return 0
+        return EXIT_ERROR
+    return EXIT_OK
 
 
 sys.exit(main())

@@ -28,6 +28,8 @@ import zipfile
 
 import casadi
 
+from infra.files import atomic_write
+
 from .backend import to_ode
 from .description import Layout, model_description
 from .frontend import FrontEndError, load_flat_model
@@ -197,11 +199,9 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         description = model_description(ode, version, identifier, guid,
                                          tolerance)
         library = _compile(folder, version, identifier)
-        handle, partial = tempfile.mkstemp(suffix=".part",
-                                           dir=out_file.parent)
-        os.close(handle)
-        try:
-            with zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as fmu:
+
+        def write_zip(stream):
+            with zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as fmu:
                 fmu.writestr("modelDescription.xml", description)
                 fmu.write(library, f"binaries/{_PLATFORM[version]}/"
                                    f"{identifier}.so")
@@ -210,10 +210,7 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                     fmu.write(folder / source, f"sources/{source}")
                 for source in ("model.c", "model.h", _WRAPPER[version]):
                     fmu.write(C_SOURCES / source, f"sources/{source}")
-            os.replace(partial, out_file)
-        except BaseException:
-            Path(partial).unlink(missing_ok=True)
-            raise
+        atomic_write(out_file, write_zip)
     return BuildResult(path=out_file, version=version,
                        states=len(ode.states),
                        parameters=len(ode.parameters),

@@ -14,10 +14,12 @@ from pathlib import Path
 
 import casadi
 
+from infra.errors import JudderError
+
 __all__ = ["Variable", "FlatModel", "load_flat_model", "FrontEndError"]
 
 
-class FrontEndError(ValueError):
+class FrontEndError(JudderError):
     """The Modelica source could not be compiled; the message says where."""
 
 

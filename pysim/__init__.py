@@ -1,8 +1,10 @@
 """Time-domain simulation of the driveline FMUs with fmpy, and bench data.
 
+:mod:`pysim.fmus` builds the FMU of a library class when it is stale,
 :mod:`pysim.runs` runs an FMU at a dither setting, :mod:`pysim.signals`
-analyses time histories (spectrum, growth rates), :mod:`pysim.crosscheck`
-compares FMU growth with the Floquet exponents, :mod:`pysim.bench`
+analyses time histories (spectrum, growth rates, free-response fits),
+:mod:`pysim.engagement` sums up an engagement, :mod:`pysim.bench`
 emulates bench campaigns, :mod:`pysim.export` writes CSV and MF4, and
-:mod:`pysim.plotting` draws them.
+:mod:`pysim.plotting` draws them. Which FMU belongs to which driveline is
+the registry's knowledge (:mod:`drivelines.registry`).
 """

@@ -1,6 +1,7 @@
 """Bench emulator: campaigns of engagement runs written like acquisitions.
 
-Each run of the bench FMU (``TestBenchEngagement``) is turned into what
+Each run of the driveline's bench FMU (its registry entry names it:
+``TestBenchEngagement`` for the 4-DOF driveline) is turned into what
 the bench of section 2.2 records:
 
 * the speeds upstream and downstream of the EVEN clutch, as a magnetic
@@ -25,27 +26,39 @@ from pathlib import Path
 
 import numpy as np
 
-from stability.errors import JudderError
-from stability.output import atomic_write
-from stability.parallel import parallel_map
+from drivelines.registry import MODELS
+from infra.errors import JudderError
+from infra.files import atomic_write
+from infra.parallel import parallel_map
+from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
 from .export import write_csv, write_mdf
 from .fmus import ensure_fmu
 from .runs import run_fmu
 
-__all__ = ["Campaign", "pickup_samples", "run_campaign", "TEMPERATURES",
-           "INDEX_COLUMNS"]
+__all__ = ["Campaign", "pickup_samples", "run_campaign", "at_temperature",
+           "TEMPERATURES", "INDEX_COLUMNS"]
 
-#: Oil temperature ranges of Fig. 11, represented by parameter factors.
-#: The paper gives no values: these are illustrative, chosen so the tongue
-#: is longest at 65-70 degC (worst case, section 3.2) and contracts on
-#: either side (more damping when cold, less friction gradient when hot).
+#: Oil temperature ranges of Fig. 11, represented by factors on the
+#: external damping of every body and on the friction gradient. The paper
+#: gives no values: these are illustrative, chosen so the tongue is
+#: longest at 65-70 degC (worst case, section 3.2) and contracts on either
+#: side (more damping when cold, less friction gradient when hot).
 TEMPERATURES = {
-    "55-60": {"c1": 2.0, "c2": 2.0, "c3": 2.0, "c4": 2.0, "mu_g": 0.85},
-    "65-70": {},
-    "75-80": {"mu_g": 0.85},
-    "85-90": {"mu_g": 0.7},
+    "55-60": {"external_damping": 2.0, "mu_g": 0.85},
+    "65-70": {"external_damping": 1.0, "mu_g": 1.0},
+    "75-80": {"external_damping": 1.0, "mu_g": 0.85},
+    "85-90": {"external_damping": 1.0, "mu_g": 0.7},
 }
+
+
+def at_temperature(params, temperature):
+    """The parameter set at one oil temperature of :data:`TEMPERATURES`."""
+    factors = TEMPERATURES[temperature]
+    changes = {name: params[name] * factors["external_damping"]
+               for name in params.driveline.external_damping_names()}
+    changes["mu_g"] = params["mu_g"] * factors["mu_g"]
+    return params.replace(**changes)
 INDEX_COLUMNS = ("run_id", "status", "freq_hz", "p_f_bar", "engine_rpm",
                  "oil_temperature", "files", "message")
 
@@ -141,10 +154,9 @@ def _acquire(job):
            "p_f_bar": p, "engine_rpm": rpm, "oil_temperature": temp,
            "files": "", "message": ""}
     try:
-        case = params.replace(**{k: params[k] * v for k, v in
-                                 TEMPERATURES[temp].items()})
-        run = run_fmu(fmu_path, f, p * 1e5, params=case,
-                      extra={"w_motor": rpm * 2 * np.pi / 60},
+        case = at_temperature(params, temp)
+        run = run_fmu(fmu_path, f, p * PA_PER_BAR, params=case,
+                      extra={"w_motor": rpm * RAD_S_PER_RPM},
                       duration=campaign.duration, output_interval=1e-4,
                       variables=("inertia4.phi", "inertia3.phi"))
         rng = np.random.default_rng([campaign.seed, index])
@@ -154,7 +166,8 @@ def _acquire(job):
                                         campaign.teeth, campaign.noise_rpm,
                                         rng)
         t_p = np.arange(0.0, run.time[-1], 1e-3)
-        p_bar = np.interp(t_p, run.time, run["actuation_pressure"]) / 1e5 \
+        p_bar = np.interp(t_p, run.time, run["actuation_pressure"]) \
+            / PA_PER_BAR \
             + rng.normal(0.0, campaign.noise_bar, len(t_p))
         metadata = {"run_id": run_id, "dither_frequency_hz": f,
                     "dither_amplitude_bar": p, "engine_speed_rpm": rpm,
@@ -162,7 +175,7 @@ def _acquire(job):
                     campaign.teeth, "noise_rpm": campaign.noise_rpm,
                     "noise_bar": campaign.noise_bar,
                     "seed": [campaign.seed, index],
-                    "source": "emulated: Judder.Examples.TestBenchEngagement"}
+                    "source": f"emulated: {params.driveline.bench_class}"}
         files = []
         if "csv" in campaign.formats:
             # one time base, the upstream pick-up (the judder indicator)
@@ -210,15 +223,19 @@ def run_campaign(campaign, params, folder, workers=None, callback=None):
     list of dict
         The index rows (see :data:`INDEX_COLUMNS`), in run order.
     """
-    if params.model != "4dof":
-        raise JudderError("the bench model is 4-DOF")
+    bench_class = params.driveline.bench_class
+    if bench_class is None:
+        raise JudderError(f"the {params.model} driveline has no bench "
+                          "model; drivelines with one: " + ", ".join(
+                              m.name for m in MODELS.values()
+                              if m.bench_class is not None))
     unknown = sorted(set(campaign.temperatures) - set(TEMPERATURES))
     if unknown:
         raise JudderError(f"oil temperature {unknown[0]!r} is unknown; "
                           f"allowed: {', '.join(TEMPERATURES)}")
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    fmu_path = ensure_fmu("TestBenchEngagement")
+    fmu_path = ensure_fmu(bench_class)
     index_path = folder / "index.csv"
     done = {k: v for k, v in _read_index(index_path).items()
             if v["status"] == "ok" and all(

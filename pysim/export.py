@@ -2,7 +2,7 @@
 
 Both carry the time histories in SI units with their units, and the run's
 metadata (dither frequency and amplitude, parameters). Files are written
-atomically (:func:`stability.output.atomic_write`).
+atomically (:func:`infra.files.atomic_write`).
 """
 
 import io
@@ -10,8 +10,8 @@ import json
 
 import numpy as np
 
-from stability.errors import JudderError
-from stability.output import atomic_write
+from infra.errors import JudderError
+from infra.files import atomic_write
 
 __all__ = ["write_run", "write_csv", "write_mdf"]
 

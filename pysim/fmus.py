@@ -1,13 +1,14 @@
 """The FMUs pysim runs: built from modelica/ by the project's compiler.
 
-:func:`ensure_fmu` returns the FMU of an example model, compiling it (as
-``make fmu`` does) when it is missing or older than the Modelica library
-or the compiler.
+:func:`ensure_fmu` returns the FMU of a class of the library (the
+registry names them: :attr:`drivelines.DrivelineModel.modelica_class`),
+compiling it (as ``make fmu`` does) when it is missing or older than the
+Modelica library or the compiler.
 """
 
 from pathlib import Path
 
-from stability.errors import JudderError
+from infra.errors import JudderError
 
 __all__ = ["ensure_fmu", "FMU_DIR", "LIBRARY"]
 
@@ -23,13 +24,13 @@ def _newest_source():
     return max(p.stat().st_mtime for p in sources)
 
 
-def ensure_fmu(model, version="2.0", folder=None):
-    """Path of the FMU of ``Judder.Examples.<model>``, built if stale.
+def ensure_fmu(model_class, version="2.0", folder=None):
+    """Path of the FMU of a class of the library, built if stale.
 
     Parameters
     ----------
-    model : str
-        ``'Driveline4DOF'``, ``'Driveline3DOF'`` or ``'TestBenchEngagement'``.
+    model_class : str
+        Full class name, e.g. ``'Judder.Examples.Driveline4DOF'``.
     version : {'2.0', '3.0'}
     folder : path, optional
         Where FMUs live (default ``build/fmu`` of the repository).
@@ -38,14 +39,14 @@ def ensure_fmu(model, version="2.0", folder=None):
     from fmu.frontend import FrontEndError
     folder = Path(folder or FMU_DIR)
     suffix = "" if version == "2.0" else "_fmi3"
-    target = folder / f"{model}{suffix}.fmu"
-    source = LIBRARY / "Judder" / "Examples" / f"{model}.mo"
+    target = folder / f"{model_class.rsplit('.', 1)[-1]}{suffix}.fmu"
+    source = LIBRARY.joinpath(*model_class.split(".")).with_suffix(".mo")
     if not source.exists():
-        raise JudderError(f"model {model!r} is not an example of the Judder "
-                          "library")
+        raise JudderError(f"model {model_class!r} is not a class of the "
+                          f"library in {LIBRARY}")
     if not target.exists() or target.stat().st_mtime < _newest_source():
         try:
-            build_fmu(source, f"Judder.Examples.{model}", target,
+            build_fmu(source, model_class, target,
                       version=version, roots=[LIBRARY])
         except FrontEndError as exc:
             raise JudderError(f"building {target.name} failed: {exc}") \

@@ -7,11 +7,11 @@ artists; figure builders return the figure. Nothing calls ``plt.show()``.
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.units import PA_PER_BAR, RPM_PER_RAD_S
+
 from .signals import amplitude_spectrum
 
 __all__ = ["plot_run", "plot_spectrum", "run_figure", "crosscheck_figure"]
-
-RPM_PER_RAD_S = 60 / (2 * np.pi)
 
 
 def plot_run(run, ax=None, title=None):
@@ -25,12 +25,12 @@ def plot_run(run, ax=None, title=None):
     ax.set_xlabel("time [s]")
     ax.set_ylabel("speed [rpm]")
     right = ax.twinx()
-    artists.append(right.plot(run.time, run["actuation_pressure"] / 1e5,
+    artists.append(right.plot(run.time, run["actuation_pressure"] / PA_PER_BAR,
                               color="0.6", lw=0.5, label="pressure")[0])
     right.set_ylabel("actuation pressure [bar]")
     ax.legend(loc="upper right", fontsize=7)
     ax.set_title(title or f"f = {run.freq_hz:g} Hz, p_f = "
-                          f"{run.p_f / 1e5:g} bar", fontsize=9)
+                          f"{run.p_f / PA_PER_BAR:g} bar", fontsize=9)
     return artists
 
 
@@ -42,7 +42,7 @@ def plot_spectrum(run, ax=None, start=0.0):
     speed = amplitude_spectrum(run.time[keep],
                                run["w_upstream"][keep] * RPM_PER_RAD_S)
     pressure = amplitude_spectrum(run.time[keep],
-                                  run["actuation_pressure"][keep] / 1e5)
+                                  run["actuation_pressure"][keep] / PA_PER_BAR)
     artists = [ax.semilogy(speed.freq_hz, speed.amplitude,
                            label="upstream speed [rpm]", lw=0.8)[0],
                ax.semilogy(pressure.freq_hz, pressure.amplitude,
@@ -84,7 +84,7 @@ def crosscheck_figure(check, title=None):
     left.set_ylabel("growth rate fitted to the FMU run [1/s]")
     left.legend(fontsize=8)
     f = np.array([p.freq_hz for p in check.points])
-    p = np.array([p.p_f for p in check.points]) / 1e5
+    p = np.array([p.p_f for p in check.points]) / PA_PER_BAR
     unstable = np.array([q.floquet_unstable for q in check.points])
     right.scatter(f[unstable & agree], p[unstable & agree], c="C3", s=18,
                   label="unstable, both")

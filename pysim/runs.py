@@ -1,8 +1,9 @@
 """Time-domain runs of the FMUs with fmpy.
 
-A run maps a :class:`~stability.parameters.Parameters` set (the names are
-the same in the FMUs) plus the dither setting onto the FMU's start values,
-simulates it with fmpy and returns the time histories in SI units.
+A run maps a :class:`~drivelines.Parameters` set (the names are the same
+in the FMUs, see :mod:`drivelines.registry`) plus the dither setting onto
+the FMU's start values, simulates it with fmpy and returns the time
+histories in SI units.
 """
 
 import atexit
@@ -13,13 +14,11 @@ import shutil
 
 import numpy as np
 
-from stability.errors import JudderError
+from drivelines.registry import SIGNALS
+from infra.errors import JudderError
+from infra.units import PA_PER_BAR
 
-__all__ = ["Run", "run_fmu", "parameter_default", "SIGNALS"]
-
-#: Outputs of every example model, with units.
-SIGNALS = {"w_upstream": "rad/s", "w_downstream": "rad/s", "slip": "rad/s",
-           "clutch_torque": "N.m", "actuation_pressure": "Pa"}
+__all__ = ["Run", "run_fmu", "parameter_default"]
 
 
 @dataclass(frozen=True)
@@ -31,7 +30,8 @@ class Run:
     time : ndarray, shape (n,)
         s.
     signals : dict of str -> ndarray, shape (n,)
-        Outputs in SI units (see :data:`SIGNALS`) and any extra variables.
+        Outputs in SI units (:data:`drivelines.registry.SIGNALS`) and any
+        extra variables.
     start_values : dict
         FMU parameters set for the run (SI).
     freq_hz, p_f : float
@@ -79,8 +79,9 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
     fmu_path : path
     freq_hz, p_f : float
         Dither frequency (Hz) and amplitude (Pa).
-    params : stability.parameters.Parameters, optional
-        Values for the FMU parameters of the same names.
+    params : drivelines.Parameters, optional
+        Values for the FMU parameters of the same names; every one must
+        be a parameter of the FMU.
     extra : dict, optional
         Further FMU parameters by name (e.g. ``w_motor``, ``t_engage``).
     duration : float, optional
@@ -89,22 +90,23 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
         s (default: the FMU's Interval).
     fmi_type : {'CoSimulation', 'ModelExchange'}
     variables : sequence of str
-        Variables recorded besides :data:`SIGNALS`.
+        Variables recorded besides :data:`drivelines.registry.SIGNALS`.
 
     Raises
     ------
     JudderError
-        On an FMU parameter name that does not exist, or a failed run.
+        On a parameter (of ``params`` or ``extra``) the FMU does not have,
+        or a failed run.
     """
     from fmpy import simulate_fmu
     folder, description = _unpacked(str(fmu_path),
                                     Path(fmu_path).stat().st_mtime)
     tunable = {v.name for v in description.modelVariables
                if v.causality == "parameter"}
-    start = dict(params.as_dict()) if params is not None else {}
-    start = {k: v for k, v in start.items() if k in tunable}
-    start.update({"f_dither": float(freq_hz), "p_f": float(p_f)})
-    for name, value in (extra or {}).items():
+    values = {**(params.as_dict() if params is not None else {}),
+              **(extra or {})}
+    start = {"f_dither": float(freq_hz), "p_f": float(p_f)}
+    for name, value in values.items():
         if name not in tunable:
             raise JudderError(f"{name!r} is not a parameter of "
                               f"{description.modelName}; allowed: "
@@ -121,7 +123,7 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
             output=outputs)
     except Exception as exc:   # fmpy raises plain Exceptions on FMU errors
         raise JudderError(f"the FMU run failed at f = {freq_hz:g} Hz, "
-                          f"p_f = {p_f / 1e5:g} bar: {exc}") from None
+                          f"p_f = {p_f / PA_PER_BAR:g} bar: {exc}") from None
     return Run(time=np.asarray(result["time"]),
                signals={n: np.asarray(result[n]) for n in outputs},
                start_values=start, freq_hz=float(freq_hz), p_f=float(p_f))

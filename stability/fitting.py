@@ -22,24 +22,27 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from .errors import JudderError
+from infra.errors import JudderError
+from infra.units import PA_PER_BAR
+
 from .model import build_driveline
+from .monodromy import DEFAULT_METHOD, get_method
 from .tongues import tongue_boundaries
 
-__all__ = ["FitResult", "model_boundary", "fit_boundary", "read_boundary_csv"]
+__all__ = ["FitResult", "model_boundary", "fit_boundary", "DEFAULT_FIT"]
 
-BAR = 1e5
 #: Parameters fitted by default: those the paper calls hard to estimate.
 DEFAULT_FIT = ("c12", "mu_g", "k24")
 
 
-def model_boundary(params, freq_hz, p_max):
+def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD):
     """Lowest unstable amplitude of the model at each frequency, Pa.
 
-    NaN where the model is stable up to ``p_max``.
+    NaN where the model is stable up to ``p_max``; ``method`` is the
+    monodromy engine (:data:`stability.monodromy.METHODS`).
     """
-    return tongue_boundaries(build_driveline(params), freq_hz,
-                             p_max).stability_boundary
+    return tongue_boundaries(build_driveline(params), freq_hz, p_max,
+                             method).stability_boundary
 
 
 @dataclass(frozen=True)
@@ -53,7 +56,7 @@ class FitResult:
     values, start, std : ndarray, shape (k,)
         Fitted values, starting values and standard uncertainties (SI
         units; ``inf`` where the data do not determine a value).
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
         The parameter set with the fitted values.
     residual_rms_bar : float
         Root mean square of the residuals, bar.
@@ -106,12 +109,12 @@ def _default_bounds(params, name):
 
 
 def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
-                 bounds=None, start=None):
+                 bounds=None, start=None, method=DEFAULT_METHOD):
     """Fit parameters so the model boundary matches a measured one.
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
         Starting parameter set.
     freq_hz : array_like, shape (n,)
         Frequencies of the measured points, Hz.
@@ -128,6 +131,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         of the start value.
     start : dict, optional
         Start values overriding ``params``.
+    method : str
+        Monodromy engine, a key of :data:`stability.monodromy.METHODS`.
 
     Returns
     -------
@@ -136,6 +141,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     names = tuple(names)
     if not names:
         raise JudderError("give at least one parameter to fit")
+    get_method(method)
     freq_hz = np.asarray(freq_hz, dtype=float)
     measured = np.asarray(measured_p_f, dtype=float)
     if freq_hz.shape != measured.shape or freq_hz.ndim != 1:
@@ -169,13 +175,13 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     def boundary(x):
         count[0] += 1
         trial = params.replace(**dict(zip(names, map(float, x * scale))))
-        return model_boundary(trial, freq_hz, p_max)
+        return model_boundary(trial, freq_hz, p_max, method)
 
     def residuals(x):
         model = boundary(x)
         capped = np.where(np.isnan(model), p_max, model)
         return np.where(censored, -np.maximum(p_max - capped, 0.0),
-                        capped - measured) / BAR
+                        capped - measured) / PA_PER_BAR
 
     fit = least_squares(residuals, x0 / scale, bounds=(low / scale,
                                                        high / scale),
@@ -195,51 +201,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     return FitResult(
         names=names, values=values, start=x0, std=std, params=fitted,
         residual_rms_bar=float(np.sqrt(np.mean(fit.fun ** 2))),
-        residuals_bar=fit.fun, freq_hz=freq_hz, measured_bar=measured / BAR,
-        model_bar=boundary(fit.x) / BAR, success=bool(fit.success),
+        residuals_bar=fit.fun, freq_hz=freq_hz,
+        measured_bar=measured / PA_PER_BAR,
+        model_bar=boundary(fit.x) / PA_PER_BAR, success=bool(fit.success),
         message=fit.message, evaluations=count[0])
-
-
-def read_boundary_csv(text, source="boundary file"):
-    """Parse a measured boundary: columns ``freq_hz,p_f_bar``.
-
-    A header line is allowed, and further columns are ignored (so the CSV
-    of ``judder tongues --out`` can be read back); an empty ``p_f_bar``
-    means no judder up to the largest amplitude tried.
-
-    Returns
-    -------
-    freq_hz, p_f : ndarray
-        Hz and Pa (NaN for censored points).
-    """
-    freqs, amps = [], []
-    for number, line in enumerate(text.splitlines(), start=1):
-        line = line.split("#")[0].strip()
-        if not line:
-            continue
-        cells = [c.strip() for c in line.split(",")][:2]
-        if number == 1 and not _is_number(cells[0]):
-            continue
-        if len(cells) != 2 or not _is_number(cells[0]) or not (
-                cells[1] == "" or _is_number(cells[1])):
-            raise JudderError(f"{source}, line {number}: {line!r} is not "
-                              "'freq_hz,p_f_bar' (p_f_bar empty for no "
-                              "judder)")
-        freq = float(cells[0])
-        amp = float(cells[1]) * BAR if cells[1] else np.nan
-        if not np.isfinite(freq) or freq <= 0 or amp < 0:
-            raise JudderError(f"{source}, line {number}: frequency must be "
-                              "> 0 Hz and amplitude >= 0 bar")
-        freqs.append(freq)
-        amps.append(amp)
-    if not freqs:
-        raise JudderError(f"{source}: no data lines")
-    return np.array(freqs), np.array(amps)
-
-
-def _is_number(text):
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True

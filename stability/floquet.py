@@ -1,51 +1,21 @@
 """Floquet multipliers and characteristic exponents, Eq. (10)-(13).
 
 The multipliers are the eigenvalues of the monodromy matrix; the leading
-one (largest modulus) decides stability. How it leaves the unit circle
-names the instability, as in Fig. 15 of the paper: through +1 the
-response has the dither period (single-period), through -1 twice the
-dither period (double-period), as a complex pair a period unrelated to the
-dither (combination).
+one (largest modulus) decides stability, and how it leaves the unit circle
+names the instability (:mod:`stability.kinds`, Fig. 15).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import JudderError
-from .monodromy import get_method
+from infra.errors import JudderError
 
-__all__ = ["KINDS", "FloquetResult", "classify", "floquet", "system_of",
-           "leading_multipliers"]
+from .kinds import KINDS, classify
+from .monodromy import monodromy
 
-#: Names of the stability verdicts, indexed by the integer codes of maps.
-KINDS = ("stable", "single-period", "double-period", "combination")
-
-#: A multiplier whose imaginary part is below this share of its modulus is
-#: real (LAPACK returns exactly zero for real eigenvalues of real matrices).
-_REAL_TOLERANCE = 1e-9
-
-
-def classify(multiplier):
-    """Integer code into :data:`KINDS` for a leading multiplier.
-
-    Parameters
-    ----------
-    multiplier : array_like of complex
-        Leading multipliers (any shape).
-
-    Returns
-    -------
-    ndarray of int8, same shape
-        0 stable (modulus <= 1), 1 single-period (real, > 1),
-        2 double-period (real, < -1), 3 combination (complex).
-    """
-    lam = np.asarray(multiplier, dtype=complex)
-    modulus = np.abs(lam)
-    real = np.abs(lam.imag) <= _REAL_TOLERANCE * modulus
-    code = np.where(real, np.where(lam.real > 0, 1, 2), 3)
-    return np.where(modulus > 1.0, code, 0).astype(np.int8)
-
+__all__ = ["FloquetResult", "floquet", "system_of", "leading_multipliers",
+           "check_frequency", "check_amplitude"]
 
 def leading_multipliers(monodromies):
     """Eigenvalues and leading eigenvalue of a stack of monodromy matrices.
@@ -165,8 +135,8 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
         Dither frequency, Hz.
     p_f : float
         Dither amplitude, Pa.
-    method : {'dyson', 'solve_ivp'}, optional
-        Monodromy engine, see :mod:`stability.monodromy`. Default
+    method : str, optional
+        Monodromy engine, a key of :data:`stability.monodromy.METHODS`. Default
         ``'dyson'`` for the reduced form, ``'solve_ivp'`` otherwise.
     form : {'reduced', 'full', 'augmented'}
         See :func:`system_of`. With ``'full'`` and ``'augmented'`` the
@@ -178,9 +148,10 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
 
     Examples
     --------
-    NOTES.md table, tongue 2 of Fig. 14:
+    Inside tongue 2 of Fig. 14, near its tip at f2 = 102.9 Hz:
 
-    >>> from stability import get_preset, build_driveline
+    >>> from drivelines import get_preset
+    >>> from stability import build_driveline
     >>> r = floquet(build_driveline(get_preset("paper-4dof")), 102.9, 0.3e5)
     >>> r.kind, round(r.leading_abs, 4)
     ('single-period', 1.0261)
@@ -193,13 +164,13 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
         raise JudderError(f"form = {form!r} needs method = 'solve_ivp'; "
                           "the 'dyson' engine handles the reduced form only")
     system = system_of(driveline, form)
-    monodromy = get_method(method)(system, freq_hz, [p_f])
-    lam, leading = leading_multipliers(monodromy)
+    matrices = monodromy(system, freq_hz, [p_f], method)
+    lam, leading = leading_multipliers(matrices)
     period = 1.0 / freq_hz
     lead = complex(leading[0])
     return FloquetResult(
         freq_hz=float(freq_hz), p_f=float(p_f), period=period,
-        monodromy=monodromy[0], multipliers=lam[0],
+        monodromy=matrices[0], multipliers=lam[0],
         exponents=np.log(lam[0].astype(complex)) / period,
         leading=lead, leading_abs=abs(lead),
         growth_rate=float(np.log(abs(lead)) / period),

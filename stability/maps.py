@@ -4,10 +4,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .floquet import (KINDS, check_amplitude, check_frequency, classify,
-                      leading_multipliers)
+from .floquet import check_amplitude, check_frequency, leading_multipliers
+from .kinds import KINDS, classify
 from .modal import natural_frequencies
-from .monodromy import get_method
+from .monodromy import DEFAULT_METHOD, get_method
 
 __all__ = ["StabilityMap", "stability_map"]
 
@@ -25,7 +25,7 @@ class StabilityMap:
     leading : ndarray of complex, shape (nf, np)
         Leading non-trivial multiplier (rigid-body angles removed).
     kind : ndarray of int8, shape (nf, np)
-        Index into :data:`~stability.floquet.KINDS`.
+        :class:`~stability.kinds.Kind` code of each point.
     natural_frequencies_hz : ndarray
         Undamped natural frequencies of the driveline, Hz (Eq. 15).
     method : str
@@ -60,7 +60,8 @@ class StabilityMap:
         return plot_map(self, ax=ax, **kwargs)
 
 
-def stability_map(driveline, freq_hz, p_f, method="dyson", callback=None):
+def stability_map(driveline, freq_hz, p_f, method=DEFAULT_METHOD,
+                  callback=None):
     """Floquet stability map of Eq. (6) on a grid.
 
     Parameters
@@ -70,8 +71,8 @@ def stability_map(driveline, freq_hz, p_f, method="dyson", callback=None):
         Dither frequencies, Hz (> 0).
     p_f : array_like, shape (np,)
         Dither amplitudes, Pa (>= 0).
-    method : {'dyson', 'solve_ivp'}
-        Monodromy engine (:data:`stability.monodromy.METHODS`).
+    method : str
+        Monodromy engine, a key of :data:`stability.monodromy.METHODS`.
     callback : callable, optional
         Called as ``callback(done, total)`` after each frequency, for
         progress display. Interrupt (``KeyboardInterrupt``) at any time:
@@ -83,7 +84,8 @@ def stability_map(driveline, freq_hz, p_f, method="dyson", callback=None):
 
     Examples
     --------
-    >>> from stability import get_preset, build_driveline
+    >>> from drivelines import get_preset
+    >>> from stability import build_driveline
     >>> m = stability_map(build_driveline(get_preset("paper-4dof")),
     ...                   [37.9, 60.0, 102.9], [0.0, 0.5e5])
     >>> [[str(KINDS[k]) for k in row] for row in m.kind]
@@ -95,9 +97,11 @@ def stability_map(driveline, freq_hz, p_f, method="dyson", callback=None):
     check_amplitude(p_f)
     engine = get_method(method)
     system = driveline.periodic_system()
+    p_max = np.abs(p_f).max()
     leading = np.empty((len(freq_hz), len(p_f)), dtype=complex)
     for index, freq in enumerate(freq_hz):
-        _, leading[index] = leading_multipliers(engine(system, freq, p_f))
+        _, leading[index] = leading_multipliers(
+            engine(system, freq, p_max).monodromy(p_f))
         if callback is not None:
             callback(index + 1, len(freq_hz))
     return StabilityMap(freq_hz=freq_hz, p_f=p_f, leading=leading,

@@ -27,7 +27,8 @@ def natural_frequencies(driveline):
 
     Examples
     --------
-    >>> from stability import get_preset, build_driveline
+    >>> from drivelines import get_preset
+    >>> from stability import build_driveline
     >>> natural_frequencies(build_driveline(get_preset("paper-4dof"))).round(3)
     array([ 18.939, 102.884])
     """
@@ -41,40 +42,28 @@ def closed_form_frequencies(params):
     """Natural frequencies from the closed forms, Hz, ascending.
 
     4-DOF: Eq. (15) of the paper. 3-DOF: the two-inertia oscillator
-    ``w^2 = k (J1 + J24) / (J1 J24)``.
+    ``w^2 = k (J1 + J24) / (J1 J24)``. The formula of each driveline is
+    in its registry entry.
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
     """
-    p = params
-    if p.model == "3dof":
-        omega2 = np.array([p["k"] * (p["J1"] + p["J24"])
-                           / (p["J1"] * p["J24"])])
-    else:
-        J1, J2, J4 = p["J1"], p["J2"], p["J4"]
-        k12, k24 = p["k12"], p["k24"]
-        a = J4 * k12 * (J1 + J2)
-        b = J1 * k24 * (J2 + J4)
-        delta = (a ** 2 + b ** 2
-                 + 2 * J1 * J4 * k12 * k24 * (J4 * (J1 - J2)
-                                              - J2 * (J1 + J2)))
-        omega2 = (a + b + np.array([-1.0, 1.0]) * np.sqrt(delta)) \
-            / (2 * J1 * J2 * J4)
-    return np.sqrt(omega2) / (2 * np.pi)
+    return np.sqrt(params.driveline.closed_form_omega2(params)) / (2 * np.pi)
 
 
 def clutch_damper_damping_factor(params):
     """Damping factor of the clutch damper, Eq. (16), as a fraction.
 
     ``zeta_12 = c12 / (2 sqrt(k12 J2))``, the damper taken as an isolated
-    one-degree-of-freedom system (3-DOF: ``c / (2 sqrt(k J24))``).
-    Multiply by 100 for the paper's percent.
+    one-degree-of-freedom system on the inertia behind it (3-DOF:
+    ``c / (2 sqrt(k J24))``). Multiply by 100 for the paper's percent.
     """
-    p = params
-    if p.model == "3dof":
-        return p["c"] / (2 * np.sqrt(p["k"] * p["J24"]))
-    return p["c12"] / (2 * np.sqrt(p["k12"] * p["J2"]))
+    model = params.driveline
+    damper = model.clutch_damper
+    inertia = model.bodies[model.body_index(damper.body_b)].inertia
+    return params[damper.damping] / (2 * np.sqrt(params[damper.stiffness]
+                                                 * params[inertia]))
 
 
 def damped_modes(driveline):

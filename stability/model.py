@@ -1,9 +1,9 @@
 """Equations of motion of the driveline, Eq. (1)-(9) of the paper.
 
-Both models are a chain of inertias joined by spring-dampers (engine side,
-clutch damper, shafts) and a wet clutch between the last body of the chain
-and the gearbox-side body. :func:`build_driveline` turns a
-:class:`~stability.parameters.Parameters` set into a :class:`Driveline`,
+Every registered driveline (:mod:`drivelines.registry`) is a chain of
+inertias joined by spring-dampers (engine side, clutch damper, shafts) and
+a wet clutch between the last body of the chain and the gearbox-side body. :func:`build_driveline` turns a
+:class:`~drivelines.Parameters` set into a :class:`Driveline`,
 which writes the paper's matrices. Its :meth:`Driveline.periodic_system`
 gives the form the Floquet layer integrates, with the rigid-body angles
 removed.
@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .parameters import MEAN_PRESSURE_DAMPING
+from drivelines.specs import MEAN_PRESSURE_DAMPING
 
 __all__ = ["Driveline", "PeriodicSystem", "build_driveline"]
 
@@ -127,7 +127,7 @@ class Driveline:
         """Clutch term ``mu_g f(t)`` of ``C(t)``, N m s/rad (Eq. 2-4).
 
         Only ``mean_pressure_damping`` times ``p_m`` enters, see
-        :mod:`stability.parameters`.
+        :mod:`drivelines.registry`.
         """
         pressure = (self.mean_pressure_damping * self.p_m
                     + p_f * np.cos(2 * np.pi * freq_hz * t))
@@ -232,11 +232,15 @@ class Driveline:
 
 
 def build_driveline(params):
-    """Driveline of the paper's 3-DOF (Fig. 12) or 4-DOF (Fig. 13) model.
+    """Driveline of a parameter set, from its model's registry entry.
+
+    The bodies, couplings and clutch come from
+    :class:`drivelines.registry.DrivelineModel` (Fig. 12 for the 3-DOF
+    model, Fig. 13 for the 4-DOF model); the values from ``params``.
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
 
     Returns
     -------
@@ -244,25 +248,19 @@ def build_driveline(params):
 
     Examples
     --------
-    >>> from stability.parameters import get_preset
+    >>> from drivelines import get_preset
     >>> build_driveline(get_preset("paper-4dof")).names
     ('1', '2', '4', '3')
     """
-    p = params
-    if p.model == "4dof":
-        names = ("1", "2", "4", "3")
-        inertia = [p["J1"], p["J2"], p["J4"], p["J3"]]
-        springs = ((0, 1, p["k12"], p["c12"]), (1, 2, p["k24"], p["c24"]))
-        external = [p["c1"], p["c2"], p["c4"], p["c3"]]
-        clutch = (2, 3)
-    else:
-        names = ("1", "24", "3")
-        inertia = [p["J1"], p["J24"], p["J3"]]
-        springs = ((0, 1, p["k"], p["c"]),)
-        external = [p["c1"], p["c24"], p["c3"]]
-        clutch = (1, 2)
-    return Driveline(names=names, inertia=np.array(inertia),
-                     springs=springs, external_damping=np.array(external),
-                     clutch=clutch, clutch_factor=p.clutch_factor,
-                     mu0=p["mu0"], mu_g=p["mu_g"], p_m=p["p_m"],
-                     mean_pressure_damping=p[MEAN_PRESSURE_DAMPING])
+    p, model = params, params.driveline
+    index = model.body_index
+    return Driveline(
+        names=tuple(b.label for b in model.bodies),
+        inertia=np.array([p[b.inertia] for b in model.bodies]),
+        springs=tuple((index(c.body_a), index(c.body_b), p[c.stiffness],
+                       p[c.damping]) for c in model.couplings),
+        external_damping=np.array([p[b.external_damping]
+                                   for b in model.bodies]),
+        clutch=(index(model.clutch[0]), index(model.clutch[1])),
+        clutch_factor=p.clutch_factor, mu0=p["mu0"], mu_g=p["mu_g"],
+        p_m=p["p_m"], mean_pressure_damping=p[MEAN_PRESSURE_DAMPING])

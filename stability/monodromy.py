@@ -24,8 +24,11 @@ u v^T) z` for a whole column of dither amplitudes at one frequency:
     :func:`scipy.integrate.solve_ivp` (DOP853): the simple baseline and the
     independent reference.
 
-Both return an array of shape ``(n_amplitudes, m, m)``; :data:`METHODS`
-maps the names to the functions.
+Each engine is a propagator class, built once per frequency for
+amplitudes up to ``p_max`` and asked for ``monodromy(p_f)`` (shape
+``(n_amplitudes, m, m)``); :data:`METHODS` maps the names to the classes,
+and every study (maps, tongues, sensitivity, fitting, cross-check) takes
+a ``method`` from it.
 """
 
 import math
@@ -35,9 +38,10 @@ import scipy.linalg
 from numpy.polynomial import chebyshev
 from scipy.integrate import solve_ivp
 
-from .errors import JudderError
+from infra.errors import JudderError
 
-__all__ = ["METHODS", "DysonPropagator", "monodromy_dyson",
+__all__ = ["METHODS", "DEFAULT_METHOD", "DysonPropagator",
+           "IntegratedPropagator", "monodromy", "monodromy_dyson",
            "monodromy_solve_ivp", "get_method"]
 
 #: Chebyshev-Lobatto nodes per sub-interval.
@@ -201,20 +205,67 @@ def monodromy_solve_ivp(system, freq_hz, p_f, rtol=1e-10, atol=1e-12):
         sol = solve_ivp(rhs, (0.0, period), np.eye(size).ravel(),
                         method="DOP853", rtol=rtol, atol=atol)
         if not sol.success:
-            raise RuntimeError(f"solve_ivp failed at f = {freq_hz} Hz, "
+            raise JudderError(f"solve_ivp failed at f = {freq_hz} Hz, "
                                f"p_f = {amplitude} Pa: {sol.message}")
         out[index] = sol.y[:, -1].reshape(size, size)
     return out
 
 
-#: Monodromy engines by name.
-METHODS = {"dyson": monodromy_dyson, "solve_ivp": monodromy_solve_ivp}
+class IntegratedPropagator:
+    """Monodromy matrices by ``solve_ivp``, one integration per amplitude.
+
+    The reference engine, with the interface of :class:`DysonPropagator`.
+
+    Parameters
+    ----------
+    system : object with ``matrix(t, omega, p_f)``
+    freq_hz : float
+        Dither frequency, Hz.
+    p_max : float, optional
+        Unused (nothing is precomputed); kept for the common interface.
+    """
+
+    def __init__(self, system, freq_hz, p_max=None):
+        self._system, self._freq_hz = system, freq_hz
+
+    def monodromy(self, p_f):
+        """``X(T)`` for each amplitude of ``p_f`` (Pa), shape (k, m, m)."""
+        return monodromy_solve_ivp(self._system, self._freq_hz, p_f)
+
+
+#: Monodromy engines by name: propagator classes.
+METHODS = {"dyson": DysonPropagator, "solve_ivp": IntegratedPropagator}
+#: The engine used when none is named.
+DEFAULT_METHOD = "dyson"
 
 
 def get_method(name):
-    """Return the engine called ``name``; ValueError lists the options."""
+    """The propagator class called ``name``; JudderError lists the options."""
     try:
         return METHODS[name]
-    except KeyError:
+    except (KeyError, TypeError):
         raise JudderError(f"method = {name!r} is unknown; allowed: "
                           f"{', '.join(METHODS)}") from None
+
+
+def monodromy(system, freq_hz, p_f, method=DEFAULT_METHOD):
+    """Monodromy matrices for a column of amplitudes by the named engine.
+
+    Parameters
+    ----------
+    system : stability.model.PeriodicSystem
+        (``'solve_ivp'`` also takes any object with ``matrix``.)
+    freq_hz : float
+        Dither frequency, Hz.
+    p_f : array_like, shape (k,)
+        Dither amplitudes, Pa.
+    method : str
+        A key of :data:`METHODS`.
+
+    Returns
+    -------
+    ndarray, shape (k, m, m)
+    """
+    p_f = np.atleast_1d(np.asarray(p_f, dtype=float))
+    engine = get_method(method)
+    return engine(system, freq_hz, np.abs(p_f).max()).monodromy(p_f)

@@ -9,17 +9,17 @@ import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
-from .floquet import KINDS
+from infra.units import PA_PER_BAR
+
+from .kinds import KINDS
 from .tongues import resonances
 
 __all__ = ["KIND_COLORS", "plot_map", "plot_growth_rate", "map_figure",
            "resonance_lines", "plot_boundaries", "tongues_figure",
            "sensitivity_figure", "plot_threshold", "plot_fit"]
 
-#: Colour of each kind of :data:`~stability.floquet.KINDS`.
+#: Colour of each kind of :data:`~stability.kinds.KINDS`.
 KIND_COLORS = ("#ffffff", "#d62728", "#1f77b4", "#2ca02c")
-
-PA_PER_BAR = 1e5
 
 
 def resonance_lines(natural_frequencies_hz):

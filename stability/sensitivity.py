@@ -11,9 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import JudderError
+from infra.errors import JudderError
+from infra.parallel import parallel_map
+from infra.units import PA_PER_BAR
+
 from .model import build_driveline
-from .parallel import parallel_map
+from .monodromy import DEFAULT_METHOD, get_method
 from .tongues import find_tongues, tongue_boundaries
 
 __all__ = ["SensitivityCase", "SensitivityStudy", "sensitivity_study",
@@ -69,11 +72,11 @@ class SensitivityStudy:
 
 
 def _run_case(args):
-    params, parameter, value, freq_hz, p_max = args
+    params, parameter, value, freq_hz, p_max, method = args
     case_params = params if parameter is None else \
         params.replace(**{parameter: value})
     driveline = build_driveline(case_params)
-    boundaries = tongue_boundaries(driveline, freq_hz, p_max)
+    boundaries = tongue_boundaries(driveline, freq_hz, p_max, method)
     nominal = value if parameter is None else params[parameter]
     return SensitivityCase(
         parameter=parameter,
@@ -83,12 +86,13 @@ def _run_case(args):
 
 
 def sensitivity_study(params, names, freq_hz, p_max, factors=(0.5, 2.0),
-                      values=None, workers=None, callback=None):
+                      values=None, method=DEFAULT_METHOD, workers=None,
+                      callback=None):
     """Tongue boundaries with each parameter varied.
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
         Nominal set.
     names : sequence of str
         Parameters to vary.
@@ -100,6 +104,8 @@ def sensitivity_study(params, names, freq_hz, p_max, factors=(0.5, 2.0),
         Multipliers of the nominal value (used when ``values`` is None).
     values : sequence of float, optional
         Absolute values to set instead (SI units), e.g. c12 = 0.5 ... 10.
+    method : str
+        Monodromy engine, a key of :data:`stability.monodromy.METHODS`.
     workers : int, optional
         Processes to use (default: all cores).
     callback : callable, optional
@@ -117,13 +123,15 @@ def sensitivity_study(params, names, freq_hz, p_max, factors=(0.5, 2.0),
     names = list(names)
     if not names:
         raise JudderError("give at least one parameter to vary")
-    jobs = [(params, None, 0.0, freq_hz, p_max)]
+    get_method(method)
+    jobs = [(params, None, 0.0, freq_hz, p_max, method)]
     for name in names:
         varied = (np.asarray(values, dtype=float) if values is not None
                   else params[name] * np.asarray(factors, dtype=float))
         for value in varied:
             params.replace(**{name: float(value)})  # validate early
-            jobs.append((params, name, float(value), freq_hz, p_max))
+            jobs.append((params, name, float(value), freq_hz, p_max,
+                         method))
     results = []
     for case in parallel_map(_run_case, jobs, workers):
         results.append(case)
@@ -154,11 +162,12 @@ def tip_shifts(study):
                 "value": case.value, "tongue": base.number,
                 "kind": base.kind, "resonance": base.resonance,
                 "tip_freq_hz": None if moved is None else moved.tip_freq_hz,
-                "tip_p_f_bar": None if moved is None else moved.tip_p_f / 1e5,
+                "tip_p_f_bar": None if moved is None
+                else moved.tip_p_f / PA_PER_BAR,
                 "d_freq_hz": None if moved is None
                 else moved.tip_freq_hz - base.tip_freq_hz,
                 "d_p_f_bar": None if moved is None
-                else (moved.tip_p_f - base.tip_p_f) / 1e5,
+                else (moved.tip_p_f - base.tip_p_f) / PA_PER_BAR,
                 "present": moved is not None})
     return rows
 

@@ -30,17 +30,13 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
-from .errors import JudderError
+from drivelines.specs import MEAN_PRESSURE_DAMPING
+from infra.errors import JudderError
+
 from .model import build_driveline
-from .parameters import MEAN_PRESSURE_DAMPING
 
 __all__ = ["constant_system", "max_real_part", "friction_threshold",
-           "closed_form_threshold", "ThresholdStudy", "threshold_study",
-           "EXTERNAL_DAMPING"]
-
-#: External damping parameters of each model (the c_i of Fig. 19b).
-EXTERNAL_DAMPING = {"4dof": ("c1", "c2", "c3", "c4"),
-                    "3dof": ("c1", "c24", "c3")}
+           "closed_form_threshold", "ThresholdStudy", "threshold_study"]
 
 
 def constant_system(driveline):
@@ -85,9 +81,9 @@ def max_real_part(params):
 
 def closed_form_threshold(params):
     """``mu_g*`` of the rigid-chain slip mode (module docstring), s/rad."""
-    names = EXTERNAL_DAMPING[params.model]
-    output = params[names[2]] if params.model == "4dof" else params["c3"]
-    chain = sum(params[n] for n in names) - output
+    driveline = build_driveline(params)
+    output = driveline.external_damping[driveline.clutch[1]]
+    chain = driveline.external_damping.sum() - output
     series = 0.0 if chain + output == 0 else chain * output / (chain + output)
     return -series / (params.clutch_factor * params["p_m"]
                       * params[MEAN_PRESSURE_DAMPING])
@@ -98,7 +94,7 @@ def friction_threshold(params, bracket=(-1.0, 1.0)):
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
         ``mu_g`` is ignored (it is the unknown); ``mean_pressure_damping``
         must be > 0, or ``mu_g`` does not enter without dither.
     bracket : (float, float)
@@ -167,7 +163,7 @@ def threshold_study(params, mu_g, external_damping, callback=None):
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
+    params : drivelines.Parameters
     mu_g : array_like
         Friction gradients for Fig. 19a, s/rad.
     external_damping : array_like
@@ -189,7 +185,8 @@ def threshold_study(params, mu_g, external_damping, callback=None):
     span = max(1.0, 10 * np.abs(mu_g).max())
     thresholds, closed = [], []
     for index, c in enumerate(damping):
-        case = params.replace(**{n: c for n in EXTERNAL_DAMPING[params.model]})
+        case = params.replace(**{
+            n: c for n in params.driveline.external_damping_names()})
         thresholds.append(friction_threshold(case, (-span, span)))
         closed.append(closed_form_threshold(case))
         if callback is not None:

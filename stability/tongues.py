@@ -23,8 +23,8 @@ the diagonal). Half-integer ``k`` give the double-period boundary
 (multiplier -1). Real eigenvalues give the boundary amplitudes.
 Combination boundaries (a complex pair on the unit circle) add the unknown
 Floquet exponent; they are found by Brent's method on the monodromy
-instead (:class:`~stability.monodromy.DysonPropagator`). Every boundary
-point is checked against the monodromy multiplier.
+instead, computed by the chosen engine (:data:`~stability.monodromy.METHODS`).
+Every boundary point is checked against the monodromy multiplier.
 
 Tongues
 -------
@@ -47,13 +47,16 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 from scipy.signal import find_peaks
 
-from .errors import JudderError
-from .floquet import KINDS, check_amplitude, check_frequency
-from .modal import natural_frequencies
-from .monodromy import DysonPropagator
+from infra.errors import JudderError
 
-__all__ = ["Boundaries", "Tongue", "hill_boundary_amplitudes",
-           "tongue_boundaries", "find_tongues", "resonances"]
+from .floquet import check_amplitude, check_frequency
+from .kinds import Kind, is_real
+from .modal import natural_frequencies
+from .monodromy import DEFAULT_METHOD, get_method
+
+__all__ = ["Boundaries", "Tongue", "TONGUE_KINDS",
+           "hill_boundary_amplitudes", "tongue_boundaries", "find_tongues",
+           "resonances"]
 
 #: Harmonics kept on each side in Hill's matrix; the boundary amplitudes
 #: of the paper's model are converged to machine precision from about 4.
@@ -65,9 +68,12 @@ _SCAN_POINTS = 48
 _LABEL_TOLERANCE = 0.15
 #: Smallest dip (share of p_max) of a boundary curve counted as a tongue.
 TIP_PROMINENCE = 0.02
-_REAL_TOLERANCE = 1e-8
-
-_SINGLE, _DOUBLE, _COMBINATION = 1, 2, 3
+#: An eigenvalue ``1/p_f`` of Hill's (complex) matrix below this share of
+#: its modulus in imaginary part is a real boundary amplitude. Not a
+#: multiplier test: Hill's eigenvalues carry round-off from the complex
+#: transfer function, so the margin is wider than
+#: :data:`stability.kinds.REAL_TOLERANCE`.
+_HILL_REAL_TOLERANCE = 1e-8
 
 
 def _transfer(system, s):
@@ -119,7 +125,7 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
     size = len(k)
     hill = 0.5 * gains[:, None] * (np.eye(size, k=1) + np.eye(size, k=-1))
     lam = np.linalg.eigvals(hill)
-    real = lam[(np.abs(lam.imag) <= _REAL_TOLERANCE * np.abs(lam))
+    real = lam[(np.abs(lam.imag) <= _HILL_REAL_TOLERANCE * np.abs(lam))
                & (lam.real != 0)].real
     # +p and -p are the same solution shifted by half a period
     amplitudes = np.sort(1.0 / np.abs(real))
@@ -130,8 +136,7 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
 def _combination_excess(propagator, p_f):
     """Largest |multiplier| - 1 among the non-real multipliers."""
     lam = np.linalg.eigvals(propagator.monodromy(p_f))
-    complex_ = np.abs(lam.imag) > _REAL_TOLERANCE * np.abs(lam)
-    return np.where(complex_, np.abs(lam), 0.0).max(axis=-1) - 1.0
+    return np.where(is_real(lam), 0.0, np.abs(lam)).max(axis=-1) - 1.0
 
 
 def _combination_boundary(propagator, p_max):
@@ -149,12 +154,11 @@ def _combination_boundary(propagator, p_max):
 def _multiplier_error(propagator, p_f, kind):
     """Distance of the crossing multiplier from the unit circle at p_f."""
     lam = np.linalg.eigvals(propagator.monodromy([p_f])[0])
-    if kind == _SINGLE:
+    if kind == Kind.SINGLE_PERIOD:
         return float(np.abs(lam - 1.0).min())
-    if kind == _DOUBLE:
+    if kind == Kind.DOUBLE_PERIOD:
         return float(np.abs(lam + 1.0).min())
-    complex_ = np.abs(lam.imag) > _REAL_TOLERANCE * np.abs(lam)
-    return float(np.abs(np.abs(lam[complex_]) - 1.0).min())
+    return float(np.abs(np.abs(lam[~is_real(lam)]) - 1.0).min())
 
 
 def _lowest(amplitudes, p_max):
@@ -162,18 +166,21 @@ def _lowest(amplitudes, p_max):
     return inside[0] if len(inside) else np.nan
 
 
-def _boundary_at(system, freq_hz, p_max, propagator=None):
+#: The kinds of tongue, in the order of the columns of
+#: :attr:`Boundaries.amplitude`.
+TONGUE_KINDS = (Kind.SINGLE_PERIOD, Kind.DOUBLE_PERIOD, Kind.COMBINATION)
+
+
+def _boundary_at(system, freq_hz, p_max, method):
     """Lowest boundary amplitude of each kind and its monodromy check."""
-    if propagator is None:
-        propagator = DysonPropagator(system, freq_hz, p_max)
+    propagator = get_method(method)(system, freq_hz, p_max)
     amplitudes = np.array([
         _lowest(hill_boundary_amplitudes(system, freq_hz, 1), p_max),
         _lowest(hill_boundary_amplitudes(system, freq_hz, -1), p_max),
         _combination_boundary(propagator, p_max)])
     errors = np.array([np.nan if np.isnan(p) else
                        _multiplier_error(propagator, p, kind)
-                       for kind, p in zip((_SINGLE, _DOUBLE, _COMBINATION),
-                                          amplitudes)])
+                       for kind, p in zip(TONGUE_KINDS, amplitudes)])
     return amplitudes, errors
 
 
@@ -197,6 +204,8 @@ class Boundaries:
         from +1, -1 or the unit circle, by the monodromy (NaN where no
         point).
     natural_frequencies_hz : ndarray
+    method : str
+        Monodromy engine of the combination boundaries and the checks.
     """
 
     freq_hz: np.ndarray
@@ -204,6 +213,7 @@ class Boundaries:
     amplitude: np.ndarray
     multiplier_error: np.ndarray
     natural_frequencies_hz: np.ndarray
+    method: str = DEFAULT_METHOD
 
     @property
     def stability_boundary(self):
@@ -221,7 +231,8 @@ class Boundaries:
         return float(finite.max()) if len(finite) else 0.0
 
 
-def tongue_boundaries(driveline, freq_hz, p_max, callback=None):
+def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
+                      callback=None):
     """Boundaries of the single-, double-period and combination tongues.
 
     Parameters
@@ -231,6 +242,9 @@ def tongue_boundaries(driveline, freq_hz, p_max, callback=None):
         Dither frequencies, Hz.
     p_max : float
         Largest amplitude searched, Pa.
+    method : str
+        Monodromy engine (a key of :data:`stability.monodromy.METHODS`)
+        for the combination boundaries and the checks of every point.
     callback : callable, optional
         ``callback(done, total)`` after each frequency.
 
@@ -240,7 +254,8 @@ def tongue_boundaries(driveline, freq_hz, p_max, callback=None):
 
     Examples
     --------
-    >>> from stability import get_preset, build_driveline
+    >>> from drivelines import get_preset
+    >>> from stability import build_driveline
     >>> b = tongue_boundaries(build_driveline(get_preset("paper-4dof")),
     ...                       [100.0], 1e5)
     >>> round(float(b.amplitude[0, 0]) / 1e5, 4)   # single-period, bar
@@ -252,16 +267,19 @@ def tongue_boundaries(driveline, freq_hz, p_max, callback=None):
     if p_max <= 0:
         raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
                           "> 0")
+    get_method(method)
     system = driveline.periodic_system()
     amplitude = np.empty((len(freq_hz), 3))
     errors = np.empty((len(freq_hz), 3))
     for index, freq in enumerate(freq_hz):
-        amplitude[index], errors[index] = _boundary_at(system, freq, p_max)
+        amplitude[index], errors[index] = _boundary_at(system, freq, p_max,
+                                                       method)
         if callback is not None:
             callback(index + 1, len(freq_hz))
     return Boundaries(freq_hz=freq_hz, p_max=float(p_max),
                       amplitude=amplitude, multiplier_error=errors,
-                      natural_frequencies_hz=natural_frequencies(driveline))
+                      natural_frequencies_hz=natural_frequencies(driveline),
+                      method=method)
 
 
 def resonances(natural_frequencies_hz):
@@ -272,13 +290,16 @@ def resonances(natural_frequencies_hz):
     """
     f = np.sort(np.asarray(natural_frequencies_hz, dtype=float))
     n = len(f)
-    out = [(i + 1, f"f{i + 1}", fi, _SINGLE) for i, fi in enumerate(f)]
-    out += [(n + i + 1, f"2f{i + 1}", 2 * fi, _DOUBLE)
+    out = [(i + 1, f"f{i + 1}", fi, Kind.SINGLE_PERIOD)
+           for i, fi in enumerate(f)]
+    out += [(n + i + 1, f"2f{i + 1}", 2 * fi, Kind.DOUBLE_PERIOD)
             for i, fi in enumerate(f)]
     number = 2 * n
     for (i, fi), (j, fj) in itertools.combinations(enumerate(f), 2):
-        out += [(number + 1, f"f{j + 1}-f{i + 1}", fj - fi, _COMBINATION),
-                (number + 2, f"f{i + 1}+f{j + 1}", fi + fj, _COMBINATION)]
+        out += [(number + 1, f"f{j + 1}-f{i + 1}", fj - fi,
+                 Kind.COMBINATION),
+                (number + 2, f"f{i + 1}+f{j + 1}", fi + fj,
+                 Kind.COMBINATION)]
         number += 2
     return out
 
@@ -367,15 +388,17 @@ def find_tongues(driveline, boundaries):
     f = boundaries.freq_hz
     table = resonances(boundaries.natural_frequencies_hz)
     found = []
-    for column, kind in enumerate((_SINGLE, _DOUBLE, _COMBINATION)):
+    engine = get_method(boundaries.method)
+    for column, kind in enumerate(TONGUE_KINDS):
         amplitude = boundaries.amplitude[:, column]
         for start, stop, i in _tips(amplitude, boundaries.p_max):
             tip_f, tip_p = f[i], amplitude[i]
             at_edge = i in (0, len(f) - 1)
             if not at_edge:
                 tip_f, tip_p = _refine_tip(system, kind, f[i - 1], f[i + 1],
-                                           boundaries.p_max, tip_f, tip_p)
-            propagator = DysonPropagator(system, tip_f, boundaries.p_max)
+                                           boundaries.p_max, tip_f, tip_p,
+                                           engine)
+            propagator = engine(system, tip_f, boundaries.p_max)
             error = _multiplier_error(propagator, tip_p, kind)
             candidates = [r for r in table if r[3] == kind]
             best = min(candidates, key=lambda r: abs(r[2] - tip_f),
@@ -383,7 +406,7 @@ def find_tongues(driveline, boundaries):
             if best is None or abs(best[2] - tip_f) > _LABEL_TOLERANCE * best[2]:
                 best = (None, None, None, kind)
             found.append(Tongue(
-                number=best[0], kind=KINDS[kind], resonance=best[1],
+                number=best[0], kind=kind.label, resonance=best[1],
                 resonance_hz=best[2], tip_freq_hz=float(tip_f),
                 tip_p_f=float(tip_p), tip_multiplier_error=error,
                 freq_range_hz=(float(f[start]), float(f[stop])),
@@ -405,15 +428,15 @@ def _deduplicate(tongues):
                                       t.tip_freq_hz))
 
 
-def _refine_tip(system, kind, low, high, p_max, grid_f, grid_p):
+def _refine_tip(system, kind, low, high, p_max, grid_f, grid_p, engine):
     """Minimise the boundary amplitude of ``kind`` over [low, high]."""
     def amplitude(freq):
-        if kind == _COMBINATION:
-            p = _combination_boundary(DysonPropagator(system, freq, p_max),
-                                      p_max)
+        if kind == Kind.COMBINATION:
+            p = _combination_boundary(engine(system, freq, p_max), p_max)
         else:
             p = _lowest(hill_boundary_amplitudes(
-                system, freq, 1 if kind == _SINGLE else -1), p_max)
+                system, freq, 1 if kind == Kind.SINGLE_PERIOD else -1),
+                p_max)
         return p if np.isfinite(p) else 2 * p_max
 
     best = minimize_scalar(amplitude, bounds=(low, high), method="bounded",

@@ -2,7 +2,8 @@
 
 import pytest
 
-from stability import build_driveline, get_preset
+from drivelines import get_preset
+from stability import build_driveline
 
 
 @pytest.fixture(scope="session")

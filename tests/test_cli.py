@@ -14,8 +14,8 @@ BAR = 1e5
 
 
 def judder(*args, check=True):
-    """Run ``python -m stability ARGS``; return the CompletedProcess."""
-    proc = subprocess.run([sys.executable, "-m", "stability", *args],
+    """Run ``python -m judder ARGS``; return the CompletedProcess."""
+    proc = subprocess.run([sys.executable, "-m", "judder", *args],
                           capture_output=True, text=True, timeout=120)
     if check:
         assert proc.returncode == 0, proc.stderr
@@ -110,7 +110,7 @@ def test_help_explains_units():
 def test_ctrl_c_leaves_no_partial_file(tmp_path):
     out = tmp_path / "big.npz"
     proc = subprocess.Popen(
-        [sys.executable, "-m", "stability", "map", "--freq", "1:250:40000",
+        [sys.executable, "-m", "judder", "map", "--freq", "1:250:40000",
          "--pf", "0:1:50", "--out", str(out)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(3.0)

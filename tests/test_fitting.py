@@ -3,8 +3,10 @@
 import numpy as np
 import pytest
 
-from stability import JudderError, get_preset
-from stability.fitting import fit_boundary, model_boundary, read_boundary_csv
+from drivelines import get_preset
+from infra.errors import JudderError
+from judder.inputs import read_boundary_csv
+from stability.fitting import fit_boundary, model_boundary
 
 BAR = 1e5
 FREQS = np.linspace(60.0, 200.0, 29)   # the bench's dither range

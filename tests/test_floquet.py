@@ -5,8 +5,9 @@ import pytest
 import scipy.linalg
 from numpy.testing import assert_allclose
 
-from stability import (KINDS, JudderError, build_driveline, classify, floquet,
-                       get_preset)
+from drivelines import get_preset
+from infra.errors import JudderError
+from stability import KINDS, build_driveline, classify, floquet
 from stability.monodromy import monodromy_dyson, monodromy_solve_ivp
 
 BAR = 1e5

@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from stability import build_driveline, get_preset
+from drivelines import get_preset
+from stability import build_driveline
 
 pytest.importorskip("rumoca")
 fmpy = pytest.importorskip("fmpy")

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from stability import build_driveline, get_preset
+from drivelines import get_preset
+from stability import build_driveline
 
 pytest.importorskip("rumoca")
 pytest.importorskip("casadi")

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+from drivelines import get_preset
 from stability import (build_driveline, clutch_damper_damping_factor,
-                       closed_form_frequencies, get_preset,
-                       natural_frequencies)
+                       closed_form_frequencies, natural_frequencies)
 
 
 @pytest.mark.parametrize("preset, expected_hz", [

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from stability import ParameterError, get_preset
-from stability.parameters import SPECS, dumps_toml, load_toml
+from drivelines import SPECS, dumps_toml, get_preset, load_toml
+from infra.errors import ParameterError
 
 
 @pytest.mark.parametrize("preset, name, value", [

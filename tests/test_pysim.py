@@ -9,7 +9,8 @@ import sys
 import numpy as np
 import pytest
 
-from stability import build_driveline, floquet, get_preset
+from drivelines import get_model, get_preset
+from stability import build_driveline, floquet
 from pysim.bench import Campaign, pickup_samples, run_campaign
 from pysim.signals import (amplitude_spectrum, dither_envelope,
                            free_response_growth, stroboscopic_growth)
@@ -79,7 +80,7 @@ def test_dither_envelope_growth():
 # --- the FMU against the Floquet layer ------------------------------------
 
 def test_crosscheck_on_tongues_2_5_6():
-    from pysim.crosscheck import crosscheck
+    from judder.crosscheck import crosscheck
     # grid spanning tongue 5 (84 Hz), tongue 2 (103 Hz), tongue 6 (122 Hz)
     check = crosscheck(get_preset("paper-4dof"), np.linspace(80, 126, 24),
                        np.array([0.2, 0.45, 0.7]) * BAR, duration=3.0)
@@ -99,7 +100,7 @@ def test_crosscheck_on_tongues_2_5_6():
 def engagements():
     from pysim.fmus import ensure_fmu
     from pysim.runs import run_fmu
-    fmu = ensure_fmu("TestBenchEngagement")
+    fmu = ensure_fmu(get_model("4dof").bench_class)
     params = get_preset("paper-4dof")
     return {f: run_fmu(fmu, f, p * BAR, params=params, duration=4.0,
                        output_interval=2.5e-4)
@@ -168,7 +169,7 @@ def test_campaign_files_index_and_resume(tmp_path):
 # --- command line -----------------------------------------------------------
 
 def _judder(*args):
-    return subprocess.run([sys.executable, "-m", "stability", *args],
+    return subprocess.run([sys.executable, "-m", "judder", *args],
                           capture_output=True, text=True, timeout=600)
 
 
@@ -210,9 +211,10 @@ def test_time_domain_commands_refuse_bad_input(args, words):
 def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
                                                            monkeypatch):
     import pysim.bench
-    # a temperature case whose parameters are invalid (negative inertia):
-    # the workers are forked, so they see the patched table
-    monkeypatch.setitem(pysim.bench.TEMPERATURES, "85-90", {"J1": -1.0})
+    # a temperature case whose parameters are invalid (negative external
+    # damping): the workers are forked, so they see the patched table
+    monkeypatch.setitem(pysim.bench.TEMPERATURES, "85-90",
+                        {"external_damping": -1.0, "mu_g": 1.0})
     campaign = Campaign(freq_hz=(60.0,), p_f_bar=(0.05,),
                         temperatures=("65-70", "85-90"), duration=0.3,
                         formats=("csv",))
@@ -221,6 +223,6 @@ def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
     status = {r["oil_temperature"]: r for r in rows}
     assert status["65-70"]["status"] == "ok"
     assert status["85-90"]["status"] == "failed"
-    assert "J1" in status["85-90"]["message"]
+    assert "c1" in status["85-90"]["message"]
     with open(tmp_path / "index.csv", newline="") as stream:
         assert len(list(csv.DictReader(stream))) == 2

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from stability import ParameterError, get_preset
+from drivelines import get_preset
+from infra.errors import ParameterError
 from stability.sensitivity import (paper_conclusions, sensitivity_study,
                                    tip_shifts)
 

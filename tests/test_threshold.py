@@ -3,7 +3,9 @@
 import numpy as np
 import pytest
 
-from stability import JudderError, build_driveline, get_preset
+from drivelines import get_preset
+from infra.errors import JudderError
+from stability import build_driveline
 from stability.threshold import (closed_form_threshold, constant_system,
                                  friction_threshold, max_real_part,
                                  threshold_study)

@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from stability import (KINDS, JudderError, build_driveline, floquet,
-                       get_preset, natural_frequencies)
+from drivelines import get_preset
+from infra.errors import JudderError
+from stability import KINDS, build_driveline, floquet, natural_frequencies
 from stability.monodromy import monodromy_solve_ivp
 from stability.tongues import (find_tongues, hill_boundary_amplitudes,
                                tongue_boundaries)

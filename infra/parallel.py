@@ -1,4 +1,4 @@
-"""Running independent jobs on all cores (sensitivity cases, FMU runs)."""
+"""The executor: independent jobs on all cores (sensitivity cases, FMU runs)."""
 
 from concurrent.futures import ProcessPoolExecutor, as_completed
 import os

@@ -1,5 +1,6 @@
-"""Helpers shared by the ``judder`` commands: grids, parameters, checks,
-output, progress bars."""
+"""Option parsing shared by the ``judder`` commands: grids, lists,
+number checks, parameter options, output folders, JSON or text, progress
+bars. Every error names the option, its value and what is allowed."""
 
 import math
 import sys
@@ -7,13 +8,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import JudderError
+from infra.errors import JudderError
+from infra.files import to_json
 
-__all__ = ["PA_PER_BAR", "parse_grid", "resolve_parameters", "emit",
-           "parse_list", "check_number", "bar_to_pa", "make_parents",
-           "read_input", "Progress"]
+from ..inputs import load_parameters
 
-PA_PER_BAR = 1e5
+__all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
+           "check_number", "make_parents", "Progress"]
 
 
 def parse_grid(text, option, unit, allow_negative=False):
@@ -48,36 +49,25 @@ def parse_grid(text, option, unit, allow_negative=False):
     return np.linspace(start, stop, count)
 
 
-def read_input(path, option):
-    """Text of a file the user named, or JudderError naming the option."""
-    try:
-        return Path(path).read_text()
-    except OSError as exc:
-        raise JudderError(f"{option} {path}: cannot read it "
-                          f"({exc.strerror})") from None
+def parameters_of(args):
+    """Base parameter set and explicit changes of a command's options.
 
-
-def resolve_parameters(args):
-    """Parameters from --param-file/--preset/--model, then --set."""
-    from . import parameters as par
-    if args.param_file is not None:
-        if args.preset is not None:
-            raise JudderError("give either --param-file FILE or --preset "
-                              "NAME, not both")
-        params = par.load_toml(read_input(args.param_file, "--param-file"),
-                               source=str(args.param_file))
-    else:
-        name = args.preset or par.default_preset(args.model or "4dof")
-        params = par.get_preset(name)
-    if args.model is not None and args.model != params.model:
-        raise JudderError(f"--model {args.model} does not match the "
-                          f"{params.model} parameter set given")
-    return params.with_overrides(args.set)
+    Returns
+    -------
+    params : drivelines.Parameters
+        From --param-file, --preset or --model.
+    changes : dict
+        The --set values, validated (SI).
+    """
+    params = load_parameters(preset=args.preset, model=args.model,
+                             param_file=args.param_file)
+    changed = params.with_overrides(args.set)
+    names = [text.partition("=")[0].strip() for text in args.set]
+    return params, {name: changed[name] for name in names}
 
 
 def emit(args, data, text):
     """Print ``data`` as JSON with --json, else ``text``."""
-    from .output import to_json
     print(to_json(data) if args.json else text)
 
 
@@ -104,10 +94,6 @@ def check_number(option, value, unit, strict=True):
                           f"allowed: a finite value {'>' if strict else '>='}"
                           f" 0 {unit}")
     return value
-
-
-def bar_to_pa(value, option):
-    return check_number(option, value, "bar") * PA_PER_BAR
 
 
 def make_parents(*paths):

@@ -1,4 +1,4 @@
-"""Writing results: atomically, so an interrupted run leaves no partial file.
+"""Writing results atomically, so an interrupted run leaves no partial file.
 
 Every writer goes through :func:`atomic_write`: the data go to a temporary
 file beside the target, which replaces the target only once complete.
@@ -12,10 +12,8 @@ from pathlib import Path
 import numpy as np
 
 from .errors import JudderError
-from .floquet import KINDS
 
-__all__ = ["atomic_write", "write_text", "save_map", "save_figure",
-           "to_json"]
+__all__ = ["atomic_write", "write_text", "save_figure", "to_json"]
 
 
 def atomic_write(path, write, overwrite=True):
@@ -58,29 +56,6 @@ def atomic_write(path, write, overwrite=True):
 def write_text(path, text, overwrite=True):
     """Write ``text`` (UTF-8) atomically."""
     atomic_write(path, lambda stream: stream.write(text.encode()), overwrite)
-
-
-def save_map(path, stability_map, params, meta=None):
-    """Save a :class:`~stability.maps.StabilityMap` as NPZ.
-
-    Arrays: ``freq_hz`` (nf,), ``p_f_pa`` and ``p_f_bar`` (np,),
-    ``leading_re``/``leading_im``/``leading_abs``/``growth_rate_per_s``
-    (nf, np), ``kind`` (nf, np, int8), ``kind_names``,
-    ``natural_frequencies_hz``; ``parameters`` holds a JSON string of the
-    model, the parameter values (SI) and ``meta``.
-    """
-    m = stability_map
-    info = {"model": params.model, "parameters": params.as_dict(),
-            "method": m.method, **(meta or {})}
-    arrays = {
-        "freq_hz": m.freq_hz, "p_f_pa": m.p_f, "p_f_bar": m.p_f / 1e5,
-        "leading_re": m.leading.real, "leading_im": m.leading.imag,
-        "leading_abs": m.leading_abs, "growth_rate_per_s": m.growth_rate,
-        "kind": m.kind, "kind_names": np.array(KINDS),
-        "natural_frequencies_hz": m.natural_frequencies_hz,
-        "parameters": np.array(json.dumps(info)),
-    }
-    atomic_write(path, lambda stream: np.savez_compressed(stream, **arrays))
 
 
 def save_figure(path, figure, dpi=150):

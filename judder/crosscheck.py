@@ -1,6 +1,8 @@
-"""Time-domain growth against Floquet exponents on a grid.
+"""Time-domain growth against Floquet exponents on a grid: the two views.
 
-For each (frequency, amplitude) point the paper's driveline FMU (Eq. 1,
+This study holds the two libraries against each other (``pysim`` runs the
+FMU, ``stability`` gives the exponent), so it lives in the application
+layer. For each (frequency, amplitude) point the driveline's FMU (Eq. 1,
 ``SlippingClutch``: linear) is run twice, the second time with the initial
 speed ``w_in`` raised by :data:`SPEED_STEP`. The difference of the two
 runs is the free response (the forced response cancels), and its growth
@@ -14,25 +16,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from infra.parallel import parallel_map
+from pysim.fmus import ensure_fmu
+from pysim.runs import parameter_default, run_fmu
+from pysim.signals import free_response_growth
 from stability.floquet import floquet
 from stability.model import build_driveline
-from stability.parallel import parallel_map
+from stability.monodromy import DEFAULT_METHOD, get_method
 
-from .fmus import ensure_fmu
-from .runs import parameter_default, run_fmu
-from .signals import free_response_growth
+__all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck"]
 
-__all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck", "MODEL_FMU"]
-
-#: FMU of each stability model.
-MODEL_FMU = {"4dof": "Driveline4DOF", "3dof": "Driveline3DOF"}
 #: Samples per dither period in the runs.
 SAMPLES_PER_PERIOD = 16
 #: Change of the initial speed between the two runs of a point, rad/s.
 SPEED_STEP = 1.0
-#: Speeds combined into the sampled free response.
-SPEEDS = {"4dof": ("w_upstream", "w_downstream", "inertia1.w", "inertia2.w"),
-          "3dof": ("w_upstream", "w_downstream", "inertia1.w")}
 
 
 @dataclass(frozen=True)
@@ -104,17 +101,17 @@ def _reason(point_rate, fit, duration):
 
 
 def _point(job):
-    params, fmu_path, freq, p_f, duration = job
+    params, fmu_path, freq, p_f, duration, method = job
+    speeds = params.driveline.free_response_speeds
     period = 1.0 / freq
     perturbed = {"w_in": parameter_default(fmu_path, "w_in") + SPEED_STEP}
     runs = [run_fmu(fmu_path, freq, p_f, params=params, duration=duration,
                     output_interval=period / SAMPLES_PER_PERIOD,
-                    variables=SPEEDS[params.model], extra=extra)
+                    variables=speeds, extra=extra)
             for extra in ({}, perturbed)]
     fit = free_response_growth(
-        runs[0].time, [runs[1][s] - runs[0][s] for s in SPEEDS[params.model]],
-        period)
-    result = floquet(build_driveline(params), freq, p_f)
+        runs[0].time, [runs[1][s] - runs[0][s] for s in speeds], period)
+    result = floquet(build_driveline(params), freq, p_f, method=method)
     floquet_unstable = result.leading_abs > 1.0
     time_unstable = _verdict(fit)
     agree = floquet_unstable == time_unstable
@@ -126,18 +123,21 @@ def _point(job):
         reason="" if agree else _reason(result.growth_rate, fit, duration))
 
 
-def crosscheck(params, freq_hz, p_f, duration=3.0, workers=None,
-               callback=None):
+def crosscheck(params, freq_hz, p_f, duration=3.0, method=DEFAULT_METHOD,
+               workers=None, callback=None):
     """Run the FMU over a grid and compare with the Floquet exponents.
 
     Parameters
     ----------
-    params : stability.parameters.Parameters
-        4-DOF or 3-DOF set; the matching paper FMU is used.
+    params : drivelines.Parameters
+        The FMU of its driveline (registry) is run.
     freq_hz, p_f : array_like
         Grid: dither frequencies (Hz) and amplitudes (Pa).
     duration : float
         Length of each run, s.
+    method : str
+        Monodromy engine of the Floquet side, a key of
+        :data:`stability.monodromy.METHODS`.
     workers : int, optional
         Processes (default all cores).
     callback : callable, optional
@@ -147,8 +147,9 @@ def crosscheck(params, freq_hz, p_f, duration=3.0, workers=None,
     -------
     Crosscheck
     """
-    fmu_path = ensure_fmu(MODEL_FMU[params.model])
-    jobs = [(params, fmu_path, float(f), float(p), float(duration))
+    get_method(method)
+    fmu_path = ensure_fmu(params.driveline.modelica_class)
+    jobs = [(params, fmu_path, float(f), float(p), float(duration), method)
             for f in np.atleast_1d(freq_hz) for p in np.atleast_1d(p_f)]
     points = []
     for point in parallel_map(_point, jobs, workers):

@@ -1,163 +1,36 @@
-"""Command line ``judder``: a thin layer over one facade function a command.
+"""The argparse parser of ``judder``: options, units and help texts.
 
-Units on the command line are those engineers read: dither frequency in
-Hz, dither amplitude in bar. Parameters (``--set``) and files are SI.
-Every command can print JSON (``--json``) for scripts. Errors in the input
-give ``judder: error: ...`` and exit status 2; Ctrl-C exits with 130 and
-leaves no partial output file.
-
-This module holds the parser and the core commands (params, eig, floquet,
-map); the study commands live in :mod:`stability.study_commands` and the
-time-domain ones in :mod:`pysim.commands`, imported only when run.
+Choices of models, presets and monodromy engines come from their
+registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 """
 
 import argparse
-import importlib
-import sys
-import time
 
-from .cli_support import (PA_PER_BAR, Progress, check_number, emit,
-                          make_parents, parse_grid, resolve_parameters)
-from .errors import JudderError
+from drivelines import DEFAULT_MODEL, MODELS, PRESETS
+from stability.monodromy import DEFAULT_METHOD, METHODS
 
-__all__ = ["main", "build_parser", "parse_grid"]
+from . import commands
 
-DEFAULT_FREQ = "5:250:300"
-DEFAULT_PF = "0:1.5:150"
-STUDIES = "stability.study_commands"
-TIME_DOMAIN = "pysim.commands"
-#: Largest grid a map accepts, in points.
-MAX_MAP_POINTS = 2_000_000
+__all__ = ["build_parser"]
 
-
-def cmd_params(args):
-    """Show (and optionally save) the parameter set."""
-    from .output import write_text
-    from .parameters import SPECS, dumps_toml
-    params = resolve_parameters(args)
-    if args.save:
-        write_text(args.save, dumps_toml(params), overwrite=args.force)
-    specs = SPECS[params.model]
-    rows = [f"{name:22s} {params[name]:<14.6g} {spec.unit:10s} "
-            f"{spec.description}" for name, spec in specs.items()]
-    data = {"model": params.model,
-            "parameters": {name: {"value": params[name], "unit": spec.unit,
-                                  "description": spec.description}
-                           for name, spec in specs.items()},
-            "saved": args.save}
-    emit(args, data, f"model {params.model}\n" + "\n".join(rows)
-          + (f"\nsaved to {args.save}" if args.save else ""))
-
-
-def cmd_eig(args):
-    """Natural frequencies and the clutch-damper damping factor."""
-    from . import modal
-    from .model import build_driveline
-    params = resolve_parameters(args)
-    driveline = build_driveline(params)
-    freqs = modal.natural_frequencies(driveline)
-    zeta = modal.clutch_damper_damping_factor(params)
-    damped_hz, ratio = modal.damped_modes(driveline)
-    data = {"model": params.model,
-            "natural_frequencies_hz": freqs,
-            "closed_form_frequencies_hz": modal.closed_form_frequencies(params),
-            "damping_factor_12": zeta,
-            "damping_factor_12_percent": 100 * zeta,
-            "damped_modes": [{"frequency_hz": f, "damping_ratio": r}
-                             for f, r in zip(damped_hz, ratio)]}
-    lines = [f"model {params.model}",
-             "undamped natural frequencies (Eq. 15): "
-             + ", ".join(f"{f:.3f} Hz" for f in freqs),
-             f"clutch-damper damping factor (Eq. 16): {100 * zeta:.2f} %",
-             "damped modes without dither: "
-             + ", ".join(f"{f:.3f} Hz ({100 * r:.2f} %)"
-                         for f, r in zip(damped_hz, ratio))]
-    emit(args, data, "\n".join(lines))
-
-
-def cmd_floquet(args):
-    """Floquet multipliers at one dither frequency and amplitude."""
-    from .floquet import floquet
-    from .model import build_driveline
-    check_number("--pf", args.pf, "bar", strict=False)
-    params = resolve_parameters(args)
-    result = floquet(build_driveline(params), args.freq,
-                     args.pf * PA_PER_BAR, method=args.method)
-    data = {"model": params.model, "freq_hz": result.freq_hz,
-            "p_f_bar": args.pf, "p_f_pa": result.p_f,
-            "period_s": result.period, "method": args.method,
-            "multipliers": result.multipliers, "leading": result.leading,
-            "leading_abs": result.leading_abs, "kind": result.kind,
-            "growth_rate_per_s": result.growth_rate,
-            "exponents_per_s": result.exponents}
-    lam = result.leading
-    text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
-            f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
-            f"(|lambda| = {result.leading_abs:.6f}), growth rate "
-            f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
-            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers))
-    emit(args, data, text)
-
-
-def cmd_map(args):
-    """Stability map over a frequency x amplitude grid."""
-    from .maps import stability_map
-    from .model import build_driveline
-    freqs = parse_grid(args.freq, "--freq", "Hz")
-    amplitudes = parse_grid(args.pf, "--pf", "bar")
-    if len(freqs) * len(amplitudes) > MAX_MAP_POINTS:
-        raise JudderError(f"--freq x --pf has {len(freqs) * len(amplitudes)}"
-                          f" points; allowed: at most {MAX_MAP_POINTS}")
-    params = resolve_parameters(args)
-    make_parents(args.out, args.plot)
-    started = time.perf_counter()
-    with Progress(len(freqs), "stability map") as callback:
-        result = stability_map(build_driveline(params), freqs,
-                               amplitudes * PA_PER_BAR, method=args.method,
-                               callback=callback)
-    seconds = time.perf_counter() - started
-    meta = {"seconds": seconds, "preset": args.preset, "set": args.set}
-    if args.out:
-        from .output import save_map
-        save_map(args.out, result, params, meta)
-    if args.plot:
-        from .output import save_figure
-        from .plotting import map_figure
-        title = (f"{params.model} stability map, "
-                 f"{args.preset or args.param_file or 'default parameters'}")
-        save_figure(args.plot, map_figure(result, title=title))
-    counts = result.counts()
-    data = {"model": params.model, "method": args.method,
-            "points": int(result.kind.size), "seconds": seconds,
-            "freq_hz": [freqs[0], freqs[-1], len(freqs)],
-            "p_f_bar": [amplitudes[0], amplitudes[-1], len(amplitudes)],
-            "counts": counts,
-            "max_leading_abs": float(result.leading_abs.max()),
-            "natural_frequencies_hz": result.natural_frequencies_hz,
-            "out": args.out, "plot": args.plot}
-    text = (f"{result.kind.size} points in {seconds:.2f} s: "
-            + ", ".join(f"{k} {v}" for k, v in counts.items())
-            + "".join(f"\nwrote {p}" for p in (args.out, args.plot) if p))
-    emit(args, data, text)
-
-
-def _lazy(module, name):
-    """Handler that imports ``module`` only when its command runs."""
-    def handler(args):
-        return getattr(importlib.import_module(module), name)(args)
-    return handler
+DEFAULT_MAP_FREQ = "5:250:300"
+DEFAULT_MAP_PF = "0:1.5:150"
 
 
 def _model_options(parser):
     group = parser.add_argument_group(
         "model", "Parameter set: a preset or a TOML file, then --set "
         "overrides. Values in SI units (see `judder params`).")
-    group.add_argument("--model", choices=("4dof", "3dof"),
-                       help="model; picks the paper's preset for it "
-                            "(default 4dof)")
-    group.add_argument("--preset",
-                       help="paper-4dof (Appendix A), paper-4dof-fitted "
-                            "(section 4.2) or paper-3dof")
+    group.add_argument("--model", choices=tuple(MODELS),
+                       help="driveline; picks the paper's preset for it "
+                            f"(default {DEFAULT_MODEL}): " + "; ".join(
+                                f"{m.name}: {m.title}"
+                                for m in MODELS.values()))
+    group.add_argument("--preset", choices=tuple(PRESETS),
+                       metavar="NAME",
+                       help="a preset: " + "; ".join(
+                           f"{name}: {text}" for name, text in
+                           PRESETS.items()).replace("%", "%%"))
     group.add_argument("--param-file", metavar="FILE.toml",
                        help="parameter file (see `judder params --save`)")
     group.add_argument("--set", action="append", default=[],
@@ -180,8 +53,8 @@ def _workers_option(parser):
 
 
 def _method_option(parser):
-    parser.add_argument("--method", default="dyson",
-                        choices=("dyson", "solve_ivp"),
+    parser.add_argument("--method", default=DEFAULT_METHOD,
+                        choices=tuple(METHODS),
                         help="monodromy engine: dyson (fast, default) or "
                              "solve_ivp (per-point reference)")
 
@@ -207,7 +80,7 @@ def build_parser():
                         "--force)")
     p.add_argument("--force", action="store_true",
                    help="allow --save to replace an existing file")
-    p.set_defaults(handler=cmd_params)
+    p.set_defaults(handler=commands.cmd_params)
 
     p = sub.add_parser("eig", help="natural frequencies and damping factor",
                        description="Undamped natural frequencies (Eq. 14-15, "
@@ -215,7 +88,7 @@ def build_parser():
                                    "(Eq. 16) and the damped modes without "
                                    "dither.")
     _model_options(p)
-    p.set_defaults(handler=cmd_eig)
+    p.set_defaults(handler=commands.cmd_eig)
 
     p = sub.add_parser("floquet", help="Floquet multipliers at one point",
                        description="Monodromy matrix over one dither period "
@@ -228,7 +101,7 @@ def build_parser():
                    help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
     _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=cmd_floquet)
+    p.set_defaults(handler=commands.cmd_floquet)
 
     p = sub.add_parser("map", help="stability map over frequency x amplitude",
                        description="Leading Floquet multiplier on a grid of "
@@ -236,17 +109,17 @@ def build_parser():
                                    "classified single-period, double-period "
                                    "or combination (Fig. 14). Ctrl-C stops it "
                                    "without writing a partial file.")
-    p.add_argument("--freq", default=DEFAULT_FREQ, metavar="START:STOP:N",
-                   help=f"dither frequencies, Hz (default {DEFAULT_FREQ})")
-    p.add_argument("--pf", default=DEFAULT_PF, metavar="START:STOP:N",
-                   help=f"dither amplitudes, bar (default {DEFAULT_PF})")
+    p.add_argument("--freq", default=DEFAULT_MAP_FREQ, metavar="START:STOP:N",
+                   help=f"dither frequencies, Hz (default {DEFAULT_MAP_FREQ})")
+    p.add_argument("--pf", default=DEFAULT_MAP_PF, metavar="START:STOP:N",
+                   help=f"dither amplitudes, bar (default {DEFAULT_MAP_PF})")
     p.add_argument("--out", metavar="FILE.npz",
                    help="save the map arrays (NPZ, see README)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="save a plot of the map (PNG, SVG or PDF)")
     _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=cmd_map)
+    p.set_defaults(handler=commands.cmd_map)
 
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
                        description="Exact tongue boundaries: single- and "
@@ -263,8 +136,9 @@ def build_parser():
                         "if none), then per kind, bar")
     p.add_argument("--plot", metavar="FILE.png",
                    help="boundaries drawn over the map (Fig. 16)")
+    _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=_lazy(STUDIES, "cmd_tongues"))
+    p.set_defaults(handler=commands.cmd_tongues)
 
     p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
                                            "(Fig. 17, 18)",
@@ -290,8 +164,9 @@ def build_parser():
     p.add_argument("--plot", metavar="FILE.png",
                    help="one panel per parameter: nominal and varied "
                         "boundaries")
+    _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=_lazy(STUDIES, "cmd_sensitivity"))
+    p.set_defaults(handler=commands.cmd_sensitivity)
 
     p = sub.add_parser("threshold", help="friction-gradient threshold "
                                          "without dither (Fig. 19)",
@@ -312,7 +187,7 @@ def build_parser():
                    help="threshold against c_i as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="Fig. 19a and 19b")
     _model_options(p)
-    p.set_defaults(handler=_lazy(STUDIES, "cmd_threshold"))
+    p.set_defaults(handler=commands.cmd_threshold)
 
     p = sub.add_parser("fit", help="fit parameters to a measured boundary "
                                    "(section 4.2)",
@@ -339,8 +214,9 @@ def build_parser():
                         "--force)")
     p.add_argument("--force", action="store_true",
                    help="allow --save-params to replace a file")
+    _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=_lazy(STUDIES, "cmd_fit"))
+    p.set_defaults(handler=commands.cmd_fit)
 
     p = sub.add_parser("simulate", help="bench engagement with dither "
                                         "(Fig. 7, 8), run through the FMU",
@@ -369,8 +245,9 @@ def build_parser():
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
                    help="time histories and spectra")
+    _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=_lazy(TIME_DOMAIN, "cmd_simulate"))
+    p.set_defaults(handler=commands.cmd_simulate)
 
     p = sub.add_parser("crosscheck", help="FMU growth rates against Floquet "
                                           "exponents",
@@ -392,8 +269,9 @@ def build_parser():
     p.add_argument("--out", metavar="FILE.csv", help="table of all points")
     p.add_argument("--plot", metavar="FILE.png",
                    help="fitted against Floquet rates, and the verdicts")
+    _method_option(p)
     _model_options(p)
-    p.set_defaults(handler=_lazy(TIME_DOMAIN, "cmd_crosscheck"))
+    p.set_defaults(handler=commands.cmd_crosscheck)
 
     p = sub.add_parser("campaign", help="bench emulator: engagement "
                                         "acquisitions over a dither grid",
@@ -429,24 +307,5 @@ def build_parser():
                    help="campaign folder (created; an existing campaign "
                         "there is resumed)")
     _model_options(p)
-    p.set_defaults(handler=_lazy(TIME_DOMAIN, "cmd_campaign"))
+    p.set_defaults(handler=commands.cmd_campaign)
     return parser
-
-
-def main(argv=None):
-    """Run ``judder``; returns the exit status."""
-    from threadpoolctl import threadpool_limits
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        # the kernels work on many tiny matrices: BLAS threads only contend
-        with threadpool_limits(limits=1):
-            args.handler(args)
-    except JudderError as exc:
-        print(f"judder: error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("judder: interrupted; no partial output was written",
-              file=sys.stderr)
-        return 130
-    return 0

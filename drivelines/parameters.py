@@ -1,0 +1,181 @@
+"""Validated parameter sets of the registered drivelines, presets, TOML.
+
+Every value is held in SI units (kg m^2, N m/rad, N m s/rad, m, m^2, Pa,
+s/rad). A parameter set is a :class:`Parameters` object: the model name and
+an immutable mapping of canonical names to floats, checked against the
+model's specifications (:mod:`drivelines.registry`). Named presets
+reproduce the paper's Appendix A and the fitted set of its section 4.2;
+sets can be overridden by name, saved to and loaded from TOML.
+"""
+
+from dataclasses import dataclass, field
+import tomllib
+from types import MappingProxyType
+
+from infra.errors import ParameterError
+
+from .registry import MODELS, get_model
+from .specs import MEAN_PRESSURE_DAMPING
+
+__all__ = ["Parameters", "get_preset", "default_preset", "load_toml",
+           "dumps_toml", "MEAN_PRESSURE_DAMPING"]
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """A validated, immutable parameter set of one model.
+
+    Parameters
+    ----------
+    model : str
+        Which driveline the values describe: a name of
+        :data:`drivelines.registry.MODELS`.
+    values : mapping
+        Every parameter of the model's specifications, SI units.
+
+    Raises
+    ------
+    ParameterError
+        On an unknown model, a missing or unknown name, or a value outside
+        its allowed range; the message names the parameter and the range.
+
+    Examples
+    --------
+    >>> p = get_preset("paper-4dof").replace(c12=10.0)
+    >>> p["c12"]
+    10.0
+    """
+
+    model: str
+    values: MappingProxyType = field(repr=False)
+
+    def __post_init__(self):
+        specs = get_model(self.model).specs
+        unknown = sorted(set(self.values) - set(specs))
+        if unknown:
+            raise ParameterError(
+                f"unknown parameter {unknown[0]!r} for the {self.model} model;"
+                f" allowed names: {', '.join(specs)}")
+        missing = [name for name in specs if name not in self.values]
+        if missing:
+            raise ParameterError(
+                f"parameter {missing[0]} is missing for the {self.model} model")
+        checked = {name: spec.check(self.values[name])
+                   for name, spec in specs.items()}
+        object.__setattr__(self, "values", MappingProxyType(checked))
+
+    def __getitem__(self, name):
+        return self.values[name]
+
+    def __reduce__(self):
+        # MappingProxyType does not pickle; worker processes need copies
+        return (Parameters, (self.model, dict(self.values)))
+
+    def replace(self, **changes):
+        """Return a copy with some values changed (validated)."""
+        return Parameters(self.model, {**self.values, **changes})
+
+    def with_overrides(self, assignments):
+        """Apply ``NAME=VALUE`` strings, as given to ``--set``.
+
+        Raises
+        ------
+        ParameterError
+            On a malformed assignment, an unknown name or a bad value.
+        """
+        changes = {}
+        for text in assignments:
+            name, sep, value = text.partition("=")
+            name, value = name.strip(), value.strip()
+            if not sep or not name or not value:
+                raise ParameterError(
+                    f"--set {text!r} is not of the form NAME=VALUE "
+                    f"(for example --set c12=10)")
+            if name not in self.specs:
+                raise ParameterError(
+                    f"--set {text!r}: unknown parameter {name!r} for the "
+                    f"{self.model} model; allowed names: "
+                    f"{', '.join(self.specs)}")
+            changes[name] = self.specs[name].check(value)
+        return self.replace(**changes)
+
+    @property
+    def specs(self):
+        """Specifications of the model's parameters, in display order."""
+        return get_model(self.model).specs
+
+    @property
+    def driveline(self):
+        """The :class:`~drivelines.registry.DrivelineModel` described."""
+        return get_model(self.model)
+
+    @property
+    def clutch_factor(self):
+        """``N_c R_m S`` in m^3, the product of Eq. (3)."""
+        return self["N_c"] * self["R_m"] * self["S"]
+
+    def as_dict(self):
+        """Plain ``dict`` of the values (SI units)."""
+        return dict(self.values)
+
+
+def get_preset(name):
+    """Return the named preset as :class:`Parameters`.
+
+    Raises
+    ------
+    ParameterError
+        If ``name`` is not a preset; the message lists the presets.
+    """
+    for model in MODELS.values():
+        if name in model.presets:
+            return Parameters(model.name, model.presets[name].values)
+    names = [preset for m in MODELS.values() for preset in m.presets]
+    raise ParameterError(f"preset = {name!r} is unknown; allowed: "
+                         f"{', '.join(names)}")
+
+
+def default_preset(model):
+    """Name of the paper's preset for ``model``, e.g. '4dof'."""
+    return get_model(model).default_preset
+
+
+def load_toml(text, source="TOML"):
+    """Parse a parameter file written by :func:`dumps_toml`.
+
+    The file holds ``model = "4dof"`` and a ``[parameters]`` table; names
+    not given there take the value of the paper's preset for that model.
+
+    Raises
+    ------
+    ParameterError
+        On TOML syntax errors or bad content, naming ``source``.
+    """
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ParameterError(f"{source}: not valid TOML: {exc}") from None
+    unknown = sorted(set(data) - {"model", "parameters"})
+    if unknown:
+        raise ParameterError(f"{source}: unknown key {unknown[0]!r}; allowed: "
+                             "model and a [parameters] table")
+    model = data.get("model")
+    if model not in MODELS:
+        raise ParameterError(f"{source}: model = {model!r} is not allowed; "
+                             f"allowed: {', '.join(MODELS)}")
+    table = data.get("parameters", {})
+    if not isinstance(table, dict):
+        raise ParameterError(f"{source}: [parameters] must be a table")
+    try:
+        return get_preset(default_preset(model)).replace(**table)
+    except ParameterError as exc:
+        raise ParameterError(f"{source}: {exc}") from None
+
+
+def dumps_toml(params):
+    """Serialise ``params`` to TOML text, with units as comments."""
+    lines = [f'model = "{params.model}"', "", "[parameters]"]
+    for name, spec in params.specs.items():
+        lines.append(f"{name} = {params[name]!r}  # [{spec.unit}] "
+                     f"{spec.description}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,88 @@
+"""Parameter specifications: unit, allowed range and meaning of each name."""
+
+from dataclasses import dataclass
+import math
+
+from infra.errors import ParameterError
+
+__all__ = ["ParameterSpec", "positive", "nonnegative", "CLUTCH_SPECS",
+           "MEAN_PRESSURE_DAMPING"]
+
+#: Name of the model option that scales the mean pressure in the damping term.
+MEAN_PRESSURE_DAMPING = "mean_pressure_damping"
+
+
+@dataclass(frozen=True)
+class ParameterSpec:
+    """Unit, bounds and meaning of one parameter.
+
+    ``lower``/``upper`` are inclusive unless ``lower_open`` is set (then the
+    value must be strictly greater than ``lower``).
+    """
+
+    name: str
+    unit: str
+    description: str
+    lower: float = -math.inf
+    upper: float = math.inf
+    lower_open: bool = False
+    integer: bool = False
+
+    def allowed(self):
+        """Describe the allowed range in words, for error messages."""
+        parts = []
+        if self.lower > -math.inf:
+            parts.append(f"{'>' if self.lower_open else '>='} {self.lower:g}")
+        if self.upper < math.inf:
+            parts.append(f"<= {self.upper:g}")
+        text = " and ".join(parts) if parts else "any finite number"
+        return ("an integer " + text) if self.integer else text
+
+    def check(self, value):
+        """Return ``value`` as a float, or raise :class:`ParameterError`."""
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise ParameterError(
+                f"parameter {self.name} = {value!r} is not a number; "
+                f"allowed: {self.allowed()} [{self.unit}]") from None
+        ok = math.isfinite(number)
+        ok = ok and (number > self.lower if self.lower_open
+                     else number >= self.lower)
+        ok = ok and number <= self.upper
+        ok = ok and (not self.integer or number == int(number))
+        if not ok:
+            raise ParameterError(
+                f"parameter {self.name} = {value!r} is not allowed; "
+                f"allowed: {self.allowed()} [{self.unit}] ({self.description})")
+        return number
+
+
+def positive(name, unit, description, **kw):
+    """Spec of a parameter that must be > 0."""
+    return ParameterSpec(name, unit, description, lower=0.0, lower_open=True,
+                         **kw)
+
+
+def nonnegative(name, unit, description):
+    """Spec of a parameter that must be >= 0."""
+    return ParameterSpec(name, unit, description, lower=0.0)
+
+
+#: The wet clutch and its actuation, Eq. (3)-(5); every driveline has them.
+CLUTCH_SPECS = (
+    nonnegative("mu0", "1", "clutch friction coefficient at zero slip (Eq. 5)"),
+    ParameterSpec("mu_g", "s/rad",
+                  "gradient of the friction coefficient with slip speed (Eq. 5);"
+                  " negative values model a falling friction curve"),
+    positive("N_c", "1", "number of pairs of clutch plates (Eq. 3)",
+             integer=True),
+    positive("R_m", "m", "mean radius of the friction surfaces (Eq. 3)"),
+    positive("S", "m^2", "area the actuation pressure acts on (Eq. 3)"),
+    nonnegative("p_m", "Pa", "mean actuation pressure (Eq. 4)"),
+    ParameterSpec(MEAN_PRESSURE_DAMPING, "1",
+                  "share of the mean pressure p_m that enters the slip-speed "
+                  "damping mu_g N_c R_m S p(t): 1 is Eq. (2)-(4) taken "
+                  "literally, 0 keeps only the dither part (paper's maps)",
+                  lower=0.0, upper=1.0),
+)

@@ -1,0 +1,16 @@
+"""Infrastructure every package of the project uses, and nothing else.
+
+:mod:`infra.errors`
+    The exceptions for bad input and the exit-code contract of every
+    command line (``judder`` and ``python -m fmu``).
+:mod:`infra.files`
+    Atomic output: a result file is complete or absent, never partial.
+:mod:`infra.units`
+    Conversion factors between SI and the units engineers read (bar, rpm).
+:mod:`infra.parallel`
+    The executor that runs independent jobs on all cores.
+
+This package imports no other package of the project: ``fmu``,
+``drivelines``, ``stability``, ``pysim`` and the ``judder`` application
+all stand on it.
+"""

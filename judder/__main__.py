@@ -1,0 +1,7 @@
+"""``python -m judder`` runs the ``judder`` command line."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,384 @@
+"""The ``judder`` commands: parse the options, call :mod:`judder.api`,
+write ``--out``/``--plot``, and format the result as text or JSON.
+
+No computation lives here: each handler is the options of one command
+turned into the arguments of its API function, and the result turned
+into lines an engineer reads (Hz, bar, rpm).
+"""
+
+import math
+
+from infra.errors import JudderError
+from infra.files import save_figure
+from infra.units import PA_PER_BAR
+
+from .. import api
+from ..inputs import read_boundary
+from .options import (check_number, emit, make_parents, parameters_of,
+                      parse_grid, parse_list, Progress)
+
+__all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
+           "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
+           "cmd_crosscheck", "cmd_campaign"]
+
+#: Largest grid a map accepts, in points.
+MAX_MAP_POINTS = 2_000_000
+
+
+def _written(*paths):
+    return "".join(f"\nwrote {p}" for p in paths if p)
+
+
+def _files(**paths):
+    return {name: (None if path is None else str(path))
+            for name, path in paths.items()}
+
+
+def _pf_max(args):
+    return check_number("--pf-max", args.pf_max, "bar")
+
+
+def cmd_params(args):
+    """Show (and optionally save) the parameter set."""
+    params, changes = parameters_of(args)
+    result = api.params(params, changes)
+    if args.save:
+        make_parents(args.save)
+        result.save(args.save, overwrite=args.force)
+    specs = result.params.specs
+    rows = [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
+            f"{spec.description}" for name, spec in specs.items()]
+    emit(args, {**result.as_dict(), "saved": args.save},
+         f"model {result.params.model}\n" + "\n".join(rows)
+         + (f"\nsaved to {args.save}" if args.save else ""))
+
+
+def cmd_eig(args):
+    """Natural frequencies and the clutch-damper damping factor."""
+    result = api.eig(*parameters_of(args))
+    zeta = result.damping_factor_12
+    lines = [f"model {result.params.model}",
+             "undamped natural frequencies (Eq. 15): "
+             + ", ".join(f"{f:.3f} Hz" for f in result.natural_frequencies_hz),
+             f"clutch-damper damping factor (Eq. 16): {100 * zeta:.2f} %",
+             "damped modes without dither: "
+             + ", ".join(f"{f:.3f} Hz ({100 * r:.2f} %)" for f, r in
+                         zip(result.damped_frequencies_hz,
+                             result.damping_ratio))]
+    emit(args, result.as_dict(), "\n".join(lines))
+
+
+def cmd_floquet(args):
+    """Floquet multipliers at one dither frequency and amplitude."""
+    check_number("--pf", args.pf, "bar", strict=False)
+    point = api.floquet(args.freq, args.pf, *parameters_of(args),
+                        method=args.method)
+    result = point.result
+    lam = result.leading
+    text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
+            f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
+            f"(|lambda| = {result.leading_abs:.6f}), growth rate "
+            f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
+            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers))
+    emit(args, point.as_dict(), text)
+
+
+def cmd_map(args):
+    """Stability map over a frequency x amplitude grid."""
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    if len(freqs) * len(amplitudes) > MAX_MAP_POINTS:
+        raise JudderError(f"--freq x --pf has {len(freqs) * len(amplitudes)}"
+                          f" points; allowed: at most {MAX_MAP_POINTS}")
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs), "stability map") as progress:
+        result = api.stability_map(freqs, amplitudes, params, changes,
+                                   method=args.method, progress=progress)
+    if args.out:
+        result.save(args.out, meta={"preset": args.preset,
+                                    "set": args.set})
+    if args.plot:
+        title = (f"{result.params.model} stability map, "
+                 f"{args.preset or args.param_file or 'default parameters'}")
+        save_figure(args.plot, result.figure(title=title))
+    counts = result.map.counts()
+    text = (f"{result.map.kind.size} points in {result.seconds:.2f} s: "
+            + ", ".join(f"{k} {v}" for k, v in counts.items())
+            + _written(args.out, args.plot))
+    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+         text)
+
+
+def cmd_tongues(args):
+    """Tongue boundaries, labels and tips."""
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs), "tongue boundaries") as progress:
+        result = api.tongues(freqs, _pf_max(args), params, changes,
+                             method=args.method,
+                             background=args.plot is not None,
+                             progress=progress)
+    if args.out:
+        result.save(args.out)
+    if args.plot:
+        save_figure(args.plot, result.figure())
+    data = {**result.as_dict(), **_files(out=args.out, plot=args.plot)}
+    rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
+            f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
+    for r in data["tongues"]:
+        offset = ("" if r["tip_offset_percent"] is None
+                  else f"{r['tip_offset_percent']:+.2f} %")
+        rows.append(f"{r['number'] or '-':>3} {r['kind']:14s} "
+                    f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
+                    f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
+                    + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    rows.append(f"{len(freqs)} frequencies in {result.seconds:.2f} s; "
+                "boundary points within "
+                f"{result.boundaries.max_multiplier_error:.1e} of the unit "
+                "circle")
+    emit(args, data, "\n".join(rows) + _written(args.out, args.plot))
+
+
+def cmd_sensitivity(args):
+    """Tongue tips and boundaries with parameters varied (Fig. 17, 18)."""
+    names = parse_list(args.params, "--params", str)
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    p_max_bar = _pf_max(args)
+    params, changes = parameters_of(args)
+    factors = parse_list(args.factors, "--factors")
+    values = parse_list(args.values, "--values") if args.values else None
+    if values is None:
+        for factor in factors:
+            check_number("--factors", factor, "(factor)")
+    make_parents(args.out, args.plot)
+    cases = 1 + len(names) * len(values or factors)
+    with Progress(cases, "sensitivity cases") as progress:
+        result = api.sensitivity(names, freqs, p_max_bar, factors=factors,
+                                 values=values, parameters=params,
+                                 changes=changes, method=args.method,
+                                 workers=args.workers, progress=progress)
+    if args.out:
+        result.save(args.out)
+    if args.plot:
+        save_figure(args.plot, result.figure())
+    rows = [f"{'param':>8} {'factor':>7} {'value':>10} {'#':>2} "
+            f"{'tip f [Hz]':>11} {'df [Hz]':>8} {'tip p_f':>8} {'dp_f':>8}"]
+    for r in result.tip_shifts:
+        if r["present"]:
+            rows.append(f"{r['parameter']:>8} {r['factor']:7.3g} "
+                        f"{r['value']:10.4g} {r['tongue']:>2} "
+                        f"{r['tip_freq_hz']:11.3f} {r['d_freq_hz']:+8.2f} "
+                        f"{r['tip_p_f_bar']:8.4f} {r['d_p_f_bar']:+8.4f}")
+        else:
+            rows.append(f"{r['parameter']:>8} {r['factor']:7.3g} "
+                        f"{r['value']:10.4g} {r['tongue']:>2}   above "
+                        f"{p_max_bar:g} bar (gone)")
+    rows += [f"[{'holds' if c['holds'] else 'does NOT hold'}] "
+             f"{c['statement']}: {c['evidence']}" for c in result.conclusions]
+    rows.append(f"{result.cases} cases in {result.seconds:.1f} s")
+    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+         "\n".join(rows) + _written(args.out, args.plot))
+
+
+def cmd_threshold(args):
+    """Friction-gradient threshold without dither (Fig. 19)."""
+    mu_g = parse_grid(args.mu_g, "--mu-g", "s/rad", allow_negative=True)
+    damping = parse_grid(args.c_ext, "--c-ext", "N m s/rad")
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(damping), "threshold") as progress:
+        result = api.threshold(mu_g, damping, params, changes,
+                               progress=progress)
+    if args.out:
+        result.save(args.out)
+    if args.plot:
+        save_figure(args.plot, result.figure())
+    study = result.study
+    text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
+            f"(unstable without dither below it)")
+    if result.slope is not None:
+        text += (f"\nthreshold against c_i: slope {result.slope:.4g} s/rad "
+                 f"per N m s/rad over c_i = {damping[0]:g}..{damping[-1]:g}")
+    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+         text + _written(args.out, args.plot))
+
+
+def _bounds(items):
+    """``NAME=LOW:HIGH`` strings of --bounds as ``{name: (low, high)}``."""
+    bounds = {}
+    for item in items:
+        name, _, rng = item.partition("=")
+        parts = rng.split(":")
+        try:
+            low, high = float(parts[0]), float(parts[1])
+        except (ValueError, IndexError):
+            raise JudderError(f"--bounds {item!r} is not NAME=LOW:HIGH") \
+                from None
+        bounds[name.strip()] = (low, high)
+    return bounds
+
+
+def cmd_fit(args):
+    """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
+    names = parse_list(args.fit, "--fit", str)
+    p_max_bar = _pf_max(args)
+    params, changes = parameters_of(args)
+    freqs, measured = read_boundary(args.boundary)
+    bounds = _bounds(args.bounds)
+    make_parents(args.plot, args.save_params)
+    report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar, names=names,
+                     bounds=bounds, parameters=params, changes=changes,
+                     method=args.method)
+    result = report.fit
+    if args.save_params:
+        report.save_params(args.save_params, overwrite=args.force)
+    if args.plot:
+        save_figure(args.plot, report.figure())
+    rows = [f"{n:>8} = {v:.6g} ± {s:.2g}  (start {s0:.6g})"
+            for n, v, s, s0 in zip(result.names, result.values, result.std,
+                                   result.start)]
+    rows.append(f"residual rms {result.residual_rms_bar:.4g} bar over "
+                f"{len(freqs)} points; {result.evaluations} model boundaries "
+                f"in {report.seconds:.1f} s; {result.message}")
+    emit(args, {**report.as_dict(),
+                **_files(saved_params=args.save_params, plot=args.plot)},
+         "\n".join(rows) + _written(args.save_params, args.plot))
+    if not result.success:
+        raise JudderError("the fit did not converge: " + result.message)
+
+
+def _bench_values(assignments):
+    values = {}
+    for text in assignments:
+        name, sep, value = text.partition("=")
+        try:
+            values[name.strip()] = float(value)
+        except ValueError:
+            raise JudderError(f"--bench {text!r} is not NAME=VALUE with a "
+                              "number") from None
+        if not sep or not math.isfinite(values[name.strip()]):
+            raise JudderError(f"--bench {text!r} is not NAME=VALUE with a "
+                              "finite number")
+    return values
+
+
+def _engagement_line(s):
+    growth = s["judder_growth_per_s"]
+    return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
+            f"{s['p_f_bar']:g} bar; upstream speed peak "
+            f"{s['speed_peak_amplitude_rpm']:.3g} rpm at "
+            f"{s['speed_peak_freq_hz']:.2f} Hz"
+            + (" (the dither frequency)"
+               if s["peak_at_dither_frequency"] else "")
+            + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
+            + ("" if growth is None else
+               f"; oscillation at the dither frequency "
+               f"{'grows' if growth > 0 else 'decays'} at {growth:+.2f} 1/s "
+               "after the ramp")
+            + f"; Floquet at this point: {s['floquet_kind']} "
+              f"({s['floquet_exponent_per_s']:+.2f} 1/s)")
+
+
+def cmd_simulate(args):
+    """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
+    check_number("--freq", args.freq, "Hz")
+    check_number("--pf", args.pf, "bar", strict=False)
+    check_number("--duration", args.duration, "s")
+    params, changes = parameters_of(args)
+    bench = _bench_values(args.bench)
+    compare = None if args.compare is None else (
+        "none" if args.compare == "none" else
+        check_number("--compare", _float(args.compare, "--compare"), "Hz"))
+    make_parents(args.out, args.plot)
+    result = api.simulate(args.freq, args.pf, duration=args.duration,
+                          compare=compare, bench=bench, parameters=params,
+                          changes=changes, method=args.method)
+    if args.out:
+        result.save(args.out)
+    if args.plot:
+        save_figure(args.plot, result.figure(
+            title="bench engagement, EVEN clutch at 1000 rpm"))
+    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+         "\n".join(_engagement_line(s) for s in result.summaries)
+         + _written(args.out, args.plot))
+
+
+def _float(text, option):
+    try:
+        return float(text)
+    except ValueError:
+        raise JudderError(f"{option} {text!r} is not a number; allowed: a "
+                          "frequency in Hz, or nothing for no dither") \
+            from None
+
+
+def cmd_crosscheck(args):
+    """FMU growth rates against Floquet exponents on a grid."""
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    if freqs[0] <= 0:
+        raise JudderError("--freq: allowed: frequencies > 0 Hz")
+    check_number("--duration", args.duration, "s")
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs) * len(amplitudes), "FMU runs") as progress:
+        result = api.crosscheck(freqs, amplitudes, duration=args.duration,
+                                parameters=params, changes=changes,
+                                method=args.method, workers=args.workers,
+                                progress=progress)
+    if args.out:
+        result.save(args.out)
+    if args.plot:
+        save_figure(args.plot, result.figure())
+    data = {**result.as_dict(), **_files(out=args.out, plot=args.plot)}
+    worst = data["max_rate_error_above_1_per_s"]
+    text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "
+            f"agree on {100 * data['agreement']:.1f} %; largest rate "
+            "difference where the exponent > 1/s: "
+            + ("none" if worst is None else f"{100 * worst:.2g} %")
+            + "".join(f"\n  disagree at {r['freq_hz']:g} Hz, "
+                      f"{r['p_f_bar']:g} bar: {r['reason']}"
+                      for r in data["disagreements"])
+            + _written(args.out, args.plot))
+    emit(args, data, text)
+
+
+def cmd_campaign(args):
+    """Bench emulator: a campaign of engagement acquisitions."""
+    from pysim.bench import TEMPERATURES
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    if freqs[0] <= 0:
+        raise JudderError("--freq: allowed: frequencies > 0 Hz")
+    rpm = [check_number("--rpm", n, "rpm")
+           for n in parse_list(args.rpm, "--rpm")]
+    temperatures = (list(TEMPERATURES) if args.temperatures == "all"
+                    else [t.strip() for t in args.temperatures.split(",")])
+    formats = tuple(f.strip() for f in args.format.split(","))
+    if not set(formats) <= {"csv", "mf4"} or not formats:
+        raise JudderError(f"--format {args.format!r}: allowed: csv, mf4 or "
+                          "csv,mf4")
+    check_number("--duration", args.duration, "s")
+    check_number("--noise-rpm", args.noise_rpm, "rpm", strict=False)
+    params, changes = parameters_of(args)
+    runs = (len(freqs) * len(amplitudes) * len(rpm) * len(temperatures))
+    with Progress(runs, "bench runs") as progress:
+        result = api.campaign(args.out, freqs, amplitudes, engine_rpm=rpm,
+                              temperatures=temperatures,
+                              duration=args.duration,
+                              noise_rpm=args.noise_rpm, seed=args.seed,
+                              formats=formats, parameters=params,
+                              changes=changes, workers=args.workers,
+                              progress=progress)
+    data = result.as_dict()
+    text = (f"{data['runs']} runs ({data['ok']} ok) in "
+            f"{result.seconds:.1f} s; index {result.index}"
+            + "".join(f"\n  failed {r['run_id']}: {r['message']}"
+                      for r in result.failed))
+    emit(args, data, text)
+    if result.failed:
+        raise JudderError(f"{len(result.failed)} runs failed; the others "
+                          "were written (run the same command again to "
+                          "retry)")

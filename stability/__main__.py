@@ -1,7 +1,0 @@
-"""``python -m stability`` runs the ``judder`` command line."""
-
-import sys
-
-from .cli import main
-
-sys.exit(main())
