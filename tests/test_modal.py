@@ -11,7 +11,7 @@ from stability import (build_driveline, clutch_damper_damping_factor,
 
 @pytest.mark.parametrize("preset, expected_hz", [
     ("paper-4dof", [18.939, 102.884]),  # Eq. (15); paper: 18.9 and 102.9 Hz
-    ("paper-3dof", [18.047]),           # "close to 20 Hz", NOTES.md 18.047
+    ("paper-3dof", [18.047]),  # "close to 20 Hz"; sqrt(k (J1+J24)/(J1 J24))/2pi
 ])
 def test_natural_frequencies(preset, expected_hz):
     params = get_preset(preset)

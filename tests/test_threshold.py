@@ -14,14 +14,15 @@ LITERAL = get_preset("paper-4dof").replace(mean_pressure_damping=1.0)
 
 
 def _all_c(params, c):
-    names = ("c1", "c2", "c3", "c4") if params.model == "4dof" else \
-        ("c1", "c24", "c3")
-    return params.replace(**{n: c for n in names})
+    return params.replace(**{n: c for n in
+                             params.driveline.external_damping_names()})
 
 
 @pytest.mark.parametrize("c", [0.05, 0.1, 0.5, 1.0, 2.0])
-def test_threshold_matches_notes_and_closed_form(c):
-    # NOTES.md: mu_g* = -1.25e-4 c_i with N_c R_m S p_m = 6000 N m
+def test_threshold_matches_hand_value_and_closed_form(c):
+    # Fig. 19b: the rigid-chain slip mode (chain damping 3c against the
+    # output body's c, in series 0.75 c) gives, with N_c R_m S p_m =
+    # 6000 N m, mu_g* = -0.75 c / 6000 = -1.25e-4 c
     params = _all_c(LITERAL, c)
     threshold = friction_threshold(params)
     assert threshold == pytest.approx(-1.25e-4 * c, rel=1e-9)

@@ -1,0 +1,126 @@
+"""The layers of the project: who may import whom, statically and at run
+time, and the driveline registry as the one place that knows each model."""
+
+import ast
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import casadi
+import pytest
+
+from drivelines import MODELS, get_preset
+from fmu.frontend import load_flat_model
+
+ROOT = Path(__file__).resolve().parents[1]
+LIBRARY = ROOT / "modelica"
+
+#: What each package may import from the project (lower layers only).
+ALLOWED = {
+    "infra": set(),
+    "fmu": {"infra"},
+    "drivelines": {"infra"},
+    "stability": {"infra", "drivelines"},
+    "pysim": {"infra", "drivelines", "fmu"},
+    "judder": {"infra", "drivelines", "stability", "pysim", "fmu"},
+}
+
+
+def _imported_packages(path):
+    """Project packages named by the imports of one file (any depth)."""
+    tree = ast.parse(path.read_text())
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names |= {alias.name.split(".")[0] for alias in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0:
+            names.add(node.module.split(".")[0])
+        elif isinstance(node, ast.Call) and getattr(
+                node.func, "attr", getattr(node.func, "id", "")) in (
+                "import_module", "__import__"):
+            names |= {arg.value.split(".")[0] for arg in node.args
+                      if isinstance(arg, ast.Constant)
+                      and isinstance(arg.value, str)}
+    return names & set(ALLOWED)
+
+
+@pytest.mark.parametrize("package", sorted(ALLOWED))
+def test_no_import_goes_up_or_sideways(package):
+    for path in sorted((ROOT / package).rglob("*.py")):
+        used = _imported_packages(path) - {package}
+        assert used <= ALLOWED[package], (
+            f"{path.relative_to(ROOT)} imports {sorted(used - ALLOWED[package])}")
+
+
+@pytest.mark.parametrize("package", sorted(set(ALLOWED) - {"judder"}))
+def test_importing_a_library_loads_nothing_above_it(package):
+    # every module of the package, imported in a fresh interpreter: what
+    # it pulls in at run time stays within the allowed layers
+    modules = [".".join(p.relative_to(ROOT).with_suffix("").parts)
+               for p in sorted((ROOT / package).rglob("*.py"))
+               if p.name != "__main__.py"]
+    code = ("import importlib, json, sys\n"
+            f"for m in {modules!r}: importlib.import_module(m)\n"
+            "print(json.dumps(sorted({n.split('.')[0] for n in sys.modules})))")
+    loaded = set(json.loads(subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True,
+        check=True, cwd=ROOT).stdout))
+    forbidden = set(ALLOWED) - ALLOWED[package] - {package}
+    assert not loaded & forbidden
+
+
+def test_stability_does_not_import_matplotlib():
+    code = "import stability, sys; print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True,
+                         text=True, check=True, cwd=ROOT).stdout
+    assert out.strip() == "False"
+
+
+def test_no_model_name_branches_outside_the_registry():
+    # knowledge of each driveline lives in drivelines/registry.py only
+    for package in ALLOWED:
+        for path in (ROOT / package).rglob("*.py"):
+            if path == ROOT / "drivelines" / "registry.py":
+                continue
+            text = path.read_text()
+            for name in MODELS:
+                assert f'== "{name}"' not in text and \
+                    f'!= "{name}"' not in text, path
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_presets_match_the_modelica_defaults(model):
+    # the Appendix values are written twice (Python presets, .mo files):
+    # every default of the Modelica class equals the preset's value
+    entry = MODELS[model]
+    preset = get_preset(entry.default_preset)
+    classes = [entry.modelica_class] + (
+        [entry.bench_class] if entry.bench_class else [])
+    for name in classes:
+        source = LIBRARY.joinpath(*name.split(".")).with_suffix(".mo")
+        flat = load_flat_model(source, name, roots=[LIBRARY])
+        defaults = {v.name: float(casadi.evalf(v.binding))
+                    for v in flat.by_role("parameter")
+                    if v.binding is not None and casadi.SX(v.binding).is_constant()}
+        for parameter, value in preset.values.items():
+            assert parameter in defaults, f"{name} lacks {parameter}"
+            assert defaults[parameter] == pytest.approx(value, rel=1e-12), \
+                f"{name}.{parameter}"
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_registry_topology_is_the_modelica_one(model):
+    # the bodies the registry names are inertias of the Modelica class,
+    # and the signals it promises are its outputs
+    entry = MODELS[model]
+    source = LIBRARY.joinpath(*entry.modelica_class.split(".")) \
+        .with_suffix(".mo")
+    flat = load_flat_model(source, entry.modelica_class, roots=[LIBRARY])
+    names = {v.name for v in flat.variables}
+    for body in entry.bodies:
+        assert f"{body.instance}.w" in names
+        assert f"{body.instance}.J" in names
+    outputs = {v.name for v in flat.by_role("output")}
+    assert set(entry.signals) <= outputs
+    assert set(entry.free_response_speeds) <= names
