@@ -53,6 +53,7 @@ class ParamsResult:
         return {"model": self.params.model,
                 "parameters": {name: {"value": self.params[name],
                                       "unit": spec.unit,
+                                      "allowed": spec.allowed(),
                                       "description": spec.description}
                                for name, spec in specs.items()}}
 

@@ -34,6 +34,16 @@ def _files(**paths):
             for name, path in paths.items()}
 
 
+def _write_outputs(args, result, save=None, figure=None):
+    """Write --out (``result.save``) and --plot (``result.figure``),
+    atomically; keyword arguments for each; returns their paths."""
+    if args.out:
+        result.save(args.out, **(save or {}))
+    if args.plot:
+        save_figure(args.plot, result.figure(**(figure or {})))
+    return _files(out=args.out, plot=args.plot)
+
+
 def _pf_max(args):
     return check_number("--pf-max", args.pf_max, "bar")
 
@@ -47,7 +57,8 @@ def cmd_params(args):
         result.save(args.save, overwrite=args.force)
     specs = result.params.specs
     rows = [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
-            f"{spec.description}" for name, spec in specs.items()]
+            f"{spec.allowed():24s} {spec.description}"
+            for name, spec in specs.items()]
     emit(args, {**result.as_dict(), "saved": args.save},
          f"model {result.params.model}\n" + "\n".join(rows)
          + (f"\nsaved to {args.save}" if args.save else ""))
@@ -95,19 +106,17 @@ def cmd_map(args):
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(freqs, amplitudes, params, changes,
                                    method=args.method, progress=progress)
-    if args.out:
-        result.save(args.out, meta={"preset": args.preset,
-                                    "set": args.set})
-    if args.plot:
-        title = (f"{result.params.model} stability map, "
-                 f"{args.preset or args.param_file or 'default parameters'}")
-        save_figure(args.plot, result.figure(title=title))
+    title = (f"{result.params.model} stability map, "
+             f"{args.preset or args.param_file or 'default parameters'}")
+    files = _write_outputs(args, result,
+                           save={"meta": {"preset": args.preset,
+                                          "set": args.set}},
+                           figure={"title": title})
     counts = result.map.counts()
     text = (f"{result.map.kind.size} points in {result.seconds:.2f} s: "
             + ", ".join(f"{k} {v}" for k, v in counts.items())
             + _written(args.out, args.plot))
-    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
-         text)
+    emit(args, {**result.as_dict(), **files}, text)
 
 
 def cmd_tongues(args):
@@ -120,11 +129,7 @@ def cmd_tongues(args):
                              method=args.method,
                              background=args.plot is not None,
                              progress=progress)
-    if args.out:
-        result.save(args.out)
-    if args.plot:
-        save_figure(args.plot, result.figure())
-    data = {**result.as_dict(), **_files(out=args.out, plot=args.plot)}
+    data = {**result.as_dict(), **_write_outputs(args, result)}
     rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
             f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
     for r in data["tongues"]:
@@ -159,10 +164,7 @@ def cmd_sensitivity(args):
                                  values=values, parameters=params,
                                  changes=changes, method=args.method,
                                  workers=args.workers, progress=progress)
-    if args.out:
-        result.save(args.out)
-    if args.plot:
-        save_figure(args.plot, result.figure())
+    files = _write_outputs(args, result)
     rows = [f"{'param':>8} {'factor':>7} {'value':>10} {'#':>2} "
             f"{'tip f [Hz]':>11} {'df [Hz]':>8} {'tip p_f':>8} {'dp_f':>8}"]
     for r in result.tip_shifts:
@@ -178,7 +180,7 @@ def cmd_sensitivity(args):
     rows += [f"[{'holds' if c['holds'] else 'does NOT hold'}] "
              f"{c['statement']}: {c['evidence']}" for c in result.conclusions]
     rows.append(f"{result.cases} cases in {result.seconds:.1f} s")
-    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+    emit(args, {**result.as_dict(), **files},
          "\n".join(rows) + _written(args.out, args.plot))
 
 
@@ -191,17 +193,14 @@ def cmd_threshold(args):
     with Progress(len(damping), "threshold") as progress:
         result = api.threshold(mu_g, damping, params, changes,
                                progress=progress)
-    if args.out:
-        result.save(args.out)
-    if args.plot:
-        save_figure(args.plot, result.figure())
+    files = _write_outputs(args, result)
     study = result.study
     text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
             f"(unstable without dither below it)")
     if result.slope is not None:
         text += (f"\nthreshold against c_i: slope {result.slope:.4g} s/rad "
                  f"per N m s/rad over c_i = {damping[0]:g}..{damping[-1]:g}")
-    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+    emit(args, {**result.as_dict(), **files},
          text + _written(args.out, args.plot))
 
 
@@ -295,12 +294,10 @@ def cmd_simulate(args):
     result = api.simulate(args.freq, args.pf, duration=args.duration,
                           compare=compare, bench=bench, parameters=params,
                           changes=changes, method=args.method)
-    if args.out:
-        result.save(args.out)
-    if args.plot:
-        save_figure(args.plot, result.figure(
-            title="bench engagement, EVEN clutch at 1000 rpm"))
-    emit(args, {**result.as_dict(), **_files(out=args.out, plot=args.plot)},
+    files = _write_outputs(
+        args, result,
+        figure={"title": "bench engagement, EVEN clutch at 1000 rpm"})
+    emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))
 
@@ -328,11 +325,7 @@ def cmd_crosscheck(args):
                                 parameters=params, changes=changes,
                                 method=args.method, workers=args.workers,
                                 progress=progress)
-    if args.out:
-        result.save(args.out)
-    if args.plot:
-        save_figure(args.plot, result.figure())
-    data = {**result.as_dict(), **_files(out=args.out, plot=args.plot)}
+    data = {**result.as_dict(), **_write_outputs(args, result)}
     worst = data["max_rate_error_above_1_per_s"]
     text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "
             f"agree on {100 * data['agreement']:.1f} %; largest rate "
