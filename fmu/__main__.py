@@ -11,7 +11,19 @@ from .build import DEFAULT_TOLERANCE, build_fmu
 from .frontend import FrontEndError
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
-EXAMPLES = ("Driveline4DOF", "Driveline3DOF", "TestBenchEngagement")
+#: Package whose examples are built by default.
+EXAMPLES_PACKAGE = "Judder.Examples"
+
+
+def examples(library):
+    """Full names of the classes in ``library``'s examples package, in
+    the order of its ``package.order``."""
+    order = library.joinpath(*EXAMPLES_PACKAGE.split("."),
+                             "package.order")
+    if not order.exists():
+        return []
+    return [f"{EXAMPLES_PACKAGE}.{name}"
+            for name in order.read_text().split()]
 
 
 def main(argv=None):
@@ -23,8 +35,9 @@ def main(argv=None):
                     "Co-Simulation integrates with an embedded "
                     "Dormand-Prince 5(4) at the given tolerance.")
     parser.add_argument("models", nargs="*", metavar="CLASS",
-                        help="full class names (default: the examples "
-                             + ", ".join(EXAMPLES) + ")")
+                        help="full class names (default: every class of "
+                             f"{EXAMPLES_PACKAGE}, as listed in its "
+                             "package.order)")
     parser.add_argument("--library", default=str(LIBRARY), metavar="DIR",
                         help="folder holding the Modelica packages")
     parser.add_argument("--out", default="build/fmu", metavar="DIR",
@@ -38,7 +51,11 @@ def main(argv=None):
                         help="report as JSON lines")
     args = parser.parse_args(argv)
     library = Path(args.library)
-    names = args.models or [f"Judder.Examples.{n}" for n in EXAMPLES]
+    names = args.models or examples(library)
+    if not names:
+        print(f"fmu: error: no class given, and {library} has no "
+              f"{EXAMPLES_PACKAGE} package", file=sys.stderr)
+        return EXIT_ERROR
     versions = ("2.0", "3.0") if args.fmi == "both" else (args.fmi,)
     try:
         for name in names:
