@@ -16,4 +16,13 @@ package Units "Unit types of the library (SI, as Modelica.Units.SI)"
   type FrictionGradient = Real(final quantity="FrictionGradient", final unit="s/rad")
     "Change of the friction coefficient per unit slip speed";
   type Fraction = Real(final quantity="Fraction", final unit="1", min=0, max=1);
+  annotation (Documentation(info="<html>
+<p>Real types with quantity and unit, named and defined as in
+Modelica.Units.SI, so that every variable and every value in the models
+carries its SI unit (rad, rad/s, N.m, kg.m2, Pa, Hz, s, m).
+Pressures are displayed in bar and angles in degrees.</p>
+<p>Two types are specific to the friction law of Eq. (5),
+mu = mu0 + mu_g (w4 - w3): <code>FrictionCoefficient</code> (mu0, unit 1)
+and <code>FrictionGradient</code> (mu_g, unit s/rad).</p>
+</html>"));
 end Units;

@@ -1,3 +1,14 @@
 within Judder;
 package Components "Inertias, couplings, ground and the wet clutch"
+  annotation (Documentation(info="<html>
+<p>The elements of the drivelines of Fig. 12 and 13, as in
+Modelica.Mechanics.Rotational.Components: a rigid body
+(<code>Inertia</code>, J_i), a spring and damper in parallel
+(<code>SpringDamper</code>, k_ij and c_ij), a damper
+(<code>Damper</code>, with flange_b fixed: the external damping c_i),
+the housing (<code>Fixed</code>) and the wet clutch of Eq. (3)-(5), in
+two forms: <code>SlippingClutch</code>, linear as printed in the paper,
+and <code>WetClutch</code>, whose friction changes direction smoothly
+through zero slip (engagements).</p>
+</html>"));
 end Components;

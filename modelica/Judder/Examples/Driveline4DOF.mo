@@ -25,45 +25,120 @@ model Driveline4DOF "4-DOF driveline of Fig. 13, Eq. (1)-(5): steady slipping wi
   parameter Units.AngularVelocity w_out=0 "Initial speed of body 3";
   parameter Units.Torque T_e=mu0*N_c*R_m*S*p_m "Engine torque on body 1 (default: the mean clutch torque)";
   parameter Units.Torque T_r=mu0*N_c*R_m*S*p_m "Resistant torque on body 3";
-  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_in, fixed=true));
-  Components.Inertia inertia2(J=J2, phi(start=-T_e/k12, fixed=true), w(start=w_in, fixed=true));
-  Components.Inertia inertia4(J=J4, phi(start=-T_e/k12 - T_e/k24, fixed=true), w(start=w_in, fixed=true));
-  Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=w_out, fixed=true));
-  Components.SpringDamper damper12(c=k12, d=c12) "Clutch damper";
-  Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack";
+  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_in, fixed=true))
+    annotation (Placement(transformation(extent={{-150,-10},{-130,10}})));
+  Components.Inertia inertia2(J=J2, phi(start=-T_e/k12, fixed=true), w(start=w_in, fixed=true))
+    annotation (Placement(transformation(extent={{-70,-10},{-50,10}})));
+  Components.Inertia inertia4(J=J4, phi(start=-T_e/k12 - T_e/k24, fixed=true), w(start=w_in, fixed=true))
+    annotation (Placement(transformation(extent={{10,-10},{30,10}})));
+  Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=w_out, fixed=true))
+    annotation (Placement(transformation(extent={{130,-10},{150,10}})));
+  Components.SpringDamper damper12(c=k12, d=c12) "Clutch damper"
+    annotation (Placement(transformation(extent={{-110,-10},{-90,10}})));
+  Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack"
+    annotation (Placement(transformation(extent={{-30,-10},{-10,10}})));
   Components.SlippingClutch clutch(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
-    mean_pressure_damping=mean_pressure_damping) "EVEN clutch";
-  Components.Damper external1(d=c1);
-  Components.Damper external2(d=c2);
-  Components.Damper external4(d=c4);
-  Components.Damper external3(d=c3);
-  Components.Fixed housing;
-  Sources.DitherPressure pressure(p_m=p_m, p_f=p_f, f=f_dither);
-  Sources.ConstantTorque engine(tau_constant=T_e);
-  Sources.ConstantTorque load(tau_constant=-T_r);
-  output Units.AngularVelocity w_upstream=inertia4.w "Speed upstream of the clutch (body 4)";
-  output Units.AngularVelocity w_downstream=inertia3.w "Speed downstream of the clutch (body 3)";
-  output Units.AngularVelocity slip=clutch.slip "Slip speed of the clutch";
-  output Units.Torque clutch_torque=clutch.tau_c "Friction torque of the clutch";
+    mean_pressure_damping=mean_pressure_damping) "EVEN clutch"
+    annotation (Placement(transformation(extent={{50,-10},{70,10}})));
+  Components.Damper external1(d=c1)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={-140,-40})));
+  Components.Damper external2(d=c2)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={-60,-40})));
+  Components.Damper external4(d=c4)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={20,-40})));
+  Components.Damper external3(d=c3)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={140,-40})));
+  Components.Fixed housing
+    annotation (Placement(transformation(extent={{-10,-100},{10,-80}})));
+  Sources.DitherPressure pressure(p_m=p_m, p_f=p_f, f=f_dither)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={60,40})));
+  Sources.ConstantTorque engine(tau_constant=T_e)
+    annotation (Placement(transformation(extent={{-190,-10},{-170,10}})));
+  Sources.ConstantTorque load(tau_constant=-T_r)
+    annotation (Placement(transformation(extent={{190,-10},{170,10}})));
+  Sensors.SpeedSensor speedUpstream "Speed of body 4"
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=90, origin={20,40})));
+  Sensors.SpeedSensor speedDownstream "Speed of body 3"
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=90, origin={140,40})));
+  Sensors.RelSpeedSensor slipSensor "Speed of the clutch's flange_b relative to its flange_a"
+    annotation (Placement(transformation(extent={{50,-50},{70,-30}})));
+  Sensors.TorqueSensor torqueSensor "Torque the clutch transmits to body 3"
+    annotation (Placement(transformation(extent={{90,-10},{110,10}})));
+  output Units.AngularVelocity w_upstream=speedUpstream.w "Speed upstream of the clutch (body 4)";
+  output Units.AngularVelocity w_downstream=speedDownstream.w "Speed downstream of the clutch (body 3)";
+  output Units.AngularVelocity slip=-slipSensor.w_rel "Slip speed of the clutch";
+  output Units.Torque clutch_torque=torqueSensor.tau "Friction torque of the clutch";
   output Units.Pressure actuation_pressure=pressure.p "Actuation pressure";
 equation
-  connect(engine.flange, inertia1.flange_a);
-  connect(inertia1.flange_b, damper12.flange_a);
-  connect(damper12.flange_b, inertia2.flange_a);
-  connect(inertia2.flange_b, shaft24.flange_a);
-  connect(shaft24.flange_b, inertia4.flange_a);
-  connect(inertia4.flange_b, clutch.flange_a);
-  connect(clutch.flange_b, inertia3.flange_a);
-  connect(inertia3.flange_b, load.flange);
-  connect(external1.flange_a, inertia1.flange_a);
-  connect(external2.flange_a, inertia2.flange_a);
-  connect(external4.flange_a, inertia4.flange_a);
-  connect(external3.flange_a, inertia3.flange_a);
-  connect(external1.flange_b, housing.flange);
-  connect(external2.flange_b, housing.flange);
-  connect(external4.flange_b, housing.flange);
-  connect(external3.flange_b, housing.flange);
-  connect(pressure.p, clutch.p);
-  connect(pressure.p_mean, clutch.p_mean);
-  annotation (experiment(StopTime=2, Interval=1e-4));
+  connect(engine.flange, inertia1.flange_a)
+    annotation (Line(points={{-170,0},{-150,0}}));
+  connect(inertia1.flange_b, damper12.flange_a)
+    annotation (Line(points={{-130,0},{-110,0}}));
+  connect(damper12.flange_b, inertia2.flange_a)
+    annotation (Line(points={{-90,0},{-70,0}}));
+  connect(inertia2.flange_b, shaft24.flange_a)
+    annotation (Line(points={{-50,0},{-30,0}}));
+  connect(shaft24.flange_b, inertia4.flange_a)
+    annotation (Line(points={{-10,0},{10,0}}));
+  connect(inertia4.flange_b, clutch.flange_a)
+    annotation (Line(points={{30,0},{50,0}}));
+  connect(clutch.flange_b, torqueSensor.flange_a)
+    annotation (Line(points={{70,0},{90,0}}));
+  connect(torqueSensor.flange_b, inertia3.flange_a)
+    annotation (Line(points={{110,0},{130,0}}));
+  connect(inertia3.flange_b, load.flange)
+    annotation (Line(points={{150,0},{170,0}}));
+  connect(external1.flange_a, inertia1.flange_a)
+    annotation (Line(points={{-140,-30},{-140,-20},{-150,-20},{-150,0}}));
+  connect(external2.flange_a, inertia2.flange_a)
+    annotation (Line(points={{-60,-30},{-60,-20},{-70,-20},{-70,0}}));
+  connect(external4.flange_a, inertia4.flange_a)
+    annotation (Line(points={{20,-30},{20,-20},{10,-20},{10,0}}));
+  connect(external3.flange_a, inertia3.flange_a)
+    annotation (Line(points={{140,-30},{140,-20},{130,-20},{130,0}}));
+  connect(external1.flange_b, housing.flange)
+    annotation (Line(points={{-140,-50},{-140,-70},{0,-70},{0,-90}}));
+  connect(external2.flange_b, housing.flange)
+    annotation (Line(points={{-60,-50},{-60,-70},{0,-70},{0,-90}}));
+  connect(external4.flange_b, housing.flange)
+    annotation (Line(points={{20,-50},{20,-70},{0,-70},{0,-90}}));
+  connect(external3.flange_b, housing.flange)
+    annotation (Line(points={{140,-50},{140,-70},{0,-70},{0,-90}}));
+  connect(pressure.p, clutch.p)
+    annotation (Line(points={{64,29},{64,11}}, color={0,0,127}));
+  connect(pressure.p_mean, clutch.p_mean)
+    annotation (Line(points={{56,29},{56,11}}, color={0,0,127}));
+  connect(speedUpstream.flange, inertia4.flange_b)
+    annotation (Line(points={{20,30},{20,20},{30,20},{30,0}}));
+  connect(speedDownstream.flange, inertia3.flange_b)
+    annotation (Line(points={{140,30},{140,20},{150,20},{150,0}}));
+  connect(slipSensor.flange_a, clutch.flange_a)
+    annotation (Line(points={{50,-40},{40,-40},{40,0},{50,0}}));
+  connect(slipSensor.flange_b, clutch.flange_b)
+    annotation (Line(points={{70,-40},{80,-40},{80,0},{70,0}}));
+  annotation (
+    experiment(StopTime=2, Interval=1e-4),
+    Diagram(coordinateSystem(preserveAspectRatio=true, extent={{-200,-100},{200,100}})),
+    Documentation(info="<html>
+<p>The minimal 4-DOF model of the transmission, Fig. 13 and Eq. (1)-(5)
+of the paper, with the values of its Appendix: engine-side body 1 (J1),
+clutch damper 2 (J2) behind the damper k12, c12, body 4 (J4) between
+the damper and the EVEN clutch pack behind the stiffness k24, c24, and
+the gearbox side 3 (J3); each body has an external damper c_i to the
+housing. The engine torque T_e drives body 1, the resistant torque T_r
+brakes body 3, and the EVEN clutch (SlippingClutch) transmits</p>
+<pre>
+  T_c = N_c R_m S (mu0 p + mu_g (w4 - w3) (p - (1 - mean_pressure_damping) p_m))
+  p(t) = p_m + p_f cos(2 pi f_dither t)                          (Eq. 4)
+</pre>
+<p>Bodies 1, 2 and 4 start at 1000 rpm with the springs twisted to
+carry T_e, body 3 at rest. T_e = T_r = mu0 N_c R_m S p_m by default, the
+clutch torque without dither, so that the slip stays nearly steady.
+Dither at f_dither and p_f inside an Arnold tongue of Fig. 14 (e.g.
+102.9 Hz, 0.3 bar) makes the oscillation grow; outside it decays.</p>
+<p>Outputs, from the sensors: w_upstream and w_downstream, the speeds of
+bodies 4 and 3 (speed sensors), slip = w4 - w3 (relative speed sensor
+across the clutch, whose w_rel is w3 - w4), clutch_torque = T_c (torque
+sensor between the clutch and body 3) and actuation_pressure = p.</p>
+</html>"));
 end Driveline4DOF;

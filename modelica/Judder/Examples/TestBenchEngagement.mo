@@ -28,50 +28,126 @@ model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clut
   parameter Units.Pressure p_load=0.98e6 "REV pressure (670 mA, about 9.8 bar)";
   parameter Units.AngularVelocity w_motor=104.71975511965977 "Motor speed (1000 rpm)";
   parameter Units.RotationalDampingConstant d_control=2000 "Gain of the motor speed controller";
-  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_motor, fixed=true));
-  Components.Inertia inertia2(J=J2, phi(start=0, fixed=true), w(start=w_motor, fixed=true));
-  Components.Inertia inertia4(J=J4, phi(start=0, fixed=true), w(start=w_motor, fixed=true));
-  Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=0, fixed=true));
-  Components.SpringDamper damper12(c=k12, d=c12) "Clutch damper";
-  Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack";
+  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
+    annotation (Placement(transformation(extent={{-150,-10},{-130,10}})));
+  Components.Inertia inertia2(J=J2, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
+    annotation (Placement(transformation(extent={{-70,-10},{-50,10}})));
+  Components.Inertia inertia4(J=J4, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
+    annotation (Placement(transformation(extent={{10,-10},{30,10}})));
+  Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=0, fixed=true))
+    annotation (Placement(transformation(extent={{130,-10},{150,10}})));
+  Components.SpringDamper damper12(c=k12, d=c12) "Clutch damper"
+    annotation (Placement(transformation(extent={{-110,-10},{-90,10}})));
+  Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack"
+    annotation (Placement(transformation(extent={{-30,-10},{-10,10}})));
   Components.WetClutch even(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
-    mean_pressure_damping=mean_pressure_damping) "EVEN clutch, engaging";
+    mean_pressure_damping=mean_pressure_damping) "EVEN clutch, engaging"
+    annotation (Placement(transformation(extent={{50,-10},{70,10}})));
   Components.WetClutch rev(mu0=mu0, mu_g=mu_g, N_c=N_c_load, R_m=R_m, S=S_load,
-    mean_pressure_damping=mean_pressure_damping) "REV clutch, slipping against the housing as the load";
-  Components.Damper external1(d=c1);
-  Components.Damper external2(d=c2);
-  Components.Damper external4(d=c4);
-  Components.Damper external3(d=c3);
-  Components.Fixed housing;
-  Sources.SpeedDrive motor(w_ref=w_motor, d_control=d_control) "81 kW DC motor with speed control";
-  Sources.DitherPressure evenPressure(p_m=p_m, p_f=p_f, f=f_dither, t_start=t_engage, t_ramp=t_ramp);
-  Sources.DitherPressure revPressure(p_m=p_load, p_f=0, f=0);
-  output Units.AngularVelocity w_upstream=inertia4.w "Speed upstream of the EVEN clutch";
-  output Units.AngularVelocity w_downstream=inertia3.w "Speed downstream of the EVEN clutch";
-  output Units.AngularVelocity slip=even.slip "Slip speed of the EVEN clutch";
-  output Units.Torque clutch_torque=even.tau_c "Friction torque of the EVEN clutch";
+    mean_pressure_damping=mean_pressure_damping) "REV clutch, slipping against the housing as the load"
+    annotation (Placement(transformation(extent={{170,-10},{190,10}})));
+  Components.Damper external1(d=c1)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={-140,-40})));
+  Components.Damper external2(d=c2)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={-60,-40})));
+  Components.Damper external4(d=c4)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={20,-40})));
+  Components.Damper external3(d=c3)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={140,-40})));
+  Components.Fixed housing
+    annotation (Placement(transformation(extent={{-10,-100},{10,-80}})));
+  Sources.SpeedDrive motor(w_ref=w_motor, d_control=d_control) "81 kW DC motor with speed control"
+    annotation (Placement(transformation(extent={{-190,-10},{-170,10}})));
+  Sources.DitherPressure evenPressure(p_m=p_m, p_f=p_f, f=f_dither, t_start=t_engage, t_ramp=t_ramp)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={60,40})));
+  Sources.DitherPressure revPressure(p_m=p_load, p_f=0, f=0)
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={180,40})));
+  Sensors.SpeedSensor speedUpstream "Speed of body 4, the EVEN clutch plates on the engine side"
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=90, origin={20,40})));
+  Sensors.SpeedSensor speedDownstream "Speed of body 3, the EVEN clutch plates on the gearbox side"
+    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=90, origin={140,40})));
+  Sensors.RelSpeedSensor slipSensor "Speed of the EVEN clutch's flange_b relative to its flange_a"
+    annotation (Placement(transformation(extent={{50,-50},{70,-30}})));
+  Sensors.TorqueSensor torqueSensor "Torque the EVEN clutch transmits to body 3"
+    annotation (Placement(transformation(extent={{90,-10},{110,10}})));
+  output Units.AngularVelocity w_upstream=speedUpstream.w "Speed upstream of the EVEN clutch";
+  output Units.AngularVelocity w_downstream=speedDownstream.w "Speed downstream of the EVEN clutch";
+  output Units.AngularVelocity slip=-slipSensor.w_rel "Slip speed of the EVEN clutch";
+  output Units.Torque clutch_torque=torqueSensor.tau "Friction torque of the EVEN clutch";
   output Units.Pressure actuation_pressure=evenPressure.p "EVEN actuation pressure";
 equation
-  connect(motor.flange, inertia1.flange_a);
-  connect(inertia1.flange_b, damper12.flange_a);
-  connect(damper12.flange_b, inertia2.flange_a);
-  connect(inertia2.flange_b, shaft24.flange_a);
-  connect(shaft24.flange_b, inertia4.flange_a);
-  connect(inertia4.flange_b, even.flange_a);
-  connect(even.flange_b, inertia3.flange_a);
-  connect(inertia3.flange_b, rev.flange_a);
-  connect(rev.flange_b, housing.flange);
-  connect(external1.flange_a, inertia1.flange_a);
-  connect(external2.flange_a, inertia2.flange_a);
-  connect(external4.flange_a, inertia4.flange_a);
-  connect(external3.flange_a, inertia3.flange_a);
-  connect(external1.flange_b, housing.flange);
-  connect(external2.flange_b, housing.flange);
-  connect(external4.flange_b, housing.flange);
-  connect(external3.flange_b, housing.flange);
-  connect(evenPressure.p, even.p);
-  connect(evenPressure.p_mean, even.p_mean);
-  connect(revPressure.p, rev.p);
-  connect(revPressure.p_mean, rev.p_mean);
-  annotation (experiment(StopTime=4, Interval=1e-3));
+  connect(motor.flange, inertia1.flange_a)
+    annotation (Line(points={{-170,0},{-150,0}}));
+  connect(inertia1.flange_b, damper12.flange_a)
+    annotation (Line(points={{-130,0},{-110,0}}));
+  connect(damper12.flange_b, inertia2.flange_a)
+    annotation (Line(points={{-90,0},{-70,0}}));
+  connect(inertia2.flange_b, shaft24.flange_a)
+    annotation (Line(points={{-50,0},{-30,0}}));
+  connect(shaft24.flange_b, inertia4.flange_a)
+    annotation (Line(points={{-10,0},{10,0}}));
+  connect(inertia4.flange_b, even.flange_a)
+    annotation (Line(points={{30,0},{50,0}}));
+  connect(even.flange_b, torqueSensor.flange_a)
+    annotation (Line(points={{70,0},{90,0}}));
+  connect(torqueSensor.flange_b, inertia3.flange_a)
+    annotation (Line(points={{110,0},{130,0}}));
+  connect(inertia3.flange_b, rev.flange_a)
+    annotation (Line(points={{150,0},{170,0}}));
+  connect(rev.flange_b, housing.flange)
+    annotation (Line(points={{190,0},{200,0},{200,-70},{0,-70},{0,-90}}));
+  connect(external1.flange_a, inertia1.flange_a)
+    annotation (Line(points={{-140,-30},{-140,-20},{-150,-20},{-150,0}}));
+  connect(external2.flange_a, inertia2.flange_a)
+    annotation (Line(points={{-60,-30},{-60,-20},{-70,-20},{-70,0}}));
+  connect(external4.flange_a, inertia4.flange_a)
+    annotation (Line(points={{20,-30},{20,-20},{10,-20},{10,0}}));
+  connect(external3.flange_a, inertia3.flange_a)
+    annotation (Line(points={{140,-30},{140,-20},{130,-20},{130,0}}));
+  connect(external1.flange_b, housing.flange)
+    annotation (Line(points={{-140,-50},{-140,-70},{0,-70},{0,-90}}));
+  connect(external2.flange_b, housing.flange)
+    annotation (Line(points={{-60,-50},{-60,-70},{0,-70},{0,-90}}));
+  connect(external4.flange_b, housing.flange)
+    annotation (Line(points={{20,-50},{20,-70},{0,-70},{0,-90}}));
+  connect(external3.flange_b, housing.flange)
+    annotation (Line(points={{140,-50},{140,-70},{0,-70},{0,-90}}));
+  connect(evenPressure.p, even.p)
+    annotation (Line(points={{64,29},{64,11}}, color={0,0,127}));
+  connect(evenPressure.p_mean, even.p_mean)
+    annotation (Line(points={{56,29},{56,11}}, color={0,0,127}));
+  connect(revPressure.p, rev.p)
+    annotation (Line(points={{184,29},{184,11}}, color={0,0,127}));
+  connect(revPressure.p_mean, rev.p_mean)
+    annotation (Line(points={{176,29},{176,11}}, color={0,0,127}));
+  connect(speedUpstream.flange, inertia4.flange_b)
+    annotation (Line(points={{20,30},{20,20},{30,20},{30,0}}));
+  connect(speedDownstream.flange, inertia3.flange_b)
+    annotation (Line(points={{140,30},{140,20},{150,20},{150,0}}));
+  connect(slipSensor.flange_a, even.flange_a)
+    annotation (Line(points={{50,-40},{40,-40},{40,0},{50,0}}));
+  connect(slipSensor.flange_b, even.flange_b)
+    annotation (Line(points={{70,-40},{80,-40},{80,0},{70,0}}));
+  annotation (
+    experiment(StopTime=4, Interval=1e-3),
+    Diagram(coordinateSystem(preserveAspectRatio=true, extent={{-200,-100},{210,100}})),
+    Documentation(info="<html>
+<p>An engagement on the test bench of section 2.2 (Fig. 5b): the 4-DOF
+driveline of Fig. 13 driven by the 81 kW DC motor under speed control
+at 1000 rpm (SpeedDrive on body 1). The EVEN clutch (WetClutch) between
+body 4 and body 3 engages: its pressure ramps from 0 at t_engage to p_m
+in t_ramp, with the dither p_f cos(2 pi f_dither t) of Eq. (4) on top.
+As on the modified gearbox, the REV clutch, whose gear is fixed to the
+frame, slips against the housing at the constant pressure p_load and is
+the load on body 3. Bodies 1, 2 and 4 start at the motor speed and
+body 3 at rest; from t_engage on, the EVEN clutch transmits the torque
+of Eq. (3)-(5), with the dither of the actuation pressure.</p>
+<p>Outputs, from the sensors: w_upstream and w_downstream, the speeds of
+the EVEN clutch plates on the engine side (body 4) and on the gearbox
+side (body 3), the two speeds the bench acquires; slip = w4 - w3
+(relative speed sensor across the EVEN clutch, whose w_rel is w3 - w4);
+clutch_torque, the friction torque the EVEN clutch transmits to body 3
+(torque sensor between the clutch and body 3); and actuation_pressure,
+the EVEN pressure.</p>
+</html>"));
 end TestBenchEngagement;

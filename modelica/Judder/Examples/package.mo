@@ -1,3 +1,16 @@
 within Judder;
 package Examples "The paper's drivelines and the test bench, ready to simulate or export"
+  annotation (Documentation(info="<html>
+<p>Complete models with an experiment annotation and the same five
+outputs, each taken from a sensor: w_upstream and w_downstream (speeds
+on each side of the clutch), slip, clutch_torque and
+actuation_pressure.</p>
+<ul>
+<li><code>Driveline4DOF</code>: the minimal 4-DOF model of Fig. 13,
+Eq. (1)-(5), slipping steadily with dither.</li>
+<li><code>Driveline3DOF</code>: the essential 3-DOF model of Fig. 12.</li>
+<li><code>TestBenchEngagement</code>: an EVEN clutch engagement on the
+bench of section 2.2 (Fig. 5b), with the REV clutch as the load.</li>
+</ul>
+</html>"));
 end Examples;
