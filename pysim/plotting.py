@@ -1,4 +1,5 @@
-"""Plots of runs (Fig. 7), spectra (Fig. 8) and cross-checks.
+"""Plots of runs (Fig. 7), spectra (Fig. 8), cross-checks and experimental
+stability charts (Fig. 10, 11).
 
 Functions take ``ax``/``axes`` where they draw one panel and return the
 artists; figure builders return the figure. Nothing calls ``plt.show()``.
@@ -11,7 +12,8 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .signals import amplitude_spectrum
 
-__all__ = ["plot_run", "plot_spectrum", "run_figure", "crosscheck_figure"]
+__all__ = ["plot_run", "plot_spectrum", "run_figure", "crosscheck_figure",
+           "plot_chart", "chart_figure"]
 
 
 def plot_run(run, ax=None, title=None):
@@ -98,3 +100,75 @@ def crosscheck_figure(check, title=None):
     fig.suptitle(title or f"cross-check: {100 * check.agreement:.1f} % of the "
                           "verdicts agree")
     return fig
+
+
+def plot_chart(chart, group, ax=None):
+    """One panel of an experimental chart (Fig. 10): amplitude contour,
+    runs and the experimental boundary, over Hz and bar.
+
+    Parameters
+    ----------
+    chart : pysim.charts.Chart
+    group : tuple of str
+        A key of ``chart.groups()``.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    from matplotlib.colors import LogNorm
+    if ax is None:
+        _, ax = plt.subplots()
+    runs = chart.groups()[group]
+    f = np.array([r.analysis.freq_hz for r in runs])
+    p = np.array([r.analysis.p_f_bar for r in runs])
+    amplitude = np.array([max(r.analysis.amplitude_rpm, 1e-3) for r in runs])
+    judder = np.array([r.analysis.judder for r in runs])
+    artists = []
+    if len(np.unique(f)) >= 3 and len(np.unique(p)) >= 3:
+        contour = ax.tricontourf(f, p, amplitude, levels=np.geomspace(
+            amplitude.min(), amplitude.max() * 1.0001, 12), norm=LogNorm(),
+            cmap="Greys", alpha=0.8)
+        ax.figure.colorbar(contour, ax=ax,
+                           label="amplitude of the judder component [rpm]")
+        artists.append(contour)
+    artists.append(ax.scatter(f[judder], p[judder], marker="^",
+                              color="#d62728", zorder=3, label="judder"))
+    artists.append(ax.scatter(f[~judder], p[~judder], marker="o",
+                              facecolors="none", edgecolors="black",
+                              zorder=3, label="no judder"))
+    boundary = chart.boundary(group)
+    seen = [(fb, pb) for fb, pb, _ in boundary if pb is not None]
+    if seen:
+        artists += ax.plot(*zip(*seen), color="#1f77b4", lw=1.5,
+                           label="experimental boundary")
+    censored = [(fb, top) for fb, pb, top in boundary if pb is None]
+    if censored:
+        artists.append(ax.scatter(*zip(*censored), marker="^",
+                                  facecolors="none", edgecolors="#1f77b4",
+                                  s=60, zorder=4,
+                                  label="no judder up to here"))
+    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_ylabel("dither amplitude p_f [bar]")
+    label = ", ".join(f"{c} {v}" for c, v in zip(chart.group_by, group))
+    ax.set_title(label or "all runs", fontsize=10)
+    return artists
+
+
+def chart_figure(chart, title=None):
+    """All panels of a chart, one per group (Fig. 11); returns the figure
+    and ``{group: ax}``."""
+    groups = list(chart.groups())
+    fig, axes = plt.subplots(1, max(len(groups), 1),
+                             figsize=(6.5 * max(len(groups), 1), 4.8),
+                             layout="constrained", squeeze=False)
+    panels = {}
+    for group, ax in zip(groups, axes[0]):
+        plot_chart(chart, group, ax=ax)
+        panels[group] = ax
+    if groups:
+        axes[0][0].legend(loc="upper left", fontsize=8)
+    if title:
+        fig.suptitle(title)
+    return fig, panels
+
