@@ -113,6 +113,12 @@ class DrivelineModel:
         The example model of the same driveline and parameter names.
     bench_class : str or None
         The test-bench engagement model of this driveline, if any.
+    bench_damping : tuple of (str, str)
+        ``(parameter, bench parameter)``: damping the bench adds to a
+        parameter of the driveline in its linearisation (the motor's
+        proportional speed control acts on body 1 as a damping to ground
+        ``d_control`` about the set speed), so the bench's Floquet model
+        has ``parameter + bench parameter``.
     free_response_speeds : tuple of str
         FMU variables whose difference between two runs gives the free
         response (enough to see every mode).
@@ -135,6 +141,7 @@ class DrivelineModel:
     default_preset: str
     modelica_class: str
     bench_class: object
+    bench_damping: tuple
     free_response_speeds: tuple
     paper_sensitivity: bool
     closed_form_omega2: object
@@ -242,6 +249,7 @@ FOUR_DOF = DrivelineModel(
     default_preset="paper-4dof",
     modelica_class="Judder.Examples.Driveline4DOF",
     bench_class="Judder.Examples.TestBenchEngagement",
+    bench_damping=(("c1", "d_control"),),
     free_response_speeds=("w_upstream", "w_downstream", "inertia1.w",
                           "inertia2.w"),
     paper_sensitivity=True,
@@ -278,6 +286,7 @@ THREE_DOF = DrivelineModel(
     default_preset="paper-3dof",
     modelica_class="Judder.Examples.Driveline3DOF",
     bench_class=None,
+    bench_damping=(),
     free_response_speeds=("w_upstream", "w_downstream", "inertia1.w"),
     paper_sensitivity=False,
     closed_form_omega2=_omega2_3dof,

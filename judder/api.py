@@ -36,14 +36,15 @@ from stability.maps import stability_map as map_kernel
 from stability.model import build_driveline
 from stability.monodromy import DEFAULT_METHOD
 
-from .results import (CampaignResult, CrosscheckResult, EigResult,
+from .results import (CampaignResult, ChartResult, CrosscheckResult,
+                      EigResult,
                       FitReport, FloquetPoint, MapResult, ParamsResult,
                       SensitivityResult, SimulationResult, ThresholdResult,
                       TonguesResult)
 
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
@@ -293,7 +294,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
              parameters=None, changes=None, method=DEFAULT_METHOD):
     """``judder simulate``: an engagement on the driveline's bench model
     (Fig. 7, 8), run through its FMU, with the Floquet verdict of each
-    dither setting.
+    dither setting for the bench's linearisation (the damping its motor
+    control adds, :attr:`drivelines.DrivelineModel.bench_damping`).
 
     Parameters
     ----------
@@ -332,9 +334,13 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     runs = [(label, run_fmu(fmu, freq, p_f, params=values, extra=bench,
                             duration=duration, output_interval=interval))
             for label, freq, p_f in settings]
-    start = sum(bench.get(name, parameter_default(fmu, name))
-                for name in ("t_engage", "t_ramp"))
-    driveline = build_driveline(values)
+    def bench_value(name):
+        return bench.get(name, parameter_default(fmu, name))
+    start = bench_value("t_engage") + bench_value("t_ramp")
+    # the bench's linearisation: its motor control damps body 1
+    driveline = build_driveline(values.replace(**{
+        name: values[name] + bench_value(added)
+        for name, added in values.driveline.bench_damping}))
     summaries = []
     for label, run in runs:
         linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
@@ -410,3 +416,58 @@ def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
                            workers=workers, callback=progress)
     return CampaignResult(rows=rows, index=str(Path(folder) / "index.csv"),
                           seconds=seconds)
+
+
+def chart(sources, index=None, channels=None, group_by=None,
+          min_growth=None, min_amplitude_rpm=None, model=False,
+          parameters=None, changes=None, method=DEFAULT_METHOD,
+          workers=None, progress=None):
+    """``judder chart``: experimental stability charts from bench
+    acquisitions (section 3.2, Fig. 10 and 11).
+
+    Parameters
+    ----------
+    sources : sequence of path
+        Campaign folders (``index.csv``) and acquisition files (MF4, CSV,
+        TDMS, MAT).
+    index : path, optional
+        CSV with a ``file`` column and the runs' settings.
+    channels : dict, optional
+        Role (``upstream_speed``, ``pressure``, ``downstream_speed``) ->
+        :class:`pysim.acquisitions.ChannelSpec`; default the names
+        ``judder campaign`` writes.
+    group_by : sequence of str, optional
+        Columns making the panels (default: oil temperature and engine
+        speed where they vary).
+    min_growth : float, optional
+        Growth rate (1/s) from which a run counts as judder (default
+        :data:`pysim.run_analysis.MIN_GROWTH`).
+    min_amplitude_rpm : float, optional
+    model : bool
+        Also compute the model's tongue boundaries (``parameters`` and
+        ``changes``) over the chart's frequencies, drawn by ``figure()``.
+
+    Returns
+    -------
+    judder.results.ChartResult
+    """
+    from pysim.charts import build_chart, gather_sources
+    from pysim.run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH
+    started = time.perf_counter()
+    result = build_chart(
+        gather_sources(sources, index), channels=channels,
+        group_by=group_by,
+        min_growth=MIN_GROWTH if min_growth is None else min_growth,
+        min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None
+                           else min_amplitude_rpm),
+        workers=workers, callback=progress)
+    seconds = time.perf_counter() - started
+    overlay = None
+    if model and result.read:
+        freqs = [r.analysis.freq_hz for r in result.read]
+        top = max(r.analysis.p_f_bar for r in result.read)
+        overlay = tongues(np.linspace(min(freqs), max(freqs), 200),
+                          max(1.5 * top, 0.1), parameters, changes,
+                          method=method)
+    return ChartResult(chart=result, seconds=seconds, model=overlay)
+

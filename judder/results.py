@@ -28,7 +28,7 @@ from stability.kinds import KINDS
 __all__ = ["ParamsResult", "EigResult", "FloquetPoint", "MapResult",
            "TonguesResult", "SensitivityResult", "ThresholdResult",
            "FitReport", "SimulationResult", "CrosscheckResult",
-           "CampaignResult"]
+           "CampaignResult", "ChartResult"]
 
 
 def _csv_text(rows, columns=None):
@@ -439,3 +439,92 @@ class CampaignResult:
                 "ok": len(self.rows) - len(self.failed),
                 "failed": self.failed, "index": self.index,
                 "seconds": self.seconds}
+
+
+@dataclass(frozen=True)
+class ChartResult:
+    """``judder chart``: an experimental stability chart (Fig. 10, 11).
+
+    ``chart`` is the :class:`pysim.charts.Chart`; ``model`` the
+    :class:`TonguesResult` of the model drawn over it (None unless asked
+    for).
+    """
+
+    chart: object
+    seconds: float
+    model: object = None
+
+    def _boundaries(self):
+        return {"/".join(group): self.chart.boundary(group)
+                for group in self.chart.groups()}
+
+    def as_dict(self):
+        chart = self.chart
+        runs = []
+        for run in chart.read:
+            a = run.analysis
+            runs.append({"file": str(run.path), **{
+                c: run.settings.get(c) for c in chart.group_by},
+                "freq_hz": a.freq_hz, "p_f_bar": a.p_f_bar,
+                "dither_estimated": a.estimated,
+                "amplitude_rpm": a.amplitude_rpm,
+                "growth_per_s": a.growth_per_s, "judder": a.judder,
+                "kind": a.kind})
+        boundaries = self._boundaries()
+        single = next(iter(boundaries.values())) if len(boundaries) == 1 \
+            else None
+        return {"runs": runs, "group_by": list(chart.group_by),
+                "min_growth_per_s": chart.min_growth,
+                "boundary": None if single is None else
+                [[f, p] for f, p, _ in single],
+                "boundaries": {g: [[f, p] for f, p, _ in b]
+                               for g, b in boundaries.items()},
+                "failed": [{"file": str(r.path), "message": r.error}
+                           for r in chart.failed],
+                "seconds": self.seconds}
+
+    def save(self, path):
+        """Save the chart as NPZ: the per-run arrays of
+        :meth:`pysim.charts.Chart.arrays` and, per group, the boundary
+        (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
+        with NaN where censored, ``boundary_tried_bar``)."""
+        rows = [(g, f, np.nan if p is None else p, top)
+                for g, b in self._boundaries().items() for f, p, top in b]
+        arrays = {**self.chart.arrays(),
+                  "boundary_group": np.array([r[0] for r in rows]),
+                  "boundary_freq_hz": np.array([r[1] for r in rows]),
+                  "boundary_p_f_bar": np.array([r[2] for r in rows]),
+                  "boundary_tried_bar": np.array([r[3] for r in rows]),
+                  "group_by": np.array(self.chart.group_by),
+                  "min_growth_per_s": np.array(self.chart.min_growth)}
+        atomic_write(path,
+                     lambda stream: np.savez_compressed(stream, **arrays))
+
+    def save_boundary(self, path):
+        """Write the experimental boundary as ``judder fit --boundary``
+        reads it; with several groups, one file per group
+        (``STEM_GROUP.csv``). Returns the paths written."""
+        from pathlib import Path
+        path = Path(path)
+        groups = list(self.chart.groups())
+        written = []
+        for group in groups:
+            target = path if len(groups) == 1 else path.with_name(
+                f"{path.stem}_{'_'.join(group)}{path.suffix}")
+            write_text(target, self.chart.boundary_csv(group))
+            written.append(str(target))
+        return written
+
+    def figure(self, title=None):
+        from pysim.plotting import chart_figure
+        fig, panels = chart_figure(self.chart, title=title)
+        if self.model is not None:
+            from stability.plotting import plot_boundaries
+            for ax in panels.values():
+                limits = ax.get_xlim(), ax.get_ylim()
+                plot_boundaries(self.model.boundaries, ax=ax,
+                                label=f"model ({self.model.params.model})")
+                ax.set_xlim(*limits[0])
+                ax.set_ylim(*limits[1])
+        return fig
+

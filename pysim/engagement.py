@@ -1,17 +1,20 @@
-"""What an engagement run shows: the judder at the dither frequency.
+"""What an engagement run shows: the judder and where it sits.
 
 :func:`engagement_summary` reduces the time histories of one bench
 engagement (Fig. 7) to the numbers an engineer reads off it: the spectrum
 peaks of the upstream speed and of the pressure (Fig. 8), whether the
-speed peak sits at the dither frequency, and how the oscillation at the
-dither frequency grows or decays after the pressure ramp.
+speed peak sits at the dither frequency, and the judder verdict of
+:func:`pysim.run_analysis.analyse_run`: how fast the non-periodic part of
+the speed grows (whichever the kind: at ``f``, ``f/2`` or a combination
+frequency), and which kind it is.
 """
 
 import numpy as np
 
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
-from .signals import amplitude_spectrum, dither_envelope
+from .run_analysis import analyse_run
+from .signals import amplitude_spectrum
 
 __all__ = ["engagement_summary"]
 
@@ -35,16 +38,22 @@ def engagement_summary(run, start):
         ``pressure_peak_freq_hz``, ``pressure_peak_amplitude_bar``;
         ``peak_at_dither_frequency``: the speed peak is within two
         frequency bins of the dither frequency;
-        ``judder_growth_per_s``: growth rate of the envelope at the dither
-        frequency, 1/s (None without dither);
-        ``dither_envelope_max_rpm``; ``final_slip_rad_s``.
+        ``judder``, ``judder_kind``, ``judder_growth_per_s``: the verdict,
+        its kind and the growth rate of the non-periodic part (1/s), as
+        :func:`pysim.run_analysis.analyse_run` reads them (None without
+        dither); ``dither_envelope_max_rpm``: the largest envelope at the
+        dither frequency; ``final_slip_rad_s``.
     """
     keep = run.time >= start
+    reading = None
     if run.p_f > 0:
-        envelope, growth = dither_envelope(run.time, run["w_upstream"],
-                                           run.freq_hz, start)
-    else:
-        envelope, growth = np.zeros(1), None
+        reading = analyse_run((run.time, run["w_upstream"]),
+                              (run.time, run["actuation_pressure"]),
+                              (run.time, run["w_downstream"]),
+                              freq_hz=run.freq_hz,
+                              p_f_bar=run.p_f / PA_PER_BAR)
+        at_dither = next(c for c in reading.components
+                         if c.name == "dither")
     speed = amplitude_spectrum(run.time[keep], run["w_upstream"][keep])
     pressure = amplitude_spectrum(run.time[keep],
                                   run["actuation_pressure"][keep])
@@ -60,6 +69,10 @@ def engagement_summary(run, start):
                 pressure.peak_amplitude / PA_PER_BAR,
             "peak_at_dither_frequency":
                 bool(abs(speed.peak_freq_hz - run.freq_hz) <= 2 * resolution),
-            "judder_growth_per_s": growth,
-            "dither_envelope_max_rpm": float(envelope.max()) * RPM_PER_RAD_S,
+            "judder": None if reading is None else reading.judder,
+            "judder_kind": None if reading is None else reading.kind,
+            "judder_growth_per_s": None if reading is None
+            else reading.growth_per_s,
+            "dither_envelope_max_rpm": None if reading is None
+            else at_dither.amplitude_rpm,
             "final_slip_rad_s": float(run["slip"][-1])}

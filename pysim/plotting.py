@@ -129,8 +129,11 @@ def plot_chart(chart, group, ax=None):
         contour = ax.tricontourf(f, p, amplitude, levels=np.geomspace(
             amplitude.min(), amplitude.max() * 1.0001, 12), norm=LogNorm(),
             cmap="Greys", alpha=0.8)
-        ax.figure.colorbar(contour, ax=ax,
-                           label="amplitude of the judder component [rpm]")
+        ticks = np.geomspace(amplitude.min(), amplitude.max(), 5)
+        bar = ax.figure.colorbar(contour, ax=ax, ticks=ticks,
+                                 label="amplitude of the judder component "
+                                       "[rpm]")
+        bar.ax.set_yticklabels([f"{t:.3g}" for t in ticks])
         artists.append(contour)
     artists.append(ax.scatter(f[judder], p[judder], marker="^",
                               color="#d62728", zorder=3, label="judder"))
@@ -138,10 +141,12 @@ def plot_chart(chart, group, ax=None):
                               facecolors="none", edgecolors="black",
                               zorder=3, label="no judder"))
     boundary = chart.boundary(group)
-    seen = [(fb, pb) for fb, pb, _ in boundary if pb is not None]
-    if seen:
-        artists += ax.plot(*zip(*seen), color="#1f77b4", lw=1.5,
-                           label="experimental boundary")
+    # the boundary is drawn only between neighbouring frequencies that
+    # both have judder: a censored frequency between them breaks it
+    lowest = np.array([np.nan if pb is None else pb for _, pb, _ in boundary])
+    line = ax.plot([fb for fb, _, _ in boundary], lowest, color="#1f77b4",
+                   lw=1.5, marker="_", ms=10, label="experimental boundary")
+    artists += line
     censored = [(fb, top) for fb, pb, top in boundary if pb is None]
     if censored:
         artists.append(ax.scatter(*zip(*censored), marker="^",
@@ -167,7 +172,8 @@ def chart_figure(chart, title=None):
         plot_chart(chart, group, ax=ax)
         panels[group] = ax
     if groups:
-        axes[0][0].legend(loc="upper left", fontsize=8)
+        fig.legend(*axes[0][0].get_legend_handles_labels(), loc="outside "
+                   "lower center", ncols=5, fontsize=8)
     if title:
         fig.suptitle(title)
     return fig, panels

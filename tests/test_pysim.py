@@ -175,15 +175,21 @@ def _judder(*args):
 
 def test_simulate_cli_json_and_outputs(tmp_path):
     out, plot = tmp_path / "run.csv", tmp_path / "run.png"
-    proc = _judder("simulate", "--freq", "102.9", "--pf", "0.05",
-                   "--duration", "1", "--compare", "--out", str(out),
+    # double-period tongue 4 at 2 f2 = 205.8 Hz: the f/2 component grows
+    # as the Floquet exponent of the bench's linearisation says (2.61 1/s)
+    proc = _judder("simulate", "--freq", "205.8", "--pf", "0.3",
+                   "--duration", "2", "--compare", "--out", str(out),
                    "--plot", str(plot), "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     judder, reference = data["runs"]
     assert judder["peak_at_dither_frequency"]
-    assert judder["judder_growth_per_s"] > 0
+    assert judder["judder"] and judder["judder_kind"] == "double-period"
+    assert judder["floquet_kind"] == "double-period"
+    assert judder["judder_growth_per_s"] == pytest.approx(
+        judder["floquet_exponent_per_s"], rel=0.1)
     assert reference["label"] == "without dither"
+    assert reference["judder"] is None
     assert "w_upstream [rad/s]" in out.read_text()
     assert plot.read_bytes()[:4] == b"\x89PNG"
 

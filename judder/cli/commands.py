@@ -19,7 +19,7 @@ from .options import (check_number, emit, make_parents, parameters_of,
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
-           "cmd_crosscheck", "cmd_campaign"]
+           "cmd_crosscheck", "cmd_campaign", "cmd_chart"]
 
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
@@ -272,10 +272,10 @@ def _engagement_line(s):
             + (" (the dither frequency)"
                if s["peak_at_dither_frequency"] else "")
             + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
-            + ("" if growth is None else
-               f"; oscillation at the dither frequency "
-               f"{'grows' if growth > 0 else 'decays'} at {growth:+.2f} 1/s "
-               "after the ramp")
+            + ("" if s["judder"] is None else
+               "; judder: " + (s["judder_kind"] if s["judder"] else "none")
+               + ("" if growth is None else
+                  f" (non-periodic part grows at {growth:+.2f} 1/s)"))
             + f"; Floquet at this point: {s['floquet_kind']} "
               f"({s['floquet_exponent_per_s']:+.2f} 1/s)")
 
@@ -375,3 +375,62 @@ def cmd_campaign(args):
         raise JudderError(f"{len(result.failed)} runs failed; the others "
                           "were written (run the same command again to "
                           "retry)")
+
+
+def _channels(items):
+    """``ROLE=NAME[:UNIT]`` strings as ``{role: ChannelSpec}`` (None if
+    none given: the names judder campaign writes)."""
+    from pysim.acquisitions import parse_channel_option
+    if not items:
+        return None
+    channels = dict(parse_channel_option(item) for item in items)
+    if "upstream_speed" not in channels:
+        raise JudderError("--channel upstream_speed=NAME is required when "
+                          "--channel is given")
+    return channels
+
+
+def cmd_chart(args):
+    """Experimental stability chart from bench acquisitions."""
+    channels = _channels(args.channel)
+    check_number("--min-growth", args.min_growth, "1/s", strict=False)
+    check_number("--min-amplitude", args.min_amplitude, "rpm", strict=False)
+    overlay = bool(args.model or args.preset or args.param_file or args.set)
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot, args.boundary)
+    with Progress(None, "runs") as progress:
+        result = api.chart(args.sources, index=args.index, channels=channels,
+                           group_by=args.group_by,
+                           min_growth=args.min_growth,
+                           min_amplitude_rpm=args.min_amplitude,
+                           model=overlay, parameters=params,
+                           changes=changes, method=args.method,
+                           workers=args.workers, progress=progress)
+    files = _write_outputs(args, result, figure={
+        "title": "experimental stability chart"
+                 + (f" with the {params.model} model's boundaries"
+                    if overlay else "")})
+    boundaries = (result.save_boundary(args.boundary) if args.boundary
+                  and result.chart.read else [])
+    data = {**result.as_dict(), **files, "boundary_files": boundaries}
+    rows = []
+    for group, runs in result.chart.groups().items():
+        label = ", ".join(f"{c} {v}" for c, v in
+                          zip(result.chart.group_by, group)) or "all runs"
+        judder = sum(r.analysis.judder for r in runs)
+        estimated = sum(r.analysis.estimated for r in runs)
+        rows.append(f"{label}: {len(runs)} runs, {judder} with judder"
+                    + (f" ({estimated} with the dither estimated from the "
+                       "pressure)" if estimated else ""))
+        for f, p, top in result.chart.boundary(group):
+            rows.append(f"  {f:8.2f} Hz: " + (
+                f"judder from {p:.3g} bar" if p is not None else
+                f"no judder up to {top:.3g} bar"))
+    rows += [f"could not read {r.path}: {r.error}"
+             for r in result.chart.failed]
+    rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
+                + _written(args.out, args.plot, *boundaries))
+    emit(args, data, "\n".join(rows))
+    if not result.chart.read:
+        raise JudderError("no run could be read")
+

@@ -308,4 +308,55 @@ def build_parser():
                         "there is resumed)")
     _model_options(p)
     p.set_defaults(handler=commands.cmd_campaign)
+    p = sub.add_parser("chart", help="experimental stability chart from "
+                                     "bench acquisitions (Fig. 10, 11)",
+                       description="Read engagement acquisitions (a campaign "
+                                   "folder, or MF4, CSV, TDMS and MAT files), "
+                                   "find in each run the engagement window, "
+                                   "the dither setting (given, from the "
+                                   "file's metadata, or estimated from the "
+                                   "pressure), the amplitude and growth of "
+                                   "the upstream speed at f, f/2 and other "
+                                   "peaks, and a judder verdict (late "
+                                   "envelope growth >= --min-growth). Draws "
+                                   "the amplitude contour per oil "
+                                   "temperature or engine speed, and writes "
+                                   "the experimental boundary for `judder "
+                                   "fit --boundary`. Give --model, --preset, "
+                                   "--param-file or --set to draw the "
+                                   "model's tongue boundaries over it.")
+    p.add_argument("sources", nargs="*", metavar="SOURCE",
+                   help="campaign folder (with index.csv) or acquisition "
+                        "file (.mf4, .csv, .tdms, .mat)")
+    p.add_argument("--index", metavar="FILE.csv",
+                   help="CSV with a 'file' column (relative to it) and "
+                        "optional freq_hz, p_f_bar, oil_temperature, "
+                        "engine_rpm and further columns")
+    p.add_argument("--channel", action="append", default=[],
+                   metavar="ROLE=NAME[:UNIT]",
+                   help="channel of ROLE (upstream_speed, required; "
+                        "pressure; downstream_speed) in the files, with its "
+                        "unit if the file has none (rpm, rad/s, bar, Pa, "
+                        "...); repeatable. Without any, the names judder "
+                        "campaign writes")
+    p.add_argument("--group-by", action="append", metavar="COLUMN",
+                   help="panel per value of COLUMN; repeatable (default: "
+                        "oil_temperature and engine_rpm where they vary)")
+    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
+                   help="late growth rate from which a run is judder, 1/s "
+                        "(default 1)")
+    p.add_argument("--min-amplitude", type=float, default=None,
+                   metavar="RPM", help="smallest judder amplitude, rpm "
+                                       "(default 1)")
+    p.add_argument("--out", metavar="FILE.npz",
+                   help="per-run arrays and boundaries (NPZ)")
+    p.add_argument("--boundary", metavar="FILE.csv",
+                   help="experimental boundary (freq_hz,p_f_bar; empty = "
+                        "no judder), one file per group if several")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the chart, one panel per group")
+    _workers_option(p)
+    _method_option(p)
+    _model_options(p)
+    p.set_defaults(handler=commands.cmd_chart)
     return parser

@@ -1,0 +1,798 @@
+"""Reading bench acquisitions: channels with their own time bases, in SI.
+
+The experimental stability charts of section 3.2 are drawn from bench
+time histories: the speeds upstream and downstream of the EVEN clutch and
+its actuation pressure. :func:`read_acquisition` reads them from the file
+formats benches write, by the channel names of the user's file:
+
+* ``.mf4`` / ``.mdf``: ASAM MDF 4 (and 3) with asammdf; every channel
+  keeps the time base of its channel group, its unit is the file's;
+* ``.csv``: a ``time [s]`` (or ``time``) column, headers ``name [unit]``
+  or plain names, ``# key: json-value`` metadata lines (what
+  :func:`pysim.export.write_csv` writes);
+* ``.tdms``: NI TDMS with npTDMS; a waveform channel
+  (``wf_increment``, ``wf_start_offset``) has its time track, any other
+  takes the ``time`` channel of its group; units from ``unit_string``;
+  a channel is named ``channel`` or ``group/channel``;
+* ``.mat``: MATLAB (up to v7) with scipy; each signal is a variable (or a
+  field of a struct, ``struct.field``) with a time vector ``NAME_time``,
+  ``t_NAME`` or a shared ``time`` / ``t``; units from a ``units`` struct.
+
+Every channel keeps its own time base: a pick-up speed is sampled at tooth
+passages (non-uniform), the pressure at its own rate. NaN samples are
+dropped channel by channel.
+
+Units are converted with a small explicit table (:data:`SPEED_UNITS`,
+:data:`PRESSURE_UNITS`) built on :mod:`infra.units`, not with pint
+(0.25, which installs): pint reads ``Hz`` and ``1/min`` as 1/s and 1/60 s,
+i.e. 1 Hz = 1 rad/s, where a rotational speed in Hz or 1/min counts
+revolutions (1 Hz = 2 pi rad/s), it does not know ``rev``, and it accepts
+anything of dimension 1/time (``kHz``, ``1/h``, even ``U/min`` as enzyme
+units); every speed unit would need a correcting table anyway, for the
+price of three more packages and 0.4 s to build its registry. The table
+accepts exactly the units a bench writes and lists them when one is not.
+
+Every bad input raises :class:`infra.errors.JudderError` with a one-line
+message naming the file, what is wrong and what is allowed; a corrupt
+file does too.
+
+Examples
+--------
+>>> round(unit_factor("rpm", "speed"), 9)
+0.104719755
+>>> unit_factor("bar", "pressure")
+100000.0
+>>> parse_channel_option("pressure=PressEVEN:bar")
+('pressure', ChannelSpec(name='PressEVEN', unit='bar'))
+"""
+
+from dataclasses import dataclass
+import csv
+import gc
+import json
+import math
+from pathlib import Path
+import re
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from infra.errors import JudderError
+from infra.units import PA_PER_BAR, RAD_S_PER_RPM
+
+__all__ = ["ChannelSpec", "Channel", "Acquisition", "read_acquisition",
+           "parse_channel_option", "unit_factor", "ROLES", "FORMATS",
+           "SPEED_UNITS", "PRESSURE_UNITS"]
+
+#: Roles a channel plays, and the kind of quantity of each.
+ROLES = {"upstream_speed": "speed", "pressure": "pressure",
+         "downstream_speed": "speed"}
+#: The one role every acquisition must give.
+REQUIRED_ROLES = ("upstream_speed",)
+
+#: File suffixes read, and what they are.
+FORMATS = {".mf4": "ASAM MDF4", ".mdf": "ASAM MDF", ".csv": "CSV",
+           ".tdms": "NI TDMS", ".mat": "MATLAB MAT"}
+
+#: rad/s per unit of speed; Hz and 1/min count revolutions.
+SPEED_UNITS = {
+    "rpm": RAD_S_PER_RPM, "rev/min": RAD_S_PER_RPM, "1/min": RAD_S_PER_RPM,
+    "min^-1": RAD_S_PER_RPM, "min-1": RAD_S_PER_RPM, "r/min": RAD_S_PER_RPM,
+    "U/min": RAD_S_PER_RPM,
+    "rad/s": 1.0, "rad/sec": 1.0, "rad s^-1": 1.0,
+    "Hz": 2.0 * math.pi, "rev/s": 2.0 * math.pi, "rps": 2.0 * math.pi,
+}
+#: Pa per unit of pressure (psi: lbf/in^2 from the exact pound and inch).
+PRESSURE_UNITS = {
+    "Pa": 1.0, "hPa": 1e2, "kPa": 1e3, "MPa": 1e6, "bar": PA_PER_BAR,
+    "mbar": PA_PER_BAR / 1000, "psi": 0.45359237 * 9.80665 / 0.0254 ** 2,
+}
+#: s per unit of a time column or track.
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6,
+              "min": 60.0}
+_UNITS = {"speed": SPEED_UNITS, "pressure": PRESSURE_UNITS,
+          "time": TIME_UNITS}
+#: Units whose case carries a prefix (milli/mega): matched exactly only.
+_CASE_SENSITIVE = {"mpa", "mbar"}
+#: Names of a time channel, column or variable (lower case).
+_TIME_NAMES = ("time", "t")
+#: First 8 bytes of an MDF file (finalised, unfinalised).
+_MDF_MAGIC = (b"MDF     ", b"UnFinMF ")
+#: Channel names listed in a message, at most.
+_LISTED = 40
+
+
+@dataclass(frozen=True)
+class ChannelSpec:
+    """Which channel of a file plays a role.
+
+    Attributes
+    ----------
+    name : str
+        Channel name in the file (TDMS: ``channel`` or ``group/channel``;
+        MAT: ``variable`` or ``struct.field``).
+    unit : str, optional
+        Unit of the file's values; overrides the file's unit, and is
+        needed where the file has none.
+    """
+
+    name: str
+    unit: str = None
+
+
+@dataclass(frozen=True)
+class Channel:
+    """One channel on its own time base.
+
+    Attributes
+    ----------
+    time : ndarray
+        s, non-decreasing, NaN samples dropped.
+    values : ndarray
+        SI: rad/s for speeds, Pa for pressure.
+    unit_in_file : str
+        Unit the file's values are in: the file's, or the one given.
+    name : str
+        Channel name in the file.
+    """
+
+    time: np.ndarray
+    values: np.ndarray
+    unit_in_file: str
+    name: str
+
+
+@dataclass(frozen=True)
+class Acquisition:
+    """A bench acquisition read from a file.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+    format : str
+        The suffix without its dot: ``mf4``, ``mdf``, ``csv``, ``tdms``,
+        ``mat``.
+    channels : dict
+        Role (:data:`ROLES`) -> :class:`Channel`.
+    metadata : dict
+        What the file carries (e.g. ``dither_frequency_hz``,
+        ``dither_amplitude_bar``, ``oil_temperature_degC``,
+        ``engine_speed_rpm`` in files of :mod:`pysim.bench`).
+    """
+
+    path: Path
+    format: str
+    channels: dict
+    metadata: dict
+
+
+# --- units -----------------------------------------------------------------
+
+def _normalise_unit(unit):
+    """A unit string with unicode minus and superscripts spelt in ASCII."""
+    text = str(unit).strip().replace("⁻¹", "^-1").replace("−", "-")
+    return re.sub(r"\s*/\s*", "/", text)
+
+
+def _allowed_units(kind):
+    return ", ".join(_UNITS[kind])
+
+
+def unit_factor(unit, kind):
+    """SI units per ``unit`` of a quantity of ``kind``.
+
+    Parameters
+    ----------
+    unit : str
+    kind : {'speed', 'pressure', 'time'}
+
+    Returns
+    -------
+    float
+        rad/s, Pa or s per ``unit``.
+
+    Raises
+    ------
+    JudderError
+        The unit is unknown, or of another kind.
+    """
+    text = _normalise_unit(unit)
+    for table_kind, table in _UNITS.items():
+        factor = _lookup(table, text)
+        if factor is None:
+            continue
+        if table_kind != kind:
+            raise JudderError(f"unit {unit!r} is a {table_kind} unit, not a "
+                              f"{kind} unit; allowed: "
+                              f"{_allowed_units(kind)}")
+        return factor
+    raise JudderError(f"unit {unit!r} is unknown; allowed for a {kind}: "
+                      f"{_allowed_units(kind)}")
+
+
+def _lookup(table, text):
+    """Factor of ``text`` in ``table``: exact, or ignoring the case where
+    the case carries no prefix."""
+    if text in table:
+        return table[text]
+    if text.lower() in _CASE_SENSITIVE:
+        return None
+    by_lower = {key.lower(): value for key, value in table.items()}
+    return by_lower.get(text.lower())
+
+
+# --- options ---------------------------------------------------------------
+
+def parse_channel_option(text):
+    """``ROLE=NAME`` or ``ROLE=NAME:UNIT`` (the ``--channel`` option).
+
+    A name containing ``:`` needs its unit appended.
+
+    Returns
+    -------
+    role : str
+    spec : ChannelSpec
+    """
+    role, equals, rest = str(text).partition("=")
+    role = role.strip()
+    if not equals or not rest.strip():
+        raise JudderError(f"--channel {text!r}: give ROLE=NAME or "
+                          f"ROLE=NAME:UNIT with ROLE one of "
+                          f"{', '.join(ROLES)}")
+    _check_role(role, f"--channel {text!r}")
+    name, colon, unit = rest.rpartition(":")
+    if not colon:
+        return role, ChannelSpec(rest.strip())
+    try:
+        unit_factor(unit, ROLES[role])
+    except JudderError as exc:
+        raise JudderError(f"--channel {text!r}: {exc}") from None
+    return role, ChannelSpec(name.strip(), unit.strip())
+
+
+def _check_role(role, where):
+    if role not in ROLES:
+        raise JudderError(f"{where}: role {role!r} is unknown; allowed: "
+                          f"{', '.join(ROLES)}")
+
+
+def _specs(path, channels):
+    """The role -> ChannelSpec mapping, checked."""
+    specs = {}
+    for role, spec in dict(channels).items():
+        _check_role(role, str(path))
+        if isinstance(spec, str):
+            spec = ChannelSpec(spec)
+        if not isinstance(spec, ChannelSpec) or not str(spec.name).strip():
+            raise JudderError(f"{path}: role {role}: give a ChannelSpec "
+                              f"(NAME, UNIT) or a channel name, not "
+                              f"{spec!r}")
+        specs[role] = spec
+    missing = [role for role in REQUIRED_ROLES if role not in specs]
+    if missing:
+        raise JudderError(f"{path}: no channel given for {missing[0]}; give "
+                          f"it with --channel {missing[0]}=NAME[:UNIT]")
+    return specs
+
+
+# --- reading ---------------------------------------------------------------
+
+def read_acquisition(path, channels):
+    """Read the channels of a bench acquisition file, in SI units.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        ``.mf4``, ``.mdf``, ``.csv``, ``.tdms`` or ``.mat`` (see
+        :data:`FORMATS`).
+    channels : dict
+        Role (``upstream_speed`` required, ``pressure`` and
+        ``downstream_speed`` optional) -> :class:`ChannelSpec` (or a
+        channel name).
+
+    Returns
+    -------
+    Acquisition
+        An optional channel may be left with no samples (a downstream
+        pick-up that saw fewer than two tooth passages, all NaN); the
+        upstream speed has at least one.
+
+    Raises
+    ------
+    JudderError
+        Unknown format, unreadable file, a channel that is not in the
+        file, a unit that is missing, unknown or of the wrong kind.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in FORMATS:
+        raise JudderError(f"{path}: unknown acquisition format "
+                          f"{suffix or '(no suffix)'!r}; allowed: "
+                          f"{', '.join(FORMATS)}")
+    specs = _specs(path, channels)
+    if not path.is_file():
+        raise JudderError(f"{path}: no such file")
+    names, metadata, raws = _load(path, suffix,
+                                  [spec.name for spec in specs.values()])
+    read = {role: _channel(path, role, spec, names, raws.get(spec.name))
+            for role, spec in specs.items()}
+    for role in REQUIRED_ROLES:
+        if not len(read[role].values):
+            raise JudderError(f"{path}: {role} channel {specs[role].name!r} "
+                              "has no finite samples")
+    return Acquisition(path=path, format=suffix[1:], channels=read,
+                       metadata=metadata)
+
+
+def _load(path, suffix, wanted):
+    """Names in the file, its metadata and the wanted channels found.
+
+    Returns
+    -------
+    names : list of str
+    metadata : dict
+    raws : dict
+        Name -> (time s, values, unit or None) for the wanted names in
+        the file.
+    """
+    loader = {".mf4": _load_mdf, ".mdf": _load_mdf, ".csv": _load_csv,
+              ".tdms": _load_tdms, ".mat": _load_mat}[suffix]
+    try:
+        return loader(path, wanted)
+    except JudderError:
+        raise
+    except Exception as exc:   # whatever a corrupt file makes a library do
+        raise JudderError(f"{path}: not a readable {FORMATS[suffix]} file "
+                          f"({_one_line(exc)})") from None
+
+
+def _one_line(exc, limit=200):
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def _listing(names):
+    if not names:
+        return "(none)"
+    shown = ", ".join(repr(n) for n in names[:_LISTED])
+    more = len(names) - _LISTED
+    return shown + (f" and {more} more" if more > 0 else "")
+
+
+def _channel(path, role, spec, names, raw):
+    """One role's channel: found, unit known, in SI, NaN dropped."""
+    where = f"{path}: {role} channel {spec.name!r}"
+    if raw is None:
+        raise JudderError(f"{path}: no channel {spec.name!r} (for {role}); "
+                          f"channels in the file: {_listing(names)}")
+    time, values, file_unit = raw
+    unit = spec.unit if spec.unit is not None and str(spec.unit).strip() \
+        else file_unit
+    if unit is None or not str(unit).strip():
+        raise JudderError(f"{where} has no unit in the file; give it with "
+                          f"--channel {role}={spec.name}:UNIT (allowed: "
+                          f"{_allowed_units(ROLES[role])})")
+    try:
+        factor = unit_factor(unit, ROLES[role])
+    except JudderError as exc:
+        raise JudderError(f"{where}: {exc}") from None
+    time, values = _finite(where, time, values)
+    return Channel(time=time, values=values * factor,
+                   unit_in_file=str(unit).strip(), name=spec.name)
+
+
+def _finite(where, time, values):
+    """Time and values as float arrays, NaN samples dropped, checked."""
+    time = np.atleast_1d(np.asarray(time))
+    values = np.atleast_1d(np.asarray(values))
+    if values.dtype.kind not in "biuf" or values.ndim != 1:
+        raise JudderError(f"{where} is not a 1-D numeric signal "
+                          f"(dtype {values.dtype}, shape {values.shape})")
+    time = time.astype(float)
+    values = values.astype(float)
+    if time.shape != values.shape:
+        raise JudderError(f"{where}: {len(values)} samples but "
+                          f"{time.size} time stamps; they must be as many")
+    keep = np.isfinite(time) & np.isfinite(values)
+    time, values = time[keep], values[keep]
+    if np.any(np.diff(time) < 0):
+        raise JudderError(f"{where}: time goes backwards at "
+                          f"{time[np.argmax(np.diff(time) < 0)]:.9g} s; "
+                          "time stamps must not decrease")
+    return time, values
+
+
+def _plain(value):
+    """A metadata value as plain Python (numpy scalars and arrays, dicts)."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, np.datetime64):
+        return str(value)
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    return value
+
+
+# --- CSV -------------------------------------------------------------------
+
+def _load_csv(path, wanted):
+    """CSV as :func:`pysim.export.write_csv` writes it."""
+    lines = _csv_lines(path)
+    metadata = _csv_metadata(lines)
+    body = [(number, line) for number, line in enumerate(lines, 1)
+            if line.strip() and not line.lstrip().startswith("#")]
+    if not body:
+        raise JudderError(f"{path}: no header line (time [s], name [unit], "
+                          "...)")
+    rows = list(csv.reader([line for _, line in body],
+                           delimiter=_delimiter(body[0][1])))
+    header = [_split_header(cell) for cell in rows[0]]
+    names = [name for name, _ in header]
+    time_column = _csv_time_column(path, names)
+    _check_row_lengths(path, body, rows, len(header))
+    time = _csv_column(path, body, rows, time_column) * _column_factor(
+        path, header[time_column], "time")
+    raws = {}
+    for name in wanted:
+        if name in names and names.index(name) != time_column:
+            column = names.index(name)
+            raws[name] = (time, _csv_column(path, body, rows, column),
+                          header[column][1])
+    return [n for i, n in enumerate(names) if i != time_column], metadata, \
+        raws
+
+
+def _column_factor(path, column, kind):
+    """Factor of the unit of a (name, unit) column; 1 when it has none."""
+    name, unit = column
+    if unit is None:
+        return 1.0
+    try:
+        return unit_factor(unit, kind)
+    except JudderError as exc:
+        raise JudderError(f"{path}: column {name!r}: {exc}") from None
+
+
+def _csv_lines(path):
+    data = path.read_bytes()
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise JudderError(f"{path}: not UTF-8 text (byte "
+                          f"0x{data[exc.start]:02x} at offset {exc.start}); "
+                          "save the CSV as UTF-8") from None
+    if "\0" in text:
+        raise JudderError(f"{path}: not a text file (NUL bytes); a CSV "
+                          "file is UTF-8 text")
+    return text.splitlines()
+
+
+def _csv_metadata(lines):
+    """``# key: json-value`` lines; a value that is not JSON stays text."""
+    metadata = {}
+    for line in lines:
+        stripped = line.strip()
+        if not stripped.startswith("#") or ":" not in stripped:
+            continue
+        key, _, value = stripped[1:].partition(":")
+        try:
+            metadata[key.strip()] = json.loads(value)
+        except ValueError:
+            metadata[key.strip()] = value.strip()
+    return metadata
+
+
+def _delimiter(header):
+    counts = {d: header.count(d) for d in (",", ";", "\t")}
+    best = max(counts, key=counts.get)
+    return best if counts[best] else ","
+
+
+def _split_header(cell):
+    """``name [unit]`` -> (name, unit); a plain name has unit None."""
+    match = re.fullmatch(r"\s*(.*?)\s*\[([^\[\]]*)\]\s*", cell)
+    if match:
+        return match.group(1), match.group(2).strip() or None
+    return cell.strip(), None
+
+
+def _csv_time_column(path, names):
+    for index, name in enumerate(names):
+        if name.lower() in _TIME_NAMES:
+            return index
+    raise JudderError(f"{path}: no time column; the first line of data "
+                      f"must name one 'time [s]' (columns: "
+                      f"{_listing(names)})")
+
+
+def _check_row_lengths(path, body, rows, width):
+    for (number, _), row in zip(body[1:], rows[1:]):
+        if len(row) != width:
+            raise JudderError(f"{path}, line {number}: {len(row)} fields, "
+                              f"the header has {width}")
+
+
+def _csv_column(path, body, rows, column):
+    cells = [row[column].strip() or "nan" for row in rows[1:]]
+    try:
+        return np.array(cells, dtype=float)
+    except ValueError:
+        for (number, _), cell in zip(body[1:], cells):
+            try:
+                float(cell)
+            except ValueError:
+                raise JudderError(f"{path}, line {number}: {cell!r} is not "
+                                  "a number") from None
+        raise
+
+
+# --- MDF -------------------------------------------------------------------
+
+def _load_mdf(path, wanted):
+    """ASAM MDF: each channel on the time base of its channel group."""
+    try:
+        from asammdf import MDF
+    except ImportError:
+        raise JudderError(f"{path}: reading MDF needs asammdf (pip "
+                          "install asammdf)") from None
+    with open(path, "rb") as stream:
+        magic = stream.read(8)
+    if magic not in _MDF_MAGIC:
+        # asammdf would say so too, then complain again on collection
+        raise ValueError(f"it starts with {magic!r}, not {_MDF_MAGIC[0]!r}")
+    mdf = _open_mdf(MDF, path)
+    try:
+        where = _mdf_channels(mdf)
+        raws = {name: _mdf_signal(mdf, *where[name])
+                for name in wanted if name in where}
+        return list(where), _mdf_metadata(mdf.header), raws
+    finally:
+        mdf.close()
+
+
+def _open_mdf(MDF, path):
+    """``MDF(path)``; a file it cannot read raises ValueError, quietly.
+
+    asammdf 8 leaves a half-built object whose ``__del__`` fails when its
+    constructor fails; it is collected here with that one failure
+    silenced, so that it does not print ``Exception ignored in ...``.
+    """
+    previous = sys.unraisablehook
+
+    def hook(unraisable):
+        if not getattr(unraisable.object, "__module__", "").startswith(
+                "asammdf"):
+            previous(unraisable)
+    sys.unraisablehook = hook
+    try:
+        try:
+            return MDF(str(path))
+        except Exception as exc:
+            message = _one_line(exc)
+        gc.collect()
+    finally:
+        sys.unraisablehook = previous
+    raise ValueError(message)
+
+
+def _mdf_channels(mdf):
+    """Name -> (group, index) of its first occurrence, master channels
+    left out."""
+    masters = mdf.masters_db
+    where = {}
+    for name, places in mdf.channels_db.items():
+        data = [(g, i) for g, i in places if masters.get(g) != i]
+        if data:
+            where[name] = data[0]
+    return where
+
+
+def _mdf_signal(mdf, group, index):
+    signal = mdf.get(group=group, index=index)
+    return signal.timestamps, signal.samples, (signal.unit or None)
+
+
+def _mdf_metadata(header):
+    """The header comment (JSON as :mod:`pysim.export` writes it, else
+    text) and the header's author, department, project, subject."""
+    metadata = {}
+    for key in ("author", "department", "project", "subject"):
+        value = getattr(header, key, "")
+        if value:
+            metadata[key] = str(value)
+    text = getattr(header, "description", None)
+    if text is None:
+        text = getattr(header, "comment", "") or ""
+    parsed = _comment_dict(text)
+    if parsed is not None:
+        metadata.update(parsed)
+    elif text.strip():
+        metadata["comment"] = text.strip()
+    return metadata
+
+
+def _comment_dict(text):
+    """The JSON object of a comment: all of it, its ``<TX>``, or a line
+    (MDF3 comments gather lines of history)."""
+    for candidate in [text] + text.splitlines():
+        try:
+            parsed = json.loads(_xml_text(candidate.strip()))
+        except ValueError:
+            continue
+        if isinstance(parsed, dict):
+            return _plain(parsed)
+    return None
+
+
+def _xml_text(comment):
+    """The ``<TX>`` of an MDF comment, or the comment itself."""
+    comment = comment or ""
+    try:
+        element = ET.fromstring(comment).find(".//TX")
+    except ET.ParseError:
+        return comment
+    if element is None:
+        return comment
+    return element.text or ""
+
+
+# --- TDMS ------------------------------------------------------------------
+
+def _load_tdms(path, wanted):
+    """NI TDMS: waveform time tracks or a time channel of the group."""
+    try:
+        from nptdms import TdmsFile
+    except ImportError:
+        raise JudderError(f"{path}: reading TDMS needs npTDMS (pip install "
+                          "npTDMS)") from None
+    tdms = TdmsFile.read(str(path))
+    names = [f"{g.name}/{c.name}" for g in tdms.groups()
+             for c in g.channels()]
+    raws = {}
+    for name in wanted:
+        found = _tdms_find(path, tdms, name)
+        if found is not None:
+            raws[name] = _tdms_signal(path, *found)
+    return names, _plain(dict(tdms.properties)), raws
+
+
+def _tdms_find(path, tdms, name):
+    """(group, channel) named ``group/channel`` or ``channel``."""
+    group_name, slash, channel_name = name.rpartition("/")
+    matches = [(g, c) for g in tdms.groups() for c in g.channels()
+               if (slash and g.name == group_name and c.name == channel_name)
+               or c.name == name]
+    if len(matches) > 1:
+        paths = [f"{g.name}/{c.name}" for g, c in matches]
+        raise JudderError(f"{path}: channel {name!r} is in several groups; "
+                          f"name one of {_listing(paths)}")
+    return matches[0] if matches else None
+
+
+def _tdms_signal(path, group, channel):
+    unit = channel.properties.get("unit_string") or None
+    values = channel[:]
+    if "wf_increment" in channel.properties:
+        factor = _tdms_time_factor(path, channel, channel.properties.get(
+            "wf_xunit_string") or "s")
+        return channel.time_track() * factor, values, unit
+    clock = _tdms_time_channel(group)
+    if clock is None or clock is channel:
+        raise JudderError(f"{path}: channel '{group.name}/{channel.name}' "
+                          "has no time: no wf_increment property and no "
+                          f"'time' channel in group {group.name!r}")
+    factor = _tdms_time_factor(path, clock, clock.properties.get(
+        "unit_string") or "s")
+    return _seconds(clock[:]) * factor, values, unit
+
+
+def _tdms_time_channel(group):
+    for channel in group.channels():
+        if _split_header(channel.name)[0].lower() in _TIME_NAMES:
+            return channel
+    return None
+
+
+def _tdms_time_factor(path, channel, unit):
+    return _column_factor(path, (channel.name, unit), "time")
+
+
+def _seconds(time):
+    """Time stamps as float s (datetime64: from the first one)."""
+    time = np.asarray(time)
+    if np.issubdtype(time.dtype, np.datetime64):
+        return (time - time[0]) / np.timedelta64(1, "s")
+    return time
+
+
+# --- MAT -------------------------------------------------------------------
+
+def _load_mat(path, wanted):
+    """MATLAB MAT up to v7: variables or struct fields with time vectors."""
+    import scipy.io
+    try:
+        data = scipy.io.loadmat(str(path), simplify_cells=True)
+    except NotImplementedError:
+        raise JudderError(f"{path}: MAT v7.3 (HDF5) is not read; save it "
+                          "with save(..., '-v7')") from None
+    top = {k: v for k, v in data.items() if not k.startswith("__")}
+    signals = _mat_signals(top)
+    raws = {}
+    for name in wanted:
+        scope = _mat_scope(path, signals, name)
+        if scope is not None:
+            raws[name] = _mat_signal(path, top, scope)
+    return sorted(signals), _mat_metadata(top), raws
+
+
+def _mat_signals(top, prefix=(), scopes=None):
+    """Dotted name -> (path of struct names, key) of every numeric array."""
+    scopes = {} if scopes is None else scopes
+    node = _mat_node(top, prefix)
+    for key, value in node.items():
+        if isinstance(value, dict) and key not in ("units", "metadata"):
+            _mat_signals(top, prefix + (key,), scopes)
+        elif isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
+            scopes[".".join(prefix + (key,))] = (prefix, key)
+    return scopes
+
+
+def _mat_node(top, prefix):
+    node = top
+    for key in prefix:
+        node = node[key]
+    return node
+
+
+def _mat_scope(path, signals, name):
+    """(struct path, key) of ``name``: dotted, or a unique plain name."""
+    if name in signals:
+        return signals[name]
+    matches = [dotted for dotted, (_, key) in signals.items() if key == name]
+    if len(matches) > 1:
+        raise JudderError(f"{path}: variable {name!r} is in several structs; "
+                          f"name one of {_listing(sorted(matches))}")
+    return signals[matches[0]] if matches else None
+
+
+def _mat_signal(path, top, scope):
+    """(time, values, unit) of one signal, looking for its time vector and
+    unit in its struct, then in the structs around it."""
+    prefix, key = scope
+    nodes = [_mat_node(top, prefix[:i]) for i in range(len(prefix), -1, -1)]
+    time = _first(nodes, [f"{key}_time", f"t_{key}"] + list(_TIME_NAMES))
+    if time is None:
+        name = ".".join(prefix + (key,))
+        raise JudderError(f"{path}: variable {name!r} has no time vector; "
+                          f"give one as {key}_time, t_{key}, time or t")
+    units = [node["units"] for node in nodes
+             if isinstance(node.get("units"), dict)]
+    unit = _first(units, [key])
+    if unit is not None:
+        unit = str(unit).strip() or None
+    return time, _mat_node(top, prefix)[key], unit
+
+
+def _first(nodes, keys):
+    """The first value of ``keys`` found in ``nodes`` (inner first)."""
+    for node in nodes:
+        for key in keys:
+            if key in node and not isinstance(node[key], dict):
+                return node[key]
+    return None
+
+
+def _mat_metadata(top):
+    """The ``metadata`` struct and the scalar variables (numbers, text)."""
+    metadata = {key: _plain(value) for key, value in top.items()
+                if isinstance(value, (str, int, float, bool, np.generic))}
+    if isinstance(top.get("metadata"), dict):
+        metadata.update(_plain(top["metadata"]))
+    return metadata

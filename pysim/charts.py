@@ -1,0 +1,314 @@
+"""Experimental stability charts from bench acquisitions (section 3.2).
+
+A chart is a set of engagement runs, each at a dither frequency and
+amplitude and in a group (an oil temperature, an engine speed, ...), read
+by :func:`pysim.run_analysis.analyse_run`. Contoured over (frequency,
+amplitude) per group it is Fig. 10 and Fig. 11 of the paper; per
+frequency the lowest amplitude with judder is the experimental stability
+boundary that section 4.2 fits the model to.
+
+Where runs come from:
+
+* a campaign folder of ``judder campaign`` (its ``index.csv``);
+* an index CSV with a ``file`` column (paths relative to the index) and
+  optional ``freq_hz``, ``p_f_bar``, ``oil_temperature``, ``engine_rpm``
+  and any further columns to group by;
+* acquisition files alone; their own metadata, or the pressure channel,
+  give the dither setting.
+"""
+
+from dataclasses import dataclass
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from infra.errors import JudderError
+from infra.parallel import parallel_map
+
+from .acquisitions import ChannelSpec, read_acquisition
+from .run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH, analyse_run
+
+__all__ = ["RunSource", "ChartRun", "Chart", "DEFAULT_CHANNELS",
+           "GROUP_COLUMNS", "sources_from_campaign", "sources_from_index",
+           "sources_from_files", "gather_sources", "build_chart"]
+
+#: Channel names of the files ``judder campaign`` writes.
+DEFAULT_CHANNELS = {"upstream_speed": ChannelSpec("n_upstream"),
+                    "downstream_speed": ChannelSpec("n_downstream"),
+                    "pressure": ChannelSpec("p_even")}
+#: Columns a chart is grouped by when they take several values.
+GROUP_COLUMNS = ("oil_temperature", "engine_rpm")
+#: Metadata keys of acquisition files that give a run's settings.
+_METADATA_KEYS = {"dither_frequency_hz": "freq_hz",
+                  "dither_amplitude_bar": "p_f_bar",
+                  "oil_temperature_degC": "oil_temperature",
+                  "engine_speed_rpm": "engine_rpm"}
+_NUMBER_COLUMNS = ("freq_hz", "p_f_bar", "engine_rpm")
+
+
+@dataclass(frozen=True)
+class RunSource:
+    """An acquisition file and what is known of its run.
+
+    ``settings`` may hold ``freq_hz`` (Hz), ``p_f_bar`` (bar) and group
+    columns; what it lacks comes from the file's metadata or is estimated.
+    """
+
+    path: Path
+    settings: dict
+
+
+@dataclass(frozen=True)
+class ChartRun:
+    """One run of a chart: where it came from, its settings, its reading.
+
+    ``analysis`` is a :class:`pysim.run_analysis.RunAnalysis`, or None
+    when the run could not be read (``error`` says why).
+    """
+
+    path: Path
+    settings: dict
+    analysis: object
+    error: str = ""
+
+    def group(self, columns):
+        """Values of the group columns, as a tuple of text."""
+        return tuple(str(self.settings.get(c, "")) for c in columns)
+
+
+def _read_csv(path, option):
+    try:
+        with open(path, newline="", encoding="utf-8") as stream:
+            return list(csv.DictReader(stream))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise JudderError(f"{option} {path}: cannot read it as CSV "
+                          f"({exc})") from None
+
+
+def _settings(row, source):
+    settings = {}
+    for key, value in row.items():
+        if key is None or key == "file" or value in (None, ""):
+            continue
+        if key in _NUMBER_COLUMNS:
+            try:
+                settings[key] = float(value)
+            except ValueError:
+                raise JudderError(f"{source}: {key} = {value!r} is not a "
+                                  "number") from None
+        else:
+            settings[key] = value
+    return settings
+
+
+def sources_from_campaign(folder):
+    """The runs of a ``judder campaign`` folder that succeeded.
+
+    Each run's MF4 file is preferred (every channel on its own time base),
+    else its CSV.
+    """
+    folder = Path(folder)
+    rows = _read_csv(folder / "index.csv", "campaign")
+    sources = []
+    for row in rows:
+        if row.get("status") != "ok":
+            continue
+        files = row.get("files", "").split()
+        chosen = next((f for f in files if f.endswith(".mf4")),
+                      files[0] if files else None)
+        if chosen is None:
+            continue
+        settings = _settings({k: row[k] for k in
+                              ("freq_hz", "p_f_bar", "engine_rpm",
+                               "oil_temperature") if k in row},
+                             folder / "index.csv")
+        sources.append(RunSource(folder / chosen, settings))
+    if not sources:
+        raise JudderError(f"campaign {folder}: index.csv lists no run that "
+                          "succeeded")
+    return sources
+
+
+def sources_from_index(index):
+    """Runs listed in an index CSV with a ``file`` column."""
+    index = Path(index)
+    rows = _read_csv(index, "--index")
+    if not rows or "file" not in rows[0]:
+        raise JudderError(f"--index {index}: needs a 'file' column (and "
+                          "optionally freq_hz, p_f_bar, oil_temperature, "
+                          "engine_rpm)")
+    return [RunSource(index.parent / row["file"], _settings(row, index))
+            for row in rows]
+
+
+def sources_from_files(paths):
+    """Runs from acquisition files alone."""
+    return [RunSource(Path(p), {}) for p in paths]
+
+
+def gather_sources(paths, index=None):
+    """Runs of campaign folders, acquisition files and an index CSV."""
+    sources = []
+    files = []
+    for path in map(Path, paths):
+        if path.is_dir():
+            sources += sources_from_campaign(path)
+        elif path.exists():
+            files.append(path)
+        else:
+            raise JudderError(f"SOURCE {path}: no such file or folder")
+    sources += sources_from_files(files)
+    if index is not None:
+        sources += sources_from_index(index)
+    if not sources:
+        raise JudderError("give at least one SOURCE (campaign folder or "
+                          "acquisition file) or --index")
+    return sources
+
+
+def _analyse(job):
+    source, channels, min_growth, min_amplitude = job
+    try:
+        acquisition = read_acquisition(source.path, channels)
+        settings = {**{_METADATA_KEYS[k]: v
+                       for k, v in acquisition.metadata.items()
+                       if k in _METADATA_KEYS}, **source.settings}
+        ch = acquisition.channels
+
+        def pair(role):
+            # an optional channel with too few samples is as good as none
+            return ((ch[role].time, ch[role].values)
+                    if role in ch and len(ch[role].time) >= 2 else None)
+        analysis = analyse_run(pair("upstream_speed"), pair("pressure"),
+                               pair("downstream_speed"),
+                               freq_hz=settings.get("freq_hz"),
+                               p_f_bar=settings.get("p_f_bar"),
+                               min_growth=min_growth,
+                               min_amplitude_rpm=min_amplitude)
+        return ChartRun(source.path, settings, analysis)
+    except JudderError as exc:
+        return ChartRun(source.path, source.settings, None, str(exc))
+
+
+@dataclass(frozen=True)
+class Chart:
+    """Runs read into an experimental stability chart.
+
+    Attributes
+    ----------
+    runs : list of ChartRun
+    group_by : tuple of str
+        Columns whose values make the groups (panels).
+    min_growth : float
+        1/s, the verdict's growth threshold.
+    """
+
+    runs: list
+    group_by: tuple
+    min_growth: float
+
+    @property
+    def read(self):
+        """Runs that were read."""
+        return [r for r in self.runs if r.analysis is not None]
+
+    @property
+    def failed(self):
+        """Runs that could not be read."""
+        return [r for r in self.runs if r.analysis is None]
+
+    def groups(self):
+        """``{group: [ChartRun, ...]}`` of the runs read, in order."""
+        out = {}
+        for run in self.read:
+            out.setdefault(run.group(self.group_by), []).append(run)
+        return out
+
+    def boundary(self, group):
+        """Experimental stability boundary of one group.
+
+        Returns
+        -------
+        list of (float, float or None, float)
+            Per dither frequency (Hz, ascending): the lowest amplitude
+            with judder (bar), or None where no run had judder (a censored
+            point), and the largest amplitude tried (bar).
+        """
+        runs = self.groups().get(group, [])
+        table = {}
+        for run in runs:
+            a = run.analysis
+            key = round(a.freq_hz, 6)
+            lowest, tried = table.get(key, (None, 0.0))
+            if a.judder and (lowest is None or a.p_f_bar < lowest):
+                lowest = a.p_f_bar
+            table[key] = (lowest, max(tried, a.p_f_bar))
+        return [(f, *table[f]) for f in sorted(table)]
+
+    def boundary_csv(self, group):
+        """The boundary as ``judder fit --boundary`` reads it."""
+        lines = ["freq_hz,p_f_bar"] + [
+            f"{f:.9g}," + ("" if p is None else f"{p:.9g}")
+            for f, p, _ in self.boundary(group)]
+        return "\n".join(lines) + "\n"
+
+    def arrays(self):
+        """Per-run arrays (NaN where unknown), for NPZ files and plots."""
+        runs = self.read
+        return {
+            "source_file": np.array([str(r.path) for r in runs]),
+            "group": np.array(["/".join(r.group(self.group_by))
+                               for r in runs]),
+            "freq_hz": np.array([r.analysis.freq_hz for r in runs]),
+            "p_f_bar": np.array([r.analysis.p_f_bar for r in runs]),
+            "amplitude_rpm": np.array([r.analysis.amplitude_rpm
+                                       for r in runs]),
+            "growth_per_s": np.array([np.nan if r.analysis.growth_per_s
+                                      is None else r.analysis.growth_per_s
+                                      for r in runs]),
+            "judder": np.array([r.analysis.judder for r in runs]),
+            "kind": np.array([r.analysis.kind for r in runs]),
+            "dither_estimated": np.array([r.analysis.estimated
+                                          for r in runs])}
+
+
+def build_chart(sources, channels=None, group_by=None,
+                min_growth=MIN_GROWTH, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
+                workers=None, callback=None):
+    """Read every run and make the chart.
+
+    Parameters
+    ----------
+    sources : sequence of RunSource
+    channels : dict, optional
+        Role -> :class:`pysim.acquisitions.ChannelSpec`; default
+        :data:`DEFAULT_CHANNELS` (the names ``judder campaign`` writes).
+    group_by : sequence of str, optional
+        Group columns; default those of :data:`GROUP_COLUMNS` that take
+        more than one value.
+    min_growth, min_amplitude_rpm : float
+        The verdict's thresholds (:mod:`pysim.run_analysis`).
+    workers : int, optional
+    callback : callable, optional
+        ``callback(done, total)`` after each run.
+
+    Returns
+    -------
+    Chart
+        Runs that cannot be read are kept with their error.
+    """
+    channels = dict(channels or DEFAULT_CHANNELS)
+    if "upstream_speed" not in channels:
+        raise JudderError("--channel upstream_speed=NAME is required (the "
+                          "speed upstream of the clutch)")
+    jobs = [(s, channels, min_growth, min_amplitude_rpm) for s in sources]
+    runs = []
+    for run in parallel_map(_analyse, jobs, workers):
+        runs.append(run)
+        if callback is not None:
+            callback(len(runs), len(jobs))
+    if group_by is None:
+        group_by = tuple(c for c in GROUP_COLUMNS if len(
+            {r.settings.get(c) for r in runs if r.analysis}) > 1)
+    return Chart(runs=runs, group_by=tuple(group_by), min_growth=min_growth)

@@ -1,0 +1,517 @@
+"""Bench acquisition readers (pysim.acquisitions): every format written by
+the library that owns it, read back in SI on its own time bases; the bad
+inputs; and the files of the bench emulator."""
+
+import json
+import math
+from pathlib import Path
+import subprocess
+import sys
+
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+import scipy.io
+
+from infra.errors import JudderError
+from pysim.acquisitions import (Acquisition, ChannelSpec, parse_channel_option,
+                                read_acquisition, unit_factor)
+from pysim.export import write_csv
+
+ROOT = Path(__file__).resolve().parents[1]
+# expected factors, written independently of the module's table
+TO_SI = {"rpm": 2 * math.pi / 60, "rad/s": 1.0, "bar": 1e5, "kPa": 1e3}
+METADATA = {"dither_frequency_hz": 105.0, "dither_amplitude_bar": 0.1,
+            "oil_temperature_degC": "65-70", "engine_speed_rpm": 1000.0}
+ROLES = {"upstream_speed": ChannelSpec("EngSpd_up"),
+         "pressure": ChannelSpec("PressEVEN"),
+         "downstream_speed": ChannelSpec("OutSpd_dn")}
+UNIT_CASES = [("rpm", "bar"), ("rad/s", "kPa")]
+
+
+def _pickup(seed, n, rpm):
+    """Tooth-passage times of a 41-tooth wheel near ``rpm`` (non-uniform)."""
+    rng = np.random.default_rng(seed)
+    period = 60 / (rpm * 41)
+    return 0.002 + np.cumsum(period * (1 + 0.2 * rng.random(n)))
+
+
+@pytest.fixture
+def bench():
+    """Signals in rpm / bar on three independent time bases."""
+    t_up = _pickup(1, 300, 1000.0)
+    t_down = _pickup(2, 250, 800.0)
+    t_p = np.arange(500) * 1e-3
+    return {
+        "EngSpd_up": (t_up, 1000 + 30 * np.sin(2 * np.pi * 105 * t_up)),
+        "OutSpd_dn": (t_down, 800 + 10 * np.cos(2 * np.pi * 40 * t_down)),
+        "PressEVEN": (t_p, 3 + 0.1 * np.sin(2 * np.pi * 105 * t_p)),
+    }
+
+
+def _in(values, unit):
+    """Values given in rpm / bar, expressed in ``unit``."""
+    base = "rpm" if unit in ("rpm", "rad/s") else "bar"
+    return values * TO_SI[base] / TO_SI[unit]
+
+
+def _check(acq, bench, units, rtol=1e-12, exact_time=True):
+    speed_unit, pressure_unit = units
+    for role, unit in [("upstream_speed", speed_unit),
+                       ("downstream_speed", speed_unit),
+                       ("pressure", pressure_unit)]:
+        channel = acq.channels[role]
+        time, values = bench[channel.name]
+        base = "rpm" if unit in ("rpm", "rad/s") else "bar"
+        assert channel.unit_in_file == unit
+        assert_allclose(channel.values, values * TO_SI[base], rtol=rtol)
+        if exact_time:
+            assert_allclose(channel.time, time, rtol=1e-12, atol=0)
+
+
+# --- each format, written by the library that owns it ---------------------
+
+def _write_mf4(path, bench, units, version="4.10"):
+    from asammdf import MDF, Signal
+    mdf = MDF(version=version)
+    for name, (time, values) in bench.items():
+        unit = units[0] if "Spd" in name else units[1]
+        mdf.append([Signal(samples=_in(values, unit), timestamps=time,
+                           name=name, unit=unit)])
+    mdf.header.comment = json.dumps(METADATA)
+    mdf.save(path, overwrite=True)
+    mdf.close()
+
+
+@pytest.mark.parametrize("units", UNIT_CASES)
+def test_mf4_channels_keep_their_time_bases(tmp_path, bench, units):
+    path = tmp_path / "run.mf4"
+    _write_mf4(path, bench, units)
+    acq = read_acquisition(path, ROLES)
+    assert isinstance(acq, Acquisition) and acq.format == "mf4"
+    assert acq.path == path
+    _check(acq, bench, units)
+    assert acq.metadata == METADATA
+    # three different lengths: nothing was resampled
+    assert {len(c.time) for c in acq.channels.values()} == {300, 250, 500}
+
+
+def test_mdf3_reads_too(tmp_path, bench):
+    path = tmp_path / "run.mdf"
+    _write_mf4(path, bench, ("rpm", "bar"), version="3.30")
+    acq = read_acquisition(path, ROLES)
+    assert acq.format == "mdf"
+    _check(acq, bench, ("rpm", "bar"))
+    assert {k: acq.metadata[k] for k in METADATA} == METADATA
+
+
+def _write_tdms(path, bench, units):
+    from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
+    (t_up, n_up), (t_down, n_down), (t_p, p) = (
+        bench["EngSpd_up"], bench["OutSpd_dn"], bench["PressEVEN"])
+    speed, pressure = units
+    objects = [
+        RootObject(properties=METADATA),
+        GroupObject("Speeds"),
+        ChannelObject("Speeds", "Time", t_up, properties={"unit_string": "s"}),
+        ChannelObject("Speeds", "EngSpd_up", _in(n_up, speed),
+                      properties={"unit_string": speed}),
+        GroupObject("Output"),
+        ChannelObject("Output", "time", t_down * 1e3,
+                      properties={"unit_string": "ms"}),
+        ChannelObject("Output", "OutSpd_dn", _in(n_down, speed),
+                      properties={"unit_string": speed}),
+        GroupObject("Hydraulics"),
+        ChannelObject("Hydraulics", "PressEVEN", _in(p, pressure),
+                      properties={"unit_string": pressure,
+                                  "wf_increment": 1e-3,
+                                  "wf_start_offset": 0.0,
+                                  "wf_samples": len(p)}),
+    ]
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment(objects)
+
+
+@pytest.mark.parametrize("units", UNIT_CASES)
+def test_tdms_waveform_and_time_channels(tmp_path, bench, units):
+    path = tmp_path / "run.tdms"
+    _write_tdms(path, bench, units)
+    acq = read_acquisition(path, ROLES)
+    assert acq.format == "tdms"
+    _check(acq, bench, units)
+    assert acq.metadata == METADATA
+
+
+def test_tdms_group_slash_channel_and_ambiguous_names(tmp_path, bench):
+    from nptdms import ChannelObject, TdmsWriter
+    path = tmp_path / "two.tdms"
+    time, values = bench["EngSpd_up"]
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject(group, name, data, properties={"unit_string": u})
+            for group in ("A", "B") for name, data, u in
+            [("time", time, "s"), ("EngSpd_up", values, "rpm")]])
+    acq = read_acquisition(path,
+                           {"upstream_speed": ChannelSpec("B/EngSpd_up")})
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    values * TO_SI["rpm"], rtol=1e-12)
+    with pytest.raises(JudderError, match="several groups.*'A/EngSpd_up'"):
+        read_acquisition(path, {"upstream_speed": ChannelSpec("EngSpd_up")})
+
+
+def _mat_variables(bench, units):
+    speed, pressure = units
+    (t_up, n_up), (t_down, n_down), (t_p, p) = (
+        bench["EngSpd_up"], bench["OutSpd_dn"], bench["PressEVEN"])
+    return {"EngSpd_up": _in(n_up, speed), "EngSpd_up_time": t_up,
+            "OutSpd_dn": _in(n_down, speed), "t_OutSpd_dn": t_down,
+            "PressEVEN": _in(p, pressure), "time": t_p,
+            "units": {"EngSpd_up": speed, "OutSpd_dn": speed,
+                      "PressEVEN": pressure}}
+
+
+@pytest.mark.parametrize("units", UNIT_CASES)
+def test_mat_variables_with_their_time_vectors(tmp_path, bench, units):
+    path = tmp_path / "run.mat"
+    scipy.io.savemat(path, {**_mat_variables(bench, units),
+                            "metadata": METADATA})
+    acq = read_acquisition(path, ROLES)
+    assert acq.format == "mat"
+    _check(acq, bench, units)
+    assert acq.metadata == METADATA
+
+
+def test_mat_struct_with_shared_time_and_scalar_metadata(tmp_path, bench):
+    path = tmp_path / "struct.mat"
+    scipy.io.savemat(path, {"acq": _mat_variables(bench, ("rpm", "bar")),
+                            "dither_frequency_hz": 105.0})
+    acq = read_acquisition(path, ROLES)
+    _check(acq, bench, ("rpm", "bar"))
+    assert acq.metadata == {"dither_frequency_hz": 105.0}
+    dotted = read_acquisition(path, {"upstream_speed":
+                                     ChannelSpec("acq.EngSpd_up")})
+    assert_allclose(dotted.channels["upstream_speed"].time,
+                    bench["EngSpd_up"][0], rtol=1e-12)
+
+
+def _csv_rounded(values):
+    """What ``write_csv`` keeps of a float (9 significant digits)."""
+    return np.array([float(f"{v:.9g}") for v in values])
+
+
+@pytest.mark.parametrize("units", UNIT_CASES)
+def test_csv_of_export_with_nan_dropped_per_channel(tmp_path, bench, units):
+    speed, pressure = units
+    t_up, n_up = bench["EngSpd_up"]
+    n_down = np.interp(t_up, *bench["OutSpd_dn"], left=np.nan)
+    p = np.interp(t_up, *bench["PressEVEN"])
+    path = tmp_path / "run.csv"
+    write_csv(path, t_up, {"EngSpd_up": _in(n_up, speed),
+                           "OutSpd_dn": _in(n_down, speed),
+                           "PressEVEN": _in(p, pressure)},
+              {"EngSpd_up": speed, "OutSpd_dn": speed,
+               "PressEVEN": pressure}, METADATA)
+    acq = read_acquisition(path, ROLES)
+    assert acq.format == "csv"
+    assert acq.metadata == METADATA
+    up = acq.channels["upstream_speed"]
+    assert_allclose(up.time, _csv_rounded(t_up), rtol=1e-12)
+    assert_allclose(up.values, _csv_rounded(_in(n_up, speed))
+                    * TO_SI[speed], rtol=1e-12)
+    down = acq.channels["downstream_speed"]
+    valid = ~np.isnan(n_down)
+    assert 0 < valid.sum() < len(t_up)     # the NaN head is dropped
+    assert_allclose(down.time, _csv_rounded(t_up[valid]), rtol=1e-12)
+    assert_allclose(down.values, _csv_rounded(_in(n_down[valid], speed))
+                    * TO_SI[speed], rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values,
+                    _csv_rounded(_in(p, pressure)) * TO_SI[pressure],
+                    rtol=1e-12)
+
+
+def test_csv_plain_names_with_units_given(tmp_path):
+    path = tmp_path / "plain.csv"
+    path.write_text("# source: \"rig 2\"\ntime;EngSpd_up;PressEVEN\n"
+                    "0.0;1000;2.5\n0.001;;2.6\n0.002;1010;2.7\n")
+    acq = read_acquisition(path, {
+        "upstream_speed": ChannelSpec("EngSpd_up", "1/min"),
+        "pressure": ChannelSpec("PressEVEN", "psi")})
+    up = acq.channels["upstream_speed"]
+    assert_allclose(up.time, [0.0, 0.002])
+    assert_allclose(up.values, np.array([1000, 1010]) * TO_SI["rpm"],
+                    rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values,
+                    np.array([2.5, 2.6, 2.7]) * 6894.757293168361,
+                    rtol=1e-12)
+    assert acq.metadata == {"source": "rig 2"}
+
+
+def test_given_unit_overrides_the_files(tmp_path, bench):
+    path = tmp_path / "run.mf4"
+    _write_mf4(path, bench, ("rpm", "bar"))
+    acq = read_acquisition(path, {"upstream_speed":
+                                  ChannelSpec("EngSpd_up", "rad/s")})
+    channel = acq.channels["upstream_speed"]
+    assert channel.unit_in_file == "rad/s"
+    assert_allclose(channel.values, bench["EngSpd_up"][1], rtol=1e-12)
+
+
+# --- units and options ----------------------------------------------------
+
+@pytest.mark.parametrize("unit, kind, factor", [
+    ("rpm", "speed", 2 * math.pi / 60), ("rev/min", "speed", 2 * math.pi / 60),
+    ("1/min", "speed", 2 * math.pi / 60), ("min^-1", "speed",
+                                           2 * math.pi / 60),
+    ("RPM", "speed", 2 * math.pi / 60), ("rad/s", "speed", 1.0),
+    ("Hz", "speed", 2 * math.pi), ("Pa", "pressure", 1.0),
+    ("kPa", "pressure", 1e3), ("MPa", "pressure", 1e6),
+    ("bar", "pressure", 1e5), ("mbar", "pressure", 100.0),
+    ("psi", "pressure", 6894.757293168361)])
+def test_unit_factors(unit, kind, factor):
+    assert unit_factor(unit, kind) == pytest.approx(factor, rel=1e-15)
+
+
+@pytest.mark.parametrize("unit, kind, words", [
+    ("bar", "speed", ["'bar' is a pressure unit", "rpm", "rad/s"]),
+    ("rpm", "pressure", ["'rpm' is a speed unit", "kPa", "psi"]),
+    ("mPa", "pressure", ["unknown", "MPa"]),
+    ("furlong/s", "speed", ["unknown", "rpm"])])
+def test_bad_units(unit, kind, words):
+    with pytest.raises(JudderError) as info:
+        unit_factor(unit, kind)
+    for word in words:
+        assert word in str(info.value)
+
+
+def test_channel_option():
+    assert parse_channel_option("upstream_speed=EngSpd_up") == (
+        "upstream_speed", ChannelSpec("EngSpd_up"))
+    assert parse_channel_option("downstream_speed=CAN:OutSpd:rpm") == (
+        "downstream_speed", ChannelSpec("CAN:OutSpd", "rpm"))
+    with pytest.raises(JudderError, match="role 'speed' is unknown.*"
+                       "upstream_speed"):
+        parse_channel_option("speed=EngSpd_up")
+    with pytest.raises(JudderError, match="pressure unit"):
+        parse_channel_option("upstream_speed=EngSpd_up:bar")
+    with pytest.raises(JudderError, match="ROLE=NAME"):
+        parse_channel_option("upstream_speed")
+
+
+# --- bad input -------------------------------------------------------------
+
+@pytest.fixture
+def mf4(tmp_path, bench):
+    path = tmp_path / "run.mf4"
+    _write_mf4(path, bench, ("rpm", "bar"))
+    return path
+
+
+def _message(path, channels):
+    with pytest.raises(JudderError) as info:
+        read_acquisition(path, channels)
+    message = str(info.value)
+    assert "\n" not in message
+    return message
+
+
+def test_missing_channel_lists_the_files_names(mf4):
+    message = _message(mf4, {"upstream_speed": ChannelSpec("n_up")})
+    assert str(mf4) in message and "'n_up'" in message
+    for name in ("EngSpd_up", "OutSpd_dn", "PressEVEN"):
+        assert repr(name) in message
+    assert "'time'" not in message          # master channels are not listed
+
+
+def test_missing_channel_in_csv_lists_columns(tmp_path):
+    path = tmp_path / "run.csv"
+    write_csv(path, np.arange(3.0), {"a": np.ones(3), "b": np.ones(3)},
+              {"a": "rpm", "b": "bar"}, {})
+    message = _message(path, {"upstream_speed": ChannelSpec("c")})
+    assert "'a', 'b'" in message and "'time'" not in message
+
+
+def test_missing_unit_says_how_to_give_it(tmp_path, bench):
+    path = tmp_path / "run.mat"
+    variables = _mat_variables(bench, ("rpm", "bar"))
+    del variables["units"]
+    scipy.io.savemat(path, variables)
+    message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up")})
+    assert str(path) in message and "upstream_speed" in message
+    assert "--channel upstream_speed=EngSpd_up:UNIT" in message
+
+
+def test_wrong_unit_kind_in_the_file(tmp_path, bench):
+    path = tmp_path / "run.mf4"
+    _write_mf4(path, bench, ("bar", "bar"))
+    message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up")})
+    assert "upstream_speed" in message and "'bar' is a pressure unit" \
+        in message and "rpm" in message
+
+
+def test_wrong_unit_kind_given(mf4):
+    message = _message(mf4, {"pressure": ChannelSpec("PressEVEN", "rpm"),
+                             "upstream_speed": ChannelSpec("EngSpd_up")})
+    assert "pressure channel 'PressEVEN'" in message
+    assert "'rpm' is a speed unit" in message
+
+
+def test_upstream_speed_is_required_and_roles_are_known(mf4):
+    assert "upstream_speed" in _message(
+        mf4, {"pressure": ChannelSpec("PressEVEN")})
+    message = _message(mf4, {"upstream_speed": ChannelSpec("EngSpd_up"),
+                             "torque": ChannelSpec("PressEVEN")})
+    assert "'torque'" in message and "downstream_speed" in message
+
+
+def test_unknown_suffix(tmp_path):
+    path = tmp_path / "run.xlsx"
+    path.write_bytes(b"PK")
+    message = _message(path, {"upstream_speed": ChannelSpec("x")})
+    assert str(path) in message and "'.xlsx'" in message
+    for suffix in (".mf4", ".csv", ".tdms", ".mat"):
+        assert suffix in message
+
+
+def test_no_such_file(tmp_path):
+    message = _message(tmp_path / "gone.csv",
+                       {"upstream_speed": ChannelSpec("x")})
+    assert "gone.csv: no such file" in message
+
+
+@pytest.mark.parametrize("suffix, words", [
+    (".mf4", ["not a readable ASAM MDF4 file"]),
+    (".mdf", ["not a readable ASAM MDF file"]),
+    (".tdms", ["not a readable NI TDMS file"]),
+    (".mat", ["not a readable MATLAB MAT file"]),
+    (".csv", ["not UTF-8", "save the CSV as UTF-8"])])
+def test_corrupt_files(tmp_path, suffix, words):
+    path = tmp_path / f"noise{suffix}"
+    noise = np.random.default_rng(0).integers(0, 256, 4096, dtype=np.uint8)
+    path.write_bytes(b"\xff\xfe" + noise.tobytes())
+    message = _message(path, {"upstream_speed": ChannelSpec("x")})
+    assert str(path) in message
+    for word in words:
+        assert word in message
+
+
+def test_truncated_mf4(tmp_path, mf4):
+    path = tmp_path / "cut.mf4"
+    path.write_bytes(mf4.read_bytes()[:700])
+    assert str(path) in _message(path, ROLES)
+
+
+@pytest.mark.parametrize("text, words", [
+    ("time [s],a [rpm]\n0,1\n0.1,x\n", ["line 3", "'x' is not a number"]),
+    ("time [s],a [rpm]\n0,1\n0.1\n", ["line 3", "1 fields"]),
+    ("when,a [rpm]\n0,1\n", ["no time column", "'when'"]),
+    ("time [h],a [rpm]\n0,1\n", ["column 'time'", "'h' is unknown"]),
+    ("time [s],a [rpm]\n0.2,1\n0.1,2\n", ["time goes backwards"]),
+    ("time [s],a [rpm]\n0,nan\n", ["upstream_speed channel 'a' has no "
+                                   "finite samples"]),
+    ("# only: 1\n", ["no header line"]),
+])
+def test_bad_csv(tmp_path, text, words):
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    message = _message(path, {"upstream_speed": ChannelSpec("a")})
+    assert str(path) in message
+    for word in words:
+        assert word in message
+
+
+def test_an_optional_channel_may_be_empty(tmp_path):
+    path = tmp_path / "rest.csv"
+    path.write_text("time [s],up [rpm],down [rpm]\n0,1000,nan\n"
+                    "0.001,1001,nan\n")
+    acq = read_acquisition(path, {"upstream_speed": ChannelSpec("up"),
+                                  "downstream_speed": ChannelSpec("down")})
+    down = acq.channels["downstream_speed"]
+    assert down.time.shape == down.values.shape == (0,)
+
+
+def test_mat_signal_without_time_vector(tmp_path):
+    path = tmp_path / "notime.mat"
+    scipy.io.savemat(path, {"EngSpd_up": np.ones(5)})
+    message = _message(path, {"upstream_speed":
+                              ChannelSpec("EngSpd_up", "rpm")})
+    assert "no time vector" in message and "EngSpd_up_time" in message
+
+
+def test_tdms_channel_without_time(tmp_path):
+    from nptdms import ChannelObject, TdmsWriter
+    path = tmp_path / "notime.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([ChannelObject("G", "EngSpd_up", np.ones(5),
+                                            properties={"unit_string":
+                                                        "rpm"})])
+    message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up")})
+    assert "no wf_increment" in message and "'time' channel" in message
+
+
+def test_module_does_not_import_matplotlib(mf4):
+    code = ("import sys; from pysim.acquisitions import read_acquisition, "
+            "ChannelSpec\n"
+            f"read_acquisition({str(mf4)!r}, "
+            "{'upstream_speed': ChannelSpec('EngSpd_up')})\n"
+            "print('matplotlib' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True,
+                         text=True, check=True, cwd=ROOT).stdout
+    assert out.strip() == "False"
+
+
+# --- files of the bench emulator --------------------------------------------
+
+def test_bench_campaign_csv_and_mf4_agree(tmp_path):
+    pytest.importorskip("rumoca")
+    pytest.importorskip("fmpy")
+    from drivelines import get_preset
+    from pysim.bench import Campaign, run_campaign
+    campaign = Campaign(freq_hz=(105.0,), p_f_bar=(0.1,), duration=0.3,
+                        formats=("csv", "mf4"))
+    rows = run_campaign(campaign, get_preset("paper-4dof"), tmp_path,
+                        workers=1)
+    assert rows[0]["status"] == "ok", rows[0]["message"]
+    roles = {"upstream_speed": ChannelSpec("n_upstream"),
+             "downstream_speed": ChannelSpec("n_downstream"),
+             "pressure": ChannelSpec("p_even")}
+    run_id = rows[0]["run_id"]
+    csv_run = read_acquisition(tmp_path / f"{run_id}.csv", roles)
+    mf4_run = read_acquisition(tmp_path / f"{run_id}.mf4", roles)
+    for acq in (csv_run, mf4_run):
+        assert acq.metadata["dither_frequency_hz"] == 105.0
+        assert acq.metadata["dither_amplitude_bar"] == 0.1
+        assert acq.metadata["engine_speed_rpm"] == 1000.0
+        assert acq.metadata["oil_temperature_degC"] == "65-70"
+        assert acq.channels["upstream_speed"].unit_in_file == "rpm"
+        assert acq.channels["pressure"].unit_in_file == "bar"
+    # the upstream pick-up is the CSV's time base: the same samples
+    up_csv, up_mf4 = (a.channels["upstream_speed"] for a in (csv_run,
+                                                             mf4_run))
+    assert len(up_csv.time) == len(up_mf4.time) > 50
+    assert_allclose(up_csv.time, up_mf4.time, rtol=1e-8)
+    assert_allclose(up_csv.values, up_mf4.values, rtol=1e-8)
+    # near 1000 rpm, in rad/s
+    assert np.median(up_mf4.values) == pytest.approx(1000 * TO_SI["rpm"],
+                                                     rel=0.1)
+    # the MF4 keeps the pressure at 1 kHz and the downstream pick-up on its
+    # own passages; the CSV has them interpolated on the upstream passages
+    p_mf4 = mf4_run.channels["pressure"]
+    assert_allclose(np.diff(p_mf4.time), 1e-3, rtol=1e-9)
+    assert not np.array_equal(mf4_run.channels["downstream_speed"].time,
+                              up_mf4.time)
+    p_csv = csv_run.channels["pressure"]
+    assert_allclose(p_csv.time, up_csv.time)
+    assert_allclose(p_csv.values, np.interp(p_csv.time, p_mf4.time,
+                                            p_mf4.values),
+                    rtol=1e-7, atol=1e-7 * np.abs(p_mf4.values).max())
+    # from rest, the downstream wheel sees few passages in 0.3 s: the CSV
+    # column is NaN until there are two, and those samples are dropped
+    down_csv, down_mf4 = (a.channels["downstream_speed"]
+                          for a in (csv_run, mf4_run))
+    if len(down_mf4.time) < 2:
+        assert len(down_csv.time) == 0
+    else:
+        assert down_csv.time[0] >= down_mf4.time[0]
+        assert_allclose(down_csv.values, np.interp(
+            down_csv.time, down_mf4.time, down_mf4.values), rtol=1e-7,
+            atol=1e-7 * np.abs(down_mf4.values).max())

@@ -1,0 +1,225 @@
+"""Experimental stability charts: the reading of one run (against signals
+whose growth is known in closed form), and charts of emulated campaigns
+against the Floquet tongues (section 3.2, Fig. 10)."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from drivelines import get_preset
+from infra.errors import JudderError
+from infra.units import PA_PER_BAR, RAD_S_PER_RPM
+from pysim.bench import Campaign, pickup_samples, run_campaign
+from pysim.run_analysis import analyse_run, engagement_window, estimate_dither
+from stability import build_driveline, floquet
+
+RPM = RAD_S_PER_RPM
+RNG = np.random.default_rng(7)
+
+
+def _engagement(speed_rpm_of_t, freq_hz=100.0, p_f_bar=0.2, duration=1.5):
+    """What the bench records: the upstream speed 1000 rpm + the given
+    fluctuation, measured by a 41-tooth pick-up (pysim.bench) with 0.5 rpm
+    noise; a 1 kHz pressure with a 0.1-0.15 s ramp; and a downstream speed
+    that never catches up (the clutch slips)."""
+    fine = np.arange(0, duration, 2e-5)
+    speed = (1000 + speed_rpm_of_t(fine)) * RPM
+    angle = np.concatenate([[0], np.cumsum((speed[1:] + speed[:-1]) / 2)
+                            * 2e-5])
+    t, rpm = pickup_samples(fine, angle, 41, noise_rpm=0.5, rng=RNG)
+    tp = np.arange(0, duration, 1e-3)
+    ramp = np.clip((tp - 0.1) / 0.05, 0, 1)
+    p = ramp * (1e6 + p_f_bar * PA_PER_BAR * np.cos(2 * np.pi * freq_hz * tp))
+    down = 200 * tp * RPM
+    return (t, rpm * RPM), (tp, p), (tp, down)
+
+
+def _after_ramp(t):
+    return t > 0.15
+
+
+@pytest.mark.parametrize("growth", [2.0, 4.0])
+def test_growing_single_period_component_is_judder_at_its_rate(growth):
+    # forced response 300 rpm at f, plus a component at f growing as
+    # exp(g t) from 5 rpm: d = y(t+T) - y(t) grows at g (closed form)
+    f = 100.0
+
+    def speed(t):
+        on = _after_ramp(t)
+        return on * (300 * np.cos(2 * np.pi * f * t)
+                     + 5 * np.exp(growth * (t - 0.15))
+                     * np.cos(2 * np.pi * f * t + 0.7))
+    reading = analyse_run(*_engagement(speed, f), freq_hz=f, p_f_bar=0.2)
+    assert reading.judder and reading.kind == "single-period"
+    assert reading.growth_per_s == pytest.approx(growth, rel=0.1)
+
+
+def test_growing_half_frequency_is_double_period():
+    f = 205.8
+
+    def speed(t):
+        on = _after_ramp(t)
+        return on * (20 * np.cos(2 * np.pi * f * t)
+                     + 1 * np.exp(2.6 * (t - 0.15))
+                     * np.cos(np.pi * f * t))
+    reading = analyse_run(*_engagement(speed, f), freq_hz=f, p_f_bar=0.3)
+    assert reading.judder and reading.kind == "double-period"
+    assert reading.growth_per_s == pytest.approx(2.6, rel=0.1)
+
+
+def test_growing_unrelated_frequency_is_combination():
+    # f = f1 + f2 (tongue 6): the growing response is at f1 = 18.9 Hz
+    f = 121.8
+
+    def speed(t):
+        on = _after_ramp(t)
+        return on * (10 * np.cos(2 * np.pi * f * t)
+                     + 1 * np.exp(3.0 * (t - 0.15))
+                     * np.cos(2 * np.pi * 18.9 * t))
+    reading = analyse_run(*_engagement(speed, f), freq_hz=f, p_f_bar=0.5)
+    assert reading.judder and reading.kind == "combination"
+    assert reading.growth_per_s == pytest.approx(3.0, rel=0.15)
+
+
+def test_forced_resonance_with_beating_is_not_judder():
+    # a large forced response at 100 Hz beating against a free 103 Hz
+    # mode that decays (0.2 % damping): large, but not growing
+    f = 100.0
+    sigma = 0.002 * 2 * np.pi * 103
+
+    def speed(t):
+        on = _after_ramp(t)
+        s = t - 0.15
+        return on * (500 * np.cos(2 * np.pi * f * t)
+                     - 400 * np.exp(-sigma * s)
+                     * np.cos(2 * np.pi * 103 * t)
+                     + 30 * np.exp(-3 * s) * np.cos(2 * np.pi * 16.5 * t))
+    reading = analyse_run(*_engagement(speed, f), freq_hz=f, p_f_bar=0.3)
+    assert not reading.judder and reading.kind == "stable"
+    assert reading.amplitude_rpm > 400
+
+
+def test_dither_setting_is_estimated_from_the_pressure():
+    speed, pressure, downstream = _engagement(lambda t: 0 * t, 103.3, 0.2)
+    window = engagement_window(speed, pressure, downstream)
+    assert window[0] == pytest.approx(0.15, abs=0.01)
+    freq, amplitude = estimate_dither(*pressure, window)
+    assert freq == pytest.approx(103.3, abs=0.01)
+    assert amplitude == pytest.approx(0.2 * PA_PER_BAR, rel=0.01)
+    reading = analyse_run(speed, pressure, downstream)
+    assert reading.estimated
+    assert reading.freq_hz == pytest.approx(103.3, abs=0.01)
+
+
+def test_a_run_without_engagement_is_refused():
+    t = np.linspace(0, 1, 1000)
+    with pytest.raises(JudderError, match="no engagement window"):
+        engagement_window((t, np.full_like(t, 100.0)), (t, np.zeros_like(t)),
+                          (t, np.full_like(t, 100.0)))
+
+
+# --- charts of emulated campaigns -----------------------------------------
+
+@pytest.fixture(scope="module")
+def campaign(tmp_path_factory):
+    """Emulated bench runs across tongue 2 and at a stable frequency."""
+    folder = tmp_path_factory.mktemp("campaign")
+    plan = Campaign(freq_hz=(60.0, 103.0), p_f_bar=(0.02, 0.14, 0.26),
+                    formats=("mf4",))
+    rows = run_campaign(plan, get_preset("paper-4dof"), folder, workers=2)
+    assert all(r["status"] == "ok" for r in rows)
+    return folder
+
+
+def test_chart_agrees_with_the_floquet_tongue(campaign):
+    from judder import api
+    result = api.chart([campaign], workers=1)
+    # the bench's linearisation: its motor control damps body 1
+    bench = build_driveline(get_preset("paper-4dof").replace(c1=2000.1))
+    for run in result.chart.read:
+        a = run.analysis
+        rate = floquet(bench, a.freq_hz, a.p_f_bar * PA_PER_BAR).growth_rate
+        if rate > 1.0:
+            assert a.judder, (a.freq_hz, a.p_f_bar, rate)
+        if a.freq_hz == 60.0:
+            assert not a.judder, (a.freq_hz, a.p_f_bar)
+    boundary = dict((f, p) for f, p, _ in
+                    result.chart.boundary(next(iter(result.chart.groups()))))
+    assert boundary[60.0] is None
+    # judder at 103 Hz from an amplitude inside tongue 2 of the bench
+    lowest = boundary[103.0]
+    assert lowest is not None
+    assert floquet(bench, 103.0, lowest * PA_PER_BAR).kind == "single-period"
+
+
+def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
+    boundary, plot, out = (tmp_path / "b.csv", tmp_path / "c.png",
+                           tmp_path / "c.npz")
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "chart", str(campaign), "--json",
+         "--boundary", str(boundary), "--plot", str(plot), "--out",
+         str(out), "--preset", "paper-4dof", "--set", "c1=2000.1"],
+        capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert len(data["runs"]) == 6
+    assert {"file", "freq_hz", "p_f_bar", "amplitude_rpm", "growth_per_s",
+            "judder"} <= set(data["runs"][0])
+    lowest = data["boundary"][1][1]
+    assert data["boundary"] == [[60.0, None], [103.0, lowest]]
+    assert lowest in (0.14, 0.26)
+    assert boundary.read_text().splitlines() == ["freq_hz,p_f_bar", "60,",
+                                                 f"103,{lowest:g}"]
+    assert plot.read_bytes()[:4] == b"\x89PNG"
+    with np.load(out) as npz:
+        assert npz["judder"].sum() == sum(r["judder"] for r in data["runs"])
+
+
+def test_chart_from_foreign_files_with_an_index(tmp_path):
+    # a user's own acquisitions: foreign channel names, units in the
+    # file, settings in an index CSV
+    from asammdf import MDF, Signal
+    f = 103.0
+    speed, pressure, downstream = _engagement(
+        lambda t: _after_ramp(t) * 3 * np.exp(3 * (t - 0.15))
+        * np.cos(2 * np.pi * f * t + 0.4), f)
+    mdf = MDF(version="4.10")
+    mdf.append([Signal(speed[1] / RPM, speed[0], name="EngSpd_up",
+                       unit="rpm")])
+    mdf.append([Signal(pressure[1] / PA_PER_BAR, pressure[0],
+                       name="PressEVEN", unit="bar"),
+                Signal(downstream[1] / RPM, downstream[0],
+                       name="OutSpd", unit="rpm")])
+    mdf.save(tmp_path / "run1.mf4", overwrite=True)
+    (tmp_path / "index.csv").write_text(
+        "file,freq_hz,oil_temperature\nrun1.mf4,103,65\n")
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "chart", "--index",
+         str(tmp_path / "index.csv"), "--channel",
+         "upstream_speed=EngSpd_up", "--channel", "pressure=PressEVEN",
+         "--channel", "downstream_speed=OutSpd", "--json"],
+        capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    run = json.loads(proc.stdout)["runs"][0]
+    assert run["judder"] and run["freq_hz"] == 103.0
+    # the amplitude was not in the index: estimated from the pressure
+    assert run["dither_estimated"]
+    assert run["p_f_bar"] == pytest.approx(0.2, rel=0.02)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--channel", "pressure=P"], ["upstream_speed"]),
+    (["--channel", "speed=X"], ["--channel", "speed", "upstream_speed"]),
+    (["/nonexistent/run.mf4"], ["/nonexistent/run.mf4"]),
+    ([], ["SOURCE"]),
+])
+def test_chart_refuses_bad_input(args, words):
+    proc = subprocess.run([sys.executable, "-m", "judder", "chart", *args],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr
+    for word in words:
+        assert word in proc.stderr
