@@ -147,7 +147,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
 
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
-            method=DEFAULT_METHOD, background=False, progress=None):
+            method=DEFAULT_METHOD, background=False, progress=None,
+            min_growth=0.0):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -160,6 +161,9 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     background : bool
         Also compute the map drawn under the boundaries by ``figure()``
         (:data:`BACKGROUND_AMPLITUDES` amplitudes from 0 to ``p_max``).
+    min_growth : float
+        1/s: boundaries of judder growing at least this fast (0: the
+        stability boundaries).
 
     Returns
     -------
@@ -171,7 +175,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     p_max = p_max_bar * PA_PER_BAR
     started = time.perf_counter()
     boundaries = tongue_boundaries(driveline, freq_hz, p_max, method,
-                                   callback=progress)
+                                   callback=progress, min_growth=min_growth)
     found = find_tongues(driveline, boundaries)
     seconds = time.perf_counter() - started
     under = (map_kernel(driveline, freq_hz,

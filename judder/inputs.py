@@ -14,7 +14,7 @@ from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
-           "read_boundary"]
+           "read_boundary", "read_chart_boundary"]
 
 
 def read_input(path, option):
@@ -104,6 +104,46 @@ def read_boundary_csv(text, source="boundary file"):
 def read_boundary(path, option="--boundary"):
     """A measured boundary file (see :func:`read_boundary_csv`)."""
     return read_boundary_csv(read_input(path, option), source=str(path))
+
+
+def read_chart_boundary(path, group=None, option="--chart"):
+    """The experimental boundary of a chart written by ``judder chart
+    --out``.
+
+    Parameters
+    ----------
+    path : path
+        The chart's NPZ file.
+    group : str, optional
+        Which group (``'65-70'``, ``'65-70/1000'``, ...); needed when the
+        chart has several.
+
+    Returns
+    -------
+    freq_hz, p_f : ndarray
+        Hz and Pa (NaN where no run had judder).
+    tried_bar : float
+        The largest amplitude tried, bar.
+    """
+    try:
+        with np.load(path, allow_pickle=False) as npz:
+            groups = npz["boundary_group"]
+            freq, p_bar = npz["boundary_freq_hz"], npz["boundary_p_f_bar"]
+            tried = npz["boundary_tried_bar"]
+    except (OSError, ValueError, KeyError) as exc:
+        raise JudderError(f"{option} {path}: not a chart written by judder "
+                          f"chart --out ({exc})") from None
+    names = list(dict.fromkeys(groups.tolist()))
+    if group is None and len(names) > 1:
+        raise JudderError(f"{option} {path} has {len(names)} groups; give "
+                          f"--group, one of {', '.join(names)}")
+    chosen = names[0] if group is None else group
+    if chosen not in names:
+        raise JudderError(f"--group {group!r} is not in {path}; allowed: "
+                          f"{', '.join(names)}")
+    keep = groups == chosen
+    return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
+            float(tried[keep].max()))
 
 
 def _is_number(text):

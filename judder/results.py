@@ -200,7 +200,7 @@ class TonguesResult:
     def as_dict(self):
         b = self.boundaries
         return {"model": self.params.model, "method": b.method,
-                "seconds": self.seconds,
+                "min_growth_per_s": b.min_growth, "seconds": self.seconds,
                 "freq_hz": [b.freq_hz[0], b.freq_hz[-1], len(b.freq_hz)],
                 "p_max_bar": b.p_max / PA_PER_BAR,
                 "max_boundary_multiplier_error": b.max_multiplier_error,

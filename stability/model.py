@@ -51,6 +51,23 @@ class PeriodicSystem:
         (rad/s) and amplitude ``p_f`` (Pa)."""
         return self.A0 + (p_f * np.cos(omega * t)) * np.outer(self.u, self.v)
 
+    def shifted(self, rate):
+        """The system of ``w = exp(-rate t) z``, 1/s.
+
+        Its multipliers are those of this system times ``exp(-rate T)``,
+        so its stability boundary is where this system's response grows
+        at ``rate``: the boundary of judder that grows at least that fast.
+
+        Examples
+        --------
+        >>> from drivelines import get_preset
+        >>> s = build_driveline(get_preset("paper-4dof")).periodic_system()
+        >>> bool(np.allclose(s.shifted(2.0).A0, s.A0 - 2 * np.eye(6)))
+        True
+        """
+        return PeriodicSystem(self.A0 - rate * np.eye(len(self.u)), self.u,
+                              self.v, self.state_names)
+
 
 @dataclass(frozen=True)
 class Driveline:

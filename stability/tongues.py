@@ -206,6 +206,9 @@ class Boundaries:
     natural_frequencies_hz : ndarray
     method : str
         Monodromy engine of the combination boundaries and the checks.
+    min_growth : float
+        1/s: the boundaries are where the response grows at this rate (0:
+        the stability boundary, a multiplier on the unit circle).
     """
 
     freq_hz: np.ndarray
@@ -214,6 +217,7 @@ class Boundaries:
     multiplier_error: np.ndarray
     natural_frequencies_hz: np.ndarray
     method: str = DEFAULT_METHOD
+    min_growth: float = 0.0
 
     @property
     def stability_boundary(self):
@@ -232,7 +236,7 @@ class Boundaries:
 
 
 def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
-                      callback=None):
+                      callback=None, min_growth=0.0):
     """Boundaries of the single-, double-period and combination tongues.
 
     Parameters
@@ -247,6 +251,11 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
         for the combination boundaries and the checks of every point.
     callback : callable, optional
         ``callback(done, total)`` after each frequency.
+    min_growth : float
+        Draw the boundary of growth at this rate (1/s) instead of the
+        stability boundary: the stability boundary of
+        :meth:`~stability.model.PeriodicSystem.shifted`. Judder that grows
+        slower than about 1/s does not build up within an engagement.
 
     Returns
     -------
@@ -268,7 +277,10 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
         raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
                           "> 0")
     get_method(method)
-    system = driveline.periodic_system()
+    if not np.isfinite(min_growth):
+        raise JudderError(f"min_growth = {min_growth!r} 1/s is not allowed; "
+                          "allowed: a finite rate")
+    system = driveline.periodic_system().shifted(min_growth)
     amplitude = np.empty((len(freq_hz), 3))
     errors = np.empty((len(freq_hz), 3))
     for index, freq in enumerate(freq_hz):
@@ -279,7 +291,7 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
     return Boundaries(freq_hz=freq_hz, p_max=float(p_max),
                       amplitude=amplitude, multiplier_error=errors,
                       natural_frequencies_hz=natural_frequencies(driveline),
-                      method=method)
+                      method=method, min_growth=float(min_growth))
 
 
 def resonances(natural_frequencies_hz):
@@ -384,7 +396,7 @@ def find_tongues(driveline, boundaries):
     list of Tongue
         Ordered by number (unnumbered ones last).
     """
-    system = driveline.periodic_system()
+    system = driveline.periodic_system().shifted(boundaries.min_growth)
     f = boundaries.freq_hz
     table = resonances(boundaries.natural_frequencies_hz)
     found = []

@@ -153,3 +153,18 @@ def test_tongue_range_is_where_the_boundary_exists(paper_tongues):
         inside = (GRID >= low) & (GRID <= high)
         column = KINDS.index(tongue.kind) - 1
         assert np.all(np.isfinite(boundaries.amplitude[inside, column]))
+
+
+@pytest.mark.parametrize("growth", [1.0, 2.0])
+def test_growth_boundary_is_where_the_exponent_reaches_the_rate(paper4,
+                                                                 growth):
+    # the boundary of the shifted system exp(-g t) z: on it the Floquet
+    # exponent ln|lambda|/T of the driveline equals g (Eq. 12-13)
+    freqs = [102.5, 102.9, 103.3]
+    b = tongue_boundaries(paper4, freqs, 1.5e5, min_growth=growth)
+    assert b.min_growth == growth
+    for f, p in zip(freqs, b.amplitude[:, 0]):
+        assert floquet(paper4, f, p).growth_rate == pytest.approx(
+            growth, abs=1e-6)
+    stable = tongue_boundaries(paper4, freqs, 1.5e5)
+    assert np.all(b.amplitude[:, 0] > stable.amplitude[:, 0])

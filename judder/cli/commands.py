@@ -44,6 +44,13 @@ def _write_outputs(args, result, save=None, figure=None):
     return _files(out=args.out, plot=args.plot)
 
 
+def _finite(option, value, unit):
+    if not math.isfinite(value):
+        raise JudderError(f"{option} {value} {unit} is not allowed; "
+                          "allowed: a finite number")
+    return value
+
+
 def _pf_max(args):
     return check_number("--pf-max", args.pf_max, "bar")
 
@@ -128,7 +135,9 @@ def cmd_tongues(args):
         result = api.tongues(freqs, _pf_max(args), params, changes,
                              method=args.method,
                              background=args.plot is not None,
-                             progress=progress)
+                             progress=progress,
+                             min_growth=_finite("--min-growth",
+                                                args.min_growth, "1/s"))
     data = {**result.as_dict(), **_write_outputs(args, result)}
     rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
             f"{'tip p_f [bar]':>14s} {'offset':>8s}"]

@@ -131,6 +131,9 @@ def build_parser():
     p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
     _pf_max_option(p, "largest amplitude searched")
+    p.add_argument("--min-growth", type=float, default=0.0, metavar="1/S",
+                   help="boundaries of judder growing at least this fast, "
+                        "1/s (default 0: the stability boundaries)")
     p.add_argument("--out", metavar="FILE.csv",
                    help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
                         "if none), then per kind, bar")
