@@ -311,4 +311,9 @@ def build_chart(sources, channels=None, group_by=None,
     if group_by is None:
         group_by = tuple(c for c in GROUP_COLUMNS if len(
             {r.settings.get(c) for r in runs if r.analysis}) > 1)
+    known = {c for r in runs for c in r.settings}
+    unknown = [c for c in group_by if c not in known]
+    if unknown:
+        raise JudderError(f"--group-by {unknown[0]}: no run has that column; "
+                          f"allowed: {', '.join(sorted(known)) or 'none'}")
     return Chart(runs=runs, group_by=tuple(group_by), min_growth=min_growth)

@@ -223,3 +223,21 @@ def test_chart_refuses_bad_input(args, words):
     assert "Traceback" not in proc.stderr
     for word in words:
         assert word in proc.stderr
+
+
+def test_chart_refuses_an_unknown_group_column(campaign):
+    proc = subprocess.run([sys.executable, "-m", "judder", "chart",
+                           str(campaign), "--group-by", "nosuch"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert "nosuch" in proc.stderr and "oil_temperature" in proc.stderr
+
+
+def test_unknown_plot_format_is_refused_before_any_work(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "judder", "map", "--plot",
+                           str(tmp_path / "m.xyz"), "--out",
+                           str(tmp_path / "m.npz")],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and "xyz" in proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert list(tmp_path.iterdir()) == []

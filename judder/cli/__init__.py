@@ -16,6 +16,7 @@ import sys
 
 from infra.errors import EXIT_ERROR, EXIT_INTERRUPTED, EXIT_OK, JudderError
 
+from .options import check_plot_format
 from .parser import build_parser
 
 __all__ = ["main", "build_parser"]
@@ -27,6 +28,8 @@ def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
+        if getattr(args, "plot", None):
+            check_plot_format(args.plot)
         # the kernels work on many tiny matrices: BLAS threads only contend
         with threadpool_limits(limits=1):
             args.handler(args)

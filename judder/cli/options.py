@@ -14,7 +14,7 @@ from infra.files import to_json
 from ..inputs import load_parameters
 
 __all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
-           "check_number", "make_parents", "Progress"]
+           "check_number", "make_parents", "check_plot_format", "Progress"]
 
 
 def parse_grid(text, option, unit, allow_negative=False):
@@ -94,6 +94,17 @@ def check_number(option, value, unit, strict=True):
                           f"allowed: a finite value {'>' if strict else '>='}"
                           f" 0 {unit}")
     return value
+
+
+def check_plot_format(path):
+    """Refuse a --plot file whose suffix matplotlib cannot write, before
+    any work is done."""
+    from matplotlib.backend_bases import FigureCanvasBase
+    formats = FigureCanvasBase.get_supported_filetypes()
+    suffix = Path(path).suffix.lstrip(".").lower()
+    if suffix not in formats:
+        raise JudderError(f"--plot {path}: unknown format {suffix!r}; "
+                          f"allowed: {', '.join(sorted(formats))}")
 
 
 def make_parents(*paths):
