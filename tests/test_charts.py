@@ -241,3 +241,27 @@ def test_unknown_plot_format_is_refused_before_any_work(tmp_path):
     assert proc.returncode == 2 and "xyz" in proc.stderr
     assert "Traceback" not in proc.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
+    from judder.inputs import read_chart_boundary
+    out = tmp_path / "c.npz"
+    made = subprocess.run([sys.executable, "-m", "judder", "chart",
+                           str(campaign), "--out", str(out), "--json"],
+                          capture_output=True, text=True, timeout=300)
+    boundary = json.loads(made.stdout)["boundary"]
+    freq, p_f, tried = read_chart_boundary(out)
+    assert freq.tolist() == [f for f, _ in boundary]
+    assert np.allclose(p_f / PA_PER_BAR, [np.nan if p is None else p
+                                          for _, p in boundary],
+                       equal_nan=True)
+    assert tried == pytest.approx(0.26)
+    proc = subprocess.run([sys.executable, "-m", "judder", "fit", "--chart",
+                           str(out), "--fit", "mu_g", "--set", "c1=2000.1",
+                           "--json"], capture_output=True, text=True,
+                          timeout=600)
+    assert "Traceback" not in proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["freq_hz"] == freq.tolist()
+    with pytest.raises(JudderError, match="not a chart"):
+        read_chart_boundary(tmp_path / "missing.npz")

@@ -13,7 +13,7 @@ from infra.files import save_figure
 from infra.units import PA_PER_BAR
 
 from .. import api
-from ..inputs import read_boundary
+from ..inputs import read_boundary, read_chart_boundary
 from .options import (check_number, emit, make_parents, parameters_of,
                       parse_grid, parse_list, Progress)
 
@@ -231,9 +231,16 @@ def _bounds(items):
 def cmd_fit(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
     names = parse_list(args.fit, "--fit", str)
-    p_max_bar = _pf_max(args)
     params, changes = parameters_of(args)
-    freqs, measured = read_boundary(args.boundary)
+    if args.chart:
+        freqs, measured, tried = read_chart_boundary(args.chart, args.group)
+        if args.pf_max is None:
+            args.pf_max = tried
+    else:
+        freqs, measured = read_boundary(args.boundary)
+    if args.pf_max is None:
+        args.pf_max = 1.5
+    p_max_bar = _pf_max(args)
     bounds = _bounds(args.bounds)
     make_parents(args.plot, args.save_params)
     report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar, names=names,

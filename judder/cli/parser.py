@@ -198,18 +198,28 @@ def build_parser():
                                    "model's stability boundary matches a "
                                    "measured one (CSV: freq_hz,p_f_bar; "
                                    "empty p_f_bar = no judder up to "
-                                   "--pf-max). Reports values, standard "
-                                   "uncertainties and the residual.")
-    p.add_argument("--boundary", required=True, metavar="FILE.csv",
-                   help="measured boundary, Hz and bar")
+                                   "--pf-max), or the boundary of a chart "
+                                   "(judder chart --out). Reports values, "
+                                   "standard uncertainties and the "
+                                   "residual.")
+    source = p.add_mutually_exclusive_group(required=True)
+    source.add_argument("--boundary", metavar="FILE.csv",
+                        help="measured boundary, Hz and bar")
+    source.add_argument("--chart", metavar="FILE.npz",
+                        help="an experimental chart (judder chart --out); "
+                             "--pf-max defaults to its largest amplitude")
+    p.add_argument("--group", metavar="VALUE",
+                   help="group of the chart to fit, when it has several "
+                        "(e.g. 65-70)")
     p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
                    help="parameters to fit (default c12,mu_g,k24)")
     p.add_argument("--bounds", action="append", default=[],
                    metavar="NAME=LOW:HIGH",
                    help="search range of a fitted parameter, SI; repeatable "
                         "(default a factor 100 either way of the start)")
-    _pf_max_option(p, "largest amplitude tried on the bench (and "
-                      "searched in the model)")
+    p.add_argument("--pf-max", type=float, default=None, metavar="BAR",
+                   help="largest amplitude tried on the bench (and searched "
+                        "in the model), bar (default 1.5, or the chart's)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="measured and fitted boundaries (Fig. 16a)")
     p.add_argument("--save-params", metavar="FILE.toml",
