@@ -262,7 +262,9 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
 
 
 def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
-        parameters=None, changes=None, method=DEFAULT_METHOD):
+        parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
+        starts=3, uncertainty="auto", error_model="absolute", seed=0,
+        workers=None, progress=None):
     """``judder fit``: fit parameters to a measured boundary (section 4.2,
     Fig. 16a).
 
@@ -278,11 +280,15 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         :data:`stability.fitting.DEFAULT_FIT`).
     bounds : dict, optional
         ``{name: (low, high)}``, SI.
+    kinds, starts, uncertainty, error_model, seed, workers
+        As :func:`stability.fitting.fit_boundary` takes them.
 
     Returns
     -------
     judder.results.FitReport
-        Its ``fit.success`` says whether the fit converged.
+        ``fit.success`` is False when any of ``fit.problems`` holds (no
+        convergence, a parameter on a bound or undetermined, another
+        minimum as good).
     """
     from stability.fitting import DEFAULT_FIT, fit_boundary
     start = _resolve(parameters, changes)
@@ -290,7 +296,9 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         fit_boundary, start, freq_hz,
         np.asarray(measured_p_f_bar, dtype=float) * PA_PER_BAR,
         p_max_bar * PA_PER_BAR, names=names or DEFAULT_FIT, bounds=bounds,
-        method=method)
+        method=method, kinds=kinds, starts=starts, uncertainty=uncertainty,
+        error_model=error_model, seed=seed, workers=workers,
+        callback=progress)
     return FitReport(fit=result, seconds=seconds, method=method)
 
 

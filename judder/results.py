@@ -31,6 +31,13 @@ __all__ = ["ParamsResult", "EigResult", "FloquetPoint", "MapResult",
            "CampaignResult", "ChartResult"]
 
 
+def _finite_or_none(value):
+    """A float for JSON, None where it is NaN or infinite (undetermined,
+    censored)."""
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
 def _csv_text(rows, columns=None):
     """CSV of a list of dicts; None becomes an empty cell."""
     columns = list(columns or (rows[0] if rows else []))
@@ -327,12 +334,22 @@ class FitReport:
         return {"model": r.params.model, "method": self.method,
                 "seconds": self.seconds, "success": r.success,
                 "message": r.message,
-                "fitted": {n: {"value": v, "std": s, "start": s0}
-                           for n, v, s, s0 in zip(r.names, r.values, r.std,
-                                                  r.start)},
+                "fitted": {n: {"value": v, "std": _finite_or_none(s),
+                               "ci95": [_finite_or_none(lo),
+                                        _finite_or_none(hi)], "start": s0}
+                           for n, v, s, lo, hi, s0 in zip(
+                               r.names, r.values, r.std, r.ci_low,
+                               r.ci_high, r.start)},
+                "uncertainty": r.uncertainty, "problems": list(r.problems),
+                "notes": list(r.notes), "at_bound": list(r.at_bound),
+                "undetermined": list(r.undetermined),
+                "starts_tried": r.starts_tried,
+                "starts_agreeing": r.starts_agreeing,
+                "kinds": list(r.kinds),
                 "residual_rms_bar": r.residual_rms_bar,
                 "evaluations": r.evaluations, "freq_hz": r.freq_hz,
-                "measured_bar": r.measured_bar, "model_bar": r.model_bar}
+                "measured_bar": [_finite_or_none(v) for v in r.measured_bar],
+                "model_bar": [_finite_or_none(v) for v in r.model_bar]}
 
     def save_params(self, path, overwrite=False):
         """Write the fitted parameter set as TOML."""

@@ -240,23 +240,88 @@ def plot_threshold(study, axes=None):
 
 
 def plot_fit(result, ax=None):
-    """Measured and fitted model boundaries (Fig. 16a)."""
+    """Measured, first-attempt and fitted boundaries (Fig. 16a).
+
+    As in Fig. 16a of the paper (section 4.2): the model's lowest boundary
+    with the start (first attempt) values is drawn dotted, with the fitted
+    values solid, both as continuous curves over a fine frequency grid;
+    the measured judder onsets are markers (coloured by the kind of
+    tongue each was matched to), and each censored point (no judder up
+    to the largest amplitude tried) is an upward arrow at ``p_max``: no
+    judder up to here.
+
+    Parameters
+    ----------
+    result : stability.fitting.FitResult
+        Its ``curve_freq_hz``, ``start_curve_bar`` and
+        ``fitted_curve_bar`` are drawn; when they are None (a fit run with
+        ``curve_points=0``) they are computed here
+        (:func:`stability.fitting.fit_curves`).
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    list of matplotlib artists
+        The fitted curve first.
+    """
     if ax is None:
         _, ax = plt.subplots(figsize=(8, 4.5), layout="constrained")
-    judder = np.isfinite(result.measured_bar)
+    freq, start, fitted = _fit_curves(result)
     artists = [
-        ax.plot(result.freq_hz[judder], result.measured_bar[judder], "ko",
-                label="measured boundary")[0],
-        ax.plot(result.freq_hz, result.model_bar, "C3-",
-                label="fitted model")[0]]
+        ax.plot(freq, fitted, "k-", linewidth=1.4,
+                label="fitted model")[0],
+        ax.plot(freq, start, "k:", linewidth=1.4,
+                label="first attempt (start values)")[0]]
+    judder = np.isfinite(result.measured_bar)
+    kinds = np.array([k or "" for k in result.kinds]) if len(
+        result.kinds) == len(judder) else np.full(len(judder), "")
+    for kind in dict.fromkeys(kinds[judder]):
+        chosen = judder & (kinds == kind)
+        color = (KIND_COLORS[KINDS.index(kind)] if kind in KINDS
+                 else "k")
+        label = "measured judder onset" + (f" ({kind})" if kind else "")
+        artists.append(ax.plot(result.freq_hz[chosen],
+                               result.measured_bar[chosen], "o",
+                               color=color, markeredgecolor="k",
+                               label=label)[0])
+    p_max = _p_max_bar(result)
     if np.any(~judder):
         artists.append(ax.plot(result.freq_hz[~judder],
-                               np.zeros(np.count_nonzero(~judder)), "kx",
-                               label="no judder measured")[0])
+                               np.full(np.count_nonzero(~judder), p_max),
+                               linestyle="none", marker=r"$\uparrow$",
+                               markersize=12, color="k",
+                               label=f"no judder up to {p_max:g} bar")[0])
+    low = min(freq.min(), result.freq_hz.min())
+    high = max(freq.max(), result.freq_hz.max())
+    pad = 0.015 * (high - low) if high > low else 1.0
+    ax.set_xlim(low - pad, high + pad)
+    ax.set_ylim(0, 1.12 * p_max)
     ax.set_xlabel("dither frequency [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    ci = getattr(result, "ci_low", None) is not None
     ax.set_title("fit: " + ", ".join(
-        f"{n} = {v:.4g} ± {s:.2g}" for n, v, s in
-        zip(result.names, result.values, result.std)), fontsize=9)
-    ax.legend(fontsize=8)
+        f"{n} = {v:.4g} ± {s:.2g}" + (f" [{lo:.4g}, {hi:.4g}]" if ci else "")
+        for n, v, s, lo, hi in zip(
+            result.names, result.values, result.std,
+            result.ci_low if ci else result.values,
+            result.ci_high if ci else result.values))
+        + ("" if result.success else "  (problems: see the report)"),
+        fontsize=8)
+    ax.legend(fontsize=8, loc="lower right")
     return artists
+
+
+def _p_max_bar(result):
+    if getattr(result, "p_max_bar", None) is not None:
+        return result.p_max_bar
+    values = np.concatenate([result.measured_bar, result.model_bar])
+    return float(np.nanmax(values)) if np.isfinite(values).any() else 1.0
+
+
+def _fit_curves(result):
+    """The stored start and fitted curves, or computed ones."""
+    if getattr(result, "curve_freq_hz", None) is not None:
+        return (result.curve_freq_hz, result.start_curve_bar,
+                result.fitted_curve_bar)
+    from .fitting import fit_curves
+    return fit_curves(result)

@@ -158,7 +158,10 @@ def _multiplier_error(propagator, p_f, kind):
         return float(np.abs(lam - 1.0).min())
     if kind == Kind.DOUBLE_PERIOD:
         return float(np.abs(lam + 1.0).min())
-    return float(np.abs(np.abs(lam[~is_real(lam)]) - 1.0).min())
+    pair = lam[~is_real(lam)]
+    if len(pair) == 0:
+        return np.nan
+    return float(np.abs(np.abs(pair) - 1.0).min())
 
 
 def _lowest(amplitudes, p_max):

@@ -242,26 +242,43 @@ def cmd_fit(args):
         args.pf_max = 1.5
     p_max_bar = _pf_max(args)
     bounds = _bounds(args.bounds)
+    if args.starts < 1:
+        raise JudderError(f"--starts {args.starts} is not allowed; allowed: "
+                          "a whole number >= 1")
+    if args.workers is not None and args.workers < 1:
+        raise JudderError(f"--workers {args.workers} is not allowed; "
+                          "allowed: a whole number >= 1")
     make_parents(args.plot, args.save_params)
-    report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar, names=names,
-                     bounds=bounds, parameters=params, changes=changes,
-                     method=args.method)
+    with Progress(None, "fit") as progress:
+        report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar,
+                         names=names, bounds=bounds, parameters=params,
+                         changes=changes, method=args.method,
+                         starts=args.starts, uncertainty=args.uncertainty,
+                         error_model=args.error_model, seed=args.seed,
+                         workers=args.workers, progress=progress)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
     if args.plot:
         save_figure(args.plot, report.figure())
-    rows = [f"{n:>8} = {v:.6g} ± {s:.2g}  (start {s0:.6g})"
-            for n, v, s, s0 in zip(result.names, result.values, result.std,
-                                   result.start)]
+    rows = [f"{n:>8} = {v:.6g} ± {s:.2g}, 95 % interval [{lo:.6g}, "
+            f"{hi:.6g}]  (start {s0:.6g})"
+            for n, v, s, lo, hi, s0 in zip(result.names, result.values,
+                                           result.std, result.ci_low,
+                                           result.ci_high, result.start)]
     rows.append(f"residual rms {result.residual_rms_bar:.4g} bar over "
                 f"{len(freqs)} points; {result.evaluations} model boundaries "
-                f"in {report.seconds:.1f} s; {result.message}")
+                f"in {report.seconds:.1f} s; {result.starts_agreeing} of "
+                f"{result.starts_tried} starts agree; uncertainty by "
+                f"{result.uncertainty}")
+    rows += [f"note: {n}" for n in result.notes]
+    rows += [f"problem: {p}" for p in result.problems]
     emit(args, {**report.as_dict(),
                 **_files(saved_params=args.save_params, plot=args.plot)},
          "\n".join(rows) + _written(args.save_params, args.plot))
     if not result.success:
-        raise JudderError("the fit did not converge: " + result.message)
+        raise JudderError("the fit cannot be trusted: "
+                          + "; ".join(result.problems or [result.message]))
 
 
 def _bench_values(assignments):

@@ -125,6 +125,8 @@ class Progress:
         return self._update
 
     def _update(self, done, total):
+        if self._bar.total != total:
+            self._bar.total = total
         self._bar.update(done - self._bar.n)
 
     def __exit__(self, *exc):

@@ -222,6 +222,20 @@ def build_parser():
                         "in the model), bar (default 1.5, or the chart's)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="measured and fitted boundaries (Fig. 16a)")
+    p.add_argument("--starts", type=int, default=3, metavar="N",
+                   help="starts: the given one plus N-1 sampled within a "
+                        "factor 3 of it (default 3)")
+    p.add_argument("--uncertainty", default="auto",
+                   choices=("auto", "jacobian", "profile", "bootstrap"),
+                   help="how the 95 %% intervals are found (default auto: "
+                        "the Jacobian, profiled where it is not trusted)")
+    p.add_argument("--error-model", default="absolute",
+                   choices=("absolute", "relative"),
+                   help="residuals in bar (default) or relative to the "
+                        "measured amplitude")
+    p.add_argument("--seed", type=int, default=0,
+                   help="seed of the sampled starts and the bootstrap")
+    _workers_option(p)
     p.add_argument("--save-params", metavar="FILE.toml",
                    help="write the fitted set (never overwrites unless "
                         "--force)")
