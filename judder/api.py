@@ -23,6 +23,7 @@ Examples
 """
 
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -416,8 +417,6 @@ def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
     -------
     judder.results.CampaignResult
     """
-    from pathlib import Path
-
     from pysim.bench import Campaign, run_campaign
     values = _resolve(parameters, changes)
     plan = Campaign(freq_hz=tuple(freq_hz), p_f_bar=tuple(p_f_bar),

@@ -383,8 +383,6 @@ def growth_phase(time, rms):
         From the lowest ``rms`` before its maximum to the maximum, s.
     rate : float
         Least-squares log-slope over the phase, 1/s.
-    efolds : float
-        ``ln(rms[stop] / rms[start])``.
 
     Returns None when the maximum comes first.
     """
@@ -394,7 +392,7 @@ def growth_phase(time, rms):
         return None
     t, r = time[low:top + 1], rms[low:top + 1]
     rate = float(np.polyfit(t, np.log(r), 1)[0])
-    return (float(t[0]), float(t[-1])), rate, float(np.log(r[-1] / r[0]))
+    return (float(t[0]), float(t[-1])), rate
 
 
 def _other_peak(freq, spectrum, dither_hz, resolution):
@@ -494,7 +492,7 @@ def _judder_phase(time, envelope, freq_hz, min_growth):
     phase = growth_phase(time, envelope)
     if phase is None:
         return None
-    (start, stop), rate, _ = phase
+    (start, stop), rate = phase
     efolds = rate * (stop - start)
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \

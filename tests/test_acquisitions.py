@@ -107,7 +107,7 @@ def test_mdf3_reads_too(tmp_path, bench):
 
 def _write_tdms(path, bench, units):
     from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
-    (t_up, n_up), (t_down, n_down), (t_p, p) = (
+    (t_up, n_up), (t_down, n_down), (_, p) = (
         bench["EngSpd_up"], bench["OutSpd_dn"], bench["PressEVEN"])
     speed, pressure = units
     objects = [

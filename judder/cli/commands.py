@@ -232,15 +232,14 @@ def cmd_fit(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
     names = parse_list(args.fit, "--fit", str)
     params, changes = parameters_of(args)
+    default_p_max = 1.5
     if args.chart:
-        freqs, measured, tried = read_chart_boundary(args.chart, args.group)
-        if args.pf_max is None:
-            args.pf_max = tried
+        freqs, measured, default_p_max = read_chart_boundary(args.chart,
+                                                             args.group)
     else:
         freqs, measured = read_boundary(args.boundary)
-    if args.pf_max is None:
-        args.pf_max = 1.5
-    p_max_bar = _pf_max(args)
+    p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
+                             else args.pf_max, "bar")
     bounds = _bounds(args.bounds)
     if args.starts < 1:
         raise JudderError(f"--starts {args.starts} is not allowed; allowed: "
