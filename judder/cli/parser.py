@@ -252,8 +252,11 @@ def build_parser():
                                    "(TestBenchEngagement FMU, built if "
                                    "needed), run with fmpy. Writes the time "
                                    "histories (SI units) and reports the "
-                                   "spectrum peak of the upstream speed and "
-                                   "of the pressure.")
+                                   "spectrum peaks of the upstream speed and "
+                                   "of the pressure, the judder verdict, kind "
+                                   "and growth as judder chart reads them, "
+                                   "and the Floquet verdict of the bench's "
+                                   "linearisation (c1 + d_control).")
     p.add_argument("--freq", type=float, required=True, metavar="HZ",
                    help="dither frequency, Hz")
     p.add_argument("--pf", type=float, required=True, metavar="BAR",
@@ -344,8 +347,9 @@ def build_parser():
                                    "file's metadata, or estimated from the "
                                    "pressure), the amplitude and growth of "
                                    "the upstream speed at f, f/2 and other "
-                                   "peaks, and a judder verdict (late "
-                                   "envelope growth >= --min-growth). Draws "
+                                   "peaks, and a judder verdict (the part "
+                                   "not periodic with the dither grows at "
+                                   ">= --min-growth; see README). Draws "
                                    "the amplitude contour per oil "
                                    "temperature or engine speed, and writes "
                                    "the experimental boundary for `judder "
@@ -370,11 +374,11 @@ def build_parser():
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")
     p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
-                   help="late growth rate from which a run is judder, 1/s "
-                        "(default 1)")
+                   help="growth rate of the non-periodic part from which "
+                        "a run is judder, 1/s (default 1)")
     p.add_argument("--min-amplitude", type=float, default=None,
                    metavar="RPM", help="smallest judder amplitude, rpm "
-                                       "(default 1)")
+                                       "(default 2)")
     p.add_argument("--out", metavar="FILE.npz",
                    help="per-run arrays and boundaries (NPZ)")
     p.add_argument("--boundary", metavar="FILE.csv",
