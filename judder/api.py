@@ -41,9 +41,10 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
                       EigResult,
                       FitReport, FloquetPoint, MapResult, ParamsResult,
                       SensitivityResult, SimulationResult, ThresholdResult,
-                      TonguesResult)
+                      TonguesResult, CheckResult, AdviceResult)
 
-__all__ = ["params", "eig", "floquet", "stability_map", "tongues",
+__all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
+           "advise", "DEFAULT_CHECK_PARAMETERS",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
            "campaign", "chart", "BACKGROUND_AMPLITUDES"]
 
@@ -123,7 +124,7 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
 
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
-                  method=DEFAULT_METHOD, progress=None):
+                  method=DEFAULT_METHOD, progress=None, min_growth=None):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -138,13 +139,18 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     -------
     judder.results.MapResult
         ``save(path)`` writes NPZ, ``figure()`` draws it.
+    min_growth : float, optional
+        1/s: the figure shades unstable points growing slower than this
+        (not judder, :mod:`stability.relevance`) and the JSON counts the
+        faster ones.
     """
     values = _resolve(parameters, changes)
     result, seconds = _timed(
         map_kernel, build_driveline(values), freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
         callback=progress)
-    return MapResult(params=values, map=result, seconds=seconds)
+    return MapResult(params=values, map=result, seconds=seconds,
+                     min_growth=min_growth)
 
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
@@ -482,3 +488,90 @@ def chart(sources, index=None, channels=None, group_by=None,
                           method=method)
     return ChartResult(chart=result, seconds=seconds, model=overlay)
 
+
+
+#: Parameters whose effect on the margins ``check`` reports by default.
+DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
+
+
+def _check_number(name, value, unit, low=0.0, strict=False):
+    ok = np.isfinite(value) and (value > low if strict else value >= low)
+    if not ok:
+        raise JudderError(f"{name} = {value!r} {unit} is not allowed; allowed:"
+                          f" a finite value {'>' if strict else '>='} {low:g}")
+
+
+def _check_names(values, names, option):
+    unknown = [n for n in names if n not in values.specs]
+    if unknown:
+        raise JudderError(f"{option} {unknown[0]!r} is not a parameter of the "
+                          f"{values.model} model; allowed: "
+                          f"{', '.join(values.specs)}")
+    zero = [n for n in names if values[n] == 0]
+    if zero:
+        raise JudderError(f"{option} {zero[0]!r} is 0 in this parameter set; "
+                          "allowed: parameters with a non-zero value (changes "
+                          "are relative)")
+
+
+def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
+          p_max_bar=None, sensitivity=DEFAULT_CHECK_PARAMETERS,
+          background=False, progress=None):
+    """``judder check``: is each dither setting safe, and by how much.
+
+    Parameters
+    ----------
+    freq_hz, p_f_bar : array_like, shape (n,)
+        The settings, Hz and bar (pairs: a dither table).
+    min_growth : float, optional
+        Judder-relevant growth rate, 1/s (default
+        :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`).
+    p_max_bar : float, optional
+        Largest boundary amplitude searched (default the larger of 1.5
+        bar and twice the largest setting).
+    sensitivity : sequence of str
+        Parameters whose effect on the margins is reported (empty: none).
+    background : bool
+        Also compute the map ``figure()`` marks the settings on.
+
+    Returns
+    -------
+    judder.results.CheckResult
+    """
+    from stability.margins import check_settings
+    from stability.relevance import (DEFAULT_MIN_GROWTH_PER_S,
+                                     ENGAGEMENT_DURATION_S)
+    values = _resolve(parameters, changes)
+    freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
+    if freq_hz.shape != p_f_bar.shape or freq_hz.ndim != 1 or not len(freq_hz):
+        raise JudderError(f"freq and p_f have {freq_hz.size} and "
+                          f"{p_f_bar.size} values; allowed: as many of each")
+    for f in freq_hz:
+        _check_number("freq", f, "Hz", strict=True)
+    for p in p_f_bar:
+        _check_number("p_f", p, "bar")
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    _check_number("min_growth", min_growth, "1/s")
+    if p_max_bar is None:
+        p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
+    _check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()),
+                  strict=True)
+    _check_names(values, sensitivity, "--params")
+    started = time.perf_counter()
+    checks = check_settings(values, freq_hz, p_f_bar * PA_PER_BAR, min_growth,
+                            p_max_bar * PA_PER_BAR, tuple(sensitivity),
+                            callback=progress)
+    seconds = time.perf_counter() - started
+    result = CheckResult(params=values, checks=checks, min_growth=min_growth,
+                         engagement_s=ENGAGEMENT_DURATION_S,
+                         p_max=p_max_bar * PA_PER_BAR, seconds=seconds)
+    if background:
+        low, high = freq_hz.min(), freq_hz.max()
+        grid = np.linspace(max(low - 0.5 * (high - low) - 20, 1.0),
+                           high + 0.5 * (high - low) + 20, 200)
+        under = map_kernel(build_driveline(values), grid,
+                           np.linspace(0, max(2 * p_f_bar.max(), 0.5), 100)
+                           * PA_PER_BAR)
+        result = CheckResult(**{**result.__dict__, "background": under})
+    return result

@@ -477,7 +477,9 @@ def find_tongues(driveline, boundaries):
     Returns
     -------
     list of Tongue
-        Ordered by number (unnumbered ones last).
+        Ordered by number (unnumbered ones last). The tips are checked
+        against the monodromy when ``boundaries.checked`` (otherwise
+        ``tip_multiplier_error`` is NaN).
     """
     system = driveline.periodic_system().shifted(boundaries.min_growth)
     f = boundaries.freq_hz
@@ -492,8 +494,9 @@ def find_tongues(driveline, boundaries):
             if not at_edge:
                 tip_f, tip_p = _refine_tip(system, column, f[i - 1],
                                            f[i + 1], boundaries, tip_f, tip_p)
-            propagator = engine(system, tip_f, boundaries.p_max)
-            error = _multiplier_error(propagator, tip_p, kind)
+            error = (_multiplier_error(engine(system, tip_f, boundaries.p_max),
+                                       tip_p, kind)
+                     if boundaries.checked else float("nan"))
             candidates = [r for r in table if r[3] == kind]
             best = min(candidates, key=lambda r: abs(r[2] - tip_f),
                        default=None)
