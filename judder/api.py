@@ -495,6 +495,7 @@ DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
 
 
 def _check_number(name, value, unit, low=0.0, strict=False):
+    value = float(value)
     ok = np.isfinite(value) and (value > low if strict else value >= low)
     if not ok:
         raise JudderError(f"{name} = {value!r} {unit} is not allowed; allowed:"
@@ -575,3 +576,101 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
                            * PA_PER_BAR)
         result = CheckResult(**{**result.__dict__, "background": under})
     return result
+
+
+def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0),
+           p_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
+           names=None, weights=None, design=True, progress=None):
+    """``judder advise``: safe dither windows, the ranking of the design
+    parameters, and the smallest weighted change that clears the window.
+
+    Parameters
+    ----------
+    extra_sets : sequence of drivelines.Parameters
+        More parameter sets (an uncertainty envelope): the windows are
+        those safe for every set, and the design must clear the window for
+        every set (each gets the same relative change).
+    freq_range : (float, float)
+        Dither operating frequencies, Hz (default the paper's 60-200).
+    p_max_bar : float
+        Highest dither amplitude, bar (default 0.7).
+    margin_bar, margin_hz : float
+        Margins kept from every judder-relevant tongue, bar and Hz.
+    min_growth : float, optional
+        1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
+    names : sequence of str, optional
+        Design parameters (default J2, J4, k12, k24, c12).
+    weights : sequence of float, optional
+        Cost of a unit change of ln(value) of each (default 1).
+    design : bool
+        Also search the design change and recompute its map.
+
+    Returns
+    -------
+    judder.results.AdviceResult
+    """
+    from stability import advice as kernel
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    values = _resolve(parameters, changes)
+    sets = [values, *extra_sets]
+    models = {p.model for p in sets}
+    if len(models) > 1:
+        raise JudderError(f"parameter sets of models {sorted(models)}; "
+                          "allowed: one model")
+    low, high = (float(v) for v in freq_range)
+    if not (np.isfinite(low) and np.isfinite(high) and 0 < low < high):
+        raise JudderError(f"freq range = {low:g}:{high:g} Hz is not allowed; "
+                          "allowed: 0 < LOW < HIGH")
+    _check_number("p_max", p_max_bar, "bar", strict=True)
+    _check_number("margin_bar", margin_bar, "bar")
+    _check_number("margin_hz", margin_hz, "Hz")
+    if margin_hz >= low:
+        raise JudderError(f"margin_hz = {margin_hz:g} Hz is not allowed; "
+                          f"allowed: below the lowest frequency {low:g} Hz")
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    _check_number("min_growth", min_growth, "1/s")
+    names = tuple(kernel.DEFAULT_DESIGN_PARAMETERS if names is None
+                  else names)
+    if not names:
+        raise JudderError("--params is empty; allowed: design parameters "
+                          "such as J2,J4,k24")
+    for p in sets:
+        _check_names(p, names, "--params")
+    weights = np.ones(len(names)) if weights is None else \
+        np.asarray(weights, dtype=float)
+    if weights.shape != (len(names),):
+        raise JudderError(f"{len(weights)} weights for {len(names)} "
+                          "parameters; allowed: one weight per parameter")
+    kernel.check_weights(names, weights)
+    operating = kernel.OperatingRange(
+        freq_hz=(low, high), p_max=p_max_bar * PA_PER_BAR,
+        margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
+    p_search = max(1.5e5, 2 * operating.required_p_f)
+    started = time.perf_counter()
+    # 0.5 Hz steps, widened by the margin so that tongues just outside count
+    grid = np.linspace(low - margin_hz, high + margin_hz,
+                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+
+    def windows_of(param_sets):
+        boundary = kernel.window_boundary(param_sets, grid, min_growth,
+                                          p_search)
+        return kernel.safe_windows(grid, boundary, operating)
+    safe, windows = windows_of(sets)
+    order = kernel.ranking(values, names, operating, min_growth, p_search)
+    found = advised_windows = verification = judder_points = None
+    if design:
+        found = kernel.advise_design(sets, names, weights, operating,
+                                     min_growth, p_search, callback=progress)
+        if found.success:
+            factors = dict(zip(found.names, found.factors))
+            advised = [p.replace(**{n: p[n] * factors[n] for n in names})
+                       for p in sets]
+            _, advised_windows = windows_of(advised)
+            verification, judder_points = kernel.verify_design(
+                advised[0], operating, min_growth)
+    return AdviceResult(
+        params=values, operating=operating, min_growth=min_growth,
+        sets=len(sets), freq_hz=grid, safe_p_f=safe, windows=windows,
+        ranking=order, advice=found, advised_windows=advised_windows or [],
+        verification=verification, judder_points=judder_points,
+        seconds=time.perf_counter() - started)

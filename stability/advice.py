@@ -130,8 +130,8 @@ class SafeWindow:
     freq_hz : (float, float)
         Hz.
     max_p_f : float
-        Smallest safe amplitude over the interval, Pa: every setting of
-        the interval up to it keeps both margins.
+        Pa: every setting of the interval up to this amplitude keeps both
+        margins.
     full_range : bool
         True if the whole operating amplitude is safe there.
     """
@@ -141,8 +141,13 @@ class SafeWindow:
     full_range: bool
 
 
-def safe_windows(freq_hz, boundary, operating):
-    """Safe amplitude per frequency and the safe windows.
+#: Amplitudes (shares of the operating amplitude) at which safe windows
+#: are listed.
+WINDOW_LEVELS = (1.0, 0.5, 0.25, 0.125)
+
+
+def safe_windows(freq_hz, boundary, operating, levels=WINDOW_LEVELS):
+    """Safe amplitude per frequency and the safe windows at a few levels.
 
     Parameters
     ----------
@@ -151,12 +156,16 @@ def safe_windows(freq_hz, boundary, operating):
     boundary : ndarray, shape (nf,)
         :func:`window_boundary`, Pa.
     operating : OperatingRange
+    levels : sequence of float
+        Shares of ``operating.p_max``.
 
     Returns
     -------
     safe_p_f : ndarray, shape (nf,)
         Pa (0 where nothing is safe; only inside the operating range).
     windows : list of SafeWindow
+        For each level, the maximal intervals where every amplitude up to
+        it is safe (``max_p_f`` the level, ``full_range`` for level 1).
     """
     step = freq_hz[1] - freq_hz[0] if len(freq_hz) > 1 else 1.0
     reach = int(np.ceil(operating.margin_hz / step - 1e-9))
@@ -169,13 +178,15 @@ def safe_windows(freq_hz, boundary, operating):
     inside = (freq_hz >= operating.freq_hz[0]) & (freq_hz <= operating.freq_hz[1])
     safe = np.where(inside, safe, 0.0)
     windows = []
-    edges = np.diff(np.concatenate([[0], (safe > 0).astype(int), [0]]))
-    for start, stop in zip(np.flatnonzero(edges == 1),
-                           np.flatnonzero(edges == -1)):
-        low = float(safe[start:stop].min())
-        windows.append(SafeWindow(
-            freq_hz=(float(freq_hz[start]), float(freq_hz[stop - 1])),
-            max_p_f=low, full_range=bool(low >= operating.p_max)))
+    for share in levels:
+        level = share * operating.p_max
+        edges = np.diff(np.concatenate([[0], (safe >= level * (1 - 1e-12))
+                                        .astype(int), [0]]))
+        for start, stop in zip(np.flatnonzero(edges == 1),
+                               np.flatnonzero(edges == -1)):
+            windows.append(SafeWindow(
+                freq_hz=(float(freq_hz[start]), float(freq_hz[stop - 1])),
+                max_p_f=float(level), full_range=bool(share >= 1.0)))
     return safe, windows
 
 

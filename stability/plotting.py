@@ -387,3 +387,37 @@ def _fit_curves(result):
                 result.fitted_curve_bar)
     from .fitting import fit_curves
     return fit_curves(result)
+
+
+def advice_figure(advice, title=None):
+    """Safe amplitude per frequency (left) and the recomputed map of the
+    advised design (right, if any).
+
+    Parameters
+    ----------
+    advice : judder.results.AdviceResult
+    """
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
+                                      layout="constrained")
+    op = advice.operating
+    bar = advice.safe_p_f / PA_PER_BAR
+    left.fill_between(advice.freq_hz, 0, bar, color="#2ca02c", alpha=0.5,
+                      label="safe (with margins)")
+    left.axhline(op.p_max / PA_PER_BAR, color="k", linestyle="--",
+                 linewidth=0.8, label="operating amplitude")
+    for edge in op.freq_hz:
+        left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
+    left.set_xlabel("dither frequency [Hz]")
+    left.set_ylabel("safe dither amplitude $p_f$ [bar]")
+    left.set_title("safe dither windows, given design")
+    left.legend(fontsize=7)
+    if advice.verification is not None:
+        plot_map(advice.verification, ax=right,
+                 min_growth=advice.min_growth)
+        right.set_title(f"advised design: {advice.judder_points} "
+                        "judder-relevant points")
+    else:
+        right.set_axis_off()
+    if title:
+        fig.suptitle(title)
+    return fig
