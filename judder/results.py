@@ -661,11 +661,16 @@ class CheckResult:
         return "\n".join(setting_summary(r) for r in self.records())
 
     def save(self, path):
-        """CSV: one row per setting (the scalar fields)."""
+        """CSV: one row per setting (the scalar fields; tongues by
+        number)."""
         rows = []
         for r in self.records():
-            rows.append({k: ("" if v is None else v) for k, v in r.items()
-                         if not isinstance(v, (dict, list))})
+            row = {k: v for k, v in r.items()
+                   if not isinstance(v, (dict, list)) and k not in
+                   ("margin_bar_tongue", "margin_hz_tongue")}
+            for key in ("margin_bar_tongue", "margin_hz_tongue"):
+                row[key] = None if r[key] is None else r[key]["number"]
+            rows.append(row)
         write_text(path, _csv_text(rows))
 
     def figure(self, title=None):
