@@ -44,7 +44,7 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
                       TonguesResult, CheckResult, AdviceResult)
 
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
-           "advise", "DEFAULT_CHECK_PARAMETERS",
+           "advise",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
            "campaign", "chart", "BACKGROUND_AMPLITUDES"]
 
@@ -155,7 +155,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
-            min_growth=0.0):
+            min_growth=0.0, solver="hill"):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -171,6 +171,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     min_growth : float
         1/s: boundaries of judder growing at least this fast (0: the
         stability boundaries).
+    solver : str
+        Boundary solver, a key of :data:`stability.tongues.SOLVERS`.
 
     Returns
     -------
@@ -182,7 +184,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     p_max = p_max_bar * PA_PER_BAR
     started = time.perf_counter()
     boundaries = tongue_boundaries(driveline, freq_hz, p_max, method,
-                                   callback=progress, min_growth=min_growth)
+                                   callback=progress, min_growth=min_growth,
+                                   solver=solver)
     found = find_tongues(driveline, boundaries)
     seconds = time.perf_counter() - started
     under = (map_kernel(driveline, freq_hz,

@@ -39,9 +39,9 @@ from infra.errors import JudderError
 
 from .kinds import KINDS
 from .model import build_driveline
-from .modal import natural_frequencies
 from .relevance import is_judder_relevant
-from .tongues import TONGUE_KINDS, Boundaries, find_tongues, lowest_boundaries
+from .tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
+                      tongue_boundaries)
 
 __all__ = ["OperatingRange", "window_boundary", "safe_windows", "SafeWindow",
            "ranking", "Advice", "advise_design", "verify_design",
@@ -193,14 +193,8 @@ def safe_windows(freq_hz, boundary, operating, levels=WINDOW_LEVELS):
 def _tongues(params, operating, min_growth, p_search):
     """Judder-relevant tongues of one design over the window's grid."""
     driveline = build_driveline(params)
-    system = driveline.periodic_system().shifted(min_growth)
-    grid = operating.grid()
-    amplitude = lowest_boundaries(system, grid, p_search)
-    boundaries = Boundaries(freq_hz=grid, p_max=p_search, amplitude=amplitude,
-                            multiplier_error=np.full(amplitude.shape, np.nan),
-                            natural_frequencies_hz=natural_frequencies(
-                                driveline),
-                            min_growth=min_growth, checked=False)
+    boundaries = tongue_boundaries(driveline, operating.grid(), p_search,
+                                   min_growth=min_growth, check=False)
     return boundaries, find_tongues(driveline, boundaries)
 
 

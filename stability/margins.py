@@ -25,9 +25,12 @@ from scipy.optimize import brentq
 from infra.errors import JudderError
 
 from .hill import combination_boundaries, modal_transfer, real_boundaries
+from .floquet import floquet
 from .kinds import KINDS
 from .model import build_driveline
-from .tongues import TONGUE_KINDS, lowest_boundaries
+from .relevance import is_judder_relevant
+from .tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
+                      tongue_boundaries)
 
 __all__ = ["Margin", "boundary_of_kind", "setting_margin",
            "margin_sensitivity", "search_grid", "GRID_POINTS"]
@@ -306,20 +309,12 @@ def check_settings(params, freq_hz, p_f, min_growth, p_max, names=(),
     -------
     list of SettingCheck
     """
-    from .floquet import floquet
-    from .relevance import is_judder_relevant
-    from .tongues import Boundaries, find_tongues
-
     driveline = build_driveline(params)
     system = driveline.periodic_system().shifted(min_growth)
     grid = search_grid(freq_hz)
-    amplitude = lowest_boundaries(system, grid, p_max)
-    from .modal import natural_frequencies
-    boundaries = Boundaries(freq_hz=grid, p_max=p_max, amplitude=amplitude,
-                            multiplier_error=np.full(amplitude.shape, np.nan),
-                            natural_frequencies_hz=natural_frequencies(
-                                driveline),
-                            min_growth=min_growth, checked=False)
+    boundaries = tongue_boundaries(driveline, grid, p_max,
+                                   min_growth=min_growth, check=False)
+    amplitude = boundaries.amplitude
     tongues = find_tongues(driveline, boundaries)
     out = []
     for index, (f0, p0) in enumerate(zip(freq_hz, p_f)):

@@ -141,7 +141,8 @@ def cmd_tongues(args):
                              background=args.plot is not None,
                              progress=progress,
                              min_growth=_finite("--min-growth",
-                                                args.min_growth, "1/s"))
+                                                args.min_growth, "1/s"),
+                             solver=args.solver)
     data = {**result.as_dict(), **_write_outputs(args, result)}
     rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
             f"{'tip p_f [bar]':>14s} {'offset':>8s}"]

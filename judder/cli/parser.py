@@ -217,11 +217,12 @@ def build_parser():
     p.set_defaults(handler=commands.cmd_advise)
 
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
-                       description="Exact tongue boundaries: single- and "
-                                   "double-period by Hill's method, "
-                                   "combination by Brent's method on the "
-                                   "monodromy; each point checked against "
-                                   "the monodromy. Tongues numbered as in "
+                       description="Exact tongue boundaries by Hill's "
+                                   "method (--solver hill: every kind, all "
+                                   "frequencies at once; scan: combination "
+                                   "by Brent's method on the monodromy); "
+                                   "each point checked against the "
+                                   "monodromy. Tongues numbered as in "
                                    "Fig. 14, with their tips (lowest p_f).")
     p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
@@ -229,6 +230,9 @@ def build_parser():
     p.add_argument("--min-growth", type=float, default=0.0, metavar="1/S",
                    help="boundaries of judder growing at least this fast, "
                         "1/s (default 0: the stability boundaries)")
+    p.add_argument("--solver", default="hill", choices=("hill", "scan"),
+                   help="boundary solver: hill (default, fast) or scan "
+                        "(per frequency, Brent on the monodromy)")
     p.add_argument("--out", metavar="FILE.csv",
                    help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
                         "if none), then per kind, bar")
