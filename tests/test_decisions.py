@@ -192,3 +192,27 @@ def test_check_command_line(tmp_path):
         proc = _judder("check", *bad)
         assert proc.returncode == 2 and word in proc.stderr
         assert proc.stderr.count("\n") == 1
+
+
+def test_windows_over_an_envelope_are_safe_for_every_set():
+    # section 4.2: the broadest region over the uncertain parameters
+    from stability.advice import safe_windows, window_boundary
+    nominal = get_preset("paper-4dof")
+    stiffer = nominal.replace(k24=1.06 * nominal["k24"], mu_g=0.022)
+    operating = OperatingRange()
+    grid = np.linspace(55.0, 205.0, 301)
+    safe = {}
+    for name, sets in [("nominal", [nominal]), ("stiffer", [stiffer]),
+                       ("both", [nominal, stiffer])]:
+        boundary = window_boundary(sets, grid, 1.0, 1.6 * BAR)
+        safe[name], windows = safe_windows(grid, boundary, operating)
+        if name == "both":
+            robust = [w for w in windows if w.full_range]
+    assert_allclose(safe["both"], np.minimum(safe["nominal"],
+                                             safe["stiffer"]))
+    assert np.any(safe["both"] < safe["nominal"])
+    for window in robust:
+        for f in window.freq_hz:
+            for params in (nominal, stiffer):
+                assert floquet(build_driveline(params), f,
+                               0.8 * BAR).growth_rate < 1.0
