@@ -500,5 +500,6 @@ def check_weights(names, weights):
     """Raise JudderError unless every weight is finite and > 0."""
     for name, w in zip(names, weights):
         if not np.isfinite(w) or w <= 0:
-            raise JudderError(f"weight of {name} = {w!r} is not allowed; "
+            raise JudderError(f"weight of {name} = {float(w)!r} is not "
+                              "allowed; "
                               "allowed: a finite value > 0")

@@ -517,7 +517,8 @@ def cmd_check(args):
 
 def cmd_advise(args):
     """Safe dither windows, parameter ranking and design change."""
-    from ..inputs import load_parameters
+    from drivelines import load_toml
+    from ..inputs import read_input
     low_high = args.freq_range.split(":")
     try:
         low, high = (float(v) for v in low_high)
@@ -528,7 +529,8 @@ def cmd_advise(args):
     weights = None if args.weights is None else \
         parse_list(args.weights, "--weights")
     params, changes = parameters_of(args)
-    extra = [load_parameters(param_file=path) for path in args.also]
+    extra = [load_toml(read_input(path, "--also"), source=str(path))
+             for path in args.also]
     make_parents(args.out, args.plot)
     with Progress(8, "advise") as progress:
         result = api.advise(params, changes, extra_sets=extra,

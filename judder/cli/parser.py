@@ -229,7 +229,9 @@ def build_parser():
     _pf_max_option(p, "largest amplitude searched")
     p.add_argument("--min-growth", type=float, default=0.0, metavar="1/S",
                    help="boundaries of judder growing at least this fast, "
-                        "1/s (default 0: the stability boundaries)")
+                        "1/s (default 0: the stability boundaries of Fig. "
+                        "14; map, check and advise use 1, one e-fold per "
+                        "1 s engagement, the judder-relevant rate)")
     p.add_argument("--solver", default="hill", choices=("hill", "scan"),
                    help="boundary solver: hill (default, fast) or scan "
                         "(per frequency, Brent on the monodromy)")
