@@ -397,8 +397,11 @@ def advice_figure(advice, title=None):
     ----------
     advice : judder.results.AdviceResult
     """
-    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
-                                      layout="constrained")
+    if advice.verification is None:
+        fig, left = plt.subplots(figsize=(7, 5), layout="constrained")
+    else:
+        fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
+                                          layout="constrained")
     op = advice.operating
     bar = advice.safe_p_f / PA_PER_BAR
     left.fill_between(advice.freq_hz, 0, bar, color="#2ca02c", alpha=0.5,
@@ -416,8 +419,6 @@ def advice_figure(advice, title=None):
                  min_growth=advice.min_growth)
         right.set_title(f"advised design: {advice.judder_points} "
                         "judder-relevant points")
-    else:
-        right.set_axis_off()
     if title:
         fig.suptitle(title)
     return fig
