@@ -493,8 +493,20 @@ def chart(sources, index=None, channels=None, group_by=None,
 
 
 
-#: Parameters whose effect on the margins ``check`` reports by default.
+#: Parameters whose effect on the margins ``check`` reports by default
+#: (4-DOF model; other models: see :func:`_structural_names`).
 DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
+
+
+def _structural_names(values, preferred, extra=()):
+    """``preferred`` if the model has them all, else its inertias,
+    stiffnesses and coupling dampings (from the registry), plus ``extra``."""
+    if all(name in values.specs for name in preferred):
+        return tuple(preferred)
+    model = values.driveline
+    return (tuple(b.inertia for b in model.bodies)
+            + tuple(c.stiffness for c in model.couplings)
+            + tuple(c.damping for c in model.couplings) + tuple(extra))
 
 
 def _check_number(name, value, unit, low=0.0, strict=False):
@@ -519,8 +531,8 @@ def _check_names(values, names, option):
 
 
 def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
-          p_max_bar=None, sensitivity=DEFAULT_CHECK_PARAMETERS,
-          background=False, progress=None):
+          p_max_bar=None, sensitivity=None, background=False,
+          progress=None):
     """``judder check``: is each dither setting safe, and by how much.
 
     Parameters
@@ -533,8 +545,10 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     p_max_bar : float, optional
         Largest boundary amplitude searched (default the larger of 1.5
         bar and twice the largest setting).
-    sensitivity : sequence of str
-        Parameters whose effect on the margins is reported (empty: none).
+    sensitivity : sequence of str, optional
+        Parameters whose effect on the margins is reported (empty: none;
+        default :data:`DEFAULT_CHECK_PARAMETERS`, or the model's
+        inertias, stiffnesses, coupling dampings and mu_g).
     background : bool
         Also compute the map ``figure()`` marks the settings on.
 
@@ -561,6 +575,9 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
     _check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()),
                   strict=True)
+    if sensitivity is None:
+        sensitivity = _structural_names(values, DEFAULT_CHECK_PARAMETERS,
+                                        ("mu_g",))
     _check_names(values, sensitivity, "--params")
     started = time.perf_counter()
     checks = check_settings(values, freq_hz, p_f_bar * PA_PER_BAR, min_growth,
@@ -602,7 +619,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     min_growth : float, optional
         1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
     names : sequence of str, optional
-        Design parameters (default J2, J4, k12, k24, c12).
+        Design parameters (default J2, J4, k12, k24, c12; for another
+        model its inertias, stiffnesses and coupling dampings).
     weights : sequence of float, optional
         Cost of a unit change of ln(value) of each (default 1).
     design : bool
@@ -632,8 +650,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
                           f"allowed: below the lowest frequency {low:g} Hz")
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     _check_number("min_growth", min_growth, "1/s")
-    names = tuple(kernel.DEFAULT_DESIGN_PARAMETERS if names is None
-                  else names)
+    names = tuple(_structural_names(values, kernel.DEFAULT_DESIGN_PARAMETERS)
+                  if names is None else names)
     if not names:
         raise JudderError("--params is empty; allowed: design parameters "
                           "such as J2,J4,k24")

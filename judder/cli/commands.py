@@ -502,8 +502,12 @@ def _settings(args):
 def cmd_check(args):
     """Verdict, growth and margins of dither settings."""
     freqs, amplitudes = _settings(args)
-    names = [] if args.params.strip().lower() == "none" else \
-        parse_list(args.params, "--params", str)
+    if args.params is None:
+        names = None
+    elif args.params.strip().lower() == "none":
+        names = []
+    else:
+        names = parse_list(args.params, "--params", str)
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "check") as progress:
@@ -525,7 +529,8 @@ def cmd_advise(args):
     except ValueError:
         raise JudderError(f"--freq-range {args.freq_range!r} is not "
                           "LOW:HIGH in Hz (e.g. 60:200)") from None
-    names = parse_list(args.params, "--params", str)
+    names = None if args.params is None else \
+        parse_list(args.params, "--params", str)
     weights = None if args.weights is None else \
         parse_list(args.weights, "--weights")
     params, changes = parameters_of(args)

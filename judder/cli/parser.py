@@ -158,11 +158,11 @@ def build_parser():
     p.add_argument("--pf-max", type=float, default=None, metavar="BAR",
                    help="largest boundary amplitude searched, bar (default "
                         "the larger of 1.5 and twice the largest setting)")
-    p.add_argument("--params", default="J2,J4,k12,k24,c12,mu_g",
-                   metavar="NAMES",
+    p.add_argument("--params", default=None, metavar="NAMES",
                    help="parameters whose effect on the margins is reported "
-                        "(d margin / d ln value; default %(default)s; "
-                        "'none' for none)")
+                        "(d margin / d ln value; default J2,J4,k12,k24,c12,"
+                        "mu_g, for the 3-DOF model its inertias, stiffnesses, "
+                        "dampings and mu_g; 'none' for none)")
     p.add_argument("--out", metavar="FILE.csv",
                    help="one row per setting (the scalar JSON fields)")
     p.add_argument("--plot", metavar="FILE.png",
@@ -195,9 +195,10 @@ def build_parser():
                    help="frequency margin from every tongue edge, Hz "
                         "(default %(default)g)")
     _min_growth_option(p)
-    p.add_argument("--params", default="J2,J4,k12,k24,c12", metavar="NAMES",
+    p.add_argument("--params", default=None, metavar="NAMES",
                    help="design parameters that may change (default "
-                        "%(default)s)")
+                        "J2,J4,k12,k24,c12; for the 3-DOF model its "
+                        "inertias, stiffnesses and dampings)")
     p.add_argument("--weights", default=None, metavar="W[,W...]",
                    help="cost of a unit change of ln(value) of each design "
                         "parameter, in the order of --params (default 1 "
