@@ -403,9 +403,11 @@ def advice_figure(advice, title=None):
         fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
                                           layout="constrained")
     op = advice.operating
-    bar = advice.safe_p_f / PA_PER_BAR
-    left.fill_between(advice.freq_hz, 0, bar, color="#2ca02c", alpha=0.5,
-                      label="safe (with margins)")
+    inside = ((advice.freq_hz >= op.freq_hz[0])
+              & (advice.freq_hz <= op.freq_hz[1]))
+    left.fill_between(advice.freq_hz[inside], 0,
+                      advice.safe_p_f[inside] / PA_PER_BAR, color="#2ca02c",
+                      alpha=0.5, label="safe (with margins)")
     left.axhline(op.p_max / PA_PER_BAR, color="k", linestyle="--",
                  linewidth=0.8, label="operating amplitude")
     for edge in op.freq_hz:
