@@ -67,7 +67,7 @@ from .modal import natural_frequencies
 from .monodromy import DEFAULT_METHOD, get_method
 
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS", "SOLVERS",
-           "DEFAULT_SOLVER", "lowest_boundaries",
+           "DEFAULT_SOLVER", "get_solver", "lowest_boundaries",
            "hill_boundary_amplitudes", "tongue_boundaries", "find_tongues",
            "resonances"]
 
