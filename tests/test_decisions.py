@@ -27,10 +27,8 @@ from stability.tongues import lowest_boundaries
 
 BAR = 1e5
 #: Frequencies through all six tongues of Fig. 14 and between them.
-FREQS = np.concatenate([np.linspace(16, 22, 4), np.linspace(36, 40, 3),
-                        np.linspace(80, 87, 5), np.linspace(98, 108, 5),
-                        np.linspace(118, 125, 5), np.linspace(200, 210, 3),
-                        [60.0]])
+FREQS = np.array([17.0, 19.0, 21.0, 37.0, 38.5, 81.0, 83.5, 86.0, 99.0,
+                  102.5, 106.0, 119.0, 121.5, 124.0, 203.0, 207.0, 60.0])
 
 
 @pytest.mark.parametrize("preset", ["paper-4dof", "paper-4dof-fitted"])
@@ -133,21 +131,6 @@ def test_check_reports_verdict_margins_and_the_strongest_parameters():
     assert abs(sens["J1"]) < 1e-2 * abs(sens["k24"])
 
 
-def test_safe_windows_are_safe():
-    result = api.advise(design=False)
-    full = [w for w in result.windows if w.full_range]
-    assert full
-    for window in full:
-        for f in np.linspace(*window.freq_hz, 3):
-            # 0.8 bar = operating 0.7 + margin 0.1: still not judder
-            assert floquet(build_driveline(result.params), f,
-                           0.8 * BAR).growth_rate < 1.0
-    # nothing safe at full amplitude next to f2 (tongue 2)
-    assert not any(w.freq_hz[0] <= 102.9 <= w.freq_hz[1] for w in full)
-    assert floquet(build_driveline(result.params), 102.9,
-                   0.7 * BAR).growth_rate > 1.0
-
-
 def test_advise_reproduces_the_paper_and_clears_the_window():
     """Acceptance: section 4.3/5 ranking, and a design whose recomputed map
     has no judder-relevant point in 60-200 Hz x 0-0.7 bar."""
@@ -185,13 +168,18 @@ def test_check_command_line(tmp_path):
     summary = _judder("check", "--freq", "102.9", "--pf", "0.3", "--params",
                       "none")
     assert summary.stdout.count("\n") == 1 and "JUDDER" in summary.stdout
-    for bad, word in [(["--freq", "60", "--pf", "-1"], "p_f"),
-                      (["--freq", "60", "--pf", "0.1", "--min-growth", "nan"],
-                       "min_growth"),
-                      (["--freq", "60"], "--pf")]:
-        proc = _judder("check", *bad)
-        assert proc.returncode == 2 and word in proc.stderr
-        assert proc.stderr.count("\n") == 1
+    proc = _judder("check", "--freq", "60", "--pf", "-1")
+    assert proc.returncode == 2 and "p_f" in proc.stderr
+    assert proc.stderr.count("\n") == 1
+
+
+@pytest.mark.parametrize("kwargs, word", [
+    ({"min_growth": float("nan")}, "min_growth"),
+    ({"sensitivity": ["J9"]}, "J9"),
+    ({"p_max_bar": 0.1}, "p_max")])
+def test_check_refuses_bad_input(kwargs, word):
+    with pytest.raises(JudderError, match=word):
+        api.check([60.0], [0.2], **kwargs)
 
 
 def test_windows_over_an_envelope_are_safe_for_every_set():
@@ -206,11 +194,17 @@ def test_windows_over_an_envelope_are_safe_for_every_set():
                        ("both", [nominal, stiffer])]:
         boundary = window_boundary(sets, grid, 1.0, 1.6 * BAR)
         safe[name], windows = safe_windows(grid, boundary, operating)
+        if name == "nominal":
+            # nothing safe at full amplitude next to f2 (tongue 2)
+            assert not any(w.freq_hz[0] <= 102.9 <= w.freq_hz[1]
+                           for w in windows if w.full_range)
         if name == "both":
             robust = [w for w in windows if w.full_range]
     assert_allclose(safe["both"], np.minimum(safe["nominal"],
                                              safe["stiffer"]))
     assert np.any(safe["both"] < safe["nominal"])
+    assert robust
+    assert floquet(build_driveline(nominal), 102.9, 0.7 * BAR).growth_rate > 1
     for window in robust:
         for f in window.freq_hz:
             for params in (nominal, stiffer):
