@@ -136,6 +136,55 @@ def bench_tongue_boundaries():
                    "include labelling and tip refinement"}
 
 
+def _best_of(repeats, function):
+    """Result and the shortest of ``repeats`` timed runs."""
+    runs = [_timed(function) for _ in range(repeats)]
+    return runs[0][0], min(seconds for _, seconds in runs)
+
+
+def bench_tongue_solvers():
+    """All six boundaries at 500 frequencies: Hill-Newton against today's
+    per-frequency Hill + Brent on the monodromy ('scan'), same run."""
+    driveline = build_driveline(get_preset("paper-4dof"))
+
+    def boundaries(solver, check):
+        return tongue_boundaries(driveline, TONGUE_FREQ, TONGUE_P_MAX,
+                                 solver=solver, check=check)
+    old, old_seconds = _best_of(2, lambda: boundaries("scan", True))
+    new, new_seconds = _best_of(3, lambda: boundaries("hill", False))
+    checked, checked_seconds = _best_of(1, lambda: boundaries("hill", True))
+    _, old_tips_seconds = _best_of(2, lambda: find_tongues(driveline, old))
+    tongues, new_tips_seconds = _best_of(3, lambda: find_tongues(driveline,
+                                                                 new))
+    both = np.isfinite(old.amplitude) & np.isfinite(new.amplitude)
+    mismatch = int(np.count_nonzero(np.isfinite(old.amplitude)
+                                    != np.isfinite(new.amplitude)))
+    error = (np.abs(new.amplitude - old.amplitude)[both]
+             / old.amplitude[both]).max()
+    yield {"name": "tongue-boundaries-4dof-500-hill",
+           "points": len(TONGUE_FREQ), "seconds": new_seconds,
+           "baseline_seconds": old_seconds,
+           "speedup": old_seconds / new_seconds,
+           "max_error": float(error),
+           "error_unit": "relative p_f, Hill-Newton vs scan, every point",
+           "points_found_by_one_only": mismatch,
+           "checked_seconds": checked_seconds,
+           "max_boundary_multiplier_error": checked.max_multiplier_error,
+           "baseline_max_boundary_multiplier_error":
+               old.max_multiplier_error,
+           "with_tips_seconds": new_seconds + new_tips_seconds,
+           "baseline_with_tips_seconds": old_seconds + old_tips_seconds,
+           "tips": [[t.number, round(t.tip_freq_hz, 3),
+                     round(t.tip_p_f / BAR, 3)] for t in tongues],
+           "target_seconds": 0.1,
+           "note": "seconds: the six boundaries (three lowest curves) at "
+                   "500 frequencies by stability.hill, without the "
+                   "monodromy check (best of 3); baseline: today's solver "
+                   "'scan' with its check (best of 2); checked_seconds: Hill "
+                   "plus the monodromy check of every point; with_tips: "
+                   "plus labelling and tip refinement"}
+
+
 ENGAGEMENT = {"f_dither": 60.0, "p_f": 0.05e5}
 
 
@@ -184,6 +233,7 @@ def bench_engagement():
 
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "tongue-boundaries": bench_tongue_boundaries,
+              "tongue-solvers": bench_tongue_solvers,
               "engagement": bench_engagement}
 
 

@@ -41,9 +41,10 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
                       EigResult,
                       FitReport, FloquetPoint, MapResult, ParamsResult,
                       SensitivityResult, SimulationResult, ThresholdResult,
-                      TonguesResult)
+                      TonguesResult, CheckResult, AdviceResult)
 
-__all__ = ["params", "eig", "floquet", "stability_map", "tongues",
+__all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
+           "advise",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
            "campaign", "chart", "BACKGROUND_AMPLITUDES"]
 
@@ -123,7 +124,7 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
 
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
-                  method=DEFAULT_METHOD, progress=None):
+                  method=DEFAULT_METHOD, progress=None, min_growth=None):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -138,18 +139,23 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     -------
     judder.results.MapResult
         ``save(path)`` writes NPZ, ``figure()`` draws it.
+    min_growth : float, optional
+        1/s: the figure shades unstable points growing slower than this
+        (not judder, :mod:`stability.relevance`) and the JSON counts the
+        faster ones.
     """
     values = _resolve(parameters, changes)
     result, seconds = _timed(
         map_kernel, build_driveline(values), freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
         callback=progress)
-    return MapResult(params=values, map=result, seconds=seconds)
+    return MapResult(params=values, map=result, seconds=seconds,
+                     min_growth=min_growth)
 
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
-            min_growth=0.0):
+            min_growth=0.0, solver="hill"):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -165,6 +171,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     min_growth : float
         1/s: boundaries of judder growing at least this fast (0: the
         stability boundaries).
+    solver : str
+        Boundary solver, a key of :data:`stability.tongues.SOLVERS`.
 
     Returns
     -------
@@ -176,7 +184,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     p_max = p_max_bar * PA_PER_BAR
     started = time.perf_counter()
     boundaries = tongue_boundaries(driveline, freq_hz, p_max, method,
-                                   callback=progress, min_growth=min_growth)
+                                   callback=progress, min_growth=min_growth,
+                                   solver=solver)
     found = find_tongues(driveline, boundaries)
     seconds = time.perf_counter() - started
     under = (map_kernel(driveline, freq_hz,
@@ -482,3 +491,207 @@ def chart(sources, index=None, channels=None, group_by=None,
                           method=method)
     return ChartResult(chart=result, seconds=seconds, model=overlay)
 
+
+
+#: Parameters whose effect on the margins ``check`` reports by default
+#: (4-DOF model; other models: see :func:`_structural_names`).
+DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
+
+
+def _structural_names(values, preferred, extra=()):
+    """``preferred`` if the model has them all, else its inertias,
+    stiffnesses and coupling dampings (from the registry), plus ``extra``."""
+    if all(name in values.specs for name in preferred):
+        return tuple(preferred)
+    model = values.driveline
+    return (tuple(b.inertia for b in model.bodies)
+            + tuple(c.stiffness for c in model.couplings)
+            + tuple(c.damping for c in model.couplings) + tuple(extra))
+
+
+def _check_number(name, value, unit, low=0.0, strict=False):
+    value = float(value)
+    ok = np.isfinite(value) and (value > low if strict else value >= low)
+    if not ok:
+        raise JudderError(f"{name} = {value!r} {unit} is not allowed; allowed:"
+                          f" a finite value {'>' if strict else '>='} {low:g}")
+
+
+def _check_names(values, names, option):
+    unknown = [n for n in names if n not in values.specs]
+    if unknown:
+        raise JudderError(f"{option} {unknown[0]!r} is not a parameter of the "
+                          f"{values.model} model; allowed: "
+                          f"{', '.join(values.specs)}")
+    zero = [n for n in names if values[n] == 0]
+    if zero:
+        raise JudderError(f"{option} {zero[0]!r} is 0 in this parameter set; "
+                          "allowed: parameters with a non-zero value (changes "
+                          "are relative)")
+
+
+def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
+          p_max_bar=None, sensitivity=None, background=False,
+          progress=None):
+    """``judder check``: is each dither setting safe, and by how much.
+
+    Parameters
+    ----------
+    freq_hz, p_f_bar : array_like, shape (n,)
+        The settings, Hz and bar (pairs: a dither table).
+    min_growth : float, optional
+        Judder-relevant growth rate, 1/s (default
+        :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`).
+    p_max_bar : float, optional
+        Largest boundary amplitude searched (default the larger of 1.5
+        bar and twice the largest setting).
+    sensitivity : sequence of str, optional
+        Parameters whose effect on the margins is reported (empty: none;
+        default :data:`DEFAULT_CHECK_PARAMETERS`, or the model's
+        inertias, stiffnesses, coupling dampings and mu_g).
+    background : bool
+        Also compute the map ``figure()`` marks the settings on.
+
+    Returns
+    -------
+    judder.results.CheckResult
+    """
+    from stability.margins import check_settings
+    from stability.relevance import (DEFAULT_MIN_GROWTH_PER_S,
+                                     ENGAGEMENT_DURATION_S)
+    values = _resolve(parameters, changes)
+    freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
+    if freq_hz.shape != p_f_bar.shape or freq_hz.ndim != 1 or not len(freq_hz):
+        raise JudderError(f"freq and p_f have {freq_hz.size} and "
+                          f"{p_f_bar.size} values; allowed: as many of each")
+    for f in freq_hz:
+        _check_number("freq", f, "Hz", strict=True)
+    for p in p_f_bar:
+        _check_number("p_f", p, "bar")
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    _check_number("min_growth", min_growth, "1/s")
+    if p_max_bar is None:
+        p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
+    _check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()),
+                  strict=True)
+    if sensitivity is None:
+        sensitivity = _structural_names(values, DEFAULT_CHECK_PARAMETERS,
+                                        ("mu_g",))
+    _check_names(values, sensitivity, "--params")
+    started = time.perf_counter()
+    checks = check_settings(values, freq_hz, p_f_bar * PA_PER_BAR, min_growth,
+                            p_max_bar * PA_PER_BAR, tuple(sensitivity),
+                            callback=progress)
+    seconds = time.perf_counter() - started
+    result = CheckResult(params=values, checks=checks, min_growth=min_growth,
+                         engagement_s=ENGAGEMENT_DURATION_S,
+                         p_max=p_max_bar * PA_PER_BAR, seconds=seconds)
+    if background:
+        low, high = freq_hz.min(), freq_hz.max()
+        grid = np.linspace(max(low - 0.5 * (high - low) - 20, 1.0),
+                           high + 0.5 * (high - low) + 20, 200)
+        under = map_kernel(build_driveline(values), grid,
+                           np.linspace(0, max(2 * p_f_bar.max(), 0.5), 100)
+                           * PA_PER_BAR)
+        result = CheckResult(**{**result.__dict__, "background": under})
+    return result
+
+
+def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0),
+           p_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
+           names=None, weights=None, design=True, progress=None):
+    """``judder advise``: safe dither windows, the ranking of the design
+    parameters, and the smallest weighted change that clears the window.
+
+    Parameters
+    ----------
+    extra_sets : sequence of drivelines.Parameters
+        More parameter sets (an uncertainty envelope): the windows are
+        those safe for every set, and the design must clear the window for
+        every set (each gets the same relative change).
+    freq_range : (float, float)
+        Dither operating frequencies, Hz (default the paper's 60-200).
+    p_max_bar : float
+        Highest dither amplitude, bar (default 0.7).
+    margin_bar, margin_hz : float
+        Margins kept from every judder-relevant tongue, bar and Hz.
+    min_growth : float, optional
+        1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
+    names : sequence of str, optional
+        Design parameters (default J2, J4, k12, k24, c12; for another
+        model its inertias, stiffnesses and coupling dampings).
+    weights : sequence of float, optional
+        Cost of a unit change of ln(value) of each (default 1).
+    design : bool
+        Also search the design change and recompute its map.
+
+    Returns
+    -------
+    judder.results.AdviceResult
+    """
+    from stability import advice as kernel
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    values = _resolve(parameters, changes)
+    sets = [values, *extra_sets]
+    models = {p.model for p in sets}
+    if len(models) > 1:
+        raise JudderError(f"parameter sets of models {sorted(models)}; "
+                          "allowed: one model")
+    low, high = (float(v) for v in freq_range)
+    if not (np.isfinite(low) and np.isfinite(high) and 0 < low < high):
+        raise JudderError(f"freq range = {low:g}:{high:g} Hz is not allowed; "
+                          "allowed: 0 < LOW < HIGH")
+    _check_number("p_max", p_max_bar, "bar", strict=True)
+    _check_number("margin_bar", margin_bar, "bar")
+    _check_number("margin_hz", margin_hz, "Hz")
+    if margin_hz >= low:
+        raise JudderError(f"margin_hz = {margin_hz:g} Hz is not allowed; "
+                          f"allowed: below the lowest frequency {low:g} Hz")
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    _check_number("min_growth", min_growth, "1/s")
+    names = tuple(_structural_names(values, kernel.DEFAULT_DESIGN_PARAMETERS)
+                  if names is None else names)
+    if not names:
+        raise JudderError("--params is empty; allowed: design parameters "
+                          "such as J2,J4,k24")
+    for p in sets:
+        _check_names(p, names, "--params")
+    weights = np.ones(len(names)) if weights is None else \
+        np.asarray(weights, dtype=float)
+    if weights.shape != (len(names),):
+        raise JudderError(f"{len(weights)} weights for {len(names)} "
+                          "parameters; allowed: one weight per parameter")
+    kernel.check_weights(names, weights)
+    operating = kernel.OperatingRange(
+        freq_hz=(low, high), p_max=p_max_bar * PA_PER_BAR,
+        margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
+    p_search = max(1.5e5, 2 * operating.required_p_f)
+    started = time.perf_counter()
+    # 0.5 Hz steps, widened by the margin so that tongues just outside count
+    grid = np.linspace(low - margin_hz, high + margin_hz,
+                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+
+    def windows_of(param_sets):
+        boundary = kernel.window_boundary(param_sets, grid, min_growth,
+                                          p_search)
+        return kernel.safe_windows(grid, boundary, operating)
+    safe, windows = windows_of(sets)
+    order = kernel.ranking(values, names, operating, min_growth, p_search)
+    found = advised_windows = verification = judder_points = None
+    if design:
+        found = kernel.advise_design(sets, names, weights, operating,
+                                     min_growth, p_search, callback=progress)
+        if found.success:
+            factors = dict(zip(found.names, found.factors))
+            advised = [p.replace(**{n: p[n] * factors[n] for n in names})
+                       for p in sets]
+            _, advised_windows = windows_of(advised)
+            verification, judder_points = kernel.verify_design(
+                advised[0], operating, min_growth)
+    return AdviceResult(
+        params=values, operating=operating, min_growth=min_growth,
+        sets=len(sets), freq_hz=grid, safe_p_f=safe, windows=windows,
+        ranking=order, advice=found, advised_windows=advised_windows or [],
+        verification=verification, judder_points=judder_points,
+        seconds=time.perf_counter() - started)

@@ -28,7 +28,7 @@ from stability.kinds import KINDS
 __all__ = ["ParamsResult", "EigResult", "FloquetPoint", "MapResult",
            "TonguesResult", "SensitivityResult", "ThresholdResult",
            "FitReport", "SimulationResult", "CrosscheckResult",
-           "CampaignResult", "ChartResult"]
+           "CampaignResult", "ChartResult", "CheckResult", "AdviceResult"]
 
 
 def _finite_or_none(value):
@@ -132,6 +132,15 @@ class MapResult:
     params: object
     map: object
     seconds: float
+    min_growth: object = None
+
+    def judder_relevant_points(self):
+        """Points growing faster than ``min_growth`` (all unstable ones if
+        it is None)."""
+        from stability.relevance import is_judder_relevant
+        return int(np.count_nonzero(
+            (self.map.kind > 0)
+            & is_judder_relevant(self.map.growth_rate, self.min_growth or 0)))
 
     def as_dict(self):
         m = self.map
@@ -141,6 +150,8 @@ class MapResult:
                 "freq_hz": [m.freq_hz[0], m.freq_hz[-1], len(m.freq_hz)],
                 "p_f_bar": [bar[0], bar[-1], len(bar)],
                 "counts": m.counts(),
+                "min_growth_per_s": self.min_growth,
+                "judder_relevant_points": self.judder_relevant_points(),
                 "max_leading_abs": float(m.leading_abs.max()),
                 "natural_frequencies_hz": m.natural_frequencies_hz}
 
@@ -172,7 +183,7 @@ class MapResult:
 
     def figure(self, title=None):
         from stability.plotting import map_figure
-        return map_figure(self.map, title=title)
+        return map_figure(self.map, title=title, min_growth=self.min_growth)
 
 
 def tongue_record(tongue):
@@ -545,3 +556,244 @@ class ChartResult:
                 ax.set_ylim(*limits[1])
         return fig
 
+
+
+def setting_record(check, min_growth, engagement_s, p_max):
+    """One :class:`stability.margins.SettingCheck` as JSON fields."""
+    m, point = check.margin, check.floquet
+    rate = point.growth_rate
+    if check.judder:
+        verdict = "judder"
+    elif point.kind != "stable":
+        verdict = "slow-growth"
+    else:
+        verdict = "stable"
+
+    def tongue(t):
+        return None if t is None else {"number": t.number, "kind": t.kind,
+                                       "resonance": t.resonance,
+                                       "tip_freq_hz": t.tip_freq_hz,
+                                       "tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
+    sensitivity = sorted(
+        ({"parameter": name,
+          "margin_bar_per_unit_log": _finite_or_none(bar / PA_PER_BAR),
+          "margin_hz_per_unit_log": _finite_or_none(hz)}
+         for name, (bar, hz) in check.sensitivity.items()
+         if np.isfinite(bar) or np.isfinite(hz)),
+        key=lambda r: -abs(r["margin_hz_per_unit_log"] or 0.0)
+        - abs(r["margin_bar_per_unit_log"] or 0.0) * 1e-6)
+    return {"freq_hz": m.freq_hz, "p_f_bar": m.p_f / PA_PER_BAR,
+            "verdict": verdict, "kind": point.kind,
+            "growth_rate_per_s": rate,
+            "e_folding_time_s": 1.0 / rate if rate > 0 else None,
+            "efolds_per_engagement": rate * engagement_s,
+            "min_growth_per_s": min_growth,
+            "inside_tongue": m.inside,
+            "boundary_p_f_bar": _finite_or_none(m.boundary_p_f / PA_PER_BAR),
+            "margin_bar": _finite_or_none(m.margin_p_f / PA_PER_BAR),
+            "margin_bar_at_least": (None if np.isfinite(m.margin_p_f)
+                                    else (p_max - m.p_f) / PA_PER_BAR),
+            "margin_bar_tongue": (tongue(check.bar_tongue)
+                                  if np.isfinite(m.margin_p_f) else None),
+            "crossing_hz": m.crossing_hz,
+            "margin_hz": _finite_or_none(m.margin_hz),
+            "margin_hz_tongue": tongue(check.hz_tongue),
+            "sensitivity": sensitivity}
+
+
+def setting_summary(record):
+    """One line: verdict, growth, both margins, the strongest parameter."""
+    def named(t):
+        return "" if t is None else \
+            f" (tongue {t['number'] or '?'}, {t['kind']})"
+    parts = [f"{record['freq_hz']:g} Hz, {record['p_f_bar']:g} bar: "
+             f"{record['verdict'].upper()}",
+             f"growth {record['growth_rate_per_s']:+.3g} 1/s"]
+    if record["e_folding_time_s"] is not None:
+        parts.append(f"e-fold {record['e_folding_time_s']:.3g} s")
+    bar = record["margin_bar"]
+    parts.append("margin " + (f"> {record['margin_bar_at_least']:+.3f} bar "
+                              "(no tongue up to p_max)" if bar is None else
+                              f"{bar:+.3f} bar") + named(
+                                  record["margin_bar_tongue"]))
+    hz = record["margin_hz"]
+    parts.append(("no tongue edge in range" if hz is None else
+                  f"{hz:+.2f} Hz") + named(record["margin_hz_tongue"]))
+    if record["sensitivity"]:
+        top = record["sensitivity"][0]
+        if top["margin_hz_per_unit_log"] is not None:
+            parts.append(f"most sensitive: {top['parameter']} "
+                         f"({0.1 * top['margin_hz_per_unit_log']:+.2f} Hz "
+                         "per +10 %)")
+    return "; ".join(parts)
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """``judder check``: verdict and margins of each dither setting.
+
+    ``checks`` are :class:`stability.margins.SettingCheck` objects;
+    ``min_growth`` the judder-relevant rate (1/s), ``engagement_s`` the
+    engagement duration the e-folds are counted over.
+    """
+
+    params: object
+    checks: list
+    min_growth: float
+    engagement_s: float
+    p_max: float
+    seconds: float
+    background: object = None
+
+    def records(self):
+        return [setting_record(c, self.min_growth, self.engagement_s,
+                               self.p_max)
+                for c in self.checks]
+
+    def as_dict(self):
+        return {"model": self.params.model,
+                "min_growth_per_s": self.min_growth,
+                "engagement_s": self.engagement_s,
+                "p_max_bar": self.p_max / PA_PER_BAR,
+                "seconds": self.seconds, "settings": self.records()}
+
+    def summary(self):
+        return "\n".join(setting_summary(r) for r in self.records())
+
+    def save(self, path):
+        """CSV: one row per setting (the scalar fields; tongues by
+        number)."""
+        rows = []
+        for r in self.records():
+            row = {k: v for k, v in r.items()
+                   if not isinstance(v, (dict, list)) and k not in
+                   ("margin_bar_tongue", "margin_hz_tongue")}
+            for key in ("margin_bar_tongue", "margin_hz_tongue"):
+                row[key] = None if r[key] is None else r[key]["number"]
+            rows.append(row)
+        write_text(path, _csv_text(rows))
+
+    def figure(self, title=None):
+        from stability.plotting import check_figure
+        return check_figure(self.records(), self.background,
+                            min_growth=self.min_growth, title=title)
+
+
+def _window_records(windows):
+    return [{"freq_hz": list(w.freq_hz), "max_p_f_bar": w.max_p_f / PA_PER_BAR,
+             "full_range": w.full_range} for w in windows]
+
+
+@dataclass(frozen=True)
+class AdviceResult:
+    """``judder advise``: safe dither windows, parameter ranking, design.
+
+    ``windows`` are :class:`stability.advice.SafeWindow` of the given
+    design (over every parameter set), ``ranking`` the list of
+    :func:`stability.advice.ranking`, ``advice`` the
+    :class:`stability.advice.Advice` (None if not asked for), and
+    ``verification`` the recomputed map of the advised design with its
+    count of judder-relevant points.
+    """
+
+    params: object
+    operating: object
+    min_growth: float
+    sets: int
+    freq_hz: np.ndarray
+    safe_p_f: np.ndarray
+    windows: list
+    ranking: list
+    advice: object
+    advised_windows: list
+    verification: object
+    judder_points: object
+    seconds: float
+
+    def advised_params(self):
+        """The advised parameter set (None if there is none)."""
+        a = self.advice
+        if a is None or not a.success:
+            return None
+        return self.params.replace(**{n: self.params[n] * f
+                                      for n, f in zip(a.names, a.factors)})
+
+    def as_dict(self):
+        op = self.operating
+        out = {"model": self.params.model,
+               "min_growth_per_s": self.min_growth,
+               "parameter_sets": self.sets,
+               "operating_range": {
+                   "freq_hz": list(op.freq_hz),
+                   "p_f_max_bar": op.p_max / PA_PER_BAR,
+                   "margin_bar": op.margin_p_f / PA_PER_BAR,
+                   "margin_hz": op.margin_hz},
+               "safe_windows": _window_records(self.windows),
+               "best_safe_setting": {
+                   "freq_hz": float(self.freq_hz[np.argmax(self.safe_p_f)]),
+                   "p_f_bar": float(self.safe_p_f.max() / PA_PER_BAR)},
+               "ranking": [{"parameter": name, "share_per_unit_log": share,
+                            "tongues": {str(n): {"d_ln_left_edge": d[0],
+                                                 "d_ln_right_edge": d[1],
+                                                 "d_ln_tip_p_f": d[2]}
+                                        for n, d in detail.items()}}
+                           for name, share, detail in self.ranking],
+               "seconds": self.seconds}
+        a = self.advice
+        if a is not None:
+            out["design"] = {
+                "success": a.success, "message": a.message,
+                "iterations": a.iterations,
+                "tongues_in_the_way": a.history,
+                "weighted_change": a.weighted_change,
+                "factors": dict(zip(a.names, a.factors.tolist())),
+                "values": ({n: self.advised_params()[n] for n in a.names}
+                           if a.success else None),
+                "nominal": {n: self.params[n] for n in a.names},
+                "safe_windows": _window_records(self.advised_windows),
+                "recomputed_map_judder_points": self.judder_points,
+                "recomputed_map_points": (None if self.verification is None
+                                          else int(self.verification.kind.size))}
+        return out
+
+    def summary(self):
+        lines = []
+        op = self.operating
+        lo, hi = op.freq_hz
+        best = int(np.argmax(self.safe_p_f))
+        lines.append(f"safe in {lo:g}-{hi:g} Hz (margins "
+                     f"{op.margin_p_f / PA_PER_BAR:g} bar, {op.margin_hz:g} "
+                     f"Hz): up to {self.safe_p_f[best] / PA_PER_BAR:.3f} bar "
+                     f"at best ({self.freq_hz[best]:.1f} Hz)")
+        for level in sorted({w.max_p_f for w in self.windows}, reverse=True):
+            lines.append(f"  up to {level / PA_PER_BAR:.3f} bar: " + ", ".join(
+                f"{w.freq_hz[0]:.1f}-{w.freq_hz[1]:.1f} Hz"
+                for w in self.windows if w.max_p_f == level))
+        if self.ranking:
+            lines.append("ranking (share of the way out per unit ln change): "
+                         + ", ".join(f"{n} {s:.3f}"
+                                     for n, s, _ in self.ranking))
+        a = self.advice
+        if a is not None:
+            if a.success:
+                lines.append("design: " + ", ".join(
+                    f"{n} x{f:.3f}" for n, f in zip(a.names, a.factors))
+                    + f" (weighted change {a.weighted_change:.3f}); "
+                    f"recomputed map: {self.judder_points} judder points of "
+                    f"{self.verification.kind.size}")
+            else:
+                lines.append(f"design: none found: {a.message}")
+        return "\n".join(lines)
+
+    def save(self, path):
+        """CSV: freq_hz, safe_p_f_bar of the given design (operating
+        frequencies only)."""
+        low, high = self.operating.freq_hz
+        write_text(path, _csv_text(
+            [{"freq_hz": f, "safe_p_f_bar": p / PA_PER_BAR}
+             for f, p in zip(self.freq_hz, self.safe_p_f)
+             if low <= f <= high]))
+
+    def figure(self, title=None):
+        from stability.plotting import advice_figure
+        return advice_figure(self, title=title)

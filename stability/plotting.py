@@ -16,7 +16,8 @@ from .tongues import resonances
 
 __all__ = ["KIND_COLORS", "plot_map", "plot_growth_rate", "map_figure",
            "resonance_lines", "plot_boundaries", "tongues_figure",
-           "sensitivity_figure", "plot_threshold", "plot_fit"]
+           "sensitivity_figure", "plot_threshold", "plot_fit",
+           "check_figure", "advice_figure"]
 
 #: Colour of each kind of :data:`~stability.kinds.KINDS`.
 KIND_COLORS = ("#ffffff", "#d62728", "#1f77b4", "#2ca02c")
@@ -37,7 +38,7 @@ def _edges(centres):
                            [2 * centres[-1] - mid[-1]]])
 
 
-def plot_map(stability_map, ax=None, mark_resonances=True):
+def plot_map(stability_map, ax=None, mark_resonances=True, min_growth=None):
     """Regions of each kind of instability over frequency (Hz) and p_f (bar).
 
     Parameters
@@ -47,6 +48,10 @@ def plot_map(stability_map, ax=None, mark_resonances=True):
     mark_resonances : bool
         Draw dashed lines at the natural frequencies and their
         double-period and combination partners inside the frequency range.
+    min_growth : float, optional
+        1/s: shade grey the unstable points growing slower than this (not
+        judder, :mod:`stability.relevance`) and outline the
+        judder-relevant region.
 
     Returns
     -------
@@ -75,8 +80,65 @@ def plot_map(stability_map, ax=None, mark_resonances=True):
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
     handles = [Patch(facecolor=c, edgecolor="k", label=k)
                for k, c in zip(KINDS, KIND_COLORS)]
+    if min_growth is not None and min_growth > 0:
+        artists += _shade_slow(m, ax, min_growth)
+        handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
+                             label=f"grows < {min_growth:g} 1/s (not judder)"))
     artists.append(ax.legend(handles=handles, loc="upper left", fontsize=7))
     return artists
+
+
+#: Colour of the unstable points that grow too slowly to be judder.
+SLOW_COLOR = "#bbbbbb"
+
+
+def _shade_slow(m, ax, min_growth):
+    """Grey where 0 < growth <= min_growth; a line at growth = min_growth."""
+    from .relevance import is_judder_relevant
+    slow = (m.kind > 0) & ~is_judder_relevant(m.growth_rate, min_growth)
+    bar = m.p_f / PA_PER_BAR
+    artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar),
+                             np.ma.masked_where(~slow, slow).T,
+                             cmap=ListedColormap([SLOW_COLOR]),
+                             shading="flat")]
+    if len(m.freq_hz) > 1 and len(bar) > 1:
+        artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
+                                  levels=[min_growth], colors="k",
+                                  linewidths=1.2, linestyles=":"))
+    return artists
+
+
+VERDICT_MARKERS = {"judder": ("X", "#d62728"), "slow-growth": ("o", "#777777"),
+                   "stable": ("o", "#2ca02c")}
+
+
+def check_figure(records, background=None, min_growth=None, title=None):
+    """Settings of ``judder check`` marked on the map (or alone).
+
+    Parameters
+    ----------
+    records : list of dict
+        :func:`judder.results.setting_record` fields (Hz, bar).
+    background : stability.maps.StabilityMap, optional
+    min_growth : float, optional
+        Passed to :func:`plot_map`.
+    """
+    fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
+    if background is not None:
+        plot_map(background, ax=ax, min_growth=min_growth)
+    for r in records:
+        marker, color = VERDICT_MARKERS[r["verdict"]]
+        ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker, color=color,
+                markeredgecolor="k", markersize=9, linestyle="none")
+        hz, bar = r["margin_hz"], r["margin_bar"]
+        text = (("" if bar is None else f"{bar:+.3f} bar\n")
+                + ("" if hz is None else f"{hz:+.2f} Hz"))
+        ax.annotate(text, (r["freq_hz"], r["p_f_bar"]), xytext=(6, 6),
+                    textcoords="offset points", fontsize=7)
+    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    ax.set_title(title or "dither settings: verdict and margins")
+    return fig
 
 
 def plot_growth_rate(stability_map, ax=None):
@@ -96,11 +158,11 @@ def plot_growth_rate(stability_map, ax=None):
     return [mesh, bar]
 
 
-def map_figure(stability_map, title=None):
+def map_figure(stability_map, title=None, min_growth=None):
     """Figure with the kinds (left) and the growth rate (right)."""
     fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
                                       layout="constrained")
-    plot_map(stability_map, ax=left)
+    plot_map(stability_map, ax=left, min_growth=min_growth)
     plot_growth_rate(stability_map, ax=right)
     left.set_title("kind of instability (leading Floquet multiplier)")
     right.set_title("growth rate of the leading multiplier")
@@ -325,3 +387,40 @@ def _fit_curves(result):
                 result.fitted_curve_bar)
     from .fitting import fit_curves
     return fit_curves(result)
+
+
+def advice_figure(advice, title=None):
+    """Safe amplitude per frequency (left) and the recomputed map of the
+    advised design (right, if any).
+
+    Parameters
+    ----------
+    advice : judder.results.AdviceResult
+    """
+    if advice.verification is None:
+        fig, left = plt.subplots(figsize=(7, 5), layout="constrained")
+    else:
+        fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
+                                          layout="constrained")
+    op = advice.operating
+    inside = ((advice.freq_hz >= op.freq_hz[0])
+              & (advice.freq_hz <= op.freq_hz[1]))
+    left.fill_between(advice.freq_hz[inside], 0,
+                      advice.safe_p_f[inside] / PA_PER_BAR, color="#2ca02c",
+                      alpha=0.5, label="safe (with margins)")
+    left.axhline(op.p_max / PA_PER_BAR, color="k", linestyle="--",
+                 linewidth=0.8, label="operating amplitude")
+    for edge in op.freq_hz:
+        left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
+    left.set_xlabel("dither frequency [Hz]")
+    left.set_ylabel("safe dither amplitude $p_f$ [bar]")
+    left.set_title("safe dither windows, given design")
+    left.legend(fontsize=7)
+    if advice.verification is not None:
+        plot_map(advice.verification, ax=right,
+                 min_growth=advice.min_growth)
+        right.set_title(f"advised design: {advice.judder_points} "
+                        "judder-relevant points")
+    if title:
+        fig.suptitle(title)
+    return fig

@@ -19,7 +19,8 @@ from .options import (check_number, emit, make_parents, parameters_of,
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
-           "cmd_crosscheck", "cmd_campaign", "cmd_chart"]
+           "cmd_crosscheck", "cmd_campaign", "cmd_chart", "cmd_check",
+           "cmd_advise"]
 
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
@@ -111,8 +112,11 @@ def cmd_map(args):
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
-        result = api.stability_map(freqs, amplitudes, params, changes,
-                                   method=args.method, progress=progress)
+        result = api.stability_map(
+            freqs, amplitudes, params, changes, method=args.method,
+            progress=progress,
+            min_growth=check_number("--min-growth", args.min_growth, "1/s",
+                                    strict=False))
     title = (f"{result.params.model} stability map, "
              f"{args.preset or args.param_file or 'default parameters'}")
     files = _write_outputs(args, result,
@@ -137,7 +141,8 @@ def cmd_tongues(args):
                              background=args.plot is not None,
                              progress=progress,
                              min_growth=_finite("--min-growth",
-                                                args.min_growth, "1/s"))
+                                                args.min_growth, "1/s"),
+                             solver=args.solver)
     data = {**result.as_dict(), **_write_outputs(args, result)}
     rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
             f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
@@ -466,3 +471,79 @@ def cmd_chart(args):
     if not result.chart.read:
         raise JudderError("no run could be read")
 
+
+
+def _values(text, option, unit):
+    """A comma-separated list or a START:STOP:N grid."""
+    if ":" in text:
+        return list(parse_grid(text, option, unit))
+    return parse_list(text, option)
+
+
+def _settings(args):
+    """Frequencies (Hz) and amplitudes (bar) of ``judder check``."""
+    from ..inputs import read_boundary
+    if args.table:
+        if args.freq or args.pf:
+            raise JudderError("--table and --freq/--pf: allowed: one of them")
+        freqs, p_f = read_boundary(args.table, "--table")
+        if not len(freqs) or not all(math.isfinite(p) for p in p_f):
+            raise JudderError(f"--table {args.table}: every row needs "
+                              "freq_hz and p_f_bar; allowed: no empty cells")
+        return list(freqs), [p / PA_PER_BAR for p in p_f]
+    if not (args.freq and args.pf):
+        raise JudderError("--freq and --pf are required (or --table)")
+    freqs = _values(args.freq, "--freq", "Hz")
+    amplitudes = _values(args.pf, "--pf", "bar")
+    pairs = [(f, p) for f in freqs for p in amplitudes]
+    return [f for f, _ in pairs], [p for _, p in pairs]
+
+
+def cmd_check(args):
+    """Verdict, growth and margins of dither settings."""
+    freqs, amplitudes = _settings(args)
+    if args.params is None:
+        names = None
+    elif args.params.strip().lower() == "none":
+        names = []
+    else:
+        names = parse_list(args.params, "--params", str)
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs), "check") as progress:
+        result = api.check(freqs, amplitudes, params, changes,
+                           min_growth=args.min_growth, p_max_bar=args.pf_max,
+                           sensitivity=names, background=bool(args.plot),
+                           progress=progress)
+    data = {**result.as_dict(), **_write_outputs(args, result)}
+    emit(args, data, result.summary() + _written(args.out, args.plot))
+
+
+def cmd_advise(args):
+    """Safe dither windows, parameter ranking and design change."""
+    from drivelines import load_toml
+    from ..inputs import read_input
+    low_high = args.freq_range.split(":")
+    try:
+        low, high = (float(v) for v in low_high)
+    except ValueError:
+        raise JudderError(f"--freq-range {args.freq_range!r} is not "
+                          "LOW:HIGH in Hz (e.g. 60:200)") from None
+    names = None if args.params is None else \
+        parse_list(args.params, "--params", str)
+    weights = None if args.weights is None else \
+        parse_list(args.weights, "--weights")
+    params, changes = parameters_of(args)
+    extra = [load_toml(read_input(path, "--also"), source=str(path))
+             for path in args.also]
+    make_parents(args.out, args.plot)
+    with Progress(8, "advise") as progress:
+        result = api.advise(params, changes, extra_sets=extra,
+                            freq_range=(low, high), p_max_bar=args.pf_max,
+                            margin_bar=args.margin_bar,
+                            margin_hz=args.margin_hz,
+                            min_growth=args.min_growth, names=names,
+                            weights=weights, design=not args.no_design,
+                            progress=progress)
+    data = {**result.as_dict(), **_write_outputs(args, result)}
+    emit(args, data, result.summary() + _written(args.out, args.plot))

@@ -8,6 +8,7 @@ import argparse
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
 from stability.monodromy import DEFAULT_METHOD, METHODS
+from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 
 from . import commands
 
@@ -50,6 +51,20 @@ def _pf_max_option(parser, meaning):
 def _workers_option(parser):
     parser.add_argument("--workers", type=int, default=None,
                         help="processes (default: all cores)")
+
+
+MIN_GROWTH_HELP = (
+    "judder-relevant growth rate, 1/s: an instability growing slower "
+    "than this stays below one e-fold over a {:g} s engagement (the "
+    "slipping phase), so it is not judder (default %(default)g = one "
+    "e-fold per engagement; 0: every instability)"
+    .format(ENGAGEMENT_DURATION_S))
+
+
+def _min_growth_option(parser, extra=""):
+    parser.add_argument("--min-growth", type=float,
+                        default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
+                        help=MIN_GROWTH_HELP + extra)
 
 
 def _method_option(parser):
@@ -117,23 +132,110 @@ def build_parser():
                    help="save the map arrays (NPZ, see README)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="save a plot of the map (PNG, SVG or PDF)")
+    _min_growth_option(p, "; the plot shades slower ones grey")
     _method_option(p)
     _model_options(p)
     p.set_defaults(handler=commands.cmd_map)
 
+    p = sub.add_parser(
+        "check", help="is a dither setting safe, and by how much",
+        description="Verdict of each dither setting (judder if it grows "
+                    "faster than --min-growth), its growth rate and e-folding "
+                    "time against the engagement, the margin to the nearest "
+                    "judder-relevant tongue boundary in bar (at the same "
+                    "frequency) and in Hz (at the same amplitude), exact "
+                    "from the boundary curves, which tongue that is, and "
+                    "how much each parameter moves those margins. Settings: "
+                    "--freq x --pf (every pair), or --table.")
+    p.add_argument("--freq", metavar="HZ[,HZ...]",
+                   help="dither frequencies, Hz: a list or START:STOP:N")
+    p.add_argument("--pf", metavar="BAR[,BAR...]",
+                   help="dither amplitudes, bar: a list or START:STOP:N")
+    p.add_argument("--table", metavar="FILE.csv",
+                   help="a dither table instead: columns freq_hz,p_f_bar, "
+                        "one setting a row (e.g. a controller's table)")
+    _min_growth_option(p)
+    p.add_argument("--pf-max", type=float, default=None, metavar="BAR",
+                   help="largest boundary amplitude searched, bar (default "
+                        "the larger of 1.5 and twice the largest setting)")
+    p.add_argument("--params", default=None, metavar="NAMES",
+                   help="parameters whose effect on the margins is reported "
+                        "(d margin / d ln value; default J2,J4,k12,k24,c12,"
+                        "mu_g, for the 3-DOF model its inertias, stiffnesses, "
+                        "dampings and mu_g; 'none' for none)")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="one row per setting (the scalar JSON fields)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the settings marked on the map")
+    _model_options(p)
+    p.set_defaults(handler=commands.cmd_check)
+
+    p = sub.add_parser(
+        "advise", help="safe dither windows and the design change that "
+                       "clears the dither range",
+        description="(a) The safe (frequency, amplitude) windows inside the "
+                    "valve's operating range, keeping --margin-bar and "
+                    "--margin-hz from every judder-relevant tongue (over "
+                    "every --also parameter set: the broadest region); "
+                    "(b) the ranking of the design parameters by the share "
+                    "of the way out of the window per relative change, and "
+                    "the smallest weighted relative change of them that "
+                    "clears the window of judder, checked by recomputing "
+                    "the Floquet map of the advised design (section 4.3, 5).")
+    p.add_argument("--freq-range", default="60:200", metavar="LOW:HIGH",
+                   help="dither operating frequencies, Hz (default "
+                        "%(default)s, the paper's valve)")
+    p.add_argument("--pf-max", type=float, default=0.7, metavar="BAR",
+                   help="highest operating dither amplitude, bar (default "
+                        "%(default)g)")
+    p.add_argument("--margin-bar", type=float, default=0.1, metavar="BAR",
+                   help="amplitude margin below every tongue, bar (default "
+                        "%(default)g)")
+    p.add_argument("--margin-hz", type=float, default=5.0, metavar="HZ",
+                   help="frequency margin from every tongue edge, Hz "
+                        "(default %(default)g)")
+    _min_growth_option(p)
+    p.add_argument("--params", default=None, metavar="NAMES",
+                   help="design parameters that may change (default "
+                        "J2,J4,k12,k24,c12; for the 3-DOF model its "
+                        "inertias, stiffnesses and dampings)")
+    p.add_argument("--weights", default=None, metavar="W[,W...]",
+                   help="cost of a unit change of ln(value) of each design "
+                        "parameter, in the order of --params (default 1 "
+                        "each)")
+    p.add_argument("--also", action="append", default=[],
+                   metavar="FILE.toml",
+                   help="another parameter set the advice must hold for "
+                        "(an uncertainty envelope); repeatable")
+    p.add_argument("--no-design", action="store_true",
+                   help="only the windows and the ranking")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="safe amplitude per frequency: freq_hz,safe_p_f_bar")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="safe amplitude per frequency and the map of the "
+                        "advised design")
+    _model_options(p)
+    p.set_defaults(handler=commands.cmd_advise)
+
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
-                       description="Exact tongue boundaries: single- and "
-                                   "double-period by Hill's method, "
-                                   "combination by Brent's method on the "
-                                   "monodromy; each point checked against "
-                                   "the monodromy. Tongues numbered as in "
+                       description="Exact tongue boundaries by Hill's "
+                                   "method (--solver hill: every kind, all "
+                                   "frequencies at once; scan: combination "
+                                   "by Brent's method on the monodromy); "
+                                   "each point checked against the "
+                                   "monodromy. Tongues numbered as in "
                                    "Fig. 14, with their tips (lowest p_f).")
     p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
     _pf_max_option(p, "largest amplitude searched")
     p.add_argument("--min-growth", type=float, default=0.0, metavar="1/S",
                    help="boundaries of judder growing at least this fast, "
-                        "1/s (default 0: the stability boundaries)")
+                        "1/s (default 0: the stability boundaries of Fig. "
+                        "14; map, check and advise use 1, one e-fold per "
+                        "1 s engagement, the judder-relevant rate)")
+    p.add_argument("--solver", default="hill", choices=("hill", "scan"),
+                   help="boundary solver: hill (default, fast) or scan "
+                        "(per frequency, Brent on the monodromy)")
     p.add_argument("--out", metavar="FILE.csv",
                    help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
                         "if none), then per kind, bar")

@@ -1,0 +1,212 @@
+"""Decisions: fast Hill boundaries, judder relevance, check margins, advice.
+
+Reference values are independent computations: the per-frequency 'scan'
+solver (Hill + Brent on the Dyson monodromy), solve_ivp monodromies, Floquet
+growth rates at the reported points, natural frequencies (Eq. 15), and the
+paper's ranking (section 4.3, section 5).
+"""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from drivelines import get_preset
+from infra.errors import JudderError
+from judder import api
+from stability import build_driveline, floquet, natural_frequencies
+from stability.advice import OperatingRange, _clear
+from stability.hill import combination_boundaries, modal_transfer
+from stability.margins import search_grid, setting_margin
+from stability.monodromy import monodromy_solve_ivp
+from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, is_judder_relevant
+from stability.tongues import lowest_boundaries
+
+BAR = 1e5
+#: Frequencies through all six tongues of Fig. 14 and between them.
+FREQS = np.array([17.0, 19.0, 21.0, 37.0, 38.5, 81.0, 83.5, 86.0, 99.0,
+                  102.5, 106.0, 119.0, 121.5, 124.0, 203.0, 207.0, 60.0])
+
+
+@pytest.mark.parametrize("preset", ["paper-4dof", "paper-4dof-fitted"])
+def test_hill_solver_equals_the_scan_solver(preset):
+    # every kind, every frequency: same points found, same amplitudes
+    system = build_driveline(get_preset(preset)).periodic_system()
+    fast = lowest_boundaries(system, FREQS, 1.5 * BAR, solver="hill")
+    scan = lowest_boundaries(system, FREQS, 1.5 * BAR, solver="scan")
+    assert np.array_equal(np.isfinite(fast), np.isfinite(scan))
+    assert np.isfinite(fast[:, 2]).sum() >= 4     # combination points present
+    # Brent on the monodromy stops at xtol = 1e-9 p_max
+    assert_allclose(fast[np.isfinite(fast)], scan[np.isfinite(scan)],
+                    rtol=1e-7)
+
+
+@pytest.mark.parametrize("freq", [83.0, 84.5, 121.0, 122.5])
+def test_combination_boundary_is_a_complex_pair_on_the_unit_circle(paper4,
+                                                                   freq):
+    system = paper4.periodic_system()
+    p, nu = combination_boundaries(modal_transfer(system), [freq], 1.5 * BAR)
+    lam = np.linalg.eigvals(monodromy_solve_ivp(system, freq, [p[0]],
+                                                rtol=1e-12, atol=1e-14)[0])
+    pair = lam[np.abs(lam.imag) > 1e-6]
+    assert np.abs(np.abs(pair) - 1).min() < 1e-7
+    # the argument of the pair is nu T (mod 2 pi, up to sign)
+    angle = np.abs(np.angle(pair[np.argmin(np.abs(np.abs(pair) - 1))]))
+    assert angle == pytest.approx(nu[0] / freq, rel=1e-6)
+
+
+@pytest.mark.parametrize("freq, column", [(102.9, 0), (121.8, 2), (37.9, 1)])
+def test_boundary_of_a_growth_rate_grows_at_that_rate(paper4, freq, column):
+    rate = 2.0
+    system = paper4.periodic_system().shifted(rate)
+    p = lowest_boundaries(system, [freq], 3 * BAR)[0, column]
+    assert floquet(paper4, freq, p).growth_rate == pytest.approx(rate,
+                                                                 rel=1e-7)
+
+
+def test_judder_relevance_rule():
+    assert DEFAULT_MIN_GROWTH_PER_S == 1.0      # one e-fold per 1 s engagement
+    assert is_judder_relevant([0.02, 0.99, 1.01, np.nan]).tolist() == \
+        [False, False, True, False]
+    with pytest.raises(JudderError, match="min_growth"):
+        is_judder_relevant([1.0], -1.0)
+
+
+def test_map_counts_only_judder_relevant_growth():
+    # the slow slip-speed dome of a stiffly damped clutch damper (README)
+    slow = api.stability_map([60.0], [1.2], changes={"c12": 10.0},
+                             min_growth=1.0)
+    assert slow.map.kind[0, 0] == 1 and 0 < slow.map.growth_rate[0, 0] < 0.1
+    assert slow.as_dict()["judder_relevant_points"] == 0
+    assert api.stability_map([60.0], [1.2], changes={"c12": 10.0},
+                             min_growth=0.0).judder_relevant_points() == 1
+
+
+@pytest.mark.parametrize("freq, p_bar, inside", [(102.9, 0.3, True),
+                                                  (101.5, 0.3, False),
+                                                  (83.0, 0.3, False)])
+def test_margins_are_exact_points_of_the_growth_boundary(paper4, freq, p_bar,
+                                                         inside):
+    rate = 1.0
+    system = paper4.periodic_system().shifted(rate)
+    m = setting_margin(system, freq, p_bar * BAR, 1.5 * BAR,
+                       search_grid([freq]))
+    assert m.inside is inside
+    assert np.sign(m.margin_hz) == np.sign(m.margin_p_f) == \
+        (-1 if inside else 1)
+    # at the bar margin and at the Hz margin the response grows at `rate`
+    at_bar = floquet(paper4, freq, m.boundary_p_f).growth_rate
+    at_hz = floquet(paper4, m.crossing_hz, p_bar * BAR).growth_rate
+    assert at_bar == pytest.approx(rate, rel=1e-6)
+    assert at_hz == pytest.approx(rate, rel=1e-6)
+
+
+def test_check_reports_verdict_margins_and_the_strongest_parameters():
+    result = api.check([102.9, 60.0], [0.3, 0.3],
+                       sensitivity=["J1", "J3", "J4", "k24"])
+    inside, outside = result.records()
+    assert inside["verdict"] == "judder"
+    assert inside["margin_hz_tongue"]["number"] == 2
+    assert inside["e_folding_time_s"] == pytest.approx(
+        1 / inside["growth_rate_per_s"])
+    assert outside["verdict"] == "stable" and outside["margin_hz"] > 20
+    # tongue 2 grows from f2: its edge moves with f2 (Eq. 15) under k24,
+    # J1 and J3 hardly move it (section 4.3)
+    sens = {r["parameter"]: r["margin_hz_per_unit_log"]
+            for r in inside["sensitivity"]}
+    params = get_preset("paper-4dof")
+    step = 1e-3
+    f2 = [natural_frequencies(build_driveline(params.replace(
+        k24=params["k24"] * (1 + s))))[1] for s in (step, -step)]
+    elasticity = np.log(f2[0] / f2[1]) / np.log((1 + step) / (1 - step))
+    # inside, the margin is minus the distance to the edge above f0
+    assert -sens["k24"] == pytest.approx(inside["crossing_hz"] * elasticity,
+                                         rel=0.05)
+    assert [r["parameter"] for r in inside["sensitivity"]][:2] == ["k24",
+                                                                  "J4"]
+    assert abs(sens["J3"]) < 1e-2 * abs(sens["k24"])
+    assert abs(sens["J1"]) < 1e-2 * abs(sens["k24"])
+
+
+def test_advise_reproduces_the_paper_and_clears_the_window():
+    """Acceptance: section 4.3/5 ranking, and a design whose recomputed map
+    has no judder-relevant point in 60-200 Hz x 0-0.7 bar."""
+    result = api.advise()
+    ranking = [name for name, _, _ in result.ranking]
+    assert set(ranking[:3]) == {"J2", "J4", "k24"}
+    assert result.advice.success
+    assert result.judder_points == 0
+    assert result.verification.kind.size == 141 * 36
+    factors = dict(zip(result.advice.names, result.advice.factors))
+    assert factors["k24"] > 1 and factors["J4"] < 1   # tongues moved up
+    # smallest along its ray: 90 % of the change does not clear it
+    x = np.log(result.advice.factors)
+    operating = OperatingRange()
+    assert not _clear([result.params], result.advice.names, 0.9 * x,
+                      operating, 1.0, 1.6 * BAR)
+    assert _clear([result.params], result.advice.names, x, operating, 1.0,
+                  1.6 * BAR)
+
+
+def _judder(*args):
+    return subprocess.run([sys.executable, "-m", "judder", *args],
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_check_command_line(tmp_path):
+    table = tmp_path / "dither.csv"
+    table.write_text("freq_hz,p_f_bar\n60,0.2\n102.9,0.3\n")
+    proc = _judder("check", "--table", str(table), "--params", "k24",
+                   "--json", "--out", str(tmp_path / "c.csv"))
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert [s["verdict"] for s in data["settings"]] == ["stable", "judder"]
+    assert (tmp_path / "c.csv").read_text().startswith("freq_hz,p_f_bar")
+    summary = _judder("check", "--freq", "102.9", "--pf", "0.3", "--params",
+                      "none")
+    assert summary.stdout.count("\n") == 1 and "JUDDER" in summary.stdout
+    proc = _judder("check", "--freq", "60", "--pf", "-1")
+    assert proc.returncode == 2 and "p_f" in proc.stderr
+    assert proc.stderr.count("\n") == 1
+
+
+@pytest.mark.parametrize("kwargs, word", [
+    ({"min_growth": float("nan")}, "min_growth"),
+    ({"sensitivity": ["J9"]}, "J9"),
+    ({"p_max_bar": 0.1}, "p_max")])
+def test_check_refuses_bad_input(kwargs, word):
+    with pytest.raises(JudderError, match=word):
+        api.check([60.0], [0.2], **kwargs)
+
+
+def test_windows_over_an_envelope_are_safe_for_every_set():
+    # section 4.2: the broadest region over the uncertain parameters
+    from stability.advice import safe_windows, window_boundary
+    nominal = get_preset("paper-4dof")
+    stiffer = nominal.replace(k24=1.06 * nominal["k24"], mu_g=0.022)
+    operating = OperatingRange()
+    grid = np.linspace(55.0, 205.0, 301)
+    safe = {}
+    for name, sets in [("nominal", [nominal]), ("stiffer", [stiffer]),
+                       ("both", [nominal, stiffer])]:
+        boundary = window_boundary(sets, grid, 1.0, 1.6 * BAR)
+        safe[name], windows = safe_windows(grid, boundary, operating)
+        if name == "nominal":
+            # nothing safe at full amplitude next to f2 (tongue 2)
+            assert not any(w.freq_hz[0] <= 102.9 <= w.freq_hz[1]
+                           for w in windows if w.full_range)
+        if name == "both":
+            robust = [w for w in windows if w.full_range]
+    assert_allclose(safe["both"], np.minimum(safe["nominal"],
+                                             safe["stiffer"]))
+    assert np.any(safe["both"] < safe["nominal"])
+    assert robust
+    assert floquet(build_driveline(nominal), 102.9, 0.7 * BAR).growth_rate > 1
+    for window in robust:
+        for f in window.freq_hz:
+            for params in (nominal, stiffer):
+                assert floquet(build_driveline(params), f,
+                               0.8 * BAR).growth_rate < 1.0
