@@ -63,7 +63,9 @@ def cmd_params(args):
         make_parents(args.save)
         result.save(args.save, overwrite=args.force)
     specs = result.params.specs
-    rows = [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
+    rows = [f"{'name':22s} {'value':14s} {'unit':10s} {'allowed':24s} "
+            "meaning"]
+    rows += [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
             f"{spec.allowed():24s} {spec.description}"
             for name, spec in specs.items()]
     emit(args, {**result.as_dict(), "saved": args.save},
