@@ -120,6 +120,11 @@ class FloquetPoint:
                 "growth_rate_per_s": r.growth_rate,
                 "exponents_per_s": r.exponents}
 
+    def figure(self, title=None):
+        """The multipliers on the complex plane (Fig. 15)."""
+        from stability.plotting import multipliers_figure
+        return multipliers_figure([self.result], title=title)
+
 
 @dataclass(frozen=True)
 class MapResult:
@@ -132,6 +137,8 @@ class MapResult:
     params: object
     map: object
     seconds: float
+    boundaries: object = None
+    tongues: list = None
 
     def as_dict(self):
         m = self.map
@@ -172,7 +179,8 @@ class MapResult:
 
     def figure(self, title=None):
         from stability.plotting import map_figure
-        return map_figure(self.map, title=title)
+        return map_figure(self.map, title=title, tongues=self.tongues,
+                          boundaries=self.boundaries)
 
 
 def tongue_record(tongue):
@@ -276,7 +284,7 @@ class SensitivityResult:
     def figure(self, title=None):
         return self.study.plot(
             title=title or f"{self.params.model}: sensitivity of the "
-                           "stability boundary")
+                           "stability boundary", params=self.params)
 
 
 @dataclass(frozen=True)

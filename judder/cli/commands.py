@@ -14,8 +14,8 @@ from infra.units import PA_PER_BAR
 
 from .. import api
 from ..inputs import read_boundary, read_chart_boundary
-from .options import (check_number, emit, make_parents, parameters_of,
-                      parse_grid, parse_list, Progress)
+from .options import (check_number, emit, make_parents, model_title,
+                      parameters_of, parse_grid, parse_list, Progress)
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
@@ -91,16 +91,23 @@ def cmd_eig(args):
 def cmd_floquet(args):
     """Floquet multipliers at one dither frequency and amplitude."""
     check_number("--pf", args.pf, "bar", strict=False)
-    point = api.floquet(args.freq, args.pf, *parameters_of(args),
+    params, changes = parameters_of(args)
+    make_parents(args.plot)
+    point = api.floquet(args.freq, args.pf, params, changes,
                         method=args.method)
+    if args.plot:
+        save_figure(args.plot, point.figure(
+            title=f"Floquet multipliers (Fig. 15), "
+                  f"{model_title(args, params)}"))
     result = point.result
     lam = result.leading
     text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
             f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
             f"(|lambda| = {result.leading_abs:.6f}), growth rate "
             f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
-            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers))
-    emit(args, point.as_dict(), text)
+            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers)
+            + _written(args.plot))
+    emit(args, {**point.as_dict(), **_files(plot=args.plot)}, text)
 
 
 def cmd_map(args):
@@ -114,9 +121,9 @@ def cmd_map(args):
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(freqs, amplitudes, params, changes,
-                                   method=args.method, progress=progress)
-    title = (f"{result.params.model} stability map, "
-             f"{args.preset or args.param_file or 'default parameters'}")
+                                   method=args.method, progress=progress,
+                                   exact=args.plot is not None)
+    title = f"stability map (Fig. 14), {model_title(args, params)}"
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set}},
@@ -140,7 +147,9 @@ def cmd_tongues(args):
                              progress=progress,
                              min_growth=_finite("--min-growth",
                                                 args.min_growth, "1/s"))
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(args, result, figure={
+        "title": f"tongue boundaries over the map, "
+                 f"{model_title(args, params)}"})}
     rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
             f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
     for r in data["tongues"]:
@@ -175,7 +184,9 @@ def cmd_sensitivity(args):
                                  values=values, parameters=params,
                                  changes=changes, method=args.method,
                                  workers=args.workers, progress=progress)
-    files = _write_outputs(args, result)
+    files = _write_outputs(args, result, figure={
+        "title": "sensitivity of the stability boundary (Fig. 17, 18), "
+                 + model_title(args, params)})
     rows = [f"{'param':>8} {'factor':>7} {'value':>10} {'#':>2} "
             f"{'tip f [Hz]':>11} {'df [Hz]':>8} {'tip p_f':>8} {'dp_f':>8}"]
     for r in result.tip_shifts:
@@ -316,7 +327,8 @@ def _engagement_line(s):
 
 def cmd_simulate(args):
     """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
-    check_number("--freq", args.freq, "Hz")
+    freqs = [check_number("--freq", f, "Hz")
+             for f in parse_list(args.freq, "--freq")]
     check_number("--pf", args.pf, "bar", strict=False)
     check_number("--duration", args.duration, "s")
     params, changes = parameters_of(args)
@@ -325,12 +337,14 @@ def cmd_simulate(args):
         "none" if args.compare == "none" else
         check_number("--compare", _float(args.compare, "--compare"), "Hz"))
     make_parents(args.out, args.plot)
-    result = api.simulate(args.freq, args.pf, duration=args.duration,
+    result = api.simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
+                          duration=args.duration,
                           compare=compare, bench=bench, parameters=params,
                           changes=changes, method=args.method)
     files = _write_outputs(
         args, result,
-        figure={"title": "bench engagement, EVEN clutch at 1000 rpm"})
+        figure={"title": "bench engagement of the EVEN clutch (Fig. 1, 7, "
+                         f"8), {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))

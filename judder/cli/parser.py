@@ -99,6 +99,9 @@ def build_parser():
                    help="dither frequency, Hz")
     p.add_argument("--pf", type=float, required=True, metavar="BAR",
                    help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the multipliers on the complex plane with the "
+                        "unit circle, and near the leading one (Fig. 15)")
     _method_option(p)
     _model_options(p)
     p.set_defaults(handler=commands.cmd_floquet)
@@ -116,7 +119,8 @@ def build_parser():
     p.add_argument("--out", metavar="FILE.npz",
                    help="save the map arrays (NPZ, see README)")
     p.add_argument("--plot", metavar="FILE.png",
-                   help="save a plot of the map (PNG, SVG or PDF)")
+                   help="save a plot of the map (PNG, SVG or PDF), with the "
+                        "exact tongue boundaries and numbers")
     _method_option(p)
     _model_options(p)
     p.set_defaults(handler=commands.cmd_map)
@@ -257,8 +261,10 @@ def build_parser():
                                    "and growth as judder chart reads them, "
                                    "and the Floquet verdict of the bench's "
                                    "linearisation (c1 + d_control).")
-    p.add_argument("--freq", type=float, required=True, metavar="HZ",
-                   help="dither frequency, Hz")
+    p.add_argument("--freq", required=True, metavar="HZ[,HZ...]",
+                   help="dither frequency, Hz; several (e.g. 23,105) give "
+                        "one engagement each, side by side, with their "
+                        "spectra overlaid (Fig. 1, Fig. 8)")
     p.add_argument("--pf", type=float, required=True, metavar="BAR",
                    help="dither amplitude, bar")
     p.add_argument("--duration", type=float, metavar="S",
