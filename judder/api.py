@@ -45,7 +45,7 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
 
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "chart", "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "report", "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
@@ -505,3 +505,18 @@ def chart(sources, index=None, channels=None, group_by=None,
                           method=method)
     return ChartResult(chart=result, seconds=seconds, model=overlay)
 
+
+
+def report(parameters=None, changes=None, **options):
+    """``judder report``: the paper's figure set and tables for one
+    driveline in one self-contained HTML file; the options are those of
+    :func:`judder.report.build_report` (dither setting, bench data,
+    grids).
+
+    Returns
+    -------
+    judder.report.ReportResult
+        ``save(path)`` writes the HTML.
+    """
+    from .report import build_report
+    return build_report(parameters, changes, **options)

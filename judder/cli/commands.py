@@ -19,7 +19,7 @@ from .options import (check_number, emit, make_parents, model_title,
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
-           "cmd_crosscheck", "cmd_campaign", "cmd_chart"]
+           "cmd_crosscheck", "cmd_campaign", "cmd_chart", "cmd_report"]
 
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
@@ -482,3 +482,40 @@ def cmd_chart(args):
     if not result.chart.read:
         raise JudderError("no run could be read")
 
+
+
+def cmd_report(args):
+    """The paper's figures and tables for one driveline, as one HTML
+    file."""
+    if (args.freq is None) != (args.pf is None):
+        raise JudderError("--freq and --pf go together: give both for a "
+                          "dither setting, or neither")
+    if args.freq is not None:
+        check_number("--freq", args.freq, "Hz")
+        check_number("--pf", args.pf, "bar", strict=False)
+    grid = parse_grid(args.grid, "--grid", "Hz")
+    map_freq = parse_grid(args.map_freq, "--map-freq", "Hz")
+    map_pf = parse_grid(args.map_pf, "--map-pf", "bar")
+    if grid[0] <= 0 or map_freq[0] <= 0:
+        raise JudderError("--grid, --map-freq: allowed: frequencies > 0 Hz")
+    params, changes = parameters_of(args)
+    make_parents(args.out)
+    with Progress(None, "report") as progress:
+        result = api.report(
+            params, changes, description=model_title(args, params),
+            freq_hz=args.freq, p_f_bar=args.pf, chart=args.chart,
+            boundary=args.boundary, group=args.group,
+            fit_names=parse_list(args.fit, "--fit", str),
+            sensitivity_names=(parse_list(args.sensitivity, "--sensitivity",
+                                          str) if args.sensitivity else None),
+            grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
+            p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
+            method=args.method, workers=args.workers, progress=progress)
+    result.save(args.out)
+    verdict = result.data.get("verdict")
+    text = (f"{len(result.figures)} figures"
+            + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
+               + ("judder (" + verdict["kind"] + ")" if verdict["judder"]
+                  else "no judder") if verdict else "")
+            + _written(args.out))
+    emit(args, {**result.as_dict(), **_files(out=args.out)}, text)
