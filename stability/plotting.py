@@ -278,7 +278,8 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
 
 
 def _number_tips(ax, tongues, color):
-    """A marker at each numbered tip and its number just below it."""
+    """A marker at each numbered tip and its number beside it (right),
+    clear of the frequency axis."""
     artists = []
     for tongue in tongues:
         if tongue.number is None:
@@ -289,7 +290,7 @@ def _number_tips(ax, tongues, color):
                                linestyle="none")[0])
         artists.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
-            xytext=(0, -5), ha="center", va="top", fontsize=8,
+            xytext=(4, 1), ha="left", va="bottom", fontsize=8,
             fontweight="bold", color="k",
             bbox={"boxstyle": "round,pad=0.1", "fc": "w", "ec": "none",
                   "alpha": 0.7}))
@@ -330,7 +331,7 @@ def sensitivity_figure(study, title=None, params=None):
     damping factor zeta_12 (Eq. 16) to the labels of c12.
     """
     names = list(dict.fromkeys(c.parameter for c in study.cases))
-    columns = min(2 if len(names) == 4 else 3, len(names))
+    columns = min(2 if len(names) in (2, 4, 8) else 3, len(names))
     rows = -(-len(names) // columns)
     fig = plt.figure(figsize=(5.2 * columns, 3.3 * rows + 0.8),
                      layout="constrained")

@@ -123,7 +123,7 @@ def cmd_map(args):
         result = api.stability_map(freqs, amplitudes, params, changes,
                                    method=args.method, progress=progress,
                                    exact=args.plot is not None)
-    title = f"stability map (Fig. 14), {model_title(args, params)}"
+    title = f"stability map (Fig. 12, 14), {model_title(args, params)}"
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set}},
