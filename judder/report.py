@@ -16,16 +16,21 @@ import base64
 import datetime
 import html
 import io
+import shutil
+import subprocess
+import tempfile
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
-from infra.files import write_text
+from infra.errors import JudderError
+from infra.files import atomic_write, write_text
 from infra.units import PA_PER_BAR
 
 from . import api
 
-__all__ = ["ReportResult", "build_report", "dither_verdict",
+__all__ = ["ReportResult", "build_report", "dither_verdict", "print_pdf",
            "DEFAULT_SENSITIVITY"]
 
 #: Parameters varied in the report's sensitivity study, per model: those
@@ -64,6 +69,11 @@ class ReportResult:
     def save(self, path):
         """Write the HTML file (atomically)."""
         write_text(path, self.html, overwrite=True)
+
+    def save_pdf(self, path, html_path):
+        """Print the saved HTML file ``html_path`` to PDF with a headless
+        Chromium (Debian's ``chromium``; ``make browser`` installs it)."""
+        print_pdf(html_path, path)
 
 
 def _png(fig, dpi=100):
@@ -187,7 +197,7 @@ def build_report(parameters=None, changes=None, description=None,
                  group=None, fit_names=("c12", "mu_g", "k24"),
                  sensitivity_names=None, grid_freq=None, map_freq=None,
                  map_pf=None, p_max_bar=1.5, method="dyson", workers=None,
-                 progress=None):
+                 engagement=False, progress=None):
     """``judder report``: the figures and tables of the paper for one
     driveline.
 
@@ -220,6 +230,9 @@ def build_report(parameters=None, changes=None, description=None,
         300 x 150).
     p_max_bar : float
         Largest amplitude searched, bar.
+    engagement : bool
+        With a dither setting: also run the bench engagement at it and
+        without dither through the FMU (Fig. 7, 8; a few seconds).
     progress : callable, optional
         ``progress(done, total)`` over the report's sections.
 
@@ -237,7 +250,7 @@ def build_report(parameters=None, changes=None, description=None,
     map_pf = np.linspace(0, p_max_bar, 150) if map_pf is None else map_pf
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
-    steps = 5 + bool(chart or boundary)
+    steps = 6 + bool(chart or boundary)
     done = [0]
 
     def step():
@@ -349,6 +362,41 @@ def build_report(parameters=None, changes=None, description=None,
         + figure("Sensitivity of the stability boundary (Fig. 17, 18)",
                  sens.figure(title=f"sensitivity, {description}")))
 
+    # without dither (Fig. 19)
+    threshold = api.threshold(np.linspace(-1e-3, 1e-3, 41),
+                              np.linspace(0, 2, 21), values)
+    step()
+    data["mu_g_threshold"] = float(threshold.study.threshold)
+    sections.append(
+        "<h2>4. Without dither: the friction-gradient threshold</h2>"
+        f"<p>With the mean pressure in the slip damping, this driveline "
+        f"is unstable without any dither for mu_g below "
+        f"{threshold.study.threshold:.3g} s/rad (its mu_g is "
+        f"{values['mu_g']:.3g} s/rad"
+        + (", so it judders without dither" if values["mu_g"]
+           < threshold.study.threshold else "")
+        + ").</p>"
+        + figure("Largest real part against mu_g and the threshold "
+                 "against the external damping (Fig. 19)",
+                 threshold.figure()))
+
+    if engagement and freq_hz is not None and values.driveline.bench_class:
+        run = api.simulate(freq_hz, p_f_bar, compare="none",
+                           parameters=values, method=method)
+        first = run.summaries[0]
+        data["engagement"] = first
+        sections.append(
+            "<h2>5. The engagement on the bench model</h2>"
+            f"<p>Through the {html.escape(run.model_class)} FMU: upstream "
+            f"speed peak {first['speed_peak_amplitude_rpm']:.3g} rpm at "
+            f"{first['speed_peak_freq_hz']:.2f} Hz; judder read as a chart "
+            "reads a bench run: "
+            + ("none" if not first["judder"] else str(first["judder_kind"]))
+            + ".</p>"
+            + figure("Engagement with the configured dither and without "
+                     "(Fig. 7, 8)",
+                     run.figure(title=f"bench engagement, {description}")))
+
     # bench data
     if chart or boundary:
         if chart:
@@ -365,7 +413,7 @@ def build_report(parameters=None, changes=None, description=None,
                        in zip(r.names, r.values, r.ci_low, r.ci_high)}
         data["fit_success"] = bool(r.success)
         sections.append(
-            "<h2>4. The bench data and the fit</h2>"
+            "<h2>6. The bench data and the fit</h2>"
             f"<p>{len(freqs)} measured points from "
             f"{html.escape(str(chart or boundary))}; fitted "
             + ", ".join(r.names) + f"; residual rms "
@@ -405,3 +453,36 @@ def _focus_tongue(found, freq_hz):
     if freq_hz is None:
         return min(numbered, key=lambda t: t.tip_p_f).number
     return min(numbered, key=lambda t: abs(t.tip_freq_hz - freq_hz)).number
+
+
+#: Flags of a headless Chromium that reads only the given file.
+CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu",
+                  "--disable-background-networking",
+                  "--disable-component-update", "--disable-sync",
+                  "--no-first-run", "--no-pdf-header-footer")
+
+
+def print_pdf(html_path, pdf_path):
+    """Print an HTML file to PDF with headless Chromium, atomically.
+
+    Raises
+    ------
+    JudderError
+        No Chromium on the PATH, or it failed.
+    """
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        raise JudderError("--pdf needs Chromium (Debian: apt-get install "
+                          "chromium, or make browser); the HTML report "
+                          "was written")
+    with tempfile.TemporaryDirectory() as scratch:
+        target = Path(scratch) / "report.pdf"
+        proc = subprocess.run(
+            [browser, *CHROMIUM_FLAGS, f"--user-data-dir={scratch}/profile",
+             f"--print-to-pdf={target}", Path(html_path).resolve().as_uri()],
+            capture_output=True, text=True, timeout=300)
+        if not target.exists() or target.stat().st_size == 0:
+            raise JudderError(f"--pdf: chromium could not print the report "
+                              f"(exit {proc.returncode})")
+        data = target.read_bytes()
+    atomic_write(pdf_path, lambda stream: stream.write(data))

@@ -44,7 +44,9 @@ def report(tmp_path_factory):
                    "--sensitivity", "k24,mu_g", "--grid=10:220:60",
                    "--map-freq=5:250:40", "--map-pf=0:1.5:16",
                    "--workers=1", "--set", "mu_g=0.011", "--out",
-                   str(out)])
+                   str(out)]
+                  + (["--pdf", str(folder / "report.pdf")] if CHROMIUM
+                     else []))
     assert status == 0
     return out
 
@@ -73,13 +75,15 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
                         text)
     assert ranking.group(1) == "mu_g" and ranking.group(3) == "k24"
     assert float(ranking.group(2)) == pytest.approx(100.0, abs=0.5)
+    # without dither: mu_g* = -1.25e-4 c_i with every c_i = 0.1
+    assert "for mu_g below -1.25e-05 s/rad" in text
     # the example boundary was made from this set (mu_g = 0.022) with
     # 3 % noise: the fit, started at 0.011, finds it again
     fit = re.search(r"mu_g 0\.011 ([\d.]+) \[", text)
     assert float(fit.group(1)) == pytest.approx(0.022, rel=0.03)
     # self-contained: every image is inline, nothing is fetched
-    assert html.count("<img") == 5
-    assert html.count('src="data:image/png;base64,') == 5
+    assert html.count("<img") == 6
+    assert html.count('src="data:image/png;base64,') == 6
     assert not re.search(r'(src|href)="(?!data:)', html)
 
 
@@ -107,7 +111,7 @@ def test_report_renders_in_chromium(report, tmp_path):
     dom = _chromium("--virtual-time-budget=10000", "--dump-dom",
                     probe.as_uri(), cwd=tmp_path).stdout
     states = re.search(r'data-images="([^"]*)"', dom).group(1).split()
-    assert len(states) == 5
+    assert len(states) == 6
     for state in states:
         complete, size = state.split(":")
         width, height = map(int, size.split("x"))
@@ -122,3 +126,12 @@ def test_report_renders_in_chromium(report, tmp_path):
     pixels = imread(shot)[..., :3]
     dark = np.mean(pixels.mean(axis=2) < 0.6)
     assert 0.01 < dark < 0.6
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium: run `make "
+                    "browser` (Debian's chromium package)")
+def test_report_prints_to_pdf(report):
+    pdf = (report.parent / "report.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF-")
+    # one page object per printed page: the report is several pages long
+    assert len(re.findall(rb"/Type\s*/Page[^s]", pdf)) >= 3

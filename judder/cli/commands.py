@@ -510,12 +510,17 @@ def cmd_report(args):
                                           str) if args.sensitivity else None),
             grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
             p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
-            method=args.method, workers=args.workers, progress=progress)
+            method=args.method, workers=args.workers,
+            engagement=args.engagement, progress=progress)
     result.save(args.out)
+    if args.pdf:
+        make_parents(args.pdf)
+        result.save_pdf(args.pdf, args.out)
     verdict = result.data.get("verdict")
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
                + ("judder (" + verdict["kind"] + ")" if verdict["judder"]
                   else "no judder") if verdict else "")
-            + _written(args.out))
-    emit(args, {**result.as_dict(), **_files(out=args.out)}, text)
+            + _written(args.out, args.pdf))
+    emit(args, {**result.as_dict(), **_files(out=args.out, pdf=args.pdf)},
+         text)

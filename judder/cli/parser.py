@@ -413,6 +413,11 @@ def build_parser():
                                    "from there.")
     p.add_argument("--out", required=True, metavar="FILE.html",
                    help="the report")
+    p.add_argument("--pdf", metavar="FILE.pdf",
+                   help="also print it to PDF (needs Debian's chromium)")
+    p.add_argument("--engagement", action="store_true",
+                   help="with --freq and --pf: also run the bench "
+                        "engagement through the FMU (Fig. 7, 8)")
     p.add_argument("--freq", type=float, metavar="HZ",
                    help="dither frequency of the configured setting, Hz")
     p.add_argument("--pf", type=float, metavar="BAR",
