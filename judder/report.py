@@ -250,7 +250,18 @@ def build_report(parameters=None, changes=None, description=None,
     map_pf = np.linspace(0, p_max_bar, 150) if map_pf is None else map_pf
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
-    steps = 6 + bool(chart or boundary)
+    unknown = [n for n in names if n not in values.specs]
+    if unknown:
+        raise JudderError(f"--sensitivity: unknown parameter "
+                          f"{unknown[0]!r} for the {values.model} model; "
+                          f"allowed names: {', '.join(values.specs)}")
+    # bench data first: a bad file is refused before any work
+    bench = None
+    if chart:
+        bench = read_chart_boundary(chart, group)
+    elif boundary:
+        bench = (*read_boundary(boundary, "--boundary"), p_max_bar)
+    steps = 6 + bool(bench)
     done = [0]
 
     def step():
@@ -398,12 +409,8 @@ def build_report(parameters=None, changes=None, description=None,
                      run.figure(title=f"bench engagement, {description}")))
 
     # bench data
-    if chart or boundary:
-        if chart:
-            freqs, measured, tried = read_chart_boundary(chart, group)
-        else:
-            freqs, measured = read_boundary(boundary, "--boundary")
-            tried = p_max_bar
+    if bench:
+        freqs, measured, tried = bench
         report = api.fit(freqs, measured / PA_PER_BAR, tried,
                          names=list(fit_names), parameters=values,
                          method=method, starts=1, workers=workers)

@@ -87,12 +87,24 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     assert not re.search(r'(src|href)="(?!data:)', html)
 
 
-def test_report_refuses_half_a_dither_setting(tmp_path, capsys):
-    status = main(["report", "--freq", "105", "--out",
-                   str(tmp_path / "r.html")])
+@pytest.mark.parametrize("args, words", [
+    (["--freq", "105"], ["--freq and --pf go together"]),
+    (["--freq", "105", "--pf", "-1"], ["--pf -1 bar", ">= 0"]),
+    (["--sensitivity", "k99"], ["--sensitivity", "'k99'", "k12"]),
+    (["--chart", "missing.npz"], ["--chart missing.npz"]),
+    (["--grid", "0:220:10"], ["--grid", "> 0 Hz"]),
+])
+def test_report_refuses_bad_input(args, words, tmp_path, capsys):
+    out = tmp_path / "r.html"
+    status = main(["report", *args, "--grid=10:220:10" if "--grid" not in
+                   args else "--workers=1", "--map-freq=5:250:5",
+                   "--map-pf=0:1.5:3", "--out", str(out)])
     assert status == 2
-    assert "--freq and --pf go together" in capsys.readouterr().err
-    assert not (tmp_path / "r.html").exists()
+    err = capsys.readouterr().err
+    assert err.startswith("judder: error:") and "Traceback" not in err
+    for word in words:
+        assert word in err
+    assert not out.exists()
 
 
 def _chromium(*args, cwd):
