@@ -38,10 +38,9 @@ __all__ = ["ReportResult", "build_report", "dither_verdict", "print_pdf",
 DEFAULT_SENSITIVITY = ("k12", "k24", "k", "J1", "J2", "J24", "J3", "J4",
                        "mu_g", "c12", "c")
 
-#: Settings of the Fig. 15 panels when no dither is configured: inside
-#: tongue 2 (single-period), 4 (double-period) and 6 (combination) of
-#: the paper's driveline; the report takes the tips of its own driveline's
-#: tongues of those kinds instead when it has them.
+#: Kinds of the Fig. 15 panels, in the paper's order (a, b, c); each
+#: panel is drawn just inside (1.5 times the tip amplitude) the
+#: driveline's lowest tongue of that kind.
 _KIND_ORDER = ("single-period", "double-period", "combination")
 
 

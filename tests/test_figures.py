@@ -15,9 +15,8 @@ import numpy as np
 import pytest
 from matplotlib.testing.compare import compare_images
 
-from drivelines import get_preset
 from judder import api
-from stability import build_driveline, floquet
+from stability import floquet
 from stability.plotting import (KIND_COLORS, boundary_curve,
                                 multipliers_figure, tongues_figure)
 
