@@ -173,9 +173,10 @@ def load_toml(text, source="TOML"):
 
 
 def dumps_toml(params):
-    """Serialise ``params`` to TOML text, with units as comments."""
+    """Serialise ``params`` to TOML text, with units, meanings and
+    allowed ranges as comments."""
     lines = [f'model = "{params.model}"', "", "[parameters]"]
     for name, spec in params.specs.items():
         lines.append(f"{name} = {params[name]!r}  # [{spec.unit}] "
-                     f"{spec.description}")
+                     f"{spec.description} (allowed: {spec.allowed()})")
     return "\n".join(lines) + "\n"

@@ -46,7 +46,7 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
            "advise",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "chart", "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "report", "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
@@ -124,7 +124,8 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
 
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
-                  method=DEFAULT_METHOD, progress=None, min_growth=None):
+                  method=DEFAULT_METHOD, progress=None, min_growth=None,
+                  exact=False):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -134,6 +135,12 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         Dither frequencies, Hz.
     p_f_bar : array_like
         Dither amplitudes, bar.
+
+    exact : bool
+        Also compute the exact tongue boundaries and tips on the map's
+        frequencies up to its largest amplitude
+        (:func:`stability.tongues.tongue_boundaries`), which
+        ``figure()`` draws over the grid with the tongue numbers.
 
     Returns
     -------
@@ -145,11 +152,20 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         faster ones.
     """
     values = _resolve(parameters, changes)
+    driveline = build_driveline(values)
     result, seconds = _timed(
-        map_kernel, build_driveline(values), freq_hz,
+        map_kernel, driveline, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
         callback=progress)
+    boundaries = found = None
+    p_top = float(np.max(p_f_bar)) * PA_PER_BAR
+    if exact and len(result.freq_hz) > 1 and p_top > 0:
+        from stability.tongues import find_tongues, tongue_boundaries
+        boundaries = tongue_boundaries(driveline, result.freq_hz, p_top,
+                                       method)
+        found = find_tongues(driveline, boundaries)
     return MapResult(params=values, map=result, seconds=seconds,
+                     boundaries=boundaries, tongues=found,
                      min_growth=min_growth)
 
 
@@ -321,8 +337,11 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
 
     Parameters
     ----------
-    freq_hz, p_f_bar : float
-        Dither setting, Hz and bar.
+    freq_hz : float or sequence of float
+        Dither frequency, Hz; several give one engagement each (Fig. 1,
+        Fig. 8: the judder follows the dither frequency).
+    p_f_bar : float
+        Dither amplitude, bar.
     duration : float, optional
         Simulated time, s (default: the model's).
     compare : 'none' or float, optional
@@ -346,13 +365,18 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           "driveline that has one (4-DOF)")
     bench = dict(bench or {})
     fmu = ensure_fmu(model_class)
-    interval = min(1e-3, 1.0 / (20 * freq_hz))
-    settings = [("with dither", freq_hz, p_f_bar * PA_PER_BAR)]
+    freqs = [float(f) for f in np.atleast_1d(freq_hz)]
+    settings = ([("with dither", freqs[0], p_f_bar * PA_PER_BAR)]
+                if len(freqs) == 1 else
+                [(f"dither at {f:g} Hz", f, p_f_bar * PA_PER_BAR)
+                 for f in freqs])
+    freq_hz = freqs[0]
     if compare is not None:
         settings.append(("without dither", freq_hz, 0.0)
                         if compare == "none" else
                         (f"dither at {float(compare):g} Hz", float(compare),
                          p_f_bar * PA_PER_BAR))
+    interval = min(1e-3, 1.0 / (20 * max(f for _, f, _ in settings)))
     runs = [(label, run_fmu(fmu, freq, p_f, params=values, extra=bench,
                             duration=duration, output_interval=interval))
             for label, freq, p_f in settings]
@@ -695,3 +719,18 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         ranking=order, advice=found, advised_windows=advised_windows or [],
         verification=verification, judder_points=judder_points,
         seconds=time.perf_counter() - started)
+
+
+def report(parameters=None, changes=None, **options):
+    """``judder report``: the paper's figure set and tables for one
+    driveline in one self-contained HTML file; the options are those of
+    :func:`judder.report.build_report` (dither setting, bench data,
+    grids).
+
+    Returns
+    -------
+    judder.report.ReportResult
+        ``save(path)`` writes the HTML.
+    """
+    from .report import build_report
+    return build_report(parameters, changes, **options)

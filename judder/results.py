@@ -120,6 +120,11 @@ class FloquetPoint:
                 "growth_rate_per_s": r.growth_rate,
                 "exponents_per_s": r.exponents}
 
+    def figure(self, title=None):
+        """The multipliers on the complex plane (Fig. 15)."""
+        from stability.plotting import multipliers_figure
+        return multipliers_figure([self.result], title=title)
+
 
 @dataclass(frozen=True)
 class MapResult:
@@ -132,6 +137,8 @@ class MapResult:
     params: object
     map: object
     seconds: float
+    boundaries: object = None
+    tongues: list = None
     min_growth: object = None
 
     def judder_relevant_points(self):
@@ -183,7 +190,9 @@ class MapResult:
 
     def figure(self, title=None):
         from stability.plotting import map_figure
-        return map_figure(self.map, title=title, min_growth=self.min_growth)
+        return map_figure(self.map, title=title, tongues=self.tongues,
+                          boundaries=self.boundaries,
+                          min_growth=self.min_growth)
 
 
 def tongue_record(tongue):
@@ -287,7 +296,7 @@ class SensitivityResult:
     def figure(self, title=None):
         return self.study.plot(
             title=title or f"{self.params.model}: sensitivity of the "
-                           "stability boundary")
+                           "stability boundary", params=self.params)
 
 
 @dataclass(frozen=True)

@@ -12,61 +12,149 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .signals import amplitude_spectrum
 
-__all__ = ["plot_run", "plot_spectrum", "run_figure", "crosscheck_figure",
+__all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure", "crosscheck_figure",
            "plot_chart", "chart_figure"]
 
 
-def plot_run(run, ax=None, title=None):
-    """Speeds upstream and downstream (rpm) and pressure (bar) vs time."""
+#: Line styles of the speeds, so they differ without colour.
+SPEED_STYLES = {"w_upstream": ("-", "#0072b2", "upstream of the clutch"),
+                "w_downstream": ("--", "#d55e00", "downstream of the clutch")}
+
+
+def _dither_text(run):
+    p_f = run.p_f / PA_PER_BAR
+    return ("no dither" if p_f == 0 else
+            f"f = {run.freq_hz:g} Hz, $p_f$ = {p_f:g} bar")
+
+
+def plot_run(run, ax=None, title=None, legend=True):
+    """Speeds upstream and downstream (rpm) and pressure (bar) vs time
+    (Fig. 1, Fig. 7); the legend goes below the axes, off the traces."""
     if ax is None:
         _, ax = plt.subplots()
-    artists = [ax.plot(run.time, run["w_upstream"] * RPM_PER_RAD_S,
-                       label="upstream of the clutch", lw=0.8)[0],
-               ax.plot(run.time, run["w_downstream"] * RPM_PER_RAD_S,
-                       label="downstream of the clutch", lw=0.8)[0]]
+    artists = [ax.plot(run.time, run[name] * RPM_PER_RAD_S, ls=style,
+                       color=color, label=label, lw=0.8)[0]
+               for name, (style, color, label) in SPEED_STYLES.items()]
     ax.set_xlabel("time [s]")
     ax.set_ylabel("speed [rpm]")
     right = ax.twinx()
     artists.append(right.plot(run.time, run["actuation_pressure"] / PA_PER_BAR,
-                              color="0.6", lw=0.5, label="pressure")[0])
+                              color="0.55", lw=0.5,
+                              label="actuation pressure (right axis)")[0])
     right.set_ylabel("actuation pressure [bar]")
-    ax.legend(loc="upper right", fontsize=7)
-    ax.set_title(title or f"f = {run.freq_hz:g} Hz, p_f = "
-                          f"{run.p_f / PA_PER_BAR:g} bar", fontsize=9)
+    if legend:
+        ax.legend(handles=artists, loc="upper center", fontsize=7,
+                  bbox_to_anchor=(0.5, -0.2), ncols=3, borderaxespad=0.0)
+    ax.set_title((f"{title}: " if title else "") + _dither_text(run),
+                 fontsize=9)
     return artists
 
 
-def plot_spectrum(run, ax=None, start=0.0):
-    """Amplitude spectra of the upstream speed and the pressure (Fig. 8)."""
-    if ax is None:
-        _, ax = plt.subplots()
+def _spectra(run, start):
     keep = run.time >= start
     speed = amplitude_spectrum(run.time[keep],
                                run["w_upstream"][keep] * RPM_PER_RAD_S)
     pressure = amplitude_spectrum(run.time[keep],
                                   run["actuation_pressure"][keep] / PA_PER_BAR)
-    artists = [ax.semilogy(speed.freq_hz, speed.amplitude,
-                           label="upstream speed [rpm]", lw=0.8)[0],
-               ax.semilogy(pressure.freq_hz, pressure.amplitude,
-                           label="pressure [bar]", lw=0.8)[0],
-               ax.axvline(run.freq_hz, color="k", ls=":", lw=0.8,
-                          label="dither frequency")]
-    ax.set_xlim(0, min(speed.freq_hz[-1], 3 * run.freq_hz))
+    return speed, pressure
+
+
+def plot_spectrum(run, ax=None, start=0.0, f_max=None):
+    """Amplitude spectra (Fig. 8): the upstream speed in rpm on the left
+    axis, the pressure in bar on its own right axis, both linear; the
+    dither frequency marked only when the run has dither.
+
+    Parameters
+    ----------
+    f_max : float, optional
+        Upper end of the frequency axis, Hz (default 3 f): give every
+        panel of a figure the same one.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    speed, pressure = _spectra(run, start)
+    artists = [ax.plot(speed.freq_hz, speed.amplitude, color="#0072b2",
+                       lw=0.9, label="upstream speed [rpm] (left axis)")[0]]
+    right = ax.twinx()
+    artists.append(right.plot(pressure.freq_hz, pressure.amplitude,
+                              color="0.45", ls="--", lw=0.8,
+                              label="pressure [bar] (right axis)")[0])
+    if run.p_f > 0:
+        artists.append(ax.axvline(run.freq_hz, color="k", ls=":", lw=0.8,
+                                  label=f"dither frequency {run.freq_hz:g} "
+                                        "Hz"))
+    f_max = f_max or min(speed.freq_hz[-1], 3 * run.freq_hz)
+    ax.set_xlim(0, f_max)
+    band = speed.freq_hz <= f_max
+    ax.set_ylim(0, 1.08 * max(speed.amplitude[band].max(), 1e-9))
+    right.set_ylim(0, 1.08 * max(pressure.amplitude[band].max(), 1e-9))
     ax.set_xlabel("frequency [Hz]")
-    ax.set_ylabel("amplitude")
-    ax.legend(fontsize=7)
+    ax.set_ylabel("speed amplitude [rpm]")
+    right.set_ylabel("pressure amplitude [bar]")
+    ax.legend(handles=artists, loc="upper center", fontsize=7,
+              bbox_to_anchor=(0.5, -0.2), ncols=3, borderaxespad=0.0)
+    return artists
+
+
+def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
+    """Speed spectra of several engagements on one axis (Fig. 8): the
+    judder peak moves with the dither frequency. Each run's dither
+    frequency is marked in its colour and style."""
+    if ax is None:
+        _, ax = plt.subplots()
+    colours = plt.get_cmap("cividis")(np.linspace(0.0, 0.75, len(runs)))
+    styles = ("-", "--", "-.", ":")
+    artists = []
+    top = 0.0
+    for index, (label, run) in enumerate(runs):
+        speed, _ = _spectra(run, start)
+        band = speed.freq_hz <= (f_max or speed.freq_hz[-1])
+        top = max(top, speed.amplitude[band].max())
+        artists.append(ax.plot(speed.freq_hz, speed.amplitude,
+                               color=colours[index],
+                               ls=styles[index % len(styles)], lw=1.0,
+                               label=_dither_text(run).replace("$", "")
+                               .replace("p_f", "p_f"))[0])
+        if run.p_f > 0:
+            ax.axvline(run.freq_hz, color=colours[index], lw=0.6,
+                       ls=styles[index % len(styles)], alpha=0.6)
+    ax.set_xlim(0, f_max)
+    ax.set_ylim(0, 1.08 * max(top, 1e-9))
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("upstream speed amplitude [rpm]")
+    ax.set_title("speed spectra overlaid: the judder peak follows the "
+                 "dither frequency", fontsize=9)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+              borderaxespad=0.0)
     return artists
 
 
 def run_figure(runs, start=0.0, title=None):
-    """Time histories (top) and spectra (bottom), one column per run."""
-    fig, axes = plt.subplots(2, len(runs), figsize=(6.5 * len(runs), 7),
-                             layout="constrained", squeeze=False)
+    """Time histories (top) and spectra (middle), one column per run,
+    every spectrum over the same frequencies; with more than one run with
+    dither, their speed spectra overlaid (bottom)."""
+    dithered = [(label, run) for label, run in runs if run.p_f > 0]
+    f_max = 2.5 * max([run.freq_hz for _, run in runs])
+    f_max = min(f_max, min(0.5 / np.median(np.diff(run.time))
+                           for _, run in runs))
+    overlay = len(dithered) > 1
+    rows = 3 if overlay else 2
+    fig = plt.figure(figsize=(6.5 * len(runs), 3.6 * rows + 0.6),
+                     layout="constrained")
+    grid = fig.add_gridspec(rows, len(runs))
     for column, (label, run) in enumerate(runs):
-        plot_run(run, ax=axes[0, column], title=label)
-        plot_spectrum(run, ax=axes[1, column], start=start)
+        plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label)
+        plot_spectrum(run, ax=fig.add_subplot(grid[1, column]), start=start,
+                      f_max=f_max)
+    if overlay:
+        plot_spectra_overlay(dithered, ax=fig.add_subplot(grid[2, :]),
+                             start=start, f_max=f_max)
     if title:
-        fig.suptitle(title)
+        fig.suptitle(title, fontsize=11)
     return fig
 
 

@@ -7,6 +7,7 @@ artists they drew and never call ``plt.show()``.
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.colors import ListedColormap
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from infra.units import PA_PER_BAR
@@ -14,13 +15,24 @@ from infra.units import PA_PER_BAR
 from .kinds import KINDS
 from .tongues import resonances
 
-__all__ = ["KIND_COLORS", "plot_map", "plot_growth_rate", "map_figure",
+__all__ = ["KIND_COLORS", "KIND_LINESTYLES", "plot_map", "plot_growth_rate", "map_figure",
            "resonance_lines", "plot_boundaries", "tongues_figure",
            "sensitivity_figure", "plot_threshold", "plot_fit",
-           "check_figure", "advice_figure"]
+           "check_figure", "advice_figure", "plot_multipliers",
+           "multipliers_figure", "boundary_curve", "kind_legend"]
 
-#: Colour of each kind of :data:`~stability.kinds.KINDS`.
-KIND_COLORS = ("#ffffff", "#d62728", "#1f77b4", "#2ca02c")
+#: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then
+#: Okabe-Ito blue, orange and yellow, which colour-blind readers tell
+#: apart and which stay distinct in greyscale (luminance about 0.45, 0.66
+#: and 0.87).
+KIND_COLORS = ("#ffffff", "#4c78a8", "#e69f00", "#f0e442")
+
+#: Line style of each kind's boundary, so kinds differ without colour.
+KIND_LINESTYLES = ("-", "-", "--", (0, (1, 1.5)))
+
+#: Colour map of continuous quantities (growth rates): cividis, made to
+#: read the same in colour, greyscale and with colour-vision deficiency.
+CONTINUOUS_CMAP = "cividis"
 
 
 def resonance_lines(natural_frequencies_hz):
@@ -38,7 +50,31 @@ def _edges(centres):
                            [2 * centres[-1] - mid[-1]]])
 
 
-def plot_map(stability_map, ax=None, mark_resonances=True, min_growth=None):
+def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
+                min_growth=None):
+    """Legend of the kinds, outside the data (right of the axes) by
+    default; with ``lines`` the boundary line style of each kind too; with
+    ``min_growth`` the grey of the slowly growing (not judder) points."""
+    handles = []
+    if stable:
+        handles.append(Patch(facecolor=KIND_COLORS[0], edgecolor="k",
+                             label=KINDS[0]))
+    for k in kinds:
+        handles.append(Patch(facecolor=KIND_COLORS[k], edgecolor="k",
+                             label=KINDS[k]))
+    if min_growth is not None and min_growth > 0:
+        handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
+                             label=f"grows < {min_growth:g} 1/s (not judder)"))
+    if lines:
+        handles += [Line2D([], [], color="k", linestyle=KIND_LINESTYLES[k],
+                           label=f"{KINDS[k]} boundary") for k in kinds]
+    where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
+              "borderaxespad": 0.0} if outside else {"loc": "best"})
+    return ax.legend(handles=handles, fontsize=7, **where)
+
+
+def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
+             boundaries=None, legend=True, min_growth=None):
     """Regions of each kind of instability over frequency (Hz) and p_f (bar).
 
     Parameters
@@ -46,8 +82,15 @@ def plot_map(stability_map, ax=None, mark_resonances=True, min_growth=None):
     stability_map : stability.maps.StabilityMap
     ax : matplotlib.axes.Axes, optional
     mark_resonances : bool
-        Draw dashed lines at the natural frequencies and their
-        double-period and combination partners inside the frequency range.
+        Without ``boundaries``: mark the frequencies tongues grow from
+        (Fig. 14's numbering) at the top of the axes.
+    tongues : sequence of stability.tongues.Tongue, optional
+    boundaries : stability.tongues.Boundaries, optional
+        The exact boundaries (:func:`stability.tongues.tongue_boundaries`),
+        drawn over the grid cells with their tips numbered as in Fig. 14;
+        without them the unit-modulus contour of the grid is drawn.
+    legend : bool
+        Legend of the kinds, outside the axes on the right.
     min_growth : float, optional
         1/s: shade grey the unstable points growing slower than this (not
         judder, :mod:`stability.relevance`) and outline the
@@ -63,28 +106,43 @@ def plot_map(stability_map, ax=None, mark_resonances=True, min_growth=None):
     bar = m.p_f / PA_PER_BAR
     artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar), m.kind.T,
                              cmap=ListedColormap(KIND_COLORS), vmin=-0.5,
-                             vmax=len(KINDS) - 0.5, shading="flat")]
-    if len(m.freq_hz) > 1 and len(bar) > 1:
-        artists.append(ax.contour(m.freq_hz, bar, m.leading_abs.T,
-                                  levels=[1.0], colors="k", linewidths=0.8))
-    if mark_resonances:
-        low, high = m.freq_hz.min(), m.freq_hz.max()
-        for label, hz, kind in resonance_lines(m.natural_frequencies_hz):
-            if low <= hz <= high:
-                artists.append(ax.axvline(hz, color=KIND_COLORS[kind],
-                                          linestyle="--", linewidth=0.8))
-                artists.append(ax.annotate(
-                    label, (hz, 1.0), xycoords=("data", "axes fraction"),
-                    rotation=90, ha="right", va="top", fontsize=7))
-    ax.set_xlabel("dither frequency [Hz]")
-    ax.set_ylabel("dither amplitude $p_f$ [bar]")
-    handles = [Patch(facecolor=c, edgecolor="k", label=k)
-               for k, c in zip(KINDS, KIND_COLORS)]
+                             vmax=len(KINDS) - 0.5, shading="flat",
+                             rasterized=True)]
     if min_growth is not None and min_growth > 0:
         artists += _shade_slow(m, ax, min_growth)
-        handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
-                             label=f"grows < {min_growth:g} 1/s (not judder)"))
-    artists.append(ax.legend(handles=handles, loc="upper left", fontsize=7))
+    if boundaries is not None:
+        artists += plot_boundaries(boundaries, ax=ax, tongues=tongues or (),
+                                   style={"color": "k"})
+        ax.set_xlim(_edges(m.freq_hz)[0], _edges(m.freq_hz)[-1])
+        ax.set_ylim(0, max(bar.max(), boundaries.p_max / PA_PER_BAR))
+    else:
+        if len(m.freq_hz) > 1 and len(bar) > 1:
+            artists.append(ax.contour(m.freq_hz, bar, m.leading_abs.T,
+                                      levels=[1.0], colors="k",
+                                      linewidths=0.8))
+        if mark_resonances:
+            artists += _resonance_marks(ax, m.natural_frequencies_hz,
+                                        m.freq_hz.min(), m.freq_hz.max())
+    ax.set_xlabel("dither frequency $f$ [Hz]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    if legend:
+        artists.append(kind_legend(ax, lines=boundaries is not None,
+                                   min_growth=min_growth))
+    return artists
+
+
+def _resonance_marks(ax, natural_frequencies_hz, low, high):
+    """Tongue numbers (Fig. 14) above the axes at the frequencies the
+    tongues grow from, with a short tick."""
+    artists = []
+    for number, label, hz, kind in resonances(natural_frequencies_hz):
+        if low <= hz <= high:
+            artists.append(ax.annotate(
+                f"{number}", (hz, 1.0), xycoords=("data", "axes fraction"),
+                xytext=(0, 3), textcoords="offset points", ha="center",
+                va="bottom", fontsize=8, fontweight="bold"))
+            artists.append(ax.axvline(hz, ymin=0.97, color="k",
+                                      linewidth=0.8))
     return artists
 
 
@@ -151,40 +209,109 @@ def plot_growth_rate(stability_map, ax=None):
     m = stability_map
     rate = np.where(m.kind > 0, m.growth_rate, np.nan)
     mesh = ax.pcolormesh(_edges(m.freq_hz), _edges(m.p_f / PA_PER_BAR),
-                         rate.T, cmap="magma_r", shading="flat")
+                         rate.T, cmap=CONTINUOUS_CMAP, shading="flat",
+                         rasterized=True)
     bar = ax.figure.colorbar(mesh, ax=ax, label="growth rate [1/s]")
-    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
     return [mesh, bar]
 
 
-def map_figure(stability_map, title=None, min_growth=None):
-    """Figure with the kinds (left) and the growth rate (right)."""
-    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
+def map_figure(stability_map, title=None, tongues=None, boundaries=None,
+               min_growth=None):
+    """Figure with the kinds (left, with the exact boundaries and tongue
+    numbers when given, slowly growing points grey with ``min_growth``)
+    and the growth rate (right)."""
+    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5),
                                       layout="constrained")
-    plot_map(stability_map, ax=left, min_growth=min_growth)
+    plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
+             min_growth=min_growth)
     plot_growth_rate(stability_map, ax=right)
-    left.set_title("kind of instability (leading Floquet multiplier)")
-    right.set_title("growth rate of the leading multiplier")
+    if boundaries is not None:
+        plot_boundaries(boundaries, ax=right, tongues=tongues,
+                        style={"color": "k", "linewidth": 0.8})
+        right.set_xlim(left.get_xlim())
+        right.set_ylim(left.get_ylim())
+    left.set_title("kind of instability (leading Floquet multiplier)",
+                   fontsize=10)
+    right.set_title(r"growth rate $\ln|\lambda|/T$ of the leading "
+                    "multiplier", fontsize=10)
     if title:
-        fig.suptitle(title)
+        fig.suptitle(title, fontsize=11)
     return fig
 
 
-def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None):
+def boundary_curve(freq_hz, amplitude_bar, tips=(), p_max_bar=None):
+    """One kind's boundary as a drawable curve: the exact tips inserted
+    between the grid frequencies, and each tongue closed up to
+    ``p_max_bar`` where it leaves the searched range.
+
+    Parameters
+    ----------
+    freq_hz : ndarray, shape (nf,)
+    amplitude_bar : ndarray, shape (nf,)
+        Lowest boundary of the kind, bar (NaN: none up to ``p_max``).
+    tips : sequence of (float, float)
+        ``(tip_freq_hz, tip_p_f_bar)`` of the kind's tongues.
+    p_max_bar : float, optional
+
+    Returns
+    -------
+    x, y : ndarray
+        NaN separates the tongues.
+    """
+    f = np.asarray(freq_hz, dtype=float)
+    a = np.asarray(amplitude_bar, dtype=float)
+    tips = [(tf, tp) for tf, tp in tips if f[0] <= tf <= f[-1]]
+    if tips:
+        f = np.concatenate([f, [tf for tf, _ in tips]])
+        a = np.concatenate([a, [tp for _, tp in tips]])
+        order = np.argsort(f, kind="stable")
+        f, a = f[order], a[order]
+    if p_max_bar is None:
+        return f, a
+    xs, ys = [], []
+    inside = np.isfinite(a)
+    for i in range(len(f)):
+        if not inside[i]:
+            continue
+        if i == 0 or not inside[i - 1]:
+            if i > 0:
+                xs += [np.nan, f[i]]
+                ys += [np.nan, p_max_bar]
+            else:
+                xs.append(np.nan)
+                ys.append(np.nan)
+        xs.append(f[i])
+        ys.append(a[i])
+        if i + 1 < len(f) and not inside[i + 1]:
+            xs.append(f[i])
+            ys.append(p_max_bar)
+    return np.array(xs[1:] if xs and np.isnan(xs[0]) else xs), \
+        np.array(ys[1:] if ys and np.isnan(ys[0]) else ys)
+
+
+def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
+                    numbers=True):
     """Boundary of each kind of tongue as lines (Fig. 16), p_f in bar.
+
+    Each kind has its line style (:data:`KIND_LINESTYLES`) and, unless
+    ``style`` sets ``color``, its colour; the tips of ``tongues`` are
+    inserted into the curves (they are refined between grid points), and
+    each tongue is closed up to ``p_max``.
 
     Parameters
     ----------
     boundaries : stability.tongues.Boundaries
     ax : matplotlib.axes.Axes, optional
     tongues : sequence of stability.tongues.Tongue
-        Tips to mark and number.
+        Tips to insert, mark and number (Fig. 14's numbers).
     style : dict, optional
-        Line properties shared by the three kinds (colour per kind unless
-        ``color`` is given).
+        Line properties shared by the three kinds.
     label : str, optional
         Legend label (put on the first line drawn).
+    numbers : bool
+        Mark and number the tips.
 
     Returns
     -------
@@ -193,77 +320,148 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None):
     if ax is None:
         _, ax = plt.subplots()
     artists = []
+    p_max_bar = boundaries.p_max / PA_PER_BAR
+    first = True
     for column, kind in enumerate((1, 2, 3)):
-        props = {"color": KIND_COLORS[kind], "linewidth": 1.2, **(style or {})}
-        line, = ax.plot(boundaries.freq_hz,
-                        boundaries.amplitude[:, column] / PA_PER_BAR, **props,
-                        label=label if column == 0 else None)
+        props = {"color": KIND_COLORS[kind], "linewidth": 1.2,
+                 "linestyle": KIND_LINESTYLES[kind], **(style or {})}
+        tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR) for t in tongues
+                if t.kind == KINDS[kind]]
+        x, y = boundary_curve(boundaries.freq_hz,
+                              boundaries.amplitude[:, column] / PA_PER_BAR,
+                              tips, p_max_bar)
+        if not np.isfinite(y).any():
+            continue
+        line, = ax.plot(x, y, **props, label=label if first else None)
+        first = False
         artists.append(line)
+    if numbers:
+        artists += _number_tips(ax, tongues, props.get("color", "k")
+                                if style and "color" in style else "k")
+    ax.set_xlim(boundaries.freq_hz.min(), boundaries.freq_hz.max())
+    ax.set_ylim(0, p_max_bar)
+    ax.set_xlabel("dither frequency $f$ [Hz]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    return artists
+
+
+def _number_tips(ax, tongues, color):
+    """A marker at each numbered tip and its number beside it (right),
+    clear of the frequency axis."""
+    artists = []
     for tongue in tongues:
         if tongue.number is None:
             continue
-        artists.append(ax.plot(tongue.tip_freq_hz,
-                               tongue.tip_p_f / PA_PER_BAR, "kv",
-                               markersize=4)[0])
-        artists.append(ax.annotate(str(tongue.number),
-                                   (tongue.tip_freq_hz,
-                                    tongue.tip_p_f / PA_PER_BAR),
-                                   textcoords="offset points", xytext=(0, -11),
-                                   ha="center", fontsize=8))
-    ax.set_xlim(boundaries.freq_hz.min(), boundaries.freq_hz.max())
-    ax.set_ylim(0, boundaries.p_max / PA_PER_BAR)
-    ax.set_xlabel("dither frequency [Hz]")
-    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+        xy = (tongue.tip_freq_hz, tongue.tip_p_f / PA_PER_BAR)
+        artists.append(ax.plot(*xy, marker="v", color=color,
+                               markeredgecolor="k", markersize=4,
+                               linestyle="none")[0])
+        artists.append(ax.annotate(
+            str(tongue.number), xy, textcoords="offset points",
+            xytext=(4, 1), ha="left", va="bottom", fontsize=8,
+            fontweight="bold", color="k",
+            bbox={"boxstyle": "round,pad=0.1", "fc": "w", "ec": "none",
+                  "alpha": 0.7}))
     return artists
 
 
 def tongues_figure(boundaries, tongues, stability_map=None, title=None):
     """Boundaries and numbered tips, over the map when one is given."""
-    fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
+    fig, ax = plt.subplots(figsize=(10, 5), layout="constrained")
     if stability_map is not None:
-        plot_map(stability_map, ax=ax, mark_resonances=False)
-    plot_boundaries(boundaries, ax=ax, tongues=tongues,
-                    style={"color": "k"} if stability_map is not None
-                    else None)
-    if stability_map is None:
-        handles = [Patch(facecolor=KIND_COLORS[k], label=KINDS[k])
+        plot_map(stability_map, ax=ax, tongues=tongues,
+                 boundaries=boundaries)
+    else:
+        plot_boundaries(boundaries, ax=ax, tongues=tongues)
+        handles = [Line2D([], [], color=KIND_COLORS[k],
+                          linestyle=KIND_LINESTYLES[k], label=KINDS[k])
                    for k in (1, 2, 3)]
-        ax.legend(handles=handles, loc="upper left", fontsize=7)
-    ax.set_title(title or "tongue boundaries (numbers as in Fig. 14)")
+        ax.legend(handles=handles, loc="upper left", fontsize=7,
+                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    ax.set_title(title or "tongue boundaries (numbers as in Fig. 14)",
+                 fontsize=10)
     return fig
 
 
-def sensitivity_figure(study, title=None):
+#: Line styles of the varied cases of a sensitivity panel, after the
+#: nominal solid line: long dashes, then dash-dot, dots, dash-dot-dot.
+CASE_STYLES = ((0, (6, 2)), (0, (4, 1.5, 1, 1.5)), (0, (1, 1.2)),
+               (0, (5, 1.5, 1, 1.5, 1, 1.5)))
+
+
+def sensitivity_figure(study, title=None, params=None):
     """One panel per parameter: nominal boundary and the varied ones
-    (Fig. 17, Fig. 18)."""
+    (Fig. 17, Fig. 18).
+
+    Each curve is the lowest boundary with the tongue tips inserted and
+    the tongues closed up to ``p_max``; the cases differ in colour
+    (cividis) and line style. ``params`` (the nominal set) adds the
+    damping factor zeta_12 (Eq. 16) to the labels of c12.
+    """
     names = list(dict.fromkeys(c.parameter for c in study.cases))
-    columns = min(3, len(names))
+    columns = min(2 if len(names) in (2, 4, 8) else 3, len(names))
     rows = -(-len(names) // columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(5 * columns, 3.4 * rows),
-                             layout="constrained", squeeze=False)
-    styles = ("--", ":", "-.", (0, (5, 1)), (0, (1, 3)))
-    for ax, name in zip(axes.flat, names):
-        _plot_lowest(study.nominal.boundaries, ax, "k", "-", "nominal")
-        cases = [c for c in study.cases if c.parameter == name]
-        for index, case in enumerate(cases):
-            _plot_lowest(case.boundaries, ax, f"C{index}",
-                         styles[index % len(styles)],
-                         f"{name} = {case.value:.4g} (x{case.factor:.3g})")
-        ax.set_title(name)
-        ax.legend(fontsize=7, loc="upper right")
+    fig = plt.figure(figsize=(5.2 * columns, 3.3 * rows + 0.8),
+                     layout="constrained")
+    axes = fig.subplots(rows, columns, squeeze=False)
     for ax in list(axes.flat)[len(names):]:
-        ax.set_visible(False)
+        ax.remove()
+    for ax, name in zip(axes.flat, names):
+        cases = [c for c in study.cases if c.parameter == name]
+        colours = plt.get_cmap(CONTINUOUS_CMAP)(
+            np.linspace(0.15, 0.8, max(len(cases), 1)))
+        _plot_lowest(study.nominal, ax, "k", "-", "nominal", lw=1.6)
+        for index, case in enumerate(cases):
+            _plot_lowest(case, ax, colours[index],
+                         CASE_STYLES[index % len(CASE_STYLES)],
+                         _case_label(name, case, params), lw=1.3)
+        ax.set_title(_panel_title(name, params), fontsize=9)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+                  borderaxespad=0.2, handlelength=3)
     if title:
-        fig.suptitle(title)
+        fig.suptitle(title, fontsize=11)
     return fig
 
 
-def _plot_lowest(boundaries, ax, color, linestyle, label):
-    ax.plot(boundaries.freq_hz, boundaries.stability_boundary / PA_PER_BAR,
-            color=color, linestyle=linestyle, linewidth=1.1, label=label)
-    ax.set_xlim(boundaries.freq_hz.min(), boundaries.freq_hz.max())
-    ax.set_ylim(0, boundaries.p_max / PA_PER_BAR)
-    ax.set_xlabel("dither frequency [Hz]")
+def _zeta_percent(params, c12):
+    from .modal import clutch_damper_damping_factor
+    return 100 * float(clutch_damper_damping_factor(params.replace(c12=c12)))
+
+
+def _panel_title(name, params):
+    unit = params.specs[name].unit if params is not None else ""
+    text = f"{name}" + (f" [{unit}]" if unit and unit != "1" else "")
+    if params is not None:
+        text += f", nominal {params[name]:.4g}"
+        if name == "c12" and "c12" in params.specs:
+            text += rf" ($\zeta_{{12}}$ = {_zeta_percent(params, params[name]):.2g} %)"
+    return text
+
+
+def _case_label(name, case, params):
+    label = f"{name} = {case.value:.4g} (x{case.factor:.3g})"
+    if name == "c12" and params is not None and "c12" in params.specs:
+        label += rf", $\zeta_{{12}}$ = {_zeta_percent(params, case.value):.2g} %"
+    return label
+
+
+def _plot_lowest(case, ax, color, linestyle, label, lw=1.1):
+    """A case's lowest boundary with its tips inserted, closed at p_max."""
+    b = case.boundaries
+    p_max_bar = b.p_max / PA_PER_BAR
+    lowest = b.stability_boundary / PA_PER_BAR
+    # a tip below the lowest boundary around it (another tongue's may be
+    # lower there)
+    tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR) for t in case.tongues
+            if not np.interp(t.tip_freq_hz, b.freq_hz, lowest)
+            < t.tip_p_f / PA_PER_BAR * (1 - 1e-9)]
+    x, y = boundary_curve(b.freq_hz, lowest,
+                          tips, p_max_bar)
+    ax.plot(x, y, color=color, linestyle=linestyle, linewidth=lw,
+            label=label)
+    ax.set_xlim(b.freq_hz.min(), b.freq_hz.max())
+    ax.set_ylim(0, p_max_bar)
+    ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("$p_f$ [bar]")
 
 
@@ -423,4 +621,91 @@ def advice_figure(advice, title=None):
                         "judder-relevant points")
     if title:
         fig.suptitle(title)
+    return fig
+
+
+def plot_multipliers(result, ax=None, zoom=False):
+    """Floquet multipliers on the complex plane with the unit circle
+    (Fig. 15), the leading one marked in the colour of its kind.
+
+    Parameters
+    ----------
+    result : stability.floquet.FloquetResult
+    ax : matplotlib.axes.Axes, optional
+    zoom : bool
+        Show only the neighbourhood of the leading multiplier (the paper's
+        Fig. 15 is "not to scale" for that reason: the leading multiplier
+        is a few per cent outside the circle).
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    from .kinds import KINDS as names
+    lam = np.asarray(result.multipliers)
+    lead = complex(result.leading)
+    code = names.index(result.kind)
+    theta = np.linspace(0, 2 * np.pi, 721)
+    artists = [ax.plot(np.cos(theta), np.sin(theta), color="0.35", lw=0.9,
+                       label="unit circle")[0],
+               ax.axhline(0, color="0.7", lw=0.6),
+               ax.axvline(0, color="0.7", lw=0.6)]
+    leading = np.isclose(lam, lead) | np.isclose(lam, np.conj(lead))
+    artists.append(ax.plot(lam.real[~leading], lam.imag[~leading], "o",
+                           mfc="w", mec="k", ms=5,
+                           label="other multipliers")[0])
+    artists.append(ax.plot(lam.real[leading], lam.imag[leading], "D",
+                           color=KIND_COLORS[code] if code else "0.5",
+                           mec="k", ms=7,
+                           label=f"leading: {result.kind}, "
+                                 rf"$|\lambda|$ = {result.leading_abs:.4f}"
+                           )[0])
+    if zoom:
+        span = max(4 * abs(result.leading_abs - 1), 0.02)
+        centre = lead if abs(lead.imag) < 1e-12 else complex(
+            lead.real, abs(lead.imag))
+        ax.set_xlim(centre.real - span, centre.real + span)
+        ax.set_ylim(centre.imag - span, centre.imag + span)
+    else:
+        reach = max(1.15, 1.05 * np.abs(lam).max())
+        ax.set_xlim(-reach, reach)
+        ax.set_ylim(-reach, reach)
+    ax.set_aspect("equal")
+    ax.set_xlabel(r"Re $\lambda$ [-]")
+    ax.set_ylabel(r"Im $\lambda$ [-]")
+    return artists
+
+
+def multipliers_figure(results, title=None):
+    """Fig. 15: one column per Floquet result, the whole plane above and
+    the leading multiplier's neighbourhood below.
+
+    Parameters
+    ----------
+    results : sequence of stability.floquet.FloquetResult
+    """
+    results = list(results)
+    fig, axes = plt.subplots(2, len(results),
+                             figsize=(max(4.4 * len(results), 5.5), 9.0),
+                             layout="constrained", squeeze=False)
+    for column, result in enumerate(results):
+        plot_multipliers(result, ax=axes[0, column])
+        plot_multipliers(result, ax=axes[1, column], zoom=True)
+        axes[0, column].set_title(
+            f"f = {result.freq_hz:g} Hz, $p_f$ = "
+            f"{result.p_f / PA_PER_BAR:g} bar: {result.kind}", fontsize=9)
+        axes[1, column].set_title("near the leading multiplier",
+                                  fontsize=8)
+    handles, labels = [], []
+    for ax in axes[0]:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    fig.legend(handles, labels, loc="outside lower center", fontsize=8,
+               ncols=1 if len(results) == 1 else 2)
+    if title:
+        fig.suptitle(title, fontsize=11)
     return fig

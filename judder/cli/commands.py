@@ -14,13 +14,13 @@ from infra.units import PA_PER_BAR
 
 from .. import api
 from ..inputs import read_boundary, read_chart_boundary
-from .options import (check_number, emit, make_parents, parameters_of,
-                      parse_grid, parse_list, Progress)
+from .options import (check_number, emit, make_parents, model_title,
+                      parameters_of, parse_grid, parse_list, Progress)
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
            "cmd_crosscheck", "cmd_campaign", "cmd_chart", "cmd_check",
-           "cmd_advise"]
+           "cmd_advise", "cmd_report"]
 
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
@@ -64,7 +64,9 @@ def cmd_params(args):
         make_parents(args.save)
         result.save(args.save, overwrite=args.force)
     specs = result.params.specs
-    rows = [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
+    rows = [f"{'name':22s} {'value':14s} {'unit':10s} {'allowed':24s} "
+            "meaning"]
+    rows += [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
             f"{spec.allowed():24s} {spec.description}"
             for name, spec in specs.items()]
     emit(args, {**result.as_dict(), "saved": args.save},
@@ -90,16 +92,23 @@ def cmd_eig(args):
 def cmd_floquet(args):
     """Floquet multipliers at one dither frequency and amplitude."""
     check_number("--pf", args.pf, "bar", strict=False)
-    point = api.floquet(args.freq, args.pf, *parameters_of(args),
+    params, changes = parameters_of(args)
+    make_parents(args.plot)
+    point = api.floquet(args.freq, args.pf, params, changes,
                         method=args.method)
+    if args.plot:
+        save_figure(args.plot, point.figure(
+            title=f"Floquet multipliers (Fig. 15), "
+                  f"{model_title(args, params)}"))
     result = point.result
     lam = result.leading
     text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
             f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
             f"(|lambda| = {result.leading_abs:.6f}), growth rate "
             f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
-            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers))
-    emit(args, point.as_dict(), text)
+            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers)
+            + _written(args.plot))
+    emit(args, {**point.as_dict(), **_files(plot=args.plot)}, text)
 
 
 def cmd_map(args):
@@ -116,9 +125,9 @@ def cmd_map(args):
             freqs, amplitudes, params, changes, method=args.method,
             progress=progress,
             min_growth=check_number("--min-growth", args.min_growth, "1/s",
-                                    strict=False))
-    title = (f"{result.params.model} stability map, "
-             f"{args.preset or args.param_file or 'default parameters'}")
+                                    strict=False),
+            exact=args.plot is not None)
+    title = f"stability map (Fig. 12, 14), {model_title(args, params)}"
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set}},
@@ -143,7 +152,9 @@ def cmd_tongues(args):
                              min_growth=_finite("--min-growth",
                                                 args.min_growth, "1/s"),
                              solver=args.solver)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(args, result, figure={
+        "title": f"tongue boundaries over the map, "
+                 f"{model_title(args, params)}"})}
     rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
             f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
     for r in data["tongues"]:
@@ -178,7 +189,9 @@ def cmd_sensitivity(args):
                                  values=values, parameters=params,
                                  changes=changes, method=args.method,
                                  workers=args.workers, progress=progress)
-    files = _write_outputs(args, result)
+    files = _write_outputs(args, result, figure={
+        "title": "sensitivity of the stability boundary (Fig. 17, 18), "
+                 + model_title(args, params)})
     rows = [f"{'param':>8} {'factor':>7} {'value':>10} {'#':>2} "
             f"{'tip f [Hz]':>11} {'df [Hz]':>8} {'tip p_f':>8} {'dp_f':>8}"]
     for r in result.tip_shifts:
@@ -319,7 +332,8 @@ def _engagement_line(s):
 
 def cmd_simulate(args):
     """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
-    check_number("--freq", args.freq, "Hz")
+    freqs = [check_number("--freq", f, "Hz")
+             for f in parse_list(args.freq, "--freq")]
     check_number("--pf", args.pf, "bar", strict=False)
     check_number("--duration", args.duration, "s")
     params, changes = parameters_of(args)
@@ -328,12 +342,14 @@ def cmd_simulate(args):
         "none" if args.compare == "none" else
         check_number("--compare", _float(args.compare, "--compare"), "Hz"))
     make_parents(args.out, args.plot)
-    result = api.simulate(args.freq, args.pf, duration=args.duration,
+    result = api.simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
+                          duration=args.duration,
                           compare=compare, bench=bench, parameters=params,
                           changes=changes, method=args.method)
     files = _write_outputs(
         args, result,
-        figure={"title": "bench engagement, EVEN clutch at 1000 rpm"})
+        figure={"title": "bench engagement of the EVEN clutch (Fig. 1, 7, "
+                         f"8), {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))
@@ -547,3 +563,45 @@ def cmd_advise(args):
                             progress=progress)
     data = {**result.as_dict(), **_write_outputs(args, result)}
     emit(args, data, result.summary() + _written(args.out, args.plot))
+
+
+def cmd_report(args):
+    """The paper's figures and tables for one driveline, as one HTML
+    file."""
+    if (args.freq is None) != (args.pf is None):
+        raise JudderError("--freq and --pf go together: give both for a "
+                          "dither setting, or neither")
+    if args.freq is not None:
+        check_number("--freq", args.freq, "Hz")
+        check_number("--pf", args.pf, "bar", strict=False)
+    grid = parse_grid(args.grid, "--grid", "Hz")
+    map_freq = parse_grid(args.map_freq, "--map-freq", "Hz")
+    map_pf = parse_grid(args.map_pf, "--map-pf", "bar")
+    if grid[0] <= 0 or map_freq[0] <= 0:
+        raise JudderError("--grid, --map-freq: allowed: frequencies > 0 Hz")
+    params, changes = parameters_of(args)
+    make_parents(args.out)
+    with Progress(None, "report") as progress:
+        result = api.report(
+            params, changes, description=model_title(args, params),
+            freq_hz=args.freq, p_f_bar=args.pf, chart=args.chart,
+            boundary=args.boundary, group=args.group,
+            fit_names=parse_list(args.fit, "--fit", str),
+            sensitivity_names=(parse_list(args.sensitivity, "--sensitivity",
+                                          str) if args.sensitivity else None),
+            grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
+            p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
+            method=args.method, workers=args.workers,
+            engagement=args.engagement, progress=progress)
+    result.save(args.out)
+    if args.pdf:
+        make_parents(args.pdf)
+        result.save_pdf(args.pdf, args.out)
+    verdict = result.data.get("verdict")
+    text = (f"{len(result.figures)} figures"
+            + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
+               + ("judder (" + verdict["kind"] + ")" if verdict["judder"]
+                  else "no judder") if verdict else "")
+            + _written(args.out, args.pdf))
+    emit(args, {**result.as_dict(), **_files(out=args.out, pdf=args.pdf)},
+         text)

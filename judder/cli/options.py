@@ -14,7 +14,8 @@ from infra.files import to_json
 from ..inputs import load_parameters
 
 __all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
-           "check_number", "make_parents", "check_plot_format", "Progress"]
+           "check_number", "make_parents", "check_plot_format", "Progress",
+           "model_title"]
 
 
 def parse_grid(text, option, unit, allow_negative=False):
@@ -132,3 +133,13 @@ class Progress:
     def __exit__(self, *exc):
         self._bar.close()
         return False
+
+
+def model_title(args, params):
+    """The model and every change the options made, for figure titles:
+    ``'4dof, paper-4dof-fitted, c12=20'``."""
+    source = (getattr(args, "param_file", None)
+              or getattr(args, "preset", None)
+              or "paper preset")
+    changes = [text.replace(" ", "") for text in getattr(args, "set", [])]
+    return ", ".join([f"{params.model} driveline", str(source)] + changes)

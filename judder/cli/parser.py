@@ -114,6 +114,9 @@ def build_parser():
                    help="dither frequency, Hz")
     p.add_argument("--pf", type=float, required=True, metavar="BAR",
                    help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the multipliers on the complex plane with the "
+                        "unit circle, and near the leading one (Fig. 15)")
     _method_option(p)
     _model_options(p)
     p.set_defaults(handler=commands.cmd_floquet)
@@ -131,7 +134,8 @@ def build_parser():
     p.add_argument("--out", metavar="FILE.npz",
                    help="save the map arrays (NPZ, see README)")
     p.add_argument("--plot", metavar="FILE.png",
-                   help="save a plot of the map (PNG, SVG or PDF)")
+                   help="save a plot of the map (PNG, SVG or PDF), with the "
+                        "exact tongue boundaries and numbers")
     _min_growth_option(p, "; the plot shades slower ones grey")
     _method_option(p)
     _model_options(p)
@@ -359,8 +363,10 @@ def build_parser():
                                    "and growth as judder chart reads them, "
                                    "and the Floquet verdict of the bench's "
                                    "linearisation (c1 + d_control).")
-    p.add_argument("--freq", type=float, required=True, metavar="HZ",
-                   help="dither frequency, Hz")
+    p.add_argument("--freq", required=True, metavar="HZ[,HZ...]",
+                   help="dither frequency, Hz; several (e.g. 23,105) give "
+                        "one engagement each, side by side, with their "
+                        "spectra overlaid (Fig. 1, Fig. 8)")
     p.add_argument("--pf", type=float, required=True, metavar="BAR",
                    help="dither amplitude, bar")
     p.add_argument("--duration", type=float, metavar="S",
@@ -492,4 +498,56 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     p.set_defaults(handler=commands.cmd_chart)
+
+    p = sub.add_parser("report", help="one HTML file with the paper's "
+                                      "figures and tables for a driveline",
+                       description="Run the studies of the paper for one "
+                                   "driveline and write one self-contained "
+                                   "HTML file (figures embedded): the "
+                                   "driveline, the verdict and margin of "
+                                   "the configured dither (--freq, --pf) "
+                                   "with its multipliers (Fig. 15), the map "
+                                   "with the exact tongues (Fig. 14) and "
+                                   "their tips, the sensitivity ranking "
+                                   "(Fig. 17, 18), and the fit to bench "
+                                   "data (--chart or --boundary, Fig. 16a). "
+                                   "Open it in a browser; print it to PDF "
+                                   "from there.")
+    p.add_argument("--out", required=True, metavar="FILE.html",
+                   help="the report")
+    p.add_argument("--pdf", metavar="FILE.pdf",
+                   help="also print it to PDF (needs Debian's chromium)")
+    p.add_argument("--engagement", action="store_true",
+                   help="with --freq and --pf: also run the bench "
+                        "engagement through the FMU (Fig. 7, 8)")
+    p.add_argument("--freq", type=float, metavar="HZ",
+                   help="dither frequency of the configured setting, Hz")
+    p.add_argument("--pf", type=float, metavar="BAR",
+                   help="dither amplitude of the configured setting, bar")
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--chart", metavar="FILE.npz",
+                        help="bench data: a chart (judder chart --out)")
+    source.add_argument("--boundary", metavar="FILE.csv",
+                        help="bench data: a measured boundary "
+                             "(freq_hz,p_f_bar)")
+    p.add_argument("--group", metavar="VALUE",
+                   help="group of the chart, when it has several")
+    p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
+                   help="parameters fitted to the bench data (default "
+                        "c12,mu_g,k24)")
+    p.add_argument("--sensitivity", metavar="NAMES",
+                   help="parameters of the sensitivity study (default the "
+                        "stiffnesses, inertias, mu_g and c12)")
+    p.add_argument("--grid", default="10:220:300", metavar="START:STOP:N",
+                   help="frequencies of the boundaries, Hz (default "
+                        "10:220:300)")
+    p.add_argument("--map-freq", default=DEFAULT_MAP_FREQ,
+                   metavar="START:STOP:N",
+                   help=f"map frequencies, Hz (default {DEFAULT_MAP_FREQ})")
+    p.add_argument("--map-pf", default=DEFAULT_MAP_PF, metavar="START:STOP:N",
+                   help=f"map amplitudes, bar (default {DEFAULT_MAP_PF})")
+    _workers_option(p)
+    _method_option(p)
+    _model_options(p)
+    p.set_defaults(handler=commands.cmd_report)
     return parser

@@ -1,0 +1,149 @@
+"""``judder report``: its numbers, and that a real browser renders it.
+
+The browser is Debian's Chromium (``make browser`` installs it; ``make
+test`` depends on that target). Without it the browser tests skip and say
+so; everything else runs.
+"""
+
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from matplotlib.image import imread
+
+from judder.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+BROWSER_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu",
+                 "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync",
+                 "--no-first-run")
+
+#: Written into a copy of the report: once the page has loaded, every
+#: image's state and decoded size go into an attribute of <body>.
+PROBE = ("<script>window.addEventListener('load',()=>{document.body."
+         "setAttribute('data-images',[...document.images].map(i=>i.complete"
+         "+':'+i.naturalWidth+'x'+i.naturalHeight).join(' '));});</script>")
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    """A report of the example driveline with a dither setting and the
+    example boundary, on small grids."""
+    folder = tmp_path_factory.mktemp("report")
+    out = folder / "report.html"
+    status = main(["report", "--param-file",
+                   str(EXAMPLES / "driveline.toml"), "--freq", "105",
+                   "--pf", "0.2", "--boundary",
+                   str(EXAMPLES / "measured_boundary.csv"), "--fit", "mu_g",
+                   "--sensitivity", "k24,mu_g", "--grid=10:220:60",
+                   "--map-freq=5:250:40", "--map-pf=0:1.5:16",
+                   "--workers=1", "--set", "mu_g=0.011", "--out",
+                   str(out)]
+                  + (["--pdf", str(folder / "report.pdf")] if CHROMIUM
+                     else []))
+    assert status == 0
+    return out
+
+
+def _text(html):
+    return re.sub(r"<[^>]+>", " ", re.sub(r"<img[^>]*>", "", html))
+
+
+def test_report_states_the_verdict_tips_ranking_and_fit(report):
+    html = report.read_text()
+    text = " ".join(_text(html).split())
+    # 105 Hz, 0.2 bar is inside tongue 2 of the example driveline with
+    # mu_g halved: `judder floquet --freq 105 --pf 0.2 --param-file
+    # examples/driveline.toml --set mu_g=0.011` gives 1.000668, 0.0701 1/s
+    assert "JUDDER: single-period instability, growing at 0.0701" in text
+    assert "|lambda| = 1.0007" in text
+    # tongue 2's tip, refined between grid points: 105.776 Hz, 0.1084 bar
+    # (`judder tongues` on 500 frequencies; twice the 0.0542 bar of
+    # mu_g = 0.022, as the tip scales with 1/mu_g)
+    row = re.search(r"2 single-period f2 ([\d.]+) ([\d.]+)", text)
+    assert float(row.group(1)) == pytest.approx(105.776, abs=0.01)
+    assert float(row.group(2)) == pytest.approx(0.1084, abs=1e-4)
+    # halving and doubling mu_g moves the tip by 100 % (tip ~ 1/mu_g),
+    # more than k24 does: mu_g is ranked first
+    ranking = re.search(r"tongue vanishes (\w+) ([\d.]+) [\d.]+ no (\w+)",
+                        text)
+    assert ranking.group(1) == "mu_g" and ranking.group(3) == "k24"
+    assert float(ranking.group(2)) == pytest.approx(100.0, abs=0.5)
+    # without dither: mu_g* = -1.25e-4 c_i with every c_i = 0.1
+    assert "for mu_g below -1.25e-05 s/rad" in text
+    # the example boundary was made from this set (mu_g = 0.022) with
+    # 3 % noise: the fit, started at 0.011, finds it again
+    fit = re.search(r"mu_g 0\.011 ([\d.]+) \[", text)
+    assert float(fit.group(1)) == pytest.approx(0.022, rel=0.03)
+    # self-contained: every image is inline, nothing is fetched
+    assert html.count("<img") == 6
+    assert html.count('src="data:image/png;base64,') == 6
+    assert not re.search(r'(src|href)="(?!data:)', html)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--freq", "105"], ["--freq and --pf go together"]),
+    (["--freq", "105", "--pf", "-1"], ["--pf -1 bar", ">= 0"]),
+    (["--sensitivity", "k99"], ["--sensitivity", "'k99'", "k12"]),
+    (["--chart", "missing.npz"], ["--chart missing.npz"]),
+    (["--grid", "0:220:10"], ["--grid", "> 0 Hz"]),
+])
+def test_report_refuses_bad_input(args, words, tmp_path, capsys):
+    out = tmp_path / "r.html"
+    status = main(["report", *args, "--grid=10:220:10" if "--grid" not in
+                   args else "--workers=1", "--map-freq=5:250:5",
+                   "--map-pf=0:1.5:3", "--out", str(out)])
+    assert status == 2
+    err = capsys.readouterr().err
+    assert err.startswith("judder: error:") and "Traceback" not in err
+    for word in words:
+        assert word in err
+    assert not out.exists()
+
+
+def _chromium(*args, cwd):
+    return subprocess.run([CHROMIUM, *BROWSER_FLAGS,
+                           f"--user-data-dir={cwd / 'profile'}", *args],
+                          capture_output=True, text=True, timeout=120,
+                          cwd=cwd)
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium: run `make "
+                    "browser` (Debian's chromium package)")
+def test_report_renders_in_chromium(report, tmp_path):
+    probe = tmp_path / "probe.html"
+    probe.write_text(report.read_text().replace("</body>",
+                                                PROBE + "</body>"))
+    dom = _chromium("--virtual-time-budget=10000", "--dump-dom",
+                    probe.as_uri(), cwd=tmp_path).stdout
+    states = re.search(r'data-images="([^"]*)"', dom).group(1).split()
+    assert len(states) == 6
+    for state in states:
+        complete, size = state.split(":")
+        width, height = map(int, size.split("x"))
+        assert complete == "true" and width > 300 and height > 300, state
+    for words in ("Verdict: dither at 105 Hz, 0.2 bar", "Tongue tips",
+                  "What moves the tongues", "The bench data and the fit"):
+        assert words in dom
+    # and it draws: a screenshot of the top of the page is not blank
+    shot = tmp_path / "shot.png"
+    _chromium("--window-size=1200,2400", f"--screenshot={shot}",
+              report.as_uri(), cwd=tmp_path)
+    pixels = imread(shot)[..., :3]
+    dark = np.mean(pixels.mean(axis=2) < 0.6)
+    assert 0.01 < dark < 0.6
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium: run `make "
+                    "browser` (Debian's chromium package)")
+def test_report_prints_to_pdf(report):
+    pdf = (report.parent / "report.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF-")
+    # one page object per printed page: the report is several pages long
+    assert len(re.findall(rb"/Type\s*/Page[^s]", pdf)) >= 3
