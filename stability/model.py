@@ -15,10 +15,12 @@ theta4, theta3]``, for the 3-DOF model ``[theta1, theta24, theta3]``.
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 
 from drivelines.specs import MEAN_PRESSURE_DAMPING
 
-__all__ = ["Driveline", "PeriodicSystem", "build_driveline"]
+__all__ = ["Driveline", "PeriodicSystem", "ModulatedSystem",
+           "build_driveline"]
 
 
 @dataclass(frozen=True)
@@ -46,6 +48,16 @@ class PeriodicSystem:
     v: np.ndarray
     state_names: tuple
 
+    @property
+    def U(self):
+        """``u`` as the one column of a rank-``r`` factor, shape (m, 1)."""
+        return self.u[:, None]
+
+    @property
+    def V(self):
+        """``v`` as the one column of a rank-``r`` factor, shape (m, 1)."""
+        return self.v[:, None]
+
     def matrix(self, t, omega, p_f):
         """System matrix at time ``t`` (s) for angular frequency ``omega``
         (rad/s) and amplitude ``p_f`` (Pa)."""
@@ -67,6 +79,43 @@ class PeriodicSystem:
         """
         return PeriodicSystem(self.A0 - rate * np.eye(len(self.u)), self.u,
                               self.v, self.state_names)
+
+
+@dataclass(frozen=True)
+class ModulatedSystem:
+    r"""Linear system with a cosine modulation of any rank ``r``.
+
+    .. math:: \dot z = \bigl(A_0 + p_f \cos(\omega t)\, U V^T\bigr) z
+
+    The form a driveline compiled from Modelica takes (a second clutch
+    with dither, a gear between the bodies the clutch joins, ...); with
+    ``r = 1`` it is :class:`PeriodicSystem`. Both engines of
+    :mod:`stability.monodromy` and Hill's method take it.
+
+    Attributes
+    ----------
+    A0 : ndarray, shape (m, m)
+        Constant part, 1/s.
+    U, V : ndarray, shape (m, r)
+        Factors of the modulation per unit dither amplitude, 1/(s Pa).
+    state_names : tuple of str
+    """
+
+    A0: np.ndarray
+    U: np.ndarray
+    V: np.ndarray
+    state_names: tuple
+
+    def matrix(self, t, omega, p_f):
+        """System matrix at time ``t`` (s) for angular frequency ``omega``
+        (rad/s) and amplitude ``p_f`` (Pa)."""
+        return self.A0 + (p_f * np.cos(omega * t)) * (self.U @ self.V.T)
+
+    def shifted(self, rate):
+        """The system of ``w = exp(-rate t) z``, see
+        :meth:`PeriodicSystem.shifted`."""
+        return ModulatedSystem(self.A0 - rate * np.eye(len(self.A0)), self.U,
+                               self.V, self.state_names)
 
 
 @dataclass(frozen=True)
@@ -115,6 +164,12 @@ class Driveline:
     def mass_matrix(self):
         """``M`` of Eq. (2), kg m^2, shape (n, n)."""
         return np.diag(self.inertia)
+
+    def undamped_omega2(self):
+        """Eigenvalues of ``K phi = w^2 M phi`` (Eq. 14), (rad/s)^2,
+        ascending, rigid-body zeros included."""
+        return scipy.linalg.eigh(self.stiffness_matrix(), self.mass_matrix(),
+                                 eigvals_only=True)
 
     def incidence(self):
         """Spring deflections ``E theta``, shape (n_springs, n)."""

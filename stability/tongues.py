@@ -19,7 +19,10 @@ of the constant system,
 
 so :math:`1/p_f` is an eigenvalue of the tridiagonal matrix
 :math:`\tfrac12 \operatorname{diag}(G(ik\omega)) S` (``S`` has ones next to
-the diagonal). Half-integer ``k`` give the double-period boundary
+the diagonal). A modulation :math:`U V^T` of rank ``r`` (a driveline
+compiled from Modelica, :class:`~stability.model.ModulatedSystem`) gives
+the same with the ``r x r`` transfer matrix :math:`V^T (sI - A_0)^{-1} U`
+in each block, :math:`w_k = V^T c_k` of length ``r``. Half-integer ``k`` give the double-period boundary
 (multiplier -1). Real eigenvalues give the boundary amplitudes.
 Combination boundaries (a complex pair on the unit circle) add the unknown
 Floquet exponent; they are found by Brent's method on the monodromy
@@ -77,11 +80,12 @@ _HILL_REAL_TOLERANCE = 1e-8
 
 
 def _transfer(system, s):
-    """``G(s) = v^T (s I - A0)^-1 u`` at the complex points ``s``."""
-    size = len(system.u)
+    """``G(s) = V^T (s I - A0)^-1 U`` at the complex points ``s``,
+    shape (len(s), r, r)."""
+    size = len(system.A0)
     matrices = s[:, None, None] * np.eye(size) - system.A0
-    rhs = np.broadcast_to(system.u, (len(s), size))[..., None]
-    return np.linalg.solve(matrices, rhs)[..., 0] @ system.v
+    rhs = np.broadcast_to(system.U, (len(s),) + system.U.shape)
+    return system.V.T @ np.linalg.solve(matrices, rhs)
 
 
 def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
@@ -122,8 +126,12 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
         raise JudderError("the driveline without dither turns freely "
                           "(external damping c_i all zero): the tongue "
                           "boundaries need some c_i > 0")
+    # block (k, k +- 1) of Hill's matrix is G(ik omega) / 2
+    rank = gains.shape[-1]
     size = len(k)
-    hill = 0.5 * gains[:, None] * (np.eye(size, k=1) + np.eye(size, k=-1))
+    neighbours = np.eye(size, k=1) + np.eye(size, k=-1)
+    hill = 0.5 * np.einsum("kab,kl->kalb", gains, neighbours).reshape(
+        size * rank, size * rank)
     lam = np.linalg.eigvals(hill)
     real = lam[(np.abs(lam.imag) <= _HILL_REAL_TOLERANCE * np.abs(lam))
                & (lam.real != 0)].real
