@@ -18,8 +18,8 @@ model Driveline5DOFGeared "5-DOF driveline: the 4-DOF chain of Fig. 13, a gear a
   parameter Units.RotationalDampingConstant c5=0.1 "External damping of body 5";
   parameter Real ratio(min=1e-3)=3.5 "Gear ratio, speed of body 3 over speed of the output shaft";
   parameter Units.FrictionCoefficient mu0=0.09 "Friction coefficient at zero slip";
-  parameter Units.FrictionCoefficient mu_max=0.12 "Friction coefficient at large slip";
-  parameter Units.AngularVelocity w_char(min=1e-6)=1.5 "Characteristic slip speed of the friction curve";
+  parameter Units.FrictionCoefficient mu_max=0.18 "Friction coefficient at large slip";
+  parameter Units.AngularVelocity w_char(min=1e-6)=4 "Characteristic slip speed of the friction curve (slope mu_g = 0.0177 s/rad at w_slip = 2 rad/s)";
   parameter Real N_c(min=1)=8 "Number of pairs of clutch plates";
   parameter Units.Length R_m=0.075 "Mean radius of the friction surfaces";
   parameter Units.Area S=0.01 "Area the actuation pressure acts on";
