@@ -40,7 +40,10 @@ from fmu.backend import to_ode
 from fmu.frontend import load_flat_model
 from infra.errors import JudderError, ParameterError
 
-__all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel", "compile_class",
+from .specs import ParameterSpec
+
+__all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
+           "ModelicaParameters", "compile_class", "parameter_specs",
            "linearize"]
 
 #: The project's Modelica library (package ``Judder``).
@@ -148,29 +151,119 @@ class LinearPeriodicModel:
         return self.U.shape[1]
 
 
-def _parameter_values(ode, overrides, class_name):
-    names = [q.name for q in ode.parameters]
-    unknown = sorted(set(overrides) - set(names))
+@lru_cache(maxsize=16)
+def parameter_specs(class_name, library=None):
+    """Unit, bounds and description of every tunable parameter of a class.
+
+    Returns
+    -------
+    dict of str to drivelines.specs.ParameterSpec
+        In the order of the compiled model; bounds from ``min``/``max``.
+    """
+    specs = {}
+    for quantity in compile_class(class_name, library).parameters:
+        bounds = {}
+        for key, bound in (("lower", quantity.minimum),
+                           ("upper", quantity.maximum)):
+            if bound is not None and not casadi.symvar(casadi.SX(bound)):
+                bounds[key] = float(casadi.evalf(bound))
+        specs[quantity.name] = ParameterSpec(
+            quantity.name, quantity.unit or "1",
+            quantity.description or quantity.name, **bounds)
+    return specs
+
+
+def _parameter_values(ode, overrides, class_name, library):
+    specs = parameter_specs(class_name, library)
+    unknown = sorted(set(overrides) - set(specs))
     if unknown:
         raise ParameterError(
             f"{unknown[0]} = {overrides[unknown[0]]!r} is not a tunable "
-            f"parameter of {class_name}; allowed: {', '.join(names)}")
-    values = {}
-    for quantity in ode.parameters:
-        value = float(overrides.get(quantity.name, quantity.start))
-        if not np.isfinite(value):
-            raise ParameterError(f"{quantity.name} = {value!r} is not "
-                                 "allowed; allowed: finite values")
-        for bound, ok, word in ((quantity.minimum, np.greater_equal, ">="),
-                                (quantity.maximum, np.less_equal, "<=")):
-            if bound is not None and not casadi.symvar(casadi.SX(bound)):
-                limit = float(casadi.evalf(bound))
-                if not ok(value, limit):
-                    raise ParameterError(
-                        f"{quantity.name} = {value!r} is not allowed; "
-                        f"allowed: {word} {limit:g} ({quantity.unit})")
-        values[quantity.name] = value
-    return values
+            f"parameter of {class_name}; allowed: {', '.join(specs)}")
+    return {q.name: specs[q.name].check(overrides.get(q.name, q.start))
+            for q in ode.parameters}
+
+
+@dataclass(frozen=True)
+class ModelicaParameters:
+    """A parameter set of a Modelica class, by Modelica names (SI).
+
+    The parameter-set interface the application uses for the paper's
+    drivelines (:class:`drivelines.Parameters`: ``model``, ``specs``,
+    ``replace``, ``with_overrides``, ``as_dict``), plus
+    :meth:`linear_model`, the linear time-periodic system, which
+    :func:`stability.model.build_driveline` uses instead of the paper's
+    matrices.
+
+    Attributes
+    ----------
+    class_name : str
+    library : str or None
+    values : dict
+        Every tunable parameter, SI.
+    amplitude, frequency : str
+        Names of the dither amplitude and frequency parameters.
+    """
+
+    class_name: str
+    library: object = None
+    values: dict = None
+    amplitude: str = "p_f"
+    frequency: str = "f_dither"
+
+    def __post_init__(self):
+        ode = compile_class(self.class_name, self.library)
+        object.__setattr__(self, "values", _parameter_values(
+            ode, dict(self.values or {}), self.class_name, self.library))
+
+    @property
+    def model(self):
+        """The class name (what the results report as ``model``)."""
+        return self.class_name
+
+    @property
+    def specs(self):
+        """:func:`parameter_specs` of the class."""
+        return parameter_specs(self.class_name, self.library)
+
+    @property
+    def driveline(self):
+        """None: a Modelica class has no entry in the registry."""
+        return None
+
+    def __getitem__(self, name):
+        return self.values[name]
+
+    def replace(self, **changes):
+        """A copy with some values changed (validated)."""
+        return ModelicaParameters(self.class_name, self.library,
+                                  {**self.values, **changes},
+                                  self.amplitude, self.frequency)
+
+    def with_overrides(self, assignments):
+        """Apply ``NAME=VALUE`` strings, as given to ``--set``."""
+        changes = {}
+        for text in assignments:
+            name, sep, value = (part.strip() for part in text.partition("="))
+            if not sep or not name or not value:
+                raise ParameterError(f"--set {text!r} is not of the form "
+                                     "NAME=VALUE (for example --set c12=10)")
+            if name not in self.values:
+                raise ParameterError(
+                    f"--set {text!r}: {name!r} is not a tunable parameter "
+                    f"of {self.class_name}; allowed: "
+                    f"{', '.join(self.values)}")
+            changes[name] = self.specs[name].check(value)
+        return self.replace(**changes)
+
+    def as_dict(self):
+        """Plain ``dict`` of the values (SI)."""
+        return dict(self.values)
+
+    def linear_model(self):
+        """:func:`linearize` of the class at these values."""
+        return linearize(self.class_name, self.library, self.values,
+                         self.amplitude, self.frequency)
 
 
 def _require(condition, message):
@@ -249,7 +342,7 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     ((8, 8), (6, 6), 1)
     """
     ode = compile_class(class_name, library)
-    values = _parameter_values(ode, dict(values or {}), class_name)
+    values = _parameter_values(ode, dict(values or {}), class_name, library)
     names = [q.name for q in ode.parameters]
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         _require(name in names, f"{role} = {name!r} is not a parameter of "

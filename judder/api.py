@@ -221,7 +221,8 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
         factors=factors, values=values, method=method, workers=workers,
         callback=progress)
     conclusions = (paper_conclusions(study)
-                   if nominal.driveline.paper_sensitivity else [])
+                   if nominal.driveline is not None
+                   and nominal.driveline.paper_sensitivity else [])
     return SensitivityResult(params=nominal, study=study,
                              tip_shifts=tip_shifts(study),
                              conclusions=conclusions, seconds=seconds,

@@ -312,11 +312,14 @@ def build_driveline(params):
 
     Parameters
     ----------
-    params : drivelines.Parameters
+    params : drivelines.Parameters or drivelines.modelica.ModelicaParameters
+        A parameter set of the registry's drivelines, or of a Modelica
+        class (then the result is a :class:`~stability.linear.LinearDriveline`
+        of its compiled equations).
 
     Returns
     -------
-    Driveline
+    Driveline or stability.linear.LinearDriveline
 
     Examples
     --------
@@ -324,6 +327,12 @@ def build_driveline(params):
     >>> build_driveline(get_preset("paper-4dof")).names
     ('1', '2', '4', '3')
     """
+    linear_model = getattr(params, "linear_model", None)
+    if linear_model is not None:
+        # a Modelica class (drivelines.modelica.ModelicaParameters): its
+        # compiled and linearised system replaces the paper's matrices
+        from .linear import LinearDriveline
+        return LinearDriveline.from_model(linear_model())
     p, model = params, params.driveline
     index = model.body_index
     return Driveline(

@@ -245,3 +245,38 @@ def test_user_library_and_bad_names(tmp_path):
         linearize("MyLib.Oscillator", library=library, values={"p_f": -1.0})
     with pytest.raises(ModelicaError, match="not found"):
         linearize("MyLib.Nothing", library=library)
+
+
+def _cli(*args):
+    import subprocess
+    import sys
+    return subprocess.run([sys.executable, "-m", "judder", *args],
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_cli_modelica_keeps_the_json_fields():
+    import json
+    ours = _cli("floquet", "--freq", "102.9", "--pf", "0.3", "--modelica",
+                "Judder.Examples.Driveline4DOF", "--set", "c12=10", "--json")
+    theirs = _cli("floquet", "--freq", "102.9", "--pf", "0.3", "--set",
+                  "c12=10", "--json")
+    assert ours.returncode == theirs.returncode == 0, ours.stderr
+    ours, theirs = json.loads(ours.stdout), json.loads(theirs.stdout)
+    assert set(ours) == set(theirs)
+    assert ours["model"] == "Judder.Examples.Driveline4DOF"
+    assert ours["kind"] == theirs["kind"]
+    assert ours["leading_abs"] == pytest.approx(theirs["leading_abs"],
+                                                rel=1e-12)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--modelica", "Judder.Examples.Driveline4DOF", "--set", "k99=1"],
+     "'k99' is not a tunable parameter"),
+    (["--modelica", "Judder.Examples.Driveline4DOF", "--preset",
+      "paper-4dof"], "replaces --preset"),
+    (["--modelica", "Judder.Examples.Driveline5DOFGeared", "--set",
+      "w_slip=-1"], "w_slip = '-1' is not allowed")])
+def test_cli_modelica_refuses_in_one_line(args, message):
+    proc = _cli("floquet", "--freq", "100", "--pf", "0.1", *args)
+    assert proc.returncode == 2
+    assert message in proc.stderr and "Traceback" not in proc.stderr

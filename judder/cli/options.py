@@ -59,11 +59,26 @@ def parameters_of(args):
     changes : dict
         The --set values, validated (SI).
     """
-    params = load_parameters(preset=args.preset, model=args.model,
-                             param_file=args.param_file)
+    if getattr(args, "modelica", None):
+        params = modelica_parameters(args)
+    else:
+        params = load_parameters(preset=args.preset, model=args.model,
+                                 param_file=args.param_file)
     changed = params.with_overrides(args.set)
     names = [text.partition("=")[0].strip() for text in args.set]
     return params, {name: changed[name] for name in names}
+
+
+def modelica_parameters(args):
+    """The parameter set of ``--modelica CLASS [--library DIR]``."""
+    from drivelines.modelica import ModelicaParameters
+    for option in ("model", "preset", "param_file"):
+        if getattr(args, option, None) is not None:
+            raise JudderError(f"--modelica {args.modelica} replaces "
+                              f"--{option.replace('_', '-')}; give one")
+    return ModelicaParameters(args.modelica, args.library,
+                              amplitude=args.dither_amplitude,
+                              frequency=args.dither_frequency)
 
 
 def emit(args, data, text):

@@ -42,6 +42,30 @@ def _model_options(parser):
                         help="print the result as JSON")
 
 
+def _modelica_options(parser):
+    """--modelica CLASS [--library DIR] [--dither-amplitude/--dither-frequency
+    NAME]: analyse a driveline written in Modelica (docs/onemodel.md)."""
+    group = parser.add_argument_group(
+        "Modelica driveline", "Analyse a Modelica class instead of a preset: "
+        "it is compiled, linearised about its start values (a steady slip) "
+        "and its rigid-body angles removed; --set NAME=VALUE then sets its "
+        "parameters by their Modelica names (SI). Replaces --model, --preset "
+        "and --param-file.")
+    group.add_argument("--modelica", metavar="CLASS",
+                       help="full class name, e.g. "
+                            "Judder.Examples.Driveline5DOFGeared")
+    group.add_argument("--library", metavar="DIR",
+                       help="folder holding your own top-level package "
+                            "(the Judder library is always available)")
+    group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
+                       help="parameter of the class that is the dither "
+                            "amplitude, Pa (default p_f)")
+    group.add_argument("--dither-frequency", default="f_dither",
+                       metavar="NAME",
+                       help="parameter of the class that is the dither "
+                            "frequency, Hz (default f_dither)")
+
+
 def _pf_max_option(parser, meaning):
     parser.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
@@ -101,6 +125,7 @@ def build_parser():
                    help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_floquet)
 
     p = sub.add_parser("map", help="stability map over frequency x amplitude",
@@ -119,6 +144,7 @@ def build_parser():
                    help="save a plot of the map (PNG, SVG or PDF)")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_map)
 
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
@@ -141,6 +167,7 @@ def build_parser():
                    help="boundaries drawn over the map (Fig. 16)")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_tongues)
 
     p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
@@ -169,6 +196,7 @@ def build_parser():
                         "boundaries")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 
     p = sub.add_parser("threshold", help="friction-gradient threshold "
