@@ -23,6 +23,14 @@ __all__ = ["Driveline", "PeriodicSystem", "ModulatedSystem",
            "build_driveline"]
 
 
+def _shape(system, theta, omega):
+    """The dither's shape at the phase ``theta``: cosine unless the system
+    carries a waveform."""
+    if system.waveform is None:
+        return np.cos(theta)
+    return system.waveform.values(theta, omega / (2 * np.pi))
+
+
 @dataclass(frozen=True)
 class PeriodicSystem:
     r"""Linear system with a rank-one cosine modulation.
@@ -41,12 +49,16 @@ class PeriodicSystem:
         ``u v^T`` is in 1/(s Pa).
     state_names : tuple of str
         Meaning of each entry of ``z``.
+    waveform : object or None
+        Shape of the dither (:mod:`stability.waveforms`); None is the
+        paper's cosine.
     """
 
     A0: np.ndarray
     u: np.ndarray
     v: np.ndarray
     state_names: tuple
+    waveform: object = None
 
     @property
     def U(self):
@@ -61,7 +73,8 @@ class PeriodicSystem:
     def matrix(self, t, omega, p_f):
         """System matrix at time ``t`` (s) for angular frequency ``omega``
         (rad/s) and amplitude ``p_f`` (Pa)."""
-        return self.A0 + (p_f * np.cos(omega * t)) * np.outer(self.u, self.v)
+        return self.A0 + (p_f * _shape(self, omega * t, omega)) \
+            * np.outer(self.u, self.v)
 
     def shifted(self, rate):
         """The system of ``w = exp(-rate t) z``, 1/s.
@@ -78,7 +91,7 @@ class PeriodicSystem:
         True
         """
         return PeriodicSystem(self.A0 - rate * np.eye(len(self.u)), self.u,
-                              self.v, self.state_names)
+                              self.v, self.state_names, self.waveform)
 
 
 @dataclass(frozen=True)
@@ -99,23 +112,27 @@ class ModulatedSystem:
     U, V : ndarray, shape (m, r)
         Factors of the modulation per unit dither amplitude, 1/(s Pa).
     state_names : tuple of str
+    waveform : object or None
+        Shape of the dither (:mod:`stability.waveforms`); None: cosine.
     """
 
     A0: np.ndarray
     U: np.ndarray
     V: np.ndarray
     state_names: tuple
+    waveform: object = None
 
     def matrix(self, t, omega, p_f):
         """System matrix at time ``t`` (s) for angular frequency ``omega``
         (rad/s) and amplitude ``p_f`` (Pa)."""
-        return self.A0 + (p_f * np.cos(omega * t)) * (self.U @ self.V.T)
+        return self.A0 + (p_f * _shape(self, omega * t, omega)) \
+            * (self.U @ self.V.T)
 
     def shifted(self, rate):
         """The system of ``w = exp(-rate t) z``, see
         :meth:`PeriodicSystem.shifted`."""
         return ModulatedSystem(self.A0 - rate * np.eye(len(self.A0)), self.U,
-                               self.V, self.state_names)
+                               self.V, self.state_names, self.waveform)
 
 
 @dataclass(frozen=True)

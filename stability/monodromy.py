@@ -42,6 +42,8 @@ from scipy.integrate import solve_ivp
 
 from infra.errors import JudderError
 
+from .waveforms import waveform_of
+
 __all__ = ["METHODS", "DEFAULT_METHOD", "DysonPropagator",
            "IntegratedPropagator", "monodromy", "monodromy_dyson",
            "monodromy_solve_ivp", "get_method"]
@@ -105,8 +107,15 @@ class DysonPropagator:
         A0, U, V = system.A0, system.U, system.V
         size = len(A0)
         omega, period = 2 * np.pi * freq_hz, 1.0 / freq_hz
+        waveform = waveform_of(system)
+        # the shape is smooth between its breakpoints: sub-intervals end
+        # on them, so the spectral integration stays exact
+        group = waveform.breakpoints
+        peak = np.abs(waveform.values(np.linspace(0, 2 * np.pi, 257),
+                                      freq_hz)).max()
         radius = np.abs(np.linalg.eigvals(A0)).max()
         steps = max(1, math.ceil(period * (2 * radius + omega) / _MAX_PHASE))
+        steps = group * math.ceil(steps / group)
         while True:
             if steps > MAX_SUBINTERVALS:
                 raise JudderError(
@@ -120,14 +129,20 @@ class DysonPropagator:
             backward = scipy.linalg.expm(-A0[None] * s[:, None, None])
             left = backward @ U                          # (Q, m, r)
             right = np.einsum("ir,qij->qrj", V, forward)  # (Q, r, m)
-            strength = (p_max * h * np.linalg.norm(left, axis=(1, 2))
+            strength = (p_max * peak * h * np.linalg.norm(left, axis=(1, 2))
                         * np.linalg.norm(right, axis=(1, 2))).max()
             if strength <= _MAX_STRENGTH:
                 break
-            steps = math.ceil(steps * strength / _MAX_STRENGTH)
+            steps = group * math.ceil(steps * strength / _MAX_STRENGTH
+                                      / group)
 
         weights = _INTEGRATION * (h / 2)
-        phase = np.cos(omega * (h * np.arange(steps)[:, None] + s[None, :]))
+        # the end nodes take the shape's one-sided limits (a square wave
+        # jumps there): evaluate a hair inside the sub-interval
+        inside = np.clip(s, 1e-12 * h, (1 - 1e-12) * h)
+        phase = waveform.values(
+            omega * (h * np.arange(steps)[:, None] + inside[None, :]),
+            freq_hz)
         Y = np.broadcast_to(np.eye(size), (steps, _NODES, size, size))
         coefficients = [np.broadcast_to(np.eye(size), (steps, size, size))]
         for _ in range(_series_degree(strength)):

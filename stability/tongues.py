@@ -56,6 +56,7 @@ from .floquet import check_amplitude, check_frequency
 from .kinds import Kind, is_real
 from .modal import natural_frequencies
 from .monodromy import DEFAULT_METHOD, get_method
+from .waveforms import waveform_of
 
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS",
            "hill_boundary_amplitudes", "tongue_boundaries", "find_tongues",
@@ -126,11 +127,14 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
         raise JudderError("the driveline without dither turns freely "
                           "(external damping c_i all zero): the tongue "
                           "boundaries need some c_i > 0")
-    # block (k, k +- 1) of Hill's matrix is G(ik omega) / 2
+    # block (k, l) of Hill's matrix is G(ik omega) c_(k-l), with the
+    # waveform's harmonics c_n (the cosine: c_(+-1) = 1/2)
     rank = gains.shape[-1]
     size = len(k)
-    neighbours = np.eye(size, k=1) + np.eye(size, k=-1)
-    hill = 0.5 * np.einsum("kab,kl->kalb", gains, neighbours).reshape(
+    c = waveform_of(system).coefficients(size - 1, freq_hz)
+    lag = np.subtract.outer(np.arange(size), np.arange(size))
+    toeplitz = np.where(lag >= 0, c[np.abs(lag)], np.conj(c[np.abs(lag)]))
+    hill = np.einsum("kab,kl->kalb", gains, toeplitz).reshape(
         size * rank, size * rank)
     lam = np.linalg.eigvals(hill)
     real = lam[(np.abs(lam.imag) <= _HILL_REAL_TOLERANCE * np.abs(lam))
