@@ -232,7 +232,12 @@ class ModelicaParameters:
         return None
 
     def __getitem__(self, name):
-        return self.values[name]
+        try:
+            return self.values[name]
+        except KeyError:
+            raise ParameterError(
+                f"{name!r} is not a tunable parameter of {self.class_name}; "
+                f"allowed: {', '.join(self.values)}") from None
 
     def replace(self, **changes):
         """A copy with some values changed (validated)."""

@@ -210,4 +210,6 @@ class Dithered:
         return self.driveline.undamped_omega2()
 
     def __getattr__(self, name):
+        if name.startswith("__") or name == "driveline":
+            raise AttributeError(name)
         return getattr(self.driveline, name)

@@ -280,3 +280,27 @@ def test_cli_modelica_refuses_in_one_line(args, message):
     proc = _cli("floquet", "--freq", "100", "--pf", "0.1", *args)
     assert proc.returncode == 2
     assert message in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_cli_fit_recovers_the_slip_speed_of_a_modelica_class(tmp_path,
+                                                             geared):
+    # a boundary of the geared 5-DOF class at w_slip = 2.6 rad/s; the fit
+    # from the class's default 2 rad/s finds it again
+    from drivelines.modelica import ModelicaParameters
+    import json
+    truth = ModelicaParameters("Judder.Examples.Driveline5DOFGeared",
+                               values={"w_slip": 2.6})
+    freq = np.linspace(96.0, 110.0, 8)
+    measured = tongue_boundaries(build_driveline(truth), freq,
+                                 1.5 * BAR).stability_boundary / BAR
+    path = tmp_path / "boundary.csv"
+    path.write_text("freq_hz,p_f_bar\n" + "".join(
+        f"{float(f)!r},{float(p)!r}\n" for f, p in zip(freq, measured)))
+    proc = _cli("fit", "--modelica", "Judder.Examples.Driveline5DOFGeared",
+                "--boundary", str(path), "--fit", "w_slip", "--starts", "1",
+                "--workers", "1", "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["model"] == "Judder.Examples.Driveline5DOFGeared"
+    assert data["fitted"]["w_slip"]["start"] == 2.0
+    assert data["fitted"]["w_slip"]["value"] == pytest.approx(2.6, rel=1e-6)

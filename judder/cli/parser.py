@@ -271,6 +271,7 @@ def build_parser():
                    help="allow --save-params to replace a file")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_fit)
 
     p = sub.add_parser("simulate", help="bench engagement with dither "
