@@ -58,6 +58,16 @@ def _resolve(parameters, changes):
     return base.replace(**(changes or {}))
 
 
+def _dithered(values, waveform):
+    """The driveline of ``values``, dithered by ``waveform`` (None: the
+    paper's cosine)."""
+    driveline = build_driveline(values)
+    if waveform is None:
+        return driveline
+    from stability.waveforms import Dithered
+    return Dithered(driveline, waveform)
+
+
 def _timed(function, *args, **kwargs):
     started = time.perf_counter()
     result = function(*args, **kwargs)
@@ -101,7 +111,7 @@ def eig(parameters=None, changes=None):
 
 
 def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
-            method=DEFAULT_METHOD):
+            method=DEFAULT_METHOD, waveform=None):
     """``judder floquet``: Floquet multipliers at one dither setting
     (Eq. 10-13), rigid-body angles removed.
 
@@ -112,18 +122,21 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     p_f_bar : float
         Dither amplitude, bar.
 
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
+
     Returns
     -------
     judder.results.FloquetPoint
     """
     values = _resolve(parameters, changes)
-    result = floquet_kernel(build_driveline(values), freq_hz,
+    result = floquet_kernel(_dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)
     return FloquetPoint(params=values, method=method, result=result)
 
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
-                  method=DEFAULT_METHOD, progress=None):
+                  method=DEFAULT_METHOD, progress=None, waveform=None):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -134,6 +147,9 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     p_f_bar : array_like
         Dither amplitudes, bar.
 
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
+
     Returns
     -------
     judder.results.MapResult
@@ -141,7 +157,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     """
     values = _resolve(parameters, changes)
     result, seconds = _timed(
-        map_kernel, build_driveline(values), freq_hz,
+        map_kernel, _dithered(values, waveform), freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
         callback=progress)
     return MapResult(params=values, map=result, seconds=seconds)
@@ -149,7 +165,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
-            min_growth=0.0):
+            min_growth=0.0, waveform=None):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -165,6 +181,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     min_growth : float
         1/s: boundaries of judder growing at least this fast (0: the
         stability boundaries).
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
 
     Returns
     -------
@@ -172,7 +190,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     """
     from stability.tongues import find_tongues, tongue_boundaries
     values = _resolve(parameters, changes)
-    driveline = build_driveline(values)
+    driveline = _dithered(values, waveform)
     p_max = p_max_bar * PA_PER_BAR
     started = time.perf_counter()
     boundaries = tongue_boundaries(driveline, freq_hz, p_max, method,

@@ -90,7 +90,7 @@ def _transfer(system, s):
 
 
 def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
-                             harmonics=HILL_HARMONICS):
+                             harmonics=None):
     """Amplitudes at which a multiplier equals +1 or -1 (Hill's method).
 
     Parameters
@@ -101,8 +101,10 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
     multiplier : {1, -1}
         +1: single-period boundary (integer harmonics); -1: double-period
         (half-integer harmonics).
-    harmonics : int
-        Harmonics kept on each side.
+    harmonics : int, optional
+        Harmonics kept on each side; default :data:`HILL_HARMONICS`, or
+        the waveform's ``hill_harmonics`` (a square wave's harmonics decay
+        slowly and need more).
 
     Returns
     -------
@@ -116,6 +118,9 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
         external damping zero): a multiplier then sits at 1 for every
         amplitude and the boundary is undefined.
     """
+    if harmonics is None:
+        harmonics = getattr(waveform_of(system), "hill_harmonics",
+                            HILL_HARMONICS)
     shift = 0.0 if multiplier == 1 else 0.5
     k = np.arange(-harmonics, harmonics + 1) + shift
     try:

@@ -79,6 +79,10 @@ class FilteredSquare:
     tau: float = 0.0
     breakpoints = 4
     name = "square"
+    #: Harmonics Hill's method keeps: the coefficients decay as 1/n^2
+    #: (1/n without the lag); 48 put the boundary multipliers within
+    #: 1e-12 of the unit circle (12: 1e-10).
+    hill_harmonics = 48
 
     def __post_init__(self):
         if not np.isfinite(self.tau) or self.tau < 0:
@@ -117,6 +121,11 @@ class FourierSeries:
     sin: tuple = ()
     breakpoints = 1
     name = "fourier"
+
+    @property
+    def hill_harmonics(self):
+        """Harmonics Hill's method keeps: 12 beyond the series' own."""
+        return 12 + max(len(self.cos), len(self.sin))
 
     def __post_init__(self):
         a = np.asarray(self.cos, dtype=float)

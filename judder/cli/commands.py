@@ -15,7 +15,7 @@ from infra.units import PA_PER_BAR
 from .. import api
 from ..inputs import read_boundary, read_chart_boundary
 from .options import (check_number, emit, make_parents, parameters_of,
-                      parse_grid, parse_list, Progress)
+                      parse_grid, parse_list, parse_waveform, Progress)
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
@@ -90,7 +90,8 @@ def cmd_floquet(args):
     """Floquet multipliers at one dither frequency and amplitude."""
     check_number("--pf", args.pf, "bar", strict=False)
     point = api.floquet(args.freq, args.pf, *parameters_of(args),
-                        method=args.method)
+                        method=args.method,
+                        waveform=parse_waveform(args.dither_wave))
     result = point.result
     lam = result.leading
     text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
@@ -109,15 +110,18 @@ def cmd_map(args):
         raise JudderError(f"--freq x --pf has {len(freqs) * len(amplitudes)}"
                           f" points; allowed: at most {MAX_MAP_POINTS}")
     params, changes = parameters_of(args)
+    waveform = parse_waveform(args.dither_wave)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(freqs, amplitudes, params, changes,
-                                   method=args.method, progress=progress)
+                                   method=args.method, progress=progress,
+                                   waveform=waveform)
     title = (f"{result.params.model} stability map, "
              f"{args.preset or args.param_file or 'default parameters'}")
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
-                                          "set": args.set}},
+                                          "set": args.set,
+                                          "dither_wave": args.dither_wave}},
                            figure={"title": title})
     counts = result.map.counts()
     text = (f"{result.map.kind.size} points in {result.seconds:.2f} s: "
@@ -130,10 +134,11 @@ def cmd_tongues(args):
     """Tongue boundaries, labels and tips."""
     freqs = parse_grid(args.freq, "--freq", "Hz")
     params, changes = parameters_of(args)
+    waveform = parse_waveform(args.dither_wave)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "tongue boundaries") as progress:
         result = api.tongues(freqs, _pf_max(args), params, changes,
-                             method=args.method,
+                             method=args.method, waveform=waveform,
                              background=args.plot is not None,
                              progress=progress,
                              min_growth=_finite("--min-growth",

@@ -66,6 +66,17 @@ def _modelica_options(parser):
                             "frequency, Hz (default f_dither)")
 
 
+def _waveform_option(parser):
+    parser.add_argument(
+        "--dither-wave", default="cosine", metavar="SPEC",
+        help="shape of the dither, per unit --pf: cosine (Eq. 4, default); "
+             "square[:TAU_MS], a square wave of amplitude 1 through the "
+             "valve's first-order lag TAU_MS (ms); fourier:A1,A2,...[/B1,"
+             "B2,...], cosine and sine coefficients of the harmonics; "
+             "period:FILE.csv, one measured period of pressure (last column, "
+             "equally spaced; --pf then scales its fundamental)")
+
+
 def _pf_max_option(parser, meaning):
     parser.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
@@ -126,6 +137,7 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     _modelica_options(p)
+    _waveform_option(p)
     p.set_defaults(handler=commands.cmd_floquet)
 
     p = sub.add_parser("map", help="stability map over frequency x amplitude",
@@ -145,6 +157,7 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     _modelica_options(p)
+    _waveform_option(p)
     p.set_defaults(handler=commands.cmd_map)
 
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
@@ -168,6 +181,7 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     _modelica_options(p)
+    _waveform_option(p)
     p.set_defaults(handler=commands.cmd_tongues)
 
     p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
