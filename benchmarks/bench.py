@@ -51,16 +51,22 @@ def _pointwise_leading(system, freqs, amplitudes, tol):
     return out
 
 
-def bench_floquet_maps():
-    """Dyson engine against per-point solve_ivp on the 4-DOF map."""
-    driveline = build_driveline(get_preset("paper-4dof"))
-    system = driveline.periodic_system()
+def _subset_baseline(system):
+    """Reference and timed baseline (per-point solve_ivp) on the subset of
+    the map grid: ``(freqs, amps, reference, baseline, baseline_seconds)``."""
     freqs, amps = MAP_FREQ[SUBSET[0]], MAP_PF[SUBSET[1]]
-    points = len(freqs) * len(amps)
-
     reference = _pointwise_leading(system, freqs, amps, REFERENCE_TOL)
     baseline, baseline_seconds = _timed(_pointwise_leading, system, freqs,
                                         amps, BASELINE_TOL)
+    return freqs, amps, reference, baseline, baseline_seconds
+
+
+def bench_floquet_maps():
+    """Dyson engine against per-point solve_ivp on the 4-DOF map."""
+    driveline = build_driveline(get_preset("paper-4dof"))
+    freqs, amps, reference, baseline, baseline_seconds = _subset_baseline(
+        driveline.periodic_system())
+    points = len(freqs) * len(amps)
     subset_map, seconds = _timed(stability_map, driveline, freqs, amps)
     yield {"name": "floquet-map-4dof-same-points", "points": points,
            "seconds": seconds, "baseline_seconds": baseline_seconds,
@@ -198,12 +204,9 @@ def bench_modelica_map():
     linear, compile_seconds = _timed(linearize, MODELICA_CLASS,
                                      str(MODELICA_LIBRARY))
     driveline = LinearDriveline.from_model(linear)
-    system = driveline.periodic_system()
-    freqs, amps = MAP_FREQ[SUBSET[0]], MAP_PF[SUBSET[1]]
+    freqs, amps, reference, baseline, baseline_seconds = _subset_baseline(
+        driveline.periodic_system())
     points = len(freqs) * len(amps)
-    reference = _pointwise_leading(system, freqs, amps, REFERENCE_TOL)
-    baseline, baseline_seconds = _timed(_pointwise_leading, system, freqs,
-                                        amps, BASELINE_TOL)
     full, seconds = _timed(stability_map, driveline, MAP_FREQ, MAP_PF)
     extrapolated = baseline_seconds / points * full.kind.size
     yield {"name": "floquet-map-modelica-12-states-300x150",

@@ -40,7 +40,7 @@ from fmu.backend import to_ode
 from fmu.frontend import load_flat_model
 from infra.errors import JudderError, ParameterError
 
-from .specs import ParameterSpec
+from .specs import ParameterSpec, split_assignment
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
@@ -249,10 +249,7 @@ class ModelicaParameters:
         """Apply ``NAME=VALUE`` strings, as given to ``--set``."""
         changes = {}
         for text in assignments:
-            name, sep, value = (part.strip() for part in text.partition("="))
-            if not sep or not name or not value:
-                raise ParameterError(f"--set {text!r} is not of the form "
-                                     "NAME=VALUE (for example --set c12=10)")
+            name, value = split_assignment(text)
             if name not in self.values:
                 raise ParameterError(
                     f"--set {text!r}: {name!r} is not a tunable parameter "
