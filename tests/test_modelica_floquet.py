@@ -304,3 +304,23 @@ def test_cli_fit_recovers_the_slip_speed_of_a_modelica_class(tmp_path,
     assert data["model"] == "Judder.Examples.Driveline5DOFGeared"
     assert data["fitted"]["w_slip"]["start"] == 2.0
     assert data["fitted"]["w_slip"]["value"] == pytest.approx(2.6, rel=1e-6)
+
+
+def test_cli_params_file_round_trip(tmp_path):
+    import json
+    path = tmp_path / "geared.toml"
+    saved = _cli("params", "--modelica", "Judder.Examples.Driveline5DOFGeared",
+                 "--set", "w_slip=3", "--save", str(path))
+    assert saved.returncode == 0, saved.stderr
+    # dotted names (housing.phi0) come back as they were written
+    proc = _cli("floquet", "--modelica", "Judder.Examples.Driveline5DOFGeared",
+                "--param-file", str(path), "--freq", "102.88", "--pf", "0.1",
+                "--json")
+    assert proc.returncode == 0, proc.stderr
+    linear = linearize("Judder.Examples.Driveline5DOFGeared",
+                       values={"w_slip": 3.0})
+    lam = np.linalg.eigvals(DysonPropagator(
+        LinearDriveline.from_model(linear).periodic_system(), 102.88,
+        0.1 * BAR).monodromy([0.1 * BAR])[0])
+    assert json.loads(proc.stdout)["leading_abs"] == pytest.approx(
+        np.abs(lam).max(), rel=1e-12)

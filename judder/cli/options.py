@@ -71,12 +71,29 @@ def parameters_of(args):
 
 def modelica_parameters(args):
     """The parameter set of ``--modelica CLASS [--library DIR]``."""
+    import tomllib
     from drivelines.modelica import ModelicaParameters
-    for option in ("model", "preset", "param_file"):
+    for option in ("model", "preset"):
         if getattr(args, option, None) is not None:
             raise JudderError(f"--modelica {args.modelica} replaces "
-                              f"--{option.replace('_', '-')}; give one")
-    return ModelicaParameters(args.modelica, args.library,
+                              f"--{option}; give one")
+    values = {}
+    if args.param_file is not None:
+        # a file of `judder params --modelica CLASS --save`
+        try:
+            table = tomllib.loads(read_input(args.param_file,
+                                             "--param-file"))
+        except tomllib.TOMLDecodeError as exc:
+            raise JudderError(f"--param-file {args.param_file}: not TOML "
+                              f"({exc})") from None
+        if table.get("model") != args.modelica or \
+                not isinstance(table.get("parameters"), dict):
+            raise JudderError(
+                f"--param-file {args.param_file}: model = "
+                f"{table.get('model')!r} is not --modelica {args.modelica} "
+                "(or the [parameters] table is missing)")
+        values = _flat(table["parameters"])
+    return ModelicaParameters(args.modelica, args.library, values,
                               amplitude=args.dither_amplitude,
                               frequency=args.dither_frequency)
 
@@ -127,6 +144,17 @@ def _is_float(text):
     except ValueError:
         return False
     return True
+
+
+def _flat(table, prefix=""):
+    """TOML reads ``housing.phi0 = 0`` as a table; back to dotted names."""
+    flat = {}
+    for key, value in table.items():
+        if isinstance(value, dict):
+            flat.update(_flat(value, f"{prefix}{key}."))
+        else:
+            flat[f"{prefix}{key}"] = value
+    return flat
 
 
 def emit(args, data, text):

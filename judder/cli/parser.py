@@ -49,8 +49,9 @@ def _modelica_options(parser):
         "Modelica driveline", "Analyse a Modelica class instead of a preset: "
         "it is compiled, linearised about its start values (a steady slip) "
         "and its rigid-body angles removed; --set NAME=VALUE then sets its "
-        "parameters by their Modelica names (SI). Replaces --model, --preset "
-        "and --param-file.")
+        "parameters by their Modelica names (SI), --param-file reads a file "
+        "of `judder params --modelica CLASS --save`. Replaces --model and "
+        "--preset.")
     group.add_argument("--modelica", metavar="CLASS",
                        help="full class name, e.g. "
                             "Judder.Examples.Driveline5DOFGeared")
@@ -110,6 +111,7 @@ def build_parser():
                                    "it (--save FILE.toml) to edit and load "
                                    "with --param-file.")
     _model_options(p)
+    _modelica_options(p)
     p.add_argument("--save", metavar="FILE.toml",
                    help="write the set as TOML (never overwrites unless "
                         "--force)")
