@@ -262,6 +262,13 @@ class ModelicaParameters:
         """Plain ``dict`` of the values (SI)."""
         return dict(self.values)
 
+    @property
+    def speed_states(self):
+        """Names of the states in rad/s (the bodies' speeds)."""
+        return [s.name for s in compile_class(self.class_name,
+                                              self.library).states
+                if s.unit == "rad/s"]
+
     def linear_model(self):
         """:func:`linearize` of the class at these values."""
         return linearize(self.class_name, self.library, self.values,

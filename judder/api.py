@@ -388,7 +388,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
 
 def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
                changes=None, method=DEFAULT_METHOD, workers=None,
-               progress=None):
+               progress=None, perturb="w_in"):
     """``judder crosscheck``: growth rates of the driveline's FMU against
     the Floquet exponents on a grid (the two views of one model).
 
@@ -400,6 +400,8 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
         Dither amplitudes, bar.
     duration : float
         Length of each run, s.
+    perturb : str
+        Start-speed parameter raised in the second run of each point.
 
     Returns
     -------
@@ -410,7 +412,7 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     check, seconds = _timed(
         crosscheck_study, values, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, duration=duration,
-        method=method, workers=workers, callback=progress)
+        method=method, workers=workers, callback=progress, perturb=perturb)
     return CrosscheckResult(params=values, check=check, seconds=seconds,
                             method=method)
 

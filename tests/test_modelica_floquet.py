@@ -324,3 +324,19 @@ def test_cli_params_file_round_trip(tmp_path):
         0.1 * BAR).monodromy([0.1 * BAR])[0])
     assert json.loads(proc.stdout)["leading_abs"] == pytest.approx(
         np.abs(lam).max(), rel=1e-12)
+
+
+def test_crosscheck_fmu_of_the_rank_two_class_against_its_floquet_rates():
+    # the two views of one Modelica class: its FMU's free response (two
+    # runs, w_in 1 rad/s apart) grows at the Floquet exponent of the
+    # system linearised from the same class
+    from drivelines.modelica import ModelicaParameters
+    from judder.crosscheck import crosscheck
+    params = ModelicaParameters("Judder.Examples.Driveline4DOFTwoClutches")
+    check = crosscheck(params, [105.0], [0.1 * BAR, 0.5 * BAR], workers=1)
+    assert [p.floquet_kind for p in check.points] == ["stable",
+                                                      "single-period"]
+    assert all(p.agree for p in check.points)
+    for point in check.points:
+        assert point.fitted_rate == pytest.approx(point.floquet_rate,
+                                                  rel=1e-3)

@@ -361,7 +361,7 @@ def cmd_crosscheck(args):
         result = api.crosscheck(freqs, amplitudes, duration=args.duration,
                                 parameters=params, changes=changes,
                                 method=args.method, workers=args.workers,
-                                progress=progress)
+                                progress=progress, perturb=args.perturb)
     data = {**result.as_dict(), **_write_outputs(args, result)}
     worst = data["max_rate_error_above_1_per_s"]
     text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "

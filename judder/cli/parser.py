@@ -346,6 +346,10 @@ def build_parser():
                    help="fitted against Floquet rates, and the verdicts")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
+    p.add_argument("--perturb", default="w_in", metavar="NAME",
+                   help="start-speed parameter raised by 1 rad/s in the "
+                        "second run of each point (default w_in)")
     p.set_defaults(handler=commands.cmd_crosscheck)
 
     p = sub.add_parser("campaign", help="bench emulator: engagement "

@@ -30,12 +30,13 @@ model Driveline5DOFGeared "5-DOF driveline: the 4-DOF chain of Fig. 13, a gear a
   parameter Units.AngularVelocity w_slip(min=0)=2 "Slip speed of the operating point (body 4 minus body 3)";
   parameter Units.AngularVelocity w_out=100 "Speed of body 3 at the operating point";
   parameter Units.AngularVelocity w_in=w_out + w_slip "Speed of bodies 1, 2 and 4 at the operating point";
+  parameter Units.AngularVelocity dw_start=0 "Extra start speed of body 1, off the operating point (free-response runs: judder crosscheck --perturb dw_start)";
   parameter Units.Torque T_c=N_c*R_m*S*p_m*(mu0 + mean_pressure_damping*(mu_max - mu0)*tanh(w_slip/w_char))
     "Clutch torque at the operating point without dither";
   parameter Units.Torque T_e=T_c + (c1 + c2 + c4)*w_in "Engine torque on body 1 (steady slip)";
   parameter Units.Torque T_5=ratio*(T_c - c3*w_out) "Torque the gear passes to the output shaft";
   parameter Units.Torque T_r=T_5 - c5*w_out/ratio "Resistant torque on body 5 (steady slip)";
-  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_in, fixed=true))
+  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_in + dw_start, fixed=true))
     annotation (Placement(transformation(extent={{-150,-10},{-130,10}})));
   Components.Inertia inertia2(J=J2, phi(start=-(T_e - c1*w_in)/k12, fixed=true), w(start=w_in, fixed=true))
     annotation (Placement(transformation(extent={{-90,-10},{-70,10}})));
@@ -131,6 +132,8 @@ at w_in = w_out + w_slip, body 3 at w_out, body 5 at w_out/ratio, every
 spring twisted to carry the torque that reaches it (the engine torque
 T_e covers the clutch torque and the external damping; the resistant
 torque T_r on body 5 balances what the gear passes on). The Floquet
-layer linearises the model about this state (drivelines.modelica).</p>
+layer linearises the model about this state (drivelines.modelica);
+dw_start moves body 1 off it, for the second run of a free-response
+cross-check.</p>
 </html>"));
 end Driveline5DOFGeared;
