@@ -139,7 +139,7 @@ class DysonPropagator:
         weights = _INTEGRATION * (h / 2)
         # the end nodes take the shape's one-sided limits (a square wave
         # jumps there): evaluate a hair inside the sub-interval
-        inside = np.clip(s, 1e-12 * h, (1 - 1e-12) * h)
+        inside = s if group == 1 else np.clip(s, 1e-12 * h, (1 - 1e-12) * h)
         phase = waveform.values(
             omega * (h * np.arange(steps)[:, None] + inside[None, :]),
             freq_hz)
