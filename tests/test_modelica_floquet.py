@@ -75,7 +75,7 @@ def test_map_and_tongues_equal_the_hand_written_model(four, paper4):
     assert set(ours.counts()) == set(theirs.counts())
     assert_allclose(ours.natural_frequencies_hz,
                     theirs.natural_frequencies_hz, rtol=1e-12)
-    grid = np.arange(10.0, 222.0, 3.0)
+    grid = np.arange(10.0, 222.0, 5.0)     # coarse: the tips are refined
     tips = [[(t.number, t.kind, t.tip_freq_hz, t.tip_p_f)
              for t in find_tongues(d, tongue_boundaries(d, grid, 1.5 * BAR))]
             for d in (extracted, paper4)]
@@ -273,9 +273,7 @@ def test_cli_modelica_keeps_the_json_fields():
     (["--modelica", "Judder.Examples.Driveline4DOF", "--set", "k99=1"],
      "'k99' is not a tunable parameter"),
     (["--modelica", "Judder.Examples.Driveline4DOF", "--preset",
-      "paper-4dof"], "replaces --preset"),
-    (["--modelica", "Judder.Examples.Driveline5DOFGeared", "--set",
-      "w_slip=-1"], "w_slip = '-1' is not allowed")])
+      "paper-4dof"], "replaces --preset")])
 def test_cli_modelica_refuses_in_one_line(args, message):
     proc = _cli("floquet", "--freq", "100", "--pf", "0.1", *args)
     assert proc.returncode == 2
