@@ -9,6 +9,7 @@ names to run only those.
 import json
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -50,16 +51,22 @@ def _pointwise_leading(system, freqs, amplitudes, tol):
     return out
 
 
-def bench_floquet_maps():
-    """Dyson engine against per-point solve_ivp on the 4-DOF map."""
-    driveline = build_driveline(get_preset("paper-4dof"))
-    system = driveline.periodic_system()
+def _subset_baseline(system):
+    """Reference and timed baseline (per-point solve_ivp) on the subset of
+    the map grid: ``(freqs, amps, reference, baseline, baseline_seconds)``."""
     freqs, amps = MAP_FREQ[SUBSET[0]], MAP_PF[SUBSET[1]]
-    points = len(freqs) * len(amps)
-
     reference = _pointwise_leading(system, freqs, amps, REFERENCE_TOL)
     baseline, baseline_seconds = _timed(_pointwise_leading, system, freqs,
                                         amps, BASELINE_TOL)
+    return freqs, amps, reference, baseline, baseline_seconds
+
+
+def bench_floquet_maps():
+    """Dyson engine against per-point solve_ivp on the 4-DOF map."""
+    driveline = build_driveline(get_preset("paper-4dof"))
+    freqs, amps, reference, baseline, baseline_seconds = _subset_baseline(
+        driveline.periodic_system())
+    points = len(freqs) * len(amps)
     subset_map, seconds = _timed(stability_map, driveline, freqs, amps)
     yield {"name": "floquet-map-4dof-same-points", "points": points,
            "seconds": seconds, "baseline_seconds": baseline_seconds,
@@ -231,7 +238,47 @@ def bench_engagement():
                        "equations (the back end's CasADi ODE)"}
 
 
+#: The 12-state driveline of a user's package (issue 12): rank-2 dither.
+MODELICA_CLASS = "BenchLib.Driveline6DOF"
+MODELICA_LIBRARY = Path(__file__).resolve().parent / "modelica"
+
+
+def bench_modelica_map():
+    """300 x 150 map of a 12-state Modelica driveline: the Dyson engine on
+    the system compiled and linearised from Modelica, against per-point
+    solve_ivp on the same system."""
+    from drivelines.modelica import linearize
+    from stability import LinearDriveline
+
+    linear, compile_seconds = _timed(linearize, MODELICA_CLASS,
+                                     str(MODELICA_LIBRARY))
+    driveline = LinearDriveline.from_model(linear)
+    freqs, amps, reference, baseline, baseline_seconds = _subset_baseline(
+        driveline.periodic_system())
+    points = len(freqs) * len(amps)
+    full, seconds = _timed(stability_map, driveline, MAP_FREQ, MAP_PF)
+    extrapolated = baseline_seconds / points * full.kind.size
+    yield {"name": "floquet-map-modelica-12-states-300x150",
+           "points": full.kind.size, "seconds": seconds,
+           "baseline_seconds": extrapolated, "baseline_extrapolated": True,
+           "speedup": extrapolated / seconds,
+           "max_error": float(np.abs(full.leading_abs[SUBSET]
+                                     - reference).max()),
+           "baseline_max_error": float(np.abs(baseline - reference).max()),
+           "states": len(linear.state_names),
+           "reduced_states": len(linear.A0_reduced),
+           "modulation_rank": linear.rank,
+           "compile_and_linearise_seconds": compile_seconds,
+           "target_seconds": 5.0,
+           "note": f"{MODELICA_CLASS} from {MODELICA_LIBRARY.name}/; "
+                   f"baseline: solve_ivp DOP853 rtol "
+                   f"{BASELINE_TOL['rtol']:g} on {points} points of the "
+                   "grid, scaled; error against rtol "
+                   f"{REFERENCE_TOL['rtol']:g} on those points"}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
+              "modelica-map": bench_modelica_map,
               "tongue-boundaries": bench_tongue_boundaries,
               "tongue-solvers": bench_tongue_solvers,
               "engagement": bench_engagement}

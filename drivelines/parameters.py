@@ -15,7 +15,7 @@ from types import MappingProxyType
 from infra.errors import ParameterError
 
 from .registry import MODELS, get_model
-from .specs import MEAN_PRESSURE_DAMPING
+from .specs import MEAN_PRESSURE_DAMPING, split_assignment
 
 __all__ = ["Parameters", "get_preset", "default_preset", "load_toml",
            "dumps_toml", "MEAN_PRESSURE_DAMPING"]
@@ -85,12 +85,7 @@ class Parameters:
         """
         changes = {}
         for text in assignments:
-            name, sep, value = text.partition("=")
-            name, value = name.strip(), value.strip()
-            if not sep or not name or not value:
-                raise ParameterError(
-                    f"--set {text!r} is not of the form NAME=VALUE "
-                    f"(for example --set c12=10)")
+            name, value = split_assignment(text)
             if name not in self.specs:
                 raise ParameterError(
                     f"--set {text!r}: unknown parameter {name!r} for the "

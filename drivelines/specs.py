@@ -6,10 +6,26 @@ import math
 from infra.errors import ParameterError
 
 __all__ = ["ParameterSpec", "positive", "nonnegative", "CLUTCH_SPECS",
-           "MEAN_PRESSURE_DAMPING"]
+           "MEAN_PRESSURE_DAMPING", "split_assignment"]
 
 #: Name of the model option that scales the mean pressure in the damping term.
 MEAN_PRESSURE_DAMPING = "mean_pressure_damping"
+
+
+def split_assignment(text):
+    """``(name, value text)`` of a ``NAME=VALUE`` string given to ``--set``.
+
+    Raises
+    ------
+    ParameterError
+        When ``text`` is not of that form.
+    """
+    name, sep, value = text.partition("=")
+    name, value = name.strip(), value.strip()
+    if not sep or not name or not value:
+        raise ParameterError(f"--set {text!r} is not of the form NAME=VALUE "
+                             "(for example --set c12=10)")
+    return name, value
 
 
 @dataclass(frozen=True)

@@ -220,7 +220,8 @@ def to_ode(model):
 
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
                        model.time)
-    _reduce_index(system, states, parameter_names | {"time"}, model.time)
+    _reduce_index(system, states, parameter_names | {"time"}, model.time,
+                  unknown_vars)
     derivatives = _solve_sorted(system, states, unknown_vars)
 
     order = [v for v in model.by_role("state") if v.name in states]
@@ -299,7 +300,7 @@ def _time_derivative(formula, states, time):
                                     casadi.vertcat(*dx))
 
 
-def _reduce_index(system, states, known, time):
+def _reduce_index(system, states, known, time, unknowns=None):
     """Solve constraints among states for one state each (step 3).
 
     ``known`` are the names of parameters and time: a residual whose
@@ -313,6 +314,9 @@ def _reduce_index(system, states, known, time):
             if involved and names <= set(states) | known:
                 constraints.append((index, involved))
         if not constraints:
+            if unknowns and _expose_constraint(system, states, known, time,
+                                               unknowns):
+                continue
             return
         count = {}
         for _, involved in constraints:
@@ -334,6 +338,41 @@ def _reduce_index(system, states, known, time):
         else:
             raise BackEndError(f"cannot reduce the index: no state appears "
                                f"linearly in the constraint {residual}")
+
+
+def _expose_constraint(system, states, known, time, unknowns):
+    """Eliminate one algebraic variable that hides a constraint.
+
+    An ideal gear between a body and a spring writes ``phi_body = ratio *
+    flange.phi`` and ``phi_rel = phi_other - flange.phi``: each equation
+    holds states, knowns and the one algebraic ``flange.phi``, so neither
+    is a constraint among states until ``flange.phi`` is solved from the
+    first (linear in it) and substituted into the second. Returns whether
+    such a variable was eliminated.
+    """
+    plain = set(states) | known
+    candidates = {}
+    for index, residual in enumerate(system.residuals):
+        names = {s.name() for s in casadi.symvar(residual)}
+        extra = names - plain
+        if len(extra) == 1 and names & set(states):
+            name = extra.pop()
+            if name in unknowns and name not in system.eliminated:
+                candidates.setdefault(name, []).append(index)
+    for name, indices in candidates.items():
+        if len(indices) < 2:
+            continue
+        index = indices[0]
+        residual = system.residuals[index]
+        symbol = unknowns[name].symbol
+        slope = casadi.jacobian(residual, symbol)
+        if casadi.depends_on(slope, symbol) or not _nonzero(slope):
+            continue
+        formula = -casadi.substitute(residual, symbol, casadi.SX(0)) / slope
+        del system.residuals[index]
+        _replace(system, states, unknowns, symbol, formula, time)
+        return True
+    return False
 
 
 def _nonzero(expression):

@@ -59,6 +59,16 @@ def _resolve(parameters, changes):
     return base.replace(**(changes or {}))
 
 
+def _dithered(values, waveform):
+    """The driveline of ``values``, dithered by ``waveform`` (None: the
+    paper's cosine)."""
+    driveline = build_driveline(values)
+    if waveform is None:
+        return driveline
+    from stability.waveforms import Dithered
+    return Dithered(driveline, waveform)
+
+
 def _timed(function, *args, **kwargs):
     started = time.perf_counter()
     result = function(*args, **kwargs)
@@ -102,7 +112,7 @@ def eig(parameters=None, changes=None):
 
 
 def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
-            method=DEFAULT_METHOD):
+            method=DEFAULT_METHOD, waveform=None):
     """``judder floquet``: Floquet multipliers at one dither setting
     (Eq. 10-13), rigid-body angles removed.
 
@@ -113,19 +123,22 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     p_f_bar : float
         Dither amplitude, bar.
 
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
+
     Returns
     -------
     judder.results.FloquetPoint
     """
     values = _resolve(parameters, changes)
-    result = floquet_kernel(build_driveline(values), freq_hz,
+    result = floquet_kernel(_dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)
     return FloquetPoint(params=values, method=method, result=result)
 
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
                   method=DEFAULT_METHOD, progress=None, min_growth=None,
-                  exact=False):
+                  exact=False, waveform=None):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -141,6 +154,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         frequencies up to its largest amplitude
         (:func:`stability.tongues.tongue_boundaries`), which
         ``figure()`` draws over the grid with the tongue numbers.
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
 
     Returns
     -------
@@ -152,7 +167,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         faster ones.
     """
     values = _resolve(parameters, changes)
-    driveline = build_driveline(values)
+    driveline = _dithered(values, waveform)
     result, seconds = _timed(
         map_kernel, driveline, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
@@ -171,7 +186,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
-            min_growth=0.0, solver="hill"):
+            min_growth=0.0, solver="hill", waveform=None):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -189,6 +204,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
         stability boundaries).
     solver : str
         Boundary solver, a key of :data:`stability.tongues.SOLVERS`.
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
 
     Returns
     -------
@@ -196,7 +213,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     """
     from stability.tongues import find_tongues, tongue_boundaries
     values = _resolve(parameters, changes)
-    driveline = build_driveline(values)
+    driveline = _dithered(values, waveform)
     p_max = p_max_bar * PA_PER_BAR
     started = time.perf_counter()
     boundaries = tongue_boundaries(driveline, freq_hz, p_max, method,
@@ -246,7 +263,8 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
         factors=factors, values=values, method=method, workers=workers,
         callback=progress)
     conclusions = (paper_conclusions(study)
-                   if nominal.driveline.paper_sensitivity else [])
+                   if nominal.driveline is not None
+                   and nominal.driveline.paper_sensitivity else [])
     return SensitivityResult(params=nominal, study=study,
                              tip_shifts=tip_shifts(study),
                              conclusions=conclusions, seconds=seconds,
@@ -402,7 +420,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
 
 def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
                changes=None, method=DEFAULT_METHOD, workers=None,
-               progress=None):
+               progress=None, perturb="w_in"):
     """``judder crosscheck``: growth rates of the driveline's FMU against
     the Floquet exponents on a grid (the two views of one model).
 
@@ -414,6 +432,8 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
         Dither amplitudes, bar.
     duration : float
         Length of each run, s.
+    perturb : str
+        Start-speed parameter raised in the second run of each point.
 
     Returns
     -------
@@ -424,7 +444,7 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     check, seconds = _timed(
         crosscheck_study, values, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, duration=duration,
-        method=method, workers=workers, callback=progress)
+        method=method, workers=workers, callback=progress, perturb=perturb)
     return CrosscheckResult(params=values, check=check, seconds=seconds,
                             method=method)
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from infra.errors import JudderError
 from infra.parallel import parallel_map
 from pysim.fmus import ensure_fmu
 from pysim.runs import parameter_default, run_fmu
@@ -101,13 +102,23 @@ def _reason(point_rate, fit, duration):
 
 
 def _point(job):
-    params, fmu_path, freq, p_f, duration, method = job
-    speeds = params.driveline.free_response_speeds
+    params, fmu_path, freq, p_f, duration, method, speeds, perturb = job
     period = 1.0 / freq
-    perturbed = {"w_in": parameter_default(fmu_path, "w_in") + SPEED_STEP}
-    runs = [run_fmu(fmu_path, freq, p_f, params=params, duration=duration,
+    if params.driveline is None:
+        # a Modelica class: its values are FMU parameters, except the
+        # dither, which is the grid point's
+        run_params = None
+        base = {k: v for k, v in params.values.items()
+                if k not in (params.amplitude, params.frequency)}
+        perturbed = {perturb: base[perturb] + SPEED_STEP}
+    else:
+        run_params, base = params, {}
+        perturbed = {perturb: parameter_default(fmu_path, perturb)
+                     + SPEED_STEP}
+    runs = [run_fmu(fmu_path, freq, p_f, params=run_params,
+                    duration=duration,
                     output_interval=period / SAMPLES_PER_PERIOD,
-                    variables=speeds, extra=extra)
+                    variables=speeds, extra={**base, **extra})
             for extra in ({}, perturbed)]
     fit = free_response_growth(
         runs[0].time, [runs[1][s] - runs[0][s] for s in speeds], period)
@@ -123,14 +134,38 @@ def _point(job):
         reason="" if agree else _reason(result.growth_rate, fit, duration))
 
 
+def _fmu_and_speeds(params, perturb):
+    """The FMU to run and the speeds whose difference is the free response.
+
+    A registry driveline names them; a Modelica class
+    (:class:`drivelines.modelica.ModelicaParameters`) is built into an FMU
+    and every state in rad/s is recorded.
+    """
+    if params.driveline is not None:
+        return (ensure_fmu(params.driveline.modelica_class),
+                params.driveline.free_response_speeds)
+    if (params.amplitude, params.frequency) != ("p_f", "f_dither"):
+        raise JudderError("crosscheck runs the FMU with the dither in p_f "
+                          "and f_dither; allowed: --dither-amplitude p_f "
+                          "--dither-frequency f_dither")
+    if perturb not in params.values:
+        raise JudderError(
+            f"perturb = {perturb!r} is not a tunable parameter of "
+            f"{params.model}; allowed: a start speed among "
+            f"{', '.join(params.values)}")
+    return (ensure_fmu(params.class_name, library=params.library),
+            tuple(params.speed_states))
+
+
 def crosscheck(params, freq_hz, p_f, duration=3.0, method=DEFAULT_METHOD,
-               workers=None, callback=None):
+               workers=None, callback=None, perturb="w_in"):
     """Run the FMU over a grid and compare with the Floquet exponents.
 
     Parameters
     ----------
-    params : drivelines.Parameters
-        The FMU of its driveline (registry) is run.
+    params : drivelines.Parameters or drivelines.modelica.ModelicaParameters
+        The FMU of its driveline (registry) or of its Modelica class is
+        run.
     freq_hz, p_f : array_like
         Grid: dither frequencies (Hz) and amplitudes (Pa).
     duration : float
@@ -142,14 +177,18 @@ def crosscheck(params, freq_hz, p_f, duration=3.0, method=DEFAULT_METHOD,
         Processes (default all cores).
     callback : callable, optional
         ``callback(done, total)`` after each point.
+    perturb : str
+        The start-speed parameter raised by :data:`SPEED_STEP` in the
+        second run of each point.
 
     Returns
     -------
     Crosscheck
     """
     get_method(method)
-    fmu_path = ensure_fmu(params.driveline.modelica_class)
-    jobs = [(params, fmu_path, float(f), float(p), float(duration), method)
+    fmu_path, speeds = _fmu_and_speeds(params, perturb)
+    jobs = [(params, fmu_path, float(f), float(p), float(duration), method,
+             speeds, perturb)
             for f in np.atleast_1d(freq_hz) for p in np.atleast_1d(p_f)]
     points = []
     for point in parallel_map(_point, jobs, workers):

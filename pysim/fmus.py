@@ -17,14 +17,16 @@ LIBRARY = ROOT / "modelica"
 FMU_DIR = ROOT / "build" / "fmu"
 
 
-def _newest_source():
+def _newest_source(library=None):
     sources = list(LIBRARY.rglob("*.mo")) + list(LIBRARY.rglob("package.order"))
+    if library is not None:
+        sources += list(Path(library).rglob("*.mo"))
     sources += list((ROOT / "fmu").rglob("*.py")) + list(
         (ROOT / "fmu" / "c").glob("*.[ch]"))
     return max(p.stat().st_mtime for p in sources)
 
 
-def ensure_fmu(model_class, version="2.0", folder=None):
+def ensure_fmu(model_class, version="2.0", folder=None, library=None):
     """Path of the FMU of a class of the library, built if stale.
 
     Parameters
@@ -34,20 +36,28 @@ def ensure_fmu(model_class, version="2.0", folder=None):
     version : {'2.0', '3.0'}
     folder : path, optional
         Where FMUs live (default ``build/fmu`` of the repository).
+    library : path, optional
+        A user's package folder searched before the project's library
+        (FMUs of its classes go to ``<folder>/user``).
     """
     from fmu.build import build_fmu
     from fmu.frontend import FrontEndError
-    folder = Path(folder or FMU_DIR)
+    folder = Path(folder or FMU_DIR) / ("user" if library else "")
     suffix = "" if version == "2.0" else "_fmi3"
     target = folder / f"{model_class.rsplit('.', 1)[-1]}{suffix}.fmu"
-    source = LIBRARY.joinpath(*model_class.split(".")).with_suffix(".mo")
-    if not source.exists():
+    roots = ([Path(library)] if library else []) + [LIBRARY]
+    source = next((root.joinpath(*model_class.split(".")).with_suffix(".mo")
+                   for root in roots if root.joinpath(
+                       *model_class.split(".")).with_suffix(".mo").exists()),
+                  None)
+    if source is None:
         raise JudderError(f"model {model_class!r} is not a class of the "
-                          f"library in {LIBRARY}")
-    if not target.exists() or target.stat().st_mtime < _newest_source():
+                          f"library in {', '.join(map(str, roots))}")
+    if not target.exists() or \
+            target.stat().st_mtime < _newest_source(library):
         try:
             build_fmu(source, model_class, target,
-                      version=version, roots=[LIBRARY])
+                      version=version, roots=roots)
         except FrontEndError as exc:
             raise JudderError(f"building {target.name} failed: {exc}") \
                 from None

@@ -18,11 +18,13 @@ from .kinds import KINDS, Kind, classify
 from .maps import StabilityMap, stability_map
 from .modal import (clutch_damper_damping_factor, closed_form_frequencies,
                     damped_modes, natural_frequencies)
-from .model import Driveline, PeriodicSystem, build_driveline
+from .linear import LinearDriveline
+from .model import Driveline, ModulatedSystem, PeriodicSystem, build_driveline
 from .monodromy import DEFAULT_METHOD, METHODS
 
 __all__ = ["FloquetResult", "floquet", "KINDS", "Kind", "classify",
            "StabilityMap", "stability_map", "clutch_damper_damping_factor",
            "closed_form_frequencies", "damped_modes", "natural_frequencies",
-           "Driveline", "PeriodicSystem", "build_driveline",
+           "Driveline", "PeriodicSystem", "ModulatedSystem", "LinearDriveline",
+           "build_driveline",
            "DEFAULT_METHOD", "METHODS"]

@@ -145,7 +145,6 @@ from scipy.optimize import least_squares
 from scipy.stats import qmc
 from threadpoolctl import threadpool_limits
 
-from drivelines import get_model
 from infra.errors import JudderError
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
@@ -758,12 +757,12 @@ def _default_bounds(params, name):
         low, high = value * BOUND_FACTOR, value / BOUND_FACTOR
     else:
         raise JudderError(f"give --bounds for {name}: its start value is 0")
-    spec = get_model(params.model).specs[name]
+    spec = params.specs[name]
     return max(low, spec.lower), min(high, spec.upper)
 
 
 def _check_bounds(params, names, bounds, x0):
-    specs = get_model(params.model).specs
+    specs = params.specs
     unknown = sorted(set(bounds) - set(names))
     if unknown:
         raise JudderError(f"bounds given for {unknown[0]}, which is not "

@@ -39,7 +39,7 @@ import numpy as np
 
 from infra.errors import JudderError
 
-__all__ = ["ModalTransfer", "modal_transfer", "real_boundaries",
+__all__ = ["ModalTransfer", "applies", "modal_transfer", "real_boundaries",
            "combination_boundaries", "HARMONICS", "COMBINATION_HARMONICS"]
 
 #: Harmonics kept on each side for the single- and double-period
@@ -93,6 +93,17 @@ class ModalTransfer:
         return upper[np.argsort(upper.imag)]
 
 
+def applies(system):
+    """Whether this module's method fits ``system``: the rank-one cosine
+    modulation of :class:`stability.model.PeriodicSystem`. Other systems
+    (a modulation of higher rank, another waveform) need the per-frequency
+    Hill matrices of :mod:`stability.tongues` (solver ``'scan'``)."""
+    from .model import PeriodicSystem
+    from .waveforms import Cosine, waveform_of
+    return (isinstance(system, PeriodicSystem)
+            and isinstance(waveform_of(system), Cosine))
+
+
 def modal_transfer(system):
     """The :class:`ModalTransfer` of a periodic system.
 
@@ -103,10 +114,15 @@ def modal_transfer(system):
     Raises
     ------
     JudderError
-        If the system without dither turns freely (all external damping
+        If :func:`applies` is false for ``system``, or if the system
+        without dither turns freely (all external damping
         zero): a pole at 0 puts a multiplier at 1 for every amplitude and
         the boundaries are undefined.
     """
+    if not applies(system):
+        raise JudderError("this system has a modulation of rank above one "
+                          "or a non-cosine dither; allowed here: the "
+                          "rank-one cosine (use the 'scan' solver)")
     poles, vectors = np.linalg.eig(system.A0)
     scale = np.abs(poles).max()
     if np.abs(poles).min() <= 1e-12 * scale:

@@ -24,7 +24,8 @@ from scipy.optimize import brentq
 
 from infra.errors import JudderError
 
-from .hill import combination_boundaries, modal_transfer, real_boundaries
+from .hill import (applies as hill_applies, combination_boundaries,
+                   modal_transfer, real_boundaries)
 from .floquet import floquet
 from .kinds import KINDS
 from .model import build_driveline
@@ -59,6 +60,11 @@ def boundary_of_kind(system, column, p_max):
     callable
         ``f(freq_hz)`` for a float, Pa.
     """
+    if not hill_applies(system):
+        def amplitude(freq):
+            p = lowest_boundaries(system, [freq], p_max, "scan")[0, column]
+            return p if np.isfinite(p) and p <= p_max else np.inf
+        return amplitude
     transfer = modal_transfer(system)
 
     def amplitude(freq):

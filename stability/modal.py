@@ -1,7 +1,6 @@
 """Natural frequencies and damping factor of the driveline, Eq. (14)-(16)."""
 
 import numpy as np
-import scipy.linalg
 
 __all__ = ["natural_frequencies", "closed_form_frequencies",
            "clutch_damper_damping_factor", "damped_modes"]
@@ -18,7 +17,8 @@ def natural_frequencies(driveline):
 
     Parameters
     ----------
-    driveline : stability.model.Driveline
+    driveline : stability.model.Driveline or stability.linear.LinearDriveline
+        Anything with ``undamped_omega2()``.
 
     Returns
     -------
@@ -32,8 +32,7 @@ def natural_frequencies(driveline):
     >>> natural_frequencies(build_driveline(get_preset("paper-4dof"))).round(3)
     array([ 18.939, 102.884])
     """
-    omega2 = scipy.linalg.eigh(driveline.stiffness_matrix(),
-                               driveline.mass_matrix(), eigvals_only=True)
+    omega2 = driveline.undamped_omega2()
     elastic = omega2[omega2 > _RIGID_TOLERANCE * omega2.max()]
     return np.sqrt(elastic) / (2 * np.pi)
 

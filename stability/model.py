@@ -15,10 +15,20 @@ theta4, theta3]``, for the 3-DOF model ``[theta1, theta24, theta3]``.
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 
 from drivelines.specs import MEAN_PRESSURE_DAMPING
 
-__all__ = ["Driveline", "PeriodicSystem", "build_driveline"]
+__all__ = ["Driveline", "PeriodicSystem", "ModulatedSystem",
+           "build_driveline"]
+
+
+def _shape(system, theta, omega):
+    """The dither's shape at the phase ``theta``: cosine unless the system
+    carries a waveform."""
+    if system.waveform is None:
+        return np.cos(theta)
+    return system.waveform.values(theta, omega / (2 * np.pi))
 
 
 @dataclass(frozen=True)
@@ -39,17 +49,32 @@ class PeriodicSystem:
         ``u v^T`` is in 1/(s Pa).
     state_names : tuple of str
         Meaning of each entry of ``z``.
+    waveform : object or None
+        Shape of the dither (:mod:`stability.waveforms`); None is the
+        paper's cosine.
     """
 
     A0: np.ndarray
     u: np.ndarray
     v: np.ndarray
     state_names: tuple
+    waveform: object = None
+
+    @property
+    def U(self):
+        """``u`` as the one column of a rank-``r`` factor, shape (m, 1)."""
+        return self.u[:, None]
+
+    @property
+    def V(self):
+        """``v`` as the one column of a rank-``r`` factor, shape (m, 1)."""
+        return self.v[:, None]
 
     def matrix(self, t, omega, p_f):
         """System matrix at time ``t`` (s) for angular frequency ``omega``
         (rad/s) and amplitude ``p_f`` (Pa)."""
-        return self.A0 + (p_f * np.cos(omega * t)) * np.outer(self.u, self.v)
+        return self.A0 + (p_f * _shape(self, omega * t, omega)) \
+            * np.outer(self.u, self.v)
 
     def shifted(self, rate):
         """The system of ``w = exp(-rate t) z``, 1/s.
@@ -66,7 +91,48 @@ class PeriodicSystem:
         True
         """
         return PeriodicSystem(self.A0 - rate * np.eye(len(self.u)), self.u,
-                              self.v, self.state_names)
+                              self.v, self.state_names, self.waveform)
+
+
+@dataclass(frozen=True)
+class ModulatedSystem:
+    r"""Linear system with a cosine modulation of any rank ``r``.
+
+    .. math:: \dot z = \bigl(A_0 + p_f \cos(\omega t)\, U V^T\bigr) z
+
+    The form a driveline compiled from Modelica takes (a second clutch
+    with dither, a gear between the bodies the clutch joins, ...); with
+    ``r = 1`` it is :class:`PeriodicSystem`. Both engines of
+    :mod:`stability.monodromy` and Hill's method take it.
+
+    Attributes
+    ----------
+    A0 : ndarray, shape (m, m)
+        Constant part, 1/s.
+    U, V : ndarray, shape (m, r)
+        Factors of the modulation per unit dither amplitude, 1/(s Pa).
+    state_names : tuple of str
+    waveform : object or None
+        Shape of the dither (:mod:`stability.waveforms`); None: cosine.
+    """
+
+    A0: np.ndarray
+    U: np.ndarray
+    V: np.ndarray
+    state_names: tuple
+    waveform: object = None
+
+    def matrix(self, t, omega, p_f):
+        """System matrix at time ``t`` (s) for angular frequency ``omega``
+        (rad/s) and amplitude ``p_f`` (Pa)."""
+        return self.A0 + (p_f * _shape(self, omega * t, omega)) \
+            * (self.U @ self.V.T)
+
+    def shifted(self, rate):
+        """The system of ``w = exp(-rate t) z``, see
+        :meth:`PeriodicSystem.shifted`."""
+        return ModulatedSystem(self.A0 - rate * np.eye(len(self.A0)), self.U,
+                               self.V, self.state_names, self.waveform)
 
 
 @dataclass(frozen=True)
@@ -115,6 +181,12 @@ class Driveline:
     def mass_matrix(self):
         """``M`` of Eq. (2), kg m^2, shape (n, n)."""
         return np.diag(self.inertia)
+
+    def undamped_omega2(self):
+        """Eigenvalues of ``K phi = w^2 M phi`` (Eq. 14), (rad/s)^2,
+        ascending, rigid-body zeros included."""
+        return scipy.linalg.eigh(self.stiffness_matrix(), self.mass_matrix(),
+                                 eigvals_only=True)
 
     def incidence(self):
         """Spring deflections ``E theta``, shape (n_springs, n)."""
@@ -257,11 +329,14 @@ def build_driveline(params):
 
     Parameters
     ----------
-    params : drivelines.Parameters
+    params : drivelines.Parameters or drivelines.modelica.ModelicaParameters
+        A parameter set of the registry's drivelines, or of a Modelica
+        class (then the result is a :class:`~stability.linear.LinearDriveline`
+        of its compiled equations).
 
     Returns
     -------
-    Driveline
+    Driveline or stability.linear.LinearDriveline
 
     Examples
     --------
@@ -269,6 +344,12 @@ def build_driveline(params):
     >>> build_driveline(get_preset("paper-4dof")).names
     ('1', '2', '4', '3')
     """
+    linear_model = getattr(params, "linear_model", None)
+    if linear_model is not None:
+        # a Modelica class (drivelines.modelica.ModelicaParameters): its
+        # compiled and linearised system replaces the paper's matrices
+        from .linear import LinearDriveline
+        return LinearDriveline.from_model(linear_model())
     p, model = params, params.driveline
     index = model.body_index
     return Driveline(

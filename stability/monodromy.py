@@ -1,7 +1,7 @@
 r"""Monodromy matrices over one dither period (Eq. 10-11).
 
 Two engines compute :math:`X(T)` of :math:`\dot z = (A_0 + p_f\cos(\omega t)
-u v^T) z` for a whole column of dither amplitudes at one frequency:
+U V^T) z` for a whole column of dither amplitudes at one frequency:
 
 ``'dyson'`` (default)
     Splits the period into ``m`` equal sub-intervals. On each, the
@@ -10,11 +10,13 @@ u v^T) z` for a whole column of dither amplitudes at one frequency:
 
     .. math:: X_j(p_f) = e^{A_0 h} \sum_{n=0}^{D} p_f^n Y_n(h), \qquad
               Y_n(s) = \int_0^s \cos(\omega (t_j+\sigma))\,
-              e^{-A_0\sigma} u\, v^T e^{A_0\sigma}\, Y_{n-1}(\sigma)\,d\sigma,
+              e^{-A_0\sigma} U V^T e^{A_0\sigma}\, Y_{n-1}(\sigma)\,d\sigma,
 
     with :math:`Y_0 = I`. The integrals are evaluated by Chebyshev
-    spectral integration on Gauss-Lobatto nodes; the rank-one modulation
-    makes each term cost O(m^2) per node. The coefficients do not depend
+    spectral integration on Gauss-Lobatto nodes; a modulation of rank
+    ``r`` (``U, V`` of shape ``(m, r)``; the paper's models have
+    ``r = 1``, ``u v^T``) makes each term cost O(r m^2) per node. The
+    coefficients do not depend
     on :math:`p_f`, so a whole column of amplitudes costs one Horner
     evaluation and ``m`` products per amplitude. Sub-interval length,
     node count and series degree are chosen so the series tail and the
@@ -39,6 +41,8 @@ from numpy.polynomial import chebyshev
 from scipy.integrate import solve_ivp
 
 from infra.errors import JudderError
+
+from .waveforms import waveform_of
 
 __all__ = ["METHODS", "DEFAULT_METHOD", "DysonPropagator",
            "IntegratedPropagator", "monodromy", "monodromy_dyson",
@@ -100,11 +104,18 @@ class DysonPropagator:
     """
 
     def __init__(self, system, freq_hz, p_max):
-        A0, u, v = system.A0, system.u, system.v
-        size = len(u)
+        A0, U, V = system.A0, system.U, system.V
+        size = len(A0)
         omega, period = 2 * np.pi * freq_hz, 1.0 / freq_hz
+        waveform = waveform_of(system)
+        # the shape is smooth between its breakpoints: sub-intervals end
+        # on them, so the spectral integration stays exact
+        group = waveform.breakpoints
+        peak = np.abs(waveform.values(np.linspace(0, 2 * np.pi, 257),
+                                      freq_hz)).max()
         radius = np.abs(np.linalg.eigvals(A0)).max()
         steps = max(1, math.ceil(period * (2 * radius + omega) / _MAX_PHASE))
+        steps = group * math.ceil(steps / group)
         while True:
             if steps > MAX_SUBINTERVALS:
                 raise JudderError(
@@ -116,22 +127,27 @@ class DysonPropagator:
             s = (_X + 1.0) * (h / 2)
             forward = scipy.linalg.expm(A0[None] * s[:, None, None])
             backward = scipy.linalg.expm(-A0[None] * s[:, None, None])
-            left = backward @ u                         # (Q, m)
-            right = np.einsum("i,qij->qj", v, forward)  # (Q, m)
-            strength = (p_max * h * np.linalg.norm(left, axis=1)
-                        * np.linalg.norm(right, axis=1)).max()
+            left = backward @ U                          # (Q, m, r)
+            right = np.einsum("ir,qij->qrj", V, forward)  # (Q, r, m)
+            strength = (p_max * peak * h * np.linalg.norm(left, axis=(1, 2))
+                        * np.linalg.norm(right, axis=(1, 2))).max()
             if strength <= _MAX_STRENGTH:
                 break
-            steps = math.ceil(steps * strength / _MAX_STRENGTH)
+            steps = group * math.ceil(steps * strength / _MAX_STRENGTH
+                                      / group)
 
         weights = _INTEGRATION * (h / 2)
-        phase = np.cos(omega * (h * np.arange(steps)[:, None] + s[None, :]))
+        # the end nodes take the shape's one-sided limits (a square wave
+        # jumps there): evaluate a hair inside the sub-interval
+        inside = s if group == 1 else np.clip(s, 1e-12 * h, (1 - 1e-12) * h)
+        phase = waveform.values(
+            omega * (h * np.arange(steps)[:, None] + inside[None, :]),
+            freq_hz)
         Y = np.broadcast_to(np.eye(size), (steps, _NODES, size, size))
         coefficients = [np.broadcast_to(np.eye(size), (steps, size, size))]
         for _ in range(_series_degree(strength)):
-            row = np.einsum("qi,jqik->jqk", right, Y)
-            integrand = (phase[:, :, None, None] * left[None, :, :, None]
-                         * row[:, :, None, :])
+            row = np.einsum("qri,jqik->jqrk", right, Y)   # V^T e^{A0 s} Y
+            integrand = phase[:, :, None, None] * (left[None] @ row)
             Y = np.matmul(weights, integrand.reshape(steps, _NODES, -1))
             Y = Y.reshape(steps, _NODES, size, size)
             coefficients.append(Y[:, -1])

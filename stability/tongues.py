@@ -19,7 +19,10 @@ of the constant system,
 
 so :math:`1/p_f` is an eigenvalue of the tridiagonal matrix
 :math:`\tfrac12 \operatorname{diag}(G(ik\omega)) S` (``S`` has ones next to
-the diagonal). Half-integer ``k`` give the double-period boundary
+the diagonal). A modulation :math:`U V^T` of rank ``r`` (a driveline
+compiled from Modelica, :class:`~stability.model.ModulatedSystem`) gives
+the same with the ``r x r`` transfer matrix :math:`V^T (sI - A_0)^{-1} U`
+in each block, :math:`w_k = V^T c_k` of length ``r``. Half-integer ``k`` give the double-period boundary
 (multiplier -1). Real eigenvalues give the boundary amplitudes.
 Combination boundaries (a complex pair on the unit circle) add the unknown
 Floquet exponent. Two solvers (:data:`SOLVERS`) find all of them:
@@ -61,10 +64,12 @@ from scipy.signal import find_peaks
 from infra.errors import JudderError
 
 from .floquet import check_amplitude, check_frequency
-from .hill import combination_boundaries, modal_transfer, real_boundaries
+from .hill import (applies as hill_applies, combination_boundaries,
+                   modal_transfer, real_boundaries)
 from .kinds import Kind, is_real
 from .modal import natural_frequencies
 from .monodromy import DEFAULT_METHOD, get_method
+from .waveforms import waveform_of
 
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS", "SOLVERS",
            "DEFAULT_SOLVER", "get_solver", "lowest_boundaries",
@@ -90,15 +95,16 @@ _HILL_REAL_TOLERANCE = 1e-8
 
 
 def _transfer(system, s):
-    """``G(s) = v^T (s I - A0)^-1 u`` at the complex points ``s``."""
-    size = len(system.u)
+    """``G(s) = V^T (s I - A0)^-1 U`` at the complex points ``s``,
+    shape (len(s), r, r)."""
+    size = len(system.A0)
     matrices = s[:, None, None] * np.eye(size) - system.A0
-    rhs = np.broadcast_to(system.u, (len(s), size))[..., None]
-    return np.linalg.solve(matrices, rhs)[..., 0] @ system.v
+    rhs = np.broadcast_to(system.U, (len(s),) + system.U.shape)
+    return system.V.T @ np.linalg.solve(matrices, rhs)
 
 
 def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
-                             harmonics=HILL_HARMONICS):
+                             harmonics=None):
     """Amplitudes at which a multiplier equals +1 or -1 (Hill's method).
 
     Parameters
@@ -109,8 +115,10 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
     multiplier : {1, -1}
         +1: single-period boundary (integer harmonics); -1: double-period
         (half-integer harmonics).
-    harmonics : int
-        Harmonics kept on each side.
+    harmonics : int, optional
+        Harmonics kept on each side; default :data:`HILL_HARMONICS`, or
+        the waveform's ``hill_harmonics`` (a square wave's harmonics decay
+        slowly and need more).
 
     Returns
     -------
@@ -124,6 +132,9 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
         external damping zero): a multiplier then sits at 1 for every
         amplitude and the boundary is undefined.
     """
+    if harmonics is None:
+        harmonics = getattr(waveform_of(system), "hill_harmonics",
+                            HILL_HARMONICS)
     shift = 0.0 if multiplier == 1 else 0.5
     k = np.arange(-harmonics, harmonics + 1) + shift
     try:
@@ -135,8 +146,15 @@ def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
         raise JudderError("the driveline without dither turns freely "
                           "(external damping c_i all zero): the tongue "
                           "boundaries need some c_i > 0")
+    # block (k, l) of Hill's matrix is G(ik omega) c_(k-l), with the
+    # waveform's harmonics c_n (the cosine: c_(+-1) = 1/2)
+    rank = gains.shape[-1]
     size = len(k)
-    hill = 0.5 * gains[:, None] * (np.eye(size, k=1) + np.eye(size, k=-1))
+    c = waveform_of(system).coefficients(size - 1, freq_hz)
+    lag = np.subtract.outer(np.arange(size), np.arange(size))
+    toeplitz = np.where(lag >= 0, c[np.abs(lag)], np.conj(c[np.abs(lag)]))
+    hill = np.einsum("kab,kl->kalb", gains, toeplitz).reshape(
+        size * rank, size * rank)
     lam = np.linalg.eigvals(hill)
     real = lam[(np.abs(lam.imag) <= _HILL_REAL_TOLERANCE * np.abs(lam))
                & (lam.real != 0)].real
@@ -200,7 +218,13 @@ def _scan_lowest(system, freq_hz, p_max, method):
 
 
 def _hill_lowest(system, freq_hz, p_max, method):
-    """``'hill'`` solver: every kind and frequency at once."""
+    """``'hill'`` solver: every kind and frequency at once.
+
+    It assumes the paper's rank-one cosine modulation; a modulation of
+    higher rank or another waveform goes to the ``'scan'`` solver, whose
+    Hill matrices take both."""
+    if not hill_applies(system):
+        return _scan_lowest(system, freq_hz, p_max, method)
     transfer = modal_transfer(system)
     real = real_boundaries(transfer, freq_hz, [1, -1])[..., 0]
     real = np.where(real <= p_max, real, np.nan)
@@ -528,7 +552,7 @@ def _deduplicate(tongues):
 
 def _kind_amplitude(system, column, p_max, solver, method):
     """Lowest boundary amplitude of one kind as a function of frequency."""
-    if solver == "hill":
+    if solver == "hill" and hill_applies(system):
         transfer = modal_transfer(system)
         if column == 2:
             return lambda freq: combination_boundaries(

@@ -20,7 +20,7 @@ LIBRARY = ROOT / "modelica"
 ALLOWED = {
     "infra": set(),
     "fmu": {"infra"},
-    "drivelines": {"infra"},
+    "drivelines": {"infra", "fmu"},
     "stability": {"infra", "drivelines"},
     "pysim": {"infra", "drivelines", "fmu"},
     "judder": {"infra", "drivelines", "stability", "pysim", "fmu"},

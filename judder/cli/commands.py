@@ -15,7 +15,8 @@ from infra.units import PA_PER_BAR
 from .. import api
 from ..inputs import read_boundary, read_chart_boundary
 from .options import (check_number, emit, make_parents, model_title,
-                      parameters_of, parse_grid, parse_list, Progress)
+                      parameters_of, parse_grid, parse_list, parse_waveform,
+                      Progress)
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
@@ -95,7 +96,8 @@ def cmd_floquet(args):
     params, changes = parameters_of(args)
     make_parents(args.plot)
     point = api.floquet(args.freq, args.pf, params, changes,
-                        method=args.method)
+                        method=args.method,
+                        waveform=parse_waveform(args.dither_wave))
     if args.plot:
         save_figure(args.plot, point.figure(
             title=f"Floquet multipliers (Fig. 15), "
@@ -119,6 +121,7 @@ def cmd_map(args):
         raise JudderError(f"--freq x --pf has {len(freqs) * len(amplitudes)}"
                           f" points; allowed: at most {MAX_MAP_POINTS}")
     params, changes = parameters_of(args)
+    waveform = parse_waveform(args.dither_wave)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(
@@ -126,11 +129,12 @@ def cmd_map(args):
             progress=progress,
             min_growth=check_number("--min-growth", args.min_growth, "1/s",
                                     strict=False),
-            exact=args.plot is not None)
+            exact=args.plot is not None, waveform=waveform)
     title = f"stability map (Fig. 12, 14), {model_title(args, params)}"
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
-                                          "set": args.set}},
+                                          "set": args.set,
+                                          "dither_wave": args.dither_wave}},
                            figure={"title": title})
     counts = result.map.counts()
     text = (f"{result.map.kind.size} points in {result.seconds:.2f} s: "
@@ -143,10 +147,11 @@ def cmd_tongues(args):
     """Tongue boundaries, labels and tips."""
     freqs = parse_grid(args.freq, "--freq", "Hz")
     params, changes = parameters_of(args)
+    waveform = parse_waveform(args.dither_wave)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "tongue boundaries") as progress:
         result = api.tongues(freqs, _pf_max(args), params, changes,
-                             method=args.method,
+                             method=args.method, waveform=waveform,
                              background=args.plot is not None,
                              progress=progress,
                              min_growth=_finite("--min-growth",
@@ -377,7 +382,7 @@ def cmd_crosscheck(args):
         result = api.crosscheck(freqs, amplitudes, duration=args.duration,
                                 parameters=params, changes=changes,
                                 method=args.method, workers=args.workers,
-                                progress=progress)
+                                progress=progress, perturb=args.perturb)
     data = {**result.as_dict(), **_write_outputs(args, result)}
     worst = data["max_rate_error_above_1_per_s"]
     text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "

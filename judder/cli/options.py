@@ -11,7 +11,7 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import to_json
 
-from ..inputs import load_parameters
+from ..inputs import load_parameters, read_input
 
 __all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
            "check_number", "make_parents", "check_plot_format", "Progress",
@@ -60,11 +60,102 @@ def parameters_of(args):
     changes : dict
         The --set values, validated (SI).
     """
-    params = load_parameters(preset=args.preset, model=args.model,
-                             param_file=args.param_file)
+    if getattr(args, "modelica", None):
+        params = modelica_parameters(args)
+    else:
+        params = load_parameters(preset=args.preset, model=args.model,
+                                 param_file=args.param_file)
     changed = params.with_overrides(args.set)
     names = [text.partition("=")[0].strip() for text in args.set]
     return params, {name: changed[name] for name in names}
+
+
+def modelica_parameters(args):
+    """The parameter set of ``--modelica CLASS [--library DIR]``."""
+    import tomllib
+    from drivelines.modelica import ModelicaParameters
+    for option in ("model", "preset"):
+        if getattr(args, option, None) is not None:
+            raise JudderError(f"--modelica {args.modelica} replaces "
+                              f"--{option}; give one")
+    values = {}
+    if args.param_file is not None:
+        # a file of `judder params --modelica CLASS --save`
+        try:
+            table = tomllib.loads(read_input(args.param_file,
+                                             "--param-file"))
+        except tomllib.TOMLDecodeError as exc:
+            raise JudderError(f"--param-file {args.param_file}: not TOML "
+                              f"({exc})") from None
+        if table.get("model") != args.modelica or \
+                not isinstance(table.get("parameters"), dict):
+            raise JudderError(
+                f"--param-file {args.param_file}: model = "
+                f"{table.get('model')!r} is not --modelica {args.modelica} "
+                "(or the [parameters] table is missing)")
+        values = _flat(table["parameters"])
+    return ModelicaParameters(args.modelica, args.library, values,
+                              amplitude=args.dither_amplitude,
+                              frequency=args.dither_frequency)
+
+
+#: Forms of --dither-wave, for its help and its error message.
+WAVEFORMS = ("cosine", "square[:TAU_MS]", "fourier:A1,A2,...[/B1,B2,...]",
+             "period:FILE.csv")
+
+
+def parse_waveform(text):
+    """The dither waveform of ``--dither-wave`` (None: the cosine).
+
+    ``square:TAU_MS`` is a square wave through a first-order valve lag of
+    time constant TAU_MS (ms, default 0); ``fourier:A/B`` the cosine and
+    sine coefficients of the harmonics 1, 2, ...; ``period:FILE.csv`` one
+    measured period of pressure, equally spaced, the last column of each
+    numeric row (a header line is skipped).
+    """
+    from stability.waveforms import FilteredSquare, FourierSeries, \
+        from_samples
+    kind, _, rest = (text or "cosine").partition(":")
+    option = f"--dither-wave {text!r}"
+    if kind == "cosine" and not rest:
+        return None
+    if kind == "square":
+        tau = parse_list(rest, "--dither-wave square:")[0] if rest else 0.0
+        check_number("--dither-wave square: TAU_MS", tau, "ms", strict=False)
+        return FilteredSquare(tau * 1e-3)
+    if kind == "fourier" and rest:
+        cos, _, sin = rest.partition("/")
+        return FourierSeries(
+            cos=tuple(parse_list(cos, option)) if cos.strip() else (),
+            sin=tuple(parse_list(sin, option)) if sin.strip() else ())
+    if kind == "period" and rest:
+        rows = [line.split(",")[-1].strip()
+                for line in read_input(rest, "--dither-wave period:")
+                .splitlines() if line.strip()]
+        if rows and not _is_float(rows[0]):
+            rows = rows[1:]
+        return from_samples(parse_list(",".join(rows), option))
+    raise JudderError(f"{option} is not allowed; allowed: "
+                      + ", ".join(WAVEFORMS))
+
+
+def _is_float(text):
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _flat(table, prefix=""):
+    """TOML reads ``housing.phi0 = 0`` as a table; back to dotted names."""
+    flat = {}
+    for key, value in table.items():
+        if isinstance(value, dict):
+            flat.update(_flat(value, f"{prefix}{key}."))
+        else:
+            flat[f"{prefix}{key}"] = value
+    return flat
 
 
 def emit(args, data, text):

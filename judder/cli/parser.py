@@ -43,6 +43,42 @@ def _model_options(parser):
                         help="print the result as JSON")
 
 
+def _modelica_options(parser):
+    """--modelica CLASS [--library DIR] [--dither-amplitude/--dither-frequency
+    NAME]: analyse a driveline written in Modelica (docs/onemodel.md)."""
+    group = parser.add_argument_group(
+        "Modelica driveline", "Analyse a Modelica class instead of a preset: "
+        "it is compiled, linearised about its start values (a steady slip) "
+        "and its rigid-body angles removed; --set NAME=VALUE then sets its "
+        "parameters by their Modelica names (SI), --param-file reads a file "
+        "of `judder params --modelica CLASS --save`. Replaces --model and "
+        "--preset.")
+    group.add_argument("--modelica", metavar="CLASS",
+                       help="full class name, e.g. "
+                            "Judder.Examples.Driveline5DOFGeared")
+    group.add_argument("--library", metavar="DIR",
+                       help="folder holding your own top-level package "
+                            "(the Judder library is always available)")
+    group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
+                       help="parameter of the class that is the dither "
+                            "amplitude, Pa (default p_f)")
+    group.add_argument("--dither-frequency", default="f_dither",
+                       metavar="NAME",
+                       help="parameter of the class that is the dither "
+                            "frequency, Hz (default f_dither)")
+
+
+def _waveform_option(parser):
+    parser.add_argument(
+        "--dither-wave", default="cosine", metavar="SPEC",
+        help="shape of the dither, per unit --pf: cosine (Eq. 4, default); "
+             "square[:TAU_MS], a square wave of amplitude 1 through the "
+             "valve's first-order lag TAU_MS (ms); fourier:A1,A2,...[/B1,"
+             "B2,...], cosine and sine coefficients of the harmonics; "
+             "period:FILE.csv, one measured period of pressure (last column, "
+             "equally spaced; --pf then scales its fundamental)")
+
+
 def _pf_max_option(parser, meaning):
     parser.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
@@ -90,6 +126,7 @@ def build_parser():
                                    "it (--save FILE.toml) to edit and load "
                                    "with --param-file.")
     _model_options(p)
+    _modelica_options(p)
     p.add_argument("--save", metavar="FILE.toml",
                    help="write the set as TOML (never overwrites unless "
                         "--force)")
@@ -119,6 +156,8 @@ def build_parser():
                         "unit circle, and near the leading one (Fig. 15)")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
+    _waveform_option(p)
     p.set_defaults(handler=commands.cmd_floquet)
 
     p = sub.add_parser("map", help="stability map over frequency x amplitude",
@@ -139,6 +178,8 @@ def build_parser():
     _min_growth_option(p, "; the plot shades slower ones grey")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
+    _waveform_option(p)
     p.set_defaults(handler=commands.cmd_map)
 
     p = sub.add_parser(
@@ -247,6 +288,8 @@ def build_parser():
                    help="boundaries drawn over the map (Fig. 16)")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
+    _waveform_option(p)
     p.set_defaults(handler=commands.cmd_tongues)
 
     p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
@@ -275,6 +318,7 @@ def build_parser():
                         "boundaries")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 
     p = sub.add_parser("threshold", help="friction-gradient threshold "
@@ -349,6 +393,7 @@ def build_parser():
                    help="allow --save-params to replace a file")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_fit)
 
     p = sub.add_parser("simulate", help="bench engagement with dither "
@@ -409,6 +454,10 @@ def build_parser():
                    help="fitted against Floquet rates, and the verdicts")
     _method_option(p)
     _model_options(p)
+    _modelica_options(p)
+    p.add_argument("--perturb", default="w_in", metavar="NAME",
+                   help="start-speed parameter raised by 1 rad/s in the "
+                        "second run of each point (default w_in)")
     p.set_defaults(handler=commands.cmd_crosscheck)
 
     p = sub.add_parser("campaign", help="bench emulator: engagement "

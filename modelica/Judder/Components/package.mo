@@ -9,6 +9,10 @@ Modelica.Mechanics.Rotational.Components: a rigid body
 the housing (<code>Fixed</code>) and the wet clutch of Eq. (3)-(5), in
 two forms: <code>SlippingClutch</code>, linear as printed in the paper,
 and <code>WetClutch</code>, whose friction changes direction smoothly
-through zero slip (engagements).</p>
+through zero slip (engagements). For drivelines beyond the paper's:
+<code>IdealGear</code> (a ratio, MSL equations) and
+<code>FrictionCurveClutch</code>, whose friction coefficient is a smooth
+saturating curve of the slip; its local slope at the operating slip is
+the paper's mu_g.</p>
 </html>"));
 end Components;

@@ -9,6 +9,12 @@ actuation_pressure.</p>
 <li><code>Driveline4DOF</code>: the minimal 4-DOF model of Fig. 13,
 Eq. (1)-(5), slipping steadily with dither.</li>
 <li><code>Driveline3DOF</code>: the essential 3-DOF model of Fig. 12.</li>
+<li><code>Driveline5DOFGeared</code>: the 4-DOF chain with a gear,
+an output shaft and a fifth inertia, and a friction-curve clutch whose
+slip speed is a parameter.</li>
+<li><code>Driveline4DOFTwoClutches</code>: the 4-DOF model with the REV
+clutch as a second slipping clutch with dither (a rank-2
+modulation).</li>
 <li><code>TestBenchEngagement</code>: an EVEN clutch engagement on the
 bench of section 2.2 (Fig. 5b), with the REV clutch as the load.</li>
 </ul>

@@ -1,0 +1,444 @@
+r"""Linear time-periodic system of a driveline written in Modelica.
+
+The project's compiler (:func:`fmu.frontend.load_flat_model`,
+:func:`fmu.backend.to_ode`) turns a Modelica class into ``der(x) = f(t, x,
+p)`` as CasADi expressions. :func:`linearize` takes the Jacobian
+:math:`J = \partial f / \partial x` (``casadi.jacobian``) at the slipping
+operating condition (the start values of the class) and splits it along
+the dither amplitude ``p_f``:
+
+.. math:: J(t) = A_0 + p_f \cos(2\pi f t)\, B
+
+which is Eq. (6)-(7) of the paper for any driveline, not just the 4-DOF
+chain: :math:`B` may have any rank (two clutches with dither, a gear). The
+split is checked, not assumed: ``J`` must be affine in ``p_f``
+(:math:`\partial^2 J/\partial p_f^2 = 0`), its constant part must not
+depend on time, and its ``p_f`` part must be the cosine of the dither
+frequency parameter times one matrix; otherwise :class:`ModelicaError`
+says what differs.
+
+Rigid-body directions are found from the matrices, not from the topology:
+the common null space of :math:`A_0` and :math:`B` (constant angles of
+freely turning groups of bodies; a multiplier at exactly 1 each) is
+removed by projecting on its orthogonal complement, after a diagonal
+balancing of the states (angles in rad, speeds in rad/s). The reduced
+system keeps every other multiplier of the full one.
+
+Nothing here knows a driveline's name: a class of ``modelica/Judder`` or
+of the user's own package, with parameters set by their Modelica names.
+"""
+
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import casadi
+import numpy as np
+import scipy.linalg
+
+from fmu.backend import to_ode
+from fmu.frontend import load_flat_model
+from infra.errors import JudderError, ParameterError
+
+from .specs import ParameterSpec, split_assignment
+
+__all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
+           "ModelicaParameters", "compile_class", "parameter_specs",
+           "linearize"]
+
+#: The project's Modelica library (package ``Judder``).
+LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
+#: Relative size below which a singular value, a Jacobian entry or a
+#: residual of the checks counts as zero (round-off of the compiler's
+#: expressions is near 1e-16).
+_ZERO = 1e-10
+#: Sample times per dither period used to check the waveform.
+_SAMPLES = 16
+
+
+class ModelicaError(JudderError):
+    """The Modelica class cannot be analysed; the message says why."""
+
+
+def _source(class_name, roots):
+    """The ``.mo`` file of ``class_name`` in one of the library roots."""
+    for root in roots:
+        candidate = Path(root).joinpath(*class_name.split(".")) \
+            .with_suffix(".mo")
+        if candidate.is_file():
+            return candidate
+    raise ModelicaError(
+        f"modelica = {class_name!r} is not found in "
+        f"{', '.join(str(r) for r in roots)}; allowed: a class whose file is "
+        "<library>/<Package>/.../<Class>.mo")
+
+
+@lru_cache(maxsize=16)
+def compile_class(class_name, library=None):
+    """The compiled ODE of a Modelica class (cached per class and library).
+
+    Parameters
+    ----------
+    class_name : str
+        Full name, e.g. ``Judder.Examples.Driveline4DOF``.
+    library : str or None
+        Folder holding the user's top-level package; the project's library
+        (:data:`LIBRARY`) is always on the path, so a user's model can use
+        ``Judder.Components``.
+
+    Returns
+    -------
+    fmu.backend.OdeModel
+    """
+    roots = ([Path(library)] if library is not None else []) + [LIBRARY]
+    if library is not None and not Path(library).is_dir():
+        raise ModelicaError(f"library = {library!r} is not a folder")
+    return to_ode(load_flat_model(_source(class_name, roots), class_name,
+                                  roots=[str(r) for r in roots]))
+
+
+@dataclass(frozen=True)
+class LinearPeriodicModel:
+    r"""Eq. (6)-(7) of a compiled Modelica class, full and reduced.
+
+    .. math:: \dot x = (A_0 + p_f \cos(\omega t) B) x, \qquad
+              x = Q_s z, \quad
+              \dot z = (A_{0,r} + p_f \cos(\omega t) U V^T) z
+
+    Attributes
+    ----------
+    class_name : str
+    state_names : tuple of str
+        The compiler's states ``x`` (e.g. ``inertia1.phi``, ``inertia1.w``).
+    A0, B : ndarray, shape (n, n)
+        Constant part (1/s) and modulation per Pa (1/(s Pa)) of the full
+        Jacobian.
+    basis : ndarray, shape (n, m)
+        ``Q_s``: maps the reduced state ``z`` to ``x`` (balancing included).
+    rigid : ndarray, shape (n, n - m)
+        Rigid-body directions removed (columns, in ``x``).
+    A0_reduced : ndarray, shape (m, m)
+    U, V : ndarray, shape (m, r)
+        ``B`` in reduced coordinates, ``U V^T``; ``r`` is its rank.
+    omega2 : ndarray
+        Eigenvalues of the undamped stiffness ``M^{-1} K`` read from the
+        Jacobian (rows of speeds, columns of the angles whose derivative
+        they are), (rad/s)^2, ascending; empty if the states are not
+        angle/speed pairs.
+    values : dict
+        Every tunable parameter's value used, by Modelica name (SI).
+    amplitude, frequency : str
+        Names of the dither amplitude and frequency parameters.
+    """
+
+    class_name: str
+    state_names: tuple
+    A0: np.ndarray
+    B: np.ndarray
+    basis: np.ndarray
+    rigid: np.ndarray
+    A0_reduced: np.ndarray
+    U: np.ndarray
+    V: np.ndarray
+    omega2: np.ndarray
+    values: dict
+    amplitude: str
+    frequency: str
+
+    @property
+    def rank(self):
+        """Rank ``r`` of the modulation."""
+        return self.U.shape[1]
+
+
+@lru_cache(maxsize=16)
+def parameter_specs(class_name, library=None):
+    """Unit, bounds and description of every tunable parameter of a class.
+
+    Returns
+    -------
+    dict of str to drivelines.specs.ParameterSpec
+        In the order of the compiled model; bounds from ``min``/``max``.
+    """
+    specs = {}
+    for quantity in compile_class(class_name, library).parameters:
+        bounds = {}
+        for key, bound in (("lower", quantity.minimum),
+                           ("upper", quantity.maximum)):
+            if bound is not None and not casadi.symvar(casadi.SX(bound)):
+                bounds[key] = float(casadi.evalf(bound))
+        specs[quantity.name] = ParameterSpec(
+            quantity.name, quantity.unit or "1",
+            quantity.description or quantity.name, **bounds)
+    return specs
+
+
+def _parameter_values(ode, overrides, class_name, library):
+    specs = parameter_specs(class_name, library)
+    unknown = sorted(set(overrides) - set(specs))
+    if unknown:
+        raise ParameterError(
+            f"{unknown[0]} = {overrides[unknown[0]]!r} is not a tunable "
+            f"parameter of {class_name}; allowed: {', '.join(specs)}")
+    return {q.name: specs[q.name].check(overrides.get(q.name, q.start))
+            for q in ode.parameters}
+
+
+@dataclass(frozen=True)
+class ModelicaParameters:
+    """A parameter set of a Modelica class, by Modelica names (SI).
+
+    The parameter-set interface the application uses for the paper's
+    drivelines (:class:`drivelines.Parameters`: ``model``, ``specs``,
+    ``replace``, ``with_overrides``, ``as_dict``), plus
+    :meth:`linear_model`, the linear time-periodic system, which
+    :func:`stability.model.build_driveline` uses instead of the paper's
+    matrices.
+
+    Attributes
+    ----------
+    class_name : str
+    library : str or None
+    values : dict
+        Every tunable parameter, SI.
+    amplitude, frequency : str
+        Names of the dither amplitude and frequency parameters.
+    """
+
+    class_name: str
+    library: object = None
+    values: dict = None
+    amplitude: str = "p_f"
+    frequency: str = "f_dither"
+
+    def __post_init__(self):
+        ode = compile_class(self.class_name, self.library)
+        object.__setattr__(self, "values", _parameter_values(
+            ode, dict(self.values or {}), self.class_name, self.library))
+
+    @property
+    def model(self):
+        """The class name (what the results report as ``model``)."""
+        return self.class_name
+
+    @property
+    def specs(self):
+        """:func:`parameter_specs` of the class."""
+        return parameter_specs(self.class_name, self.library)
+
+    @property
+    def driveline(self):
+        """None: a Modelica class has no entry in the registry."""
+        return None
+
+    def __getitem__(self, name):
+        try:
+            return self.values[name]
+        except KeyError:
+            raise ParameterError(
+                f"{name!r} is not a tunable parameter of {self.class_name}; "
+                f"allowed: {', '.join(self.values)}") from None
+
+    def replace(self, **changes):
+        """A copy with some values changed (validated)."""
+        return ModelicaParameters(self.class_name, self.library,
+                                  {**self.values, **changes},
+                                  self.amplitude, self.frequency)
+
+    def with_overrides(self, assignments):
+        """Apply ``NAME=VALUE`` strings, as given to ``--set``."""
+        changes = {}
+        for text in assignments:
+            name, value = split_assignment(text)
+            if name not in self.values:
+                raise ParameterError(
+                    f"--set {text!r}: {name!r} is not a tunable parameter "
+                    f"of {self.class_name}; allowed: "
+                    f"{', '.join(self.values)}")
+            changes[name] = self.specs[name].check(value)
+        return self.replace(**changes)
+
+    def as_dict(self):
+        """Plain ``dict`` of the values (SI)."""
+        return dict(self.values)
+
+    @property
+    def speed_states(self):
+        """Names of the states in rad/s (the bodies' speeds)."""
+        return [s.name for s in compile_class(self.class_name,
+                                              self.library).states
+                if s.unit == "rad/s"]
+
+    def linear_model(self):
+        """:func:`linearize` of the class at these values."""
+        return linearize(self.class_name, self.library, self.values,
+                         self.amplitude, self.frequency)
+
+
+def _require(condition, message):
+    if not condition:
+        raise ModelicaError(message)
+
+
+def _balance(A0, B):
+    """Diagonal ``D`` with ``D^-1 (|A0| + |B| p) D`` balanced (angles vs
+    speeds), as powers of 2 (exact)."""
+    magnitude = np.abs(A0) + np.abs(B) * 1e5
+    _, (scale, _) = scipy.linalg.matrix_balance(magnitude, permute=False,
+                                                separate=True)
+    return scale
+
+
+def _rigid_directions(A0, B):
+    """Orthonormal common null space of ``A0`` and ``B`` and its complement."""
+    stacked = np.vstack([A0, B * (np.linalg.norm(A0) / max(
+        np.linalg.norm(B), np.finfo(float).tiny))])
+    _, sigma, vt = np.linalg.svd(stacked)
+    rank = int(np.count_nonzero(sigma > _ZERO * sigma[0]))
+    return vt[rank:].T, vt[:rank].T
+
+
+def _undamped_omega2(A0, names):
+    """``M^-1 K`` from the rows ``der(w)`` and the columns ``phi`` with
+    ``der(phi) = w``; empty if the states are not such pairs."""
+    size = len(A0)
+    pairs = {}
+    for i in range(size):
+        row = A0[i]
+        hits = np.flatnonzero(row)
+        if len(hits) == 1 and row[hits[0]] == 1.0 and hits[0] != i:
+            pairs[i] = int(hits[0])
+    positions = list(pairs)
+    speeds = [pairs[i] for i in positions]
+    if len(set(speeds)) != len(speeds) or \
+            len(positions) + len(speeds) != size:
+        return np.array([])
+    stiffness = -A0[np.ix_(speeds, positions)]
+    return np.sort(np.linalg.eigvals(stiffness).real)
+
+
+def linearize(class_name, library=None, values=None, amplitude="p_f",
+              frequency="f_dither"):
+    """Linear time-periodic system of a Modelica driveline, Eq. (6)-(7).
+
+    Parameters
+    ----------
+    class_name : str
+        Full Modelica class name.
+    library : str or None
+        Folder of the user's package (see :func:`compile_class`).
+    values : dict, optional
+        Parameters by Modelica name (SI); the others keep their defaults.
+    amplitude, frequency : str
+        Names of the dither amplitude (Pa) and frequency (Hz) parameters.
+
+    Returns
+    -------
+    LinearPeriodicModel
+
+    Raises
+    ------
+    ModelicaError
+        If the class does not compile, or its Jacobian is not of the form
+        ``A0 + p_f cos(2 pi f t) B`` along a steady slip.
+    ParameterError
+        For an unknown parameter or a value outside its bounds.
+
+    Examples
+    --------
+    >>> m = linearize("Judder.Examples.Driveline4DOF")
+    >>> m.A0.shape, m.A0_reduced.shape, m.rank
+    ((8, 8), (6, 6), 1)
+    """
+    ode = compile_class(class_name, library)
+    values = _parameter_values(ode, dict(values or {}), class_name, library)
+    names = [q.name for q in ode.parameters]
+    for role, name in (("amplitude", amplitude), ("frequency", frequency)):
+        _require(name in names, f"{role} = {name!r} is not a parameter of "
+                 f"{class_name}; allowed: {', '.join(names)}")
+    x = casadi.vertcat(*[s.expression for s in ode.states])
+    p = casadi.vertcat(*[q.expression for q in ode.parameters])
+    t, pf = ode.time, ode.parameters[names.index(amplitude)].expression
+    jac = casadi.jacobian(ode.derivatives, x)
+    d_pf = casadi.jacobian(casadi.vec(jac), pf)
+    _require(not casadi.depends_on(d_pf, pf),
+             f"{class_name}: the Jacobian is not affine in {amplitude} (the "
+             "dither amplitude multiplies the states nonlinearly); allowed: "
+             "J = A0 + p_f cos(2 pi f t) B")
+    functions = casadi.Function("lin", [t, x, p], [
+        jac, casadi.reshape(d_pf, jac.shape), ode.derivatives])
+    start = casadi.Function("start", [p], [casadi.vertcat(
+        *[s.start for s in ode.states])])
+
+    vector = np.array([values[n] for n in names])
+    x0 = np.asarray(start(vector)).ravel()
+    mean = vector.copy()
+    mean[names.index(amplitude)] = 0.0
+    f0 = values[frequency]
+    _require(f0 > 0, f"{frequency} = {f0!r} Hz is not allowed; allowed: > 0")
+    times = np.arange(_SAMPLES) / (_SAMPLES * f0)
+
+    def evaluate(time, params):
+        return [np.asarray(out) for out in functions(time, x0, params)]
+
+    A0, B0, rate = evaluate(0.0, mean)
+    scale = max(np.abs(A0).max(), 1.0)
+    for time in times:
+        b = evaluate(time, vector)[1]
+        a_mean = evaluate(time, mean)[0]
+        _require(np.abs(a_mean - A0).max() <= _ZERO * scale,
+                 f"{class_name}: the Jacobian without dither changes with "
+                 "time; allowed: time enters through the dither only")
+        _require(np.abs(b - np.cos(2 * np.pi * f0 * time) * B0).max()
+                 <= _ZERO * max(np.abs(B0).max(), 1e-300),
+                 f"{class_name}: the dither does not enter as "
+                 f"{amplitude}*cos(2*pi*{frequency}*time); allowed: the "
+                 "cosine of Sources.DitherPressure")
+    _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p)
+
+    state_names = tuple(s.name for s in ode.states)
+    D = _balance(A0, B0)
+    A_bal = A0 / D[:, None] * D[None, :]
+    B_bal = B0 / D[:, None] * D[None, :]
+    rigid, complement = _rigid_directions(A_bal, B_bal)
+    A0r = complement.T @ A_bal @ complement
+    Br = complement.T @ B_bal @ complement
+    u_, sigma, vt = np.linalg.svd(Br)
+    rank = int(np.count_nonzero(sigma > _ZERO * max(sigma[0], 1e-300)))
+    _require(rank > 0, f"{class_name}: the dither {amplitude} does not enter "
+             "the linearised equations (no clutch damping is modulated)")
+    U = u_[:, :rank] * sigma[:rank]
+    V = vt[:rank].T
+    return LinearPeriodicModel(
+        class_name=class_name, state_names=state_names, A0=A0, B=B0,
+        basis=D[:, None] * complement, rigid=D[:, None] * rigid,
+        A0_reduced=A0r, U=U, V=V, omega2=_undamped_omega2(A0, state_names),
+        values=values, amplitude=amplitude, frequency=frequency)
+
+
+def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):
+    """The operating condition is a steady slip along which ``J`` is fixed.
+
+    Along ``x0 + t der(x)(x0)`` the Jacobian stays ``A0`` if it does not
+    depend on the states that move (the angles) and ``A0 der(x) = 0``
+    (no acceleration builds up). A Jacobian free of the states (the
+    paper's linear clutch) needs neither.
+    """
+    rate = np.asarray(rate).ravel()
+    if not any(casadi.depends_on(jac, x[i]) for i in range(x.shape[0])):
+        return
+    scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
+    drift = A0 @ rate
+    worst = int(np.argmax(np.abs(drift)))
+    _require(np.abs(drift).max() <= 1e-8 * scale,
+             f"{class_name}: the start values are not a steady slip "
+             f"(d/dt der({ode.states[worst].name}) = {drift[worst]:.3g}); "
+             "allowed: start speeds and spring deflections in equilibrium "
+             "without dither")
+    for i, quantity in enumerate(ode.states):
+        if abs(rate[i]) > _ZERO * max(np.abs(rate).max(), 1.0) and \
+                casadi.depends_on(jac, x[i]):
+            raise ModelicaError(
+                f"{class_name}: the linearisation depends on "
+                f"{quantity.name}, which drifts along the slip; allowed: "
+                "forces that depend on angles linearly")
