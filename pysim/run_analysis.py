@@ -86,7 +86,7 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "engagement_window", "component_envelope", "nonperiodic_part",
            "growth_phase", "MIN_GROWTH", "MIN_AMPLITUDE_RPM",
-           "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM", "SATURATED_SHARE", "SLIP_SHARE", "PRESSURE_ON",
+           "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM", "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
            "SMOOTHING_S"]
 
 #: Smallest growth rate of the non-periodic part called judder, 1/s.
@@ -104,8 +104,11 @@ SATURATED_SHARE = 0.5
 MIN_PHASE_S = 0.25
 #: Shortest growth phase called judder, in dither periods.
 MIN_GROWTH_PERIODS = 5
-#: The clutch slips while the slip is above this share of its largest value.
+#: The clutch slips while the slip is above this share of its value as the
+#: engagement begins (median over :data:`REFERENCE_S` from the pressure on).
 SLIP_SHARE = 0.1
+#: Time over which the slip as the engagement begins is taken, s.
+REFERENCE_S = 0.1
 #: The pressure is on above this share of its high level.
 PRESSURE_ON = 0.9
 #: Moving average applied to pressure and slip to find the window, s.
@@ -261,7 +264,15 @@ def engagement_window(speed, pressure=None, downstream=None):
         on &= p > PRESSURE_ON * np.percentile(p, 95)
     if downstream is not None:
         slip = np.abs(_moving_average(w - np.interp(t, *downstream), width))
-        on &= slip > SLIP_SHARE * slip.max()
+        # the slip as the engagement begins, not its largest value: a
+        # judder that runs away (the upstream speed swinging by many
+        # times the slip) would otherwise leave only its last part
+        pressed = np.flatnonzero(on)
+        first = pressed[t[pressed] <= t[pressed[0]] + REFERENCE_S] \
+            if len(pressed) else np.arange(len(t))
+        reference = np.nanmedian(slip[first]) if np.isfinite(
+            slip[first]).any() else np.nanmax(slip)
+        on &= slip > SLIP_SHARE * reference
     runs = _runs_of(on)
     if not runs:
         raise JudderError("no engagement window: the pressure is never on "

@@ -24,6 +24,7 @@ measured amplitude (censored points by ``p_max``), which suits a scatter
 proportional to the amplitude (a noise of a few per cent).
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 
@@ -37,7 +38,7 @@ from .model import build_driveline
 from .monodromy import DEFAULT_METHOD
 from .tongues import tongue_boundaries
 
-__all__ = ["model_boundary", "fit_curves", "SEARCH_FACTOR", "CURVE_POINTS"]
+__all__ = ["model_boundary", "evaluated", "fit_curves", "SEARCH_FACTOR", "CURVE_POINTS"]
 
 #: Each kind's boundary is searched up to this multiple of ``p_max``.
 SEARCH_FACTOR = 2.0
@@ -55,14 +56,42 @@ _RELATIVE_FLOOR = 0.02
 _EXACT = 1e-7
 
 
-def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD):
+def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
+                   min_growth=0.0, added=()):
     """Lowest unstable amplitude of the model at each frequency, Pa.
 
     NaN where the model is stable up to ``p_max``; ``method`` is the
-    monodromy engine (:data:`stability.monodromy.METHODS`).
+    monodromy engine (:data:`stability.monodromy.METHODS`). With
+    ``min_growth`` (1/s) the boundary of judder growing at that rate
+    (:func:`stability.tongues.tongue_boundaries`); ``added`` are
+    ``(name, value)`` pairs added to ``params`` for the model evaluated
+    (see :func:`evaluated`).
     """
-    return tongue_boundaries(build_driveline(params), freq_hz, p_max,
-                             method).stability_boundary
+    return tongue_boundaries(build_driveline(evaluated(params, added)),
+                             freq_hz, p_max, method,
+                             min_growth=min_growth).stability_boundary
+
+
+def evaluated(params, added=()):
+    """The parameter set the model is evaluated with: ``params`` with each
+    ``(name, value)`` of ``added`` added to its parameter.
+
+    A bench's linearisation is the driveline with the damping of its
+    motor's speed control added to body 1 (``c1 + d_control``,
+    :attr:`drivelines.DrivelineModel.bench_damping`): fitting the driveline
+    to a chart of that bench compares the chart with this model, and the
+    fitted values stay those of the driveline.
+
+    Examples
+    --------
+    >>> from drivelines import get_preset
+    >>> evaluated(get_preset("paper-4dof"), (("c1", 2000.0),))["c1"]
+    2000.1
+    """
+    if not added:
+        return params
+    return params.replace(**{name: params[name] + value
+                             for name, value in added})
 
 
 def fit_curves(result, points=CURVE_POINTS, method=DEFAULT_METHOD):
@@ -84,7 +113,9 @@ def fit_curves(result, points=CURVE_POINTS, method=DEFAULT_METHOD):
     """
     p_max = result.p_max_bar * PA_PER_BAR
     freq = np.linspace(result.freq_hz.min(), result.freq_hz.max(), points)
-    curves = [model_boundary(p, freq, p_max, method) / PA_PER_BAR
+    curves = [model_boundary(p, freq, p_max, method,
+                             min_growth=result.min_growth,
+                             added=result.added) / PA_PER_BAR
               for p in (result.start_params, result.params)]
     return freq, curves[0], curves[1]
 
@@ -102,6 +133,8 @@ class _Problem:
     method: str
     relative: bool
     x0: np.ndarray              # start values, SI
+    min_growth: float = 0.0     # 1/s: boundaries of judder growing so
+    added: tuple = ()           # (name, value) added for the model
 
     @property
     def p_search(self):
@@ -126,9 +159,7 @@ class _Problem:
                                               map(float, z * self.scale))))
 
     def with_measured(self, measured):
-        return _Problem(self.params, self.names, self.freq_hz, measured,
-                        self.p_max, self.low, self.high, self.scale,
-                        self.method, self.relative, self.x0)
+        return dataclasses.replace(self, measured=measured)
 
 
 class _Evaluator:
@@ -147,9 +178,10 @@ class _Evaluator:
         p = self.problem
         self.count += 1
         try:
-            return tongue_boundaries(build_driveline(self.params_at(z)),
-                                     p.freq_hz, p.p_search,
-                                     p.method).amplitude
+            return tongue_boundaries(
+                build_driveline(evaluated(self.params_at(z), p.added)),
+                p.freq_hz, p.p_search, p.method,
+                min_growth=p.min_growth).amplitude
         except (ValueError, ArithmeticError, np.linalg.LinAlgError):
             if strict:
                 raise

@@ -111,6 +111,13 @@ class FitResult:
         Lowest model boundary with the start (first attempt) and fitted
         values, bar (NaN: stable up to ``p_max``): the dotted and solid
         lines of Fig. 16a.
+    min_growth : float
+        1/s: the model boundaries compared are those of judder growing at
+        this rate (0: the stability boundary).
+    added : tuple of (str, float)
+        Added to the parameters for the model compared (a bench's
+        linearisation: ``(('c1', d_control),)``); ``values`` and
+        ``params`` are without them.
     """
 
     names: tuple
@@ -149,6 +156,8 @@ class FitResult:
     curve_freq_hz: np.ndarray = None
     start_curve_bar: np.ndarray = None
     fitted_curve_bar: np.ndarray = None
+    min_growth: float = 0.0
+    added: tuple = ()
 
     @property
     def start_params(self):

@@ -42,7 +42,7 @@ from infra.units import PA_PER_BAR
 
 from .fit_matching import _parse_kinds, parse_kind
 from .fit_model import (CURVE_POINTS, _capped, _Problem, _Progress,
-                        fit_curves, model_boundary)
+                        evaluated, fit_curves, model_boundary)
 from .fit_result import FitResult, _problems, _undetermined
 from .fit_starts import (ALTERNATIVE_ROUNDS, DEFAULT_STARTS, _extra_starts,
                          run_starts)
@@ -75,7 +75,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                  kinds=None, starts=DEFAULT_STARTS, uncertainty="auto",
                  error_model="absolute", n_bootstrap=DEFAULT_BOOTSTRAP,
                  seed=0, workers=None, callback=None,
-                 curve_points=CURVE_POINTS):
+                 curve_points=CURVE_POINTS, min_growth=0.0, added=None):
     """Fit parameters so the model boundary matches a measured one.
 
     Section 4.2 of the paper, Fig. 16a: the parameters that cannot be
@@ -135,6 +135,17 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     curve_points : int
         Frequencies of the start and fitted curves stored for the plot
         (computed with the default engine; 0: none).
+    min_growth : float
+        1/s, >= 0: compare with the boundaries of judder growing at this
+        rate (:func:`stability.tongues.tongue_boundaries`), as a chart
+        whose verdict has a growth threshold sees it (``judder chart
+        --min-growth``); 0 (default) is the stability boundary.
+    added : dict, optional
+        ``{name: value}`` added to the parameters for the model compared,
+        SI, not fitted: a bench's linearisation adds its motor control's
+        damping to body 1 (``{'c1': d_control}``,
+        :attr:`drivelines.DrivelineModel.bench_damping`). The fitted
+        values are those of the driveline without it.
 
     Returns
     -------
@@ -172,18 +183,30 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     if not (np.isfinite(p_max) and p_max > 0):
         raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
                           "> 0")
+    if not (np.isfinite(min_growth) and min_growth >= 0):
+        raise JudderError(f"min_growth = {min_growth!r} 1/s is not allowed; "
+                          "allowed: a finite number >= 0")
     params = params.replace(**(start or {}))
+    added = tuple(sorted((added or {}).items()))
+    for name, value in added:
+        if name not in params.driveline.specs:
+            raise JudderError(f"added {name!r} is not a parameter of the "
+                              f"{params.model} driveline")
+        if not np.isfinite(value):
+            raise JudderError(f"added {name} = {value!r} is not allowed; "
+                              "allowed: a finite number")
     bounds = {**{n: _default_bounds(params, n) for n in names},
               **(bounds or {})}
     x0 = np.array([params[n] for n in names], dtype=float)
     low, high = _check_bounds(params, names, bounds, x0)
-    given = _parse_kinds(kinds, params, len(freq_hz), censored)
+    given = _parse_kinds(kinds, evaluated(params, added), len(freq_hz),
+                         censored)
     scale = np.maximum(np.abs(x0), 1e-12)
     problem = _Problem(params=params, names=names, freq_hz=freq_hz,
                        measured=measured, p_max=float(p_max),
                        low=low / scale, high=high / scale, scale=scale,
                        method=method, relative=error_model == "relative",
-                       x0=x0)
+                       x0=x0, min_growth=float(min_growth), added=added)
     extra = _extra_starts(starts, names, low, high)
     workers = workers or os.cpu_count() or 1
     with threadpool_limits(limits=1):
@@ -290,7 +313,8 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         start_points=np.array([r["z0"] for r in runs]) * problem.scale,
         start_minima=minima,
         start_origins=tuple(r["origin"] for r in runs),
-        start_costs=costs)
+        start_costs=costs, min_growth=problem.min_growth,
+        added=problem.added)
     if curve_points:
         freq, start_bar, fitted_bar = fit_curves(result, curve_points)
         progress.step(2)
