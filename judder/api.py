@@ -310,6 +310,18 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
     return FitReport(fit=result, seconds=seconds, method=method)
 
 
+def _bench_fmu(values):
+    """The driveline's bench engagement model and its FMU (built if
+    needed)."""
+    from pysim.fmus import ensure_fmu
+    model_class = values.driveline.bench_class
+    if model_class is None:
+        raise JudderError(f"the {values.model} driveline has no bench "
+                          "engagement model; give a parameter set of a "
+                          "driveline that has one (4-DOF)")
+    return model_class, ensure_fmu(model_class)
+
+
 def bench_damping(values, bench=None):
     """What the bench's linearisation adds to the driveline's parameters.
 
@@ -329,15 +341,9 @@ def bench_damping(values, bench=None):
     dict
         ``{driveline parameter: added value}``, SI.
     """
-    from pysim.fmus import ensure_fmu
     from pysim.runs import parameter_default
-    model_class = values.driveline.bench_class
-    if model_class is None:
-        raise JudderError(f"the {values.model} driveline has no bench "
-                          "engagement model; give a parameter set of a "
-                          "driveline that has one (4-DOF)")
+    _, fmu = _bench_fmu(values)
     bench = dict(bench or {})
-    fmu = ensure_fmu(model_class)
     for name in bench:
         parameter_default(fmu, name)    # the bench model must have it
     return {name: float(bench.get(added, parameter_default(fmu, added)))
@@ -368,16 +374,10 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     judder.results.SimulationResult
     """
     from pysim.engagement import engagement_summary
-    from pysim.fmus import ensure_fmu
     from pysim.runs import parameter_default, run_fmu
     values = _resolve(parameters, changes)
-    model_class = values.driveline.bench_class
-    if model_class is None:
-        raise JudderError(f"the {values.model} driveline has no bench "
-                          "engagement model; give a parameter set of a "
-                          "driveline that has one (4-DOF)")
+    model_class, fmu = _bench_fmu(values)
     bench = dict(bench or {})
-    fmu = ensure_fmu(model_class)
     interval = min(1e-3, 1.0 / (20 * freq_hz))
     settings = [("with dither", freq_hz, p_f_bar * PA_PER_BAR)]
     if compare is not None:

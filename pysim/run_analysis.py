@@ -70,7 +70,12 @@ Hz and 0.02-0.3 bar, 1000 rpm) against the Floquet verdict of the bench's
 linearisation (``c1 + d_control``): of the 3 runs where the exponent
 exceeds 1/s, 2 had judder (the third, 205 Hz at 0.26 bar, grows at 1.13
 1/s, just above the threshold); of the 426 runs where it is negative, 1
-was called judder (120 Hz, 0.22 bar, next to combination tongue 6).
+was called judder (120 Hz, 0.22 bar, next to combination tongue 6). Over
+tongue 4 (500 runs, 200-212 Hz x 0.05-1.0 bar, 2.5 s; docs/roundtrip.md):
+exponent > 1.25 1/s, 148 of 148 judder, growth within a few per cent of
+the exponent; exponent < 0, 0 of 330. Over tongue 2 the bench is not near
+its linearisation (its forced response there is as large as the slip) and
+the verdicts there follow the nonlinear motion, not the exponent.
 """
 
 from dataclasses import dataclass
