@@ -17,6 +17,16 @@ judder seen (single-period, double-period, combination), or the tongue it
 belongs to (its number as in Fig. 14, or its resonance label such as
 ``'f2'`` or ``'f1+f2'``).
 
+Which model boundary
+--------------------
+A chart's verdict calls a run judder when it grows at ``min_growth`` or
+faster (``judder chart --min-growth``), so its boundary is the model's
+boundary of judder growing at that rate, not the stability boundary; and
+a bench is not the driveline alone: its motor's speed control damps body
+1 (``c1 + d_control``). ``fit_boundary(min_growth=, added=)`` compares
+with that model; the fitted values stay the driveline's. The round trip
+(emulated campaign -> chart -> fit) is measured in docs/roundtrip.md.
+
 The fit itself has its parts in modules of their own:
 
 * :mod:`stability.fit_model`: the problem, the model's boundaries at
