@@ -46,7 +46,8 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
            "advise",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "chart", "report", "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "report", "bench_damping",
+           "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
@@ -308,7 +309,7 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
 def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
         starts=3, uncertainty="auto", error_model="absolute", seed=0,
-        workers=None, progress=None):
+        workers=None, progress=None, min_growth=0.0, bench=None):
     """``judder fit``: fit parameters to a measured boundary (section 4.2,
     Fig. 16a).
 
@@ -324,8 +325,14 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         :data:`stability.fitting.DEFAULT_FIT`).
     bounds : dict, optional
         ``{name: (low, high)}``, SI.
-    kinds, starts, uncertainty, error_model, seed, workers
+    kinds, starts, uncertainty, error_model, seed, workers, min_growth
         As :func:`stability.fitting.fit_boundary` takes them.
+    bench : dict, optional
+        Compare with the bench's linearisation, not the driveline alone:
+        the damping its motor control adds
+        (:attr:`drivelines.DrivelineModel.bench_damping`, ``c1 +
+        d_control``), from these bench parameters (SI) or the bench
+        model's defaults (``{}``). None: the driveline.
 
     Returns
     -------
@@ -342,8 +349,49 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         p_max_bar * PA_PER_BAR, names=names or DEFAULT_FIT, bounds=bounds,
         method=method, kinds=kinds, starts=starts, uncertainty=uncertainty,
         error_model=error_model, seed=seed, workers=workers,
-        callback=progress)
+        callback=progress, min_growth=min_growth,
+        added=None if bench is None else bench_damping(start, bench))
     return FitReport(fit=result, seconds=seconds, method=method)
+
+
+def _bench_fmu(values):
+    """The driveline's bench engagement model and its FMU (built if
+    needed)."""
+    from pysim.fmus import ensure_fmu
+    model_class = values.driveline.bench_class
+    if model_class is None:
+        raise JudderError(f"the {values.model} driveline has no bench "
+                          "engagement model; give a parameter set of a "
+                          "driveline that has one (4-DOF)")
+    return model_class, ensure_fmu(model_class)
+
+
+def bench_damping(values, bench=None):
+    """What the bench's linearisation adds to the driveline's parameters.
+
+    The bench's motor holds its speed by a proportional control, which
+    acts on body 1 as a damping to ground about the set speed
+    (:attr:`drivelines.DrivelineModel.bench_damping`): the Floquet model of
+    the bench is the driveline with ``c1 + d_control``.
+
+    Parameters
+    ----------
+    values : drivelines.Parameters
+    bench : dict, optional
+        Bench parameters (SI); the others are the bench model's defaults.
+
+    Returns
+    -------
+    dict
+        ``{driveline parameter: added value}``, SI.
+    """
+    from pysim.runs import parameter_default
+    _, fmu = _bench_fmu(values)
+    bench = dict(bench or {})
+    for name in bench:
+        parameter_default(fmu, name)    # the bench model must have it
+    return {name: float(bench.get(added, parameter_default(fmu, added)))
+            for name, added in values.driveline.bench_damping}
 
 
 def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
@@ -373,16 +421,10 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     judder.results.SimulationResult
     """
     from pysim.engagement import engagement_summary
-    from pysim.fmus import ensure_fmu
     from pysim.runs import parameter_default, run_fmu
     values = _resolve(parameters, changes)
-    model_class = values.driveline.bench_class
-    if model_class is None:
-        raise JudderError(f"the {values.model} driveline has no bench "
-                          "engagement model; give a parameter set of a "
-                          "driveline that has one (4-DOF)")
+    model_class, fmu = _bench_fmu(values)
     bench = dict(bench or {})
-    fmu = ensure_fmu(model_class)
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     settings = ([("with dither", freqs[0], p_f_bar * PA_PER_BAR)]
                 if len(freqs) == 1 else
@@ -403,8 +445,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     start = bench_value("t_engage") + bench_value("t_ramp")
     # the bench's linearisation: its motor control damps body 1
     driveline = build_driveline(values.replace(**{
-        name: values[name] + bench_value(added)
-        for name, added in values.driveline.bench_damping}))
+        name: values[name] + value
+        for name, value in bench_damping(values, bench).items()}))
     summaries = []
     for label, run in runs:
         linear = floquet_kernel(driveline, run.freq_hz, run.p_f,

@@ -14,7 +14,7 @@ from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
-           "read_boundary", "read_chart_boundary"]
+           "read_boundary", "read_chart_boundary", "read_chart_min_growth"]
 
 
 def read_input(path, option):
@@ -144,6 +144,23 @@ def read_chart_boundary(path, group=None, option="--chart"):
     keep = groups == chosen
     return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
             float(tried[keep].max()))
+
+
+def read_chart_min_growth(path, option="--chart"):
+    """The growth rate (1/s) from which the chart's verdict called a run
+    judder (``judder chart --min-growth``); 0 for a chart without it."""
+    try:
+        with np.load(path, allow_pickle=False) as npz:
+            if "min_growth_per_s" not in npz.files:
+                return 0.0
+            value = float(npz["min_growth_per_s"])
+    except (OSError, ValueError) as exc:
+        raise JudderError(f"{option} {path}: not a chart written by judder "
+                          f"chart --out ({exc})") from None
+    if not (np.isfinite(value) and value >= 0):
+        raise JudderError(f"{option} {path}: its min_growth_per_s = {value!r} "
+                          "is not allowed; allowed: a finite number >= 0")
+    return value
 
 
 def _is_number(text):

@@ -369,7 +369,8 @@ class FitReport:
                 "residual_rms_bar": r.residual_rms_bar,
                 "evaluations": r.evaluations, "freq_hz": r.freq_hz,
                 "measured_bar": [_finite_or_none(v) for v in r.measured_bar],
-                "model_bar": [_finite_or_none(v) for v in r.model_bar]}
+                "model_bar": [_finite_or_none(v) for v in r.model_bar],
+                "min_growth_per_s": r.min_growth, "added": dict(r.added)}
 
     def save_params(self, path, overwrite=False):
         """Write the fitted parameter set as TOML."""

@@ -12,6 +12,7 @@ from matplotlib.patches import Patch
 
 from infra.units import PA_PER_BAR
 
+from .fit_model import fit_curves
 from .kinds import KINDS
 from .tongues import resonances
 
@@ -516,7 +517,7 @@ def plot_fit(result, ax=None):
         Its ``curve_freq_hz``, ``start_curve_bar`` and
         ``fitted_curve_bar`` are drawn; when they are None (a fit run with
         ``curve_points=0``) they are computed here
-        (:func:`stability.fitting.fit_curves`).
+        (:func:`stability.fit_model.fit_curves`).
     ax : matplotlib.axes.Axes, optional
 
     Returns
@@ -583,7 +584,6 @@ def _fit_curves(result):
     if getattr(result, "curve_freq_hz", None) is not None:
         return (result.curve_freq_hz, result.start_curve_bar,
                 result.fitted_curve_bar)
-    from .fitting import fit_curves
     return fit_curves(result)
 
 

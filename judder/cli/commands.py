@@ -13,7 +13,8 @@ from infra.files import save_figure
 from infra.units import PA_PER_BAR
 
 from .. import api
-from ..inputs import read_boundary, read_chart_boundary
+from ..inputs import (read_boundary, read_chart_boundary,
+                      read_chart_min_growth)
 from .options import (check_number, emit, make_parents, model_title,
                       parameters_of, parse_grid, parse_list, parse_waveform,
                       Progress)
@@ -256,11 +257,19 @@ def cmd_fit(args):
     names = parse_list(args.fit, "--fit", str)
     params, changes = parameters_of(args)
     default_p_max = 1.5
+    default_growth = 0.0
     if args.chart:
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
+        default_growth = read_chart_min_growth(args.chart)
     else:
         freqs, measured = read_boundary(args.boundary)
+    min_growth = check_number("--min-growth", default_growth
+                              if args.min_growth is None else args.min_growth,
+                              "1/s", strict=False)
+    if args.bench and not args.bench_linearisation:
+        raise JudderError("--bench is for --bench-linearisation; give both")
+    bench = _bench_values(args.bench) if args.bench_linearisation else None
     p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
                              else args.pf_max, "bar")
     bounds = _bounds(args.bounds)
@@ -277,7 +286,8 @@ def cmd_fit(args):
                          changes=changes, method=args.method,
                          starts=args.starts, uncertainty=args.uncertainty,
                          error_model=args.error_model, seed=args.seed,
-                         workers=args.workers, progress=progress)
+                         workers=args.workers, progress=progress,
+                         min_growth=min_growth, bench=bench)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
@@ -293,6 +303,7 @@ def cmd_fit(args):
                 f"in {report.seconds:.1f} s; {result.starts_agreeing} of "
                 f"{result.starts_tried} starts agree; uncertainty by "
                 f"{result.uncertainty}")
+    rows.append("compared with: " + _compared_with(result))
     rows += [f"note: {n}" for n in result.notes]
     rows += [f"problem: {p}" for p in result.problems]
     emit(args, {**report.as_dict(),
@@ -301,6 +312,16 @@ def cmd_fit(args):
     if not result.success:
         raise JudderError("the fit cannot be trusted: "
                           + "; ".join(result.problems or [result.message]))
+
+
+def _compared_with(result):
+    """Which model boundary the fit compared with, in words."""
+    what = ("the stability boundary" if result.min_growth == 0 else
+            f"the boundary of judder growing at {result.min_growth:g} 1/s")
+    model = (f"the {result.params.model} driveline" if not result.added else
+             "the bench's linearisation (the driveline with "
+             + ", ".join(f"{n} + {v:g}" for n, v in result.added) + ")")
+    return f"{what} of {model}; fitted: {', '.join(result.names)}"
 
 
 def _bench_values(assignments):

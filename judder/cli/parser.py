@@ -391,6 +391,21 @@ def build_parser():
                         "--force)")
     p.add_argument("--force", action="store_true",
                    help="allow --save-params to replace a file")
+    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
+                   help="compare with the model's boundaries of judder "
+                        "growing at this rate, 1/s (default: the chart's "
+                        "--min-growth with --chart, else 0: the stability "
+                        "boundary)")
+    p.add_argument("--bench-linearisation", action="store_true",
+                   help="compare with the bench's linearisation (c1 + "
+                        "d_control: its motor speed control damps body 1), "
+                        "as for a chart of `judder campaign` runs; the "
+                        "fitted values stay the driveline's")
+    p.add_argument("--bench", action="append", default=[],
+                   metavar="NAME=VALUE",
+                   help="bench parameter for --bench-linearisation (SI), "
+                        "e.g. d_control=2000; repeatable (default: the "
+                        "bench model's)")
     _method_option(p)
     _model_options(p)
     _modelica_options(p)
