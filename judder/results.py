@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from drivelines import dumps_toml
-from infra.files import atomic_write, write_text
+from infra.files import save_npz, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 
@@ -167,8 +167,7 @@ class MapResult:
             "natural_frequencies_hz": m.natural_frequencies_hz,
             "parameters": np.array(json.dumps(info)),
         }
-        atomic_write(path,
-                     lambda stream: np.savez_compressed(stream, **arrays))
+        save_npz(path, arrays)
 
     def figure(self, title=None):
         from stability.plotting import map_figure
@@ -514,8 +513,7 @@ class ChartResult:
                   "boundary_tried_bar": np.array([r[3] for r in rows]),
                   "group_by": np.array(self.chart.group_by),
                   "min_growth_per_s": np.array(self.chart.min_growth)}
-        atomic_write(path,
-                     lambda stream: np.savez_compressed(stream, **arrays))
+        save_npz(path, arrays)
 
     def save_boundary(self, path):
         """Write the experimental boundary as ``judder fit --boundary``

@@ -11,14 +11,16 @@ import json
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import atomic_write
+from infra.files import MARK, atomic_write
 
 __all__ = ["write_run", "write_csv", "write_mdf"]
 
 
 def write_csv(path, time, signals, units, metadata):
-    """CSV: ``# key: value`` metadata lines, a header ``name [unit]``."""
+    """CSV: ``# written by judder``, ``# key: value`` metadata lines, a
+    header ``name [unit]``."""
     buffer = io.StringIO()
+    buffer.write(f"# {MARK}\n")
     for key, value in metadata.items():
         buffer.write(f"# {key}: {json.dumps(value)}\n")
     names = list(signals)
@@ -55,6 +57,7 @@ def write_mdf(path, channels, metadata):
     for signals in groups.values():
         mdf.append(signals, comment=json.dumps(metadata))
     mdf.header.comment = json.dumps(metadata)
+    mdf.header.author = MARK
 
     def write(stream):
         buffer = io.BytesIO()

@@ -3,18 +3,80 @@ number checks, parameter options, output folders, JSON or text, progress
 bars. Every error names the option, its value and what is allowed."""
 
 import math
+import os
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import to_json
+from infra.files import check_output, to_json
 
 from ..inputs import load_parameters
 
 __all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
-           "check_number", "make_parents", "check_plot_format", "Progress"]
+           "check_number", "make_parents", "Progress",
+           "check_outputs", "OUTPUTS"]
+
+#: The output files of each command: (option attribute, option, suffixes;
+#: None for a figure, any format matplotlib writes).
+OUTPUTS = {
+    "params": (("save", "--save", ("toml",)),),
+    "map": (("out", "--out", ("npz",)), ("plot", "--plot", None)),
+    "tongues": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "sensitivity": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "threshold": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "fit": (("save_params", "--save-params", ("toml",)),
+            ("plot", "--plot", None)),
+    "simulate": (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None)),
+    "crosscheck": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "chart": (("out", "--out", ("npz",)), ("plot", "--plot", None),
+              ("boundary", "--boundary", ("csv",))),
+}
+
+
+def _figure_formats():
+    from matplotlib.backend_bases import FigureCanvasBase
+    return set(FigureCanvasBase.get_supported_filetypes())
+
+
+def check_outputs(args):
+    """Refuse every output of the command before any work: a folder, a
+    parent that is a file, an unwritable folder, an unknown format, or a
+    file judder did not write (unless --force); see
+    :func:`infra.files.check_output`."""
+    force = getattr(args, "force", False)
+    seen = {}
+    for attribute, option, suffixes in OUTPUTS.get(args.command, ()):
+        path = getattr(args, attribute, None)
+        if path is None:
+            continue
+        check_output(path, option, suffixes or _figure_formats(), force)
+        key = Path(path).resolve()
+        if key in seen:
+            raise JudderError(f"{option} {path} is also given as "
+                              f"{seen[key]}; allowed: a different file for "
+                              "each output")
+        seen[key] = option
+    if args.command == "campaign":
+        check_campaign_folder(args.out)
+
+
+def check_campaign_folder(text):
+    """A campaign folder: a non-empty path that is not a file, in a
+    writable place."""
+    if not str(text).strip():
+        raise JudderError(f"--out {text!r}: allowed: a folder name (the "
+                          "campaign folder, created if needed)")
+    path = Path(text)
+    parent = path
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise JudderError(f"--out {text}: {parent} is a file; allowed: a "
+                          "folder")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise JudderError(f"--out {text}: folder {parent} is not writable")
 
 
 def parse_grid(text, option, unit, allow_negative=False):
@@ -94,17 +156,6 @@ def check_number(option, value, unit, strict=True):
                           f"allowed: a finite value {'>' if strict else '>='}"
                           f" 0 {unit}")
     return value
-
-
-def check_plot_format(path):
-    """Refuse a --plot file whose suffix matplotlib cannot write, before
-    any work is done."""
-    from matplotlib.backend_bases import FigureCanvasBase
-    formats = FigureCanvasBase.get_supported_filetypes()
-    suffix = Path(path).suffix.lstrip(".").lower()
-    if suffix not in formats:
-        raise JudderError(f"--plot {path}: unknown format {suffix!r}; "
-                          f"allowed: {', '.join(sorted(formats))}")
 
 
 def make_parents(*paths):

@@ -52,6 +52,12 @@ def _workers_option(parser):
                         help="processes (default: all cores)")
 
 
+def _force_option(parser):
+    parser.add_argument("--force", action="store_true",
+                        help="allow replacing output files judder did not "
+                             "write (a file it wrote is replaced anyway)")
+
+
 def _method_option(parser):
     parser.add_argument("--method", default=DEFAULT_METHOD,
                         choices=tuple(METHODS),
@@ -119,6 +125,7 @@ def build_parser():
                    help="save a plot of the map (PNG, SVG or PDF)")
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_map)
 
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
@@ -141,6 +148,7 @@ def build_parser():
                    help="boundaries drawn over the map (Fig. 16)")
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_tongues)
 
     p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
@@ -169,6 +177,7 @@ def build_parser():
                         "boundaries")
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 
     p = sub.add_parser("threshold", help="friction-gradient threshold "
@@ -190,6 +199,7 @@ def build_parser():
                    help="threshold against c_i as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="Fig. 19a and 19b")
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_threshold)
 
     p = sub.add_parser("fit", help="fit parameters to a measured boundary "
@@ -277,6 +287,7 @@ def build_parser():
                    help="time histories and spectra")
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_simulate)
 
     p = sub.add_parser("crosscheck", help="FMU growth rates against Floquet "
@@ -301,6 +312,7 @@ def build_parser():
                    help="fitted against Floquet rates, and the verdicts")
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_crosscheck)
 
     p = sub.add_parser("campaign", help="bench emulator: engagement "
@@ -389,5 +401,6 @@ def build_parser():
     _workers_option(p)
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_chart)
     return parser
