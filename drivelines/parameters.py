@@ -13,6 +13,7 @@ import tomllib
 from types import MappingProxyType
 
 from infra.errors import ParameterError
+from infra.quantities import parse_quantity
 
 from .registry import MODELS, get_model
 from .specs import MEAN_PRESSURE_DAMPING
@@ -78,6 +79,9 @@ class Parameters:
     def with_overrides(self, assignments):
         """Apply ``NAME=VALUE`` strings, as given to ``--set``.
 
+        A plain VALUE is in the parameter's SI unit; it may carry a unit
+        instead (``p_m=10bar``), see :func:`infra.quantities.parse_quantity`.
+
         Raises
         ------
         ParameterError
@@ -96,7 +100,9 @@ class Parameters:
                     f"--set {text!r}: unknown parameter {name!r} for the "
                     f"{self.model} model; allowed names: "
                     f"{', '.join(self.specs)}")
-            changes[name] = self.specs[name].check(value)
+            spec = self.specs[name]
+            changes[name] = spec.check(parse_quantity(
+                value, spec.unit, f"--set {name}"))
         return self.replace(**changes)
 
     @property

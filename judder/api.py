@@ -337,6 +337,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           "driveline that has one (4-DOF)")
     bench = dict(bench or {})
     fmu = ensure_fmu(model_class)
+    ramp_end = sum(bench.get(name, parameter_default(fmu, name))
+                   for name in ("t_engage", "t_ramp"))
+    if duration is not None and duration <= ramp_end:
+        raise JudderError(f"duration {duration:g} s ends before the "
+                          f"engagement (its pressure ramp ends at "
+                          f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
     interval = min(1e-3, 1.0 / (20 * freq_hz))
     settings = [("with dither", freq_hz, p_f_bar * PA_PER_BAR)]
     if compare is not None:

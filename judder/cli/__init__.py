@@ -16,6 +16,7 @@ turns them into API calls and formats the results,
 from .contract import join_negative_values, run_guarded
 from .options import check_outputs
 from .parser import build_parser
+from .values import check_plausible, normalise_options
 
 __all__ = ["main", "build_parser"]
 
@@ -29,7 +30,9 @@ def main(argv=None):
         sys.argv[1:] if argv is None else list(argv)))
 
     def command():
+        normalise_options(args)
         check_outputs(args)
+        check_plausible(args)
         # the kernels work on many tiny matrices: BLAS threads only contend
         with threadpool_limits(limits=1):
             args.handler(args)

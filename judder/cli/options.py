@@ -79,33 +79,47 @@ def check_campaign_folder(text):
         raise JudderError(f"--out {text}: folder {parent} is not writable")
 
 
+#: Most values of one grid axis (a typo like N = 100000000000 would
+#: otherwise allocate hundreds of GiB).
+MAX_GRID_VALUES = 100_000
+
+
 def parse_grid(text, option, unit, allow_negative=False):
     """Parse ``START:STOP:N`` (or a single value) into a linspace.
+
+    START and STOP are plain numbers in ``unit`` or carry a unit
+    (``0:300mbar:10``); see :func:`judder.cli.values.option_value`.
 
     Raises
     ------
     JudderError
         Naming ``option`` and saying what is allowed.
     """
+    from .values import FREQ_RANGE_HZ, option_value
     parts = text.split(":")
     lowest = "" if allow_negative else "0 <= "
     allowed = (f"allowed: START:STOP:N with {lowest}START <= STOP in {unit} "
-               f"and N a whole number >= 1, or one value "
-               f"(e.g. {option} 10:220:300)")
+               f"and N a whole number from 1 to {MAX_GRID_VALUES}, or one "
+               f"value (e.g. {option} 10:220:300)")
+    low, high = (-math.inf, math.inf) if allow_negative else (0.0, math.inf)
+    if unit == "Hz":
+        low, high = FREQ_RANGE_HZ
     try:
         if len(parts) == 1:
-            start = stop = float(parts[0])
+            start = stop = option_value(parts[0], option, unit, low, high)
             count = 1
         elif len(parts) == 3:
-            start, stop = float(parts[0]), float(parts[1])
+            start = option_value(parts[0], option, unit, low, high)
+            stop = option_value(parts[1], option, unit, low, high)
             count = int(parts[2])
         else:
             raise ValueError
+    except JudderError:
+        raise
     except ValueError:
         raise JudderError(f"{option} {text!r} is not a grid; {allowed}") \
             from None
-    if not (np.isfinite(start) and np.isfinite(stop)) or start > stop \
-            or (start < 0 and not allow_negative) or count < 1 \
+    if start > stop or count < 1 or count > MAX_GRID_VALUES \
             or (count == 1 and start != stop):
         raise JudderError(f"{option} {text!r} is not allowed; {allowed}")
     return np.linspace(start, stop, count)
@@ -125,6 +139,9 @@ def parameters_of(args):
                              param_file=args.param_file)
     changed = params.with_overrides(args.set)
     names = [text.partition("=")[0].strip() for text in args.set]
+    from .values import check_plain_pressure
+    for text in args.set:
+        check_plain_pressure(text)
     return params, {name: changed[name] for name in names}
 
 
