@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import tomllib
 from types import MappingProxyType
 
-from infra.errors import ParameterError
+from infra.errors import JudderError, ParameterError
 from infra.quantities import parse_quantity
 
 from .registry import MODELS, get_model
@@ -101,8 +101,12 @@ class Parameters:
                     f"{self.model} model; allowed names: "
                     f"{', '.join(self.specs)}")
             spec = self.specs[name]
-            changes[name] = spec.check(parse_quantity(
-                value, spec.unit, f"--set {name}"))
+            try:
+                number = parse_quantity(value, spec.unit,
+                                        f"--set {name}: parameter {name} =")
+            except JudderError as exc:
+                raise ParameterError(str(exc)) from None
+            changes[name] = spec.check(number)
         return self.replace(**changes)
 
     @property
