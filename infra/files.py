@@ -131,7 +131,7 @@ def check_output(path, option, suffixes=None, force=False):
     suffix = path.suffix.lstrip(".").lower()
     if suffixes is not None and suffix not in suffixes:
         raise JudderError(f"{option} {text}: unknown format {suffix!r}; "
-                          f"allowed: {', '.join(sorted(suffixes))}")
+                          f"allowed: {', '.join('.' + s for s in sorted(suffixes))}")
     parent = path.parent
     while not parent.exists():
         parent = parent.parent
