@@ -3,7 +3,7 @@
 Units on the command line are those engineers read: dither frequency in
 Hz, dither amplitude in bar. Parameters (``--set``) and files are SI.
 Every command can print JSON (``--json``) for scripts. The exit codes are
-those of :mod:`infra.errors` and :mod:`judder.cli.contract`: errors in the
+those of :mod:`infra.errors` and :mod:`infra.contract`: errors in the
 input give ``judder: error: ...`` and exit status 2; an internal failure
 says so and exits with 1; Ctrl-C exits with 130, SIGTERM with 143, and
 neither leaves a partial output file.
@@ -13,7 +13,7 @@ turns them into API calls and formats the results,
 :mod:`judder.cli.options` parses and checks option values.
 """
 
-from .contract import join_negative_values, run_guarded
+from infra.contract import join_negative_values, run_guarded
 from .options import check_outputs
 from .parser import build_parser
 from .values import check_plausible, normalise_options
