@@ -5,7 +5,9 @@ process (it is idempotent and cheap): on Linux the kernel sends the
 worker SIGTERM when its parent dies, even by SIGKILL
 (``prctl(PR_SET_PDEATHSIG)``), and SIGTERM raises ``SystemExit`` so that
 ``finally`` blocks run (a ``.part`` file is removed, see
-:func:`infra.files.atomic_write`).
+:func:`infra.files.atomic_write`), then ends the process
+:data:`GRACE_S` later (a pool worker would otherwise catch the exception
+and wait for more work).
 
 :class:`FolderLock` is an exclusive ``fcntl`` lock on a file in a folder,
 for read-modify-write of a file shared by several processes.
@@ -16,6 +18,7 @@ import fcntl
 import multiprocessing
 import os
 import signal
+import threading
 
 __all__ = ["die_with_parent", "FolderLock"]
 
@@ -23,7 +26,17 @@ _PR_SET_PDEATHSIG = 1
 _armed = set()
 
 
+#: Seconds a worker has, after SIGTERM, to unwind (remove its ``.part``
+#: file) before it exits for good.
+GRACE_S = 1.0
+
+
 def _exit_on_sigterm(signum, frame):
+    # an executor's worker catches what its job raises and waits for the
+    # next job: so exit for good once the job has unwound
+    timer = threading.Timer(GRACE_S, os._exit, (128 + signum,))
+    timer.daemon = True
+    timer.start()
     raise SystemExit(128 + signum)
 
 

@@ -161,3 +161,31 @@ def test_campaign_refuses_foreign_index(tmp_path):
         run_campaign(Campaign(freq_hz=(100.0,), p_f_bar=(0.05,),
                               duration=0.3), get_preset("paper-4dof"),
                      tmp_path, workers=1)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_campaign_workers_die_with_their_parent(tmp_path, sig):
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "judder", "campaign", "--out", str(tmp_path),
+         "--freq", "60:200:15", "--pf", "0.05:0.3:4", "--duration", "0.3",
+         "--format", "csv", "--workers", "2"], stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True)
+    index = tmp_path / "index.csv"
+    deadline = time.time() + 300
+    while not index.exists() or len(index.read_text().splitlines()) < 3:
+        assert proc.poll() is None and time.time() < deadline
+        time.sleep(0.1)
+    children = open(f"/proc/{proc.pid}/task/{proc.pid}/children").read()
+    assert children.split(), "no worker processes"
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == (143 if sig == signal.SIGTERM else -9)
+    assert "Traceback" not in err
+    time.sleep(1.5)
+    assert not [pid for pid in children.split()
+                if os.path.exists(f"/proc/{pid}")
+                and "judder" in open(f"/proc/{pid}/cmdline").read()]
+    assert not list(tmp_path.glob(".*.part"))
+    rows = _index(tmp_path)
+    assert all((tmp_path / name).exists() for r in rows
+               for name in r["files"].split())
