@@ -453,6 +453,7 @@ class CampaignResult:
     def as_dict(self):
         return {"runs": len(self.rows),
                 "ok": len(self.rows) - len(self.failed),
+                "reused": sum(bool(r.get("reused")) for r in self.rows),
                 "failed": self.failed, "index": self.index,
                 "seconds": self.seconds}
 

@@ -300,7 +300,8 @@ def run_campaign(campaign, params, folder, workers=None, callback=None):
     -------
     list of dict
         The index rows (see :data:`INDEX_COLUMNS`) of this campaign's
-        runs, in run order.
+        runs, in run order; a run found done in the folder has
+        ``reused`` True.
     """
     bench_class = params.driveline.bench_class
     if bench_class is None:
@@ -328,7 +329,9 @@ def run_campaign(campaign, params, folder, workers=None, callback=None):
                     (folder / name).exists() for name in v["files"].split())
                 and {f"{k}.{s}" for s in campaign.formats}
                 <= set(v["files"].split())}
-    rows = {run_id: done[run_id] for run_id, *_ in plan if run_id in done}
+    # runs already in the folder with these very settings: kept, and said so
+    rows = {run_id: {**done[run_id], "reused": True}
+            for run_id, *_ in plan if run_id in done}
     jobs = [(campaign, params, fmu_path, folder, settings)
             for settings in plan if settings[0] not in rows]
     if callback is not None:

@@ -450,8 +450,10 @@ def cmd_campaign(args):
                               changes=changes, workers=args.workers,
                               progress=progress)
     data = result.as_dict()
-    text = (f"{data['runs']} runs ({data['ok']} ok) in "
-            f"{result.seconds:.1f} s; index {result.index}"
+    text = (f"{data['runs']} runs ({data['ok']} ok"
+            + (f"; {data['reused']} already in the folder with the same "
+               "settings, kept" if data["reused"] else "")
+            + f") in {result.seconds:.1f} s; index {result.index}"
             + "".join(f"\n  failed {r['run_id']}: {r['message']}"
                       for r in result.failed))
     emit(args, data, text)
