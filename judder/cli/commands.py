@@ -14,7 +14,7 @@ from infra.units import PA_PER_BAR
 
 from .. import api
 from ..inputs import read_boundary, read_chart_boundary
-from .values import check_map_memory
+from .values import check_campaign_disk, check_map_memory, check_work
 from .options import (check_number, emit, make_parents, parameters_of,
                       parse_grid, parse_list, Progress)
 
@@ -178,6 +178,7 @@ def cmd_sensitivity(args):
             check_number("--factors", factor, "(factor)")
     make_parents(args.out, args.plot)
     cases = 1 + len(names) * len(values or factors)
+    check_work("--params x --values/--factors", cases, "cases")
     with Progress(cases, "sensitivity cases") as progress:
         result = api.sensitivity(names, freqs, p_max_bar, factors=factors,
                                  values=values, parameters=params,
@@ -402,6 +403,8 @@ def cmd_crosscheck(args):
             f"allowed: at least {MIN_CROSSCHECK_PERIODS} periods of the "
             f"lowest frequency (>= {MIN_CROSSCHECK_PERIODS / freqs[0]:.3g} s)"
             ", for the multipliers to be fitted")
+    check_work("--freq x --pf", 2 * len(freqs) * len(amplitudes),
+               "FMU runs")
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs) * len(amplitudes), "FMU runs") as progress:
@@ -441,6 +444,8 @@ def cmd_campaign(args):
     check_number("--noise-rpm", args.noise_rpm, "rpm", strict=False)
     params, changes = parameters_of(args)
     runs = (len(freqs) * len(amplitudes) * len(rpm) * len(temperatures))
+    check_work("--freq x --pf x --rpm x --temperatures", runs, "runs")
+    check_campaign_disk(args.out, runs, args.duration, max(rpm), formats)
     with Progress(runs, "bench runs") as progress:
         result = api.campaign(args.out, freqs, amplitudes, engine_rpm=rpm,
                               temperatures=temperatures,

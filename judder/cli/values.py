@@ -209,3 +209,35 @@ def check_map_memory(params, freq_hz, p_f_bar):
             "allowed: fewer amplitudes per frequency, or higher "
             "frequencies")
     return needed
+
+
+#: Most runs of one campaign, FMU runs of one crosscheck, cases of one
+#: sensitivity study: beyond, a request is a typo or a week of work.
+MAX_RUNS = 100_000
+#: Bytes one campaign run writes per format, second of engagement and
+#: 1000 rpm (41 teeth; measured 29.6 kB CSV and 31.3 kB MF4 for 1 s).
+BYTES_PER_RUN_SECOND = 32_000
+
+
+def check_work(option, count, what):
+    """Refuse more than :data:`MAX_RUNS` pieces of work."""
+    if count > MAX_RUNS:
+        raise JudderError(f"{option} asks for {count:.4g} {what}; allowed: "
+                          f"at most {MAX_RUNS} (split the study)")
+
+
+def check_campaign_disk(folder, runs, duration, rpm_max, formats):
+    """Refuse a campaign whose files would not fit on the disk."""
+    import shutil
+    from pathlib import Path
+    needed = (runs * duration * max(rpm_max, 1.0) / 1000.0
+              * BYTES_PER_RUN_SECOND * len(formats))
+    place = Path(folder)
+    while not place.exists():
+        place = place.parent
+    free = shutil.disk_usage(place).free
+    if needed > free:
+        raise JudderError(f"the campaign would write about "
+                          f"{needed / 2**30:.3g} GiB ({runs} runs) and "
+                          f"{free / 2**30:.3g} GiB are free on {place}; "
+                          "allowed: fewer runs, or another folder")
