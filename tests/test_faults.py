@@ -189,3 +189,29 @@ def test_campaign_workers_die_with_their_parent(tmp_path, sig):
     rows = _index(tmp_path)
     assert all((tmp_path / name).exists() for r in rows
                for name in r["files"].split())
+
+
+def test_fmu_command_contract(tmp_path):
+    """``python -m fmu``: bad input exits 2 in one line; a model whose
+    parameters are all literal builds, and its FMU gives x(1) = exp(-k)."""
+    def fmu(*args):
+        return subprocess.run([sys.executable, "-m", "fmu", *args],
+                              capture_output=True, text=True, timeout=300)
+    for args, word in ((["--tolerance", "-1"], "--tolerance"),
+                       (["--tolerance", "nan"], "--tolerance"),
+                       (["Judder.Nope", "--out", str(tmp_path)], "Nope")):
+        proc = fmu(*args)
+        assert proc.returncode == 2 and word in proc.stderr
+        assert len(proc.stderr.splitlines()) == 1, proc.stderr
+    (tmp_path / "Tiny.mo").write_text(
+        "model Tiny\n  parameter Real k = 2;\n"
+        "  Real x(start=1, fixed=true);\nequation\n  der(x) = -k*x;\n"
+        "end Tiny;\n")
+    proc = fmu("Tiny", "--library", str(tmp_path), "--out", str(tmp_path),
+               "--fmi", "2.0")
+    assert proc.returncode == 0, proc.stderr
+    from fmpy import simulate_fmu
+    result = simulate_fmu(str(tmp_path / "Tiny.fmu"), stop_time=1.0,
+                          output=["x"], start_values={"k": 3.0},
+                          fmi_type="ModelExchange")
+    assert result["x"][-1] == pytest.approx(np.exp(-3.0), rel=1e-6)
