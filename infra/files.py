@@ -21,7 +21,8 @@ import numpy as np
 from .errors import JudderError
 
 __all__ = ["atomic_write", "write_text", "save_figure", "to_json", "MARK",
-           "NPZ_MARK", "written_by_us", "check_output", "save_npz"]
+           "NPZ_MARK", "written_by_us", "check_output", "save_npz",
+           "check_folder_writable", "decode_text"]
 
 #: Text every file written by the tool carries.
 MARK = "written by judder"
@@ -99,6 +100,37 @@ def written_by_us(path):
                for mark in (MARK.encode(), f"{NPZ_MARK}.npy".encode()))
 
 
+def check_folder_writable(folder, option, text):
+    """Refuse ``folder`` (created later if missing) when its nearest
+    existing ancestor is a file or cannot be written; ``text`` is what
+    the user gave ``option``."""
+    place = Path(folder)
+    while not place.exists():
+        place = place.parent
+    if not place.is_dir():
+        raise JudderError(f"{option} {text}: {place} is a file, not a "
+                          "folder")
+    if not os.access(place, os.W_OK | os.X_OK):
+        raise JudderError(f"{option} {text}: folder {place} is not "
+                          "writable")
+
+
+def decode_text(data, what, kind="file"):
+    """UTF-8 text of the bytes of a file the user named, or JudderError
+    naming ``what``, the first byte that is not UTF-8 and the ``kind`` of
+    file to save as UTF-8."""
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise JudderError(f"{what}: not UTF-8 text (byte "
+                          f"0x{data[exc.start]:02x} at offset {exc.start}); "
+                          f"save the {kind} as UTF-8") from None
+    if "\0" in text:
+        raise JudderError(f"{what}: not a text file (NUL bytes); allowed: "
+                          "UTF-8 text")
+    return text
+
+
 def check_output(path, option, suffixes=None, force=False):
     """Refuse an output path before any work is done.
 
@@ -132,15 +164,7 @@ def check_output(path, option, suffixes=None, force=False):
     if suffixes is not None and suffix not in suffixes:
         raise JudderError(f"{option} {text}: unknown format {suffix!r}; "
                           f"allowed: {', '.join('.' + s for s in sorted(suffixes))}")
-    parent = path.parent
-    while not parent.exists():
-        parent = parent.parent
-    if not parent.is_dir():
-        raise JudderError(f"{option} {text}: {parent} is a file, not a "
-                          "folder")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise JudderError(f"{option} {text}: folder {parent} is not "
-                          "writable")
+    check_folder_writable(path.parent, option, text)
     if path.exists() and not force and not written_by_us(path):
         raise JudderError(f"{option} {text} exists and was not written by "
                           "judder; not replacing it (use --force to "

@@ -5,35 +5,35 @@ pass the message on as it is.
 """
 
 from pathlib import Path
+import stat
 
 import numpy as np
 
 from drivelines import (DEFAULT_MODEL, default_preset, get_preset,
                         load_toml)
 from infra.errors import JudderError
+from infra.files import decode_text
 from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary", "read_chart_boundary"]
 
+#: Largest parameter or boundary file read, bytes.
+MAX_INPUT_BYTES = 64 * 2**20
+
 
 def read_input(path, option):
     """Text of a file the user named, or JudderError naming ``option``."""
     try:
+        info = Path(path).stat()
+        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INPUT_BYTES:
+            raise JudderError(f"{option} {path}: allowed: a regular file of "
+                              f"at most {MAX_INPUT_BYTES // 2**20} MiB")
         data = Path(path).read_bytes()
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror})") from None
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise JudderError(f"{option} {path}: not UTF-8 text (byte "
-                          f"0x{data[exc.start]:02x} at offset {exc.start}); "
-                          "allowed: a UTF-8 text file") from None
-    if "\0" in text:
-        raise JudderError(f"{option} {path}: not a text file (NUL bytes); "
-                          "allowed: a UTF-8 text file")
-    return text
+    return decode_text(data, f"{option} {path}")
 
 
 def load_parameters(preset=None, model=None, param_file=None):

@@ -63,6 +63,7 @@ CASES = [
     (["eig", "--param-file", "{d}/string.toml"], 2, ["J1", "not a number"]),
     (["eig", "--param-file", "{d}/missing.toml"], 2, ["missing.toml"]),
     (["eig", "--param-file", "{d}"], 2, ["--param-file"]),
+    (["eig", "--param-file", "/dev/zero"], 2, ["regular file"]),
     (["eig", "--preset", "nope"], 2, ["--preset"]),
     # frequencies and amplitudes, with and without units
     (["floquet", "--freq", "1e300", "--pf", "0.3"], 2, ["--freq", "100000"]),

@@ -3,14 +3,13 @@ number checks, parameter options, output folders, JSON or text, progress
 bars. Every error names the option, its value and what is allowed."""
 
 import math
-import os
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import check_output, to_json
+from infra.files import check_folder_writable, check_output, to_json
 
 from ..inputs import load_parameters
 
@@ -68,15 +67,7 @@ def check_campaign_folder(text):
     if not str(text).strip():
         raise JudderError(f"--out {text!r}: allowed: a folder name (the "
                           "campaign folder, created if needed)")
-    path = Path(text)
-    parent = path
-    while not parent.exists():
-        parent = parent.parent
-    if not parent.is_dir():
-        raise JudderError(f"--out {text}: {parent} is a file; allowed: a "
-                          "folder")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise JudderError(f"--out {text}: folder {parent} is not writable")
+    check_folder_writable(text, "--out", text)
 
 
 #: Most values of one grid axis (a typo like N = 100000000000 would
