@@ -516,20 +516,26 @@ class ChartResult:
                   "min_growth_per_s": np.array(self.chart.min_growth)}
         save_npz(path, arrays)
 
-    def save_boundary(self, path):
+    def save_boundary(self, path, force=True):
         """Write the experimental boundary as ``judder fit --boundary``
         reads it; with several groups, one file per group
-        (``STEM_GROUP.csv``). Returns the paths written."""
+        (``STEM_GROUP.csv``). Returns the paths written.
+
+        Without ``force``, refuses (before writing any) to replace a file
+        judder did not write (:func:`infra.files.check_output`).
+        """
         from pathlib import Path
+        from infra.files import check_output
         path = Path(path)
         groups = list(self.chart.groups())
-        written = []
-        for group in groups:
-            target = path if len(groups) == 1 else path.with_name(
-                f"{path.stem}_{'_'.join(group)}{path.suffix}")
+        targets = [path if len(groups) == 1 else path.with_name(
+            f"{path.stem}_{'_'.join(group)}{path.suffix}")
+            for group in groups]
+        for target in targets:
+            check_output(target, "--boundary", ("csv",), force)
+        for group, target in zip(groups, targets):
             write_text(target, self.chart.boundary_csv(group))
-            written.append(str(target))
-        return written
+        return [str(target) for target in targets]
 
     def figure(self, title=None):
         from pysim.plotting import chart_figure

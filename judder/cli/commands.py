@@ -501,7 +501,8 @@ def cmd_chart(args):
         "title": "experimental stability chart"
                  + (f" with the {params.model} model's boundaries"
                     if overlay else "")})
-    boundaries = (result.save_boundary(args.boundary) if args.boundary
+    boundaries = (result.save_boundary(args.boundary, force=args.force)
+                  if args.boundary
                   and result.chart.read else [])
     data = {**result.as_dict(), **files, "boundary_files": boundaries}
     rows = []
