@@ -12,7 +12,8 @@ from dataclasses import dataclass, field
 import tomllib
 from types import MappingProxyType
 
-from infra.errors import ParameterError
+from infra.errors import JudderError, ParameterError
+from infra.quantities import parse_quantity
 
 from .registry import MODELS, get_model
 from .specs import MEAN_PRESSURE_DAMPING, split_assignment
@@ -78,6 +79,9 @@ class Parameters:
     def with_overrides(self, assignments):
         """Apply ``NAME=VALUE`` strings, as given to ``--set``.
 
+        A plain VALUE is in the parameter's SI unit; it may carry a unit
+        instead (``p_m=10bar``), see :func:`infra.quantities.parse_quantity`.
+
         Raises
         ------
         ParameterError
@@ -91,7 +95,13 @@ class Parameters:
                     f"--set {text!r}: unknown parameter {name!r} for the "
                     f"{self.model} model; allowed names: "
                     f"{', '.join(self.specs)}")
-            changes[name] = self.specs[name].check(value)
+            spec = self.specs[name]
+            try:
+                number = parse_quantity(value, spec.unit,
+                                        f"--set {name}: parameter {name} =")
+            except JudderError as exc:
+                raise ParameterError(str(exc)) from None
+            changes[name] = spec.check(number)
         return self.replace(**changes)
 
     @property

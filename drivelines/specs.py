@@ -6,7 +6,13 @@ import math
 from infra.errors import ParameterError
 
 __all__ = ["ParameterSpec", "positive", "nonnegative", "CLUTCH_SPECS",
-           "MEAN_PRESSURE_DAMPING", "split_assignment"]
+           "MEAN_PRESSURE_DAMPING", "split_assignment", "MIN_MAGNITUDE",
+           "MAX_MAGNITUDE"]
+
+#: Smallest and largest magnitude of a parameter value in SI units: the
+#: drivelines' values lie within 1e-4..1e7, and beyond these bounds the
+#: eigenvalue problems lose the small modes or overflow.
+MIN_MAGNITUDE, MAX_MAGNITUDE = 1e-9, 1e12
 
 #: Name of the model option that scales the mean pressure in the damping term.
 MEAN_PRESSURE_DAMPING = "mean_pressure_damping"
@@ -55,7 +61,17 @@ class ParameterSpec:
         return ("an integer " + text) if self.integer else text
 
     def check(self, value):
-        """Return ``value`` as a float, or raise :class:`ParameterError`."""
+        """Return ``value`` as a float, or raise :class:`ParameterError`.
+
+        A bool is refused (TOML ``J1 = true`` is not a number), and so is
+        a magnitude above ``MAX_MAGNITUDE``, or below ``MIN_MAGNITUDE`` for
+        a positive parameter: no driveline has it, and the numerics
+        overflow or lose the small modes.
+        """
+        if isinstance(value, bool):
+            raise ParameterError(
+                f"parameter {self.name} = {value!r} is not a number; "
+                f"allowed: {self.allowed()} [{self.unit}]")
         try:
             number = float(value)
         except (TypeError, ValueError):
@@ -67,6 +83,15 @@ class ParameterSpec:
                      else number >= self.lower)
         ok = ok and number <= self.upper
         ok = ok and (not self.integer or number == int(number))
+        smallest = MIN_MAGNITUDE if self.lower_open and self.lower == 0 \
+            else 0.0
+        if ok and number != 0 and not (
+                smallest <= abs(number) <= MAX_MAGNITUDE):
+            raise ParameterError(
+                f"parameter {self.name} = {value!r} is not allowed; allowed:"
+                f" {self.allowed()} [{self.unit}], of magnitude "
+                + (f"{smallest:g} to " if smallest else "at most ")
+                + f"{MAX_MAGNITUDE:g}")
         if not ok:
             raise ParameterError(
                 f"parameter {self.name} = {value!r} is not allowed; "

@@ -2,10 +2,11 @@
 
 import argparse
 import json
+import math
 import sys
 from pathlib import Path
 
-from infra.errors import EXIT_ERROR, EXIT_OK
+from infra.errors import EXIT_ERROR, EXIT_OK, JudderError
 
 from .build import DEFAULT_TOLERANCE, build_fmu
 from .frontend import FrontEndError
@@ -27,6 +28,15 @@ def examples(library):
 
 
 def main(argv=None):
+    """Run ``python -m fmu`` under the error contract of every command
+    line of the project (:func:`infra.contract.run_guarded`)."""
+    from infra.contract import run_guarded
+    status = []
+    code = run_guarded("fmu", lambda: status.append(_build(argv)))
+    return status[0] if status else code
+
+
+def _build(argv):
     parser = argparse.ArgumentParser(
         prog="python -m fmu",
         description="Compile Modelica models of the Judder library to FMUs: "
@@ -50,6 +60,11 @@ def main(argv=None):
     parser.add_argument("--json", action="store_true",
                         help="report as JSON lines")
     args = parser.parse_args(argv)
+    if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
+        print(f"fmu: error: --tolerance {args.tolerance:g} is not allowed; "
+              "allowed: a relative tolerance > 0 and < 1 (e.g. 1e-6)",
+              file=sys.stderr)
+        return EXIT_ERROR
     library = Path(args.library)
     names = args.models or examples(library)
     if not names:
@@ -80,8 +95,7 @@ def main(argv=None):
                       f"outputs, built in {result.seconds:.2f} s, "
                       f"{result.size_bytes / 1024:.1f} KiB")
     except FrontEndError as exc:
-        print(f"fmu: error: {exc}", file=sys.stderr)
-        return EXIT_ERROR
+        raise JudderError(str(exc)) from None
     return EXIT_OK
 
 

@@ -149,6 +149,9 @@ def _split_parameters(model):
     targets = casadi.vertcat(*[v.symbol for v in model.by_role("parameter")
                                if any(v.name == q.name for q in calculated)])
     values = casadi.vertcat(*symbols)
+    if not calculated:
+        # vertcat of nothing is a numeric DM, which substitute refuses
+        targets = values = casadi.SX(0, 1)
     for _ in range(len(calculated) + 1):
         values = casadi.substitute(values, targets, values)
     for index, quantity in enumerate(calculated):

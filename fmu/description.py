@@ -60,9 +60,14 @@ def _number(value):
     return repr(float(value))
 
 
-def _unit_definitions(layout):
+def _unit_definitions(layout, extra=()):
+    """``<UnitDefinitions>`` of the layout's units and ``extra`` (none at
+    all when there are no units: the schema wants one inside)."""
+    units = sorted(set(layout.units()) | set(extra))
+    if not units:
+        return []
     lines = ["  <UnitDefinitions>"]
-    for unit in layout.units():
+    for unit in units:
         exponents, factor = base_exponents(unit)
         base = _attr(**{k: v for k, v in exponents.items()},
                      factor=None if factor == 1.0 else _number(factor))
@@ -201,7 +206,7 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                  instantiationToken=guid, generationTool=tool,
                  variableNamingConvention="structured") + ">",
              "  <ModelExchange" + _attr(modelIdentifier=identifier) + "/>"]
-    lines += _unit_definitions(layout)
+    lines += _unit_definitions(layout, extra=("s",))
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")
     lines.append('    <Float64 name="time" valueReference="0" '

@@ -1,10 +1,17 @@
 """Writing results atomically, so an interrupted run leaves no partial file.
 
 Every writer goes through :func:`atomic_write`: the data go to a temporary
-file beside the target, which replaces the target only once complete.
+file beside the target, which replaces the target only once complete, with
+the mode the umask gives a new file.
+
+Every file the tool writes carries :data:`MARK` (a CSV/TOML comment line,
+PNG/SVG/PDF/PS metadata, an NPZ array name, the MF4 header comment), so
+:func:`written_by_us` can tell it from a file of the user's, which a
+command replaces only with ``--force`` (:func:`check_output`).
 """
 
 import json
+import math
 import os
 import tempfile
 from pathlib import Path
@@ -13,7 +20,19 @@ import numpy as np
 
 from .errors import JudderError
 
-__all__ = ["atomic_write", "write_text", "save_figure", "to_json"]
+__all__ = ["atomic_write", "write_text", "save_figure", "to_json", "MARK",
+           "NPZ_MARK", "written_by_us", "check_output", "save_npz",
+           "check_folder_writable", "decode_text"]
+
+#: Text every file written by the tool carries.
+MARK = "written by judder"
+#: Name of the array that marks an NPZ file as the tool's.
+NPZ_MARK = "written_by_judder"
+#: Bytes of the start and of the end of a file searched for the mark.
+_MARK_WINDOW = 1 << 20
+#: Metadata keys of the figure formats that carry the mark.
+_FIGURE_METADATA = {"png": "Software", "pdf": "Creator", "svg": "Creator",
+                    "eps": "Creator", "ps": "Creator"}
 
 
 def atomic_write(path, write, overwrite=True):
@@ -47,26 +66,139 @@ def atomic_write(path, write, overwrite=True):
             write(stream)
             stream.flush()
             os.fsync(stream.fileno())
+        # mkstemp creates 0600; a new file gets what the umask allows
+        os.chmod(temporary, 0o666 & ~_umask())
         os.replace(temporary, path)
+    except OSError as exc:
+        Path(temporary).unlink(missing_ok=True)
+        raise JudderError(f"cannot write {path}: {exc.strerror or exc}") \
+            from None
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
 
 
+def _umask():
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def written_by_us(path):
+    """True if the file at ``path`` carries :data:`MARK` (or is an NPZ
+    file with the :data:`NPZ_MARK` array): the tool wrote it."""
+    try:
+        with open(path, "rb") as stream:
+            head = stream.read(_MARK_WINDOW)
+            stream.seek(0, os.SEEK_END)
+            size = stream.tell()
+            stream.seek(max(size - _MARK_WINDOW, len(head)))
+            tail = stream.read()
+    except OSError:
+        return False
+    return any(mark in part for part in (head, tail)
+               for mark in (MARK.encode(), f"{NPZ_MARK}.npy".encode()))
+
+
+def check_folder_writable(folder, option, text):
+    """Refuse ``folder`` (created later if missing) when its nearest
+    existing ancestor is a file or cannot be written; ``text`` is what
+    the user gave ``option``."""
+    place = Path(folder)
+    while not place.exists():
+        place = place.parent
+    if not place.is_dir():
+        raise JudderError(f"{option} {text}: {place} is a file, not a "
+                          "folder")
+    if not os.access(place, os.W_OK | os.X_OK):
+        raise JudderError(f"{option} {text}: folder {place} is not "
+                          "writable")
+
+
+def decode_text(data, what, kind="file"):
+    """UTF-8 text of the bytes of a file the user named, or JudderError
+    naming ``what``, the first byte that is not UTF-8 and the ``kind`` of
+    file to save as UTF-8."""
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise JudderError(f"{what}: not UTF-8 text (byte "
+                          f"0x{data[exc.start]:02x} at offset {exc.start}); "
+                          f"save the {kind} as UTF-8") from None
+    if "\0" in text:
+        raise JudderError(f"{what}: not a text file (NUL bytes); allowed: "
+                          "UTF-8 text")
+    return text
+
+
+def check_output(path, option, suffixes=None, force=False):
+    """Refuse an output path before any work is done.
+
+    Parameters
+    ----------
+    path : str or Path
+    option : str
+        The option naming it (for the message).
+    suffixes : collection of str, optional
+        Allowed suffixes without the dot (lower case).
+    force : bool
+        Allow replacing a file the tool did not write.
+
+    Raises
+    ------
+    JudderError
+        If ``path`` is empty, a folder, has an unknown suffix, lies under
+        a file, in a folder that cannot be written, or is a file the tool
+        did not write (unless ``force``).
+    """
+    if path is None:
+        return
+    text = str(path)
+    if not text.strip():
+        raise JudderError(f"{option} {text!r}: allowed: a file name")
+    path = Path(text)
+    if path.is_dir() or text.endswith(os.sep):
+        raise JudderError(f"{option} {text} is a folder; allowed: a file "
+                          "name")
+    suffix = path.suffix.lstrip(".").lower()
+    if suffixes is not None and suffix not in suffixes:
+        raise JudderError(f"{option} {text}: unknown format {suffix!r}; "
+                          f"allowed: {', '.join('.' + s for s in sorted(suffixes))}")
+    check_folder_writable(path.parent, option, text)
+    if path.exists() and not force and not written_by_us(path):
+        raise JudderError(f"{option} {text} exists and was not written by "
+                          "judder; not replacing it (use --force to "
+                          "replace it)")
+
+
 def write_text(path, text, overwrite=True):
-    """Write ``text`` (UTF-8) atomically."""
+    """Write ``text`` (UTF-8) atomically; a CSV or TOML file starts with
+    the comment ``# written by judder``."""
+    if Path(path).suffix.lower() in (".csv", ".toml"):
+        text = f"# {MARK}\n{text}"
     atomic_write(path, lambda stream: stream.write(text.encode()), overwrite)
 
 
+def save_npz(path, arrays):
+    """Write arrays as a compressed NPZ file, atomically, with the
+    :data:`NPZ_MARK` array."""
+    marked = {**arrays, NPZ_MARK: np.array(True)}
+    atomic_write(path, lambda stream: np.savez_compressed(stream, **marked))
+
+
 def save_figure(path, figure, dpi=150):
-    """Save a matplotlib figure; the format follows the file's suffix."""
+    """Save a matplotlib figure; the format follows the file's suffix
+    (PNG, SVG, PDF, PS and EPS carry :data:`MARK` in their metadata)."""
     suffix = Path(path).suffix.lstrip(".").lower() or "png"
-    atomic_write(path, lambda stream: figure.savefig(stream, format=suffix,
-                                                     dpi=dpi))
+    key = _FIGURE_METADATA.get(suffix)
+    metadata = {key: MARK} if key else None
+    atomic_write(path, lambda stream: figure.savefig(
+        stream, format=suffix, dpi=dpi, metadata=metadata))
 
 
 def to_json(data):
-    """JSON text of ``data``; complex numbers become ``[re, im]``."""
+    """JSON text of ``data``; complex numbers become ``[re, im]``, and a
+    NaN or infinite number ``null`` (JSON has neither)."""
     def convert(value):
         if isinstance(value, (complex, np.complexfloating)):
             return [float(value.real), float(value.imag)]
@@ -75,4 +207,16 @@ def to_json(data):
         if isinstance(value, np.generic):
             return value.item()
         raise TypeError(f"cannot serialise {type(value).__name__}")
-    return json.dumps(data, default=convert, indent=2)
+    # json turns NaN into the invalid token NaN: convert first, then null it
+    plain = json.loads(json.dumps(data, default=convert))
+    return json.dumps(_null_non_finite(plain), indent=2, allow_nan=False)
+
+
+def _null_non_finite(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, list):
+        return [_null_non_finite(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _null_non_finite(v) for k, v in value.items()}
+    return value

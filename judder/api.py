@@ -425,6 +425,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     values = _resolve(parameters, changes)
     model_class, fmu = _bench_fmu(values)
     bench = dict(bench or {})
+    ramp_end = sum(bench.get(name, parameter_default(fmu, name))
+                   for name in ("t_engage", "t_ramp"))
+    if duration is not None and duration <= ramp_end:
+        raise JudderError(f"duration {duration:g} s ends before the "
+                          f"engagement (its pressure ramp ends at "
+                          f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     settings = ([("with dither", freqs[0], p_f_bar * PA_PER_BAR)]
                 if len(freqs) == 1 else

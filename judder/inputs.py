@@ -5,25 +5,35 @@ pass the message on as it is.
 """
 
 from pathlib import Path
+import stat
 
 import numpy as np
 
 from drivelines import (DEFAULT_MODEL, default_preset, get_preset,
                         load_toml)
 from infra.errors import JudderError
+from infra.files import decode_text
 from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary", "read_chart_boundary", "read_chart_min_growth"]
 
+#: Largest parameter or boundary file read, bytes.
+MAX_INPUT_BYTES = 64 * 2**20
+
 
 def read_input(path, option):
     """Text of a file the user named, or JudderError naming ``option``."""
     try:
-        return Path(path).read_text()
+        info = Path(path).stat()
+        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INPUT_BYTES:
+            raise JudderError(f"{option} {path}: allowed: a regular file of "
+                              f"at most {MAX_INPUT_BYTES // 2**20} MiB")
+        data = Path(path).read_bytes()
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror})") from None
+    return decode_text(data, f"{option} {path}")
 
 
 def load_parameters(preset=None, model=None, param_file=None):
@@ -58,12 +68,20 @@ def load_parameters(preset=None, model=None, param_file=None):
     return params
 
 
+#: Columns of a boundary CSV besides freq_hz and p_f_bar that are
+#: ignored: those ``judder tongues --out`` adds.
+BOUNDARY_EXTRA_COLUMNS = ("single_period_bar", "double_period_bar",
+                          "combination_bar")
+
+
 def read_boundary_csv(text, source="boundary file"):
     """Parse a measured boundary: columns ``freq_hz,p_f_bar``.
 
-    A header line is allowed, and further columns are ignored (so the CSV
-    of ``judder tongues --out`` can be read back); an empty ``p_f_bar``
-    means no judder up to the largest amplitude tried.
+    ``#`` starts a comment. A header line names the columns (in any
+    order); without one the columns are ``freq_hz,p_f_bar``. The further
+    columns of ``judder tongues --out`` are ignored (so its CSV can be
+    read back); any other column is refused. An empty ``p_f_bar`` means
+    no judder up to the largest amplitude tried.
 
     Returns
     -------
@@ -75,30 +93,66 @@ def read_boundary_csv(text, source="boundary file"):
     >>> f, p = read_boundary_csv("freq_hz,p_f_bar\\n100,0.3\\n60,\\n")
     >>> f.tolist(), p.tolist()
     ([100.0, 60.0], [30000.0, nan])
+    >>> f, p = read_boundary_csv("p_f_bar,freq_hz\\n0.3,100\\n")
+    >>> f.tolist(), p.tolist()
+    ([100.0], [30000.0])
     """
     freqs, amps = [], []
+    columns = None
     for number, line in enumerate(text.splitlines(), start=1):
         line = line.split("#")[0].strip()
         if not line:
             continue
-        cells = [c.strip() for c in line.split(",")][:2]
-        if number == 1 and not _is_number(cells[0]):
-            continue
-        if len(cells) != 2 or not _is_number(cells[0]) or not (
-                cells[1] == "" or _is_number(cells[1])):
+        cells = [c.strip() for c in line.split(",")]
+        if columns is None:
+            columns = _boundary_columns(cells, source, number)
+            if columns is not None:
+                continue
+            columns = {"freq_hz": 0, "p_f_bar": 1, "width": 2}
+        if len(cells) != columns["width"]:
+            raise JudderError(f"{source}, line {number}: {line!r} has "
+                              f"{len(cells)} cells; allowed: "
+                              f"{columns['width']}, as the header "
+                              "(freq_hz,p_f_bar; p_f_bar empty for no "
+                              "judder)")
+        freq_text = cells[columns["freq_hz"]]
+        amp_text = cells[columns["p_f_bar"]]
+        if not _is_number(freq_text) or not (
+                amp_text == "" or _is_number(amp_text)):
             raise JudderError(f"{source}, line {number}: {line!r} is not "
                               "'freq_hz,p_f_bar' (p_f_bar empty for no "
                               "judder)")
-        freq = float(cells[0])
-        amp = float(cells[1]) * PA_PER_BAR if cells[1] else np.nan
-        if not np.isfinite(freq) or freq <= 0 or amp < 0:
-            raise JudderError(f"{source}, line {number}: frequency must be "
-                              "> 0 Hz and amplitude >= 0 bar")
+        freq = float(freq_text)
+        amp = float(amp_text) * PA_PER_BAR if amp_text else np.nan
+        if not np.isfinite(freq) or freq <= 0 or amp < 0 or amp == np.inf:
+            raise JudderError(f"{source}, line {number}: {line!r}: allowed: "
+                              "frequency > 0 Hz and amplitude >= 0 bar, "
+                              "finite")
         freqs.append(freq)
         amps.append(amp)
     if not freqs:
         raise JudderError(f"{source}: no data lines")
     return np.array(freqs), np.array(amps)
+
+
+def _boundary_columns(cells, source, number):
+    """Column indices of a boundary header line, or None if the line is
+    data."""
+    if _is_number(cells[0]):
+        return None
+    allowed = ("freq_hz", "p_f_bar") + BOUNDARY_EXTRA_COLUMNS
+    unknown = [c for c in cells if c not in allowed]
+    if unknown or len(set(cells)) != len(cells) or not {
+            "freq_hz", "p_f_bar"} <= set(cells):
+        raise JudderError(f"{source}, line {number}: header {','.join(cells)!r}"
+                          f" is not allowed"
+                          + (f" (unknown column {unknown[0]!r})" if unknown
+                             else "")
+                          + "; allowed: freq_hz and p_f_bar once each, in "
+                          "any order, and the columns of judder tongues "
+                          "--out (" + ", ".join(BOUNDARY_EXTRA_COLUMNS) + ")")
+    return {"freq_hz": cells.index("freq_hz"),
+            "p_f_bar": cells.index("p_f_bar"), "width": len(cells)}
 
 
 def read_boundary(path, option="--boundary"):

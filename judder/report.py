@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import atomic_write, write_text
+from infra.files import MARK, atomic_write, write_text
 from infra.units import PA_PER_BAR
 
 from . import api
@@ -439,6 +439,7 @@ def build_report(parameters=None, changes=None, description=None,
         "%Y-%m-%d %H:%M UTC")
     page = (
         "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+        f"<meta name=\"generator\" content=\"{MARK}\">"
         f"<title>judder report: {html.escape(description)}</title>"
         f"<style>{_CSS}</style></head><body>"
         f"<h1>Clutch judder from dither: {html.escape(description)}</h1>"

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from drivelines import dumps_toml
-from infra.files import atomic_write, write_text
+from infra.files import save_npz, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 
@@ -185,8 +185,7 @@ class MapResult:
             "natural_frequencies_hz": m.natural_frequencies_hz,
             "parameters": np.array(json.dumps(info)),
         }
-        atomic_write(path,
-                     lambda stream: np.savez_compressed(stream, **arrays))
+        save_npz(path, arrays)
 
     def figure(self, title=None):
         from stability.plotting import map_figure
@@ -475,6 +474,7 @@ class CampaignResult:
     def as_dict(self):
         return {"runs": len(self.rows),
                 "ok": len(self.rows) - len(self.failed),
+                "reused": sum(bool(r.get("reused")) for r in self.rows),
                 "failed": self.failed, "index": self.index,
                 "seconds": self.seconds}
 
@@ -535,23 +535,28 @@ class ChartResult:
                   "boundary_tried_bar": np.array([r[3] for r in rows]),
                   "group_by": np.array(self.chart.group_by),
                   "min_growth_per_s": np.array(self.chart.min_growth)}
-        atomic_write(path,
-                     lambda stream: np.savez_compressed(stream, **arrays))
+        save_npz(path, arrays)
 
-    def save_boundary(self, path):
+    def save_boundary(self, path, force=True):
         """Write the experimental boundary as ``judder fit --boundary``
         reads it; with several groups, one file per group
-        (``STEM_GROUP.csv``). Returns the paths written."""
+        (``STEM_GROUP.csv``). Returns the paths written.
+
+        Without ``force``, refuses (before writing any) to replace a file
+        judder did not write (:func:`infra.files.check_output`).
+        """
         from pathlib import Path
+        from infra.files import check_output
         path = Path(path)
         groups = list(self.chart.groups())
-        written = []
-        for group in groups:
-            target = path if len(groups) == 1 else path.with_name(
-                f"{path.stem}_{'_'.join(group)}{path.suffix}")
+        targets = [path if len(groups) == 1 else path.with_name(
+            f"{path.stem}_{'_'.join(group)}{path.suffix}")
+            for group in groups]
+        for target in targets:
+            check_output(target, "--boundary", ("csv",), force)
+        for group, target in zip(groups, targets):
             write_text(target, self.chart.boundary_csv(group))
-            written.append(str(target))
-        return written
+        return [str(target) for target in targets]
 
     def figure(self, title=None):
         from pysim.plotting import chart_figure

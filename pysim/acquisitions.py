@@ -59,6 +59,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from infra.errors import JudderError
+from infra.files import decode_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
 __all__ = ["ChannelSpec", "Channel", "Acquisition", "read_acquisition",
@@ -461,17 +462,7 @@ def _column_factor(path, column, kind):
 
 
 def _csv_lines(path):
-    data = path.read_bytes()
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise JudderError(f"{path}: not UTF-8 text (byte "
-                          f"0x{data[exc.start]:02x} at offset {exc.start}); "
-                          "save the CSV as UTF-8") from None
-    if "\0" in text:
-        raise JudderError(f"{path}: not a text file (NUL bytes); a CSV "
-                          "file is UTF-8 text")
-    return text.splitlines()
+    return decode_text(path.read_bytes(), str(path), "CSV").splitlines()
 
 
 def _csv_metadata(lines):

@@ -14,21 +14,29 @@ the bench of section 2.2 records:
 
 A campaign runs a grid (frequency x amplitude x engine speed x oil
 temperature) in parallel, writes one CSV and/or MF4 file per run and a
-campaign index (``index.csv``) rewritten atomically after each run. A
+campaign index (``index.csv``) updated atomically, under a lock of the
+folder, after each run: several campaigns may run into one folder at
+once, and the index keeps every run of each. A run id ends with a digest
+of every setting that changes the run's data (:meth:`Campaign.runs`), so
+a campaign with other settings adds runs instead of reusing old ones. A
 failed run is recorded with its message and does not stop the campaign;
 running the same campaign again skips the runs already done.
 """
 
 from dataclasses import dataclass, field
 import csv
+import hashlib
 import io
+import json
 from pathlib import Path
+import time
 
 import numpy as np
 
 from drivelines.registry import MODELS
 from infra.errors import JudderError
 from infra.files import atomic_write
+from infra.lifecycle import FolderLock, die_with_parent
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
@@ -38,6 +46,11 @@ from .runs import run_fmu
 
 __all__ = ["Campaign", "pickup_samples", "run_campaign", "at_temperature",
            "TEMPERATURES", "INDEX_COLUMNS"]
+
+#: Hex digits of the settings digest that ends a run id.
+RUN_DIGEST_LENGTH = 10
+#: Age (s) from which a ``.part`` file in a campaign folder is a leftover.
+STALE_PART_S = 600.0
 
 #: Oil temperature ranges of Fig. 11, represented by factors on the
 #: external damping of every body and on the friction gradient. The paper
@@ -133,23 +146,48 @@ class Campaign:
     seed: int = 1
     parameters: dict = field(default_factory=dict)
 
-    def runs(self):
-        """Run id and settings of every run, in a fixed order."""
+    def runs(self, params=None):
+        """Run id and settings of every run, in a fixed order.
+
+        The id reads the settings and ends with a digest of every input
+        that changes the run's data (the grid values at full precision,
+        engine speed, temperature, duration, pick-up, noise, seed, and
+        ``params``: the parameter set), so that runs of other settings
+        never take each other's place.
+        """
         out = []
         for temp in self.temperatures:
             for rpm in self.engine_rpm:
                 for f in self.freq_hz:
                     for p in self.p_f_bar:
+                        digest = self._digest(float(f), float(p), float(rpm),
+                                              temp, params)
                         run_id = (f"T{temp}_n{rpm:g}_f{f:g}_p{p:g}"
-                                  .replace(".", "p"))
+                                  .replace(".", "p") + f"_{digest}")
                         out.append((run_id, float(f), float(p), float(rpm),
                                     temp))
         return out
 
+    def _digest(self, f, p, rpm, temp, params):
+        identity = {"freq_hz": f.hex(), "p_f_bar": p.hex(),
+                    "engine_rpm": rpm.hex(), "temperature": temp,
+                    "duration": float(self.duration).hex(),
+                    "teeth": self.teeth,
+                    "noise_rpm": float(self.noise_rpm).hex(),
+                    "noise_bar": float(self.noise_bar).hex(),
+                    "seed": self.seed,
+                    "model": None if params is None else params.model,
+                    "parameters": None if params is None else {
+                        k: float(v).hex() for k, v in
+                        sorted(params.as_dict().items())}}
+        text = json.dumps(identity, sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()[:RUN_DIGEST_LENGTH]
+
 
 def _acquire(job):
     """Simulate one run and write its files; returns the index row."""
-    campaign, params, fmu_path, folder, (run_id, f, p, rpm, temp), index = job
+    die_with_parent()
+    campaign, params, fmu_path, folder, (run_id, f, p, rpm, temp) = job
     row = {"run_id": run_id, "status": "failed", "freq_hz": f,
            "p_f_bar": p, "engine_rpm": rpm, "oil_temperature": temp,
            "files": "", "message": ""}
@@ -159,7 +197,9 @@ def _acquire(job):
                       extra={"w_motor": rpm * RAD_S_PER_RPM},
                       duration=campaign.duration, output_interval=1e-4,
                       variables=("inertia4.phi", "inertia3.phi"))
-        rng = np.random.default_rng([campaign.seed, index])
+        # the noise follows the run's identity, not its place in the grid
+        rng = np.random.default_rng([campaign.seed,
+                                     int(run_id.rsplit("_", 1)[1], 16)])
         t_up, n_up = pickup_samples(run.time, run["inertia4.phi"],
                                     campaign.teeth, campaign.noise_rpm, rng)
         t_down, n_down = pickup_samples(run.time, run["inertia3.phi"],
@@ -174,7 +214,7 @@ def _acquire(job):
                     "oil_temperature_degC": temp, "pickup_teeth":
                     campaign.teeth, "noise_rpm": campaign.noise_rpm,
                     "noise_bar": campaign.noise_bar,
-                    "seed": [campaign.seed, index],
+                    "seed": campaign.seed,
                     "source": f"emulated: {params.driveline.bench_class}"}
         files = []
         if "csv" in campaign.formats:
@@ -202,26 +242,66 @@ def _acquire(job):
 def _read_index(path):
     if not path.exists():
         return {}
-    with open(path, newline="") as stream:
-        return {row["run_id"]: row for row in csv.DictReader(stream)}
+    try:
+        with open(path, newline="", encoding="utf-8") as stream:
+            return {row["run_id"]: row for row in csv.DictReader(stream)
+                    if row.get("run_id")}
+    except (UnicodeDecodeError, csv.Error, KeyError) as exc:
+        raise JudderError(f"{path}: not an index written by judder "
+                          f"campaign ({exc}); move it away to start a new "
+                          "campaign in this folder") from None
 
 
 def _write_index(path, rows):
     buffer = io.StringIO()
-    writer = csv.DictWriter(buffer, fieldnames=INDEX_COLUMNS)
+    writer = csv.DictWriter(buffer, fieldnames=INDEX_COLUMNS,
+                            extrasaction="ignore")
     writer.writeheader()
     for row in rows:
         writer.writerow(row)
     atomic_write(path, lambda stream: stream.write(buffer.getvalue().encode()))
 
 
+def _record(folder, index_path, row, order):
+    """Add or replace one row of the index, under the folder's lock (other
+    campaigns may write into the same folder): no row is lost or
+    duplicated. Rows of other campaigns come first, then those of this
+    one in the order of its run ids ``order``."""
+    with FolderLock(folder):
+        rows = _read_index(index_path)
+        rows[row["run_id"]] = row
+        mine = set(order)
+        _write_index(index_path,
+                     [r for k, r in rows.items() if k not in mine]
+                     + [rows[k] for k in order if k in rows])
+
+
+def _remove_stale_parts(folder):
+    """``.part`` files older than :data:`STALE_PART_S`: left by a process
+    killed mid-write (SIGKILL); a live writer's are younger."""
+    now = time.time()
+    for part in folder.glob(".*.part"):
+        try:
+            if now - part.stat().st_mtime > STALE_PART_S:
+                part.unlink()
+        except OSError:
+            pass
+
+
 def run_campaign(campaign, params, folder, workers=None, callback=None):
     """Run (or resume) a campaign into ``folder``.
+
+    Runs already in the folder's index with status ok, their files
+    present, are kept; the others are run. The index keeps the rows of
+    every campaign run into the folder (run ids differ with the settings,
+    see :meth:`Campaign.runs`).
 
     Returns
     -------
     list of dict
-        The index rows (see :data:`INDEX_COLUMNS`), in run order.
+        The index rows (see :data:`INDEX_COLUMNS`) of this campaign's
+        runs, in run order; a run found done in the folder has
+        ``reused`` True.
     """
     bench_class = params.driveline.bench_class
     if bench_class is None:
@@ -234,21 +314,31 @@ def run_campaign(campaign, params, folder, workers=None, callback=None):
         raise JudderError(f"oil temperature {unknown[0]!r} is unknown; "
                           f"allowed: {', '.join(TEMPERATURES)}")
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise JudderError(f"cannot create the campaign folder {folder}: "
+                          f"{exc.strerror}") from None
     fmu_path = ensure_fmu(bench_class)
     index_path = folder / "index.csv"
-    done = {k: v for k, v in _read_index(index_path).items()
-            if v["status"] == "ok" and all(
-                (folder / name).exists() for name in v["files"].split())}
-    plan = campaign.runs()
-    rows = {run_id: done[run_id] for run_id, *_ in plan if run_id in done}
-    jobs = [(campaign, params, fmu_path, folder, settings, number)
-            for number, settings in enumerate(plan) if settings[0] not in rows]
+    plan = campaign.runs(params)
+    with FolderLock(folder):
+        _remove_stale_parts(folder)
+        done = {k: v for k, v in _read_index(index_path).items()
+                if v["status"] == "ok" and all(
+                    (folder / name).exists() for name in v["files"].split())
+                and {f"{k}.{s}" for s in campaign.formats}
+                <= set(v["files"].split())}
+    # runs already in the folder with these very settings: kept, and said so
+    rows = {run_id: {**done[run_id], "reused": True}
+            for run_id, *_ in plan if run_id in done}
+    jobs = [(campaign, params, fmu_path, folder, settings)
+            for settings in plan if settings[0] not in rows]
     if callback is not None:
         callback(len(rows), len(plan))
     for row in parallel_map(_acquire, jobs, workers, ordered=False):
         rows[row["run_id"]] = row
-        _write_index(index_path, [rows[r[0]] for r in plan if r[0] in rows])
+        _record(folder, index_path, row, [r[0] for r in plan])
         if callback is not None:
             callback(len(rows), len(plan))
     return [rows[r[0]] for r in plan]

@@ -11,23 +11,31 @@ import json
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import atomic_write
+from infra.files import MARK, atomic_write
 
 __all__ = ["write_run", "write_csv", "write_mdf"]
 
 
 def write_csv(path, time, signals, units, metadata):
-    """CSV: ``# key: value`` metadata lines, a header ``name [unit]``."""
+    """CSV: ``# written by judder``, ``# key: value`` metadata lines, a
+    header ``name [unit]``; an empty cell where a channel has no sample
+    (NaN: e.g. a pick-up before its shaft turns one tooth)."""
     buffer = io.StringIO()
+    buffer.write(f"# {MARK}\n# an empty cell is no sample of that channel at "
+                 "that time\n")
     for key, value in metadata.items():
         buffer.write(f"# {key}: {json.dumps(value)}\n")
     names = list(signals)
     buffer.write(",".join(["time [s]"] + [f"{n} [{units[n]}]"
                                           for n in names]) + "\n")
     for i, t in enumerate(time):
-        buffer.write(",".join([f"{t:.9g}"] + [f"{signals[n][i]:.9g}"
+        buffer.write(",".join([f"{t:.9g}"] + [_cell(signals[n][i])
                                               for n in names]) + "\n")
     atomic_write(path, lambda stream: stream.write(buffer.getvalue().encode()))
+
+
+def _cell(value):
+    return f"{value:.9g}" if np.isfinite(value) else ""
 
 
 def write_mdf(path, channels, metadata):
@@ -55,6 +63,7 @@ def write_mdf(path, channels, metadata):
     for signals in groups.values():
         mdf.append(signals, comment=json.dumps(metadata))
     mdf.header.comment = json.dumps(metadata)
+    mdf.header.author = MARK
 
     def write(stream):
         buffer = io.BytesIO()

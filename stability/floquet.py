@@ -30,6 +30,11 @@ def leading_multipliers(monodromies):
         Sorted by decreasing modulus.
     leading : ndarray of complex, shape (k,)
     """
+    if not np.isfinite(monodromies).all():
+        raise JudderError("the response grows beyond the floating-point "
+                          "range over one dither period (the monodromy "
+                          "overflows); allowed: a smaller dither amplitude "
+                          "or friction gradient")
     lam = np.linalg.eigvals(monodromies)
     order = np.argsort(-np.abs(lam), axis=-1, kind="stable")
     lam = np.take_along_axis(lam, order, axis=-1)

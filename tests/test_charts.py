@@ -171,7 +171,8 @@ def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
     lowest = data["boundary"][1][1]
     assert data["boundary"] == [[60.0, None], [103.0, lowest]]
     assert lowest in (0.14, 0.26)
-    assert boundary.read_text().splitlines() == ["freq_hz,p_f_bar", "60,",
+    assert boundary.read_text().splitlines() == ["# written by judder",
+                                                 "freq_hz,p_f_bar", "60,",
                                                  f"103,{lowest:g}"]
     assert plot.read_bytes()[:4] == b"\x89PNG"
     with np.load(out) as npz:

@@ -131,7 +131,8 @@ def test_tongues_json_and_csv(tmp_path):
     assert numbers[2]["kind"] == "single-period"
     assert abs(numbers[5]["tip_offset_percent"]) < 0.5
     assert data["max_boundary_multiplier_error"] < 1e-6
-    header, first = out.read_text().splitlines()[:2]
+    mark, header, first = out.read_text().splitlines()[:3]
+    assert mark == "# written by judder"
     assert header.startswith("freq_hz,p_f_bar,single_period_bar")
     assert first.startswith("10,")
 

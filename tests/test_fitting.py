@@ -48,9 +48,12 @@ def test_bounds_must_contain_the_start():
 
 def test_read_boundary_csv():
     freqs, amps = read_boundary_csv(
-        "freq_hz,p_f_bar\n60,0.7\n# comment\n150,\n100,0.2,extra\n")
+        "freq_hz,p_f_bar\n60,0.7\n# comment\n150,\n100,0.2\n")
     np.testing.assert_allclose(freqs, [60, 150, 100])
     assert amps[0] == pytest.approx(0.7e5) and np.isnan(amps[1])
+    # a cell the header does not name is refused, not ignored (issue 9)
+    with pytest.raises(JudderError, match="line 3"):
+        read_boundary_csv("freq_hz,p_f_bar\n60,0.7\n100,0.2,extra\n")
 
 
 @pytest.mark.parametrize("text, words", [

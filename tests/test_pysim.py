@@ -195,7 +195,7 @@ def test_simulate_cli_json_and_outputs(tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["simulate", "--freq", "-5", "--pf", "0.1"], ["--freq", "> 0"]),
+    (["simulate", "--freq", "-5", "--pf", "0.1"], ["--freq", ">= 0.001"]),
     (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "w_motor=x"],
      ["--bench"]),
     (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "w_moter=1"],

@@ -92,7 +92,7 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     (["--freq", "105", "--pf", "-1"], ["--pf -1 bar", ">= 0"]),
     (["--sensitivity", "k99"], ["--sensitivity", "'k99'", "k12"]),
     (["--chart", "missing.npz"], ["--chart missing.npz"]),
-    (["--grid", "0:220:10"], ["--grid", "> 0 Hz"]),
+    (["--grid", "0:220:10"], ["--grid 0 is not allowed", ">= 0.001"]),
 ])
 def test_report_refuses_bad_input(args, words, tmp_path, capsys):
     out = tmp_path / "r.html"

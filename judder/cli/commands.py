@@ -15,6 +15,7 @@ from infra.units import PA_PER_BAR
 from .. import api
 from ..inputs import (read_boundary, read_chart_boundary,
                       read_chart_min_growth)
+from .values import check_campaign_disk, check_map_memory, check_work
 from .options import (check_number, emit, make_parents, model_title,
                       parameters_of, parse_grid, parse_list, parse_waveform,
                       Progress)
@@ -24,6 +25,11 @@ __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_crosscheck", "cmd_campaign", "cmd_chart", "cmd_check",
            "cmd_advise", "cmd_report"]
 
+#: Multipliers of the nominal value in sensitivity without --factors.
+DEFAULT_FACTORS = "0.5,2"
+#: Fewest dither periods of a crosscheck run (the multipliers are fitted
+#: to one sample per period).
+MIN_CROSSCHECK_PERIODS = 20
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
 
@@ -123,6 +129,7 @@ def cmd_map(args):
                           f" points; allowed: at most {MAX_MAP_POINTS}")
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
+    check_map_memory(params.replace(**changes), freqs, amplitudes)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(
@@ -183,13 +190,17 @@ def cmd_sensitivity(args):
     freqs = parse_grid(args.freq, "--freq", "Hz")
     p_max_bar = _pf_max(args)
     params, changes = parameters_of(args)
-    factors = parse_list(args.factors, "--factors")
+    if args.values is not None and args.factors is not None:
+        raise JudderError(f"--values {args.values} and --factors "
+                          f"{args.factors} given; allowed: one of them")
+    factors = parse_list(args.factors or DEFAULT_FACTORS, "--factors")
     values = parse_list(args.values, "--values") if args.values else None
     if values is None:
         for factor in factors:
             check_number("--factors", factor, "(factor)")
     make_parents(args.out, args.plot)
     cases = 1 + len(names) * len(values or factors)
+    check_work("--params x --values/--factors", cases, "cases")
     with Progress(cases, "sensitivity cases") as progress:
         result = api.sensitivity(names, freqs, p_max_bar, factors=factors,
                                  values=values, parameters=params,
@@ -237,25 +248,47 @@ def cmd_threshold(args):
          text + _written(args.out, args.plot))
 
 
-def _bounds(items):
-    """``NAME=LOW:HIGH`` strings of --bounds as ``{name: (low, high)}``."""
+def _bounds(items, params, names):
+    """``NAME=LOW:HIGH`` strings of --bounds as ``{name: (low, high)}``,
+    each a fitted parameter with LOW < HIGH both allowed for it (SI, or
+    with units)."""
+    from infra.quantities import parse_quantity
     bounds = {}
     for item in items:
         name, _, rng = item.partition("=")
+        name = name.strip()
         parts = rng.split(":")
-        try:
-            low, high = float(parts[0]), float(parts[1])
-        except (ValueError, IndexError):
-            raise JudderError(f"--bounds {item!r} is not NAME=LOW:HIGH") \
-                from None
-        bounds[name.strip()] = (low, high)
+        if name not in names or len(parts) != 2:
+            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
+                              "NAME=LOW:HIGH with NAME one of --fit ("
+                              f"{', '.join(names)})")
+        spec = params.specs[name]
+        low, high = (spec.check(parse_quantity(part, spec.unit,
+                                               f"--bounds {name}"))
+                     for part in parts)
+        if not low < high:
+            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
+                              f"LOW < HIGH, each {spec.allowed()} "
+                              f"[{spec.unit}]")
+        bounds[name] = (low, high)
     return bounds
+
+
+def _fit_names(text, params):
+    names = parse_list(text, "--fit", str)
+    unknown = [n for n in names if n not in params.specs]
+    if unknown or len(set(names)) != len(names):
+        raise JudderError(f"--fit {text!r} is not allowed; allowed: "
+                          "distinct parameter names of the "
+                          f"{params.model} model: {', '.join(params.specs)}")
+    return names
 
 
 def cmd_fit(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
-    names = parse_list(args.fit, "--fit", str)
     params, changes = parameters_of(args)
+    names = _fit_names(args.fit, params)
+    bounds = _bounds(args.bounds, params, names)
     default_p_max = 1.5
     default_growth = 0.0
     if args.chart:
@@ -272,13 +305,6 @@ def cmd_fit(args):
     bench = _bench_values(args.bench) if args.bench_linearisation else None
     p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
                              else args.pf_max, "bar")
-    bounds = _bounds(args.bounds)
-    if args.starts < 1:
-        raise JudderError(f"--starts {args.starts} is not allowed; allowed: "
-                          "a whole number >= 1")
-    if args.workers is not None and args.workers < 1:
-        raise JudderError(f"--workers {args.workers} is not allowed; "
-                          "allowed: a whole number >= 1")
     make_parents(args.plot, args.save_params)
     with Progress(None, "fit") as progress:
         report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar,
@@ -324,18 +350,38 @@ def _compared_with(result):
     return f"{what} of {model}; fitted: {', '.join(result.names)}"
 
 
+#: Bench parameters of ``simulate --bench``: unit and allowed range
+#: (low, high, low_open, integer).
+BENCH_PARAMETERS = {
+    "w_motor": ("rad/s", 0.0, 2e3, True, False),
+    "t_engage": ("s", 0.0, 3600.0, False, False),
+    "t_ramp": ("s", 0.0, 3600.0, True, False),
+    "p_load": ("Pa", 0.0, 1e8, False, False),
+    "S_load": ("m^2", 0.0, 1.0, True, False),
+    "N_c_load": ("1", 1.0, 100.0, False, True),
+    "d_control": ("N m s/rad", 0.0, 1e7, False, False),
+}
+
+
 def _bench_values(assignments):
+    """``NAME=VALUE`` strings of --bench, checked against
+    :data:`BENCH_PARAMETERS` (SI, or with a unit: w_motor=1000rpm)."""
+    from .values import option_value
     values = {}
     for text in assignments:
         name, sep, value = text.partition("=")
-        try:
-            values[name.strip()] = float(value)
-        except ValueError:
-            raise JudderError(f"--bench {text!r} is not NAME=VALUE with a "
-                              "number") from None
-        if not sep or not math.isfinite(values[name.strip()]):
-            raise JudderError(f"--bench {text!r} is not NAME=VALUE with a "
-                              "finite number")
+        name = name.strip()
+        if not sep or name not in BENCH_PARAMETERS:
+            raise JudderError(f"--bench {text!r} is not allowed; allowed: "
+                              "NAME=VALUE with NAME one of "
+                              f"{', '.join(BENCH_PARAMETERS)}")
+        unit, low, high, low_open, integer = BENCH_PARAMETERS[name]
+        number = option_value(value, f"--bench {name}", unit, low, high,
+                              low_open)
+        if integer and number != int(number):
+            raise JudderError(f"--bench {text!r} is not allowed; allowed: a "
+                              f"whole number from {low:g} to {high:g}")
+        values[name] = number
     return values
 
 
@@ -358,8 +404,7 @@ def _engagement_line(s):
 
 def cmd_simulate(args):
     """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
-    freqs = [check_number("--freq", f, "Hz")
-             for f in parse_list(args.freq, "--freq")]
+    freqs = [check_number("--freq", f, "Hz") for f in args.freq]
     check_number("--pf", args.pf, "bar", strict=False)
     check_number("--duration", args.duration, "s")
     params, changes = parameters_of(args)
@@ -397,6 +442,15 @@ def cmd_crosscheck(args):
     if freqs[0] <= 0:
         raise JudderError("--freq: allowed: frequencies > 0 Hz")
     check_number("--duration", args.duration, "s")
+    if args.duration * freqs[0] < MIN_CROSSCHECK_PERIODS:
+        raise JudderError(
+            f"--duration {args.duration:g} s holds "
+            f"{args.duration * freqs[0]:.3g} periods at {freqs[0]:g} Hz; "
+            f"allowed: at least {MIN_CROSSCHECK_PERIODS} periods of the "
+            f"lowest frequency (>= {MIN_CROSSCHECK_PERIODS / freqs[0]:.3g} s)"
+            ", for the multipliers to be fitted")
+    check_work("--freq x --pf", 2 * len(freqs) * len(amplitudes),
+               "FMU runs")
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs) * len(amplitudes), "FMU runs") as progress:
@@ -436,6 +490,8 @@ def cmd_campaign(args):
     check_number("--noise-rpm", args.noise_rpm, "rpm", strict=False)
     params, changes = parameters_of(args)
     runs = (len(freqs) * len(amplitudes) * len(rpm) * len(temperatures))
+    check_work("--freq x --pf x --rpm x --temperatures", runs, "runs")
+    check_campaign_disk(args.out, runs, args.duration, max(rpm), formats)
     with Progress(runs, "bench runs") as progress:
         result = api.campaign(args.out, freqs, amplitudes, engine_rpm=rpm,
                               temperatures=temperatures,
@@ -445,8 +501,10 @@ def cmd_campaign(args):
                               changes=changes, workers=args.workers,
                               progress=progress)
     data = result.as_dict()
-    text = (f"{data['runs']} runs ({data['ok']} ok) in "
-            f"{result.seconds:.1f} s; index {result.index}"
+    text = (f"{data['runs']} runs ({data['ok']} ok"
+            + (f"; {data['reused']} already in the folder with the same "
+               "settings, kept" if data["reused"] else "")
+            + f") in {result.seconds:.1f} s; index {result.index}"
             + "".join(f"\n  failed {r['run_id']}: {r['message']}"
                       for r in result.failed))
     emit(args, data, text)
@@ -489,7 +547,8 @@ def cmd_chart(args):
         "title": "experimental stability chart"
                  + (f" with the {params.model} model's boundaries"
                     if overlay else "")})
-    boundaries = (result.save_boundary(args.boundary) if args.boundary
+    boundaries = (result.save_boundary(args.boundary, force=args.force)
+                  if args.boundary
                   and result.chart.read else [])
     data = {**result.as_dict(), **files, "boundary_files": boundaries}
     rows = []

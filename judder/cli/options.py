@@ -9,42 +9,111 @@ from pathlib import Path
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import to_json
+from infra.files import check_folder_writable, check_output, to_json
 
 from ..inputs import load_parameters, read_input
 
 __all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
-           "check_number", "make_parents", "check_plot_format", "Progress",
-           "model_title"]
+           "check_number", "make_parents", "Progress",
+           "model_title", "check_outputs", "OUTPUTS"]
+
+#: The output files of each command: (option attribute, option, suffixes;
+#: None for a figure, any format matplotlib writes).
+OUTPUTS = {
+    "params": (("save", "--save", ("toml",)),),
+    "map": (("out", "--out", ("npz",)), ("plot", "--plot", None)),
+    "tongues": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "sensitivity": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "threshold": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "fit": (("save_params", "--save-params", ("toml",)),
+            ("plot", "--plot", None)),
+    "simulate": (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None)),
+    "crosscheck": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "chart": (("out", "--out", ("npz",)), ("plot", "--plot", None),
+              ("boundary", "--boundary", ("csv",))),
+    "check": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "advise": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
+    "report": (("out", "--out", ("html",)), ("pdf", "--pdf", ("pdf",))),
+}
+
+
+def _figure_formats():
+    from matplotlib.backend_bases import FigureCanvasBase
+    return set(FigureCanvasBase.get_supported_filetypes())
+
+
+def check_outputs(args):
+    """Refuse every output of the command before any work: a folder, a
+    parent that is a file, an unwritable folder, an unknown format, or a
+    file judder did not write (unless --force); see
+    :func:`infra.files.check_output`."""
+    force = getattr(args, "force", False)
+    seen = {}
+    for attribute, option, suffixes in OUTPUTS.get(args.command, ()):
+        path = getattr(args, attribute, None)
+        if path is None:
+            continue
+        check_output(path, option, suffixes or _figure_formats(), force)
+        key = Path(path).resolve()
+        if key in seen:
+            raise JudderError(f"{option} {path} is also given as "
+                              f"{seen[key]}; allowed: a different file for "
+                              "each output")
+        seen[key] = option
+    if args.command == "campaign":
+        check_campaign_folder(args.out)
+
+
+def check_campaign_folder(text):
+    """A campaign folder: a non-empty path that is not a file, in a
+    writable place."""
+    if not str(text).strip():
+        raise JudderError(f"--out {text!r}: allowed: a folder name (the "
+                          "campaign folder, created if needed)")
+    check_folder_writable(text, "--out", text)
+
+
+#: Most values of one grid axis (a typo like N = 100000000000 would
+#: otherwise allocate hundreds of GiB).
+MAX_GRID_VALUES = 100_000
 
 
 def parse_grid(text, option, unit, allow_negative=False):
     """Parse ``START:STOP:N`` (or a single value) into a linspace.
+
+    START and STOP are plain numbers in ``unit`` or carry a unit
+    (``0:300mbar:10``); see :func:`judder.cli.values.option_value`.
 
     Raises
     ------
     JudderError
         Naming ``option`` and saying what is allowed.
     """
+    from .values import FREQ_RANGE_HZ, option_value
     parts = text.split(":")
     lowest = "" if allow_negative else "0 <= "
     allowed = (f"allowed: START:STOP:N with {lowest}START <= STOP in {unit} "
-               f"and N a whole number >= 1, or one value "
-               f"(e.g. {option} 10:220:300)")
+               f"and N a whole number from 1 to {MAX_GRID_VALUES}, or one "
+               f"value (e.g. {option} 10:220:300)")
+    low, high = (-math.inf, math.inf) if allow_negative else (0.0, math.inf)
+    if unit == "Hz":
+        low, high = FREQ_RANGE_HZ
     try:
         if len(parts) == 1:
-            start = stop = float(parts[0])
+            start = stop = option_value(parts[0], option, unit, low, high)
             count = 1
         elif len(parts) == 3:
-            start, stop = float(parts[0]), float(parts[1])
+            start = option_value(parts[0], option, unit, low, high)
+            stop = option_value(parts[1], option, unit, low, high)
             count = int(parts[2])
         else:
             raise ValueError
+    except JudderError:
+        raise
     except ValueError:
         raise JudderError(f"{option} {text!r} is not a grid; {allowed}") \
             from None
-    if not (np.isfinite(start) and np.isfinite(stop)) or start > stop \
-            or (start < 0 and not allow_negative) or count < 1 \
+    if start > stop or count < 1 or count > MAX_GRID_VALUES \
             or (count == 1 and start != stop):
         raise JudderError(f"{option} {text!r} is not allowed; {allowed}")
     return np.linspace(start, stop, count)
@@ -67,6 +136,9 @@ def parameters_of(args):
                                  param_file=args.param_file)
     changed = params.with_overrides(args.set)
     names = [text.partition("=")[0].strip() for text in args.set]
+    from .values import check_plain_pressure
+    for text in args.set:
+        check_plain_pressure(text)
     return params, {name: changed[name] for name in names}
 
 
@@ -186,17 +258,6 @@ def check_number(option, value, unit, strict=True):
                           f"allowed: a finite value {'>' if strict else '>='}"
                           f" 0 {unit}")
     return value
-
-
-def check_plot_format(path):
-    """Refuse a --plot file whose suffix matplotlib cannot write, before
-    any work is done."""
-    from matplotlib.backend_bases import FigureCanvasBase
-    formats = FigureCanvasBase.get_supported_filetypes()
-    suffix = Path(path).suffix.lstrip(".").lower()
-    if suffix not in formats:
-        raise JudderError(f"--plot {path}: unknown format {suffix!r}; "
-                          f"allowed: {', '.join(sorted(formats))}")
 
 
 def make_parents(*paths):

@@ -80,7 +80,7 @@ def _waveform_option(parser):
 
 
 def _pf_max_option(parser, meaning):
-    parser.add_argument("--pf-max", type=float, default=1.5, metavar="BAR",
+    parser.add_argument("--pf-max", type=str, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
 
 
@@ -101,6 +101,10 @@ def _min_growth_option(parser, extra=""):
     parser.add_argument("--min-growth", type=float,
                         default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
                         help=MIN_GROWTH_HELP + extra)
+def _force_option(parser):
+    parser.add_argument("--force", action="store_true",
+                        help="allow replacing output files judder did not "
+                             "write (a file it wrote is replaced anyway)")
 
 
 def _method_option(parser):
@@ -147,9 +151,9 @@ def build_parser():
                                    "and its Floquet multipliers (Eq. 10-13), "
                                    "rigid-body angles removed; the leading "
                                    "multiplier is classified as in Fig. 15.")
-    p.add_argument("--freq", type=float, required=True, metavar="HZ",
+    p.add_argument("--freq", type=str, required=True, metavar="HZ",
                    help="dither frequency, Hz")
-    p.add_argument("--pf", type=float, required=True, metavar="BAR",
+    p.add_argument("--pf", type=str, required=True, metavar="BAR",
                    help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="the multipliers on the complex plane with the "
@@ -180,6 +184,7 @@ def build_parser():
     _model_options(p)
     _modelica_options(p)
     _waveform_option(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_map)
 
     p = sub.add_parser(
@@ -213,6 +218,7 @@ def build_parser():
     p.add_argument("--plot", metavar="FILE.png",
                    help="the settings marked on the map")
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_check)
 
     p = sub.add_parser(
@@ -260,6 +266,7 @@ def build_parser():
                    help="safe amplitude per frequency and the map of the "
                         "advised design")
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_advise)
 
     p = sub.add_parser("tongues", help="tongue boundaries, labels and tips",
@@ -273,7 +280,7 @@ def build_parser():
     p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
     _pf_max_option(p, "largest amplitude searched")
-    p.add_argument("--min-growth", type=float, default=0.0, metavar="1/S",
+    p.add_argument("--min-growth", type=str, default=0.0, metavar="1/S",
                    help="boundaries of judder growing at least this fast, "
                         "1/s (default 0: the stability boundaries of Fig. "
                         "14; map, check and advise use 1, one e-fold per "
@@ -290,6 +297,7 @@ def build_parser():
     _model_options(p)
     _modelica_options(p)
     _waveform_option(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_tongues)
 
     p = sub.add_parser("sensitivity", help="tongue shifts per parameter "
@@ -304,7 +312,7 @@ def build_parser():
     p.add_argument("--params", required=True, metavar="NAMES",
                    help="comma-separated parameters, e.g. "
                         "k12,k24,J1,J2,J3,J4,mu_g,c12")
-    p.add_argument("--factors", default="0.5,2", metavar="F1,F2",
+    p.add_argument("--factors", metavar="F1,F2",
                    help="multipliers of the nominal value (default 0.5,2)")
     p.add_argument("--values", metavar="V1,V2",
                    help="absolute values (SI) instead of --factors")
@@ -319,6 +327,7 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     _modelica_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 
     p = sub.add_parser("threshold", help="friction-gradient threshold "
@@ -340,6 +349,7 @@ def build_parser():
                    help="threshold against c_i as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="Fig. 19a and 19b")
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_threshold)
 
     p = sub.add_parser("fit", help="fit parameters to a measured boundary "
@@ -367,7 +377,7 @@ def build_parser():
                    metavar="NAME=LOW:HIGH",
                    help="search range of a fitted parameter, SI; repeatable "
                         "(default a factor 100 either way of the start)")
-    p.add_argument("--pf-max", type=float, default=None, metavar="BAR",
+    p.add_argument("--pf-max", type=str, default=None, metavar="BAR",
                    help="largest amplitude tried on the bench (and searched "
                         "in the model), bar (default 1.5, or the chart's)")
     p.add_argument("--plot", metavar="FILE.png",
@@ -423,13 +433,13 @@ def build_parser():
                                    "and growth as judder chart reads them, "
                                    "and the Floquet verdict of the bench's "
                                    "linearisation (c1 + d_control).")
-    p.add_argument("--freq", required=True, metavar="HZ[,HZ...]",
+    p.add_argument("--freq", type=str, required=True, metavar="HZ[,HZ...]",
                    help="dither frequency, Hz; several (e.g. 23,105) give "
                         "one engagement each, side by side, with their "
                         "spectra overlaid (Fig. 1, Fig. 8)")
-    p.add_argument("--pf", type=float, required=True, metavar="BAR",
+    p.add_argument("--pf", type=str, required=True, metavar="BAR",
                    help="dither amplitude, bar")
-    p.add_argument("--duration", type=float, metavar="S",
+    p.add_argument("--duration", type=str, metavar="S",
                    help="simulated time, s (default: the model's 4 s)")
     p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
                    help="also run a correct engagement: without dither, or "
@@ -445,6 +455,7 @@ def build_parser():
                    help="time histories and spectra")
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_simulate)
 
     p = sub.add_parser("crosscheck", help="FMU growth rates against Floquet "
@@ -461,7 +472,7 @@ def build_parser():
                         "5, 2 and 6)")
     p.add_argument("--pf", default="0.1:0.7:4", metavar="START:STOP:N",
                    help="dither amplitudes, bar (default 0.1:0.7:4)")
-    p.add_argument("--duration", type=float, default=3.0, metavar="S",
+    p.add_argument("--duration", type=str, default=3.0, metavar="S",
                    help="length of each run, s (default 3)")
     _workers_option(p)
     p.add_argument("--out", metavar="FILE.csv", help="table of all points")
@@ -473,6 +484,7 @@ def build_parser():
     p.add_argument("--perturb", default="w_in", metavar="NAME",
                    help="start-speed parameter raised by 1 rad/s in the "
                         "second run of each point (default w_in)")
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_crosscheck)
 
     p = sub.add_parser("campaign", help="bench emulator: engagement "
@@ -497,9 +509,9 @@ def build_parser():
     p.add_argument("--temperatures", default="65-70", metavar="T1,T2|all",
                    help="oil temperature ranges (55-60, 65-70, 75-80, "
                         "85-90, or all), represented by parameter changes")
-    p.add_argument("--duration", type=float, default=1.5, metavar="S",
+    p.add_argument("--duration", type=str, default=1.5, metavar="S",
                    help="length of each engagement, s (default 1.5)")
-    p.add_argument("--noise-rpm", type=float, default=0.5,
+    p.add_argument("--noise-rpm", type=str, default=0.5,
                    help="speed measurement noise, rpm (default 0.5)")
     p.add_argument("--seed", type=int, default=1, help="noise seed")
     p.add_argument("--format", default="csv,mf4", metavar="csv,mf4",
@@ -545,10 +557,10 @@ def build_parser():
     p.add_argument("--group-by", action="append", metavar="COLUMN",
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")
-    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
+    p.add_argument("--min-growth", type=str, default=None, metavar="1/S",
                    help="growth rate of the non-periodic part from which "
                         "a run is judder, 1/s (default 1)")
-    p.add_argument("--min-amplitude", type=float, default=None,
+    p.add_argument("--min-amplitude", type=str, default=None,
                    metavar="RPM", help="smallest judder amplitude, rpm "
                                        "(default 2)")
     p.add_argument("--out", metavar="FILE.npz",
@@ -561,6 +573,7 @@ def build_parser():
     _workers_option(p)
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_chart)
 
     p = sub.add_parser("report", help="one HTML file with the paper's "
@@ -613,5 +626,6 @@ def build_parser():
     _workers_option(p)
     _method_option(p)
     _model_options(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_report)
     return parser

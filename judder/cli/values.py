@@ -1,0 +1,248 @@
+"""Values of the command-line options: numbers with or without a unit,
+checked against what is allowed and plausible before any work.
+
+A plain number is in the option's unit (frequencies Hz, amplitudes bar,
+times s, speeds rpm, parameters SI); a number may carry a unit instead
+(``--freq 1.2kHz``, ``--pf 300mbar``, ``--duration 50ms``), read by
+:func:`infra.quantities.parse_quantity`. A plain number far outside what
+its unit makes plausible is refused with the likely slip
+(``--pf 30000``: Pa given for bar; ``--set p_m=10``: bar given for Pa).
+"""
+
+import math
+import os
+import sys
+
+import numpy as np
+
+from infra.errors import JudderError
+from infra.quantities import has_unit, parse_quantity
+from infra.units import PA_PER_BAR
+
+__all__ = ["normalise_options", "option_value", "check_pressures",
+           "check_plain_pressure", "check_plausible",
+           "FREQ_RANGE_HZ", "MAX_PLAIN_PF_BAR", "MIN_PLAIN_P_M_PA",
+           "MAX_WORKERS", "warn"]
+
+#: Dither frequencies allowed, Hz: below, the period needs more
+#: sub-intervals than any engine takes; above, no hydraulic valve
+#: dithers and the multipliers round to 1.
+FREQ_RANGE_HZ = (1e-3, 1e5)
+#: A plain --pf above this (bar) is taken for a slip of unit (Pa for bar).
+MAX_PLAIN_PF_BAR = 100.0
+#: A plain p_m below this (Pa, i.e. 1 bar) is taken for bar given as Pa.
+MIN_PLAIN_P_M_PA = 1e5
+#: Most worker processes (a request for more is a typo).
+MAX_WORKERS = 256
+#: Longest simulated time of one run, s.
+MAX_DURATION_S = 3600.0
+
+#: Options holding one number: attribute -> (option, unit, low, high,
+#: low_open). ``freq`` and ``pf`` are single values only in these
+#: commands (elsewhere they are grids).
+_SINGLE = {"freq": ("--freq", "Hz", *FREQ_RANGE_HZ, False),
+           "pf": ("--pf", "bar", 0.0, math.inf, False),
+           "pf_max": ("--pf-max", "bar", 0.0, math.inf, True),
+           "duration": ("--duration", "s", 0.0, MAX_DURATION_S, True),
+           "min_growth": ("--min-growth", "1/s", 0.0, math.inf, False),
+           "noise_rpm": ("--noise-rpm", "rpm", 0.0, math.inf, False),
+           "min_amplitude": ("--min-amplitude", "rpm", 0.0, math.inf,
+                             False)}
+_SINGLE_FREQ_COMMANDS = ("floquet", "simulate")
+
+
+def warn(text):
+    """A warning line on stderr (the command goes on)."""
+    print(f"judder: warning: {text}", file=sys.stderr)
+
+
+def option_value(text, option, unit, low=-math.inf, high=math.inf,
+                 low_open=False):
+    """A number of an option, in ``unit`` (plain, or with a unit).
+
+    Raises
+    ------
+    JudderError
+        Naming the option, the value and the allowed range.
+    """
+    value = parse_quantity(text, unit, option)
+    allowed = _allowed(unit, low, high, low_open)
+    if not math.isfinite(value) or value > high or (
+            value <= low if low_open else value < low):
+        raise JudderError(f"{option} {text} is not allowed; allowed: "
+                          f"{allowed}")
+    if unit == "bar" and not has_unit(text) and value > MAX_PLAIN_PF_BAR:
+        raise JudderError(
+            f"{option} {text} bar is not plausible for a dither amplitude "
+            f"(a plain number is in bar); did you give Pa? {value:g} Pa = "
+            f"{value / PA_PER_BAR:g} bar: write {text}Pa, or give the unit "
+            f"(allowed: a plain number <= {MAX_PLAIN_PF_BAR:g} bar)")
+    return value
+
+
+def _allowed(unit, low, high, low_open):
+    parts = []
+    if low > -math.inf:
+        parts.append(f"{'>' if low_open else '>='} {low:g}")
+    if high < math.inf:
+        parts.append(f"<= {high:g}")
+    return (" and ".join(parts) or "a finite number") + f" {unit}" + (
+        " (a plain number; or with a unit, e.g. 1.2kHz)" if unit == "Hz"
+        else "")
+
+
+def normalise_options(args):
+    """Turn the number options of ``args`` into floats (in their units)
+    and check the whole numbers (--workers, --seed, --starts), before
+    any work."""
+    for attribute, (option, unit, low, high, low_open) in _SINGLE.items():
+        if attribute in ("freq", "pf") and \
+                args.command not in _SINGLE_FREQ_COMMANDS:
+            continue
+        value = getattr(args, attribute, None)
+        if attribute == "freq" and args.command == "simulate":
+            # one engagement per frequency (Fig. 1, 8): a list
+            setattr(args, attribute, [
+                option_value(text.strip(), option, unit, low, high, low_open)
+                for text in value.split(",")])
+        elif isinstance(value, str):
+            setattr(args, attribute, option_value(value, option, unit, low,
+                                                  high, low_open))
+    workers = getattr(args, "workers", None)
+    if workers is not None and not 1 <= workers <= MAX_WORKERS:
+        raise JudderError(f"--workers {workers} is not allowed; allowed: a "
+                          f"whole number from 1 to {MAX_WORKERS}")
+    seed = getattr(args, "seed", None)
+    if seed is not None and not 0 <= seed < 2 ** 63:
+        raise JudderError(f"--seed {seed} is not allowed; allowed: a whole "
+                          "number >= 0")
+    starts = getattr(args, "starts", None)
+    if starts is not None and not 1 <= starts <= 1000:
+        raise JudderError(f"--starts {starts} is not allowed; allowed: a "
+                          "whole number from 1 to 1000")
+
+
+def check_pressures(p_f_max_pa, params, option="--pf"):
+    """Warn when the dither amplitude reaches the mean pressure: the
+    clutch pressure ``p_m + p_f cos`` would go below zero, which a clutch
+    cannot do and the linear model does not know."""
+    p_m = params["p_m"] if "p_m" in params.specs else None
+    if p_m is not None and np.isfinite(p_f_max_pa) and p_f_max_pa >= p_m:
+        warn(f"{option}: p_f = {p_f_max_pa / PA_PER_BAR:g} bar reaches the "
+             f"mean pressure p_m = {p_m / PA_PER_BAR:g} bar; the clutch "
+             "pressure p_m + p_f cos(2 pi f t) would go below zero, which "
+             "the linear model does not represent (check the units: --pf "
+             "is in bar, p_m in Pa unless a unit is given)")
+
+
+def check_plain_pressure(assignment):
+    """Refuse ``--set p_m=10``: a plain number is in Pa, and a mean clutch
+    pressure below 1 bar is bar given as Pa; with a unit it is taken as
+    it is (``p_m=10bar``, ``p_m=50000Pa``)."""
+    name, _, value = assignment.partition("=")
+    if name.strip() != "p_m" or has_unit(value.strip()):
+        return
+    number = float(value)
+    if 0 <= number < MIN_PLAIN_P_M_PA:
+        raise JudderError(
+            f"--set {assignment.strip()}: p_m = {number:g} Pa (a plain "
+            f"number is in Pa, SI) is not plausible for a clutch pressure "
+            f"(below 1 bar); did you mean {value.strip()}bar = "
+            f"{number * PA_PER_BAR:g} Pa? Give the unit (p_m={value.strip()}"
+            f"bar, or p_m={value.strip()}Pa to keep it)")
+
+
+#: Where each command keeps its largest dither amplitude: (attribute,
+#: grid or single value).
+_AMPLITUDE = {"floquet": ("pf", False), "simulate": ("pf", False),
+              "map": ("pf", True), "crosscheck": ("pf", True),
+              "campaign": ("pf", True), "tongues": ("pf_max", False),
+              "sensitivity": ("pf_max", False), "fit": ("pf_max", False)}
+
+
+def check_plausible(args):
+    """Warn when the command's largest dither amplitude reaches the mean
+    pressure of its parameter set (see :func:`check_pressures`)."""
+    from .options import parameters_of, parse_grid
+    if args.command not in _AMPLITUDE:
+        return
+    attribute, grid = _AMPLITUDE[args.command]
+    value = getattr(args, attribute, None)
+    if value is None:
+        return
+    p_max_bar = parse_grid(value, "--pf", "bar").max() if grid else value
+    params, _ = parameters_of(args)
+    check_pressures(p_max_bar * PA_PER_BAR, params,
+                    "--pf" if attribute == "pf" else "--pf-max")
+
+
+def available_memory():
+    """Bytes of memory this process may use: the memory available now
+    (``MemAvailable`` of /proc/meminfo), else the physical memory."""
+    try:
+        with open("/proc/meminfo") as stream:
+            for line in stream:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+
+
+def check_map_memory(params, freq_hz, p_f_bar):
+    """Refuse a map whose Dyson series would not fit in memory.
+
+    At each frequency the engine holds, for every amplitude, one matrix
+    per sub-interval of the period (:class:`stability.monodromy.
+    DysonPropagator`); the sub-intervals at the lowest frequency follow
+    from the spectral radius of ``A0`` (the modulation only adds more).
+    """
+    from stability import build_driveline
+    system = build_driveline(params).periodic_system()
+    size = len(system.u)
+    radius = float(np.abs(np.linalg.eigvals(system.A0)).max())
+    f = float(np.min(freq_hz))
+    steps = max(1, math.ceil((2 * radius + 2 * math.pi * f) / f / 8.0))
+    needed = 3 * len(p_f_bar) * steps * size * size * 8 \
+        + 64 * len(freq_hz) * len(p_f_bar)
+    free = available_memory()
+    if needed > 0.8 * free:
+        raise JudderError(
+            f"--freq x --pf needs at least {needed / 2**30:.3g} GiB "
+            f"({len(p_f_bar)} amplitudes x {steps} sub-intervals at "
+            f"{f:g} Hz), and {free / 2**30:.3g} GiB are available; "
+            "allowed: fewer amplitudes per frequency, or higher "
+            "frequencies")
+    return needed
+
+
+#: Most runs of one campaign, FMU runs of one crosscheck, cases of one
+#: sensitivity study: beyond, a request is a typo or a week of work.
+MAX_RUNS = 100_000
+#: Bytes one campaign run writes per format, second of engagement and
+#: 1000 rpm (41 teeth; measured 29.6 kB CSV and 31.3 kB MF4 for 1 s).
+BYTES_PER_RUN_SECOND = 32_000
+
+
+def check_work(option, count, what):
+    """Refuse more than :data:`MAX_RUNS` pieces of work."""
+    if count > MAX_RUNS:
+        raise JudderError(f"{option} asks for {count:.4g} {what}; allowed: "
+                          f"at most {MAX_RUNS} (split the study)")
+
+
+def check_campaign_disk(folder, runs, duration, rpm_max, formats):
+    """Refuse a campaign whose files would not fit on the disk."""
+    import shutil
+    from pathlib import Path
+    needed = (runs * duration * max(rpm_max, 1.0) / 1000.0
+              * BYTES_PER_RUN_SECOND * len(formats))
+    place = Path(folder)
+    while not place.exists():
+        place = place.parent
+    free = shutil.disk_usage(place).free
+    if needed > free:
+        raise JudderError(f"the campaign would write about "
+                          f"{needed / 2**30:.3g} GiB ({runs} runs) and "
+                          f"{free / 2**30:.3g} GiB are free on {place}; "
+                          "allowed: fewer runs, or another folder")
