@@ -396,6 +396,15 @@ def combination_boundaries(transfer, freq_hz, p_max,
     nu : ndarray, shape (nf,)
         Imaginary part of the exponent on the circle (rad/s, in
         ``(0, omega/2)``): the multipliers are ``exp(+-i nu T)``.
+
+    Notes
+    -----
+    Only the first-order combination resonances of two modes are seeded.
+    A complex pair of one mode that leaves the circle close to +1 beside
+    its second-order single-period tongue (``omega ~ w_i``) is not: the
+    geared 5-DOF at 7 and 7.5 Hz has such points (0.91 and 0.99 bar,
+    ``nu / omega ~ 0.03``) that the solver ``'scan'`` finds and this one
+    misses.
     """
     omega = 2 * np.pi * np.atleast_1d(np.asarray(freq_hz, dtype=float))
     order = np.argsort(omega, kind="stable")
