@@ -23,6 +23,11 @@ matrix :math:`H(s) = \tfrac12 \operatorname{diag}(G(s + ik\omega)) S`
   seeds at the first-order combination resonances
   :math:`\omega \approx \omega_i \pm \omega_j` (where the exponents
   :math:`i\omega_i` and :math:`\pm i\omega_j - i\omega` meet).
+  A lightly damped pole of :math:`G` close to the axis makes :math:`F`
+  steep in :math:`\nu`, so Newton runs on :math:`F` times a factor that
+  moves every pole of :math:`G` away from the axis (same zeros on the
+  axis), and points of narrow tongues where it still fails from the seed
+  are found by continuation in frequency from a converged neighbour.
 
 :math:`H` has a zero diagonal, so its eigenvalues come in pairs
 :math:`\pm\mu` and :math:`\mu^2` are the eigenvalues of a matrix half the
@@ -56,6 +61,11 @@ _REAL_TOLERANCE = 1e-8
 #: (relative step in p_f and in nu / omega).
 _NEWTON_ITERATIONS = 30
 _NEWTON_TOLERANCE = 1e-12
+#: Amplitude seeds of the continuation, as multiples of the neighbour's
+#: root: past a tongue's tip the boundary may double in one frequency step
+#: (geared 5-DOF, 0.36 bar at 11.5 Hz, 1.37 at 12.5), and Newton from
+#: the neighbour's own amplitude then drifts to p_f = 0.
+_CONTINUATION_SCALES = np.array([1.0, 2.0, 4.0])
 #: A combination root whose nu lies within this share of omega/2 of 0 or
 #: omega/2 is a real multiplier (+1 or -1), not a complex pair.
 _REAL_MULTIPLIER_GAP = 1e-4
@@ -215,8 +225,11 @@ def _determinant(transfer, omega, p, nu, harmonics):
     """``F = det(I - p H(i nu))`` and its derivatives in ``p`` and ``nu``.
 
     The continuant recurrence ``D_k = D_{k-1} - p^2 g_k g_{k-1} / 4
-    D_{k-2}``, carried with its two derivatives (forward mode). All
-    arguments have shape (e,).
+    D_{k-2}``, carried with its two derivatives (forward mode), times
+    ``Phi(nu) = prod_{k,i} (s_k - lambda_i) / (s_k - lambda_i + |lambda_i|)``
+    (``s_k = i(nu + k omega)``), which is nonzero on the axis and cancels
+    the poles of ``G`` there, so the function Newton sees is smooth near
+    a lightly damped mode. All arguments have shape (e,).
     """
     k = np.arange(-harmonics, harmonics + 1)
     s = 1j * (k[None, :] * omega[:, None] + nu[:, None])
@@ -234,7 +247,14 @@ def _determinant(transfer, omega, p, nu, harmonics):
         D_prev, D = D, new
         Dp_prev, Dp = Dp, new_p
         Dn_prev, Dn = Dn, new_n
-    return D, Dp, Dn
+    # remove the poles of G near the axis (light damping makes F steep):
+    # Phi = prod (s - lambda) / (s - mu), mu = lambda moved left by |lambda|
+    poles = transfer.poles
+    far = poles - np.abs(poles)
+    near_s, far_s = s[..., None] - poles, s[..., None] - far
+    phi = np.prod((near_s / far_s).reshape(len(p), -1), axis=1)
+    dlog = 1j * (1 / near_s - 1 / far_s).reshape(len(p), -1).sum(axis=1)
+    return D * phi, Dp * phi, (Dn + D * dlog) * phi
 
 
 def _combination_seeds(transfer, omega):
@@ -260,36 +280,13 @@ def _combination_seeds(transfer, omega):
     return np.stack(nus, axis=1), np.stack(amps, axis=1)
 
 
-def combination_boundaries(transfer, freq_hz, p_max,
-                           harmonics=COMBINATION_HARMONICS):
-    """Lowest amplitude where a complex pair of multipliers reaches the
-    unit circle, every frequency at once.
+def _newton(transfer, om, nu, p, p_max, harmonics):
+    """Newton's method on ``F(p_f, i nu) = 0`` from each seed at once.
 
-    Parameters
-    ----------
-    transfer : ModalTransfer
-    freq_hz : ndarray, shape (nf,)
-        Dither frequencies, Hz.
-    p_max : float
-        Largest amplitude searched, Pa.
-    harmonics : int
-        Harmonics kept on each side.
-
-    Returns
-    -------
-    amplitude : ndarray, shape (nf,)
-        Pa; NaN where no combination boundary lies in ``(0, p_max]``.
-    nu : ndarray, shape (nf,)
-        Imaginary part of the exponent on the circle (rad/s, in
-        ``(0, omega/2)``): the multipliers are ``exp(+-i nu T)``.
+    All arguments have shape (e,) (``p_max`` and ``harmonics`` scalars);
+    returns the final ``(p, nu)`` and whether each converged.
     """
-    omega = 2 * np.pi * np.asarray(freq_hz, dtype=float)
-    nu0, p0 = _combination_seeds(transfer, omega)            # (nf, ns)
-    if nu0.shape[1] == 0:
-        nan = np.full(len(omega), np.nan)
-        return nan, nan.copy()
-    om = np.broadcast_to(omega[:, None], nu0.shape).ravel()
-    nu, p = nu0.ravel().copy(), p0.ravel().copy()
+    nu, p = nu.copy(), p.copy()
     done = np.zeros(len(p), dtype=bool)
     active = np.arange(len(p))
     with np.errstate(all="ignore"):
@@ -313,17 +310,122 @@ def combination_boundaries(transfer, freq_hz, p_max,
             active = active[~converged & ~lost]
             if len(active) == 0:
                 break
-    p = np.abs(p)
-    # exponents are defined modulo omega and up to sign: fold into [0, omega/2]
+    return p, nu, done
+
+
+def _accepted(p, nu, om, done, p_max):
+    """Converged roots that are a complex pair on the circle within
+    ``(0, p_max]``: their amplitude ``|p|``, else inf; and ``nu`` folded
+    into ``[0, omega/2]`` (exponents are defined modulo omega and up to
+    sign)."""
     folded = np.abs((nu + 0.5 * om) % om - 0.5 * om)
     complex_pair = ((folded > _REAL_MULTIPLIER_GAP * om)
                     & (folded < (0.5 - _REAL_MULTIPLIER_GAP) * om))
-    good = done & complex_pair & (p > 0) & (p <= p_max)
-    candidates = np.where(good, p, np.inf).reshape(len(omega), -1)
-    best = np.argmin(candidates, axis=1)
+    good = done & complex_pair & (np.abs(p) > 0) & (np.abs(p) <= p_max)
+    return np.where(good, np.abs(p), np.inf), folded
+
+
+def _continue(transfer, omega, nu0, p, nu, amplitude, p_max, harmonics):
+    """Continuation in frequency of the combination roots, in place.
+
+    On a steep flank of a narrow tongue Newton from the first-order seed
+    ``nu0`` may not converge. Each seed column (one resonance) is swept
+    along the sorted frequencies: a point without an accepted root is
+    seeded from an accepted neighbour of the same column, with the
+    neighbour's ``p_f`` (times each of ``_CONTINUATION_SCALES``) and its
+    ``nu`` shifted by the change of ``nu0`` between the two frequencies,
+    until no new point is accepted. All
+    arrays have shape (nf, ns); ``omega`` must be ascending.
+    """
+    shape = amplitude.shape
+    fresh = np.isfinite(amplitude)
+    for _ in range(len(omega)):
+        # each point without a root, from its lower and its upper neighbour
+        missing = ~np.isfinite(amplitude)
+        below, above = missing.copy(), missing.copy()
+        below[0], below[1:] = False, below[1:] & fresh[:-1]
+        above[-1], above[:-1] = False, above[:-1] & fresh[1:]
+        (rb, cb), (ra, ca) = np.nonzero(below), np.nonzero(above)
+        if len(rb) + len(ra) == 0:
+            return
+        rows = np.tile(np.concatenate([rb, ra]), len(_CONTINUATION_SCALES))
+        cols = np.tile(np.concatenate([cb, ca]), len(_CONTINUATION_SCALES))
+        near = np.tile(np.concatenate([rb - 1, ra + 1]),
+                       len(_CONTINUATION_SCALES))
+        scale = np.repeat(_CONTINUATION_SCALES, len(rb) + len(ra))
+        om = omega[rows]
+        p_new, nu_new, done = _newton(
+            transfer, om, nu[near, cols] + nu0[rows, cols] - nu0[near, cols],
+            scale * p[near, cols], p_max, harmonics)
+        found, _ = _accepted(p_new, nu_new, om, done, p_max)
+        # per point, the lowest accepted root of its trials
+        order = np.argsort(found, kind="stable")
+        order = order[np.isfinite(found[order])]
+        _, first = np.unique(rows[order] * shape[1] + cols[order],
+                             return_index=True)
+        take = order[first]
+        r, c = rows[take], cols[take]
+        amplitude[r, c], p[r, c], nu[r, c] = found[take], p_new[take], \
+            nu_new[take]
+        fresh = np.zeros(shape, dtype=bool)
+        fresh[r, c] = True
+
+
+def combination_boundaries(transfer, freq_hz, p_max,
+                           harmonics=COMBINATION_HARMONICS):
+    """Lowest amplitude where a complex pair of multipliers reaches the
+    unit circle, every frequency at once.
+
+    Newton's method from the first-order seeds, then continuation in
+    frequency (:func:`_continue`) for the points where it did not converge.
+
+    Parameters
+    ----------
+    transfer : ModalTransfer
+    freq_hz : ndarray, shape (nf,)
+        Dither frequencies, Hz.
+    p_max : float
+        Largest amplitude searched, Pa.
+    harmonics : int
+        Harmonics kept on each side.
+
+    Returns
+    -------
+    amplitude : ndarray, shape (nf,)
+        Pa; NaN where no combination boundary lies in ``(0, p_max]``.
+    nu : ndarray, shape (nf,)
+        Imaginary part of the exponent on the circle (rad/s, in
+        ``(0, omega/2)``): the multipliers are ``exp(+-i nu T)``.
+
+    Notes
+    -----
+    Only the first-order combination resonances of two modes are seeded.
+    A complex pair of one mode that leaves the circle close to +1 beside
+    its second-order single-period tongue (``omega ~ w_i``) is not: the
+    geared 5-DOF at 7 and 7.5 Hz has such points (0.91 and 0.99 bar,
+    ``nu / omega ~ 0.03``) that the solver ``'scan'`` finds and this one
+    misses.
+    """
+    omega = 2 * np.pi * np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    order = np.argsort(omega, kind="stable")
+    omega = omega[order]
+    nu0, p0 = _combination_seeds(transfer, omega)            # (nf, ns)
+    if nu0.shape[1] == 0:
+        nan = np.full(len(omega), np.nan)
+        return nan, nan.copy()
+    shape = nu0.shape
+    om = np.broadcast_to(omega[:, None], shape).ravel()
+    p, nu, done = _newton(transfer, om, nu0.ravel(), p0.ravel(), p_max,
+                          harmonics)
+    amplitude, _ = _accepted(p, nu, om, done, p_max)
+    p, nu, amplitude = (a.reshape(shape) for a in (p, nu, amplitude))
+    _continue(transfer, omega, nu0, p, nu, amplitude, p_max, harmonics)
+    _, folded = _accepted(p, nu, omega[:, None], True, p_max)
+    best = np.argmin(amplitude, axis=1)
     rows = np.arange(len(omega))
-    amplitude = candidates[rows, best]
-    nu_best = folded.reshape(len(omega), -1)[rows, best]
-    found = np.isfinite(amplitude)
-    return (np.where(found, amplitude, np.nan),
-            np.where(found, nu_best, np.nan))
+    lowest = amplitude[rows, best]
+    found = np.isfinite(lowest)
+    result = np.empty((2, len(omega)))
+    result[0, order] = np.where(found, lowest, np.nan)
+    result[1, order] = np.where(found, folded[rows, best], np.nan)
+    return result[0], result[1]
