@@ -45,7 +45,7 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
 
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "chart", "bench_damping", "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
