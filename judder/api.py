@@ -46,8 +46,7 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
            "advise",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "chart", "report", "bench_damping",
-           "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "report", "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
