@@ -8,7 +8,7 @@ from pathlib import Path
 from infra.errors import EXIT_ERROR, EXIT_OK
 
 from .build import DEFAULT_TOLERANCE, build_fmu
-from .frontend import FrontEndError
+from .frontend import FrontEndError, class_source
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 #: Package whose examples are built by default.
@@ -39,7 +39,8 @@ def main(argv=None):
                              f"{EXAMPLES_PACKAGE}, as listed in its "
                              "package.order)")
     parser.add_argument("--library", default=str(LIBRARY), metavar="DIR",
-                        help="folder holding the Modelica packages")
+                        help="folder holding the Modelica packages, or one "
+                             ".mo file holding a whole package")
     parser.add_argument("--out", default="build/fmu", metavar="DIR",
                         help="folder for the FMUs (default build/fmu)")
     parser.add_argument("--fmi", choices=("2.0", "3.0", "both"),
@@ -59,14 +60,15 @@ def main(argv=None):
     versions = ("2.0", "3.0") if args.fmi == "both" else (args.fmi,)
     try:
         for name in names:
-            source = library.joinpath(*name.split(".")).with_suffix(".mo")
-            if not source.exists():
-                raise FrontEndError(f"{name}: no file {source}")
+            source = library if library.is_file() else \
+                class_source(library, name)
             for version in versions:
                 suffix = "" if version == "2.0" else "_fmi3"
                 target = Path(args.out) / f"{name.split('.')[-1]}{suffix}.fmu"
                 result = build_fmu(source, name, target, version=version,
-                                   roots=[library], tolerance=args.tolerance)
+                                   roots=[source.parent if library.is_file()
+                                          else library],
+                                   tolerance=args.tolerance)
                 report = {"model": name, "fmi": version,
                           "path": str(result.path),
                           "states": result.states,

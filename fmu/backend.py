@@ -29,7 +29,7 @@ The result is an :class:`OdeModel`: ``der(x) = f(t, x, p)`` and the
 outputs ``y = h(t, x, p)`` as CasADi functions, ready for code generation.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import casadi
 import numpy as np
@@ -77,7 +77,10 @@ class OdeModel:
     derivatives : casadi.SX, shape (n,)
         ``der(x)`` as a formula in ``t, x, p``.
     parameters : list of Quantity
-        Tunable parameters ``p`` with their default values.
+        Tunable parameters with their default values.
+    inputs : list of Quantity
+        Inputs ``u`` (causality input) with their start values; in the
+        functions and the C code they follow the parameters in ``p``.
     calculated : list of Quantity
         Parameters bound to formulas in ``p``.
     outputs : list of Quantity
@@ -96,18 +99,20 @@ class OdeModel:
     outputs: list
     experiment: dict
     eliminated: dict
+    inputs: list = field(default_factory=list)
 
     def _symbols(self):
-        x = casadi.vertcat(*[s.expression for s in self.states])
-        p = casadi.vertcat(*[q.expression for q in self.parameters])
+        x = _column(*[s.expression for s in self.states])
+        p = _column(*[q.expression for q in self.parameters + self.inputs])
         return x, p
 
     def functions(self):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
-        -> y`` and ``start(p) -> x0``."""
+        -> y`` and ``start(p) -> x0``; ``p`` is the tunable parameters
+        followed by the inputs."""
         x, p = self._symbols()
-        y = casadi.vertcat(*[o.expression for o in self.outputs])
-        x0 = casadi.vertcat(*[s.start for s in self.states])
+        y = _column(*[o.expression for o in self.outputs])
+        x0 = _column(*[s.start for s in self.states])
         return (casadi.Function("ode", [self.time, x, p], [self.derivatives],
                                 ["t", "x", "p"], ["xdot"]),
                 casadi.Function("outputs", [self.time, x, p], [y],
@@ -115,14 +120,19 @@ class OdeModel:
                 casadi.Function("start", [p], [x0], ["p"], ["x0"]))
 
     def parameter_vector(self, **values):
-        """Default parameter values, with some changed by name."""
-        names = [q.name for q in self.parameters]
+        """Default parameter (then input) values, some changed by name."""
+        names = [q.name for q in self.parameters + self.inputs]
         unknown = sorted(set(values) - set(names))
         if unknown:
             raise KeyError(f"unknown parameter {unknown[0]!r}; tunable: "
                            f"{', '.join(names)}")
-        return np.array([values.get(q.name, q.start) for q in self.parameters],
-                        dtype=float)
+        return np.array([values.get(q.name, q.start)
+                         for q in self.parameters + self.inputs], dtype=float)
+
+
+def _column(*items):
+    """Column of SX expressions; an empty list gives a 0x1 SX (not a DM)."""
+    return casadi.vertcat(casadi.SX(0, 1), *items)
 
 
 def _value(expression):
@@ -130,30 +140,41 @@ def _value(expression):
 
 
 def _split_parameters(model):
-    """Tunable parameters with values, and calculated ones as formulas."""
-    tunable, calculated = [], []
-    for v in model.by_role("parameter"):
+    """Tunable parameters with values, and calculated ones as formulas.
+
+    Constants are substituted like calculated parameters but not
+    exported. Returns ``(tunable, calculated, symbols, formulas)``: the
+    last two substitute every calculated parameter and constant by its
+    formula in the tunable parameters.
+    """
+    tunable, calculated, constants = [], [], []
+    for v in model.variables:
+        if v.role not in ("parameter", "constant"):
+            continue
         binding = v.binding if v.binding is not None else v.start
         if binding is None:
-            raise BackEndError(f"parameter {v.name} has no value")
+            raise BackEndError(f"{v.where}: parameter {v.name} has no value")
         quantity = Quantity(v.name, v.unit, v.description, v.symbol,
                             minimum=v.minimum, maximum=v.maximum)
-        if casadi.symvar(binding):
+        if v.role == "constant" or casadi.symvar(binding):
             quantity.expression = binding
-            calculated.append(quantity)
+            (constants if v.role == "constant" else calculated).append(
+                (v.symbol, quantity))
         else:
             quantity.start = _value(binding)
             tunable.append(quantity)
     # resolve chains of calculated parameters down to tunable ones
-    symbols = [q.expression for q in calculated]
-    targets = casadi.vertcat(*[v.symbol for v in model.by_role("parameter")
-                               if any(v.name == q.name for q in calculated)])
-    values = casadi.vertcat(*symbols)
-    for _ in range(len(calculated) + 1):
+    pairs = calculated + constants
+    targets = _column(*[symbol for symbol, _ in pairs])
+    values = _column(*[q.expression for _, q in pairs])
+    for _ in range(len(pairs) + 1):
         values = casadi.substitute(values, targets, values)
-    for index, quantity in enumerate(calculated):
+    if casadi.depends_on(values, targets):
+        raise BackEndError("parameter bindings are circular: " + ", ".join(
+            q.name for _, q in pairs))
+    for index, (_, quantity) in enumerate(pairs):
         quantity.expression = values[index]
-    return tunable, calculated, targets, values
+    return tunable, [q for _, q in calculated], targets, values
 
 
 class _System:
@@ -168,14 +189,14 @@ class _System:
             raise ValueError("one formula per symbol")
         if not symbols:
             return
-        old = casadi.vertcat(*symbols)
-        new = casadi.vertcat(*formulas)
-        stacked = casadi.substitute(casadi.vertcat(*self.residuals), old, new)
+        old = _column(*symbols)
+        new = _column(*formulas)
+        stacked = casadi.substitute(_column(*self.residuals), old, new)
         self.residuals = [stacked[i] for i in range(stacked.shape[0])]
         if self.eliminated:
             names = list(self.eliminated)
             values = casadi.substitute(
-                casadi.vertcat(*self.eliminated.values()), old, new)
+                _column(*self.eliminated.values()), old, new)
             self.eliminated = {n: values[i] for i, n in enumerate(names)}
 
 
@@ -205,39 +226,144 @@ def to_ode(model):
         If the model is structurally singular, or needs to solve an
         equation that is not linear in its unknowns.
     """
+    try:
+        return _to_ode(model)
+    except RuntimeError as exc:   # CasADi on an expression it cannot handle
+        message = str(exc).strip().splitlines()[-1]
+        raise BackEndError(f"{model.name}: the back end cannot compile this "
+                           f"model: {message}") from None
+
+
+def _to_ode(model):
     tunable, calculated, parameter_symbols, parameter_values = \
         _split_parameters(model)
+    inputs = [Quantity(v.name, v.unit, v.description, v.symbol,
+                       start=_input_start(v), minimum=v.minimum,
+                       maximum=v.maximum)
+              for v in model.by_role("input")]
     states = {v.name: v for v in model.by_role("state")}
     unknown_vars = {v.name: v for v in model.variables
                     if v.role in ("algebraic", "output")}
-    system = _System(model.residuals)
+    system = _System(model.residuals + model.initial_residuals)
     # calculated parameters become formulas in the tunable ones
     system.substitute([parameter_symbols[i] for i in
                        range(parameter_symbols.shape[0])],
                       [parameter_values[i] for i in
                        range(parameter_values.shape[0])])
-    parameter_names = {q.name for q in tunable}
+    initial = system.residuals[len(model.residuals):]
+    system.residuals = system.residuals[:len(model.residuals)]
+    parameter_names = {q.name for q in tunable} | {q.name for q in inputs}
 
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
                        model.time)
-    _reduce_index(system, states, parameter_names | {"time"}, model.time)
+    _reduce_index(system, states, {q.name for q in tunable} | {"time"},
+                  model.time)
     derivatives = _solve_sorted(system, states, unknown_vars)
 
     order = [v for v in model.by_role("state") if v.name in states]
-    state_quantities = []
+    starts = []
     for v in order:
         start = v.start if v.start is not None else casadi.SX(0)
-        start = casadi.substitute(start, parameter_symbols, parameter_values)
-        state_quantities.append(Quantity(v.name, v.unit, v.description,
-                                         v.symbol, start=start))
-    outputs = [Quantity(v.name, v.unit, v.description,
-                        system.eliminated[v.name])
-               for v in model.by_role("output")]
+        starts.append(casadi.substitute(start, parameter_symbols,
+                                        parameter_values))
+    if initial:
+        starts = _initial_states(initial, order, starts, derivatives,
+                                 system.eliminated, model.time)
+    state_quantities = [Quantity(v.name, v.unit, v.description, v.symbol,
+                                 start=start)
+                        for v, start in zip(order, starts)]
+    outputs = []
+    for v in model.variables:
+        if v.causality != "output":
+            continue
+        formula = v.symbol if v.name in states else system.eliminated[v.name]
+        outputs.append(Quantity(v.name, v.unit, v.description, formula))
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
-        derivatives=casadi.vertcat(*[derivatives[v.name] for v in order]),
+        derivatives=_column(*[derivatives[v.name] for v in order]),
         parameters=tunable, calculated=calculated, outputs=outputs,
-        experiment=model.experiment, eliminated=system.eliminated)
+        experiment=model.experiment, eliminated=system.eliminated,
+        inputs=inputs)
+
+
+def _input_start(variable):
+    """Start value of an input: a number (0 if not given)."""
+    if variable.start is None:
+        return 0.0
+    if casadi.symvar(variable.start):
+        raise BackEndError(f"{variable.where}: the start value of input "
+                           f"{variable.name} depends on other variables; "
+                           "give a number")
+    return _value(variable.start)
+
+
+def _initial_states(initial, order, starts, derivatives, eliminated, time):
+    """Start values of the states from the ``initial equation`` section.
+
+    The initial equations, with der(x) and the algebraic variables
+    replaced by their formulas in ``x`` and ``p``, are matched to the
+    states whose start is not ``fixed``; the matched states are solved
+    from them (the equations must be linear in them), the other states
+    keep their start values.
+
+    Returns
+    -------
+    list of casadi.SX
+        One start formula in ``p`` per state of ``order``.
+    """
+    residuals = []
+    by_name = dict(eliminated)
+    for residual in initial:
+        for _ in range(len(by_name) + 1):   # eliminated names in formulas
+            found = [s for s in casadi.symvar(residual) if s.name() in by_name]
+            if not found:
+                break
+            residual = casadi.substitute(
+                residual, _column(*found),
+                _column(*[by_name[s.name()] for s in found]))
+        residual = casadi.substitute(
+            residual, _column(*[v.derivative for v in order]),
+            _column(*[derivatives[v.name] for v in order]))
+        residuals.append(residual)
+    if any(casadi.depends_on(r, time) for r in residuals):
+        raise BackEndError("initial equations that depend on time are not "
+                           "supported by the FMU back end")
+    free = [i for i, v in enumerate(order) if not v.fixed]
+    stacked = _column(*residuals)
+    incidence = np.array([[casadi.depends_on(r, order[i].symbol)
+                           for i in free] for r in residuals], dtype=float)
+    if not free or incidence.size == 0:
+        raise BackEndError(f"{len(residuals)} initial equations but no "
+                           "state with fixed = false to solve them for "
+                           "(the initialisation is overdetermined)")
+    match = maximum_bipartite_matching(csr_matrix(incidence),
+                                       perm_type="column")
+    if np.any(match < 0):
+        raise BackEndError("the initialisation is overdetermined or "
+                           "singular: the initial equations "
+                           f"{[str(residuals[i]) for i in np.flatnonzero(match < 0)][:3]}"
+                           " have no state with fixed = false left to solve "
+                           "for")
+    unknown_index = [free[j] for j in match]
+    unknown = _column(*[order[i].symbol for i in unknown_index])
+    others = [i for i in range(len(order)) if i not in unknown_index]
+    stacked = casadi.substitute(
+        stacked, _column(*[order[i].symbol for i in others]),
+        _column(*[starts[i] for i in others]))
+    slope = casadi.jacobian(stacked, unknown)
+    if casadi.depends_on(slope, unknown):
+        raise BackEndError(
+            "the initial equations " + ", ".join(str(r) for r in residuals)
+            + " are not linear in the states they determine ("
+            + ", ".join(order[i].name for i in unknown_index)
+            + "); nonlinear initialisation is not supported")
+    rest = casadi.substitute(stacked, unknown,
+                             casadi.SX.zeros(unknown.shape))
+    value = -casadi.solve(slope, rest)
+    starts = list(starts)
+    for k, i in enumerate(unknown_index):
+        starts[i] = value[k]
+    return starts
 
 
 def _eliminate_aliases(system, states, unknowns, parameters, time):
@@ -295,8 +421,8 @@ def _time_derivative(formula, states, time):
     explicit = casadi.jacobian(formula, time)
     if not x:
         return explicit
-    return explicit + casadi.jtimes(formula, casadi.vertcat(*x),
-                                    casadi.vertcat(*dx))
+    return explicit + casadi.jtimes(formula, _column(*x),
+                                    _column(*dx))
 
 
 def _reduce_index(system, states, known, time):
@@ -355,8 +481,8 @@ def _solve_sorted(system, states, unknown_vars):
                            "not balanced")
     if not unknowns:
         return {}
-    sparsity = casadi.jacobian_sparsity(casadi.vertcat(*residuals),
-                                        casadi.vertcat(*unknowns))
+    sparsity = casadi.jacobian_sparsity(_column(*residuals),
+                                        _column(*unknowns))
     rows, cols = sparsity.get_triplet()
     incidence = csr_matrix((np.ones(len(rows)), (rows, cols)),
                            shape=(len(residuals), len(unknowns)))
@@ -375,11 +501,11 @@ def _solve_sorted(system, states, unknown_vars):
     blocks = _topological_blocks(needs, count, labels)
     solved_symbols, solved_values = [], []
     for block in blocks:
-        eqs = casadi.vertcat(*[residuals[i] for i in block])
-        unk = casadi.vertcat(*[unknowns[match[i]] for i in block])
+        eqs = _column(*[residuals[i] for i in block])
+        unk = _column(*[unknowns[match[i]] for i in block])
         if solved_symbols:
-            eqs = casadi.substitute(eqs, casadi.vertcat(*solved_symbols),
-                                    casadi.vertcat(*solved_values))
+            eqs = casadi.substitute(eqs, _column(*solved_symbols),
+                                    _column(*solved_values))
         slope = casadi.jacobian(eqs, unk)
         if casadi.depends_on(slope, unk):
             raise BackEndError("the equations " + ", ".join(
@@ -394,8 +520,8 @@ def _solve_sorted(system, states, unknown_vars):
     solution = dict(zip((s.name() for s in solved_symbols), solved_values))
     for name, formula in list(system.eliminated.items()):
         system.eliminated[name] = casadi.substitute(
-            formula, casadi.vertcat(*solved_symbols),
-            casadi.vertcat(*solved_values))
+            formula, _column(*solved_symbols),
+            _column(*solved_values))
     for name in unknown_vars:
         if name in solution:
             system.eliminated[name] = solution[name]

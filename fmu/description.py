@@ -1,8 +1,8 @@
 """modelDescription.xml for FMI 2.0 (ME + CS) and FMI 3.0 (ME).
 
 Value references follow ``fmu/c/model.h``: 0 time, then the states,
-their derivatives, the tunable parameters, the calculated parameters and
-the outputs. States are calculated at initialisation from the parameters
+their derivatives, the tunable parameters, the calculated parameters,
+the outputs and the inputs. States are calculated at initialisation from the parameters
 (their Modelica start values may depend on them), so their start values
 are set through parameters.
 """
@@ -23,16 +23,19 @@ class Layout:
         self.parameters = ode.parameters
         self.calculated = ode.calculated
         self.outputs = ode.outputs
+        self.inputs = ode.inputs
         nx, np_, nc = len(ode.states), len(ode.parameters), len(ode.calculated)
         self.vr_states = 1
         self.vr_derivatives = 1 + nx
         self.vr_parameters = 1 + 2 * nx
         self.vr_calculated = self.vr_parameters + np_
         self.vr_outputs = self.vr_calculated + nc
+        self.vr_inputs = self.vr_outputs + len(ode.outputs)
 
     def units(self):
         names = {q.unit for group in (self.states, self.parameters,
-                                      self.calculated, self.outputs)
+                                      self.calculated, self.outputs,
+                                      self.inputs)
                  for q in group if q.unit}
         for q in self.states:
             if q.unit:
@@ -60,9 +63,12 @@ def _number(value):
     return repr(float(value))
 
 
-def _unit_definitions(layout):
+def _unit_definitions(layout, extra=()):
+    units = sorted(set(layout.units()) | set(extra))
+    if not units:
+        return []   # an empty UnitDefinitions element is invalid
     lines = ["  <UnitDefinitions>"]
-    for unit in layout.units():
+    for unit in units:
         exponents, factor = base_exponents(unit)
         base = _attr(**{k: v for k, v in exponents.items()},
                      factor=None if factor == 1.0 else _number(factor))
@@ -117,6 +123,8 @@ def _variables(layout):
         rows.append((q.name, layout.vr_calculated + i, "calculated", q))
     for i, q in enumerate(layout.outputs):
         rows.append((q.name, layout.vr_outputs + i, "output", q))
+    for i, q in enumerate(layout.inputs):
+        rows.append((q.name, layout.vr_inputs + i, "input", q))
     return rows
 
 
@@ -172,6 +180,11 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
             head = _attr(**common, causality="calculatedParameter",
                          variability="tunable", initial="calculated")
             real = _attr(unit=q.unit or None)
+        elif kind == "input":
+            head = _attr(**common, causality="input",
+                         variability="continuous")
+            real = _attr(unit=q.unit or None, start=_number(q.start),
+                         **_bounds(q))
         else:
             head = _attr(**common, causality="output",
                          variability="continuous", initial="calculated")
@@ -201,7 +214,7 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                  instantiationToken=guid, generationTool=tool,
                  variableNamingConvention="structured") + ">",
              "  <ModelExchange" + _attr(modelIdentifier=identifier) + "/>"]
-    lines += _unit_definitions(layout)
+    lines += _unit_definitions(layout, extra=("s",))   # of time
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")
     lines.append('    <Float64 name="time" valueReference="0" '
@@ -230,6 +243,10 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
             attrs = _attr(**common, causality="calculatedParameter",
                           variability="tunable", initial="calculated",
                           unit=q.unit or None)
+        elif kind == "input":
+            attrs = _attr(**common, causality="input",
+                          variability="continuous", unit=q.unit or None,
+                          start=_number(q.start), **_bounds(q))
         else:
             attrs = _attr(**common, causality="output",
                           variability="continuous", initial="calculated",

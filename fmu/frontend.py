@@ -16,7 +16,8 @@ import casadi
 
 from infra.errors import JudderError
 
-__all__ = ["Variable", "FlatModel", "load_flat_model", "FrontEndError"]
+__all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
+           "FrontEndError"]
 
 
 class FrontEndError(JudderError):
@@ -32,7 +33,8 @@ class Variable:
     name : str
         Flat name, e.g. ``inertia1.w``.
     role : str
-        ``'state'``, ``'algebraic'``, ``'parameter'`` or ``'output'``.
+        ``'state'``, ``'algebraic'``, ``'parameter'``, ``'constant'``,
+        ``'input'`` or ``'output'``.
     symbol : casadi.SX
     derivative : casadi.SX or None
         ``der(name)`` for states.
@@ -43,6 +45,10 @@ class Variable:
     binding : casadi.SX or None
         Parameter binding (may depend on other parameters).
     minimum, maximum : casadi.SX or None
+    where : str
+        ``file:line`` of the declaration.
+    causality : str
+        ``'input'``, ``'output'``, ``'parameter'`` or ``'local'``.
     """
 
     name: str
@@ -56,6 +62,8 @@ class Variable:
     binding: object = None
     minimum: object = None
     maximum: object = None
+    where: str = ""
+    causality: str = ""
 
 
 @dataclass
@@ -69,6 +77,8 @@ class FlatModel:
     variables : list of Variable
     residuals : list of casadi.SX
         One scalar residual per equation.
+    initial_residuals : list of casadi.SX
+        The ``initial equation`` section, one residual per equation.
     time : casadi.SX
     experiment : dict
         ``StopTime`` and ``Interval`` of the experiment annotation.
@@ -79,6 +89,7 @@ class FlatModel:
     variables: list
     residuals: list
     time: object
+    initial_residuals: list = field(default_factory=list)
     experiment: dict = field(default_factory=dict)
     description: str = ""
 
@@ -109,6 +120,11 @@ _BUILTIN = {
 }
 
 
+#: Expression kinds of rumoca's graph, as a Modelica user names them.
+_KINDS = {"index": "array indexing", "array": "array constructor",
+          "call": "function call", "range": "range expression"}
+
+
 class _Expressions:
     """Converts rumoca's expression nodes to CasADi SX, memoised."""
 
@@ -119,6 +135,7 @@ class _Expressions:
         self._symbols, self._derivatives = symbols, derivatives
         self._time = time
         self._cache = {}
+        self.where = ""   # file:line of what is being converted
         # nodes with a variable number of operands take them, in node
         # order, from the flat operand list
         self._offsets = {}
@@ -151,27 +168,34 @@ class _Expressions:
             role, position = next(iter(body.items()))
             if role == "derivative":
                 return self._derivatives[position]
+            if role not in _ROLES:
+                raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
+                                    "references (pre, edge, change) are not "
+                                    "supported by the FMU back end")
             return self._symbols[position]
         if kind == "binary":
             op = body["operator"]
             if op not in _BINARY:
-                raise FrontEndError(f"operator {op!r} is not supported")
+                raise FrontEndError(f"{self.where}: operator {op!r} is not "
+                                    "supported by the FMU back end")
             return _BINARY[op](self(body["lhs"]), self(body["rhs"]))
         if kind == "unary":
             op = body["operator"]
             if op not in _UNARY:
-                raise FrontEndError(f"operator {op!r} is not supported")
+                raise FrontEndError(f"{self.where}: operator {op!r} is not "
+                                    "supported by the FMU back end")
             return _UNARY[op](self(body["operand"]))
         if kind == "builtin":
             name = body["builtin"]
             if name not in _BUILTIN:
-                raise FrontEndError(f"function {name}() is not supported by "
-                                    "the FMU back end")
+                raise FrontEndError(f"{self.where}: function {name}() is not "
+                                    "supported by the FMU back end")
             return _BUILTIN[name](*self._args(index, body["operand_count"]))
         if kind == "conditional":
             args = self._args(index, body["operand_count"])
             return _conditional(args)
-        raise FrontEndError(f"expression kind {kind!r} is not supported")
+        raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
+                            "supported by the FMU back end")
 
 
 def _conditional(args):
@@ -181,6 +205,29 @@ def _conditional(args):
     for condition, value in reversed(list(zip(pairs[::2], pairs[1::2]))):
         result = casadi.if_else(condition, value, result, True)
     return result
+
+
+def class_source(library, name):
+    """The ``.mo`` file that holds class ``name`` of ``library``.
+
+    A class is found as ``A/B/C.mo`` (one class per file, package folders
+    with ``package.mo``), inside its package's ``package.mo``, or inside a
+    single file holding the whole package (``A.mo`` with ``package A ...
+    end A;``), as Modelica's rules for storing classes allow.
+
+    Raises
+    ------
+    FrontEndError
+        If no such file exists.
+    """
+    library, parts = Path(library), name.split(".")
+    for count in range(len(parts), 0, -1):
+        folder = library.joinpath(*parts[:count])
+        for candidate in (folder.with_suffix(".mo"), folder / "package.mo"):
+            if candidate.is_file():
+                return candidate
+    raise FrontEndError(f"{name}: no file {library.joinpath(*parts)}.mo, "
+                        f"nor a package file holding it, in {library}")
 
 
 def _flatten(path, model_name, roots):
@@ -210,6 +257,86 @@ def _library_errors(rumoca, roots):
     return ("\n" + "\n".join(found)) if found else ""
 
 
+#: Roles of rumoca's flat variables that the back end compiles.
+_ROLES = ("state", "algebraic", "parameter", "constant", "input", "output")
+#: Sections of rumoca's flat model the back end does not compile (yet),
+#: with the Modelica construct that produces them.
+_REFUSED = {
+    "event_actions": "when-equations and reinit",
+    "model_event_transactions": "when-equations",
+    "discrete_real_equations": "discrete-time equations (when, sample)",
+    "previous_values": "pre()",
+    "time_events": "time events (sample, time >= ...)",
+    "relations": "relations that generate events (write noEvent(...) "
+                 "around a relation that needs no event)",
+    "structured_roots": "event conditions",
+    "discrete_value_owners": "Integer or Boolean variables",
+    "clocks": "clocked equations", "clock_ownerships": "clocked equations",
+    "delays": "delay()", "functions": "function calls",
+    "domains": "domains", "terminals": "terminal()",
+    "initial_discrete_values": "initial values of discrete variables",
+    "initial_parameter_values": "parameters with fixed = false",
+}
+
+
+class _Locator:
+    """``file:line`` of rumoca's source spans."""
+
+    def __init__(self, flat):
+        self._files = {entry[0]: (entry[1], entry[2]) for entry in
+                       flat.get("source_map", {}).get("files", [])}
+
+    def __call__(self, item):
+        span = _first_span(item)
+        if not span or span.get("source") not in self._files:
+            return "(generated)"
+        path, text = self._files[span["source"]]
+        return f"{path}:{text[:span['start']].count(chr(10)) + 1}"
+
+
+def _first_span(item):
+    """The first source span found in a (nested) rumoca record."""
+    if isinstance(item, dict):
+        if isinstance(item.get("span"), dict) and "start" in item["span"]:
+            return item["span"]
+        children = item.values()
+    elif isinstance(item, list):
+        children = item
+    else:
+        return None
+    for child in children:
+        found = _first_span(child)
+        if found:
+            return found
+    return None
+
+
+def _check_supported(storage, model_name, where):
+    """Refuse, with the place in the source, what cannot be compiled."""
+    for key, construct in _REFUSED.items():
+        items = storage.get(key) or []
+        if items:
+            place = where(items[0]) if isinstance(items[0], dict) else \
+                model_name
+            raise FrontEndError(f"{place}: {construct} are not supported "
+                                f"by the FMU back end (model {model_name})")
+    for raw in storage["variables"]:
+        place = where({"span": raw.get("declaration", {}).get("span")})
+        if raw["role"] not in _ROLES:
+            kind = "discrete variable" if "discrete" in raw["role"] else \
+                f"variable of role {raw['role']!r}"
+            raise FrontEndError(f"{place}: {raw['name']}: {kind} is not "
+                                "supported by the FMU back end")
+        value_type = storage["value_types"][raw["value_type"]]
+        if value_type.get("dimensions"):
+            raise FrontEndError(f"{place}: {raw['name']}: arrays are not "
+                                "supported by the FMU back end")
+        if value_type.get("scalar") != "real":
+            raise FrontEndError(f"{place}: {raw['name']}: "
+                                f"{value_type.get('scalar')} variables are "
+                                "not supported by the FMU back end")
+
+
 def load_flat_model(path, model_name, roots=()):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
@@ -225,11 +352,14 @@ def load_flat_model(path, model_name, roots=()):
     Raises
     ------
     FrontEndError
-        With rumoca's diagnostics (file, line, what is wrong).
+        With rumoca's diagnostics (file, line, what is wrong), or the
+        place of a construct the back end does not compile.
     """
     path = Path(path)
     flat = _flatten(path, model_name, roots or [path.parent])
     storage = flat["storage"]
+    where = _Locator(flat)
+    _check_supported(storage, model_name, where)
     time = casadi.SX.sym("time")
     symbols, derivatives, variables = [], {}, []
     for index, raw in enumerate(storage["variables"]):
@@ -240,6 +370,8 @@ def load_flat_model(path, model_name, roots=()):
     convert = _Expressions(storage, symbols, derivatives, time)
     for index, raw in enumerate(storage["variables"]):
         attributes = raw.get("attributes", {})
+        convert.where = where({"span": raw.get("declaration", {})
+                               .get("span")})
         variables.append(Variable(
             name=raw["name"], role=raw["role"], symbol=symbols[index],
             derivative=derivatives.get(index),
@@ -249,22 +381,26 @@ def load_flat_model(path, model_name, roots=()):
             fixed=_is_fixed(attributes.get("fixed")),
             binding=convert(attributes.get("binding")),
             minimum=convert(attributes.get("min")),
-            maximum=convert(attributes.get("max"))))
-    residuals = []
-    for operation in storage["continuous_equation_operations"]:
-        kind, body = next(iter(operation.items()))
-        if kind != "residual":
-            raise FrontEndError(f"{model_name}: equations of kind {kind!r} "
-                                "are not supported by the FMU back end")
-        residuals.append(convert(body["residual"]))
-    for name in ("discrete_real_equations", "model_event_transactions",
-                 "clocks", "delays"):
-        if storage.get(name):
-            raise FrontEndError(f"{model_name}: {name.replace('_', ' ')} are "
-                                "not supported by the FMU back end")
-    return FlatModel(name=model_name, variables=variables,
-                     residuals=residuals, time=time,
-                     experiment=_experiment(path, model_name))
+            maximum=convert(attributes.get("max")),
+            where=convert.where,
+            causality=attributes.get("causality") or ""))
+    sections = {}
+    for section in ("continuous_equation_operations",
+                    "initialization_equation_operations"):
+        sections[section] = []
+        for operation in storage.get(section) or []:
+            kind, body = next(iter(operation.items()))
+            convert.where = where(body)
+            if kind != "residual":
+                raise FrontEndError(f"{convert.where}: equations of kind "
+                                    f"{kind!r} are not supported by the FMU "
+                                    "back end")
+            sections[section].append(convert(body["residual"]))
+    return FlatModel(
+        name=model_name, variables=variables,
+        residuals=sections["continuous_equation_operations"],
+        initial_residuals=sections["initialization_equation_operations"],
+        time=time, experiment=_experiment(path, model_name))
 
 
 def _is_fixed(value):

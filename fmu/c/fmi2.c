@@ -123,7 +123,15 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[],
     Instance *inst = c;
     size_t i;
     for (i = 0; i < nvr; i++) {
-        if (model_set(&inst->model, vr[i], value[i], 0) != 0) {
+        int done = model_set(&inst->model, vr[i], value[i], 0);
+        if (done == 2) {
+            double low, high;
+            model_bounds(vr[i], &low, &high);
+            logmsg(inst, fmi2Error, "value %g of value reference %u is outside "
+                   "its declared range [%g, %g]", value[i], vr[i], low, high);
+            return fmi2Error;
+        }
+        if (done != 0) {
             logmsg(inst, fmi2Error, "value reference %u cannot be set", vr[i]);
             return fmi2Error;
         }
@@ -199,6 +207,12 @@ fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t nx) {
     if (nx != MODEL_NX) return fmi2Error;
     model_evaluate(&inst->model);
     memcpy(dx, inst->model.xdot, sizeof(double) * nx);
+    if (model_finite(&inst->model) != 0) {
+        logmsg(inst, fmi2Error, "der(%s) is not finite at t = %g (check the "
+               "parameters)", model_state_name(model_finite(&inst->model) - 1),
+               inst->model.time);
+        return fmi2Error;
+    }
     return fmi2OK;
 }
 
@@ -241,7 +255,13 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real t, fmi2Real h, fmi2Boolean noSet
     (void)noSetPrior;
     if (h < 0) return fmi2Error;
     inst->model.time = t;
-    if (model_integrate(&inst->model, t + h) != 0) {
+    switch (model_integrate(&inst->model, t + h)) {
+    case 0: break;
+    case 2:
+        logmsg(inst, fmi2Error, "the derivatives are not finite in the step "
+               "from t = %g (check the parameters)", inst->model.time);
+        return fmi2Error;
+    default:
         logmsg(inst, fmi2Error, "the integrator failed at t = %g (step size too small)",
                inst->model.time);
         return fmi2Error;

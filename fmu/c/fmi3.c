@@ -135,7 +135,15 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[],
     size_t i;
     if (n != nvr) return fmi3Error;
     for (i = 0; i < nvr; i++) {
-        if (model_set(&inst->model, vr[i], value[i], 0) != 0) {
+        int done = model_set(&inst->model, vr[i], value[i], 0);
+        if (done == 2) {
+            double low, high;
+            model_bounds(vr[i], &low, &high);
+            logmsg(inst, fmi3Error, "value %g of value reference %u is outside "
+                   "its declared range [%g, %g]", value[i], vr[i], low, high);
+            return fmi3Error;
+        }
+        if (done != 0) {
             logmsg(inst, fmi3Error, "value reference %u cannot be set", vr[i]);
             return fmi3Error;
         }
@@ -275,6 +283,12 @@ fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], s
     if (nx != MODEL_NX) return fmi3Error;
     model_evaluate(&inst->model);
     memcpy(dx, inst->model.xdot, sizeof(double) * nx);
+    if (model_finite(&inst->model) != 0) {
+        logmsg(inst, fmi3Error, "der(%s) is not finite at t = %g (check the "
+               "parameters)", model_state_name(model_finite(&inst->model) - 1),
+               inst->model.time);
+        return fmi3Error;
+    }
     return fmi3OK;
 }
 

@@ -7,7 +7,11 @@
 
 #include "model_functions.h"
 
-static const double parameter_defaults[MODEL_NP + 1] = MODEL_PARAMETER_DEFAULTS;
+static const double parameter_defaults[MODEL_NP + MODEL_NU + 1] =
+    MODEL_PARAMETER_DEFAULTS;
+/* declared min and max of the parameters and inputs (+-inf if none) */
+static const double parameter_min[MODEL_NP + MODEL_NU + 1] = MODEL_PARAMETER_MIN;
+static const double parameter_max[MODEL_NP + MODEL_NU + 1] = MODEL_PARAMETER_MAX;
 
 int model_init(Model *m) {
     casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
@@ -76,18 +80,37 @@ int model_get(Model *m, unsigned vr, double *value) {
         model_evaluate(m); *value = m->calculated[vr - VR_CALCULATED];
         return 0;
     }
-    if (vr < VR_END) { model_evaluate(m); *value = m->y[vr - VR_OUTPUTS]; return 0; }
+    if (vr < VR_INPUTS) { model_evaluate(m); *value = m->y[vr - VR_OUTPUTS]; return 0; }
+    if (vr < VR_END) { *value = m->p[MODEL_NP + vr - VR_INPUTS]; return 0; }
     return 1;
 }
 
 int model_set(Model *m, unsigned vr, double value, int parameters_only) {
-    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) {
-        m->p[vr - VR_PARAMETERS] = value; m->stale = 1; return 0;
-    }
-    if (!parameters_only && vr >= VR_STATES && vr < VR_DERIVATIVES) {
+    unsigned k;
+    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) k = vr - VR_PARAMETERS;
+    else if (vr >= VR_INPUTS && vr < VR_END) k = MODEL_NP + vr - VR_INPUTS;
+    else if (!parameters_only && vr >= VR_STATES && vr < VR_DERIVATIVES) {
         m->x[vr - VR_STATES] = value; m->stale = 1; return 0;
-    }
-    return 1;
+    } else return 1;
+    if (!(value >= parameter_min[k] && value <= parameter_max[k])) return 2;
+    m->p[k] = value; m->stale = 1; return 0;
+}
+
+void model_bounds(unsigned vr, double *low, double *high) {
+    unsigned k = vr >= VR_INPUTS ? MODEL_NP + vr - VR_INPUTS : vr - VR_PARAMETERS;
+    *low = parameter_min[k]; *high = parameter_max[k];
+}
+
+const char *model_state_name(int i) {
+    static const char *names[MODEL_NX + 1] = MODEL_STATE_NAMES;
+    return i >= 0 && i < MODEL_NX ? names[i] : "?";
+}
+
+int model_finite(Model *m) {
+    int i;
+    model_evaluate(m);
+    for (i = 0; i < MODEL_NX; i++) if (!isfinite(m->xdot[i])) return i + 1;
+    return 0;
 }
 
 /* Dormand-Prince 5(4) coefficients (Hairer, Norsett, Wanner, 1993). */
@@ -122,6 +145,10 @@ int model_integrate(Model *m, double t_end) {
         }
         d0 = sqrt(d0 / n); d1 = sqrt(d1 / n);
         if (d1 > 1e-15) { double h0 = 0.01 * (d0 > 1e-5 ? d0 : 1e-5) / d1; if (h0 < h) h = h0; }
+        /* states all zero with a large derivative: start above the
+         * smallest step, error control shrinks it if needed */
+        if (h < 1e-12 * (fabs(t) + 1.0) && t_end - t > 1e-12 * (fabs(t) + 1.0))
+            h = 1e-12 * (fabs(t) + 1.0);
     }
     while (t < t_end) {
         double err = 0, factor;
@@ -144,7 +171,7 @@ int model_integrate(Model *m, double t_end) {
             err += (e / sc) * (e / sc);
         }
         err = sqrt(err / n);
-        if (!isfinite(err)) return 1;
+        if (!isfinite(err)) return 2;
         if (err <= 1.0) {
             t += h;
             memcpy(m->x, xn, sizeof(double) * n);
@@ -157,7 +184,7 @@ int model_integrate(Model *m, double t_end) {
         if (factor > 5.0) factor = 5.0;
         if (factor < 0.2) factor = 0.2;
         h *= factor;
-        if (h < 1e-14 * (fabs(t) + 1.0)) return 1;
+        if (err > 1.0 && h < 1e-14 * (fabs(t) + 1.0)) return 1;
     }
     m->time = t_end;
     m->stale = 1;

@@ -12,18 +12,20 @@
 #include "model_config.h"
 
 /* Value references: 0 time, then states, derivatives, parameters,
- * calculated parameters and outputs, in this order. */
+ * calculated parameters, outputs and inputs, in this order. Inputs are
+ * stored after the parameters in p. */
 #define VR_STATES 1
 #define VR_DERIVATIVES (VR_STATES + MODEL_NX)
 #define VR_PARAMETERS (VR_DERIVATIVES + MODEL_NX)
 #define VR_CALCULATED (VR_PARAMETERS + MODEL_NP)
 #define VR_OUTPUTS (VR_CALCULATED + MODEL_NC)
-#define VR_END (VR_OUTPUTS + MODEL_NY)
+#define VR_INPUTS (VR_OUTPUTS + MODEL_NY)
+#define VR_END (VR_INPUTS + MODEL_NU)
 
 typedef struct {
     double time;
     double x[MODEL_NX + 1];
-    double p[MODEL_NP + 1];
+    double p[MODEL_NP + MODEL_NU + 1];
     double xdot[MODEL_NX + 1];
     double y[MODEL_NY + 1];
     double calculated[MODEL_NC + 1];
@@ -42,9 +44,16 @@ void model_free(Model *m);
 void model_start(Model *m);          /* x = x0(p) */
 void model_evaluate(Model *m);       /* xdot, y, calculated from t, x, p */
 int model_get(Model *m, unsigned vr, double *value);
+/* 0 on success, 1 if vr cannot be set, 2 if value is outside the
+ * declared min and max (then nothing changes) */
 int model_set(Model *m, unsigned vr, double value, int parameters_only);
+void model_bounds(unsigned vr, double *low, double *high);
+/* 0 if every derivative is finite, else 1 + index of the first that is not */
+int model_finite(Model *m);
+const char *model_state_name(int i);   /* Modelica name of state i */
 /* Advance from m->time to t_end with Dormand-Prince 5(4) under
- * relative_tolerance; returns 0 on success. */
+ * relative_tolerance; returns 0 on success, 1 if the step size became
+ * too small, 2 if the derivatives are not finite. */
 int model_integrate(Model *m, double t_end);
 
 #endif
