@@ -180,9 +180,20 @@ def _split_parameters(model):
 class _System:
     """Residual equations with substitution bookkeeping."""
 
-    def __init__(self, residuals, eliminated=None):
+    def __init__(self, residuals, places, eliminated=None):
         self.residuals = list(residuals)
+        self.places = list(places)                 # file:line of each
         self.eliminated = dict(eliminated or {})   # name -> formula
+
+    def remove(self, index):
+        """Drop residual ``index`` (solved or eliminated)."""
+        del self.residuals[index]
+        del self.places[index]
+
+    def describe(self, indices):
+        """The equations ``indices`` with their place in the source."""
+        return "; ".join(f"{self.places[i]}: 0 = {self.residuals[i]}"
+                         for i in indices)
 
     def substitute(self, symbols, formulas):
         if len(symbols) != len(formulas):
@@ -244,14 +255,18 @@ def _to_ode(model):
     states = {v.name: v for v in model.by_role("state")}
     unknown_vars = {v.name: v for v in model.variables
                     if v.role in ("algebraic", "output")}
-    system = _System(model.residuals + model.initial_residuals)
+    system = _System(model.residuals + model.initial_residuals,
+                     (model.places or [""] * len(model.residuals))
+                     + (model.initial_places
+                        or [""] * len(model.initial_residuals)))
     # calculated parameters become formulas in the tunable ones
     system.substitute([parameter_symbols[i] for i in
                        range(parameter_symbols.shape[0])],
                       [parameter_values[i] for i in
                        range(parameter_values.shape[0])])
     initial = system.residuals[len(model.residuals):]
-    system.residuals = system.residuals[:len(model.residuals)]
+    for index in reversed(range(len(model.residuals), len(system.residuals))):
+        system.remove(index)
     parameter_names = {q.name for q in tunable} | {q.name for q in inputs}
 
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
@@ -268,7 +283,8 @@ def _to_ode(model):
                                         parameter_values))
     if initial:
         starts = _initial_states(initial, order, starts, derivatives,
-                                 system.eliminated, model.time)
+                                 system.eliminated, model.time,
+                                 model.initial_places or [""] * len(initial))
     state_quantities = [Quantity(v.name, v.unit, v.description, v.symbol,
                                  start=start)
                         for v, start in zip(order, starts)]
@@ -297,7 +313,8 @@ def _input_start(variable):
     return _value(variable.start)
 
 
-def _initial_states(initial, order, starts, derivatives, eliminated, time):
+def _initial_states(initial, order, starts, derivatives, eliminated, time,
+                    places):
     """Start values of the states from the ``initial equation`` section.
 
     The initial equations, with der(x) and the algebraic variables
@@ -325,25 +342,27 @@ def _initial_states(initial, order, starts, derivatives, eliminated, time):
             residual, _column(*[v.derivative for v in order]),
             _column(*[derivatives[v.name] for v in order]))
         residuals.append(residual)
-    if any(casadi.depends_on(r, time) for r in residuals):
-        raise BackEndError("initial equations that depend on time are not "
-                           "supported by the FMU back end")
+    for place, residual in zip(places, residuals):
+        if casadi.depends_on(residual, time):
+            raise BackEndError(f"{place}: initial equations that depend on "
+                               "time are not supported by the FMU back end")
     free = [i for i, v in enumerate(order) if not v.fixed]
     stacked = _column(*residuals)
     incidence = np.array([[casadi.depends_on(r, order[i].symbol)
                            for i in free] for r in residuals], dtype=float)
     if not free or incidence.size == 0:
-        raise BackEndError(f"{len(residuals)} initial equations but no "
+        raise BackEndError(f"{places[0]}: {len(residuals)} initial "
+                           "equation(s) but no "
                            "state with fixed = false to solve them for "
                            "(the initialisation is overdetermined)")
     match = maximum_bipartite_matching(csr_matrix(incidence),
                                        perm_type="column")
     if np.any(match < 0):
-        raise BackEndError("the initialisation is overdetermined or "
-                           "singular: the initial equations "
-                           f"{[str(residuals[i]) for i in np.flatnonzero(match < 0)][:3]}"
-                           " have no state with fixed = false left to solve "
-                           "for")
+        lost = np.flatnonzero(match < 0)
+        raise BackEndError(
+            f"{places[lost[0]]}: the initialisation is overdetermined or "
+            f"singular: the initial equation 0 = {residuals[lost[0]]} has "
+            "no state with fixed = false left to solve for")
     unknown_index = [free[j] for j in match]
     unknown = _column(*[order[i].symbol for i in unknown_index])
     others = [i for i in range(len(order)) if i not in unknown_index]
@@ -353,8 +372,8 @@ def _initial_states(initial, order, starts, derivatives, eliminated, time):
     slope = casadi.jacobian(stacked, unknown)
     if casadi.depends_on(slope, unknown):
         raise BackEndError(
-            "the initial equations " + ", ".join(str(r) for r in residuals)
-            + " are not linear in the states they determine ("
+            f"{places[0]}: the initial equations " + ", ".join(
+                f"0 = {r}" for r in residuals) + " are not linear in the states they determine ("
             + ", ".join(order[i].name for i in unknown_index)
             + "); nonlinear initialisation is not supported")
     rest = casadi.substitute(stacked, unknown,
@@ -381,7 +400,7 @@ def _eliminate_aliases(system, states, unknowns, parameters, time):
             if drop.name() in parameters:
                 continue
             formula = keep * sign if drop is b else keep / sign
-            del system.residuals[index]
+            system.remove(index)
             _replace(system, states, unknowns, drop, formula, time)
             changed = True
             break
@@ -454,7 +473,7 @@ def _reduce_index(system, states, known, time):
             if not casadi.depends_on(slope, symbol) and _nonzero(slope):
                 rest = casadi.substitute(residual, symbol, casadi.SX(0))
                 formula = -rest / slope
-                del system.residuals[index]
+                system.remove(index)
                 _replace(system, states, {}, symbol, formula, time)
                 break
         else:
@@ -488,9 +507,9 @@ def _solve_sorted(system, states, unknown_vars):
                            shape=(len(residuals), len(unknowns)))
     match = maximum_bipartite_matching(incidence, perm_type="column")
     if np.any(match < 0):
-        lost = [str(residuals[i]) for i in np.flatnonzero(match < 0)][:3]
         raise BackEndError("structurally singular: no unknown left for "
-                           f"the equations {lost}")
+                           "the equations " + system.describe(
+                               np.flatnonzero(match < 0)[:3]))
     # equation i needs the unknown solved by equation owner[j]
     owner = np.empty(len(unknowns), dtype=int)
     owner[match] = np.arange(len(residuals))
@@ -508,9 +527,11 @@ def _solve_sorted(system, states, unknown_vars):
                                     _column(*solved_values))
         slope = casadi.jacobian(eqs, unk)
         if casadi.depends_on(slope, unk):
-            raise BackEndError("the equations " + ", ".join(
-                str(residuals[i]) for i in block) + " are not linear in "
-                "their unknowns; nonlinear systems are not supported yet")
+            raise BackEndError(
+                system.describe(block) + ": an algebraic loop nonlinear in "
+                "its unknowns (" + ", ".join(str(unknowns[match[i]])
+                                             for i in block)
+                + "); nonlinear systems are not supported")
         rest = casadi.substitute(eqs, unk, casadi.DM.zeros(unk.shape))
         value = -rest / slope if len(block) == 1 else \
             -casadi.solve(slope, rest)

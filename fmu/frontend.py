@@ -79,6 +79,8 @@ class FlatModel:
         One scalar residual per equation.
     initial_residuals : list of casadi.SX
         The ``initial equation`` section, one residual per equation.
+    places, initial_places : list of str
+        ``file:line`` of each equation of the two sections.
     time : casadi.SX
     experiment : dict
         ``StopTime`` and ``Interval`` of the experiment annotation.
@@ -90,6 +92,8 @@ class FlatModel:
     residuals: list
     time: object
     initial_residuals: list = field(default_factory=list)
+    places: list = field(default_factory=list)
+    initial_places: list = field(default_factory=list)
     experiment: dict = field(default_factory=dict)
     description: str = ""
 
@@ -384,10 +388,10 @@ def load_flat_model(path, model_name, roots=()):
             maximum=convert(attributes.get("max")),
             where=convert.where,
             causality=attributes.get("causality") or ""))
-    sections = {}
+    sections, places = {}, {}
     for section in ("continuous_equation_operations",
                     "initialization_equation_operations"):
-        sections[section] = []
+        sections[section], places[section] = [], []
         for operation in storage.get(section) or []:
             kind, body = next(iter(operation.items()))
             convert.where = where(body)
@@ -396,10 +400,13 @@ def load_flat_model(path, model_name, roots=()):
                                     f"{kind!r} are not supported by the FMU "
                                     "back end")
             sections[section].append(convert(body["residual"]))
+            places[section].append(convert.where)
     return FlatModel(
         name=model_name, variables=variables,
         residuals=sections["continuous_equation_operations"],
         initial_residuals=sections["initialization_equation_operations"],
+        places=places["continuous_equation_operations"],
+        initial_places=places["initialization_equation_operations"],
         time=time, experiment=_experiment(path, model_name))
 
 
