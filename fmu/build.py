@@ -225,7 +225,11 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
 
         def write_zip(stream):
             with zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as fmu:
-                fmu.writestr("modelDescription.xml", description)
+                entry = zipfile.ZipInfo("modelDescription.xml",
+                                        time.localtime()[:6])
+                entry.external_attr = 0o644 << 16   # not writestr's 0600
+                entry.compress_type = zipfile.ZIP_DEFLATED
+                fmu.writestr(entry, description)
                 fmu.write(library, f"binaries/{_PLATFORM[version]}/"
                                    f"{identifier}.so")
                 for source in ("model_functions.c", "model_functions.h",
@@ -234,6 +238,11 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                 for source in ("model.c", "model.h", _WRAPPER[version]):
                     fmu.write(C_SOURCES / source, f"sources/{source}")
         atomic_write(out_file, write_zip)
+    # the temporary file of atomic_write is private (0600); an FMU is a
+    # normal file, readable as the umask allows
+    umask = os.umask(0)
+    os.umask(umask)
+    out_file.chmod(0o666 & ~umask)
     return BuildResult(path=out_file, version=version,
                        states=len(ode.states),
                        parameters=len(ode.parameters),

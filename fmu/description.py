@@ -7,6 +7,7 @@ the outputs and the inputs. States are calculated at initialisation from the par
 are set through parameters.
 """
 
+from datetime import datetime, timezone
 import re
 from xml.sax.saxutils import quoteattr
 
@@ -139,11 +140,22 @@ def _bounds(q):
     return out
 
 
+def _generated():
+    """generationDateAndTime: now, UTC, ISO 8601 to the second."""
+    return datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+
+
+def _derivative_description(q):
+    return f"Time derivative of {q.name}" + (
+        f" ({q.description})" if q.description else "")
+
+
 def _fmi2(ode, layout, identifier, guid, tolerance, tool):
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              "<fmiModelDescription" + _attr(
                  fmiVersion="2.0", modelName=ode.name, guid=guid,
-                 generationTool=tool, variableNamingConvention="structured",
+                 generationTool=tool, generationDateAndTime=_generated(),
+                 variableNamingConvention="structured",
                  numberOfEventIndicators="0") + ">",
              "  <ModelExchange" + _attr(
                  modelIdentifier=identifier,
@@ -167,6 +179,7 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
             real = _attr(unit=q.unit or None)
         elif kind == "derivative":
             state = index_of[("state", q.name)]
+            common["description"] = _derivative_description(q)
             head = _attr(**common, causality="local",
                          variability="continuous", initial="calculated")
             real = _attr(unit=_derivative_unit(q.unit) if q.unit else None,
@@ -212,6 +225,7 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
              "<fmiModelDescription" + _attr(
                  fmiVersion="3.0", modelName=ode.name,
                  instantiationToken=guid, generationTool=tool,
+                 generationDateAndTime=_generated(),
                  variableNamingConvention="structured") + ">",
              "  <ModelExchange" + _attr(modelIdentifier=identifier) + "/>"]
     lines += _unit_definitions(layout, extra=("s",))   # of time
@@ -230,6 +244,7 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                           variability="continuous", initial="calculated",
                           unit=q.unit or None)
         elif kind == "derivative":
+            common["description"] = _derivative_description(q)
             attrs = _attr(**common, causality="local",
                           variability="continuous", initial="calculated",
                           unit=_derivative_unit(q.unit) if q.unit else None,
