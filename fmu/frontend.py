@@ -10,9 +10,11 @@ knows about drivelines: the equations come from the ``.mo`` source.
 """
 
 from dataclasses import dataclass, field
+from itertools import product
 from pathlib import Path
 
 import casadi
+import numpy as np
 
 from infra.errors import JudderError
 
@@ -122,6 +124,42 @@ _BUILTIN = {
     "log10": casadi.log10, "sqrt": casadi.sqrt, "abs": casadi.fabs,
     "min": casadi.fmin, "max": casadi.fmax, "sign": casadi.sign,
 }
+#: Builtins on arrays (parameter tables): matrix and vector constructors,
+#: sum and size, evaluated when the model is read.
+_ARRAY_BUILTIN = {
+    "promoted_cat1": lambda *rows: _stack(rows),
+    "promoted_cat2": lambda *items: np.concatenate(
+        [np.atleast_1d(np.asarray(i, dtype=object)) for i in items]),
+    "sum": lambda a: _sum(a),
+    "size": lambda a, k: casadi.SX(float(np.shape(a)[_integer(k) - 1])),
+}
+
+
+def _stack(rows):
+    """Rows of a matrix constructor ``[a, b; c, d]`` as a 2-D array."""
+    rows = [np.atleast_1d(np.asarray(r, dtype=object)) for r in rows]
+    if all(r.ndim == 1 for r in rows):
+        return np.stack(rows)
+    return np.concatenate([np.atleast_2d(r) for r in rows])
+
+
+def _sum(array):
+    items = list(np.asarray(array, dtype=object).ravel())
+    total = casadi.SX(0)
+    for item in items:
+        total = total + item
+    return total
+
+
+def _integer(value):
+    """An array subscript or dimension: a constant integer."""
+    if isinstance(value, np.ndarray) or casadi.symvar(casadi.SX(value)):
+        raise FrontEndError("an array subscript that is not a constant "
+                            "integer is not supported by the FMU back end")
+    number = float(casadi.evalf(value))
+    if number != int(number):
+        raise FrontEndError(f"array subscript {number} is not an integer")
+    return int(number)
 
 
 #: Expression kinds of rumoca's graph, as a Modelica user names them.
@@ -189,6 +227,31 @@ class _Expressions:
                 raise FrontEndError(f"{self.where}: operator {op!r} is not "
                                     "supported by the FMU back end")
             return _UNARY[op](self(body["operand"]))
+        if kind == "array":
+            items = self._args(index, body["operand_count"])
+            return np.array(items, dtype=object) if not any(
+                isinstance(i, np.ndarray) for i in items) else _stack(items)
+        if kind == "index":
+            base = self(body["base"])
+            count = body["subscript_count"]
+            try:
+                subscripts = tuple(_integer(self(i)) - 1
+                                   for i in range(index - count, index))
+                if not isinstance(base, np.ndarray) or \
+                        len(subscripts) != base.ndim or \
+                        any(not 0 <= k < n for k, n in zip(subscripts,
+                                                           base.shape)):
+                    raise FrontEndError(f"array index {subscripts} out of "
+                                        f"range")
+            except FrontEndError as exc:
+                raise FrontEndError(f"{self.where}: {exc}") from None
+            return base[subscripts]
+        if kind == "builtin" and body["builtin"] in _ARRAY_BUILTIN:
+            try:
+                return _ARRAY_BUILTIN[body["builtin"]](
+                    *self._args(index, body["operand_count"]))
+            except FrontEndError as exc:
+                raise FrontEndError(f"{self.where}: {exc}") from None
         if kind == "builtin":
             name = body["builtin"]
             if name not in _BUILTIN:
@@ -277,7 +340,8 @@ _REFUSED = {
     "discrete_value_owners": "Integer or Boolean variables",
     "clocks": "clocked equations", "clock_ownerships": "clocked equations",
     "delays": "delay()", "functions": "function calls",
-    "domains": "domains", "terminals": "terminal()",
+    "domains": "for-equations and array equations",
+    "terminals": "terminal()",
     "initial_discrete_values": "initial values of discrete variables",
     "initial_parameter_values": "parameters with fixed = false",
 }
@@ -317,6 +381,24 @@ def _first_span(item):
 
 def _check_supported(storage, model_name, where):
     """Refuse, with the place in the source, what cannot be compiled."""
+    for raw in storage["variables"]:
+        place = where({"span": raw.get("declaration", {}).get("span")})
+        if raw["role"] not in _ROLES:
+            kind = "Integer, Boolean and discrete variables are" \
+                if "discrete" in raw["role"] else \
+                f"variables of role {raw['role']!r} are"
+            raise FrontEndError(f"{place}: {raw['name']}: {kind} not "
+                                "supported by the FMU back end")
+        value_type = storage["value_types"][raw["value_type"]]
+        if value_type.get("dimensions") and \
+                raw["role"] not in ("parameter", "constant"):
+            raise FrontEndError(f"{place}: {raw['name']}: arrays of "
+                                "variables are not supported by the FMU back "
+                                "end (arrays of parameters are)")
+        if value_type.get("scalar") != "real":
+            raise FrontEndError(f"{place}: {raw['name']}: "
+                                f"{value_type.get('scalar')} variables are "
+                                "not supported by the FMU back end")
     for key, construct in _REFUSED.items():
         items = storage.get(key) or []
         if items:
@@ -324,21 +406,6 @@ def _check_supported(storage, model_name, where):
                 model_name
             raise FrontEndError(f"{place}: {construct} are not supported "
                                 f"by the FMU back end (model {model_name})")
-    for raw in storage["variables"]:
-        place = where({"span": raw.get("declaration", {}).get("span")})
-        if raw["role"] not in _ROLES:
-            kind = "discrete variable" if "discrete" in raw["role"] else \
-                f"variable of role {raw['role']!r}"
-            raise FrontEndError(f"{place}: {raw['name']}: {kind} is not "
-                                "supported by the FMU back end")
-        value_type = storage["value_types"][raw["value_type"]]
-        if value_type.get("dimensions"):
-            raise FrontEndError(f"{place}: {raw['name']}: arrays are not "
-                                "supported by the FMU back end")
-        if value_type.get("scalar") != "real":
-            raise FrontEndError(f"{place}: {raw['name']}: "
-                                f"{value_type.get('scalar')} variables are "
-                                "not supported by the FMU back end")
 
 
 def load_flat_model(path, model_name, roots=()):
@@ -367,8 +434,9 @@ def load_flat_model(path, model_name, roots=()):
     time = casadi.SX.sym("time")
     symbols, derivatives, variables = [], {}, []
     for index, raw in enumerate(storage["variables"]):
-        symbol = casadi.SX.sym(raw["name"])
-        symbols.append(symbol)
+        shape = storage["value_types"][raw["value_type"]].get("dimensions")
+        symbols.append(_element_symbols(raw["name"], shape) if shape
+                       else casadi.SX.sym(raw["name"]))
         if raw["role"] == "state":
             derivatives[index] = casadi.SX.sym(f"der({raw['name']})")
     convert = _Expressions(storage, symbols, derivatives, time)
@@ -376,18 +444,26 @@ def load_flat_model(path, model_name, roots=()):
         attributes = raw.get("attributes", {})
         convert.where = where({"span": raw.get("declaration", {})
                                .get("span")})
-        variables.append(Variable(
-            name=raw["name"], role=raw["role"], symbol=symbols[index],
-            derivative=derivatives.get(index),
-            unit=attributes.get("unit") or "",
-            description=attributes.get("description") or "",
-            start=convert(attributes.get("start")),
-            fixed=_is_fixed(attributes.get("fixed")),
-            binding=convert(attributes.get("binding")),
-            minimum=convert(attributes.get("min")),
-            maximum=convert(attributes.get("max")),
-            where=convert.where,
-            causality=attributes.get("causality") or ""))
+        values = {key: convert(attributes.get(key))
+                  for key in ("start", "binding", "min", "max")}
+        elements = symbols[index]
+        if not isinstance(elements, np.ndarray):
+            elements, values = np.array([elements], dtype=object), \
+                {k: np.array([v], dtype=object) for k, v in values.items()}
+        for position in np.ndindex(elements.shape):
+            symbol = elements[position]
+            variables.append(Variable(
+                name=symbol.name(), role=raw["role"], symbol=symbol,
+                derivative=derivatives.get(index),
+                unit=attributes.get("unit") or "",
+                description=attributes.get("description") or "",
+                start=_element(values["start"], position, convert.where),
+                fixed=_is_fixed(attributes.get("fixed")),
+                binding=_element(values["binding"], position, convert.where),
+                minimum=_element(values["min"], position, convert.where),
+                maximum=_element(values["max"], position, convert.where),
+                where=convert.where,
+                causality=attributes.get("causality") or ""))
     sections, places = {}, {}
     for section in ("continuous_equation_operations",
                     "initialization_equation_operations"):
@@ -408,6 +484,33 @@ def load_flat_model(path, model_name, roots=()):
         places=places["continuous_equation_operations"],
         initial_places=places["initialization_equation_operations"],
         time=time, experiment=_experiment(path, model_name))
+
+
+def _element_symbols(name, shape):
+    """One SX symbol per element of an array, named ``name[i,j]``."""
+    symbols = np.empty(shape, dtype=object)
+    for position in product(*(range(n) for n in shape)):
+        symbols[position] = casadi.SX.sym(
+            f"{name}[{','.join(str(k + 1) for k in position)}]")
+    return symbols
+
+
+def _element(value, position, where):
+    """Element ``position`` of an array attribute (a scalar applies to all)."""
+    if value is None:
+        return None
+    if not isinstance(value, np.ndarray):
+        return value
+    if value.ndim == 1 and value.shape == (1,) and len(position) > 1:
+        return value[0]
+    if value.ndim == 0:
+        return value[()]
+    try:
+        return value[position]
+    except IndexError:
+        raise FrontEndError(f"{where}: the array value has shape "
+                            f"{value.shape}, not that of the declaration") \
+            from None
 
 
 def _is_fixed(value):
