@@ -81,6 +81,15 @@ class OdeModel:
     inputs : list of Quantity
         Inputs ``u`` (causality input) with their start values; in the
         functions and the C code they follow the parameters in ``p``.
+    relations : list of Quantity
+        Relations that generate events, whose values (held between
+        events) follow the inputs in ``p``; ``expression`` is the symbol,
+        ``minimum`` the relation and ``maximum`` the event indicator
+        ``lhs - rhs``, both formulas in ``t, x, p``.
+    whens : list of (int, list of (str, casadi.SX))
+        When-clauses: the relation that triggers each (index in
+        ``relations``) and its reinit (state name, value in ``t, x, p``,
+        ``pre(x)`` being ``x`` before the event).
     calculated : list of Quantity
         Parameters bound to formulas in ``p``.
     outputs : list of Quantity
@@ -100,11 +109,34 @@ class OdeModel:
     experiment: dict
     eliminated: dict
     inputs: list = field(default_factory=list)
+    relations: list = field(default_factory=list)
+    whens: list = field(default_factory=list)
 
     def _symbols(self):
         x = _column(*[s.expression for s in self.states])
-        p = _column(*[q.expression for q in self.parameters + self.inputs])
+        p = _column(*[q.expression for q in self.parameters + self.inputs
+                      + self.relations])
         return x, p
+
+    def event_functions(self):
+        """CasADi functions of the events: ``indicators(t, x, p) -> z``
+        (each relation's ``lhs - rhs``), ``relations(t, x, p) -> r`` (the
+        relations' values, 1 or 0) and ``reinit(t, x, p, fired) -> x``
+        (the states after the when-clauses flagged in ``fired``)."""
+        x, p = self._symbols()
+        fired = casadi.SX.sym("fired", len(self.whens))
+        after = [s.expression for s in self.states]
+        names = [s.name for s in self.states]
+        for k, (_, reinits) in enumerate(self.whens):
+            for name, value in reinits:
+                i = names.index(name)
+                after[i] = casadi.if_else(fired[k] > 0.5, value, after[i])
+        return (casadi.Function("indicators", [self.time, x, p], [_column(
+                    *[q.maximum for q in self.relations])]),
+                casadi.Function("relations", [self.time, x, p], [_column(
+                    *[q.minimum for q in self.relations])]),
+                casadi.Function("reinit", [self.time, x, p, fired],
+                                [_column(*after)]))
 
     def functions(self):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
@@ -120,14 +152,17 @@ class OdeModel:
                 casadi.Function("start", [p], [x0], ["p"], ["x0"]))
 
     def parameter_vector(self, **values):
-        """Default parameter (then input) values, some changed by name."""
-        names = [q.name for q in self.parameters + self.inputs]
+        """Default parameter (then input, relation) values, some changed
+        by name."""
+        names = [q.name for q in self.parameters + self.inputs
+                 + self.relations]
         unknown = sorted(set(values) - set(names))
         if unknown:
             raise KeyError(f"unknown parameter {unknown[0]!r}; tunable: "
                            f"{', '.join(names)}")
-        return np.array([values.get(q.name, q.start)
-                         for q in self.parameters + self.inputs], dtype=float)
+        return np.array([values.get(q.name, q.start) for q in
+                         self.parameters + self.inputs + self.relations],
+                        dtype=float)
 
 
 def _column(*items):
@@ -288,6 +323,8 @@ def _to_ode(model):
     state_quantities = [Quantity(v.name, v.unit, v.description, v.symbol,
                                  start=start)
                         for v, start in zip(order, starts)]
+    relations, whens = _events(model, order, derivatives, system.eliminated,
+                               parameter_symbols, parameter_values)
     outputs = []
     for v in model.variables:
         if v.causality != "output":
@@ -299,7 +336,31 @@ def _to_ode(model):
         derivatives=_column(*[derivatives[v.name] for v in order]),
         parameters=tunable, calculated=calculated, outputs=outputs,
         experiment=model.experiment, eliminated=system.eliminated,
-        inputs=inputs)
+        inputs=inputs, relations=relations, whens=whens)
+
+
+def _events(model, order, derivatives, eliminated, parameter_symbols,
+            parameter_values):
+    """Relations and when-clauses as formulas in ``t, x, p``."""
+    def formula(expression):
+        expression = casadi.substitute(expression, parameter_symbols,
+                                       parameter_values)
+        return _in_states(expression, order, derivatives, eliminated)
+    relations = [Quantity(r.symbol.name(), "", f"relation at {r.where}",
+                          r.symbol, start=0.0, minimum=formula(r.value),
+                          maximum=formula(r.indicator))
+                 for r in model.relations]
+    kept = {v.name for v in order}
+    whens = []
+    for clause in model.whens:
+        for name, _ in clause.reinits:
+            if name not in kept:
+                raise BackEndError(f"{clause.where}: reinit({name}, ...): "
+                                   f"{name} is not a state of the reduced "
+                                   "model (index reduction removed it)")
+        whens.append((clause.relation, [(name, formula(value))
+                                        for name, value in clause.reinits]))
+    return relations, whens
 
 
 def _input_start(variable):
@@ -311,6 +372,22 @@ def _input_start(variable):
                            f"{variable.name} depends on other variables; "
                            "give a number")
     return _value(variable.start)
+
+
+def _in_states(expression, order, derivatives, eliminated):
+    """An expression in any variables as a formula in ``t, x, p``: the
+    eliminated variables and der(x) replaced by their formulas."""
+    for _ in range(len(eliminated) + 1):   # eliminated names in formulas
+        found = [s for s in casadi.symvar(expression)
+                 if s.name() in eliminated]
+        if not found:
+            break
+        expression = casadi.substitute(
+            expression, _column(*found),
+            _column(*[eliminated[s.name()] for s in found]))
+    return casadi.substitute(
+        expression, _column(*[v.derivative for v in order]),
+        _column(*[derivatives[v.name] for v in order]))
 
 
 def _initial_states(initial, order, starts, derivatives, eliminated, time,
@@ -328,20 +405,8 @@ def _initial_states(initial, order, starts, derivatives, eliminated, time,
     list of casadi.SX
         One start formula in ``p`` per state of ``order``.
     """
-    residuals = []
-    by_name = dict(eliminated)
-    for residual in initial:
-        for _ in range(len(by_name) + 1):   # eliminated names in formulas
-            found = [s for s in casadi.symvar(residual) if s.name() in by_name]
-            if not found:
-                break
-            residual = casadi.substitute(
-                residual, _column(*found),
-                _column(*[by_name[s.name()] for s in found]))
-        residual = casadi.substitute(
-            residual, _column(*[v.derivative for v in order]),
-            _column(*[derivatives[v.name] for v in order]))
-        residuals.append(residual)
+    residuals = [_in_states(r, order, derivatives, eliminated)
+                 for r in initial]
     for place, residual in zip(places, residuals):
         if casadi.depends_on(residual, time):
             raise BackEndError(f"{place}: initial equations that depend on "

@@ -32,6 +32,8 @@ class Layout:
         self.vr_calculated = self.vr_parameters + np_
         self.vr_outputs = self.vr_calculated + nc
         self.vr_inputs = self.vr_outputs + len(ode.outputs)
+        self.vr_indicators = self.vr_inputs + len(ode.inputs)
+        self.relations = ode.relations
 
     def units(self):
         names = {q.unit for group in (self.states, self.parameters,
@@ -129,6 +131,13 @@ def _variables(layout):
     return rows
 
 
+def _indicators(layout):
+    """FMI 3 event indicators: local variables (name, vr, description)."""
+    return [(f"_eventIndicator{i + 1}", layout.vr_indicators + i,
+             f"Event indicator of the {q.description}")
+            for i, q in enumerate(layout.relations)]
+
+
 def _bounds(q):
     out = {}
     for key, value in (("min", q.minimum), ("max", q.maximum)):
@@ -156,7 +165,7 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
                  fmiVersion="2.0", modelName=ode.name, guid=guid,
                  generationTool=tool, generationDateAndTime=_generated(),
                  variableNamingConvention="structured",
-                 numberOfEventIndicators="0") + ">",
+                 numberOfEventIndicators=str(len(ode.relations))) + ">",
              "  <ModelExchange" + _attr(
                  modelIdentifier=identifier,
                  canNotUseMemoryManagementFunctions="true") + "/>",
@@ -267,6 +276,10 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                           variability="continuous", initial="calculated",
                           unit=q.unit or None)
         lines.append(f"    <Float64{attrs}/>")
+    for name, vr, text in _indicators(layout):
+        lines.append("    <Float64" + _attr(
+            name=name, valueReference=vr, description=text,
+            causality="local", variability="continuous") + "/>")
     lines.append("  </ModelVariables>")
     lines.append("  <ModelStructure>")
     rows = _variables(layout)
@@ -277,6 +290,8 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
     lines += [f'    <InitialUnknown valueReference="{vr}"/>'
               for _, vr, kind, _ in rows
               if kind in ("state", "derivative", "calculated", "output")]
+    lines += [f'    <EventIndicator valueReference="{vr}"/>'
+              for _, vr, _ in _indicators(layout)]
     lines.append("  </ModelStructure>")
     lines.append("</fmiModelDescription>")
     return "\n".join(lines) + "\n"

@@ -83,6 +83,11 @@ class FlatModel:
         The ``initial equation`` section, one residual per equation.
     places, initial_places : list of str
         ``file:line`` of each equation of the two sections.
+    relations : list of Relation
+        Relations that generate events; in the equations each is replaced
+        by its symbol, a value held between events.
+    whens : list of When
+        ``when relation then reinit(...)`` clauses.
     time : casadi.SX
     experiment : dict
         ``StopTime`` and ``Interval`` of the experiment annotation.
@@ -96,6 +101,8 @@ class FlatModel:
     initial_residuals: list = field(default_factory=list)
     places: list = field(default_factory=list)
     initial_places: list = field(default_factory=list)
+    relations: list = field(default_factory=list)
+    whens: list = field(default_factory=list)
     experiment: dict = field(default_factory=dict)
     description: str = ""
 
@@ -104,6 +111,36 @@ class FlatModel:
         return [v for v in self.variables if v.role == role]
 
 
+@dataclass
+class Relation:
+    """A relation ``lhs op rhs`` that generates events.
+
+    ``symbol`` stands for its value (1 or 0) in the equations, held
+    between events; ``value`` is the relation itself and ``indicator``
+    ``lhs - rhs``, whose sign changes where the relation does.
+    """
+
+    symbol: object
+    value: object
+    indicator: object
+    where: str = ""
+
+
+@dataclass
+class When:
+    """``when relation then reinit(state, value); ... end when``.
+
+    ``relation`` indexes :attr:`FlatModel.relations`; ``reinits`` are
+    ``(state name, value)`` with ``pre(x)`` read as the value of ``x``
+    just before the event.
+    """
+
+    relation: int
+    reinits: list
+    where: str = ""
+
+
+_RELATIONS = ("less", "less_equal", "greater", "greater_equal")
 _BINARY = {
     "add": lambda a, b: a + b, "subtract": lambda a, b: a - b,
     "multiply": lambda a, b: a * b, "divide": lambda a, b: a / b,
@@ -178,6 +215,10 @@ class _Expressions:
         self._time = time
         self._cache = {}
         self.where = ""   # file:line of what is being converted
+        #: relation node -> position in storage["relations"]
+        self.relation_of = {}
+        self.relations = {}   # position -> Relation
+        self.pre_is_state = False   # pre(x) allowed (reinit values)
         # nodes with a variable number of operands take them, in node
         # order, from the flat operand list
         self._offsets = {}
@@ -195,6 +236,22 @@ class _Expressions:
             self._cache[index] = self._convert(index)
         return self._cache[index]
 
+    def _relation(self, index, body):
+        """The symbol of an event-generating relation, recorded once."""
+        position = self.relation_of[index]
+        if position not in self.relations:
+            op = body["operator"]
+            if op not in _RELATIONS:
+                raise FrontEndError(f"{self.where}: relation {op!r} on "
+                                    "continuous variables is not supported "
+                                    "(use <, <=, > or >=)")
+            lhs, rhs = self(body["lhs"]), self(body["rhs"])
+            self.relations[position] = Relation(
+                symbol=casadi.SX.sym(f"relation{position + 1}"),
+                value=_BINARY[op](lhs, rhs), indicator=lhs - rhs,
+                where=self.where)
+        return self.relations[position].symbol
+
     def _args(self, index, count):
         start = self._offsets[index]
         return [self(i) for i in self._operands[start:start + count]]
@@ -210,11 +267,15 @@ class _Expressions:
             role, position = next(iter(body.items()))
             if role == "derivative":
                 return self._derivatives[position]
+            if role == "pre_state" and self.pre_is_state:
+                return self._symbols[position]
             if role not in _ROLES:
                 raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
                                     "references (pre, edge, change) are not "
                                     "supported by the FMU back end")
             return self._symbols[position]
+        if kind == "binary" and index in self.relation_of:
+            return self._relation(index, body)
         if kind == "binary":
             op = body["operator"]
             if op not in _BINARY:
@@ -329,13 +390,10 @@ _ROLES = ("state", "algebraic", "parameter", "constant", "input", "output")
 #: Sections of rumoca's flat model the back end does not compile (yet),
 #: with the Modelica construct that produces them.
 _REFUSED = {
-    "event_actions": "when-equations and reinit",
     "model_event_transactions": "when-equations",
     "discrete_real_equations": "discrete-time equations (when, sample)",
     "previous_values": "pre()",
     "time_events": "time events (sample, time >= ...)",
-    "relations": "relations that generate events (write noEvent(...) "
-                 "around a relation that needs no event)",
     "structured_roots": "event conditions",
     "discrete_value_owners": "Integer or Boolean variables",
     "clocks": "clocked equations", "clock_ownerships": "clocked equations",
@@ -440,6 +498,8 @@ def load_flat_model(path, model_name, roots=()):
         if raw["role"] == "state":
             derivatives[index] = casadi.SX.sym(f"der({raw['name']})")
     convert = _Expressions(storage, symbols, derivatives, time)
+    for position, item in enumerate(storage.get("relations") or []):
+        convert.relation_of[item["relation"]["expression"]] = position
     for index, raw in enumerate(storage["variables"]):
         attributes = raw.get("attributes", {})
         convert.where = where({"span": raw.get("declaration", {})
@@ -477,13 +537,54 @@ def load_flat_model(path, model_name, roots=()):
                                     "back end")
             sections[section].append(convert(body["residual"]))
             places[section].append(convert.where)
+    whens = _whens(storage, convert, where, variables)
     return FlatModel(
         name=model_name, variables=variables,
         residuals=sections["continuous_equation_operations"],
         initial_residuals=sections["initialization_equation_operations"],
         places=places["continuous_equation_operations"],
         initial_places=places["initialization_equation_operations"],
+        relations=[convert.relations[k] for k in sorted(convert.relations)],
+        whens=whens,
         time=time, experiment=_experiment(path, model_name))
+
+
+def _whens(storage, convert, where, variables):
+    """``when`` clauses with ``reinit`` (rumoca's event actions).
+
+    The relations are renumbered in the order of ``convert.relations``
+    after every one is converted.
+    """
+    conditions = storage.get("conditions") or []
+    clauses = {}
+    for action in storage.get("event_actions") or []:
+        convert.where = where(action)
+        kind, body = next(iter(action["kind"].items()))
+        if kind != "reinitialize":
+            raise FrontEndError(f"{convert.where}: {kind} in a when-clause "
+                                "is not supported by the FMU back end")
+        node = conditions[action["trigger"]].get("node", {}) \
+            if action["trigger"] < len(conditions) else {}
+        if set(node) != {"relation"} or action["guard"] != action["trigger"]:
+            raise FrontEndError(f"{convert.where}: when-conditions other "
+                                "than one relation (h < 0) are not "
+                                "supported by the FMU back end")
+        relation = node["relation"]
+        expression = storage["relations"][relation]["relation"]["expression"]
+        convert(expression)   # records the relation
+        convert.pre_is_state = True
+        try:
+            value = convert(body["value"])
+        finally:
+            convert.pre_is_state = False
+        target = storage["variables"][body["state"]]["name"]
+        clause = clauses.setdefault(action["trigger"], When(
+            relation=relation, reinits=[], where=convert.where))
+        clause.reinits.append((target, value))
+    order = sorted(convert.relations)
+    for clause in clauses.values():
+        clause.relation = order.index(clause.relation)
+    return list(clauses.values())
 
 
 def _element_symbols(name, shape):

@@ -166,11 +166,12 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
 fmi2Status fmi2EnterEventMode(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
-    (void)c;
-    info->newDiscreteStatesNeeded = fmi2False;
+    Instance *inst = c;
+    int again = 0, changed = model_event(&inst->model, &again);
+    info->newDiscreteStatesNeeded = again ? fmi2True : fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
-    info->valuesOfContinuousStatesChanged = fmi2False;
+    info->valuesOfContinuousStatesChanged = changed ? fmi2True : fmi2False;
     info->nextEventTimeDefined = fmi2False;
     info->nextEventTime = 0;
     return fmi2OK;
@@ -217,8 +218,9 @@ fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t nx) {
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t nz) {
-    (void)c; (void)z;
-    return nz == 0 ? fmi2OK : fmi2Error;
+    if (nz != MODEL_NR) return fmi2Error;
+    if (nz) model_indicators(&((Instance *)c)->model, z);
+    return fmi2OK;
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {

@@ -247,9 +247,11 @@ fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance c) { (void)c; return fmi3OK; 
 fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *update,
         fmi3Boolean *terminate, fmi3Boolean *nominals, fmi3Boolean *values,
         fmi3Boolean *timeDefined, fmi3Float64 *nextTime) {
-    (void)c;
-    *update = fmi3False; *terminate = fmi3False; *nominals = fmi3False;
-    *values = fmi3False; *timeDefined = fmi3False; *nextTime = 0;
+    Instance *inst = c;
+    int again = 0, changed = model_event(&inst->model, &again);
+    *update = again ? fmi3True : fmi3False; *terminate = fmi3False;
+    *nominals = fmi3False; *values = changed ? fmi3True : fmi3False;
+    *timeDefined = fmi3False; *nextTime = 0;
     return fmi3OK;
 }
 
@@ -293,8 +295,9 @@ fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], s
 }
 
 fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 z[], size_t nz) {
-    (void)c; (void)z;
-    return nz == 0 ? fmi3OK : fmi3Error;
+    if (nz != MODEL_NR) return fmi3Error;
+    if (nz) model_indicators(&((Instance *)c)->model, z);
+    return fmi3OK;
 }
 
 fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t nx) {
@@ -312,7 +315,7 @@ fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64 x[], si
 }
 
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
-    (void)c; *n = 0; return fmi3OK;
+    (void)c; *n = MODEL_NR; return fmi3OK;
 }
 
 fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {

@@ -7,11 +7,12 @@
 
 #include "model_functions.h"
 
-static const double parameter_defaults[MODEL_NP + MODEL_NU + 1] =
+static const double parameter_defaults[MODEL_NPAR + 1] =
     MODEL_PARAMETER_DEFAULTS;
 /* declared min and max of the parameters and inputs (+-inf if none) */
-static const double parameter_min[MODEL_NP + MODEL_NU + 1] = MODEL_PARAMETER_MIN;
-static const double parameter_max[MODEL_NP + MODEL_NU + 1] = MODEL_PARAMETER_MAX;
+static const double parameter_min[MODEL_NPAR + 1] = MODEL_PARAMETER_MIN;
+static const double parameter_max[MODEL_NPAR + 1] = MODEL_PARAMETER_MAX;
+static const int when_relation[MODEL_NW + 1] = MODEL_WHEN_RELATION;
 
 int model_init(Model *m) {
     casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
@@ -27,6 +28,15 @@ int model_init(Model *m) {
     if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
     if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
     MODEL_CALCULATED_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    MODEL_INDICATORS_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    MODEL_RELATIONS_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    MODEL_REINIT_WORK(&a, &r, &i, &w);
     if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
     if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
     m->arg = calloc((size_t)sz_arg + 1, sizeof(*m->arg));
@@ -48,7 +58,49 @@ void model_start(Model *m) {
     m->arg[0] = m->p;
     m->res[0] = m->x;
     MODEL_START(m->arg, m->res, m->iw, m->w, 0);
+    model_hold_relations(m);
     m->stale = 1;
+}
+
+static void relations_at(Model *m, double t, const double *x, double *r) {
+    m->arg[0] = &t; m->arg[1] = x; m->arg[2] = m->p;
+    m->res[0] = r;
+    MODEL_RELATIONS(m->arg, m->res, m->iw, m->w, 0);
+}
+
+void model_hold_relations(Model *m) {
+    relations_at(m, m->time, m->x, m->p + MODEL_NP + MODEL_NU);
+    m->stale = 1;
+}
+
+void model_indicators(Model *m, double *z) {
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = z;
+    MODEL_INDICATORS(m->arg, m->res, m->iw, m->w, 0);
+}
+
+int model_event(Model *m, int *again) {
+    double r[MODEL_NR + 1], fired[MODEL_NW + 1], x[MODEL_NX + 1];
+    double *held = m->p + MODEL_NP + MODEL_NU;
+    int k, any = 0;
+    relations_at(m, m->time, m->x, r);
+    for (k = 0; k < MODEL_NW; k++) {
+        fired[k] = r[when_relation[k]] > 0.5 && held[when_relation[k]] < 0.5;
+        any |= fired[k] > 0.5;
+    }
+    for (k = 0; k < MODEL_NR; k++) held[k] = r[k];
+    if (any) {
+        m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+        m->arg[3] = fired;
+        m->res[0] = x;
+        MODEL_REINIT(m->arg, m->res, m->iw, m->w, 0);
+        memcpy(m->x, x, sizeof(double) * MODEL_NX);
+    }
+    relations_at(m, m->time, m->x, r);
+    *again = 0;
+    for (k = 0; k < MODEL_NR; k++) if (r[k] != held[k]) *again = 1;
+    m->stale = 1;
+    return any;
 }
 
 static void derivatives(Model *m, double t, const double *x, double *xdot) {
@@ -81,14 +133,18 @@ int model_get(Model *m, unsigned vr, double *value) {
         return 0;
     }
     if (vr < VR_INPUTS) { model_evaluate(m); *value = m->y[vr - VR_OUTPUTS]; return 0; }
-    if (vr < VR_END) { *value = m->p[MODEL_NP + vr - VR_INPUTS]; return 0; }
+    if (vr < VR_INDICATORS) { *value = m->p[MODEL_NP + vr - VR_INPUTS]; return 0; }
+    if (vr < VR_END) {
+        double z[MODEL_NR + 1];
+        model_indicators(m, z); *value = z[vr - VR_INDICATORS]; return 0;
+    }
     return 1;
 }
 
 int model_set(Model *m, unsigned vr, double value, int parameters_only) {
     unsigned k;
     if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) k = vr - VR_PARAMETERS;
-    else if (vr >= VR_INPUTS && vr < VR_END) k = MODEL_NP + vr - VR_INPUTS;
+    else if (vr >= VR_INPUTS && vr < VR_INDICATORS) k = MODEL_NP + vr - VR_INPUTS;
     else if (!parameters_only && vr >= VR_STATES && vr < VR_DERIVATIVES) {
         m->x[vr - VR_STATES] = value; m->stale = 1; return 0;
     } else return 1;
@@ -127,9 +183,49 @@ static const double B1 = 35.0/384, B3 = 500.0/1113, B4 = 125.0/192,
 static const double E1 = 71.0/57600, E3 = -71.0/16695, E4 = 71.0/1920,
                     E5 = -17253.0/339200, E6 = 22.0/525, E7 = -1.0/40;
 
+/* One Dormand-Prince step of size h from (t, x) with k1 = f(t, x):
+ * xn, k7 = f(t + h, xn) and the scaled error norm. */
+static double dp_step(Model *m, double t, const double *x, const double *k1,
+                      double h, double *xn, double *k7) {
+    enum { N = MODEL_NX + 1 };
+    double k2[N], k3[N], k4[N], k5[N], k6[N], xs[N];
+    double err = 0, rtol = m->relative_tolerance, atol = rtol;
+    int i, n = MODEL_NX;
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * A21 * k1[i];
+    derivatives(m, t + C2 * h, xs, k2);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A31 * k1[i] + A32 * k2[i]);
+    derivatives(m, t + C3 * h, xs, k3);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
+    derivatives(m, t + C4 * h, xs, k4);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
+    derivatives(m, t + C5 * h, xs, k5);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
+    derivatives(m, t + h, xs, k6);
+    for (i = 0; i < n; i++) xn[i] = x[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]);
+    derivatives(m, t + h, xn, k7);
+    for (i = 0; i < n; i++) {
+        double e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+        double sc = atol + rtol * fmax(fabs(x[i]), fabs(xn[i]));
+        err += (e / sc) * (e / sc);
+    }
+    return sqrt(err / n);
+}
+
+/* 1 if a relation at (t, x) differs from the value held since the last
+ * event */
+static int relations_changed(Model *m, double t, const double *x) {
+    double r[MODEL_NR + 1];
+    int k;
+    if (MODEL_NR == 0) return 0;
+    relations_at(m, t, x, r);
+    for (k = 0; k < MODEL_NR; k++)
+        if (r[k] != m->p[MODEL_NP + MODEL_NU + k]) return 1;
+    return 0;
+}
+
 int model_integrate(Model *m, double t_end) {
     enum { N = MODEL_NX + 1 };
-    double k1[N], k2[N], k3[N], k4[N], k5[N], k6[N], k7[N], xs[N], xn[N];
+    double k1[N], k7[N], xn[N];
     double t = m->time, h, rtol = m->relative_tolerance, atol;
     int i, n = MODEL_NX;
     if (n == 0) { m->time = t_end; m->stale = 1; return 0; }
@@ -151,27 +247,34 @@ int model_integrate(Model *m, double t_end) {
             h = 1e-12 * (fabs(t) + 1.0);
     }
     while (t < t_end) {
-        double err = 0, factor;
+        double err, factor;
         if (t + h > t_end || t + 1.01 * h >= t_end) h = t_end - t;
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * A21 * k1[i];
-        derivatives(m, t + C2 * h, xs, k2);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A31 * k1[i] + A32 * k2[i]);
-        derivatives(m, t + C3 * h, xs, k3);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
-        derivatives(m, t + C4 * h, xs, k4);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
-        derivatives(m, t + C5 * h, xs, k5);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
-        derivatives(m, t + h, xs, k6);
-        for (i = 0; i < n; i++) xn[i] = m->x[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]);
-        derivatives(m, t + h, xn, k7);
-        for (i = 0; i < n; i++) {
-            double e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
-            double sc = atol + rtol * fmax(fabs(m->x[i]), fabs(xn[i]));
-            err += (e / sc) * (e / sc);
-        }
-        err = sqrt(err / n);
+        err = dp_step(m, t, m->x, k1, h, xn, k7);
         if (!isfinite(err)) return 2;
+        if (err <= 1.0 && relations_changed(m, t + h, xn)) {
+            /* an event inside the step: the shortest step after which a
+             * relation has changed, to 1e-13 s relative */
+            double low = 0, high = h, xt[N], kt[N];
+            int again, iteration;
+            while (high - low > 1e-13 * (fabs(t) + 1.0)) {
+                double middle = 0.5 * (low + high);
+                dp_step(m, t, m->x, k1, middle, xt, kt);
+                if (relations_changed(m, t + middle, xt)) high = middle;
+                else low = middle;
+            }
+            dp_step(m, t, m->x, k1, high, xn, k7);
+            t = (high == t_end - t) ? t_end : t + high;
+            memcpy(m->x, xn, sizeof(double) * n);
+            m->time = t;
+            for (iteration = 0; iteration < 100; iteration++) {
+                model_event(m, &again);
+                if (!again) break;
+            }
+            derivatives(m, t, m->x, k1);
+            m->steps++;
+            m->events++;
+            continue;
+        }
         if (err <= 1.0) {
             t += h;
             memcpy(m->x, xn, sizeof(double) * n);
