@@ -87,4 +87,5 @@ def main(argv=None):
     return EXIT_OK
 
 
-sys.exit(main())
+if __name__ == "__main__":
+    sys.exit(main())

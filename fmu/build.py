@@ -32,7 +32,7 @@ import casadi
 from infra.files import atomic_write
 
 from .backend import Quantity, to_ode
-from .description import Layout, model_description
+from .description import Layout, build_description, model_description
 from .frontend import FrontEndError, load_flat_model
 
 __all__ = ["BuildError", "BuildResult", "build_fmu", "fmi_headers"]
@@ -248,6 +248,12 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                 entry.external_attr = 0o644 << 16   # not writestr's 0600
                 entry.compress_type = zipfile.ZIP_DEFLATED
                 fmu.writestr(entry, description)
+                if version == "3.0":
+                    entry = zipfile.ZipInfo("sources/buildDescription.xml",
+                                            time.localtime()[:6])
+                    entry.external_attr = 0o644 << 16
+                    entry.compress_type = zipfile.ZIP_DEFLATED
+                    fmu.writestr(entry, build_description(identifier))
                 fmu.write(library, f"binaries/{_PLATFORM[version]}/"
                                    f"{identifier}.so")
                 for source in ("model_functions.c", "model_functions.h",

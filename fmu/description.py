@@ -13,7 +13,7 @@ from xml.sax.saxutils import quoteattr
 
 from .units import base_exponents
 
-__all__ = ["Layout", "model_description"]
+__all__ = ["Layout", "model_description", "build_description", "SOURCES"]
 
 
 class Layout:
@@ -149,6 +149,32 @@ def _bounds(q):
     return out
 
 
+#: C files of the FMU's sources/ folder that make its binary, per version
+#: (the headers beside them: model.h, model_config.h, model_functions.h).
+SOURCES = {"2.0": ("model_functions.c", "model.c", "fmi2.c"),
+           "3.0": ("model_functions.c", "model.c", "fmi3.c")}
+
+
+def _source_files(version):
+    """FMI 2 <SourceFiles> of an interface element."""
+    return (["    <SourceFiles>"]
+            + [f"      <File name={quoteattr(name)}/>"
+               for name in SOURCES[version]] + ["    </SourceFiles>"])
+
+
+def build_description(identifier, version="3.0"):
+    """sources/buildDescription.xml of an FMI 3 FMU."""
+    files = "".join(f'\n      <SourceFile name={quoteattr(name)}/>'
+                    for name in SOURCES[version])
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            '<fmiBuildDescription fmiVersion="3.0">\n'
+            f'  <BuildConfiguration modelIdentifier={quoteattr(identifier)}>\n'
+            '    <SourceFileSet language="C99">'
+            f'{files}\n    </SourceFileSet>\n'
+            '  </BuildConfiguration>\n'
+            '</fmiBuildDescription>\n')
+
+
 def _generated():
     """generationDateAndTime: now, UTC, ISO 8601 to the second."""
     return datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
@@ -168,11 +194,17 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
                  numberOfEventIndicators=str(len(ode.relations))) + ">",
              "  <ModelExchange" + _attr(
                  modelIdentifier=identifier,
-                 canNotUseMemoryManagementFunctions="true") + "/>",
+                 canNotUseMemoryManagementFunctions="true",
+                 canGetAndSetFMUstate="true",
+                 canSerializeFMUstate="true") + ">",
+             *_source_files("2.0"), "  </ModelExchange>",
              "  <CoSimulation" + _attr(
                  modelIdentifier=identifier,
                  canHandleVariableCommunicationStepSize="true",
-                 canNotUseMemoryManagementFunctions="true") + "/>"]
+                 canNotUseMemoryManagementFunctions="true",
+                 canGetAndSetFMUstate="true",
+                 canSerializeFMUstate="true") + ">",
+             *_source_files("2.0"), "  </CoSimulation>"]
     lines += _unit_definitions(layout)
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")
@@ -236,7 +268,9 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                  instantiationToken=guid, generationTool=tool,
                  generationDateAndTime=_generated(),
                  variableNamingConvention="structured") + ">",
-             "  <ModelExchange" + _attr(modelIdentifier=identifier) + "/>"]
+             "  <ModelExchange" + _attr(
+                 modelIdentifier=identifier, canGetAndSetFMUState="true",
+                 canSerializeFMUState="true") + "/>"]
     lines += _unit_definitions(layout, extra=("s",))   # of time
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")

@@ -8,6 +8,7 @@ place in the source.
 """
 
 import logging
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -45,6 +46,10 @@ REFUSED = [
 ]
 KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
          ("3.0", "ModelExchange")]
+#: Models also built as FMI 3.0 (one of each kind of construct: the C
+#: core is shared, fmi3.c differs from fmi2.c only in the API).
+FMI3 = ["Decay", "AlgebraicOnly", "FirstOrderInput", "InitialEquation",
+        "TableClutchRig", "BouncingBall"]
 
 
 @pytest.fixture(scope="module")
@@ -52,7 +57,7 @@ def fmus(tmp_path_factory):
     folder = tmp_path_factory.mktemp("corpus")
     built = {}
     for name in BUILT:
-        for version in ("2.0", "3.0"):
+        for version in ("2.0", "3.0") if name in FMI3 else ("2.0",):
             suffix = "" if version == "2.0" else "_fmi3"
             built[(name, version)] = build_fmu(
                 class_source(CORPUS, name), name,
@@ -96,7 +101,7 @@ def _fmutool_check(path):
 
 @pytest.mark.parametrize("version", ["2.0", "3.0"])
 def test_every_fmu_passes_both_validators(fmus, version):
-    for name in BUILT:
+    for name in BUILT if version == "2.0" else FMI3:
         path = fmus[(name, version)]
         assert validate_fmu(str(path)) == [], name
         messages = _fmutool_check(path)
@@ -116,7 +121,7 @@ def test_literal_parameters_decay_closed_form(fmus, version, kind):
                         rtol=1e-7, atol=1e-9)
 
 
-@pytest.mark.parametrize("version, kind", KINDS)
+@pytest.mark.parametrize("version, kind", KINDS[:2])
 def test_states_starting_at_zero(fmus, version, kind):
     # v = a (1 - exp(-t/T)), x = a (t - T (1 - exp(-t/T)))
     result = _run(fmus, "ZeroStart", version, kind, output=["x", "v"])
@@ -126,7 +131,7 @@ def test_states_starting_at_zero(fmus, version, kind):
                     atol=1e-7)
 
 
-@pytest.mark.parametrize("version, kind", KINDS)
+@pytest.mark.parametrize("version, kind", KINDS[:2])
 def test_oscillator_with_calculated_parameter(fmus, version, kind):
     # x = x0 cos(omega t), omega = sqrt(c/m); energy = c x0^2 / 2
     result = _run(fmus, "Oscillator", version, kind,
@@ -187,7 +192,7 @@ def test_initial_equation_sets_the_start(fmus, version, kind):
                     rtol=1e-7)
 
 
-@pytest.mark.parametrize("version, kind", KINDS)
+@pytest.mark.parametrize("version, kind", KINDS[:2])
 def test_steady_state_initialisation(fmus, version, kind):
     # der(x) = 0 at t = 0: x = b/k for ever; w keeps its fixed start
     result = _run(fmus, "SteadyStart", version, kind, output=["x", "w"])
@@ -195,7 +200,7 @@ def test_steady_state_initialisation(fmus, version, kind):
     assert_allclose(result["w"], np.exp(-result["time"]), rtol=1e-7)
 
 
-@pytest.mark.parametrize("version, kind", KINDS)
+@pytest.mark.parametrize("version, kind", KINDS[:2])
 def test_single_file_package(fmus, version, kind):
     result = _run(fmus, "MyLib.Decay", version, kind, output=["x"])
     assert_allclose(result["x"], 2 * np.exp(-1.5 * result["time"]),
@@ -203,17 +208,29 @@ def test_single_file_package(fmus, version, kind):
 
 
 @pytest.mark.parametrize("name, words, line", REFUSED)
-def test_refused_with_construct_and_place(tmp_path, name, words, line):
+def test_refused_with_construct_and_place(tmp_path, capsys, name, words,
+                                          line):
+    # python -m fmu NAME, in this process
+    from fmu.__main__ import main
+    status = main([name, "--library", str(CORPUS), "--out", str(tmp_path),
+                   "--fmi", "2.0"])
+    stderr = capsys.readouterr().err
+    assert status == 2
+    assert stderr.startswith("fmu: error: "), stderr
+    assert words in stderr, stderr
+    assert f"{name}.mo:{line}:" in stderr, stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_refusal_from_the_command_line(tmp_path):
     done = subprocess.run(
-        [sys.executable, "-m", "fmu", name, "--library", str(CORPUS),
-         "--out", str(tmp_path), "--fmi", "2.0"],
+        [sys.executable, "-m", "fmu", "NonlinearLoop", "--library",
+         str(CORPUS), "--out", str(tmp_path)],
         capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert done.returncode == 2
     assert done.stderr.startswith("fmu: error: "), done.stderr
     assert "Traceback" not in done.stderr
-    assert words in done.stderr, done.stderr
-    assert f"{name}.mo:{line}:" in done.stderr, done.stderr
-    assert not list(tmp_path.iterdir())
+    assert done.stderr.count("\n") == 1, "one line"
 
 
 @pytest.mark.parametrize("version, kind", KINDS)
@@ -265,7 +282,7 @@ def test_table_clutch_against_scipy(fmus, version, kind):
                     rtol=1e-6)
 
 
-@pytest.mark.parametrize("version, kind", KINDS)
+@pytest.mark.parametrize("version, kind", KINDS[:2])
 def test_table_in_matrix_syntax(fmus, version, kind):
     # x' = 1 - y(x), y interpolated in the table, 0 beyond its last point
     table = np.array([[0, 0.1], [1, 0.2], [2, 0.15]])
@@ -311,7 +328,7 @@ def test_bouncing_ball_closed_form(fmus, version, kind):
     assert result["v"].max() > 3.0       # bounced up
 
 
-@pytest.mark.parametrize("version, kind", KINDS)
+@pytest.mark.parametrize("version, kind", KINDS[:2])
 def test_relation_switches_at_its_event(fmus, version, kind):
     # der(x) = if x > 0.5 then -1 else -2: x = 1 - t, then from t = 0.5
     # x = 0.5 - 2 (t - 0.5)
@@ -320,3 +337,52 @@ def test_relation_switches_at_its_event(fmus, version, kind):
     t = result["time"]
     assert_allclose(result["x"], np.where(t < 0.5, 1 - t, 0.5 - 2 * (t - 0.5)),
                     atol=1e-9)
+
+
+def test_fmu_state_rolls_a_step_back_bit_identically(fmus):
+    # FMI 2 Co-Simulation: the step from 0.4 s to 0.6 s crosses the first
+    # impact; repeated after fmi2SetFMUstate, and after a serialise /
+    # deserialise round trip, it gives the same bits
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    path = str(fmus[("BouncingBall", "2.0")])
+    description = read_model_description(path)
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    fmu = FMU2Slave(guid=description.guid, unzipDirectory=extract(path),
+                    modelIdentifier=description.coSimulation.modelIdentifier,
+                    instanceName="rollback")
+    fmu.instantiate()
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    for k in range(4):
+        fmu.doStep(0.1 * k, 0.1)
+    saved = fmu.getFMUstate()
+    serialised = fmu.serializeFMUstate(saved)
+    runs = []
+    for restore in (None, saved, fmu.deSerializeFMUstate(serialised)):
+        if restore is not None:
+            fmu.setFMUstate(restore)
+        fmu.doStep(0.4, 0.2)
+        runs.append(fmu.getReal([refs["h"], refs["v"]]))
+    fmu.terminate()
+    fmu.freeInstance()
+    assert runs[0] == runs[1] == runs[2]
+    assert runs[0][1] > 0                      # after the impact
+    assert_allclose(runs[0][0], _bouncing_ball(np.array([0.6]))[0],
+                    atol=1e-8)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_fmpy_rebuilds_the_binary_from_the_sources(fmus, version, tmp_path):
+    # <SourceFiles> (FMI 2) and sources/buildDescription.xml (FMI 3)
+    from fmpy import extract
+    from fmpy.build import build_platform_binary
+    folder = Path(extract(str(fmus[("Decay", version)]),
+                          str(tmp_path / "fmu")))
+    shutil.rmtree(folder / "binaries")
+    (tmp_path / "cmake").mkdir()
+    build_platform_binary(folder, build_dir=tmp_path / "cmake")
+    assert list((folder / "binaries").rglob("Decay.so"))
+    result = simulate_fmu(str(folder), output=["x"], relative_tolerance=1e-10)
+    assert_allclose(result["x"], np.exp(-2 * result["time"]), rtol=1e-7)

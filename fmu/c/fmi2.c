@@ -152,12 +152,47 @@ NO_VARIABLES(fmi2SetString, const fmi2String)
 
 #define NOT_SUPPORTED(call) \
     { (void)c; logmsg(c, fmi2Error, call " is not supported"); return fmi2Error; }
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s) { (void)s; NOT_SUPPORTED("fmi2GetFMUstate") }
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s) { (void)s; NOT_SUPPORTED("fmi2SetFMUstate") }
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s) { (void)s; NOT_SUPPORTED("fmi2FreeFMUstate") }
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *n) { (void)s; (void)n; NOT_SUPPORTED("fmi2SerializedFMUstateSize") }
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], size_t n) { (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi2SerializeFMUstate") }
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *s) { (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi2DeSerializeFMUstate") }
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s) {
+    Instance *inst = c;
+    Model *copy = *s ? (Model *)*s : calloc(1, sizeof(Model));
+    if (!copy) return fmi2Error;
+    model_copy_state(copy, &inst->model);
+    *s = copy;
+    return fmi2OK;
+}
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s) {
+    if (!s) return fmi2Error;
+    model_copy_state(&((Instance *)c)->model, (const Model *)s);
+    return fmi2OK;
+}
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s) {
+    (void)c;
+    if (s) { free(*s); *s = NULL; }
+    return fmi2OK;
+}
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *n) {
+    (void)c; (void)s; *n = model_serialized_size(); return fmi2OK;
+}
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], size_t n) {
+    if (!s || n < model_serialized_size()) {
+        logmsg(c, fmi2Error, "fmi2SerializeFMUstate: %zu bytes given, %zu needed",
+               n, model_serialized_size());
+        return fmi2Error;
+    }
+    model_serialize((const Model *)s, b);
+    return fmi2OK;
+}
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *s) {
+    Model *copy = calloc(1, sizeof(Model));
+    if (!copy) return fmi2Error;
+    if (model_deserialize(copy, b, n) != 0) {
+        free(copy);
+        logmsg(c, fmi2Error, "fmi2DeSerializeFMUstate: not a state of this FMU");
+        return fmi2Error;
+    }
+    *s = copy;
+    return fmi2OK;
+}
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference u[], size_t nu,
         const fmi2ValueReference z[], size_t nz, const fmi2Real dv[], fmi2Real dz[]) {
     (void)u; (void)nu; (void)z; (void)nz; (void)dv; (void)dz; NOT_SUPPORTED("fmi2GetDirectionalDerivative") }

@@ -200,15 +200,46 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference d, siz
         fmi3ValueReference i[], size_t ei[], fmi3DependencyKind k[], size_t n) {
     (void)d; (void)e; (void)i; (void)ei; (void)k; (void)n;
     NOT_SUPPORTED("fmi3GetVariableDependencies") }
-fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *s) { (void)s; NOT_SUPPORTED("fmi3GetFMUState") }
-fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState s) { (void)s; NOT_SUPPORTED("fmi3SetFMUState") }
-fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *s) { (void)s; NOT_SUPPORTED("fmi3FreeFMUState") }
+fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *s) {
+    Instance *inst = c;
+    Model *copy = *s ? (Model *)*s : calloc(1, sizeof(Model));
+    if (!copy) return fmi3Error;
+    model_copy_state(copy, &inst->model);
+    *s = copy;
+    return fmi3OK;
+}
+fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState s) {
+    if (!s) return fmi3Error;
+    model_copy_state(&((Instance *)c)->model, (const Model *)s);
+    return fmi3OK;
+}
+fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *s) {
+    (void)c;
+    if (s) { free(*s); *s = NULL; }
+    return fmi3OK;
+}
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState s, size_t *n) {
-    (void)s; (void)n; NOT_SUPPORTED("fmi3SerializedFMUStateSize") }
+    (void)c; (void)s; *n = model_serialized_size(); return fmi3OK;
+}
 fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState s, fmi3Byte b[], size_t n) {
-    (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi3SerializeFMUState") }
+    if (!s || n < model_serialized_size()) {
+        logmsg(c, fmi3Error, "fmi3SerializeFMUState: too few bytes");
+        return fmi3Error;
+    }
+    model_serialize((const Model *)s, (char *)b);
+    return fmi3OK;
+}
 fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte b[], size_t n, fmi3FMUState *s) {
-    (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi3DeserializeFMUState") }
+    Model *copy = calloc(1, sizeof(Model));
+    if (!copy) return fmi3Error;
+    if (model_deserialize(copy, (const char *)b, n) != 0) {
+        free(copy);
+        logmsg(c, fmi3Error, "fmi3DeserializeFMUState: not a state of this FMU");
+        return fmi3Error;
+    }
+    *s = copy;
+    return fmi3OK;
+}
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference u[], size_t nu,
         const fmi3ValueReference k[], size_t nk, const fmi3Float64 s[], size_t ns,
         fmi3Float64 r[], size_t nr) {

@@ -157,6 +157,37 @@ void model_bounds(unsigned vr, double *low, double *high) {
     *low = parameter_min[k]; *high = parameter_max[k];
 }
 
+/* FMU state: the whole Model but its work arrays */
+void model_copy_state(Model *to, const Model *from) {
+    const double **arg = to->arg;
+    double **res = to->res;
+    long long *iw = to->iw;
+    double *w = to->w;
+    memcpy(to, from, sizeof(Model));
+    to->arg = arg; to->res = res; to->iw = iw; to->w = w;
+}
+
+size_t model_serialized_size(void) {
+    return sizeof(MODEL_GUID) + sizeof(Model);
+}
+
+void model_serialize(const Model *m, char *bytes) {
+    Model copy;
+    memcpy(&copy, m, sizeof(Model));
+    copy.arg = NULL; copy.res = NULL; copy.iw = NULL; copy.w = NULL;
+    memcpy(bytes, MODEL_GUID, sizeof(MODEL_GUID));
+    memcpy(bytes + sizeof(MODEL_GUID), &copy, sizeof(Model));
+}
+
+int model_deserialize(Model *m, const char *bytes, size_t size) {
+    Model copy;
+    if (size != model_serialized_size() ||
+        memcmp(bytes, MODEL_GUID, sizeof(MODEL_GUID)) != 0) return 1;
+    memcpy(&copy, bytes + sizeof(MODEL_GUID), sizeof(Model));
+    model_copy_state(m, &copy);
+    return 0;
+}
+
 const char *model_state_name(int i) {
     static const char *names[MODEL_NX + 1] = MODEL_STATE_NAMES;
     return i >= 0 && i < MODEL_NX ? names[i] : "?";

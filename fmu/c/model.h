@@ -64,6 +64,12 @@ int model_event(Model *m, int *again);
 /* Relation values at the present t, x, without firing (initialisation) */
 void model_hold_relations(Model *m);
 const char *model_state_name(int i);   /* Modelica name of state i */
+/* FMU state: copy everything but the work arrays; serialise with the
+ * GUID in front (the same binary restores it) */
+void model_copy_state(Model *to, const Model *from);
+size_t model_serialized_size(void);
+void model_serialize(const Model *m, char *bytes);
+int model_deserialize(Model *m, const char *bytes, size_t size); /* 0: ok */
 /* Advance from m->time to t_end with Dormand-Prince 5(4) under
  * relative_tolerance; returns 0 on success, 1 if the step size became
  * too small, 2 if the derivatives are not finite. Relations that change
