@@ -31,7 +31,8 @@ def main(argv=None):
         prog="python -m fmu",
         description="Compile Modelica models of the Judder library to FMUs: "
                     "NAME.fmu (FMI 2.0, Model Exchange and Co-Simulation) "
-                    "and NAME_fmi3.fmu (FMI 3.0, Model Exchange). "
+                    "and NAME_fmi3.fmu (FMI 3.0, Model Exchange and "
+                    "Co-Simulation). "
                     "Co-Simulation integrates with an embedded "
                     "Dormand-Prince 5(4) at the given tolerance.")
     parser.add_argument("models", nargs="*", metavar="CLASS",

@@ -7,7 +7,7 @@
 3. CasADi writes the C code of ``f``, the outputs, the start values and
    the calculated parameters; ``model_config.h`` holds sizes and defaults;
 4. the generic wrapper (``fmu/c``) provides the FMI API: FMI 2.0 Model
-   Exchange and Co-Simulation in one FMU, or FMI 3.0 Model Exchange;
+   Exchange and Co-Simulation in one FMU, or the same in FMI 3.0;
 5. gcc compiles it and the FMU is zipped (with its sources).
 
 Co-Simulation integrates with the embedded Dormand-Prince 5(4) of
@@ -205,8 +205,7 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
     out_file : path
         The ``.fmu`` to write (replaced atomically).
     version : {'2.0', '3.0'}
-        FMI 2.0 (Model Exchange and Co-Simulation) or FMI 3.0 (Model
-        Exchange).
+        FMI 2.0 or FMI 3.0, each Model Exchange and Co-Simulation.
     roots : sequence of paths
         Library folders (default: the folder of ``mo_file``).
     tolerance : float

@@ -1,4 +1,4 @@
-"""modelDescription.xml for FMI 2.0 (ME + CS) and FMI 3.0 (ME).
+"""modelDescription.xml for FMI 2.0 and FMI 3.0 (ME + CS).
 
 Value references follow ``fmu/c/model.h``: 0 time, then the states,
 their derivatives, the tunable parameters, the calculated parameters,
@@ -270,7 +270,11 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                  variableNamingConvention="structured") + ">",
              "  <ModelExchange" + _attr(
                  modelIdentifier=identifier, canGetAndSetFMUState="true",
-                 canSerializeFMUState="true") + "/>"]
+                 canSerializeFMUState="true") + "/>",
+             "  <CoSimulation" + _attr(
+                 modelIdentifier=identifier, canGetAndSetFMUState="true",
+                 canSerializeFMUState="true",
+                 canHandleVariableCommunicationStepSize="true") + "/>"]
     lines += _unit_definitions(layout, extra=("s",))   # of time
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")

@@ -1,7 +1,7 @@
 """The compiler on small models beyond the library (tests/modelica_corpus).
 
-Each model is compiled to FMI 2.0 (Model Exchange + Co-Simulation) and
-FMI 3.0 (Model Exchange) once per module, checked by both validators, and
+Each model is compiled to FMI 2.0 and FMI 3.0 (Model Exchange +
+Co-Simulation) once per module, checked by both validators, and
 its fmpy run compared with a closed form or an independent scipy
 integration; or it is refused with ``fmu: error:``, the construct and its
 place in the source.
@@ -45,7 +45,7 @@ REFUSED = [
     ("ArrayVariable", "arrays of variables are not supported", 3),
 ]
 KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
-         ("3.0", "ModelExchange")]
+         ("3.0", "ModelExchange"), ("3.0", "CoSimulation")]
 #: Models also built as FMI 3.0 (one of each kind of construct: the C
 #: core is shared, fmi3.c differs from fmi2.c only in the API).
 FMI3 = ["Decay", "AlgebraicOnly", "FirstOrderInput", "InitialEquation",

@@ -1,6 +1,6 @@
-/* FMI 3.0 Model Exchange on the generic model core. Only Float64
- * variables exist; the other types, clocks, FMU states and derivatives
- * report an error. */
+/* FMI 3.0 Model Exchange and Co-Simulation on the generic model core.
+ * Only Float64 variables exist; the other types and clocks report an
+ * error. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +13,7 @@ typedef struct {
     fmi3InstanceEnvironment environment;
     fmi3LogMessageCallback log;
     char *name;
+    int cosimulation;
 } Instance;
 
 static void logmsg(Instance *c, fmi3Status status, const char *format, ...) {
@@ -34,11 +35,10 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean on, size_t n,
     return fmi3OK;
 }
 
-fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
-        fmi3String resources, fmi3Boolean visible, fmi3Boolean logging,
-        fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
+static fmi3Instance instantiate(fmi3String name, fmi3String token,
+        fmi3InstanceEnvironment environment, fmi3LogMessageCallback log,
+        int cosimulation) {
     Instance *c;
-    (void)resources; (void)visible; (void)logging;
     if (!token || strcmp(token, MODEL_GUID) != 0) {
         if (log) log(environment, fmi3Error, "logStatusError",
                      "wrong instantiation token");
@@ -48,6 +48,7 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
     if (!c) return NULL;
     c->environment = environment;
     c->log = log;
+    c->cosimulation = cosimulation;
     c->name = malloc(strlen(name ? name : "") + 1);
     if (c->name) strcpy(c->name, name ? name : "");
     if (!c->name || model_init(&c->model) != 0) {
@@ -57,18 +58,24 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
     return c;
 }
 
+fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
+        fmi3String resources, fmi3Boolean visible, fmi3Boolean logging,
+        fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
+    (void)resources; (void)visible; (void)logging;
+    return instantiate(name, token, environment, log, 0);
+}
+
+/* Co-Simulation: fmi3DoStep integrates with the embedded Dormand-Prince
+ * 5(4), events located inside the step; no event mode, no early return */
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String name, fmi3String token,
         fmi3String resources, fmi3Boolean visible, fmi3Boolean logging,
         fmi3Boolean eventMode, fmi3Boolean earlyReturn,
         const fmi3ValueReference required[], size_t nRequired,
         fmi3InstanceEnvironment environment, fmi3LogMessageCallback log,
         fmi3IntermediateUpdateCallback update) {
-    (void)name; (void)token; (void)resources; (void)visible; (void)logging;
-    (void)eventMode; (void)earlyReturn; (void)required; (void)nRequired;
-    (void)update;
-    if (log) log(environment, fmi3Error, "logStatusError",
-                 "this FMU is Model Exchange only (FMI 2.0 for Co-Simulation)");
-    return NULL;
+    (void)resources; (void)visible; (void)logging; (void)eventMode;
+    (void)earlyReturn; (void)required; (void)nRequired; (void)update;
+    return instantiate(name, token, environment, log, 1);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String name,
@@ -95,7 +102,9 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
         fmi3Float64 tolerance, fmi3Float64 startTime,
         fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
     Instance *inst = c;
-    (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
+    (void)stopTimeDefined; (void)stopTime;
+    if (inst->cosimulation && toleranceDefined && tolerance > 0)
+        inst->model.relative_tolerance = tolerance < 1e-3 ? tolerance : 1e-3;
     inst->model.time = startTime;
     inst->model.stale = 1;
     return fmi3OK;
@@ -354,13 +363,33 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
 }
 
 /* Co-Simulation and Scheduled Execution (not provided by this FMU) */
-fmi3Status fmi3EnterStepMode(fmi3Instance c) { NOT_SUPPORTED("fmi3EnterStepMode") }
+fmi3Status fmi3EnterStepMode(fmi3Instance c) { (void)c; return fmi3OK; }
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
         const fmi3Int32 o[], fmi3Float64 v[], size_t n) {
-    (void)vr; (void)nvr; (void)o; (void)v; (void)n; NOT_SUPPORTED("fmi3GetOutputDerivatives") }
+    (void)vr; (void)o; (void)v; (void)n; if (nvr == 0) return fmi3OK;
+    NOT_SUPPORTED("fmi3GetOutputDerivatives") }
 fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 t, fmi3Float64 h, fmi3Boolean noSet,
         fmi3Boolean *event, fmi3Boolean *terminate, fmi3Boolean *early, fmi3Float64 *last) {
-    (void)t; (void)h; (void)noSet; (void)event; (void)terminate; (void)early; (void)last;
-    NOT_SUPPORTED("fmi3DoStep") }
+    Instance *inst = c;
+    (void)noSet;
+    *event = fmi3False; *terminate = fmi3False; *early = fmi3False;
+    if (h < 0) return fmi3Error;
+    inst->model.time = t;
+    switch (model_integrate(&inst->model, t + h)) {
+    case 0: break;
+    case 2:
+        logmsg(inst, fmi3Error, "the derivatives are not finite in the step "
+               "from t = %g (check the parameters)", inst->model.time);
+        *last = inst->model.time;
+        return fmi3Error;
+    default:
+        logmsg(inst, fmi3Error, "the integrator failed at t = %g (step size too small)",
+               inst->model.time);
+        *last = inst->model.time;
+        return fmi3Error;
+    }
+    *last = inst->model.time;
+    return fmi3OK;
+}
 fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clock, fmi3Float64 t) {
     (void)clock; (void)t; NOT_SUPPORTED("fmi3ActivateModelPartition") }
