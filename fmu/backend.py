@@ -118,6 +118,19 @@ class OdeModel:
                       + self.relations])
         return x, p
 
+    def jacobian(self):
+        """CasADi function ``jacobian(t, x, p) -> J``: the derivatives of
+        ``[der(x); y]`` with respect to ``[x; parameters; inputs]``
+        (automatic differentiation), dense, and its sparsity."""
+        x, p = self._symbols()
+        known = len(self.parameters) + len(self.inputs)
+        y = _column(*[o.expression for o in self.outputs])
+        unknowns = casadi.vertcat(self.derivatives, y)
+        knowns = casadi.vertcat(x, p[:known])
+        jac = casadi.jacobian(unknowns, knowns)
+        return (casadi.Function("jacobian", [self.time, x, p],
+                                [casadi.densify(jac)]), jac.sparsity())
+
     def event_functions(self):
         """CasADi functions of the events: ``indicators(t, x, p) -> z``
         (each relation's ``lhs - rhs``), ``relations(t, x, p) -> r`` (the

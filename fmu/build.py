@@ -140,6 +140,8 @@ def _config(ode, guid, tolerance):
         "#define MODEL_RELATIONS_WORK judder_relations_work",
         "#define MODEL_REINIT judder_reinit",
         "#define MODEL_REINIT_WORK judder_reinit_work",
+        "#define MODEL_JACOBIAN judder_jacobian",
+        "#define MODEL_JACOBIAN_WORK judder_jacobian_work",
         "#endif", ""])
 
 
@@ -157,7 +159,7 @@ def _generate_c(ode, folder):
         casadi.Function("judder_start", start_f.sx_in(),
                         start_f.call(start_f.sx_in())),
         casadi.Function("judder_calculated", [p], [calculated])]
-    for function in ode.event_functions():
+    for function in ode.event_functions() + (ode.jacobian()[0],):
         functions.append(casadi.Function(
             f"judder_{function.name()}", function.sx_in(),
             function.call(function.sx_in())))

@@ -175,6 +175,26 @@ def build_description(identifier, version="3.0"):
             '</fmiBuildDescription>\n')
 
 
+def _dependencies(ode):
+    """Knowns each unknown depends on, from the Jacobian's sparsity.
+
+    Returns ``{("derivative" | "output", i): [("state" | "input", j)]}``:
+    the states and inputs (the knowns of FMI's ModelStructure) that
+    ``der(x_i)`` or output ``i`` depends on.
+    """
+    nx, np_ = len(ode.states), len(ode.parameters)
+    rows, cols = ode.jacobian()[1].get_triplet()
+    found = {("derivative", i): [] for i in range(nx)}
+    found.update({("output", i): [] for i in range(len(ode.outputs))})
+    for row, col in sorted(zip(rows, cols), key=lambda rc: (rc[0], rc[1])):
+        unknown = ("derivative", row) if row < nx else ("output", row - nx)
+        if col < nx:
+            found[unknown].append(("state", col))
+        elif col >= nx + np_:
+            found[unknown].append(("input", col - nx - np_))
+    return found
+
+
 def _generated():
     """generationDateAndTime: now, UTC, ISO 8601 to the second."""
     return datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
@@ -196,14 +216,16 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
                  modelIdentifier=identifier,
                  canNotUseMemoryManagementFunctions="true",
                  canGetAndSetFMUstate="true",
-                 canSerializeFMUstate="true") + ">",
+                 canSerializeFMUstate="true",
+                 providesDirectionalDerivative="true") + ">",
              *_source_files("2.0"), "  </ModelExchange>",
              "  <CoSimulation" + _attr(
                  modelIdentifier=identifier,
                  canHandleVariableCommunicationStepSize="true",
                  canNotUseMemoryManagementFunctions="true",
                  canGetAndSetFMUstate="true",
-                 canSerializeFMUstate="true") + ">",
+                 canSerializeFMUstate="true",
+                 providesDirectionalDerivative="true") + ">",
              *_source_files("2.0"), "  </CoSimulation>"]
     lines += _unit_definitions(layout)
     lines += _experiment(ode, tolerance)
@@ -249,12 +271,22 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
     derivatives = [i for (k, _), i in index_of.items() if k == "derivative"]
     initial = sorted(i for (k, _), i in index_of.items()
                      if k in ("output", "state", "derivative", "calculated"))
+    names = {"state": [q.name for q in layout.states],
+             "input": [q.name for q in layout.inputs]}
+    depends = {}
+    for (kind, i), knowns in _dependencies(ode).items():
+        name = f"der({layout.states[i].name})" if kind == "derivative" \
+            else layout.outputs[i].name
+        depends[index_of[(kind, name)]] = " ".join(
+            str(index_of[(k, names[k][j])]) for k, j in knowns)
     lines.append("  <ModelStructure>")
     for tag, indices in (("Outputs", outputs), ("Derivatives", derivatives),
                          ("InitialUnknowns", initial)):
         if indices:
             lines.append(f"    <{tag}>")
-            lines += [f'      <Unknown index="{i}"/>' for i in indices]
+            lines += [f'      <Unknown index="{i}"' + (
+                f' dependencies="{depends[i]}"' if i in depends and tag !=
+                "InitialUnknowns" else "") + "/>" for i in indices]
             lines.append(f"    </{tag}>")
     lines.append("  </ModelStructure>")
     lines.append("</fmiModelDescription>")
@@ -270,10 +302,14 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
                  variableNamingConvention="structured") + ">",
              "  <ModelExchange" + _attr(
                  modelIdentifier=identifier, canGetAndSetFMUState="true",
-                 canSerializeFMUState="true") + "/>",
+                 canSerializeFMUState="true",
+                 providesDirectionalDerivatives="true",
+                 providesAdjointDerivatives="true") + "/>",
              "  <CoSimulation" + _attr(
                  modelIdentifier=identifier, canGetAndSetFMUState="true",
                  canSerializeFMUState="true",
+                 providesDirectionalDerivatives="true",
+                 providesAdjointDerivatives="true",
                  canHandleVariableCommunicationStepSize="true") + "/>"]
     lines += _unit_definitions(layout, extra=("s",))   # of time
     lines += _experiment(ode, tolerance)
@@ -321,9 +357,17 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
     lines.append("  </ModelVariables>")
     lines.append("  <ModelStructure>")
     rows = _variables(layout)
-    lines += [f'    <Output valueReference="{vr}"/>'
+    start = {"state": layout.vr_states, "input": layout.vr_inputs,
+             "derivative": layout.vr_derivatives,
+             "output": layout.vr_outputs}
+    depends = {start[kind] + i: " ".join(str(start[k] + j)
+                                         for k, j in knowns)
+               for (kind, i), knowns in _dependencies(ode).items()}
+    lines += [f'    <Output valueReference="{vr}" '
+              f'dependencies="{depends[vr]}"/>'
               for _, vr, kind, _ in rows if kind == "output"]
-    lines += [f'    <ContinuousStateDerivative valueReference="{vr}"/>'
+    lines += [f'    <ContinuousStateDerivative valueReference="{vr}" '
+              f'dependencies="{depends[vr]}"/>'
               for _, vr, kind, _ in rows if kind == "derivative"]
     lines += [f'    <InitialUnknown valueReference="{vr}"/>'
               for _, vr, kind, _ in rows

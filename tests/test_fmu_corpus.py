@@ -386,3 +386,87 @@ def test_fmpy_rebuilds_the_binary_from_the_sources(fmus, version, tmp_path):
     assert list((folder / "binaries").rglob("Decay.so"))
     result = simulate_fmu(str(folder), output=["x"], relative_tolerance=1e-10)
     assert_allclose(result["x"], np.exp(-2 * result["time"]), rtol=1e-7)
+
+
+def _instance(fmus, name, version):
+    """An FMU in continuous-time mode at t = 0 (Model Exchange), with the
+    value references of its variables."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Model
+    from fmpy.fmi3 import FMU3Model
+    path = str(fmus[(name, version)])
+    description = read_model_description(path)
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    kind = FMU2Model if version == "2.0" else FMU3Model
+    fmu = kind(guid=description.guid, unzipDirectory=extract(path),
+               modelIdentifier=description.modelExchange.modelIdentifier,
+               instanceName="jacobian")
+    fmu.instantiate()
+    if version == "2.0":
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+    else:
+        fmu.enterInitializationMode(startTime=0.0)
+    fmu.exitInitializationMode()
+    if version == "2.0":
+        fmu.enterContinuousTimeMode()
+    return fmu, refs
+
+
+def _getter(fmu, version):
+    return fmu.getReal if version == "2.0" else fmu.getFloat64
+
+
+def _setter(fmu, version):
+    return fmu.setReal if version == "2.0" else fmu.setFloat64
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_directional_derivatives_against_finite_differences(fmus, version):
+    # d[der(x), y]/d[x, T, u] of FirstOrderInput at x = 0.3, u = 1.7 from
+    # CasADi's AD, against central differences of the FMU's own values
+    fmu, refs = _instance(fmus, "FirstOrderInput", version)
+    get, put = _getter(fmu, version), _setter(fmu, version)
+    unknowns = [refs["der(x)"], refs["y"]]
+    knowns = [refs["x"], refs["T"], refs["u"]]
+    point = [0.3, 0.2, 1.7]
+    put(knowns, point)
+    jacobian = np.column_stack([
+        fmu.getDirectionalDerivative(unknowns, knowns,
+                                     list(np.eye(3)[k]))
+        for k in range(3)])
+    differences = np.empty((2, 3))
+    for k in range(3):
+        step = 1e-6 * max(1.0, abs(point[k]))
+        values = []
+        for sign in (1, -1):
+            moved = list(point)
+            moved[k] += sign * step
+            put(knowns, moved)
+            values.append(np.array(get(unknowns)))
+        differences[:, k] = (values[0] - values[1]) / (2 * step)
+        put(knowns, point)
+    # der(x) = (u - x)/T, y = K x: closed form too
+    exact = [[-1 / 0.2, -(1.7 - 0.3) / 0.2 ** 2, 1 / 0.2], [2, 0, 0]]
+    assert_allclose(jacobian, exact, rtol=1e-13, atol=1e-13)
+    assert_allclose(jacobian, differences, rtol=1e-7, atol=1e-7)
+    if version == "3.0":
+        # adjoint: J^T w for a seed w on the unknowns
+        seed = [0.7, -1.3]
+        # (fmpy sizes the result by the unknowns unless told)
+        assert_allclose(fmu.getAdjointDerivative(unknowns, knowns, seed,
+                                                 nSensitivity=3),
+                        jacobian.T @ seed, rtol=1e-14)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_model_structure_dependencies(fmus):
+    # FirstOrderInput: der(x) depends on x and u, y on x only
+    from fmpy import read_model_description
+    description = read_model_description(
+        str(fmus[("FirstOrderInput", "2.0")]))
+    depends = {u.variable.name: sorted(d.name for d in u.dependencies)
+               for u in description.derivatives + description.outputs}
+    assert depends == {"der(x)": ["u", "x"], "y": ["x"]}
+    assert description.modelExchange.providesDirectionalDerivative

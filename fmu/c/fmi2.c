@@ -193,9 +193,15 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n
     *s = copy;
     return fmi2OK;
 }
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference u[], size_t nu,
-        const fmi2ValueReference z[], size_t nz, const fmi2Real dv[], fmi2Real dz[]) {
-    (void)u; (void)nu; (void)z; (void)nz; (void)dv; (void)dz; NOT_SUPPORTED("fmi2GetDirectionalDerivative") }
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference z[], size_t nz,
+        const fmi2ValueReference v[], size_t nv, const fmi2Real dv[], fmi2Real dz[]) {
+    if (model_directional(&((Instance *)c)->model, z, nz, v, nv, dv, dz, 0) != 0) {
+        logmsg(c, fmi2Error, "fmi2GetDirectionalDerivative: the unknowns must be "
+               "derivatives or outputs, the knowns states, parameters or inputs");
+        return fmi2Error;
+    }
+    return fmi2OK;
+}
 
 /* Model Exchange */
 fmi2Status fmi2EnterEventMode(fmi2Component c) { (void)c; return fmi2OK; }

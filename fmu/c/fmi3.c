@@ -249,16 +249,28 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte b[], size_t n,
     *s = copy;
     return fmi3OK;
 }
+static fmi3Status derivative(fmi3Instance c, const fmi3ValueReference z[], size_t nz,
+        const fmi3ValueReference v[], size_t nv, const fmi3Float64 seed[], size_t ns,
+        fmi3Float64 result[], size_t nr, int adjoint) {
+    if (ns != (adjoint ? nz : nv) || nr != (adjoint ? nv : nz) ||
+        model_directional(&((Instance *)c)->model, z, nz, v, nv, seed, result,
+                          adjoint) != 0) {
+        logmsg(c, fmi3Error, "directional derivatives: the unknowns must be "
+               "derivatives or outputs, the knowns states, parameters or inputs");
+        return fmi3Error;
+    }
+    return fmi3OK;
+}
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference u[], size_t nu,
         const fmi3ValueReference k[], size_t nk, const fmi3Float64 s[], size_t ns,
         fmi3Float64 r[], size_t nr) {
-    (void)u; (void)nu; (void)k; (void)nk; (void)s; (void)ns; (void)r; (void)nr;
-    NOT_SUPPORTED("fmi3GetDirectionalDerivative") }
+    return derivative(c, u, nu, k, nk, s, ns, r, nr, 0);
+}
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference u[], size_t nu,
         const fmi3ValueReference k[], size_t nk, const fmi3Float64 s[], size_t ns,
         fmi3Float64 r[], size_t nr) {
-    (void)u; (void)nu; (void)k; (void)nk; (void)s; (void)ns; (void)r; (void)nr;
-    NOT_SUPPORTED("fmi3GetAdjointDerivative") }
+    return derivative(c, u, nu, k, nk, s, ns, r, nr, 1);
+}
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) { NOT_SUPPORTED("fmi3EnterConfigurationMode") }
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) { NOT_SUPPORTED("fmi3ExitConfigurationMode") }
 fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,

@@ -39,6 +39,9 @@ int model_init(Model *m) {
     MODEL_REINIT_WORK(&a, &r, &i, &w);
     if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
     if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    MODEL_JACOBIAN_WORK(&a, &r, &i, &w);
+    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
+    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
     m->arg = calloc((size_t)sz_arg + 1, sizeof(*m->arg));
     m->res = calloc((size_t)sz_res + 1, sizeof(*m->res));
     m->iw = calloc((size_t)sz_iw + 1, sizeof(*m->iw));
@@ -155,6 +158,49 @@ int model_set(Model *m, unsigned vr, double value, int parameters_only) {
 void model_bounds(unsigned vr, double *low, double *high) {
     unsigned k = vr >= VR_INPUTS ? MODEL_NP + vr - VR_INPUTS : vr - VR_PARAMETERS;
     *low = parameter_min[k]; *high = parameter_max[k];
+}
+
+static int unknown_row(unsigned vr) {
+    if (vr >= VR_DERIVATIVES && vr < VR_PARAMETERS) return (int)(vr - VR_DERIVATIVES);
+    if (vr >= VR_OUTPUTS && vr < VR_INPUTS) return MODEL_NX + (int)(vr - VR_OUTPUTS);
+    return -1;
+}
+
+static int known_column(unsigned vr) {
+    if (vr >= VR_STATES && vr < VR_DERIVATIVES) return (int)(vr - VR_STATES);
+    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) return MODEL_NX + (int)(vr - VR_PARAMETERS);
+    if (vr >= VR_INPUTS && vr < VR_INDICATORS) return MODEL_NX + MODEL_NP + (int)(vr - VR_INPUTS);
+    return -1;
+}
+
+int model_directional(Model *m, const unsigned *unknowns, size_t nz,
+                      const unsigned *knowns, size_t nv,
+                      const double *seed, double *result, int adjoint) {
+    enum { ROWS = MODEL_NX + MODEL_NY, COLUMNS = MODEL_NX + MODEL_NP + MODEL_NU };
+    double jac[(ROWS > 0 ? ROWS : 1) * (COLUMNS > 0 ? COLUMNS : 1)];
+    size_t i, j;
+    for (i = 0; i < nz; i++) if (unknown_row(unknowns[i]) < 0) return 1;
+    for (j = 0; j < nv; j++) if (known_column(knowns[j]) < 0) return 1;
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = jac;
+    MODEL_JACOBIAN(m->arg, m->res, m->iw, m->w, 0);
+    /* CasADi writes dense matrices column by column */
+    if (!adjoint) {
+        for (i = 0; i < nz; i++) {
+            int r = unknown_row(unknowns[i]);
+            result[i] = 0;
+            for (j = 0; j < nv; j++)
+                result[i] += jac[known_column(knowns[j]) * ROWS + r] * seed[j];
+        }
+    } else {
+        for (j = 0; j < nv; j++) {
+            int col = known_column(knowns[j]);
+            result[j] = 0;
+            for (i = 0; i < nz; i++)
+                result[j] += jac[col * ROWS + unknown_row(unknowns[i])] * seed[i];
+        }
+    }
+    return 0;
 }
 
 /* FMU state: the whole Model but its work arrays */

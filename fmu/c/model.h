@@ -64,6 +64,14 @@ int model_event(Model *m, int *again);
 /* Relation values at the present t, x, without firing (initialisation) */
 void model_hold_relations(Model *m);
 const char *model_state_name(int i);   /* Modelica name of state i */
+/* Directional derivatives from the Jacobian of [der(x); y] with respect
+ * to [x; parameters; inputs] (CasADi AD). adjoint = 0: dz = J dv for the
+ * unknowns z and knowns v given by value references; adjoint = 1:
+ * dv = J^T dz. Returns 1 on a value reference that is not an unknown
+ * (derivative, output) or a known (state, parameter, input). */
+int model_directional(Model *m, const unsigned *unknowns, size_t nz,
+                      const unsigned *knowns, size_t nv,
+                      const double *seed, double *result, int adjoint);
 /* FMU state: copy everything but the work arrays; serialise with the
  * GUID in front (the same binary restores it) */
 void model_copy_state(Model *to, const Model *from);
