@@ -470,3 +470,32 @@ def test_model_structure_dependencies(fmus):
                for u in description.derivatives + description.outputs}
     assert depends == {"der(x)": ["u", "x"], "y": ["x"]}
     assert description.modelExchange.providesDirectionalDerivative
+
+
+def test_a_second_importer_gives_the_same_results(fmus):
+    # OSP's libcosim (libcosimpy, FMI Library inside) runs the FMI 2.0
+    # Co-Simulation FMU at 0.01 s steps for 3 s: the same heights as the
+    # closed form and as fmpy
+    cosim = pytest.importorskip("libcosimpy.CosimExecution")
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    path = str(fmus[("BouncingBall", "2.0")])
+    execution = cosim.CosimExecution.from_step_size(step_size=10_000_000)
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(
+        fmu_path=path, instance_name="ball"))
+    refs = {v.name.decode() if isinstance(v.name, bytes) else v.name:
+            v.reference for v in execution.slave_variables(slave_index=index)}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    heights = []
+    for _ in range(300):
+        assert execution.step()
+        heights.append(observer.last_real_values(
+            slave_index=index, variable_references=[refs["h"]])[0])
+    time = 0.01 * np.arange(1, 301)
+    assert_allclose(heights, _bouncing_ball(time), atol=1e-8)
+    result = _run(fmus, "BouncingBall", "2.0", "CoSimulation", output=["h"],
+                  output_interval=0.01, stop_time=3.0)
+    assert_allclose(heights, result["h"][1:], atol=1e-12)

@@ -14,34 +14,26 @@ static const double parameter_min[MODEL_NPAR + 1] = MODEL_PARAMETER_MIN;
 static const double parameter_max[MODEL_NPAR + 1] = MODEL_PARAMETER_MAX;
 static const int when_relation[MODEL_NW + 1] = MODEL_WHEN_RELATION;
 
+typedef int (*WorkSizes)(casadi_int *, casadi_int *, casadi_int *, casadi_int *);
+
 int model_init(Model *m) {
+    /* work arrays large enough for every generated function */
+    static const WorkSizes functions[] = {
+        MODEL_ODE_WORK, MODEL_OUTPUTS_WORK, MODEL_START_WORK,
+        MODEL_CALCULATED_WORK, MODEL_INDICATORS_WORK, MODEL_RELATIONS_WORK,
+        MODEL_REINIT_WORK, MODEL_JACOBIAN_WORK};
     casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
+    size_t k;
     memset(m, 0, sizeof(*m));
     memcpy(m->p, parameter_defaults, sizeof(m->p));
     m->relative_tolerance = MODEL_DEFAULT_TOLERANCE;
-    MODEL_ODE_WORK(&a, &r, &i, &w);
-    sz_arg = a; sz_res = r; sz_iw = i; sz_w = w;
-    MODEL_OUTPUTS_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_START_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_CALCULATED_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_INDICATORS_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_RELATIONS_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_REINIT_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_JACOBIAN_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    for (k = 0; k < sizeof(functions) / sizeof(functions[0]); k++) {
+        functions[k](&a, &r, &i, &w);
+        if (a > sz_arg) sz_arg = a;
+        if (r > sz_res) sz_res = r;
+        if (i > sz_iw) sz_iw = i;
+        if (w > sz_w) sz_w = w;
+    }
     m->arg = calloc((size_t)sz_arg + 1, sizeof(*m->arg));
     m->res = calloc((size_t)sz_res + 1, sizeof(*m->res));
     m->iw = calloc((size_t)sz_iw + 1, sizeof(*m->iw));
