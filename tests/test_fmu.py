@@ -163,6 +163,7 @@ def test_modelica_mistake_names_file_and_line(tmp_path):
     assert not list(tmp_path.glob("*.fmu"))
 
 
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
 @pytest.mark.parametrize("version, kind", [("2.0", "ModelExchange"),
                                            ("2.0", "CoSimulation"),
                                            ("3.0", "ModelExchange")])
