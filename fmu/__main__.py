@@ -49,6 +49,9 @@ def main(argv=None):
     parser.add_argument("--tolerance", type=float, default=DEFAULT_TOLERANCE,
                         help="default relative tolerance, also of the "
                              "co-simulation integrator (default %(default)g)")
+    parser.add_argument("--windows", action="store_true",
+                        help="also cross-compile a Windows 64-bit binary "
+                             "with mingw-w64 (x86_64-w64-mingw32-gcc)")
     parser.add_argument("--json", action="store_true",
                         help="report as JSON lines")
     args = parser.parse_args(argv)
@@ -69,7 +72,8 @@ def main(argv=None):
                 result = build_fmu(source, name, target, version=version,
                                    roots=[source.parent if library.is_file()
                                           else library],
-                                   tolerance=args.tolerance)
+                                   tolerance=args.tolerance,
+                                   windows=args.windows)
                 report = {"model": name, "fmi": version,
                           "path": str(result.path),
                           "states": result.states,

@@ -41,6 +41,9 @@ C_SOURCES = Path(__file__).resolve().parent / "c"
 #: Relative (and absolute) tolerance of the co-simulation integrator.
 DEFAULT_TOLERANCE = 1e-10
 _PLATFORM = {"2.0": "linux64", "3.0": "x86_64-linux"}
+_WINDOWS_PLATFORM = {"2.0": "win64", "3.0": "x86_64-windows"}
+#: mingw-w64 cross compiler for the optional Windows 64-bit binary.
+_WINDOWS_CC = "x86_64-w64-mingw32-gcc"
 _WRAPPER = {"2.0": "fmi2.c", "3.0": "fmi3.c"}
 
 
@@ -176,14 +179,22 @@ def _generate_c(ode, folder):
         os.chdir(cwd)
 
 
-def _compile(folder, version, identifier):
-    compiler = os.environ.get("CC", "gcc")
+def _compile(folder, version, identifier, windows=False):
+    """Shared library of the FMU: Linux with gcc (``CC``), or Windows
+    64-bit with mingw-w64 (``windows=True``)."""
+    if windows:
+        compiler, library = _WINDOWS_CC, folder / f"{identifier}.dll"
+        flags = ["-shared", "-O2", "-static-libgcc"]
+        hint = "install mingw-w64 (Debian: gcc-mingw-w64-x86-64)"
+    else:
+        compiler = os.environ.get("CC", "gcc")
+        library = folder / f"{identifier}.so"
+        flags = ["-shared", "-fPIC", "-O2", "-fvisibility=hidden"]
+        hint = "install gcc (or set CC)"
     if shutil.which(compiler) is None:
-        raise BuildError(f"C compiler {compiler!r} not found: install gcc "
-                         "(or set CC) to build FMUs")
-    library = folder / f"{identifier}.so"
-    command = [compiler, "-shared", "-fPIC", "-O2", "-fvisibility=hidden",
-               "-std=c99", f"-I{folder}", f"-I{C_SOURCES}",
+        raise BuildError(f"C compiler {compiler!r} not found: {hint} to "
+                         "build FMUs")
+    command = [compiler, *flags, "-std=c99", f"-I{folder}", f"-I{C_SOURCES}",
                f"-I{fmi_headers()}", str(folder / "model_functions.c"),
                str(C_SOURCES / "model.c"), str(C_SOURCES / _WRAPPER[version]),
                "-o", str(library), "-lm"]
@@ -195,7 +206,7 @@ def _compile(folder, version, identifier):
 
 
 def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
-              tolerance=DEFAULT_TOLERANCE):
+              tolerance=DEFAULT_TOLERANCE, windows=False):
     """Compile a Modelica model into an FMU.
 
     Parameters
@@ -212,6 +223,8 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         Library folders (default: the folder of ``mo_file``).
     tolerance : float
         Default tolerance, also the co-simulation integrator's.
+    windows : bool
+        Also cross-compile a Windows 64-bit binary with mingw-w64.
 
     Returns
     -------
@@ -241,6 +254,8 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         description = model_description(ode, version, identifier, guid,
                                          tolerance)
         library = _compile(folder, version, identifier)
+        dll = _compile(folder, version, identifier, windows=True) \
+            if windows else None
 
         def write_zip(stream):
             with zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as fmu:
@@ -257,6 +272,9 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                     fmu.writestr(entry, build_description(identifier))
                 fmu.write(library, f"binaries/{_PLATFORM[version]}/"
                                    f"{identifier}.so")
+                if dll is not None:
+                    fmu.write(dll, f"binaries/{_WINDOWS_PLATFORM[version]}/"
+                                   f"{identifier}.dll")
                 for source in ("model_functions.c", "model_functions.h",
                                "model_config.h"):
                     fmu.write(folder / source, f"sources/{source}")
