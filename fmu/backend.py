@@ -62,6 +62,15 @@ class Quantity:
     start: object = None
     minimum: object = None
     maximum: object = None
+    quantity: str = ""
+    display_unit: str = ""
+
+
+def _quantity(variable, expression, **values):
+    """A Quantity named, typed and described like ``variable``."""
+    return Quantity(variable.name, variable.unit, variable.description,
+                    expression, quantity=variable.quantity,
+                    display_unit=variable.display_unit, **values)
 
 
 @dataclass
@@ -202,8 +211,8 @@ def _split_parameters(model):
         binding = v.binding if v.binding is not None else v.start
         if binding is None:
             raise BackEndError(f"{v.where}: parameter {v.name} has no value")
-        quantity = Quantity(v.name, v.unit, v.description, v.symbol,
-                            minimum=v.minimum, maximum=v.maximum)
+        quantity = _quantity(v, v.symbol, minimum=v.minimum,
+                             maximum=v.maximum)
         if v.role == "constant" or casadi.symvar(binding):
             quantity.expression = binding
             (constants if v.role == "constant" else calculated).append(
@@ -296,9 +305,8 @@ def to_ode(model):
 def _to_ode(model):
     tunable, calculated, parameter_symbols, parameter_values = \
         _split_parameters(model)
-    inputs = [Quantity(v.name, v.unit, v.description, v.symbol,
-                       start=_input_start(v), minimum=v.minimum,
-                       maximum=v.maximum)
+    inputs = [_quantity(v, v.symbol, start=_input_start(v),
+                        minimum=v.minimum, maximum=v.maximum)
               for v in model.by_role("input")]
     states = {v.name: v for v in model.by_role("state")}
     unknown_vars = {v.name: v for v in model.variables
@@ -333,8 +341,7 @@ def _to_ode(model):
         starts = _initial_states(initial, order, starts, derivatives,
                                  system.eliminated, model.time,
                                  model.initial_places or [""] * len(initial))
-    state_quantities = [Quantity(v.name, v.unit, v.description, v.symbol,
-                                 start=start)
+    state_quantities = [_quantity(v, v.symbol, start=start)
                         for v, start in zip(order, starts)]
     relations, whens = _events(model, order, derivatives, system.eliminated,
                                parameter_symbols, parameter_values)
@@ -343,7 +350,7 @@ def _to_ode(model):
         if v.causality != "output":
             continue
         formula = v.symbol if v.name in states else system.eliminated[v.name]
-        outputs.append(Quantity(v.name, v.unit, v.description, formula))
+        outputs.append(_quantity(v, formula))
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
         derivatives=_column(*[derivatives[v.name] for v in order]),

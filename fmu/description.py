@@ -11,7 +11,7 @@ from datetime import datetime, timezone
 import re
 from xml.sax.saxutils import quoteattr
 
-from .units import base_exponents
+from .units import DISPLAY_UNITS, base_exponents
 
 __all__ = ["Layout", "model_description", "build_description", "SOURCES"]
 
@@ -66,8 +66,26 @@ def _number(value):
     return repr(float(value))
 
 
+def _display_unit(q):
+    """The quantity's display unit if the FMU can declare it."""
+    unit = DISPLAY_UNITS.get(q.display_unit, ("",))[0]
+    return q.display_unit if q.unit and unit == q.unit else None
+
+
+def _typed(q):
+    """unit, quantity and displayUnit attributes of a variable."""
+    return dict(unit=q.unit or None, quantity=q.quantity or None,
+                displayUnit=_display_unit(q))
+
+
 def _unit_definitions(layout, extra=()):
     units = sorted(set(layout.units()) | set(extra))
+    displays = {}
+    for group in (layout.states, layout.parameters, layout.calculated,
+                  layout.outputs, layout.inputs):
+        for q in group:
+            if _display_unit(q):
+                displays.setdefault(q.unit, set()).add(q.display_unit)
     if not units:
         return []   # an empty UnitDefinitions element is invalid
     lines = ["  <UnitDefinitions>"]
@@ -75,8 +93,13 @@ def _unit_definitions(layout, extra=()):
         exponents, factor = base_exponents(unit)
         base = _attr(**{k: v for k, v in exponents.items()},
                      factor=None if factor == 1.0 else _number(factor))
+        shown = "".join(
+            "<DisplayUnit" + _attr(name=name, factor=_number(
+                DISPLAY_UNITS[name][1]), offset=None if not DISPLAY_UNITS[
+                    name][2] else _number(DISPLAY_UNITS[name][2])) + "/>"
+            for name in sorted(displays.get(unit, ())))
         lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit{base}/>"
-                     "</Unit>")
+                     f"{shown}</Unit>")
     lines.append("  </UnitDefinitions>")
     return lines
 
@@ -239,7 +262,7 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
         if kind == "state":
             head = _attr(**common, causality="local",
                          variability="continuous", initial="calculated")
-            real = _attr(unit=q.unit or None)
+            real = _attr(**_typed(q))
         elif kind == "derivative":
             state = index_of[("state", q.name)]
             common["description"] = _derivative_description(q)
@@ -250,21 +273,21 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
         elif kind == "parameter":
             head = _attr(**common, causality="parameter",
                          variability="tunable", initial="exact")
-            real = _attr(unit=q.unit or None, start=_number(q.start),
+            real = _attr(**_typed(q), start=_number(q.start),
                          **_bounds(q))
         elif kind == "calculated":
             head = _attr(**common, causality="calculatedParameter",
                          variability="tunable", initial="calculated")
-            real = _attr(unit=q.unit or None)
+            real = _attr(**_typed(q))
         elif kind == "input":
             head = _attr(**common, causality="input",
                          variability="continuous")
-            real = _attr(unit=q.unit or None, start=_number(q.start),
+            real = _attr(**_typed(q), start=_number(q.start),
                          **_bounds(q))
         else:
             head = _attr(**common, causality="output",
                          variability="continuous", initial="calculated")
-            real = _attr(unit=q.unit or None)
+            real = _attr(**_typed(q))
         lines.append(f"    <ScalarVariable{head}><Real{real}/></ScalarVariable>")
     lines.append("  </ModelVariables>")
     outputs = [i for (k, _), i in index_of.items() if k == "output"]
@@ -325,7 +348,7 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
             state_vr[q.name] = vr
             attrs = _attr(**common, causality="local",
                           variability="continuous", initial="calculated",
-                          unit=q.unit or None)
+                          **_typed(q))
         elif kind == "derivative":
             common["description"] = _derivative_description(q)
             attrs = _attr(**common, causality="local",
@@ -335,20 +358,20 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
         elif kind == "parameter":
             attrs = _attr(**common, causality="parameter",
                           variability="tunable", initial="exact",
-                          unit=q.unit or None, start=_number(q.start),
+                          **_typed(q), start=_number(q.start),
                           **_bounds(q))
         elif kind == "calculated":
             attrs = _attr(**common, causality="calculatedParameter",
                           variability="tunable", initial="calculated",
-                          unit=q.unit or None)
+                          **_typed(q))
         elif kind == "input":
             attrs = _attr(**common, causality="input",
-                          variability="continuous", unit=q.unit or None,
+                          variability="continuous", **_typed(q),
                           start=_number(q.start), **_bounds(q))
         else:
             attrs = _attr(**common, causality="output",
                           variability="continuous", initial="calculated",
-                          unit=q.unit or None)
+                          **_typed(q))
         lines.append(f"    <Float64{attrs}/>")
     for name, vr, text in _indicators(layout):
         lines.append("    <Float64" + _attr(

@@ -12,6 +12,7 @@ knows about drivelines: the equations come from the ``.mo`` source.
 from dataclasses import dataclass, field
 from itertools import product
 from pathlib import Path
+import re
 
 import casadi
 import numpy as np
@@ -51,6 +52,9 @@ class Variable:
         ``file:line`` of the declaration.
     causality : str
         ``'input'``, ``'output'``, ``'parameter'`` or ``'local'``.
+    quantity, display_unit : str
+        Of the declared type (``type Pressure = Real(quantity="Pressure",
+        unit="Pa", displayUnit="bar")``), if the library defines it.
     """
 
     name: str
@@ -66,6 +70,8 @@ class Variable:
     maximum: object = None
     where: str = ""
     causality: str = ""
+    quantity: str = ""
+    display_unit: str = ""
 
 
 @dataclass
@@ -498,6 +504,9 @@ def load_flat_model(path, model_name, roots=()):
         if raw["role"] == "state":
             derivatives[index] = casadi.SX.sym(f"der({raw['name']})")
     convert = _Expressions(storage, symbols, derivatives, time)
+    types = _declared_types(roots or [path.parent], path)
+    files = {entry[0]: entry[2] for entry in
+             flat.get("source_map", {}).get("files", [])}
     for position, item in enumerate(storage.get("relations") or []):
         convert.relation_of[item["relation"]["expression"]] = position
     for index, raw in enumerate(storage["variables"]):
@@ -510,6 +519,7 @@ def load_flat_model(path, model_name, roots=()):
         if not isinstance(elements, np.ndarray):
             elements, values = np.array([elements], dtype=object), \
                 {k: np.array([v], dtype=object) for k, v in values.items()}
+        quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
         for position in np.ndindex(elements.shape):
             symbol = elements[position]
             variables.append(Variable(
@@ -523,7 +533,8 @@ def load_flat_model(path, model_name, roots=()):
                 minimum=_element(values["min"], position, convert.where),
                 maximum=_element(values["max"], position, convert.where),
                 where=convert.where,
-                causality=attributes.get("causality") or ""))
+                causality=attributes.get("causality") or "",
+                quantity=quantity, display_unit=display_unit))
     sections, places = {}, {}
     for section in ("continuous_equation_operations",
                     "initialization_equation_operations"):
@@ -585,6 +596,38 @@ def _whens(storage, convert, where, variables):
     for clause in clauses.values():
         clause.relation = order.index(clause.relation)
     return list(clauses.values())
+
+
+_TYPE = re.compile(r"\btype\s+(\w+)\s*=\s*Real\s*\(([^;]*?)\)\s*(?:\"|;)")
+
+
+def _declared_types(roots, model_file):
+    """``{type name: (quantity, displayUnit)}`` of the Real types defined
+    in the library's sources; a name defined twice differently is left
+    out (ambiguous)."""
+    found, ambiguous = {}, set()
+    files = {Path(model_file)}
+    for root in roots:
+        files |= set(Path(root).rglob("*.mo"))
+    for source in sorted(files):
+        for name, body in _TYPE.findall(source.read_text(errors="replace")):
+            quantity = re.search(r'quantity\s*=\s*"([^"]*)"', body)
+            display = re.search(r'displayUnit\s*=\s*"([^"]*)"', body)
+            value = (quantity.group(1) if quantity else "",
+                     display.group(1) if display else "")
+            if found.setdefault(name, value) != value:
+                ambiguous.add(name)
+    return {k: v for k, v in found.items() if k not in ambiguous}
+
+
+def _type_of(raw, files):
+    """Short name of the declared type of a variable (``Pressure`` for
+    ``Units.Pressure p_m``), read at its declaration."""
+    span = raw.get("declaration", {}).get("span") or {}
+    if span.get("source") not in files:
+        return ""
+    text = files[span["source"]][span["start"]:span["end"]].split()
+    return text[0].split(".")[-1] if len(text) > 1 else ""
 
 
 def _element_symbols(name, shape):

@@ -184,3 +184,23 @@ def test_out_of_range_and_non_finite_are_errors(fmus, version, kind):
                      start_values={"J4": 0.0},
                      logger=lambda *args: messages.append(args[-1]))
     assert any(b"not finite" in m for m in messages), messages
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_display_units_and_quantities(fmus, version):
+    # Units.Pressure (displayUnit "bar") and Units.Angle ("deg") as an OEM
+    # tool shows them: 1 bar = 1e5 Pa, 1 deg = pi/180 rad
+    from fmpy import read_model_description
+    description = read_model_description(str(fmus[("Driveline4DOF",
+                                                    version)]))
+    variables = {v.name: v for v in description.modelVariables}
+    for name, quantity, display in [("p_m", "Pressure", "bar"),
+                                    ("actuation_pressure", "Pressure", "bar"),
+                                    ("inertia1.phi", "Angle", "deg"),
+                                    ("w_upstream", "AngularVelocity", None)]:
+        assert variables[name].quantity == quantity, name
+        assert variables[name].displayUnit == display, name
+    units = {u.name: {d.name: d.factor for d in u.displayUnits}
+             for u in description.unitDefinitions}
+    assert units["Pa"] == {"bar": 1e-5}
+    assert units["rad"] == pytest.approx({"deg": 180 / np.pi}, rel=1e-15)
