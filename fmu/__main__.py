@@ -9,7 +9,7 @@ from pathlib import Path
 from infra.errors import EXIT_ERROR, EXIT_OK, JudderError
 
 from .build import DEFAULT_TOLERANCE, build_fmu
-from .frontend import FrontEndError
+from .frontend import FrontEndError, class_source
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 #: Package whose examples are built by default.
@@ -41,7 +41,8 @@ def _build(argv):
         prog="python -m fmu",
         description="Compile Modelica models of the Judder library to FMUs: "
                     "NAME.fmu (FMI 2.0, Model Exchange and Co-Simulation) "
-                    "and NAME_fmi3.fmu (FMI 3.0, Model Exchange). "
+                    "and NAME_fmi3.fmu (FMI 3.0, Model Exchange and "
+                    "Co-Simulation). "
                     "Co-Simulation integrates with an embedded "
                     "Dormand-Prince 5(4) at the given tolerance.")
     parser.add_argument("models", nargs="*", metavar="CLASS",
@@ -49,7 +50,8 @@ def _build(argv):
                              f"{EXAMPLES_PACKAGE}, as listed in its "
                              "package.order)")
     parser.add_argument("--library", default=str(LIBRARY), metavar="DIR",
-                        help="folder holding the Modelica packages")
+                        help="folder holding the Modelica packages, or one "
+                             ".mo file holding a whole package")
     parser.add_argument("--out", default="build/fmu", metavar="DIR",
                         help="folder for the FMUs (default build/fmu)")
     parser.add_argument("--fmi", choices=("2.0", "3.0", "both"),
@@ -57,6 +59,9 @@ def _build(argv):
     parser.add_argument("--tolerance", type=float, default=DEFAULT_TOLERANCE,
                         help="default relative tolerance, also of the "
                              "co-simulation integrator (default %(default)g)")
+    parser.add_argument("--windows", action="store_true",
+                        help="also cross-compile a Windows 64-bit binary "
+                             "with mingw-w64 (x86_64-w64-mingw32-gcc)")
     parser.add_argument("--json", action="store_true",
                         help="report as JSON lines")
     args = parser.parse_args(argv)
@@ -74,14 +79,16 @@ def _build(argv):
     versions = ("2.0", "3.0") if args.fmi == "both" else (args.fmi,)
     try:
         for name in names:
-            source = library.joinpath(*name.split(".")).with_suffix(".mo")
-            if not source.exists():
-                raise FrontEndError(f"{name}: no file {source}")
+            source = library if library.is_file() else \
+                class_source(library, name)
             for version in versions:
                 suffix = "" if version == "2.0" else "_fmi3"
                 target = Path(args.out) / f"{name.split('.')[-1]}{suffix}.fmu"
                 result = build_fmu(source, name, target, version=version,
-                                   roots=[library], tolerance=args.tolerance)
+                                   roots=[source.parent if library.is_file()
+                                          else library],
+                                   tolerance=args.tolerance,
+                                   windows=args.windows)
                 report = {"model": name, "fmi": version,
                           "path": str(result.path),
                           "states": result.states,
@@ -99,4 +106,5 @@ def _build(argv):
     return EXIT_OK
 
 
-sys.exit(main())
+if __name__ == "__main__":
+    sys.exit(main())

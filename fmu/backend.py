@@ -29,7 +29,7 @@ The result is an :class:`OdeModel`: ``der(x) = f(t, x, p)`` and the
 outputs ``y = h(t, x, p)`` as CasADi functions, ready for code generation.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import casadi
 import numpy as np
@@ -62,6 +62,15 @@ class Quantity:
     start: object = None
     minimum: object = None
     maximum: object = None
+    quantity: str = ""
+    display_unit: str = ""
+
+
+def _quantity(variable, expression, **values):
+    """A Quantity named, typed and described like ``variable``."""
+    return Quantity(variable.name, variable.unit, variable.description,
+                    expression, quantity=variable.quantity,
+                    display_unit=variable.display_unit, **values)
 
 
 @dataclass
@@ -77,7 +86,19 @@ class OdeModel:
     derivatives : casadi.SX, shape (n,)
         ``der(x)`` as a formula in ``t, x, p``.
     parameters : list of Quantity
-        Tunable parameters ``p`` with their default values.
+        Tunable parameters with their default values.
+    inputs : list of Quantity
+        Inputs ``u`` (causality input) with their start values; in the
+        functions and the C code they follow the parameters in ``p``.
+    relations : list of Quantity
+        Relations that generate events, whose values (held between
+        events) follow the inputs in ``p``; ``expression`` is the symbol,
+        ``minimum`` the relation and ``maximum`` the event indicator
+        ``lhs - rhs``, both formulas in ``t, x, p``.
+    whens : list of (int, list of (str, casadi.SX))
+        When-clauses: the relation that triggers each (index in
+        ``relations``) and its reinit (state name, value in ``t, x, p``,
+        ``pre(x)`` being ``x`` before the event).
     calculated : list of Quantity
         Parameters bound to formulas in ``p``.
     outputs : list of Quantity
@@ -96,18 +117,56 @@ class OdeModel:
     outputs: list
     experiment: dict
     eliminated: dict
+    inputs: list = field(default_factory=list)
+    relations: list = field(default_factory=list)
+    whens: list = field(default_factory=list)
 
     def _symbols(self):
-        x = casadi.vertcat(*[s.expression for s in self.states])
-        p = casadi.vertcat(*[q.expression for q in self.parameters])
+        x = _column(*[s.expression for s in self.states])
+        p = _column(*[q.expression for q in self.parameters + self.inputs
+                      + self.relations])
         return x, p
+
+    def jacobian(self):
+        """CasADi function ``jacobian(t, x, p) -> J``: the derivatives of
+        ``[der(x); y]`` with respect to ``[x; parameters; inputs]``
+        (automatic differentiation), dense, and its sparsity."""
+        x, p = self._symbols()
+        known = len(self.parameters) + len(self.inputs)
+        y = _column(*[o.expression for o in self.outputs])
+        unknowns = casadi.vertcat(self.derivatives, y)
+        knowns = casadi.vertcat(x, p[:known])
+        jac = casadi.jacobian(unknowns, knowns)
+        return (casadi.Function("jacobian", [self.time, x, p],
+                                [casadi.densify(jac)]), jac.sparsity())
+
+    def event_functions(self):
+        """CasADi functions of the events: ``indicators(t, x, p) -> z``
+        (each relation's ``lhs - rhs``), ``relations(t, x, p) -> r`` (the
+        relations' values, 1 or 0) and ``reinit(t, x, p, fired) -> x``
+        (the states after the when-clauses flagged in ``fired``)."""
+        x, p = self._symbols()
+        fired = casadi.SX.sym("fired", len(self.whens))
+        after = [s.expression for s in self.states]
+        names = [s.name for s in self.states]
+        for k, (_, reinits) in enumerate(self.whens):
+            for name, value in reinits:
+                i = names.index(name)
+                after[i] = casadi.if_else(fired[k] > 0.5, value, after[i])
+        return (casadi.Function("indicators", [self.time, x, p], [_column(
+                    *[q.maximum for q in self.relations])]),
+                casadi.Function("relations", [self.time, x, p], [_column(
+                    *[q.minimum for q in self.relations])]),
+                casadi.Function("reinit", [self.time, x, p, fired],
+                                [_column(*after)]))
 
     def functions(self):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
-        -> y`` and ``start(p) -> x0``."""
+        -> y`` and ``start(p) -> x0``; ``p`` is the tunable parameters
+        followed by the inputs."""
         x, p = self._symbols()
-        y = casadi.vertcat(*[o.expression for o in self.outputs])
-        x0 = casadi.vertcat(*[s.start for s in self.states])
+        y = _column(*[o.expression for o in self.outputs])
+        x0 = _column(*[s.start for s in self.states])
         return (casadi.Function("ode", [self.time, x, p], [self.derivatives],
                                 ["t", "x", "p"], ["xdot"]),
                 casadi.Function("outputs", [self.time, x, p], [y],
@@ -115,14 +174,22 @@ class OdeModel:
                 casadi.Function("start", [p], [x0], ["p"], ["x0"]))
 
     def parameter_vector(self, **values):
-        """Default parameter values, with some changed by name."""
-        names = [q.name for q in self.parameters]
+        """Default parameter (then input, relation) values, some changed
+        by name."""
+        names = [q.name for q in self.parameters + self.inputs
+                 + self.relations]
         unknown = sorted(set(values) - set(names))
         if unknown:
             raise KeyError(f"unknown parameter {unknown[0]!r}; tunable: "
                            f"{', '.join(names)}")
-        return np.array([values.get(q.name, q.start) for q in self.parameters],
+        return np.array([values.get(q.name, q.start) for q in
+                         self.parameters + self.inputs + self.relations],
                         dtype=float)
+
+
+def _column(*items):
+    """Column of SX expressions; an empty list gives a 0x1 SX (not a DM)."""
+    return casadi.vertcat(casadi.SX(0, 1), *items)
 
 
 def _value(expression):
@@ -130,55 +197,74 @@ def _value(expression):
 
 
 def _split_parameters(model):
-    """Tunable parameters with values, and calculated ones as formulas."""
-    tunable, calculated = [], []
-    for v in model.by_role("parameter"):
+    """Tunable parameters with values, and calculated ones as formulas.
+
+    Constants are substituted like calculated parameters but not
+    exported. Returns ``(tunable, calculated, symbols, formulas)``: the
+    last two substitute every calculated parameter and constant by its
+    formula in the tunable parameters.
+    """
+    tunable, calculated, constants = [], [], []
+    for v in model.variables:
+        if v.role not in ("parameter", "constant"):
+            continue
         binding = v.binding if v.binding is not None else v.start
         if binding is None:
-            raise BackEndError(f"parameter {v.name} has no value")
-        quantity = Quantity(v.name, v.unit, v.description, v.symbol,
-                            minimum=v.minimum, maximum=v.maximum)
-        if casadi.symvar(binding):
+            raise BackEndError(f"{v.where}: parameter {v.name} has no value")
+        quantity = _quantity(v, v.symbol, minimum=v.minimum,
+                             maximum=v.maximum)
+        if v.role == "constant" or casadi.symvar(binding):
             quantity.expression = binding
-            calculated.append(quantity)
+            (constants if v.role == "constant" else calculated).append(
+                (v.symbol, quantity))
         else:
             quantity.start = _value(binding)
             tunable.append(quantity)
     # resolve chains of calculated parameters down to tunable ones
-    symbols = [q.expression for q in calculated]
-    targets = casadi.vertcat(*[v.symbol for v in model.by_role("parameter")
-                               if any(v.name == q.name for q in calculated)])
-    values = casadi.vertcat(*symbols)
-    if not calculated:
-        # vertcat of nothing is a numeric DM, which substitute refuses
-        targets = values = casadi.SX(0, 1)
-    for _ in range(len(calculated) + 1):
+    pairs = calculated + constants
+    targets = _column(*[symbol for symbol, _ in pairs])
+    values = _column(*[q.expression for _, q in pairs])
+    for _ in range(len(pairs) + 1):
         values = casadi.substitute(values, targets, values)
-    for index, quantity in enumerate(calculated):
+    if casadi.depends_on(values, targets):
+        raise BackEndError("parameter bindings are circular: " + ", ".join(
+            q.name for _, q in pairs))
+    for index, (_, quantity) in enumerate(pairs):
         quantity.expression = values[index]
-    return tunable, calculated, targets, values
+    return tunable, [q for _, q in calculated], targets, values
 
 
 class _System:
     """Residual equations with substitution bookkeeping."""
 
-    def __init__(self, residuals, eliminated=None):
+    def __init__(self, residuals, places, eliminated=None):
         self.residuals = list(residuals)
+        self.places = list(places)                 # file:line of each
         self.eliminated = dict(eliminated or {})   # name -> formula
+
+    def remove(self, index):
+        """Drop residual ``index`` (solved or eliminated)."""
+        del self.residuals[index]
+        del self.places[index]
+
+    def describe(self, indices):
+        """The equations ``indices`` with their place in the source."""
+        return "; ".join(f"{self.places[i]}: 0 = {self.residuals[i]}"
+                         for i in indices)
 
     def substitute(self, symbols, formulas):
         if len(symbols) != len(formulas):
             raise ValueError("one formula per symbol")
         if not symbols:
             return
-        old = casadi.vertcat(*symbols)
-        new = casadi.vertcat(*formulas)
-        stacked = casadi.substitute(casadi.vertcat(*self.residuals), old, new)
+        old = _column(*symbols)
+        new = _column(*formulas)
+        stacked = casadi.substitute(_column(*self.residuals), old, new)
         self.residuals = [stacked[i] for i in range(stacked.shape[0])]
         if self.eliminated:
             names = list(self.eliminated)
             values = casadi.substitute(
-                casadi.vertcat(*self.eliminated.values()), old, new)
+                _column(*self.eliminated.values()), old, new)
             self.eliminated = {n: values[i] for i, n in enumerate(names)}
 
 
@@ -208,40 +294,180 @@ def to_ode(model):
         If the model is structurally singular, or needs to solve an
         equation that is not linear in its unknowns.
     """
+    try:
+        return _to_ode(model)
+    except RuntimeError as exc:   # CasADi on an expression it cannot handle
+        message = str(exc).strip().splitlines()[-1]
+        raise BackEndError(f"{model.name}: the back end cannot compile this "
+                           f"model: {message}") from None
+
+
+def _to_ode(model):
     tunable, calculated, parameter_symbols, parameter_values = \
         _split_parameters(model)
+    inputs = [_quantity(v, v.symbol, start=_input_start(v),
+                        minimum=v.minimum, maximum=v.maximum)
+              for v in model.by_role("input")]
     states = {v.name: v for v in model.by_role("state")}
     unknown_vars = {v.name: v for v in model.variables
                     if v.role in ("algebraic", "output")}
-    system = _System(model.residuals)
+    system = _System(model.residuals + model.initial_residuals,
+                     (model.places or [""] * len(model.residuals))
+                     + (model.initial_places
+                        or [""] * len(model.initial_residuals)))
     # calculated parameters become formulas in the tunable ones
     system.substitute([parameter_symbols[i] for i in
                        range(parameter_symbols.shape[0])],
                       [parameter_values[i] for i in
                        range(parameter_values.shape[0])])
-    parameter_names = {q.name for q in tunable}
+    initial = system.residuals[len(model.residuals):]
+    for index in reversed(range(len(model.residuals), len(system.residuals))):
+        system.remove(index)
+    parameter_names = {q.name for q in tunable} | {q.name for q in inputs}
 
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
                        model.time)
-    _reduce_index(system, states, parameter_names | {"time"}, model.time,
-                  unknown_vars)
+    _reduce_index(system, states, {q.name for q in tunable} | {"time"},
+                  model.time, unknown_vars)
     derivatives = _solve_sorted(system, states, unknown_vars)
 
     order = [v for v in model.by_role("state") if v.name in states]
-    state_quantities = []
+    starts = []
     for v in order:
         start = v.start if v.start is not None else casadi.SX(0)
-        start = casadi.substitute(start, parameter_symbols, parameter_values)
-        state_quantities.append(Quantity(v.name, v.unit, v.description,
-                                         v.symbol, start=start))
-    outputs = [Quantity(v.name, v.unit, v.description,
-                        system.eliminated[v.name])
-               for v in model.by_role("output")]
+        starts.append(casadi.substitute(start, parameter_symbols,
+                                        parameter_values))
+    if initial:
+        starts = _initial_states(initial, order, starts, derivatives,
+                                 system.eliminated, model.time,
+                                 model.initial_places or [""] * len(initial))
+    state_quantities = [_quantity(v, v.symbol, start=start)
+                        for v, start in zip(order, starts)]
+    relations, whens = _events(model, order, derivatives, system.eliminated,
+                               parameter_symbols, parameter_values)
+    outputs = []
+    for v in model.variables:
+        if v.causality != "output":
+            continue
+        formula = v.symbol if v.name in states else system.eliminated[v.name]
+        outputs.append(_quantity(v, formula))
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
-        derivatives=casadi.vertcat(*[derivatives[v.name] for v in order]),
+        derivatives=_column(*[derivatives[v.name] for v in order]),
         parameters=tunable, calculated=calculated, outputs=outputs,
-        experiment=model.experiment, eliminated=system.eliminated)
+        experiment=model.experiment, eliminated=system.eliminated,
+        inputs=inputs, relations=relations, whens=whens)
+
+
+def _events(model, order, derivatives, eliminated, parameter_symbols,
+            parameter_values):
+    """Relations and when-clauses as formulas in ``t, x, p``."""
+    def formula(expression):
+        expression = casadi.substitute(expression, parameter_symbols,
+                                       parameter_values)
+        return _in_states(expression, order, derivatives, eliminated)
+    relations = [Quantity(r.symbol.name(), "", f"relation at {r.where}",
+                          r.symbol, start=0.0, minimum=formula(r.value),
+                          maximum=formula(r.indicator))
+                 for r in model.relations]
+    kept = {v.name for v in order}
+    whens = []
+    for clause in model.whens:
+        for name, _ in clause.reinits:
+            if name not in kept:
+                raise BackEndError(f"{clause.where}: reinit({name}, ...): "
+                                   f"{name} is not a state of the reduced "
+                                   "model (index reduction removed it)")
+        whens.append((clause.relation, [(name, formula(value))
+                                        for name, value in clause.reinits]))
+    return relations, whens
+
+
+def _input_start(variable):
+    """Start value of an input: a number (0 if not given)."""
+    if variable.start is None:
+        return 0.0
+    if casadi.symvar(variable.start):
+        raise BackEndError(f"{variable.where}: the start value of input "
+                           f"{variable.name} depends on other variables; "
+                           "give a number")
+    return _value(variable.start)
+
+
+def _in_states(expression, order, derivatives, eliminated):
+    """An expression in any variables as a formula in ``t, x, p``: the
+    eliminated variables and der(x) replaced by their formulas."""
+    for _ in range(len(eliminated) + 1):   # eliminated names in formulas
+        found = [s for s in casadi.symvar(expression)
+                 if s.name() in eliminated]
+        if not found:
+            break
+        expression = casadi.substitute(
+            expression, _column(*found),
+            _column(*[eliminated[s.name()] for s in found]))
+    return casadi.substitute(
+        expression, _column(*[v.derivative for v in order]),
+        _column(*[derivatives[v.name] for v in order]))
+
+
+def _initial_states(initial, order, starts, derivatives, eliminated, time,
+                    places):
+    """Start values of the states from the ``initial equation`` section.
+
+    The initial equations, with der(x) and the algebraic variables
+    replaced by their formulas in ``x`` and ``p``, are matched to the
+    states whose start is not ``fixed``; the matched states are solved
+    from them (the equations must be linear in them), the other states
+    keep their start values.
+
+    Returns
+    -------
+    list of casadi.SX
+        One start formula in ``p`` per state of ``order``.
+    """
+    residuals = [_in_states(r, order, derivatives, eliminated)
+                 for r in initial]
+    for place, residual in zip(places, residuals):
+        if casadi.depends_on(residual, time):
+            raise BackEndError(f"{place}: initial equations that depend on "
+                               "time are not supported by the FMU back end")
+    free = [i for i, v in enumerate(order) if not v.fixed]
+    stacked = _column(*residuals)
+    incidence = np.array([[casadi.depends_on(r, order[i].symbol)
+                           for i in free] for r in residuals], dtype=float)
+    if not free or incidence.size == 0:
+        raise BackEndError(f"{places[0]}: {len(residuals)} initial "
+                           "equation(s) but no "
+                           "state with fixed = false to solve them for "
+                           "(the initialisation is overdetermined)")
+    match = maximum_bipartite_matching(csr_matrix(incidence),
+                                       perm_type="column")
+    if np.any(match < 0):
+        lost = np.flatnonzero(match < 0)
+        raise BackEndError(
+            f"{places[lost[0]]}: the initialisation is overdetermined or "
+            f"singular: the initial equation 0 = {residuals[lost[0]]} has "
+            "no state with fixed = false left to solve for")
+    unknown_index = [free[j] for j in match]
+    unknown = _column(*[order[i].symbol for i in unknown_index])
+    others = [i for i in range(len(order)) if i not in unknown_index]
+    stacked = casadi.substitute(
+        stacked, _column(*[order[i].symbol for i in others]),
+        _column(*[starts[i] for i in others]))
+    slope = casadi.jacobian(stacked, unknown)
+    if casadi.depends_on(slope, unknown):
+        raise BackEndError(
+            f"{places[0]}: the initial equations " + ", ".join(
+                f"0 = {r}" for r in residuals) + " are not linear in the states they determine ("
+            + ", ".join(order[i].name for i in unknown_index)
+            + "); nonlinear initialisation is not supported")
+    rest = casadi.substitute(stacked, unknown,
+                             casadi.SX.zeros(unknown.shape))
+    value = -casadi.solve(slope, rest)
+    starts = list(starts)
+    for k, i in enumerate(unknown_index):
+        starts[i] = value[k]
+    return starts
 
 
 def _eliminate_aliases(system, states, unknowns, parameters, time):
@@ -259,7 +485,7 @@ def _eliminate_aliases(system, states, unknowns, parameters, time):
             if drop.name() in parameters:
                 continue
             formula = keep * sign if drop is b else keep / sign
-            del system.residuals[index]
+            system.remove(index)
             _replace(system, states, unknowns, drop, formula, time)
             changed = True
             break
@@ -299,8 +525,8 @@ def _time_derivative(formula, states, time):
     explicit = casadi.jacobian(formula, time)
     if not x:
         return explicit
-    return explicit + casadi.jtimes(formula, casadi.vertcat(*x),
-                                    casadi.vertcat(*dx))
+    return explicit + casadi.jtimes(formula, _column(*x),
+                                    _column(*dx))
 
 
 def _reduce_index(system, states, known, time, unknowns=None):
@@ -335,7 +561,7 @@ def _reduce_index(system, states, known, time, unknowns=None):
             if not casadi.depends_on(slope, symbol) and _nonzero(slope):
                 rest = casadi.substitute(residual, symbol, casadi.SX(0))
                 formula = -rest / slope
-                del system.residuals[index]
+                system.remove(index)
                 _replace(system, states, {}, symbol, formula, time)
                 break
         else:
@@ -372,7 +598,7 @@ def _expose_constraint(system, states, known, time, unknowns):
         if casadi.depends_on(slope, symbol) or not _nonzero(slope):
             continue
         formula = -casadi.substitute(residual, symbol, casadi.SX(0)) / slope
-        del system.residuals[index]
+        system.remove(index)
         _replace(system, states, unknowns, symbol, formula, time)
         return True
     return False
@@ -397,16 +623,16 @@ def _solve_sorted(system, states, unknown_vars):
                            "not balanced")
     if not unknowns:
         return {}
-    sparsity = casadi.jacobian_sparsity(casadi.vertcat(*residuals),
-                                        casadi.vertcat(*unknowns))
+    sparsity = casadi.jacobian_sparsity(_column(*residuals),
+                                        _column(*unknowns))
     rows, cols = sparsity.get_triplet()
     incidence = csr_matrix((np.ones(len(rows)), (rows, cols)),
                            shape=(len(residuals), len(unknowns)))
     match = maximum_bipartite_matching(incidence, perm_type="column")
     if np.any(match < 0):
-        lost = [str(residuals[i]) for i in np.flatnonzero(match < 0)][:3]
         raise BackEndError("structurally singular: no unknown left for "
-                           f"the equations {lost}")
+                           "the equations " + system.describe(
+                               np.flatnonzero(match < 0)[:3]))
     # equation i needs the unknown solved by equation owner[j]
     owner = np.empty(len(unknowns), dtype=int)
     owner[match] = np.arange(len(residuals))
@@ -417,16 +643,18 @@ def _solve_sorted(system, states, unknown_vars):
     blocks = _topological_blocks(needs, count, labels)
     solved_symbols, solved_values = [], []
     for block in blocks:
-        eqs = casadi.vertcat(*[residuals[i] for i in block])
-        unk = casadi.vertcat(*[unknowns[match[i]] for i in block])
+        eqs = _column(*[residuals[i] for i in block])
+        unk = _column(*[unknowns[match[i]] for i in block])
         if solved_symbols:
-            eqs = casadi.substitute(eqs, casadi.vertcat(*solved_symbols),
-                                    casadi.vertcat(*solved_values))
+            eqs = casadi.substitute(eqs, _column(*solved_symbols),
+                                    _column(*solved_values))
         slope = casadi.jacobian(eqs, unk)
         if casadi.depends_on(slope, unk):
-            raise BackEndError("the equations " + ", ".join(
-                str(residuals[i]) for i in block) + " are not linear in "
-                "their unknowns; nonlinear systems are not supported yet")
+            raise BackEndError(
+                system.describe(block) + ": an algebraic loop nonlinear in "
+                "its unknowns (" + ", ".join(str(unknowns[match[i]])
+                                             for i in block)
+                + "); nonlinear systems are not supported")
         rest = casadi.substitute(eqs, unk, casadi.DM.zeros(unk.shape))
         value = -rest / slope if len(block) == 1 else \
             -casadi.solve(slope, rest)
@@ -436,8 +664,8 @@ def _solve_sorted(system, states, unknown_vars):
     solution = dict(zip((s.name() for s in solved_symbols), solved_values))
     for name, formula in list(system.eliminated.items()):
         system.eliminated[name] = casadi.substitute(
-            formula, casadi.vertcat(*solved_symbols),
-            casadi.vertcat(*solved_values))
+            formula, _column(*solved_symbols),
+            _column(*solved_values))
     for name in unknown_vars:
         if name in solution:
             system.eliminated[name] = solution[name]

@@ -1,18 +1,19 @@
-"""modelDescription.xml for FMI 2.0 (ME + CS) and FMI 3.0 (ME).
+"""modelDescription.xml for FMI 2.0 and FMI 3.0 (ME + CS).
 
 Value references follow ``fmu/c/model.h``: 0 time, then the states,
-their derivatives, the tunable parameters, the calculated parameters and
-the outputs. States are calculated at initialisation from the parameters
+their derivatives, the tunable parameters, the calculated parameters,
+the outputs and the inputs. States are calculated at initialisation from the parameters
 (their Modelica start values may depend on them), so their start values
 are set through parameters.
 """
 
+from datetime import datetime, timezone
 import re
 from xml.sax.saxutils import quoteattr
 
-from .units import base_exponents
+from .units import DISPLAY_UNITS, base_exponents
 
-__all__ = ["Layout", "model_description"]
+__all__ = ["Layout", "model_description", "build_description", "SOURCES"]
 
 
 class Layout:
@@ -23,16 +24,21 @@ class Layout:
         self.parameters = ode.parameters
         self.calculated = ode.calculated
         self.outputs = ode.outputs
+        self.inputs = ode.inputs
         nx, np_, nc = len(ode.states), len(ode.parameters), len(ode.calculated)
         self.vr_states = 1
         self.vr_derivatives = 1 + nx
         self.vr_parameters = 1 + 2 * nx
         self.vr_calculated = self.vr_parameters + np_
         self.vr_outputs = self.vr_calculated + nc
+        self.vr_inputs = self.vr_outputs + len(ode.outputs)
+        self.vr_indicators = self.vr_inputs + len(ode.inputs)
+        self.relations = ode.relations
 
     def units(self):
         names = {q.unit for group in (self.states, self.parameters,
-                                      self.calculated, self.outputs)
+                                      self.calculated, self.outputs,
+                                      self.inputs)
                  for q in group if q.unit}
         for q in self.states:
             if q.unit:
@@ -60,19 +66,40 @@ def _number(value):
     return repr(float(value))
 
 
+def _display_unit(q):
+    """The quantity's display unit if the FMU can declare it."""
+    unit = DISPLAY_UNITS.get(q.display_unit, ("",))[0]
+    return q.display_unit if q.unit and unit == q.unit else None
+
+
+def _typed(q):
+    """unit, quantity and displayUnit attributes of a variable."""
+    return dict(unit=q.unit or None, quantity=q.quantity or None,
+                displayUnit=_display_unit(q))
+
+
 def _unit_definitions(layout, extra=()):
-    """``<UnitDefinitions>`` of the layout's units and ``extra`` (none at
-    all when there are no units: the schema wants one inside)."""
     units = sorted(set(layout.units()) | set(extra))
+    displays = {}
+    for group in (layout.states, layout.parameters, layout.calculated,
+                  layout.outputs, layout.inputs):
+        for q in group:
+            if _display_unit(q):
+                displays.setdefault(q.unit, set()).add(q.display_unit)
     if not units:
-        return []
+        return []   # an empty UnitDefinitions element is invalid
     lines = ["  <UnitDefinitions>"]
     for unit in units:
         exponents, factor = base_exponents(unit)
         base = _attr(**{k: v for k, v in exponents.items()},
                      factor=None if factor == 1.0 else _number(factor))
+        shown = "".join(
+            "<DisplayUnit" + _attr(name=name, factor=_number(
+                DISPLAY_UNITS[name][1]), offset=None if not DISPLAY_UNITS[
+                    name][2] else _number(DISPLAY_UNITS[name][2])) + "/>"
+            for name in sorted(displays.get(unit, ())))
         lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit{base}/>"
-                     "</Unit>")
+                     f"{shown}</Unit>")
     lines.append("  </UnitDefinitions>")
     return lines
 
@@ -122,7 +149,16 @@ def _variables(layout):
         rows.append((q.name, layout.vr_calculated + i, "calculated", q))
     for i, q in enumerate(layout.outputs):
         rows.append((q.name, layout.vr_outputs + i, "output", q))
+    for i, q in enumerate(layout.inputs):
+        rows.append((q.name, layout.vr_inputs + i, "input", q))
     return rows
+
+
+def _indicators(layout):
+    """FMI 3 event indicators: local variables (name, vr, description)."""
+    return [(f"_eventIndicator{i + 1}", layout.vr_indicators + i,
+             f"Event indicator of the {q.description}")
+            for i, q in enumerate(layout.relations)]
 
 
 def _bounds(q):
@@ -136,19 +172,84 @@ def _bounds(q):
     return out
 
 
+#: C files of the FMU's sources/ folder that make its binary, per version
+#: (the headers beside them: model.h, model_config.h, model_functions.h).
+SOURCES = {"2.0": ("model_functions.c", "model.c", "fmi2.c"),
+           "3.0": ("model_functions.c", "model.c", "fmi3.c")}
+
+
+def _source_files(version):
+    """FMI 2 <SourceFiles> of an interface element."""
+    return (["    <SourceFiles>"]
+            + [f"      <File name={quoteattr(name)}/>"
+               for name in SOURCES[version]] + ["    </SourceFiles>"])
+
+
+def build_description(identifier, version="3.0"):
+    """sources/buildDescription.xml of an FMI 3 FMU."""
+    files = "".join(f'\n      <SourceFile name={quoteattr(name)}/>'
+                    for name in SOURCES[version])
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            '<fmiBuildDescription fmiVersion="3.0">\n'
+            f'  <BuildConfiguration modelIdentifier={quoteattr(identifier)}>\n'
+            '    <SourceFileSet language="C99">'
+            f'{files}\n    </SourceFileSet>\n'
+            '  </BuildConfiguration>\n'
+            '</fmiBuildDescription>\n')
+
+
+def _dependencies(ode):
+    """Knowns each unknown depends on, from the Jacobian's sparsity.
+
+    Returns ``{("derivative" | "output", i): [("state" | "input", j)]}``:
+    the states and inputs (the knowns of FMI's ModelStructure) that
+    ``der(x_i)`` or output ``i`` depends on.
+    """
+    nx, np_ = len(ode.states), len(ode.parameters)
+    rows, cols = ode.jacobian()[1].get_triplet()
+    found = {("derivative", i): [] for i in range(nx)}
+    found.update({("output", i): [] for i in range(len(ode.outputs))})
+    for row, col in sorted(zip(rows, cols), key=lambda rc: (rc[0], rc[1])):
+        unknown = ("derivative", row) if row < nx else ("output", row - nx)
+        if col < nx:
+            found[unknown].append(("state", col))
+        elif col >= nx + np_:
+            found[unknown].append(("input", col - nx - np_))
+    return found
+
+
+def _generated():
+    """generationDateAndTime: now, UTC, ISO 8601 to the second."""
+    return datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+
+
+def _derivative_description(q):
+    return f"Time derivative of {q.name}" + (
+        f" ({q.description})" if q.description else "")
+
+
 def _fmi2(ode, layout, identifier, guid, tolerance, tool):
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              "<fmiModelDescription" + _attr(
                  fmiVersion="2.0", modelName=ode.name, guid=guid,
-                 generationTool=tool, variableNamingConvention="structured",
-                 numberOfEventIndicators="0") + ">",
+                 generationTool=tool, generationDateAndTime=_generated(),
+                 variableNamingConvention="structured",
+                 numberOfEventIndicators=str(len(ode.relations))) + ">",
              "  <ModelExchange" + _attr(
                  modelIdentifier=identifier,
-                 canNotUseMemoryManagementFunctions="true") + "/>",
+                 canNotUseMemoryManagementFunctions="true",
+                 canGetAndSetFMUstate="true",
+                 canSerializeFMUstate="true",
+                 providesDirectionalDerivative="true") + ">",
+             *_source_files("2.0"), "  </ModelExchange>",
              "  <CoSimulation" + _attr(
                  modelIdentifier=identifier,
                  canHandleVariableCommunicationStepSize="true",
-                 canNotUseMemoryManagementFunctions="true") + "/>"]
+                 canNotUseMemoryManagementFunctions="true",
+                 canGetAndSetFMUstate="true",
+                 canSerializeFMUstate="true",
+                 providesDirectionalDerivative="true") + ">",
+             *_source_files("2.0"), "  </CoSimulation>"]
     lines += _unit_definitions(layout)
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")
@@ -161,9 +262,10 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
         if kind == "state":
             head = _attr(**common, causality="local",
                          variability="continuous", initial="calculated")
-            real = _attr(unit=q.unit or None)
+            real = _attr(**_typed(q))
         elif kind == "derivative":
             state = index_of[("state", q.name)]
+            common["description"] = _derivative_description(q)
             head = _attr(**common, causality="local",
                          variability="continuous", initial="calculated")
             real = _attr(unit=_derivative_unit(q.unit) if q.unit else None,
@@ -171,28 +273,43 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
         elif kind == "parameter":
             head = _attr(**common, causality="parameter",
                          variability="tunable", initial="exact")
-            real = _attr(unit=q.unit or None, start=_number(q.start),
+            real = _attr(**_typed(q), start=_number(q.start),
                          **_bounds(q))
         elif kind == "calculated":
             head = _attr(**common, causality="calculatedParameter",
                          variability="tunable", initial="calculated")
-            real = _attr(unit=q.unit or None)
+            real = _attr(**_typed(q))
+        elif kind == "input":
+            head = _attr(**common, causality="input",
+                         variability="continuous")
+            real = _attr(**_typed(q), start=_number(q.start),
+                         **_bounds(q))
         else:
             head = _attr(**common, causality="output",
                          variability="continuous", initial="calculated")
-            real = _attr(unit=q.unit or None)
+            real = _attr(**_typed(q))
         lines.append(f"    <ScalarVariable{head}><Real{real}/></ScalarVariable>")
     lines.append("  </ModelVariables>")
     outputs = [i for (k, _), i in index_of.items() if k == "output"]
     derivatives = [i for (k, _), i in index_of.items() if k == "derivative"]
     initial = sorted(i for (k, _), i in index_of.items()
                      if k in ("output", "state", "derivative", "calculated"))
+    names = {"state": [q.name for q in layout.states],
+             "input": [q.name for q in layout.inputs]}
+    depends = {}
+    for (kind, i), knowns in _dependencies(ode).items():
+        name = f"der({layout.states[i].name})" if kind == "derivative" \
+            else layout.outputs[i].name
+        depends[index_of[(kind, name)]] = " ".join(
+            str(index_of[(k, names[k][j])]) for k, j in knowns)
     lines.append("  <ModelStructure>")
     for tag, indices in (("Outputs", outputs), ("Derivatives", derivatives),
                          ("InitialUnknowns", initial)):
         if indices:
             lines.append(f"    <{tag}>")
-            lines += [f'      <Unknown index="{i}"/>' for i in indices]
+            lines += [f'      <Unknown index="{i}"' + (
+                f' dependencies="{depends[i]}"' if i in depends and tag !=
+                "InitialUnknowns" else "") + "/>" for i in indices]
             lines.append(f"    </{tag}>")
     lines.append("  </ModelStructure>")
     lines.append("</fmiModelDescription>")
@@ -204,9 +321,20 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
              "<fmiModelDescription" + _attr(
                  fmiVersion="3.0", modelName=ode.name,
                  instantiationToken=guid, generationTool=tool,
+                 generationDateAndTime=_generated(),
                  variableNamingConvention="structured") + ">",
-             "  <ModelExchange" + _attr(modelIdentifier=identifier) + "/>"]
-    lines += _unit_definitions(layout, extra=("s",))
+             "  <ModelExchange" + _attr(
+                 modelIdentifier=identifier, canGetAndSetFMUState="true",
+                 canSerializeFMUState="true",
+                 providesDirectionalDerivatives="true",
+                 providesAdjointDerivatives="true") + "/>",
+             "  <CoSimulation" + _attr(
+                 modelIdentifier=identifier, canGetAndSetFMUState="true",
+                 canSerializeFMUState="true",
+                 providesDirectionalDerivatives="true",
+                 providesAdjointDerivatives="true",
+                 canHandleVariableCommunicationStepSize="true") + "/>"]
+    lines += _unit_definitions(layout, extra=("s",))   # of time
     lines += _experiment(ode, tolerance)
     lines.append("  <ModelVariables>")
     lines.append('    <Float64 name="time" valueReference="0" '
@@ -220,8 +348,9 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
             state_vr[q.name] = vr
             attrs = _attr(**common, causality="local",
                           variability="continuous", initial="calculated",
-                          unit=q.unit or None)
+                          **_typed(q))
         elif kind == "derivative":
+            common["description"] = _derivative_description(q)
             attrs = _attr(**common, causality="local",
                           variability="continuous", initial="calculated",
                           unit=_derivative_unit(q.unit) if q.unit else None,
@@ -229,27 +358,45 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool):
         elif kind == "parameter":
             attrs = _attr(**common, causality="parameter",
                           variability="tunable", initial="exact",
-                          unit=q.unit or None, start=_number(q.start),
+                          **_typed(q), start=_number(q.start),
                           **_bounds(q))
         elif kind == "calculated":
             attrs = _attr(**common, causality="calculatedParameter",
                           variability="tunable", initial="calculated",
-                          unit=q.unit or None)
+                          **_typed(q))
+        elif kind == "input":
+            attrs = _attr(**common, causality="input",
+                          variability="continuous", **_typed(q),
+                          start=_number(q.start), **_bounds(q))
         else:
             attrs = _attr(**common, causality="output",
                           variability="continuous", initial="calculated",
-                          unit=q.unit or None)
+                          **_typed(q))
         lines.append(f"    <Float64{attrs}/>")
+    for name, vr, text in _indicators(layout):
+        lines.append("    <Float64" + _attr(
+            name=name, valueReference=vr, description=text,
+            causality="local", variability="continuous") + "/>")
     lines.append("  </ModelVariables>")
     lines.append("  <ModelStructure>")
     rows = _variables(layout)
-    lines += [f'    <Output valueReference="{vr}"/>'
+    start = {"state": layout.vr_states, "input": layout.vr_inputs,
+             "derivative": layout.vr_derivatives,
+             "output": layout.vr_outputs}
+    depends = {start[kind] + i: " ".join(str(start[k] + j)
+                                         for k, j in knowns)
+               for (kind, i), knowns in _dependencies(ode).items()}
+    lines += [f'    <Output valueReference="{vr}" '
+              f'dependencies="{depends[vr]}"/>'
               for _, vr, kind, _ in rows if kind == "output"]
-    lines += [f'    <ContinuousStateDerivative valueReference="{vr}"/>'
+    lines += [f'    <ContinuousStateDerivative valueReference="{vr}" '
+              f'dependencies="{depends[vr]}"/>'
               for _, vr, kind, _ in rows if kind == "derivative"]
     lines += [f'    <InitialUnknown valueReference="{vr}"/>'
               for _, vr, kind, _ in rows
               if kind in ("state", "derivative", "calculated", "output")]
+    lines += [f'    <EventIndicator valueReference="{vr}"/>'
+              for _, vr, _ in _indicators(layout)]
     lines.append("  </ModelStructure>")
     lines.append("</fmiModelDescription>")
     return "\n".join(lines) + "\n"

@@ -10,13 +10,17 @@ knows about drivelines: the equations come from the ``.mo`` source.
 """
 
 from dataclasses import dataclass, field
+from itertools import product
 from pathlib import Path
+import re
 
 import casadi
+import numpy as np
 
 from infra.errors import JudderError
 
-__all__ = ["Variable", "FlatModel", "load_flat_model", "FrontEndError"]
+__all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
+           "FrontEndError"]
 
 
 class FrontEndError(JudderError):
@@ -32,7 +36,8 @@ class Variable:
     name : str
         Flat name, e.g. ``inertia1.w``.
     role : str
-        ``'state'``, ``'algebraic'``, ``'parameter'`` or ``'output'``.
+        ``'state'``, ``'algebraic'``, ``'parameter'``, ``'constant'``,
+        ``'input'`` or ``'output'``.
     symbol : casadi.SX
     derivative : casadi.SX or None
         ``der(name)`` for states.
@@ -43,6 +48,13 @@ class Variable:
     binding : casadi.SX or None
         Parameter binding (may depend on other parameters).
     minimum, maximum : casadi.SX or None
+    where : str
+        ``file:line`` of the declaration.
+    causality : str
+        ``'input'``, ``'output'``, ``'parameter'`` or ``'local'``.
+    quantity, display_unit : str
+        Of the declared type (``type Pressure = Real(quantity="Pressure",
+        unit="Pa", displayUnit="bar")``), if the library defines it.
     """
 
     name: str
@@ -56,6 +68,10 @@ class Variable:
     binding: object = None
     minimum: object = None
     maximum: object = None
+    where: str = ""
+    causality: str = ""
+    quantity: str = ""
+    display_unit: str = ""
 
 
 @dataclass
@@ -69,6 +85,15 @@ class FlatModel:
     variables : list of Variable
     residuals : list of casadi.SX
         One scalar residual per equation.
+    initial_residuals : list of casadi.SX
+        The ``initial equation`` section, one residual per equation.
+    places, initial_places : list of str
+        ``file:line`` of each equation of the two sections.
+    relations : list of Relation
+        Relations that generate events; in the equations each is replaced
+        by its symbol, a value held between events.
+    whens : list of When
+        ``when relation then reinit(...)`` clauses.
     time : casadi.SX
     experiment : dict
         ``StopTime`` and ``Interval`` of the experiment annotation.
@@ -79,6 +104,11 @@ class FlatModel:
     variables: list
     residuals: list
     time: object
+    initial_residuals: list = field(default_factory=list)
+    places: list = field(default_factory=list)
+    initial_places: list = field(default_factory=list)
+    relations: list = field(default_factory=list)
+    whens: list = field(default_factory=list)
     experiment: dict = field(default_factory=dict)
     description: str = ""
 
@@ -87,6 +117,36 @@ class FlatModel:
         return [v for v in self.variables if v.role == role]
 
 
+@dataclass
+class Relation:
+    """A relation ``lhs op rhs`` that generates events.
+
+    ``symbol`` stands for its value (1 or 0) in the equations, held
+    between events; ``value`` is the relation itself and ``indicator``
+    ``lhs - rhs``, whose sign changes where the relation does.
+    """
+
+    symbol: object
+    value: object
+    indicator: object
+    where: str = ""
+
+
+@dataclass
+class When:
+    """``when relation then reinit(state, value); ... end when``.
+
+    ``relation`` indexes :attr:`FlatModel.relations`; ``reinits`` are
+    ``(state name, value)`` with ``pre(x)`` read as the value of ``x``
+    just before the event.
+    """
+
+    relation: int
+    reinits: list
+    where: str = ""
+
+
+_RELATIONS = ("less", "less_equal", "greater", "greater_equal")
 _BINARY = {
     "add": lambda a, b: a + b, "subtract": lambda a, b: a - b,
     "multiply": lambda a, b: a * b, "divide": lambda a, b: a / b,
@@ -107,6 +167,47 @@ _BUILTIN = {
     "log10": casadi.log10, "sqrt": casadi.sqrt, "abs": casadi.fabs,
     "min": casadi.fmin, "max": casadi.fmax, "sign": casadi.sign,
 }
+#: Builtins on arrays (parameter tables): matrix and vector constructors,
+#: sum and size, evaluated when the model is read.
+_ARRAY_BUILTIN = {
+    "promoted_cat1": lambda *rows: _stack(rows),
+    "promoted_cat2": lambda *items: np.concatenate(
+        [np.atleast_1d(np.asarray(i, dtype=object)) for i in items]),
+    "sum": lambda a: _sum(a),
+    "size": lambda a, k: casadi.SX(float(np.shape(a)[_integer(k) - 1])),
+}
+
+
+def _stack(rows):
+    """Rows of a matrix constructor ``[a, b; c, d]`` as a 2-D array."""
+    rows = [np.atleast_1d(np.asarray(r, dtype=object)) for r in rows]
+    if all(r.ndim == 1 for r in rows):
+        return np.stack(rows)
+    return np.concatenate([np.atleast_2d(r) for r in rows])
+
+
+def _sum(array):
+    items = list(np.asarray(array, dtype=object).ravel())
+    total = casadi.SX(0)
+    for item in items:
+        total = total + item
+    return total
+
+
+def _integer(value):
+    """An array subscript or dimension: a constant integer."""
+    if isinstance(value, np.ndarray) or casadi.symvar(casadi.SX(value)):
+        raise FrontEndError("an array subscript that is not a constant "
+                            "integer is not supported by the FMU back end")
+    number = float(casadi.evalf(value))
+    if number != int(number):
+        raise FrontEndError(f"array subscript {number} is not an integer")
+    return int(number)
+
+
+#: Expression kinds of rumoca's graph, as a Modelica user names them.
+_KINDS = {"index": "array indexing", "array": "array constructor",
+          "call": "function call", "range": "range expression"}
 
 
 class _Expressions:
@@ -119,6 +220,11 @@ class _Expressions:
         self._symbols, self._derivatives = symbols, derivatives
         self._time = time
         self._cache = {}
+        self.where = ""   # file:line of what is being converted
+        #: relation node -> position in storage["relations"]
+        self.relation_of = {}
+        self.relations = {}   # position -> Relation
+        self.pre_is_state = False   # pre(x) allowed (reinit values)
         # nodes with a variable number of operands take them, in node
         # order, from the flat operand list
         self._offsets = {}
@@ -136,6 +242,22 @@ class _Expressions:
             self._cache[index] = self._convert(index)
         return self._cache[index]
 
+    def _relation(self, index, body):
+        """The symbol of an event-generating relation, recorded once."""
+        position = self.relation_of[index]
+        if position not in self.relations:
+            op = body["operator"]
+            if op not in _RELATIONS:
+                raise FrontEndError(f"{self.where}: relation {op!r} on "
+                                    "continuous variables is not supported "
+                                    "(use <, <=, > or >=)")
+            lhs, rhs = self(body["lhs"]), self(body["rhs"])
+            self.relations[position] = Relation(
+                symbol=casadi.SX.sym(f"relation{position + 1}"),
+                value=_BINARY[op](lhs, rhs), indicator=lhs - rhs,
+                where=self.where)
+        return self.relations[position].symbol
+
     def _args(self, index, count):
         start = self._offsets[index]
         return [self(i) for i in self._operands[start:start + count]]
@@ -151,27 +273,63 @@ class _Expressions:
             role, position = next(iter(body.items()))
             if role == "derivative":
                 return self._derivatives[position]
+            if role == "pre_state" and self.pre_is_state:
+                return self._symbols[position]
+            if role not in _ROLES:
+                raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
+                                    "references (pre, edge, change) are not "
+                                    "supported by the FMU back end")
             return self._symbols[position]
+        if kind == "binary" and index in self.relation_of:
+            return self._relation(index, body)
         if kind == "binary":
             op = body["operator"]
             if op not in _BINARY:
-                raise FrontEndError(f"operator {op!r} is not supported")
+                raise FrontEndError(f"{self.where}: operator {op!r} is not "
+                                    "supported by the FMU back end")
             return _BINARY[op](self(body["lhs"]), self(body["rhs"]))
         if kind == "unary":
             op = body["operator"]
             if op not in _UNARY:
-                raise FrontEndError(f"operator {op!r} is not supported")
+                raise FrontEndError(f"{self.where}: operator {op!r} is not "
+                                    "supported by the FMU back end")
             return _UNARY[op](self(body["operand"]))
+        if kind == "array":
+            items = self._args(index, body["operand_count"])
+            return np.array(items, dtype=object) if not any(
+                isinstance(i, np.ndarray) for i in items) else _stack(items)
+        if kind == "index":
+            base = self(body["base"])
+            count = body["subscript_count"]
+            try:
+                subscripts = tuple(_integer(self(i)) - 1
+                                   for i in range(index - count, index))
+                if not isinstance(base, np.ndarray) or \
+                        len(subscripts) != base.ndim or \
+                        any(not 0 <= k < n for k, n in zip(subscripts,
+                                                           base.shape)):
+                    raise FrontEndError(f"array index {subscripts} out of "
+                                        f"range")
+            except FrontEndError as exc:
+                raise FrontEndError(f"{self.where}: {exc}") from None
+            return base[subscripts]
+        if kind == "builtin" and body["builtin"] in _ARRAY_BUILTIN:
+            try:
+                return _ARRAY_BUILTIN[body["builtin"]](
+                    *self._args(index, body["operand_count"]))
+            except FrontEndError as exc:
+                raise FrontEndError(f"{self.where}: {exc}") from None
         if kind == "builtin":
             name = body["builtin"]
             if name not in _BUILTIN:
-                raise FrontEndError(f"function {name}() is not supported by "
-                                    "the FMU back end")
+                raise FrontEndError(f"{self.where}: function {name}() is not "
+                                    "supported by the FMU back end")
             return _BUILTIN[name](*self._args(index, body["operand_count"]))
         if kind == "conditional":
             args = self._args(index, body["operand_count"])
             return _conditional(args)
-        raise FrontEndError(f"expression kind {kind!r} is not supported")
+        raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
+                            "supported by the FMU back end")
 
 
 def _conditional(args):
@@ -181,6 +339,29 @@ def _conditional(args):
     for condition, value in reversed(list(zip(pairs[::2], pairs[1::2]))):
         result = casadi.if_else(condition, value, result, True)
     return result
+
+
+def class_source(library, name):
+    """The ``.mo`` file that holds class ``name`` of ``library``.
+
+    A class is found as ``A/B/C.mo`` (one class per file, package folders
+    with ``package.mo``), inside its package's ``package.mo``, or inside a
+    single file holding the whole package (``A.mo`` with ``package A ...
+    end A;``), as Modelica's rules for storing classes allow.
+
+    Raises
+    ------
+    FrontEndError
+        If no such file exists.
+    """
+    library, parts = Path(library), name.split(".")
+    for count in range(len(parts), 0, -1):
+        folder = library.joinpath(*parts[:count])
+        for candidate in (folder.with_suffix(".mo"), folder / "package.mo"):
+            if candidate.is_file():
+                return candidate
+    raise FrontEndError(f"{name}: no file {library.joinpath(*parts)}.mo, "
+                        f"nor a package file holding it, in {library}")
 
 
 def _flatten(path, model_name, roots):
@@ -210,6 +391,87 @@ def _library_errors(rumoca, roots):
     return ("\n" + "\n".join(found)) if found else ""
 
 
+#: Roles of rumoca's flat variables that the back end compiles.
+_ROLES = ("state", "algebraic", "parameter", "constant", "input", "output")
+#: Sections of rumoca's flat model the back end does not compile (yet),
+#: with the Modelica construct that produces them.
+_REFUSED = {
+    "model_event_transactions": "when-equations",
+    "discrete_real_equations": "discrete-time equations (when, sample)",
+    "previous_values": "pre()",
+    "time_events": "time events (sample, time >= ...)",
+    "structured_roots": "event conditions",
+    "discrete_value_owners": "Integer or Boolean variables",
+    "clocks": "clocked equations", "clock_ownerships": "clocked equations",
+    "delays": "delay()", "functions": "function calls",
+    "domains": "for-equations and array equations",
+    "terminals": "terminal()",
+    "initial_discrete_values": "initial values of discrete variables",
+    "initial_parameter_values": "parameters with fixed = false",
+}
+
+
+class _Locator:
+    """``file:line`` of rumoca's source spans."""
+
+    def __init__(self, flat):
+        self._files = {entry[0]: (entry[1], entry[2]) for entry in
+                       flat.get("source_map", {}).get("files", [])}
+
+    def __call__(self, item):
+        span = _first_span(item)
+        if not span or span.get("source") not in self._files:
+            return "(generated)"
+        path, text = self._files[span["source"]]
+        return f"{path}:{text[:span['start']].count(chr(10)) + 1}"
+
+
+def _first_span(item):
+    """The first source span found in a (nested) rumoca record."""
+    if isinstance(item, dict):
+        if isinstance(item.get("span"), dict) and "start" in item["span"]:
+            return item["span"]
+        children = item.values()
+    elif isinstance(item, list):
+        children = item
+    else:
+        return None
+    for child in children:
+        found = _first_span(child)
+        if found:
+            return found
+    return None
+
+
+def _check_supported(storage, model_name, where):
+    """Refuse, with the place in the source, what cannot be compiled."""
+    for raw in storage["variables"]:
+        place = where({"span": raw.get("declaration", {}).get("span")})
+        if raw["role"] not in _ROLES:
+            kind = "Integer, Boolean and discrete variables are" \
+                if "discrete" in raw["role"] else \
+                f"variables of role {raw['role']!r} are"
+            raise FrontEndError(f"{place}: {raw['name']}: {kind} not "
+                                "supported by the FMU back end")
+        value_type = storage["value_types"][raw["value_type"]]
+        if value_type.get("dimensions") and \
+                raw["role"] not in ("parameter", "constant"):
+            raise FrontEndError(f"{place}: {raw['name']}: arrays of "
+                                "variables are not supported by the FMU back "
+                                "end (arrays of parameters are)")
+        if value_type.get("scalar") != "real":
+            raise FrontEndError(f"{place}: {raw['name']}: "
+                                f"{value_type.get('scalar')} variables are "
+                                "not supported by the FMU back end")
+    for key, construct in _REFUSED.items():
+        items = storage.get(key) or []
+        if items:
+            place = where(items[0]) if isinstance(items[0], dict) else \
+                model_name
+            raise FrontEndError(f"{place}: {construct} are not supported "
+                                f"by the FMU back end (model {model_name})")
+
+
 def load_flat_model(path, model_name, roots=()):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
@@ -225,46 +487,174 @@ def load_flat_model(path, model_name, roots=()):
     Raises
     ------
     FrontEndError
-        With rumoca's diagnostics (file, line, what is wrong).
+        With rumoca's diagnostics (file, line, what is wrong), or the
+        place of a construct the back end does not compile.
     """
     path = Path(path)
     flat = _flatten(path, model_name, roots or [path.parent])
     storage = flat["storage"]
+    where = _Locator(flat)
+    _check_supported(storage, model_name, where)
     time = casadi.SX.sym("time")
     symbols, derivatives, variables = [], {}, []
     for index, raw in enumerate(storage["variables"]):
-        symbol = casadi.SX.sym(raw["name"])
-        symbols.append(symbol)
+        shape = storage["value_types"][raw["value_type"]].get("dimensions")
+        symbols.append(_element_symbols(raw["name"], shape) if shape
+                       else casadi.SX.sym(raw["name"]))
         if raw["role"] == "state":
             derivatives[index] = casadi.SX.sym(f"der({raw['name']})")
     convert = _Expressions(storage, symbols, derivatives, time)
+    types = _declared_types(roots or [path.parent], path)
+    files = {entry[0]: entry[2] for entry in
+             flat.get("source_map", {}).get("files", [])}
+    for position, item in enumerate(storage.get("relations") or []):
+        convert.relation_of[item["relation"]["expression"]] = position
     for index, raw in enumerate(storage["variables"]):
         attributes = raw.get("attributes", {})
-        variables.append(Variable(
-            name=raw["name"], role=raw["role"], symbol=symbols[index],
-            derivative=derivatives.get(index),
-            unit=attributes.get("unit") or "",
-            description=attributes.get("description") or "",
-            start=convert(attributes.get("start")),
-            fixed=_is_fixed(attributes.get("fixed")),
-            binding=convert(attributes.get("binding")),
-            minimum=convert(attributes.get("min")),
-            maximum=convert(attributes.get("max"))))
-    residuals = []
-    for operation in storage["continuous_equation_operations"]:
-        kind, body = next(iter(operation.items()))
-        if kind != "residual":
-            raise FrontEndError(f"{model_name}: equations of kind {kind!r} "
-                                "are not supported by the FMU back end")
-        residuals.append(convert(body["residual"]))
-    for name in ("discrete_real_equations", "model_event_transactions",
-                 "clocks", "delays"):
-        if storage.get(name):
-            raise FrontEndError(f"{model_name}: {name.replace('_', ' ')} are "
-                                "not supported by the FMU back end")
-    return FlatModel(name=model_name, variables=variables,
-                     residuals=residuals, time=time,
-                     experiment=_experiment(path, model_name))
+        convert.where = where({"span": raw.get("declaration", {})
+                               .get("span")})
+        values = {key: convert(attributes.get(key))
+                  for key in ("start", "binding", "min", "max")}
+        elements = symbols[index]
+        if not isinstance(elements, np.ndarray):
+            elements, values = np.array([elements], dtype=object), \
+                {k: np.array([v], dtype=object) for k, v in values.items()}
+        quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
+        for position in np.ndindex(elements.shape):
+            symbol = elements[position]
+            variables.append(Variable(
+                name=symbol.name(), role=raw["role"], symbol=symbol,
+                derivative=derivatives.get(index),
+                unit=attributes.get("unit") or "",
+                description=attributes.get("description") or "",
+                start=_element(values["start"], position, convert.where),
+                fixed=_is_fixed(attributes.get("fixed")),
+                binding=_element(values["binding"], position, convert.where),
+                minimum=_element(values["min"], position, convert.where),
+                maximum=_element(values["max"], position, convert.where),
+                where=convert.where,
+                causality=attributes.get("causality") or "",
+                quantity=quantity, display_unit=display_unit))
+    sections, places = {}, {}
+    for section in ("continuous_equation_operations",
+                    "initialization_equation_operations"):
+        sections[section], places[section] = [], []
+        for operation in storage.get(section) or []:
+            kind, body = next(iter(operation.items()))
+            convert.where = where(body)
+            if kind != "residual":
+                raise FrontEndError(f"{convert.where}: equations of kind "
+                                    f"{kind!r} are not supported by the FMU "
+                                    "back end")
+            sections[section].append(convert(body["residual"]))
+            places[section].append(convert.where)
+    whens = _whens(storage, convert, where, variables)
+    return FlatModel(
+        name=model_name, variables=variables,
+        residuals=sections["continuous_equation_operations"],
+        initial_residuals=sections["initialization_equation_operations"],
+        places=places["continuous_equation_operations"],
+        initial_places=places["initialization_equation_operations"],
+        relations=[convert.relations[k] for k in sorted(convert.relations)],
+        whens=whens,
+        time=time, experiment=_experiment(path, model_name))
+
+
+def _whens(storage, convert, where, variables):
+    """``when`` clauses with ``reinit`` (rumoca's event actions).
+
+    The relations are renumbered in the order of ``convert.relations``
+    after every one is converted.
+    """
+    conditions = storage.get("conditions") or []
+    clauses = {}
+    for action in storage.get("event_actions") or []:
+        convert.where = where(action)
+        kind, body = next(iter(action["kind"].items()))
+        if kind != "reinitialize":
+            raise FrontEndError(f"{convert.where}: {kind} in a when-clause "
+                                "is not supported by the FMU back end")
+        node = conditions[action["trigger"]].get("node", {}) \
+            if action["trigger"] < len(conditions) else {}
+        if set(node) != {"relation"} or action["guard"] != action["trigger"]:
+            raise FrontEndError(f"{convert.where}: when-conditions other "
+                                "than one relation (h < 0) are not "
+                                "supported by the FMU back end")
+        relation = node["relation"]
+        expression = storage["relations"][relation]["relation"]["expression"]
+        convert(expression)   # records the relation
+        convert.pre_is_state = True
+        try:
+            value = convert(body["value"])
+        finally:
+            convert.pre_is_state = False
+        target = storage["variables"][body["state"]]["name"]
+        clause = clauses.setdefault(action["trigger"], When(
+            relation=relation, reinits=[], where=convert.where))
+        clause.reinits.append((target, value))
+    order = sorted(convert.relations)
+    for clause in clauses.values():
+        clause.relation = order.index(clause.relation)
+    return list(clauses.values())
+
+
+_TYPE = re.compile(r"\btype\s+(\w+)\s*=\s*Real\s*\(([^;]*?)\)\s*(?:\"|;)")
+
+
+def _declared_types(roots, model_file):
+    """``{type name: (quantity, displayUnit)}`` of the Real types defined
+    in the library's sources; a name defined twice differently is left
+    out (ambiguous)."""
+    found, ambiguous = {}, set()
+    files = {Path(model_file)}
+    for root in roots:
+        files |= set(Path(root).rglob("*.mo"))
+    for source in sorted(files):
+        for name, body in _TYPE.findall(source.read_text(errors="replace")):
+            quantity = re.search(r'quantity\s*=\s*"([^"]*)"', body)
+            display = re.search(r'displayUnit\s*=\s*"([^"]*)"', body)
+            value = (quantity.group(1) if quantity else "",
+                     display.group(1) if display else "")
+            if found.setdefault(name, value) != value:
+                ambiguous.add(name)
+    return {k: v for k, v in found.items() if k not in ambiguous}
+
+
+def _type_of(raw, files):
+    """Short name of the declared type of a variable (``Pressure`` for
+    ``Units.Pressure p_m``), read at its declaration."""
+    span = raw.get("declaration", {}).get("span") or {}
+    if span.get("source") not in files:
+        return ""
+    text = files[span["source"]][span["start"]:span["end"]].split()
+    return text[0].split(".")[-1] if len(text) > 1 else ""
+
+
+def _element_symbols(name, shape):
+    """One SX symbol per element of an array, named ``name[i,j]``."""
+    symbols = np.empty(shape, dtype=object)
+    for position in product(*(range(n) for n in shape)):
+        symbols[position] = casadi.SX.sym(
+            f"{name}[{','.join(str(k + 1) for k in position)}]")
+    return symbols
+
+
+def _element(value, position, where):
+    """Element ``position`` of an array attribute (a scalar applies to all)."""
+    if value is None:
+        return None
+    if not isinstance(value, np.ndarray):
+        return value
+    if value.ndim == 1 and value.shape == (1,) and len(position) > 1:
+        return value[0]
+    if value.ndim == 0:
+        return value[()]
+    try:
+        return value[position]
+    except IndexError:
+        raise FrontEndError(f"{where}: the array value has shape "
+                            f"{value.shape}, not that of the declaration") \
+            from None
 
 
 def _is_fixed(value):

@@ -7,7 +7,7 @@ with an optional integer exponent.
 
 import re
 
-__all__ = ["base_exponents", "BASE_UNITS"]
+__all__ = ["base_exponents", "BASE_UNITS", "DISPLAY_UNITS"]
 
 #: FMI BaseUnit attribute names.
 BASE_UNITS = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
@@ -20,6 +20,14 @@ _SYMBOLS = {
     "W": {"kg": 1, "m": 2, "s": -3}, "Hz": {"s": -1},
 }
 _SCALE = {"g": 1e-3}
+
+#: Display units an FMU declares: name -> (unit, factor, offset), with
+#: display value = factor * value + offset (FMI <DisplayUnit>).
+DISPLAY_UNITS = {
+    "bar": ("Pa", 1e-5, 0.0), "deg": ("rad", 180 / 3.141592653589793, 0.0),
+    "rpm": ("rad/s", 30 / 3.141592653589793, 0.0),
+    "mm": ("m", 1e3, 0.0), "degC": ("K", 1.0, -273.15),
+}
 
 
 def _factor(text, unit):

@@ -161,3 +161,46 @@ def test_modelica_mistake_names_file_and_line(tmp_path):
     assert "Driveline3DOF.mo:" in str(info.value)
     assert "unexpected `connect`" in str(info.value)
     assert not list(tmp_path.glob("*.fmu"))
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+@pytest.mark.parametrize("version, kind", [("2.0", "ModelExchange"),
+                                           ("2.0", "CoSimulation"),
+                                           ("3.0", "ModelExchange")])
+def test_out_of_range_and_non_finite_are_errors(fmus, version, kind):
+    # J1 = -1 is outside J's declared min = 0: refused by fmi2SetReal /
+    # fmi3SetFloat64; J4 = 0 is allowed but makes der(inertia4.w) = x/0
+    fmu = str(fmus[("Driveline4DOF", version)])
+    messages = []
+    with pytest.raises(Exception, match="status 3"):
+        simulate_fmu(fmu, fmi_type=kind, stop_time=0.01,
+                     start_values={"J1": -1.0},
+                     logger=lambda *args: messages.append(args[-1]))
+    assert any(b"outside its declared range [0, inf]" in m
+               for m in messages), messages
+    messages.clear()
+    with pytest.raises(Exception):
+        simulate_fmu(fmu, fmi_type=kind, stop_time=0.01,
+                     start_values={"J4": 0.0},
+                     logger=lambda *args: messages.append(args[-1]))
+    assert any(b"not finite" in m for m in messages), messages
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_display_units_and_quantities(fmus, version):
+    # Units.Pressure (displayUnit "bar") and Units.Angle ("deg") as an OEM
+    # tool shows them: 1 bar = 1e5 Pa, 1 deg = pi/180 rad
+    from fmpy import read_model_description
+    description = read_model_description(str(fmus[("Driveline4DOF",
+                                                    version)]))
+    variables = {v.name: v for v in description.modelVariables}
+    for name, quantity, display in [("p_m", "Pressure", "bar"),
+                                    ("actuation_pressure", "Pressure", "bar"),
+                                    ("inertia1.phi", "Angle", "deg"),
+                                    ("w_upstream", "AngularVelocity", None)]:
+        assert variables[name].quantity == quantity, name
+        assert variables[name].displayUnit == display, name
+    units = {u.name: {d.name: d.factor for d in u.displayUnits}
+             for u in description.unitDefinitions}
+    assert units["Pa"] == {"bar": 1e-5}
+    assert units["rad"] == pytest.approx({"deg": 180 / np.pi}, rel=1e-15)

@@ -123,7 +123,15 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[],
     Instance *inst = c;
     size_t i;
     for (i = 0; i < nvr; i++) {
-        if (model_set(&inst->model, vr[i], value[i], 0) != 0) {
+        int done = model_set(&inst->model, vr[i], value[i], 0);
+        if (done == 2) {
+            double low, high;
+            model_bounds(vr[i], &low, &high);
+            logmsg(inst, fmi2Error, "value %g of value reference %u is outside "
+                   "its declared range [%g, %g]", value[i], vr[i], low, high);
+            return fmi2Error;
+        }
+        if (done != 0) {
             logmsg(inst, fmi2Error, "value reference %u cannot be set", vr[i]);
             return fmi2Error;
         }
@@ -144,25 +152,67 @@ NO_VARIABLES(fmi2SetString, const fmi2String)
 
 #define NOT_SUPPORTED(call) \
     { (void)c; logmsg(c, fmi2Error, call " is not supported"); return fmi2Error; }
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s) { (void)s; NOT_SUPPORTED("fmi2GetFMUstate") }
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s) { (void)s; NOT_SUPPORTED("fmi2SetFMUstate") }
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s) { (void)s; NOT_SUPPORTED("fmi2FreeFMUstate") }
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *n) { (void)s; (void)n; NOT_SUPPORTED("fmi2SerializedFMUstateSize") }
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], size_t n) { (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi2SerializeFMUstate") }
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *s) { (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi2DeSerializeFMUstate") }
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference u[], size_t nu,
-        const fmi2ValueReference z[], size_t nz, const fmi2Real dv[], fmi2Real dz[]) {
-    (void)u; (void)nu; (void)z; (void)nz; (void)dv; (void)dz; NOT_SUPPORTED("fmi2GetDirectionalDerivative") }
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s) {
+    Instance *inst = c;
+    Model *copy = *s ? (Model *)*s : calloc(1, sizeof(Model));
+    if (!copy) return fmi2Error;
+    model_copy_state(copy, &inst->model);
+    *s = copy;
+    return fmi2OK;
+}
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s) {
+    if (!s) return fmi2Error;
+    model_copy_state(&((Instance *)c)->model, (const Model *)s);
+    return fmi2OK;
+}
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s) {
+    (void)c;
+    if (s) { free(*s); *s = NULL; }
+    return fmi2OK;
+}
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *n) {
+    (void)c; (void)s; *n = model_serialized_size(); return fmi2OK;
+}
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], size_t n) {
+    if (!s || n < model_serialized_size()) {
+        logmsg(c, fmi2Error, "fmi2SerializeFMUstate: %zu bytes given, %zu needed",
+               n, model_serialized_size());
+        return fmi2Error;
+    }
+    model_serialize((const Model *)s, b);
+    return fmi2OK;
+}
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *s) {
+    Model *copy = calloc(1, sizeof(Model));
+    if (!copy) return fmi2Error;
+    if (model_deserialize(copy, b, n) != 0) {
+        free(copy);
+        logmsg(c, fmi2Error, "fmi2DeSerializeFMUstate: not a state of this FMU");
+        return fmi2Error;
+    }
+    *s = copy;
+    return fmi2OK;
+}
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference z[], size_t nz,
+        const fmi2ValueReference v[], size_t nv, const fmi2Real dv[], fmi2Real dz[]) {
+    if (model_directional(&((Instance *)c)->model, z, nz, v, nv, dv, dz, 0) != 0) {
+        logmsg(c, fmi2Error, "fmi2GetDirectionalDerivative: the unknowns must be "
+               "derivatives or outputs, the knowns states, parameters or inputs");
+        return fmi2Error;
+    }
+    return fmi2OK;
+}
 
 /* Model Exchange */
 fmi2Status fmi2EnterEventMode(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
-    (void)c;
-    info->newDiscreteStatesNeeded = fmi2False;
+    Instance *inst = c;
+    int again = 0, changed = model_event(&inst->model, &again);
+    info->newDiscreteStatesNeeded = again ? fmi2True : fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
-    info->valuesOfContinuousStatesChanged = fmi2False;
+    info->valuesOfContinuousStatesChanged = changed ? fmi2True : fmi2False;
     info->nextEventTimeDefined = fmi2False;
     info->nextEventTime = 0;
     return fmi2OK;
@@ -199,12 +249,19 @@ fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t nx) {
     if (nx != MODEL_NX) return fmi2Error;
     model_evaluate(&inst->model);
     memcpy(dx, inst->model.xdot, sizeof(double) * nx);
+    if (model_finite(&inst->model) != 0) {
+        logmsg(inst, fmi2Error, "der(%s) is not finite at t = %g (check the "
+               "parameters)", model_state_name(model_finite(&inst->model) - 1),
+               inst->model.time);
+        return fmi2Error;
+    }
     return fmi2OK;
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t nz) {
-    (void)c; (void)z;
-    return nz == 0 ? fmi2OK : fmi2Error;
+    if (nz != MODEL_NR) return fmi2Error;
+    if (nz) model_indicators(&((Instance *)c)->model, z);
+    return fmi2OK;
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {
@@ -241,7 +298,13 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real t, fmi2Real h, fmi2Boolean noSet
     (void)noSetPrior;
     if (h < 0) return fmi2Error;
     inst->model.time = t;
-    if (model_integrate(&inst->model, t + h) != 0) {
+    switch (model_integrate(&inst->model, t + h)) {
+    case 0: break;
+    case 2:
+        logmsg(inst, fmi2Error, "the derivatives are not finite in the step "
+               "from t = %g (check the parameters)", inst->model.time);
+        return fmi2Error;
+    default:
         logmsg(inst, fmi2Error, "the integrator failed at t = %g (step size too small)",
                inst->model.time);
         return fmi2Error;

@@ -1,6 +1,6 @@
-/* FMI 3.0 Model Exchange on the generic model core. Only Float64
- * variables exist; the other types, clocks, FMU states and derivatives
- * report an error. */
+/* FMI 3.0 Model Exchange and Co-Simulation on the generic model core.
+ * Only Float64 variables exist; the other types and clocks report an
+ * error. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +13,7 @@ typedef struct {
     fmi3InstanceEnvironment environment;
     fmi3LogMessageCallback log;
     char *name;
+    int cosimulation;
 } Instance;
 
 static void logmsg(Instance *c, fmi3Status status, const char *format, ...) {
@@ -34,11 +35,10 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean on, size_t n,
     return fmi3OK;
 }
 
-fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
-        fmi3String resources, fmi3Boolean visible, fmi3Boolean logging,
-        fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
+static fmi3Instance instantiate(fmi3String name, fmi3String token,
+        fmi3InstanceEnvironment environment, fmi3LogMessageCallback log,
+        int cosimulation) {
     Instance *c;
-    (void)resources; (void)visible; (void)logging;
     if (!token || strcmp(token, MODEL_GUID) != 0) {
         if (log) log(environment, fmi3Error, "logStatusError",
                      "wrong instantiation token");
@@ -48,6 +48,7 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
     if (!c) return NULL;
     c->environment = environment;
     c->log = log;
+    c->cosimulation = cosimulation;
     c->name = malloc(strlen(name ? name : "") + 1);
     if (c->name) strcpy(c->name, name ? name : "");
     if (!c->name || model_init(&c->model) != 0) {
@@ -57,18 +58,24 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
     return c;
 }
 
+fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
+        fmi3String resources, fmi3Boolean visible, fmi3Boolean logging,
+        fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
+    (void)resources; (void)visible; (void)logging;
+    return instantiate(name, token, environment, log, 0);
+}
+
+/* Co-Simulation: fmi3DoStep integrates with the embedded Dormand-Prince
+ * 5(4), events located inside the step; no event mode, no early return */
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String name, fmi3String token,
         fmi3String resources, fmi3Boolean visible, fmi3Boolean logging,
         fmi3Boolean eventMode, fmi3Boolean earlyReturn,
         const fmi3ValueReference required[], size_t nRequired,
         fmi3InstanceEnvironment environment, fmi3LogMessageCallback log,
         fmi3IntermediateUpdateCallback update) {
-    (void)name; (void)token; (void)resources; (void)visible; (void)logging;
-    (void)eventMode; (void)earlyReturn; (void)required; (void)nRequired;
-    (void)update;
-    if (log) log(environment, fmi3Error, "logStatusError",
-                 "this FMU is Model Exchange only (FMI 2.0 for Co-Simulation)");
-    return NULL;
+    (void)resources; (void)visible; (void)logging; (void)eventMode;
+    (void)earlyReturn; (void)required; (void)nRequired; (void)update;
+    return instantiate(name, token, environment, log, 1);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String name,
@@ -95,7 +102,9 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
         fmi3Float64 tolerance, fmi3Float64 startTime,
         fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
     Instance *inst = c;
-    (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
+    (void)stopTimeDefined; (void)stopTime;
+    if (inst->cosimulation && toleranceDefined && tolerance > 0)
+        inst->model.relative_tolerance = tolerance < 1e-3 ? tolerance : 1e-3;
     inst->model.time = startTime;
     inst->model.stale = 1;
     return fmi3OK;
@@ -135,7 +144,15 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[],
     size_t i;
     if (n != nvr) return fmi3Error;
     for (i = 0; i < nvr; i++) {
-        if (model_set(&inst->model, vr[i], value[i], 0) != 0) {
+        int done = model_set(&inst->model, vr[i], value[i], 0);
+        if (done == 2) {
+            double low, high;
+            model_bounds(vr[i], &low, &high);
+            logmsg(inst, fmi3Error, "value %g of value reference %u is outside "
+                   "its declared range [%g, %g]", value[i], vr[i], low, high);
+            return fmi3Error;
+        }
+        if (done != 0) {
             logmsg(inst, fmi3Error, "value reference %u cannot be set", vr[i]);
             return fmi3Error;
         }
@@ -192,25 +209,68 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference d, siz
         fmi3ValueReference i[], size_t ei[], fmi3DependencyKind k[], size_t n) {
     (void)d; (void)e; (void)i; (void)ei; (void)k; (void)n;
     NOT_SUPPORTED("fmi3GetVariableDependencies") }
-fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *s) { (void)s; NOT_SUPPORTED("fmi3GetFMUState") }
-fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState s) { (void)s; NOT_SUPPORTED("fmi3SetFMUState") }
-fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *s) { (void)s; NOT_SUPPORTED("fmi3FreeFMUState") }
+fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *s) {
+    Instance *inst = c;
+    Model *copy = *s ? (Model *)*s : calloc(1, sizeof(Model));
+    if (!copy) return fmi3Error;
+    model_copy_state(copy, &inst->model);
+    *s = copy;
+    return fmi3OK;
+}
+fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState s) {
+    if (!s) return fmi3Error;
+    model_copy_state(&((Instance *)c)->model, (const Model *)s);
+    return fmi3OK;
+}
+fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *s) {
+    (void)c;
+    if (s) { free(*s); *s = NULL; }
+    return fmi3OK;
+}
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState s, size_t *n) {
-    (void)s; (void)n; NOT_SUPPORTED("fmi3SerializedFMUStateSize") }
+    (void)c; (void)s; *n = model_serialized_size(); return fmi3OK;
+}
 fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState s, fmi3Byte b[], size_t n) {
-    (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi3SerializeFMUState") }
+    if (!s || n < model_serialized_size()) {
+        logmsg(c, fmi3Error, "fmi3SerializeFMUState: too few bytes");
+        return fmi3Error;
+    }
+    model_serialize((const Model *)s, (char *)b);
+    return fmi3OK;
+}
 fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte b[], size_t n, fmi3FMUState *s) {
-    (void)s; (void)b; (void)n; NOT_SUPPORTED("fmi3DeserializeFMUState") }
+    Model *copy = calloc(1, sizeof(Model));
+    if (!copy) return fmi3Error;
+    if (model_deserialize(copy, (const char *)b, n) != 0) {
+        free(copy);
+        logmsg(c, fmi3Error, "fmi3DeserializeFMUState: not a state of this FMU");
+        return fmi3Error;
+    }
+    *s = copy;
+    return fmi3OK;
+}
+static fmi3Status derivative(fmi3Instance c, const fmi3ValueReference z[], size_t nz,
+        const fmi3ValueReference v[], size_t nv, const fmi3Float64 seed[], size_t ns,
+        fmi3Float64 result[], size_t nr, int adjoint) {
+    if (ns != (adjoint ? nz : nv) || nr != (adjoint ? nv : nz) ||
+        model_directional(&((Instance *)c)->model, z, nz, v, nv, seed, result,
+                          adjoint) != 0) {
+        logmsg(c, fmi3Error, "directional derivatives: the unknowns must be "
+               "derivatives or outputs, the knowns states, parameters or inputs");
+        return fmi3Error;
+    }
+    return fmi3OK;
+}
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference u[], size_t nu,
         const fmi3ValueReference k[], size_t nk, const fmi3Float64 s[], size_t ns,
         fmi3Float64 r[], size_t nr) {
-    (void)u; (void)nu; (void)k; (void)nk; (void)s; (void)ns; (void)r; (void)nr;
-    NOT_SUPPORTED("fmi3GetDirectionalDerivative") }
+    return derivative(c, u, nu, k, nk, s, ns, r, nr, 0);
+}
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference u[], size_t nu,
         const fmi3ValueReference k[], size_t nk, const fmi3Float64 s[], size_t ns,
         fmi3Float64 r[], size_t nr) {
-    (void)u; (void)nu; (void)k; (void)nk; (void)s; (void)ns; (void)r; (void)nr;
-    NOT_SUPPORTED("fmi3GetAdjointDerivative") }
+    return derivative(c, u, nu, k, nk, s, ns, r, nr, 1);
+}
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) { NOT_SUPPORTED("fmi3EnterConfigurationMode") }
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) { NOT_SUPPORTED("fmi3ExitConfigurationMode") }
 fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
@@ -239,9 +299,11 @@ fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance c) { (void)c; return fmi3OK; 
 fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *update,
         fmi3Boolean *terminate, fmi3Boolean *nominals, fmi3Boolean *values,
         fmi3Boolean *timeDefined, fmi3Float64 *nextTime) {
-    (void)c;
-    *update = fmi3False; *terminate = fmi3False; *nominals = fmi3False;
-    *values = fmi3False; *timeDefined = fmi3False; *nextTime = 0;
+    Instance *inst = c;
+    int again = 0, changed = model_event(&inst->model, &again);
+    *update = again ? fmi3True : fmi3False; *terminate = fmi3False;
+    *nominals = fmi3False; *values = changed ? fmi3True : fmi3False;
+    *timeDefined = fmi3False; *nextTime = 0;
     return fmi3OK;
 }
 
@@ -275,12 +337,19 @@ fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], s
     if (nx != MODEL_NX) return fmi3Error;
     model_evaluate(&inst->model);
     memcpy(dx, inst->model.xdot, sizeof(double) * nx);
+    if (model_finite(&inst->model) != 0) {
+        logmsg(inst, fmi3Error, "der(%s) is not finite at t = %g (check the "
+               "parameters)", model_state_name(model_finite(&inst->model) - 1),
+               inst->model.time);
+        return fmi3Error;
+    }
     return fmi3OK;
 }
 
 fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 z[], size_t nz) {
-    (void)c; (void)z;
-    return nz == 0 ? fmi3OK : fmi3Error;
+    if (nz != MODEL_NR) return fmi3Error;
+    if (nz) model_indicators(&((Instance *)c)->model, z);
+    return fmi3OK;
 }
 
 fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t nx) {
@@ -298,7 +367,7 @@ fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64 x[], si
 }
 
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
-    (void)c; *n = 0; return fmi3OK;
+    (void)c; *n = MODEL_NR; return fmi3OK;
 }
 
 fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
@@ -306,13 +375,33 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
 }
 
 /* Co-Simulation and Scheduled Execution (not provided by this FMU) */
-fmi3Status fmi3EnterStepMode(fmi3Instance c) { NOT_SUPPORTED("fmi3EnterStepMode") }
+fmi3Status fmi3EnterStepMode(fmi3Instance c) { (void)c; return fmi3OK; }
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
         const fmi3Int32 o[], fmi3Float64 v[], size_t n) {
-    (void)vr; (void)nvr; (void)o; (void)v; (void)n; NOT_SUPPORTED("fmi3GetOutputDerivatives") }
+    (void)vr; (void)o; (void)v; (void)n; if (nvr == 0) return fmi3OK;
+    NOT_SUPPORTED("fmi3GetOutputDerivatives") }
 fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 t, fmi3Float64 h, fmi3Boolean noSet,
         fmi3Boolean *event, fmi3Boolean *terminate, fmi3Boolean *early, fmi3Float64 *last) {
-    (void)t; (void)h; (void)noSet; (void)event; (void)terminate; (void)early; (void)last;
-    NOT_SUPPORTED("fmi3DoStep") }
+    Instance *inst = c;
+    (void)noSet;
+    *event = fmi3False; *terminate = fmi3False; *early = fmi3False;
+    if (h < 0) return fmi3Error;
+    inst->model.time = t;
+    switch (model_integrate(&inst->model, t + h)) {
+    case 0: break;
+    case 2:
+        logmsg(inst, fmi3Error, "the derivatives are not finite in the step "
+               "from t = %g (check the parameters)", inst->model.time);
+        *last = inst->model.time;
+        return fmi3Error;
+    default:
+        logmsg(inst, fmi3Error, "the integrator failed at t = %g (step size too small)",
+               inst->model.time);
+        *last = inst->model.time;
+        return fmi3Error;
+    }
+    *last = inst->model.time;
+    return fmi3OK;
+}
 fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clock, fmi3Float64 t) {
     (void)clock; (void)t; NOT_SUPPORTED("fmi3ActivateModelPartition") }

@@ -7,24 +7,33 @@
 
 #include "model_functions.h"
 
-static const double parameter_defaults[MODEL_NP + 1] = MODEL_PARAMETER_DEFAULTS;
+static const double parameter_defaults[MODEL_NPAR + 1] =
+    MODEL_PARAMETER_DEFAULTS;
+/* declared min and max of the parameters and inputs (+-inf if none) */
+static const double parameter_min[MODEL_NPAR + 1] = MODEL_PARAMETER_MIN;
+static const double parameter_max[MODEL_NPAR + 1] = MODEL_PARAMETER_MAX;
+static const int when_relation[MODEL_NW + 1] = MODEL_WHEN_RELATION;
+
+typedef int (*WorkSizes)(casadi_int *, casadi_int *, casadi_int *, casadi_int *);
 
 int model_init(Model *m) {
+    /* work arrays large enough for every generated function */
+    static const WorkSizes functions[] = {
+        MODEL_ODE_WORK, MODEL_OUTPUTS_WORK, MODEL_START_WORK,
+        MODEL_CALCULATED_WORK, MODEL_INDICATORS_WORK, MODEL_RELATIONS_WORK,
+        MODEL_REINIT_WORK, MODEL_JACOBIAN_WORK};
     casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
+    size_t k;
     memset(m, 0, sizeof(*m));
     memcpy(m->p, parameter_defaults, sizeof(m->p));
     m->relative_tolerance = MODEL_DEFAULT_TOLERANCE;
-    MODEL_ODE_WORK(&a, &r, &i, &w);
-    sz_arg = a; sz_res = r; sz_iw = i; sz_w = w;
-    MODEL_OUTPUTS_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_START_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
-    MODEL_CALCULATED_WORK(&a, &r, &i, &w);
-    if (a > sz_arg) sz_arg = a; if (r > sz_res) sz_res = r;
-    if (i > sz_iw) sz_iw = i; if (w > sz_w) sz_w = w;
+    for (k = 0; k < sizeof(functions) / sizeof(functions[0]); k++) {
+        functions[k](&a, &r, &i, &w);
+        if (a > sz_arg) sz_arg = a;
+        if (r > sz_res) sz_res = r;
+        if (i > sz_iw) sz_iw = i;
+        if (w > sz_w) sz_w = w;
+    }
     m->arg = calloc((size_t)sz_arg + 1, sizeof(*m->arg));
     m->res = calloc((size_t)sz_res + 1, sizeof(*m->res));
     m->iw = calloc((size_t)sz_iw + 1, sizeof(*m->iw));
@@ -44,7 +53,49 @@ void model_start(Model *m) {
     m->arg[0] = m->p;
     m->res[0] = m->x;
     MODEL_START(m->arg, m->res, m->iw, m->w, 0);
+    model_hold_relations(m);
     m->stale = 1;
+}
+
+static void relations_at(Model *m, double t, const double *x, double *r) {
+    m->arg[0] = &t; m->arg[1] = x; m->arg[2] = m->p;
+    m->res[0] = r;
+    MODEL_RELATIONS(m->arg, m->res, m->iw, m->w, 0);
+}
+
+void model_hold_relations(Model *m) {
+    relations_at(m, m->time, m->x, m->p + MODEL_NP + MODEL_NU);
+    m->stale = 1;
+}
+
+void model_indicators(Model *m, double *z) {
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = z;
+    MODEL_INDICATORS(m->arg, m->res, m->iw, m->w, 0);
+}
+
+int model_event(Model *m, int *again) {
+    double r[MODEL_NR + 1], fired[MODEL_NW + 1], x[MODEL_NX + 1];
+    double *held = m->p + MODEL_NP + MODEL_NU;
+    int k, any = 0;
+    relations_at(m, m->time, m->x, r);
+    for (k = 0; k < MODEL_NW; k++) {
+        fired[k] = r[when_relation[k]] > 0.5 && held[when_relation[k]] < 0.5;
+        any |= fired[k] > 0.5;
+    }
+    for (k = 0; k < MODEL_NR; k++) held[k] = r[k];
+    if (any) {
+        m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+        m->arg[3] = fired;
+        m->res[0] = x;
+        MODEL_REINIT(m->arg, m->res, m->iw, m->w, 0);
+        memcpy(m->x, x, sizeof(double) * MODEL_NX);
+    }
+    relations_at(m, m->time, m->x, r);
+    *again = 0;
+    for (k = 0; k < MODEL_NR; k++) if (r[k] != held[k]) *again = 1;
+    m->stale = 1;
+    return any;
 }
 
 static void derivatives(Model *m, double t, const double *x, double *xdot) {
@@ -76,18 +127,115 @@ int model_get(Model *m, unsigned vr, double *value) {
         model_evaluate(m); *value = m->calculated[vr - VR_CALCULATED];
         return 0;
     }
-    if (vr < VR_END) { model_evaluate(m); *value = m->y[vr - VR_OUTPUTS]; return 0; }
+    if (vr < VR_INPUTS) { model_evaluate(m); *value = m->y[vr - VR_OUTPUTS]; return 0; }
+    if (vr < VR_INDICATORS) { *value = m->p[MODEL_NP + vr - VR_INPUTS]; return 0; }
+    if (vr < VR_END) {
+        double z[MODEL_NR + 1];
+        model_indicators(m, z); *value = z[vr - VR_INDICATORS]; return 0;
+    }
     return 1;
 }
 
 int model_set(Model *m, unsigned vr, double value, int parameters_only) {
-    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) {
-        m->p[vr - VR_PARAMETERS] = value; m->stale = 1; return 0;
-    }
-    if (!parameters_only && vr >= VR_STATES && vr < VR_DERIVATIVES) {
+    unsigned k;
+    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) k = vr - VR_PARAMETERS;
+    else if (vr >= VR_INPUTS && vr < VR_INDICATORS) k = MODEL_NP + vr - VR_INPUTS;
+    else if (!parameters_only && vr >= VR_STATES && vr < VR_DERIVATIVES) {
         m->x[vr - VR_STATES] = value; m->stale = 1; return 0;
+    } else return 1;
+    if (!(value >= parameter_min[k] && value <= parameter_max[k])) return 2;
+    m->p[k] = value; m->stale = 1; return 0;
+}
+
+void model_bounds(unsigned vr, double *low, double *high) {
+    unsigned k = vr >= VR_INPUTS ? MODEL_NP + vr - VR_INPUTS : vr - VR_PARAMETERS;
+    *low = parameter_min[k]; *high = parameter_max[k];
+}
+
+static int unknown_row(unsigned vr) {
+    if (vr >= VR_DERIVATIVES && vr < VR_PARAMETERS) return (int)(vr - VR_DERIVATIVES);
+    if (vr >= VR_OUTPUTS && vr < VR_INPUTS) return MODEL_NX + (int)(vr - VR_OUTPUTS);
+    return -1;
+}
+
+static int known_column(unsigned vr) {
+    if (vr >= VR_STATES && vr < VR_DERIVATIVES) return (int)(vr - VR_STATES);
+    if (vr >= VR_PARAMETERS && vr < VR_CALCULATED) return MODEL_NX + (int)(vr - VR_PARAMETERS);
+    if (vr >= VR_INPUTS && vr < VR_INDICATORS) return MODEL_NX + MODEL_NP + (int)(vr - VR_INPUTS);
+    return -1;
+}
+
+int model_directional(Model *m, const unsigned *unknowns, size_t nz,
+                      const unsigned *knowns, size_t nv,
+                      const double *seed, double *result, int adjoint) {
+    enum { ROWS = MODEL_NX + MODEL_NY, COLUMNS = MODEL_NX + MODEL_NP + MODEL_NU };
+    double jac[(ROWS > 0 ? ROWS : 1) * (COLUMNS > 0 ? COLUMNS : 1)];
+    size_t i, j;
+    for (i = 0; i < nz; i++) if (unknown_row(unknowns[i]) < 0) return 1;
+    for (j = 0; j < nv; j++) if (known_column(knowns[j]) < 0) return 1;
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = jac;
+    MODEL_JACOBIAN(m->arg, m->res, m->iw, m->w, 0);
+    /* CasADi writes dense matrices column by column */
+    if (!adjoint) {
+        for (i = 0; i < nz; i++) {
+            int r = unknown_row(unknowns[i]);
+            result[i] = 0;
+            for (j = 0; j < nv; j++)
+                result[i] += jac[known_column(knowns[j]) * ROWS + r] * seed[j];
+        }
+    } else {
+        for (j = 0; j < nv; j++) {
+            int col = known_column(knowns[j]);
+            result[j] = 0;
+            for (i = 0; i < nz; i++)
+                result[j] += jac[col * ROWS + unknown_row(unknowns[i])] * seed[i];
+        }
     }
-    return 1;
+    return 0;
+}
+
+/* FMU state: the whole Model but its work arrays */
+void model_copy_state(Model *to, const Model *from) {
+    const double **arg = to->arg;
+    double **res = to->res;
+    long long *iw = to->iw;
+    double *w = to->w;
+    memcpy(to, from, sizeof(Model));
+    to->arg = arg; to->res = res; to->iw = iw; to->w = w;
+}
+
+size_t model_serialized_size(void) {
+    return sizeof(MODEL_GUID) + sizeof(Model);
+}
+
+void model_serialize(const Model *m, char *bytes) {
+    Model copy;
+    memcpy(&copy, m, sizeof(Model));
+    copy.arg = NULL; copy.res = NULL; copy.iw = NULL; copy.w = NULL;
+    memcpy(bytes, MODEL_GUID, sizeof(MODEL_GUID));
+    memcpy(bytes + sizeof(MODEL_GUID), &copy, sizeof(Model));
+}
+
+int model_deserialize(Model *m, const char *bytes, size_t size) {
+    Model copy;
+    if (size != model_serialized_size() ||
+        memcmp(bytes, MODEL_GUID, sizeof(MODEL_GUID)) != 0) return 1;
+    memcpy(&copy, bytes + sizeof(MODEL_GUID), sizeof(Model));
+    model_copy_state(m, &copy);
+    return 0;
+}
+
+const char *model_state_name(int i) {
+    static const char *names[MODEL_NX + 1] = MODEL_STATE_NAMES;
+    return i >= 0 && i < MODEL_NX ? names[i] : "?";
+}
+
+int model_finite(Model *m) {
+    int i;
+    model_evaluate(m);
+    for (i = 0; i < MODEL_NX; i++) if (!isfinite(m->xdot[i])) return i + 1;
+    return 0;
 }
 
 /* Dormand-Prince 5(4) coefficients (Hairer, Norsett, Wanner, 1993). */
@@ -104,9 +252,49 @@ static const double B1 = 35.0/384, B3 = 500.0/1113, B4 = 125.0/192,
 static const double E1 = 71.0/57600, E3 = -71.0/16695, E4 = 71.0/1920,
                     E5 = -17253.0/339200, E6 = 22.0/525, E7 = -1.0/40;
 
+/* One Dormand-Prince step of size h from (t, x) with k1 = f(t, x):
+ * xn, k7 = f(t + h, xn) and the scaled error norm. */
+static double dp_step(Model *m, double t, const double *x, const double *k1,
+                      double h, double *xn, double *k7) {
+    enum { N = MODEL_NX + 1 };
+    double k2[N], k3[N], k4[N], k5[N], k6[N], xs[N];
+    double err = 0, rtol = m->relative_tolerance, atol = rtol;
+    int i, n = MODEL_NX;
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * A21 * k1[i];
+    derivatives(m, t + C2 * h, xs, k2);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A31 * k1[i] + A32 * k2[i]);
+    derivatives(m, t + C3 * h, xs, k3);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
+    derivatives(m, t + C4 * h, xs, k4);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
+    derivatives(m, t + C5 * h, xs, k5);
+    for (i = 0; i < n; i++) xs[i] = x[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
+    derivatives(m, t + h, xs, k6);
+    for (i = 0; i < n; i++) xn[i] = x[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]);
+    derivatives(m, t + h, xn, k7);
+    for (i = 0; i < n; i++) {
+        double e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+        double sc = atol + rtol * fmax(fabs(x[i]), fabs(xn[i]));
+        err += (e / sc) * (e / sc);
+    }
+    return sqrt(err / n);
+}
+
+/* 1 if a relation at (t, x) differs from the value held since the last
+ * event */
+static int relations_changed(Model *m, double t, const double *x) {
+    double r[MODEL_NR + 1];
+    int k;
+    if (MODEL_NR == 0) return 0;
+    relations_at(m, t, x, r);
+    for (k = 0; k < MODEL_NR; k++)
+        if (r[k] != m->p[MODEL_NP + MODEL_NU + k]) return 1;
+    return 0;
+}
+
 int model_integrate(Model *m, double t_end) {
     enum { N = MODEL_NX + 1 };
-    double k1[N], k2[N], k3[N], k4[N], k5[N], k6[N], k7[N], xs[N], xn[N];
+    double k1[N], k7[N], xn[N];
     double t = m->time, h, rtol = m->relative_tolerance, atol;
     int i, n = MODEL_NX;
     if (n == 0) { m->time = t_end; m->stale = 1; return 0; }
@@ -122,29 +310,40 @@ int model_integrate(Model *m, double t_end) {
         }
         d0 = sqrt(d0 / n); d1 = sqrt(d1 / n);
         if (d1 > 1e-15) { double h0 = 0.01 * (d0 > 1e-5 ? d0 : 1e-5) / d1; if (h0 < h) h = h0; }
+        /* states all zero with a large derivative: start above the
+         * smallest step, error control shrinks it if needed */
+        if (h < 1e-12 * (fabs(t) + 1.0) && t_end - t > 1e-12 * (fabs(t) + 1.0))
+            h = 1e-12 * (fabs(t) + 1.0);
     }
     while (t < t_end) {
-        double err = 0, factor;
+        double err, factor;
         if (t + h > t_end || t + 1.01 * h >= t_end) h = t_end - t;
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * A21 * k1[i];
-        derivatives(m, t + C2 * h, xs, k2);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A31 * k1[i] + A32 * k2[i]);
-        derivatives(m, t + C3 * h, xs, k3);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
-        derivatives(m, t + C4 * h, xs, k4);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
-        derivatives(m, t + C5 * h, xs, k5);
-        for (i = 0; i < n; i++) xs[i] = m->x[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
-        derivatives(m, t + h, xs, k6);
-        for (i = 0; i < n; i++) xn[i] = m->x[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]);
-        derivatives(m, t + h, xn, k7);
-        for (i = 0; i < n; i++) {
-            double e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
-            double sc = atol + rtol * fmax(fabs(m->x[i]), fabs(xn[i]));
-            err += (e / sc) * (e / sc);
+        err = dp_step(m, t, m->x, k1, h, xn, k7);
+        if (!isfinite(err)) return 2;
+        if (err <= 1.0 && relations_changed(m, t + h, xn)) {
+            /* an event inside the step: the shortest step after which a
+             * relation has changed, to 1e-13 s relative */
+            double low = 0, high = h, xt[N], kt[N];
+            int again, iteration;
+            while (high - low > 1e-13 * (fabs(t) + 1.0)) {
+                double middle = 0.5 * (low + high);
+                dp_step(m, t, m->x, k1, middle, xt, kt);
+                if (relations_changed(m, t + middle, xt)) high = middle;
+                else low = middle;
+            }
+            dp_step(m, t, m->x, k1, high, xn, k7);
+            t = (high == t_end - t) ? t_end : t + high;
+            memcpy(m->x, xn, sizeof(double) * n);
+            m->time = t;
+            for (iteration = 0; iteration < 100; iteration++) {
+                model_event(m, &again);
+                if (!again) break;
+            }
+            derivatives(m, t, m->x, k1);
+            m->steps++;
+            m->events++;
+            continue;
         }
-        err = sqrt(err / n);
-        if (!isfinite(err)) return 1;
         if (err <= 1.0) {
             t += h;
             memcpy(m->x, xn, sizeof(double) * n);
@@ -157,7 +356,7 @@ int model_integrate(Model *m, double t_end) {
         if (factor > 5.0) factor = 5.0;
         if (factor < 0.2) factor = 0.2;
         h *= factor;
-        if (h < 1e-14 * (fabs(t) + 1.0)) return 1;
+        if (err > 1.0 && h < 1e-14 * (fabs(t) + 1.0)) return 1;
     }
     m->time = t_end;
     m->stale = 1;

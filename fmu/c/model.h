@@ -12,24 +12,30 @@
 #include "model_config.h"
 
 /* Value references: 0 time, then states, derivatives, parameters,
- * calculated parameters and outputs, in this order. */
+ * calculated parameters, outputs and inputs, in this order. Inputs are
+ * stored after the parameters in p. */
 #define VR_STATES 1
 #define VR_DERIVATIVES (VR_STATES + MODEL_NX)
 #define VR_PARAMETERS (VR_DERIVATIVES + MODEL_NX)
 #define VR_CALCULATED (VR_PARAMETERS + MODEL_NP)
 #define VR_OUTPUTS (VR_CALCULATED + MODEL_NC)
-#define VR_END (VR_OUTPUTS + MODEL_NY)
+#define VR_INPUTS (VR_OUTPUTS + MODEL_NY)
+#define VR_INDICATORS (VR_INPUTS + MODEL_NU)
+#define VR_END (VR_INDICATORS + MODEL_NR)
+/* p holds the parameters, the inputs and the values of the relations
+ * that generate events (held between events) */
+#define MODEL_NPAR (MODEL_NP + MODEL_NU + MODEL_NR)
 
 typedef struct {
     double time;
     double x[MODEL_NX + 1];
-    double p[MODEL_NP + 1];
+    double p[MODEL_NPAR + 1];
     double xdot[MODEL_NX + 1];
     double y[MODEL_NY + 1];
     double calculated[MODEL_NC + 1];
     int stale;                 /* xdot, y, calculated need evaluating */
     double relative_tolerance; /* co-simulation integrator */
-    long steps, rejected;      /* co-simulation statistics */
+    long steps, rejected, events; /* co-simulation statistics */
     /* CasADi work arrays */
     const double **arg;
     double **res;
@@ -42,9 +48,41 @@ void model_free(Model *m);
 void model_start(Model *m);          /* x = x0(p) */
 void model_evaluate(Model *m);       /* xdot, y, calculated from t, x, p */
 int model_get(Model *m, unsigned vr, double *value);
+/* 0 on success, 1 if vr cannot be set, 2 if value is outside the
+ * declared min and max (then nothing changes) */
 int model_set(Model *m, unsigned vr, double value, int parameters_only);
+void model_bounds(unsigned vr, double *low, double *high);
+/* 0 if every derivative is finite, else 1 + index of the first that is not */
+int model_finite(Model *m);
+/* Event indicators z (MODEL_NR of them) at the present t, x */
+void model_indicators(Model *m, double *z);
+/* Event iteration at the present t, x: fire the when-clauses whose
+ * relation became true (reinit), then hold the new relation values.
+ * Returns 1 if the states changed; *again is set if the relations
+ * changed once more after the reinit (another iteration is needed). */
+int model_event(Model *m, int *again);
+/* Relation values at the present t, x, without firing (initialisation) */
+void model_hold_relations(Model *m);
+const char *model_state_name(int i);   /* Modelica name of state i */
+/* Directional derivatives from the Jacobian of [der(x); y] with respect
+ * to [x; parameters; inputs] (CasADi AD). adjoint = 0: dz = J dv for the
+ * unknowns z and knowns v given by value references; adjoint = 1:
+ * dv = J^T dz. Returns 1 on a value reference that is not an unknown
+ * (derivative, output) or a known (state, parameter, input). */
+int model_directional(Model *m, const unsigned *unknowns, size_t nz,
+                      const unsigned *knowns, size_t nv,
+                      const double *seed, double *result, int adjoint);
+/* FMU state: copy everything but the work arrays; serialise with the
+ * GUID in front (the same binary restores it) */
+void model_copy_state(Model *to, const Model *from);
+size_t model_serialized_size(void);
+void model_serialize(const Model *m, char *bytes);
+int model_deserialize(Model *m, const char *bytes, size_t size); /* 0: ok */
 /* Advance from m->time to t_end with Dormand-Prince 5(4) under
- * relative_tolerance; returns 0 on success. */
+ * relative_tolerance; returns 0 on success, 1 if the step size became
+ * too small, 2 if the derivatives are not finite. Relations that change
+ * inside a step are located (bisection on the step size) and handled
+ * as events there. */
 int model_integrate(Model *m, double t_end);
 
 #endif

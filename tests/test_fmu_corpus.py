@@ -1,0 +1,564 @@
+"""The compiler on small models beyond the library (tests/modelica_corpus).
+
+Each model is compiled to FMI 2.0 and FMI 3.0 (Model Exchange +
+Co-Simulation) once per module, checked by both validators, and
+its fmpy run compared with a closed form or an independent scipy
+integration; or it is refused with ``fmu: error:``, the construct and its
+place in the source.
+"""
+
+import logging
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+
+pytest.importorskip("rumoca")
+fmpy = pytest.importorskip("fmpy")
+from fmpy import simulate_fmu  # noqa: E402
+from fmpy.validation import validate_fmu  # noqa: E402
+
+from fmu.build import build_fmu  # noqa: E402
+from fmu.frontend import class_source  # noqa: E402
+
+CORPUS = Path(__file__).resolve().parent / "modelica_corpus"
+ROOT = Path(__file__).resolve().parents[1]
+LIBRARY = ROOT / "modelica"
+#: Models the compiler must build.
+BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
+         "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
+         "TableClutchRig", "TableMatrix", "BouncingBall", "Relation"]
+#: Models it must refuse: (model, words of the message, line in the file).
+REFUSED = [
+    ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
+    ("WhenSample", "clocked equations are not supported", 5),
+    ("WhenAnd", "when-conditions other than one relation", 8),
+    ("NonlinearInitial", "not linear in the states they determine (x)", 4),
+    ("DiscreteCounter", "n: Integer, Boolean and discrete variables are not "
+     "supported", 2),
+    ("Overdetermined", "the initialisation is overdetermined", 4),
+    ("ArrayVariable", "arrays of variables are not supported", 3),
+]
+KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
+         ("3.0", "ModelExchange"), ("3.0", "CoSimulation")]
+#: Models also built as FMI 3.0 (one of each kind of construct: the C
+#: core is shared, fmi3.c differs from fmi2.c only in the API).
+FMI3 = ["Decay", "AlgebraicOnly", "FirstOrderInput", "InitialEquation",
+        "TableClutchRig", "BouncingBall"]
+
+
+@pytest.fixture(scope="module")
+def fmus(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("corpus")
+    built = {}
+    for name in BUILT:
+        for version in ("2.0", "3.0") if name in FMI3 else ("2.0",):
+            suffix = "" if version == "2.0" else "_fmi3"
+            built[(name, version)] = build_fmu(
+                class_source(CORPUS, name), name,
+                folder / f"{name}{suffix}.fmu", version=version,
+                roots=[CORPUS, LIBRARY]).path
+    return built
+
+
+def _run(fmus, name, version, kind, **options):
+    options.setdefault("relative_tolerance", 1e-10)
+    if kind == "CoSimulation":
+        options.pop("relative_tolerance")
+    return simulate_fmu(str(fmus[(name, version)]), fmi_type=kind,
+                        **options)
+
+
+def _fmutool_check(path):
+    """Messages of fmu-manipulation-toolbox's checkers (``fmutool
+    -check``), run in this process."""
+    toolbox = pytest.importorskip("fmu_manipulation_toolbox.operations")
+    from fmu_manipulation_toolbox.checker import get_checkers
+    messages = []
+
+    class Collect(logging.Handler):
+        def emit(self, record):
+            messages.append((record.levelno, record.getMessage()))
+    logger = logging.getLogger("fmu_manipulation_toolbox")
+    handler, level = Collect(), logger.level
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    try:
+        fmu = toolbox.FMU(str(path))
+        with fmu:
+            for checker in get_checkers():
+                fmu.apply_operation(checker(), None)
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+    return messages
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_every_fmu_passes_both_validators(fmus, version):
+    for name in BUILT if version == "2.0" else FMI3:
+        path = fmus[(name, version)]
+        assert validate_fmu(str(path)) == [], name
+        messages = _fmutool_check(path)
+        assert not [m for level, m in messages if level >= logging.ERROR], \
+            (name, messages)
+        assert (logging.INFO, "No semantic error against the "
+                f"FMI-{version[0]} standard.") in messages, (name, messages)
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_literal_parameters_decay_closed_form(fmus, version, kind):
+    # x = exp(-k t), k = 2 and k = 0.7 set by the importer
+    for k in (2.0, 0.7):
+        result = _run(fmus, "Decay", version, kind, start_values={"k": k},
+                      output=["x"])
+        assert_allclose(result["x"], np.exp(-k * result["time"]),
+                        rtol=1e-7, atol=1e-9)
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_states_starting_at_zero(fmus, version, kind):
+    # v = a (1 - exp(-t/T)), x = a (t - T (1 - exp(-t/T)))
+    result = _run(fmus, "ZeroStart", version, kind, output=["x", "v"])
+    t, a, T = result["time"], 3.0, 0.5
+    assert_allclose(result["v"], a * (1 - np.exp(-t / T)), atol=1e-7)
+    assert_allclose(result["x"], a * (t - T * (1 - np.exp(-t / T))),
+                    atol=1e-7)
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_oscillator_with_calculated_parameter(fmus, version, kind):
+    # x = x0 cos(omega t), omega = sqrt(c/m); energy = c x0^2 / 2
+    result = _run(fmus, "Oscillator", version, kind,
+                  start_values={"c": 18.0}, output=["x", "energy", "omega"])
+    omega = np.sqrt(18.0 / 0.5)
+    assert_allclose(result["omega"], omega, rtol=1e-15)
+    assert_allclose(result["x"], 0.1 * np.cos(omega * result["time"]),
+                    atol=1e-7)
+    assert_allclose(result["energy"], 18.0 * 0.1 ** 2 / 2, rtol=1e-6)
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_algebraic_only_model(fmus, version, kind):
+    result = _run(fmus, "AlgebraicOnly", version, kind, output=["y", "z"])
+    y = 2 * np.sin(2 * np.pi * 1.5 * result["time"])
+    assert_allclose(result["y"], y, atol=1e-12)
+    assert_allclose(result["z"], y ** 2, atol=1e-12)
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_constant_input_closed_form(fmus, version, kind):
+    # u = 1.5 set as the input's start: y = K u (1 - exp(-t/T))
+    result = _run(fmus, "FirstOrderInput", version, kind,
+                  start_values={"u": 1.5}, output=["y", "u"])
+    assert_allclose(result["u"], 1.5)
+    assert_allclose(result["y"], 2 * 1.5 * (1 - np.exp(-result["time"] / 0.2)),
+                    atol=1e-7)
+
+
+def test_input_signal_against_scipy(fmus):
+    # Co-Simulation: fmpy sets u from a piecewise-linear signal before each
+    # 0.01 s step and the FMU holds it over the step; scipy integrates
+    # T x' = u - x with the same held values
+    samples = np.array([0.0, 0.5, 1.0, 1.5, 2.0])
+    values = np.array([0.0, 1.0, -1.0, 0.5, 0.5])
+    signal = np.array(list(zip(samples, values)),
+                      dtype=[("time", float), ("u", float)])
+    result = _run(fmus, "FirstOrderInput", "2.0", "CoSimulation",
+                  input=signal, output=["y", "u"], output_interval=0.01)
+    grid = np.round(np.arange(0, 2.0 + 1e-9, 0.01), 12)
+    held = np.interp(grid, samples, values)
+    x, y = 0.0, [0.0]
+    for k in range(len(grid) - 1):
+        x = solve_ivp(lambda t, x: (held[k] - x) / 0.2, (grid[k], grid[k + 1]),
+                      [x], method="DOP853", rtol=1e-12, atol=1e-12).y[0, -1]
+        y.append(2 * x)
+    assert_allclose(result["time"], grid, atol=1e-12)
+    assert_allclose(result["y"], y, atol=1e-8)
+    assert np.ptp(result["y"]) > 1.0
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_initial_equation_sets_the_start(fmus, version, kind):
+    # x(0) = 2 x0 from the initial equation, x0 changed by the importer
+    result = _run(fmus, "InitialEquation", version, kind,
+                  start_values={"x0": 1.25}, output=["x"])
+    assert_allclose(result["x"], 2.5 * np.exp(-2 * result["time"]),
+                    rtol=1e-7)
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_steady_state_initialisation(fmus, version, kind):
+    # der(x) = 0 at t = 0: x = b/k for ever; w keeps its fixed start
+    result = _run(fmus, "SteadyStart", version, kind, output=["x", "w"])
+    assert_allclose(result["x"], 4 / 0.5, rtol=1e-12)
+    assert_allclose(result["w"], np.exp(-result["time"]), rtol=1e-7)
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_single_file_package(fmus, version, kind):
+    result = _run(fmus, "MyLib.Decay", version, kind, output=["x"])
+    assert_allclose(result["x"], 2 * np.exp(-1.5 * result["time"]),
+                    rtol=1e-7)
+
+
+@pytest.mark.parametrize("name, words, line", REFUSED)
+def test_refused_with_construct_and_place(tmp_path, capsys, name, words,
+                                          line):
+    # python -m fmu NAME, in this process
+    from fmu.__main__ import main
+    status = main([name, "--library", str(CORPUS), "--out", str(tmp_path),
+                   "--fmi", "2.0"])
+    stderr = capsys.readouterr().err
+    assert status == 2
+    assert stderr.startswith("fmu: error: "), stderr
+    assert words in stderr, stderr
+    assert f"{name}.mo:{line}:" in stderr, stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_refusal_from_the_command_line(tmp_path):
+    done = subprocess.run(
+        [sys.executable, "-m", "fmu", "NonlinearLoop", "--library",
+         str(CORPUS), "--out", str(tmp_path)],
+        capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith("fmu: error: "), done.stderr
+    assert "Traceback" not in done.stderr
+    assert done.stderr.count("\n") == 1, "one line"
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_parameter_outside_its_range_is_refused(fmus, version, kind):
+    # Decay declares k(min = 0): the FMU refuses k = -1 with a message
+    messages = []
+    with pytest.raises(Exception, match="status 3"):
+        _run(fmus, "Decay", version, kind, start_values={"k": -1.0},
+             logger=lambda *args: messages.append(args[-1]))
+    assert any(b"outside its declared range [0, inf]" in m
+               for m in messages), messages
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_non_finite_derivative_is_an_error(fmus):
+    # Oscillator's m(min = 0) admits m = 0, where der(v) = -c x / 0: an
+    # error status (fmpy's CVode callback reports it as unraisable)
+    messages = []
+    with pytest.raises(Exception):
+        _run(fmus, "Oscillator", "2.0", "ModelExchange",
+             start_values={"m": 0.0},
+             logger=lambda *args: messages.append(args[-1]))
+    assert any(b"der(v) is not finite" in m for m in messages), messages
+    with pytest.raises(Exception, match="status 3"):
+        _run(fmus, "Oscillator", "2.0", "CoSimulation",
+             start_values={"m": 0.0})
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_table_clutch_against_scipy(fmus, version, kind):
+    # Judder.Components.TableClutch braking a flywheel against the housing:
+    # J w' = -N_c R_m S p0 mu(|w|) tanh(w / w_small), mu interpolated in
+    # mu_pos by numpy; the last table entry is changed by the importer
+    table = np.array([[0, 0.12], [50, 0.10], [150, 0.08], [200, 0.09]])
+    result = _run(fmus, "TableClutchRig", version, kind,
+                  start_values={"clutch.mu_pos[4,2]": 0.09},
+                  output=["w", "clutch_torque"])
+    gain = 8 * 0.075 * 0.01 * 2e5
+
+    def mu(w):
+        return np.interp(abs(w), table[:, 0], table[:, 1])
+    reference = solve_ivp(
+        lambda t, x: [-gain * mu(x[0]) * np.tanh(x[0] / 0.01) / 0.5],
+        (0, 1), [250.0], method="DOP853", rtol=1e-12, atol=1e-12,
+        dense_output=True)
+    w = reference.sol(result["time"])[0]
+    assert 0 < w[-1] < 50      # slipped over every row of the table
+    assert_allclose(result["w"], w, rtol=1e-7, atol=1e-6)
+    assert_allclose(result["clutch_torque"], gain * mu(w) * np.tanh(w / 0.01),
+                    rtol=1e-6)
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_table_in_matrix_syntax(fmus, version, kind):
+    # x' = 1 - y(x), y interpolated in the table, 0 beyond its last point
+    table = np.array([[0, 0.1], [1, 0.2], [2, 0.15]])
+
+    def y(x):
+        return np.interp(x, table[:, 0], table[:, 1]) if x < 2 else 0.0
+    result = _run(fmus, "TableMatrix", version, kind, output=["x", "y"])
+    reference = solve_ivp(lambda t, x: [1 - y(x[0])], (0, 3), [0.5],
+                          method="DOP853", rtol=1e-12, atol=1e-12,
+                          dense_output=True, max_step=1e-3)
+    x = reference.sol(result["time"])[0]
+    assert x[-1] > 2.5                   # crossed every point of the table
+    assert_allclose(result["x"], x, rtol=0, atol=1e-6)
+    assert_allclose(result["y"], [y(v) for v in result["x"]], atol=1e-12)
+
+
+def _bouncing_ball(t, h0=1.0, g=9.81, e=0.8):
+    """Height of the ball, closed form: parabolas between impacts, the
+    speed multiplied by e at each."""
+    first = np.sqrt(2 * h0 / g)
+    heights = []
+    for time in t:
+        if time < first:
+            heights.append(h0 - g * time ** 2 / 2)
+            continue
+        since, speed = time - first, e * g * first
+        while since > 2 * speed / g:
+            since -= 2 * speed / g
+            speed *= e
+        heights.append(speed * since - g * since ** 2 / 2)
+    return np.array(heights)
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_bouncing_ball_closed_form(fmus, version, kind):
+    # when h < 0 then reinit(v, -e pre(v)): event indicator h in Model
+    # Exchange, event located inside the step in Co-Simulation; 6 impacts
+    result = _run(fmus, "BouncingBall", version, kind, output=["h", "v"],
+                  output_interval=0.01)
+    assert_allclose(result["h"], _bouncing_ball(result["time"]),
+                    atol=1e-8)
+    assert result["h"].min() > -1e-9     # never through the floor
+    assert result["v"].max() > 3.0       # bounced up
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_relation_switches_at_its_event(fmus, version, kind):
+    # der(x) = if x > 0.5 then -1 else -2: x = 1 - t, then from t = 0.5
+    # x = 0.5 - 2 (t - 0.5)
+    result = _run(fmus, "Relation", version, kind, output=["x"],
+                  stop_time=1.0, output_interval=0.01)
+    t = result["time"]
+    assert_allclose(result["x"], np.where(t < 0.5, 1 - t, 0.5 - 2 * (t - 0.5)),
+                    atol=1e-9)
+
+
+def test_fmu_state_rolls_a_step_back_bit_identically(fmus):
+    # FMI 2 Co-Simulation: the step from 0.4 s to 0.6 s crosses the first
+    # impact; repeated after fmi2SetFMUstate, and after a serialise /
+    # deserialise round trip, it gives the same bits
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    path = str(fmus[("BouncingBall", "2.0")])
+    description = read_model_description(path)
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    fmu = FMU2Slave(guid=description.guid, unzipDirectory=extract(path),
+                    modelIdentifier=description.coSimulation.modelIdentifier,
+                    instanceName="rollback")
+    fmu.instantiate()
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    for k in range(4):
+        fmu.doStep(0.1 * k, 0.1)
+    saved = fmu.getFMUstate()
+    serialised = fmu.serializeFMUstate(saved)
+    runs = []
+    for restore in (None, saved, fmu.deSerializeFMUstate(serialised)):
+        if restore is not None:
+            fmu.setFMUstate(restore)
+        fmu.doStep(0.4, 0.2)
+        runs.append(fmu.getReal([refs["h"], refs["v"]]))
+    fmu.terminate()
+    fmu.freeInstance()
+    assert runs[0] == runs[1] == runs[2]
+    assert runs[0][1] > 0                      # after the impact
+    assert_allclose(runs[0][0], _bouncing_ball(np.array([0.6]))[0],
+                    atol=1e-8)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_fmpy_rebuilds_the_binary_from_the_sources(fmus, version, tmp_path):
+    # <SourceFiles> (FMI 2) and sources/buildDescription.xml (FMI 3)
+    from fmpy import extract
+    from fmpy.build import build_platform_binary
+    folder = Path(extract(str(fmus[("Decay", version)]),
+                          str(tmp_path / "fmu")))
+    shutil.rmtree(folder / "binaries")
+    (tmp_path / "cmake").mkdir()
+    build_platform_binary(folder, build_dir=tmp_path / "cmake")
+    assert list((folder / "binaries").rglob("Decay.so"))
+    result = simulate_fmu(str(folder), output=["x"], relative_tolerance=1e-10)
+    assert_allclose(result["x"], np.exp(-2 * result["time"]), rtol=1e-7)
+
+
+def _instance(fmus, name, version):
+    """An FMU in continuous-time mode at t = 0 (Model Exchange), with the
+    value references of its variables."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Model
+    from fmpy.fmi3 import FMU3Model
+    path = str(fmus[(name, version)])
+    description = read_model_description(path)
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    kind = FMU2Model if version == "2.0" else FMU3Model
+    fmu = kind(guid=description.guid, unzipDirectory=extract(path),
+               modelIdentifier=description.modelExchange.modelIdentifier,
+               instanceName="jacobian")
+    fmu.instantiate()
+    if version == "2.0":
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+    else:
+        fmu.enterInitializationMode(startTime=0.0)
+    fmu.exitInitializationMode()
+    if version == "2.0":
+        fmu.enterContinuousTimeMode()
+    return fmu, refs
+
+
+def _getter(fmu, version):
+    return fmu.getReal if version == "2.0" else fmu.getFloat64
+
+
+def _setter(fmu, version):
+    return fmu.setReal if version == "2.0" else fmu.setFloat64
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_directional_derivatives_against_finite_differences(fmus, version):
+    # d[der(x), y]/d[x, T, u] of FirstOrderInput at x = 0.3, u = 1.7 from
+    # CasADi's AD, against central differences of the FMU's own values
+    fmu, refs = _instance(fmus, "FirstOrderInput", version)
+    get, put = _getter(fmu, version), _setter(fmu, version)
+    unknowns = [refs["der(x)"], refs["y"]]
+    knowns = [refs["x"], refs["T"], refs["u"]]
+    point = [0.3, 0.2, 1.7]
+    put(knowns, point)
+    jacobian = np.column_stack([
+        fmu.getDirectionalDerivative(unknowns, knowns,
+                                     list(np.eye(3)[k]))
+        for k in range(3)])
+    differences = np.empty((2, 3))
+    for k in range(3):
+        step = 1e-6 * max(1.0, abs(point[k]))
+        values = []
+        for sign in (1, -1):
+            moved = list(point)
+            moved[k] += sign * step
+            put(knowns, moved)
+            values.append(np.array(get(unknowns)))
+        differences[:, k] = (values[0] - values[1]) / (2 * step)
+        put(knowns, point)
+    # der(x) = (u - x)/T, y = K x: closed form too
+    exact = [[-1 / 0.2, -(1.7 - 0.3) / 0.2 ** 2, 1 / 0.2], [2, 0, 0]]
+    assert_allclose(jacobian, exact, rtol=1e-13, atol=1e-13)
+    assert_allclose(jacobian, differences, rtol=1e-7, atol=1e-7)
+    if version == "3.0":
+        # adjoint: J^T w for a seed w on the unknowns
+        seed = [0.7, -1.3]
+        # (fmpy sizes the result by the unknowns unless told)
+        assert_allclose(fmu.getAdjointDerivative(unknowns, knowns, seed,
+                                                 nSensitivity=3),
+                        jacobian.T @ seed, rtol=1e-14)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_model_structure_dependencies(fmus):
+    # FirstOrderInput: der(x) depends on x and u, y on x only
+    from fmpy import read_model_description
+    description = read_model_description(
+        str(fmus[("FirstOrderInput", "2.0")]))
+    depends = {u.variable.name: sorted(d.name for d in u.dependencies)
+               for u in description.derivatives + description.outputs}
+    assert depends == {"der(x)": ["u", "x"], "y": ["x"]}
+    assert description.modelExchange.providesDirectionalDerivative
+
+
+def test_a_second_importer_gives_the_same_results(fmus):
+    # OSP's libcosim (libcosimpy, FMI Library inside) runs the FMI 2.0
+    # Co-Simulation FMU at 0.01 s steps for 3 s: the same heights as the
+    # closed form and as fmpy
+    cosim = pytest.importorskip("libcosimpy.CosimExecution")
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    path = str(fmus[("BouncingBall", "2.0")])
+    execution = cosim.CosimExecution.from_step_size(step_size=10_000_000)
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(
+        fmu_path=path, instance_name="ball"))
+    refs = {v.name.decode() if isinstance(v.name, bytes) else v.name:
+            v.reference for v in execution.slave_variables(slave_index=index)}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    heights = []
+    for _ in range(300):
+        assert execution.step()
+        heights.append(observer.last_real_values(
+            slave_index=index, variable_references=[refs["h"]])[0])
+    time = 0.01 * np.arange(1, 301)
+    assert_allclose(heights, _bouncing_ball(time), atol=1e-8)
+    result = _run(fmus, "BouncingBall", "2.0", "CoSimulation", output=["h"],
+                  output_interval=0.01, stop_time=3.0)
+    assert_allclose(heights, result["h"][1:], atol=1e-12)
+
+
+def test_windows_binary_from_mingw(tmp_path):
+    # --windows: binaries/win64/NAME.dll (FMI 2) cross-compiled with
+    # mingw-w64, exporting the FMI functions, importing only system DLLs
+    if shutil.which("x86_64-w64-mingw32-gcc") is None:
+        pytest.skip("mingw-w64 is not installed")
+    import zipfile
+    path = build_fmu(CORPUS / "Decay.mo", "Decay", tmp_path / "Decay.fmu",
+                     roots=[CORPUS], windows=True).path
+    with zipfile.ZipFile(path) as fmu:
+        (tmp_path / "Decay.dll").write_bytes(
+            fmu.read("binaries/win64/Decay.dll"))
+    assert validate_fmu(str(path)) == []
+    done = subprocess.run(["x86_64-w64-mingw32-objdump", "-p",
+                           str(tmp_path / "Decay.dll")],
+                          capture_output=True, text=True, timeout=60)
+    assert "fmi2DoStep" in done.stdout and "fmi2Instantiate" in done.stdout
+    assert set(re.findall(r"DLL Name: (\S+)", done.stdout)) <= {
+        "KERNEL32.dll", "msvcrt.dll"}
+
+
+def test_windows_binary_runs_under_wine(tmp_path):
+    # the win64 DLL of the bouncing ball, loaded by a small FMI 2.0
+    # Co-Simulation host (tests/fmi_host/fmi2_host.c, cross-compiled) under
+    # wine: the same heights as the Linux binary in fmpy
+    wine = shutil.which("wine64") or "/usr/lib/wine/wine64"
+    if shutil.which("x86_64-w64-mingw32-gcc") is None or \
+            not Path(wine).exists():
+        pytest.skip("mingw-w64 or wine64 is not installed")
+    import zipfile
+    from fmpy import read_model_description
+    from fmu.build import fmi_headers
+    path = build_fmu(CORPUS / "BouncingBall.mo", "BouncingBall",
+                     tmp_path / "BouncingBall.fmu", roots=[CORPUS],
+                     windows=True).path
+    with zipfile.ZipFile(path) as fmu:
+        (tmp_path / "ball.dll").write_bytes(
+            fmu.read("binaries/win64/BouncingBall.dll"))
+    host = tmp_path / "host.exe"
+    subprocess.run(["x86_64-w64-mingw32-gcc", "-O2", "-std=c99",
+                    f"-I{fmi_headers()}",
+                    str(ROOT / "tests" / "fmi_host" / "fmi2_host.c"),
+                    "-o", str(host)], check=True, timeout=120)
+    description = read_model_description(str(path))
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    done = subprocess.run(
+        [wine, str(host), str(tmp_path / "ball.dll"), description.guid,
+         "3", "0.01", str(refs["h"])], capture_output=True, text=True,
+        timeout=300, env={**os.environ,
+                          "WINEPREFIX": str(tmp_path / "wine"),
+                          "WINEDEBUG": "-all"})
+    assert done.returncode == 0, done.stderr
+    time, heights = np.loadtxt(done.stdout.splitlines()).T
+    assert len(time) == 301
+    assert_allclose(heights, _bouncing_ball(time), atol=1e-8)
+    linux = _run({("BouncingBall", "2.0"): path}, "BouncingBall", "2.0",
+                 "CoSimulation", output=["h"], output_interval=0.01,
+                 stop_time=3.0)
+    assert_allclose(heights, linux["h"], atol=1e-12)
