@@ -25,13 +25,16 @@ __all__ = ["main", "build_parser"]
 def main(argv=None):
     """Run ``judder``; returns the exit status."""
     from threadpoolctl import threadpool_limits
+    from infra.parallel import cluster
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         if getattr(args, "plot", None):
             check_plot_format(args.plot)
         # the kernels work on many tiny matrices: BLAS threads only contend
-        with threadpool_limits(limits=1):
+        with threadpool_limits(limits=1), cluster(
+                getattr(args, "workers", None),
+                getattr(args, "scheduler", None)):
             args.handler(args)
     except JudderError as exc:
         print(f"judder: error: {exc}", file=sys.stderr)

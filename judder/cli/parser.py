@@ -49,7 +49,12 @@ def _pf_max_option(parser, meaning):
 
 def _workers_option(parser):
     parser.add_argument("--workers", type=int, default=None,
-                        help="processes (default: all cores)")
+                        help="local worker processes of a Dask cluster "
+                             "started for the command (default: all cores; "
+                             "1 runs everything in this process)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run the jobs on an existing Dask cluster, "
+                             "e.g. tcp://127.0.0.1:8786 (see docs/envelope.md)")
 
 
 def _method_option(parser):
