@@ -312,6 +312,11 @@ class FitResult:
         Lowest model boundary with the start (first attempt) and fitted
         values, bar (NaN: stable up to ``p_max``): the dotted and solid
         lines of Fig. 16a.
+    covariance : ndarray or None, shape (k, k)
+        Covariance of ``values`` (SI): the correlations of the linearised
+        fit with the standard uncertainties ``std``; ``inf`` in the rows
+        and columns of undetermined parameters. ``judder envelope`` takes
+        it as a joint normal distribution.
     """
 
     names: tuple
@@ -350,6 +355,7 @@ class FitResult:
     curve_freq_hz: np.ndarray = None
     start_curve_bar: np.ndarray = None
     fitted_curve_bar: np.ndarray = None
+    covariance: np.ndarray = None
 
     @property
     def start_params(self):
@@ -1361,7 +1367,8 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         start_points=np.array([r["z0"] for r in runs]) * problem.scale,
         start_minima=minima,
         start_origins=tuple(r["origin"] for r in runs),
-        start_costs=costs)
+        start_costs=costs,
+        covariance=_covariance(cov_z, std, kept))
     if curve_points:
         freq, start_bar, fitted_bar = fit_curves(result, curve_points)
         progress.step(2)
@@ -1370,6 +1377,19 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
                           fitted_curve_bar=fitted_bar,
                           evaluations=result.evaluations + 2)
     return result
+
+
+def _covariance(cov_z, std, kept):
+    """Covariance of the values (SI): the Jacobian's correlations with the
+    reported standard uncertainties; inf in the rows and columns of the
+    undetermined parameters."""
+    out = np.full(cov_z.shape, np.inf)
+    if kept.any():
+        part = cov_z[np.ix_(kept, kept)]
+        scale = np.sqrt(np.clip(np.diag(part), 1e-300, None))
+        out[np.ix_(kept, kept)] = (part / np.outer(scale, scale)
+                                   * np.outer(std[kept], std[kept]))
+    return out
 
 
 def _replace(result, **changes):
