@@ -127,6 +127,7 @@ class _Cluster:
         self._scratch = None
         self._levels = {}
         self._sigterm = None
+        self._children = set()
 
     def serial(self, workers, jobs):
         """True if ``jobs`` jobs with ``workers`` asked for run here."""
@@ -161,9 +162,14 @@ class _Cluster:
                 raise JudderError(f"--scheduler {self.scheduler}: cannot "
                                   f"connect ({exc})") from None
             return
+        import psutil
+        self._children = {p.pid for p in psutil.Process().children(
+            recursive=True)}
         self._scratch = tempfile.mkdtemp(prefix="judder-dask-")
+        # the scheduler first (quick), then the workers: an interrupt while
+        # they start finds the cluster to close
         self._cluster = LocalCluster(
-            n_workers=self.workers or workers or os.cpu_count() or 1,
+            n_workers=0,
             threads_per_worker=1, processes=True, host="127.0.0.1",
             dashboard_address=None, silence_logs=logging.CRITICAL,
             # no dashboard; its HTTP server (health checks) on any free port
@@ -171,16 +177,25 @@ class _Cluster:
             local_directory=self._scratch,
             env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                  "MKL_NUM_THREADS": "1"})
+        self._cluster.scale(self.workers or workers or os.cpu_count() or 1)
         self._client = Client(self._cluster, set_as_default=False)
 
     def close(self):
-        """Close the client and a local cluster (its worker processes)."""
+        """Close the client and a local cluster; kill any worker process
+        that outlived it (a close interrupted, or during start-up)."""
         try:
             if self._client is not None:
                 self._client.close()
             if self._cluster is not None:
                 self._cluster.close()
+        except Exception:           # noqa: BLE001 - the processes go below
+            pass
         finally:
+            if self._cluster is not None:
+                from distributed.deploy.spec import SpecCluster
+                # closed (or reaped below): nothing left for its atexit hook
+                SpecCluster._instances.discard(self._cluster)
+                _reap(self._children)
             self._client = self._cluster = None
             if self._scratch is not None:
                 shutil.rmtree(self._scratch, ignore_errors=True)
@@ -191,6 +206,19 @@ class _Cluster:
             for name, level in self._levels.items():
                 logging.getLogger(name).setLevel(level)
             self._levels = {}
+
+
+def _reap(before):
+    """Kill the child processes started since ``before`` (pids)."""
+    import psutil
+    left = [p for p in psutil.Process().children(recursive=True)
+            if p.pid not in before]
+    for process in left:
+        try:
+            process.kill()
+        except psutil.NoSuchProcess:
+            pass
+    psutil.wait_procs(left, timeout=5)
 
 
 _ACTIVE = []

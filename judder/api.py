@@ -485,7 +485,7 @@ def chart(sources, index=None, channels=None, group_by=None,
 
 
 def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
-             sampler="sobol", vertices=True, min_growth=None, refine=True,
+             sampler="sobol", vertices=True, min_growth=None, refine=20,
              parameters=None, changes=None, method=DEFAULT_METHOD,
              workers=None, checkpoint=None, progress=None):
     """``judder envelope``: the broadest unstable region over uncertain
@@ -506,9 +506,11 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
         1/s: count only judder growing at least this fast (default
         :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`; 0: every
         instability).
-    refine : bool
-        Search the lowest boundary between the samples at each frequency
-        (:func:`stability.envelope.refine_at`).
+    refine : int
+        Boundary evaluations per uncertain parameter spent at each
+        frequency searching the lowest boundary between the samples
+        (:func:`stability.envelope.refine_at`); 0: the union of the
+        samples only.
     workers : int, optional
         Local Dask worker processes (see :mod:`infra.parallel`).
     checkpoint : path, optional

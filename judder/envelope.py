@@ -29,7 +29,8 @@ import numpy as np
 
 from infra.errors import JudderError
 from infra.files import atomic_write
-from stability.envelope import (DEFAULT_COVERAGE, Correlated, Normal,
+from stability.envelope import (DEFAULT_COVERAGE, REFINE_EVALUATIONS,
+                                Correlated, Normal,
                                 Ranges, Uniform, build_envelope,
                                 check_values, compute_samples, design_points,
                                 refine_union, refinement_starts)
@@ -180,11 +181,11 @@ def checkpoint_path(*outputs):
     return None
 
 
-def _key(params, names, values, freq_hz, p_max, method, min_growth):
+def _key(params, names, values, freq_hz, p_max, method, min_growth, refine):
     digest = hashlib.sha256(json.dumps(
         {"model": params.model, "params": sorted(params.values.items()),
          "names": list(names), "p_max": p_max, "method": method,
-         "min_growth": min_growth}).encode())
+         "min_growth": min_growth, "refine": refine}).encode())
     digest.update(np.ascontiguousarray(values, dtype=float).tobytes())
     digest.update(np.ascontiguousarray(freq_hz, dtype=float).tobytes())
     return digest.hexdigest()
@@ -253,7 +254,8 @@ class _Checkpoint:
 
 def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
                  sampler="sobol", vertices=True, method="dyson",
-                 min_growth=0.0, amplitudes=150, refine=True, workers=None,
+                 min_growth=0.0, amplitudes=150, refine=REFINE_EVALUATIONS,
+                 workers=None,
                  checkpoint=None, progress=None):
     """Compute (or resume) an envelope.
 
@@ -272,9 +274,10 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
         As :func:`stability.tongues.tongue_boundaries` takes them.
     amplitudes : int
         Points of the amplitude grid of the probability.
-    refine : bool
-        Refine the union between the samples
-        (:func:`stability.envelope.refine_union`).
+    refine : int
+        Boundary evaluations per uncertain parameter at each frequency to
+        refine the union between the samples
+        (:func:`stability.envelope.refine_union`); 0: no refinement.
     checkpoint : path, optional
         NPZ of the boundaries computed so far, rewritten (atomically) at
         most every :data:`CHECKPOINT_SECONDS` and when interrupted; a run
@@ -296,7 +299,8 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
     check_values(params, names, values)
     nominal_row = np.array([[params[n] for n in names]])
     rows = np.vstack([nominal_row, values])        # row 0: the nominal set
-    key = _key(params, names, rows, freq_hz, p_max, method, min_growth)
+    key = _key(params, names, rows, freq_hz, p_max, method, min_growth,
+               int(refine))
     shape = (len(freq_hz), 3)
     state = _Checkpoint(checkpoint, key, shape, len(names))
     resumed = len(state.done)
@@ -325,7 +329,8 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
             total += int(np.sum(refinement_starts(lowest) >= 0))
             for index, outcome in refine_union(
                     params, ranges, unit, lowest, freq_hz, p_max, method,
-                    min_growth, skip=state.refined, workers=workers):
+                    min_growth, skip=state.refined, evaluations=refine,
+                    workers=workers):
                 if isinstance(outcome, tuple):
                     state.refined[index] = outcome
                     state.changed()

@@ -64,8 +64,8 @@ CONVERGENCE_SHARE = 0.1
 #: Most uncertain parameters whose 2**d vertices are all computed.
 MAX_VERTEX_DIMENSION = 12
 #: Boundary evaluations per uncertain parameter allowed to the refinement
-#: at one frequency.
-REFINE_EVALUATIONS = 30
+#: at one frequency (default).
+REFINE_EVALUATIONS = 20
 #: Space-filling samplers of :func:`design_points`.
 SAMPLERS = ("sobol", "lhs")
 
@@ -603,9 +603,10 @@ def refine_at(job):
     Parameters
     ----------
     job : tuple
-        ``(params, ranges, freq_hz, p_max, method, min_growth, start)``:
-        as :func:`sample_boundary`, one frequency (Hz), and the point of
-        the unit cube to start from (the best sample there).
+        ``(params, ranges, freq_hz, p_max, method, min_growth, start,
+        evaluations)``: as :func:`sample_boundary`, one frequency (Hz),
+        the point of the unit cube to start from (the best sample there)
+        and the boundary evaluations allowed per parameter.
 
     Returns
     -------
@@ -615,11 +616,11 @@ def refine_at(job):
     unit : ndarray, shape (d,)
         Where (unit cube).
 
-    Bounded Powell search with at most :data:`REFINE_EVALUATIONS` boundary
-    evaluations per parameter; a point with no boundary up to ``p_max``
+    Bounded Powell search; a point with no boundary up to ``p_max``
     counts as ``2 p_max``.
     """
-    params, ranges, freq_hz, p_max, method, min_growth, start = job
+    (params, ranges, freq_hz, p_max, method, min_growth, start,
+     evaluations) = job
 
     def boundary(unit):
         row = ranges.values(np.clip(unit, 0.0, 1.0)[None])[0]
@@ -632,7 +633,7 @@ def refine_at(job):
     best = minimize(boundary, start, method="Powell",
                     bounds=[(0.0, 1.0)] * len(start),
                     options={"xtol": 1e-4, "ftol": 1e-10,
-                             "maxfev": REFINE_EVALUATIONS * len(start)})
+                             "maxfev": evaluations * len(start)})
     value, point = ((float(best.fun), np.clip(best.x, 0.0, 1.0))
                     if best.fun < first else (first, start))
     return (value if value <= p_max else np.inf), point
@@ -640,7 +641,7 @@ def refine_at(job):
 
 def refine_union(params, ranges, unit, lowest, freq_hz, p_max,
                  method=DEFAULT_METHOD, min_growth=0.0, skip=(),
-                 workers=None):
+                 evaluations=REFINE_EVALUATIONS, workers=None):
     """:func:`refine_at` at every frequency where a sample is unstable,
     and next to them.
 
@@ -652,6 +653,8 @@ def refine_union(params, ranges, unit, lowest, freq_hz, p_max,
         Their lowest boundaries, Pa (+inf: none, or not computed).
     skip : collection of int
         Frequencies already refined.
+    evaluations : int
+        Boundary evaluations per parameter at each frequency.
 
     Yields
     ------
@@ -665,7 +668,8 @@ def refine_union(params, ranges, unit, lowest, freq_hz, p_max,
     todo = [j for j in range(len(freq_hz))
             if j not in set(skip) and starts[j] >= 0]
     jobs = [(j, (params, ranges, float(freq_hz[j]), float(p_max), method,
-                 float(min_growth), unit[starts[j]])) for j in todo]
+                 float(min_growth), unit[starts[j]], int(evaluations)))
+            for j in todo]
 
     def describe(job):
         j, rest = job

@@ -35,13 +35,14 @@ def plot_envelope(envelope, ax=None):
     artists = []
     probability = e.probability
     if np.isfinite(probability).any():
-        artists.append(ax.pcolormesh(f, bar, probability.T, cmap="Reds",
+        shown = np.ma.masked_equal(probability.T, 0.0)
+        artists.append(ax.pcolormesh(f, bar, shown, cmap="Reds",
                                      vmin=0, vmax=1, shading="nearest"))
         artists += ax.plot(f, e.quantile_boundary(0.5) / PA_PER_BAR,
                            color="0.35", linestyle="--", linewidth=1.0,
                            label="50 % of the samples unstable")
     artists += ax.plot(f, e.broadest / PA_PER_BAR, color="k", linewidth=1.6,
-                       label="broadest region (all samples)")
+                       label="broadest region (samples, refined)")
     artists += ax.plot(f, e.nominal_boundary / PA_PER_BAR, color="k",
                        linestyle=":", linewidth=1.4, label="nominal")
     ax.set_xlim(f.min(), f.max())
