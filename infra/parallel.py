@@ -146,11 +146,30 @@ class _Cluster:
             logger = logging.getLogger(name)
             self._levels[name] = logger.level
             logger.setLevel(logging.CRITICAL)
-        if (threading.current_thread() is threading.main_thread()
-                and signal.getsignal(signal.SIGTERM) is signal.SIG_DFL):
+        main = threading.current_thread() is threading.main_thread()
+        if main and signal.getsignal(signal.SIGTERM) is signal.SIG_DFL:
             # let SIGTERM unwind (closing the workers) instead of killing
             # this process alone
             self._sigterm = signal.signal(signal.SIGTERM, _terminate)
+        if not main:
+            self._connect(workers)
+            return
+        # a signal while Dask starts would leave half-made objects whose
+        # clean-up blocks: hold it until the cluster can be closed
+        pending = []
+        held = {s: signal.signal(s, lambda signum, _: pending.append(signum))
+                for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            self._connect(workers)
+        finally:
+            for signum, handler in held.items():
+                signal.signal(signum, handler)
+        for signum in pending[:1]:
+            handler = held[signum]
+            if callable(handler):
+                handler(signum, None)
+
+    def _connect(self, workers):
         from distributed import Client, LocalCluster
         if self.scheduler is not None:
             try:
@@ -166,10 +185,8 @@ class _Cluster:
         self._children = {p.pid for p in psutil.Process().children(
             recursive=True)}
         self._scratch = tempfile.mkdtemp(prefix="judder-dask-")
-        # the scheduler first (quick), then the workers: an interrupt while
-        # they start finds the cluster to close
         self._cluster = LocalCluster(
-            n_workers=0,
+            n_workers=self.workers or workers or os.cpu_count() or 1,
             threads_per_worker=1, processes=True, host="127.0.0.1",
             dashboard_address=None, silence_logs=logging.CRITICAL,
             # no dashboard; its HTTP server (health checks) on any free port
@@ -177,7 +194,6 @@ class _Cluster:
             local_directory=self._scratch,
             env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                  "MKL_NUM_THREADS": "1"})
-        self._cluster.scale(self.workers or workers or os.cpu_count() or 1)
         self._client = Client(self._cluster, set_as_default=False)
 
     def close(self):
