@@ -182,9 +182,77 @@ def bench_engagement():
                        "equations (the back end's CasADi ODE)"}
 
 
+#: Envelope benchmark: the ranges of examples/ranges.toml around the
+#: fitted set, the dither window 60-200 Hz (2 Hz steps) up to the valve's
+#: 0.7 bar, judder-relevant growth (1/s).
+ENVELOPE_FREQ = np.linspace(60.0, 200.0, 71)
+ENVELOPE_P_MAX_BAR = 0.7
+#: Samples of the 1- and 2-worker runs, and of the target envelope.
+ENVELOPE_SAMPLES = 24
+ENVELOPE_TARGET_SAMPLES = 1000
+
+
+def _envelope(samples, workers):
+    from pathlib import Path
+
+    from infra.parallel import cluster
+    from judder import api
+    ranges = Path(__file__).resolve().parents[1] / "examples" / "ranges.toml"
+    with cluster(workers=workers):
+        return _timed(api.envelope, ranges, ENVELOPE_FREQ,
+                      ENVELOPE_P_MAX_BAR, samples=samples,
+                      parameters=get_preset("paper-4dof-fitted"),
+                      workers=workers)
+
+
+def bench_envelope():
+    """Envelope on 1 and 2 workers (same run, same result), and the
+    1000-sample envelope: measured when BENCH_ENVELOPE_FULL=1, else
+    scaled from the 2-worker run."""
+    import os
+    serial, serial_seconds = _envelope(ENVELOPE_SAMPLES, 1)
+    parallel, seconds = _envelope(ENVELOPE_SAMPLES, 2)
+    a, b = serial.envelope, parallel.envelope
+    same = all(np.array_equal(getattr(a, n), getattr(b, n), equal_nan=True)
+               for n in ("amplitude", "refined", "probability"))
+    sets = len(a.ok) + 1                       # with the nominal set
+    frequencies = len(ENVELOPE_FREQ) * sets
+    yield {"name": f"envelope-{ENVELOPE_SAMPLES}-workers-1-vs-2",
+           "points": sets, "seconds": seconds,
+           "baseline_seconds": serial_seconds,
+           "speedup": serial_seconds / seconds,
+           "max_error": 0.0 if same else float("inf"),
+           "error_unit": "0 if the 2-worker arrays equal the serial ones",
+           "seconds_per_boundary_frequency": serial_seconds / frequencies,
+           "note": f"{sets} parameter sets (8 vertices, nominal) x "
+                   f"{len(ENVELOPE_FREQ)} frequencies and the refinement; "
+                   "2 workers include starting the local Dask cluster"}
+    target_sets = ENVELOPE_TARGET_SAMPLES + 8 + 1
+    full = os.environ.get("BENCH_ENVELOPE_FULL") == "1"
+    if full:
+        big, big_seconds = _envelope(ENVELOPE_TARGET_SAMPLES, 2)
+        convergence = big.envelope.convergence
+    else:
+        big_seconds = seconds / sets * target_sets
+        convergence = None
+    yield {"name": f"envelope-{ENVELOPE_TARGET_SAMPLES}-samples",
+           "points": target_sets, "seconds": big_seconds,
+           "measured": full,
+           "baseline_seconds": serial_seconds / sets * target_sets,
+           "baseline_extrapolated": True,
+           "speedup": serial_seconds / sets * target_sets / big_seconds,
+           "max_error": 0.0 if same else float("inf"),
+           "target_seconds": 60.0, "convergence": convergence,
+           "note": "2 workers; baseline: the serial run above scaled to "
+                   f"{target_sets} sets" + ("" if full else
+                   "; seconds scaled from the 2-worker run (set "
+                   "BENCH_ENVELOPE_FULL=1 to measure)")}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "tongue-boundaries": bench_tongue_boundaries,
-              "engagement": bench_engagement}
+              "engagement": bench_engagement,
+              "envelope": bench_envelope}
 
 
 def main(names):

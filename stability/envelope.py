@@ -589,12 +589,16 @@ def compute_samples(params, names, values, freq_hz, p_max,
     def describe(job):
         _, (_, names_, row, *_rest) = job
         return ", ".join(f"{n} = {v:.6g}" for n, v in zip(names_, row))
-    for item in parallel_map(_indexed, jobs, workers, ordered=False,
+    yield from _indexed_map(_indexed, jobs, workers, describe)
+
+
+def _indexed_map(function, jobs, workers, describe):
+    """``(index, outcome)`` of jobs ``(index, job)`` as they complete; a
+    failure comes as its :class:`~infra.parallel.TaskFailure`."""
+    for item in parallel_map(function, jobs, workers, ordered=False,
                              describe=describe, failures="yield"):
-        if isinstance(item, TaskFailure):
-            yield todo[item.index], item
-        else:
-            yield item
+        yield (jobs[item.index][0], item) if isinstance(item, TaskFailure) \
+            else item
 
 
 def refine_at(job):
@@ -672,14 +676,8 @@ def refine_union(params, ranges, unit, lowest, freq_hz, p_max,
             for j in todo]
 
     def describe(job):
-        j, rest = job
-        return f"refinement at {rest[2]:g} Hz"
-    for item in parallel_map(_refined, jobs, workers, ordered=False,
-                             describe=describe, failures="yield"):
-        if isinstance(item, TaskFailure):
-            yield todo[item.index], item
-        else:
-            yield item
+        return f"refinement at {job[1][2]:g} Hz"
+    yield from _indexed_map(_refined, jobs, workers, describe)
 
 
 def refinement_starts(lowest):
