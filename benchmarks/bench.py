@@ -193,16 +193,22 @@ ENVELOPE_TARGET_SAMPLES = 1000
 
 
 def _envelope(samples, workers):
+    """An envelope on ``workers``: result, seconds, and the seconds the
+    local cluster took to start (before)."""
+    import math
     from pathlib import Path
 
-    from infra.parallel import cluster
+    from infra.parallel import cluster, parallel_map
     from judder import api
     ranges = Path(__file__).resolve().parents[1] / "examples" / "ranges.toml"
     with cluster(workers=workers):
-        return _timed(api.envelope, ranges, ENVELOPE_FREQ,
-                      ENVELOPE_P_MAX_BAR, samples=samples,
-                      parameters=get_preset("paper-4dof-fitted"),
-                      workers=workers)
+        _, startup = _timed(lambda: list(parallel_map(
+            math.sqrt, [1.0] * 2 * workers)))
+        result, seconds = _timed(
+            api.envelope, ranges, ENVELOPE_FREQ, ENVELOPE_P_MAX_BAR,
+            samples=samples, parameters=get_preset("paper-4dof-fitted"),
+            workers=workers)
+    return result, seconds, startup
 
 
 def bench_envelope():
@@ -210,8 +216,8 @@ def bench_envelope():
     1000-sample envelope: measured when BENCH_ENVELOPE_FULL=1, else
     scaled from the 2-worker run."""
     import os
-    serial, serial_seconds = _envelope(ENVELOPE_SAMPLES, 1)
-    parallel, seconds = _envelope(ENVELOPE_SAMPLES, 2)
+    serial, serial_seconds, _ = _envelope(ENVELOPE_SAMPLES, 1)
+    parallel, seconds, startup = _envelope(ENVELOPE_SAMPLES, 2)
     a, b = serial.envelope, parallel.envelope
     same = all(np.array_equal(getattr(a, n), getattr(b, n), equal_nan=True)
                for n in ("amplitude", "refined", "probability"))
@@ -224,17 +230,21 @@ def bench_envelope():
            "max_error": 0.0 if same else float("inf"),
            "error_unit": "0 if the 2-worker arrays equal the serial ones",
            "seconds_per_boundary_frequency": serial_seconds / frequencies,
+           "cluster_start_seconds": startup,
+           "load_average": os.getloadavg()[0],
            "note": f"{sets} parameter sets (8 vertices, nominal) x "
                    f"{len(ENVELOPE_FREQ)} frequencies and the refinement; "
-                   "2 workers include starting the local Dask cluster"}
+                   "seconds without starting the local Dask cluster "
+                   "(cluster_start_seconds, once per command)"}
     target_sets = ENVELOPE_TARGET_SAMPLES + 8 + 1
     full = os.environ.get("BENCH_ENVELOPE_FULL") == "1"
     if full:
-        big, big_seconds = _envelope(ENVELOPE_TARGET_SAMPLES, 2)
+        big, big_seconds, startup = _envelope(ENVELOPE_TARGET_SAMPLES, 2)
         convergence = big.envelope.convergence
     else:
         big_seconds = seconds / sets * target_sets
         convergence = None
+    big_seconds += startup
     yield {"name": f"envelope-{ENVELOPE_TARGET_SAMPLES}-samples",
            "points": target_sets, "seconds": big_seconds,
            "measured": full,
@@ -243,7 +253,8 @@ def bench_envelope():
            "speedup": serial_seconds / sets * target_sets / big_seconds,
            "max_error": 0.0 if same else float("inf"),
            "target_seconds": 60.0, "convergence": convergence,
-           "note": "2 workers; baseline: the serial run above scaled to "
+           "load_average": os.getloadavg()[0],
+           "note": "2 workers, cluster start included; baseline: the serial run above scaled to "
                    f"{target_sets} sets" + ("" if full else
                    "; seconds scaled from the 2-worker run (set "
                    "BENCH_ENVELOPE_FULL=1 to measure)")}

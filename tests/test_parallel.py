@@ -97,8 +97,8 @@ def test_an_envelope_on_the_cluster_equals_the_serial_one(scheduler):
     fitted = get_preset("paper-4dof-fitted")
     ranges = Ranges((Uniform("c12", 8.0, 12.0),
                      Normal("mu_g", 0.022, 0.001)))
-    run = dict(ranges=ranges, freq_hz=[100.0, 106.0, 112.0], p_max_bar=0.6,
-               samples=3, refine=3, parameters=fitted)
+    run = dict(ranges=ranges, freq_hz=[104.0, 110.0], p_max_bar=0.6,
+               samples=2, refine=2, parameters=fitted)
     serial = api.envelope(workers=1, **run).envelope
     with cluster(scheduler=scheduler):
         remote = api.envelope(**run).envelope
