@@ -254,7 +254,8 @@ def cluster(workers=None, scheduler=None):
         workers run the jobs instead.
 
     Nothing is started until a :func:`parallel_map` inside needs it; the
-    cluster is closed on leaving, also on Ctrl-C or SIGTERM.
+    cluster is closed on leaving, also on Ctrl-C or SIGTERM. Inside
+    another ``cluster()`` (without ``scheduler``) the outer one is shared.
 
     Raises
     ------
@@ -262,6 +263,10 @@ def cluster(workers=None, scheduler=None):
         ``workers`` not a whole number >= 1, ``workers`` together with
         ``scheduler``, or the scheduler does not answer.
     """
+    if _ACTIVE and scheduler is None:
+        # inside another one (a command's, around an API call): share it
+        yield _ACTIVE[-1]
+        return
     state = _Cluster(workers, scheduler)
     _ACTIVE.append(state)
     try:

@@ -29,6 +29,7 @@ import numpy as np
 
 from infra.errors import JudderError
 from infra.files import atomic_write
+from infra.parallel import cluster
 from stability.envelope import (DEFAULT_COVERAGE, REFINE_EVALUATIONS,
                                 Correlated, Normal,
                                 Ranges, Uniform, build_envelope,
@@ -302,7 +303,17 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
     key = _key(params, names, rows, freq_hz, p_max, method, min_growth,
                int(refine))
     shape = (len(freq_hz), 3)
-    state = _Checkpoint(checkpoint, key, shape, len(names))
+    with cluster(workers):     # one for the samples and the refinement
+        return _run(params, ranges, names, values, is_vertex, unit, rows,
+                    freq_hz, p_max, method, min_growth, amplitudes, refine,
+                    workers, _Checkpoint(checkpoint, key, shape, len(names)),
+                    progress)
+
+
+def _run(params, ranges, names, values, is_vertex, unit, rows, freq_hz,
+         p_max, method, min_growth, amplitudes, refine, workers, state,
+         progress):
+    shape = state.shape
     resumed = len(state.done)
     failures = []
     try:

@@ -147,7 +147,7 @@ from threadpoolctl import threadpool_limits
 
 from drivelines import get_model
 from infra.errors import JudderError
-from infra.parallel import parallel_map
+from infra.parallel import cluster, parallel_map
 from infra.units import PA_PER_BAR
 
 from .kinds import Kind
@@ -1039,7 +1039,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                        x0=x0)
     extra = _extra_starts(starts, names, low, high)
     workers = workers or os.cpu_count() or 1
-    with threadpool_limits(limits=1):
+    # one cluster for all the rounds of parallel jobs
+    with threadpool_limits(limits=1), cluster(workers):
         return _fit(problem, given, extra, uncertainty, n_bootstrap, seed,
                     workers, callback, curve_points)
 
