@@ -493,7 +493,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
 
     Parameters
     ----------
-    ranges : path or stability.envelope.Ranges
+    ranges : path or stability.ranges.Ranges
         A ranges file (:func:`judder.envelope.read_ranges`) or the ranges.
     freq_hz : array_like
         Dither frequencies, Hz.
@@ -501,7 +501,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
         Largest amplitude searched, bar.
     samples, seed, sampler, vertices
         Space-filling samples after the vertices, as
-        :func:`stability.envelope.design_points` takes them.
+        :func:`stability.ranges.design_points` takes them.
     min_growth : float, optional
         1/s: count only judder growing at least this fast (default
         :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`; 0: every
@@ -522,7 +522,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     judder.results.EnvelopeResult
         ``failures`` lists the samples that failed (left out).
     """
-    from stability.envelope import Ranges
+    from stability.ranges import Ranges
     from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
     from .envelope import read_ranges, run_envelope
     values = _resolve(parameters, changes)

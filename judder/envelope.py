@@ -30,11 +30,11 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import atomic_write
 from infra.parallel import cluster
-from stability.envelope import (DEFAULT_COVERAGE, REFINE_EVALUATIONS,
-                                Correlated, Normal,
-                                Ranges, Uniform, build_envelope,
-                                check_values, compute_samples, design_points,
-                                refine_union, refinement_starts)
+from stability.envelope import (REFINE_EVALUATIONS, build_envelope,
+                                compute_samples, refine_union,
+                                refinement_starts)
+from stability.ranges import (DEFAULT_COVERAGE, Correlated, Normal, Ranges,
+                              Uniform, check_values, design_points)
 
 __all__ = ["read_ranges", "run_envelope", "checkpoint_path"]
 
@@ -139,7 +139,7 @@ def read_ranges(path, params):
 
     Returns
     -------
-    stability.envelope.Ranges
+    stability.ranges.Ranges
 
     Raises
     ------
@@ -264,13 +264,13 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
     ----------
     params : drivelines.Parameters
         The nominal set.
-    ranges : stability.envelope.Ranges
+    ranges : stability.ranges.Ranges
     freq_hz : array_like
         Dither frequencies, Hz.
     p_max : float
         Largest amplitude searched, Pa.
     samples, seed, sampler, vertices
-        As :func:`stability.envelope.design_points` takes them.
+        As :func:`stability.ranges.design_points` takes them.
     method, min_growth
         As :func:`stability.tongues.tongue_boundaries` takes them.
     amplitudes : int

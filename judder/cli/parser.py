@@ -400,7 +400,7 @@ def build_parser():
 
 
 def _envelope_parser(sub):
-    from stability.envelope import SAMPLERS
+    from stability.ranges import SAMPLERS
     from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
     p = sub.add_parser("envelope", help="broadest unstable region over "
                                         "uncertain parameters (Fig. 16)",
