@@ -400,8 +400,7 @@ def build_parser():
 
 
 def _envelope_parser(sub):
-    from stability.ranges import SAMPLERS
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    # nothing imported here: every command's start would pay for it
     p = sub.add_parser("envelope", help="broadest unstable region over "
                                         "uncertain parameters (Fig. 16)",
                        description="Exact tongue boundaries for every "
@@ -425,8 +424,8 @@ def _envelope_parser(sub):
     p.add_argument("--samples", type=int, default=256, metavar="N",
                    help="space-filling samples after the 2**d vertices "
                         "(default 256)")
-    p.add_argument("--sampler", choices=SAMPLERS, default="sobol",
-                   help="scrambled Sobol (default) or Latin hypercube")
+    p.add_argument("--sampler", default="sobol", metavar="{sobol,lhs}",
+                   help="scrambled Sobol (default) or Latin hypercube (lhs)")
     p.add_argument("--seed", type=int, default=0,
                    help="seed of the sample (default 0)")
     p.add_argument("--no-vertices", action="store_true",
@@ -436,11 +435,10 @@ def _envelope_parser(sub):
                         "at each frequency searching the lowest boundary "
                         "between the samples (default 20; 0: the union of "
                         "the samples only)")
-    p.add_argument("--min-growth", type=float,
-                   default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
+    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
                    help="count judder growing at least this fast, 1/s "
-                        f"(default {DEFAULT_MIN_GROWTH_PER_S:g}: one e-fold "
-                        "per engagement; 0: every instability)")
+                        "(default 1, stability.relevance: one e-fold per "
+                        "engagement; 0: every instability)")
     p.add_argument("--out", metavar="FILE.npz",
                    help="every sample's boundaries, the broadest edge and "
                         "the probability grid (NPZ, see docs/envelope.md)")
