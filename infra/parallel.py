@@ -225,10 +225,18 @@ class _Cluster:
 
 
 def _reap(before):
-    """Kill the child processes started since ``before`` (pids)."""
+    """Kill the child processes started since ``before`` (pids), but
+    multiprocessing's resource tracker (it outlives every pool, and
+    complains when killed)."""
     import psutil
+
+    def tracker(process):
+        try:
+            return "resource_tracker" in " ".join(process.cmdline())
+        except psutil.Error:
+            return False
     left = [p for p in psutil.Process().children(recursive=True)
-            if p.pid not in before]
+            if p.pid not in before and not tracker(p)]
     for process in left:
         try:
             process.kill()
