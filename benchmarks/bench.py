@@ -240,7 +240,7 @@ def bench_engagement():
 
 #: The 12-state driveline of a user's package (issue 12): rank-2 dither.
 MODELICA_CLASS = "BenchLib.Driveline6DOF"
-MODELICA_LIBRARY = Path(__file__).resolve().parent / "modelica"
+MODELICA_LIBRARY = Path(__file__).resolve().parents[1] / "examples" / "modelica"
 
 
 def bench_modelica_map():
@@ -277,11 +277,90 @@ def bench_modelica_map():
                    f"{REFERENCE_TOL['rtol']:g} on those points"}
 
 
+#: Envelope benchmark: the ranges of examples/ranges.toml around the
+#: fitted set, the dither window 60-200 Hz (2 Hz steps) up to the valve's
+#: 0.7 bar, judder-relevant growth (1/s).
+ENVELOPE_FREQ = np.linspace(60.0, 200.0, 71)
+ENVELOPE_P_MAX_BAR = 0.7
+#: Samples of the 1- and 2-worker runs, and of the target envelope.
+ENVELOPE_SAMPLES = 24
+ENVELOPE_TARGET_SAMPLES = 1000
+
+
+def _envelope(samples, workers):
+    """An envelope on ``workers``: result, seconds, and the seconds the
+    local cluster took to start (before)."""
+    import math
+    from pathlib import Path
+
+    from infra.parallel import cluster, parallel_map
+    from judder import api
+    ranges = Path(__file__).resolve().parents[1] / "examples" / "ranges.toml"
+    with cluster(workers=workers):
+        _, startup = _timed(lambda: list(parallel_map(
+            math.sqrt, [1.0] * 2 * workers)))
+        result, seconds = _timed(
+            api.envelope, ranges, ENVELOPE_FREQ, ENVELOPE_P_MAX_BAR,
+            samples=samples, parameters=get_preset("paper-4dof-fitted"),
+            workers=workers)
+    return result, seconds, startup
+
+
+def bench_envelope():
+    """Envelope on 1 and 2 workers (same run, same result), and the
+    1000-sample envelope: measured when BENCH_ENVELOPE_FULL=1, else
+    scaled from the 2-worker run."""
+    import os
+    serial, serial_seconds, _ = _envelope(ENVELOPE_SAMPLES, 1)
+    parallel, seconds, startup = _envelope(ENVELOPE_SAMPLES, 2)
+    a, b = serial.envelope, parallel.envelope
+    same = all(np.array_equal(getattr(a, n), getattr(b, n), equal_nan=True)
+               for n in ("amplitude", "refined", "probability"))
+    sets = len(a.ok) + 1                       # with the nominal set
+    frequencies = len(ENVELOPE_FREQ) * sets
+    yield {"name": f"envelope-{ENVELOPE_SAMPLES}-workers-1-vs-2",
+           "points": sets, "seconds": seconds,
+           "baseline_seconds": serial_seconds,
+           "speedup": serial_seconds / seconds,
+           "max_error": 0.0 if same else float("inf"),
+           "error_unit": "0 if the 2-worker arrays equal the serial ones",
+           "seconds_per_boundary_frequency": serial_seconds / frequencies,
+           "cluster_start_seconds": startup,
+           "load_average": os.getloadavg()[0],
+           "note": f"{sets} parameter sets (8 vertices, nominal) x "
+                   f"{len(ENVELOPE_FREQ)} frequencies and the refinement; "
+                   "seconds without starting the local Dask cluster "
+                   "(cluster_start_seconds, once per command)"}
+    target_sets = ENVELOPE_TARGET_SAMPLES + 8 + 1
+    full = os.environ.get("BENCH_ENVELOPE_FULL") == "1"
+    if full:
+        big, big_seconds, startup = _envelope(ENVELOPE_TARGET_SAMPLES, 2)
+        convergence = big.envelope.convergence
+    else:
+        big_seconds = seconds / sets * target_sets
+        convergence = None
+    big_seconds += startup
+    yield {"name": f"envelope-{ENVELOPE_TARGET_SAMPLES}-samples",
+           "points": target_sets, "seconds": big_seconds,
+           "measured": full,
+           "baseline_seconds": serial_seconds / sets * target_sets,
+           "baseline_extrapolated": True,
+           "speedup": serial_seconds / sets * target_sets / big_seconds,
+           "max_error": 0.0 if same else float("inf"),
+           "target_seconds": 60.0, "convergence": convergence,
+           "load_average": os.getloadavg()[0],
+           "note": "2 workers, cluster start included; baseline: the serial run above scaled to "
+                   f"{target_sets} sets" + ("" if full else
+                   "; seconds scaled from the 2-worker run (set "
+                   "BENCH_ENVELOPE_FULL=1 to measure)")}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "modelica-map": bench_modelica_map,
               "tongue-boundaries": bench_tongue_boundaries,
               "tongue-solvers": bench_tongue_solvers,
-              "engagement": bench_engagement}
+              "engagement": bench_engagement,
+              "envelope": bench_envelope}
 
 
 def main(names):

@@ -1,15 +1,292 @@
-"""The executor: independent jobs on all cores (sensitivity cases, FMU runs)."""
+"""The executor: independent jobs on Dask distributed (sensitivity cases,
+envelope samples, fit rounds, FMU runs).
 
-from concurrent.futures import ProcessPoolExecutor, as_completed
+:func:`parallel_map` runs ``function(job)`` for every job:
+
+* in this process when one worker is asked for (or one job is given);
+* else on a Dask cluster: the one of the enclosing :func:`cluster`
+  context (a ``LocalCluster`` started on first use, or an existing
+  cluster at ``scheduler``), or a ``LocalCluster`` of its own, closed
+  when the jobs are done.
+
+Local workers are processes with one thread and one BLAS thread each:
+the kernels work on many tiny matrices, where threaded BLAS only
+contends (measured 5x slower). A failed job never stops the others and
+is never lost: it is reported with its inputs (:class:`TaskFailure`),
+either in place of its result or, after all the other jobs, in one
+:class:`TaskFailures` error. Ctrl-C and SIGTERM close the cluster and its
+worker processes. Dask logs nothing below CRITICAL and serves no
+dashboard.
+"""
+
+from concurrent.futures import CancelledError
+from contextlib import contextmanager
+from dataclasses import dataclass
+import logging
 import os
+import shutil
+import signal
+import tempfile
+import threading
 
 from threadpoolctl import threadpool_limits
 
-__all__ = ["parallel_map"]
+from .errors import JudderError
+
+__all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures"]
+
+#: Seconds to wait for an existing scheduler to answer.
+CONNECT_TIMEOUT = 10
+#: Failures spelled out in a :class:`TaskFailures` message.
+_LISTED = 5
+#: Characters of a job's description kept in a failure report.
+_DESCRIPTION = 200
+#: Loggers silenced while a cluster runs (worker processes get the level
+#: through ``silence_logs``).
+_LOGGERS = ("distributed", "tornado", "asyncio", "bokeh")
 
 
-def parallel_map(function, jobs, workers=None, ordered=True):
-    """Yield ``function(job)`` for every job, computed in worker processes.
+@dataclass(frozen=True)
+class TaskFailure:
+    """A job that raised instead of returning.
+
+    Attributes
+    ----------
+    index : int
+        Position of the job in ``jobs``.
+    inputs : str
+        The job, described (``describe(job)``).
+    message : str
+        ``'ExceptionType: text'`` of what it raised.
+    """
+
+    index: int
+    inputs: str
+    message: str
+
+    def __str__(self):
+        return f"job {self.index} ({self.inputs}): {self.message}"
+
+
+class TaskFailures(JudderError):
+    """Some jobs of a :func:`parallel_map` failed; ``failures`` lists them
+    (the others completed)."""
+
+    def __init__(self, failures, total):
+        self.failures = tuple(failures)
+        self.total = total
+        listed = "; ".join(str(f) for f in self.failures[:_LISTED])
+        more = len(self.failures) - _LISTED
+        super().__init__(
+            f"{len(self.failures)} of {total} jobs failed: {listed}"
+            + (f"; and {more} more" if more > 0 else ""))
+
+
+def _describe(job):
+    text = repr(job)
+    return text if len(text) <= _DESCRIPTION else \
+        text[:_DESCRIPTION - 3] + "..."
+
+
+def _message(exc):
+    return f"{type(exc).__name__}: {exc}"
+
+
+_LIMITED = False
+
+
+def _call(function, job):
+    """Run one job on a worker, BLAS limited to one thread (also on
+    workers of a cluster started elsewhere)."""
+    global _LIMITED
+    if not _LIMITED:
+        threadpool_limits(limits=1)
+        _LIMITED = True
+    return function(job)
+
+
+def _terminate(signum, frame):
+    raise SystemExit(128 + signum)
+
+
+class _Cluster:
+    """A Dask client, started on first use; see :func:`cluster`."""
+
+    def __init__(self, workers=None, scheduler=None):
+        if workers is not None and (int(workers) != workers or workers < 1):
+            raise JudderError(f"--workers {workers} is not allowed; "
+                              "allowed: a whole number >= 1")
+        if workers is not None and scheduler is not None:
+            raise JudderError(f"--workers {workers} is not allowed with "
+                              f"--scheduler {scheduler}: the cluster's own "
+                              "workers run the jobs")
+        self.workers = workers
+        self.scheduler = scheduler
+        self._client = None
+        self._cluster = None
+        self._scratch = None
+        self._levels = {}
+        self._sigterm = None
+        self._children = set()
+
+    def serial(self, workers, jobs):
+        """True if ``jobs`` jobs with ``workers`` asked for run here."""
+        if self.scheduler is not None:
+            return False
+        n = workers or self.workers or os.cpu_count() or 1
+        return min(n, jobs) <= 1
+
+    def client(self, workers):
+        if self._client is None:
+            self._start(workers)
+        return self._client
+
+    def _start(self, workers):
+        for name in _LOGGERS:
+            logger = logging.getLogger(name)
+            self._levels[name] = logger.level
+            logger.setLevel(logging.CRITICAL)
+        main = threading.current_thread() is threading.main_thread()
+        if main and signal.getsignal(signal.SIGTERM) is signal.SIG_DFL:
+            # let SIGTERM unwind (closing the workers) instead of killing
+            # this process alone
+            self._sigterm = signal.signal(signal.SIGTERM, _terminate)
+        if not main:
+            self._connect(workers)
+            return
+        # a signal while Dask starts would leave half-made objects whose
+        # clean-up blocks: hold it until the cluster can be closed
+        pending = []
+        held = {s: signal.signal(s, lambda signum, _: pending.append(signum))
+                for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            self._connect(workers)
+        finally:
+            for signum, handler in held.items():
+                signal.signal(signum, handler)
+        for signum in pending[:1]:
+            handler = held[signum]
+            if callable(handler):
+                handler(signum, None)
+
+    def _connect(self, workers):
+        from distributed import Client, LocalCluster
+        if self.scheduler is not None:
+            try:
+                self._client = Client(self.scheduler,
+                                      timeout=CONNECT_TIMEOUT,
+                                      set_as_default=False)
+            except (OSError, TimeoutError, ValueError) as exc:
+                self.close()
+                raise JudderError(f"--scheduler {self.scheduler}: cannot "
+                                  f"connect ({exc})") from None
+            return
+        import psutil
+        self._children = {p.pid for p in psutil.Process().children(
+            recursive=True)}
+        self._scratch = tempfile.mkdtemp(prefix="judder-dask-")
+        self._cluster = LocalCluster(
+            n_workers=self.workers or workers or os.cpu_count() or 1,
+            threads_per_worker=1, processes=True, host="127.0.0.1",
+            dashboard_address=None, silence_logs=logging.CRITICAL,
+            # no dashboard; its HTTP server (health checks) on any free port
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+            local_directory=self._scratch,
+            env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
+                 "MKL_NUM_THREADS": "1"})
+        self._client = Client(self._cluster, set_as_default=False)
+
+    def close(self):
+        """Close the client and a local cluster; kill any worker process
+        that outlived it (a close interrupted, or during start-up)."""
+        try:
+            if self._client is not None:
+                self._client.close()
+            if self._cluster is not None:
+                self._cluster.close()
+        except Exception:           # noqa: BLE001 - the processes go below
+            pass
+        finally:
+            if self._cluster is not None:
+                from distributed.deploy.spec import SpecCluster
+                # closed (or reaped below): nothing left for its atexit hook
+                SpecCluster._instances.discard(self._cluster)
+                _reap(self._children)
+            self._client = self._cluster = None
+            if self._scratch is not None:
+                shutil.rmtree(self._scratch, ignore_errors=True)
+                self._scratch = None
+            if self._sigterm is not None:
+                signal.signal(signal.SIGTERM, self._sigterm)
+                self._sigterm = None
+            for name, level in self._levels.items():
+                logging.getLogger(name).setLevel(level)
+            self._levels = {}
+
+
+def _reap(before):
+    """Kill the child processes started since ``before`` (pids), but
+    multiprocessing's resource tracker (it outlives every pool, and
+    complains when killed)."""
+    import psutil
+
+    def tracker(process):
+        try:
+            return "resource_tracker" in " ".join(process.cmdline())
+        except psutil.Error:
+            return False
+    left = [p for p in psutil.Process().children(recursive=True)
+            if p.pid not in before and not tracker(p)]
+    for process in left:
+        try:
+            process.kill()
+        except psutil.NoSuchProcess:
+            pass
+    psutil.wait_procs(left, timeout=5)
+
+
+_ACTIVE = []
+
+
+@contextmanager
+def cluster(workers=None, scheduler=None):
+    """Share one Dask cluster among the :func:`parallel_map` calls inside.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Local worker processes (default: all cores); 1 runs every job in
+        this process.
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://host:8786``) whose
+        workers run the jobs instead.
+
+    Nothing is started until a :func:`parallel_map` inside needs it; the
+    cluster is closed on leaving, also on Ctrl-C or SIGTERM. Inside
+    another ``cluster()`` (without ``scheduler``) the outer one is shared.
+
+    Raises
+    ------
+    JudderError
+        ``workers`` not a whole number >= 1, ``workers`` together with
+        ``scheduler``, or the scheduler does not answer.
+    """
+    if _ACTIVE and scheduler is None:
+        # inside another one (a command's, around an API call): share it
+        yield _ACTIVE[-1]
+        return
+    state = _Cluster(workers, scheduler)
+    _ACTIVE.append(state)
+    try:
+        yield state
+    finally:
+        _ACTIVE.remove(state)
+        state.close()
+
+
+def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
+                 failures="raise"):
+    """Yield ``function(job)`` for every job (see the module docstring).
 
     Parameters
     ----------
@@ -17,27 +294,82 @@ def parallel_map(function, jobs, workers=None, ordered=True):
         A module-level function (it is pickled).
     jobs : sequence
     workers : int, optional
-        Processes (default: all cores); 1 runs in this process.
+        Processes (default: those of the enclosing :func:`cluster`, else
+        all cores); 1 runs in this process.
     ordered : bool
         Yield in the order of ``jobs`` (else as each finishes).
+    describe : callable, optional
+        ``describe(job)``: the inputs a failure report names (default a
+        shortened ``repr``).
+    failures : {'raise', 'yield'}
+        A failed job: ``'raise'`` goes on with the others and raises one
+        :class:`TaskFailures` after the last; ``'yield'`` yields a
+        :class:`TaskFailure` in place of its result.
 
-    Each worker uses one BLAS thread: the kernels work on many tiny
-    matrices, where threaded BLAS only contends (measured 5x slower).
+    Raises
+    ------
+    TaskFailures
+        With ``failures='raise'``, if any job failed.
     """
-    workers = workers or os.cpu_count() or 1
-    if workers == 1:
-        with threadpool_limits(limits=1):
-            yield from map(function, jobs)
-        return
-    with ProcessPoolExecutor(max_workers=workers, initializer=threadpool_limits,
-                             initargs=(1,)) as pool:
-        if ordered:
-            yield from pool.map(function, jobs)
-            return
-        futures = [pool.submit(function, job) for job in jobs]
-        try:
-            for future in as_completed(futures):
-                yield future.result()
-        finally:
-            for future in futures:
-                future.cancel()
+    if failures not in ("raise", "yield"):
+        raise ValueError(f"failures={failures!r}; allowed: 'raise', 'yield'")
+    jobs = list(jobs)
+    describe = describe or _describe
+    failed = []
+
+    def outcome(index, error):
+        failure = TaskFailure(index, describe(jobs[index]), _message(error))
+        failed.append(failure)
+        return failure
+
+    state = _ACTIVE[-1] if _ACTIVE else _Cluster(workers)
+    try:
+        if state.serial(workers, len(jobs)):
+            results = _serial(function, jobs, outcome)
+        else:
+            results = _distributed(state.client(workers), function, jobs,
+                                   ordered, outcome)
+        for item in results:
+            if not isinstance(item, TaskFailure) or failures == "yield":
+                yield item
+    finally:
+        if not _ACTIVE or state is not _ACTIVE[-1]:
+            state.close()
+    if failed and failures == "raise":
+        raise TaskFailures(failed, len(jobs))
+
+
+def _serial(function, jobs, outcome):
+    with threadpool_limits(limits=1):
+        for index, job in enumerate(jobs):
+            try:
+                result = function(job)
+            except Exception as exc:   # reported, the others go on
+                yield outcome(index, exc)
+            else:
+                yield result
+
+
+def _distributed(client, function, jobs, ordered, outcome):
+    from distributed import as_completed
+    futures = client.map(_call, [function] * len(jobs), jobs, pure=False)
+    position = {future.key: index for index, future in enumerate(futures)}
+    waiting, head = {}, 0
+    try:
+        for future in as_completed(futures, loop=client.loop):
+            index = position[future.key]
+            try:
+                item = future.result()
+            except (Exception, CancelledError) as exc:
+                item = outcome(index, exc)
+            future.release()
+            if not ordered:
+                yield item
+                continue
+            waiting[index] = item
+            while head in waiting:
+                yield waiting.pop(head)
+                head += 1
+    finally:
+        if client.status == "running":
+            client.cancel([f for f in futures if not f.done()])

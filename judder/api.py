@@ -38,7 +38,7 @@ from stability.model import build_driveline
 from stability.monodromy import DEFAULT_METHOD
 
 from .results import (CampaignResult, ChartResult, CrosscheckResult,
-                      EigResult,
+                      EigResult, EnvelopeResult,
                       FitReport, FloquetPoint, MapResult, ParamsResult,
                       SensitivityResult, SimulationResult, ThresholdResult,
                       TonguesResult, CheckResult, AdviceResult)
@@ -46,7 +46,8 @@ from .results import (CampaignResult, ChartResult, CrosscheckResult,
 __all__ = ["params", "eig", "floquet", "stability_map", "tongues", "check",
            "advise",
            "sensitivity", "threshold", "fit", "simulate", "crosscheck",
-           "campaign", "chart", "report", "BACKGROUND_AMPLITUDES"]
+           "campaign", "chart", "report", "envelope",
+           "BACKGROUND_AMPLITUDES"]
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
@@ -801,3 +802,63 @@ def report(parameters=None, changes=None, **options):
     """
     from .report import build_report
     return build_report(parameters, changes, **options)
+
+
+def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
+             sampler="sobol", vertices=True, min_growth=None, refine=20,
+             parameters=None, changes=None, method=DEFAULT_METHOD,
+             workers=None, checkpoint=None, progress=None):
+    """``judder envelope``: the broadest unstable region over uncertain
+    parameters and the probability of instability (section 4.2, Fig. 16).
+
+    Parameters
+    ----------
+    ranges : path or stability.ranges.Ranges
+        A ranges file (:func:`judder.envelope.read_ranges`) or the ranges.
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_max_bar : float
+        Largest amplitude searched, bar.
+    samples, seed, sampler, vertices
+        Space-filling samples after the vertices, as
+        :func:`stability.ranges.design_points` takes them.
+    min_growth : float, optional
+        1/s: count only judder growing at least this fast (default
+        :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`; 0: every
+        instability).
+    refine : int
+        Boundary evaluations per uncertain parameter spent at each
+        frequency searching the lowest boundary between the samples
+        (:func:`stability.envelope.refine_at`); 0: the union of the
+        samples only.
+    workers : int, optional
+        Local Dask worker processes (see :mod:`infra.parallel`).
+    checkpoint : path, optional
+        Resume from / save to this NPZ (see
+        :func:`judder.envelope.run_envelope`).
+
+    Returns
+    -------
+    judder.results.EnvelopeResult
+        ``failures`` lists the samples that failed (left out).
+    """
+    from stability.ranges import Ranges
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from .envelope import read_ranges, run_envelope
+    values = _resolve(parameters, changes)
+    if not isinstance(ranges, Ranges):
+        ranges = read_ranges(ranges, values)
+    growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    if not np.isfinite(growth) or growth < 0:
+        raise JudderError(f"--min-growth {growth!r} 1/s is not allowed; "
+                          "allowed: a finite rate >= 0")
+    started = time.perf_counter()
+    result, failures, resumed = run_envelope(
+        values, ranges, freq_hz, p_max_bar * PA_PER_BAR, samples=samples,
+        seed=seed, sampler=sampler, vertices=vertices, method=method,
+        min_growth=growth, amplitudes=BACKGROUND_AMPLITUDES, refine=refine,
+        workers=workers, checkpoint=checkpoint, progress=progress)
+    return EnvelopeResult(params=values, ranges=ranges, envelope=result,
+                          failures=failures, resumed=resumed,
+                          seconds=time.perf_counter() - started,
+                          checkpoint=checkpoint)

@@ -17,6 +17,7 @@ import csv
 import io
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -28,7 +29,8 @@ from stability.kinds import KINDS
 __all__ = ["ParamsResult", "EigResult", "FloquetPoint", "MapResult",
            "TonguesResult", "SensitivityResult", "ThresholdResult",
            "FitReport", "SimulationResult", "CrosscheckResult",
-           "CampaignResult", "ChartResult", "CheckResult", "AdviceResult"]
+           "CampaignResult", "ChartResult", "CheckResult", "AdviceResult",
+           "EnvelopeResult"]
 
 
 def _finite_or_none(value):
@@ -369,7 +371,11 @@ class FitReport:
                 "evaluations": r.evaluations, "freq_hz": r.freq_hz,
                 "measured_bar": [_finite_or_none(v) for v in r.measured_bar],
                 "model_bar": [_finite_or_none(v) for v in r.model_bar],
-                "min_growth_per_s": r.min_growth, "added": dict(r.added)}
+                "min_growth_per_s": r.min_growth, "added": dict(r.added),
+                "covariance": None if r.covariance is None else {
+                    "names": list(r.names),
+                    "matrix": [[_finite_or_none(v) for v in row]
+                               for row in r.covariance]}}
 
     def save_params(self, path, overwrite=False):
         """Write the fitted parameter set as TOML."""
@@ -812,3 +818,91 @@ class AdviceResult:
     def figure(self, title=None):
         from stability.plotting import advice_figure
         return advice_figure(self, title=title)
+
+
+def _bar_or_none(values):
+    return [_finite_or_none(v / PA_PER_BAR) for v in values]
+
+
+@dataclass(frozen=True)
+class EnvelopeResult:
+    """``judder envelope``: a :class:`stability.envelope.Envelope`, the
+    ranges it was sampled from, the failed samples (each an
+    :class:`infra.parallel.TaskFailure`) and how many samples came from the
+    checkpoint."""
+
+    params: object
+    ranges: object
+    envelope: object
+    failures: list
+    resumed: int
+    seconds: float
+    checkpoint: object = None
+
+    #: Probabilities whose boundaries the CSV lists.
+    LEVELS = (0.1, 0.5, 0.9)
+
+    def as_dict(self):
+        e = self.envelope
+        return {"model": self.params.model, "method": e.method,
+                "min_growth_per_s": e.min_growth, "seconds": self.seconds,
+                "ranges": self.ranges.describe(),
+                "samples": int(len(e.ok)), "vertices": int(e.is_vertex.sum()),
+                "computed": int(e.ok.sum()), "resumed": self.resumed,
+                "failures": [{"index": f.index, "inputs": f.inputs,
+                              "message": f.message} for f in self.failures],
+                "convergence": e.convergence,
+                "freq_hz": e.freq_hz, "p_max_bar": e.p_max / PA_PER_BAR,
+                "nominal_p_f_bar": _bar_or_none(e.nominal_boundary),
+                "broadest_p_f_bar": _bar_or_none(e.broadest),
+                "unstable_share_at_p_max":
+                    [_finite_or_none(v) for v in e.probability[:, -1]]}
+
+    def csv_text(self):
+        """Per frequency: nominal and broadest boundary, and the amplitude
+        from which 10, 50, 90 % of the samples are unstable (bar; empty:
+        none up to p_max)."""
+        e = self.envelope
+        columns = [e.nominal_boundary, e.broadest] + [
+            e.quantile_boundary(q) for q in self.LEVELS]
+        rows = [{"freq_hz": f"{f:.9g}", **{
+            name: (None if not math.isfinite(c[i]) else
+                   f"{c[i] / PA_PER_BAR:.9g}")
+            for name, c in zip(["nominal_p_f_bar", "broadest_p_f_bar"] + [
+                f"p_f_bar_{round(100 * q)}pct_unstable" for q in self.LEVELS],
+                columns)}} for i, f in enumerate(e.freq_hz)]
+        return _csv_text(rows)
+
+    def save_csv(self, path):
+        write_text(path, self.csv_text())
+
+    def save(self, path):
+        """NPZ: every sample's values and boundaries, the nominal, the
+        broadest edge, the probability grid (bar where named so)."""
+        e = self.envelope
+        arrays = {"freq_hz": e.freq_hz, "p_f_bar": e.p_f / PA_PER_BAR,
+                  "p_max_bar": e.p_max / PA_PER_BAR,
+                  "names": np.array(e.names), "values": e.values,
+                  "is_vertex": e.is_vertex, "ok": e.ok,
+                  "amplitude_bar": e.amplitude / PA_PER_BAR,
+                  "nominal_bar": e.nominal / PA_PER_BAR,
+                  "broadest_bar": e.broadest / PA_PER_BAR,
+                  "probability": e.probability,
+                  "area_history_bar_hz": e.area_history / PA_PER_BAR,
+                  "min_growth_per_s": e.min_growth,
+                  "meta": json.dumps({
+                      "model": self.params.model,
+                      "ranges": self.ranges.describe(),
+                      "convergence": e.convergence, "method": e.method,
+                      "failures": [str(f) for f in self.failures]})}
+        save_npz(path, arrays)
+
+    def discard_checkpoint(self):
+        """Delete the checkpoint once the outputs are written (kept while
+        samples failed, so a new run retries only those)."""
+        if self.checkpoint is not None and not self.failures:
+            Path(self.checkpoint).unlink(missing_ok=True)
+
+    def figure(self, title=None):
+        from stability.envelope_plotting import envelope_figure
+        return envelope_figure(self.envelope, title=title)

@@ -118,6 +118,11 @@ class FitResult:
         Added to the parameters for the model compared (a bench's
         linearisation: ``(('c1', d_control),)``); ``values`` and
         ``params`` are without them.
+    covariance : ndarray or None, shape (k, k)
+        Covariance of ``values`` (SI): the correlations of the linearised
+        fit with the standard uncertainties ``std``; ``inf`` in the rows
+        and columns of undetermined parameters. ``judder envelope`` takes
+        it as a joint normal distribution.
     """
 
     names: tuple
@@ -158,6 +163,7 @@ class FitResult:
     fitted_curve_bar: np.ndarray = None
     min_growth: float = 0.0
     added: tuple = ()
+    covariance: np.ndarray = None
 
     @property
     def start_params(self):

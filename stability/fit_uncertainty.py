@@ -110,7 +110,9 @@ class Intervals:
     bound without closing; ``alternatives`` ``[(values, growth)]`` other
     minima inside the confidence set; ``same`` which runs reached this
     minimum and ``minima`` where each ended (SI); ``notes`` sentences that
-    are problems, ``info`` sentences that are not.
+    are problems, ``info`` sentences that are not; ``covariance`` (SI,
+    shape (k, k)) the Jacobian's correlations scaled to ``std``, ``inf``
+    in the rows and columns of undetermined parameters.
     """
 
     values: np.ndarray
@@ -133,6 +135,7 @@ class Intervals:
     notes: list
     info: list
     evaluations: int
+    covariance: np.ndarray
 
 
 def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
@@ -327,7 +330,22 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
                      null_names=null_names, open_sides=open_sides,
                      boot_failed=boot_failed, alternatives=alternatives,
                      same=same, minima=minima, notes=notes, info=info,
-                     evaluations=evaluations)
+                     evaluations=evaluations,
+                     covariance=_covariance(cov_z, std, kept))
+
+
+def _covariance(cov_z, std, kept):
+    """Covariance of the values (SI): the Jacobian's correlations with the
+    reported standard uncertainties; inf in the rows and columns of the
+    undetermined parameters (``judder envelope`` samples a fit's values
+    jointly normal with it)."""
+    out = np.full(cov_z.shape, np.inf)
+    if kept.any():
+        part = cov_z[np.ix_(kept, kept)]
+        scale = np.sqrt(np.clip(np.diag(part), 1e-300, None))
+        out[np.ix_(kept, kept)] = (part / np.outer(scale, scale)
+                                   * np.outer(std[kept], std[kept]))
+    return out
 
 
 def _jacobian(evaluator, z, columns):

@@ -47,6 +47,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from infra.errors import JudderError
+from infra.parallel import cluster
 from infra.units import PA_PER_BAR
 
 from .fit_matching import _parse_kinds, parse_kind
@@ -218,7 +219,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                        x0=x0, min_growth=float(min_growth), added=added)
     extra = _extra_starts(starts, names, low, high)
     workers = workers or os.cpu_count() or 1
-    with threadpool_limits(limits=1):
+    # one cluster for all the rounds of parallel jobs
+    with threadpool_limits(limits=1), cluster(workers):
         return _fit(problem, given, extra, uncertainty, n_bootstrap, seed,
                     workers, callback, curve_points)
 
@@ -323,7 +325,7 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         start_minima=minima,
         start_origins=tuple(r["origin"] for r in runs),
         start_costs=costs, min_growth=problem.min_growth,
-        added=problem.added)
+        added=problem.added, covariance=found.covariance)
     if curve_points:
         freq, start_bar, fitted_bar = fit_curves(result, curve_points)
         progress.step(2)

@@ -162,6 +162,12 @@ def test_a_parameter_without_effect_is_undetermined(measured15):
                           **FAST)
     assert result.undetermined == ("p_m",)
     assert np.isinf(result.std[1]) and np.isfinite(result.std[0])
+    # the covariance judder envelope reads: std^2 on the diagonal, inf for
+    # the undetermined one
+    assert result.covariance[0, 0] == pytest.approx(result.std[0] ** 2,
+                                                    rel=1e-12)
+    assert np.all(np.isinf(result.covariance[1]))
+    assert np.all(np.isinf(result.covariance[:, 1]))
     assert result.values[0] == pytest.approx(0.022, rel=1e-6)
     assert not result.success
     assert any("p_m is not determined" in p for p in result.problems)

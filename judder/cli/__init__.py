@@ -25,6 +25,7 @@ def main(argv=None):
     """Run ``judder``; returns the exit status."""
     import sys
     from threadpoolctl import threadpool_limits
+    from infra.parallel import cluster
     parser = build_parser()
     args = parser.parse_args(join_negative_values(
         sys.argv[1:] if argv is None else list(argv)))
@@ -34,6 +35,8 @@ def main(argv=None):
         check_outputs(args)
         check_plausible(args)
         # the kernels work on many tiny matrices: BLAS threads only contend
-        with threadpool_limits(limits=1):
+        with threadpool_limits(limits=1), cluster(
+                getattr(args, "workers", None),
+                getattr(args, "scheduler", None)):
             args.handler(args)
     return run_guarded("judder", command)

@@ -8,6 +8,8 @@ into lines an engineer reads (Hz, bar, rpm).
 
 import math
 
+import numpy as np
+
 from infra.errors import JudderError
 from infra.files import save_figure
 from infra.units import PA_PER_BAR
@@ -23,7 +25,7 @@ from .options import (check_number, emit, make_parents, model_title,
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
            "cmd_crosscheck", "cmd_campaign", "cmd_chart", "cmd_check",
-           "cmd_advise", "cmd_report"]
+           "cmd_advise", "cmd_report", "cmd_envelope"]
 
 #: Multipliers of the nominal value in sensitivity without --factors.
 DEFAULT_FACTORS = "0.5,2"
@@ -690,3 +692,60 @@ def cmd_report(args):
             + _written(args.out, args.pdf))
     emit(args, {**result.as_dict(), **_files(out=args.out, pdf=args.pdf)},
          text)
+
+
+def cmd_envelope(args):
+    """Broadest unstable region over uncertain parameters (section 4.2)."""
+    from ..envelope import checkpoint_path, read_ranges
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    p_max_bar = _pf_max(args)
+    growth = check_number("--min-growth", args.min_growth, "1/s",
+                          strict=False)
+    for option, value in (("--samples", args.samples),
+                          ("--refine", args.refine)):
+        if value < 0:
+            raise JudderError(f"{option} {value} is not allowed; allowed: a "
+                              "whole number >= 0")
+    params, changes = parameters_of(args)
+    ranges = read_ranges(args.ranges, params.replace(**changes))
+    make_parents(args.out, args.csv, args.plot, args.checkpoint)
+    checkpoint = args.checkpoint or checkpoint_path(args.out, args.csv,
+                                                    args.plot)
+    with Progress(None, "envelope samples") as progress:
+        result = api.envelope(ranges, freqs, p_max_bar, samples=args.samples,
+                              seed=args.seed, sampler=args.sampler,
+                              vertices=not args.no_vertices,
+                              min_growth=growth, refine=args.refine,
+                              parameters=params, changes=changes,
+                              method=args.method, workers=args.workers,
+                              checkpoint=checkpoint, progress=progress)
+    if args.out:
+        result.save(args.out)
+    if args.csv:
+        result.save_csv(args.csv)
+    if args.plot:
+        save_figure(args.plot, result.figure())
+    result.discard_checkpoint()
+    e, c = result.envelope, result.envelope.convergence
+    lowest = e.broadest
+    tip = (f"lowest point {np.nanmin(lowest) / PA_PER_BAR:.4f} bar at "
+           f"{e.freq_hz[np.nanargmin(lowest)]:g} Hz"
+           if np.isfinite(lowest).any() else
+           f"stable up to {p_max_bar:g} bar at every frequency")
+    text = (f"{int(e.ok.sum())} of {len(e.ok)} samples ({int(e.is_vertex.sum())}"
+            f" vertices) over {', '.join(e.names)} in {result.seconds:.1f} s"
+            + (f" ({result.resumed} from the checkpoint)" if result.resumed
+               else "")
+            + f"\nbroadest region: {tip}; area {c['refined_area_bar_hz']:.4g}"
+            f" bar Hz\nconvergence: the last {c['last']} samples added "
+            f"{100 * c['added_share']:.2g} % of the union's area (edge "
+            f"lowered by up to {c['max_drop_bar']:.2g} bar); the refinement "
+            f"between samples added {100 * c['refinement_added_share']:.2g} %"
+            + _written(args.out, args.csv, args.plot))
+    emit(args, {**result.as_dict(), **_files(out=args.out, csv=args.csv,
+                                             plot=args.plot)}, text)
+    if result.failures:
+        raise JudderError(
+            f"{len(result.failures)} samples failed and are left out (run "
+            "again to retry them): " + "; ".join(
+                str(f) for f in result.failures[:5]))

@@ -34,6 +34,8 @@ OUTPUTS = {
     "check": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
     "advise": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
     "report": (("out", "--out", ("html",)), ("pdf", "--pdf", ("pdf",))),
+    "envelope": (("out", "--out", ("npz",)), ("csv", "--csv", ("csv",)),
+                 ("plot", "--plot", None)),
 }
 
 

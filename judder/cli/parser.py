@@ -86,7 +86,12 @@ def _pf_max_option(parser, meaning):
 
 def _workers_option(parser):
     parser.add_argument("--workers", type=int, default=None,
-                        help="processes (default: all cores)")
+                        help="local worker processes of a Dask cluster "
+                             "started for the command (default: all cores; "
+                             "1 runs everything in this process)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run the jobs on an existing Dask cluster, "
+                             "e.g. tcp://127.0.0.1:8786 (see docs/envelope.md)")
 
 
 MIN_GROWTH_HELP = (
@@ -628,4 +633,64 @@ def build_parser():
     _model_options(p)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_report)
+    _envelope_parser(sub)
     return parser
+
+
+def _envelope_parser(sub):
+    # nothing imported here: every command's start would pay for it
+    p = sub.add_parser("envelope", help="broadest unstable region over "
+                                        "uncertain parameters (Fig. 16)",
+                       description="Exact tongue boundaries for every "
+                                   "vertex of the parameter ranges and a "
+                                   "space-filling sample of them (section "
+                                   "4.2): the broadest unstable region "
+                                   "(their union, refined between the "
+                                   "samples), the probability of "
+                                   "instability over frequency x amplitude, "
+                                   "and how converged the union is. Resumes "
+                                   "from FILE.checkpoint.npz beside the "
+                                   "first output when interrupted. See "
+                                   "docs/envelope.md.")
+    p.add_argument("--ranges", required=True, metavar="FILE.toml",
+                   help="uncertain parameters: intervals, uniform or normal "
+                        "distributions, a judder fit's covariance (see "
+                        "examples/ranges.toml)")
+    p.add_argument("--freq", default="10:220:106", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 10:220:106)")
+    _pf_max_option(p, "largest amplitude searched")
+    p.add_argument("--samples", type=int, default=256, metavar="N",
+                   help="space-filling samples after the 2**d vertices "
+                        "(default 256)")
+    p.add_argument("--sampler", default="sobol", metavar="{sobol,lhs}",
+                   help="scrambled Sobol (default) or Latin hypercube (lhs)")
+    p.add_argument("--seed", type=int, default=0,
+                   help="seed of the sample (default 0)")
+    p.add_argument("--no-vertices", action="store_true",
+                   help="leave out the vertices of the ranges")
+    p.add_argument("--refine", type=int, default=20, metavar="N",
+                   help="boundary evaluations per uncertain parameter spent "
+                        "at each frequency searching the lowest boundary "
+                        "between the samples (default 20; 0: the union of "
+                        "the samples only)")
+    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
+                   help="count judder growing at least this fast, 1/s "
+                        "(default 1, stability.relevance: one e-fold per "
+                        "engagement; 0: every instability)")
+    p.add_argument("--out", metavar="FILE.npz",
+                   help="every sample's boundaries, the broadest edge and "
+                        "the probability grid (NPZ, see docs/envelope.md)")
+    p.add_argument("--csv", metavar="FILE.csv",
+                   help="per frequency: nominal and broadest boundary and "
+                        "where 10/50/90 %% of the samples are unstable, bar")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="Fig. 16 style plot: probability shading, broadest "
+                        "and nominal boundary (PNG, SVG or PDF)")
+    p.add_argument("--checkpoint", metavar="FILE.npz",
+                   help="checkpoint file (default beside the first of --out, "
+                        "--csv, --plot; none without outputs)")
+    _method_option(p)
+    _workers_option(p)
+    _model_options(p)
+    _force_option(p)
+    p.set_defaults(handler=commands.cmd_envelope)

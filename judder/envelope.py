@@ -1,0 +1,365 @@
+"""``judder envelope``: the ranges file, the fit it may name, and a run
+that survives interruption (a checkpoint of the per-sample boundaries).
+
+Ranges file (TOML, SI units; see ``examples/ranges.toml``)::
+
+    coverage = 0.95                  # central share kept of a normal
+    [parameters]
+    c12 = [5.0, 15.0]                # an interval
+    k24 = { relative = [0.94, 1.06] }  # an interval around the nominal
+    mu_g = { distribution = "uniform", low = 0.018, high = 0.026 }
+    J2 = { distribution = "normal", mean = 0.05, std = 0.002 }
+    [fit]                            # `judder fit --json > fit.json`
+    file = "fit.json"                # normal with the fit's covariance
+    names = ["c12", "k24"]           # optional: a subset of its names
+
+The kernels are in :mod:`stability.envelope`; this module only reads
+files and keeps the checkpoint.
+"""
+
+import hashlib
+import io
+import json
+import math
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from infra.errors import JudderError
+from infra.files import atomic_write
+from infra.parallel import cluster
+from stability.envelope import (REFINE_EVALUATIONS, build_envelope,
+                                compute_samples, refine_union,
+                                refinement_starts)
+from stability.ranges import (DEFAULT_COVERAGE, Correlated, Normal, Ranges,
+                              Uniform, check_values, design_points)
+
+__all__ = ["read_ranges", "run_envelope", "checkpoint_path"]
+
+#: Seconds between two checkpoint writes.
+CHECKPOINT_SECONDS = 2.0
+#: Keys a ranges file may have.
+_TOP_KEYS = {"coverage", "parameters", "fit"}
+
+
+def _number(path, where, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or not math.isfinite(value):
+        raise JudderError(f"{path}: {where} = {value!r} is not allowed; "
+                          "allowed: a finite number")
+    return float(value)
+
+
+def _pair(path, where, value):
+    if not isinstance(value, list) or len(value) != 2:
+        raise JudderError(f"{path}: {where} = {value!r} is not allowed; "
+                          "allowed: [low, high]")
+    return [_number(path, where, v) for v in value]
+
+
+def _parameter(path, name, spec, nominal):
+    where = f"parameters.{name}"
+    if isinstance(spec, list):
+        return Uniform(name, *_pair(path, where, spec))
+    if not isinstance(spec, dict):
+        raise JudderError(f"{path}: {where} = {spec!r} is not allowed; "
+                          "allowed: [low, high] or a table")
+    if "relative" in spec:
+        low, high = _pair(path, f"{where}.relative", spec["relative"])
+        return Uniform(name, low * nominal, high * nominal)
+    kind = spec.get("distribution", "uniform")
+    keys = {"uniform": ("low", "high"), "normal": ("mean", "std")}
+    if kind not in keys:
+        raise JudderError(f"{path}: {where}.distribution = {kind!r} is "
+                          "unknown; allowed: uniform, normal (or "
+                          "relative = [low, high])")
+    unknown = sorted(set(spec) - {"distribution", *keys[kind]})
+    missing = [k for k in keys[kind] if k not in spec]
+    if unknown or missing:
+        raise JudderError(f"{path}: {where} ({kind}) needs "
+                          f"{' and '.join(keys[kind])}"
+                          + (f"; unknown key {unknown[0]!r}" if unknown
+                             else f"; {missing[0]} is missing"))
+    a, b = (_number(path, f"{where}.{k}", spec[k]) for k in keys[kind])
+    return Uniform(name, a, b, "uniform") if kind == "uniform" \
+        else Normal(name, a, b)
+
+
+def _fit(path, spec):
+    """A :class:`Correlated` from the JSON of ``judder fit --json``."""
+    if not isinstance(spec, dict) or "file" not in spec:
+        raise JudderError(f"{path}: [fit] needs file = \"FIT.json\" (the "
+                          "output of judder fit --json)")
+    unknown = sorted(set(spec) - {"file", "names"})
+    if unknown:
+        raise JudderError(f"{path}: [fit] has unknown key {unknown[0]!r}; "
+                          "allowed: file, names")
+    source = (path.parent / spec["file"]).resolve()
+    try:
+        data = json.loads(source.read_text())
+        fitted = data["fitted"]
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise JudderError(f"{path}: [fit] file {source}: not the JSON of "
+                          f"judder fit --json ({exc})") from None
+    names = list(spec.get("names", fitted))
+    unknown = [n for n in names if n not in fitted]
+    if unknown:
+        raise JudderError(f"{path}: [fit] names: {unknown[0]!r} was not "
+                          f"fitted in {source}; allowed: {', '.join(fitted)}")
+    mean = np.array([fitted[n]["value"] for n in names], dtype=float)
+    std = [fitted[n]["std"] for n in names]
+    bad = [n for n, s in zip(names, std) if s is None or s <= 0]
+    if bad:
+        raise JudderError(f"{path}: [fit] {bad[0]} is undetermined by the "
+                          f"fit in {source} (no finite uncertainty); give it"
+                          " a range under [parameters] instead")
+    covariance = data.get("covariance")
+    if covariance is None:
+        matrix = np.diag(np.square(std))
+    else:
+        order = [covariance["names"].index(n) for n in names]
+        full = np.array([[np.inf if v is None else v for v in row]
+                         for row in covariance["matrix"]], dtype=float)
+        matrix = full[np.ix_(order, order)]
+    return Correlated(tuple(names), mean, matrix,
+                      source=f"judder fit {source.name}")
+
+
+def read_ranges(path, params):
+    """The uncertain parameters of a ranges file (see the module
+    docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+    params : drivelines.Parameters
+        The nominal set (``relative`` ranges multiply its values).
+
+    Returns
+    -------
+    stability.ranges.Ranges
+
+    Raises
+    ------
+    JudderError
+        A missing or malformed file, an unknown key or parameter, a range
+        the model does not allow (the message names the key and value).
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as exc:
+        raise JudderError(f"--ranges {path}: cannot read it ({exc.strerror})"
+                          ) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise JudderError(f"--ranges {path}: not TOML ({exc})") from None
+    unknown = sorted(set(data) - _TOP_KEYS)
+    if unknown:
+        raise JudderError(f"{path}: unknown key {unknown[0]!r}; allowed: "
+                          f"{', '.join(sorted(_TOP_KEYS))}")
+    items = []
+    for name, spec in data.get("parameters", {}).items():
+        if name not in params.specs:
+            raise JudderError(f"{path}: unknown parameter {name!r} for the "
+                              f"{params.model} model; allowed names: "
+                              f"{', '.join(params.specs)}")
+        items.append(_parameter(path, name, spec, params[name]))
+    if "fit" in data:
+        items.append(_fit(path, data["fit"]))
+    coverage = _number(path, "coverage",
+                       data.get("coverage", DEFAULT_COVERAGE))
+    return Ranges(tuple(items), coverage)
+
+
+def checkpoint_path(*outputs):
+    """Checkpoint file beside the first output given (None if none)."""
+    for output in outputs:
+        if output:
+            output = Path(output)
+            return output.with_name(output.name + ".checkpoint.npz")
+    return None
+
+
+def _key(params, names, values, freq_hz, p_max, method, min_growth, refine):
+    digest = hashlib.sha256(json.dumps(
+        {"model": params.model, "params": sorted(params.values.items()),
+         "names": list(names), "p_max": p_max, "method": method,
+         "min_growth": min_growth, "refine": refine}).encode())
+    digest.update(np.ascontiguousarray(values, dtype=float).tobytes())
+    digest.update(np.ascontiguousarray(freq_hz, dtype=float).tobytes())
+    return digest.hexdigest()
+
+
+def _load(path, key, shape):
+    """Samples and refined frequencies of a checkpoint, ``({}, {})`` if
+    there is none."""
+    if path is None or not Path(path).exists():
+        return {}, {}
+    try:
+        with np.load(path) as data:
+            stored = str(data["key"])
+            arrays = {name: data[name] for name in (
+                "index", "amplitude", "refined_index", "refined_value",
+                "refined_unit")}
+    except (OSError, ValueError, KeyError) as exc:
+        raise JudderError(f"checkpoint {path}: unreadable ({exc}); delete "
+                          "it to start again") from None
+    if stored != key or arrays["amplitude"].shape[1:] != shape:
+        raise JudderError(f"checkpoint {path} belongs to another envelope "
+                          "(other ranges, samples, grid or parameters); "
+                          "delete it or write elsewhere")
+    return (dict(zip(arrays["index"].tolist(), arrays["amplitude"])),
+            {j: (v, u) for j, v, u in zip(arrays["refined_index"].tolist(),
+                                          arrays["refined_value"],
+                                          arrays["refined_unit"])})
+
+
+def _save(path, key, done, refined, shape, dimension):
+    index = np.array(sorted(done), dtype=int)
+    amplitude = np.array([done[i] for i in index]).reshape(-1, *shape)
+    where = np.array(sorted(refined), dtype=int)
+    buffer = io.BytesIO()
+    np.savez(buffer, key=key, index=index, amplitude=amplitude,
+             refined_index=where,
+             refined_value=np.array([refined[j][0] for j in where]),
+             refined_unit=np.array([refined[j][1] for j in where]
+                                   ).reshape(-1, dimension))
+    atomic_write(path, lambda stream: stream.write(buffer.getvalue()))
+
+
+class _Checkpoint:
+    """Writes the state at most every :data:`CHECKPOINT_SECONDS`."""
+
+    def __init__(self, path, key, shape, dimension):
+        self.path, self.key = path, key
+        self.shape, self.dimension = shape, dimension
+        self.done, self.refined = _load(path, key, shape)
+        self._last = time.monotonic()
+        self._dirty = False
+
+    def changed(self):
+        self._dirty = True
+        if self.path is not None and \
+                time.monotonic() - self._last > CHECKPOINT_SECONDS:
+            self.write()
+
+    def write(self):
+        if self.path is not None and self._dirty:
+            _save(self.path, self.key, self.done, self.refined, self.shape,
+                  self.dimension)
+            self._last = time.monotonic()
+            self._dirty = False
+
+
+def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
+                 sampler="sobol", vertices=True, method="dyson",
+                 min_growth=0.0, amplitudes=150, refine=REFINE_EVALUATIONS,
+                 workers=None,
+                 checkpoint=None, progress=None):
+    """Compute (or resume) an envelope.
+
+    Parameters
+    ----------
+    params : drivelines.Parameters
+        The nominal set.
+    ranges : stability.ranges.Ranges
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_max : float
+        Largest amplitude searched, Pa.
+    samples, seed, sampler, vertices
+        As :func:`stability.ranges.design_points` takes them.
+    method, min_growth
+        As :func:`stability.tongues.tongue_boundaries` takes them.
+    amplitudes : int
+        Points of the amplitude grid of the probability.
+    refine : int
+        Boundary evaluations per uncertain parameter at each frequency to
+        refine the union between the samples
+        (:func:`stability.envelope.refine_union`); 0: no refinement.
+    checkpoint : path, optional
+        NPZ of the boundaries computed so far, rewritten (atomically) at
+        most every :data:`CHECKPOINT_SECONDS` and when interrupted; a run
+        with the same inputs resumes from it.
+
+    Returns
+    -------
+    envelope : stability.envelope.Envelope
+    failures : list of infra.parallel.TaskFailure
+        Samples (and refinements) that failed: left out of the envelope,
+        not checkpointed.
+    resumed : int
+        Samples taken from the checkpoint.
+    """
+    freq_hz = np.asarray(freq_hz, dtype=float)
+    unit, is_vertex = design_points(ranges, samples, seed, sampler, vertices)
+    values = ranges.values(unit)
+    names = ranges.names
+    check_values(params, names, values)
+    nominal_row = np.array([[params[n] for n in names]])
+    rows = np.vstack([nominal_row, values])        # row 0: the nominal set
+    key = _key(params, names, rows, freq_hz, p_max, method, min_growth,
+               int(refine))
+    shape = (len(freq_hz), 3)
+    with cluster(workers):     # one for the samples and the refinement
+        return _run(params, ranges, names, values, is_vertex, unit, rows,
+                    freq_hz, p_max, method, min_growth, amplitudes, refine,
+                    workers, _Checkpoint(checkpoint, key, shape, len(names)),
+                    progress)
+
+
+def _run(params, ranges, names, values, is_vertex, unit, rows, freq_hz,
+         p_max, method, min_growth, amplitudes, refine, workers, state,
+         progress):
+    shape = state.shape
+    resumed = len(state.done)
+    failures = []
+    try:
+        total = len(rows)
+        if progress is not None:
+            progress(len(state.done), total)
+        for index, outcome in compute_samples(
+                params, names, rows, freq_hz, p_max, method, min_growth,
+                skip=state.done, workers=workers):
+            if isinstance(outcome, np.ndarray):
+                state.done[index] = outcome
+                state.changed()
+            else:
+                failures.append(outcome)
+            if progress is not None:
+                progress(len(state.done) + len(failures), total)
+        ok = np.array([i in state.done for i in range(len(rows))])
+        amplitude = np.array([state.done.get(i, np.full(shape, np.nan))
+                              for i in range(len(rows))])
+        lowest = np.where(ok[1:, None], np.min(np.where(
+            np.isnan(amplitude[1:]), np.inf, amplitude[1:]), axis=-1),
+            np.inf)
+        if refine and len(values):
+            total += int(np.sum(refinement_starts(lowest) >= 0))
+            for index, outcome in refine_union(
+                    params, ranges, unit, lowest, freq_hz, p_max, method,
+                    min_growth, skip=state.refined, evaluations=refine,
+                    workers=workers):
+                if isinstance(outcome, tuple):
+                    state.refined[index] = outcome
+                    state.changed()
+                else:
+                    failures.append(outcome)
+                if progress is not None:
+                    progress(len(state.done) + len(state.refined)
+                             + len(failures), total)
+    finally:
+        state.write()
+    refined = np.full(len(freq_hz), np.inf)
+    refined_values = np.full((len(freq_hz), len(names)), np.nan)
+    for j, (value, point) in state.refined.items():
+        refined[j] = value
+        refined_values[j] = ranges.values(point[None])[0]
+    envelope = build_envelope(
+        freq_hz, p_max, names, values, is_vertex, amplitude[1:], ok[1:],
+        amplitude[0], amplitudes=amplitudes, min_growth=min_growth,
+        method=method, coverage=ranges.coverage, refined=refined,
+        refined_values=refined_values)
+    return envelope, failures, resumed
