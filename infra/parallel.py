@@ -32,6 +32,7 @@ import threading
 from threadpoolctl import threadpool_limits
 
 from .errors import JudderError
+from .lifecycle import die_with_parent
 
 __all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures"]
 
@@ -195,6 +196,9 @@ class _Cluster:
             env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                  "MKL_NUM_THREADS": "1"})
         self._client = Client(self._cluster, set_as_default=False)
+        # every worker dies with this process, also when it is killed
+        # (SIGKILL leaves no chance to close the cluster)
+        self._client.run(die_with_parent)
 
     def close(self):
         """Close the client and a local cluster; kill any worker process

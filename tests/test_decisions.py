@@ -180,7 +180,8 @@ def test_check_command_line(tmp_path):
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert [s["verdict"] for s in data["settings"]] == ["stable", "judder"]
-    assert (tmp_path / "c.csv").read_text().startswith("freq_hz,p_f_bar")
+    assert (tmp_path / "c.csv").read_text().startswith(
+        "# written by judder\nfreq_hz,p_f_bar")
     summary = _judder("check", "--freq", "102.9", "--pf", "0.3", "--params",
                       "none")
     assert summary.stdout.count("\n") == 1 and "JUDDER" in summary.stdout

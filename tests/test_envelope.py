@@ -196,7 +196,8 @@ def test_the_command_writes_npz_csv_plot_and_json(tmp_path):
         assert arrays["amplitude_bar"].shape == (10, 2, 3)
         assert_allclose(arrays["broadest_bar"], data["broadest_p_f_bar"])
     lines = table.read_text().splitlines()
-    assert lines[0].startswith("freq_hz,nominal_p_f_bar,broadest_p_f_bar")
-    assert len(lines) == 3
+    assert lines[0] == "# written by judder"     # the overwrite rule's mark
+    assert lines[1].startswith("freq_hz,nominal_p_f_bar,broadest_p_f_bar")
+    assert len(lines) == 4
     assert plot.read_bytes()[:4] == b"\x89PNG"
     assert not (tmp_path / "e.npz.checkpoint.npz").exists()

@@ -9,6 +9,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -175,7 +176,11 @@ def test_campaign_workers_die_with_their_parent(tmp_path, sig):
     while not index.exists() or len(index.read_text().splitlines()) < 3:
         assert proc.poll() is None and time.time() < deadline
         time.sleep(0.1)
-    children = open(f"/proc/{proc.pid}/task/{proc.pid}/children").read()
+    # the workers may be started from any thread (Dask's nannies run in
+    # its event-loop thread): the children of every task of the process
+    children = " ".join(
+        (task / "children").read_text()
+        for task in Path(f"/proc/{proc.pid}/task").iterdir())
     assert children.split(), "no worker processes"
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
