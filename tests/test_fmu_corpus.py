@@ -34,7 +34,8 @@ LIBRARY = ROOT / "modelica"
 #: Models the compiler must build.
 BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
          "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
-         "TableClutchRig", "TableMatrix", "BouncingBall", "Relation"]
+         "TableClutchRig", "TableMatrix", "BouncingBall", "Relation",
+         "LockUp"]
 #: Models it must refuse: (model, words of the message, line in the file).
 REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
@@ -340,6 +341,51 @@ def test_relation_switches_at_its_event(fmus, version, kind):
     t = result["time"]
     assert_allclose(result["x"], np.where(t < 0.5, 1 - t, 0.5 - 2 * (t - 0.5)),
                     atol=1e-9)
+
+
+def _lock_up(t):
+    """Speeds of LockUp: slipping at tau_max = 30 (J1 = 1 driven by
+    10 + 20 t, J2 = 2 against 1), stuck from t_l where w1 = w2 (common
+    acceleration (9 + 20 t)/3, clutch torque (2 T1 + 1)/3), slipping again
+    from t_b where that torque reaches 30 (T1 = 44.5)."""
+    t_l = (34.5 - np.sqrt(34.5 ** 2 - 400)) / 20
+    t_b = (44.5 - 10) / 20
+
+    def stuck(s):
+        return 14.5 * t_l + (9 * (s - t_l) + 10 * (s ** 2 - t_l ** 2)) / 3
+    w_b = stuck(t_b)
+    w1 = np.where(t < t_l, 10 - 20 * t + 10 * t ** 2, np.where(
+        t < t_b, stuck(t), w_b + 10 * (t ** 2 - t_b ** 2) - 20 * (t - t_b)))
+    w2 = np.where(t < t_l, 14.5 * t, np.where(
+        t < t_b, stuck(t), w_b + 14.5 * (t - t_b)))
+    return w1, w2, t_l, t_b
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_clutch_locks_and_breaks_away_by_events(fmus, version, kind):
+    # one when-clause toggles a Real mode state: its indicator is -slip
+    # while slipping and |tau| - tau_max while stuck
+    result = _run(fmus, "LockUp", version, kind,
+                  output=["w1", "w2", "locked"], output_interval=0.01)
+    t = result["time"]
+    w1, w2, t_l, t_b = _lock_up(t)
+    assert_allclose(result["w1"], w1, atol=1e-7)
+    assert_allclose(result["w2"], w2, atol=1e-7)
+    stuck = result["locked"] > 0.5
+    assert np.all(stuck[(t > t_l + 0.01) & (t < t_b - 0.01)])
+    assert not np.any(stuck[(t < t_l - 0.01) | (t > t_b + 0.01)])
+
+
+def test_locking_clutch_as_a_component_is_refused(tmp_path):
+    # the stuck branch der(w_rel) = 0 needs the relative speed's
+    # constraint differentiated a second time (docs/compiler.md, limits)
+    from fmu.backend import BackEndError
+    with pytest.raises(BackEndError, match="structurally singular.*"
+                       r"0 = \(clutch\.w_rel-\(der\(b\.phi\)"):
+        build_fmu(class_source(CORPUS, "LockingClutchRig"),
+                  "LockingClutchRig", tmp_path / "LockingClutchRig.fmu",
+                  roots=[CORPUS, LIBRARY])
+    assert not list(tmp_path.iterdir())
 
 
 def test_fmu_state_rolls_a_step_back_bit_identically(fmus):
