@@ -15,11 +15,13 @@ with the constants to copy into :mod:`judder.cli.timing`:
 ``product_s``
     one amplitude on one sub-interval (Horner evaluation and the matrix
     product), from a 1 Hz column of 200 amplitudes;
-``tongue_frequency_s``
-    one frequency of ``tongues`` (default solver) on the paper's 4-DOF set;
-``fmu_second_s``
-    one simulated second of one FMU run (4-DOF, 1000 rpm), if the FMU
-    is built.
+``tongue_frequency_s``, ``tongue_fixed_s``
+    one frequency of ``tongues`` (default solver, :func:`judder.api.tongues`
+    on the paper's 4-DOF set) and its fixed cost, from 50 and 500
+    frequencies at 10-220 Hz.
+
+The FMU costs of ``crosscheck`` and ``campaign`` are taken from the user
+time of those commands (see :mod:`judder.cli.estimates`).
 """
 
 import json
@@ -29,10 +31,10 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from drivelines import get_preset
+from judder import api
 from stability import build_driveline
 from stability.maps import stability_map
 from stability.monodromy import DysonPropagator
-from stability.tongues import tongue_boundaries
 
 BAR = 1e5
 
@@ -61,11 +63,13 @@ def calibrate():
     amplitudes = np.linspace(0, 1.5 * BAR, 200)
     product = (_cpu(propagator.monodromy, amplitudes)
                / len(amplitudes) / propagator._coefficients[0].shape[0])
-    freqs = np.linspace(20.0, 120.0, 6)
-    tongue = _cpu(tongue_boundaries, driveline, freqs, 1.5 * BAR,
-                  repeat=1) / len(freqs)
+    api.tongues(np.linspace(20.0, 120.0, 6))          # warm up
+    few, many = (_cpu(api.tongues, np.linspace(10.0, 220.0, n), repeat=1)
+                 for n in (50, 500))
+    tongue = (many - few) / 450
     result = {"frequency_s": frequency, "subinterval_s": subinterval,
-              "product_s": product, "tongue_frequency_s": tongue}
+              "product_s": product, "tongue_frequency_s": tongue,
+              "tongue_fixed_s": few - 50 * tongue}
     return result
 
 

@@ -39,15 +39,20 @@ LIMIT_VARIABLE = "JUDDER_MAX_HOURS"
 # Per-unit costs, CPU seconds of one thread on the development machine
 # (2 shared cores), measured by benchmarks/time_calibration.py:
 # {"frequency_s": 0.00110, "subinterval_s": 0.000224,
-#  "product_s": 1.78e-06, "tongue_frequency_s": 0.00601}
+#  "product_s": 1.78e-06}, and in a second run (the test suite running
+# beside it) {"frequency_s": 0.00133, "subinterval_s": 0.000225,
+#  "product_s": 1.26e-06, "tongue_frequency_s": 0.000498,
+#  "tongue_fixed_s": 0.0815}; the tongues once more by hand, 0.00071 and
+# 0.13 (0.17 s for 50 frequencies, 0.49 s for 500).
 #: Fixed cost of one frequency of a Dyson map.
 FREQUENCY_S = 1.1e-3
 #: Building the Dyson series on one sub-interval.
 SUBINTERVAL_S = 2.24e-4
 #: One amplitude on one sub-interval (Horner evaluation, matrix product).
 PRODUCT_S = 1.78e-6
-#: One frequency of ``tongues`` (default solver).
-TONGUE_FREQUENCY_S = 6.0e-3
+#: One frequency of ``tongues`` (default solver), and its fixed cost.
+TONGUE_FREQUENCY_S = 6.0e-4
+TONGUE_FIXED_S = 0.1
 #: One simulated second of one FMU run of ``crosscheck`` (4-DOF), and of
 #: one ``campaign`` run at 1000 rpm (its tooth signals), CPU seconds:
 #: from ``judder crosscheck --freq 40:60:3 --pf 0.5 --duration 3`` (6
@@ -95,7 +100,8 @@ def map_seconds(params, freq_hz, amplitudes, tongues=False):
 def tongues_seconds(params, freq_hz):
     """Estimated seconds of ``tongues`` over these frequencies."""
     _, size = subintervals(params, freq_hz[:1])
-    return len(freq_hz) * TONGUE_FREQUENCY_S * _scale(size)
+    return ((TONGUE_FIXED_S + len(freq_hz) * TONGUE_FREQUENCY_S)
+            * _scale(size))
 
 
 def time_limit():
@@ -232,7 +238,7 @@ def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
     per_job = (tongues_seconds(params, freq_hz)
                + map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES)))
     seconds = (jobs * per_job + refine * names * len(freq_hz)
-               * tongues_seconds(params, freq_hz[:1]))
+               * TONGUE_FREQUENCY_S)
     return check_time(seconds, f"{jobs} samples x {len(freq_hz)} "
                       "frequencies", "fewer --samples, uncertain parameters "
                       "or --freq", _workers(workers))
