@@ -104,13 +104,19 @@ def test_the_limit_variable_raises_the_limit(monkeypatch):
                                "solve_ivp") is None
 
 
-def test_long_work_is_announced_on_stderr(capsys):
+def test_long_work_is_announced_on_a_terminal(capsys, monkeypatch):
+    monkeypatch.setattr(estimates, "_terminal", lambda: True)
     estimates.check_time(3 * estimates.ANNOUNCE_S, "7 things", "fewer")
     assert "estimated time 30 s (7 things)" in capsys.readouterr().err
     estimates.check_time(estimates.ANNOUNCE_S / 2, "7 things", "fewer")
     assert capsys.readouterr().err == ""
     # shared by workers
     assert estimates.check_time(40.0, "x", "y", workers=4) == 10.0
+    capsys.readouterr()
+    # not in a pipe or a log (one error line stays one line)
+    monkeypatch.setattr(estimates, "_terminal", lambda: False)
+    estimates.check_time(3 * estimates.ANNOUNCE_S, "7 things", "fewer")
+    assert capsys.readouterr().err == ""
 
 
 @pytest.mark.parametrize("freq", [0.3, 1.0, 7.0, 100.0])

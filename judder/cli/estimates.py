@@ -3,7 +3,8 @@
 The estimate adds up per-unit costs measured once on the development
 machine with ``benchmarks/time_calibration.py`` (CPU seconds of one
 thread, paper's 4-DOF set, 6 states; the script prints the constants
-below). A request estimated above :data:`ANNOUNCE_S` says so on stderr;
+below). A request estimated above :data:`ANNOUNCE_S` says so on stderr
+(on a terminal, like the progress bars);
 one above the time limit is refused before any work, naming the estimate,
 what drives it and what to change. The limit is :data:`MAX_HOURS` hours,
 or the hours in the environment variable ``JUDDER_MAX_HOURS`` (to allow a
@@ -129,7 +130,7 @@ def _duration(seconds):
 
 def check_time(seconds, drivers, change, workers=1):
     """Refuse work estimated above the time limit; announce work above
-    :data:`ANNOUNCE_S` on stderr.
+    :data:`ANNOUNCE_S` on stderr when it is a terminal.
 
     Parameters
     ----------
@@ -155,7 +156,7 @@ def check_time(seconds, drivers, change, workers=1):
             f"the work is estimated at {_duration(wall)} ({drivers}), "
             f"above the limit of {_duration(limit)}; allowed: {change}, or "
             f"raise the limit with {LIMIT_VARIABLE}=HOURS")
-    if wall > ANNOUNCE_S:
+    if wall > ANNOUNCE_S and _terminal():
         print(f"judder: estimated time {_duration(wall)} ({drivers})",
               file=sys.stderr)
     return wall
@@ -242,6 +243,11 @@ def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
     return check_time(seconds, f"{jobs} samples x {len(freq_hz)} "
                       "frequencies", "fewer --samples, uncertain parameters "
                       "or --freq", _workers(workers))
+
+
+def _terminal():
+    """Whether stderr is a terminal (where the progress bars show too)."""
+    return sys.stderr.isatty()
 
 
 def _workers(workers):

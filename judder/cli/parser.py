@@ -129,7 +129,7 @@ def build_parser():
                     "parameters in SI units.",
         epilog="Long work (map, floquet, tongues, sensitivity, crosscheck, "
                "campaign, envelope) is estimated before it starts: above "
-               "10 s the estimate is printed on stderr, above 24 h the "
+               "10 s the estimate is printed on a terminal, above 24 h the "
                "request is refused; the environment variable "
                "JUDDER_MAX_HOURS=HOURS sets another limit.")
     sub = parser.add_subparsers(dest="command", required=True,
