@@ -18,6 +18,7 @@ from .. import api
 from ..inputs import (read_boundary, read_chart_boundary,
                       read_chart_min_growth)
 from .values import check_campaign_disk, check_map_memory, check_work
+from . import estimates
 from .options import (check_number, emit, make_parents, model_title,
                       parameters_of, parse_grid, parse_list, parse_waveform,
                       Progress)
@@ -103,6 +104,7 @@ def cmd_floquet(args):
     """Floquet multipliers at one dither frequency and amplitude."""
     check_number("--pf", args.pf, "bar", strict=False)
     params, changes = parameters_of(args)
+    estimates.check_floquet(params.replace(**changes), args.freq, args.method)
     make_parents(args.plot)
     point = api.floquet(args.freq, args.pf, params, changes,
                         method=args.method,
@@ -132,6 +134,8 @@ def cmd_map(args):
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
     check_map_memory(params.replace(**changes), freqs, amplitudes)
+    estimates.check_map(params.replace(**changes), freqs, amplitudes,
+                        args.method, tongues=args.plot is not None)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(
@@ -158,6 +162,8 @@ def cmd_tongues(args):
     freqs = parse_grid(args.freq, "--freq", "Hz")
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
+    estimates.check_tongues(params.replace(**changes), freqs,
+                            background=args.plot is not None)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "tongue boundaries") as progress:
         result = api.tongues(freqs, _pf_max(args), params, changes,
@@ -203,6 +209,8 @@ def cmd_sensitivity(args):
     make_parents(args.out, args.plot)
     cases = 1 + len(names) * len(values or factors)
     check_work("--params x --values/--factors", cases, "cases")
+    estimates.check_sensitivity(params.replace(**changes), freqs, cases,
+                                args.workers)
     with Progress(cases, "sensitivity cases") as progress:
         result = api.sensitivity(names, freqs, p_max_bar, factors=factors,
                                  values=values, parameters=params,
@@ -453,6 +461,8 @@ def cmd_crosscheck(args):
             ", for the multipliers to be fitted")
     check_work("--freq x --pf", 2 * len(freqs) * len(amplitudes),
                "FMU runs")
+    estimates.check_crosscheck(2 * len(freqs) * len(amplitudes),
+                               args.duration, args.workers)
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs) * len(amplitudes), "FMU runs") as progress:
@@ -494,6 +504,7 @@ def cmd_campaign(args):
     runs = (len(freqs) * len(amplitudes) * len(rpm) * len(temperatures))
     check_work("--freq x --pf x --rpm x --temperatures", runs, "runs")
     check_campaign_disk(args.out, runs, args.duration, max(rpm), formats)
+    estimates.check_campaign(runs, args.duration, max(rpm), args.workers)
     with Progress(runs, "bench runs") as progress:
         result = api.campaign(args.out, freqs, amplitudes, engine_rpm=rpm,
                               temperatures=temperatures,
@@ -708,6 +719,9 @@ def cmd_envelope(args):
                               "whole number >= 0")
     params, changes = parameters_of(args)
     ranges = read_ranges(args.ranges, params.replace(**changes))
+    estimates.check_envelope(params.replace(**changes), freqs, ranges,
+                             args.samples, not args.no_vertices, args.refine,
+                             args.workers)
     make_parents(args.out, args.csv, args.plot, args.checkpoint)
     checkpoint = args.checkpoint or checkpoint_path(args.out, args.csv,
                                                     args.plot)

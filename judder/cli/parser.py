@@ -126,7 +126,12 @@ def build_parser():
         description="Clutch judder from parametric excitation by hydraulic "
                     "dither: Floquet stability of the 3-DOF and 4-DOF "
                     "driveline. Frequencies in Hz, dither amplitude in bar, "
-                    "parameters in SI units.")
+                    "parameters in SI units.",
+        epilog="Long work (map, floquet, tongues, sensitivity, crosscheck, "
+               "campaign, envelope) is estimated before it starts: above "
+               "10 s the estimate is printed on a terminal, above 24 h the "
+               "request is refused; the environment variable "
+               "JUDDER_MAX_HOURS=HOURS sets another limit.")
     sub = parser.add_subparsers(dest="command", required=True,
                                 metavar="COMMAND")
 

@@ -197,12 +197,10 @@ def check_map_memory(params, freq_hz, p_f_bar):
     DysonPropagator`); the sub-intervals at the lowest frequency follow
     from the spectral radius of ``A0`` (the modulation only adds more).
     """
-    from stability import build_driveline
-    system = build_driveline(params).periodic_system()
-    size = len(system.u)
-    radius = float(np.abs(np.linalg.eigvals(system.A0)).max())
+    from .estimates import subintervals
     f = float(np.min(freq_hz))
-    steps = max(1, math.ceil((2 * radius + 2 * math.pi * f) / f / 8.0))
+    steps, size = subintervals(params, [f])
+    steps = int(steps[0])
     needed = 3 * len(p_f_bar) * steps * size * size * 8 \
         + 64 * len(freq_hz) * len(p_f_bar)
     free = available_memory()

@@ -1,0 +1,254 @@
+"""Time of a command's work, estimated before it starts (issue 9).
+
+The estimate adds up per-unit costs measured once on the development
+machine with ``benchmarks/time_calibration.py`` (CPU seconds of one
+thread, paper's 4-DOF set, 6 states; the script prints the constants
+below). A request estimated above :data:`ANNOUNCE_S` says so on stderr
+(on a terminal, like the progress bars);
+one above the time limit is refused before any work, naming the estimate,
+what drives it and what to change. The limit is :data:`MAX_HOURS` hours,
+or the hours in the environment variable ``JUDDER_MAX_HOURS`` (to allow a
+longer study on purpose: ``JUDDER_MAX_HOURS=100 judder map ...``).
+
+The estimate is a lower bound of the wall time: it counts the
+sub-intervals the fastest eigenvalue asks for (a strong modulation may
+add more), one thread at full speed (a loaded machine, or several BLAS
+threads fighting for the cores, is slower) and sizes other than 6 states
+by ``(m / 6)^2``.
+"""
+
+import math
+import os
+import sys
+
+import numpy as np
+
+from infra.errors import JudderError
+
+__all__ = ["subintervals", "map_seconds", "tongues_seconds", "check_time",
+           "check_map", "check_floquet", "check_tongues", "check_sensitivity",
+           "check_crosscheck", "check_campaign", "check_envelope",
+           "MAX_HOURS", "ANNOUNCE_S"]
+
+#: Longest work allowed without ``JUDDER_MAX_HOURS``, hours.
+MAX_HOURS = 24.0
+#: Estimates above this (s) are printed on stderr before the work.
+ANNOUNCE_S = 10.0
+#: Environment variable raising (or lowering) the time limit, hours.
+LIMIT_VARIABLE = "JUDDER_MAX_HOURS"
+
+# Per-unit costs, CPU seconds of one thread on the development machine
+# (2 shared cores), measured by benchmarks/time_calibration.py:
+# {"frequency_s": 0.00110, "subinterval_s": 0.000224,
+#  "product_s": 1.78e-06}, and in a second run (the test suite running
+# beside it) {"frequency_s": 0.00133, "subinterval_s": 0.000225,
+#  "product_s": 1.26e-06, "tongue_frequency_s": 0.000498,
+#  "tongue_fixed_s": 0.0815}; the tongues once more by hand, 0.00071 and
+# 0.13 (0.17 s for 50 frequencies, 0.49 s for 500).
+#: Fixed cost of one frequency of a Dyson map.
+FREQUENCY_S = 1.1e-3
+#: Building the Dyson series on one sub-interval.
+SUBINTERVAL_S = 2.24e-4
+#: One amplitude on one sub-interval (Horner evaluation, matrix product).
+PRODUCT_S = 1.78e-6
+#: One frequency of ``tongues`` (default solver), and its fixed cost.
+TONGUE_FREQUENCY_S = 6.0e-4
+TONGUE_FIXED_S = 0.1
+#: One simulated second of one FMU run of ``crosscheck`` (4-DOF), and of
+#: one ``campaign`` run at 1000 rpm (its tooth signals), CPU seconds:
+#: from ``judder crosscheck --freq 40:60:3 --pf 0.5 --duration 3`` (6
+#: runs of 3 s, 5.8 s user time with the start-up) and ``judder campaign
+#: --freq 40:60:3 --pf 0.5 --duration 2`` (3 runs of 2 s, 5.6 s).
+FMU_SECOND_S = 0.25
+CAMPAIGN_SECOND_S = 0.5
+#: States of the calibration set (paper's 4-DOF).
+REFERENCE_SIZE = 6
+#: Largest phase per sub-interval, as in stability.monodromy (_MAX_PHASE).
+_MAX_PHASE = 8.0
+
+
+def subintervals(params, freq_hz):
+    """Sub-intervals per period the Dyson engine needs at least, per
+    frequency, and the number of states.
+
+    As in :class:`stability.monodromy.DysonPropagator`: the integrand of
+    one sub-interval turns through at most 8 rad, and it turns at twice
+    the spectral radius of ``A0`` plus the dither's angular frequency.
+    """
+    from stability import build_driveline
+    system = build_driveline(params).periodic_system()
+    radius = float(np.abs(np.linalg.eigvals(system.A0)).max())
+    f = np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    steps = np.maximum(1, np.ceil((2 * radius + 2 * np.pi * f) / f
+                                  / _MAX_PHASE))
+    return steps, len(system.A0)
+
+
+def _scale(size):
+    return (size / REFERENCE_SIZE) ** 2
+
+
+def map_seconds(params, freq_hz, amplitudes, tongues=False):
+    """Estimated seconds of ``map``: per frequency, a fixed cost, the
+    series on each sub-interval and each amplitude on each sub-interval
+    (plus the exact boundaries when ``tongues``)."""
+    steps, size = subintervals(params, freq_hz)
+    seconds = (len(steps) * FREQUENCY_S + _scale(size) * float(
+        np.sum(steps * (SUBINTERVAL_S + len(amplitudes) * PRODUCT_S))))
+    return seconds + (tongues_seconds(params, freq_hz) if tongues else 0.0)
+
+
+def tongues_seconds(params, freq_hz):
+    """Estimated seconds of ``tongues`` over these frequencies."""
+    _, size = subintervals(params, freq_hz[:1])
+    return ((TONGUE_FIXED_S + len(freq_hz) * TONGUE_FREQUENCY_S)
+            * _scale(size))
+
+
+def time_limit():
+    """The time limit, s (``JUDDER_MAX_HOURS`` or :data:`MAX_HOURS`)."""
+    text = os.environ.get(LIMIT_VARIABLE)
+    if text is None:
+        return MAX_HOURS * 3600.0
+    try:
+        hours = float(text)
+    except ValueError:
+        hours = math.nan
+    if not hours > 0 or not math.isfinite(hours):
+        raise JudderError(f"{LIMIT_VARIABLE}={text!r} is not allowed; "
+                          "allowed: a number of hours > 0")
+    return hours * 3600.0
+
+
+def _duration(seconds):
+    if seconds < 120:
+        return f"{seconds:.3g} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.3g} min"
+    return f"{seconds / 3600:.3g} h"
+
+
+def check_time(seconds, drivers, change, workers=1):
+    """Refuse work estimated above the time limit; announce work above
+    :data:`ANNOUNCE_S` on stderr when it is a terminal.
+
+    Parameters
+    ----------
+    seconds : float
+        Estimated CPU seconds of the whole work.
+    drivers : str
+        What the estimate is made of (``'2000 frequencies x 11200
+        sub-intervals'``).
+    change : str
+        What to change to make it shorter.
+    workers : int
+        Processes sharing the work (the estimate is divided by them).
+
+    Returns
+    -------
+    float
+        The estimated wall seconds.
+    """
+    wall = seconds / max(1, workers or 1)
+    limit = time_limit()
+    if wall > limit:
+        raise JudderError(
+            f"the work is estimated at {_duration(wall)} ({drivers}), "
+            f"above the limit of {_duration(limit)}; allowed: {change}, or "
+            f"raise the limit with {LIMIT_VARIABLE}=HOURS")
+    if wall > ANNOUNCE_S and _terminal():
+        print(f"judder: estimated time {_duration(wall)} ({drivers})",
+              file=sys.stderr)
+    return wall
+
+
+# The checks the commands call before work. Only the default engine
+# 'dyson' is estimated: 'solve_ivp' is the slow reference, its cost
+# follows the integrator's step control and is not estimated.
+
+
+def _dyson(method):
+    return method == "dyson"
+
+
+def check_map(params, freq_hz, amplitudes, method, tongues=False):
+    """``map``: frequencies x sub-intervals (x amplitudes)."""
+    if not _dyson(method):
+        return None
+    steps, _ = subintervals(params, freq_hz)
+    return check_time(
+        map_seconds(params, freq_hz, amplitudes, tongues),
+        f"{len(freq_hz)} frequencies x {steps.mean():.4g} sub-intervals per "
+        f"period on average (from {steps.max():.4g} at {np.min(freq_hz):g} "
+        f"Hz) x {len(amplitudes)} amplitudes",
+        "fewer or higher frequencies (--freq), or fewer amplitudes (--pf)")
+
+
+def check_floquet(params, freq_hz, method):
+    """``floquet``: the sub-intervals of one period."""
+    if not _dyson(method):
+        return None
+    steps, _ = subintervals(params, [freq_hz])
+    return check_time(map_seconds(params, [freq_hz], [0.0]),
+                      f"{steps[0]:.4g} sub-intervals per period at "
+                      f"{freq_hz:g} Hz", "a higher --freq")
+
+
+def check_tongues(params, freq_hz, background=False):
+    """``tongues``: frequencies (and the background map of --plot)."""
+    from judder.api import BACKGROUND_AMPLITUDES
+    seconds = tongues_seconds(params, freq_hz) + (
+        map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES))
+        if background else 0.0)
+    return check_time(seconds, f"{len(freq_hz)} frequencies",
+                      "fewer or higher frequencies (--freq)")
+
+
+def check_sensitivity(params, freq_hz, cases, workers):
+    """``sensitivity``: cases x the tongues of one case."""
+    return check_time(cases * tongues_seconds(params, freq_hz),
+                      f"{cases} cases x {len(freq_hz)} frequencies",
+                      "fewer --params, --factors/--values or --freq",
+                      _workers(workers))
+
+
+def check_crosscheck(runs, duration, workers):
+    """``crosscheck``: FMU runs x simulated seconds."""
+    return check_time(runs * duration * FMU_SECOND_S,
+                      f"{runs} FMU runs x {duration:g} s simulated",
+                      "fewer --freq x --pf points or a shorter --duration",
+                      _workers(workers))
+
+
+def check_campaign(runs, duration, rpm_max, workers):
+    """``campaign``: runs x simulated seconds x speed (tooth signals)."""
+    return check_time(
+        runs * duration * max(rpm_max, 1000.0) / 1000.0 * CAMPAIGN_SECOND_S,
+        f"{runs} runs x {duration:g} s simulated up to {rpm_max:g} rpm",
+        "fewer --freq x --pf x --rpm x --temperatures runs or a shorter "
+        "--duration", _workers(workers))
+
+
+def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
+                   workers):
+    """``envelope``: samples (and vertices) x the tongues and background
+    map of one sample, and the refining boundary evaluations."""
+    from judder.api import BACKGROUND_AMPLITUDES
+    names = len(ranges.names)
+    jobs = samples + (2 ** names if vertices else 0)
+    per_job = (tongues_seconds(params, freq_hz)
+               + map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES)))
+    seconds = (jobs * per_job + refine * names * len(freq_hz)
+               * TONGUE_FREQUENCY_S)
+    return check_time(seconds, f"{jobs} samples x {len(freq_hz)} "
+                      "frequencies", "fewer --samples, uncertain parameters "
+                      "or --freq", _workers(workers))
+
+
+def _terminal():
+    """Whether stderr is a terminal (where the progress bars show too)."""
+    return sys.stderr.isatty()
+
+
+def _workers(workers):
+    return workers or os.cpu_count() or 1
