@@ -42,7 +42,8 @@ from fmpy.logging import addLoggerProxy
 
 from infra.errors import JudderError, ParameterError
 
-from .modelica import NamedParameters, reduce_periodic
+from .modelica import (NamedParameters, check_no_acceleration,
+                       reduce_periodic)
 from .specs import ParameterSpec
 
 __all__ = ["FmuError", "FmuParameters", "fmu_description", "linearize_fmu",
@@ -324,14 +325,7 @@ def _steady_slip(d, A0, rate, moved, along):
     size = max(np.abs(A0).max(), 1.0)
     if np.abs(moved - A0).max() <= _ZERO * size:
         return
-    scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
-    drift = A0 @ rate
-    worst = int(np.argmax(np.abs(drift)))
-    _require(np.abs(drift).max() <= 1e-8 * scale,
-             f"{d.model_name}: the start values are not a steady slip "
-             f"(d/dt der({d.state_names[worst]}) = {drift[worst]:.3g}); "
-             "allowed: start speeds and spring deflections in equilibrium "
-             "without dither")
+    check_no_acceleration(d.model_name, d.state_names, A0, rate, FmuError)
     _require(np.abs(along - A0).max() <= _ZERO * size,
              f"{d.model_name}: the linearisation changes along the slip; "
              "allowed: forces that depend on angles linearly")

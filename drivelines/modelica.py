@@ -44,7 +44,8 @@ from .specs import ParameterSpec, split_assignment
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
-           "linearize", "reduce_periodic", "NamedParameters"]
+           "linearize", "reduce_periodic", "NamedParameters",
+           "check_no_acceleration"]
 
 #: The project's Modelica library (package ``Judder``).
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
@@ -449,6 +450,20 @@ def reduce_periodic(name, state_names, A0, B0, values, amplitude, frequency):
         values=values, amplitude=amplitude, frequency=frequency)
 
 
+def check_no_acceleration(name, state_names, A0, rate, error):
+    """``A0 der(x) = 0`` at the start: no acceleration builds up along the
+    slip, else ``error`` naming the state that accelerates."""
+    scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
+    drift = A0 @ rate
+    worst = int(np.argmax(np.abs(drift)))
+    if np.abs(drift).max() > 1e-8 * scale:
+        raise error(
+            f"{name}: the start values are not a steady slip "
+            f"(d/dt der({state_names[worst]}) = {drift[worst]:.3g}); "
+            "allowed: start speeds and spring deflections in equilibrium "
+            "without dither")
+
+
 def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):
     """The operating condition is a steady slip along which ``J`` is fixed.
 
@@ -460,14 +475,8 @@ def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):
     rate = np.asarray(rate).ravel()
     if not any(casadi.depends_on(jac, x[i]) for i in range(x.shape[0])):
         return
-    scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
-    drift = A0 @ rate
-    worst = int(np.argmax(np.abs(drift)))
-    _require(np.abs(drift).max() <= 1e-8 * scale,
-             f"{class_name}: the start values are not a steady slip "
-             f"(d/dt der({ode.states[worst].name}) = {drift[worst]:.3g}); "
-             "allowed: start speeds and spring deflections in equilibrium "
-             "without dither")
+    check_no_acceleration(class_name, [q.name for q in ode.states], A0,
+                          rate, ModelicaError)
     for i, quantity in enumerate(ode.states):
         if abs(rate[i]) > _ZERO * max(np.abs(rate).max(), 1.0) and \
                 casadi.depends_on(jac, x[i]):
