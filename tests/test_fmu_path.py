@@ -157,3 +157,16 @@ def test_cli_fmu_equals_cli_modelica(four_fmu):
     assert proc.returncode == 2
     assert "replaces --modelica" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_cli_map_of_a_rank_two_fmu():
+    # the map's memory check sized the series by the rank-one factor u
+    path = ensure_fmu(TWO_CLUTCHES)
+    proc = _cli("map", "--fmu", str(path), "--freq", "90:110:5", "--pf",
+                "0:1:4", "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    symbolic = LinearDriveline.from_model(linearize(TWO_CLUTCHES))
+    lead = max(np.abs(floquet(symbolic, f, p * BAR).multipliers).max()
+               for f in np.linspace(90, 110, 5) for p in np.linspace(0, 1, 4))
+    assert abs(data["max_leading_abs"] - lead) < 1e-10

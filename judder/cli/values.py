@@ -199,7 +199,7 @@ def check_map_memory(params, freq_hz, p_f_bar):
     """
     from stability import build_driveline
     system = build_driveline(params).periodic_system()
-    size = len(system.u)
+    size = len(system.A0)
     radius = float(np.abs(np.linalg.eigvals(system.A0)).max())
     f = float(np.min(freq_hz))
     steps = max(1, math.ceil((2 * radius + 2 * math.pi * f) / f / 8.0))
