@@ -172,24 +172,31 @@ class _Instance:
         self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(byref(self.callbacks))
-        self.fmu = FMU2Model(guid=description.guid, unzipDirectory=folder,
-                             modelIdentifier=description.model_identifier,
-                             instanceName="judder")
+        self.fmu = None
         names = list(values)
-        with self._failing("initialisation"):
-            self.fmu.instantiate(callbacks=self.callbacks)
-            self.fmu.setupExperiment(startTime=0.0)
-            self.fmu.setReal([description.references[n] for n in names],
-                             [values[n] for n in names])
-            self.fmu.enterInitializationMode()
-            self.fmu.exitInitializationMode()
-            while True:
-                update = self.fmu.newDiscreteStates()
-                if not update[0] or update[1]:
-                    break
-            self.fmu.enterContinuousTimeMode()
-            buffer = (fmi2Real * self.n)()
-            self.fmu.getContinuousStates(buffer, self.n)
+        try:
+            with self._failing("loading the binary"):
+                self.fmu = FMU2Model(
+                    guid=description.guid, unzipDirectory=folder,
+                    modelIdentifier=description.model_identifier,
+                    instanceName="judder")
+            with self._failing("initialisation"):
+                self.fmu.instantiate(callbacks=self.callbacks)
+                self.fmu.setupExperiment(startTime=0.0)
+                self.fmu.setReal([description.references[n] for n in names],
+                                 [values[n] for n in names])
+                self.fmu.enterInitializationMode()
+                self.fmu.exitInitializationMode()
+                while True:
+                    update = self.fmu.newDiscreteStates()
+                    if not update[0] or update[1]:
+                        break
+                self.fmu.enterContinuousTimeMode()
+                buffer = (fmi2Real * self.n)()
+                self.fmu.getContinuousStates(buffer, self.n)
+        except FmuError:
+            self.close()
+            raise
         self.x0 = np.array(buffer)
 
     def _log(self, component, instance, status, category, message):
@@ -217,11 +224,15 @@ class _Instance:
         return np.array(columns).T, np.array(rate)
 
     def close(self):
-        """Free the instance (whatever state a failed call left it in)."""
+        """Free the instance (whatever state a failed call left it in) and
+        unload the binary."""
+        if self.fmu is None:
+            return
         with contextlib.suppress(Exception):
             self.fmu.terminate()
         with contextlib.suppress(Exception):
             self.fmu.freeInstance()
+        self.fmu.freeLibrary()
 
 
 def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
