@@ -170,3 +170,20 @@ def test_cli_map_of_a_rank_two_fmu():
     lead = max(np.abs(floquet(symbolic, f, p * BAR).multipliers).max()
                for f in np.linspace(90, 110, 5) for p in np.linspace(0, 1, 4))
     assert abs(data["max_leading_abs"] - lead) < 1e-10
+
+
+def test_sensitivity_through_the_fmu_equals_the_symbolic_path(four_fmu):
+    from drivelines.modelica import ModelicaParameters
+    from judder import api
+    freq = np.linspace(95.0, 110.0, 6)
+    ours, theirs = (api.sensitivity(["c12"], freq, parameters=params,
+                                    workers=1).tip_shifts
+                    for params in (FmuParameters(str(four_fmu)),
+                                   ModelicaParameters(FOUR)))
+    assert len(ours) == len(theirs) > 0
+    for a, b in zip(ours, theirs):
+        for key, value in b.items():
+            if isinstance(value, float):
+                assert a[key] == pytest.approx(value, rel=1e-9, abs=1e-9)
+            else:
+                assert a[key] == value

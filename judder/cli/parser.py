@@ -344,7 +344,7 @@ def build_parser():
                         "boundaries")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
+    _modelica_options(p, fmu=True)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 
