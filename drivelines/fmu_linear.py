@@ -6,7 +6,9 @@ without its equations: the state Jacobian :math:`J = \partial\,\dot x /
 \partial x` is read column by column with ``fmi2GetDirectionalDerivative``
 (unknowns ``der(x)``, knowns ``x``) at the FMU's initial state (its start
 values: a steady slip), at :data:`SAMPLES` times over one dither period
-and at the dither amplitudes ``0``, ``a`` and ``2a``. From these
+and at the dither amplitudes ``0``, ``a/2`` and ``a`` (``a`` the set's
+amplitude, or 1 bar if that is zero, at most the declared maximum). From
+these
 
 .. math:: J(t) = A_0 + p_f \cos(2\pi f t)\, B
 
@@ -51,8 +53,9 @@ __all__ = ["FmuError", "FmuParameters", "fmu_description", "linearize_fmu",
 
 #: Sample times per dither period at which the Jacobian is read.
 SAMPLES = 16
-#: Dither amplitude (Pa) of the difference quotient when the parameter set
-#: has none: J is affine in it, so any size is exact up to round-off.
+#: Largest dither amplitude (Pa) of the difference quotients when the
+#: parameter set has none: J is affine in it, so any size is exact up to
+#: round-off.
 _AMPLITUDE_STEP = 1e5
 #: Relative size below which a residual of the checks counts as zero.
 _ZERO = 1e-10
@@ -107,9 +110,10 @@ def _described(path, mtime):
     try:
         md = read_model_description(path)
     except Exception as exc:           # fmpy raises zip, XML and schema errors
-        raise FmuError(f"--fmu {path}: not a readable FMU "
-                       f"({str(exc).splitlines()[0] if str(exc) else type(exc).__name__})"
-                       ) from None
+        reason = str(exc).splitlines()[0] if str(exc) else \
+            type(exc).__name__
+        raise FmuError(f"--fmu {path}: not a readable FMU ({reason})") \
+            from None
     _require(md.fmiVersion == "2.0",
              f"--fmu {path}: fmiVersion {md.fmiVersion}; allowed: 2.0")
     _require(md.modelExchange is not None,
@@ -122,7 +126,7 @@ def _described(path, mtime):
     specs, starts, references = {}, {}, {}
     for v in md.modelVariables:
         if v.causality != "parameter" or v.type != "Real" or \
-                v.variability not in ("fixed", "tunable"):
+                v.variability not in ("fixed", "tunable") or v.start is None:
             continue
         declared = v.declaredType
         unit = v.unit or (declared.unit if declared is not None else None)
@@ -269,7 +273,12 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
                            f"{', '.join(d.specs)}")
     f0 = values[frequency]
     _require(f0 > 0, f"{frequency} = {f0!r} Hz is not allowed; allowed: > 0")
-    step = abs(values[amplitude]) or _AMPLITUDE_STEP
+    # amplitudes 0, step, 2 step: up to the set's (or the declared maximum)
+    largest = min(abs(values[amplitude]) or _AMPLITUDE_STEP,
+                  d.specs[amplitude].upper)
+    _require(largest > 0, f"{amplitude}: its declared maximum is 0; "
+             "allowed: a dither amplitude parameter that can be > 0")
+    step = largest / 2
     times = np.arange(SAMPLES) / (SAMPLES * f0)
     folder = extract(d.path)
     try:
