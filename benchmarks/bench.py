@@ -256,38 +256,76 @@ MODELICA_CLASS = "BenchLib.Driveline6DOF"
 MODELICA_LIBRARY = Path(__file__).resolve().parents[1] / "examples" / "modelica"
 
 
-def bench_modelica_map():
-    """300 x 150 map of a 12-state Modelica driveline: the Dyson engine on
-    the system compiled and linearised from Modelica, against per-point
-    solve_ivp on the same system."""
-    from drivelines.modelica import linearize
+def _linear_map(linear):
+    """The 300 x 150 map of a linearised driveline
+    (:class:`drivelines.modelica.LinearPeriodicModel`) by the Dyson
+    engine, against per-point solve_ivp on the subset, scaled: the fields
+    of a record shared by the Modelica and FMU benchmarks."""
     from stability import LinearDriveline
 
-    linear, compile_seconds = _timed(linearize, MODELICA_CLASS,
-                                     str(MODELICA_LIBRARY))
     driveline = LinearDriveline.from_model(linear)
     freqs, amps, reference, baseline, baseline_seconds = _subset_baseline(
         driveline.periodic_system())
     points = len(freqs) * len(amps)
     full, seconds = _timed(stability_map, driveline, MAP_FREQ, MAP_PF)
     extrapolated = baseline_seconds / points * full.kind.size
-    yield {"name": "floquet-map-modelica-12-states-300x150",
-           "points": full.kind.size, "seconds": seconds,
-           "baseline_seconds": extrapolated, "baseline_extrapolated": True,
-           "speedup": extrapolated / seconds,
-           "max_error": float(np.abs(full.leading_abs[SUBSET]
-                                     - reference).max()),
-           "baseline_max_error": float(np.abs(baseline - reference).max()),
-           "states": len(linear.state_names),
-           "reduced_states": len(linear.A0_reduced),
-           "modulation_rank": linear.rank,
+    return {"points": full.kind.size, "seconds": seconds,
+            "baseline_seconds": extrapolated, "baseline_extrapolated": True,
+            "speedup": extrapolated / seconds,
+            "max_error": float(np.abs(full.leading_abs[SUBSET]
+                                      - reference).max()),
+            "baseline_max_error": float(np.abs(baseline - reference).max()),
+            "states": len(linear.state_names),
+            "reduced_states": len(linear.A0_reduced),
+            "modulation_rank": linear.rank,
+            "baseline_note": f"baseline: solve_ivp DOP853 rtol "
+                             f"{BASELINE_TOL['rtol']:g} on {points} points "
+                             "of the grid, scaled; error against rtol "
+                             f"{REFERENCE_TOL['rtol']:g} on those points"}
+
+
+def bench_modelica_map():
+    """300 x 150 map of a 12-state Modelica driveline: the Dyson engine on
+    the system compiled and linearised from Modelica, against per-point
+    solve_ivp on the same system."""
+    from drivelines.modelica import linearize
+
+    linear, compile_seconds = _timed(linearize, MODELICA_CLASS,
+                                     str(MODELICA_LIBRARY))
+    record = _linear_map(linear)
+    baseline_note = record.pop("baseline_note")
+    yield {"name": "floquet-map-modelica-12-states-300x150", **record,
            "compile_and_linearise_seconds": compile_seconds,
            "target_seconds": 5.0,
            "note": f"{MODELICA_CLASS} from {MODELICA_LIBRARY.name}/; "
-                   f"baseline: solve_ivp DOP853 rtol "
-                   f"{BASELINE_TOL['rtol']:g} on {points} points of the "
-                   "grid, scaled; error against rtol "
-                   f"{REFERENCE_TOL['rtol']:g} on those points"}
+                   + baseline_note}
+
+
+def bench_fmu_map():
+    """300 x 150 map of the 4-DOF driveline read from its FMU's
+    directional derivatives (drivelines.fmu_linear), against per-point
+    solve_ivp on the same system; how far the FMU's system is from the
+    symbolic one."""
+    from drivelines.fmu_linear import linearize_fmu
+    from drivelines.modelica import linearize
+    from pysim.fmus import ensure_fmu
+
+    model_class = get_model("4dof").modelica_class
+    path = ensure_fmu(model_class)
+    linear, read_seconds = _timed(linearize_fmu, path)
+    symbolic = linearize(model_class)
+    record = _linear_map(linear)
+    baseline_note = record.pop("baseline_note")
+    yield {"name": "floquet-map-fmu-4dof-300x150", **record,
+           "read_jacobians_seconds": read_seconds,
+           "max_system_difference_vs_symbolic": float(max(
+               np.abs(linear.A0 - symbolic.A0).max()
+               / np.abs(symbolic.A0).max(),
+               np.abs(linear.B - symbolic.B).max()
+               / np.abs(symbolic.B).max())),
+           "note": f"{path.name} (fmu/ compiler) through fmpy's "
+                   "fmi2GetDirectionalDerivative; "
+                   + baseline_note}
 
 
 #: Envelope benchmark: the ranges of examples/ranges.toml around the
@@ -370,6 +408,7 @@ def bench_envelope():
 
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "modelica-map": bench_modelica_map,
+              "fmu-map": bench_fmu_map,
               "tongue-boundaries": bench_tongue_boundaries,
               "tongue-solvers": bench_tongue_solvers,
               "engagement": bench_engagement,

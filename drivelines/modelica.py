@@ -44,7 +44,8 @@ from .specs import ParameterSpec, split_assignment
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
-           "linearize"]
+           "linearize", "reduce_periodic", "NamedParameters",
+           "check_no_acceleration"]
 
 #: The project's Modelica library (package ``Judder``).
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
@@ -184,8 +185,39 @@ def _parameter_values(ode, overrides, class_name, library):
             for q in ode.parameters}
 
 
+class NamedParameters:
+    """``--set`` and lookup by name for a parameter set whose names come
+    from a model (a Modelica class, an FMU): the subclass gives
+    ``values``, ``specs``, ``model`` and ``replace``."""
+
+    def __getitem__(self, name):
+        try:
+            return self.values[name]
+        except KeyError:
+            raise ParameterError(
+                f"{name!r} is not a tunable parameter of {self.model}; "
+                f"allowed: {', '.join(self.values)}") from None
+
+    def with_overrides(self, assignments):
+        """Apply ``NAME=VALUE`` strings, as given to ``--set``."""
+        changes = {}
+        for text in assignments:
+            name, value = split_assignment(text)
+            if name not in self.values:
+                raise ParameterError(
+                    f"--set {text!r}: {name!r} is not a tunable parameter "
+                    f"of {self.model}; allowed: "
+                    f"{', '.join(self.values)}")
+            changes[name] = self.specs[name].check(value)
+        return self.replace(**changes)
+
+    def as_dict(self):
+        """Plain ``dict`` of the values (SI)."""
+        return dict(self.values)
+
+
 @dataclass(frozen=True)
-class ModelicaParameters:
+class ModelicaParameters(NamedParameters):
     """A parameter set of a Modelica class, by Modelica names (SI).
 
     The parameter-set interface the application uses for the paper's
@@ -231,36 +263,11 @@ class ModelicaParameters:
         """None: a Modelica class has no entry in the registry."""
         return None
 
-    def __getitem__(self, name):
-        try:
-            return self.values[name]
-        except KeyError:
-            raise ParameterError(
-                f"{name!r} is not a tunable parameter of {self.class_name}; "
-                f"allowed: {', '.join(self.values)}") from None
-
     def replace(self, **changes):
         """A copy with some values changed (validated)."""
         return ModelicaParameters(self.class_name, self.library,
                                   {**self.values, **changes},
                                   self.amplitude, self.frequency)
-
-    def with_overrides(self, assignments):
-        """Apply ``NAME=VALUE`` strings, as given to ``--set``."""
-        changes = {}
-        for text in assignments:
-            name, value = split_assignment(text)
-            if name not in self.values:
-                raise ParameterError(
-                    f"--set {text!r}: {name!r} is not a tunable parameter "
-                    f"of {self.class_name}; allowed: "
-                    f"{', '.join(self.values)}")
-            changes[name] = self.specs[name].check(value)
-        return self.replace(**changes)
-
-    def as_dict(self):
-        """Plain ``dict`` of the values (SI)."""
-        return dict(self.values)
 
     @property
     def speed_states(self):
@@ -396,7 +403,34 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
                  "cosine of Sources.DitherPressure")
     _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p)
 
-    state_names = tuple(s.name for s in ode.states)
+    return reduce_periodic(class_name, tuple(s.name for s in ode.states),
+                           A0, B0, values, amplitude, frequency)
+
+
+def reduce_periodic(name, state_names, A0, B0, values, amplitude, frequency):
+    """The :class:`LinearPeriodicModel` of ``A0 + p_f cos(2 pi f t) B0``.
+
+    Removes the rigid-body directions (common null space of ``A0`` and
+    ``B0`` after a diagonal balancing) and factors the reduced modulation
+    as ``U V^T`` (Eq. 7); shared by :func:`linearize` and the FMU path
+    (:mod:`drivelines.fmu_linear`).
+
+    Parameters
+    ----------
+    name : str
+        Where the system comes from (class name or FMU).
+    state_names : tuple of str
+    A0, B0 : ndarray, shape (n, n)
+        Constant part (1/s) and modulation per Pa of the Jacobian.
+    values : dict
+        Parameter values used (SI).
+    amplitude, frequency : str
+        Names of the dither amplitude and frequency parameters.
+
+    Returns
+    -------
+    LinearPeriodicModel
+    """
     D = _balance(A0, B0)
     A_bal = A0 / D[:, None] * D[None, :]
     B_bal = B0 / D[:, None] * D[None, :]
@@ -405,15 +439,29 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     Br = complement.T @ B_bal @ complement
     u_, sigma, vt = np.linalg.svd(Br)
     rank = int(np.count_nonzero(sigma > _ZERO * max(sigma[0], 1e-300)))
-    _require(rank > 0, f"{class_name}: the dither {amplitude} does not enter "
+    _require(rank > 0, f"{name}: the dither {amplitude} does not enter "
              "the linearised equations (no clutch damping is modulated)")
     U = u_[:, :rank] * sigma[:rank]
     V = vt[:rank].T
     return LinearPeriodicModel(
-        class_name=class_name, state_names=state_names, A0=A0, B=B0,
+        class_name=name, state_names=state_names, A0=A0, B=B0,
         basis=D[:, None] * complement, rigid=D[:, None] * rigid,
         A0_reduced=A0r, U=U, V=V, omega2=_undamped_omega2(A0, state_names),
         values=values, amplitude=amplitude, frequency=frequency)
+
+
+def check_no_acceleration(name, state_names, A0, rate, error):
+    """``A0 der(x) = 0`` at the start: no acceleration builds up along the
+    slip, else ``error`` naming the state that accelerates."""
+    scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
+    drift = A0 @ rate
+    worst = int(np.argmax(np.abs(drift)))
+    if np.abs(drift).max() > 1e-8 * scale:
+        raise error(
+            f"{name}: the start values are not a steady slip "
+            f"(d/dt der({state_names[worst]}) = {drift[worst]:.3g}); "
+            "allowed: start speeds and spring deflections in equilibrium "
+            "without dither")
 
 
 def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):
@@ -427,14 +475,8 @@ def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):
     rate = np.asarray(rate).ravel()
     if not any(casadi.depends_on(jac, x[i]) for i in range(x.shape[0])):
         return
-    scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
-    drift = A0 @ rate
-    worst = int(np.argmax(np.abs(drift)))
-    _require(np.abs(drift).max() <= 1e-8 * scale,
-             f"{class_name}: the start values are not a steady slip "
-             f"(d/dt der({ode.states[worst].name}) = {drift[worst]:.3g}); "
-             "allowed: start speeds and spring deflections in equilibrium "
-             "without dither")
+    check_no_acceleration(class_name, [q.name for q in ode.states], A0,
+                          rate, ModelicaError)
     for i, quantity in enumerate(ode.states):
         if abs(rate[i]) > _ZERO * max(np.abs(rate).max(), 1.0) and \
                 casadi.depends_on(jac, x[i]):

@@ -131,7 +131,9 @@ def parameters_of(args):
     changes : dict
         The --set values, validated (SI).
     """
-    if getattr(args, "modelica", None):
+    if getattr(args, "fmu", None):
+        params = fmu_parameters(args)
+    elif getattr(args, "modelica", None):
         params = modelica_parameters(args)
     else:
         params = load_parameters(preset=args.preset, model=args.model,
@@ -171,6 +173,17 @@ def modelica_parameters(args):
     return ModelicaParameters(args.modelica, args.library, values,
                               amplitude=args.dither_amplitude,
                               frequency=args.dither_frequency)
+
+
+def fmu_parameters(args):
+    """The parameter set of ``--fmu FILE.fmu`` (docs/fmu-path.md)."""
+    from drivelines.fmu_linear import FmuParameters
+    for option in ("modelica", "library", "model", "preset", "param_file"):
+        if getattr(args, option, None) is not None:
+            raise JudderError(f"--fmu {args.fmu} replaces "
+                              f"--{option.replace('_', '-')}; give one")
+    return FmuParameters(args.fmu, amplitude=args.dither_amplitude,
+                         frequency=args.dither_frequency)
 
 
 #: Forms of --dither-wave, for its help and its error message.

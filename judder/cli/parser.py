@@ -43,9 +43,10 @@ def _model_options(parser):
                         help="print the result as JSON")
 
 
-def _modelica_options(parser):
+def _modelica_options(parser, fmu=False):
     """--modelica CLASS [--library DIR] [--dither-amplitude/--dither-frequency
-    NAME]: analyse a driveline written in Modelica (docs/onemodel.md)."""
+    NAME]: analyse a driveline written in Modelica (docs/onemodel.md); with
+    ``fmu``, also --fmu FILE.fmu (docs/fmu-path.md)."""
     group = parser.add_argument_group(
         "Modelica driveline", "Analyse a Modelica class instead of a preset: "
         "it is compiled, linearised about its start values (a steady slip) "
@@ -66,6 +67,18 @@ def _modelica_options(parser):
                        metavar="NAME",
                        help="parameter of the class that is the dither "
                             "frequency, Hz (default f_dither)")
+    if fmu:
+        _fmu_option(group)
+
+
+def _fmu_option(group):
+    group.add_argument(
+        "--fmu", metavar="FILE.fmu",
+        help="analyse an FMI 2.0 Model Exchange FMU that provides "
+             "directional derivatives instead: its state Jacobian is read "
+             "over one dither period at its start values (a steady slip); "
+             "--set NAME=VALUE sets its Real parameters by name (SI); "
+             "replaces --modelica, --model and --preset (docs/fmu-path.md)")
 
 
 def _waveform_option(parser):
@@ -170,7 +183,7 @@ def build_parser():
                         "unit circle, and near the leading one (Fig. 15)")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
+    _modelica_options(p, fmu=True)
     _waveform_option(p)
     p.set_defaults(handler=commands.cmd_floquet)
 
@@ -192,7 +205,7 @@ def build_parser():
     _min_growth_option(p, "; the plot shades slower ones grey")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
+    _modelica_options(p, fmu=True)
     _waveform_option(p)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_map)
@@ -305,7 +318,7 @@ def build_parser():
                    help="boundaries drawn over the map (Fig. 16)")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
+    _modelica_options(p, fmu=True)
     _waveform_option(p)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_tongues)
@@ -336,7 +349,7 @@ def build_parser():
                         "boundaries")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
+    _modelica_options(p, fmu=True)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 

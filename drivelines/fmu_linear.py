@@ -1,0 +1,413 @@
+r"""Linear time-periodic system of a driveline given as an FMU.
+
+A third-party FMI 2.0 Model Exchange FMU that provides directional
+derivatives (``providesDirectionalDerivative="true"``) is analysed
+without its equations: the state Jacobian :math:`J = \partial\,\dot x /
+\partial x` is read column by column with ``fmi2GetDirectionalDerivative``
+(unknowns ``der(x)``, knowns ``x``) at the FMU's initial state (its start
+values: a steady slip), at :data:`SAMPLES` times over one dither period
+and at the dither amplitudes ``0``, ``a/2`` and ``a`` (``a`` the set's
+amplitude, or 1 bar if that is zero, at most the declared maximum). From
+these
+
+.. math:: J(t) = A_0 + p_f \cos(2\pi f t)\, B
+
+is built as :func:`drivelines.modelica.linearize` builds it from the
+symbolic equations (Eq. (6)-(7) of the paper), and checked the same way:
+the amplitude enters affinely, the part without dither does not change
+with time, the dither part is the cosine of the frequency parameter times
+one matrix, and the Jacobian stays fixed along the slip. The rigid-body
+directions are removed by :func:`drivelines.modelica.reduce_periodic`, so
+the result is a :class:`~drivelines.modelica.LinearPeriodicModel` that
+:class:`stability.LinearDriveline` turns into every study.
+
+fmpy loads the FMU here (not in :mod:`pysim`, the time-domain runs),
+because the stability layer needs the matrices and may import only
+:mod:`drivelines`.
+"""
+
+import contextlib
+import shutil
+from contextlib import contextmanager
+from ctypes import byref
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy import calloc, free
+from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE,
+                       fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
+                       fmi2CallbackLoggerTYPE, fmi2Real)
+from fmpy.logging import addLoggerProxy
+
+from infra.errors import JudderError, ParameterError
+
+from .modelica import (NamedParameters, check_no_acceleration,
+                       reduce_periodic)
+from .specs import ParameterSpec
+
+__all__ = ["FmuError", "FmuParameters", "fmu_description", "linearize_fmu",
+           "SAMPLES"]
+
+#: Sample times per dither period at which the Jacobian is read.
+SAMPLES = 16
+#: Largest dither amplitude (Pa) of the difference quotients when the
+#: parameter set has none: J is affine in it, so any size is exact up to
+#: round-off.
+_AMPLITUDE_STEP = 1e5
+#: Relative size below which a residual of the checks counts as zero.
+_ZERO = 1e-10
+
+
+class FmuError(JudderError):
+    """The FMU cannot be analysed; the message says why."""
+
+
+def _require(condition, message):
+    if not condition:
+        raise FmuError(message)
+
+
+@dataclass(frozen=True)
+class FmuDescription:
+    """What the analysis needs of an FMU's ``modelDescription.xml``.
+
+    Attributes
+    ----------
+    path : str
+    model_name : str
+    guid, model_identifier : str
+    states, derivatives : tuple of int
+        Value references of ``x`` and ``der(x)``, in the order of
+        ``<Derivatives>`` (the order of ``fmi2GetContinuousStates``).
+    state_names : tuple of str
+    specs : dict of str to ParameterSpec
+        The Real parameters (tunable or fixed), by name.
+    starts : dict of str to float
+    references : dict of str to int
+    """
+
+    path: str
+    model_name: str
+    guid: str
+    model_identifier: str
+    states: tuple
+    derivatives: tuple
+    state_names: tuple
+    specs: dict
+    starts: dict
+    references: dict
+
+
+def _number(text):
+    return None if text is None else float(text)
+
+
+@lru_cache(maxsize=8)
+def _described(path, mtime):
+    try:
+        md = read_model_description(path)
+    except Exception as exc:           # fmpy raises zip, XML and schema errors
+        reason = str(exc).splitlines()[0] if str(exc) else \
+            type(exc).__name__
+        raise FmuError(f"--fmu {path}: not a readable FMU ({reason})") \
+            from None
+    _require(md.fmiVersion == "2.0",
+             f"--fmu {path}: fmiVersion {md.fmiVersion}; allowed: 2.0")
+    _require(md.modelExchange is not None,
+             f"--fmu {path}: no Model Exchange interface (Co-Simulation "
+             "only); allowed: an FMI 2.0 Model Exchange FMU")
+    _require(md.modelExchange.providesDirectionalDerivative,
+             f"--fmu {path}: providesDirectionalDerivative is not true; "
+             "allowed: an FMU that provides directional derivatives")
+    _require(md.derivatives, f"--fmu {path}: the FMU has no states")
+    specs, starts, references = {}, {}, {}
+    for v in md.modelVariables:
+        if v.causality != "parameter" or v.type != "Real" or \
+                v.variability not in ("fixed", "tunable") or v.start is None:
+            continue
+        declared = v.declaredType
+        unit = v.unit or (declared.unit if declared is not None else None)
+        bounds = {key: _number(b) for key, b in (("lower", v.min),
+                                                 ("upper", v.max))
+                  if b is not None}
+        specs[v.name] = ParameterSpec(v.name, unit or "1",
+                                      v.description or v.name, **bounds)
+        starts[v.name] = float(v.start)
+        references[v.name] = v.valueReference
+    states = [d.variable.derivative for d in md.derivatives]
+    return FmuDescription(
+        path=path, model_name=md.modelName, guid=md.guid,
+        model_identifier=md.modelExchange.modelIdentifier,
+        states=tuple(s.valueReference for s in states),
+        derivatives=tuple(d.variable.valueReference for d in md.derivatives),
+        state_names=tuple(s.name for s in states), specs=specs,
+        starts=starts, references=references)
+
+
+def fmu_description(path):
+    """The :class:`FmuDescription` of an FMU file (cached per file
+    version).
+
+    Raises
+    ------
+    FmuError
+        If the file is missing or not an FMI 2.0 Model Exchange FMU with
+        directional derivatives.
+    """
+    path = Path(path)
+    _require(path.is_file(), f"--fmu {path}: no such file; allowed: an "
+             ".fmu file")
+    return _described(str(path.resolve()), path.stat().st_mtime_ns)
+
+
+class _Instance:
+    """One initialised Model Exchange instance at a parameter set; the
+    FMU's log messages are kept (the last one explains a failed call)."""
+
+    def __init__(self, description, folder, values):
+        self.d = description
+        self.n = len(description.states)
+        self.messages = []
+        self.callbacks = fmi2CallbackFunctions()
+        self.callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
+        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(byref(self.callbacks))
+        self.fmu = None
+        names = list(values)
+        try:
+            with self._failing("loading the binary"):
+                self.fmu = FMU2Model(
+                    guid=description.guid, unzipDirectory=folder,
+                    modelIdentifier=description.model_identifier,
+                    instanceName="judder")
+            with self._failing("initialisation"):
+                self.fmu.instantiate(callbacks=self.callbacks)
+                self.fmu.setupExperiment(startTime=0.0)
+                self.fmu.setReal([description.references[n] for n in names],
+                                 [values[n] for n in names])
+                self.fmu.enterInitializationMode()
+                self.fmu.exitInitializationMode()
+                while True:
+                    update = self.fmu.newDiscreteStates()
+                    if not update[0] or update[1]:
+                        break
+                self.fmu.enterContinuousTimeMode()
+                buffer = (fmi2Real * self.n)()
+                self.fmu.getContinuousStates(buffer, self.n)
+        except FmuError:
+            self.close()
+            raise
+        self.x0 = np.array(buffer)
+
+    def _log(self, component, instance, status, category, message):
+        self.messages.append(message.decode("utf-8", "replace"))
+
+    @contextmanager
+    def _failing(self, stage):
+        try:
+            yield
+        except Exception as exc:       # fmpy's FMICallException, OSError
+            reason = self.messages[-1] if self.messages else str(exc)
+            raise FmuError(f"--fmu {self.d.path}: {stage} failed "
+                           f"({reason})") from None
+
+    def jacobian(self, time, x):
+        """``d der(x) / dx`` at ``(time, x)`` and ``der(x)``."""
+        rate = (fmi2Real * self.n)()
+        with self._failing(f"the Jacobian at t = {time:g} s"):
+            self.fmu.setTime(time)
+            self.fmu.setContinuousStates((fmi2Real * self.n)(*x), self.n)
+            columns = [self.fmu.getDirectionalDerivative(
+                list(self.d.derivatives), list(self.d.states), list(seed))
+                for seed in np.eye(self.n)]
+            self.fmu.getDerivatives(rate, self.n)
+        return np.array(columns).T, np.array(rate)
+
+    def close(self):
+        """Free the instance (whatever state a failed call left it in) and
+        unload the binary."""
+        if self.fmu is None:
+            return
+        with contextlib.suppress(Exception):
+            self.fmu.terminate()
+        with contextlib.suppress(Exception):
+            self.fmu.freeInstance()
+        self.fmu.freeLibrary()
+
+
+def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
+    r"""Linear time-periodic system of an FMU, Eq. (6)-(7).
+
+    Parameters
+    ----------
+    path : str or Path
+        FMI 2.0 Model Exchange FMU with directional derivatives.
+    values : dict, optional
+        Parameters by name (SI); the others keep their start values.
+    amplitude, frequency : str
+        Names of the dither amplitude (Pa) and frequency (Hz) parameters.
+
+    Returns
+    -------
+    drivelines.modelica.LinearPeriodicModel
+        Named after the FMU's ``modelName``.
+
+    Raises
+    ------
+    FmuError
+        If the FMU cannot be analysed, or its Jacobian is not of the form
+        ``A0 + p_f cos(2 pi f t) B`` along a steady slip.
+    ParameterError
+        For an unknown parameter or a value outside its bounds.
+    """
+    d = fmu_description(path)
+    values = _values(d, dict(values or {}))
+    for role, name in (("amplitude", amplitude), ("frequency", frequency)):
+        if name not in d.specs:
+            raise FmuError(f"--dither-{role} {name!r} is not a Real "
+                           f"parameter of {d.model_name}; allowed: "
+                           f"{', '.join(d.specs)}")
+    f0 = values[frequency]
+    _require(f0 > 0, f"{frequency} = {f0!r} Hz is not allowed; allowed: > 0")
+    # amplitudes 0, step, 2 step: up to the set's (or the declared maximum)
+    largest = min(abs(values[amplitude]) or _AMPLITUDE_STEP,
+                  d.specs[amplitude].upper)
+    _require(largest > 0, f"{amplitude}: its declared maximum is 0; "
+             "allowed: a dither amplitude parameter that can be > 0")
+    step = largest / 2
+    times = np.arange(SAMPLES) / (SAMPLES * f0)
+    folder = extract(d.path)
+    try:
+        jacobians, x0, rate = _sampled(d, folder, values, amplitude, step,
+                                       times)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    A, Ja, J2a = jacobians
+    A0 = A[0]
+    B0 = (Ja[0] - A0) / step
+    scale = max(np.abs(A0).max(), 1.0)
+    bscale = max(np.abs(B0).max() * step, np.finfo(float).tiny)
+    name = d.model_name
+    _require(np.abs(J2a - 2 * Ja + A).max() <= _ZERO * scale,
+             f"{name}: the Jacobian is not affine in {amplitude} (the dither "
+             "amplitude multiplies the states nonlinearly); allowed: "
+             "J = A0 + p_f cos(2 pi f t) B")
+    _require(np.abs(A - A0).max() <= _ZERO * scale,
+             f"{name}: the Jacobian without dither changes with time; "
+             "allowed: time enters through the dither only")
+    shape = np.cos(2 * np.pi * f0 * times)[:, None, None]
+    _require(np.abs(Ja - A - step * shape * B0).max() <= _ZERO * max(
+        bscale, scale),
+             f"{name}: the dither does not enter as {amplitude}*cos(2*pi*"
+             f"{frequency}*time); allowed: the paper's cosine dither")
+    return reduce_periodic(name, d.state_names, A0, B0, values, amplitude,
+                           frequency)
+
+
+def _sampled(d, folder, values, amplitude, step, times):
+    """Jacobians at amplitudes 0, ``step``, ``2 step`` (each shape
+    (samples, n, n)), the initial state and its derivative; checks the
+    steady slip on the way."""
+    out = []
+    for k in range(3):
+        instance = _Instance(d, folder, {**values, amplitude: k * step})
+        try:
+            if k == 0:
+                x0 = instance.x0
+                A0, rate = instance.jacobian(0.0, x0)
+                # a generic move of every state, and one along the slip
+                generic = 1e-2 * (1.0 + np.abs(x0)) * np.linspace(
+                    1.0, 2.0, len(x0))
+                _steady_slip(d, A0, rate,
+                             instance.jacobian(0.0, x0 + generic)[0],
+                             instance.jacobian(0.0, x0 + times[-1] * rate)[0])
+            out.append(np.array([instance.jacobian(t, x0)[0]
+                                 for t in times]))
+        finally:
+            instance.close()
+    return out, x0, rate
+
+
+def _steady_slip(d, A0, rate, moved, along):
+    """The start is a steady slip along which the Jacobian is fixed.
+
+    As :func:`drivelines.modelica.linearize` checks it, with Jacobians
+    instead of expressions: a Jacobian that a generic move of the states
+    (``moved``) leaves unchanged is free of the states (the paper's
+    linear clutch) and needs nothing more; otherwise ``A0 der(x) = 0``
+    (no acceleration builds up) and the Jacobian one period further
+    along the slip (``along``) must still be ``A0``.
+    """
+    size = max(np.abs(A0).max(), 1.0)
+    if np.abs(moved - A0).max() <= _ZERO * size:
+        return
+    check_no_acceleration(d.model_name, d.state_names, A0, rate, FmuError)
+    _require(np.abs(along - A0).max() <= _ZERO * size,
+             f"{d.model_name}: the linearisation changes along the slip; "
+             "allowed: forces that depend on angles linearly")
+
+
+def _values(d, overrides):
+    unknown = sorted(set(overrides) - set(d.specs))
+    if unknown:
+        raise ParameterError(
+            f"{unknown[0]} = {overrides[unknown[0]]!r} is not a Real "
+            f"parameter of {d.model_name}; allowed: {', '.join(d.specs)}")
+    return {name: d.specs[name].check(overrides.get(name, start))
+            for name, start in d.starts.items()}
+
+
+@dataclass(frozen=True)
+class FmuParameters(NamedParameters):
+    """A parameter set of an FMU, by the FMU's variable names (SI).
+
+    The parameter-set interface of
+    :class:`drivelines.modelica.ModelicaParameters`; :meth:`linear_model`
+    is :func:`linearize_fmu`, which :func:`stability.build_driveline`
+    uses instead of the paper's matrices.
+
+    Attributes
+    ----------
+    path : str
+    values : dict
+        Every Real parameter, SI.
+    amplitude, frequency : str
+    """
+
+    path: str
+    values: dict = None
+    amplitude: str = "p_f"
+    frequency: str = "f_dither"
+
+    def __post_init__(self):
+        object.__setattr__(self, "values", _values(
+            fmu_description(self.path), dict(self.values or {})))
+
+    @property
+    def model(self):
+        """The FMU's ``modelName``."""
+        return fmu_description(self.path).model_name
+
+    @property
+    def specs(self):
+        """Unit, bounds and description of the Real parameters."""
+        return fmu_description(self.path).specs
+
+    @property
+    def driveline(self):
+        """None: an FMU has no entry in the registry."""
+        return None
+
+    def replace(self, **changes):
+        """A copy with some values changed (validated)."""
+        return FmuParameters(self.path, {**self.values, **changes},
+                             self.amplitude, self.frequency)
+
+    def linear_model(self):
+        """:func:`linearize_fmu` of the FMU at these values."""
+        return linearize_fmu(self.path, self.values, self.amplitude,
+                             self.frequency)
