@@ -40,7 +40,7 @@ from fmu.backend import to_ode
 from fmu.frontend import load_flat_model
 from infra.errors import JudderError, ParameterError
 
-from .specs import ParameterSpec, split_assignment
+from .specs import ParameterSpec, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
@@ -199,17 +199,10 @@ class NamedParameters:
                 f"allowed: {', '.join(self.values)}") from None
 
     def with_overrides(self, assignments):
-        """Apply ``NAME=VALUE`` strings, as given to ``--set``."""
-        changes = {}
-        for text in assignments:
-            name, value = split_assignment(text)
-            if name not in self.values:
-                raise ParameterError(
-                    f"--set {text!r}: {name!r} is not a tunable parameter "
-                    f"of {self.model}; allowed: "
-                    f"{', '.join(self.values)}")
-            changes[name] = self.specs[name].check(value)
-        return self.replace(**changes)
+        """Apply ``NAME=VALUE`` strings, as given to ``--set`` (see
+        :func:`drivelines.specs.parse_overrides`)."""
+        return self.replace(**parse_overrides(assignments, self.specs,
+                                              self.model))
 
     def as_dict(self):
         """Plain ``dict`` of the values (SI)."""

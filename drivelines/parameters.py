@@ -12,11 +12,10 @@ from dataclasses import dataclass, field
 import tomllib
 from types import MappingProxyType
 
-from infra.errors import JudderError, ParameterError
-from infra.quantities import parse_quantity
+from infra.errors import ParameterError
 
 from .registry import MODELS, get_model
-from .specs import MEAN_PRESSURE_DAMPING, split_assignment
+from .specs import MEAN_PRESSURE_DAMPING, parse_overrides
 
 __all__ = ["Parameters", "get_preset", "default_preset", "load_toml",
            "dumps_toml", "MEAN_PRESSURE_DAMPING"]
@@ -87,22 +86,8 @@ class Parameters:
         ParameterError
             On a malformed assignment, an unknown name or a bad value.
         """
-        changes = {}
-        for text in assignments:
-            name, value = split_assignment(text)
-            if name not in self.specs:
-                raise ParameterError(
-                    f"--set {text!r}: unknown parameter {name!r} for the "
-                    f"{self.model} model; allowed names: "
-                    f"{', '.join(self.specs)}")
-            spec = self.specs[name]
-            try:
-                number = parse_quantity(value, spec.unit,
-                                        f"--set {name}: parameter {name} =")
-            except JudderError as exc:
-                raise ParameterError(str(exc)) from None
-            changes[name] = spec.check(number)
-        return self.replace(**changes)
+        return self.replace(**parse_overrides(assignments, self.specs,
+                                              self.model))
 
     @property
     def specs(self):

@@ -3,10 +3,11 @@
 from dataclasses import dataclass
 import math
 
-from infra.errors import ParameterError
+from infra.errors import JudderError, ParameterError
+from infra.quantities import parse_quantity
 
 __all__ = ["ParameterSpec", "positive", "nonnegative", "CLUTCH_SPECS",
-           "MEAN_PRESSURE_DAMPING", "split_assignment", "MIN_MAGNITUDE",
+           "MEAN_PRESSURE_DAMPING", "split_assignment", "parse_overrides", "MIN_MAGNITUDE",
            "MAX_MAGNITUDE"]
 
 #: Smallest and largest magnitude of a parameter value in SI units: the
@@ -32,6 +33,43 @@ def split_assignment(text):
         raise ParameterError(f"--set {text!r} is not of the form NAME=VALUE "
                              "(for example --set c12=10)")
     return name, value
+
+
+def parse_overrides(assignments, specs, model):
+    """``{name: value}`` (SI) of ``NAME=VALUE`` strings given to ``--set``.
+
+    A plain VALUE is in the parameter's SI unit; it may carry a unit
+    instead (``p_m=10bar``), see :func:`infra.quantities.parse_quantity`.
+
+    Parameters
+    ----------
+    assignments : iterable of str
+    specs : mapping of str to ParameterSpec
+        The parameters of ``model`` that may be set.
+    model : str
+        The model's name, for messages.
+
+    Raises
+    ------
+    ParameterError
+        On a malformed assignment, an unknown name or a bad value.
+    """
+    changes = {}
+    for text in assignments:
+        name, value = split_assignment(text)
+        if name not in specs:
+            raise ParameterError(
+                f"--set {text!r}: unknown parameter, {name!r} is not a "
+                f"tunable parameter of the {model} model; allowed names: "
+                f"{', '.join(specs)}")
+        spec = specs[name]
+        try:
+            number = parse_quantity(value, spec.unit,
+                                    f"--set {name}: parameter {name} =")
+        except JudderError as exc:
+            raise ParameterError(str(exc)) from None
+        changes[name] = spec.check(number)
+    return changes
 
 
 @dataclass(frozen=True)

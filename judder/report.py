@@ -284,7 +284,7 @@ def build_report(parameters=None, changes=None, description=None,
             for name, spec in values.specs.items()]
     sections.append(
         "<h2>1. The driveline</h2>"
-        f"<p>Natural frequencies (Eq. 15): "
+        "<p>Natural frequencies (Eq. 15): "
         + ", ".join(f"{f:.3f} Hz" for f in eig.natural_frequencies_hz)
         + f"; clutch-damper damping factor zeta_12 (Eq. 16): "
         f"{100 * eig.damping_factor_12:.2f} %.</p>"

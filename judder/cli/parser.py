@@ -691,10 +691,7 @@ def _envelope_parser(sub):
                         "at each frequency searching the lowest boundary "
                         "between the samples (default 20; 0: the union of "
                         "the samples only)")
-    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
-                   help="count judder growing at least this fast, 1/s "
-                        "(default 1, stability.relevance: one e-fold per "
-                        "engagement; 0: every instability)")
+    _min_growth_option(p)
     p.add_argument("--out", metavar="FILE.npz",
                    help="every sample's boundaries, the broadest edge and "
                         "the probability grid (NPZ, see docs/envelope.md)")
