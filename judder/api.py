@@ -22,6 +22,7 @@ Examples
 ('single-period', 1.0261)
 """
 
+import dataclasses
 import time
 from pathlib import Path
 
@@ -446,9 +447,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     runs = [(label, run_fmu(fmu, freq, p_f, params=values, extra=bench,
                             duration=duration, output_interval=interval))
             for label, freq, p_f in settings]
-    def bench_value(name):
-        return bench.get(name, parameter_default(fmu, name))
-    start = bench_value("t_engage") + bench_value("t_ramp")
+    start = ramp_end
     # the bench's linearisation: its motor control damps body 1
     driveline = build_driveline(values.replace(**{
         name: values[name] + value
@@ -686,7 +685,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         under = map_kernel(build_driveline(values), grid,
                            np.linspace(0, max(2 * p_f_bar.max(), 0.5), 100)
                            * PA_PER_BAR)
-        result = CheckResult(**{**result.__dict__, "background": under})
+        result = dataclasses.replace(result, background=under)
     return result
 
 

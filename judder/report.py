@@ -319,9 +319,8 @@ def build_report(parameters=None, changes=None, description=None,
             f'<p class="small">Source: {verdict["source"]}.</p>'
             + figure(f"Floquet multipliers at {freq_hz:g} Hz, {p_f_bar:g} "
                      "bar (Fig. 15)",
-                     multipliers_figure([point.result],
-                                        title="Floquet multipliers at the "
-                                              "configured dither"))))
+                     point.figure(title="Floquet multipliers at the "
+                                        "configured dither"))))
     step()
 
     sections.append(
