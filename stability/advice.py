@@ -41,7 +41,7 @@ from .kinds import KINDS
 from .model import build_driveline
 from .relevance import is_judder_relevant
 from .tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
-                      tongue_boundaries)
+                      lowest_of_kinds, tongue_boundaries)
 
 __all__ = ["OperatingRange", "window_boundary", "safe_windows", "SafeWindow",
            "ranking", "Advice", "advise_design", "verify_design",
@@ -116,8 +116,7 @@ def window_boundary(param_sets, freq_hz, min_growth, p_search):
     for params in param_sets:
         system = build_driveline(params).periodic_system().shifted(min_growth)
         amplitude = lowest_boundaries(system, freq_hz, p_search)
-        lowest = np.minimum(lowest, np.nanmin(
-            np.where(np.isfinite(amplitude), amplitude, np.inf), axis=1))
+        lowest = np.minimum(lowest, lowest_of_kinds(amplitude))
     return lowest
 
 

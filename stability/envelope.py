@@ -45,7 +45,7 @@ from infra.parallel import TaskFailure, parallel_map
 from .model import build_driveline
 from .monodromy import DEFAULT_METHOD
 from .ranges import DEFAULT_COVERAGE
-from .tongues import tongue_boundaries
+from .tongues import lowest_of_kinds, tongue_boundaries
 
 __all__ = ["Envelope", "sample_boundary", "compute_samples", "refine_at",
            "refine_union", "refinement_starts", "build_envelope",
@@ -83,11 +83,6 @@ def sample_boundary(job):
     return tongue_boundaries(build_driveline(changed), freq_hz, p_max,
                              method, min_growth=min_growth,
                              check=False).amplitude
-
-
-def _lowest(amplitude):
-    """Lowest boundary over the kinds (last axis); +inf where none."""
-    return np.min(np.where(np.isnan(amplitude), np.inf, amplitude), axis=-1)
 
 
 def _area(lowest, freq_hz, p_max):
@@ -154,12 +149,12 @@ class Envelope:
     def lowest(self):
         """Lowest boundary of every sample over the kinds, Pa, shape (ns,
         nf); +inf where none (or the sample failed)."""
-        return np.where(self.ok[:, None], _lowest(self.amplitude), np.inf)
+        return np.where(self.ok[:, None], lowest_of_kinds(self.amplitude), np.inf)
 
     @property
     def nominal_boundary(self):
         """Lowest nominal boundary, Pa, shape (nf,); NaN where none."""
-        low = _lowest(self.nominal)
+        low = lowest_of_kinds(self.nominal)
         return np.where(np.isfinite(low), low, np.nan)
 
     @property
@@ -257,7 +252,7 @@ class Envelope:
         """True if boundaries ``amplitude`` (Pa, shape (nf, 3)) lie inside
         the broadest region: at each frequency, not below its edge by more
         than ``tolerance`` (Pa)."""
-        low = _lowest(np.asarray(amplitude, dtype=float))
+        low = lowest_of_kinds(amplitude)
         return bool(np.all(low >= self.edge - tolerance))
 
 
@@ -367,7 +362,7 @@ def refine_at(job):
 
     def boundary(unit):
         row = ranges.values(np.clip(unit, 0.0, 1.0)[None])[0]
-        low = _lowest(sample_boundary((params, ranges.names, row, [freq_hz],
+        low = lowest_of_kinds(sample_boundary((params, ranges.names, row, [freq_hz],
                                        p_max, method, min_growth)))[0]
         return float(low) if np.isfinite(low) else 2.0 * p_max
 

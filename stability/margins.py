@@ -24,56 +24,21 @@ from scipy.optimize import brentq
 
 from infra.errors import JudderError
 
-from .hill import (applies as hill_applies, combination_boundaries,
-                   modal_transfer, real_boundaries)
 from .floquet import floquet
 from .kinds import KINDS
 from .model import build_driveline
 from .relevance import is_judder_relevant
-from .tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
-                      tongue_boundaries)
+from .tongues import (TONGUE_KINDS, find_tongues, kind_boundary,
+                      lowest_boundaries, tongue_boundaries)
 
-__all__ = ["Margin", "boundary_of_kind", "setting_margin",
-           "margin_sensitivity", "search_grid", "GRID_POINTS"]
+__all__ = ["Margin", "setting_margin", "margin_sensitivity", "search_grid",
+           "GRID_POINTS"]
 
 #: Points of the log-spaced frequency grid on which boundary crossings are
 #: bracketed before Brent's method refines them.
 GRID_POINTS = 1200
 #: Relative step of the finite differences of the sensitivities.
 STEP = 1e-3
-
-
-def boundary_of_kind(system, column, p_max):
-    """``B_k(f)``: lowest boundary amplitude of one kind, Pa, or ``inf``.
-
-    Parameters
-    ----------
-    system : stability.model.PeriodicSystem
-        Shifted to the judder-relevant growth rate.
-    column : int
-        Index into :data:`stability.tongues.TONGUE_KINDS`.
-    p_max : float
-        Pa; amplitudes above it count as no boundary.
-
-    Returns
-    -------
-    callable
-        ``f(freq_hz)`` for a float, Pa.
-    """
-    if not hill_applies(system):
-        def amplitude(freq):
-            p = lowest_boundaries(system, [freq], p_max, "scan")[0, column]
-            return p if np.isfinite(p) and p <= p_max else np.inf
-        return amplitude
-    transfer = modal_transfer(system)
-
-    def amplitude(freq):
-        if column == 2:
-            p = combination_boundaries(transfer, [freq], p_max)[0][0]
-        else:
-            p = real_boundaries(transfer, [freq], 1 if column == 0 else -1)[0, 0]
-        return p if np.isfinite(p) and p <= p_max else np.inf
-    return amplitude
 
 
 def search_grid(freq_hz, low=None, high=None, points=GRID_POINTS):
@@ -155,7 +120,7 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
     """
     if amplitude is None:
         amplitude = lowest_boundaries(system, grid, p_max)
-    curves = [boundary_of_kind(system, c, p_max) for c in range(3)]
+    curves = [kind_boundary(system, c, p_max) for c in range(3)]
     at = np.array([curve(freq_hz) for curve in curves])
     column = int(np.argmin(at))
     boundary = float(at[column])
@@ -227,7 +192,7 @@ def margin_sensitivity(params, names, freq_hz, p_f, margin, min_growth,
                 min_growth)
             bar = hz = np.nan
             if margin.bar_kind is not None:
-                curve = boundary_of_kind(system, kinds.index(margin.bar_kind),
+                curve = kind_boundary(system, kinds.index(margin.bar_kind),
                                          p_max)
                 bar = curve(freq_hz) - p_f
             if margin.hz_kind is not None:
@@ -243,7 +208,7 @@ def margin_sensitivity(params, names, freq_hz, p_f, margin, min_growth,
 
 def _followed_crossing(system, column, p_f, nominal, p_max):
     """The root of ``B_k(f) = p_f`` nearest ``nominal``, Hz (NaN if lost)."""
-    curve = boundary_of_kind(system, column, p_max)
+    curve = kind_boundary(system, column, p_max)
 
     def excess(freq):
         return min(curve(freq), 2 * p_f + 1.0) - p_f

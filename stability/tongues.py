@@ -73,8 +73,8 @@ from .waveforms import waveform_of
 
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS", "SOLVERS",
            "DEFAULT_SOLVER", "get_solver", "lowest_boundaries",
-           "hill_boundary_amplitudes", "tongue_boundaries", "find_tongues",
-           "resonances"]
+           "hill_boundary_amplitudes", "tongue_boundaries", "kind_boundary",
+           "lowest_of_kinds", "find_tongues", "resonances"]
 
 #: Harmonics kept on each side in Hill's matrix; the boundary amplitudes
 #: of the paper's model are converged to machine precision from about 4.
@@ -238,6 +238,14 @@ SOLVERS = {"hill": _hill_lowest, "scan": _scan_lowest}
 DEFAULT_SOLVER = "hill"
 
 
+def lowest_of_kinds(amplitude):
+    """Lowest boundary over the kinds (last axis), Pa; ``inf`` where no
+    kind has one (NaN in ``amplitude``)."""
+    amplitude = np.asarray(amplitude, dtype=float)
+    return np.min(np.where(np.isfinite(amplitude), amplitude, np.inf),
+                  axis=-1)
+
+
 def get_solver(name):
     """The boundary solver ``name``; ValueError listing the options."""
     if name not in SOLVERS:
@@ -319,11 +327,8 @@ class Boundaries:
     @property
     def stability_boundary(self):
         """Lowest unstable amplitude of any kind, Pa, shape (nf,)."""
-        with np.errstate(all="ignore"):
-            return np.where(np.all(np.isnan(self.amplitude), axis=1), np.nan,
-                            np.nanmin(np.where(np.isnan(self.amplitude),
-                                               np.inf, self.amplitude),
-                                      axis=1))
+        lowest = lowest_of_kinds(self.amplitude)
+        return np.where(np.isfinite(lowest), lowest, np.nan)
 
     @property
     def max_multiplier_error(self):
@@ -511,14 +516,19 @@ def find_tongues(driveline, boundaries):
     table = resonances(boundaries.natural_frequencies_hz)
     found = []
     engine = get_method(boundaries.method)
+    transfer = (modal_transfer(system) if boundaries.solver == "hill"
+                and hill_applies(system) else None)
     for column, kind in enumerate(TONGUE_KINDS):
         amplitude = boundaries.amplitude[:, column]
+        boundary = kind_boundary(system, column, boundaries.p_max,
+                                 boundaries.solver, boundaries.method,
+                                 transfer)
         for start, stop, i in _tips(amplitude, boundaries.p_max):
             tip_f, tip_p = f[i], amplitude[i]
             at_edge = i in (0, len(f) - 1)
             if not at_edge:
-                tip_f, tip_p = _refine_tip(system, column, f[i - 1],
-                                           f[i + 1], boundaries, tip_f, tip_p)
+                tip_f, tip_p = _refine_tip(boundary, f[i - 1], f[i + 1],
+                                           boundaries.p_max, tip_f, tip_p)
             error = (_multiplier_error(engine(system, tip_f, boundaries.p_max),
                                        tip_p, kind)
                      if boundaries.checked else float("nan"))
@@ -550,28 +560,52 @@ def _deduplicate(tongues):
                                       t.tip_freq_hz))
 
 
-def _kind_amplitude(system, column, p_max, solver, method):
-    """Lowest boundary amplitude of one kind as a function of frequency."""
+def kind_boundary(system, column, p_max, solver=DEFAULT_SOLVER,
+                  method=DEFAULT_METHOD, transfer=None):
+    """``B_k(f)``: the lowest boundary amplitude of one kind, Pa.
+
+    Parameters
+    ----------
+    system : stability.model.PeriodicSystem
+        Shifted to the growth rate whose boundary is wanted.
+    column : int
+        Index into :data:`TONGUE_KINDS`.
+    p_max : float
+        Pa; amplitudes above it count as no boundary.
+    solver, method : str
+        As for :func:`lowest_boundaries`.
+    transfer : stability.hill.ModalTransfer, optional
+        :func:`stability.hill.modal_transfer` of ``system``, if known.
+
+    Returns
+    -------
+    callable
+        ``f(freq_hz)`` for a float: Pa, or ``inf`` where there is no
+        boundary up to ``p_max``.
+    """
     if solver == "hill" and hill_applies(system):
-        transfer = modal_transfer(system)
-        if column == 2:
-            return lambda freq: combination_boundaries(
-                transfer, [freq], p_max)[0][0]
+        transfer = modal_transfer(system) if transfer is None else transfer
         multiplier = 1 if column == 0 else -1
-        return lambda freq: real_boundaries(transfer, [freq], multiplier)[0, 0]
-    return lambda freq: lowest_boundaries(system, [freq], p_max, solver,
-                                          method)[0, column]
 
-
-def _refine_tip(system, column, low, high, boundaries, grid_f, grid_p):
-    """Minimise the boundary amplitude of one kind over [low, high]."""
-    p_max = boundaries.p_max
-    lowest = _kind_amplitude(system, column, p_max, boundaries.solver,
-                             boundaries.method)
+        def lowest(freq):
+            if column == 2:
+                return combination_boundaries(transfer, [freq], p_max)[0][0]
+            return real_boundaries(transfer, [freq], multiplier)[0, 0]
+    else:
+        def lowest(freq):
+            return lowest_boundaries(system, [freq], p_max, solver,
+                                     method)[0, column]
 
     def amplitude(freq):
         p = lowest(freq)
-        return p if np.isfinite(p) and p <= p_max else 2 * p_max
+        return p if np.isfinite(p) and p <= p_max else np.inf
+    return amplitude
+
+
+def _refine_tip(boundary, low, high, p_max, grid_f, grid_p):
+    """Minimise ``boundary`` (:func:`kind_boundary`) over [low, high]."""
+    def amplitude(freq):
+        return min(boundary(freq), 2 * p_max)
 
     best = minimize_scalar(amplitude, bounds=(low, high), method="bounded",
                            options={"xatol": 1e-7 * grid_f})
