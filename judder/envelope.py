@@ -35,6 +35,7 @@ from stability.envelope import (REFINE_EVALUATIONS, build_envelope,
                                 refinement_starts)
 from stability.ranges import (DEFAULT_COVERAGE, Correlated, Normal, Ranges,
                               Uniform, check_values, design_points)
+from stability.tongues import lowest_of_kinds
 
 __all__ = ["read_ranges", "run_envelope", "checkpoint_path"]
 
@@ -333,9 +334,8 @@ def _run(params, ranges, names, values, is_vertex, unit, rows, freq_hz,
         ok = np.array([i in state.done for i in range(len(rows))])
         amplitude = np.array([state.done.get(i, np.full(shape, np.nan))
                               for i in range(len(rows))])
-        lowest = np.where(ok[1:, None], np.min(np.where(
-            np.isnan(amplitude[1:]), np.inf, amplitude[1:]), axis=-1),
-            np.inf)
+        lowest = np.where(ok[1:, None], lowest_of_kinds(amplitude[1:]),
+                          np.inf)
         if refine and len(values):
             total += int(np.sum(refinement_starts(lowest) >= 0))
             for index, outcome in refine_union(
