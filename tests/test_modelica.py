@@ -64,6 +64,22 @@ def test_example_is_valid_and_balanced(session, name):
                for s in extra), extra
 
 
+def test_lock_up_example_is_valid_and_balanced(session):
+    # TestBenchEngagement with the EVEN clutch redeclared as
+    # LockingWetClutch: rumoca adds its relative speed (under der() in the
+    # stuck branch) and its three mode states to the bench's 20
+    name = "TestBenchLockUp"
+    path = PACKAGE / "Examples" / f"{name}.mo"
+    assert rumoca.validate(str(path), model=f"Judder.Examples.{name}") == []
+    model = _load(session, name)
+    info = model.structure()
+    assert info.is_balanced and info.is_matched
+    assert info.n_equations == info.n_unknowns
+    assert info.n_states == STATES["TestBenchEngagement"] + 4
+    assert {"even.w_rel", "even.lockups", "even.breakaways",
+            "even.sense"} <= {s.name for s in model.states}
+
+
 @pytest.mark.parametrize("folder", sorted(p for p in PACKAGE.rglob("*")
                                           if p.is_dir()) + [PACKAGE])
 def test_package_order_lists_every_class(folder):
@@ -235,8 +251,8 @@ def _declarations(path, types):
         # the first declaration of a class follows its header
         statement = re.sub(r"^\s*(?:partial\s+)?(?:model|block|connector)"
                            r"\s+\w+\s*(?:\"\")?", "", statement)
-        match = re.match(r"\s*(?:input |output )?(" + types + r")\s+(\w+)",
-                         statement)
+        match = re.match(r"\s*(?:input |output |replaceable )?("
+                         + types + r")\s+(\w+)", statement)
         if match:
             found.append((match.group(1), match.group(2), statement))
     return found
