@@ -34,7 +34,13 @@ EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement"]
 # bodies' angles; the project's back end (fmu/) reduces the index and
 # keeps the bodies' 8, 6 and 8 states (tests/test_fmu_backend.py).
 STATES = {"Driveline4DOF": 8 + 7 + 3, "Driveline3DOF": 6 + 5 + 3,
-          "TestBenchEngagement": 8 + 8 + 3 + 1}
+          "TestBenchEngagement": 8 + 8 + 3 + 1,
+          "TestBenchLockUp": 8 + 8 + 3 + 1 + 4}
+# TestBenchEngagement with its EVEN clutch redeclared as LockingWetClutch:
+# rumoca also keeps the clutch's relative speed (under der() in the stuck
+# branch) and its three mode states
+MODE_STATES = {"TestBenchLockUp": {"even.w_rel", "even.lockups",
+                                   "even.breakaways", "even.sense"}}
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +53,7 @@ def _load(session, name):
                         model=f"Judder.Examples.{name}")
 
 
-@pytest.mark.parametrize("name", EXAMPLES)
+@pytest.mark.parametrize("name", EXAMPLES + ["TestBenchLockUp"])
 def test_example_is_valid_and_balanced(session, name):
     path = PACKAGE / "Examples" / f"{name}.mo"
     assert rumoca.validate(str(path), model=f"Judder.Examples.{name}") == []
@@ -57,27 +63,13 @@ def test_example_is_valid_and_balanced(session, name):
     assert info.n_equations == info.n_unknowns
     assert info.n_states == STATES[name]
     # the states beyond the bodies' are relative angles and sensor or
-    # motor flange angles, which the back end eliminates
+    # motor flange angles, which the back end eliminates, and the modes
     extra = [s.name for s in model.states
              if not re.fullmatch(r"inertia\d+\.(phi|w)", s.name)]
+    modes = MODE_STATES.get(name, set())
+    assert modes <= set(extra)
     assert all(s.endswith(".phi_rel") or s.endswith("flange.phi")
-               for s in extra), extra
-
-
-def test_lock_up_example_is_valid_and_balanced(session):
-    # TestBenchEngagement with the EVEN clutch redeclared as
-    # LockingWetClutch: rumoca adds its relative speed (under der() in the
-    # stuck branch) and its three mode states to the bench's 20
-    name = "TestBenchLockUp"
-    path = PACKAGE / "Examples" / f"{name}.mo"
-    assert rumoca.validate(str(path), model=f"Judder.Examples.{name}") == []
-    model = _load(session, name)
-    info = model.structure()
-    assert info.is_balanced and info.is_matched
-    assert info.n_equations == info.n_unknowns
-    assert info.n_states == STATES["TestBenchEngagement"] + 4
-    assert {"even.w_rel", "even.lockups", "even.breakaways",
-            "even.sense"} <= {s.name for s in model.states}
+               or s in modes for s in extra), extra
 
 
 @pytest.mark.parametrize("folder", sorted(p for p in PACKAGE.rglob("*")
