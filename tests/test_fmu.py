@@ -261,8 +261,9 @@ def test_out_of_range_and_non_finite_are_errors(fmus, version, kind):
 
 @pytest.mark.parametrize("version", ["2.0", "3.0"])
 def test_display_units_and_quantities(fmus, version):
-    # Units.Pressure (displayUnit "bar") and Units.Angle ("deg") as an OEM
-    # tool shows them: 1 bar = 1e5 Pa, 1 deg = pi/180 rad
+    # Units.Pressure (displayUnit "bar"), Units.Angle ("deg") and
+    # Units.AngularVelocity ("rpm") as an OEM tool shows them: 1 bar =
+    # 1e5 Pa, 1 deg = pi/180 rad, 1 rpm = pi/30 rad/s
     from fmpy import read_model_description
     description = read_model_description(str(fmus[("Driveline4DOF",
                                                     version)]))
@@ -270,10 +271,25 @@ def test_display_units_and_quantities(fmus, version):
     for name, quantity, display in [("p_m", "Pressure", "bar"),
                                     ("actuation_pressure", "Pressure", "bar"),
                                     ("inertia1.phi", "Angle", "deg"),
-                                    ("w_upstream", "AngularVelocity", None)]:
+                                    ("w_upstream", "AngularVelocity", "rpm"),
+                                    ("w_in", "AngularVelocity", "rpm")]:
         assert variables[name].quantity == quantity, name
         assert variables[name].displayUnit == display, name
     units = {u.name: {d.name: d.factor for d in u.displayUnits}
              for u in description.unitDefinitions}
     assert units["Pa"] == {"bar": 1e-5}
     assert units["rad"] == pytest.approx({"deg": 180 / np.pi}, rel=1e-15)
+    assert units["rad/s"] == pytest.approx({"rpm": 30 / np.pi}, rel=1e-15)
+
+
+def test_version_is_the_package_annotation(fmus):
+    # modelDescription's version is Judder's annotation(version=...); no
+    # author is given to the library's FMUs
+    from fmpy import read_model_description
+    from fmu.frontend import package_version
+    assert package_version("Judder.Examples.Driveline4DOF", [LIBRARY]) \
+        == "0.1.0"
+    for (name, version), path in fmus.items():
+        description = read_model_description(str(path))
+        assert description.version == "0.1.0", (name, version)
+        assert description.author is None, (name, version)

@@ -47,6 +47,8 @@ REFUSED = [
     ("Overdetermined", "the initialisation is overdetermined", 4),
     ("ArrayVariable", "arrays of variables are not supported", 3),
 ]
+#: The author attribute every corpus FMU is built with.
+AUTHOR = "Judder test corpus"
 KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
          ("3.0", "ModelExchange"), ("3.0", "CoSimulation")]
 #: Models also built as FMI 3.0 (one of each kind of construct: the C
@@ -65,7 +67,7 @@ def fmus(tmp_path_factory):
             built[(name, version)] = build_fmu(
                 class_source(CORPUS, name), name,
                 folder / f"{name}{suffix}.fmu", version=version,
-                roots=[CORPUS, LIBRARY]).path
+                roots=[CORPUS, LIBRARY], author=AUTHOR).path
     return built
 
 
@@ -112,6 +114,18 @@ def test_every_fmu_passes_both_validators(fmus, version):
             (name, messages)
         assert (logging.INFO, "No semantic error against the "
                 f"FMI-{version[0]} standard.") in messages, (name, messages)
+
+
+def test_author_and_package_version(fmus):
+    # author as given to build_fmu; version from the top-level package's
+    # annotation(version = ...), read after its nested classes (MyLib.mo
+    # holds the whole package); none for a class outside a package
+    from fmpy import read_model_description
+    for (name, version), path in fmus.items():
+        description = read_model_description(str(path))
+        assert description.author == AUTHOR, name
+        assert description.version == ("2.1.0" if name == "MyLib.Decay"
+                                       else None), name
 
 
 @pytest.mark.parametrize("version, kind", KINDS)
