@@ -59,6 +59,10 @@ def _build(argv):
     parser.add_argument("--tolerance", type=float, default=DEFAULT_TOLERANCE,
                         help="default relative tolerance, also of the "
                              "co-simulation integrator (default %(default)g)")
+    parser.add_argument("--author", default="", metavar="NAME",
+                        help="the FMUs' author attribute (their version is "
+                             "the version annotation of the model's "
+                             "top-level package)")
     parser.add_argument("--windows", action="store_true",
                         help="also cross-compile a Windows 64-bit binary "
                              "with mingw-w64 (x86_64-w64-mingw32-gcc)")
@@ -88,7 +92,8 @@ def _build(argv):
                                    roots=[source.parent if library.is_file()
                                           else library],
                                    tolerance=args.tolerance,
-                                   windows=args.windows)
+                                   windows=args.windows,
+                                   author=args.author)
                 report = {"model": name, "fmi": version,
                           "path": str(result.path),
                           "states": result.states,

@@ -16,7 +16,11 @@ The steps are those of a Modelica tool's back end, on CasADi expressions:
    choice), and its derivative is replaced by the time derivative of that
    solution, which differentiates the constraint once. The state chosen
    appears in the fewest constraints, so the bodies' absolute states are
-   kept and the relative ones go.
+   kept and the relative ones go. When no constraint is left, a
+   derivative equal to a state (``der(phi) = w``) is substituted into an
+   equation that then becomes one (``w_rel = der(b.phi) - der(a.phi)``
+   gives ``w_rel = b.w - a.w``), so a clutch's stuck branch
+   ``der(w_rel) = 0`` differentiates the relative angle twice.
 4. **Sorting.** The remaining equations are matched to the unknowns (the
    derivatives and the algebraic variables) by
    :func:`scipy.sparse.csgraph.maximum_bipartite_matching`, and split into
@@ -543,6 +547,8 @@ def _reduce_index(system, states, known, time, unknowns=None):
             if involved and names <= set(states) | known:
                 constraints.append((index, involved))
         if not constraints:
+            if _substitute_state_derivatives(system, states, known):
+                continue
             if unknowns and _expose_constraint(system, states, known, time,
                                                unknowns):
                 continue
@@ -567,6 +573,47 @@ def _reduce_index(system, states, known, time, unknowns=None):
         else:
             raise BackEndError(f"cannot reduce the index: no state appears "
                                f"linearly in the constraint {residual}")
+
+
+def _substitute_state_derivatives(system, states, known):
+    """Turn equations in derivatives into the constraints they hide.
+
+    After the bodies' angles replace a relative angle, ``w_rel =
+    der(phi_rel)`` reads ``w_rel = der(b.phi) - der(a.phi)``. With the
+    bodies' ``w = der(phi)`` (a derivative equal to a state) substituted
+    it is ``w_rel = b.w - a.w``: a constraint among states, which the next
+    pass of index reduction differentiates (a second time for the angles).
+    Only equations that become constraints are rewritten; the equations
+    ``w = der(phi)`` themselves stay. Returns whether one was rewritten.
+    """
+    names = set(states)
+    derivatives = {v.derivative.name(): v.derivative for v in states.values()}
+    definitions, defining = {}, set()
+    for index, residual in enumerate(system.residuals):
+        pair = _linear_pair(residual, names | set(derivatives))
+        if pair is None:
+            continue
+        a, b, sign = pair
+        if a.name() in derivatives and b.name() in names:
+            a, b, sign = b, a, 1 / sign
+        if b.name() in derivatives and a.name() in names \
+                and b.name() not in definitions:
+            definitions[b.name()] = sign * a     # der(x) = sign*w
+            defining.add(index)
+    if not definitions:
+        return False
+    old = _column(*[derivatives[n] for n in definitions])
+    new = _column(*definitions.values())
+    for index, residual in enumerate(system.residuals):
+        used = {s.name() for s in casadi.symvar(residual)}
+        if index in defining or not used & set(definitions):
+            continue
+        rewritten = casadi.substitute(residual, old, new)
+        found = {s.name() for s in casadi.symvar(rewritten)}
+        if found & names and found <= names | known:
+            system.residuals[index] = rewritten
+            return True
+    return False
 
 
 def _expose_constraint(system, states, known, time, unknowns):

@@ -33,7 +33,7 @@ from infra.files import atomic_write
 
 from .backend import Quantity, to_ode
 from .description import Layout, build_description, model_description
-from .frontend import FrontEndError, load_flat_model
+from .frontend import FrontEndError, load_flat_model, package_version
 
 __all__ = ["BuildError", "BuildResult", "build_fmu", "fmi_headers"]
 
@@ -206,7 +206,7 @@ def _compile(folder, version, identifier, windows=False):
 
 
 def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
-              tolerance=DEFAULT_TOLERANCE, windows=False):
+              tolerance=DEFAULT_TOLERANCE, windows=False, author=""):
     """Compile a Modelica model into an FMU.
 
     Parameters
@@ -225,6 +225,10 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         Default tolerance, also the co-simulation integrator's.
     windows : bool
         Also cross-compile a Windows 64-bit binary with mingw-w64.
+    author : str
+        The FMU's ``author`` attribute (left out when empty). Its
+        ``version`` is the ``version`` annotation of the model's top-level
+        package (Modelica has no author annotation).
 
     Returns
     -------
@@ -251,8 +255,10 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         guid = "{" + str(uuid.UUID(hashlib.md5(
             code + model_name.encode() + version.encode()).hexdigest())) + "}"
         (folder / "model_config.h").write_text(_config(ode, guid, tolerance))
-        description = model_description(ode, version, identifier, guid,
-                                         tolerance)
+        description = model_description(
+            ode, version, identifier, guid, tolerance, author=author,
+            model_version=package_version(
+                model_name, list(roots) or [Path(mo_file).parent]))
         library = _compile(folder, version, identifier)
         dll = _compile(folder, version, identifier, windows=True) \
             if windows else None

@@ -113,7 +113,7 @@ def _experiment(ode, tolerance):
 
 
 def model_description(ode, version, identifier, guid, tolerance=1e-10,
-                      tool="judder fmu"):
+                      tool="judder fmu", author="", model_version=""):
     """The XML text of modelDescription.xml.
 
     Parameters
@@ -126,12 +126,15 @@ def model_description(ode, version, identifier, guid, tolerance=1e-10,
         GUID (FMI 2) or instantiationToken (FMI 3).
     tolerance : float
         Default relative tolerance of the experiment.
+    author, model_version : str
+        The ``author`` and ``version`` attributes (left out when empty).
     """
     layout = Layout(ode)
+    about = {"author": author, "version": model_version}
     if version == "2.0":
-        return _fmi2(ode, layout, identifier, guid, tolerance, tool)
+        return _fmi2(ode, layout, identifier, guid, tolerance, tool, about)
     if version == "3.0":
-        return _fmi3(ode, layout, identifier, guid, tolerance, tool)
+        return _fmi3(ode, layout, identifier, guid, tolerance, tool, about)
     raise ValueError(f"FMI version {version!r}; allowed: 2.0, 3.0")
 
 
@@ -228,10 +231,10 @@ def _derivative_description(q):
         f" ({q.description})" if q.description else "")
 
 
-def _fmi2(ode, layout, identifier, guid, tolerance, tool):
+def _fmi2(ode, layout, identifier, guid, tolerance, tool, about):
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              "<fmiModelDescription" + _attr(
-                 fmiVersion="2.0", modelName=ode.name, guid=guid,
+                 fmiVersion="2.0", modelName=ode.name, guid=guid, **about,
                  generationTool=tool, generationDateAndTime=_generated(),
                  variableNamingConvention="structured",
                  numberOfEventIndicators=str(len(ode.relations))) + ">",
@@ -316,11 +319,11 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool):
     return "\n".join(lines) + "\n"
 
 
-def _fmi3(ode, layout, identifier, guid, tolerance, tool):
+def _fmi3(ode, layout, identifier, guid, tolerance, tool, about):
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              "<fmiModelDescription" + _attr(
                  fmiVersion="3.0", modelName=ode.name,
-                 instantiationToken=guid, generationTool=tool,
+                 instantiationToken=guid, **about, generationTool=tool,
                  generationDateAndTime=_generated(),
                  variableNamingConvention="structured") + ">",
              "  <ModelExchange" + _attr(

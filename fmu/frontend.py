@@ -364,6 +364,33 @@ def class_source(library, name):
                         f"nor a package file holding it, in {library}")
 
 
+def package_version(model_name, roots):
+    """The ``version`` annotation of the top-level package of
+    ``model_name`` (``Judder`` of ``Judder.Examples.Driveline4DOF``), or
+    ``""`` for a class outside a package or a package without one.
+
+    The class annotation of a package stands last in its body (Modelica's
+    grammar), so it is read between the last nested ``end Name;`` and the
+    package's own ``end``.
+    """
+    import re
+    if "." not in model_name:
+        return ""
+    top = model_name.split(".")[0]
+    for root in roots:
+        try:
+            text = class_source(root, top).read_text()
+        except FrontEndError:
+            continue
+        ends = list(re.finditer(r"\bend\s+([\w.]+)\s*;", text))
+        if not ends or ends[-1].group(1) != top:
+            continue
+        body = text[ends[-2].end() if len(ends) > 1 else 0:ends[-1].start()]
+        found = re.search(r"\bversion\s*=\s*\"([^\"]*)\"", body)
+        return found.group(1) if found else ""
+    return ""
+
+
 def _flatten(path, model_name, roots):
     import rumoca
     diagnostics = rumoca.validate(str(path), model=model_name)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
 from drivelines import get_preset
@@ -27,7 +28,8 @@ from fmu.build import BuildError, build_fmu  # noqa: E402
 from fmu.frontend import FrontEndError  # noqa: E402
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
-EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement"]
+EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement",
+            "TestBenchLockUp"]
 W_IN = 1000 * 2 * np.pi / 60
 
 
@@ -103,6 +105,77 @@ def test_4dof_fmu_matches_eq1(fmus, version, kind):
                           output=["w_upstream", "w_downstream",
                                   "inertia2.phi", "inertia1.w"], **options)
     assert _relative_error(result, _eq1(60.0, 0.3e5)) < 1e-6
+
+
+#: Dither settings of the engagement benchmark (benchmarks/bench.py).
+OUTSIDE_TONGUES = {"f_dither": 60.0, "p_f": 0.05e5}
+TONGUE_2 = {"f_dither": 102.9, "p_f": 0.3e5}
+BENCH_OUTPUTS = ["w_upstream", "w_downstream", "slip", "clutch_torque",
+                 "actuation_pressure"]
+
+
+def _engagement(fmus, name, kind, setting, stop_time):
+    """A bench engagement, on the 1 ms grid only (fmpy adds event rows);
+    the locking clutch's mode counters with it."""
+    options = {"relative_tolerance": 1e-8} if kind == "ModelExchange" else {}
+    extra = ["even.lockups", "even.breakaways"] if "LockUp" in name else []
+    result = simulate_fmu(str(fmus[(name, "2.0")]), fmi_type=kind,
+                          stop_time=stop_time, output_interval=1e-3,
+                          start_values=setting, output=BENCH_OUTPUTS + extra,
+                          **options)
+    grid = np.arange(round(stop_time / 1e-3) + 1) * 1e-3
+    last = np.r_[np.diff(result["time"]) > 0, True]      # after an event
+    on_grid = last & (np.abs(result["time"] - np.round(result["time"], 3))
+                      < 1e-12)
+    result = result[on_grid]
+    assert_allclose(result["time"], grid, atol=1e-12)
+    return result
+
+
+@pytest.mark.parametrize("kind, slipping_error", [("ModelExchange", 1e-3),
+                                                  ("CoSimulation", 1e-5)])
+def test_locking_clutch_engagement_ends_in_lock_up(fmus, kind,
+                                                   slipping_error):
+    # outside the tongues: the same engagement as WetClutch's while it
+    # slips (there tanh(slip/w_small) = 1; the bound is the integrators'
+    # difference, 3e-4 rad/s ME at rtol 1e-8, 1e-6 CS), then one lock-up
+    # that holds: zero slip, torque within mu0 N_c R_m S p
+    locking = _engagement(fmus, "TestBenchLockUp", kind, OUTSIDE_TONGUES, 4.0)
+    smooth = _engagement(fmus, "TestBenchEngagement", kind, OUTSIDE_TONGUES,
+                         4.0)
+    t = locking["time"]
+    assert locking["even.lockups"][-1] == 1
+    assert locking["even.breakaways"][-1] == 0
+    stuck = locking["even.lockups"] > 0.5
+    t_lock = t[stuck][0]
+    assert 3.2 < t_lock < 3.25 and np.all(stuck[t >= t_lock])
+    slipping = (t < t_lock) & (smooth["slip"] > 0.2)
+    assert slipping.sum() > 3000
+    for name in ("w_upstream", "w_downstream", "clutch_torque"):
+        assert np.abs(locking[name] - smooth[name])[slipping].max() \
+            < slipping_error, name
+    assert np.abs(locking["slip"][stuck]).max() < 1e-11
+    # mu0 N_c R_m S p
+    capacity = 0.09 * 8 * 0.075 * 0.01 * locking["actuation_pressure"]
+    assert np.all(np.abs(locking["clutch_torque"][stuck])
+                  < capacity[stuck])
+    assert smooth["slip"][-1] > 1e-3     # the smooth clutch still creeps
+
+
+@pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
+def test_locking_clutch_breaks_away_at_once_inside_tongue_2(fmus, kind):
+    # inside tongue 2 the slip swings through zero; at each zero the stuck
+    # plates would need more than the capacity, so every lock-up breaks
+    # away in its own event iteration and the speeds stay those of
+    # WetClutch, whose torque reverses within a few w_small (2e-5 of the
+    # largest slip after 358 reversals)
+    locking = _engagement(fmus, "TestBenchLockUp", kind, TONGUE_2, 2.0)
+    smooth = _engagement(fmus, "TestBenchEngagement", kind, TONGUE_2, 2.0)
+    lockups = locking["even.lockups"]
+    assert lockups[-1] > 300
+    assert_allclose(lockups, locking["even.breakaways"], atol=0)
+    assert np.abs(locking["slip"] - smooth["slip"]).max() \
+        < 1e-4 * np.abs(smooth["slip"]).max()
 
 
 def test_tunable_parameters_have_units_and_descriptions(fmus):
@@ -188,8 +261,9 @@ def test_out_of_range_and_non_finite_are_errors(fmus, version, kind):
 
 @pytest.mark.parametrize("version", ["2.0", "3.0"])
 def test_display_units_and_quantities(fmus, version):
-    # Units.Pressure (displayUnit "bar") and Units.Angle ("deg") as an OEM
-    # tool shows them: 1 bar = 1e5 Pa, 1 deg = pi/180 rad
+    # Units.Pressure (displayUnit "bar"), Units.Angle ("deg") and
+    # Units.AngularVelocity ("rpm") as an OEM tool shows them: 1 bar =
+    # 1e5 Pa, 1 deg = pi/180 rad, 1 rpm = pi/30 rad/s
     from fmpy import read_model_description
     description = read_model_description(str(fmus[("Driveline4DOF",
                                                     version)]))
@@ -197,10 +271,25 @@ def test_display_units_and_quantities(fmus, version):
     for name, quantity, display in [("p_m", "Pressure", "bar"),
                                     ("actuation_pressure", "Pressure", "bar"),
                                     ("inertia1.phi", "Angle", "deg"),
-                                    ("w_upstream", "AngularVelocity", None)]:
+                                    ("w_upstream", "AngularVelocity", "rpm"),
+                                    ("w_in", "AngularVelocity", "rpm")]:
         assert variables[name].quantity == quantity, name
         assert variables[name].displayUnit == display, name
     units = {u.name: {d.name: d.factor for d in u.displayUnits}
              for u in description.unitDefinitions}
     assert units["Pa"] == {"bar": 1e-5}
     assert units["rad"] == pytest.approx({"deg": 180 / np.pi}, rel=1e-15)
+    assert units["rad/s"] == pytest.approx({"rpm": 30 / np.pi}, rel=1e-15)
+
+
+def test_version_is_the_package_annotation(fmus):
+    # modelDescription's version is Judder's annotation(version=...); no
+    # author is given to the library's FMUs
+    from fmpy import read_model_description
+    from fmu.frontend import package_version
+    assert package_version("Judder.Examples.Driveline4DOF", [LIBRARY]) \
+        == "0.1.0"
+    for (name, version), path in fmus.items():
+        description = read_model_description(str(path))
+        assert description.version == "0.1.0", (name, version)
+        assert description.author is None, (name, version)

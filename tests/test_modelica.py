@@ -34,7 +34,13 @@ EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement"]
 # bodies' angles; the project's back end (fmu/) reduces the index and
 # keeps the bodies' 8, 6 and 8 states (tests/test_fmu_backend.py).
 STATES = {"Driveline4DOF": 8 + 7 + 3, "Driveline3DOF": 6 + 5 + 3,
-          "TestBenchEngagement": 8 + 8 + 3 + 1}
+          "TestBenchEngagement": 8 + 8 + 3 + 1,
+          "TestBenchLockUp": 8 + 8 + 3 + 1 + 4}
+# TestBenchEngagement with its EVEN clutch redeclared as LockingWetClutch:
+# rumoca also keeps the clutch's relative speed (under der() in the stuck
+# branch) and its three mode states
+MODE_STATES = {"TestBenchLockUp": {"even.w_rel", "even.lockups",
+                                   "even.breakaways", "even.sense"}}
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +53,7 @@ def _load(session, name):
                         model=f"Judder.Examples.{name}")
 
 
-@pytest.mark.parametrize("name", EXAMPLES)
+@pytest.mark.parametrize("name", EXAMPLES + ["TestBenchLockUp"])
 def test_example_is_valid_and_balanced(session, name):
     path = PACKAGE / "Examples" / f"{name}.mo"
     assert rumoca.validate(str(path), model=f"Judder.Examples.{name}") == []
@@ -57,11 +63,13 @@ def test_example_is_valid_and_balanced(session, name):
     assert info.n_equations == info.n_unknowns
     assert info.n_states == STATES[name]
     # the states beyond the bodies' are relative angles and sensor or
-    # motor flange angles, which the back end eliminates
+    # motor flange angles, which the back end eliminates, and the modes
     extra = [s.name for s in model.states
              if not re.fullmatch(r"inertia\d+\.(phi|w)", s.name)]
+    modes = MODE_STATES.get(name, set())
+    assert modes <= set(extra)
     assert all(s.endswith(".phi_rel") or s.endswith("flange.phi")
-               for s in extra), extra
+               or s in modes for s in extra), extra
 
 
 @pytest.mark.parametrize("folder", sorted(p for p in PACKAGE.rglob("*")
@@ -235,8 +243,8 @@ def _declarations(path, types):
         # the first declaration of a class follows its header
         statement = re.sub(r"^\s*(?:partial\s+)?(?:model|block|connector)"
                            r"\s+\w+\s*(?:\"\")?", "", statement)
-        match = re.match(r"\s*(?:input |output )?(" + types + r")\s+(\w+)",
-                         statement)
+        match = re.match(r"\s*(?:input |output |replaceable )?("
+                         + types + r")\s+(\w+)", statement)
         if match:
             found.append((match.group(1), match.group(2), statement))
     return found

@@ -1,7 +1,7 @@
 within Judder;
 package Units "Unit types of the library (SI, as Modelica.Units.SI)"
   type Angle = Real(final quantity="Angle", final unit="rad", displayUnit="deg");
-  type AngularVelocity = Real(final quantity="AngularVelocity", final unit="rad/s");
+  type AngularVelocity = Real(final quantity="AngularVelocity", final unit="rad/s", displayUnit="rpm");
   type AngularAcceleration = Real(final quantity="AngularAcceleration", final unit="rad/s2");
   type Torque = Real(final quantity="Torque", final unit="N.m");
   type Inertia = Real(final quantity="MomentOfInertia", final unit="kg.m2", min=0);
@@ -20,7 +20,8 @@ package Units "Unit types of the library (SI, as Modelica.Units.SI)"
 <p>Real types with quantity and unit, named and defined as in
 Modelica.Units.SI, so that every variable and every value in the models
 carries its SI unit (rad, rad/s, N.m, kg.m2, Pa, Hz, s, m).
-Pressures are displayed in bar and angles in degrees.</p>
+Pressures are displayed in bar, angles in degrees and angular velocities
+in rpm.</p>
 <p>Two types are specific to the friction law of Eq. (5),
 mu = mu0 + mu_g (w4 - w3): <code>FrictionCoefficient</code> (mu0, unit 1)
 and <code>FrictionGradient</code> (mu_g, unit s/rad).</p>

@@ -1,4 +1,4 @@
-model LockingClutchRig "The clutch of LockUp as a component: its stuck branch needs der(w_rel)"
+model LockingClutchRig "The clutch of LockUp as a component: its stuck branch der(w_rel) = 0 needs the relative speed differentiated a second time"
   model Clutch "Locks when the slip reaches zero"
     extends Judder.Interfaces.PartialCompliantWithRelativeStates;
     parameter Real tau_max = 30 "Torque capacity";

@@ -6,4 +6,5 @@ package MyLib "A whole package in one file"
     der(x) = -k*x;
     annotation(experiment(StopTime = 1, Interval = 0.01));
   end Decay;
+  annotation(version = "2.1.0");
 end MyLib;

@@ -40,8 +40,9 @@ model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clut
     annotation (Placement(transformation(extent={{-110,-10},{-90,10}})));
   Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack"
     annotation (Placement(transformation(extent={{-30,-10},{-10,10}})));
-  Components.WetClutch even(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
-    mean_pressure_damping=mean_pressure_damping) "EVEN clutch, engaging"
+  replaceable Components.WetClutch even(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
+    mean_pressure_damping=mean_pressure_damping) constrainedby Interfaces.PartialWetClutch
+    "EVEN clutch, engaging"
     annotation (Placement(transformation(extent={{50,-10},{70,10}})));
   Components.WetClutch rev(mu0=mu0, mu_g=mu_g, N_c=N_c_load, R_m=R_m, S=S_load,
     mean_pressure_damping=mean_pressure_damping) "REV clutch, slipping against the housing as the load"

@@ -1,0 +1,20 @@
+within Judder.Examples;
+model TestBenchLockUp "Bench engagement of TestBenchEngagement ending in lock-up: the EVEN clutch sticks and breaks away by events"
+  extends TestBenchEngagement(redeclare Components.LockingWetClutch even(mu0=mu0, mu_g=mu_g,
+    N_c=N_c, R_m=R_m, S=S, mean_pressure_damping=mean_pressure_damping));
+  annotation (
+    experiment(StopTime=4, Interval=1e-3),
+    Documentation(info="<html>
+<p>The engagement of TestBenchEngagement with the EVEN clutch as a
+Components.LockingWetClutch: the same bench, pressures and friction law
+while the clutch slips, and stuck plates from the instant the slip
+reaches zero, instead of the steep smooth slope of WetClutch through
+zero slip. Outside the tongues (f_dither = 60 Hz, p_f = 0.05 bar) the
+engagement ends in lock-up at 3.23 s: the slip stays at zero and the
+clutch transmits the torque the load takes. Inside tongue 2 (the default
+102.9 Hz, 0.3 bar) the slip oscillates through zero; at each zero the
+torque needed to stay stuck exceeds mu0 N_c R_m S p, so the clutch
+breaks away in the same event and no lock holds. The mode is
+even.lockups - even.breakaways (1 stuck, 0 slipping).</p>
+</html>"));
+end TestBenchLockUp;
