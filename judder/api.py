@@ -374,8 +374,13 @@ def _bench_fmu(values):
     """The driveline's bench engagement model and its FMU (built if
     needed)."""
     from pysim.fmus import ensure_fmu
-    model_class = (None if values.driveline is None
-                   else values.driveline.bench_class)
+    if values.driveline is None:
+        raise JudderError(f"{values.model} (a Modelica class or an FMU) "
+                          "has no bench engagement model: the bench belongs "
+                          "to the registry's 4-DOF driveline; allowed: a "
+                          "preset or its parameter file (or add the bench's "
+                          "damping to the class with --set)")
+    model_class = values.driveline.bench_class
     if model_class is None:
         raise JudderError(f"the {values.model} driveline has no bench "
                           "engagement model; give a parameter set of a "

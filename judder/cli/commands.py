@@ -431,8 +431,10 @@ def cmd_simulate(args):
                           changes=changes, method=args.method)
     files = _write_outputs(
         args, result,
-        figure={"title": "bench engagement of the EVEN clutch (Fig. 1, 7, "
-                         f"8), {model_title(args, params)}"})
+        figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
+                          "8)" if params.driveline is not None else
+                          "time-domain run with dither")
+                + f", {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))

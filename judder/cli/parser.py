@@ -498,7 +498,11 @@ def build_parser():
                                    "the free response, whose Floquet "
                                    "multipliers are fitted (Prony/Hankel "
                                    "DMD on samples once per dither period) "
-                                   "and compared with the stability layer's.")
+                                   "and compared with the stability layer's. "
+                                   "With --modelica CLASS: the class's FMU "
+                                   "and its linearisation; --fmu is refused "
+                                   "(the FMU path reads only its Jacobian, "
+                                   "it has no time-domain run here).")
     p.add_argument("--freq", default="75:130:23", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 75:130:23: tongues "
                         "5, 2 and 6)")
