@@ -8,9 +8,15 @@ command line calls these functions and only formats what they return.
 
 Every function takes the parameter set as ``params`` (a
 :class:`drivelines.Parameters`; default: the paper preset of the default
-driveline, see :func:`judder.inputs.load_parameters` for files) and
-``changes``, the values the user set explicitly (``--set``), applied on
-top. Monodromy engines (``method``) are the keys of
+driveline, see :func:`judder.inputs.load_parameters` for files; or a
+driveline of one's own, a Modelica class
+:class:`drivelines.modelica.ModelicaParameters` or an FMU
+:class:`drivelines.fmu_linear.FmuParameters`) and ``changes``, the values
+the user set explicitly (``--set``), applied on top. What needs a
+time-domain run (:func:`crosscheck`, :func:`simulate`) refuses an FMU,
+what needs the bench (``fit(bench=...)``) or the paper's chains
+(:func:`threshold`) refuses both, with a :class:`~infra.errors.JudderError`
+that says why. Monodromy engines (``method``) are the keys of
 :data:`stability.monodromy.METHODS`. ``progress`` is called as
 ``progress(done, total)`` on long work.
 
@@ -696,7 +702,9 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     sensitivity : sequence of str, optional
         Parameters whose effect on the margins is reported (empty: none;
         default :data:`DEFAULT_CHECK_PARAMETERS`, or the model's
-        inertias, stiffnesses, coupling dampings and mu_g).
+        inertias, stiffnesses, coupling dampings and mu_g; for a Modelica
+        class or an FMU those of :data:`DEFAULT_CHECK_PARAMETERS` it has,
+        and JudderError if none).
     background : bool
         Also compute the map ``figure()`` marks the settings on.
 
@@ -768,7 +776,9 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
     names : sequence of str, optional
         Design parameters (default J2, J4, k12, k24, c12; for another
-        model its inertias, stiffnesses and coupling dampings).
+        model its inertias, stiffnesses and coupling dampings; for a
+        Modelica class or an FMU those of the five it has, and
+        JudderError if none).
     weights : sequence of float, optional
         Cost of a unit change of ln(value) of each (default 1).
     design : bool
