@@ -163,7 +163,11 @@ def build_parser():
                        description="Undamped natural frequencies (Eq. 14-15, "
                                    "Hz), clutch-damper damping factor "
                                    "(Eq. 16) and the damped modes without "
-                                   "dither.")
+                                   "dither, rigid-body angles removed. For "
+                                   "--modelica or --fmu: the frequencies of "
+                                   "its Jacobian's stiffness part and its "
+                                   "damped modes; Eq. 15-16 are the paper's "
+                                   "chains' formulas (null in --json).")
     _model_options(p)
     p.set_defaults(handler=commands.cmd_eig)
 
