@@ -8,9 +8,15 @@ command line calls these functions and only formats what they return.
 
 Every function takes the parameter set as ``params`` (a
 :class:`drivelines.Parameters`; default: the paper preset of the default
-driveline, see :func:`judder.inputs.load_parameters` for files) and
-``changes``, the values the user set explicitly (``--set``), applied on
-top. Monodromy engines (``method``) are the keys of
+driveline, see :func:`judder.inputs.load_parameters` for files; or a
+driveline of one's own, a Modelica class
+:class:`drivelines.modelica.ModelicaParameters` or an FMU
+:class:`drivelines.fmu_linear.FmuParameters`) and ``changes``, the values
+the user set explicitly (``--set``), applied on top. What needs a
+time-domain run (:func:`crosscheck`, :func:`simulate`) refuses an FMU,
+what needs the bench (``fit(bench=...)``) or the paper's chains
+(:func:`threshold`) refuses both, with a :class:`~infra.errors.JudderError`
+that says why. Monodromy engines (``method``) are the keys of
 :data:`stability.monodromy.METHODS`. ``progress`` is called as
 ``progress(done, total)`` on long work.
 
@@ -93,6 +99,12 @@ def eig(parameters=None, changes=None):
     clutch-damper damping factor (Eq. 16), and the damped modes without
     dither.
 
+    For a Modelica class or an FMU the natural frequencies are those of
+    its Jacobian's stiffness part and the damped modes those of its
+    system without dither, rigid-body angles removed; the closed forms
+    (Eq. 15) and the clutch-damper factor (Eq. 16) belong to the paper's
+    chains, so they are None there.
+
     Returns
     -------
     judder.results.EigResult
@@ -105,11 +117,14 @@ def eig(parameters=None, changes=None):
     values = _resolve(parameters, changes)
     driveline = build_driveline(values)
     damped_hz, ratio = modal.damped_modes(driveline)
+    paper = values.driveline is not None
     return EigResult(
         params=values,
         natural_frequencies_hz=modal.natural_frequencies(driveline),
-        closed_form_frequencies_hz=modal.closed_form_frequencies(values),
-        damping_factor_12=float(modal.clutch_damper_damping_factor(values)),
+        closed_form_frequencies_hz=(modal.closed_form_frequencies(values)
+                                    if paper else None),
+        damping_factor_12=(float(modal.clutch_damper_damping_factor(values))
+                           if paper else None),
         damped_frequencies_hz=damped_hz, damping_ratio=ratio)
 
 
@@ -301,6 +316,12 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
     """
     from stability.threshold import threshold_study
     changes = dict(changes or {})
+    base = _resolve(parameters, {})
+    if base.driveline is None:
+        raise JudderError(f"threshold of {base.model} is not possible: "
+                          "Fig. 19 varies mu_g and the external dampings "
+                          "of the paper's chains by their roles; allowed: "
+                          "a preset or a parameter file of one")
     changes.setdefault(MEAN_PRESSURE_DAMPING, 1.0)
     values = _resolve(parameters, changes)
     study = threshold_study(values, mu_g, c_ext, callback=progress)
@@ -359,6 +380,12 @@ def _bench_fmu(values):
     """The driveline's bench engagement model and its FMU (built if
     needed)."""
     from pysim.fmus import ensure_fmu
+    if values.driveline is None:
+        raise JudderError(f"{values.model} (a Modelica class or an FMU) "
+                          "has no bench engagement model: the bench belongs "
+                          "to the registry's 4-DOF driveline; allowed: a "
+                          "preset or its parameter file (or add the bench's "
+                          "damping to the class with --set)")
     model_class = values.driveline.bench_class
     if model_class is None:
         raise JudderError(f"the {values.model} driveline has no bench "
@@ -386,8 +413,12 @@ def bench_damping(values, bench=None):
     dict
         ``{driveline parameter: added value}``, SI.
     """
+    return _added_damping(values, _bench_fmu(values)[1], bench)
+
+
+def _added_damping(values, fmu, bench):
+    """:func:`bench_damping` with the bench's FMU ``fmu`` known."""
     from pysim.runs import parameter_default
-    _, fmu = _bench_fmu(values)
     bench = dict(bench or {})
     for name in bench:
         parameter_default(fmu, name)    # the bench model must have it
@@ -402,6 +433,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     dither setting for the bench's linearisation (the damping its motor
     control adds, :attr:`drivelines.DrivelineModel.bench_damping`).
 
+    A Modelica class (:class:`drivelines.modelica.ModelicaParameters`)
+    runs instead through its own FMU (the one ``crosscheck`` runs, see
+    :mod:`judder.timedomain`) from its start values, a steady slip, with
+    the dither; the Floquet verdict is that of its linearisation. An FMU
+    of ``--fmu`` is refused: it has no time-domain model here.
+
     Parameters
     ----------
     freq_hz : float or sequence of float
@@ -415,19 +452,38 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         Also run a correct engagement: ``'none'`` without dither, a number
         with dither at that frequency (Hz).
     bench : dict, optional
-        Further parameters of the bench model (``w_motor``, ...), SI.
+        Further parameters of the bench model (``w_motor``, ...), SI; not
+        for a Modelica class (its parameters are ``changes``).
 
     Returns
     -------
     judder.results.SimulationResult
     """
+    from drivelines.registry import SIGNALS
     from pysim.engagement import engagement_summary
     from pysim.runs import parameter_default, run_fmu
+    from .timedomain import class_fmu, run_values
     values = _resolve(parameters, changes)
-    model_class, fmu = _bench_fmu(values)
     bench = dict(bench or {})
-    ramp_end = sum(bench.get(name, parameter_default(fmu, name))
-                   for name in ("t_engage", "t_ramp"))
+    if values.driveline is not None:
+        model_class, fmu = _bench_fmu(values)
+        ramp_end = sum(bench.get(name, parameter_default(fmu, name))
+                       for name in ("t_engage", "t_ramp"))
+        run_params, extra = values, bench
+        # the bench's linearisation: its motor control damps body 1
+        driveline = build_driveline(values.replace(**{
+            name: values[name] + value
+            for name, value in _added_damping(values, fmu, bench).items()}))
+    else:
+        fmu = class_fmu(values, "simulate")
+        if bench:
+            raise JudderError(f"--bench {', '.join(bench)} is not allowed "
+                              f"with the class {values.model}; allowed: "
+                              "its parameters with --set (the bench "
+                              "parameters belong to the bench model)")
+        model_class, ramp_end = values.model, 0.0   # starts slipping
+        run_params, extra = run_values(values)
+        driveline = build_driveline(values)
     if duration is not None and duration <= ramp_end:
         raise JudderError(f"duration {duration:g} s ends before the "
                           f"engagement (its pressure ramp ends at "
@@ -444,25 +500,20 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                         (f"dither at {float(compare):g} Hz", float(compare),
                          p_f_bar * PA_PER_BAR))
     interval = min(1e-3, 1.0 / (20 * max(f for _, f, _ in settings)))
-    runs = [(label, run_fmu(fmu, freq, p_f, params=values, extra=bench,
+    runs = [(label, run_fmu(fmu, freq, p_f, params=run_params, extra=extra,
                             duration=duration, output_interval=interval))
             for label, freq, p_f in settings]
-    start = ramp_end
-    # the bench's linearisation: its motor control damps body 1
-    driveline = build_driveline(values.replace(**{
-        name: values[name] + value
-        for name, value in bench_damping(values, bench).items()}))
     summaries = []
     for label, run in runs:
         linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
                                 method=method)
         summaries.append({"label": label,
-                          **engagement_summary(run, start),
+                          **engagement_summary(run, ramp_end),
                           "floquet_kind": linear.kind,
                           "floquet_exponent_per_s": linear.growth_rate})
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
-                            model_class=model_class, start=start,
-                            signals=dict(values.driveline.signals))
+                            model_class=model_class, start=ramp_end,
+                            signals=dict(SIGNALS))
 
 
 def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
@@ -591,10 +642,22 @@ DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
 
 def _structural_names(values, preferred, extra=()):
     """``preferred`` if the model has them all, else its inertias,
-    stiffnesses and coupling dampings (from the registry), plus ``extra``."""
+    stiffnesses and coupling dampings (from the registry), plus ``extra``.
+
+    A Modelica class or an FMU has no registry entry: those of
+    ``preferred`` it has (its names follow the paper's where it is the
+    paper's chain), and if it has none the names must be given."""
     if all(name in values.specs for name in preferred):
         return tuple(preferred)
     model = values.driveline
+    if model is None:
+        names = tuple(n for n in preferred if n in values.specs)
+        if not names:
+            raise JudderError(
+                f"--params is required for {values.model}: it has none of "
+                f"the default names {','.join(preferred)}; allowed: its "
+                f"tunable parameters: {', '.join(values.specs)}")
+        return names
     return (tuple(b.inertia for b in model.bodies)
             + tuple(c.stiffness for c in model.couplings)
             + tuple(c.damping for c in model.couplings) + tuple(extra))
@@ -639,7 +702,9 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     sensitivity : sequence of str, optional
         Parameters whose effect on the margins is reported (empty: none;
         default :data:`DEFAULT_CHECK_PARAMETERS`, or the model's
-        inertias, stiffnesses, coupling dampings and mu_g).
+        inertias, stiffnesses, coupling dampings and mu_g; for a Modelica
+        class or an FMU those of :data:`DEFAULT_CHECK_PARAMETERS` it has,
+        and JudderError if none).
     background : bool
         Also compute the map ``figure()`` marks the settings on.
 
@@ -711,7 +776,9 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
     names : sequence of str, optional
         Design parameters (default J2, J4, k12, k24, c12; for another
-        model its inertias, stiffnesses and coupling dampings).
+        model its inertias, stiffnesses and coupling dampings; for a
+        Modelica class or an FMU those of the five it has, and
+        JudderError if none).
     weights : sequence of float, optional
         Cost of a unit change of ln(value) of each (default 1).
     design : bool

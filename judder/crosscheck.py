@@ -18,12 +18,13 @@ import numpy as np
 
 from infra.errors import JudderError
 from infra.parallel import parallel_map
-from pysim.fmus import ensure_fmu
 from pysim.runs import parameter_default, run_fmu
 from pysim.signals import free_response_growth
 from stability.floquet import floquet
 from stability.model import build_driveline
 from stability.monodromy import DEFAULT_METHOD, get_method
+
+from .timedomain import class_fmu, run_values
 
 __all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck"]
 
@@ -104,17 +105,10 @@ def _reason(point_rate, fit, duration):
 def _point(job):
     params, fmu_path, freq, p_f, duration, method, speeds, perturb = job
     period = 1.0 / freq
-    if params.driveline is None:
-        # a Modelica class: its values are FMU parameters, except the
-        # dither, which is the grid point's
-        run_params = None
-        base = {k: v for k, v in params.values.items()
-                if k not in (params.amplitude, params.frequency)}
-        perturbed = {perturb: base[perturb] + SPEED_STEP}
-    else:
-        run_params, base = params, {}
-        perturbed = {perturb: parameter_default(fmu_path, perturb)
-                     + SPEED_STEP}
+    run_params, base = run_values(params)
+    perturbed = {perturb: (base[perturb] if perturb in base else
+                           parameter_default(fmu_path, perturb))
+                 + SPEED_STEP}
     runs = [run_fmu(fmu_path, freq, p_f, params=run_params,
                     duration=duration,
                     output_interval=period / SAMPLES_PER_PERIOD,
@@ -137,24 +131,19 @@ def _point(job):
 def _fmu_and_speeds(params, perturb):
     """The FMU to run and the speeds whose difference is the free response.
 
-    A registry driveline names them; a Modelica class
-    (:class:`drivelines.modelica.ModelicaParameters`) is built into an FMU
-    and every state in rad/s is recorded.
+    A registry driveline names the speeds; of a Modelica class
+    (:class:`drivelines.modelica.ModelicaParameters`) every state in rad/s
+    is recorded. An FMU of ``--fmu`` is refused (:func:`class_fmu`).
     """
+    fmu_path = class_fmu(params, "crosscheck")
     if params.driveline is not None:
-        return (ensure_fmu(params.driveline.modelica_class),
-                params.driveline.free_response_speeds)
-    if (params.amplitude, params.frequency) != ("p_f", "f_dither"):
-        raise JudderError("crosscheck runs the FMU with the dither in p_f "
-                          "and f_dither; allowed: --dither-amplitude p_f "
-                          "--dither-frequency f_dither")
+        return fmu_path, params.driveline.free_response_speeds
     if perturb not in params.values:
         raise JudderError(
             f"perturb = {perturb!r} is not a tunable parameter of "
             f"{params.model}; allowed: a start speed among "
             f"{', '.join(params.values)}")
-    return (ensure_fmu(params.class_name, library=params.library),
-            tuple(params.speed_states))
+    return fmu_path, tuple(params.speed_states)
 
 
 def crosscheck(params, freq_hz, p_f, duration=3.0, method=DEFAULT_METHOD,

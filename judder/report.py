@@ -19,6 +19,7 @@ import io
 import shutil
 import subprocess
 import tempfile
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,7 +31,7 @@ from infra.units import PA_PER_BAR
 
 from . import api
 
-__all__ = ["ReportResult", "build_report", "dither_verdict", "print_pdf",
+__all__ = ["ReportResult", "build_report", "print_pdf",
            "DEFAULT_SENSITIVITY"]
 
 #: Parameters varied in the report's sensitivity study, per model: those
@@ -92,60 +93,33 @@ def _table(header, rows):
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def dither_verdict(params, freq_hz, p_f_bar, boundaries, method):
-    """Verdict and margin of one dither setting.
-
-    This is the hook for ``judder check`` (being built separately): until
-    it is on main, the verdict is the Floquet verdict and growth rate of
-    :func:`judder.api.floquet` at the setting, and the margin is the
-    ratio of the exact stability boundary at that frequency to the
-    configured amplitude (above 1: that much headroom; below 1: that much
-    too high).
-
-    Returns
-    -------
-    dict
-        ``kind``, ``judder`` (bool), ``growth_rate_per_s``,
-        ``leading_abs``, ``boundary_p_f_bar`` (None: none up to the
-        searched amplitude), ``margin`` (boundary / p_f, None if no
-        boundary or p_f = 0), ``source``.
-    """
-    point = api.floquet(freq_hz, p_f_bar, params, method=method)
-    lowest = boundaries.stability_boundary / PA_PER_BAR
-    edge = np.interp(freq_hz, boundaries.freq_hz, lowest,
-                     left=np.nan, right=np.nan)
-    edge = None if not np.isfinite(edge) else float(edge)
-    r = point.result
-    return {"freq_hz": freq_hz, "p_f_bar": p_f_bar, "kind": r.kind,
-            "judder": r.kind != "stable",
-            "growth_rate_per_s": float(r.growth_rate),
-            "leading_abs": float(r.leading_abs),
-            "boundary_p_f_bar": edge,
-            "margin": None if edge is None or p_f_bar == 0
-            else edge / p_f_bar,
-            "source": "judder floquet (hook for judder check)",
-            "_point": point}
-
-
-def _verdict_text(v, p_max_bar):
+def _verdict_text(v):
+    """The configured dither's verdict in words, from a record of
+    ``judder check`` (:func:`judder.results.setting_record`) with the
+    leading ``|lambda|`` added."""
+    tongue = v["margin_bar_tongue"] or v["margin_hz_tongue"]
+    named = "" if tongue is None else \
+        f" (tongue {tongue['number'] or '?'}, {tongue['kind']})"
     where = (f"the stability boundary at {v['freq_hz']:g} Hz is "
-             f"{v['boundary_p_f_bar']:.3g} bar"
+             f"{v['boundary_p_f_bar']:.3g} bar{named}"
              if v["boundary_p_f_bar"] is not None else
              f"no tongue reaches {v['freq_hz']:g} Hz below "
-             f"{p_max_bar:g} bar")
-    if v["judder"]:
-        head = (f"JUDDER: {v['kind']} instability, growing at "
+             f"{v['p_f_bar'] + v['margin_bar_at_least']:g} bar")
+    edge = ("" if v["margin_hz"] is None else
+            f"; the nearest tongue edge at {v['p_f_bar']:g} bar is "
+            f"{abs(v['margin_hz']):.3g} Hz away, at "
+            f"{v['crossing_hz']:.2f} Hz")
+    if v["verdict"] == "judder":
+        return (f"JUDDER: {v['kind']} instability, growing at "
                 f"{v['growth_rate_per_s']:.3g} 1/s "
-                f"(|lambda| = {v['leading_abs']:.4f})")
-        if v["margin"] is not None:
-            head += (f"; {where}, so the dither amplitude is "
-                     f"{1 / v['margin']:.2g} times the largest safe one")
-        return head
+                f"(|lambda| = {v['leading_abs']:.4f}); {where}, so the "
+                f"dither amplitude is {-v['margin_bar']:.3g} bar above it"
+                + edge)
     text = (f"no judder: stable (|lambda| = {v['leading_abs']:.4f}, decay "
             f"{v['growth_rate_per_s']:.3g} 1/s); {where}")
-    if v["margin"] is not None:
-        text += f", a margin of x{v['margin']:.2g} in amplitude"
-    return text
+    if v["margin_bar"] is not None:
+        text += f", a margin of {v['margin_bar']:.3g} bar in amplitude"
+    return text + edge
 
 
 def _ranking(tip_shifts, tongue_number):
@@ -231,7 +205,9 @@ def build_report(parameters=None, changes=None, description=None,
         Largest amplitude searched, bar.
     engagement : bool
         With a dither setting: also run the bench engagement at it and
-        without dither through the FMU (Fig. 7, 8; a few seconds).
+        without dither through the FMU (Fig. 7, 8; a few seconds); for a
+        Modelica class, its own FMU from its steady slip
+        (:func:`judder.api.simulate`). Refused for an FMU of ``--fmu``.
     progress : callable, optional
         ``progress(done, total)`` over the report's sections.
 
@@ -249,17 +225,26 @@ def build_report(parameters=None, changes=None, description=None,
     map_pf = np.linspace(0, p_max_bar, 150) if map_pf is None else map_pf
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
-    unknown = [n for n in names if n not in values.specs]
-    if unknown:
-        raise JudderError(f"--sensitivity: unknown parameter "
-                          f"{unknown[0]!r} for the {values.model} model; "
-                          f"allowed names: {', '.join(values.specs)}")
     # bench data first: a bad file is refused before any work
     bench = None
     if chart:
         bench = read_chart_boundary(chart, group)
     elif boundary:
         bench = (*read_boundary(boundary, "--boundary"), p_max_bar)
+    for option, given in (("--sensitivity", names),
+                          ("--fit", fit_names if bench else ())):
+        unknown = [n for n in given if n not in values.specs]
+        if unknown:
+            raise JudderError(f"{option}: unknown parameter "
+                              f"{unknown[0]!r} for the {values.model} "
+                              "model; allowed names: "
+                              f"{', '.join(values.specs)}")
+    paper = values.driveline is not None     # a registry driveline
+    run_engagement = engagement and freq_hz is not None and (
+        not paper or values.driveline.bench_class is not None)
+    if run_engagement:
+        from .timedomain import class_fmu
+        class_fmu(values, "report --engagement")   # refuses --fmu now
     steps = 6 + bool(bench)
     done = [0]
 
@@ -277,24 +262,29 @@ def build_report(parameters=None, changes=None, description=None,
                f"</figcaption></figure>"
 
     # the driveline
-    eig = api.eig(values)
-    data["natural_frequencies_hz"] = eig.natural_frequencies_hz.tolist()
-    data["damping_factor_12_percent"] = 100 * eig.damping_factor_12
+    eig = api.eig(values).as_dict()
+    data["natural_frequencies_hz"] = list(eig["natural_frequencies_hz"])
+    data["damping_factor_12_percent"] = eig["damping_factor_12_percent"]
     rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
             for name, spec in values.specs.items()]
     sections.append(
         "<h2>1. The driveline</h2>"
         "<p>Natural frequencies (Eq. 15): "
-        + ", ".join(f"{f:.3f} Hz" for f in eig.natural_frequencies_hz)
-        + f"; clutch-damper damping factor zeta_12 (Eq. 16): "
-        f"{100 * eig.damping_factor_12:.2f} %.</p>"
+        + ", ".join(f"{f:.3f} Hz" for f in eig["natural_frequencies_hz"])
+        + ("" if eig["damping_factor_12"] is None else
+           "; clutch-damper damping factor zeta_12 (Eq. 16): "
+           f"{eig['damping_factor_12_percent']:.2f} %")
+        + "; damped modes without dither: " + ", ".join(
+            f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
+            for m in eig["damped_modes"]) + ".</p>"
         + _table(("parameter", "value", "unit", "meaning"), rows))
     step()
 
-    # tongues and map
+    # tongues, and the map they are drawn over
     tongues = api.tongues(grid_freq, p_max_bar, values, method=method)
-    stability = api.stability_map(map_freq, map_pf, values, method=method,
-                                  exact=True)
+    stability = dataclasses.replace(
+        api.stability_map(map_freq, map_pf, values, method=method),
+        boundaries=tongues.boundaries, tongues=tongues.tongues)
     step()
     data["tongues"] = [
         {"number": t.number, "kind": t.kind, "resonance": t.resonance,
@@ -305,22 +295,27 @@ def build_report(parameters=None, changes=None, description=None,
                 for t in data["tongues"]]
 
     # the configured dither
-    verdict = None
     if freq_hz is not None and p_f_bar is not None:
-        verdict = dither_verdict(values, freq_hz, p_f_bar,
-                                 tongues.boundaries, method)
-        point = verdict.pop("_point")
+        # judder check at the setting, against the stability boundary
+        # (growth rate 0) as the map and the tongues of this report
+        checked = api.check([freq_hz], [p_f_bar], values, min_growth=0.0,
+                            p_max_bar=max(p_max_bar, 2 * p_f_bar),
+                            sensitivity=())
+        point = checked.checks[0].floquet
+        verdict = {**checked.records()[0],
+                   "leading_abs": float(point.leading_abs)}
         data["verdict"] = verdict
-        css = "judder" if verdict["judder"] else "safe"
+        css = "judder" if verdict["verdict"] == "judder" else "safe"
         sections.insert(0, (
             f"<h2>Verdict: dither at {freq_hz:g} Hz, {p_f_bar:g} bar</h2>"
             f'<p class="verdict {css}">'
-            f"{html.escape(_verdict_text(verdict, p_max_bar))}</p>"
-            f'<p class="small">Source: {verdict["source"]}.</p>'
+            f"{html.escape(_verdict_text(verdict))}</p>"
+            '<p class="small">Source: judder check --min-growth 0 (the '
+            "stability boundary, as in the map below).</p>"
             + figure(f"Floquet multipliers at {freq_hz:g} Hz, {p_f_bar:g} "
                      "bar (Fig. 15)",
-                     point.figure(title="Floquet multipliers at the "
-                                        "configured dither"))))
+                     multipliers_figure([point], title="Floquet multipliers "
+                                        "at the configured dither"))))
     step()
 
     sections.append(
@@ -371,40 +366,33 @@ def build_report(parameters=None, changes=None, description=None,
         + figure("Sensitivity of the stability boundary (Fig. 17, 18)",
                  sens.figure(title=f"sensitivity, {description}")))
 
-    # without dither (Fig. 19)
-    threshold = api.threshold(np.linspace(-1e-3, 1e-3, 41),
-                              np.linspace(0, 2, 21), values)
+    # without dither (Fig. 19): a study of the paper's chains
+    if paper:
+        threshold = api.threshold(np.linspace(-1e-3, 1e-3, 41),
+                                  np.linspace(0, 2, 21), values)
+        data["mu_g_threshold"] = float(threshold.study.threshold)
+        sections.append(_threshold_section(values, threshold, figure))
     step()
-    data["mu_g_threshold"] = float(threshold.study.threshold)
-    sections.append(
-        "<h2>4. Without dither: the friction-gradient threshold</h2>"
-        f"<p>With the mean pressure in the slip damping, this driveline "
-        f"is unstable without any dither for mu_g below "
-        f"{threshold.study.threshold:.3g} s/rad (its mu_g is "
-        f"{values['mu_g']:.3g} s/rad"
-        + (", so it judders without dither" if values["mu_g"]
-           < threshold.study.threshold else "")
-        + ").</p>"
-        + figure("Largest real part against mu_g and the threshold "
-                 "against the external damping (Fig. 19)",
-                 threshold.figure()))
 
-    if engagement and freq_hz is not None and values.driveline.bench_class:
+    if run_engagement:
         run = api.simulate(freq_hz, p_f_bar, compare="none",
                            parameters=values, method=method)
         first = run.summaries[0]
         data["engagement"] = first
         sections.append(
-            "<h2>5. The engagement on the bench model</h2>"
-            f"<p>Through the {html.escape(run.model_class)} FMU: upstream "
-            f"speed peak {first['speed_peak_amplitude_rpm']:.3g} rpm at "
+            "<h2>5. The engagement "
+            + ("on the bench model" if paper else "of the class's FMU")
+            + f"</h2><p>Through the {html.escape(run.model_class)} FMU"
+            + ("" if paper else " from its start values (a steady slip)")
+            + ": upstream speed peak "
+            f"{first['speed_peak_amplitude_rpm']:.3g} rpm at "
             f"{first['speed_peak_freq_hz']:.2f} Hz; judder read as a chart "
             "reads a bench run: "
             + ("none" if not first["judder"] else str(first["judder_kind"]))
             + ".</p>"
             + figure("Engagement with the configured dither and without "
                      "(Fig. 7, 8)",
-                     run.figure(title=f"bench engagement, {description}")))
+                     run.figure(title=f"time-domain run, {description}")))
 
     # bench data
     if bench:
@@ -448,6 +436,23 @@ def build_report(parameters=None, changes=None, description=None,
         "judder: theoretical study and experimental validation\".</p>"
         + "".join(sections) + "</body></html>")
     return ReportResult(html=page, data=data, figures=figures)
+
+
+def _threshold_section(values, threshold, figure):
+    """Section 4: the friction-gradient threshold without dither (Fig.
+    19) of a registry driveline, from :func:`judder.api.threshold`."""
+    return (
+        "<h2>4. Without dither: the friction-gradient threshold</h2>"
+        f"<p>With the mean pressure in the slip damping, this driveline "
+        f"is unstable without any dither for mu_g below "
+        f"{threshold.study.threshold:.3g} s/rad (its mu_g is "
+        f"{values['mu_g']:.3g} s/rad"
+        + (", so it judders without dither" if values["mu_g"]
+           < threshold.study.threshold else "")
+        + ").</p>"
+        + figure("Largest real part against mu_g and the threshold "
+                 "against the external damping (Fig. 19)",
+                 threshold.figure()))
 
 
 def _focus_tongue(found, freq_hz):

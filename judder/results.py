@@ -76,7 +76,9 @@ class EigResult:
     """``judder eig``: natural frequencies (Eq. 15) and damping (Eq. 16).
 
     Frequencies in Hz; ``damping_factor_12`` and ``damping_ratio`` as
-    fractions.
+    fractions. ``closed_form_frequencies_hz`` and ``damping_factor_12``
+    are None for a Modelica class or an FMU (they are the paper's
+    formulas for its chains).
     """
 
     params: object
@@ -91,7 +93,9 @@ class EigResult:
                 "natural_frequencies_hz": self.natural_frequencies_hz,
                 "closed_form_frequencies_hz": self.closed_form_frequencies_hz,
                 "damping_factor_12": self.damping_factor_12,
-                "damping_factor_12_percent": 100 * self.damping_factor_12,
+                "damping_factor_12_percent": (
+                    None if self.damping_factor_12 is None
+                    else 100 * self.damping_factor_12),
                 "damped_modes": [{"frequency_hz": f, "damping_ratio": r}
                                  for f, r in zip(self.damped_frequencies_hz,
                                                  self.damping_ratio)]}

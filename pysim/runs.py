@@ -117,8 +117,8 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
     Raises
     ------
     JudderError
-        On a parameter (of ``params`` or ``extra``) the FMU does not have,
-        or a failed run.
+        On a parameter (of ``params`` or ``extra``) or a recorded variable
+        the FMU does not have, or a failed run.
     """
     from fmpy import simulate_fmu
     folder, description = _unpacked(str(fmu_path),
@@ -136,6 +136,13 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
         start[name] = float(value)
     experiment = description.defaultExperiment
     outputs = list(SIGNALS) + [v for v in variables if v not in SIGNALS]
+    known = {v.name for v in description.modelVariables}
+    missing = [name for name in outputs if name not in known]
+    if missing:
+        raise JudderError(f"{description.modelName} has no variable "
+                          f"{missing[0]!r}; allowed: a model with the "
+                          f"outputs {', '.join(SIGNALS)} (a run records "
+                          "them)")
     try:
         result = simulate_fmu(
             folder, model_description=description, fmi_type=fmi_type,

@@ -424,9 +424,18 @@ def sensitivity_figure(study, title=None, params=None):
     return fig
 
 
-def _zeta_percent(params, c12):
+def _is_damper(name, params):
+    """``name`` is the damping of the clutch damper of a registry
+    driveline (Eq. 16 applies; a Modelica class or an FMU has no such
+    role)."""
+    return (params is not None and params.driveline is not None
+            and name == params.driveline.clutch_damper.damping)
+
+
+def _zeta_percent(params, name, value):
     from .modal import clutch_damper_damping_factor
-    return 100 * float(clutch_damper_damping_factor(params.replace(c12=c12)))
+    return 100 * float(clutch_damper_damping_factor(
+        params.replace(**{name: value})))
 
 
 def _panel_title(name, params):
@@ -434,15 +443,17 @@ def _panel_title(name, params):
     text = f"{name}" + (f" [{unit}]" if unit and unit != "1" else "")
     if params is not None:
         text += f", nominal {params[name]:.4g}"
-        if name == "c12" and "c12" in params.specs:
-            text += rf" ($\zeta_{{12}}$ = {_zeta_percent(params, params[name]):.2g} %)"
+        if _is_damper(name, params):
+            text += (rf" ($\zeta_{{12}}$ = "
+                     f"{_zeta_percent(params, name, params[name]):.2g} %)")
     return text
 
 
 def _case_label(name, case, params):
     label = f"{name} = {case.value:.4g} (x{case.factor:.3g})"
-    if name == "c12" and params is not None and "c12" in params.specs:
-        label += rf", $\zeta_{{12}}$ = {_zeta_percent(params, case.value):.2g} %"
+    if _is_damper(name, params):
+        label += (rf", $\zeta_{{12}}$ = "
+                  f"{_zeta_percent(params, name, case.value):.2g} %")
     return label
 
 

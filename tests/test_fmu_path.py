@@ -100,29 +100,10 @@ def test_an_fmu_without_what_is_needed_is_refused_in_one_line(
 
 
 @pytest.fixture(scope="module")
-def oscillator(tmp_path_factory):
-    """A Mathieu-like oscillator whose dither is the cosine (s = q = 0),
-    a sine (s = 1) or also quadratic in the amplitude (q = 1)."""
-    root = tmp_path_factory.mktemp("oscillator")
-    package = root / "MyLib"
-    package.mkdir()
-    (package / "package.mo").write_text("package MyLib\nend MyLib;\n")
-    (package / "Oscillator.mo").write_text("""within MyLib;
-model Oscillator "One body on a spring, damping modulated by a dither"
-  parameter Real p_f(min=0)=1 "Dither amplitude";
-  parameter Real f_dither(min=0)=10 "Dither frequency";
-  parameter Real s=0 "Share of the sine";
-  parameter Real q=0 "Quadratic part";
-  Real x(start=1, fixed=true) "Position";
-  Real v(start=0, fixed=true) "Speed";
-  Real phase = 2*3.141592653589793*f_dither*time;
-equation
-  der(x) = v;
-  der(v) = -100*x - (1 + p_f*((1 - s)*cos(phase) + s*sin(phase))
-                     + q*p_f^2*cos(phase))*v;
-end Oscillator;
-""")
-    return build_fmu(package / "Oscillator.mo", "MyLib.Oscillator",
+def oscillator(oscillator_library):
+    """The FMU of conftest's oscillator class."""
+    root = oscillator_library
+    return build_fmu(root / "MyLib" / "Oscillator.mo", "MyLib.Oscillator",
                      root / "Oscillator.fmu", roots=[root]).path
 
 

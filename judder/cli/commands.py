@@ -20,8 +20,8 @@ from ..inputs import (read_boundary, read_chart_boundary,
 from .values import check_campaign_disk, check_map_memory, check_work
 from . import estimates
 from .options import (check_number, emit, make_parents, model_title,
-                      parameters_of, parse_grid, parse_list, parse_waveform,
-                      Progress)
+                      parameter_file, parameters_of, parse_grid, parse_list,
+                      parse_waveform, Progress)
 
 __all__ = ["cmd_params", "cmd_eig", "cmd_floquet", "cmd_map", "cmd_tongues",
            "cmd_sensitivity", "cmd_threshold", "cmd_fit", "cmd_simulate",
@@ -92,8 +92,10 @@ def cmd_eig(args):
     lines = [f"model {result.params.model}",
              "undamped natural frequencies (Eq. 15): "
              + ", ".join(f"{f:.3f} Hz" for f in result.natural_frequencies_hz),
-             f"clutch-damper damping factor (Eq. 16): {100 * zeta:.2f} %",
-             "damped modes without dither: "
+             "clutch-damper damping factor (Eq. 16): "
+             + ("not defined (a formula of the paper's chains)"
+                if zeta is None else f"{100 * zeta:.2f} %"),
+             "damped modes without dither, rigid-body angles removed: "
              + ", ".join(f"{f:.3f} Hz ({100 * r:.2f} %)" for f, r in
                          zip(result.damped_frequencies_hz,
                              result.damping_ratio))]
@@ -429,8 +431,10 @@ def cmd_simulate(args):
                           changes=changes, method=args.method)
     files = _write_outputs(
         args, result,
-        figure={"title": "bench engagement of the EVEN clutch (Fig. 1, 7, "
-                         f"8), {model_title(args, params)}"})
+        figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
+                          "8)" if params.driveline is not None else
+                          "time-domain run with dither")
+                + f", {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))
@@ -635,8 +639,6 @@ def cmd_check(args):
 
 def cmd_advise(args):
     """Safe dither windows, parameter ranking and design change."""
-    from drivelines import load_toml
-    from ..inputs import read_input
     low_high = args.freq_range.split(":")
     try:
         low, high = (float(v) for v in low_high)
@@ -648,8 +650,7 @@ def cmd_advise(args):
     weights = None if args.weights is None else \
         parse_list(args.weights, "--weights")
     params, changes = parameters_of(args)
-    extra = [load_toml(read_input(path, "--also"), source=str(path))
-             for path in args.also]
+    extra = [parameter_file(args, path, "--also") for path in args.also]
     make_parents(args.out, args.plot)
     with Progress(8, "advise") as progress:
         result = api.advise(params, changes, extra_sets=extra,
@@ -698,8 +699,9 @@ def cmd_report(args):
     verdict = result.data.get("verdict")
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
-               + ("judder (" + verdict["kind"] + ")" if verdict["judder"]
-                  else "no judder") if verdict else "")
+               + ("judder (" + verdict["kind"] + ")"
+                  if verdict["verdict"] == "judder" else "no judder")
+               if verdict else "")
             + _written(args.out, args.pdf))
     emit(args, {**result.as_dict(), **_files(out=args.out, pdf=args.pdf)},
          text)

@@ -13,7 +13,8 @@ from infra.files import check_folder_writable, check_output, to_json
 
 from ..inputs import load_parameters, read_input
 
-__all__ = ["parse_grid", "parameters_of", "emit", "parse_list",
+__all__ = ["parse_grid", "parameters_of", "parameter_file",
+           "own_driveline", "emit", "parse_list",
            "check_number", "make_parents", "Progress",
            "model_title", "check_outputs", "OUTPUTS"]
 
@@ -126,18 +127,14 @@ def parameters_of(args):
 
     Returns
     -------
-    params : drivelines.Parameters
-        From --param-file, --preset or --model.
+    params : drivelines.Parameters, ModelicaParameters or FmuParameters
+        From --fmu, --modelica, --param-file, --preset or --model.
     changes : dict
         The --set values, validated (SI).
     """
-    if getattr(args, "fmu", None):
-        params = fmu_parameters(args)
-    elif getattr(args, "modelica", None):
-        params = modelica_parameters(args)
-    else:
-        params = load_parameters(preset=args.preset, model=args.model,
-                                 param_file=args.param_file)
+    params = (own_driveline(args, args.param_file, "--param-file")
+              or load_parameters(preset=args.preset, model=args.model,
+                                 param_file=args.param_file))
     changed = params.with_overrides(args.set)
     names = [text.partition("=")[0].strip() for text in args.set]
     from .values import check_plain_pressure
@@ -146,44 +143,61 @@ def parameters_of(args):
     return params, {name: changed[name] for name in names}
 
 
-def modelica_parameters(args):
-    """The parameter set of ``--modelica CLASS [--library DIR]``."""
+def parameter_file(args, path, option):
+    """The parameter set of a file of ``judder params --save`` for the
+    model the options select (``--also`` of ``advise``): a preset's
+    file, or with --modelica/--fmu a file of ``judder params --modelica
+    CLASS --save`` (``--fmu FILE.fmu --save``)."""
+    from drivelines import load_toml
+    return own_driveline(args, path, option) or load_toml(
+        read_input(path, option), source=str(path))
+
+
+def own_driveline(args, path=None, option="--param-file"):
+    """The parameter set of ``--fmu FILE.fmu`` (docs/fmu-path.md) or
+    ``--modelica CLASS [--library DIR]`` (docs/onemodel.md), with the
+    values of the file ``path`` if given; None if neither is given."""
+    fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
+    if fmu:
+        from drivelines.fmu_linear import FmuParameters
+        flag, given = "--fmu", fmu
+        replaced = ("modelica", "library", "model", "preset")
+    elif modelica:
+        from drivelines.modelica import ModelicaParameters
+        flag, given = "--modelica", modelica
+        replaced = ("model", "preset")
+    else:
+        return None
+    for name in replaced:
+        if getattr(args, name, None) is not None:
+            raise JudderError(f"{flag} {given} replaces "
+                              f"--{name.replace('_', '-')}; give one")
+    names = {"amplitude": args.dither_amplitude,
+             "frequency": args.dither_frequency}
+    base = (FmuParameters(fmu, **names) if fmu else
+            ModelicaParameters(modelica, args.library, **names))
+    if path is None:
+        return base
+    return base.replace(**_file_values(path, option, base.model,
+                                       f"{flag} {given}"))
+
+
+def _file_values(path, option, model, selected):
+    """The ``[parameters]`` of a file of ``judder params --save`` whose
+    ``model`` is ``model``."""
     import tomllib
-    from drivelines.modelica import ModelicaParameters
-    for option in ("model", "preset"):
-        if getattr(args, option, None) is not None:
-            raise JudderError(f"--modelica {args.modelica} replaces "
-                              f"--{option}; give one")
-    values = {}
-    if args.param_file is not None:
-        # a file of `judder params --modelica CLASS --save`
-        try:
-            table = tomllib.loads(read_input(args.param_file,
-                                             "--param-file"))
-        except tomllib.TOMLDecodeError as exc:
-            raise JudderError(f"--param-file {args.param_file}: not TOML "
-                              f"({exc})") from None
-        if table.get("model") != args.modelica or \
-                not isinstance(table.get("parameters"), dict):
-            raise JudderError(
-                f"--param-file {args.param_file}: model = "
-                f"{table.get('model')!r} is not --modelica {args.modelica} "
-                "(or the [parameters] table is missing)")
-        values = _flat(table["parameters"])
-    return ModelicaParameters(args.modelica, args.library, values,
-                              amplitude=args.dither_amplitude,
-                              frequency=args.dither_frequency)
-
-
-def fmu_parameters(args):
-    """The parameter set of ``--fmu FILE.fmu`` (docs/fmu-path.md)."""
-    from drivelines.fmu_linear import FmuParameters
-    for option in ("modelica", "library", "model", "preset", "param_file"):
-        if getattr(args, option, None) is not None:
-            raise JudderError(f"--fmu {args.fmu} replaces "
-                              f"--{option.replace('_', '-')}; give one")
-    return FmuParameters(args.fmu, amplitude=args.dither_amplitude,
-                         frequency=args.dither_frequency)
+    try:
+        table = tomllib.loads(read_input(path, option))
+    except tomllib.TOMLDecodeError as exc:
+        raise JudderError(f"{option} {path}: not TOML ({exc})") from None
+    if table.get("model") != model or \
+            not isinstance(table.get("parameters"), dict):
+        raise JudderError(
+            f"{option} {path}: model = {table.get('model')!r} is not "
+            f"{model!r} of {selected} (or the [parameters] table is "
+            f"missing); allowed: a file of `judder params {selected} "
+            "--save`")
+    return _flat(table["parameters"])
 
 
 #: Forms of --dither-wave, for its help and its error message.
@@ -307,6 +321,8 @@ def model_title(args, params):
     ``'4dof, paper-4dof-fitted, c12=20'``."""
     source = (getattr(args, "param_file", None)
               or getattr(args, "preset", None)
-              or "paper preset")
+              or ("start values of the FMU" if getattr(args, "fmu", None)
+                  else "defaults of the class"
+                  if getattr(args, "modelica", None) else "paper preset"))
     changes = [text.replace(" ", "") for text in getattr(args, "set", [])]
     return ", ".join([f"{params.model} driveline", str(source)] + changes)

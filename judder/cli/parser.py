@@ -18,7 +18,12 @@ DEFAULT_MAP_FREQ = "5:250:300"
 DEFAULT_MAP_PF = "0:1.5:150"
 
 
-def _model_options(parser):
+def _model_options(parser, modelica=True):
+    """The model selection every analysis command shares: --model,
+    --preset, --param-file, --set, --json and, with ``modelica``, a
+    driveline of your own: --modelica CLASS [--library DIR] or --fmu
+    FILE.fmu, with --dither-amplitude/--dither-frequency NAME
+    (docs/onemodel.md, docs/fmu-path.md)."""
     group = parser.add_argument_group(
         "model", "Parameter set: a preset or a TOML file, then --set "
         "overrides. Values in SI units (see `judder params`).")
@@ -41,44 +46,38 @@ def _model_options(parser):
                             "mean_pressure_damping=1)")
     parser.add_argument("--json", action="store_true",
                         help="print the result as JSON")
+    if modelica:
+        _own_driveline_options(parser)
 
 
-def _modelica_options(parser, fmu=False):
-    """--modelica CLASS [--library DIR] [--dither-amplitude/--dither-frequency
-    NAME]: analyse a driveline written in Modelica (docs/onemodel.md); with
-    ``fmu``, also --fmu FILE.fmu (docs/fmu-path.md)."""
+def _own_driveline_options(parser):
     group = parser.add_argument_group(
-        "Modelica driveline", "Analyse a Modelica class instead of a preset: "
-        "it is compiled, linearised about its start values (a steady slip) "
-        "and its rigid-body angles removed; --set NAME=VALUE then sets its "
-        "parameters by their Modelica names (SI), --param-file reads a file "
-        "of `judder params --modelica CLASS --save`. Replaces --model and "
-        "--preset.")
+        "your own driveline", "Analyse a Modelica class or an FMU instead "
+        "of a preset: it is linearised about its start values (a steady "
+        "slip) and its rigid-body angles removed; --set NAME=VALUE then "
+        "sets its parameters by their names (SI), --param-file reads a "
+        "file of `judder params --modelica CLASS --save` (or --fmu). "
+        "Replaces --model and --preset.")
     group.add_argument("--modelica", metavar="CLASS",
                        help="full class name, e.g. "
-                            "Judder.Examples.Driveline5DOFGeared")
+                            "Judder.Examples.Driveline5DOFGeared, compiled "
+                            "by the project's compiler")
     group.add_argument("--library", metavar="DIR",
                        help="folder holding your own top-level package "
                             "(the Judder library is always available)")
-    group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
-                       help="parameter of the class that is the dither "
-                            "amplitude, Pa (default p_f)")
-    group.add_argument("--dither-frequency", default="f_dither",
-                       metavar="NAME",
-                       help="parameter of the class that is the dither "
-                            "frequency, Hz (default f_dither)")
-    if fmu:
-        _fmu_option(group)
-
-
-def _fmu_option(group):
     group.add_argument(
         "--fmu", metavar="FILE.fmu",
-        help="analyse an FMI 2.0 Model Exchange FMU that provides "
-             "directional derivatives instead: its state Jacobian is read "
-             "over one dither period at its start values (a steady slip); "
-             "--set NAME=VALUE sets its Real parameters by name (SI); "
-             "replaces --modelica, --model and --preset (docs/fmu-path.md)")
+        help="an FMI 2.0 Model Exchange FMU that provides directional "
+             "derivatives: its state Jacobian is read over one dither "
+             "period at its start values; replaces --modelica "
+             "(docs/fmu-path.md)")
+    group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
+                       help="parameter of the class or FMU that is the "
+                            "dither amplitude, Pa (default p_f)")
+    group.add_argument("--dither-frequency", default="f_dither",
+                       metavar="NAME",
+                       help="parameter of the class or FMU that is the "
+                            "dither frequency, Hz (default f_dither)")
 
 
 def _waveform_option(parser):
@@ -153,7 +152,6 @@ def build_parser():
                                    "it (--save FILE.toml) to edit and load "
                                    "with --param-file.")
     _model_options(p)
-    _modelica_options(p)
     p.add_argument("--save", metavar="FILE.toml",
                    help="write the set as TOML (never overwrites unless "
                         "--force)")
@@ -165,7 +163,11 @@ def build_parser():
                        description="Undamped natural frequencies (Eq. 14-15, "
                                    "Hz), clutch-damper damping factor "
                                    "(Eq. 16) and the damped modes without "
-                                   "dither.")
+                                   "dither, rigid-body angles removed. For "
+                                   "--modelica or --fmu: the frequencies of "
+                                   "its Jacobian's stiffness part and its "
+                                   "damped modes; Eq. 15-16 are the paper's "
+                                   "chains' formulas (null in --json).")
     _model_options(p)
     p.set_defaults(handler=commands.cmd_eig)
 
@@ -183,7 +185,6 @@ def build_parser():
                         "unit circle, and near the leading one (Fig. 15)")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p, fmu=True)
     _waveform_option(p)
     p.set_defaults(handler=commands.cmd_floquet)
 
@@ -205,7 +206,6 @@ def build_parser():
     _min_growth_option(p, "; the plot shades slower ones grey")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p, fmu=True)
     _waveform_option(p)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_map)
@@ -235,7 +235,9 @@ def build_parser():
                    help="parameters whose effect on the margins is reported "
                         "(d margin / d ln value; default J2,J4,k12,k24,c12,"
                         "mu_g, for the 3-DOF model its inertias, stiffnesses, "
-                        "dampings and mu_g; 'none' for none)")
+                        "dampings and mu_g; for --modelica/--fmu those of "
+                        "J2,J4,k12,k24,c12,mu_g it has, and NAMES is "
+                        "required if it has none; 'none' for none)")
     p.add_argument("--out", metavar="FILE.csv",
                    help="one row per setting (the scalar JSON fields)")
     p.add_argument("--plot", metavar="FILE.png",
@@ -272,7 +274,10 @@ def build_parser():
     p.add_argument("--params", default=None, metavar="NAMES",
                    help="design parameters that may change (default "
                         "J2,J4,k12,k24,c12; for the 3-DOF model its "
-                        "inertias, stiffnesses and dampings)")
+                        "inertias, stiffnesses and dampings; for --modelica"
+                        "/--fmu those of J2,J4,k12,k24,c12 it has, and "
+                        "NAMES is required if it has none: its tunable "
+                        "parameters by their names, e.g. k24,J4,k35)")
     p.add_argument("--weights", default=None, metavar="W[,W...]",
                    help="cost of a unit change of ln(value) of each design "
                         "parameter, in the order of --params (default 1 "
@@ -280,7 +285,10 @@ def build_parser():
     p.add_argument("--also", action="append", default=[],
                    metavar="FILE.toml",
                    help="another parameter set the advice must hold for "
-                        "(an uncertainty envelope); repeatable")
+                        "(an uncertainty envelope), a file of `judder params "
+                        "--save` for the same model (with --modelica or "
+                        "--fmu: of `judder params --modelica CLASS --save`)"
+                        "; repeatable")
     p.add_argument("--no-design", action="store_true",
                    help="only the windows and the ranking")
     p.add_argument("--out", metavar="FILE.csv",
@@ -318,7 +326,6 @@ def build_parser():
                    help="boundaries drawn over the map (Fig. 16)")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p, fmu=True)
     _waveform_option(p)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_tongues)
@@ -349,7 +356,6 @@ def build_parser():
                         "boundaries")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p, fmu=True)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_sensitivity)
 
@@ -371,7 +377,7 @@ def build_parser():
     p.add_argument("--out", metavar="FILE.csv",
                    help="threshold against c_i as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="Fig. 19a and 19b")
-    _model_options(p)
+    _model_options(p, modelica=False)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_threshold)
 
@@ -441,7 +447,6 @@ def build_parser():
                         "bench model's)")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
     p.set_defaults(handler=commands.cmd_fit)
 
     p = sub.add_parser("simulate", help="bench engagement with dither "
@@ -455,7 +460,13 @@ def build_parser():
                                    "of the pressure, the judder verdict, kind "
                                    "and growth as judder chart reads them, "
                                    "and the Floquet verdict of the bench's "
-                                   "linearisation (c1 + d_control).")
+                                   "linearisation (c1 + d_control). With "
+                                   "--modelica CLASS: the class's FMU (built "
+                                   "by the project's compiler) from its "
+                                   "start values, a steady slip, with the "
+                                   "dither, and the Floquet verdict of its "
+                                   "linearisation; --fmu is refused (its "
+                                   "Jacobian is all the FMU path reads).")
     p.add_argument("--freq", type=str, required=True, metavar="HZ[,HZ...]",
                    help="dither frequency, Hz; several (e.g. 23,105) give "
                         "one engagement each, side by side, with their "
@@ -463,7 +474,8 @@ def build_parser():
     p.add_argument("--pf", type=str, required=True, metavar="BAR",
                    help="dither amplitude, bar")
     p.add_argument("--duration", type=str, metavar="S",
-                   help="simulated time, s (default: the model's 4 s)")
+                   help="simulated time, s (default: the model's "
+                        "StopTime, 4 s for the bench)")
     p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
                    help="also run a correct engagement: without dither, or "
                         "with dither at HZ; plotted side by side (Fig. 7)")
@@ -471,7 +483,8 @@ def build_parser():
                    metavar="NAME=VALUE",
                    help="bench parameter of the model (SI): w_motor, "
                         "t_engage, t_ramp, p_load, S_load, N_c_load, "
-                        "d_control; repeatable")
+                        "d_control; repeatable (not with --modelica: set "
+                        "the class's parameters with --set)")
     p.add_argument("--out", metavar="run.csv|run.mf4",
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
@@ -489,7 +502,11 @@ def build_parser():
                                    "the free response, whose Floquet "
                                    "multipliers are fitted (Prony/Hankel "
                                    "DMD on samples once per dither period) "
-                                   "and compared with the stability layer's.")
+                                   "and compared with the stability layer's. "
+                                   "With --modelica CLASS: the class's FMU "
+                                   "and its linearisation; --fmu is refused "
+                                   "(the FMU path reads only its Jacobian, "
+                                   "it has no time-domain run here).")
     p.add_argument("--freq", default="75:130:23", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 75:130:23: tongues "
                         "5, 2 and 6)")
@@ -503,7 +520,6 @@ def build_parser():
                    help="fitted against Floquet rates, and the verdicts")
     _method_option(p)
     _model_options(p)
-    _modelica_options(p)
     p.add_argument("--perturb", default="w_in", metavar="NAME",
                    help="start-speed parameter raised by 1 rad/s in the "
                         "second run of each point (default w_in)")
@@ -543,7 +559,7 @@ def build_parser():
     p.add_argument("--out", required=True, metavar="DIR",
                    help="campaign folder (created; an existing campaign "
                         "there is resumed)")
-    _model_options(p)
+    _model_options(p, modelica=False)
     p.set_defaults(handler=commands.cmd_campaign)
     p = sub.add_parser("chart", help="experimental stability chart from "
                                      "bench acquisitions (Fig. 10, 11)",
@@ -595,7 +611,7 @@ def build_parser():
                    help="the chart, one panel per group")
     _workers_option(p)
     _method_option(p)
-    _model_options(p)
+    _model_options(p, modelica=False)
     _force_option(p)
     p.set_defaults(handler=commands.cmd_chart)
 

@@ -1,0 +1,59 @@
+"""The time-domain model of a parameter set: the FMU that runs it and
+the values a run sets.
+
+``crosscheck`` and ``simulate`` run a driveline in the time domain. A
+registry driveline runs through the FMU of its Modelica class
+(:attr:`drivelines.DrivelineModel.modelica_class`), its parameters set by
+the same names; a Modelica class (``--modelica``) through the FMU the
+project's compiler builds of it (:func:`pysim.fmus.ensure_fmu`), every
+tunable value set as an FMU parameter. An FMU given by ``--fmu`` is only
+linearised through its directional derivatives (docs/fmu-path.md): there
+is no time-domain model of it here, and these functions refuse it.
+"""
+
+from infra.errors import JudderError
+from pysim.fmus import ensure_fmu
+
+__all__ = ["class_fmu", "run_values"]
+
+
+def class_fmu(params, command):
+    """The FMU that runs ``params`` in the time domain (built if needed).
+
+    Parameters
+    ----------
+    params : drivelines.Parameters, ModelicaParameters or FmuParameters
+    command : str
+        The command that runs it, for the message of a refusal.
+
+    Raises
+    ------
+    JudderError
+        For an FMU of ``--fmu``, or a Modelica class whose dither is not
+        in the parameters ``p_f`` and ``f_dither`` (which a run sets).
+    """
+    from drivelines.modelica import ModelicaParameters
+    if params.driveline is not None:
+        return ensure_fmu(params.driveline.modelica_class)
+    if not isinstance(params, ModelicaParameters):
+        raise JudderError(
+            f"{command} --fmu {params.path} is not possible: {command} runs "
+            "the driveline in the time domain, and the FMU path reads only "
+            "the FMU's Jacobian at its start values; allowed: --modelica "
+            "CLASS (its FMU is built and run) or a preset")
+    if (params.amplitude, params.frequency) != ("p_f", "f_dither"):
+        raise JudderError(f"{command} runs the FMU with the dither in p_f "
+                          "and f_dither; allowed: --dither-amplitude p_f "
+                          "--dither-frequency f_dither")
+    return ensure_fmu(params.class_name, library=params.library)
+
+
+def run_values(params):
+    """``(params, extra)`` for :func:`pysim.runs.run_fmu` of the FMU of
+    :func:`class_fmu`: a registry set maps onto the FMU parameters of the
+    same names; a Modelica class's values are all given as ``extra``,
+    without the dither (each run sets its own)."""
+    if params.driveline is not None:
+        return params, {}
+    return None, {name: value for name, value in params.values.items()
+                  if name not in (params.amplitude, params.frequency)}
