@@ -399,13 +399,19 @@ def _flatten(path, model_name, roots):
                   "error")]
     if errors:
         raise FrontEndError("\n".join(str(d) for d in errors))
+    session = model = None
     try:
         session = rumoca.Session(roots=[str(r) for r in roots])
         model = session.load(str(path), model=model_name)
+        return model.to_dict()
     except Exception as exc:   # rumoca raises its own error classes
-        raise FrontEndError(f"{path}: {exc}{_library_errors(rumoca, roots)}") \
-            from None
-    return model.to_dict()
+        message = f"{path}: {exc}{_library_errors(rumoca, roots)}"
+    finally:
+        # rumoca's objects are unsendable: dropped in another thread (a
+        # Dask worker's event loop holding this frame in a traceback)
+        # they panic, so they never outlive this call
+        del session, model
+    raise FrontEndError(message)
 
 
 def _library_errors(rumoca, roots):
