@@ -36,7 +36,7 @@ import numpy as np
 
 from drivelines import DEFAULT_MODEL, default_preset, get_preset
 from drivelines.specs import MEAN_PRESSURE_DAMPING
-from infra.errors import JudderError
+from infra.errors import JudderError, check_number
 from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
 from stability import modal
@@ -663,14 +663,6 @@ def _structural_names(values, preferred, extra=()):
             + tuple(c.damping for c in model.couplings) + tuple(extra))
 
 
-def _check_number(name, value, unit, low=0.0, strict=False):
-    value = float(value)
-    ok = np.isfinite(value) and (value > low if strict else value >= low)
-    if not ok:
-        raise JudderError(f"{name} = {value!r} {unit} is not allowed; allowed:"
-                          f" a finite value {'>' if strict else '>='} {low:g}")
-
-
 def _check_names(values, names, option):
     unknown = [n for n in names if n not in values.specs]
     if unknown:
@@ -722,15 +714,14 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         raise JudderError(f"freq and p_f have {freq_hz.size} and "
                           f"{p_f_bar.size} values; allowed: as many of each")
     for f in freq_hz:
-        _check_number("freq", f, "Hz", strict=True)
+        check_number("freq", f, "Hz")
     for p in p_f_bar:
-        _check_number("p_f", p, "bar")
+        check_number("p_f", p, "bar", strict=False)
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    _check_number("min_growth", min_growth, "1/s")
+    check_number("min_growth", min_growth, "1/s", strict=False)
     if p_max_bar is None:
         p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
-    _check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()),
-                  strict=True)
+    check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()))
     if sensitivity is None:
         sensitivity = _structural_names(values, DEFAULT_CHECK_PARAMETERS,
                                         ("mu_g",))
@@ -800,14 +791,14 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     if not (np.isfinite(low) and np.isfinite(high) and 0 < low < high):
         raise JudderError(f"freq range = {low:g}:{high:g} Hz is not allowed; "
                           "allowed: 0 < LOW < HIGH")
-    _check_number("p_max", p_max_bar, "bar", strict=True)
-    _check_number("margin_bar", margin_bar, "bar")
-    _check_number("margin_hz", margin_hz, "Hz")
+    check_number("p_max", p_max_bar, "bar")
+    check_number("margin_bar", margin_bar, "bar", strict=False)
+    check_number("margin_hz", margin_hz, "Hz", strict=False)
     if margin_hz >= low:
         raise JudderError(f"margin_hz = {margin_hz:g} Hz is not allowed; "
                           f"allowed: below the lowest frequency {low:g} Hz")
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    _check_number("min_growth", min_growth, "1/s")
+    check_number("min_growth", min_growth, "1/s", strict=False)
     names = tuple(_structural_names(values, kernel.DEFAULT_DESIGN_PARAMETERS)
                   if names is None else names)
     if not names:

@@ -29,6 +29,8 @@ from infra.errors import JudderError
 from infra.files import MARK, atomic_write, write_text
 from infra.units import PA_PER_BAR
 
+from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+
 from . import api
 
 __all__ = ["ReportResult", "build_report", "print_pdf",
@@ -100,7 +102,10 @@ def _verdict_text(v):
     tongue = v["margin_bar_tongue"] or v["margin_hz_tongue"]
     named = "" if tongue is None else \
         f" (tongue {tongue['number'] or '?'}, {tongue['kind']})"
-    where = (f"the stability boundary at {v['freq_hz']:g} Hz is "
+    boundary = ("stability boundary" if not v["min_growth_per_s"] else
+                f"boundary of judder growing at {v['min_growth_per_s']:g} "
+                "1/s")
+    where = (f"the {boundary} at {v['freq_hz']:g} Hz is "
              f"{v['boundary_p_f_bar']:.3g} bar{named}"
              if v["boundary_p_f_bar"] is not None else
              f"no tongue reaches {v['freq_hz']:g} Hz below "
@@ -115,8 +120,14 @@ def _verdict_text(v):
                 f"(|lambda| = {v['leading_abs']:.4f}); {where}, so the "
                 f"dither amplitude is {-v['margin_bar']:.3g} bar above it"
                 + edge)
-    text = (f"no judder: stable (|lambda| = {v['leading_abs']:.4f}, decay "
-            f"{v['growth_rate_per_s']:.3g} 1/s); {where}")
+    if v["verdict"] == "slow-growth":
+        text = (f"no judder: {v['kind']} instability growing at only "
+                f"{v['growth_rate_per_s']:.3g} 1/s (|lambda| = "
+                f"{v['leading_abs']:.4f}), slower than the judder-relevant "
+                f"{v['min_growth_per_s']:g} 1/s; {where}")
+    else:
+        text = (f"no judder: stable (|lambda| = {v['leading_abs']:.4f}, "
+                f"decay {v['growth_rate_per_s']:.3g} 1/s); {where}")
     if v["margin_bar"] is not None:
         text += f", a margin of {v['margin_bar']:.3g} bar in amplitude"
     return text + edge
@@ -170,7 +181,8 @@ def build_report(parameters=None, changes=None, description=None,
                  group=None, fit_names=("c12", "mu_g", "k24"),
                  sensitivity_names=None, grid_freq=None, map_freq=None,
                  map_pf=None, p_max_bar=1.5, method="dyson", workers=None,
-                 engagement=False, progress=None):
+                 engagement=False, min_growth=DEFAULT_MIN_GROWTH_PER_S,
+                 progress=None):
     """``judder report``: the figures and tables of the paper for one
     driveline.
 
@@ -203,6 +215,11 @@ def build_report(parameters=None, changes=None, description=None,
         300 x 150).
     p_max_bar : float
         Largest amplitude searched, bar.
+    min_growth : float
+        Judder-relevant growth rate, 1/s (:mod:`stability.relevance`):
+        the verdict and the map's shading use it, as ``judder check``
+        and ``judder map`` do (0: every instability); the tongues and
+        tips are the stability boundaries of Fig. 14.
     engagement : bool
         With a dither setting: also run the bench engagement at it and
         without dither through the FMU (Fig. 7, 8; a few seconds); for a
@@ -283,7 +300,8 @@ def build_report(parameters=None, changes=None, description=None,
     # tongues, and the map they are drawn over
     tongues = api.tongues(grid_freq, p_max_bar, values, method=method)
     stability = dataclasses.replace(
-        api.stability_map(map_freq, map_pf, values, method=method),
+        api.stability_map(map_freq, map_pf, values, method=method,
+                          min_growth=min_growth),
         boundaries=tongues.boundaries, tongues=tongues.tongues)
     step()
     data["tongues"] = [
@@ -296,9 +314,10 @@ def build_report(parameters=None, changes=None, description=None,
 
     # the configured dither
     if freq_hz is not None and p_f_bar is not None:
-        # judder check at the setting, against the stability boundary
-        # (growth rate 0) as the map and the tongues of this report
-        checked = api.check([freq_hz], [p_f_bar], values, min_growth=0.0,
+        # judder check at the setting, at the growth rate that shades
+        # the map (the tongues are the stability boundaries of Fig. 14)
+        checked = api.check([freq_hz], [p_f_bar], values,
+                            min_growth=min_growth,
                             p_max_bar=max(p_max_bar, 2 * p_f_bar),
                             sensitivity=())
         point = checked.checks[0].floquet
@@ -310,8 +329,9 @@ def build_report(parameters=None, changes=None, description=None,
             f"<h2>Verdict: dither at {freq_hz:g} Hz, {p_f_bar:g} bar</h2>"
             f'<p class="verdict {css}">'
             f"{html.escape(_verdict_text(verdict))}</p>"
-            '<p class="small">Source: judder check --min-growth 0 (the '
-            "stability boundary, as in the map below).</p>"
+            '<p class="small">Source: judder check --min-growth '
+            f"{min_growth:g}; the map below shades slower growth grey, its "
+            "tongues are the stability boundaries (Fig. 14).</p>"
             + figure(f"Floquet multipliers at {freq_hz:g} Hz, {p_f_bar:g} "
                      "bar (Fig. 15)",
                      multipliers_figure([point], title="Floquet multipliers "

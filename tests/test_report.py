@@ -60,9 +60,12 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     text = " ".join(_text(html).split())
     # 105 Hz, 0.2 bar is inside tongue 2 of the example driveline with
     # mu_g halved: `judder floquet --freq 105 --pf 0.2 --param-file
-    # examples/driveline.toml --set mu_g=0.011` gives 1.000668, 0.0701 1/s
-    assert "JUDDER: single-period instability, growing at 0.0701" in text
-    assert "|lambda| = 1.0007" in text
+    # examples/driveline.toml --set mu_g=0.011` gives 1.000668, 0.0701 1/s,
+    # slower than the judder-relevant 1 1/s that `judder check` uses
+    assert ("no judder: single-period instability growing at only 0.0701 "
+            "1/s (|lambda| = 1.0007), slower than the judder-relevant 1 1/s"
+            in text)
+    assert "Source: judder check --min-growth 1;" in text
     # tongue 2's tip, refined between grid points: 105.776 Hz, 0.1084 bar
     # (`judder tongues` on 500 frequencies; twice the 0.0542 bar of
     # mu_g = 0.022, as the tip scales with 1/mu_g)
@@ -85,6 +88,26 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     assert html.count("<img") == 6
     assert html.count('src="data:image/png;base64,') == 6
     assert not re.search(r'(src|href)="(?!data:)', html)
+
+
+def test_report_verdict_is_judder_check_at_its_growth_rate():
+    # the same setting against the stability boundary (--min-growth 0):
+    # judder, 0.2 bar above the boundary that `judder check` computes
+    from judder import api
+    from judder.inputs import load_parameters
+    from judder.report import _verdict_text
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    check = api.check([105.0], [0.2], example, {"mu_g": 0.011},
+                      min_growth=0.0, sensitivity=())
+    record = {**check.records()[0],
+              "leading_abs": check.checks[0].floquet.leading_abs}
+    text = _verdict_text(record)
+    assert text.startswith("JUDDER: single-period instability, growing at "
+                           "0.0701 1/s (|lambda| = 1.0007); the stability "
+                           "boundary at 105 Hz is ")
+    boundary = float(text.split("105 Hz is ")[1].split(" bar")[0])
+    assert boundary == pytest.approx(record["boundary_p_f_bar"], abs=5e-4)
+    assert boundary < 0.2
 
 
 @pytest.mark.parametrize("args, words", [

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from infra.errors import JudderError
+from infra.errors import JudderError, check_number
 from infra.files import save_figure
 from infra.units import PA_PER_BAR
 
@@ -19,7 +19,7 @@ from ..inputs import (read_boundary, read_chart_boundary,
                       read_chart_min_growth)
 from .values import check_campaign_disk, check_map_memory, check_work
 from . import estimates
-from .options import (check_number, emit, make_parents, model_title,
+from .options import (emit, make_parents, model_title,
                       parameter_file, parameters_of, parse_grid, parse_list,
                       parse_waveform, Progress)
 
@@ -54,13 +54,6 @@ def _write_outputs(args, result, save=None, figure=None):
     if args.plot:
         save_figure(args.plot, result.figure(**(figure or {})))
     return _files(out=args.out, plot=args.plot)
-
-
-def _finite(option, value, unit):
-    if not math.isfinite(value):
-        raise JudderError(f"{option} {value} {unit} is not allowed; "
-                          "allowed: a finite number")
-    return value
 
 
 def _pf_max(args):
@@ -172,8 +165,9 @@ def cmd_tongues(args):
                              method=args.method, waveform=waveform,
                              background=args.plot is not None,
                              progress=progress,
-                             min_growth=_finite("--min-growth",
-                                                args.min_growth, "1/s"),
+                             min_growth=check_number("--min-growth",
+                                                     args.min_growth, "1/s",
+                                                     low=-math.inf),
                              solver=args.solver)
     data = {**result.as_dict(), **_write_outputs(args, result, figure={
         "title": f"tongue boundaries over the map, "
@@ -691,7 +685,8 @@ def cmd_report(args):
             grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
             p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
             method=args.method, workers=args.workers,
-            engagement=args.engagement, progress=progress)
+            engagement=args.engagement, min_growth=args.min_growth,
+            progress=progress)
     result.save(args.out)
     if args.pdf:
         make_parents(args.pdf)

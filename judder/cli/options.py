@@ -8,14 +8,14 @@ from pathlib import Path
 
 import numpy as np
 
-from infra.errors import JudderError
+from infra.errors import JudderError, check_number
 from infra.files import check_folder_writable, check_output, to_json
 
 from ..inputs import load_parameters, read_input
 
 __all__ = ["parse_grid", "parameters_of", "parameter_file",
            "own_driveline", "emit", "parse_list",
-           "check_number", "make_parents", "Progress",
+           "make_parents", "Progress",
            "model_title", "check_outputs", "OUTPUTS"]
 
 #: The output files of each command: (option attribute, option, suffixes;
@@ -275,18 +275,6 @@ def parse_list(text, option, convert=float):
     if not values:
         raise JudderError(f"{option} is empty")
     return values
-
-
-def check_number(option, value, unit, strict=True):
-    """Raise JudderError unless ``value`` is finite and > 0 (>= 0)."""
-    if value is None:
-        return value
-    ok = math.isfinite(value) and (value > 0 if strict else value >= 0)
-    if not ok:
-        raise JudderError(f"{option} {value:g} {unit} is not allowed; "
-                          f"allowed: a finite value {'>' if strict else '>='}"
-                          f" 0 {unit}")
-    return value
 
 
 def make_parents(*paths):

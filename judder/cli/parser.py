@@ -662,6 +662,7 @@ def build_parser():
                    help=f"map frequencies, Hz (default {DEFAULT_MAP_FREQ})")
     p.add_argument("--map-pf", default=DEFAULT_MAP_PF, metavar="START:STOP:N",
                    help=f"map amplitudes, bar (default {DEFAULT_MAP_PF})")
+    _min_growth_option(p, "; the verdict and the map's shading use it")
     _workers_option(p)
     _method_option(p)
     _model_options(p)
