@@ -52,8 +52,18 @@ def _write_outputs(args, result, save=None, figure=None):
     if args.out:
         result.save(args.out, **(save or {}))
     if args.plot:
-        save_figure(args.plot, result.figure(**(figure or {})))
+        _save_plot(args.plot, result.figure(**(figure or {})))
     return _files(out=args.out, plot=args.plot)
+
+
+def _save_plot(path, figure):
+    """Save a figure the command drew, then free it (``main`` may run
+    many commands in one process)."""
+    import matplotlib.pyplot as plt
+    try:
+        save_figure(path, figure)
+    finally:
+        plt.close(figure)
 
 
 def _pf_max(args):
@@ -105,7 +115,7 @@ def cmd_floquet(args):
                         method=args.method,
                         waveform=parse_waveform(args.dither_wave))
     if args.plot:
-        save_figure(args.plot, point.figure(
+        _save_plot(args.plot, point.figure(
             title=f"Floquet multipliers (Fig. 15), "
                   f"{model_title(args, params)}"))
     result = point.result
@@ -324,7 +334,7 @@ def cmd_fit(args):
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
     if args.plot:
-        save_figure(args.plot, report.figure())
+        _save_plot(args.plot, report.figure())
     rows = [f"{n:>8} = {v:.6g} ± {s:.2g}, 95 % interval [{lo:.6g}, "
             f"{hi:.6g}]  (start {s0:.6g})"
             for n, v, s, lo, hi, s0 in zip(result.names, result.values,
@@ -735,7 +745,7 @@ def cmd_envelope(args):
     if args.csv:
         result.save_csv(args.csv)
     if args.plot:
-        save_figure(args.plot, result.figure())
+        _save_plot(args.plot, result.figure())
     result.discard_checkpoint()
     e, c = result.envelope, result.envelope.convergence
     lowest = e.broadest
