@@ -42,9 +42,9 @@ from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE,
                        fmi2CallbackLoggerTYPE, fmi2Real)
 from fmpy.logging import addLoggerProxy
 
-from infra.errors import JudderError, ParameterError
+from infra.errors import JudderError
 
-from .modelica import (NamedParameters, check_no_acceleration,
+from .modelica import (NamedParameters, check_no_acceleration, checked_values,
                        reduce_periodic)
 from .specs import ParameterSpec
 
@@ -352,13 +352,8 @@ def _steady_slip(d, A0, rate, moved, along):
 
 
 def _values(d, overrides):
-    unknown = sorted(set(overrides) - set(d.specs))
-    if unknown:
-        raise ParameterError(
-            f"{unknown[0]} = {overrides[unknown[0]]!r} is not a Real "
-            f"parameter of {d.model_name}; allowed: {', '.join(d.specs)}")
-    return {name: d.specs[name].check(overrides.get(name, start))
-            for name, start in d.starts.items()}
+    return checked_values(d.specs, d.starts, overrides,
+                          f"a Real parameter of {d.model_name}")
 
 
 @dataclass(frozen=True)

@@ -176,13 +176,27 @@ def parameter_specs(class_name, library=None):
 
 def _parameter_values(ode, overrides, class_name, library):
     specs = parameter_specs(class_name, library)
+    return checked_values(specs, {q.name: q.start for q in ode.parameters},
+                          overrides, f"a tunable parameter of {class_name}")
+
+
+def checked_values(specs, starts, overrides, what):
+    """Every parameter's value: its override, else its start, each checked
+    against the bounds of its declaration (``specs``).
+
+    Raises
+    ------
+    ParameterError
+        For an override of a name not in ``specs`` (``what`` says what the
+        names are) or a value outside its bounds.
+    """
     unknown = sorted(set(overrides) - set(specs))
     if unknown:
         raise ParameterError(
-            f"{unknown[0]} = {overrides[unknown[0]]!r} is not a tunable "
-            f"parameter of {class_name}; allowed: {', '.join(specs)}")
-    return {q.name: specs[q.name].check(overrides.get(q.name, q.start))
-            for q in ode.parameters}
+            f"{unknown[0]} = {overrides[unknown[0]]!r} is not {what}; "
+            f"allowed: {', '.join(specs)}")
+    return {name: specs[name].check(overrides.get(name, start))
+            for name, start in starts.items()}
 
 
 class NamedParameters:
