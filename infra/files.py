@@ -7,9 +7,11 @@ the mode the umask gives a new file.
 Every file the tool writes carries :data:`MARK` (a CSV/TOML comment line,
 PNG/SVG/PDF/PS metadata, an NPZ array name, the MF4 header comment), so
 :func:`written_by_us` can tell it from a file of the user's, which a
-command replaces only with ``--force`` (:func:`check_output`).
+command replaces only with ``--force`` (:func:`check_output`) and the
+Python API only with ``force=True`` (:func:`keeps_foreign_files`).
 """
 
+import functools
 import json
 import math
 import os
@@ -22,6 +24,7 @@ from .errors import JudderError
 
 __all__ = ["atomic_write", "write_text", "save_figure", "to_json", "MARK",
            "NPZ_MARK", "written_by_us", "check_output", "save_npz",
+           "keeps_foreign_files",
            "check_folder_writable", "decode_text"]
 
 #: Text every file written by the tool carries.
@@ -98,6 +101,20 @@ def written_by_us(path):
         return False
     return any(mark in part for part in (head, tail)
                for mark in (MARK.encode(), f"{NPZ_MARK}.npy".encode()))
+
+
+def keeps_foreign_files(save):
+    """Decorate a ``save(self, path, ...)`` method: it gains ``force=False``
+    and, without it, refuses to replace a file at ``path`` that the tool
+    did not write (:func:`written_by_us`), before writing anything."""
+    @functools.wraps(save)
+    def guarded(self, path, *args, force=False, **kwargs):
+        if not force and Path(path).is_file() and not written_by_us(path):
+            raise JudderError(f"{path} exists and judder did not write it; "
+                              "not replacing it (force=True, or --force on "
+                              "the command line, replaces it)")
+        return save(self, path, *args, **kwargs)
+    return guarded
 
 
 def check_folder_writable(folder, option, text):

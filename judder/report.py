@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import MARK, atomic_write, write_text
+from infra.files import MARK, atomic_write, keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 
 from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
@@ -68,10 +68,12 @@ class ReportResult:
     def as_dict(self):
         return {**self.data, "figures": list(self.figures)}
 
+    @keeps_foreign_files
     def save(self, path):
         """Write the HTML file (atomically)."""
         write_text(path, self.html, overwrite=True)
 
+    @keeps_foreign_files
     def save_pdf(self, path, html_path):
         """Print the saved HTML file ``html_path`` to PDF with a headless
         Chromium (Debian's ``chromium``; ``make browser`` installs it)."""

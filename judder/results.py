@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from drivelines import dumps_toml
-from infra.files import save_npz, write_text
+from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 
@@ -168,6 +168,7 @@ class MapResult:
                 "max_leading_abs": float(m.leading_abs.max()),
                 "natural_frequencies_hz": m.natural_frequencies_hz}
 
+    @keeps_foreign_files
     def save(self, path, meta=None):
         """Save the map as NPZ.
 
@@ -255,6 +256,7 @@ class TonguesResult:
                                   + [cell(v) for v in row]))
         return "\n".join(lines) + "\n"
 
+    @keeps_foreign_files
     def save(self, path):
         write_text(path, self.csv_text())
 
@@ -295,6 +297,7 @@ class SensitivityResult:
                 "tip_shifts": self.tip_shifts,
                 "paper_conclusions": self.conclusions}
 
+    @keeps_foreign_files
     def save(self, path):
         write_text(path, _csv_text(self.tip_shifts))
 
@@ -332,6 +335,7 @@ class ThresholdResult:
                 "mu_g_thresholds_closed_form": s.closed_form,
                 "slope": self.slope}
 
+    @keeps_foreign_files
     def save(self, path):
         s = self.study
         lines = ["c_ext,mu_g_threshold,mu_g_threshold_closed_form"] + [
@@ -418,6 +422,7 @@ class SimulationResult:
         return {"model": self.model_class.rsplit(".", 1)[-1],
                 "fmu": str(self.fmu), "runs": self.summaries}
 
+    @keeps_foreign_files
     def save(self, path):
         """Time histories of the first run as CSV or MF4 (by suffix)."""
         from pysim.export import write_run
@@ -461,6 +466,7 @@ class CrosscheckResult:
                     self.check.max_rate_error(above=1.0),
                 "disagreements": [r for r in rows if not r["agree"]]}
 
+    @keeps_foreign_files
     def save(self, path):
         write_text(path, _csv_text(self.rows()))
 
@@ -531,6 +537,7 @@ class ChartResult:
                            for r in chart.failed],
                 "seconds": self.seconds}
 
+    @keeps_foreign_files
     def save(self, path):
         """Save the chart as NPZ: the per-run arrays of
         :meth:`pysim.charts.Chart.arrays` and, per group, the boundary
@@ -547,7 +554,7 @@ class ChartResult:
                   "min_growth_per_s": np.array(self.chart.min_growth)}
         save_npz(path, arrays)
 
-    def save_boundary(self, path, force=True):
+    def save_boundary(self, path, force=False):
         """Write the experimental boundary as ``judder fit --boundary``
         reads it; with several groups, one file per group
         (``STEM_GROUP.csv``). Returns the paths written.
@@ -685,6 +692,7 @@ class CheckResult:
     def summary(self):
         return "\n".join(setting_summary(r) for r in self.records())
 
+    @keeps_foreign_files
     def save(self, path):
         """CSV: one row per setting (the scalar fields; tongues by
         number)."""
@@ -810,6 +818,7 @@ class AdviceResult:
                 lines.append(f"design: none found: {a.message}")
         return "\n".join(lines)
 
+    @keeps_foreign_files
     def save(self, path):
         """CSV: freq_hz, safe_p_f_bar of the given design (operating
         frequencies only)."""
@@ -877,9 +886,11 @@ class EnvelopeResult:
                 columns)}} for i, f in enumerate(e.freq_hz)]
         return _csv_text(rows)
 
+    @keeps_foreign_files
     def save_csv(self, path):
         write_text(path, self.csv_text())
 
+    @keeps_foreign_files
     def save(self, path):
         """NPZ: every sample's values and boundaries, the nominal, the
         broadest edge, the probability grid (bar where named so)."""

@@ -91,10 +91,20 @@ class Margin:
 
 
 def _crossing(curves, column, p0, low, high):
-    """Root of ``B_k(f) = p0`` in [low, high] (B_k finite at one end)."""
+    """Root of ``B_k(f) = p0`` in [low, high], a grid step where the
+    batched boundaries cross ``p0``.
+
+    A boundary evaluated at one frequency can miss a branch that the
+    batched solver followed along the grid (its continuation in frequency,
+    :func:`stability.hill.combination_boundaries`); then the ends do not
+    bracket a root of ``B_k`` and the crossing is known to the grid step
+    only: its middle.
+    """
     def excess(freq):
         p = curves[column](freq)
         return (p if np.isfinite(p) else 2 * p0 + 1.0) - p0
+    if np.sign(excess(low)) == np.sign(excess(high)):
+        return 0.5 * (low + high)
     return brentq(excess, low, high, xtol=1e-10 * high, rtol=1e-12)
 
 

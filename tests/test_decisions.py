@@ -227,3 +227,15 @@ def test_windows_over_an_envelope_are_safe_for_every_set():
             for params in (nominal, stiffer):
                 assert floquet(build_driveline(params), f,
                                0.8 * BAR).growth_rate < 1.0
+
+
+def test_check_far_inside_a_tongue_answers():
+    # 5 bar at 105 Hz: the batched boundaries on the search grid follow a
+    # combination branch that a cold single-frequency solve misses; the
+    # crossing is then known to the grid step (was a ValueError of brentq)
+    from judder import api
+    record = api.check([105.0], [5.0], sensitivity=()).records()[0]
+    assert record["verdict"] == "judder"
+    assert record["margin_bar"] == pytest.approx(
+        record["boundary_p_f_bar"] - 5.0)
+    assert record["margin_hz"] < 0 and abs(record["margin_hz"]) < 50

@@ -17,7 +17,8 @@ from infra.units import PA_PER_BAR
 from .. import api
 from ..inputs import (read_boundary, read_chart_boundary,
                       read_chart_min_growth)
-from .values import check_campaign_disk, check_map_memory, check_work
+from .values import (check_amplitudes, check_campaign_disk,
+                     check_map_memory, check_work)
 from . import estimates
 from .options import (emit, make_parents, model_title,
                       parameter_file, parameters_of, parse_grid, parse_list,
@@ -50,7 +51,7 @@ def _write_outputs(args, result, save=None, figure=None):
     """Write --out (``result.save``) and --plot (``result.figure``),
     atomically; keyword arguments for each; returns their paths."""
     if args.out:
-        result.save(args.out, **(save or {}))
+        result.save(args.out, force=args.force, **(save or {}))
     if args.plot:
         _save_plot(args.plot, result.figure(**(figure or {})))
     return _files(out=args.out, plot=args.plot)
@@ -612,11 +613,14 @@ def _settings(args):
         if not len(freqs) or not all(math.isfinite(p) for p in p_f):
             raise JudderError(f"--table {args.table}: every row needs "
                               "freq_hz and p_f_bar; allowed: no empty cells")
-        return list(freqs), [p / PA_PER_BAR for p in p_f]
+        amplitudes = [p / PA_PER_BAR for p in p_f]
+        check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
+        return list(freqs), amplitudes
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
     freqs = _values(args.freq, "--freq", "Hz")
     amplitudes = _values(args.pf, "--pf", "bar")
+    check_amplitudes(amplitudes, "--pf")
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]
 
@@ -624,6 +628,7 @@ def _settings(args):
 def cmd_check(args):
     """Verdict, growth and margins of dither settings."""
     freqs, amplitudes = _settings(args)
+    check_amplitudes([args.pf_max], "--pf-max")
     if args.params is None:
         names = None
     elif args.params.strip().lower() == "none":
@@ -653,6 +658,8 @@ def cmd_advise(args):
         parse_list(args.params, "--params", str)
     weights = None if args.weights is None else \
         parse_list(args.weights, "--weights")
+    check_amplitudes([args.pf_max], "--pf-max")
+    check_amplitudes([args.margin_bar], "--margin-bar")
     params, changes = parameters_of(args)
     extra = [parameter_file(args, path, "--also") for path in args.also]
     make_parents(args.out, args.plot)
@@ -677,6 +684,7 @@ def cmd_report(args):
     if args.freq is not None:
         check_number("--freq", args.freq, "Hz")
         check_number("--pf", args.pf, "bar", strict=False)
+        check_amplitudes([args.pf], "--pf")
     grid = parse_grid(args.grid, "--grid", "Hz")
     map_freq = parse_grid(args.map_freq, "--map-freq", "Hz")
     map_pf = parse_grid(args.map_pf, "--map-pf", "bar")
@@ -697,10 +705,10 @@ def cmd_report(args):
             method=args.method, workers=args.workers,
             engagement=args.engagement, min_growth=args.min_growth,
             progress=progress)
-    result.save(args.out)
+    result.save(args.out, force=args.force)
     if args.pdf:
         make_parents(args.pdf)
-        result.save_pdf(args.pdf, args.out)
+        result.save_pdf(args.pdf, args.out, force=args.force)
     verdict = result.data.get("verdict")
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
@@ -741,9 +749,9 @@ def cmd_envelope(args):
                               method=args.method, workers=args.workers,
                               checkpoint=checkpoint, progress=progress)
     if args.out:
-        result.save(args.out)
+        result.save(args.out, force=args.force)
     if args.csv:
-        result.save_csv(args.csv)
+        result.save_csv(args.csv, force=args.force)
     if args.plot:
         _save_plot(args.plot, result.figure())
     result.discard_checkpoint()

@@ -22,6 +22,7 @@ __all__ = ["parse_grid", "parameters_of", "parameter_file",
 #: None for a figure, any format matplotlib writes).
 OUTPUTS = {
     "params": (("save", "--save", ("toml",)),),
+    "floquet": (("plot", "--plot", None),),
     "map": (("out", "--out", ("npz",)), ("plot", "--plot", None)),
     "tongues": (("out", "--out", ("csv",)), ("plot", "--plot", None)),
     "sensitivity": (("out", "--out", ("csv",)), ("plot", "--plot", None)),

@@ -186,6 +186,7 @@ def build_parser():
     _method_option(p)
     _model_options(p)
     _waveform_option(p)
+    _force_option(p)
     p.set_defaults(handler=commands.cmd_floquet)
 
     p = sub.add_parser("map", help="stability map over frequency x amplitude",

@@ -20,6 +20,7 @@ from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
 
 __all__ = ["normalise_options", "option_value", "check_pressures",
+           "check_amplitudes",
            "check_plain_pressure", "check_plausible",
            "FREQ_RANGE_HZ", "MAX_PLAIN_PF_BAR", "MIN_PLAIN_P_M_PA",
            "MAX_WORKERS", "warn"]
@@ -78,6 +79,18 @@ def option_value(text, option, unit, low=-math.inf, high=math.inf,
             f"{value / PA_PER_BAR:g} bar: write {text}Pa, or give the unit "
             f"(allowed: a plain number <= {MAX_PLAIN_PF_BAR:g} bar)")
     return value
+
+
+def check_amplitudes(values_bar, option):
+    """Refuse a dither amplitude above :data:`MAX_PLAIN_PF_BAR`: Pa given
+    where bar is meant (a list, a grid or a table column)."""
+    for value in values_bar:
+        if value is not None and value > MAX_PLAIN_PF_BAR:
+            raise JudderError(
+                f"{option} {value:g} bar is not plausible for a dither "
+                f"amplitude (given in bar); did you give Pa? {value:g} Pa = "
+                f"{value / PA_PER_BAR:g} bar (allowed: at most "
+                f"{MAX_PLAIN_PF_BAR:g} bar)")
 
 
 def _allowed(unit, low, high, low_open):
