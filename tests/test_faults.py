@@ -235,3 +235,16 @@ def test_fmu_command_contract(tmp_path):
                           output=["x"], start_values={"k": 3.0},
                           fmi_type="ModelExchange")
     assert result["x"][-1] == pytest.approx(np.exp(-3.0), rel=1e-6)
+
+
+def test_api_save_keeps_a_file_judder_did_not_write(tmp_path):
+    from judder import api
+    result = api.tongues(np.linspace(90, 110, 5), 0.5)
+    mine = tmp_path / "mine.csv"
+    mine.write_text("freq,my notes\n")
+    with pytest.raises(JudderError, match="judder did not write it"):
+        result.save(mine)
+    assert mine.read_text() == "freq,my notes\n"
+    result.save(mine, force=True)
+    assert written_by_us(mine)
+    result.save(mine)                   # its own file: replaced anyway
