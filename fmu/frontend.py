@@ -419,6 +419,13 @@ def _library_errors(rumoca, roots):
     found = []
     for root in roots:
         for source in sorted(Path(root).rglob("*.mo")):
+            try:
+                source.read_bytes().decode("utf-8")
+            except UnicodeDecodeError as exc:
+                found.append(f"{source}: not UTF-8 text (byte "
+                             f"0x{exc.object[exc.start]:02x} at offset "
+                             f"{exc.start}); save the file as UTF-8")
+                continue
             found += [str(d) for d in rumoca.validate(str(source))
                       if "error" in str(d).lower()]
     return ("\n" + "\n".join(found)) if found else ""

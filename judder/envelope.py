@@ -37,6 +37,8 @@ from stability.ranges import (DEFAULT_COVERAGE, Correlated, Normal, Ranges,
                               Uniform, check_values, design_points)
 from stability.tongues import lowest_of_kinds
 
+from .inputs import read_input
+
 __all__ = ["read_ranges", "run_envelope", "checkpoint_path"]
 
 #: Seconds between two checkpoint writes.
@@ -150,10 +152,7 @@ def read_ranges(path, params):
     """
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text())
-    except OSError as exc:
-        raise JudderError(f"--ranges {path}: cannot read it ({exc.strerror})"
-                          ) from None
+        data = tomllib.loads(read_input(path, "--ranges"))
     except tomllib.TOMLDecodeError as exc:
         raise JudderError(f"--ranges {path}: not TOML ({exc})") from None
     unknown = sorted(set(data) - _TOP_KEYS)

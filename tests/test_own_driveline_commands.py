@@ -290,3 +290,18 @@ def test_the_python_api_refuses_alike(four_fmu):
         api.fit([100.0], [0.2], names=["mu_g"], parameters=fmu, bench={})
     with pytest.raises(JudderError, match="Fig. 19"):
         api.threshold([0.0], [0.1], parameters=ModelicaParameters(FOUR))
+
+
+def test_a_library_file_that_is_not_utf8_is_named(tmp_path, capsys):
+    package = tmp_path / "Usr"
+    package.mkdir()
+    (package / "package.mo").write_text("package Usr\nend Usr;\n")
+    (package / "Ok.mo").write_text(
+        "within Usr;\nmodel Ok\n  Real x(start=1, fixed=true);\n"
+        "  parameter Real k = 1;\nequation\n  der(x) = -k*x;\nend Ok;\n")
+    (package / "Bin.mo").write_bytes(b"within Usr;\nmodel Bin \xff end Bin;\n")
+    assert main(["params", "--modelica", "Usr.Ok", "--library",
+                 str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "Bin.mo: not UTF-8 text (byte 0xff at offset 22)" in err
+    assert "Traceback" not in err and "internal error" not in err
