@@ -110,6 +110,20 @@ def _terminate(signum, frame):
     raise SystemExit(128 + signum)
 
 
+def _check_address(address):
+    """Refuse a malformed scheduler address before a Dask client is made
+    of it (a client half made of one hangs for 20 s at exit)."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+    try:
+        scheme, location = parse_address(address)
+        if scheme in ("tcp", "tls"):
+            parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise JudderError(f"--scheduler {address}: not a scheduler address "
+                          f"({exc}); allowed: HOST:PORT or "
+                          "tcp://HOST:PORT") from None
+
+
 class _Cluster:
     """A Dask client, started on first use; see :func:`cluster`."""
 
@@ -173,6 +187,7 @@ class _Cluster:
     def _connect(self, workers):
         from distributed import Client, LocalCluster
         if self.scheduler is not None:
+            _check_address(self.scheduler)
             try:
                 self._client = Client(self.scheduler,
                                       timeout=CONNECT_TIMEOUT,

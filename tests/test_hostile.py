@@ -198,6 +198,9 @@ CASES = [
     (["threshold", "--out", "{d}/t.npz"], 2, ["unknown format"]),
     (["crosscheck", "--out", "{d}/x.npz"], 2, ["unknown format"]),
     (["chart", "{d}", "--boundary", "{d}/b.txt"], 2, ["unknown format"]),
+    (["sensitivity", "--params", "c12", "--scheduler", "garbage"], 2,
+     ["--scheduler garbage: not a scheduler address", "HOST:PORT"]),
+    (["envelope", "--ranges", "{d}/bad.bin"], 2, ["not UTF-8"]),
     # argparse itself
     (["eig", "--bogus"], 2, ["unrecognized"]),
     (["floquet"], 2, ["required"]),
