@@ -201,6 +201,10 @@ CASES = [
     (["sensitivity", "--params", "c12", "--scheduler", "garbage"], 2,
      ["--scheduler garbage: not a scheduler address", "HOST:PORT"]),
     (["envelope", "--ranges", "{d}/bad.bin"], 2, ["not UTF-8"]),
+    (["check", "--freq", "60:200:1000", "--pf", "0:0.7:1000"], 2,
+     ["1000000 settings", "JUDDER_MAX_HOURS"]),
+    (["report", "--out", "{d}/r.html", "--map-freq", "1:250:3000",
+      "--map-pf", "0:1.5:3000"], 2, ["--map-freq x --map-pf", "9000000"]),
     # argparse itself
     (["eig", "--bogus"], 2, ["unrecognized"]),
     (["floquet"], 2, ["required"]),

@@ -130,18 +130,24 @@ def cmd_floquet(args):
     emit(args, {**point.as_dict(), **_files(plot=args.plot)}, text)
 
 
+def _check_map_grid(values, freqs, amplitudes, options, method, tongues):
+    """Refuse a map grid above :data:`MAX_MAP_POINTS`, or beyond the
+    memory or the time limit, before any work."""
+    if len(freqs) * len(amplitudes) > MAX_MAP_POINTS:
+        raise JudderError(f"{options} has {len(freqs) * len(amplitudes)} "
+                          f"points; allowed: at most {MAX_MAP_POINTS}")
+    check_map_memory(values, freqs, amplitudes)
+    estimates.check_map(values, freqs, amplitudes, method, tongues=tongues)
+
+
 def cmd_map(args):
     """Stability map over a frequency x amplitude grid."""
     freqs = parse_grid(args.freq, "--freq", "Hz")
     amplitudes = parse_grid(args.pf, "--pf", "bar")
-    if len(freqs) * len(amplitudes) > MAX_MAP_POINTS:
-        raise JudderError(f"--freq x --pf has {len(freqs) * len(amplitudes)}"
-                          f" points; allowed: at most {MAX_MAP_POINTS}")
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
-    check_map_memory(params.replace(**changes), freqs, amplitudes)
-    estimates.check_map(params.replace(**changes), freqs, amplitudes,
-                        args.method, tongues=args.plot is not None)
+    _check_map_grid(params.replace(**changes), freqs, amplitudes,
+                    "--freq x --pf", args.method, args.plot is not None)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(
@@ -636,6 +642,8 @@ def cmd_check(args):
     else:
         names = parse_list(args.params, "--params", str)
     params, changes = parameters_of(args)
+    estimates.check_settings(len(freqs), len(
+        api.DEFAULT_CHECK_PARAMETERS if names is None else names))
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "check") as progress:
         result = api.check(freqs, amplitudes, params, changes,
@@ -691,6 +699,8 @@ def cmd_report(args):
     if grid[0] <= 0 or map_freq[0] <= 0:
         raise JudderError("--grid, --map-freq: allowed: frequencies > 0 Hz")
     params, changes = parameters_of(args)
+    _check_map_grid(params.replace(**changes), map_freq, map_pf,
+                    "--map-freq x --map-pf", args.method, True)
     make_parents(args.out)
     with Progress(None, "report") as progress:
         result = api.report(

@@ -61,6 +61,13 @@ TONGUE_FIXED_S = 0.1
 #: --freq 40:60:3 --pf 0.5 --duration 2`` (3 runs of 2 s, 5.6 s).
 FMU_SECOND_S = 0.25
 CAMPAIGN_SECOND_S = 0.5
+#: One setting of ``check`` (Floquet point and margins), and one
+#: parameter of its margin sensitivity per setting, CPU seconds: from
+#: ``judder check --freq 60:200:10 --pf 0:0.7:10`` with ``--params none``
+#: (6.1 s for 100 settings with the 1.5 s start-up) and with the 6
+#: default parameters (14.4 s).
+CHECK_SETTING_S = 0.045
+CHECK_PARAMETER_S = 0.014
 #: States of the calibration set (paper's 4-DOF).
 REFERENCE_SIZE = 6
 #: Largest phase per sub-interval, as in stability.monodromy (_MAX_PHASE).
@@ -210,6 +217,14 @@ def check_sensitivity(params, freq_hz, cases, workers):
                       f"{cases} cases x {len(freq_hz)} frequencies",
                       "fewer --params, --factors/--values or --freq",
                       _workers(workers))
+
+
+def check_settings(settings, parameters):
+    """``check``: settings x (one point + the sensitivity parameters)."""
+    return check_time(
+        settings * (CHECK_SETTING_S + parameters * CHECK_PARAMETER_S),
+        f"{settings} settings x {parameters} sensitivity parameters",
+        "fewer --freq x --pf settings, or --params none")
 
 
 def check_crosscheck(runs, duration, workers):
