@@ -29,6 +29,7 @@ FILES = {
     "user.npz": "not judder's\n",
     "user.png": "not judder's\n",
     "user.toml": "# my notes\n",
+    "pm_bar.toml": 'model = "4dof"\n[parameters]\np_m = 10\n',
 }
 
 MAP = ["map", "--freq", "100:110:2", "--pf", "0:0.3:2"]
@@ -50,6 +51,10 @@ CASES = [
     (["eig", "--set", "J1=1/0"], 2, ["J1"]),
     (["eig", "--set", "p_m=10"], 2, ["p_m", "10bar"]),
     (["eig", "--set", "p_m=0.5"], 2, ["p_m", "bar"]),
+    (["eig", "--param-file", "{d}/pm_bar.toml"], 2,
+     ["p_m = 10 Pa", "1e+06"]),
+    (["sensitivity", "--params", "mean_pressure_damping", "--factors", "3",
+      "--freq", "90:120:5"], 2, ["mean_pressure_damping is 0", "--values"]),
     (["eig", "--set", "p_m=10bar"], 0, []),
     (["eig", "--set", "p_m=50000Pa"], 0, []),
     (["eig", "--set", "c12=5 N*m*s/rad"], 0, []),

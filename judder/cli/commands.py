@@ -219,6 +219,14 @@ def cmd_sensitivity(args):
     if values is None:
         for factor in factors:
             check_number("--factors", factor, "(factor)")
+        values_now = params.replace(**changes)
+        zero = [n for n in names if n in values_now.specs and
+                values_now[n] == 0]
+        if zero:
+            raise JudderError(
+                f"--params {zero[0]} is 0 in this parameter set, so "
+                "--factors cannot vary it; allowed: --values for it, or a "
+                "parameter with a non-zero value")
     make_parents(args.out, args.plot)
     cases = 1 + len(names) * len(values or factors)
     check_work("--params x --values/--factors", cases, "cases")

@@ -138,7 +138,9 @@ def parameters_of(args):
                                  param_file=args.param_file))
     changed = params.with_overrides(args.set)
     names = [text.partition("=")[0].strip() for text in args.set]
-    from .values import check_plain_pressure
+    from .values import check_file_pressure, check_plain_pressure
+    if args.param_file:
+        check_file_pressure(params, args.param_file)
     for text in args.set:
         check_plain_pressure(text)
     return params, {name: changed[name] for name in names}

@@ -20,8 +20,8 @@ from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
 
 __all__ = ["normalise_options", "option_value", "check_pressures",
-           "check_amplitudes",
-           "check_plain_pressure", "check_plausible",
+           "check_amplitudes", "check_plain_pressure", "check_file_pressure",
+           "check_plausible",
            "FREQ_RANGE_HZ", "MAX_PLAIN_PF_BAR", "MIN_PLAIN_P_M_PA",
            "MAX_WORKERS", "warn"]
 
@@ -163,6 +163,20 @@ def check_plain_pressure(assignment):
             f"(below 1 bar); did you mean {value.strip()}bar = "
             f"{number * PA_PER_BAR:g} Pa? Give the unit (p_m={value.strip()}"
             f"bar, or p_m={value.strip()}Pa to keep it)")
+
+
+def check_file_pressure(params, path):
+    """Refuse ``p_m = 10`` in a parameter file: the file is in SI (Pa),
+    and a mean clutch pressure below 1 bar is bar written as Pa."""
+    if "p_m" not in params.specs:
+        return
+    p_m = params["p_m"]
+    if 0 <= p_m < MIN_PLAIN_P_M_PA:
+        raise JudderError(
+            f"--param-file {path}: p_m = {p_m:g} Pa (the file is in SI) is "
+            "not plausible for a clutch pressure (below 1 bar); did you mean "
+            f"{p_m:g} bar = {p_m * PA_PER_BAR:g} Pa? Write p_m = "
+            f"{p_m * PA_PER_BAR:g}")
 
 
 #: Where each command keeps its largest dither amplitude: (attribute,
