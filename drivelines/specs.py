@@ -2,6 +2,7 @@
 
 from dataclasses import dataclass
 import math
+import numbers
 
 from infra.errors import JudderError, ParameterError
 from infra.quantities import parse_quantity
@@ -126,13 +127,13 @@ class ParameterSpec:
         if ok and number != 0 and not (
                 smallest <= abs(number) <= MAX_MAGNITUDE):
             raise ParameterError(
-                f"parameter {self.name} = {value!r} is not allowed; allowed:"
+                f"parameter {self.name} = {_shown(value)} is not allowed; allowed:"
                 f" {self.allowed()} [{self.unit}], of magnitude "
                 + (f"{smallest:g} to " if smallest else "at most ")
                 + f"{MAX_MAGNITUDE:g}")
         if not ok:
             raise ParameterError(
-                f"parameter {self.name} = {value!r} is not allowed; "
+                f"parameter {self.name} = {_shown(value)} is not allowed; "
                 f"allowed: {self.allowed()} [{self.unit}] ({self.description})")
         return number
 
@@ -165,3 +166,11 @@ CLUTCH_SPECS = (
                   "literally, 0 keeps only the dither part (paper's maps)",
                   lower=0.0, upper=1.0),
 )
+
+
+def _shown(value):
+    """A value as the user would write it (``1e+300``, not
+    ``np.float64(1e+300)``)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return f"{float(value):g}"
+    return repr(value)

@@ -137,6 +137,8 @@ def _fmu_and_speeds(params, perturb):
     """
     fmu_path = class_fmu(params, "crosscheck")
     if params.driveline is not None:
+        if perturb not in run_values(params)[1]:
+            parameter_default(fmu_path, perturb)   # refuses an unknown name
         return fmu_path, params.driveline.free_response_speeds
     if perturb not in params.values:
         raise JudderError(

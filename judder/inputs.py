@@ -184,9 +184,12 @@ def read_chart_boundary(path, group=None, option="--chart"):
             groups = npz["boundary_group"]
             freq, p_bar = npz["boundary_freq_hz"], npz["boundary_p_f_bar"]
             tried = npz["boundary_tried_bar"]
-    except (OSError, ValueError, KeyError) as exc:
+    except OSError as exc:
+        raise JudderError(f"{option} {path}: cannot read it "
+                          f"({exc.strerror or exc})") from None
+    except (ValueError, KeyError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          f"chart --out ({exc})") from None
+                          "chart --out (an NPZ file)") from None
     names = list(dict.fromkeys(groups.tolist()))
     if group is None and len(names) > 1:
         raise JudderError(f"{option} {path} has {len(names)} groups; give "
@@ -208,9 +211,12 @@ def read_chart_min_growth(path, option="--chart"):
             if "min_growth_per_s" not in npz.files:
                 return 0.0
             value = float(npz["min_growth_per_s"])
-    except (OSError, ValueError) as exc:
+    except OSError as exc:
+        raise JudderError(f"{option} {path}: cannot read it "
+                          f"({exc.strerror or exc})") from None
+    except (ValueError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          f"chart --out ({exc})") from None
+                          "chart --out (an NPZ file)") from None
     if not (np.isfinite(value) and value >= 0):
         raise JudderError(f"{option} {path}: its min_growth_per_s = {value!r} "
                           "is not allowed; allowed: a finite number >= 0")

@@ -264,5 +264,9 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
     assert "Traceback" not in proc.stderr
     data = json.loads(proc.stdout)
     assert data["freq_hz"] == freq.tolist()
-    with pytest.raises(JudderError, match="not a chart"):
+    with pytest.raises(JudderError, match="missing.npz: cannot read it"):
         read_chart_boundary(tmp_path / "missing.npz")
+    (tmp_path / "table.csv").write_text("freq_hz,p_f_bar\n100,0.3\n")
+    with pytest.raises(JudderError, match=r"not a chart written by judder "
+                       r"chart --out \(an NPZ file\)$"):
+        read_chart_boundary(tmp_path / "table.csv")

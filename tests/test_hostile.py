@@ -210,6 +210,10 @@ CASES = [
      ["1000000 settings", "JUDDER_MAX_HOURS"]),
     (["report", "--out", "{d}/r.html", "--map-freq", "1:250:3000",
       "--map-pf", "0:1.5:3000"], 2, ["--map-freq x --map-pf", "9000000"]),
+    (["crosscheck", "--freq", "100:105:2", "--pf", "0.3:0.3:1",
+      "--duration", "1", "--perturb", "foo"], 2, ["no parameter 'foo'"]),
+    (["check", "--freq", "105,", "--pf", "0.2"], 2, ["empty item"]),
+    (["threshold", "--mu-g", "-1e300:0.1:10"], 2, ["mu_g = -1e+300 is"]),
     # argparse itself
     (["eig", "--bogus"], 2, ["unrecognized"]),
     (["floquet"], 2, ["required"]),

@@ -97,8 +97,8 @@ def parse_grid(text, option, unit, allow_negative=False):
     parts = text.split(":")
     lowest = "" if allow_negative else "0 <= "
     allowed = (f"allowed: START:STOP:N with {lowest}START <= STOP in {unit} "
-               f"and N a whole number from 1 to {MAX_GRID_VALUES}, or one "
-               f"value (e.g. {option} 10:220:300)")
+               f"and N a whole number from 1 to {MAX_GRID_VALUES} (1 only "
+               f"when START = STOP), or one value (e.g. {option} 10:220:300)")
     low, high = (-math.inf, math.inf) if allow_negative else (0.0, math.inf)
     if unit == "Hz":
         low, high = FREQ_RANGE_HZ
@@ -269,7 +269,11 @@ def emit(args, data, text):
 
 def parse_list(text, option, convert=float):
     """Comma-separated values of ``option``."""
-    items = [item.strip() for item in text.split(",") if item.strip()]
+    items = [item.strip() for item in text.split(",")]
+    if len(items) > 1 and not all(items):
+        raise JudderError(f"{option} {text!r} has an empty item; allowed: "
+                          "values separated by single commas")
+    items = [item for item in items if item]
     try:
         values = [convert(item) for item in items]
     except ValueError:
