@@ -214,6 +214,8 @@ CASES = [
       "--duration", "1", "--perturb", "foo"], 2, ["no parameter 'foo'"]),
     (["check", "--freq", "105,", "--pf", "0.2"], 2, ["empty item"]),
     (["threshold", "--mu-g", "-1e300:0.1:10"], 2, ["mu_g = -1e+300 is"]),
+    (["advise", "--no-design", "--margin-bar", "1e300"], 2,
+     ["--margin-bar 1e+300 bar", "below --pf-max"]),
     # argparse itself
     (["eig", "--bogus"], 2, ["unrecognized"]),
     (["floquet"], 2, ["required"]),

@@ -675,7 +675,12 @@ def cmd_advise(args):
     weights = None if args.weights is None else \
         parse_list(args.weights, "--weights")
     check_amplitudes([args.pf_max], "--pf-max")
-    check_amplitudes([args.margin_bar], "--margin-bar")
+    if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
+            args.margin_bar >= args.pf_max:
+        raise JudderError(f"--margin-bar {args.margin_bar:g} bar is not "
+                          "allowed; allowed: below --pf-max "
+                          f"({args.pf_max:g} bar), the top of the operating "
+                          "range")
     params, changes = parameters_of(args)
     extra = [parameter_file(args, path, "--also") for path in args.also]
     make_parents(args.out, args.plot)
