@@ -358,7 +358,7 @@ def bench_fmu_map():
 ENVELOPE_FREQ = np.linspace(60.0, 200.0, 71)
 ENVELOPE_P_MAX_BAR = 0.7
 #: Samples of the 1- and 2-worker runs, and of the target envelope.
-ENVELOPE_SAMPLES = 24
+ENVELOPE_SAMPLES = 200
 ENVELOPE_TARGET_SAMPLES = 1000
 
 
