@@ -628,6 +628,7 @@ def setting_record(check, min_growth, engagement_s, p_max):
             "margin_bar_tongue": (tongue(check.bar_tongue)
                                   if np.isfinite(m.margin_p_f) else None),
             "crossing_hz": m.crossing_hz,
+            "crossing_tolerance_hz": m.crossing_tolerance_hz,
             "margin_hz": _finite_or_none(m.margin_hz),
             "margin_hz_tongue": tongue(check.hz_tongue),
             "sensitivity": sensitivity}

@@ -75,6 +75,9 @@ class Margin:
     margin_hz : float
         Signed distance to ``crossing_hz``, Hz: > 0 outside a tongue (the
         frequency may move that far), < 0 inside; ``inf`` if none.
+    crossing_tolerance_hz : float
+        0 when ``crossing_hz`` is the root of the boundary curve; else half
+        the grid step that holds it (:func:`_crossing`), Hz.
     inside : bool
         ``p0 >= B(f0)``: the setting lies in a judder-relevant tongue.
     """
@@ -87,6 +90,7 @@ class Margin:
     crossing_hz: object
     hz_kind: object
     margin_hz: float
+    crossing_tolerance_hz: float
     inside: bool
 
 
@@ -99,13 +103,18 @@ def _crossing(curves, column, p0, low, high):
     :func:`stability.hill.combination_boundaries`); then the ends do not
     bracket a root of ``B_k`` and the crossing is known to the grid step
     only: its middle.
+
+    Returns
+    -------
+    root, tolerance : float
+        Hz; ``tolerance`` is 0 for Brent's root, half the step otherwise.
     """
     def excess(freq):
         p = curves[column](freq)
         return (p if np.isfinite(p) else 2 * p0 + 1.0) - p0
     if np.sign(excess(low)) == np.sign(excess(high)):
-        return 0.5 * (low + high)
-    return brentq(excess, low, high, xtol=1e-10 * high, rtol=1e-12)
+        return 0.5 * (low + high), 0.5 * (high - low)
+    return brentq(excess, low, high, xtol=1e-10 * high, rtol=1e-12), 0.0
 
 
 def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
@@ -137,20 +146,21 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
     inside = p_f >= boundary
     # unstable at p0 on the grid: some kind below p0
     low_curve = np.where(np.isfinite(amplitude), amplitude, np.inf)
-    best = (np.inf, None, None)
+    best = (np.inf, None, None, 0.0)
     for kind_col in range(3):
         below = low_curve[:, kind_col] <= p_f
         flips = np.flatnonzero(below[1:] != below[:-1])
         for i in flips:
-            root = _crossing(curves, kind_col, p_f, grid[i], grid[i + 1])
+            root, tolerance = _crossing(curves, kind_col, p_f, grid[i],
+                                        grid[i + 1])
             distance = abs(root - freq_hz)
             if distance < best[0]:
-                best = (distance, root, kind_col)
+                best = (distance, root, kind_col, tolerance)
     if inside and best[1] is None:
         raise JudderError(f"freq = {freq_hz:g} Hz, p_f = {p_f / 1e5:g} bar "
                           "lies in a tongue wider than the search range; "
                           "widen it")
-    distance, root, hz_col = best
+    distance, root, hz_col, tolerance = best
     return Margin(
         freq_hz=float(freq_hz), p_f=float(p_f), boundary_p_f=boundary,
         bar_kind=None if not np.isfinite(boundary) else
@@ -159,7 +169,7 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
         crossing_hz=None if root is None else float(root),
         hz_kind=None if hz_col is None else KINDS[TONGUE_KINDS[hz_col]],
         margin_hz=(-distance if inside else distance),
-        inside=bool(inside))
+        crossing_tolerance_hz=float(tolerance), inside=bool(inside))
 
 
 def margin_sensitivity(params, names, freq_hz, p_f, margin, min_growth,

@@ -239,3 +239,8 @@ def test_check_far_inside_a_tongue_answers():
     assert record["margin_bar"] == pytest.approx(
         record["boundary_p_f_bar"] - 5.0)
     assert record["margin_hz"] < 0 and abs(record["margin_hz"]) < 50
+    # how well that crossing is known: 0 (Brent's root) or half a step of
+    # the 1200-point log grid (0.45 % of the frequency)
+    assert 0 <= record["crossing_tolerance_hz"] < 3e-3 * record["crossing_hz"]
+    exact = api.check([105.0], [0.2], sensitivity=()).records()[0]
+    assert exact["crossing_tolerance_hz"] == 0.0

@@ -643,6 +643,10 @@ def cmd_check(args):
     """Verdict, growth and margins of dither settings."""
     freqs, amplitudes = _settings(args)
     check_amplitudes([args.pf_max], "--pf-max")
+    if args.pf_max is not None and not args.pf_max > max(amplitudes):
+        raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
+                          "allowed: above the largest setting, "
+                          f"{max(amplitudes):g} bar")
     if args.params is None:
         names = None
     elif args.params.strip().lower() == "none":
@@ -674,6 +678,10 @@ def cmd_advise(args):
         parse_list(args.params, "--params", str)
     weights = None if args.weights is None else \
         parse_list(args.weights, "--weights")
+    check_number("--pf-max", args.pf_max, "bar")
+    check_number("--margin-bar", args.margin_bar, "bar", strict=False)
+    check_number("--margin-hz", args.margin_hz, "Hz", strict=False)
+    check_number("--min-growth", args.min_growth, "1/s", strict=False)
     check_amplitudes([args.pf_max], "--pf-max")
     if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
             args.margin_bar >= args.pf_max:
