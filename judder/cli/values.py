@@ -72,25 +72,23 @@ def option_value(text, option, unit, low=-math.inf, high=math.inf,
             value <= low if low_open else value < low):
         raise JudderError(f"{option} {text} is not allowed; allowed: "
                           f"{allowed}")
-    if unit == "bar" and not has_unit(text) and value > MAX_PLAIN_PF_BAR:
-        raise JudderError(
-            f"{option} {text} bar is not plausible for a dither amplitude "
-            f"(a plain number is in bar); did you give Pa? {value:g} Pa = "
-            f"{value / PA_PER_BAR:g} bar: write {text}Pa, or give the unit "
-            f"(allowed: a plain number <= {MAX_PLAIN_PF_BAR:g} bar)")
+    if unit == "bar" and not has_unit(text):
+        check_amplitudes([value], option, f": write {text}Pa, or give the "
+                                          "unit")
     return value
 
 
-def check_amplitudes(values_bar, option):
+def check_amplitudes(values_bar, option, fix=""):
     """Refuse a dither amplitude above :data:`MAX_PLAIN_PF_BAR`: Pa given
-    where bar is meant (a list, a grid or a table column)."""
+    where bar is meant (an option, a list, a grid or a table column);
+    ``fix`` says how to write it."""
     for value in values_bar:
         if value is not None and value > MAX_PLAIN_PF_BAR:
             raise JudderError(
                 f"{option} {value:g} bar is not plausible for a dither "
-                f"amplitude (given in bar); did you give Pa? {value:g} Pa = "
-                f"{value / PA_PER_BAR:g} bar (allowed: at most "
-                f"{MAX_PLAIN_PF_BAR:g} bar)")
+                f"amplitude (a plain number is in bar); did you give Pa? "
+                f"{value:g} Pa = {value / PA_PER_BAR:g} bar{fix} (allowed: "
+                f"at most {MAX_PLAIN_PF_BAR:g} bar)")
 
 
 def _allowed(unit, low, high, low_open):
