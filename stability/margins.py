@@ -28,8 +28,8 @@ from .floquet import floquet
 from .kinds import KINDS
 from .model import build_driveline
 from .relevance import is_judder_relevant
-from .tongues import (TONGUE_KINDS, find_tongues, kind_boundary,
-                      lowest_boundaries, tongue_boundaries)
+from .tongues import (TONGUE_KINDS, find_tongues, kind_boundaries,
+                      kind_boundary, lowest_boundaries, tongue_boundaries)
 
 __all__ = ["Margin", "setting_margin", "margin_sensitivity", "search_grid",
            "GRID_POINTS"]
@@ -139,7 +139,7 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
     """
     if amplitude is None:
         amplitude = lowest_boundaries(system, grid, p_max)
-    curves = [kind_boundary(system, c, p_max) for c in range(3)]
+    curves = kind_boundaries(system, p_max)
     at = np.array([curve(freq_hz) for curve in curves])
     column = int(np.argmin(at))
     boundary = float(at[column])

@@ -74,7 +74,7 @@ from .waveforms import waveform_of
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS", "SOLVERS",
            "DEFAULT_SOLVER", "get_solver", "lowest_boundaries",
            "hill_boundary_amplitudes", "tongue_boundaries", "kind_boundary",
-           "lowest_of_kinds", "find_tongues", "resonances"]
+           "kind_boundaries", "lowest_of_kinds", "find_tongues", "resonances"]
 
 #: Harmonics kept on each side in Hill's matrix; the boundary amplitudes
 #: of the paper's model are converged to machine precision from about 4.
@@ -516,13 +516,11 @@ def find_tongues(driveline, boundaries):
     table = resonances(boundaries.natural_frequencies_hz)
     found = []
     engine = get_method(boundaries.method)
-    transfer = (modal_transfer(system) if boundaries.solver == "hill"
-                and hill_applies(system) else None)
+    curves = kind_boundaries(system, boundaries.p_max, boundaries.solver,
+                             boundaries.method)
     for column, kind in enumerate(TONGUE_KINDS):
         amplitude = boundaries.amplitude[:, column]
-        boundary = kind_boundary(system, column, boundaries.p_max,
-                                 boundaries.solver, boundaries.method,
-                                 transfer)
+        boundary = curves[column]
         for start, stop, i in _tips(amplitude, boundaries.p_max):
             tip_f, tip_p = f[i], amplitude[i]
             at_edge = i in (0, len(f) - 1)
@@ -558,6 +556,16 @@ def _deduplicate(tongues):
         out.append(t)
     return sorted(out, key=lambda t: (t.number is None, t.number or 0,
                                       t.tip_freq_hz))
+
+
+def kind_boundaries(system, p_max, solver=DEFAULT_SOLVER,
+                    method=DEFAULT_METHOD):
+    """:func:`kind_boundary` of each of :data:`TONGUE_KINDS`, in that
+    order, sharing one modal transfer."""
+    transfer = (modal_transfer(system) if solver == "hill"
+                and hill_applies(system) else None)
+    return [kind_boundary(system, column, p_max, solver, method, transfer)
+            for column in range(len(TONGUE_KINDS))]
 
 
 def kind_boundary(system, column, p_max, solver=DEFAULT_SOLVER,
