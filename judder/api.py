@@ -426,6 +426,46 @@ def _added_damping(values, fmu, bench):
             for name, added in values.driveline.bench_damping}
 
 
+def _operating_friction(values, fmu, bench):
+    """The bench's friction at its operating point.
+
+    Returns ``({'mu0': ..., 'mu_g': ...}, linear range)``: the value and
+    slope of its EVEN clutch's friction curve
+    (:func:`stability.friction.curve_at`) at its steady slip, ``w_motor
+    - w_gearbox`` (``values``' own when that slip is the curve's
+    ``w_op``, as at the bench's default 1000 rpm), and the slip offset,
+    rad/s, over which the curve keeps that slope
+    (:func:`stability.friction.linear_range`).
+    """
+    from pysim.runs import parameter_default
+    from stability.friction import curve_at, linear_range
+
+    def bench_value(name):
+        return float(bench.get(name, parameter_default(fmu, name)))
+    delta_mu = bench_value("delta_mu")
+    point = curve_at(bench_value("w_motor") - bench_value("w_gearbox"),
+                     values["mu0"], values["mu_g"], delta_mu,
+                     bench_value("w_op"))
+    return ({"mu0": point.mu, "mu_g": point.slope},
+            linear_range(point.slope, delta_mu))
+
+
+def _linear_validity(driveline, run, linear_slip):
+    """Whether the dither's forced slip swing stays within the friction
+    curve's linear range (the run can then follow its linearisation):
+    ``forced_slip_amplitude_rad_s``, ``friction_linear_range_rad_s`` and
+    ``linearisation_holds`` (None for a model without the curve)."""
+    from stability.friction import forced_slip_amplitude
+    if linear_slip is None or run.p_f == 0:
+        return {"forced_slip_amplitude_rad_s": None,
+                "friction_linear_range_rad_s": linear_slip,
+                "linearisation_holds": None}
+    forced = forced_slip_amplitude(driveline, run.freq_hz, run.p_f)
+    return {"forced_slip_amplitude_rad_s": forced,
+            "friction_linear_range_rad_s": linear_slip,
+            "linearisation_holds": bool(forced <= linear_slip)}
+
+
 def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
              parameters=None, changes=None, method=DEFAULT_METHOD):
     """``judder simulate``: an engagement on the driveline's bench model
@@ -470,10 +510,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))
         run_params, extra = values, bench
-        # the bench's linearisation: its motor control damps body 1
-        driveline = build_driveline(values.replace(**{
-            name: values[name] + value
-            for name, value in _added_damping(values, fmu, bench).items()}))
+        # the bench's linearisation: its motor control damps body 1, and
+        # its friction curve has its own value and slope at the slip
+        friction, linear_slip = _operating_friction(values, fmu, bench)
+        driveline = build_driveline(values.replace(
+            **{name: values[name] + value for name, value in
+               _added_damping(values, fmu, bench).items()}, **friction))
     else:
         fmu = class_fmu(values, "simulate")
         if bench:
@@ -483,7 +525,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                               "parameters belong to the bench model)")
         model_class, ramp_end = values.model, 0.0   # starts slipping
         run_params, extra = run_values(values)
-        driveline = build_driveline(values)
+        driveline, linear_slip = build_driveline(values), None
     if duration is not None and duration <= ramp_end:
         raise JudderError(f"duration {duration:g} s ends before the "
                           f"engagement (its pressure ramp ends at "
@@ -510,7 +552,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         summaries.append({"label": label,
                           **engagement_summary(run, ramp_end),
                           "floquet_kind": linear.kind,
-                          "floquet_exponent_per_s": linear.growth_rate})
+                          "floquet_exponent_per_s": linear.growth_rate,
+                          **_linear_validity(driveline, run, linear_slip)})
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
                             model_class=model_class, start=ramp_end,
                             signals=dict(SIGNALS))

@@ -433,8 +433,10 @@ class SimulationResult:
                    "start_values": run.start_values})
 
     def figure(self, title=None):
+        from pysim.engagement import verdict_line
         from pysim.plotting import run_figure
-        return run_figure(self.runs, start=self.start, title=title)
+        return run_figure(self.runs, start=self.start, title=title,
+                          verdicts=[verdict_line(s) for s in self.summaries])
 
 
 @dataclass(frozen=True)

@@ -45,33 +45,57 @@ from .fmus import ensure_fmu
 from .runs import run_fmu
 
 __all__ = ["Campaign", "pickup_samples", "run_campaign", "at_temperature",
-           "TEMPERATURES", "INDEX_COLUMNS"]
+           "oil_viscosity", "TEMPERATURES", "REFERENCE_TEMPERATURE_C",
+           "OIL_VISCOSITY_MM2_S", "INDEX_COLUMNS"]
 
 #: Hex digits of the settings digest that ends a run id.
 RUN_DIGEST_LENGTH = 10
 #: Age (s) from which a ``.part`` file in a campaign folder is a leftover.
 STALE_PART_S = 600.0
 
-#: Oil temperature ranges of Fig. 11, represented by factors on the
-#: external damping of every body and on the friction gradient. The paper
-#: gives no values: these are illustrative, chosen so the tongue is
-#: longest at 65-70 degC (worst case, section 3.2) and contracts on either
-#: side (more damping when cold, less friction gradient when hot).
-TEMPERATURES = {
-    "55-60": {"external_damping": 2.0, "mu_g": 0.85},
-    "65-70": {"external_damping": 1.0, "mu_g": 1.0},
-    "75-80": {"external_damping": 1.0, "mu_g": 0.85},
-    "85-90": {"external_damping": 1.0, "mu_g": 0.7},
-}
+#: Oil temperature ranges of Fig. 11 and the temperature (degC) a run of
+#: each is made at: the middle of the range.
+TEMPERATURES = {"55-60": 57.5, "65-70": 67.5, "75-80": 77.5, "85-90": 87.5}
+#: Temperature (degC) the parameter sets describe: the range of the
+#: paper's chart of Fig. 10 and of its fit (Fig. 16a), 65-70 degC.
+REFERENCE_TEMPERATURE_C = 67.5
+#: Kinematic viscosity (mm^2/s) of the transmission oil at 40 and 100
+#: degC: a universal tractor transmission oil (UTTO) of the kind the
+#: gearbox runs on, ISO VG 46-68 (the paper does not name it).
+OIL_VISCOSITY_MM2_S = {40.0: 60.0, 100.0: 9.5}
+
+
+def oil_viscosity(temperature_c, oil=None):
+    """Kinematic viscosity of the oil, mm^2/s, by the Walther equation
+    (ASTM D341), ``log10 log10(nu + 0.7) = A - B log10(T)``, through the
+    two points of ``oil`` (default :data:`OIL_VISCOSITY_MM2_S`)."""
+    (t1, nu1), (t2, nu2) = sorted((oil or OIL_VISCOSITY_MM2_S).items())
+    z1, z2 = (np.log10(np.log10(nu + 0.7)) for nu in (nu1, nu2))
+    k1, k2 = t1 + 273.15, t2 + 273.15
+    b = (z1 - z2) / (np.log10(k2) - np.log10(k1))
+    a = z1 + b * np.log10(k1)
+    kelvin = float(temperature_c) + 273.15
+    if not kelvin > 0:
+        raise JudderError(f"oil temperature {temperature_c:g} degC is below "
+                          "absolute zero; allowed: above -273.15 degC")
+    return float(10 ** 10 ** (a - b * np.log10(kelvin)) - 0.7)
 
 
 def at_temperature(params, temperature):
-    """The parameter set at one oil temperature of :data:`TEMPERATURES`."""
-    factors = TEMPERATURES[temperature]
-    changes = {name: params[name] * factors["external_damping"]
-               for name in params.driveline.external_damping_names()}
-    changes["mu_g"] = params["mu_g"] * factors["mu_g"]
-    return params.replace(**changes)
+    """The parameter set at one oil temperature of :data:`TEMPERATURES`.
+
+    The one physical path modelled: the external damping of every body
+    (drag of the bodies and bearings in the oil) is proportional to the
+    oil's viscosity, relative to its value at
+    :data:`REFERENCE_TEMPERATURE_C`. The friction curve is kept: the
+    paper gives no data on its change with temperature.
+    """
+    ratio = oil_viscosity(TEMPERATURES[temperature]) \
+        / oil_viscosity(REFERENCE_TEMPERATURE_C)
+    return params.replace(**{name: params[name] * ratio for name in
+                             params.driveline.external_damping_names()})
+
+
 INDEX_COLUMNS = ("run_id", "status", "freq_hz", "p_f_bar", "engine_rpm",
                  "oil_temperature", "files", "message")
 

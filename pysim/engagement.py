@@ -16,7 +16,7 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 from .run_analysis import analyse_run
 from .signals import amplitude_spectrum
 
-__all__ = ["engagement_summary"]
+__all__ = ["engagement_summary", "verdict_line"]
 
 
 def engagement_summary(run, start):
@@ -76,3 +76,32 @@ def engagement_summary(run, start):
             "dither_envelope_max_rpm": None if reading is None
             else at_dither.amplitude_rpm,
             "final_slip_rad_s": float(run["slip"][-1])}
+
+
+def verdict_line(summary):
+    """The judder verdict of one engagement and the Floquet verdict of its
+    linearisation, in one line for a figure.
+
+    ``summary`` is a dict of :func:`engagement_summary` with
+    ``floquet_kind`` and ``floquet_exponent_per_s`` added.
+    """
+    if summary["judder"] is None:
+        run = "no dither"
+    elif summary["judder"]:
+        growth = summary["judder_growth_per_s"]
+        run = (f"judder ({summary['judder_kind']}"
+               + (f", grows at {growth:.2f} 1/s)" if growth is not None
+                  else ", saturated)"))
+    else:
+        run = "no judder"
+    exponent = summary.get("floquet_exponent_per_s")
+    if exponent is None:
+        return run
+    line = (f"run: {run}; Floquet: {summary['floquet_kind']}, "
+            f"{exponent:+.2f} 1/s")
+    if summary.get("linearisation_holds") is False:
+        line += (f"\nnonlinear: the forced slip swings "
+                 f"\u00b1{summary['forced_slip_amplitude_rad_s']:.1f} rad/s, "
+                 f"the friction curve is linear over "
+                 f"\u00b1{summary['friction_linear_range_rad_s']:.1f} rad/s")
+    return line

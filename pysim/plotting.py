@@ -27,9 +27,11 @@ def _dither_text(run):
             f"f = {run.freq_hz:g} Hz, $p_f$ = {p_f:g} bar")
 
 
-def plot_run(run, ax=None, title=None, legend=True):
+def plot_run(run, ax=None, title=None, legend=True, verdict=None):
     """Speeds upstream and downstream (rpm) and pressure (bar) vs time
-    (Fig. 1, Fig. 7); the legend goes below the axes, off the traces."""
+    (Fig. 1, Fig. 7); the legend goes below the axes, off the traces;
+    ``verdict``, a line of text (the judder verdict and growth), under
+    the title."""
     if ax is None:
         _, ax = plt.subplots()
     artists = [ax.plot(run.time, run[name] * RPM_PER_RAD_S, ls=style,
@@ -45,8 +47,8 @@ def plot_run(run, ax=None, title=None, legend=True):
     if legend:
         ax.legend(handles=artists, loc="upper center", fontsize=7,
                   bbox_to_anchor=(0.5, -0.2), ncols=3, borderaxespad=0.0)
-    ax.set_title((f"{title}: " if title else "") + _dither_text(run),
-                 fontsize=9)
+    ax.set_title((f"{title}: " if title else "") + _dither_text(run)
+                 + (f"\n{verdict}" if verdict else ""), fontsize=9)
     return artists
 
 
@@ -133,10 +135,11 @@ def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
     return artists
 
 
-def run_figure(runs, start=0.0, title=None):
+def run_figure(runs, start=0.0, title=None, verdicts=None):
     """Time histories (top) and spectra (middle), one column per run,
     every spectrum over the same frequencies; with more than one run with
-    dither, their speed spectra overlaid (bottom)."""
+    dither, their speed spectra overlaid (bottom). ``verdicts``: one line
+    of text per run, printed over its time histories."""
     dithered = [(label, run) for label, run in runs if run.p_f > 0]
     f_max = 2.5 * max([run.freq_hz for _, run in runs])
     f_max = min(f_max, min(0.5 / np.median(np.diff(run.time))
@@ -147,7 +150,8 @@ def run_figure(runs, start=0.0, title=None):
                      layout="constrained")
     grid = fig.add_gridspec(rows, len(runs))
     for column, (label, run) in enumerate(runs):
-        plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label)
+        plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label,
+                 verdict=None if verdicts is None else verdicts[column])
         plot_spectrum(run, ax=fig.add_subplot(grid[1, column]), start=start,
                       f_max=f_max)
     if overlay:

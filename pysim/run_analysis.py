@@ -90,12 +90,15 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "engagement_window", "component_envelope", "nonperiodic_part",
-           "growth_phase", "MIN_GROWTH", "MIN_AMPLITUDE_RPM",
+           "growth_phase", "LINEAR_SHARE", "MIN_GROWTH", "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM", "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
            "SMOOTHING_S"]
 
 #: Smallest growth rate of the non-periodic part called judder, 1/s.
 MIN_GROWTH = 1.0
+#: Share of its maximum up to which a growing component's rate is read
+#: (:func:`growth_phase`): the linear part of the rise.
+LINEAR_SHARE = 0.5
 #: Smallest judder component of the speed, rpm.
 MIN_AMPLITUDE_RPM = 2.0
 #: Smallest growing non-periodic part, rpm: above the noise of a pick-up.
@@ -393,10 +396,17 @@ def _speed_rms(difference, freq_hz, fs):
 def growth_phase(time, rms):
     """Growth phase of the non-periodic part and its rate.
 
+    The rate is read while the component grows as the linearisation
+    says: up to where it first reaches :data:`LINEAR_SHARE` of its
+    maximum, before the nonlinear limit bends the rise (the friction
+    curve's slope falls as the slip swings wider), when that part of the
+    rise spans at least one e-fold; else over the whole rise.
+
     Returns
     -------
     (start, stop) : (float, float)
-        From the lowest ``rms`` before its maximum to the maximum, s.
+        From the lowest ``rms`` before its maximum to the end of the
+        fitted rise, s.
     rate : float
         Least-squares log-slope over the phase, 1/s.
 
@@ -406,7 +416,11 @@ def growth_phase(time, rms):
     low = int(np.argmin(rms[:top + 1]))
     if top - low < 4 or rms[low] <= 0:
         return None
-    t, r = time[low:top + 1], rms[low:top + 1]
+    above = np.flatnonzero(rms[low:top + 1] >= LINEAR_SHARE * rms[top])
+    end = low + int(above[0])
+    if end - low < 4 or rms[end] < np.e * rms[low]:
+        end = top
+    t, r = time[low:end + 1], rms[low:end + 1]
     rate = float(np.polyfit(t, np.log(r), 1)[0])
     return (float(t[0]), float(t[-1])), rate
 

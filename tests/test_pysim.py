@@ -217,11 +217,10 @@ def test_time_domain_commands_refuse_bad_input(args, words):
 def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
                                                            monkeypatch):
     import pysim.bench
-    # a temperature case whose parameters are invalid (negative external
-    # damping); run here, where the patched table is seen (Dask's worker
-    # processes are spawned: they import the unpatched module)
-    monkeypatch.setitem(pysim.bench.TEMPERATURES, "85-90",
-                        {"external_damping": -1.0, "mu_g": 1.0})
+    # a temperature case that cannot be run (below absolute zero); run
+    # here, where the patched table is seen (Dask's worker processes are
+    # spawned: they import the unpatched module)
+    monkeypatch.setitem(pysim.bench.TEMPERATURES, "85-90", -300.0)
     campaign = Campaign(freq_hz=(60.0,), p_f_bar=(0.05,),
                         temperatures=("65-70", "85-90"), duration=0.3,
                         formats=("csv",))
@@ -230,6 +229,6 @@ def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
     status = {r["oil_temperature"]: r for r in rows}
     assert status["65-70"]["status"] == "ok"
     assert status["85-90"]["status"] == "failed"
-    assert "c1" in status["85-90"]["message"]
+    assert "absolute zero" in status["85-90"]["message"]
     with open(tmp_path / "index.csv", newline="") as stream:
         assert len(list(csv.DictReader(stream))) == 2

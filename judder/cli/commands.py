@@ -385,10 +385,13 @@ def _compared_with(result):
 #: (low, high, low_open, integer).
 BENCH_PARAMETERS = {
     "w_motor": ("rad/s", 0.0, 2e3, True, False),
+    "w_gearbox": ("rad/s", 0.0, 2e3, False, False),
+    "w_op": ("rad/s", 0.0, 2e3, False, False),
+    "delta_mu": ("1", 0.0, 1.0, True, False),
     "t_engage": ("s", 0.0, 3600.0, False, False),
     "t_ramp": ("s", 0.0, 3600.0, True, False),
     "p_load": ("Pa", 0.0, 1e8, False, False),
-    "S_load": ("m^2", 0.0, 1.0, True, False),
+    "load_share": ("1", 0.0, 10.0, False, False),
     "N_c_load": ("1", 1.0, 100.0, False, True),
     "d_control": ("N m s/rad", 0.0, 1e7, False, False),
 }
@@ -430,7 +433,13 @@ def _engagement_line(s):
                + ("" if growth is None else
                   f" (non-periodic part grows at {growth:+.2f} 1/s)"))
             + f"; Floquet at this point: {s['floquet_kind']} "
-              f"({s['floquet_exponent_per_s']:+.2f} 1/s)")
+              f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
+            + ("" if s.get("linearisation_holds") is not False else
+               f"; nonlinear: the dither's forced slip swing "
+               f"(+-{s['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
+               f"the friction curve's linear range "
+               f"(+-{s['friction_linear_range_rad_s']:.2g} rad/s), so the "
+               "run need not follow the Floquet verdict"))
 
 
 def cmd_simulate(args):

@@ -482,10 +482,15 @@ def build_parser():
                         "with dither at HZ; plotted side by side (Fig. 7)")
     p.add_argument("--bench", action="append", default=[],
                    metavar="NAME=VALUE",
-                   help="bench parameter of the model (SI): w_motor, "
-                        "t_engage, t_ramp, p_load, S_load, N_c_load, "
-                        "d_control; repeatable (not with --modelica: set "
-                        "the class's parameters with --set)")
+                   help="bench parameter of the model (SI, or with a "
+                        "unit: w_motor=1500rpm): w_motor, w_gearbox (the "
+                        "steady slip is w_motor - w_gearbox), w_op and "
+                        "delta_mu (the EVEN friction curve: mu0 and mu_g "
+                        "are its value and slope at the slip w_op, mu stays "
+                        "within mu0 +- delta_mu), t_engage, t_ramp, "
+                        "p_load, load_share (REV torque over the EVEN mean torque: 1 keeps the slip steady), N_c_load, d_control; repeatable "
+                        "(not with --modelica: set the class's parameters "
+                        "with --set)")
     p.add_argument("--out", metavar="run.csv|run.mf4",
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",

@@ -1,148 +1,35 @@
 within Judder.Examples;
-model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clutch engaging at 1000 rpm, REV clutch slipping as the load"
-  parameter Units.Inertia J1=1.12 "Inertia of the motor-side body";
-  parameter Units.Inertia J2=0.231 "Inertia of the clutch damper";
-  parameter Units.Inertia J3=4.07 "Inertia of the gearbox-side body";
-  parameter Units.Inertia J4=0.122 "Inertia between clutch damper and the EVEN clutch discs";
-  parameter Units.RotationalSpringConstant k12=3856 "Stiffness of the clutch damper";
-  parameter Units.RotationalSpringConstant k24=32885 "Stiffness between damper and clutch pack";
-  parameter Units.RotationalDampingConstant c12=0.5 "Damping of the clutch damper";
-  parameter Units.RotationalDampingConstant c24=0.1 "Internal damping between 2 and 4";
-  parameter Units.RotationalDampingConstant c1=0.1 "External damping of body 1";
-  parameter Units.RotationalDampingConstant c2=0.1 "External damping of body 2";
-  parameter Units.RotationalDampingConstant c3=0.1 "External damping of body 3";
-  parameter Units.RotationalDampingConstant c4=0.1 "External damping of body 4";
-  parameter Units.FrictionCoefficient mu0=0.09 "Friction coefficient at zero slip";
-  parameter Units.FrictionGradient mu_g=0.017 "Friction gradient with slip speed";
-  parameter Real N_c(min=1)=8 "Plate pairs of the EVEN clutch";
-  parameter Units.Length R_m=0.075 "Mean radius of the EVEN clutch";
-  parameter Units.Area S=0.01 "Piston area of the EVEN clutch";
-  parameter Units.Pressure p_m=1e6 "Mean EVEN pressure after the ramp (685 mA, about 10 bar)";
-  parameter Units.Pressure p_f=0.3e5 "Dither amplitude";
-  parameter Units.Frequency f_dither=102.9 "Dither frequency";
-  parameter Units.Fraction mean_pressure_damping=0 "Share of p_m in the slip damping";
-  parameter Units.Time t_engage=0.1 "Start of the EVEN pressure ramp";
-  parameter Units.Time t_ramp=0.05 "Duration of the EVEN pressure ramp";
-  parameter Real N_c_load(min=1)=10 "Plate pairs of the REV clutch (two more than EVEN)";
-  parameter Units.Area S_load=0.006 "Piston area of the REV clutch (chosen so that it slips)";
-  parameter Units.Pressure p_load=0.98e6 "REV pressure (670 mA, about 9.8 bar)";
-  parameter Units.AngularVelocity w_motor=104.71975511965977 "Motor speed (1000 rpm)";
-  parameter Units.RotationalDampingConstant d_control=2000 "Gain of the motor speed controller";
-  Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
-    annotation (Placement(transformation(extent={{-150,-10},{-130,10}})));
-  Components.Inertia inertia2(J=J2, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
-    annotation (Placement(transformation(extent={{-70,-10},{-50,10}})));
-  Components.Inertia inertia4(J=J4, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
-    annotation (Placement(transformation(extent={{10,-10},{30,10}})));
-  Components.Inertia inertia3(J=J3, phi(start=0, fixed=true), w(start=0, fixed=true))
-    annotation (Placement(transformation(extent={{130,-10},{150,10}})));
-  Components.SpringDamper damper12(c=k12, d=c12) "Clutch damper"
-    annotation (Placement(transformation(extent={{-110,-10},{-90,10}})));
-  Components.SpringDamper shaft24(c=k24, d=c24) "Shaft and gear mesh to the clutch pack"
-    annotation (Placement(transformation(extent={{-30,-10},{-10,10}})));
-  replaceable Components.WetClutch even(mu0=mu0, mu_g=mu_g, N_c=N_c, R_m=R_m, S=S,
-    mean_pressure_damping=mean_pressure_damping) constrainedby Interfaces.PartialWetClutch
-    "EVEN clutch, engaging"
-    annotation (Placement(transformation(extent={{50,-10},{70,10}})));
-  Components.WetClutch rev(mu0=mu0, mu_g=mu_g, N_c=N_c_load, R_m=R_m, S=S_load,
-    mean_pressure_damping=mean_pressure_damping) "REV clutch, slipping against the housing as the load"
-    annotation (Placement(transformation(extent={{170,-10},{190,10}})));
-  Components.Damper external1(d=c1)
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={-140,-40})));
-  Components.Damper external2(d=c2)
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={-60,-40})));
-  Components.Damper external4(d=c4)
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={20,-40})));
-  Components.Damper external3(d=c3)
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={140,-40})));
-  Components.Fixed housing
-    annotation (Placement(transformation(extent={{-10,-100},{10,-80}})));
-  Sources.SpeedDrive motor(w_ref=w_motor, d_control=d_control) "81 kW DC motor with speed control"
-    annotation (Placement(transformation(extent={{-190,-10},{-170,10}})));
-  Sources.DitherPressure evenPressure(p_m=p_m, p_f=p_f, f=f_dither, t_start=t_engage, t_ramp=t_ramp)
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={60,40})));
-  Sources.DitherPressure revPressure(p_m=p_load, p_f=0, f=0)
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={180,40})));
-  Sensors.SpeedSensor speedUpstream "Speed of body 4, the EVEN clutch plates on the engine side"
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=90, origin={20,40})));
-  Sensors.SpeedSensor speedDownstream "Speed of body 3, the EVEN clutch plates on the gearbox side"
-    annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=90, origin={140,40})));
-  Sensors.RelSpeedSensor slipSensor "Speed of the EVEN clutch's flange_b relative to its flange_a"
-    annotation (Placement(transformation(extent={{50,-50},{70,-30}})));
-  Sensors.TorqueSensor torqueSensor "Torque the EVEN clutch transmits to body 3"
-    annotation (Placement(transformation(extent={{90,-10},{110,10}})));
-  output Units.AngularVelocity w_upstream=speedUpstream.w "Speed upstream of the EVEN clutch";
-  output Units.AngularVelocity w_downstream=speedDownstream.w "Speed downstream of the EVEN clutch";
-  output Units.AngularVelocity slip=-slipSensor.w_rel "Slip speed of the EVEN clutch";
-  output Units.Torque clutch_torque=torqueSensor.tau "Friction torque of the EVEN clutch";
-  output Units.Pressure actuation_pressure=evenPressure.p "EVEN actuation pressure";
-equation
-  connect(motor.flange, inertia1.flange_a)
-    annotation (Line(points={{-170,0},{-150,0}}));
-  connect(inertia1.flange_b, damper12.flange_a)
-    annotation (Line(points={{-130,0},{-110,0}}));
-  connect(damper12.flange_b, inertia2.flange_a)
-    annotation (Line(points={{-90,0},{-70,0}}));
-  connect(inertia2.flange_b, shaft24.flange_a)
-    annotation (Line(points={{-50,0},{-30,0}}));
-  connect(shaft24.flange_b, inertia4.flange_a)
-    annotation (Line(points={{-10,0},{10,0}}));
-  connect(inertia4.flange_b, even.flange_a)
-    annotation (Line(points={{30,0},{50,0}}));
-  connect(even.flange_b, torqueSensor.flange_a)
-    annotation (Line(points={{70,0},{90,0}}));
-  connect(torqueSensor.flange_b, inertia3.flange_a)
-    annotation (Line(points={{110,0},{130,0}}));
-  connect(inertia3.flange_b, rev.flange_a)
-    annotation (Line(points={{150,0},{170,0}}));
-  connect(rev.flange_b, housing.flange)
-    annotation (Line(points={{190,0},{200,0},{200,-70},{0,-70},{0,-90}}));
-  connect(external1.flange_a, inertia1.flange_a)
-    annotation (Line(points={{-140,-30},{-140,-20},{-150,-20},{-150,0}}));
-  connect(external2.flange_a, inertia2.flange_a)
-    annotation (Line(points={{-60,-30},{-60,-20},{-70,-20},{-70,0}}));
-  connect(external4.flange_a, inertia4.flange_a)
-    annotation (Line(points={{20,-30},{20,-20},{10,-20},{10,0}}));
-  connect(external3.flange_a, inertia3.flange_a)
-    annotation (Line(points={{140,-30},{140,-20},{130,-20},{130,0}}));
-  connect(external1.flange_b, housing.flange)
-    annotation (Line(points={{-140,-50},{-140,-70},{0,-70},{0,-90}}));
-  connect(external2.flange_b, housing.flange)
-    annotation (Line(points={{-60,-50},{-60,-70},{0,-70},{0,-90}}));
-  connect(external4.flange_b, housing.flange)
-    annotation (Line(points={{20,-50},{20,-70},{0,-70},{0,-90}}));
-  connect(external3.flange_b, housing.flange)
-    annotation (Line(points={{140,-50},{140,-70},{0,-70},{0,-90}}));
-  connect(evenPressure.p, even.p)
-    annotation (Line(points={{64,29},{64,11}}, color={0,0,127}));
-  connect(evenPressure.p_mean, even.p_mean)
-    annotation (Line(points={{56,29},{56,11}}, color={0,0,127}));
-  connect(revPressure.p, rev.p)
-    annotation (Line(points={{184,29},{184,11}}, color={0,0,127}));
-  connect(revPressure.p_mean, rev.p_mean)
-    annotation (Line(points={{176,29},{176,11}}, color={0,0,127}));
-  connect(speedUpstream.flange, inertia4.flange_b)
-    annotation (Line(points={{20,30},{20,20},{30,20},{30,0}}));
-  connect(speedDownstream.flange, inertia3.flange_b)
-    annotation (Line(points={{140,30},{140,20},{150,20},{150,0}}));
-  connect(slipSensor.flange_a, even.flange_a)
-    annotation (Line(points={{50,-40},{40,-40},{40,0},{50,0}}));
-  connect(slipSensor.flange_b, even.flange_b)
-    annotation (Line(points={{70,-40},{80,-40},{80,0},{70,0}}));
+model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clutch slipping steadily at 1000 rpm with a bounded friction curve, REV clutch as the load"
+  extends PartialTestBench(redeclare Components.CurveWetClutch even(mu0=mu0, mu_g=mu_g,
+    delta_mu=delta_mu, w_op=w_op, N_c=N_c, R_m=R_m, S=S,
+    mean_pressure_damping=mean_pressure_damping));
+  parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.09
+    "Half the rise of the EVEN friction curve (mu within mu0 +- delta_mu)";
+  parameter Units.AngularVelocity w_op(min=0)=84.71975511965977
+    "Slip at which the EVEN curve has the value mu0 and the slope mu_g (w_motor - w_gearbox at 1000 rpm)";
   annotation (
     experiment(StopTime=4, Interval=1e-3),
-    Diagram(coordinateSystem(preserveAspectRatio=true, extent={{-200,-100},{210,100}})),
     Documentation(info="<html>
 <p>An engagement on the test bench of section 2.2 (Fig. 5b): the 4-DOF
 driveline of Fig. 13 driven by the 81 kW DC motor under speed control
-at 1000 rpm (SpeedDrive on body 1). The EVEN clutch (WetClutch) between
-body 4 and body 3 engages: its pressure ramps from 0 at t_engage to p_m
-in t_ramp, with the dither p_f cos(2 pi f_dither t) of Eq. (4) on top.
-As on the modified gearbox, the REV clutch, whose gear is fixed to the
-frame, slips against the housing at the constant pressure p_load and is
-the load on body 3. Bodies 1, 2 and 4 start at the motor speed and
-body 3 at rest; from t_engage on, the EVEN clutch transmits the torque
-of Eq. (3)-(5), with the dither of the actuation pressure.</p>
+at w_motor (SpeedDrive on body 1). The EVEN clutch (CurveWetClutch)
+between body 4 and body 3 engages: its pressure ramps from 0 at t_engage
+to p_m in t_ramp, with the dither p_f cos(2 pi f_dither t) of Eq. (4) on
+top. Its friction coefficient is a bounded rising curve of the slip
+whose value and slope at the slip w_op are mu0 and mu_g. As on the
+modified gearbox, the REV clutch, whose gear is fixed to the frame,
+slips against the housing (flat friction, mu0) and is the load on body
+3; its pressure ramps with the EVEN pressure to p_load, and its default
+piston area S_load makes its torque equal to the EVEN clutch's mean
+torque mu0 N_c R_m S p_m. The gearbox side then keeps its initial speed
+w_gearbox and the EVEN clutch slips steadily at w_motor - w_gearbox, the
+operating point of the stability model: the judder seen at the start of
+an engagement (Fig. 7b), held long enough to measure its growth.</p>
+<p>Linearised about that operating point, the bench is the driveline of
+Eq. (6) with mu0 and mu_g the curve's value and slope at the slip, and
+two additions: the motor's speed control, a damping d_control of body 1
+to ground, and the REV clutch, whose flat friction adds no damping (its
+direction term tanh(w_gearbox/w_small) is saturated).</p>
 <p>Outputs, from the sensors: w_upstream and w_downstream, the speeds of
 the EVEN clutch plates on the engine side (body 4) and on the gearbox
 side (body 3), the two speeds the bench acquires; slip = w4 - w3

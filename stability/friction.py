@@ -1,0 +1,168 @@
+"""The bounded friction curve of the engagement models and its linearisation.
+
+The bench's EVEN clutch (``Judder.Components.CurveWetClutch``) has a
+friction coefficient that is a bounded, rising curve of the slip speed
+``w`` (the kind Fig. 9 shows), with the value ``mu0`` and the slope
+``mu_g`` at the slip ``w_op``:
+
+.. math:: \\mu(w) = \\mu_0 + \\Delta\\mu \\tanh\\left(
+          \\frac{\\mu_g (|w| - w_{op})}{\\Delta\\mu}\\right)
+
+Linearised about a steady slip ``w_s``, the engagement model is the
+stability model of Eq. (2)-(6) with ``mu0`` and ``mu_g`` replaced by the
+curve's value and slope at ``w_s`` (:func:`curve_at`): the two views of
+one model. :func:`curve_from_table` turns a measured curve into the
+three parameters.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from infra.errors import JudderError
+
+__all__ = ["FrictionPoint", "curve_at", "curve_from_table", "linear_range",
+           "forced_slip_amplitude", "SLOPE_LOSS"]
+
+
+@dataclass(frozen=True)
+class FrictionPoint:
+    """Value and slope of the friction curve at one slip.
+
+    Attributes
+    ----------
+    mu : float
+        Friction coefficient, 1 (the stability model's ``mu0``).
+    slope : float
+        d mu / d w, s/rad (the stability model's ``mu_g``).
+    """
+
+    mu: float
+    slope: float
+
+
+def curve_at(slip, mu0, mu_g, delta_mu, w_op):
+    """Value and slope of the friction curve at the slip ``slip``.
+
+    Parameters
+    ----------
+    slip : float
+        Slip speed, rad/s.
+    mu0, mu_g : float
+        Value (1) and slope (s/rad) of the curve at ``w_op``.
+    delta_mu : float
+        Half the rise of the curve, 1 (> 0).
+    w_op : float
+        Slip of ``mu0`` and ``mu_g``, rad/s.
+
+    Returns
+    -------
+    FrictionPoint
+
+    Examples
+    --------
+    >>> p = curve_at(84.7, 0.09, 0.022, 0.09, 84.7)
+    >>> round(p.mu, 3), round(p.slope, 4)
+    (0.09, 0.022)
+    """
+    x = mu_g * (abs(slip) - w_op) / delta_mu
+    return FrictionPoint(mu=float(mu0 + delta_mu * np.tanh(x)),
+                         slope=float(mu_g / np.cosh(x) ** 2))
+
+
+def curve_from_table(slip, mu, w_op):
+    """Curve parameters from a measured friction curve.
+
+    The value and slope at the operating slip come from a cubic
+    smoothing of the table (SciPy ``make_smoothing_spline``), half the
+    rise from the table's range.
+
+    Parameters
+    ----------
+    slip : array_like, shape (n,)
+        Slip speeds, rad/s, increasing (n >= 5).
+    mu : array_like, shape (n,)
+        Friction coefficients, 1.
+    w_op : float
+        Operating slip, rad/s, inside the table.
+
+    Returns
+    -------
+    dict
+        ``mu0``, ``mu_g`` (s/rad) and ``delta_mu``, the parameters of
+        ``CurveWetClutch`` and of the bench model.
+    """
+    from scipy.interpolate import make_smoothing_spline
+    slip = np.asarray(slip, dtype=float)
+    mu = np.asarray(mu, dtype=float)
+    if slip.shape != mu.shape or slip.ndim != 1 or len(slip) < 5:
+        raise JudderError("a friction table needs two columns of the same "
+                          f"length, at least 5 rows (got {slip.shape} and "
+                          f"{mu.shape})")
+    if not (np.all(np.isfinite(slip)) and np.all(np.isfinite(mu))):
+        raise JudderError("a friction table must hold finite numbers only")
+    if np.any(np.diff(slip) <= 0):
+        raise JudderError("the slip column of a friction table must be "
+                          "increasing")
+    if not slip[0] <= w_op <= slip[-1]:
+        raise JudderError(f"w_op = {w_op:g} rad/s is outside the friction "
+                          f"table; allowed: {slip[0]:g} to {slip[-1]:g} rad/s")
+    spline = make_smoothing_spline(slip, mu)
+    rise = 0.5 * float(mu.max() - mu.min())
+    return {"mu0": float(spline(w_op)), "mu_g": float(spline(w_op, 1)),
+            "delta_mu": max(rise, 1e-6)}
+
+
+#: Loss of slope (share) at the edge of :func:`linear_range`.
+SLOPE_LOSS = 0.2
+
+
+def linear_range(mu_g, delta_mu, loss=SLOPE_LOSS):
+    """Slip offset from the operating slip over which the curve keeps its
+    slope to within ``loss``, rad/s: ``sech^2(mu_g x/delta_mu) = 1 - loss``.
+
+    A slip that swings wider samples a flatter curve: the engagement then
+    grows more slowly than the linearisation's Floquet exponent says.
+
+    Examples
+    --------
+    >>> round(linear_range(0.022, 0.09), 2)
+    1.97
+    """
+    if mu_g == 0:
+        return float("inf")
+    return float(np.arctanh(np.sqrt(loss)) * delta_mu / abs(mu_g))
+
+
+def forced_slip_amplitude(driveline, freq_hz, p_f):
+    """Amplitude of the slip's forced response to the dither, rad/s.
+
+    The steady response of Eq. (6) to the dither part of the friction
+    torque, ``mu0 N_c R_m S p_f cos(omega t)`` (the column ``D`` of Eq. 9),
+    without the parametric term (which does not move the forced response
+    to first order in ``p_f``):
+    ``(K - omega^2 M + i omega C_0) Theta = -mu0 N_c R_m S p_f e``.
+
+    Parameters
+    ----------
+    driveline : stability.model.Driveline
+    freq_hz : float
+        Dither frequency, Hz (> 0).
+    p_f : float
+        Dither amplitude, Pa.
+
+    Returns
+    -------
+    float
+        ``|i omega e . Theta|``, rad/s.
+    """
+    omega = 2 * np.pi * freq_hz
+    e = driveline.clutch_vector()
+    damping = driveline.structural_damping() + (
+        driveline.mu_g * driveline.clutch_factor
+        * driveline.mean_pressure_damping * driveline.p_m) * np.outer(e, e)
+    dynamic = (driveline.stiffness_matrix()
+               - omega ** 2 * driveline.mass_matrix() + 1j * omega * damping)
+    theta = np.linalg.solve(dynamic, -driveline.mu0 * driveline.clutch_factor
+                            * p_f * e.astype(complex))
+    return float(abs(1j * omega * (e @ theta)))
