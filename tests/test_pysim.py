@@ -9,8 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from drivelines import get_model, get_preset
-from stability import build_driveline, floquet
+from drivelines import get_preset
 from pysim.bench import Campaign, pickup_samples, run_campaign
 from pysim.signals import (amplitude_spectrum, dither_envelope,
                            free_response_growth, stroboscopic_growth)
@@ -92,46 +91,6 @@ def test_crosscheck_on_tongues_2_5_6():
     assert check.max_rate_error(above=1.0) < 0.05
     for p in check.points:
         assert p.agree or p.reason
-
-
-# --- engagements of the bench model ---------------------------------------
-
-@pytest.fixture(scope="module")
-def engagements():
-    from pysim.fmus import ensure_fmu
-    from pysim.runs import run_fmu
-    fmu = ensure_fmu(get_model("4dof").bench_class)
-    params = get_preset("paper-4dof")
-    return {f: run_fmu(fmu, f, p * BAR, params=params, duration=4.0,
-                       output_interval=2.5e-4)
-            for f, p in ((102.9, 0.05), (60.0, 0.05))}
-
-
-def test_inside_tongue_2_judder_grows_at_the_dither_frequency(engagements):
-    run = engagements[102.9]
-    assert floquet(build_driveline(get_preset("paper-4dof")), 102.9,
-                   0.05 * BAR).kind == "single-period"
-    spectrum = amplitude_spectrum(run.time[run.time > 0.15],
-                                  run["w_upstream"][run.time > 0.15])
-    assert spectrum.peak_freq_hz == pytest.approx(102.9, abs=0.5)
-    _, rate = dither_envelope(run.time, run["w_upstream"], 102.9, 0.15)
-    assert rate > 1.0
-    # the judder is large: tens of rpm and more
-    assert spectrum.peak_amplitude * 60 / (2 * np.pi) > 50
-
-
-def test_outside_the_tongues_the_engagement_is_clean(engagements):
-    run = engagements[60.0]
-    assert floquet(build_driveline(get_preset("paper-4dof")), 60.0,
-                   0.05 * BAR).kind == "stable"
-    _, rate = dither_envelope(run.time, run["w_upstream"], 60.0, 0.15)
-    assert rate < 0
-    assert abs(run["slip"][-1]) < 0.1          # the clutch has locked
-    # what oscillates at the dither frequency is the small forced response
-    spectrum = amplitude_spectrum(run.time[run.time > 0.15],
-                                  run["w_upstream"][run.time > 0.15])
-    line = np.argmin(np.abs(spectrum.freq_hz - 60.0))
-    assert spectrum.amplitude[line] * 60 / (2 * np.pi) < 2
 
 
 # --- bench emulator ---------------------------------------------------------
