@@ -591,7 +591,7 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
 
 
 def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
-             temperatures=("65-70",), duration=1.5, noise_rpm=0.5, seed=1,
+             temperatures=("65-70",), duration=3.0, noise_rpm=0.5, seed=1,
              formats=("csv", "mf4"), parameters=None, changes=None,
              workers=None, progress=None):
     """``judder campaign``: emulate a bench campaign of engagements into

@@ -162,7 +162,7 @@ class Campaign:
     p_f_bar: tuple
     engine_rpm: tuple = (1000.0,)
     temperatures: tuple = ("65-70",)
-    duration: float = 1.5
+    duration: float = 3.0
     teeth: int = 41
     noise_rpm: float = 0.5
     noise_bar: float = 0.01

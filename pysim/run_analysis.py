@@ -397,7 +397,7 @@ def growth_phase(time, rms):
     """Growth phase of the non-periodic part and its rate.
 
     The rate is read while the component grows as the linearisation
-    says: up to where it first reaches :data:`LINEAR_SHARE` of its
+    says: up to where it last rises through :data:`LINEAR_SHARE` of its
     maximum, before the nonlinear limit bends the rise (the friction
     curve's slope falls as the slip swings wider), when that part of the
     rise spans at least one e-fold; else over the whole rise.
@@ -405,10 +405,10 @@ def growth_phase(time, rms):
     Returns
     -------
     (start, stop) : (float, float)
-        From the lowest ``rms`` before its maximum to the end of the
-        fitted rise, s.
+        The rise: from the lowest ``rms`` before its maximum to the
+        maximum, s.
     rate : float
-        Least-squares log-slope over the phase, 1/s.
+        Least-squares log-slope over its linear part, 1/s.
 
     Returns None when the maximum comes first.
     """
@@ -416,13 +416,14 @@ def growth_phase(time, rms):
     low = int(np.argmin(rms[:top + 1]))
     if top - low < 4 or rms[low] <= 0:
         return None
-    above = np.flatnonzero(rms[low:top + 1] >= LINEAR_SHARE * rms[top])
-    end = low + int(above[0])
+    # where it last rises through the share (noise makes early spikes)
+    below = np.flatnonzero(rms[low:top + 1] < LINEAR_SHARE * rms[top])
+    end = low + int(below[-1]) + 1 if below.size else top
     if end - low < 4 or rms[end] < np.e * rms[low]:
         end = top
-    t, r = time[low:end + 1], rms[low:end + 1]
-    rate = float(np.polyfit(t, np.log(r), 1)[0])
-    return (float(t[0]), float(t[-1])), rate
+    rate = float(np.polyfit(time[low:end + 1], np.log(rms[low:end + 1]),
+                            1)[0])
+    return (float(time[low]), float(time[top])), rate
 
 
 def _other_peak(freq, spectrum, dither_hz, resolution):
@@ -523,7 +524,8 @@ def _judder_phase(time, envelope, freq_hz, min_growth):
     if phase is None:
         return None
     (start, stop), rate = phase
-    efolds = rate * (stop - start)
+    rise = envelope[(time >= start) & (time <= stop)]
+    efolds = float(np.log(rise.max() / rise.min()))
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and envelope.max() >= NOISE_FLOOR_RPM \

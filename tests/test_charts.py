@@ -125,9 +125,11 @@ def test_a_run_without_engagement_is_refused():
 
 @pytest.fixture(scope="module")
 def campaign(tmp_path_factory):
-    """Emulated bench runs across tongue 2 and at a stable frequency."""
+    """Emulated bench runs across tongue 4 (double-period, f = 2 f2) and
+    at a stable frequency: where the bench follows its linearisation
+    (docs/time-domain.md)."""
     folder = tmp_path_factory.mktemp("campaign")
-    plan = Campaign(freq_hz=(60.0, 103.0), p_f_bar=(0.02, 0.14, 0.26),
+    plan = Campaign(freq_hz=(60.0, 206.0), p_f_bar=(0.05, 0.2, 0.3),
                     formats=("mf4",))
     rows = run_campaign(plan, get_preset("paper-4dof"), folder, workers=2)
     assert all(r["status"] == "ok" for r in rows)
@@ -142,17 +144,21 @@ def test_chart_agrees_with_the_floquet_tongue(campaign):
     for run in result.chart.read:
         a = run.analysis
         rate = floquet(bench, a.freq_hz, a.p_f_bar * PA_PER_BAR).growth_rate
-        if rate > 1.0:
+        # 1.25 1/s: a judder slower than that stays within a few rpm of
+        # the pick-up's noise over the run (docs/time-domain.md)
+        if rate > 1.25:
             assert a.judder, (a.freq_hz, a.p_f_bar, rate)
+        if rate < 0:
+            assert not a.judder, (a.freq_hz, a.p_f_bar, rate)
         if a.freq_hz == 60.0:
             assert not a.judder, (a.freq_hz, a.p_f_bar)
     boundary = dict((f, p) for f, p, _ in
                     result.chart.boundary(next(iter(result.chart.groups()))))
     assert boundary[60.0] is None
-    # judder at 103 Hz from an amplitude inside tongue 2 of the bench
-    lowest = boundary[103.0]
+    # judder at 206 Hz from an amplitude inside tongue 4 of the bench
+    lowest = boundary[206.0]
     assert lowest is not None
-    assert floquet(bench, 103.0, lowest * PA_PER_BAR).kind == "single-period"
+    assert floquet(bench, 206.0, lowest * PA_PER_BAR).kind == "double-period"
 
 
 def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
@@ -169,11 +175,11 @@ def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
     assert {"file", "freq_hz", "p_f_bar", "amplitude_rpm", "growth_per_s",
             "judder"} <= set(data["runs"][0])
     lowest = data["boundary"][1][1]
-    assert data["boundary"] == [[60.0, None], [103.0, lowest]]
-    assert lowest in (0.14, 0.26)
+    assert data["boundary"] == [[60.0, None], [206.0, lowest]]
+    assert lowest in (0.2, 0.3)
     assert boundary.read_text().splitlines() == ["# written by judder",
                                                  "freq_hz,p_f_bar", "60,",
-                                                 f"103,{lowest:g}"]
+                                                 f"206,{lowest:g}"]
     assert plot.read_bytes()[:4] == b"\x89PNG"
     with np.load(out) as npz:
         assert npz["judder"].sum() == sum(r["judder"] for r in data["runs"])
@@ -256,7 +262,7 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
     assert np.allclose(p_f / PA_PER_BAR, [np.nan if p is None else p
                                           for _, p in boundary],
                        equal_nan=True)
-    assert tried == pytest.approx(0.26)
+    assert tried == pytest.approx(0.3)
     proc = subprocess.run([sys.executable, "-m", "judder", "fit", "--chart",
                            str(out), "--fit", "mu_g", "--set", "c1=2000.1",
                            "--json"], capture_output=True, text=True,

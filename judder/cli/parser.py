@@ -553,9 +553,12 @@ def build_parser():
                         "paper also used 1500)")
     p.add_argument("--temperatures", default="65-70", metavar="T1,T2|all",
                    help="oil temperature ranges (55-60, 65-70, 75-80, "
-                        "85-90, or all), represented by parameter changes")
-    p.add_argument("--duration", type=str, default=1.5, metavar="S",
-                   help="length of each engagement, s (default 1.5)")
+                        "85-90, or all): each run at the middle of its "
+                        "range, the external damping scaled with the oil's "
+                        "viscosity (pysim.bench.oil_viscosity)")
+    p.add_argument("--duration", type=str, default=3.0, metavar="S",
+                   help="length of each engagement, s (default 3: the "
+                        "0.6 s pressure ramp, then the judder's growth)")
     p.add_argument("--noise-rpm", type=str, default=0.5,
                    help="speed measurement noise, rpm (default 0.5)")
     p.add_argument("--seed", type=int, default=1, help="noise seed")
