@@ -14,12 +14,12 @@ lies outside its interval.
 
 Default: the Appendix set (``paper-4dof``) as truth, tongue 4 (double
 period at 2 f2, 205.8 Hz; docs/roundtrip.md says why not tongue 2),
-200-212 Hz x 0.05-1.0 bar (25 x 20 runs of 2.5 s), the fit started from
+200-212 Hz x 0.05-1.0 bar (25 x 20 runs of 3 s), the fit started from
 c12, mu_g and k24 off the truth::
 
     nice -n 10 .venv/bin/python benchmarks/roundtrip.py --json rt.json
     nice -n 10 .venv/bin/python benchmarks/roundtrip.py \\
-        --freq 90:116:27 --pf 0.02:0.4:20 --duration 1.5   # tongue 2
+        --freq 90:116:27 --pf 0.02:0.6:30   # tongue 2
 
 The campaign folder (``--out``) is resumed when it exists.
 """
@@ -86,7 +86,7 @@ def main(argv=None):
     parser.add_argument("--truth", default="paper-4dof")
     parser.add_argument("--freq", default="200:212:25", help="Hz")
     parser.add_argument("--pf", default="0.05:1.0:20", help="bar")
-    parser.add_argument("--duration", type=float, default=2.5)
+    parser.add_argument("--duration", type=float, default=3.0)
     parser.add_argument("--min-growth", type=float, default=1.0)
     parser.add_argument("--fit", default="c12,mu_g,k24")
     parser.add_argument("--starts", type=int, default=3)

@@ -483,7 +483,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     ----------
     freq_hz : float or sequence of float
         Dither frequency, Hz; several give one engagement each (Fig. 1,
-        Fig. 8: the judder follows the dither frequency).
+        Fig. 8).
     p_f_bar : float
         Dither amplitude, bar.
     duration : float, optional

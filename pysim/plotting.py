@@ -103,9 +103,10 @@ def plot_spectrum(run, ax=None, start=0.0, f_max=None):
 
 
 def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
-    """Speed spectra of several engagements on one axis (Fig. 8): the
-    judder peak moves with the dither frequency. Each run's dither
-    frequency is marked in its colour and style."""
+    """Speed spectra of several engagements on one axis (Fig. 8). Each
+    run's dither frequency is marked in its colour and style: a
+    single-period judder peaks there, a double-period one at half of it,
+    a combination one at natural frequencies of the driveline."""
     if ax is None:
         _, ax = plt.subplots()
     colours = plt.get_cmap("cividis")(np.linspace(0.0, 0.75, len(runs)))
@@ -128,8 +129,8 @@ def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
     ax.set_ylim(0, 1.08 * max(top, 1e-9))
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("upstream speed amplitude [rpm]")
-    ax.set_title("speed spectra overlaid: the judder peak follows the "
-                 "dither frequency", fontsize=9)
+    ax.set_title("speed spectra overlaid (vertical lines: each run's "
+                 "dither frequency)", fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
               borderaxespad=0.0)
     return artists

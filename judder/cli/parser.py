@@ -544,10 +544,11 @@ def build_parser():
                                    "OUT/index.csv. Runs in parallel; an "
                                    "interrupted or failed campaign resumes "
                                    "when run again.")
-    p.add_argument("--freq", default="60:200:15", metavar="START:STOP:N",
-                   help="dither frequencies, Hz (default 60:200:15)")
-    p.add_argument("--pf", default="0.02:0.3:8", metavar="START:STOP:N",
-                   help="dither amplitudes, bar (default 0.02:0.3:8)")
+    p.add_argument("--freq", default="70:130:31", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 70:130:31: "
+                        "tongues 5, 2 and 6 of the paper's driveline)")
+    p.add_argument("--pf", default="0.1:0.7:7", metavar="START:STOP:N",
+                   help="dither amplitudes, bar (default 0.1:0.7:7)")
     p.add_argument("--rpm", default="1000", metavar="N1,N2",
                    help="engine (motor) speeds, rpm (default 1000; the "
                         "paper also used 1500)")
