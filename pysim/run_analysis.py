@@ -397,18 +397,20 @@ def growth_phase(time, rms):
     """Growth phase of the non-periodic part and its rate.
 
     The rate is read while the component grows as the linearisation
-    says: up to where it last rises through :data:`LINEAR_SHARE` of its
-    maximum, before the nonlinear limit bends the rise (the friction
-    curve's slope falls as the slip swings wider), when that part of the
-    rise spans at least one e-fold; else over the whole rise.
+    says: from the lowest value before the maximum up to where it last
+    rises through :data:`LINEAR_SHARE` of the maximum, before the
+    nonlinear limit bends the rise (the friction curve's slope falls as
+    the slip swings wider), when that part spans at least one e-fold;
+    else up to the maximum.
 
     Returns
     -------
     (start, stop) : (float, float)
-        The rise: from the lowest ``rms`` before its maximum to the
-        maximum, s.
+        The part of the rise the rate is read over, s.
     rate : float
-        Least-squares log-slope over its linear part, 1/s.
+        Least-squares log-slope over it, 1/s.
+    peak : float
+        Time of the maximum, s.
 
     Returns None when the maximum comes first.
     """
@@ -423,7 +425,7 @@ def growth_phase(time, rms):
         end = top
     rate = float(np.polyfit(time[low:end + 1], np.log(rms[low:end + 1]),
                             1)[0])
-    return (float(time[low]), float(time[top])), rate
+    return (float(time[low]), float(time[end])), rate, float(time[top])
 
 
 def _other_peak(freq, spectrum, dither_hz, resolution):
@@ -517,15 +519,18 @@ def _growing_components(time, difference, freq_hz, min_growth,
 
 def _judder_phase(time, envelope, freq_hz, min_growth):
     """``(rate, (start, stop))`` of a growth phase that counts as judder:
-    :data:`MIN_GROWTH_PERIODS` periods long, at least ``min_growth`` over
-    at least one fitted e-fold (two if shorter than :data:`MIN_PHASE_S`),
-    up to at least :data:`NOISE_FLOOR_RPM` (pick-up noise); else None."""
+    its linear part (:func:`growth_phase`) :data:`MIN_GROWTH_PERIODS`
+    periods long, at least ``min_growth`` over at least one e-fold to the
+    maximum (and two, or a linear part of :data:`MIN_PHASE_S`: noise makes
+    short rises), up to at least :data:`NOISE_FLOOR_RPM` (pick-up noise);
+    else None."""
     phase = growth_phase(time, envelope)
     if phase is None:
         return None
-    (start, stop), rate = phase
-    rise = envelope[(time >= start) & (time <= stop)]
-    efolds = float(np.log(rise.max() / rise.min()))
+    (start, stop), rate, peak = phase
+    # e-folds at that rate up to the maximum (a rise that bent after half
+    # its maximum still counts them); the linear part must be long
+    efolds = rate * (peak - start)
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and envelope.max() >= NOISE_FLOOR_RPM \
