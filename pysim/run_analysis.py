@@ -522,8 +522,9 @@ def _judder_phase(time, envelope, freq_hz, min_growth):
     its linear part (:func:`growth_phase`) :data:`MIN_GROWTH_PERIODS`
     periods long, at least ``min_growth`` over at least one e-fold to the
     maximum (and two, or a linear part of :data:`MIN_PHASE_S`: noise makes
-    short rises), up to at least :data:`NOISE_FLOOR_RPM` (pick-up noise);
-    else None."""
+    short rises), up to at least :data:`NOISE_FLOOR_RPM` (pick-up noise),
+    and staying, after its maximum, above :data:`LINEAR_SHARE` of it in
+    the median (a beat of decaying modes dies away); else None."""
     phase = growth_phase(time, envelope)
     if phase is None:
         return None
@@ -531,10 +532,13 @@ def _judder_phase(time, envelope, freq_hz, min_growth):
     # e-folds at that rate up to the maximum (a rise that bent after half
     # its maximum still counts them); the linear part must be long
     efolds = rate * (peak - start)
+    # judder stays once grown (it saturates); a beat of decaying free
+    # modes rises from a null and dies away again
+    stays = np.median(envelope[time >= peak]) >= LINEAR_SHARE * envelope.max()
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and envelope.max() >= NOISE_FLOOR_RPM \
-            and rate >= min_growth and efolds >= 1.0:
+            and rate >= min_growth and efolds >= 1.0 and stays:
         return rate, (start, stop)
     return None
 
