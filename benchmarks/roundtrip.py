@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from drivelines import get_preset
+from infra.errors import JudderError
 from infra.files import write_text
 from infra.units import PA_PER_BAR
 from judder import api
@@ -142,10 +143,15 @@ def main(argv=None):
             ("driveline's stability boundary (the fit before this issue)",
              0.0, None)):
         began = time.perf_counter()
-        fit = api.fit(freqs, measured / PA_PER_BAR, p_max, names=names,
-                      parameters=truth, changes=start, starts=args.starts,
-                      workers=args.workers, min_growth=growth,
-                      bench=bench_values).fit
+        try:
+            fit = api.fit(freqs, measured / PA_PER_BAR, p_max, names=names,
+                          parameters=truth, changes=start,
+                          starts=args.starts, workers=args.workers,
+                          min_growth=growth, bench=bench_values).fit
+        except JudderError as exc:     # e.g. a chart without judder
+            fits[label] = {"refused": str(exc)}
+            print(f"fit, {label}: refused: {exc}", file=sys.stderr)
+            continue
         fits[label] = {
             "seconds": round(time.perf_counter() - began, 1),
             "success": fit.success, "problems": list(fit.problems),
@@ -165,7 +171,8 @@ def main(argv=None):
         write_text(args.json, text + "\n", overwrite=True)
     print(text)
     first = next(iter(fits.values()))
-    return 0 if all(p["inside"] for p in first["parameters"].values()) else 1
+    return 0 if "parameters" in first and all(
+        p["inside"] for p in first["parameters"].values()) else 1
 
 
 if __name__ == "__main__":

@@ -168,9 +168,9 @@ def _engagement(preset, freq_hz, p_f_bar):
 #: Judder points of the bench's linearisation (exponent > 0.75 1/s) in
 #: tongues 3-6, where the dither's forced slip swing stays inside the
 #: friction curve's linear range; measured growth / exponent in comments.
-JUDDER = [("paper-4dof", 206.0, 0.2),         # tongue 4, 0.98
-          ("paper-4dof", 206.0, 0.3),         # tongue 4, 0.96
-          ("paper-4dof", 86.0, 0.5),          # tongue 5, 0.86
+JUDDER = [("paper-4dof", 206.0, 0.2),         # tongue 4, 0.97
+          ("paper-4dof", 206.0, 0.3),         # tongue 4, 0.95
+          ("paper-4dof", 86.0, 0.5),          # tongue 5, 0.85
           ("paper-4dof", 119.0, 0.5),         # tongue 6, 0.86
           ("paper-4dof-fitted", 212.0, 0.7),  # tongue 4, 0.90
           ("paper-4dof-fitted", 210.0, 1.0)]  # tongue 4, 0.96
