@@ -205,7 +205,7 @@ def bench_engagement():
     from fmu.frontend import load_flat_model
     from pysim.fmus import LIBRARY, ensure_fmu
 
-    bench_class = get_model("4dof").bench_class
+    bench_class = SMOOTH_BENCH_CLASS
     fmus = {"": str(ensure_fmu(bench_class)),
             "-locking": str(ensure_fmu(LOCKING_BENCH_CLASS))}
     ode = to_ode(load_flat_model(
@@ -215,8 +215,10 @@ def bench_engagement():
     yield from _engagement_runs(fmus, ode, ENGAGEMENT_TONGUE_2, "-tongue2")
 
 
-#: The bench engagement with the EVEN clutch locking by events.
+#: The bench engagement with the EVEN clutch locking by events, and the
+#: same engagement with the smooth clutch.
 LOCKING_BENCH_CLASS = "Judder.Examples.TestBenchLockUp"
+SMOOTH_BENCH_CLASS = "Judder.Examples.TestBenchFullEngagement"
 
 
 def _engagement_runs(fmus, ode, setting, label):

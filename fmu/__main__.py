@@ -3,6 +3,7 @@
 import argparse
 import json
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -17,14 +18,17 @@ EXAMPLES_PACKAGE = "Judder.Examples"
 
 
 def examples(library):
-    """Full names of the classes in ``library``'s examples package, in
-    the order of its ``package.order``."""
-    order = library.joinpath(*EXAMPLES_PACKAGE.split("."),
-                             "package.order")
+    """Full names of the complete classes in ``library``'s examples
+    package, in the order of its ``package.order`` (a partial model, the
+    base of several examples, is not built)."""
+    folder = library.joinpath(*EXAMPLES_PACKAGE.split("."))
+    order = folder / "package.order"
     if not order.exists():
         return []
     return [f"{EXAMPLES_PACKAGE}.{name}"
-            for name in order.read_text().split()]
+            for name in order.read_text().split()
+            if not re.search(r"^\s*partial\s", (folder / f"{name}.mo")
+                             .read_text(encoding="utf-8"), re.M)]
 
 
 def main(argv=None):

@@ -29,7 +29,7 @@ from fmu.frontend import FrontEndError  # noqa: E402
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement",
-            "TestBenchLockUp"]
+            "TestBenchFullEngagement", "TestBenchLockUp"]
 W_IN = 1000 * 2 * np.pi / 60
 
 
@@ -41,33 +41,11 @@ def _build(name, folder, version, library=LIBRARY):
                      roots=[library]).path
 
 
-#: TestBenchLockUp's bench with the smooth WetClutch of PartialTestBench
-#: (friction changing sign over w_small without events): the reference of
-#: the locking clutch while it slips.
-SMOOTH_LOCKUP = """model SmoothLockUp "TestBenchLockUp with WetClutch"
-  extends Judder.Examples.PartialTestBench(S_load=0.006, w_gearbox=0,
-    t_ramp=0.05);
-  annotation (experiment(StopTime=4, Interval=1e-3));
-end SmoothLockUp;
-"""
-
-
 @pytest.fixture(scope="module")
 def fmus(tmp_path_factory):
     folder = tmp_path_factory.mktemp("fmu")
     return {(name, version): _build(name, folder, version)
             for name in EXAMPLES for version in ("2.0", "3.0")}
-
-
-@pytest.fixture(scope="module")
-def lockup_fmus(fmus, tmp_path_factory):
-    """The library's FMUs and that of :data:`SMOOTH_LOCKUP`."""
-    folder = tmp_path_factory.mktemp("smooth")
-    source = folder / "SmoothLockUp.mo"
-    source.write_text(SMOOTH_LOCKUP)
-    return {**fmus, ("SmoothLockUp", "2.0"): build_fmu(
-        source, "SmoothLockUp", folder / "SmoothLockUp.fmu",
-        roots=[LIBRARY, folder]).path}
 
 
 def _eq1(f_dither, p_f, J4=0.122, t_end=1.0):
@@ -156,16 +134,16 @@ def _engagement(fmus, name, kind, setting, stop_time):
 
 @pytest.mark.parametrize("kind, slipping_error", [("ModelExchange", 2e-3),
                                                   ("CoSimulation", 1e-5)])
-def test_locking_clutch_engagement_ends_in_lock_up(lockup_fmus, kind,
+def test_locking_clutch_engagement_ends_in_lock_up(fmus, kind,
                                                    slipping_error):
-    # outside the tongues: the same engagement as WetClutch's while it
+    # outside the tongues: the same engagement as WetClutch's
+    # (TestBenchFullEngagement) while it
     # slips (there tanh(slip/w_small) = 1; the bound is the integrators'
     # difference, 1.2e-3 rad/s ME at rtol 1e-8, 1e-6 CS), then one lock-up
     # that holds: zero slip, torque within mu0 N_c R_m S p
-    locking = _engagement(lockup_fmus, "TestBenchLockUp", kind,
-                          OUTSIDE_TONGUES, 4.0)
-    smooth = _engagement(lockup_fmus, "SmoothLockUp", kind, OUTSIDE_TONGUES,
-                         4.0)
+    locking = _engagement(fmus, "TestBenchLockUp", kind, OUTSIDE_TONGUES, 4.0)
+    smooth = _engagement(fmus, "TestBenchFullEngagement", kind,
+                         OUTSIDE_TONGUES, 4.0)
     t = locking["time"]
     assert locking["even.lockups"][-1] == 1
     assert locking["even.breakaways"][-1] == 0
@@ -186,16 +164,15 @@ def test_locking_clutch_engagement_ends_in_lock_up(lockup_fmus, kind,
 
 
 @pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
-def test_locking_clutch_breaks_away_at_once_inside_tongue_2(lockup_fmus,
-                                                            kind):
+def test_locking_clutch_breaks_away_at_once_inside_tongue_2(fmus, kind):
     # inside tongue 2 the slip swings through zero; at each zero the stuck
     # plates would need more than the capacity, so every lock-up breaks
     # away in its own event iteration and the speeds stay those of
     # WetClutch, whose torque reverses within a few w_small (2e-5 of the
     # largest slip after 358 reversals)
-    locking = _engagement(lockup_fmus, "TestBenchLockUp", kind, TONGUE_2,
-                          2.0)
-    smooth = _engagement(lockup_fmus, "SmoothLockUp", kind, TONGUE_2, 2.0)
+    locking = _engagement(fmus, "TestBenchLockUp", kind, TONGUE_2, 2.0)
+    smooth = _engagement(fmus, "TestBenchFullEngagement", kind, TONGUE_2,
+                         2.0)
     lockups = locking["even.lockups"]
     assert lockups[-1] > 300
     assert_allclose(lockups, locking["even.breakaways"], atol=0)

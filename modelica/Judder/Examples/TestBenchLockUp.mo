@@ -1,16 +1,13 @@
 within Judder.Examples;
-model TestBenchLockUp "Bench engagement of TestBenchEngagement ending in lock-up: the EVEN clutch sticks and breaks away by events"
+model TestBenchLockUp "Bench engagement of TestBenchFullEngagement ending in lock-up: the EVEN clutch sticks and breaks away by events"
   extends PartialTestBench(S_load=0.006, w_gearbox=0, t_ramp=0.05,
     redeclare Components.LockingWetClutch even(mu0=mu0, mu_g=mu_g,
     N_c=N_c, R_m=R_m, S=S, mean_pressure_damping=mean_pressure_damping));
   annotation (
     experiment(StopTime=4, Interval=1e-3),
     Documentation(info="<html>
-<p>The bench of TestBenchEngagement with the EVEN clutch as a
-Components.LockingWetClutch, the linear friction law of Eq. (5), a REV
-clutch that takes less torque than the EVEN clutch transmits (S_load =
-0.006 m^2), the gearbox side starting at rest and a 0.05 s ramp: an
-engagement that ends. The clutch slips by Eq. (5) and sticks from the
+<p>The engagement of TestBenchFullEngagement (the same bench settings)
+with the EVEN clutch as a Components.LockingWetClutch: it slips by Eq. (5) and sticks from the
 instant the slip reaches zero, by events. Outside the tongues (f_dither = 60 Hz, p_f = 0.05 bar) the
 engagement ends in lock-up at 3.23 s: the slip stays at zero and the
 clutch transmits the torque the load takes. Inside tongue 2 (the default
