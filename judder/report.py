@@ -411,6 +411,14 @@ def build_report(parameters=None, changes=None, description=None,
             f"{first['speed_peak_freq_hz']:.2f} Hz; judder read as a chart "
             "reads a bench run: "
             + ("none" if not first["judder"] else str(first["judder_kind"]))
+            + f"; Floquet exponent of its linearisation "
+            f"{first['floquet_exponent_per_s']:+.2f} 1/s"
+            + ("" if first.get("linearisation_holds") is not False else
+               f". The dither's forced slip swing "
+               f"({first['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
+               f"the friction curve's linear range "
+               f"({first['friction_linear_range_rad_s']:.2g} rad/s): the run "
+               "is nonlinear and need not follow the Floquet verdict")
             + ".</p>"
             + figure("Engagement with the configured dither and without "
                      "(Fig. 7, 8)",

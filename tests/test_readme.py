@@ -46,7 +46,7 @@ SMALLER = {
     "simulate": {"--duration": "1.5"},
     "crosscheck": {"--freq": "100:106:2", "--pf": "0.3", "--duration": "0.6",
                    "--workers": "1"},
-    "campaign": {"--freq": "100:104:2", "--pf": "0.3", "--duration": "0.6",
+    "campaign": {"--freq": "204:208:2", "--pf": "0.3", "--duration": "2",
                  "--workers": "1"},
     "chart": {"--workers": "1"},
     "envelope": {"--freq": "60:200:8", "--samples": "2", "--refine": "2",

@@ -47,7 +47,7 @@ def chart(tmp_path_factory, truth, boundary_bar):
         folder = tmp_path_factory.mktemp(f"f{f:g}")
         plan = Campaign(freq_hz=(float(f),),
                         p_f_bar=(round(b - STEP, 3), round(b + STEP, 3)),
-                        duration=2.5, formats=("mf4",))
+                        duration=4.0, formats=("mf4",))
         rows = run_campaign(plan, truth, folder, workers=2)
         assert all(r["status"] == "ok" for r in rows), rows
         folders.append(folder)

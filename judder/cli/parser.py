@@ -461,7 +461,12 @@ def build_parser():
                                    "of the pressure, the judder verdict, kind "
                                    "and growth as judder chart reads them, "
                                    "and the Floquet verdict of the bench's "
-                                   "linearisation (c1 + d_control). With "
+                                   "linearisation (c1 + d_control, the "
+                                   "friction curve's value and slope at the "
+                                   "slip), and whether the dither's forced "
+                                   "slip swing stays within the curve's "
+                                   "linear range (else the run need not "
+                                   "follow that verdict). With "
                                    "--modelica CLASS: the class's FMU (built "
                                    "by the project's compiler) from its "
                                    "start values, a steady slip, with the "
@@ -469,7 +474,7 @@ def build_parser():
                                    "linearisation; --fmu is refused (its "
                                    "Jacobian is all the FMU path reads).")
     p.add_argument("--freq", type=str, required=True, metavar="HZ[,HZ...]",
-                   help="dither frequency, Hz; several (e.g. 23,105) give "
+                   help="dither frequency, Hz; several (e.g. 86,206) give "
                         "one engagement each, side by side, with their "
                         "spectra overlaid (Fig. 1, Fig. 8)")
     p.add_argument("--pf", type=str, required=True, metavar="BAR",
@@ -488,9 +493,10 @@ def build_parser():
                         "delta_mu (the EVEN friction curve: mu0 and mu_g "
                         "are its value and slope at the slip w_op, mu stays "
                         "within mu0 +- delta_mu), t_engage, t_ramp, "
-                        "p_load, load_share (REV torque over the EVEN mean torque: 1 keeps the slip steady), N_c_load, d_control; repeatable "
-                        "(not with --modelica: set the class's parameters "
-                        "with --set)")
+                        "p_load, load_share (REV torque over the EVEN "
+                        "mean torque: 1 keeps the slip steady), N_c_load, "
+                        "d_control; repeatable (not with --modelica: set "
+                        "the class's parameters with --set)")
     p.add_argument("--out", metavar="run.csv|run.mf4",
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
