@@ -535,6 +535,10 @@ class ChartResult:
                 [[f, p] for f, p, _ in single],
                 "boundaries": {g: [[f, p] for f, p, _ in b]
                                for g, b in boundaries.items()},
+                "set_points": {"/".join(group): [
+                    {"freq_hz": f, "spread_hz": spread, "runs": len(runs)}
+                    for f, spread, runs in chart.set_points(group)]
+                    for group in chart.groups()},
                 "failed": [{"file": str(r.path), "message": r.error}
                            for r in chart.failed],
                 "seconds": self.seconds}

@@ -64,7 +64,7 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
 __all__ = ["ChannelSpec", "Channel", "Acquisition", "read_acquisition",
            "parse_channel_option", "unit_factor", "ROLES", "FORMATS",
-           "SPEED_UNITS", "PRESSURE_UNITS"]
+           "SPEED_UNITS", "PRESSURE_UNITS", "PLAUSIBLE"]
 
 #: Roles a channel plays, and the kind of quantity of each.
 ROLES = {"upstream_speed": "speed", "pressure": "pressure",
@@ -89,6 +89,13 @@ PRESSURE_UNITS = {
     "Pa": 1.0, "hPa": 1e2, "kPa": 1e3, "MPa": 1e6, "bar": PA_PER_BAR,
     "mbar": PA_PER_BAR / 1000, "psi": 0.45359237 * 9.80665 / 0.0254 ** 2,
 }
+#: Physical range of each kind (SI low, SI high, SI per unit shown, unit):
+#: a driveline shaft below 100 000 rpm either way, a clutch pressure from
+#: -1 bar (a sensor's offset) to 1000 bar.
+PLAUSIBLE = {"speed": (-1e5 * RAD_S_PER_RPM, 1e5 * RAD_S_PER_RPM,
+                       RAD_S_PER_RPM, "rpm"),
+             "pressure": (-PA_PER_BAR, 1000 * PA_PER_BAR, PA_PER_BAR,
+                          "bar")}
 #: s per unit of a time column or track.
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6,
               "min": 60.0}
@@ -379,8 +386,24 @@ def _channel(path, role, spec, names, raw):
     except JudderError as exc:
         raise JudderError(f"{where}: {exc}") from None
     time, values = _finite(where, time, values)
-    return Channel(time=time, values=values * factor,
+    values = values * factor
+    _plausible(where, ROLES[role], time, values)
+    return Channel(time=time, values=values,
                    unit_in_file=str(unit).strip(), name=spec.name)
+
+
+def _plausible(where, kind, time, values):
+    """Refuse values no bench records (a broken writer, a wrong unit):
+    :data:`PLAUSIBLE` bounds the magnitude of each kind (SI)."""
+    low, high, shown, unit = PLAUSIBLE[kind]
+    bad = (values < low) | (values > high)
+    if np.any(bad):
+        first = int(np.argmax(bad))
+        raise JudderError(
+            f"{where}: {values[first] / shown:.3g} {unit} at "
+            f"{time[first]:.6g} s is not a value a bench records; allowed: "
+            f"{low / shown:g} to {high / shown:g} {unit} (check the "
+            "channel's unit, or the file)")
 
 
 def _finite(where, time, values):

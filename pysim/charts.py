@@ -191,6 +191,12 @@ def _analyse(job):
         return ChartRun(source.path, source.settings, None, str(exc))
 
 
+def _window(analysis):
+    """Length of a run's engagement window, s."""
+    start, stop = analysis.window_s
+    return max(stop - start, 1e-9)
+
+
 @dataclass(frozen=True)
 class Chart:
     """Runs read into an experimental stability chart.
@@ -225,26 +231,63 @@ class Chart:
             out.setdefault(run.group(self.group_by), []).append(run)
         return out
 
+    def set_points(self, group):
+        """The dither frequencies of one group's runs, as set points.
+
+        A frequency the index or the file gives is a set point of its own.
+        Frequencies estimated from the pressure (a bench that records no
+        dither setting) scatter about the set point by far less than the
+        spectral resolution of the run, ``1/T`` over its engagement window
+        ``T``: estimates closer than half of it to each other, or to a
+        given frequency, are one set point, at the given frequency or
+        their median.
+
+        Returns
+        -------
+        list of (float, float, list of ChartRun)
+            Per set point (Hz, ascending): its frequency, the spread of
+            its runs' frequencies (Hz), and its runs.
+        """
+        runs = sorted(self.groups().get(group, []),
+                      key=lambda r: r.analysis.freq_hz)
+        clusters = []
+        for run in runs:
+            a = run.analysis
+            if clusters:
+                last = clusters[-1][-1].analysis
+                close = (a.estimated or last.estimated) and \
+                    a.freq_hz - last.freq_hz <= 0.5 / max(
+                        _window(a), _window(last))
+                if close or round(a.freq_hz, 6) == round(last.freq_hz, 6):
+                    clusters[-1].append(run)
+                    continue
+            clusters.append([run])
+        out = []
+        for cluster in clusters:
+            freqs = np.array([r.analysis.freq_hz for r in cluster])
+            given = [r.analysis.freq_hz for r in cluster
+                     if not r.analysis.estimated]
+            centre = given[0] if given else float(np.median(freqs))
+            out.append((float(centre), float(np.ptp(freqs)), cluster))
+        return out
+
     def boundary(self, group):
         """Experimental stability boundary of one group.
 
         Returns
         -------
         list of (float, float or None, float)
-            Per dither frequency (Hz, ascending): the lowest amplitude
-            with judder (bar), or None where no run had judder (a censored
-            point), and the largest amplitude tried (bar).
+            Per set point (:meth:`set_points`, Hz, ascending): the lowest
+            amplitude with judder (bar), or None where no run had judder
+            (a censored point: no judder up to the largest amplitude run
+            there), and that largest amplitude (bar).
         """
-        runs = self.groups().get(group, [])
-        table = {}
-        for run in runs:
-            a = run.analysis
-            key = round(a.freq_hz, 6)
-            lowest, tried = table.get(key, (None, 0.0))
-            if a.judder and (lowest is None or a.p_f_bar < lowest):
-                lowest = a.p_f_bar
-            table[key] = (lowest, max(tried, a.p_f_bar))
-        return [(f, *table[f]) for f in sorted(table)]
+        rows = []
+        for freq, _, runs in self.set_points(group):
+            judder = [r.analysis.p_f_bar for r in runs if r.analysis.judder]
+            rows.append((freq, min(judder) if judder else None,
+                         max(r.analysis.p_f_bar for r in runs)))
+        return rows
 
     def boundary_csv(self, group):
         """The boundary as ``judder fit --boundary`` reads it."""

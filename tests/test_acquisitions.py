@@ -5,6 +5,7 @@ inputs; and the files of the bench emulator."""
 import json
 import math
 from pathlib import Path
+import re
 import subprocess
 import sys
 
@@ -515,3 +516,26 @@ def test_bench_campaign_csv_and_mf4_agree(tmp_path):
         assert_allclose(down_csv.values, np.interp(
             down_csv.time, down_mf4.time, down_mf4.values), rtol=1e-7,
             atol=1e-7 * np.abs(down_mf4.values).max())
+
+
+@pytest.mark.parametrize("column, value, expected", [
+    ("n_up", 2.9e161, "upstream_speed channel 'n_up': 2.9e+161 rpm at 0.6 s "
+     "is not a value a bench records; allowed: -100000 to 100000 rpm"),
+    ("p", -50.0, "pressure channel 'p': -50 bar at 0.6 s is not a value a "
+     "bench records; allowed: -1 to 1000 bar"),
+])
+def test_a_value_no_bench_records_is_refused(tmp_path, column, value,
+                                             expected):
+    # a broken writer's speed (issue 19) or a pressure in the wrong unit:
+    # the run is refused with the channel, the value and the range, not
+    # folded into a verdict
+    t = np.linspace(0.0, 1.0, 101)
+    signals = {"n_up": np.full_like(t, 1000.0), "p": np.full_like(t, 10.0)}
+    signals[column] = signals[column].copy()
+    signals[column][60] = value
+    write_csv(tmp_path / "run.csv", t, signals, {"n_up": "rpm", "p": "bar"},
+              {})
+    with pytest.raises(JudderError, match=re.escape(expected)):
+        read_acquisition(tmp_path / "run.csv",
+                         {"upstream_speed": ChannelSpec("n_up"),
+                          "pressure": ChannelSpec("p")})

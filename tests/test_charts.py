@@ -276,3 +276,36 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
     with pytest.raises(JudderError, match=r"not a chart written by judder "
                        r"chart --out \(an NPZ file\)$"):
         read_chart_boundary(tmp_path / "table.csv")
+
+
+def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
+    from pysim.charts import ChartRun
+    from pysim.run_analysis import RunAnalysis
+    return ChartRun(path=f"run-{freq_hz}-{p_f_bar}.mf4", settings={},
+                    analysis=RunAnalysis(
+                        window_s=window, freq_hz=freq_hz, p_f_bar=p_f_bar,
+                        estimated=estimated, components=(), judder=judder,
+                        kind="double-period" if judder else "stable",
+                        growth_per_s=None, growth_phase_s=None,
+                        nonperiodic_rpm=0.0, amplitude_rpm=0.0))
+
+
+def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():
+    # a bench that records no dither setting: the frequencies estimated
+    # from the pressure scatter by far less than the spectral resolution
+    # (1/2.4 s = 0.42 Hz), and are one set point (issue 19: 248 rows for
+    # 248 runs before); given frequencies 0.5 Hz apart stay apart
+    from pysim.charts import Chart
+    runs = [_read_run(69.999345, 0.1, False, True),
+            _read_run(69.999904, 0.3, True, True),
+            _read_run(70.000310, 0.2, True, True),
+            _read_run(70.5, 0.2, False, False),
+            _read_run(71.0, 0.3, True, False),
+            _read_run(71.000120, 0.4, True, True)]
+    chart = Chart(runs=runs, group_by=(), min_growth=1.0)
+    points = chart.set_points(())
+    assert [(round(f, 6), len(r)) for f, _, r in points] == \
+        [(69.999904, 3), (70.5, 1), (71.0, 2)]
+    assert points[0][1] == pytest.approx(70.000310 - 69.999345)
+    assert chart.boundary(()) == [(pytest.approx(69.999904), 0.2, 0.3),
+                                  (70.5, None, 0.2), (71.0, 0.3, 0.4)]
