@@ -20,7 +20,9 @@ formats benches write, by the channel names of the user's file:
 
 Every channel keeps its own time base: a pick-up speed is sampled at tooth
 passages (non-uniform), the pressure at its own rate. NaN samples are
-dropped channel by channel.
+dropped channel by channel, samples within :data:`SAME_INSTANT` of each
+other are one (their mean), and values no bench records are refused
+(:data:`PLAUSIBLE`).
 
 Units are converted with a small explicit table (:data:`SPEED_UNITS`,
 :data:`PRESSURE_UNITS`) built on :mod:`infra.units`, not with pint
@@ -64,7 +66,8 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
 __all__ = ["ChannelSpec", "Channel", "Acquisition", "read_acquisition",
            "parse_channel_option", "unit_factor", "ROLES", "FORMATS",
-           "SPEED_UNITS", "PRESSURE_UNITS", "PLAUSIBLE"]
+           "SPEED_UNITS", "PRESSURE_UNITS", "PLAUSIBLE",
+           "SAME_INSTANT"]
 
 #: Roles a channel plays, and the kind of quantity of each.
 ROLES = {"upstream_speed": "speed", "pressure": "pressure",
@@ -96,6 +99,8 @@ PLAUSIBLE = {"speed": (-1e5 * RAD_S_PER_RPM, 1e5 * RAD_S_PER_RPM,
                        RAD_S_PER_RPM, "rpm"),
              "pressure": (-PA_PER_BAR, 1000 * PA_PER_BAR, PA_PER_BAR,
                           "bar")}
+#: Time stamps closer than this (s) are one instant (a 1 MHz DAQ's step).
+SAME_INSTANT = 1e-6
 #: s per unit of a time column or track.
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6,
               "min": 60.0}
@@ -424,7 +429,22 @@ def _finite(where, time, values):
         raise JudderError(f"{where}: time goes backwards at "
                           f"{time[np.argmax(np.diff(time) < 0)]:.9g} s; "
                           "time stamps must not decrease")
-    return time, values
+    return _merge_instants(time, values)
+
+
+def _merge_instants(time, values):
+    """Samples closer in time than :data:`SAME_INSTANT` as one, their
+    mean: a DAQ that puts several channels on the union of their time
+    bases writes stamps 1e-18 s apart (and a repeated stamp), which no
+    sampling rate can be read from."""
+    if len(time) < 2:
+        return time, values
+    first = np.r_[True, np.diff(time) > SAME_INSTANT]
+    if first.all():
+        return time, values
+    group = np.cumsum(first) - 1
+    return time[first], (np.bincount(group, weights=values)
+                         / np.bincount(group))
 
 
 def _plain(value):

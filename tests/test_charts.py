@@ -309,3 +309,35 @@ def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():
     assert points[0][1] == pytest.approx(70.000310 - 69.999345)
     assert chart.boundary(()) == [(pytest.approx(69.999904), 0.2, 0.3),
                                   (70.5, None, 0.2), (71.0, 0.3, 0.4)]
+
+
+def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
+    # a DAQ export that puts every channel of a group on the union of
+    # their time bases (asammdf interpolates each onto it): stamps 1e-18 s
+    # apart, which made the speed's resampling ask for 9.6 PiB; the
+    # reading equals that of the channels on their own time bases
+    from asammdf import MDF, Signal
+    from pysim.acquisitions import ChannelSpec, read_acquisition
+    f = 205.8
+
+    def speed(t):
+        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
+                                 + np.exp(2.6 * (t - 0.15))
+                                 * np.cos(np.pi * f * t))
+    (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
+    union = np.union1d(np.union1d(t_up, t_p), t_dn + 1e-18)
+    mdf = MDF(version="4.10")
+    mdf.append([Signal(np.interp(union, t, v), union, name=name, unit=unit)
+                for t, v, name, unit in ((t_up, up / RPM, "n_up", "rpm"),
+                                         (t_p, p / PA_PER_BAR, "p", "bar"),
+                                         (t_dn, dn / RPM, "n_dn", "rpm"))])
+    mdf.save(tmp_path / "union.mf4", overwrite=True)
+    channels = read_acquisition(tmp_path / "union.mf4", {
+        "upstream_speed": ChannelSpec("n_up"), "pressure": ChannelSpec("p"),
+        "downstream_speed": ChannelSpec("n_dn")}).channels
+    assert np.all(np.diff(channels["upstream_speed"].time) > 1e-6)
+    merged = analyse_run(*((channels[r].time, channels[r].values) for r in
+                           ("upstream_speed", "pressure",
+                            "downstream_speed")), freq_hz=f, p_f_bar=0.3)
+    assert merged.judder and merged.kind == "double-period"
+    assert merged.growth_per_s == pytest.approx(2.6, rel=0.1)
