@@ -7,9 +7,12 @@ formats benches write, by the channel names of the user's file:
 
 * ``.mf4`` / ``.mdf``: ASAM MDF 4 (and 3) with asammdf; every channel
   keeps the time base of its channel group, its unit is the file's;
-* ``.csv``: a ``time [s]`` (or ``time``) column, headers ``name [unit]``
-  or plain names, ``# key: json-value`` metadata lines (what
-  :func:`pysim.export.write_csv` writes);
+* ``.csv``: a ``time [s]`` (or ``time``, ``t``, ``Zeit``, ``timestamp``)
+  column, headers ``name [unit]`` or plain names with a units row under
+  them, ``# key: json-value`` metadata lines (what
+  :func:`pysim.export.write_csv` writes) or a DAQ's header block of
+  ``key;value`` lines before the names; ``,``, ``;`` or tab between
+  fields, a decimal comma with ``;`` or tab; a BOM;
 * ``.tdms``: NI TDMS with npTDMS; a waveform channel
   (``wf_increment``, ``wf_start_offset``) has its time track, any other
   takes the ``time`` channel of its group; units from ``unit_string``;
@@ -109,7 +112,7 @@ _UNITS = {"speed": SPEED_UNITS, "pressure": PRESSURE_UNITS,
 #: Units whose case carries a prefix (milli/mega): matched exactly only.
 _CASE_SENSITIVE = {"mpa", "mbar"}
 #: Names of a time channel, column or variable (lower case).
-_TIME_NAMES = ("time", "t")
+_TIME_NAMES = ("time", "t", "zeit", "timestamp")
 #: First 8 bytes of an MDF file (finalised, unfinalised).
 _MDF_MAGIC = (b"MDF     ", b"UnFinMF ")
 #: Channel names listed in a message, at most.
@@ -467,7 +470,10 @@ def _plain(value):
 # --- CSV -------------------------------------------------------------------
 
 def _load_csv(path, wanted):
-    """CSV as :func:`pysim.export.write_csv` writes it."""
+    """CSV as :func:`pysim.export.write_csv` writes it, and as DAQ software
+    exports it: ``,``, ``;`` or tab between fields, a decimal comma with
+    ``;`` or tab, a header block before the column names (``key;value``
+    lines, kept as metadata), a units row under them."""
     lines = _csv_lines(path)
     metadata = _csv_metadata(lines)
     body = [(number, line) for number, line in enumerate(lines, 1)
@@ -475,9 +481,21 @@ def _load_csv(path, wanted):
     if not body:
         raise JudderError(f"{path}: no header line (time [s], name [unit], "
                           "...)")
-    rows = list(csv.reader([line for _, line in body],
-                           delimiter=_delimiter(body[0][1])))
+    delimiter = _delimiter(body[len(body) // 2][1])
+    rows = list(csv.reader([line for _, line in body], delimiter=delimiter))
+    start = _csv_header_row(path, rows, body)
+    metadata.update({row[0].strip(): row[1].strip() for row in rows[:start]
+                     if len(row) == 2 and row[0].strip()})
+    body, rows = body[start:], rows[start:]
     header = [_split_header(cell) for cell in rows[0]]
+    if len(rows) > 1 and _is_units_row(rows[1], len(header)):
+        header = [(name, unit if unit is not None else
+                   (rows[1][i].strip().strip("[]").strip() or None))
+                  for i, (name, unit) in enumerate(header)]
+        body, rows = [body[0]] + body[2:], [rows[0]] + rows[2:]
+    if delimiter != ",":
+        rows = [rows[0]] + [[cell.replace(",", ".") for cell in row]
+                            for row in rows[1:]]
     names = [name for name, _ in header]
     time_column = _csv_time_column(path, names)
     _check_row_lengths(path, body, rows, len(header))
@@ -491,6 +509,34 @@ def _load_csv(path, wanted):
                           header[column][1])
     return [n for i, n in enumerate(names) if i != time_column], metadata, \
         raws
+
+
+def _csv_header_row(path, rows, body):
+    """Index of the row that names the columns: the first with a time
+    column (a DAQ's header block may come before it)."""
+    for index, row in enumerate(rows):
+        if any(_split_header(cell)[0].lower() in _TIME_NAMES
+               for cell in row):
+            return index
+    names = [_split_header(cell)[0] for cell in rows[0]]
+    raise JudderError(f"{path}: no time column; the line naming the "
+                      "columns must name one 'time [s]' (or 'time' with a "
+                      f"units row under it); columns of line {body[0][0]}: "
+                      f"{_listing(names)}")
+
+
+def _is_units_row(row, width):
+    """A row under the names that holds units, not numbers."""
+    cells = [cell.strip() for cell in row]
+    if len(cells) != width or not any(cells):
+        return False
+    for cell in cells:
+        try:
+            float(cell.replace(",", "."))
+            return False
+        except ValueError:
+            pass
+    return True
 
 
 def _column_factor(path, column, kind):
@@ -523,10 +569,10 @@ def _csv_metadata(lines):
     return metadata
 
 
-def _delimiter(header):
-    counts = {d: header.count(d) for d in (",", ";", "\t")}
-    best = max(counts, key=counts.get)
-    return best if counts[best] else ","
+def _delimiter(line):
+    """The field separator of a line of data: ``;`` or tab where there is
+    one (a ``,`` there is a decimal comma), else ``,``."""
+    return next((d for d in (";", "\t") if d in line), ",")
 
 
 def _split_header(cell):

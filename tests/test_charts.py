@@ -341,3 +341,46 @@ def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
                             "downstream_speed")), freq_hz=f, p_f_bar=0.3)
     assert merged.judder and merged.kind == "double-period"
     assert merged.growth_per_s == pytest.approx(2.6, rel=0.1)
+
+
+@pytest.mark.parametrize("delimiter", [";", "\t"])
+def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
+    # one engagement exported as DAQ software writes it: BOM, a header
+    # block, the names, a units row, decimal commas, ';' or tab; one time
+    # base for all channels (the pressure's 1 kHz, the speeds interpolated
+    # onto it): the same verdict and growth as the channels on their own
+    # time bases
+    from pysim.acquisitions import ChannelSpec, read_acquisition
+    f = 205.8
+
+    def speed(t):
+        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
+                                 + np.exp(2.6 * (t - 0.15))
+                                 * np.cos(np.pi * f * t))
+    (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
+    own = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
+                      p_f_bar=0.3)
+    lines = [f"Messung{delimiter}Pruefstand 2", f"Datum{delimiter}2026-11-30",
+             delimiter.join(["Zeit", "EngSpd", "OutSpd", "PressEVEN"]),
+             delimiter.join(["s", "1/min", "1/min", "bar"])]
+    for t, u, d, q in zip(t_p, np.interp(t_p, t_up, up / RPM),
+                          np.interp(t_p, t_dn, dn / RPM), p / PA_PER_BAR):
+        lines.append(delimiter.join(f"{x:.9g}".replace(".", ",")
+                                    for x in (t, u, d, q)))
+    (tmp_path / "export.csv").write_bytes(
+        b"\xef\xbb\xbf" + "\r\n".join(lines).encode())
+    acquisition = read_acquisition(tmp_path / "export.csv", {
+        "upstream_speed": ChannelSpec("EngSpd"),
+        "downstream_speed": ChannelSpec("OutSpd"),
+        "pressure": ChannelSpec("PressEVEN")})
+    assert acquisition.metadata["Datum"] == "2026-11-30"
+    channels = acquisition.channels
+    assert channels["pressure"].unit_in_file == "bar"
+    exported = analyse_run(*((channels[r].time, channels[r].values) for r in
+                             ("upstream_speed", "pressure",
+                              "downstream_speed")), freq_hz=f, p_f_bar=0.3)
+    assert own.judder and exported.judder
+    assert exported.kind == own.kind == "double-period"
+    assert exported.growth_per_s == pytest.approx(own.growth_per_s, rel=0.05)
+    assert exported.amplitude_rpm == pytest.approx(own.amplitude_rpm,
+                                                   rel=0.15)
