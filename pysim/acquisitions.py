@@ -67,6 +67,8 @@ from infra.errors import JudderError
 from infra.files import decode_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
+from .speed_channels import SPEED_KINDS, detect_speed_kind, interval_means
+
 __all__ = ["ChannelSpec", "Channel", "Acquisition", "read_acquisition",
            "parse_channel_option", "unit_factor", "ROLES", "FORMATS",
            "SPEED_UNITS", "PRESSURE_UNITS", "PLAUSIBLE",
@@ -90,6 +92,9 @@ SPEED_UNITS = {
     "rad/s": 1.0, "rad/sec": 1.0, "rad s^-1": 1.0,
     "Hz": 2.0 * math.pi, "rev/s": 2.0 * math.pi, "rps": 2.0 * math.pi,
 }
+#: rad per unit of a shaft angle (an encoder's), read as a speed channel.
+ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0, "°": math.pi / 180.0,
+               "rev": 2.0 * math.pi}
 #: Pa per unit of pressure (psi: lbf/in^2 from the exact pound and inch).
 PRESSURE_UNITS = {
     "Pa": 1.0, "hPa": 1e2, "kPa": 1e3, "MPa": 1e6, "bar": PA_PER_BAR,
@@ -108,7 +113,7 @@ SAME_INSTANT = 1e-6
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6,
               "min": 60.0}
 _UNITS = {"speed": SPEED_UNITS, "pressure": PRESSURE_UNITS,
-          "time": TIME_UNITS}
+          "time": TIME_UNITS, "angle": ANGLE_UNITS}
 #: Units whose case carries a prefix (milli/mega): matched exactly only.
 _CASE_SENSITIVE = {"mpa", "mbar"}
 #: Names of a time channel, column or variable (lower case).
@@ -131,10 +136,15 @@ class ChannelSpec:
     unit : str, optional
         Unit of the file's values; overrides the file's unit, and is
         needed where the file has none.
+    kind : str, optional
+        For a speed: what its samples are, a key of
+        :data:`pysim.speed_channels.SPEED_KINDS`; default: ``angle`` for
+        an angle unit, else told from the time stamps.
     """
 
     name: str
     unit: str = None
+    kind: str = None
 
 
 @dataclass(frozen=True)
@@ -146,17 +156,31 @@ class Channel:
     time : ndarray
         s, non-decreasing, NaN samples dropped.
     values : ndarray
-        SI: rad/s for speeds, Pa for pressure.
+        SI: rad/s for speeds (rad for an encoder angle), Pa for pressure.
     unit_in_file : str
         Unit the file's values are in: the file's, or the one given.
     name : str
         Channel name in the file.
+    kind : str
+        For a speed role, what the samples are (a key of
+        :data:`pysim.speed_channels.SPEED_KINDS`): ``values`` are rad
+        for ``angle``; :meth:`interval_means` gives the speed as the
+        analysis reads it. None for a pressure.
     """
 
     time: np.ndarray
     values: np.ndarray
     unit_in_file: str
     name: str
+    kind: str = None
+
+    def interval_means(self):
+        """``(time, speed)``: the mean speed over each sample interval
+        (rad/s), a pick-up's convention, whatever the kind
+        (:func:`pysim.speed_channels.interval_means`)."""
+        if self.kind is None:
+            return self.time, self.values
+        return interval_means(self.time, self.values, self.kind)
 
 
 @dataclass(frozen=True)
@@ -241,7 +265,9 @@ def _lookup(table, text):
 # --- options ---------------------------------------------------------------
 
 def parse_channel_option(text):
-    """``ROLE=NAME`` or ``ROLE=NAME:UNIT`` (the ``--channel`` option).
+    """``ROLE=NAME``, ``ROLE=NAME:UNIT`` or ``ROLE=NAME:UNIT:KIND`` (the
+    ``--channel`` option); KIND, for a speed, is a key of
+    :data:`pysim.speed_channels.SPEED_KINDS`.
 
     A name containing ``:`` needs its unit appended.
 
@@ -253,18 +279,29 @@ def parse_channel_option(text):
     role, equals, rest = str(text).partition("=")
     role = role.strip()
     if not equals or not rest.strip():
-        raise JudderError(f"--channel {text!r}: give ROLE=NAME or "
-                          f"ROLE=NAME:UNIT with ROLE one of "
-                          f"{', '.join(ROLES)}")
+        raise JudderError(f"--channel {text!r}: give ROLE=NAME, "
+                          f"ROLE=NAME:UNIT or ROLE=NAME:UNIT:KIND with ROLE "
+                          f"one of {', '.join(ROLES)}")
     _check_role(role, f"--channel {text!r}")
+    kind = None
+    head, colon, last = rest.rpartition(":")
+    if colon and last.strip() in SPEED_KINDS:
+        if ROLES[role] != "speed":
+            raise JudderError(f"--channel {text!r}: a kind is for a speed "
+                              f"channel, not the {role}")
+        rest, kind = head, last.strip()
     name, colon, unit = rest.rpartition(":")
     if not colon:
+        if kind is not None:
+            raise JudderError(f"--channel {text!r}: give the unit before "
+                              f"the kind (ROLE=NAME:UNIT:{kind})")
         return role, ChannelSpec(rest.strip())
     try:
-        unit_factor(unit, ROLES[role])
+        unit_factor(unit, "angle" if ROLES[role] == "speed"
+                    and _is_angle_unit(unit) else ROLES[role])
     except JudderError as exc:
         raise JudderError(f"--channel {text!r}: {exc}") from None
-    return role, ChannelSpec(name.strip(), unit.strip())
+    return role, ChannelSpec(name.strip(), unit.strip(), kind)
 
 
 def _check_role(role, where):
@@ -389,15 +426,42 @@ def _channel(path, role, spec, names, raw):
         raise JudderError(f"{where} has no unit in the file; give it with "
                           f"--channel {role}={spec.name}:UNIT (allowed: "
                           f"{_allowed_units(ROLES[role])})")
+    kind_of_unit = ROLES[role]
+    if kind_of_unit == "speed" and _is_angle_unit(unit):
+        kind_of_unit = "angle"
     try:
-        factor = unit_factor(unit, ROLES[role])
+        factor = unit_factor(unit, kind_of_unit)
     except JudderError as exc:
         raise JudderError(f"{where}: {exc}") from None
     time, values = _finite(where, time, values)
     values = values * factor
-    _plausible(where, ROLES[role], time, values)
-    return Channel(time=time, values=values,
-                   unit_in_file=str(unit).strip(), name=spec.name)
+    if ROLES[role] != "speed":
+        _plausible(where, ROLES[role], time, values)
+        return Channel(time=time, values=values,
+                       unit_in_file=str(unit).strip(), name=spec.name)
+    kind = _speed_kind(where, spec, kind_of_unit, time, values)
+    if kind != "angle":
+        _plausible(where, "speed", time, values)
+    return Channel(time=time, values=values, unit_in_file=str(unit).strip(),
+                   name=spec.name, kind=kind)
+
+
+def _is_angle_unit(unit):
+    return _lookup(ANGLE_UNITS, _normalise_unit(unit)) is not None
+
+
+def _speed_kind(where, spec, kind_of_unit, time, values):
+    """What a speed channel's samples are: given, told by an angle unit,
+    or detected from the time stamps."""
+    if spec.kind is None:
+        return "angle" if kind_of_unit == "angle" else \
+            detect_speed_kind(time, values)
+    if (spec.kind == "angle") != (kind_of_unit == "angle"):
+        raise JudderError(f"{where}: kind {spec.kind!r} needs "
+                          + ("an angle unit (rad, deg, rev)"
+                             if spec.kind == "angle" else "a speed unit")
+                          + f", the channel is in {kind_of_unit} units")
+    return spec.kind
 
 
 def _plausible(where, kind, time, values):

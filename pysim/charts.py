@@ -178,7 +178,7 @@ def _analyse(job):
 
         def pair(role):
             # an optional channel with too few samples is as good as none
-            return ((ch[role].time, ch[role].values)
+            return (ch[role].interval_means()
                     if role in ch and len(ch[role].time) >= 2 else None)
         analysis = analyse_run(pair("upstream_speed"), pair("pressure"),
                                pair("downstream_speed"),

@@ -296,6 +296,15 @@ def test_channel_option():
         parse_channel_option("upstream_speed=EngSpd_up:bar")
     with pytest.raises(JudderError, match="ROLE=NAME"):
         parse_channel_option("upstream_speed")
+    # what a speed channel's samples are (pysim.speed_channels)
+    assert parse_channel_option("upstream_speed=Enc:deg:angle") == (
+        "upstream_speed", ChannelSpec("Enc", "deg", "angle"))
+    assert parse_channel_option("upstream_speed=CAN:N:rpm:sampled") == (
+        "upstream_speed", ChannelSpec("CAN:N", "rpm", "sampled"))
+    with pytest.raises(JudderError, match="a kind is for a speed channel"):
+        parse_channel_option("pressure=P:bar:sampled")
+    with pytest.raises(JudderError, match="unit before the kind"):
+        parse_channel_option("upstream_speed=N:passage")
 
 
 # --- bad input -------------------------------------------------------------

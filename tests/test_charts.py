@@ -336,7 +336,7 @@ def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
         "upstream_speed": ChannelSpec("n_up"), "pressure": ChannelSpec("p"),
         "downstream_speed": ChannelSpec("n_dn")}).channels
     assert np.all(np.diff(channels["upstream_speed"].time) > 1e-6)
-    merged = analyse_run(*((channels[r].time, channels[r].values) for r in
+    merged = analyse_run(*(channels[r].interval_means() for r in
                            ("upstream_speed", "pressure",
                             "downstream_speed")), freq_hz=f, p_f_bar=0.3)
     assert merged.judder and merged.kind == "double-period"
@@ -376,7 +376,7 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
     assert acquisition.metadata["Datum"] == "2026-11-30"
     channels = acquisition.channels
     assert channels["pressure"].unit_in_file == "bar"
-    exported = analyse_run(*((channels[r].time, channels[r].values) for r in
+    exported = analyse_run(*(channels[r].interval_means() for r in
                              ("upstream_speed", "pressure",
                               "downstream_speed")), freq_hz=f, p_f_bar=0.3)
     assert own.judder and exported.judder
@@ -384,3 +384,64 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
     assert exported.growth_per_s == pytest.approx(own.growth_per_s, rel=0.05)
     assert exported.amplitude_rpm == pytest.approx(own.amplitude_rpm,
                                                    rel=0.15)
+
+
+@pytest.mark.parametrize("kind, unit, given", [
+    ("passage", "rpm", None), ("sampled", "rpm", None),
+    ("sampled", "rpm", "sampled"), ("gaps", "rpm", None),
+    ("angle", "deg", None), ("angle", "rad", "angle")])
+def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
+                                                          unit, given):
+    # the same shaft recorded as a pick-up's tooth passages, as a speed
+    # sampled at 2 kHz (with and without lost samples) and as an encoder
+    # angle at 2 kHz: the kind is told from the data (or given), and the
+    # verdict, growth and amplitude are those of the pick-up
+    from asammdf import MDF, Signal
+    from pysim.acquisitions import ChannelSpec, read_acquisition
+    f = 205.8
+
+    def speed(t):
+        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
+                                 + np.exp(2.6 * (t - 0.15))
+                                 * np.cos(np.pi * f * t))
+    fine = np.arange(0.0, 1.5, 2e-5)
+    omega = (1000 + speed(fine)) * RPM
+    angle = np.concatenate([[0.0], np.cumsum((omega[1:] + omega[:-1]) / 2)
+                            * 2e-5])
+    t_up, rpm = pickup_samples(fine, angle, 41)
+    pickup = analyse_run((t_up, rpm * RPM), *_engagement(speed, f)[1:],
+                         freq_hz=f, p_f_bar=0.3)
+    daq = np.arange(0.0, 1.5, 5e-4)
+    if kind == "passage":
+        t, values = t_up, rpm
+    elif kind in ("sampled", "gaps"):
+        t, values = daq, np.interp(daq, fine, omega) / RPM
+        if kind == "gaps":       # 2 % of the samples lost, NaN in the file
+            values[RNG.choice(len(daq), len(daq) // 50, replace=False)] = \
+                np.nan
+    else:
+        t = daq
+        values = np.interp(daq, fine, angle) * (180 / np.pi if unit == "deg"
+                                                else 1.0)
+    _, pressure, downstream = _engagement(speed, f)
+    mdf = MDF(version="4.10")
+    mdf.append([Signal(values, t, name="shaft", unit=unit)])
+    mdf.append([Signal(pressure[1] / PA_PER_BAR, pressure[0], name="p",
+                       unit="bar")])
+    mdf.append([Signal(downstream[1] / RPM, downstream[0], name="dn",
+                       unit="rpm")])
+    mdf.save(tmp_path / "run.mf4", overwrite=True)
+    channels = read_acquisition(tmp_path / "run.mf4", {
+        "upstream_speed": ChannelSpec("shaft", kind=given),
+        "pressure": ChannelSpec("p"),
+        "downstream_speed": ChannelSpec("dn")}).channels
+    assert channels["upstream_speed"].kind == \
+        {"gaps": "sampled"}.get(kind, kind)
+    reading = analyse_run(*(channels[r].interval_means() for r in
+                            ("upstream_speed", "pressure",
+                             "downstream_speed")), freq_hz=f, p_f_bar=0.3)
+    assert reading.judder and reading.kind == pickup.kind == "double-period"
+    assert reading.growth_per_s == pytest.approx(pickup.growth_per_s,
+                                                 rel=0.05)
+    assert reading.amplitude_rpm == pytest.approx(pickup.amplitude_rpm,
+                                                  rel=0.1)

@@ -603,12 +603,16 @@ def build_parser():
                         "optional freq_hz, p_f_bar, oil_temperature, "
                         "engine_rpm and further columns")
     p.add_argument("--channel", action="append", default=[],
-                   metavar="ROLE=NAME[:UNIT]",
+                   metavar="ROLE=NAME[:UNIT[:KIND]]",
                    help="channel of ROLE (upstream_speed, required; "
                         "pressure; downstream_speed) in the files, with its "
                         "unit if the file has none (rpm, rad/s, bar, Pa, "
-                        "...); repeatable. Without any, the names judder "
-                        "campaign writes")
+                        "...; an angle unit, rad, deg or rev, for an "
+                        "encoder); for a speed, KIND says what its samples "
+                        "are: passage (a pick-up's tooth passages), "
+                        "sampled (a DAQ's rate), angle (an encoder), "
+                        "default told from the data; repeatable. Without "
+                        "any, the names judder campaign writes")
     p.add_argument("--group-by", action="append", metavar="COLUMN",
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")

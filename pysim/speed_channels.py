@@ -1,0 +1,106 @@
+"""What the samples of a speed channel mean, and the angle they carry.
+
+A bench records a shaft's rotation in one of three ways:
+
+* ``passage``: a magnetic pick-up on a toothed wheel gives, at each tooth
+  passage ``t_k``, the mean speed since the previous one (section 2.2:
+  41 teeth, 684 samples/s at 1000 rpm); ``speed_k (t_k - t_{k-1})`` is one
+  tooth pitch, so the angle follows exactly by summation;
+* ``sampled``: the DAQ samples (or resamples) a speed at its own times,
+  usually uniformly, sometimes with gaps where samples were lost;
+* ``angle``: an encoder angle (rad, deg, rev) at the DAQ's times.
+
+The judder analysis (:mod:`pysim.run_analysis`) rebuilds the angle from
+mean speeds over the sample intervals, the pick-up's convention.
+:func:`interval_means` turns each kind into it: a passage channel as it
+is, a sampled speed through the exact integral of its cubic spline (which
+also bridges gaps), an angle through its differences.
+:func:`detect_speed_kind` tells a pick-up from a sampled speed by its time
+stamps: a pick-up's intervals vary inversely with the speed, their
+product with it is the tooth pitch.
+"""
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+__all__ = ["SPEED_KINDS", "detect_speed_kind", "interval_means"]
+
+#: The kinds of speed channel, and what each one's samples are.
+SPEED_KINDS = {"passage": "mean speed since the previous sample (a "
+                          "toothed-wheel pick-up)",
+               "sampled": "the speed at the sample times (a DAQ's rate, "
+                          "uniform or with gaps)",
+               "angle": "the shaft angle at the sample times (an encoder)"}
+#: Relative spread of the sample intervals below which they are uniform.
+UNIFORM_SPREAD = 1e-3
+
+
+def _spread(values):
+    mean = np.mean(values)
+    return float(np.std(values) / abs(mean)) if mean else np.inf
+
+
+def detect_speed_kind(time, speed):
+    """``'passage'`` or ``'sampled'``, from the time stamps of a speed.
+
+    Uniform intervals are a DAQ's sampling; otherwise the channel is a
+    pick-up's when the product of interval and speed (the tooth pitch)
+    spreads less than half as much as the intervals themselves.
+
+    Parameters
+    ----------
+    time : ndarray, shape (n,)
+        s, increasing.
+    speed : ndarray, shape (n,)
+        rad/s.
+
+    Returns
+    -------
+    str
+        A key of :data:`SPEED_KINDS` (never ``'angle'``: that is told by
+        the channel's unit).
+
+    Examples
+    --------
+    >>> t = np.arange(0.0, 1.0, 1e-3)
+    >>> detect_speed_kind(t, 100 + np.sin(50 * t))
+    'sampled'
+    """
+    if len(time) < 4:
+        return "passage"
+    interval = np.diff(time)
+    spread = _spread(interval)
+    if spread < UNIFORM_SPREAD:
+        return "sampled"
+    pitch = interval * np.abs(speed[1:])
+    return "passage" if _spread(pitch) < 0.5 * spread else "sampled"
+
+
+def interval_means(time, values, kind):
+    """Mean speed over each sample interval, the pick-up's convention.
+
+    Parameters
+    ----------
+    time : ndarray, shape (n,)
+        s, increasing.
+    values : ndarray, shape (n,)
+        rad/s for ``passage`` and ``sampled``, rad for ``angle``.
+    kind : str
+        A key of :data:`SPEED_KINDS`.
+
+    Returns
+    -------
+    time, speed : ndarray
+        The end of each interval (s) and the mean speed over it (rad/s);
+        a ``passage`` channel unchanged, the others one sample shorter.
+    """
+    if kind == "passage" or len(time) < 2:
+        return time, values
+    if kind == "sampled":
+        angle = CubicSpline(time, values).antiderivative()(time)
+    elif kind == "angle":
+        angle = np.unwrap(values)
+    else:
+        raise ValueError(f"speed kind {kind!r} is unknown; allowed: "
+                         f"{', '.join(SPEED_KINDS)}")
+    return time[1:], np.diff(angle) / np.diff(time)
