@@ -6,7 +6,9 @@ its actuation pressure. :func:`read_acquisition` reads them from the file
 formats benches write, by the channel names of the user's file:
 
 * ``.mf4`` / ``.mdf``: ASAM MDF 4 (and 3) with asammdf; every channel
-  keeps the time base of its channel group, its unit is the file's;
+  keeps the time base of its channel group, its unit is the file's; a
+  name in several groups is named ``GROUP/NAME`` (the group's
+  acquisition name or index);
 * ``.csv``: a ``time [s]`` (or ``time``, ``t``, ``Zeit``, ``timestamp``)
   column, headers ``name [unit]`` or plain names with a units row under
   them, ``# key: json-value`` metadata lines (what
@@ -694,9 +696,15 @@ def _load_mdf(path, wanted):
     mdf = _open_mdf(MDF, path)
     try:
         where = _mdf_channels(mdf)
-        raws = {name: _mdf_signal(mdf, *where[name])
-                for name in wanted if name in where}
-        return list(where), _mdf_metadata(mdf.header), raws
+        raws = {}
+        for name in wanted:
+            found = _mdf_find(path, mdf, where, name)
+            if found is not None:
+                raws[name] = _mdf_signal(mdf, *found)
+        listed = [name if len(places) == 1 else
+                  f"{_mdf_group_label(mdf, group)}/{name}"
+                  for name, places in where.items() for group, _ in places]
+        return listed, _mdf_metadata(mdf.header), raws
     finally:
         mdf.close()
 
@@ -727,15 +735,49 @@ def _open_mdf(MDF, path):
 
 
 def _mdf_channels(mdf):
-    """Name -> (group, index) of its first occurrence, master channels
-    left out."""
+    """Name -> every (group, index) it occurs at, master channels left
+    out."""
     masters = mdf.masters_db
     where = {}
     for name, places in mdf.channels_db.items():
         data = [(g, i) for g, i in places if masters.get(g) != i]
         if data:
-            where[name] = data[0]
+            where[name] = data
     return where
+
+
+def _mdf_group_label(mdf, group):
+    """A channel group's name: its acquisition name, else its comment's
+    first line, else its index."""
+    channel_group = mdf.groups[group].channel_group
+    for text in (getattr(channel_group, "acq_name", ""),
+                 getattr(channel_group, "comment", "")):
+        text = str(text or "").strip().splitlines()
+        if text and "/" not in text[0]:
+            return text[0].strip()
+    return str(group)
+
+
+def _mdf_find(path, mdf, where, name):
+    """(group, index) of ``NAME`` (in one group only) or ``GROUP/NAME``
+    (GROUP the group's name or index); None where there is none."""
+    if name in where and len(where[name]) == 1:
+        return where[name][0]
+    group_name, slash, channel = name.rpartition("/")
+    if name not in where and slash and channel in where:
+        chosen = [(g, i) for g, i in where[channel]
+                  if group_name in (_mdf_group_label(mdf, g), str(g))]
+        if len(chosen) == 1:
+            return chosen[0]
+        name = channel
+    if name not in where:
+        return None
+    choices = [f"{_mdf_group_label(mdf, g)}/{name} "
+               f"({mdf.groups[g].channel_group.cycles_nr} samples)"
+               for g, _ in where[name]]
+    raise JudderError(f"{path}: channel {name!r} is in several groups; "
+                      f"name one as GROUP/NAME (or the group's index, "
+                      f"{where[name][-1][0]}/{name}): {', '.join(choices)}")
 
 
 def _mdf_signal(mdf, group, index):

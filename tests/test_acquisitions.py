@@ -548,3 +548,27 @@ def test_a_value_no_bench_records_is_refused(tmp_path, column, value,
         read_acquisition(tmp_path / "run.csv",
                          {"upstream_speed": ChannelSpec("n_up"),
                           "pressure": ChannelSpec("p")})
+
+
+def test_mf4_with_one_name_in_several_groups(tmp_path):
+    # a CAN copy of the speed at 100 Hz stored before the DAQ's 2 kHz one:
+    # the name alone is refused with the groups to choose from; GROUP/NAME
+    # (the group's acquisition name, or its index) reads that group's
+    from asammdf import MDF, Signal
+    mdf = MDF(version="4.10")
+    for label, step in (("CAN", 0.01), ("DAQ", 0.0005)):
+        t = np.arange(0.0, 1.0, step)
+        mdf.append([Signal(1000 + 0 * t, t, name="EngSpd_up", unit="rpm")],
+                   acq_name=label)
+    mdf.save(tmp_path / "run.mf4", overwrite=True)
+    message = _message(tmp_path / "run.mf4", {"upstream_speed": "EngSpd_up"})
+    assert ("channel 'EngSpd_up' is in several groups; name one as "
+            "GROUP/NAME") in message
+    assert "CAN/EngSpd_up (100 samples), DAQ/EngSpd_up (2000 samples)" \
+        in message
+    for name, samples in (("DAQ/EngSpd_up", 2000), ("0/EngSpd_up", 100)):
+        channel = read_acquisition(tmp_path / "run.mf4", {
+            "upstream_speed": name}).channels["upstream_speed"]
+        assert len(channel.time) == samples
+    missing = _message(tmp_path / "run.mf4", {"upstream_speed": "Speed"})
+    assert "'CAN/EngSpd_up', 'DAQ/EngSpd_up'" in missing
