@@ -432,12 +432,77 @@ def bench_envelope():
                    "BENCH_ENVELOPE_FULL=1 to measure)")}
 
 
+#: Set points of the bench-data chart benchmark: 31 frequencies x 8
+#: amplitudes = 248 acquisitions, as issue 19 measured.
+CHART_FREQ = np.linspace(200.0, 212.0, 31)
+CHART_PF = np.linspace(0.05, 0.4, 8)
+
+
+def _acquisition(folder, index, freq_hz, p_f_bar, rng):
+    """One engagement as a bench records it, without its dither setting:
+    a 41-tooth pick-up with 0.5 rpm noise upstream (forced response at f,
+    and a double-period judder growing where p_f > 0.2 bar), 1 kHz
+    pressure, the downstream pick-up; a dither frequency read 1e-3 Hz off
+    its set point, as an estimate would be."""
+    from pysim.bench import pickup_samples
+    from pysim.export import write_csv
+    fine = np.arange(0.0, 3.0, 2e-5)
+    on = fine > 0.6
+    growth = 3.0 * (p_f_bar - 0.2) / 0.2
+    rpm = 1000 + on * (20 * p_f_bar * np.cos(2 * np.pi * freq_hz * fine)
+                       + 0.2 * np.exp(growth * (fine - 0.6))
+                       * np.cos(np.pi * freq_hz * fine))
+    omega = rpm * np.pi / 30
+    angle = np.concatenate([[0.0], np.cumsum((omega[1:] + omega[:-1]) / 2)
+                            * 2e-5])
+    t_up, n_up = pickup_samples(fine, angle, 41, 0.5, rng)
+    t_dn, n_dn = pickup_samples(fine, 20.0 * fine, 41, 0.5, rng)
+    f = freq_hz + rng.normal(0.0, 1e-3)
+    pressure = np.clip((t_up - 0.1) / 0.5, 0, 1) * (
+        10 + p_f_bar * np.cos(2 * np.pi * f * t_up))
+    name = f"run{index:03d}.csv"
+    write_csv(folder / name, t_up,
+              {"n_upstream": n_up, "n_downstream": np.interp(t_up, t_dn, n_dn),
+               "p_even": pressure},
+              {"n_upstream": "rpm", "n_downstream": "rpm", "p_even": "bar"},
+              {})
+    return name
+
+
+def bench_chart():
+    """``judder chart`` of 248 acquisitions without dither settings (the
+    frequency and amplitude estimated from the pressure): 2 workers
+    against 1, and one boundary row per set point."""
+    import tempfile
+    from judder import api
+    rng = np.random.default_rng(19)
+    with tempfile.TemporaryDirectory() as text:
+        folder = Path(text)
+        files = [folder / _acquisition(folder, k, f, p, rng)
+                 for k, (f, p) in enumerate(
+                     (f, p) for f in CHART_FREQ for p in CHART_PF)]
+        serial, baseline_seconds = _timed(api.chart, files, workers=1)
+        chart, seconds = _timed(api.chart, files, workers=2)
+    rows = chart.as_dict()["boundary"]
+    yield {"name": "chart-248-acquisitions", "points": len(files),
+           "seconds": seconds, "baseline_seconds": baseline_seconds,
+           "speedup": baseline_seconds / seconds,
+           "boundary_rows": len(rows), "set_points": len(CHART_FREQ),
+           "same_verdicts": bool(
+               [r["judder"] for r in serial.as_dict()["runs"]]
+               == [r["judder"] for r in chart.as_dict()["runs"]]),
+           "target_seconds": 60.0,
+           "note": "baseline: the same chart on 1 worker; CSV files of "
+                   "tooth-passage speeds, no dither metadata"}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "modelica-map": bench_modelica_map,
               "fmu-map": bench_fmu_map,
               "tongue-boundaries": bench_tongue_boundaries,
               "tongue-solvers": bench_tongue_solvers,
               "engagement": bench_engagement,
+              "chart": bench_chart,
               "envelope": bench_envelope}
 
 
