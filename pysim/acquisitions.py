@@ -19,7 +19,8 @@ formats benches write, by the channel names of the user's file:
   (``wf_increment``, ``wf_start_offset``) has its time track, any other
   takes the ``time`` channel of its group; units from ``unit_string``;
   a channel is named ``channel`` or ``group/channel``;
-* ``.mat``: MATLAB (up to v7) with scipy; each signal is a variable (or a
+* ``.mat``: MATLAB with scipy (up to v7) or h5py (v7.3, HDF5); each
+  signal is a variable (or a
   field of a struct, ``struct.field``) with a time vector ``NAME_time``,
   ``t_NAME`` or a shared ``time`` / ``t``; units from a ``units`` struct.
 
@@ -905,9 +906,8 @@ def _load_mat(path, wanted):
     import scipy.io
     try:
         data = scipy.io.loadmat(str(path), simplify_cells=True)
-    except NotImplementedError:
-        raise JudderError(f"{path}: MAT v7.3 (HDF5) is not read; save it "
-                          "with save(..., '-v7')") from None
+    except NotImplementedError:      # v7.3: an HDF5 file
+        data = _load_mat73(path)
     top = {k: v for k, v in data.items() if not k.startswith("__")}
     signals = _mat_signals(top)
     raws = {}
@@ -916,6 +916,30 @@ def _load_mat(path, wanted):
         if scope is not None:
             raws[name] = _mat_signal(path, top, scope)
     return sorted(signals), _mat_metadata(top), raws
+
+
+def _load_mat73(path):
+    """A MAT v7.3 file (HDF5, h5py) as ``loadmat(simplify_cells=True)``
+    gives a v7 one: structs as dicts, char arrays as text, vectors 1-D,
+    scalars as numbers."""
+    import h5py
+    with h5py.File(path, "r") as top:
+        return {key: _mat73_value(top[key]) for key in top
+                if not key.startswith("#")}
+
+
+def _mat73_value(node):
+    import h5py
+    kind = node.attrs.get("MATLAB_class", b"")
+    kind = kind.decode() if isinstance(kind, bytes) else str(kind)
+    if isinstance(node, h5py.Group):
+        return {key: _mat73_value(node[key]) for key in node
+                if not key.startswith("#")}
+    values = np.asarray(node[()]).T       # MATLAB stores column-major
+    if kind == "char":
+        return "".join(map(chr, values.ravel()))
+    values = np.squeeze(values)
+    return values.item() if values.ndim == 0 else values
 
 
 def _mat_signals(top, prefix=(), scopes=None):

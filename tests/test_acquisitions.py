@@ -572,3 +572,48 @@ def test_mf4_with_one_name_in_several_groups(tmp_path):
         assert len(channel.time) == samples
     missing = _message(tmp_path / "run.mf4", {"upstream_speed": "Speed"})
     assert "'CAN/EngSpd_up', 'DAQ/EngSpd_up'" in missing
+
+
+def _write_mat73(path, variables):
+    """A MAT v7.3 file as MATLAB writes it, with h5py: the 512-byte
+    header (version 0x0200: scipy refuses it as HDF5), column-major
+    doubles, structs as groups, text as uint16 char arrays."""
+    import h5py
+
+    def put(parent, name, value):
+        if isinstance(value, dict):
+            group = parent.create_group(name)
+            group.attrs["MATLAB_class"] = np.bytes_("struct")
+            for key, item in value.items():
+                put(group, key, item)
+        elif isinstance(value, str):
+            data = parent.create_dataset(name, data=np.array(
+                [[ord(c)] for c in value], dtype=np.uint16))
+            data.attrs["MATLAB_class"] = np.bytes_("char")
+        else:
+            data = parent.create_dataset(
+                name, data=np.atleast_2d(np.asarray(value, dtype=float)))
+            data.attrs["MATLAB_class"] = np.bytes_("double")
+    with h5py.File(path, "w", userblock_size=512) as top:
+        for key, value in variables.items():
+            put(top, key, value)
+    header = b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: " \
+        b"Wed Dec  2 06:00:00 2026 HDF5 schema 1.00 ."
+    with open(path, "r+b") as stream:
+        stream.write(header.ljust(116) + b"\0" * 8 + b"\x00\x02" + b"IM")
+
+
+@pytest.mark.parametrize("units", UNIT_CASES)
+def test_mat_v73_reads_as_v7(tmp_path, bench, units):
+    # the same variables saved as MATLAB's -v7.3 (HDF5) and -v7 read alike
+    path = tmp_path / "run73.mat"
+    _write_mat73(path, {"acq": _mat_variables(bench, units),
+                        "dither_frequency_hz": 105.0,
+                        "metadata": {"oil_temperature_degC": "65-70"}})
+    with pytest.raises(NotImplementedError):     # scipy: not a v7 file
+        scipy.io.loadmat(path)
+    acq = read_acquisition(path, ROLES)
+    assert acq.format == "mat"
+    _check(acq, bench, units)
+    assert acq.metadata == {"dither_frequency_hz": 105.0,
+                            "oil_temperature_degC": "65-70"}
