@@ -32,7 +32,10 @@ SPEED_KINDS = {"passage": "mean speed since the previous sample (a "
                           "uniform or with gaps)",
                "angle": "the shaft angle at the sample times (an encoder)"}
 #: Relative spread of the sample intervals below which they are uniform.
-UNIFORM_SPREAD = 1e-3
+UNIFORM_SPREAD = 1e-6
+#: Correlation of the intervals with the inverse speed above which the
+#: samples are a pick-up's tooth passages.
+PASSAGE_CORRELATION = 0.5
 
 
 def _spread(values):
@@ -43,9 +46,12 @@ def _spread(values):
 def detect_speed_kind(time, speed):
     """``'passage'`` or ``'sampled'``, from the time stamps of a speed.
 
-    Uniform intervals are a DAQ's sampling; otherwise the channel is a
-    pick-up's when the product of interval and speed (the tooth pitch)
-    spreads less than half as much as the intervals themselves.
+    Uniform intervals (to :data:`UNIFORM_SPREAD`) are a DAQ's sampling.
+    Otherwise a pick-up's intervals follow the inverse of its speed (each
+    is one tooth pitch over the mean speed across it), while a DAQ's, made
+    irregular by rounded time stamps or lost samples, do not: the channel
+    is a pick-up's when the intervals correlate with the inverse speed
+    (correlation above :data:`PASSAGE_CORRELATION`).
 
     Parameters
     ----------
@@ -69,11 +75,11 @@ def detect_speed_kind(time, speed):
     if len(time) < 4:
         return "passage"
     interval = np.diff(time)
-    spread = _spread(interval)
-    if spread < UNIFORM_SPREAD:
+    inverse = 1.0 / np.maximum(np.abs(speed[1:]), 1e-12)
+    if _spread(interval) < UNIFORM_SPREAD or np.std(inverse) == 0:
         return "sampled"
-    pitch = interval * np.abs(speed[1:])
-    return "passage" if _spread(pitch) < 0.5 * spread else "sampled"
+    correlation = np.corrcoef(interval, inverse)[0, 1]
+    return "passage" if correlation > PASSAGE_CORRELATION else "sampled"
 
 
 def interval_means(time, values, kind):

@@ -445,3 +445,35 @@ def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
                                                  rel=0.05)
     assert reading.amplitude_rpm == pytest.approx(pickup.amplitude_rpm,
                                                   rel=0.1)
+
+
+def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
+    # a CSV whose times carry 9 significant digits after a 1234.5 s offset
+    # (10 us): the channel is still told to be a pick-up's, and the
+    # verdict and growth are those of the exact times
+    from pysim.acquisitions import ChannelSpec, read_acquisition
+    from pysim.export import write_csv
+    f = 205.8
+
+    def speed(t):
+        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
+                                 + np.exp(2.6 * (t - 0.15))
+                                 * np.cos(np.pi * f * t))
+    (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
+    exact = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
+                        p_f_bar=0.3)
+    rounded = np.round(1234.5 + t_up, 5)
+    write_csv(tmp_path / "run.csv", rounded,
+              {"n_up": up / RPM, "p": np.interp(t_up, t_p, p) / PA_PER_BAR},
+              {"n_up": "rpm", "p": "bar"}, {})
+    channels = read_acquisition(tmp_path / "run.csv", {
+        "upstream_speed": ChannelSpec("n_up"),
+        "pressure": ChannelSpec("p")}).channels
+    assert channels["upstream_speed"].kind == "passage"
+    reading = analyse_run(channels["upstream_speed"].interval_means(),
+                          (channels["pressure"].time,
+                           channels["pressure"].values),
+                          freq_hz=f, p_f_bar=0.3)
+    assert reading.judder and reading.kind == exact.kind == "double-period"
+    assert reading.growth_per_s == pytest.approx(exact.growth_per_s,
+                                                 rel=0.05)
