@@ -477,3 +477,42 @@ def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
     assert reading.judder and reading.kind == exact.kind == "double-period"
     assert reading.growth_per_s == pytest.approx(exact.growth_per_s,
                                                  rel=0.05)
+
+
+def test_tdms_speeds_as_2_khz_waveforms_read_as_the_pickup(tmp_path):
+    # NI DAQ software writes the speeds as waveforms (wf_increment): a
+    # speed sampled at 2 kHz, told from its uniform time track, read as
+    # the pick-up of the same engagement
+    from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
+    from pysim.acquisitions import ChannelSpec, read_acquisition
+    f = 205.8
+
+    def speed(t):
+        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
+                                 + np.exp(2.6 * (t - 0.15))
+                                 * np.cos(np.pi * f * t))
+    (t_up, up), (t_p, p), _ = _engagement(speed, f)
+    pickup = analyse_run((t_up, up), (t_p, p), freq_hz=f, p_f_bar=0.3)
+    daq = np.arange(0.0, 1.5, 5e-4)
+    waveform = {"wf_increment": 5e-4, "wf_start_offset": 0.0,
+                "wf_samples": len(daq)}
+    with TdmsWriter(str(tmp_path / "run.tdms")) as writer:
+        writer.write_segment([
+            RootObject(), GroupObject("DAQ"),
+            ChannelObject("DAQ", "EngSpd", 1000 + speed(daq),
+                          properties={"unit_string": "rpm", **waveform}),
+            ChannelObject("DAQ", "Press", np.interp(daq, t_p, p) / PA_PER_BAR,
+                          properties={"unit_string": "bar", **waveform})])
+    channels = read_acquisition(tmp_path / "run.tdms", {
+        "upstream_speed": ChannelSpec("EngSpd"),
+        "pressure": ChannelSpec("Press")}).channels
+    assert channels["upstream_speed"].kind == "sampled"
+    reading = analyse_run(channels["upstream_speed"].interval_means(),
+                          (channels["pressure"].time,
+                           channels["pressure"].values),
+                          freq_hz=f, p_f_bar=0.3)
+    assert reading.judder and reading.kind == pickup.kind == "double-period"
+    assert reading.growth_per_s == pytest.approx(pickup.growth_per_s,
+                                                 rel=0.05)
+    assert reading.amplitude_rpm == pytest.approx(pickup.amplitude_rpm,
+                                                  rel=0.1)
