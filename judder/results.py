@@ -523,6 +523,7 @@ class ChartResult:
                 c: run.settings.get(c) for c in chart.group_by},
                 "freq_hz": a.freq_hz, "p_f_bar": a.p_f_bar,
                 "dither_estimated": a.estimated,
+                "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s, "judder": a.judder,
                 "kind": a.kind})

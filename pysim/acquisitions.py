@@ -51,7 +51,9 @@ Examples
 >>> unit_factor("bar", "pressure")
 100000.0
 >>> parse_channel_option("pressure=PressEVEN:bar")
-('pressure', ChannelSpec(name='PressEVEN', unit='bar'))
+('pressure', ChannelSpec(name='PressEVEN', unit='bar', kind=None))
+>>> round(angle_factor("counts/1024"), 9)
+0.006135923
 """
 
 from dataclasses import dataclass
@@ -75,7 +77,7 @@ from .speed_channels import SPEED_KINDS, detect_speed_kind, interval_means
 __all__ = ["ChannelSpec", "Channel", "Acquisition", "read_acquisition",
            "parse_channel_option", "unit_factor", "ROLES", "FORMATS",
            "SPEED_UNITS", "PRESSURE_UNITS", "PLAUSIBLE",
-           "SAME_INSTANT"]
+           "SAME_INSTANT", "angle_factor"]
 
 #: Roles a channel plays, and the kind of quantity of each.
 ROLES = {"upstream_speed": "speed", "pressure": "pressure",
@@ -299,11 +301,11 @@ def parse_channel_option(text):
             raise JudderError(f"--channel {text!r}: give the unit before "
                               f"the kind (ROLE=NAME:UNIT:{kind})")
         return role, ChannelSpec(rest.strip())
-    try:
-        unit_factor(unit, "angle" if ROLES[role] == "speed"
-                    and _is_angle_unit(unit) else ROLES[role])
-    except JudderError as exc:
-        raise JudderError(f"--channel {text!r}: {exc}") from None
+    if not (ROLES[role] == "speed" and _is_angle_unit(unit)):
+        try:
+            unit_factor(unit, ROLES[role])
+        except JudderError as exc:
+            raise JudderError(f"--channel {text!r}: {exc}") from None
     return role, ChannelSpec(name.strip(), unit.strip(), kind)
 
 
@@ -433,7 +435,8 @@ def _channel(path, role, spec, names, raw):
     if kind_of_unit == "speed" and _is_angle_unit(unit):
         kind_of_unit = "angle"
     try:
-        factor = unit_factor(unit, kind_of_unit)
+        factor = angle_factor(unit) if kind_of_unit == "angle" \
+            else unit_factor(unit, kind_of_unit)
     except JudderError as exc:
         raise JudderError(f"{where}: {exc}") from None
     time, values = _finite(where, time, values)
@@ -449,8 +452,27 @@ def _channel(path, role, spec, names, raw):
                    name=spec.name, kind=kind)
 
 
+#: An encoder's counts as an angle unit: ``counts/N`` (N counts a
+#: revolution; also count, pulses, increments).
+_COUNT_UNIT = re.compile(r"(?:counts?|pulses?|increments?)\s*/\s*(\d+)",
+                         re.IGNORECASE)
+
+
+def angle_factor(unit):
+    """rad per ``unit`` of an angle channel: rad, deg, rev, or an
+    encoder's ``counts/N``; None where ``unit`` is not one."""
+    text = _normalise_unit(unit)
+    factor = _lookup(ANGLE_UNITS, text)
+    if factor is not None:
+        return factor
+    counts = _COUNT_UNIT.fullmatch(text)
+    if counts and int(counts.group(1)) > 0:
+        return 2.0 * math.pi / int(counts.group(1))
+    return None
+
+
 def _is_angle_unit(unit):
-    return _lookup(ANGLE_UNITS, _normalise_unit(unit)) is not None
+    return angle_factor(unit) is not None
 
 
 def _speed_kind(where, spec, kind_of_unit, time, values):

@@ -64,13 +64,16 @@ class ChartRun:
     """One run of a chart: where it came from, its settings, its reading.
 
     ``analysis`` is a :class:`pysim.run_analysis.RunAnalysis`, or None
-    when the run could not be read (``error`` says why).
+    when the run could not be read (``error`` says why); ``speed_kind``
+    what the upstream speed's samples were
+    (:data:`pysim.speed_channels.SPEED_KINDS`).
     """
 
     path: Path
     settings: dict
     analysis: object
     error: str = ""
+    speed_kind: str = ""
 
     def group(self, columns):
         """Values of the group columns, as a tuple of text."""
@@ -186,7 +189,8 @@ def _analyse(job):
                                p_f_bar=settings.get("p_f_bar"),
                                min_growth=min_growth,
                                min_amplitude_rpm=min_amplitude)
-        return ChartRun(source.path, settings, analysis)
+        return ChartRun(source.path, settings, analysis,
+                        speed_kind=ch["upstream_speed"].kind)
     except JudderError as exc:
         return ChartRun(source.path, source.settings, None, str(exc))
 

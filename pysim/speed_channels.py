@@ -8,7 +8,9 @@ A bench records a shaft's rotation in one of three ways:
   tooth pitch, so the angle follows exactly by summation;
 * ``sampled``: the DAQ samples (or resamples) a speed at its own times,
   usually uniformly, sometimes with gaps where samples were lost;
-* ``angle``: an encoder angle (rad, deg, rev) at the DAQ's times.
+* ``angle``: an encoder angle (rad, deg, rev, or counts of N a
+  revolution) at the DAQ's times; one that restarts every revolution is
+  unwrapped, a counter that overflows elsewhere is not read.
 
 The judder analysis (:mod:`pysim.run_analysis`) rebuilds the angle from
 mean speeds over the sample intervals, the pick-up's convention.

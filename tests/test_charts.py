@@ -389,12 +389,14 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
 @pytest.mark.parametrize("kind, unit, given", [
     ("passage", "rpm", None), ("sampled", "rpm", None),
     ("sampled", "rpm", "sampled"), ("gaps", "rpm", None),
-    ("angle", "deg", None), ("angle", "rad", "angle")])
+    ("angle", "deg", None), ("angle", "rad", "angle"),
+    ("angle", "counts/1024", None)])
 def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
                                                           unit, given):
     # the same shaft recorded as a pick-up's tooth passages, as a speed
     # sampled at 2 kHz (with and without lost samples) and as an encoder
-    # angle at 2 kHz: the kind is told from the data (or given), and the
+    # angle or count at 2 kHz: the kind is told from the data (or given),
+    # and the
     # verdict, growth and amplitude are those of the pick-up
     from asammdf import MDF, Signal
     from pysim.acquisitions import ChannelSpec, read_acquisition
@@ -419,10 +421,13 @@ def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
         if kind == "gaps":       # 2 % of the samples lost, NaN in the file
             values[RNG.choice(len(daq), len(daq) // 50, replace=False)] = \
                 np.nan
-    else:
+    else:         # an encoder: deg, rad, or whole counts of 1024 a turn
         t = daq
-        values = np.interp(daq, fine, angle) * (180 / np.pi if unit == "deg"
-                                                else 1.0)
+        values = np.interp(daq, fine, angle) * {
+            "deg": 180 / np.pi, "rad": 1.0,
+            "counts/1024": 1024 / (2 * np.pi)}[unit]
+        if unit.startswith("counts"):
+            values = np.floor(values)
     _, pressure, downstream = _engagement(speed, f)
     mdf = MDF(version="4.10")
     mdf.append([Signal(values, t, name="shaft", unit=unit)])
