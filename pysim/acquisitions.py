@@ -640,7 +640,20 @@ def _column_factor(path, column, kind):
 
 
 def _csv_lines(path):
-    return decode_text(path.read_bytes(), str(path), "CSV").splitlines()
+    """The lines of a CSV file: UTF-8 (with or without BOM), else
+    Windows-1252, the encoding European DAQ software writes (``°C``,
+    ``µs``)."""
+    data = path.read_bytes()
+    try:
+        return decode_text(data, str(path), "CSV").splitlines()
+    except JudderError:
+        try:
+            text = data.decode("cp1252")
+        except UnicodeDecodeError:
+            text = None
+        if text is None or "\0" in text:
+            raise
+        return text.splitlines()
 
 
 def _csv_metadata(lines):

@@ -617,3 +617,18 @@ def test_mat_v73_reads_as_v7(tmp_path, bench, units):
     _check(acq, bench, units)
     assert acq.metadata == {"dither_frequency_hz": 105.0,
                             "oil_temperature_degC": "65-70"}
+
+
+def test_csv_in_windows_1252_reads(tmp_path):
+    # a European DAQ's export: Windows-1252 text (a time column in µs, an
+    # oil temperature in °C), ';' and decimal commas
+    text = ("Prüfstand;EVEN\nZeit [µs];EngSpd_up [rpm];Öl [°C];"
+            "PressEVEN [bar]\n0;1000,5;65,2;10,0\n1000;1001,5;65,2;10,1\n"
+            "2000;1002,5;65,3;10,2\n")
+    (tmp_path / "run.csv").write_bytes(text.encode("cp1252"))
+    acq = read_acquisition(tmp_path / "run.csv", {
+        "upstream_speed": "EngSpd_up", "pressure": "PressEVEN"})
+    assert acq.metadata["Prüfstand"] == "EVEN"
+    assert_allclose(acq.channels["pressure"].time, [0.0, 1e-3, 2e-3])
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([1000.5, 1001.5, 1002.5]) * TO_SI["rpm"])
