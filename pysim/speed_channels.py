@@ -78,10 +78,40 @@ def detect_speed_kind(time, speed):
         return "passage"
     interval = np.diff(time)
     inverse = 1.0 / np.maximum(np.abs(speed[1:]), 1e-12)
-    if _spread(interval) < UNIFORM_SPREAD or np.std(inverse) == 0:
+    # intervals over lost samples (several pitches, or a DAQ's gap) aside
+    single = np.abs(interval / np.median(interval) - 1.0) < 0.5
+    interval, inverse = interval[single], inverse[single]
+    if len(interval) < 4 or _spread(interval) < UNIFORM_SPREAD \
+            or np.std(inverse) == 0:
         return "sampled"
     correlation = np.corrcoef(interval, inverse)[0, 1]
     return "passage" if correlation > PASSAGE_CORRELATION else "sampled"
+
+
+def _whole_pitches(time, speed):
+    """A pick-up's mean speeds with lost passages restored.
+
+    Each interval spans a whole number of tooth pitches: one normally,
+    more where passages were lost (a dropped sample, a NaN the reader
+    removed), while the speed recorded at its end is that of its last
+    pitch only. The pitch is the median product of interval and speed; an
+    interval of ``k`` pitches gets the mean speed ``k pitch / interval``,
+    so that the rebuilt angle is exact at every passage (read as it is,
+    it is off by the relative change of speed across the lost teeth:
+    per cent of a pitch each time with a 20 rpm oscillation).
+    """
+    interval = np.diff(time)
+    product = interval * speed[1:]
+    pitch = np.median(np.abs(product))
+    if not pitch > 0:
+        return speed
+    teeth = np.maximum(np.rint(np.abs(product) / pitch), 1.0)
+    if np.all(teeth == 1.0):
+        return speed
+    out = speed.astype(float).copy()
+    out[1:] = np.where(teeth > 1, np.sign(speed[1:]) * teeth * pitch
+                       / interval, speed[1:])
+    return out
 
 
 def interval_means(time, values, kind):
@@ -100,10 +130,13 @@ def interval_means(time, values, kind):
     -------
     time, speed : ndarray
         The end of each interval (s) and the mean speed over it (rad/s);
-        a ``passage`` channel unchanged, the others one sample shorter.
+        a ``passage`` channel as it is but where passages were lost (an
+        interval of several pitches), the others one sample shorter.
     """
-    if kind == "passage" or len(time) < 2:
+    if len(time) < 2:
         return time, values
+    if kind == "passage":
+        return time, _whole_pitches(time, values)
     if kind == "sampled":
         angle = CubicSpline(time, values).antiderivative()(time)
     elif kind == "angle":

@@ -521,3 +521,34 @@ def test_tdms_speeds_as_2_khz_waveforms_read_as_the_pickup(tmp_path):
                                                  rel=0.05)
     assert reading.amplitude_rpm == pytest.approx(pickup.amplitude_rpm,
                                                   rel=0.1)
+
+
+@pytest.mark.parametrize("lost", ["one", "every third"])
+def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
+    # a pick-up channel with passages missing (one dropped sample, or
+    # every third NaN in the file, which the reader drops): each interval
+    # then spans several teeth while its speed is that of one, and the
+    # angle rebuilt from it must not lose them
+    from pysim.speed_channels import interval_means
+    f = 205.8
+
+    def speed(t):
+        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
+                                 + np.exp(2.6 * (t - 0.15))
+                                 * np.cos(np.pi * f * t))
+    (t_up, up), pressure, downstream = _engagement(speed, f)
+    whole = analyse_run((t_up, up), pressure, downstream, freq_hz=f,
+                        p_f_bar=0.3)
+    keep = np.ones(len(t_up), bool)
+    if lost == "one":
+        keep[len(t_up) // 2] = False
+    else:
+        keep[::3] = False
+    reading = analyse_run(interval_means(t_up[keep], up[keep], "passage"),
+                          pressure, downstream, freq_hz=f, p_f_bar=0.3)
+    assert reading.judder == whole.judder
+    assert reading.kind == whole.kind == "double-period"
+    assert reading.growth_per_s == pytest.approx(whole.growth_per_s,
+                                                 rel=0.05)
+    assert reading.amplitude_rpm == pytest.approx(whole.amplitude_rpm,
+                                                  rel=0.1)
