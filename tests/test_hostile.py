@@ -154,6 +154,11 @@ CASES = [
     (["campaign", "--out", "{d}/afile", "--freq", "100", "--pf", "0.1"], 2,
      ["is a file"]),
     (["campaign", "--out", "{d}/c", "--format", "xls"], 2, ["--format"]),
+    # one run id written twice to the index (issue 24)
+    (["campaign", "--out", "{d}/c", "--rpm", "1000,1000"], 2,
+     ["--rpm: 1000 is given twice"]),
+    (["campaign", "--out", "{d}/c", "--temperatures", "65-70,65-70"], 2,
+     ["--temperatures: 65-70 is given twice"]),
     (["campaign", "--out", "{d}/c", "--freq", "1:1000:100000", "--pf",
       "0.1:0.2:1000"], 2, ["1e+08 runs", "100000"]),
     (["campaign", "--out", "{d}/c", "--freq", "1:1000:1000", "--pf",
