@@ -412,8 +412,26 @@ def bench_damping(values, bench=None):
     -------
     dict
         ``{driveline parameter: added value}``, SI.
+
+    Raises
+    ------
+    JudderError
+        Where the bench's slip (``w_motor - w_gearbox``) is not its
+        friction curve's ``w_op``: there the linearisation also takes the
+        curve's value and slope at that slip (:func:`simulate` does), which
+        a sum cannot say.
     """
-    return _added_damping(values, _bench_fmu(values)[1], bench)
+    fmu = _bench_fmu(values)[1]
+    friction, _ = _operating_friction(values, fmu, dict(bench or {}))
+    if not np.isclose(friction["mu_g"], values["mu_g"], rtol=1e-9):
+        raise JudderError(
+            "--bench: the bench's slip w_motor - w_gearbox is not its "
+            "friction curve's w_op, where mu0 and mu_g are the curve's; "
+            "its linearisation there has the slope "
+            f"{friction['mu_g']:.3g} s/rad, not a fitted mu_g; allowed: "
+            "a chart at the curve's operating slip (1000 rpm by default), "
+            "or --bench w_op set to that chart's slip")
+    return _added_damping(values, fmu, bench)
 
 
 def _added_damping(values, fmu, bench):

@@ -12,6 +12,7 @@ above the model boundary of judder growing at 1/s (the chart's
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -144,3 +145,18 @@ def test_bench_option_needs_the_bench_linearisation(tmp_path):
                           capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and "--bench-linearisation" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_fit_to_a_bench_off_its_operating_slip_is_refused():
+    # at 1500 rpm the bench's linearisation has the friction curve's slope
+    # at another slip, not the mu_g a fit would adjust: refused with the
+    # way out, not compared silently
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "fit", "--boundary",
+         "examples/measured_boundary.csv", "--fit", "mu_g",
+         "--bench-linearisation", "--bench", "w_motor=1500rpm"],
+        capture_output=True, text=True, timeout=120,
+        cwd=Path(__file__).resolve().parents[1])
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert "is not its friction curve's w_op" in proc.stderr
+    assert "--bench w_op" in proc.stderr
