@@ -460,6 +460,12 @@ def _operating_friction(values, fmu, bench):
 
     def bench_value(name):
         return float(bench.get(name, parameter_default(fmu, name)))
+    if bench_value("w_gearbox") >= bench_value("w_motor"):
+        raise JudderError(
+            f"--bench w_gearbox {bench_value('w_gearbox'):g} rad/s is not "
+            f"allowed with w_motor {bench_value('w_motor'):g} rad/s; "
+            "allowed: below w_motor (the EVEN clutch slips forwards, "
+            "at w_motor - w_gearbox)")
     delta_mu = bench_value("delta_mu")
     point = curve_at(bench_value("w_motor") - bench_value("w_gearbox"),
                      values["mu0"], values["mu_g"], delta_mu,

@@ -221,7 +221,11 @@ def _normalise_unit(unit):
 
 
 def _allowed_units(kind):
-    return ", ".join(_UNITS[kind])
+    text = ", ".join(_UNITS[kind])
+    if kind == "speed":
+        text += "; or an encoder's angle: " + ", ".join(ANGLE_UNITS) \
+            + ", counts/N (N a revolution)"
+    return text
 
 
 def unit_factor(unit, kind):

@@ -143,6 +143,8 @@ CASES = [
     (SIM + ["--bench", "w_motor=100Hz"], 2, ["w_motor", "rpm"]),
     (SIM + ["--bench", "N_c_load=2.5"], 2, ["N_c_load", "whole"]),
     (SIM + ["--bench", "bogus=1"], 2, ["bogus", "w_motor"]),
+    (SIM + ["--bench", "w_gearbox=200"], 2,
+     ["--bench w_gearbox 200 rad/s", "below w_motor"]),
     (SIM + ["--duration", "0.01"], 2, ["duration", "0.6"]),
     (SIM + ["--duration", "-1"], 2, ["--duration"]),
     (SIM + ["--duration", "1e300"], 2, ["--duration"]),
