@@ -606,10 +606,14 @@ def _load_csv(path, wanted):
 
 def _csv_header_row(path, rows, body):
     """Index of the row that names the columns: the first with a time
-    column (a DAQ's header block may come before it)."""
+    column and as many fields as the data rows (a DAQ's header block,
+    ``Time;14:03:22`` among its lines, may come before it)."""
+    widths = [len(row) for row in rows]
+    data_width = max(set(widths), key=widths.count)
     for index, row in enumerate(rows):
-        if any(_split_header(cell)[0].lower() in _TIME_NAMES
-               for cell in row):
+        if len(row) == data_width and any(
+                _split_header(cell)[0].lower() in _TIME_NAMES
+                for cell in row):
             return index
     names = [_split_header(cell)[0] for cell in rows[0]]
     raise JudderError(f"{path}: no time column; the line naming the "

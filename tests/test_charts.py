@@ -361,6 +361,7 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
     own = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
                       p_f_bar=0.3)
     lines = [f"Messung{delimiter}Pruefstand 2", f"Datum{delimiter}2026-11-30",
+             f"Time{delimiter}14:03:22",
              delimiter.join(["Zeit", "EngSpd", "OutSpd", "PressEVEN"]),
              delimiter.join(["s", "1/min", "1/min", "bar"])]
     for t, u, d, q in zip(t_p, np.interp(t_p, t_up, up / RPM),
