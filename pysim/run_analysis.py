@@ -38,23 +38,27 @@ a forced resonance decay, and a parametric instability grows as its
 Floquet multiplier says (a single-period one scaled by ``lambda - 1``, a
 double-period one by 2). ``d`` is demodulated at ``f``, ``f/2`` and its
 two largest other peaks, so that a small growing component is not hidden
-by a larger decaying one. In each envelope (and in ``r``) the growth phase
-runs from the lowest value before the maximum to the maximum (a nonlinear
-limit ends it); its least-squares log-slope is the growth rate. A run has
-judder when some component has a growth phase of at least
-:data:`MIN_GROWTH_PERIODS` periods, growing at ``min_growth`` or more
-(default :data:`MIN_GROWTH`, 1/s) over at least one fitted e-fold (two if
-the phase is shorter than :data:`MIN_PHASE_S`: noise makes short rises),
-up to :data:`NOISE_FLOOR_RPM` or more, while the speed's own component
-there reaches ``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`). The
+by a larger decaying one. In each envelope (and in ``r``) the growth rate
+is the least-squares log-slope from the lowest value before the maximum
+up to where the envelope last rises through :data:`LINEAR_SHARE` of the
+maximum (:func:`growth_phase`): the rise before the nonlinear limit (the
+friction curve's flattening) bends it. A run has judder when some
+component's linear rise lasts :data:`MIN_GROWTH_PERIODS` periods, grows at
+``min_growth`` or more (default :data:`MIN_GROWTH`, 1/s) over at least
+one e-fold to the maximum (two if the rise is shorter than
+:data:`MIN_PHASE_S`: noise makes short rises), reaches
+:data:`NOISE_FLOOR_RPM` or more, and stays after its maximum (median
+above :data:`LINEAR_SHARE` of it: a beat of decaying free modes rising
+from a null dies away again), while the speed's own component there
+reaches ``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`). The
 largest growing component gives the growth rate, and the peak of the
 spectrum of ``d`` within its band over its growth phase the kind: within
 :data:`_KIND_BAND` of a multiple of ``f`` single-period, of an odd
 multiple of ``f/2`` double-period, elsewhere combination (a combination
 response at ``f2 = 103 Hz`` lies within the band of ``f = 119.4 Hz``).
 
-A strong instability saturates (the slip reverses, the friction law limits
-it) within a tenth of a second, before the window's first filter settling
+A strong instability saturates (the friction curve limits it) within a
+tenth of a second, before the window's first filter settling
 time has passed, and what follows creeps. Such a run also has judder when,
 over the last third of the window, ``r`` keeps at least
 :data:`SATURATED_SHARE` of its mean over the first third (it has not died
@@ -65,17 +69,15 @@ by then, or, beating against a lightly damped mode near ``f``, is only
 from the spectrum of ``d``, is unreliable: the motion is no longer
 near-linear.
 
-Measured on emulated campaigns (``judder campaign``, 448 runs over 20-220
-Hz and 0.02-0.3 bar, 1000 rpm) against the Floquet verdict of the bench's
-linearisation (``c1 + d_control``): of the 3 runs where the exponent
-exceeds 1/s, 2 had judder (the third, 205 Hz at 0.26 bar, grows at 1.13
-1/s, just above the threshold); of the 426 runs where it is negative, 1
-was called judder (120 Hz, 0.22 bar, next to combination tongue 6). Over
-tongue 4 (500 runs, 200-212 Hz x 0.05-1.0 bar, 2.5 s; docs/roundtrip.md):
-exponent > 1.25 1/s, 148 of 148 judder, growth within a few per cent of
-the exponent; exponent < 0, 0 of 330. Over tongue 2 the bench is not near
-its linearisation (its forced response there is as large as the slip) and
-the verdicts there follow the nonlinear motion, not the exponent.
+Measured on emulated campaigns (``judder campaign``, the bench with its
+bounded friction curve) against the Floquet exponent of the bench's
+linearisation: over tongues 5, 2 and 6 at 1000 and 1500 rpm and four oil
+temperatures (1736 runs), exponent > 1.25 1/s, 49 of 49 judder; exponent
+< 0, 1 of 1397. Over tongue 4 (500 runs, 200-212 Hz x 0.05-1.0 bar):
+exponent > 1.25 1/s, 155 of 156; below 0.75 1/s, 0 of 335
+(docs/time-domain.md, docs/roundtrip.md). On tongues 1 and 2 the dither
+forces a resonance that saturates the friction curve, and the verdicts
+follow that nonlinear motion, not the exponent.
 """
 
 from dataclasses import dataclass
