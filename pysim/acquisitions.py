@@ -487,7 +487,7 @@ def _speed_kind(where, spec, kind_of_unit, time, values):
             detect_speed_kind(time, values)
     if (spec.kind == "angle") != (kind_of_unit == "angle"):
         raise JudderError(f"{where}: kind {spec.kind!r} needs "
-                          + ("an angle unit (rad, deg, rev)"
+                          + ("an angle unit (rad, deg, rev, counts/N)"
                              if spec.kind == "angle" else "a speed unit")
                           + f", the channel is in {kind_of_unit} units")
     return spec.kind

@@ -526,15 +526,13 @@ def cmd_campaign(args):
            for n in parse_list(args.rpm, "--rpm")]
     temperatures = (list(TEMPERATURES) if args.temperatures == "all"
                     else [t.strip() for t in args.temperatures.split(",")])
-    for option, values in (("--rpm", rpm), ("--temperatures", temperatures)):
+    for option, values in (("--rpm", [f"{n:g}" for n in rpm]),
+                           ("--temperatures", temperatures)):
         twice = next((v for i, v in enumerate(values) if v in values[:i]),
                      None)
         if twice is not None:
-            raise JudderError(f"{option}: {twice:g} is given twice; allowed: "
-                              "each value once (one run per setting)"
-                              if option == "--rpm" else
-                              f"{option}: {twice} is given twice; allowed: "
-                              "each range once (one run per setting)")
+            raise JudderError(f"{option}: {twice} is given twice; allowed: "
+                              "each value once (one run per setting)")
     formats = tuple(f.strip() for f in args.format.split(","))
     if not set(formats) <= {"csv", "mf4"} or not formats:
         raise JudderError(f"--format {args.format!r}: allowed: csv, mf4 or "
