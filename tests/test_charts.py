@@ -41,6 +41,39 @@ def _after_ramp(t):
     return t > 0.15
 
 
+#: Dither frequency of the double-period judder the reading tests record
+#: in several ways (2 f2, tongue 4), Hz.
+TONGUE_4_HZ = 205.8
+
+
+def _double_period_judder(t):
+    """Speed fluctuation, rpm: a forced response at f and a double-period
+    judder at f/2 growing at 2.6 1/s from the end of the ramp."""
+    return _after_ramp(t) * (20 * np.cos(2 * np.pi * TONGUE_4_HZ * t)
+                             + np.exp(2.6 * (t - 0.15))
+                             * np.cos(np.pi * TONGUE_4_HZ * t))
+
+
+def _reads_like(reading, reference):
+    """The same double-period verdict, growth within 5 % and amplitude
+    within 10 % as the reference reading."""
+    assert reading.judder and reading.kind == reference.kind \
+        == "double-period"
+    assert reading.growth_per_s == pytest.approx(reference.growth_per_s,
+                                                 rel=0.05)
+    assert reading.amplitude_rpm == pytest.approx(reference.amplitude_rpm,
+                                                  rel=0.1)
+
+
+def _reading_of(channels, freq_hz):
+    """``analyse_run`` of the channels read from a file (their speeds as
+    the mean over each sample interval), at 0.3 bar."""
+    return analyse_run(*(channels[role].interval_means() if role in channels
+                         else None for role in ("upstream_speed", "pressure",
+                                                "downstream_speed")),
+                       freq_hz=freq_hz, p_f_bar=0.3)
+
+
 @pytest.mark.parametrize("growth", [2.0, 4.0])
 def test_growing_single_period_component_is_judder_at_its_rate(growth):
     # forced response 300 rpm at f, plus a component at f growing as
@@ -318,12 +351,7 @@ def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
     # reading equals that of the channels on their own time bases
     from asammdf import MDF, Signal
     from pysim.acquisitions import ChannelSpec, read_acquisition
-    f = 205.8
-
-    def speed(t):
-        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
-                                 + np.exp(2.6 * (t - 0.15))
-                                 * np.cos(np.pi * f * t))
+    f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     union = np.union1d(np.union1d(t_up, t_p), t_dn + 1e-18)
     mdf = MDF(version="4.10")
@@ -336,9 +364,7 @@ def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
         "upstream_speed": ChannelSpec("n_up"), "pressure": ChannelSpec("p"),
         "downstream_speed": ChannelSpec("n_dn")}).channels
     assert np.all(np.diff(channels["upstream_speed"].time) > 1e-6)
-    merged = analyse_run(*(channels[r].interval_means() for r in
-                           ("upstream_speed", "pressure",
-                            "downstream_speed")), freq_hz=f, p_f_bar=0.3)
+    merged = _reading_of(channels, f)
     assert merged.judder and merged.kind == "double-period"
     assert merged.growth_per_s == pytest.approx(2.6, rel=0.1)
 
@@ -351,12 +377,7 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
     # onto it): the same verdict and growth as the channels on their own
     # time bases
     from pysim.acquisitions import ChannelSpec, read_acquisition
-    f = 205.8
-
-    def speed(t):
-        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
-                                 + np.exp(2.6 * (t - 0.15))
-                                 * np.cos(np.pi * f * t))
+    f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     own = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
                       p_f_bar=0.3)
@@ -377,9 +398,7 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
     assert acquisition.metadata["Datum"] == "2026-11-30"
     channels = acquisition.channels
     assert channels["pressure"].unit_in_file == "bar"
-    exported = analyse_run(*(channels[r].interval_means() for r in
-                             ("upstream_speed", "pressure",
-                              "downstream_speed")), freq_hz=f, p_f_bar=0.3)
+    exported = _reading_of(channels, f)
     assert own.judder and exported.judder
     assert exported.kind == own.kind == "double-period"
     assert exported.growth_per_s == pytest.approx(own.growth_per_s, rel=0.05)
@@ -401,12 +420,7 @@ def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
     # verdict, growth and amplitude are those of the pick-up
     from asammdf import MDF, Signal
     from pysim.acquisitions import ChannelSpec, read_acquisition
-    f = 205.8
-
-    def speed(t):
-        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
-                                 + np.exp(2.6 * (t - 0.15))
-                                 * np.cos(np.pi * f * t))
+    f, speed = TONGUE_4_HZ, _double_period_judder
     fine = np.arange(0.0, 1.5, 2e-5)
     omega = (1000 + speed(fine)) * RPM
     angle = np.concatenate([[0.0], np.cumsum((omega[1:] + omega[:-1]) / 2)
@@ -443,14 +457,8 @@ def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
         "downstream_speed": ChannelSpec("dn")}).channels
     assert channels["upstream_speed"].kind == \
         {"gaps": "sampled"}.get(kind, kind)
-    reading = analyse_run(*(channels[r].interval_means() for r in
-                            ("upstream_speed", "pressure",
-                             "downstream_speed")), freq_hz=f, p_f_bar=0.3)
-    assert reading.judder and reading.kind == pickup.kind == "double-period"
-    assert reading.growth_per_s == pytest.approx(pickup.growth_per_s,
-                                                 rel=0.05)
-    assert reading.amplitude_rpm == pytest.approx(pickup.amplitude_rpm,
-                                                  rel=0.1)
+    reading = _reading_of(channels, f)
+    _reads_like(reading, pickup)
 
 
 def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
@@ -459,12 +467,7 @@ def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
     # verdict and growth are those of the exact times
     from pysim.acquisitions import ChannelSpec, read_acquisition
     from pysim.export import write_csv
-    f = 205.8
-
-    def speed(t):
-        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
-                                 + np.exp(2.6 * (t - 0.15))
-                                 * np.cos(np.pi * f * t))
+    f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     exact = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
                         p_f_bar=0.3)
@@ -476,10 +479,7 @@ def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
         "upstream_speed": ChannelSpec("n_up"),
         "pressure": ChannelSpec("p")}).channels
     assert channels["upstream_speed"].kind == "passage"
-    reading = analyse_run(channels["upstream_speed"].interval_means(),
-                          (channels["pressure"].time,
-                           channels["pressure"].values),
-                          freq_hz=f, p_f_bar=0.3)
+    reading = _reading_of(channels, f)
     assert reading.judder and reading.kind == exact.kind == "double-period"
     assert reading.growth_per_s == pytest.approx(exact.growth_per_s,
                                                  rel=0.05)
@@ -491,12 +491,7 @@ def test_tdms_speeds_as_2_khz_waveforms_read_as_the_pickup(tmp_path):
     # the pick-up of the same engagement
     from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
     from pysim.acquisitions import ChannelSpec, read_acquisition
-    f = 205.8
-
-    def speed(t):
-        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
-                                 + np.exp(2.6 * (t - 0.15))
-                                 * np.cos(np.pi * f * t))
+    f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), _ = _engagement(speed, f)
     pickup = analyse_run((t_up, up), (t_p, p), freq_hz=f, p_f_bar=0.3)
     daq = np.arange(0.0, 1.5, 5e-4)
@@ -513,15 +508,8 @@ def test_tdms_speeds_as_2_khz_waveforms_read_as_the_pickup(tmp_path):
         "upstream_speed": ChannelSpec("EngSpd"),
         "pressure": ChannelSpec("Press")}).channels
     assert channels["upstream_speed"].kind == "sampled"
-    reading = analyse_run(channels["upstream_speed"].interval_means(),
-                          (channels["pressure"].time,
-                           channels["pressure"].values),
-                          freq_hz=f, p_f_bar=0.3)
-    assert reading.judder and reading.kind == pickup.kind == "double-period"
-    assert reading.growth_per_s == pytest.approx(pickup.growth_per_s,
-                                                 rel=0.05)
-    assert reading.amplitude_rpm == pytest.approx(pickup.amplitude_rpm,
-                                                  rel=0.1)
+    reading = _reading_of(channels, f)
+    _reads_like(reading, pickup)
 
 
 @pytest.mark.parametrize("lost", ["one", "every third"])
@@ -531,12 +519,7 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
     # then spans several teeth while its speed is that of one, and the
     # angle rebuilt from it must not lose them
     from pysim.speed_channels import interval_means
-    f = 205.8
-
-    def speed(t):
-        return _after_ramp(t) * (20 * np.cos(2 * np.pi * f * t)
-                                 + np.exp(2.6 * (t - 0.15))
-                                 * np.cos(np.pi * f * t))
+    f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), pressure, downstream = _engagement(speed, f)
     whole = analyse_run((t_up, up), pressure, downstream, freq_hz=f,
                         p_f_bar=0.3)
@@ -548,8 +531,4 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
     reading = analyse_run(interval_means(t_up[keep], up[keep], "passage"),
                           pressure, downstream, freq_hz=f, p_f_bar=0.3)
     assert reading.judder == whole.judder
-    assert reading.kind == whole.kind == "double-period"
-    assert reading.growth_per_s == pytest.approx(whole.growth_per_s,
-                                                 rel=0.05)
-    assert reading.amplitude_rpm == pytest.approx(whole.amplitude_rpm,
-                                                  rel=0.1)
+    _reads_like(reading, whole)
