@@ -330,8 +330,9 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
 
 def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
-        starts=3, uncertainty="auto", error_model="absolute", seed=0,
-        workers=None, progress=None, min_growth=0.0, bench=None):
+        starts=3, uncertainty="auto", error_model="relative", seed=0,
+        workers=None, progress=None, min_growth=None, bench=None,
+        scatter=None):
     """``judder fit``: fit parameters to a measured boundary (section 4.2,
     Fig. 16a).
 
@@ -347,8 +348,14 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         :data:`stability.fitting.DEFAULT_FIT`).
     bounds : dict, optional
         ``{name: (low, high)}``, SI.
-    kinds, starts, uncertainty, error_model, seed, workers, min_growth
-        As :func:`stability.fitting.fit_boundary` takes them.
+    kinds, starts, uncertainty, error_model, seed, workers, scatter
+        As :func:`stability.fitting.fit_boundary` takes them (``scatter``
+        in Pa with the absolute error model).
+    min_growth : float, optional
+        1/s: the model boundary compared is that of judder growing at
+        this rate; default ``judder check``'s
+        (:data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`), so fit,
+        check and chart call the same point judder.
     bench : dict, optional
         Compare with the bench's linearisation, not the driveline alone:
         the damping its motor control adds
@@ -364,7 +371,10 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         minimum as good).
     """
     from stability.fitting import DEFAULT_FIT, fit_boundary
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
     start = _resolve(parameters, changes)
+    if min_growth is None:
+        min_growth = DEFAULT_MIN_GROWTH_PER_S
     result, seconds = _timed(
         fit_boundary, start, freq_hz,
         np.asarray(measured_p_f_bar, dtype=float) * PA_PER_BAR,
@@ -372,7 +382,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         method=method, kinds=kinds, starts=starts, uncertainty=uncertainty,
         error_model=error_model, seed=seed, workers=workers,
         callback=progress, min_growth=min_growth,
-        added=None if bench is None else bench_damping(start, bench))
+        added=None if bench is None else bench_damping(start, bench),
+        scatter=scatter)
     return FitReport(fit=result, seconds=seconds, method=method)
 
 

@@ -23,6 +23,7 @@ import numpy as np
 
 from drivelines import dumps_toml
 from infra.files import keeps_foreign_files, save_npz, write_text
+from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 
@@ -380,10 +381,60 @@ class FitReport:
                 "measured_bar": [_finite_or_none(v) for v in r.measured_bar],
                 "model_bar": [_finite_or_none(v) for v in r.model_bar],
                 "min_growth_per_s": r.min_growth, "added": dict(r.added),
+                "determined": r.determined, "held": list(r.held),
+                "error_model": r.error_model,
+                "scatter": _finite_or_none(r.scatter),
+                "scatter_unit": ("share of the amplitude"
+                                 if r.error_model == "relative" else "bar"),
+                "scatter_given": r.scatter_given,
                 "covariance": None if r.covariance is None else {
                     "names": list(r.names),
                     "matrix": [[_finite_or_none(v) for v in row]
-                               for row in r.covariance]}}
+                               for row in r.covariance]},
+                "correlation": None if r.covariance is None else {
+                    "names": list(r.names),
+                    "matrix": [[_finite_or_none(v) for v in row]
+                               for row in r.correlation]}}
+
+    def text(self):
+        """The fit as ``judder fit`` prints it: each value with the digits
+        its interval supports and its unit, the correlations, the scatter
+        of the onsets, the starts, then notes and problems."""
+        r = self.fit
+        specs = r.params.specs
+        rows = []
+        for n, v, s, lo, hi, s0 in zip(r.names, r.values, r.std, r.ci_low,
+                                       r.ci_high, r.start):
+            unit = specs[n].unit if n in specs else ""
+            if n in r.held:
+                rows.append(f"{n:>8} = {v:.6g} {unit}: held at its start "
+                            "value (it does not move the measured boundary)")
+            elif n in r.undetermined:
+                rows.append(f"{n:>8} = {v:.6g} {unit}: not determined by "
+                            "the measured boundary (see the problems)")
+            else:
+                rows.append(f"{n:>8} = {format_uncertain(v, s, unit)}, 95 % "
+                            f"interval {format_interval(lo, hi, s)}  (start "
+                            f"{s0:.6g})")
+        pairs = [(a, b, r.correlation[i, j])
+                 for i, a in enumerate(r.names)
+                 for j, b in enumerate(r.names) if j > i]
+        pairs = [(a, b, c) for a, b, c in pairs if np.isfinite(c)]
+        if pairs:
+            rows.append("correlation of the fitted values: " + ", ".join(
+                f"{a}-{b} {c:+.2f}" for a, b, c in pairs))
+        scatter = (f"{100 * r.scatter:.2g} % of the amplitude"
+                   if r.error_model == "relative"
+                   else f"{r.scatter:.2g} bar")
+        rows.append(f"scatter of the onsets: {scatter} ("
+                    + ("given" if r.scatter_given else
+                       "estimated from the residuals") + f"; {r.error_model} "
+                    f"error model); residual rms {r.residual_rms_bar:.3g} "
+                    f"bar over {len(r.freq_hz)} points, "
+                    f"{int(np.sum(np.isfinite(r.measured_bar)))} with judder")
+        rows.append(f"{_starts_text(r)}; intervals by {r.uncertainty}; "
+                    f"{r.evaluations} model boundaries in {self.seconds:.1f} s")
+        return rows
 
     def save_params(self, path, overwrite=False):
         """Write the fitted parameter set as TOML."""
@@ -391,6 +442,26 @@ class FitReport:
 
     def figure(self):
         return self.fit.plot()[0].figure
+
+
+def _starts_text(r):
+    """What the starts of a fit did, in words."""
+    origins = list(r.start_origins)
+    sampled = origins.count("sampled")
+    rematched = origins.count("rematched")
+    where = ["the given values"]
+    if sampled:
+        where.append(f"{sampled} sampled within a factor 3 of them")
+    if rematched:
+        where.append(f"{rematched} with ambiguous points matched to the "
+                     "other kind of tongue")
+    text = (f"{r.starts_tried} local fit{'s' if r.starts_tried > 1 else ''} "
+            f"(from {', '.join(where)})")
+    if r.starts_tried == 1:
+        return text
+    others = r.starts_tried - r.starts_agreeing
+    return (text + f": {r.starts_agreeing} reached this minimum"
+            + (f", {others} stopped at a worse one" if others else ""))
 
 
 @dataclass(frozen=True)

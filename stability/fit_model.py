@@ -135,6 +135,8 @@ class _Problem:
     x0: np.ndarray              # start values, SI
     min_growth: float = 0.0     # 1/s: boundaries of judder growing so
     added: tuple = ()           # (name, value) added for the model
+    scatter: float = None       # known scatter, weighted units; None:
+                                # estimated from the residuals
 
     @property
     def p_search(self):

@@ -123,6 +123,16 @@ class FitResult:
         fit with the standard uncertainties ``std``; ``inf`` in the rows
         and columns of undetermined parameters. ``judder envelope`` takes
         it as a joint normal distribution.
+    scatter : float
+        Scatter of the measured onsets: a share of the amplitude
+        (``error_model='relative'``) or bar (``'absolute'``); estimated
+        from the residuals, or the one given (``scatter_given``).
+    scatter_given : bool
+        The scatter was given (the bench's known repeatability).
+    held : tuple of str
+        Parameters that do not move the measured boundary, held at their
+        start values (:func:`stability.fit_identifiability.without_effect`);
+        also in ``undetermined`` and ``problems``.
     """
 
     names: tuple
@@ -164,6 +174,24 @@ class FitResult:
     min_growth: float = 0.0
     added: tuple = ()
     covariance: np.ndarray = None
+    scatter: float = None
+    scatter_given: bool = False
+    held: tuple = ()
+
+    @property
+    def determined(self):
+        """True when the data determine every fitted value: the optimiser
+        converged and no parameter is undetermined, held or on a bound of
+        its search range (the report shows only such a fit)."""
+        return (self.converged and not self.undetermined
+                and not self.at_bound and not self.held)
+
+    @property
+    def correlation(self):
+        """Correlation matrix of the fitted values, shape (k, k) (NaN in
+        the rows and columns of undetermined parameters)."""
+        from .fit_identifiability import correlation
+        return correlation(self.covariance)
 
     @property
     def start_params(self):

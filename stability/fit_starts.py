@@ -45,7 +45,7 @@ START_EVALUATIONS = 400
 
 
 #: Model boundaries allowed to the fits of each extra start.
-EXTRA_START_EVALUATIONS = 60
+EXTRA_START_EVALUATIONS = 40
 
 
 #: Fits from the best minimum with the ambiguous points matched the other

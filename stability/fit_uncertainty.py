@@ -173,15 +173,28 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
     active = int(np.sum(~problem.censored | (residual[:n] != 0))
                  + np.sum(residual[n:] != 0))
     dof = max(active - k, 1)
-    s2 = 2 * cost / dof
-    q = float(stats.t.ppf(0.5 + CONFIDENCE / 2, dof))
+    notes, info = [], []
+    if problem.scatter is None:
+        s2 = 2 * cost / dof
+        q = float(stats.t.ppf(0.5 + CONFIDENCE / 2, dof))
+    else:
+        # the bench's known scatter: normal quantiles, and a check that
+        # the residuals are not far larger than it
+        s2 = problem.scatter ** 2
+        q = float(stats.norm.ppf(0.5 + CONFIDENCE / 2))
+        ratio = math.sqrt(2 * cost / dof) / problem.scatter
+        if 2 * cost / s2 > stats.chi2.ppf(0.999, dof):
+            notes.append(
+                f"the residuals are {ratio:.2g} times the given scatter "
+                "(chi-square test, 0.1 % level): the model does not "
+                "follow the measured boundary, or the scatter is larger "
+                "than given")
     exact = math.sqrt(s2) < _EXACT * (1.0 if problem.relative
                                       else problem.p_max / PA_PER_BAR)
 
     # the Jacobian, and on which side of each interval it can be trusted
     jac = _jacobian(evaluator, z, columns)
     null_names = _null_space_names(jac, problem.names)
-    notes, info = [], []
     # covariance of the determined parameters, the others held
     cov_z = np.full((k, k), np.inf)
     kept = np.array([n not in null_names for n in problem.names])

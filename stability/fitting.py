@@ -50,6 +50,8 @@ from infra.errors import JudderError
 from infra.parallel import cluster
 from infra.units import PA_PER_BAR
 
+from .fit_identifiability import (EFFECT_STEP, MIN_EFFECT, check_onsets,
+                                  flat_pairs, without_effect)
 from .fit_matching import _parse_kinds, parse_kind
 from .fit_model import (CURVE_POINTS, _capped, _Problem, _Progress,
                         evaluated, fit_curves, model_boundary)
@@ -60,6 +62,7 @@ from .fit_uncertainty import (CONFIDENCE, DEFAULT_BOOTSTRAP,
                               UNCERTAINTY_METHODS, intervals,
                               uncertainty_steps)
 from .monodromy import DEFAULT_METHOD, get_method
+from .relevance import DEFAULT_MIN_GROWTH_PER_S
 from .tongues import TONGUE_KINDS
 
 __all__ = ["FitResult", "model_boundary", "fit_boundary", "DEFAULT_FIT",
@@ -83,9 +86,11 @@ ERROR_MODELS = ("absolute", "relative")
 def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                  bounds=None, start=None, method=DEFAULT_METHOD, *,
                  kinds=None, starts=DEFAULT_STARTS, uncertainty="auto",
-                 error_model="absolute", n_bootstrap=DEFAULT_BOOTSTRAP,
+                 error_model="relative", n_bootstrap=DEFAULT_BOOTSTRAP,
                  seed=0, workers=None, callback=None,
-                 curve_points=CURVE_POINTS, min_growth=0.0, added=None):
+                 curve_points=CURVE_POINTS,
+                 min_growth=DEFAULT_MIN_GROWTH_PER_S, added=None,
+                 scatter=None):
     """Fit parameters so the model boundary matches a measured one.
 
     Section 4.2 of the paper, Fig. 16a: the parameters that cannot be
@@ -127,16 +132,19 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         after the given start. The extra starts are skipped when the given
         start already fits the data exactly (to round-off).
     uncertainty : {'auto', 'jacobian', 'profile', 'bootstrap'}
-    error_model : {'absolute', 'relative'}
-        Scatter of the measured amplitudes: the same in bar everywhere,
-        or proportional to the amplitude.
+    error_model : {'relative', 'absolute'}
+        Scatter of the measured amplitudes: proportional to the amplitude
+        (default: a pressure sensor's and a dither valve's errors are a
+        share of the reading), or the same in bar everywhere.
     n_bootstrap : int
         Synthetic boundaries refitted when ``uncertainty='bootstrap'``.
     seed : int
         Seed of the Latin hypercube and of the bootstrap noise.
     workers : int, optional
         Processes for the starts, profile sides and bootstrap refits
-        (default: all cores; 1 runs everything here).
+        (default: one, all cores for the bootstrap: starting Dask's
+        workers costs more than the few parallel starts and profile
+        sides gain, see docs/benchmarks.md).
     callback : callable, optional
         ``callback(done, total)`` after each local fit, profile side,
         bootstrap refit and curve; ``total`` is fixed at the first call
@@ -149,13 +157,23 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         1/s, >= 0: compare with the boundaries of judder growing at this
         rate (:func:`stability.tongues.tongue_boundaries`), as a chart
         whose verdict has a growth threshold sees it (``judder chart
-        --min-growth``); 0 (default) is the stability boundary.
+        --min-growth``); the default is ``judder check``'s and ``judder
+        chart``'s (:data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`),
+        so the fit, the verdict and the chart call the same point judder;
+        0 is the stability boundary.
     added : dict, optional
         ``{name: value}`` added to the parameters for the model compared,
         SI, not fitted: a bench's linearisation adds its motor control's
         damping to body 1 (``{'c1': d_control}``,
         :attr:`drivelines.DrivelineModel.bench_damping`). The fitted
         values are those of the driveline without it.
+    scatter : float, optional
+        The bench's known scatter of the onsets (its repeatability): a
+        share of the amplitude (``error_model='relative'``, e.g. 0.03) or
+        Pa (``'absolute'``). Intervals then use it (normal quantiles) and
+        ``k`` onsets suffice; residuals far larger than it are a problem.
+        Default: estimated from the residuals (Student's t), which needs
+        ``k +`` :data:`stability.fit_identifiability.MIN_DOF` onsets.
 
     Returns
     -------
@@ -183,13 +201,15 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     if freq_hz.shape != measured.shape or freq_hz.ndim != 1:
         raise JudderError("the measured boundary needs one amplitude per "
                           "frequency")
-    if len(freq_hz) < len(names):
-        raise JudderError(f"{len(freq_hz)} measured points cannot determine "
-                          f"{len(names)} parameters")
     censored = np.isnan(measured)
     if censored.all():
         raise JudderError("the measured boundary has no point with judder: "
                           "it cannot determine the parameters")
+    if scatter is not None and not (np.isfinite(scatter) and scatter > 0):
+        raise JudderError(f"scatter = {scatter!r} is not allowed; allowed: "
+                          "a finite number > 0 (a share of the amplitude, "
+                          "or Pa with error_model='absolute')")
+    check_onsets(int(np.sum(~censored)), names, scatter is not None)
     if not (np.isfinite(p_max) and p_max > 0):
         raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
                           "> 0")
@@ -216,13 +236,79 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                        measured=measured, p_max=float(p_max),
                        low=low / scale, high=high / scale, scale=scale,
                        method=method, relative=error_model == "relative",
-                       x0=x0, min_growth=float(min_growth), added=added)
+                       x0=x0, min_growth=float(min_growth), added=added,
+                       scatter=None if scatter is None else float(
+                           scatter if error_model == "relative"
+                           else scatter / PA_PER_BAR))
     extra = _extra_starts(starts, names, low, high)
-    workers = workers or os.cpu_count() or 1
-    # one cluster for all the rounds of parallel jobs
-    with threadpool_limits(limits=1), cluster(workers):
-        return _fit(problem, given, extra, uncertainty, n_bootstrap, seed,
-                    workers, callback, curve_points)
+    if workers is None:
+        workers = (os.cpu_count() or 1) if uncertainty == "bootstrap" else 1
+    with threadpool_limits(limits=1):
+        held = without_effect(problem, given)
+        if len(held) == len(names):
+            raise JudderError(
+                f"none of {', '.join(names)} moves the measured boundary: "
+                f"a change of {EFFECT_STEP:.0%} moves no measured onset by "
+                f"{MIN_EFFECT:.0e} of its amplitude; fit parameters that "
+                "act where the onsets were measured")
+        free = np.array([j not in dict(held) for j in range(len(names))])
+        if not isinstance(extra, int):
+            extra = extra[:, free]
+        # one cluster for all the rounds of parallel jobs
+        with cluster(workers):
+            result = _fit(_restricted(problem, free), given, extra,
+                          uncertainty, n_bootstrap, seed, workers, callback,
+                          curve_points)
+    return _with_held(result, problem, free, held) if held else result
+
+
+def _restricted(problem, free):
+    """The problem with only the ``free`` parameters fitted (the others
+    stay at their start values in ``problem.params``)."""
+    return dataclasses.replace(
+        problem, names=tuple(n for n, f in zip(problem.names, free) if f),
+        low=problem.low[free], high=problem.high[free],
+        scale=problem.scale[free], x0=problem.x0[free])
+
+
+def _with_held(result, problem, free, held):
+    """``result`` of the free parameters, with the held ones put back at
+    their start values: undetermined, ``std`` infinite, their search range
+    as interval, and a problem saying why."""
+    k = len(problem.names)
+    x0 = problem.x0
+    low, high = problem.low * problem.scale, problem.high * problem.scale
+
+    def full(values, fill):
+        out = np.array(np.broadcast_to(fill, (k,) + np.shape(values)[1:]),
+                       dtype=float)
+        out[free] = values
+        return out
+
+    def full_rows(rows):
+        out = np.tile(x0, (len(rows), 1))
+        out[:, free] = rows
+        return out
+
+    covariance = np.full((k, k), np.inf)
+    covariance[np.ix_(free, free)] = result.covariance
+    names = [problem.names[j] for j, _ in held]
+    why = [f"{name} does not move the measured boundary (a "
+           f"{EFFECT_STEP:.0%} change moves it by {100 * effect:.2g} % at "
+           f"most): held at its start value {x0[j]:.6g}; measure where it "
+           "acts, or fix it" for (j, effect), name in zip(held, names)]
+    return dataclasses.replace(
+        result, names=problem.names, values=full(result.values, x0),
+        start=x0.copy(), std=full(result.std, np.inf),
+        ci_low=full(result.ci_low, low), ci_high=full(result.ci_high, high),
+        bounds=np.column_stack([low, high]),
+        start_points=full_rows(result.start_points),
+        start_minima=full_rows(result.start_minima),
+        covariance=covariance,
+        undetermined=tuple(n for n in problem.names
+                           if n in names or n in result.undetermined),
+        problems=tuple(why) + result.problems, success=False,
+        held=tuple(names))
 
 
 def _default_bounds(params, name):
@@ -290,7 +376,10 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
     problems = _problems(problem, best, alternatives, s2, at_bound,
                          undetermined, std, values, low, high, open_sides,
                          amplitude, columns, boot_failed, n_bootstrap, used)
-    problems = notes + problems
+    problems = notes + problems + [
+        f"{a} and {b} are determined only in combination (correlation "
+        f"{r:+.4f}): fix one of them (--set) and fit the other"
+        for a, b, r in flat_pairs(found.covariance, problem.names)]
 
     fitted = problem.params_at(z)
     capped = _capped(problem, amplitude) if amplitude is not None else \
@@ -325,7 +414,9 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         start_minima=minima,
         start_origins=tuple(r["origin"] for r in runs),
         start_costs=costs, min_growth=problem.min_growth,
-        added=problem.added, covariance=found.covariance)
+        added=problem.added, covariance=found.covariance,
+        scatter=float(np.sqrt(max(found.s2, 0.0))),
+        scatter_given=problem.scatter is not None)
     if curve_points:
         freq, start_bar, fitted_bar = fit_curves(result, curve_points)
         progress.step(2)

@@ -317,11 +317,12 @@ def _fit_names(text, params):
 
 def cmd_fit(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
     params, changes = parameters_of(args)
     names = _fit_names(args.fit, params)
     bounds = _bounds(args.bounds, params, names)
     default_p_max = 1.5
-    default_growth = 0.0
+    default_growth = DEFAULT_MIN_GROWTH_PER_S
     if args.chart:
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
@@ -336,6 +337,7 @@ def cmd_fit(args):
     bench = _bench_values(args.bench) if args.bench_linearisation else None
     p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
                              else args.pf_max, "bar")
+    scatter = _scatter(args.scatter, args.error_model)
     make_parents(args.plot, args.save_params)
     with Progress(None, "fit") as progress:
         report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar,
@@ -344,22 +346,14 @@ def cmd_fit(args):
                          starts=args.starts, uncertainty=args.uncertainty,
                          error_model=args.error_model, seed=args.seed,
                          workers=args.workers, progress=progress,
-                         min_growth=min_growth, bench=bench)
+                         min_growth=min_growth, bench=bench,
+                         scatter=scatter)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
     if args.plot:
         _save_plot(args.plot, report.figure())
-    rows = [f"{n:>8} = {v:.6g} ± {s:.2g}, 95 % interval [{lo:.6g}, "
-            f"{hi:.6g}]  (start {s0:.6g})"
-            for n, v, s, lo, hi, s0 in zip(result.names, result.values,
-                                           result.std, result.ci_low,
-                                           result.ci_high, result.start)]
-    rows.append(f"residual rms {result.residual_rms_bar:.4g} bar over "
-                f"{len(freqs)} points; {result.evaluations} model boundaries "
-                f"in {report.seconds:.1f} s; {result.starts_agreeing} of "
-                f"{result.starts_tried} starts agree; uncertainty by "
-                f"{result.uncertainty}")
+    rows = report.text()
     rows.append("compared with: " + _compared_with(result))
     rows += [f"note: {n}" for n in result.notes]
     rows += [f"problem: {p}" for p in result.problems]
@@ -371,10 +365,24 @@ def cmd_fit(args):
                           + "; ".join(result.problems or [result.message]))
 
 
+def _scatter(text, error_model):
+    """``--scatter``: a share of the amplitude (relative error model) or
+    Pa (absolute), or None."""
+    from infra.quantities import parse_quantity
+    if text is None:
+        return None
+    if error_model == "relative":
+        return check_number("--scatter", parse_quantity(
+            text, "1", "--scatter"), "(a share of the amplitude, e.g. 3%)")
+    return check_number("--scatter", parse_quantity(
+        text, "bar", "--scatter"), "bar") * PA_PER_BAR
+
+
 def _compared_with(result):
     """Which model boundary the fit compared with, in words."""
     what = ("the stability boundary" if result.min_growth == 0 else
-            f"the boundary of judder growing at {result.min_growth:g} 1/s")
+            f"the boundary of judder growing at {result.min_growth:g} 1/s "
+            "or faster")
     model = (f"the {result.params.model} driveline" if not result.added else
              "the bench's linearisation (the driveline with "
              + ", ".join(f"{n} + {v:g}" for n, v in result.added) + ")")

@@ -419,10 +419,17 @@ def build_parser():
                    choices=("auto", "jacobian", "profile", "bootstrap"),
                    help="how the 95 %% intervals are found (default auto: "
                         "the Jacobian, profiled where it is not trusted)")
-    p.add_argument("--error-model", default="absolute",
-                   choices=("absolute", "relative"),
-                   help="residuals in bar (default) or relative to the "
-                        "measured amplitude")
+    p.add_argument("--error-model", default="relative",
+                   choices=("relative", "absolute"),
+                   help="scatter of the measured onsets: a share of the "
+                        "amplitude (default, as a pressure sensor's and a "
+                        "valve's errors are) or the same in bar everywhere")
+    p.add_argument("--scatter", metavar="SHARE|BAR",
+                   help="the bench's known scatter of the onsets (its "
+                        "repeatability): a share of the amplitude such as "
+                        "3%% (relative error model) or bar such as 20mbar "
+                        "(absolute); default: estimated from the residuals, "
+                        "which needs two onsets more than the parameters")
     p.add_argument("--seed", type=int, default=0,
                    help="seed of the sampled starts and the bootstrap")
     _workers_option(p)
@@ -432,10 +439,11 @@ def build_parser():
     p.add_argument("--force", action="store_true",
                    help="allow --save-params to replace a file")
     p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
-                   help="compare with the model's boundaries of judder "
+                   help="compare with the model's boundary of judder "
                         "growing at this rate, 1/s (default: the chart's "
-                        "--min-growth with --chart, else 0: the stability "
-                        "boundary)")
+                        "--min-growth with --chart, else check's 1 1/s, so "
+                        "fit, check and chart call the same point judder; "
+                        "0: the stability boundary)")
     p.add_argument("--bench-linearisation", action="store_true",
                    help="compare with the bench's linearisation (c1 + "
                         "d_control: its motor speed control damps body 1), "
