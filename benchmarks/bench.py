@@ -496,6 +496,51 @@ def bench_chart():
                    "tooth-passage speeds, no dither metadata"}
 
 
+def bench_fit():
+    """``judder fit`` with its defaults (one process) against the fit as
+    it ran before issue 20 (Dask workers on all cores), on two noisy
+    boundaries made from known parameters: mu_g and k24 from 15
+    frequencies, and c12, mu_g and k24 from the example boundary."""
+    import os
+    sys.path.insert(0, str(Path(__file__).parent))
+    from fit_coverage import noisy_boundary
+    from judder.inputs import read_boundary
+    from stability.fitting import fit_boundary
+    truth = get_preset("paper-4dof-fitted")
+    freq15 = np.linspace(60.0, 200.0, 15)
+    problems = [
+        ("fit-2-parameters-15-points", ("mu_g", "k24"), freq15,
+         noisy_boundary(truth, freq15, 1.5 * BAR, 0.03,
+                        np.random.default_rng(0), 0.0),
+         truth.replace(mu_g=0.02, k24=33000.0), 0.0, 10.0),
+        ("fit-3-parameters-example", ("c12", "mu_g", "k24"),
+         *read_boundary(Path(__file__).parents[1] / "examples"
+                        / "measured_boundary.csv"),
+         truth.replace(c12=5.0, mu_g=0.02, k24=33000.0), 1.0, 30.0)]
+    for name, names, freq, measured, start, growth, target in problems:
+        def run(workers):
+            return fit_boundary(start, freq, measured, 1.5 * BAR,
+                                names=names, min_growth=growth,
+                                workers=workers)
+        baseline, baseline_seconds = _timed(run, os.cpu_count() or 1)
+        fit, seconds = _timed(run, None)
+        inside = [bool(lo <= truth[n] <= hi) for n, lo, hi in
+                  zip(fit.names, fit.ci_low, fit.ci_high)]
+        yield {"name": name, "points": len(freq),
+               "onsets": int(np.sum(np.isfinite(measured))),
+               "seconds": seconds, "baseline_seconds": baseline_seconds,
+               "speedup": baseline_seconds / seconds,
+               "max_error": float(np.max(np.abs(fit.values - np.array(
+                   [truth[n] for n in names])) / fit.std)),
+               "error_unit": "standard uncertainties from the truth",
+               "truth_inside_95": inside,
+               "same_values": bool(np.allclose(fit.values, baseline.values,
+                                               rtol=1e-6)),
+               "target_seconds": target,
+               "note": "baseline: the same fit on Dask workers on all "
+                       "cores, as judder fit ran before issue 20"}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "modelica-map": bench_modelica_map,
               "fmu-map": bench_fmu_map,
@@ -503,6 +548,7 @@ BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "tongue-solvers": bench_tongue_solvers,
               "engagement": bench_engagement,
               "chart": bench_chart,
+              "fit": bench_fit,
               "envelope": bench_envelope}
 
 

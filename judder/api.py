@@ -332,7 +332,7 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
         starts=3, uncertainty="auto", error_model="relative", seed=0,
         workers=None, progress=None, min_growth=None, bench=None,
-        scatter=None):
+        scatter=None, below_bar=None):
     """``judder fit``: fit parameters to a measured boundary (section 4.2,
     Fig. 16a).
 
@@ -356,6 +356,10 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         this rate; default ``judder check``'s
         (:data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`), so fit,
         check and chart call the same point judder.
+    below_bar : array_like, optional
+        The highest amplitude tried without judder below each onset, bar
+        (NaN: none; :func:`judder.inputs.read_chart_below`): the fit
+        compares with the middle of each interval (below, onset].
     bench : dict, optional
         Compare with the bench's linearisation, not the driveline alone:
         the damping its motor control adds
@@ -383,7 +387,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         error_model=error_model, seed=seed, workers=workers,
         callback=progress, min_growth=min_growth,
         added=None if bench is None else bench_damping(start, bench),
-        scatter=scatter)
+        scatter=scatter, below=None if below_bar is None else
+        np.asarray(below_bar, dtype=float) * PA_PER_BAR)
     return FitReport(fit=result, seconds=seconds, method=method)
 
 

@@ -4,7 +4,9 @@ Every reader names the file (or option) in its errors, so a command can
 pass the message on as it is.
 """
 
+import math
 from pathlib import Path
+import re
 import stat
 
 import numpy as np
@@ -16,7 +18,9 @@ from infra.files import decode_text
 from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
-           "read_boundary", "read_chart_boundary", "read_chart_min_growth"]
+           "read_boundary", "read_boundary_min_growth",
+           "read_chart_boundary", "read_chart_below",
+           "read_chart_min_growth"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -160,6 +164,39 @@ def read_boundary(path, option="--boundary"):
     return read_boundary_csv(read_input(path, option), source=str(path))
 
 
+#: The comment of a boundary file that gives the growth rate its onsets
+#: were called judder from (``judder chart --boundary`` writes it).
+_MIN_GROWTH_COMMENT = re.compile(
+    r"#\s*min_growth_per_s\s*[:=]\s*([^\s#]+)")
+
+
+def read_boundary_min_growth(path, option="--boundary"):
+    r"""The growth rate (1/s) a boundary file says its onsets were called
+    judder from (a comment ``# min_growth_per_s: 1``), or None.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> path = os.path.join(folder, "b.csv")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("# min_growth_per_s: 0.5\nfreq_hz,p_f_bar\n")
+    >>> read_boundary_min_growth(path)
+    0.5
+    """
+    for line in read_input(path, option).splitlines():
+        match = _MIN_GROWTH_COMMENT.match(line.strip())
+        if match:
+            text = match.group(1)
+            value = float(text) if _is_number(text) else math.nan
+            if not (math.isfinite(value) and value >= 0):
+                raise JudderError(f"{option} {path}: min_growth_per_s = "
+                                  f"{text} is not allowed; allowed: a finite "
+                                  "number >= 0 (1/s)")
+            return value
+    return None
+
+
 def read_chart_boundary(path, group=None, option="--chart"):
     """The experimental boundary of a chart written by ``judder chart
     --out``.
@@ -201,6 +238,22 @@ def read_chart_boundary(path, group=None, option="--chart"):
     keep = groups == chosen
     return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
             float(tried[keep].max()))
+
+
+def read_chart_below(path, group=None, option="--chart"):
+    """Per point of :func:`read_chart_boundary`: the highest amplitude
+    run without judder below the onset, Pa (NaN: none, or a chart written
+    before this was stored). The boundary lies between it and the onset.
+    """
+    freq, _, _ = read_chart_boundary(path, group, option)
+    with np.load(path, allow_pickle=False) as npz:
+        if "boundary_below_bar" not in npz.files:
+            return np.full(len(freq), np.nan)
+        groups = npz["boundary_group"]
+        below = npz["boundary_below_bar"].astype(float)
+    chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
+        else group
+    return below[groups == chosen] * PA_PER_BAR
 
 
 def read_chart_min_growth(path, option="--chart"):

@@ -27,6 +27,7 @@ import numpy as np
 
 from infra.errors import JudderError
 from infra.files import MARK, atomic_write, keeps_foreign_files, write_text
+from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
 
 from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
@@ -88,6 +89,64 @@ def _png(fig, dpi=100):
     plt.close(fig)
     data = base64.b64encode(buffer.getvalue()).decode("ascii")
     return f'<img alt="" src="data:image/png;base64,{data}">'
+
+
+def _fit_section(bench, names, values, method, workers, source):
+    """Section 6: the fit to the bench data, shown only when the data
+    determine every fitted value (else one sentence saying why not).
+
+    Returns the section's HTML, its data (``fit``, ``fit_determined``,
+    ``fit_status``, ``fit_problems``) and the fit report to draw (None when
+    the fit is not shown)."""
+    freqs, measured, tried, min_growth, below_bar = bench
+    onsets = int(np.sum(np.isfinite(measured)))
+    head = ("<h2>6. The bench data and the fit</h2>"
+            f"<p>{len(freqs)} measured points from {source}, {onsets} with "
+            f"judder; fitting {', '.join(names)} to the model's boundary of "
+            f"judder growing at {min_growth:g} 1/s or faster.</p>")
+    try:
+        report = api.fit(freqs, measured / PA_PER_BAR, tried,
+                         names=list(names), parameters=values,
+                         method=method, starts=1, workers=workers,
+                         min_growth=min_growth, below_bar=below_bar)
+    except JudderError as error:
+        status = f"no fit: {error}"
+        return (head + f"<p><b>No fit is shown</b>: {html.escape(str(error))}"
+                ".</p>", {"fit": None, "fit_determined": False,
+                          "fit_status": status, "fit_problems": [str(error)]},
+                None)
+    r = report.fit
+    problems = list(r.problems)
+    if not r.determined:
+        missing = list(r.undetermined) + [n for n in r.at_bound
+                                          if n not in r.undetermined]
+        status = ("no fit: the bench data do not determine "
+                  + ", ".join(missing or r.names))
+        return (head + f"<p><b>No fit is shown</b>: the bench data do not "
+                f"determine {html.escape(', '.join(missing or r.names))}. "
+                + " ".join(html.escape(p[0].upper() + p[1:]) + "."
+                           for p in problems) + "</p>",
+                {"fit": None, "fit_determined": False, "fit_status": status,
+                 "fit_problems": problems}, None)
+    lines = report.text()
+    status = "fitted " + "; ".join(line.strip() for line in lines[:len(
+        r.names)])
+    rows = [(n, f"{s0:.5g}", format_uncertain(v, s, values.specs[n].unit),
+             format_interval(lo, hi, s))
+            for n, s0, v, s, lo, hi in zip(r.names, r.start, r.values, r.std,
+                                           r.ci_low, r.ci_high)]
+    text = (head + _table(("parameter", "start", "fitted", "95 % interval"),
+                          rows)
+            + "".join(f"<p>{html.escape(line)}</p>"
+                      for line in lines[len(r.names):])
+            + "".join(f"<p>problem: {html.escape(p)}</p>" for p in problems))
+    return (text, {"fit": {n: {"value": v, "std": s, "ci95": [lo, hi]}
+                           for n, v, s, lo, hi in zip(r.names, r.values,
+                                                      r.std, r.ci_low,
+                                                      r.ci_high)},
+                   "fit_determined": True, "fit_status": status,
+                   "fit_success": bool(r.success), "fit_problems": problems},
+            report)
 
 
 def _table(header, rows):
@@ -235,7 +294,8 @@ def build_report(parameters=None, changes=None, description=None,
     ReportResult
     """
     from stability.plotting import multipliers_figure
-    from .inputs import read_boundary, read_chart_boundary
+    from .inputs import (read_boundary, read_chart_below,
+                         read_chart_boundary, read_chart_min_growth)
     values = api.params(parameters, changes).params
     description = description or values.model
     grid_freq = np.linspace(10, 220, 300) if grid_freq is None \
@@ -247,9 +307,12 @@ def build_report(parameters=None, changes=None, description=None,
     # bench data first: a bad file is refused before any work
     bench = None
     if chart:
-        bench = read_chart_boundary(chart, group)
+        bench = (*read_chart_boundary(chart, group),
+                 read_chart_min_growth(chart),
+                 read_chart_below(chart, group) / PA_PER_BAR)
     elif boundary:
-        bench = (*read_boundary(boundary, "--boundary"), p_max_bar)
+        bench = (*read_boundary(boundary, "--boundary"), p_max_bar,
+                 DEFAULT_MIN_GROWTH_PER_S, None)
     for option, given in (("--sensitivity", names),
                           ("--fit", fit_names if bench else ())):
         unknown = [n for n in given if n not in values.specs]
@@ -426,30 +489,13 @@ def build_report(parameters=None, changes=None, description=None,
 
     # bench data
     if bench:
-        freqs, measured, tried = bench
-        report = api.fit(freqs, measured / PA_PER_BAR, tried,
-                         names=list(fit_names), parameters=values,
-                         method=method, starts=1, workers=workers)
+        text, fit_data, fitted = _fit_section(
+            bench, fit_names, values, method, workers,
+            html.escape(str(chart or boundary)))
         step()
-        r = report.fit
-        data["fit"] = {n: {"value": v, "ci95": [lo, hi]} for n, v, lo, hi
-                       in zip(r.names, r.values, r.ci_low, r.ci_high)}
-        data["fit_success"] = bool(r.success)
-        sections.append(
-            "<h2>6. The bench data and the fit</h2>"
-            f"<p>{len(freqs)} measured points from "
-            f"{html.escape(str(chart or boundary))}; fitted "
-            + ", ".join(r.names) + f"; residual rms "
-            f"{r.residual_rms_bar:.3g} bar.</p>"
-            + _table(("parameter", "start", "fitted", "95 % interval"),
-                     [(n, f"{s0:.5g}", f"{v:.5g}", f"[{lo:.5g}, {hi:.5g}]")
-                      for n, s0, v, lo, hi in zip(r.names, r.start,
-                                                  r.values, r.ci_low,
-                                                  r.ci_high)])
-            + "".join(f"<p>problem: {html.escape(p)}</p>"
-                      for p in r.problems)
-            + figure("Measured and fitted boundaries (Fig. 16a)",
-                     report.figure()))
+        data.update(fit_data)
+        sections.append(text + ("" if fitted is None else figure(
+            "Measured and fitted boundaries (Fig. 16a)", fitted.figure())))
     step()
 
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime(

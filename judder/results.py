@@ -243,10 +243,13 @@ class TonguesResult:
 
     def csv_text(self):
         """Boundaries as CSV: freq_hz, p_f_bar (lowest, empty if none),
-        then the lowest boundary of each kind, bar."""
-        lines = ["freq_hz,p_f_bar,single_period_bar,double_period_bar,"
-                 "combination_bar"]
+        then the lowest boundary of each kind, bar; a first comment gives
+        the growth rate they are the boundaries of (``judder fit
+        --boundary`` compares with the model's boundary of that rate)."""
         b = self.boundaries
+        lines = [f"# min_growth_per_s: {b.min_growth:g}",
+                 "freq_hz,p_f_bar,single_period_bar,double_period_bar,"
+                 "combination_bar"]
 
         def cell(value):
             return "" if not math.isfinite(value) \
@@ -620,16 +623,23 @@ class ChartResult:
         """Save the chart as NPZ: the per-run arrays of
         :meth:`pysim.charts.Chart.arrays` and, per group, the boundary
         (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
-        with NaN where censored, ``boundary_tried_bar``)."""
-        rows = [(g, f, np.nan if p is None else p, top)
-                for g, b in self._boundaries().items() for f, p, top in b]
-        arrays = {**self.chart.arrays(),
+        with NaN where censored, ``boundary_tried_bar``, and
+        ``boundary_below_bar``: the highest amplitude without judder below
+        each onset, NaN where none)."""
+        chart = self.chart
+        rows = [("/".join(g), f, np.nan if p is None else p, top,
+                 np.nan if q is None else q)
+                for g in chart.groups()
+                for (f, p, top), q in zip(chart.boundary(g),
+                                          chart.quiet_below(g))]
+        arrays = {**chart.arrays(),
                   "boundary_group": np.array([r[0] for r in rows]),
                   "boundary_freq_hz": np.array([r[1] for r in rows]),
                   "boundary_p_f_bar": np.array([r[2] for r in rows]),
                   "boundary_tried_bar": np.array([r[3] for r in rows]),
-                  "group_by": np.array(self.chart.group_by),
-                  "min_growth_per_s": np.array(self.chart.min_growth)}
+                  "boundary_below_bar": np.array([r[4] for r in rows]),
+                  "group_by": np.array(chart.group_by),
+                  "min_growth_per_s": np.array(chart.min_growth)}
         save_npz(path, arrays)
 
     def save_boundary(self, path, force=False):

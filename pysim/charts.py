@@ -293,9 +293,26 @@ class Chart:
                          max(r.analysis.p_f_bar for r in runs)))
         return rows
 
+    def quiet_below(self, group):
+        """Per set point of :meth:`boundary`: the highest amplitude run
+        without judder below the onset (bar), or None (no onset, or no
+        quiet run below it). The boundary lies between the two: the
+        onset was found on the grid of amplitudes tried."""
+        rows = []
+        for (_, onset, _), (_, _, runs) in zip(self.boundary(group),
+                                               self.set_points(group)):
+            quiet = [r.analysis.p_f_bar for r in runs
+                     if not r.analysis.judder and onset is not None
+                     and r.analysis.p_f_bar < onset]
+            rows.append(max(quiet) if quiet else None)
+        return rows
+
     def boundary_csv(self, group):
-        """The boundary as ``judder fit --boundary`` reads it."""
-        lines = ["freq_hz,p_f_bar"] + [
+        """The boundary as ``judder fit --boundary`` reads it, with the
+        growth rate the verdict called judder from (``judder fit``
+        compares with the model's boundary of that growth)."""
+        lines = [f"# min_growth_per_s: {self.min_growth:g}",
+                 "freq_hz,p_f_bar"] + [
             f"{f:.9g}," + ("" if p is None else f"{p:.9g}")
             for f, p, _ in self.boundary(group)]
         return "\n".join(lines) + "\n"

@@ -52,7 +52,11 @@ class FitResult:
         bar; at censored points, minus how far the lowest model boundary
         lies below ``p_max`` (0 if it does not).
     freq_hz, measured_bar : ndarray, shape (n,)
-        The measured boundary (NaN where censored).
+        The measured boundary compared with the model (NaN where
+        censored): the onsets, or the middle of (below, onset] where the
+        amplitude tried below each onset was given.
+    onset_bar : ndarray, shape (n,)
+        The onsets as given, bar (NaN where censored).
     model_bar : ndarray, shape (n,)
         Lowest model boundary (any kind) with the fitted values, bar
         (NaN: stable up to ``p_max``).
@@ -177,6 +181,7 @@ class FitResult:
     scatter: float = None
     scatter_given: bool = False
     held: tuple = ()
+    onset_bar: np.ndarray = None
 
     @property
     def determined(self):

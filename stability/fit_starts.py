@@ -37,7 +37,7 @@ START_SPREAD = 3.0
 
 
 #: Latin-hypercube samples screened per extra start.
-SCREEN_PER_START = 6
+SCREEN_PER_START = 30
 
 
 #: Model boundaries allowed to the fits of the given start.

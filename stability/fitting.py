@@ -90,7 +90,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                  seed=0, workers=None, callback=None,
                  curve_points=CURVE_POINTS,
                  min_growth=DEFAULT_MIN_GROWTH_PER_S, added=None,
-                 scatter=None):
+                 scatter=None, below=None):
     """Fit parameters so the model boundary matches a measured one.
 
     Section 4.2 of the paper, Fig. 16a: the parameters that cannot be
@@ -167,6 +167,13 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         damping to body 1 (``{'c1': d_control}``,
         :attr:`drivelines.DrivelineModel.bench_damping`). The fitted
         values are those of the driveline without it.
+    below : array_like, shape (n,), optional
+        Pa: the highest amplitude tried without judder below each onset
+        (NaN where none is known), as a chart's grid of amplitudes gives
+        it (:func:`judder.inputs.read_chart_below`). The boundary lies
+        between it and the onset, not at the onset: the fit compares with
+        the interval's midpoint (a grid step of 0.2 bar otherwise puts
+        every onset 0.1 bar high on average and biases the fit).
     scatter : float, optional
         The bench's known scatter of the onsets (its repeatability): a
         share of the amplitude (``error_model='relative'``, e.g. 0.03) or
@@ -201,6 +208,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     if freq_hz.shape != measured.shape or freq_hz.ndim != 1:
         raise JudderError("the measured boundary needs one amplitude per "
                           "frequency")
+    onsets = measured
+    measured = _midpoints(measured, below)
     censored = np.isnan(measured)
     if censored.all():
         raise JudderError("the measured boundary has no point with judder: "
@@ -248,8 +257,9 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         if len(held) == len(names):
             raise JudderError(
                 f"none of {', '.join(names)} moves the measured boundary: "
-                f"a change of {EFFECT_STEP:.0%} moves no measured onset by "
-                f"{MIN_EFFECT:.0e} of its amplitude; fit parameters that "
+                f"a change of {100 * EFFECT_STEP:g} % moves no measured "
+                f"onset by {100 * MIN_EFFECT:g} % of its amplitude; fit "
+                "parameters that "
                 "act where the onsets were measured")
         free = np.array([j not in dict(held) for j in range(len(names))])
         if not isinstance(extra, int):
@@ -259,7 +269,25 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
             result = _fit(_restricted(problem, free), given, extra,
                           uncertainty, n_bootstrap, seed, workers, callback,
                           curve_points)
-    return _with_held(result, problem, free, held) if held else result
+    if held:
+        result = _with_held(result, problem, free, held)
+    return dataclasses.replace(result, onset_bar=onsets / PA_PER_BAR)
+
+
+def _midpoints(onsets, below):
+    """The middle of each interval (below, onset] where ``below`` is
+    known and lies under the onset; the onset elsewhere."""
+    if below is None:
+        return onsets
+    below = np.asarray(below, dtype=float)
+    if below.shape != onsets.shape:
+        raise JudderError(f"{below.size} amplitudes below the onsets given "
+                          f"for {onsets.size} measured points; give one per "
+                          "point (NaN: none)")
+    known = np.isfinite(below) & np.isfinite(onsets) & (below >= 0) & (
+        below < onsets)
+    return np.where(known, 0.5 * (np.where(known, below, 0.0) + onsets),
+                    onsets)
 
 
 def _restricted(problem, free):
@@ -294,7 +322,7 @@ def _with_held(result, problem, free, held):
     covariance[np.ix_(free, free)] = result.covariance
     names = [problem.names[j] for j, _ in held]
     why = [f"{name} does not move the measured boundary (a "
-           f"{EFFECT_STEP:.0%} change moves it by {100 * effect:.2g} % at "
+           f"{100 * EFFECT_STEP:g} % change moves it by {100 * effect:.2g} % at "
            f"most): held at its start value {x0[j]:.6g}; measure where it "
            "acts, or fix it" for (j, effect), name in zip(held, names)]
     return dataclasses.replace(

@@ -536,8 +536,16 @@ def plot_fit(result, ax=None):
     list of matplotlib artists
         The fitted curve first.
     """
+    problems = list(getattr(result, "problems", ()))
     if ax is None:
-        _, ax = plt.subplots(figsize=(8, 4.5), layout="constrained")
+        lines = _wrapped(problems)
+        fig, ax = plt.subplots(figsize=(10, 4.5 + 0.17 * len(lines)),
+                               layout="constrained")
+        if lines:
+            share = (0.17 * len(lines) + 0.15) / (4.5 + 0.17 * len(lines))
+            fig.get_layout_engine().set(rect=(0, share, 1, 1 - share))
+            fig.text(0.01, share - 0.02, "\n".join(lines), fontsize=7.5,
+                     va="top", color="#b00000")
     freq, start, fitted = _fit_curves(result)
     artists = [
         ax.plot(freq, fitted, "k-", linewidth=1.4,
@@ -545,6 +553,16 @@ def plot_fit(result, ax=None):
         ax.plot(freq, start, "k:", linewidth=1.4,
                 label="first attempt (start values)")[0]]
     judder = np.isfinite(result.measured_bar)
+    onset = getattr(result, "onset_bar", None)
+    if onset is not None and np.any(judder & (onset != result.measured_bar)):
+        # the onset was found on a grid: the boundary lies between the
+        # amplitude tried below it and the onset
+        found = judder & (onset != result.measured_bar)
+        below = 2 * result.measured_bar[found] - onset[found]
+        artists.append(ax.vlines(result.freq_hz[found], below, onset[found],
+                                 color="0.45", linewidth=2.5, zorder=2,
+                                 label="onset between these amplitudes "
+                                       "(fitted to the middle)"))
     kinds = np.array([k or "" for k in result.kinds]) if len(
         result.kinds) == len(judder) else np.full(len(judder), "")
     for kind in dict.fromkeys(kinds[judder]):
@@ -570,17 +588,35 @@ def plot_fit(result, ax=None):
     ax.set_ylim(0, 1.12 * p_max)
     ax.set_xlabel("dither frequency [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
-    ci = getattr(result, "ci_low", None) is not None
-    ax.set_title("fit: " + ", ".join(
-        f"{n} = {v:.4g} ± {s:.2g}" + (f" [{lo:.4g}, {hi:.4g}]" if ci else "")
-        for n, v, s, lo, hi in zip(
-            result.names, result.values, result.std,
-            result.ci_low if ci else result.values,
-            result.ci_high if ci else result.values))
-        + ("" if result.success else "  (problems: see the report)"),
+    ax.set_title("fit (Fig. 16a): " + "; ".join(
+        _fitted_label(result, i) for i in range(len(result.names))),
         fontsize=8)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return artists
+
+
+def _fitted_label(result, i):
+    """``name = value ± std unit`` with the interval's digits, or why
+    there is no value."""
+    from infra.numbers import format_uncertain
+    name = result.names[i]
+    specs = getattr(result.params, "specs", {})
+    unit = specs[name].unit if name in specs else ""
+    if name in getattr(result, "held", ()):
+        return f"{name} held at {result.values[i]:.4g} (no effect)"
+    if name in getattr(result, "undetermined", ()):
+        return f"{name} not determined"
+    return f"{name} = {format_uncertain(result.values[i], result.std[i], unit)}"
+
+
+def _wrapped(problems, width=130):
+    """The problems of a fit as lines of at most ``width`` characters."""
+    import textwrap
+    lines = []
+    for problem in problems:
+        lines += textwrap.wrap("problem: " + problem, width,
+                               subsequent_indent="    ")
+    return lines
 
 
 def _p_max_bar(result):

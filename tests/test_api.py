@@ -89,7 +89,7 @@ def test_sensitivity_and_fit_take_the_engine():
     assert study.study.nominal.boundaries.method == "solve_ivp"
     measured = api.tongues(freqs, 1.0).boundaries.stability_boundary
     report = api.fit(freqs, measured / BAR, 1.0, names=["mu_g"],
-                     method="solve_ivp")
+                     method="solve_ivp", min_growth=0.0)
     assert report.fit.success
     assert report.fit.values[0] == pytest.approx(0.017, rel=1e-5)
 

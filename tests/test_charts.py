@@ -211,6 +211,7 @@ def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
     assert data["boundary"] == [[60.0, None], [206.0, lowest]]
     assert lowest in (0.2, 0.3)
     assert boundary.read_text().splitlines() == ["# written by judder",
+                                                 "# min_growth_per_s: 1",
                                                  "freq_hz,p_f_bar", "60,",
                                                  f"206,{lowest:g}"]
     assert plot.read_bytes()[:4] == b"\x89PNG"
@@ -296,13 +297,20 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
                                           for _, p in boundary],
                        equal_nan=True)
     assert tried == pytest.approx(0.3)
-    proc = subprocess.run([sys.executable, "-m", "judder", "fit", "--chart",
-                           str(out), "--fit", "mu_g", "--set", "c1=2000.1",
-                           "--json"], capture_output=True, text=True,
-                          timeout=600)
+    fit = [sys.executable, "-m", "judder", "fit", "--chart", str(out),
+           "--fit", "mu_g", "--set", "c1=2000.1", "--json"]
+    # one onset cannot give mu_g and the scatter of the onsets: refused
+    proc = subprocess.run(fit, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert "1 point with judder: fitting 1 parameter (mu_g) needs at " \
+        "least 3" in proc.stderr
+    # with the bench's scatter known, one onset is enough for one value
+    proc = subprocess.run(fit + ["--scatter", "3%"], capture_output=True,
+                          text=True, timeout=600)
     assert "Traceback" not in proc.stderr
     data = json.loads(proc.stdout)
     assert data["freq_hz"] == freq.tolist()
+    assert data["scatter"] == 0.03 and data["scatter_given"]
     with pytest.raises(JudderError, match="missing.npz: cannot read it"):
         read_chart_boundary(tmp_path / "missing.npz")
     (tmp_path / "table.csv").write_text("freq_hz,p_f_bar\n100,0.3\n")

@@ -233,7 +233,7 @@ def test_fit_through_the_fmu_recovers_the_friction_gradient(four_fmu):
     lowest = np.nanmin(measured, axis=1) / BAR
     report = api.fit(freqs, lowest, 1.0, names=["mu_g"],
                      parameters=FmuParameters(four_fmu), starts=1,
-                     workers=1)
+                     workers=1, min_growth=0.0)
     assert report.fit.values[0] == pytest.approx(0.022, rel=1e-6)
     assert report.as_dict()["model"] == FOUR
 

@@ -82,8 +82,11 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     assert "for mu_g below -1.25e-05 s/rad" in text
     # the example boundary was made from this set (mu_g = 0.022) with
     # 3 % noise: the fit, started at 0.011, finds it again
-    fit = re.search(r"mu_g 0\.011 ([\d.]+) \[", text)
+    fit = re.search(r"mu_g 0\.011 ([\d.]+) ± ([\d.]+) s/rad \[([\d.]+), "
+                    r"([\d.]+)\]", text)
     assert float(fit.group(1)) == pytest.approx(0.022, rel=0.03)
+    assert float(fit.group(3)) < 0.022 < float(fit.group(4))
+    assert "scatter of the onsets:" in text
     # self-contained: every image is inline, nothing is fetched
     assert html.count("<img") == 6
     assert html.count('src="data:image/png;base64,') == 6
@@ -170,3 +173,20 @@ def test_report_prints_to_pdf(report):
     assert pdf.startswith(b"%PDF-")
     # one page object per printed page: the report is several pages long
     assert len(re.findall(rb"/Type\s*/Page[^s]", pdf)) >= 3
+
+
+def test_report_shows_no_fit_the_data_cannot_determine():
+    # the README's chart: three onsets cannot give c12, mu_g and k24
+    from judder.inputs import load_parameters
+    from judder.report import _fit_section
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    bench = (np.array([210.0, 212.0, 214.0]),
+             np.array([0.8, 0.6, 0.8]) * 1e5, 0.8, 1.0,
+             np.array([0.6, 0.4, 0.6]))
+    text, data, fitted = _fit_section(bench, ("c12", "mu_g", "k24"),
+                                      example, "dyson", 1, "chart.npz")
+    assert fitted is None and data["fit"] is None
+    assert not data["fit_determined"]
+    assert "No fit is shown" in text and "needs at least 5" in text
+    assert data["fit_status"].startswith("no fit: the measured boundary has "
+                                         "3 points with judder")

@@ -78,11 +78,12 @@ def test_chart_boundary_is_the_model_tongue_at_min_growth(chart,
 
 def test_fit_to_the_chart_brackets_the_truth(chart, truth, boundary_bar):
     # The chart says the onset lies between the run below and the run
-    # above. Fitted to the runs above (the chart's boundary, through
-    # `judder fit --chart`, which takes the chart's min-growth) and to
-    # the runs below, mu_g brackets the truth when the fit compares with
-    # the bench's linearisation at min-growth; compared with the
-    # driveline's stability boundary (the fit before) it does not.
+    # above. `judder fit --chart` (which takes the chart's min-growth)
+    # fits to the middle of the two, and finds the truth. Fitted to the
+    # runs above alone and to the runs below alone, mu_g brackets the
+    # truth when the fit compares with the bench's linearisation at
+    # min-growth; compared with the driveline's stability boundary (the
+    # fit before issue 18) it does not.
     _, npz = chart
     proc = subprocess.run(
         [sys.executable, "-m", "judder", "fit", "--chart", str(npz),
@@ -93,18 +94,25 @@ def test_fit_to_the_chart_brackets_the_truth(chart, truth, boundary_bar):
     data = json.loads(proc.stdout)
     assert data["min_growth_per_s"] == MIN_GROWTH
     assert data["added"] == {"c1": D_CONTROL}
-    from_above = data["fitted"]["mu_g"]["value"]
+    middle = data["fitted"]["mu_g"]
+    assert middle["value"] == pytest.approx(truth["mu_g"], rel=0.01)
     p_max = (boundary_bar.max() + STEP) * PA_PER_BAR
     below = (boundary_bar - STEP) * PA_PER_BAR
 
-    def fit_below(**compare):
-        return fit_boundary(truth.replace(mu_g=0.02), FREQS, below, p_max,
+    def fit_to(onsets, **compare):
+        return fit_boundary(truth.replace(mu_g=0.02), FREQS, onsets, p_max,
                             names=("mu_g",), starts=1, workers=1,
                             curve_points=0, **compare).values[0]
-    from_below = fit_below(min_growth=MIN_GROWTH, added={"c1": D_CONTROL})
+
+    def fit_below(**compare):
+        return fit_to(below, **compare)
+    bench = dict(min_growth=MIN_GROWTH, added={"c1": D_CONTROL})
+    from_above = fit_to((boundary_bar + STEP) * PA_PER_BAR, **bench)
+    from_below = fit_below(**bench)
     assert from_above < truth["mu_g"] < from_below
+    assert from_above < middle["value"] < from_below
     # the old comparison: even the runs below call for less than the truth
-    assert fit_below() < truth["mu_g"]
+    assert fit_below(min_growth=0.0) < truth["mu_g"]
 
 
 def test_a_judder_that_runs_away_keeps_the_whole_engagement_window():

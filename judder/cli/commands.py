@@ -15,7 +15,8 @@ from infra.files import save_figure
 from infra.units import PA_PER_BAR
 
 from .. import api
-from ..inputs import (read_boundary, read_chart_boundary,
+from ..inputs import (read_boundary, read_boundary_min_growth,
+                      read_chart_below, read_chart_boundary,
                       read_chart_min_growth)
 from .values import (check_amplitudes, check_campaign_disk,
                      check_map_memory, check_work)
@@ -327,8 +328,12 @@ def cmd_fit(args):
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
         default_growth = read_chart_min_growth(args.chart)
+        below = read_chart_below(args.chart, args.group)
     else:
         freqs, measured = read_boundary(args.boundary)
+        below = None
+        stated = read_boundary_min_growth(args.boundary)
+        default_growth = default_growth if stated is None else stated
     min_growth = check_number("--min-growth", default_growth
                               if args.min_growth is None else args.min_growth,
                               "1/s", strict=False)
@@ -347,7 +352,8 @@ def cmd_fit(args):
                          error_model=args.error_model, seed=args.seed,
                          workers=args.workers, progress=progress,
                          min_growth=min_growth, bench=bench,
-                         scatter=scatter)
+                         scatter=scatter, below_bar=None if below is None
+                         else below / PA_PER_BAR)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
@@ -770,6 +776,8 @@ def cmd_report(args):
                + ("judder (" + verdict["kind"] + ")"
                   if verdict["verdict"] == "judder" else "no judder")
                if verdict else "")
+            + (f"\nbench data: {result.data['fit_status']}"
+               if "fit_status" in result.data else "")
             + _written(args.out, args.pdf))
     emit(args, {**result.as_dict(), **_files(out=args.out, pdf=args.pdf)},
          text)

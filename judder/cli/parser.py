@@ -441,7 +441,8 @@ def build_parser():
     p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
                    help="compare with the model's boundary of judder "
                         "growing at this rate, 1/s (default: the chart's "
-                        "--min-growth with --chart, else check's 1 1/s, so "
+                        "--min-growth with --chart or its --boundary file, "
+                        "else check's 1 1/s, so "
                         "fit, check and chart call the same point judder; "
                         "0: the stability boundary)")
     p.add_argument("--bench-linearisation", action="store_true",
