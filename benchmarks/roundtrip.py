@@ -37,7 +37,8 @@ from infra.errors import JudderError
 from infra.files import write_text
 from infra.units import PA_PER_BAR
 from judder import api
-from judder.inputs import read_chart_boundary, read_chart_min_growth
+from judder.inputs import (read_chart_below, read_chart_boundary,
+                           read_chart_min_growth)
 from stability import build_driveline, floquet
 
 #: Start of the fit: the truth moved by these factors.
@@ -136,18 +137,24 @@ def main(argv=None):
                            float(p / PA_PER_BAR)]
                           for f, p in zip(freqs, measured)]
     start = {n: truth[n] * START_FACTORS.get(n, 1.0) for n in names}
+    below_bar = read_chart_below(npz) / PA_PER_BAR
     fits = {}
-    for label, growth, bench_values in (
-            ("bench linearisation at the chart's min-growth",
-             read_chart_min_growth(npz), {}),
-            ("driveline's stability boundary (the fit before this issue)",
-             0.0, None)):
+    for label, growth, bench_values, below in (
+            ("bench linearisation at the chart's min-growth, to the middle "
+             "of each onset's grid step (judder fit --chart)",
+             read_chart_min_growth(npz), {}, below_bar),
+            ("bench linearisation at the chart's min-growth, to the onsets "
+             "(the fit before issue 20)", read_chart_min_growth(npz), {},
+             None),
+            ("driveline's stability boundary (the fit before issue 18)",
+             0.0, None, None)):
         began = time.perf_counter()
         try:
             fit = api.fit(freqs, measured / PA_PER_BAR, p_max, names=names,
                           parameters=truth, changes=start,
                           starts=args.starts, workers=args.workers,
-                          min_growth=growth, bench=bench_values).fit
+                          min_growth=growth, bench=bench_values,
+                          below_bar=below).fit
         except JudderError as exc:     # e.g. a chart without judder
             fits[label] = {"refused": str(exc)}
             print(f"fit, {label}: refused: {exc}", file=sys.stderr)

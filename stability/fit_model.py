@@ -36,6 +36,7 @@ from infra.units import PA_PER_BAR
 
 from .model import build_driveline
 from .monodromy import DEFAULT_METHOD
+from .relevance import DEFAULT_MIN_GROWTH_PER_S
 from .tongues import tongue_boundaries
 
 __all__ = ["model_boundary", "evaluated", "fit_curves", "SEARCH_FACTOR", "CURVE_POINTS"]
@@ -57,15 +58,18 @@ _EXACT = 1e-7
 
 
 def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
-                   min_growth=0.0, added=()):
-    """Lowest unstable amplitude of the model at each frequency, Pa.
+                   min_growth=DEFAULT_MIN_GROWTH_PER_S, added=()):
+    """Lowest amplitude of judder growing at ``min_growth`` (1/s) or
+    faster at each frequency, Pa: the model boundary
+    :func:`stability.fitting.fit_boundary` compares with.
 
-    NaN where the model is stable up to ``p_max``; ``method`` is the
-    monodromy engine (:data:`stability.monodromy.METHODS`). With
-    ``min_growth`` (1/s) the boundary of judder growing at that rate
-    (:func:`stability.tongues.tongue_boundaries`); ``added`` are
-    ``(name, value)`` pairs added to ``params`` for the model evaluated
-    (see :func:`evaluated`).
+    NaN where there is none up to ``p_max``; ``method`` is the monodromy
+    engine (:data:`stability.monodromy.METHODS`). ``min_growth`` defaults
+    to ``judder check``'s judder-relevant rate, as ``fit_boundary``'s
+    does; 0 gives the stability boundary
+    (:func:`stability.tongues.tongue_boundaries`). ``added`` are ``(name,
+    value)`` pairs added to ``params`` for the model evaluated (see
+    :func:`evaluated`).
     """
     return tongue_boundaries(build_driveline(evaluated(params, added)),
                              freq_hz, p_max, method,

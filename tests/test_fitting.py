@@ -18,7 +18,8 @@ STABILITY = dict(min_growth=0.0)
 @pytest.fixture(scope="module")
 def measured():
     # a boundary computed from known parameters (section 4.2's fitted set)
-    return model_boundary(get_preset("paper-4dof-fitted"), FREQS, 1.5 * BAR)
+    return model_boundary(get_preset("paper-4dof-fitted"), FREQS, 1.5 * BAR,
+                          **STABILITY)
 
 
 def test_fit_recovers_known_parameters(measured):
@@ -140,7 +141,7 @@ def test_parse_kind():
 def measured15():
     freqs = np.linspace(60.0, 200.0, 15)
     return freqs, model_boundary(get_preset("paper-4dof-fitted"), freqs,
-                                 1.5 * BAR)
+                                 1.5 * BAR, **STABILITY)
 
 
 def test_a_too_narrow_bound_is_reported(measured15):
@@ -211,7 +212,8 @@ def test_progress_callback_counts_to_a_fixed_total():
     freqs = np.array([98.0, 102.0, 106.0, 110.0])
     # a little scatter, so that the extra start is not skipped
     measured = model_boundary(get_preset("paper-4dof-fitted"), freqs,
-                              1.0 * BAR) * np.array([1.01, 0.99, 1.02, 0.98])
+                              1.0 * BAR, **STABILITY) * np.array(
+                                  [1.01, 0.99, 1.02, 0.98])
     calls = []
     result = fit_boundary(get_preset("paper-4dof-fitted"), freqs, measured,
                           1.0 * BAR, names=("mu_g",), start={"mu_g": 0.03},
@@ -233,7 +235,7 @@ def test_plot_fit_draws_start_and_fitted_curves_and_censored_arrows():
     import matplotlib.pyplot as plt
     freqs = np.array([96.0, 102.0, 106.0, 112.0, 160.0, 180.0])
     truth = get_preset("paper-4dof-fitted")
-    measured = model_boundary(truth, freqs, 1.0 * BAR)
+    measured = model_boundary(truth, freqs, 1.0 * BAR, **STABILITY)
     assert np.isnan(measured[-2:]).all()
     result = fit_boundary(truth, freqs, measured, 1.0 * BAR,
                           names=("mu_g",), start={"mu_g": 0.03}, starts=1,
@@ -312,7 +314,7 @@ def test_the_default_threshold_is_the_verdicts():
     assert result.min_growth == DEFAULT_MIN_GROWTH_PER_S == 1.0
     assert result.error_model == "relative"
     assert result.values[0] == pytest.approx(0.022, rel=1e-6)
-    stability = model_boundary(truth, freqs, 3.0 * BAR)
+    stability = model_boundary(truth, freqs, 3.0 * BAR, **STABILITY)
     finite = np.isfinite(measured) & np.isfinite(stability)
     assert np.all(stability[finite] < 0.9 * measured[finite])
 

@@ -96,10 +96,10 @@ def _pf_max_option(parser, meaning):
                         help=f"{meaning}, bar (default 1.5)")
 
 
-def _workers_option(parser):
+def _workers_option(parser, default="all cores"):
     parser.add_argument("--workers", type=int, default=None,
                         help="local worker processes of a Dask cluster "
-                             "started for the command (default: all cores; "
+                             f"started for the command (default: {default}; "
                              "1 runs everything in this process)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="run the jobs on an existing Dask cluster, "
@@ -385,13 +385,19 @@ def build_parser():
     p = sub.add_parser("fit", help="fit parameters to a measured boundary "
                                    "(section 4.2)",
                        description="Adjust hard-to-know parameters so the "
-                                   "model's stability boundary matches a "
-                                   "measured one (CSV: freq_hz,p_f_bar; "
-                                   "empty p_f_bar = no judder up to "
-                                   "--pf-max), or the boundary of a chart "
-                                   "(judder chart --out). Reports values, "
-                                   "standard uncertainties and the "
-                                   "residual.")
+                                   "model's boundary of judder growing at "
+                                   "--min-growth matches a measured one "
+                                   "(CSV: freq_hz,p_f_bar; empty p_f_bar = "
+                                   "no judder up to --pf-max), or the "
+                                   "boundary of a chart (judder chart "
+                                   "--out). Reports each value with its "
+                                   "standard uncertainty, 95 % interval "
+                                   "and unit, their correlations and the "
+                                   "scatter of the onsets; refuses what the "
+                                   "data cannot determine (k parameters "
+                                   "need k + 2 onsets, k with --scatter) "
+                                   "and names a parameter that does not "
+                                   "move the measured boundary.")
     source = p.add_mutually_exclusive_group(required=True)
     source.add_argument("--boundary", metavar="FILE.csv",
                         help="measured boundary, Hz and bar")
@@ -432,7 +438,9 @@ def build_parser():
                         "which needs two onsets more than the parameters")
     p.add_argument("--seed", type=int, default=0,
                    help="seed of the sampled starts and the bootstrap")
-    _workers_option(p)
+    _workers_option(p, "one, as starting Dask costs more than the few "
+                       "parallel starts gain; all cores for --uncertainty "
+                       "bootstrap")
     p.add_argument("--save-params", metavar="FILE.toml",
                    help="write the fitted set (never overwrites unless "
                         "--force)")
