@@ -36,8 +36,8 @@ from infra.errors import JudderError
 from .fit_matching import _nearest
 from .fit_model import _capped, _Evaluator
 
-__all__ = ["MIN_DOF", "EFFECT_STEP", "MIN_EFFECT", "FLAT_CORRELATION", "check_onsets",
-           "without_effect", "flat_pairs", "correlation"]
+__all__ = ["MIN_DOF", "EFFECT_STEP", "MIN_EFFECT", "FLAT_CORRELATION",
+           "check_onsets", "without_effect", "flat_pairs", "correlation"]
 
 #: Degrees of freedom the scatter of the onsets is estimated with, at
 #: least (when it is not given).

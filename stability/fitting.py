@@ -29,6 +29,9 @@ with that model; the fitted values stay the driveline's. The round trip
 
 The fit itself has its parts in modules of their own:
 
+* :mod:`stability.fit_identifiability`: what the data can determine
+  (enough onsets, parameters that move the measured boundary, flat
+  directions);
 * :mod:`stability.fit_model`: the problem, the model's boundaries at
   trial parameters and the residuals;
 * :mod:`stability.fit_matching`: matching each measured point to a kind
@@ -259,8 +262,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                 f"none of {', '.join(names)} moves the measured boundary: "
                 f"a change of {100 * EFFECT_STEP:g} % moves no measured "
                 f"onset by {100 * MIN_EFFECT:g} % of its amplitude; fit "
-                "parameters that "
-                "act where the onsets were measured")
+                "parameters that act where the onsets were measured")
         free = np.array([j not in dict(held) for j in range(len(names))])
         if not isinstance(extra, int):
             extra = extra[:, free]
@@ -322,9 +324,10 @@ def _with_held(result, problem, free, held):
     covariance[np.ix_(free, free)] = result.covariance
     names = [problem.names[j] for j, _ in held]
     why = [f"{name} does not move the measured boundary (a "
-           f"{100 * EFFECT_STEP:g} % change moves it by {100 * effect:.2g} % at "
-           f"most): held at its start value {x0[j]:.6g}; measure where it "
-           "acts, or fix it" for (j, effect), name in zip(held, names)]
+           f"{100 * EFFECT_STEP:g} % change moves it by "
+           f"{100 * effect:.2g} % at most): held at its start value "
+           f"{x0[j]:.6g}; measure where it acts, or fix it"
+           for (j, effect), name in zip(held, names)]
     return dataclasses.replace(
         result, names=problem.names, values=full(result.values, x0),
         start=x0.copy(), std=full(result.std, np.inf),

@@ -606,7 +606,8 @@ def _fitted_label(result, i):
         return f"{name} held at {result.values[i]:.4g} (no effect)"
     if name in getattr(result, "undetermined", ()):
         return f"{name} not determined"
-    return f"{name} = {format_uncertain(result.values[i], result.std[i], unit)}"
+    value = format_uncertain(result.values[i], result.std[i], unit)
+    return f"{name} = {value}"
 
 
 def _wrapped(problems, width=130):

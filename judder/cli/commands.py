@@ -378,8 +378,18 @@ def _scatter(text, error_model):
     if text is None:
         return None
     if error_model == "relative":
-        return check_number("--scatter", parse_quantity(
-            text, "1", "--scatter"), "(a share of the amplitude, e.g. 3%)")
+        number = text.strip().removesuffix("%")
+        try:
+            share = float(number) / (100 if number != text.strip() else 1)
+        except ValueError:
+            share = math.nan
+        if not (math.isfinite(share) and 0 < share <= 1):
+            raise JudderError(
+                f"--scatter {text} is not allowed with the relative error "
+                "model; allowed: a share of the amplitude above 0 and up to "
+                "100 %, such as 3% or 0.03 (or --error-model absolute and "
+                "a scatter in bar, such as 20mbar)")
+        return share
     return check_number("--scatter", parse_quantity(
         text, "bar", "--scatter"), "bar") * PA_PER_BAR
 
