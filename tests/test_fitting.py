@@ -340,3 +340,33 @@ def test_fit_text_has_the_digits_the_interval_supports():
     assert lines[2] == f"correlation of the fitted values: mu_g-k24 {r:+.2f}"
     assert abs(r) < 1
     assert "1 local fit (from the given values)" in lines[4]
+
+
+def test_flat_pairs_are_the_correlations_beyond_the_limit():
+    from stability.fit_identifiability import FLAT_CORRELATION, flat_pairs
+    covariance = np.array([[4.0, 1.999, 0.0], [1.999, 1.0, 0.0],
+                           [0.0, 0.0, 1.0]])   # r(a, b) = 0.9995
+    assert FLAT_CORRELATION == 0.999
+    [(a, b, r)] = flat_pairs(covariance, ("a", "b", "c"))
+    assert (a, b) == ("a", "b") and r == pytest.approx(0.9995)
+    covariance[0, 1] = covariance[1, 0] = 1.9       # r = 0.95
+    assert flat_pairs(covariance, ("a", "b", "c")) == []
+
+
+def test_onsets_on_a_grid_are_fitted_to_the_middle_of_their_step():
+    # the boundary lies between the amplitude tried below and the onset:
+    # onsets 0.05 bar above it, 0.1 bar steps, fitted to the middle
+    truth = get_preset("paper-4dof-fitted")
+    freqs = np.array([98.0, 102.0, 106.0, 110.0])
+    exact = model_boundary(truth, freqs, 1.0 * BAR, **STABILITY)
+    onsets, below = exact + 0.05 * BAR, exact - 0.05 * BAR
+    result = fit_boundary(truth.replace(mu_g=0.02), freqs, onsets, 1.0 * BAR,
+                          names=("mu_g",), below=below, **FAST)
+    np.testing.assert_allclose(result.onset_bar * BAR, onsets)
+    np.testing.assert_allclose(result.measured_bar * BAR, exact)
+    assert result.values[0] == pytest.approx(0.022, rel=1e-6)
+    # to the onsets themselves the same data give a biased mu_g (the
+    # boundary ~ 1/mu_g: higher onsets, smaller mu_g)
+    biased = fit_boundary(truth.replace(mu_g=0.02), freqs, onsets, 1.0 * BAR,
+                          names=("mu_g",), **FAST)
+    assert biased.values[0] < 0.021
