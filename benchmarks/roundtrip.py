@@ -40,6 +40,7 @@ from judder import api
 from judder.inputs import (read_chart_below, read_chart_boundary,
                            read_chart_min_growth)
 from stability import build_driveline, floquet
+from stability.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
 #: Start of the fit: the truth moved by these factors.
 START_FACTORS = {"c12": 2.0, "mu_g": 1.25, "k24": 1.015}
@@ -139,22 +140,23 @@ def main(argv=None):
     start = {n: truth[n] * START_FACTORS.get(n, 1.0) for n in names}
     below_bar = read_chart_below(npz) / PA_PER_BAR
     fits = {}
-    for label, growth, bench_values, below in (
+    for label, growth, bench_values, below, spread in (
             ("bench linearisation at the chart's min-growth, to the middle "
-             "of each onset's grid step (judder fit --chart)",
-             read_chart_min_growth(npz), {}, below_bar),
+             "of each onset's grid step, threshold +-0.25 1/s (judder fit "
+             "--chart)", read_chart_min_growth(npz), {}, below_bar,
+             CHART_THRESHOLD_SPREAD_PER_S),
             ("bench linearisation at the chart's min-growth, to the onsets "
              "(the fit before issue 20)", read_chart_min_growth(npz), {},
-             None),
+             None, 0.0),
             ("driveline's stability boundary (the fit before issue 18)",
-             0.0, None, None)):
+             0.0, None, None, 0.0)):
         began = time.perf_counter()
         try:
             fit = api.fit(freqs, measured / PA_PER_BAR, p_max, names=names,
                           parameters=truth, changes=start,
                           starts=args.starts, workers=args.workers,
                           min_growth=growth, bench=bench_values,
-                          below_bar=below).fit
+                          below_bar=below, threshold_spread=spread).fit
         except JudderError as exc:     # e.g. a chart without judder
             fits[label] = {"refused": str(exc)}
             print(f"fit, {label}: refused: {exc}", file=sys.stderr)

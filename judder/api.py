@@ -332,7 +332,7 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
         starts=3, uncertainty="auto", error_model="relative", seed=0,
         workers=None, progress=None, min_growth=None, bench=None,
-        scatter=None, below_bar=None):
+        scatter=None, below_bar=None, threshold_spread=0.0):
     """``judder fit``: fit parameters to a measured boundary (section 4.2,
     Fig. 16a).
 
@@ -349,6 +349,7 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
     bounds : dict, optional
         ``{name: (low, high)}``, SI.
     kinds, starts, uncertainty, error_model, seed, workers, scatter
+    threshold_spread
         As :func:`stability.fitting.fit_boundary` takes them (``scatter``
         in Pa with the absolute error model).
     min_growth : float, optional
@@ -388,7 +389,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         callback=progress, min_growth=min_growth,
         added=None if bench is None else bench_damping(start, bench),
         scatter=scatter, below=None if below_bar is None else
-        np.asarray(below_bar, dtype=float) * PA_PER_BAR)
+        np.asarray(below_bar, dtype=float) * PA_PER_BAR,
+        threshold_spread=threshold_spread)
     return FitReport(fit=result, seconds=seconds, method=method)
 
 

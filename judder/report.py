@@ -30,7 +30,8 @@ from infra.files import MARK, atomic_write, keeps_foreign_files, write_text
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
 
-from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
+                                 DEFAULT_MIN_GROWTH_PER_S)
 
 from . import api
 
@@ -98,7 +99,7 @@ def _fit_section(bench, names, values, method, workers, source):
     Returns the section's HTML, its data (``fit``, ``fit_determined``,
     ``fit_status``, ``fit_problems``) and the fit report to draw (None when
     the fit is not shown)."""
-    freqs, measured, tried, min_growth, below_bar = bench
+    freqs, measured, tried, min_growth, below_bar, spread = bench
     onsets = int(np.sum(np.isfinite(measured)))
     head = ("<h2>6. The bench data and the fit</h2>"
             f"<p>{len(freqs)} measured points from {source}, {onsets} with "
@@ -108,7 +109,8 @@ def _fit_section(bench, names, values, method, workers, source):
         report = api.fit(freqs, measured / PA_PER_BAR, tried,
                          names=list(names), parameters=values,
                          method=method, starts=1, workers=workers,
-                         min_growth=min_growth, below_bar=below_bar)
+                         min_growth=min_growth, below_bar=below_bar,
+                         threshold_spread=spread)
     except JudderError as error:
         status = f"no fit: {error}"
         return (head + f"<p><b>No fit is shown</b>: {html.escape(str(error))}"
@@ -309,10 +311,11 @@ def build_report(parameters=None, changes=None, description=None,
     if chart:
         bench = (*read_chart_boundary(chart, group),
                  read_chart_min_growth(chart),
-                 read_chart_below(chart, group) / PA_PER_BAR)
+                 read_chart_below(chart, group) / PA_PER_BAR,
+                 CHART_THRESHOLD_SPREAD_PER_S)
     elif boundary:
         bench = (*read_boundary(boundary, "--boundary"), p_max_bar,
-                 DEFAULT_MIN_GROWTH_PER_S, None)
+                 DEFAULT_MIN_GROWTH_PER_S, None, 0.0)
     for option, given in (("--sensitivity", names),
                           ("--fit", fit_names if bench else ())):
         unknown = [n for n in given if n not in values.specs]

@@ -390,6 +390,11 @@ class FitReport:
                 "scatter_unit": ("share of the amplitude"
                                  if r.error_model == "relative" else "bar"),
                 "scatter_given": r.scatter_given,
+                "threshold_spread_per_s": r.threshold_spread,
+                "threshold_shifts": None if r.threshold_shifts is None else {
+                    n: {"lower_threshold": float(a),
+                        "higher_threshold": float(b)}
+                    for n, (a, b) in zip(r.names, r.threshold_shifts)},
                 "covariance": None if r.covariance is None else {
                     "names": list(r.names),
                     "matrix": [[_finite_or_none(v) for v in row]
@@ -435,6 +440,15 @@ class FitReport:
                     f"error model); residual rms {r.residual_rms_bar:.3g} "
                     f"bar over {len(r.freq_hz)} points, "
                     f"{int(np.sum(np.isfinite(r.measured_bar)))} with judder")
+        if r.threshold_shifts is not None:
+            low = max(r.min_growth - r.threshold_spread, 0.0)
+            high = r.min_growth + r.threshold_spread
+            rows.append(
+                f"growth threshold {low:g} and {high:g} 1/s instead of "
+                f"{r.min_growth:g}: " + ", ".join(
+                    f"{n} {a:+.2g}/{b:+.2g}" for n, (a, b) in zip(
+                        r.names, r.threshold_shifts))
+                + " (the intervals cover these shifts)")
         rows.append(f"{_starts_text(r)}; intervals by {r.uncertainty}; "
                     f"{r.evaluations} model boundaries in {self.seconds:.1f} s")
         return rows
@@ -452,12 +466,15 @@ def _starts_text(r):
     origins = list(r.start_origins)
     sampled = origins.count("sampled")
     rematched = origins.count("rematched")
+    continued = origins.count("continued")
     where = ["the given values"]
     if sampled:
         where.append(f"{sampled} sampled within a factor 3 of them")
     if rematched:
         where.append(f"{rematched} with ambiguous points matched to the "
                      "other kind of tongue")
+    if continued:
+        where.append("the best one continued after its budget")
     text = (f"{r.starts_tried} local fit{'s' if r.starts_tried > 1 else ''} "
             f"(from {', '.join(where)})")
     if r.starts_tried == 1:

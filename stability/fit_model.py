@@ -141,6 +141,7 @@ class _Problem:
     added: tuple = ()           # (name, value) added for the model
     scatter: float = None       # known scatter, weighted units; None:
                                 # estimated from the residuals
+    threshold_spread: float = 0.0   # 1/s: uncertainty of min_growth
 
     @property
     def p_search(self):

@@ -133,6 +133,12 @@ class FitResult:
         from the residuals, or the one given (``scatter_given``).
     scatter_given : bool
         The scatter was given (the bench's known repeatability).
+    threshold_spread : float
+        1/s: the spread of the growth threshold the fit was repeated at.
+    threshold_shifts : ndarray or None, shape (k, 2)
+        SI: each value refitted at ``min_growth`` minus and plus
+        ``threshold_spread``, minus the fitted value; the intervals cover
+        them. None without a spread.
     held : tuple of str
         Parameters that do not move the measured boundary, held at their
         start values (:func:`stability.fit_identifiability.without_effect`);
@@ -180,6 +186,8 @@ class FitResult:
     covariance: np.ndarray = None
     scatter: float = None
     scatter_given: bool = False
+    threshold_spread: float = 0.0
+    threshold_shifts: np.ndarray = None
     held: tuple = ()
     onset_bar: np.ndarray = None
 

@@ -35,8 +35,23 @@ from one of:
 A parameter the Jacobian cannot see (rank-deficient) gets ``std = inf``
 and its search range as interval; the others' uncertainties are then
 those with it held.
+
+The growth threshold
+--------------------
+A chart calls a run judder when it grows at ``min_growth`` or faster, but
+a run's growth is read from a few seconds of noisy speed: on the tongue-4
+round trip (docs/roundtrip.md) runs whose Floquet exponent lay within
+0.25 1/s of the threshold were called either way. With
+``threshold_spread`` the fit is repeated from its minimum at
+``min_growth`` minus and plus the spread (:func:`threshold_shifts`); each
+interval is widened to cover the values those thresholds give. A damping
+shifts every exponent alike, so it is the parameter the threshold moves:
+on that round trip c12 = 1.10 N m s/rad at 1 1/s moved to 1.41 at 0.75
+and to 0.78 at 1.25 1/s, while mu_g and k24 moved by less than a tenth of
+their standard uncertainties.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 
@@ -49,10 +64,11 @@ from infra.units import PA_PER_BAR
 from .fit_matching import MATCH_ROUNDS, _ambiguous_points, _nearest
 from .fit_model import (_EXACT, _capped, _Evaluator, _least_squares,
                         _residuals, _run)
+from .fit_starts import _fit_start
 from .tongues import TONGUE_KINDS
 
 __all__ = ["UNCERTAINTY_METHODS", "CONFIDENCE", "DEFAULT_BOOTSTRAP",
-           "uncertainty_steps", "intervals"]
+           "uncertainty_steps", "intervals", "threshold_shifts"]
 
 #: Evaluations allowed to each bootstrap refit and profile refit.
 BOOTSTRAP_EVALUATIONS = 60
@@ -345,6 +361,40 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
                      same=same, minima=minima, notes=notes, info=info,
                      evaluations=evaluations,
                      covariance=_covariance(cov_z, std, kept))
+
+
+#: Model boundaries allowed to each refit at a shifted growth threshold.
+THRESHOLD_EVALUATIONS = 60
+
+
+def threshold_shifts(problem, best, given, progress):
+    """How far each fitted value moves when the growth threshold moves
+    by ``problem.threshold_spread`` either way (see the module
+    docstring).
+
+    Returns
+    -------
+    shifts : ndarray, shape (k, 2), or None
+        SI: the refitted value minus the fitted one at ``min_growth -
+        spread`` (at least 0) and at ``min_growth + spread``; None without
+        a spread.
+    evaluations : int
+        Model boundaries computed.
+    """
+    spread = problem.threshold_spread
+    if not spread:
+        return None, 0
+    out = np.zeros((len(best["z"]), 2))
+    evaluations = 0
+    for side, sign in enumerate((-1, 1)):
+        shifted = dataclasses.replace(
+            problem, min_growth=max(problem.min_growth + sign * spread, 0.0))
+        run = _fit_start((shifted, best["z"], given, 0, best["columns"],
+                          THRESHOLD_EVALUATIONS))
+        out[:, side] = (run["z"] - best["z"]) * problem.scale
+        evaluations += run["evaluations"]
+        progress.step()
+    return out, evaluations
 
 
 def _covariance(cov_z, std, kept):

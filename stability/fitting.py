@@ -63,7 +63,7 @@ from .fit_starts import (ALTERNATIVE_ROUNDS, DEFAULT_STARTS, _extra_starts,
                          run_starts)
 from .fit_uncertainty import (CONFIDENCE, DEFAULT_BOOTSTRAP,
                               UNCERTAINTY_METHODS, intervals,
-                              uncertainty_steps)
+                              threshold_shifts, uncertainty_steps)
 from .monodromy import DEFAULT_METHOD, get_method
 from .relevance import DEFAULT_MIN_GROWTH_PER_S
 from .tongues import TONGUE_KINDS
@@ -93,7 +93,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                  seed=0, workers=None, callback=None,
                  curve_points=CURVE_POINTS,
                  min_growth=DEFAULT_MIN_GROWTH_PER_S, added=None,
-                 scatter=None, below=None):
+                 scatter=None, below=None, threshold_spread=0.0):
     """Fit parameters so the model boundary matches a measured one.
 
     Section 4.2 of the paper, Fig. 16a: the parameters that cannot be
@@ -177,6 +177,13 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         between it and the onset, not at the onset: the fit compares with
         the interval's midpoint (a grid step of 0.2 bar otherwise puts
         every onset 0.1 bar high on average and biases the fit).
+    threshold_spread : float
+        1/s, >= 0: how far the growth rate the onsets were called judder
+        at may lie from ``min_growth`` (a chart's verdict reads the growth
+        from a few seconds of noisy speed). The fit is repeated at
+        ``min_growth`` minus and plus it, the shifts are reported
+        (``threshold_shifts``) and each interval covers them; 0 (default):
+        the threshold is taken as exact.
     scatter : float, optional
         The bench's known scatter of the onsets (its repeatability): a
         share of the amplitude (``error_model='relative'``, e.g. 0.03) or
@@ -228,6 +235,9 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     if not (np.isfinite(min_growth) and min_growth >= 0):
         raise JudderError(f"min_growth = {min_growth!r} 1/s is not allowed; "
                           "allowed: a finite number >= 0")
+    if not (np.isfinite(threshold_spread) and threshold_spread >= 0):
+        raise JudderError(f"threshold_spread = {threshold_spread!r} 1/s is "
+                          "not allowed; allowed: a finite number >= 0")
     params = params.replace(**(start or {}))
     added = tuple(sorted((added or {}).items()))
     for name, value in added:
@@ -251,7 +261,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                        x0=x0, min_growth=float(min_growth), added=added,
                        scatter=None if scatter is None else float(
                            scatter if error_model == "relative"
-                           else scatter / PA_PER_BAR))
+                           else scatter / PA_PER_BAR),
+                       threshold_spread=float(threshold_spread))
     extra = _extra_starts(starts, names, low, high)
     if workers is None:
         workers = (os.cpu_count() or 1) if uncertainty == "bootstrap" else 1
@@ -336,6 +347,8 @@ def _with_held(result, problem, free, held):
         start_points=full_rows(result.start_points),
         start_minima=full_rows(result.start_minima),
         covariance=covariance,
+        threshold_shifts=None if result.threshold_shifts is None else
+        full(result.threshold_shifts, 0.0),
         undetermined=tuple(n for n in problem.names
                            if n in names or n in result.undetermined),
         problems=tuple(why) + result.problems, success=False,
@@ -381,6 +394,7 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
     n_extra = extra if isinstance(extra, int) else len(extra)
     progress = _Progress(callback, 1 + n_extra + ALTERNATIVE_ROUNDS + 1
                          + uncertainty_steps(uncertainty, k, n_bootstrap)
+                         + (2 if problem.threshold_spread else 0)
                          + (2 if curve_points else 0))
     runs, best, evaluations = run_starts(problem, given, extra, seed,
                                          workers, progress)
@@ -390,7 +404,13 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
                       seed, workers, progress)
     evaluations += found.evaluations
     values, std, low, high = found.values, found.std, found.low, found.high
+    shifts, count = threshold_shifts(problem, best, given, progress)
+    evaluations += count
     ci_low, ci_high = found.ci_low, found.ci_high
+    if shifts is not None:
+        # the interval covers the values the threshold's spread gives
+        ci_low = ci_low + np.minimum(shifts.min(axis=1), 0.0)
+        ci_high = ci_high + np.maximum(shifts.max(axis=1), 0.0)
     amplitude, residual, s2 = found.amplitude, found.residual, found.s2
     used, open_sides = found.used, found.open_sides
     alternatives, same, minima = found.alternatives, found.same, found.minima
@@ -447,7 +467,8 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         start_costs=costs, min_growth=problem.min_growth,
         added=problem.added, covariance=found.covariance,
         scatter=float(np.sqrt(max(found.s2, 0.0))),
-        scatter_given=problem.scatter is not None)
+        scatter_given=problem.scatter is not None,
+        threshold_spread=problem.threshold_spread, threshold_shifts=shifts)
     if curve_points:
         freq, start_bar, fitted_bar = fit_curves(result, curve_points)
         progress.step(2)

@@ -27,7 +27,7 @@ import numpy as np
 from infra.errors import JudderError
 
 __all__ = ["DEFAULT_MIN_GROWTH_PER_S", "ENGAGEMENT_DURATION_S",
-           "is_judder_relevant"]
+           "CHART_THRESHOLD_SPREAD_PER_S", "is_judder_relevant"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -35,6 +35,14 @@ ENGAGEMENT_DURATION_S = 1.0
 #: Smallest growth rate counted as judder, 1/s: one e-fold over
 #: :data:`ENGAGEMENT_DURATION_S`.
 DEFAULT_MIN_GROWTH_PER_S = 1.0 / ENGAGEMENT_DURATION_S
+
+#: How far the growth rate a chart's verdict calls judder from may lie
+#: from its threshold, 1/s: on the tongue-4 round trip (docs/roundtrip.md)
+#: runs of 3 s whose Floquet exponent lay within this of the threshold
+#: were called either way. ``judder fit --chart`` widens its intervals by
+#: the values this spread gives (:func:`stability.fitting.fit_boundary`,
+#: ``threshold_spread``).
+CHART_THRESHOLD_SPREAD_PER_S = 0.25
 
 
 def is_judder_relevant(growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):

@@ -370,3 +370,25 @@ def test_onsets_on_a_grid_are_fitted_to_the_middle_of_their_step():
     biased = fit_boundary(truth.replace(mu_g=0.02), freqs, onsets, 1.0 * BAR,
                           names=("mu_g",), **FAST)
     assert biased.values[0] < 0.021
+
+
+def test_the_growth_threshold_spread_moves_the_damping_and_widens():
+    # a damping shifts every Floquet exponent alike: a lower threshold
+    # calls for more damping to put the boundary where it was measured
+    truth = get_preset("paper-4dof-fitted")
+    freqs = np.linspace(96.0, 112.0, 5)
+    measured = model_boundary(truth, freqs, 1.5 * BAR)      # at 1 1/s
+    common = dict(names=("c12", "mu_g"), uncertainty="jacobian",
+                  starts=1, curve_points=0, workers=1, scatter=0.01)
+    plain = fit_boundary(truth, freqs, measured, 1.5 * BAR, **common)
+    spread = fit_boundary(truth, freqs, measured, 1.5 * BAR,
+                          threshold_spread=0.25, **common)
+    assert plain.threshold_shifts is None
+    (c12_low, c12_high), _ = spread.threshold_shifts
+    assert c12_low > 0 > c12_high
+    np.testing.assert_allclose(spread.values, plain.values, rtol=1e-6)
+    # the interval covers the refitted values at 0.75 and 1.25 1/s
+    assert spread.ci_high[0] == pytest.approx(plain.ci_high[0] + c12_low,
+                                              rel=1e-6)
+    assert spread.ci_low[0] == pytest.approx(plain.ci_low[0] + c12_high,
+                                             rel=1e-6)

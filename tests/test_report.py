@@ -182,7 +182,7 @@ def test_report_shows_no_fit_the_data_cannot_determine():
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     bench = (np.array([210.0, 212.0, 214.0]),
              np.array([0.8, 0.6, 0.8]) * 1e5, 0.8, 1.0,
-             np.array([0.6, 0.4, 0.6]))
+             np.array([0.6, 0.4, 0.6]), 0.25)
     text, data, fitted = _fit_section(bench, ("c12", "mu_g", "k24"),
                                       example, "dyson", 1, "chart.npz")
     assert fitted is None and data["fit"] is None

@@ -318,12 +318,14 @@ def _fit_names(text, params):
 
 def cmd_fit(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
+                                     DEFAULT_MIN_GROWTH_PER_S)
     params, changes = parameters_of(args)
     names = _fit_names(args.fit, params)
     bounds = _bounds(args.bounds, params, names)
     default_p_max = 1.5
     default_growth = DEFAULT_MIN_GROWTH_PER_S
+    default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
     if args.chart:
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
@@ -343,6 +345,9 @@ def cmd_fit(args):
     p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
                              else args.pf_max, "bar")
     scatter = _scatter(args.scatter, args.error_model)
+    spread = check_number("--threshold-spread", default_spread
+                          if args.threshold_spread is None
+                          else args.threshold_spread, "1/s", strict=False)
     make_parents(args.plot, args.save_params)
     with Progress(None, "fit") as progress:
         report = api.fit(freqs, measured / PA_PER_BAR, p_max_bar,
@@ -353,7 +358,7 @@ def cmd_fit(args):
                          workers=args.workers, progress=progress,
                          min_growth=min_growth, bench=bench,
                          scatter=scatter, below_bar=None if below is None
-                         else below / PA_PER_BAR)
+                         else below / PA_PER_BAR, threshold_spread=spread)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)

@@ -453,6 +453,15 @@ def build_parser():
                         "else check's 1 1/s, so "
                         "fit, check and chart call the same point judder; "
                         "0: the stability boundary)")
+    p.add_argument("--threshold-spread", type=float, default=None,
+                   metavar="1/S",
+                   help="how far the growth rate the onsets were called "
+                        "judder at may lie from --min-growth, 1/s: the fit "
+                        "is repeated at --min-growth minus and plus it and "
+                        "the intervals cover the values found (default: "
+                        "0.25 with --chart, as a 3 s run's growth is read "
+                        "to about that, docs/fitting.md; 0 with "
+                        "--boundary)")
     p.add_argument("--bench-linearisation", action="store_true",
                    help="compare with the bench's linearisation (c1 + "
                         "d_control: its motor speed control damps body 1), "
