@@ -74,6 +74,9 @@ def write_example(path, seed=7, noise=0.03, p_max=1.5 * BAR):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--boundaries", type=int, default=20)
+    parser.add_argument("--truth", default=TRUTH,
+                        help=f"preset the truths scatter about (default "
+                        f"{TRUTH})")
     parser.add_argument("--first-seed", type=int, default=0)
     parser.add_argument("--grid", choices=("bench", "uniform"),
                         default="bench",
@@ -99,7 +102,7 @@ def main(argv=None):
         write_example(args.write_example)
         return 0
 
-    preset = get_preset(TRUTH)
+    preset = get_preset(args.truth)
     names = tuple(args.names.split(","))
     freq = (EXAMPLE_FREQS if args.grid == "bench"
             else np.linspace(60.0, 200.0, args.points))
@@ -146,7 +149,7 @@ def main(argv=None):
         for problem in result.problems:
             print(f"    {problem}", file=sys.stderr)
     print(json.dumps({
-        "name": "fit-coverage-95",
+        "name": "fit-coverage-95", "truth": args.truth,
         "boundaries": args.boundaries, "grid": args.grid,
         "points": len(freq),
         "noise": args.noise, "names": names, "min_growth": min_growth,
