@@ -194,11 +194,11 @@ class MapResult:
         }
         save_npz(path, arrays)
 
-    def figure(self, title=None):
+    def figure(self, title=None, stacked=False):
         from stability.plotting import map_figure
         return map_figure(self.map, title=title, tongues=self.tongues,
                           boundaries=self.boundaries,
-                          min_growth=self.min_growth)
+                          min_growth=self.min_growth, stacked=stacked)
 
 
 def tongue_record(tongue):
@@ -597,16 +597,17 @@ class ChartResult:
 
 
 
-def setting_record(check, min_growth, engagement_s, p_max):
-    """One :class:`stability.margins.SettingCheck` as JSON fields."""
+def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
+    """One :class:`stability.margins.SettingCheck` as JSON fields.
+
+    ``verdict`` is one of :data:`stability.relevance.VERDICTS`;
+    ``search_hz`` the (low, high) frequencies the Hz margin was searched
+    over (``frequency_search_hz``).
+    """
+    from stability.relevance import verdict
     m, point = check.margin, check.floquet
     rate = point.growth_rate
-    if check.judder:
-        verdict = "judder"
-    elif point.kind != "stable":
-        verdict = "slow-growth"
-    else:
-        verdict = "stable"
+    unstable = point.kind != KINDS[0]
 
     def tongue(t):
         return None if t is None else {"number": t.number, "kind": t.kind,
@@ -622,12 +623,15 @@ def setting_record(check, min_growth, engagement_s, p_max):
         key=lambda r: -abs(r["margin_hz_per_unit_log"] or 0.0)
         - abs(r["margin_bar_per_unit_log"] or 0.0) * 1e-6)
     return {"freq_hz": m.freq_hz, "p_f_bar": m.p_f / PA_PER_BAR,
-            "verdict": verdict, "kind": point.kind,
+            "verdict": verdict(unstable, rate, min_growth),
+            "kind": point.kind,
+            "inside_stability_tongue": bool(unstable),
+            "judder_relevant": bool(check.judder),
+            "tongue": tongue(check.tongue),
             "growth_rate_per_s": rate,
             "e_folding_time_s": 1.0 / rate if rate > 0 else None,
             "efolds_per_engagement": rate * engagement_s,
             "min_growth_per_s": min_growth,
-            "inside_tongue": m.inside,
             "boundary_p_f_bar": _finite_or_none(m.boundary_p_f / PA_PER_BAR),
             "margin_bar": _finite_or_none(m.margin_p_f / PA_PER_BAR),
             "margin_bar_at_least": (None if np.isfinite(m.margin_p_f)
@@ -638,33 +642,87 @@ def setting_record(check, min_growth, engagement_s, p_max):
             "crossing_tolerance_hz": m.crossing_tolerance_hz,
             "margin_hz": _finite_or_none(m.margin_hz),
             "margin_hz_tongue": tongue(check.hz_tongue),
+            "frequency_search_hz": (None if search_hz is None else
+                                    [float(f) for f in search_hz]),
             "sensitivity": sensitivity}
 
 
-def setting_summary(record):
-    """One line: verdict, growth, both margins, the strongest parameter."""
-    def named(t):
-        return "" if t is None else \
-            f" (tongue {t['number'] or '?'}, {t['kind']})"
-    parts = [f"{record['freq_hz']:g} Hz, {record['p_f_bar']:g} bar: "
-             f"{record['verdict'].upper()}",
-             f"growth {record['growth_rate_per_s']:+.3g} 1/s"]
-    if record["e_folding_time_s"] is not None:
-        parts.append(f"e-fold {record['e_folding_time_s']:.3g} s")
+def _named(tongue):
+    """`` (tongue N)`` of a record's tongue, or nothing."""
+    return "" if tongue is None else f" (tongue {tongue['number'] or '?'})"
+
+
+def growth_words(record, engagement_s):
+    """The growth of a record in words: rate, e-folding time against an
+    engagement of ``engagement_s`` seconds."""
+    rate = record["growth_rate_per_s"]
+    if record["e_folding_time_s"] is None:
+        return f"decays at {-rate:.3g} 1/s"
+    efold = record["e_folding_time_s"]
+    return (f"grows at {rate:.3g} 1/s, one e-fold in {efold:.3g} s ("
+            + ("longer than" if efold > engagement_s else "within")
+            + f" a {engagement_s:g} s engagement)")
+
+
+def margin_words(record):
+    """Both margins of a record in plain words (amplitude, frequency)."""
     bar = record["margin_bar"]
-    parts.append("margin " + (f"> {record['margin_bar_at_least']:+.3f} bar "
-                              "(no tongue up to p_max)" if bar is None else
-                              f"{bar:+.3f} bar") + named(
-                                  record["margin_bar_tongue"]))
+    if bar is None:
+        amplitude = ("no judder at this frequency up to "
+                     f"{record['p_f_bar'] + record['margin_bar_at_least']:.3g}"
+                     " bar")
+    elif bar >= 0:
+        amplitude = f"{bar:.3f} bar below judder" + _named(
+            record["margin_bar_tongue"])
+    else:
+        amplitude = f"{-bar:.3f} bar above the judder boundary" + _named(
+            record["margin_bar_tongue"])
     hz = record["margin_hz"]
-    parts.append(("no tongue edge in range" if hz is None else
-                  f"{hz:+.2f} Hz") + named(record["margin_hz_tongue"]))
-    if record["sensitivity"]:
-        top = record["sensitivity"][0]
-        if top["margin_hz_per_unit_log"] is not None:
-            parts.append(f"most sensitive: {top['parameter']} "
-                         f"({0.1 * top['margin_hz_per_unit_log']:+.2f} Hz "
-                         "per +10 %)")
+    if hz is None:
+        search = record["frequency_search_hz"]
+        frequency = (f"no dither frequency judders at {record['p_f_bar']:g} "
+                     "bar" + ("" if search is None else
+                              f" from {search[0]:.3g} to {search[1]:.3g} Hz"))
+    elif hz > 0:
+        frequency = (f"nearest judder {hz:.2f} Hz away, at "
+                     f"{record['crossing_hz']:.2f} Hz"
+                     + _named(record["margin_hz_tongue"]))
+    else:
+        frequency = (f"judder up to {-hz:.2f} Hz away, to "
+                     f"{record['crossing_hz']:.2f} Hz"
+                     + _named(record["margin_hz_tongue"]))
+    return amplitude, frequency
+
+
+def sensitivity_words(record, count=3):
+    """The ``count`` parameters that move the margin most, per +10 %
+    (Hz where the frequency margin exists, else bar); "" if none."""
+    parts = []
+    for entry in record["sensitivity"][:count]:
+        hz, bar = (entry["margin_hz_per_unit_log"],
+                   entry["margin_bar_per_unit_log"])
+        if hz is not None:
+            parts.append(f"{entry['parameter']} {0.1 * hz:+.2f} Hz")
+        elif bar is not None:
+            parts.append(f"{entry['parameter']} {0.1 * bar:+.3f} bar")
+    return "" if not parts else \
+        "margin per +10 %: " + ", ".join(parts)
+
+
+def setting_summary(record, engagement_s=1.0):
+    """One line: verdict, growth against an engagement, both margins, the
+    parameters that move the margin most."""
+    head = f"{record['freq_hz']:g} Hz, {record['p_f_bar']:g} bar: " \
+        f"{record['verdict']}"
+    if record["inside_stability_tongue"]:
+        tongue = record["tongue"]
+        head += (f" ({record['kind']})" if tongue is None else
+                 f" in tongue {tongue['number'] or '?'} ({record['kind']})")
+    parts = [head, growth_words(record, engagement_s),
+             *margin_words(record)]
+    sensitive = sensitivity_words(record)
+    if sensitive:
+        parts.append(sensitive)
     return "; ".join(parts)
 
 
@@ -686,8 +744,12 @@ class CheckResult:
     background: object = None
 
     def records(self):
+        from stability.margins import search_grid
+        grid = search_grid([c.margin.freq_hz for c in self.checks]) \
+            if self.checks else None
+        search = None if grid is None else (grid[0], grid[-1])
         return [setting_record(c, self.min_growth, self.engagement_s,
-                               self.p_max)
+                               self.p_max, search)
                 for c in self.checks]
 
     def as_dict(self):
@@ -698,7 +760,8 @@ class CheckResult:
                 "seconds": self.seconds, "settings": self.records()}
 
     def summary(self):
-        return "\n".join(setting_summary(r) for r in self.records())
+        return "\n".join(setting_summary(r, self.engagement_s)
+                         for r in self.records())
 
     @keeps_foreign_files
     def save(self, path):
@@ -708,8 +771,8 @@ class CheckResult:
         for r in self.records():
             row = {k: v for k, v in r.items()
                    if not isinstance(v, (dict, list)) and k not in
-                   ("margin_bar_tongue", "margin_hz_tongue")}
-            for key in ("margin_bar_tongue", "margin_hz_tongue"):
+                   ("tongue", "margin_bar_tongue", "margin_hz_tongue")}
+            for key in ("tongue", "margin_bar_tongue", "margin_hz_tongue"):
                 row[key] = None if r[key] is None else r[key]["number"]
             rows.append(row)
         write_text(path, _csv_text(rows))

@@ -56,6 +56,14 @@ def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
     """Legend of the kinds, outside the data (right of the axes) by
     default; with ``lines`` the boundary line style of each kind too; with
     ``min_growth`` the grey of the slowly growing (not judder) points."""
+    handles = _kind_handles(kinds, stable, lines, min_growth)
+    where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
+              "borderaxespad": 0.0} if outside else {"loc": "best"})
+    return ax.legend(handles=handles, fontsize=7, **where)
+
+
+def _kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
+    """Legend handles of :func:`kind_legend`."""
     handles = []
     if stable:
         handles.append(Patch(facecolor=KIND_COLORS[0], edgecolor="k",
@@ -69,9 +77,7 @@ def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
     if lines:
         handles += [Line2D([], [], color="k", linestyle=KIND_LINESTYLES[k],
                            label=f"{KINDS[k]} boundary") for k in kinds]
-    where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
-              "borderaxespad": 0.0} if outside else {"loc": "best"})
-    return ax.legend(handles=handles, fontsize=7, **where)
+    return handles
 
 
 def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
@@ -167,12 +173,20 @@ def _shade_slow(m, ax, min_growth):
     return artists
 
 
-VERDICT_MARKERS = {"judder": ("X", "#d62728"), "slow-growth": ("o", "#777777"),
-                   "stable": ("o", "#2ca02c")}
+#: Marker and colour of each verdict word
+#: (:data:`stability.relevance.VERDICTS`): shape tells them apart without
+#: colour; the colours are dark enough to read on every kind's fill.
+VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
+                   "SLOW GROWTH": ("s", "#404040"),
+                   "STABLE": ("o", "#1b7837")}
 
 
 def check_figure(records, background=None, min_growth=None, title=None):
     """Settings of ``judder check`` marked on the map (or alone).
+
+    Each setting is a marker of its verdict (:data:`VERDICT_MARKERS`, in
+    the legend) annotated with both margins to judder (bar, Hz; positive
+    = safe).
 
     Parameters
     ----------
@@ -181,22 +195,37 @@ def check_figure(records, background=None, min_growth=None, title=None):
     background : stability.maps.StabilityMap, optional
     min_growth : float, optional
         Passed to :func:`plot_map`.
+    title : str, optional
     """
-    fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
+    fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
+    handles = []
     if background is not None:
-        plot_map(background, ax=ax, min_growth=min_growth)
+        plot_map(background, ax=ax, min_growth=min_growth, legend=False)
+        handles = _kind_handles(min_growth=min_growth)
+    seen = {}
     for r in records:
         marker, color = VERDICT_MARKERS[r["verdict"]]
-        ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker, color=color,
-                markeredgecolor="k", markersize=9, linestyle="none")
+        line, = ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker,
+                        color=color, markeredgecolor="w", markersize=10,
+                        markeredgewidth=1.2, linestyle="none",
+                        label=f"setting: {r['verdict']}", clip_on=False)
+        seen.setdefault(r["verdict"], line)
         hz, bar = r["margin_hz"], r["margin_bar"]
         text = (("" if bar is None else f"{bar:+.3f} bar\n")
                 + ("" if hz is None else f"{hz:+.2f} Hz"))
-        ax.annotate(text, (r["freq_hz"], r["p_f_bar"]), xytext=(6, 6),
-                    textcoords="offset points", fontsize=7)
-    ax.set_xlabel("dither frequency [Hz]")
+        if text:
+            ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
+                        xytext=(7, 7), textcoords="offset points",
+                        fontsize=7, bbox={"boxstyle": "round,pad=0.15",
+                                          "fc": "w", "ec": "none",
+                                          "alpha": 0.8})
+    ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
-    ax.set_title(title or "dither settings: verdict and margins")
+    ax.legend(handles=handles + list(seen.values()), fontsize=7,
+              loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              borderaxespad=0.0)
+    ax.set_title(title or "dither settings: verdict and margins",
+                 fontsize=10, pad=16 if background is not None else 6)
     return fig
 
 
@@ -219,12 +248,13 @@ def plot_growth_rate(stability_map, ax=None):
 
 
 def map_figure(stability_map, title=None, tongues=None, boundaries=None,
-               min_growth=None):
+               min_growth=None, stacked=False):
     """Figure with the kinds (left, with the exact boundaries and tongue
     numbers when given, slowly growing points grey with ``min_growth``)
-    and the growth rate (right)."""
-    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5),
-                                      layout="constrained")
+    and the growth rate (right; below with ``stacked``, for a page)."""
+    fig, (left, right) = plt.subplots(
+        *((2, 1) if stacked else (1, 2)),
+        figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
              min_growth=min_growth)
     plot_growth_rate(stability_map, ax=right)
@@ -698,9 +728,14 @@ def multipliers_figure(results, title=None):
     results : sequence of stability.floquet.FloquetResult
     """
     results = list(results)
-    fig, axes = plt.subplots(2, len(results),
-                             figsize=(max(4.4 * len(results), 5.5), 9.0),
-                             layout="constrained", squeeze=False)
+    if len(results) == 1:       # one setting: the two views side by side
+        fig, pair = plt.subplots(1, 2, figsize=(9.0, 4.8),
+                                 layout="constrained")
+        axes = np.array(pair).reshape(2, 1)
+    else:
+        fig, axes = plt.subplots(2, len(results),
+                                 figsize=(4.4 * len(results), 9.0),
+                                 layout="constrained", squeeze=False)
     for column, result in enumerate(results):
         plot_multipliers(result, ax=axes[0, column])
         plot_multipliers(result, ax=axes[1, column], zoom=True)

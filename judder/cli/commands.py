@@ -759,9 +759,7 @@ def cmd_report(args):
     verdict = result.data.get("verdict")
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
-               + ("judder (" + verdict["kind"] + ")"
-                  if verdict["verdict"] == "judder" else "no judder")
-               if verdict else "")
+               f"{verdict['verdict']}" if verdict else "")
             + _written(args.out, args.pdf))
     emit(args, {**result.as_dict(), **_files(out=args.out, pdf=args.pdf)},
          text)
