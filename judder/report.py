@@ -119,7 +119,7 @@ def _verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
                    f"{v['min_growth_per_s']:g} 1/s")
     amplitude, frequency = margin_words(v)
     return (f"{v['verdict']} at {v['freq_hz']:g} Hz, {v['p_f_bar']:g} bar: "
-            f"{what} (|lambda| = {v['leading_abs']:.4f}); {growth}; "
+            f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {growth}; "
             f"{amplitude}; {frequency}.")
 
 
@@ -140,6 +140,15 @@ def _window_text(advice):
                    f"bar, at {advice.freq_hz[best]:.1f} Hz.")
 
 
+def _value(number):
+    """A parameter value for a reader: 4 significant digits, thousands
+    grouped with a space rather than an exponent (34 858, not
+    3.486e+04)."""
+    if 1e3 <= abs(number) < 1e9:
+        return f"{number:,.0f}".replace(",", " ")
+    return f"{number:.4g}"
+
+
 def _design_text(advice):
     """The smallest design change of ``judder advise`` in one sentence
     (factors within 1 % of 1 left out)."""
@@ -149,8 +158,8 @@ def _design_text(advice):
     if not a.success:
         return f"none found: {a.message}."
     advised = advice.advised_params()
-    changes = [f"{n} x{f:.2f} ({advice.params[n]:.4g} to {advised[n]:.4g} "
-               f"{advice.params.specs[n].unit})"
+    changes = [f"{n} x{f:.2f} ({_value(advice.params[n])} to "
+               f"{_value(advised[n])} {advice.params.specs[n].unit})"
                for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]
     if not changes:
         return "none needed: the window is already clear."
@@ -199,7 +208,7 @@ table.facts th{width:12em}
 img{max-width:100%;height:auto;display:block;margin:0.8em auto}
 figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
 figcaption{font-size:0.85em;color:#444;text-align:center}
-tr{break-inside:avoid}
+tr,.keep{break-inside:avoid;page-break-inside:avoid}
 .verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
 .judder{border-color:#b00;background:#fee}
 .slow{border-color:#a60;background:#fff6e0}
@@ -247,7 +256,7 @@ def build_report(parameters=None, changes=None, description=None,
         10-220 Hz, 300 points).
     map_freq, map_pf : array_like, optional
         Grid of the map, Hz and bar (default 5-250 Hz x 0-``p_max_bar``,
-        300 x 150).
+        246 x 121: 1 Hz x 0.0125 bar at 1.5 bar).
     p_max_bar : float
         Largest amplitude searched, bar.
     min_growth : float
@@ -260,6 +269,11 @@ def build_report(parameters=None, changes=None, description=None,
         without dither through the FMU (Fig. 7, 8; a few seconds); for a
         Modelica class, its own FMU from its steady slip
         (:func:`judder.api.simulate`). Refused for an FMU of ``--fmu``.
+    workers : int, optional
+        Local Dask workers of the sensitivity study and the fit. Default
+        1 (in this process): the report's studies are small, and starting
+        a local cluster costs more (about 6 s of CPU, measured) than it
+        saves on a few cores; an existing ``--scheduler`` is used anyway.
     progress : callable, optional
         ``progress(done, total)`` over the report's sections.
 
@@ -271,10 +285,11 @@ def build_report(parameters=None, changes=None, description=None,
     from .inputs import read_boundary, read_chart_boundary
     values = api.params(parameters, changes).params
     description = description or values.model
+    workers = 1 if workers is None else workers
     grid_freq = np.linspace(10, 220, 300) if grid_freq is None \
         else np.asarray(grid_freq, dtype=float)
-    map_freq = np.linspace(5, 250, 300) if map_freq is None else map_freq
-    map_pf = np.linspace(0, p_max_bar, 150) if map_pf is None else map_pf
+    map_freq = np.linspace(5, 250, 246) if map_freq is None else map_freq
+    map_pf = np.linspace(0, p_max_bar, 121) if map_pf is None else map_pf
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
     # bench data first: a bad file is refused before any work
@@ -362,15 +377,15 @@ def build_report(parameters=None, changes=None, description=None,
                                      min_growth))
 
     if point is not None:
-        sections.append(
+        sections.append(_keep(
             "<h2>The configured dither: its multipliers</h2>"
             + figure(f"Floquet multipliers at {freq_hz:g} Hz, {p_f_bar:g} "
                      "bar (Fig. 15)",
                      multipliers_figure([point], title="Floquet multipliers "
                                         f"at {freq_hz:g} Hz, {p_f_bar:g} "
-                                        f"bar, {description}")))
+                                        f"bar, {description}"))))
 
-    sections.append(
+    sections.append(_keep(
         "<h2>Where it judders: the stability map</h2>"
         f'<p class="small">Judder-relevant: growing faster than '
         f"{min_growth:g} 1/s (judder check --min-growth {min_growth:g}); "
@@ -379,7 +394,7 @@ def build_report(parameters=None, changes=None, description=None,
         + figure("Stability map with the exact tongue boundaries and "
                  "numbers (Fig. 14)",
                  stability.figure(title=f"stability map, {description}",
-                                  stacked=True))
+                                  stacked=True)))
         + "<p>Tongue tips (lowest amplitude that judders, refined between "
           "grid points); numbers as in Fig. 14:</p>"
         + _table(("#", "kind", "resonance", "tip f [Hz]", "tip p_f [bar]"),
@@ -395,16 +410,16 @@ def build_report(parameters=None, changes=None, description=None,
                                           p_max_bar), values,
                                       method=method).result)
     if inside:
-        sections.append(
+        sections.append(_keep(
             "<h3>How the multipliers leave the unit circle, by kind</h3>"
             + figure("Floquet multipliers just inside the lowest tongue of "
                      "each kind (Fig. 15)",
                      multipliers_figure(inside, title="Floquet multipliers "
                                         "by kind of instability (Fig. 15), "
-                                        f"{description}")))
+                                        f"{description}"))))
 
     if advice is not None:
-        sections.append(
+        sections.append(_keep(
             "<h2>Safe dither windows and the design change</h2>"
             + f"<p>{html.escape(_window_text(advice))}</p>"
             + "<p>Design parameters ranked by how much of the way out of "
@@ -415,7 +430,7 @@ def build_report(parameters=None, changes=None, description=None,
             + ".</p>"
             + figure("Safe dither amplitude per frequency, and the map of "
                      "the advised design (judder advise)",
-                     advice.figure(title=f"judder advise, {description}")))
+                     advice.figure(title=f"judder advise, {description}"))))
 
     # sensitivity
     sens = api.sensitivity(names, grid_freq, p_max_bar, parameters=values,
@@ -424,7 +439,7 @@ def build_report(parameters=None, changes=None, description=None,
     focus = _focus_tongue(tongues.tongues, freq_hz)
     ranking = _ranking(sens.tip_shifts, focus)
     data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
-    sections.append(
+    sections.append(_keep(
         "<h2>What moves the tongues: sensitivity</h2>"
         f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
         f"the largest relative move of tongue {focus}'s tip"
@@ -435,7 +450,7 @@ def build_report(parameters=None, changes=None, description=None,
                  [(e["parameter"], f"{e['p_f_percent']:.1f}",
                    f"{e['freq_percent']:.2f}",
                    "yes" if e["vanishes"] else "no") for e in ranking])
-        + _rankings_differ(ranking, advice)
+        + _rankings_differ(ranking, advice))
         + figure("Sensitivity of the stability boundary (Fig. 17, 18)",
                  sens.figure(title=f"sensitivity, {description}")))
 
@@ -505,7 +520,7 @@ def build_report(parameters=None, changes=None, description=None,
 
     rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
             for name, spec in values.specs.items()]
-    sections.append(
+    sections.append(_keep(
         "<h2>The driveline and its parameters</h2>"
         "<p>Natural frequencies (Eq. 15): "
         + ", ".join(f"{f:.3f} Hz" for f in eig["natural_frequencies_hz"])
@@ -515,7 +530,7 @@ def build_report(parameters=None, changes=None, description=None,
         + "; damped modes without dither: " + ", ".join(
             f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
             for m in eig["damped_modes"]) + ".</p>"
-        + _table(("parameter", "value", "unit", "meaning"), rows))
+        + _table(("parameter", "value", "unit", "meaning"), rows)))
 
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime(
         "%Y-%m-%d %H:%M UTC")
@@ -536,7 +551,7 @@ def build_report(parameters=None, changes=None, description=None,
 def _threshold_section(values, threshold, figure):
     """Section 4: the friction-gradient threshold without dither (Fig.
     19) of a registry driveline, from :func:`judder.api.threshold`."""
-    return (
+    return _keep(
         "<h2>Without dither: the friction-gradient threshold</h2>"
         f"<p>This study puts the mean pressure's damping into the slip "
         "damping (Eq. 2-4 taken literally, as Fig. 19 needs), while the "
@@ -606,6 +621,12 @@ def _rankings_differ(ranking, advice):
         "stiffnesses set (Eq. 15).</p>")
 
 
+def _keep(part):
+    """``part`` (a heading and what opens its section) kept on one printed
+    page."""
+    return f'<div class="keep">{part}</div>'
+
+
 def _number_sections(body):
     """Number the ``<h2>`` headings 1, 2, ... in their order (a number a
     section wrote itself is replaced), so the numbering has no gap
@@ -658,5 +679,8 @@ def print_pdf(html_path, pdf_path):
         if not target.exists() or target.stat().st_size == 0:
             raise JudderError(f"--pdf: chromium could not print the report "
                               f"(exit {proc.returncode})")
-        data = target.read_bytes()
+        # a comment line after the end marks the file as the tool's
+        # (infra.files.written_by_us), so the next run may replace it:
+        # Chromium writes the title into the metadata as UTF-16
+        data = target.read_bytes() + f"\n% {MARK}\n".encode()
     atomic_write(pdf_path, lambda stream: stream.write(data))

@@ -64,7 +64,7 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     # (one e-fold in 1 / 0.0701 = 14.3 s), slower than the judder-relevant
     # 1 1/s that `judder check` uses
     assert ("SLOW GROWTH at 105 Hz, 0.2 bar: single-period instability in "
-            "tongue 2 (|lambda| = 1.0007); grows at 0.0701 1/s, one e-fold "
+            "tongue 2 (|\u03bb| = 1.0007); grows at 0.0701 1/s, one e-fold "
             "in 14.3 s (longer than a 1 s engagement), slower than the "
             "judder-relevant 1 1/s;" in text)
     assert "(judder check --min-growth 1)" in text
@@ -154,7 +154,7 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
               "leading_abs": check.checks[0].floquet.leading_abs}
     text = _verdict_text(record)
     assert text.startswith("JUDDER at 105 Hz, 0.2 bar: single-period "
-                           "instability in tongue 2 (|lambda| = 1.0007); "
+                           "instability in tongue 2 (|\u03bb| = 1.0007); "
                            "grows at 0.0701 1/s, one e-fold in 14.3 s "
                            "(longer than a 1 s engagement); ")
     above = float(text.split("; ")[2].split(" bar above the judder "
@@ -221,8 +221,11 @@ def test_report_renders_in_chromium(report, tmp_path):
 @pytest.mark.skipif(CHROMIUM is None, reason="no chromium: run `make "
                     "browser` (Debian's chromium package)")
 def test_report_prints_to_pdf(report):
+    from infra.files import written_by_us
     pdf = (report.parent / "report.pdf").read_bytes()
     assert pdf.startswith(b"%PDF-")
+    # marked as the tool's: a second run replaces it without --force
+    assert written_by_us(report.parent / "report.pdf")
     # one page object per printed page: the report is several pages long
     assert len(re.findall(rb"/Type\s*/Page[^s]", pdf)) >= 3
     # A4 (595 x 842 pt), not Letter (612 x 792)
