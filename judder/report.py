@@ -140,15 +140,6 @@ def _window_text(advice):
                    f"bar, at {advice.freq_hz[best]:.1f} Hz.")
 
 
-def _value(number):
-    """A parameter value for a reader: 4 significant digits, thousands
-    grouped with a space rather than an exponent (34 858, not
-    3.486e+04)."""
-    if 1e3 <= abs(number) < 1e9:
-        return f"{number:,.0f}".replace(",", " ")
-    return f"{number:.4g}"
-
-
 def _design_text(advice):
     """The smallest design change of ``judder advise`` in one sentence
     (factors within 1 % of 1 left out)."""
@@ -158,8 +149,9 @@ def _design_text(advice):
     if not a.success:
         return f"none found: {a.message}."
     advised = advice.advised_params()
-    changes = [f"{n} x{f:.2f} ({_value(advice.params[n])} to "
-               f"{_value(advised[n])} {advice.params.specs[n].unit})"
+    from stability.plotting import readable_number
+    changes = [f"{n} x{f:.2f} ({readable_number(advice.params[n])} to "
+               f"{readable_number(advised[n])} {advice.params.specs[n].unit})"
                for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]
     if not changes:
         return "none needed: the window is already clear."

@@ -262,10 +262,14 @@ class TonguesResult:
 
     def figure(self, title=None):
         from stability.plotting import tongues_figure
+        from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+        # the map's shading as `judder map` draws it: slower growth than
+        # the judder-relevant rate grey
         return tongues_figure(
             self.boundaries, self.tongues, self.background,
             title=title or f"{self.params.model}: tongue boundaries over "
-                           "the map")
+                           "the map",
+            min_growth=self.boundaries.min_growth or DEFAULT_MIN_GROWTH_PER_S)
 
 
 @dataclass(frozen=True)

@@ -20,20 +20,61 @@ __all__ = ["KIND_COLORS", "KIND_LINESTYLES", "plot_map", "plot_growth_rate", "ma
            "resonance_lines", "plot_boundaries", "tongues_figure",
            "sensitivity_figure", "plot_threshold", "plot_fit",
            "check_figure", "advice_figure", "plot_multipliers",
-           "multipliers_figure", "boundary_curve", "kind_legend"]
+           "multipliers_figure", "boundary_curve", "kind_legend",
+           "figure_title", "readable_number"]
 
-#: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then
-#: Okabe-Ito blue, orange and yellow, which colour-blind readers tell
-#: apart and which stay distinct in greyscale (luminance about 0.45, 0.66
-#: and 0.87).
-KIND_COLORS = ("#ffffff", "#4c78a8", "#e69f00", "#f0e442")
+#: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then a
+#: dark blue, Okabe-Ito vermillion and orange, which colour-blind readers
+#: tell apart and which stay apart in greyscale, with the grey of the
+#: slowly growing points (:data:`SLOW_COLOR`) between them: greyscale
+#: luminance (ITU-R 601) 1.00, 0.28, 0.47, 0.64 and 0.82, every pair at
+#: least 0.15 apart (tests/test_figures.py).
+KIND_COLORS = ("#ffffff", "#1f4e99", "#d55e00", "#e69f00")
+
+#: Colour of the unstable points that grow too slowly to be judder.
+SLOW_COLOR = "#d0d0d0"
+
+#: Line of growth = min_growth (the edge of the judder-relevant region):
+#: dash-dot, a style no kind's boundary uses.
+GROWTH_LINE = {"colors": "k", "linewidths": 1.3,
+               "linestyles": [(0, (7, 2, 1.5, 2))]}
 
 #: Line style of each kind's boundary, so kinds differ without colour.
 KIND_LINESTYLES = ("-", "-", "--", (0, (1, 1.5)))
 
 #: Colour map of continuous quantities (growth rates): cividis, made to
-#: read the same in colour, greyscale and with colour-vision deficiency.
-CONTINUOUS_CMAP = "cividis"
+#: read the same in colour, greyscale and with colour-vision deficiency,
+#: stopped at 80 % so its brightest colour (greyscale luminance 0.71)
+#: stays apart from the white of stable points.
+CONTINUOUS_CMAP = ListedColormap(
+    plt.get_cmap("cividis")(np.linspace(0.0, 0.8, 256)), name="cividis80")
+
+
+def figure_title(fig, title, fontsize=11):
+    """``fig.suptitle(title)``, wrapped onto lines that fit the figure's
+    width (a long model description is not clipped)."""
+    import textwrap
+    # DejaVu Sans averages about 0.55 em a character
+    width = max(20, int(fig.get_figwidth() * 72 / (0.58 * fontsize)))
+    return fig.suptitle(textwrap.fill(title, width), fontsize=fontsize)
+
+
+def readable_number(value, digits=4):
+    """``value`` to ``digits`` significant digits, without an exponent
+    between 1e-3 and 1e7 (thousands grouped by a space: 34 860, not
+    3.486e+04)."""
+    value = float(value)
+    if value == 0 or not np.isfinite(value):
+        return f"{value:g}"
+    magnitude = int(np.floor(np.log10(abs(value))))
+    if not -3 <= magnitude < 7:
+        return f"{value:.{digits}g}"
+    decimals = max(0, digits - 1 - magnitude)
+    text = f"{round(value, digits - 1 - magnitude):,.{decimals}f}"
+    if decimals:
+        text = text.rstrip("0").rstrip(".")
+    # group thousands only from 10 000 on (3856 reads as it is)
+    return text.replace(",", "\u2009" if magnitude >= 4 else "")
 
 
 def resonance_lines(natural_frequencies_hz):
@@ -74,6 +115,10 @@ def _kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
     if min_growth is not None and min_growth > 0:
         handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
                              label=f"grows < {min_growth:g} 1/s (not judder)"))
+        handles.append(Line2D([], [], color="k",
+                              linewidth=GROWTH_LINE["linewidths"],
+                              linestyle=GROWTH_LINE["linestyles"][0],
+                              label=f"growth = {min_growth:g} 1/s"))
     if lines:
         handles += [Line2D([], [], color="k", linestyle=KIND_LINESTYLES[k],
                            label=f"{KINDS[k]} boundary") for k in kinds]
@@ -111,12 +156,21 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
         _, ax = plt.subplots()
     m = stability_map
     bar = m.p_f / PA_PER_BAR
-    artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar), m.kind.T,
-                             cmap=ListedColormap(KIND_COLORS), vmin=-0.5,
-                             vmax=len(KINDS) - 0.5, shading="flat",
-                             rasterized=True)]
-    if min_growth is not None and min_growth > 0:
-        artists += _shade_slow(m, ax, min_growth)
+    slow = min_growth is not None and min_growth > 0
+    if boundaries is not None and boundaries.min_growth == 0 \
+            and len(m.freq_hz) > 1 and len(bar) > 1:
+        artists = [_exact_fill(m, boundaries, tongues or (), ax,
+                               min_growth if slow else None)]
+        if slow:
+            artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
+                                      levels=[min_growth], **GROWTH_LINE))
+    else:
+        artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar), m.kind.T,
+                                 cmap=ListedColormap(KIND_COLORS),
+                                 vmin=-0.5, vmax=len(KINDS) - 0.5,
+                                 shading="flat", rasterized=True)]
+        if slow:
+            artists += _shade_slow(m, ax, min_growth)
     if boundaries is not None:
         artists += plot_boundaries(boundaries, ax=ax, tongues=tongues or (),
                                    style={"color": "k"})
@@ -153,8 +207,82 @@ def _resonance_marks(ax, natural_frequencies_hz, low, high):
     return artists
 
 
-#: Colour of the unstable points that grow too slowly to be judder.
-SLOW_COLOR = "#bbbbbb"
+#: Pixels of the image :func:`_exact_fill` draws (frequency, amplitude).
+FILL_PIXELS = (1200, 600)
+
+
+def _boundary_at(freq_hz, boundaries, column, tips):
+    """One kind's lowest boundary (bar) at ``freq_hz``, as
+    :func:`plot_boundaries` draws it: straight between the grid points and
+    the inserted tips, NaN where a tongue is absent (its curve closes
+    vertically up to ``p_max`` at its last grid point)."""
+    f = boundaries.freq_hz
+    a = boundaries.amplitude[:, column] / PA_PER_BAR
+    if tips:
+        f = np.concatenate([f, [tf for tf, _ in tips]])
+        a = np.concatenate([a, [tp for _, tp in tips]])
+        order = np.argsort(f, kind="stable")
+        f, a = f[order], a[order]
+    i = np.clip(np.searchsorted(f, freq_hz, side="right") - 1, 0,
+                len(f) - 2)
+    share = (freq_hz - f[i]) / np.where(f[i + 1] > f[i], f[i + 1] - f[i], 1)
+    value = a[i] + np.clip(share, 0, 1) * (a[i + 1] - a[i])
+    return np.where((freq_hz >= f[0]) & (freq_hz <= f[-1]), value, np.nan)
+
+
+def _fine_grid(m, boundaries, tongues):
+    """Pixels of an image of the map clipped to the exact boundaries.
+
+    Returns
+    -------
+    extent : tuple
+        ``(f0, f1, p0, p1)``, Hz and bar.
+    index : tuple of ndarray
+        Nearest map point of each pixel, for ``array[index]`` of an
+        ``(nf, np)`` map array, giving ``(nP, nF)``.
+    inside : ndarray of bool, shape (3, nP, nF)
+        The pixel is on or above each kind's exact lowest boundary.
+    low : ndarray, shape (3, nF)
+        Those boundaries, bar (NaN: none).
+    """
+    bar = m.p_f / PA_PER_BAR
+    f_edges, p_edges = _edges(m.freq_hz), _edges(bar)
+    p_top = max(p_edges[-1], boundaries.p_max / PA_PER_BAR)
+    freq = np.linspace(f_edges[0], f_edges[-1], FILL_PIXELS[0])
+    amp = np.linspace(max(p_edges[0], 0.0), p_top, FILL_PIXELS[1])
+    low = np.array([
+        _boundary_at(freq, boundaries, column,
+                     [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
+                      for t in tongues if t.kind == KINDS[kind]])
+        for column, kind in enumerate((1, 2, 3))])
+    with np.errstate(invalid="ignore"):
+        inside = amp[None, :, None] >= low[:, None, :]
+    fi = np.clip(np.searchsorted(f_edges, freq) - 1, 0, len(m.freq_hz) - 1)
+    pi = np.clip(np.searchsorted(p_edges, amp) - 1, 0, len(bar) - 1)
+    index = (fi[None, :], pi[:, None])
+    return (freq[0], freq[-1], amp[0], amp[-1]), index, inside, low
+
+
+def _exact_fill(m, boundaries, tongues, ax, min_growth=None):
+    """The kinds as an image clipped to the exact boundaries: inside them
+    the grid's kind (nearest point), or that of the lowest boundary where
+    the grid point is stable; outside them white. With ``min_growth``,
+    the slowly growing points grey (a stable grid point inside the exact
+    boundaries counts as slow: it grows at about 0 there)."""
+    from .relevance import is_judder_relevant
+    extent, index, inside, low = _fine_grid(m, boundaries, tongues)
+    unstable = inside.any(axis=0)
+    lowest = 1 + np.argmin(np.where(inside, low[:, None, :], np.inf), axis=0)
+    grid = m.kind[index]
+    code = np.where(unstable, np.where(grid > 0, grid, lowest), 0)
+    if min_growth is not None:
+        slow = ~is_judder_relevant(m.growth_rate, min_growth)
+        code = np.where(unstable & (slow[index] | (grid == 0)),
+                        len(KINDS), code)
+    colours = ListedColormap([*KIND_COLORS, SLOW_COLOR])
+    return ax.imshow(code, origin="lower", aspect="auto",
+                     interpolation="nearest", cmap=colours, vmin=-0.5,
+                     vmax=len(KINDS) + 0.5, extent=extent)
 
 
 def _shade_slow(m, ax, min_growth):
@@ -168,8 +296,7 @@ def _shade_slow(m, ax, min_growth):
                              shading="flat")]
     if len(m.freq_hz) > 1 and len(bar) > 1:
         artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
-                                  levels=[min_growth], colors="k",
-                                  linewidths=1.2, linestyles=":"))
+                                  levels=[min_growth], **GROWTH_LINE))
     return artists
 
 
@@ -202,7 +329,7 @@ def check_figure(records, background=None, min_growth=None, title=None):
     if background is not None:
         plot_map(background, ax=ax, min_growth=min_growth, legend=False)
         handles = _kind_handles(min_growth=min_growth)
-    seen = {}
+    seen, notes = {}, []
     for r in records:
         marker, color = VERDICT_MARKERS[r["verdict"]]
         line, = ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker,
@@ -214,11 +341,11 @@ def check_figure(records, background=None, min_growth=None, title=None):
         text = (("" if bar is None else f"{bar:+.3f} bar\n")
                 + ("" if hz is None else f"{hz:+.2f} Hz"))
         if text:
-            ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
-                        xytext=(7, 7), textcoords="offset points",
-                        fontsize=7, bbox={"boxstyle": "round,pad=0.15",
-                                          "fc": "w", "ec": "none",
-                                          "alpha": 0.8})
+            notes.append(ax.annotate(
+                text.strip(), (r["freq_hz"], r["p_f_bar"]), xytext=(7, 7),
+                textcoords="offset points", fontsize=7,
+                bbox={"boxstyle": "round,pad=0.15", "fc": "w", "ec": "none",
+                      "alpha": 0.8}))
     ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
     ax.legend(handles=handles + list(seen.values()), fontsize=7,
@@ -226,21 +353,49 @@ def check_figure(records, background=None, min_growth=None, title=None):
               borderaxespad=0.0)
     ax.set_title(title or "dither settings: verdict and margins",
                  fontsize=10, pad=16 if background is not None else 6)
+    _unstack(fig, notes)
     return fig
 
 
-def plot_growth_rate(stability_map, ax=None):
+def _unstack(fig, notes):
+    """Move annotations (offset in points) up until none overlaps one
+    placed before it: nearby settings keep readable margins."""
+    renderer = fig.canvas.get_renderer()
+    placed = []
+    for note in notes:
+        for _ in range(20):
+            box = note.get_window_extent(renderer)
+            if not any(box.overlaps(other) for other in placed):
+                break
+            dx, dy = note.xyann
+            note.xyann = (dx, dy + box.height * 72.0 / fig.dpi + 2)
+        placed.append(note.get_window_extent(renderer))
+
+
+def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
     """Growth rate ``ln|lambda|/T`` (1/s) of the leading multiplier.
 
-    Stable points are drawn white; returns the artists drawn.
+    Stable points are drawn white; with the exact ``boundaries`` (of the
+    stability boundary) the coloured region is clipped to them, as
+    :func:`plot_map` clips the kinds. Returns the artists drawn.
     """
     if ax is None:
         _, ax = plt.subplots()
     m = stability_map
     rate = np.where(m.kind > 0, m.growth_rate, np.nan)
-    mesh = ax.pcolormesh(_edges(m.freq_hz), _edges(m.p_f / PA_PER_BAR),
-                         rate.T, cmap=CONTINUOUS_CMAP, shading="flat",
-                         rasterized=True)
+    if boundaries is not None and boundaries.min_growth == 0 \
+            and len(m.freq_hz) > 1 and len(m.p_f) > 1:
+        extent, index, inside, _ = _fine_grid(m, boundaries, tongues)
+        # inside the exact boundaries, a stable grid point grows at ~0
+        image = np.where(inside.any(axis=0),
+                         np.nan_to_num(rate[index], nan=0.0), np.nan)
+        mesh = ax.imshow(image, origin="lower", aspect="auto",
+                         interpolation="nearest", cmap=CONTINUOUS_CMAP,
+                         extent=extent)
+    else:
+        mesh = ax.pcolormesh(_edges(m.freq_hz), _edges(m.p_f / PA_PER_BAR),
+                             rate.T, cmap=CONTINUOUS_CMAP, shading="flat",
+                             rasterized=True)
     bar = ax.figure.colorbar(mesh, ax=ax, label="growth rate [1/s]")
     ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
@@ -257,7 +412,8 @@ def map_figure(stability_map, title=None, tongues=None, boundaries=None,
         figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
              min_growth=min_growth)
-    plot_growth_rate(stability_map, ax=right)
+    plot_growth_rate(stability_map, ax=right, boundaries=boundaries,
+                     tongues=tongues or ())
     if boundaries is not None:
         plot_boundaries(boundaries, ax=right, tongues=tongues,
                         style={"color": "k", "linewidth": 0.8})
@@ -268,7 +424,7 @@ def map_figure(stability_map, title=None, tongues=None, boundaries=None,
     right.set_title(r"growth rate $\ln|\lambda|/T$ of the leading "
                     "multiplier", fontsize=10)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
     return fig
 
 
@@ -396,12 +552,14 @@ def _number_tips(ax, tongues, color):
     return artists
 
 
-def tongues_figure(boundaries, tongues, stability_map=None, title=None):
-    """Boundaries and numbered tips, over the map when one is given."""
+def tongues_figure(boundaries, tongues, stability_map=None, title=None,
+                   min_growth=None):
+    """Boundaries and numbered tips, over the map when one is given (its
+    points growing slower than ``min_growth``, 1/s, grey)."""
     fig, ax = plt.subplots(figsize=(10, 5), layout="constrained")
     if stability_map is not None:
         plot_map(stability_map, ax=ax, tongues=tongues,
-                 boundaries=boundaries)
+                 boundaries=boundaries, min_growth=min_growth)
     else:
         plot_boundaries(boundaries, ax=ax, tongues=tongues)
         handles = [Line2D([], [], color=KIND_COLORS[k],
@@ -438,10 +596,14 @@ def sensitivity_figure(study, title=None, params=None):
     for ax in list(axes.flat)[len(names):]:
         ax.remove()
     for ax, name in zip(axes.flat, names):
-        cases = [c for c in study.cases if c.parameter == name]
+        # a case at the nominal value is the nominal line: drawn once
+        cases = [c for c in study.cases if c.parameter == name
+                 and not np.isclose(c.factor, 1.0, rtol=1e-9, atol=0)]
         colours = plt.get_cmap(CONTINUOUS_CMAP)(
             np.linspace(0.15, 0.8, max(len(cases), 1)))
         _plot_lowest(study.nominal, ax, "k", "-", "nominal", lw=1.6)
+        # Fig. 14's numbers, at the tips the nominal curve reaches
+        _number_tips(ax, _tips_on_lowest(study.nominal), "k")
         for index, case in enumerate(cases):
             _plot_lowest(case, ax, colours[index],
                          CASE_STYLES[index % len(CASE_STYLES)],
@@ -450,7 +612,7 @@ def sensitivity_figure(study, title=None, params=None):
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
                   borderaxespad=0.2, handlelength=3)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
     return fig
 
 
@@ -472,7 +634,7 @@ def _panel_title(name, params):
     unit = params.specs[name].unit if params is not None else ""
     text = f"{name}" + (f" [{unit}]" if unit and unit != "1" else "")
     if params is not None:
-        text += f", nominal {params[name]:.4g}"
+        text += f", nominal {readable_number(params[name])}"
         if _is_damper(name, params):
             text += (rf" ($\zeta_{{12}}$ = "
                      f"{_zeta_percent(params, name, params[name]):.2g} %)")
@@ -480,11 +642,22 @@ def _panel_title(name, params):
 
 
 def _case_label(name, case, params):
-    label = f"{name} = {case.value:.4g} (x{case.factor:.3g})"
+    label = f"{name} = {readable_number(case.value)} (x{case.factor:.3g})"
     if _is_damper(name, params):
         label += (rf", $\zeta_{{12}}$ = "
                   f"{_zeta_percent(params, name, case.value):.2g} %")
     return label
+
+
+def _tips_on_lowest(case):
+    """The tongues of a case whose tip is on its lowest boundary: not
+    above the lowest boundary around it (another tongue's may be lower
+    there, and the tip is then hidden)."""
+    b = case.boundaries
+    lowest = b.stability_boundary / PA_PER_BAR
+    return [t for t in case.tongues
+            if not np.interp(t.tip_freq_hz, b.freq_hz, lowest)
+            < t.tip_p_f / PA_PER_BAR * (1 - 1e-9)]
 
 
 def _plot_lowest(case, ax, color, linestyle, label, lw=1.1):
@@ -492,11 +665,8 @@ def _plot_lowest(case, ax, color, linestyle, label, lw=1.1):
     b = case.boundaries
     p_max_bar = b.p_max / PA_PER_BAR
     lowest = b.stability_boundary / PA_PER_BAR
-    # a tip below the lowest boundary around it (another tongue's may be
-    # lower there)
-    tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR) for t in case.tongues
-            if not np.interp(t.tip_freq_hz, b.freq_hz, lowest)
-            < t.tip_p_f / PA_PER_BAR * (1 - 1e-9)]
+    tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
+            for t in _tips_on_lowest(case)]
     x, y = boundary_curve(b.freq_hz, lowest,
                           tips, p_max_bar)
     ax.plot(x, y, color=color, linestyle=linestyle, linewidth=lw,
@@ -661,7 +831,7 @@ def advice_figure(advice, title=None):
         right.set_title(f"advised design: {advice.judder_points} "
                         "judder-relevant points")
     if title:
-        fig.suptitle(title)
+        figure_title(fig, title)
     return fig
 
 
@@ -753,5 +923,5 @@ def multipliers_figure(results, title=None):
     fig.legend(handles, labels, loc="outside lower center", fontsize=8,
                ncols=1 if len(results) == 1 else 2)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
     return fig

@@ -156,7 +156,9 @@ def cmd_map(args):
             min_growth=check_number("--min-growth", args.min_growth, "1/s",
                                     strict=False),
             exact=args.plot is not None, waveform=waveform)
-    title = f"stability map (Fig. 12, 14), {model_title(args, params)}"
+    paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
+    title = (f"stability map{f' ({paper})' if paper else ''}, "
+             f"{model_title(args, params)}")
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set,
