@@ -347,10 +347,20 @@ class ThresholdResult:
             zip(s.external_damping, s.thresholds, s.closed_form)]
         write_text(path, "\n".join(lines) + "\n")
 
-    def figure(self):
+    def figure(self, title=None):
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
-        self.study.plot(axes=axes)
+        from stability import build_driveline
+        from stability.plotting import figure_title, plot_threshold
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
+                                 layout="constrained")
+        driveline = build_driveline(self.params)
+        plot_threshold(self.study, axes=axes,
+                       own=(float(np.mean(driveline.external_damping)),
+                            float(self.params["mu_g"])))
+        figure_title(fig, f"Fig. 19 without dither, "
+                     f"{title or self.params.model + ' driveline'}: the "
+                     "mean pressure's damping in the slip damping (the maps "
+                     "keep only the dither's part)", fontsize=10)
         return fig
 
 
@@ -476,9 +486,9 @@ class CrosscheckResult:
     def save(self, path):
         write_text(path, _csv_text(self.rows()))
 
-    def figure(self):
+    def figure(self, title=None):
         from pysim.plotting import crosscheck_figure
-        return crosscheck_figure(self.check)
+        return crosscheck_figure(self.check, title=title)
 
 
 @dataclass(frozen=True)

@@ -231,7 +231,13 @@ def _figures(paper4, small_map):
         title="sensitivity of the stability boundary (Fig. 17, 18), 4dof "
               "driveline, paper preset")
     yield "threshold", api.threshold(np.linspace(-1e-3, 1e-3, 21),
-                                     np.linspace(0, 2, 11)).figure()
+                                     np.linspace(0, 2, 11)).figure(
+        title="4dof driveline, paper preset")
+    bench = Path(__file__).parents[1] / "examples" / "bench"
+    yield "chart", api.chart([], index=bench / "runs.csv", channels={
+        "upstream_speed": "EngSpd_up", "pressure": "PressEVEN:bar",
+        "downstream_speed": "OutSpd"}, workers=1).figure(
+        title="experimental stability chart")
 
 
 def test_no_figure_text_is_clipped_or_collides(rc, paper4, small_map):

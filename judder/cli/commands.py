@@ -270,7 +270,8 @@ def cmd_threshold(args):
     with Progress(len(damping), "threshold") as progress:
         result = api.threshold(mu_g, damping, params, changes,
                                progress=progress)
-    files = _write_outputs(args, result)
+    files = _write_outputs(args, result,
+                           figure={"title": model_title(args, params)})
     study = result.study
     text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
             f"(unstable without dither below it)")
@@ -464,7 +465,8 @@ def cmd_simulate(args):
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
                           "8)" if params.driveline is not None else
                           "time-domain run with dither")
-                + f", {model_title(args, params)}"})
+                + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
+                  f"parameters of {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))
@@ -504,7 +506,8 @@ def cmd_crosscheck(args):
                                 parameters=params, changes=changes,
                                 method=args.method, workers=args.workers,
                                 progress=progress, perturb=args.perturb)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
     worst = data["max_rate_error_above_1_per_s"]
     text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "
             f"agree on {100 * data['agreement']:.1f} %; largest rate "
@@ -680,7 +683,8 @@ def cmd_check(args):
                            min_growth=args.min_growth, p_max_bar=args.pf_max,
                            sensitivity=names, background=bool(args.plot),
                            progress=progress)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + _written(args.out, args.plot))
 
 
@@ -718,7 +722,8 @@ def cmd_advise(args):
                             min_growth=args.min_growth, names=names,
                             weights=weights, design=not args.no_design,
                             progress=progress)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + _written(args.out, args.plot))
 
 
@@ -800,7 +805,8 @@ def cmd_envelope(args):
     if args.csv:
         result.save_csv(args.csv, force=args.force)
     if args.plot:
-        _save_plot(args.plot, result.figure())
+        _save_plot(args.plot, result.figure(
+            title=f"envelope, {model_title(args, params)}"))
     result.discard_checkpoint()
     e, c = result.envelope, result.envelope.convergence
     lowest = e.broadest
