@@ -101,6 +101,14 @@ class EigResult:
                                                  self.damping_ratio)]}
 
 
+def complex_record(value):
+    """A complex number as JSON fields a script reads without knowing a
+    convention: ``re``, ``im``, ``abs`` and ``arg`` (rad, in (-pi, pi])."""
+    value = complex(value)
+    return {"re": value.real, "im": value.imag, "abs": abs(value),
+            "arg": math.atan2(value.imag, value.real)}
+
+
 @dataclass(frozen=True)
 class FloquetPoint:
     """``judder floquet``: the multipliers at one dither setting.
@@ -121,10 +129,11 @@ class FloquetPoint:
         return {"model": self.params.model, "freq_hz": r.freq_hz,
                 "p_f_bar": self.p_f_bar, "p_f_pa": r.p_f,
                 "period_s": r.period, "method": self.method,
-                "multipliers": r.multipliers, "leading": r.leading,
+                "multipliers": [complex_record(z) for z in r.multipliers],
+                "leading": complex_record(r.leading),
                 "leading_abs": r.leading_abs, "kind": r.kind,
                 "growth_rate_per_s": r.growth_rate,
-                "exponents_per_s": r.exponents}
+                "exponents_per_s": [complex_record(z) for z in r.exponents]}
 
     def figure(self, title=None):
         """The multipliers on the complex plane (Fig. 15)."""
@@ -175,8 +184,15 @@ class MapResult:
         Arrays: ``freq_hz`` (nf,), ``p_f_pa`` and ``p_f_bar`` (np,),
         ``leading_re``/``leading_im``/``leading_abs``/``growth_rate_per_s``
         (nf, np), ``kind`` (nf, np, int8), ``kind_names``,
-        ``natural_frequencies_hz``; ``parameters`` holds a JSON string of
-        the model, the parameter values (SI), the method and ``meta``.
+        ``natural_frequencies_hz``, ``min_growth_per_s`` (the
+        judder-relevant rate, 0 when none was given: every instability);
+        with the exact boundaries, ``boundary_freq_hz`` (nb,),
+        ``boundary_p_f_bar`` (nb, 3; NaN: none up to ``boundary_p_max_bar``)
+        whose columns ``boundary_kinds`` names, and per tongue
+        ``tongue_number`` (0: unnumbered), ``tongue_kind``,
+        ``tongue_resonance``, ``tongue_tip_freq_hz``,
+        ``tongue_tip_p_f_bar``; ``parameters`` holds a JSON string of the
+        model, the parameter values (SI), the method and ``meta``.
         """
         m = self.map
         info = {"model": self.params.model,
@@ -190,8 +206,25 @@ class MapResult:
             "growth_rate_per_s": m.growth_rate, "kind": m.kind,
             "kind_names": np.array(KINDS),
             "natural_frequencies_hz": m.natural_frequencies_hz,
+            "min_growth_per_s": np.array(float(self.min_growth or 0.0)),
             "parameters": np.array(json.dumps(info)),
         }
+        if self.boundaries is not None:
+            b, found = self.boundaries, self.tongues or []
+            arrays.update({
+                "boundary_freq_hz": b.freq_hz,
+                "boundary_p_f_bar": b.amplitude / PA_PER_BAR,
+                "boundary_kinds": np.array(KINDS[1:]),
+                "boundary_p_max_bar": np.array(b.p_max / PA_PER_BAR),
+                "tongue_number": np.array([t.number or 0 for t in found],
+                                          dtype=int),
+                "tongue_kind": np.array([t.kind for t in found], dtype=str),
+                "tongue_resonance": np.array([t.resonance or ""
+                                              for t in found], dtype=str),
+                "tongue_tip_freq_hz": np.array([t.tip_freq_hz
+                                                for t in found]),
+                "tongue_tip_p_f_bar": np.array([t.tip_p_f / PA_PER_BAR
+                                                for t in found])})
         save_npz(path, arrays)
 
     def figure(self, title=None, stacked=False):
@@ -578,7 +611,8 @@ class ChartResult:
     def save_boundary(self, path, force=False):
         """Write the experimental boundary as ``judder fit --boundary``
         reads it; with several groups, one file per group
-        (``STEM_GROUP.csv``). Returns the paths written.
+        (``STEM_GROUP.csv``, a number as 1000, not 1000.0). Returns the
+        paths written.
 
         Without ``force``, refuses (before writing any) to replace a file
         judder did not write (:func:`infra.files.check_output`).
@@ -588,7 +622,8 @@ class ChartResult:
         path = Path(path)
         groups = list(self.chart.groups())
         targets = [path if len(groups) == 1 else path.with_name(
-            f"{path.stem}_{'_'.join(group)}{path.suffix}")
+            f"{path.stem}_{'_'.join(_file_word(v) for v in group)}"
+            f"{path.suffix}")
             for group in groups]
         for target in targets:
             check_output(target, "--boundary", ("csv",), force)
@@ -609,6 +644,15 @@ class ChartResult:
                 ax.set_ylim(*limits[1])
         return fig
 
+
+
+def _file_word(value):
+    """A group value as it reads in a file name: a number without a
+    trailing ``.0`` (1000, not 1000.0), text as it is."""
+    try:
+        return f"{float(value):g}"
+    except ValueError:
+        return str(value)
 
 
 def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
@@ -978,13 +1022,22 @@ class EnvelopeResult:
     @keeps_foreign_files
     def save(self, path):
         """NPZ: every sample's values and boundaries, the nominal, the
-        broadest edge, the probability grid (bar where named so)."""
+        broadest edge, the probability grid (bar where named so).
+
+        ``amplitude_bar`` is (samples, frequencies, kinds) and
+        ``nominal_bar`` (frequencies, kinds): the lowest boundary of each
+        kind, the kinds named by ``amplitude_bar_axes`` and
+        ``kind_columns`` (NaN: none up to ``p_max_bar``); ``probability``
+        is (frequencies, amplitudes)."""
         e = self.envelope
         arrays = {"freq_hz": e.freq_hz, "p_f_bar": e.p_f / PA_PER_BAR,
                   "p_max_bar": e.p_max / PA_PER_BAR,
                   "names": np.array(e.names), "values": e.values,
                   "is_vertex": e.is_vertex, "ok": e.ok,
                   "amplitude_bar": e.amplitude / PA_PER_BAR,
+                  "amplitude_bar_axes": np.array(["sample", "freq_hz",
+                                                  "kind"]),
+                  "kind_columns": np.array(KINDS[1:]),
                   "nominal_bar": e.nominal / PA_PER_BAR,
                   "broadest_bar": e.broadest / PA_PER_BAR,
                   "probability": e.probability,

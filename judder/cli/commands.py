@@ -146,8 +146,10 @@ def cmd_map(args):
     amplitudes = parse_grid(args.pf, "--pf", "bar")
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
+    # the exact boundaries are drawn on --plot and stored in --out
+    exact = args.plot is not None or args.out is not None
     _check_map_grid(params.replace(**changes), freqs, amplitudes,
-                    "--freq x --pf", args.method, args.plot is not None)
+                    "--freq x --pf", args.method, exact)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(
@@ -155,7 +157,7 @@ def cmd_map(args):
             progress=progress,
             min_growth=check_number("--min-growth", args.min_growth, "1/s",
                                     strict=False),
-            exact=args.plot is not None, waveform=waveform)
+            exact=exact, waveform=waveform)
     paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
     title = (f"stability map{f' ({paper})' if paper else ''}, "
              f"{model_title(args, params)}")
