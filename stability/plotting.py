@@ -534,8 +534,9 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
 
 def _number_tips(ax, tongues, color):
     """A marker at each numbered tip and its number beside it (right),
-    clear of the frequency axis."""
-    artists = []
+    clear of the frequency axis; a number that would overlap another is
+    moved up (:func:`_unstack`)."""
+    artists, numbers = [], []
     for tongue in tongues:
         if tongue.number is None:
             continue
@@ -543,13 +544,14 @@ def _number_tips(ax, tongues, color):
         artists.append(ax.plot(*xy, marker="v", color=color,
                                markeredgecolor="k", markersize=4,
                                linestyle="none")[0])
-        artists.append(ax.annotate(
+        numbers.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
             xytext=(4, 1), ha="left", va="bottom", fontsize=8,
             fontweight="bold", color="k",
             bbox={"boxstyle": "round,pad=0.1", "fc": "w", "ec": "none",
                   "alpha": 0.7}))
-    return artists
+    _unstack(ax.figure, numbers)
+    return artists + numbers
 
 
 def tongues_figure(boundaries, tongues, stability_map=None, title=None,

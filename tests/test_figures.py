@@ -215,6 +215,14 @@ def _figures(paper4, small_map):
     yield "tongues", tongues_figure(small_map.boundaries, small_map.tongues,
                                     small_map.map, title="tongues",
                                     min_growth=1.0)
+    # two tips half a hertz apart (tongues 13 and 14 of BenchLib's
+    # Driveline6DOF were): their numbers must not run together
+    from dataclasses import replace
+    first, second = small_map.tongues[:2]
+    close = [replace(first, tip_freq_hz=88.0, tip_p_f=0.2 * BAR, number=13),
+             replace(second, tip_freq_hz=88.5, tip_p_f=0.2 * BAR, number=14)]
+    yield "close tips", tongues_figure(small_map.boundaries, close,
+                                       title="close tips")
     yield "fig15", multipliers_figure(
         [floquet(paper4, f, p * BAR) for f, p in
          ((102.9, 0.3), (37.9, 0.5), (84.0, 0.5))], title="Fig. 15")

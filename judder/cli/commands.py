@@ -202,11 +202,28 @@ def cmd_tongues(args):
                     f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
                     f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
                     + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    missing = _missing_tongues(result, freqs, _pf_max(args))
+    if missing:
+        rows.append(missing)
     rows.append(f"{len(freqs)} frequencies in {result.seconds:.2f} s; "
                 "boundary points within "
                 f"{result.boundaries.max_multiplier_error:.1e} of the unit "
                 "circle")
     emit(args, data, "\n".join(rows) + _written(args.out, args.plot))
+
+
+def _missing_tongues(result, freqs, p_max_bar):
+    """A line naming the numbers no tongue got (numbers follow the
+    resonances, Fig. 14's scheme for every mode), or ''."""
+    from stability.tongues import resonances
+    found = {t.number for t in result.tongues}
+    gone = [f"{number} ({label}, {hz:.3g} Hz)" for number, label, hz, _
+            in resonances(result.boundaries.natural_frequencies_hz)
+            if number not in found]
+    return ("" if not gone else
+            "numbered by resonance; no tongue in "
+            f"{freqs[0]:g}-{freqs[-1]:g} Hz up to {p_max_bar:g} bar for "
+            + ", ".join(gone))
 
 
 def cmd_sensitivity(args):
