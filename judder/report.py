@@ -422,7 +422,7 @@ def build_report(parameters=None, changes=None, description=None,
             + ".</p>"
             + figure("Safe dither amplitude per frequency, and the map of "
                      "the advised design (judder advise)",
-                     advice.figure(title=f"judder advise, {description}"))))
+                     advice.figure(title=description))))
 
     # sensitivity
     sens = api.sensitivity(names, grid_freq, p_max_bar, parameters=values,

@@ -323,6 +323,7 @@ def check_figure(records, background=None, min_growth=None, title=None):
     min_growth : float, optional
         Passed to :func:`plot_map`.
     title : str, optional
+        The model, after "dither settings: verdict and margins".
     """
     fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
     handles = []
@@ -351,7 +352,8 @@ def check_figure(records, background=None, min_growth=None, title=None):
     ax.legend(handles=handles + list(seen.values()), fontsize=7,
               loc="upper left", bbox_to_anchor=(1.01, 1.0),
               borderaxespad=0.0)
-    ax.set_title(title or "dither settings: verdict and margins",
+    ax.set_title("dither settings: verdict and margins"
+                 + (f", {title}" if title else ""),
                  fontsize=10, pad=16 if background is not None else 6)
     _unstack(fig, notes)
     return fig
@@ -868,15 +870,17 @@ def advice_figure(advice, title=None):
         left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
     left.set_xlabel("dither frequency [Hz]")
     left.set_ylabel("safe dither amplitude $p_f$ [bar]")
-    left.set_title("safe dither windows, given design")
-    left.legend(fontsize=7)
+    left.set_title("safe dither windows, given design", fontsize=10)
+    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13),
+                ncols=2, frameon=False, borderaxespad=0.0)
     if advice.verification is not None:
         plot_map(advice.verification, ax=right,
                  min_growth=advice.min_growth)
+        # above the tongue numbers that head the axes
         right.set_title(f"advised design: {advice.judder_points} "
-                        "judder-relevant points")
-    if title:
-        figure_title(fig, title)
+                        "judder-relevant points", fontsize=10, pad=16)
+    figure_title(fig, "judder advise: safe dither windows and the advised "
+                 "design" + (f", {title}" if title else ""))
     return fig
 
 
