@@ -21,7 +21,7 @@ __all__ = ["KIND_COLORS", "KIND_LINESTYLES", "plot_map", "plot_growth_rate", "ma
            "sensitivity_figure", "plot_threshold", "plot_fit",
            "check_figure", "advice_figure", "plot_multipliers",
            "multipliers_figure", "boundary_curve", "kind_legend",
-           "figure_title", "readable_number"]
+           "figure_title", "readable_number", "settle_labels"]
 
 #: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then a
 #: dark blue, Okabe-Ito vermillion and orange, which colour-blind readers
@@ -330,7 +330,7 @@ def check_figure(records, background=None, min_growth=None, title=None):
     if background is not None:
         plot_map(background, ax=ax, min_growth=min_growth, legend=False)
         handles = _kind_handles(min_growth=min_growth)
-    seen, notes = {}, []
+    seen = {}
     for r in records:
         marker, color = VERDICT_MARKERS[r["verdict"]]
         line, = ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker,
@@ -342,11 +342,11 @@ def check_figure(records, background=None, min_growth=None, title=None):
         text = (("" if bar is None else f"{bar:+.3f} bar\n")
                 + ("" if hz is None else f"{hz:+.2f} Hz"))
         if text:
-            notes.append(ax.annotate(
-                text.strip(), (r["freq_hz"], r["p_f_bar"]), xytext=(7, 7),
-                textcoords="offset points", fontsize=7,
-                bbox={"boxstyle": "round,pad=0.15", "fc": "w", "ec": "none",
-                      "alpha": 0.8}))
+            ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
+                        xytext=(7, 7), textcoords="offset points", fontsize=7,
+                        gid=LABEL_GID, bbox={"boxstyle": "round,pad=0.15",
+                                             "fc": "w", "ec": "none",
+                                             "alpha": 0.8})
     ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
     ax.legend(handles=handles + list(seen.values()), fontsize=7,
@@ -355,23 +355,40 @@ def check_figure(records, background=None, min_growth=None, title=None):
     ax.set_title("dither settings: verdict and margins"
                  + (f", {title}" if title else ""),
                  fontsize=10, pad=16 if background is not None else 6)
-    _unstack(fig, notes)
+    settle_labels(fig)
     return fig
 
 
-def _unstack(fig, notes):
-    """Move annotations (offset in points) up until none overlaps one
-    placed before it: nearby settings keep readable margins."""
+#: ``gid`` of the texts :func:`settle_labels` keeps apart: tongue numbers
+#: and the margin notes of ``judder check``.
+LABEL_GID = "judder-label"
+
+
+def settle_labels(fig):
+    """Lay the figure out, then move each tongue number or margin note
+    (texts with ``gid`` :data:`LABEL_GID`) up until it overlaps none placed
+    before it in its axes: nearby tips and settings keep readable labels.
+    Figure builders call it last, once the axes have their final size."""
+    fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
-    placed = []
-    for note in notes:
-        for _ in range(20):
-            box = note.get_window_extent(renderer)
-            if not any(box.overlaps(other) for other in placed):
-                break
-            dx, dy = note.xyann
-            note.xyann = (dx, dy + box.height * 72.0 / fig.dpi + 2)
-        placed.append(note.get_window_extent(renderer))
+    for ax in fig.axes:
+        notes = sorted((t for t in ax.texts if t.get_gid() == LABEL_GID),
+                       key=lambda t: t.xy[0])
+        placed = []
+        for note in notes:
+            for _ in range(20):
+                box = note.get_window_extent(renderer)
+                if not any(_overlap(box, other) for other in placed):
+                    break
+                dx, dy = note.xyann
+                note.xyann = (dx, dy + box.height * 72.0 / fig.dpi + 2)
+            placed.append(note.get_window_extent(renderer))
+
+
+def _overlap(one, other, slack=1.0):
+    """Two boxes (pixels) share more than ``slack`` in both directions."""
+    return (min(one.x1, other.x1) - max(one.x0, other.x0) > slack
+            and min(one.y1, other.y1) - max(one.y0, other.y0) > slack)
 
 
 def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
@@ -427,6 +444,7 @@ def map_figure(stability_map, title=None, tongues=None, boundaries=None,
                     "multiplier", fontsize=10)
     if title:
         figure_title(fig, title)
+    settle_labels(fig)
     return fig
 
 
@@ -536,8 +554,8 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
 
 def _number_tips(ax, tongues, color):
     """A marker at each numbered tip and its number beside it (right),
-    clear of the frequency axis; a number that would overlap another is
-    moved up (:func:`_unstack`)."""
+    clear of the frequency axis; :func:`settle_labels` moves a number that
+    would overlap another."""
     artists, numbers = [], []
     for tongue in tongues:
         if tongue.number is None:
@@ -549,10 +567,9 @@ def _number_tips(ax, tongues, color):
         numbers.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
             xytext=(4, 1), ha="left", va="bottom", fontsize=8,
-            fontweight="bold", color="k",
+            fontweight="bold", color="k", gid=LABEL_GID,
             bbox={"boxstyle": "round,pad=0.1", "fc": "w", "ec": "none",
                   "alpha": 0.7}))
-    _unstack(ax.figure, numbers)
     return artists + numbers
 
 
@@ -573,6 +590,7 @@ def tongues_figure(boundaries, tongues, stability_map=None, title=None,
                   bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     ax.set_title(title or "tongue boundaries (numbers as in Fig. 14)",
                  fontsize=10)
+    settle_labels(fig)
     return fig
 
 
@@ -617,6 +635,7 @@ def sensitivity_figure(study, title=None, params=None):
                   borderaxespad=0.2, handlelength=3)
     if title:
         figure_title(fig, title)
+    settle_labels(fig)
     return fig
 
 
@@ -881,6 +900,7 @@ def advice_figure(advice, title=None):
                         "judder-relevant points", fontsize=10, pad=16)
     figure_title(fig, "judder advise: safe dither windows and the advised "
                  "design" + (f", {title}" if title else ""))
+    settle_labels(fig)
     return fig
 
 
