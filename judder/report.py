@@ -16,6 +16,7 @@ import base64
 import datetime
 import html
 import io
+import re
 import shutil
 import subprocess
 import tempfile
@@ -31,9 +32,11 @@ from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
 
 from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
-                                 DEFAULT_MIN_GROWTH_PER_S)
+                                 DEFAULT_MIN_GROWTH_PER_S,
+                                 ENGAGEMENT_DURATION_S, JUDDER, SLOW_GROWTH)
 
 from . import api
+from .results import growth_words, margin_words
 
 __all__ = ["ReportResult", "build_report", "print_pdf",
            "DEFAULT_SENSITIVITY"]
@@ -101,10 +104,11 @@ def _fit_section(bench, names, values, method, workers, source):
     the fit is not shown)."""
     freqs, measured, tried, min_growth, below_bar, spread = bench
     onsets = int(np.sum(np.isfinite(measured)))
-    head = ("<h2>6. The bench data and the fit</h2>"
-            f"<p>{len(freqs)} measured points from {source}, {onsets} with "
-            f"judder; fitting {', '.join(names)} to the model's boundary of "
-            f"judder growing at {min_growth:g} 1/s or faster.</p>")
+    head = _keep("<h2>The bench data and the fit</h2>"
+                 f"<p>{len(freqs)} measured points from {source}, {onsets} "
+                 f"with judder; fitting {', '.join(names)} to the model's "
+                 f"boundary of judder growing at {min_growth:g} 1/s or "
+                 "faster.</p>")
     try:
         report = api.fit(freqs, measured / PA_PER_BAR, tried,
                          names=list(names), parameters=values,
@@ -158,42 +162,64 @@ def _table(header, rows):
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def _verdict_text(v):
+def _verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
     """The configured dither's verdict in words, from a record of
     ``judder check`` (:func:`judder.results.setting_record`) with the
-    leading ``|lambda|`` added."""
-    tongue = v["margin_bar_tongue"] or v["margin_hz_tongue"]
-    named = "" if tongue is None else \
-        f" (tongue {tongue['number'] or '?'}, {tongue['kind']})"
-    boundary = ("stability boundary" if not v["min_growth_per_s"] else
-                f"boundary of judder growing at {v['min_growth_per_s']:g} "
-                "1/s")
-    where = (f"the {boundary} at {v['freq_hz']:g} Hz is "
-             f"{v['boundary_p_f_bar']:.3g} bar{named}"
-             if v["boundary_p_f_bar"] is not None else
-             f"no tongue reaches {v['freq_hz']:g} Hz below "
-             f"{v['p_f_bar'] + v['margin_bar_at_least']:g} bar")
-    edge = ("" if v["margin_hz"] is None else
-            f"; the nearest tongue edge at {v['p_f_bar']:g} bar is "
-            f"{abs(v['margin_hz']):.3g} Hz away, at "
-            f"{v['crossing_hz']:.2f} Hz")
-    if v["verdict"] == "judder":
-        return (f"JUDDER: {v['kind']} instability, growing at "
-                f"{v['growth_rate_per_s']:.3g} 1/s "
-                f"(|lambda| = {v['leading_abs']:.4f}); {where}, so the "
-                f"dither amplitude is {-v['margin_bar']:.3g} bar above it"
-                + edge)
-    if v["verdict"] == "slow-growth":
-        text = (f"no judder: {v['kind']} instability growing at only "
-                f"{v['growth_rate_per_s']:.3g} 1/s (|lambda| = "
-                f"{v['leading_abs']:.4f}), slower than the judder-relevant "
-                f"{v['min_growth_per_s']:g} 1/s; {where}")
+    leading ``|lambda|`` added: the verdict word, what the multiplier
+    does, the growth against an engagement of ``engagement_s`` seconds
+    and both margins to judder."""
+    tongue = v["tongue"]
+    if not v["inside_stability_tongue"]:
+        what = "every multiplier inside the unit circle"
     else:
-        text = (f"no judder: stable (|lambda| = {v['leading_abs']:.4f}, "
-                f"decay {v['growth_rate_per_s']:.3g} 1/s); {where}")
-    if v["margin_bar"] is not None:
-        text += f", a margin of {v['margin_bar']:.3g} bar in amplitude"
-    return text + edge
+        what = (f"{v['kind']} instability"
+                + ("" if tongue is None else
+                   f" in tongue {tongue['number'] or '?'}"))
+    growth = growth_words(v, engagement_s)
+    if v["verdict"] == SLOW_GROWTH:
+        growth += (f", slower than the judder-relevant "
+                   f"{v['min_growth_per_s']:g} 1/s")
+    amplitude, frequency = margin_words(v)
+    return (f"{v['verdict']} at {v['freq_hz']:g} Hz, {v['p_f_bar']:g} bar: "
+            f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {growth}; "
+            f"{amplitude}; {frequency}.")
+
+
+def _window_text(advice):
+    """The safe dither windows of ``judder advise`` in one sentence."""
+    op = advice.operating
+    top = op.p_max / PA_PER_BAR
+    full = [w for w in advice.windows if w.full_range]
+    head = (f"Within {op.freq_hz[0]:g}-{op.freq_hz[1]:g} Hz, keeping "
+            f"{op.margin_p_f / PA_PER_BAR:g} bar and {op.margin_hz:g} Hz "
+            "from every judder-relevant tongue: ")
+    if full:
+        return head + f"safe up to {top:g} bar at " + ", ".join(
+            f"{w.freq_hz[0]:.1f}-{w.freq_hz[1]:.1f} Hz" for w in full) + "."
+    best = int(np.argmax(advice.safe_p_f))
+    return head + (f"no frequency is safe up to {top:g} bar; the most "
+                   f"amplitude is {advice.safe_p_f[best] / PA_PER_BAR:.3f} "
+                   f"bar, at {advice.freq_hz[best]:.1f} Hz.")
+
+
+def _design_text(advice):
+    """The smallest design change of ``judder advise`` in one sentence
+    (factors within 1 % of 1 left out)."""
+    a = advice.advice
+    if a is None:
+        return "not searched."
+    if not a.success:
+        return f"none found: {a.message}."
+    advised = advice.advised_params()
+    from stability.plotting import readable_number
+    changes = [f"{n} x{f:.2f} ({readable_number(advice.params[n])} to "
+               f"{readable_number(advised[n])} {advice.params.specs[n].unit})"
+               for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]
+    if not changes:
+        return "none needed: the window is already clear."
+    return (", ".join(changes) + " clears the window; the map recomputed "
+            f"with it has {advice.judder_points} judder points of "
+            f"{advice.verification.kind.size}.")
 
 
 def _ranking(tip_shifts, tongue_number):
@@ -222,20 +248,29 @@ def _ranking(tip_shifts, tongue_number):
 
 
 _CSS = """
-body{font-family:sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;
+@page{size:A4;margin:14mm 13mm}
+body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;
 color:#111;line-height:1.4}
 h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #999;
-margin-top:2em}
+margin-top:1.6em}
+h2,h3{break-after:avoid;page-break-after:avoid}
 table{border-collapse:collapse;margin:0.8em 0}
 td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:left;
-font-size:0.9em}
+font-size:0.9em;vertical-align:top}
 th{background:#eee}
-img{max-width:100%;height:auto;display:block;margin:0.8em 0}
+table.facts th{width:12em}
+img{max-width:100%;height:auto;display:block;margin:0.8em auto}
+figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
+figcaption{font-size:0.85em;color:#444;text-align:center}
+tr,.keep{break-inside:avoid;page-break-inside:avoid}
 .verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
 .judder{border-color:#b00;background:#fee}
+.slow{border-color:#a60;background:#fff6e0}
 .safe{border-color:#070;background:#efe}
+.none{border-color:#555;background:#f4f4f4}
 .small{font-size:0.85em;color:#444}
-@media print{h2{page-break-before:auto}img{page-break-inside:avoid}}
+@media print{body{margin:0;max-width:none;font-size:10pt}
+img{max-height:235mm;width:auto}}
 """
 
 
@@ -275,7 +310,7 @@ def build_report(parameters=None, changes=None, description=None,
         10-220 Hz, 300 points).
     map_freq, map_pf : array_like, optional
         Grid of the map, Hz and bar (default 5-250 Hz x 0-``p_max_bar``,
-        300 x 150).
+        246 x 121: 1 Hz x 0.0125 bar at 1.5 bar).
     p_max_bar : float
         Largest amplitude searched, bar.
     min_growth : float
@@ -288,6 +323,11 @@ def build_report(parameters=None, changes=None, description=None,
         without dither through the FMU (Fig. 7, 8; a few seconds); for a
         Modelica class, its own FMU from its steady slip
         (:func:`judder.api.simulate`). Refused for an FMU of ``--fmu``.
+    workers : int, optional
+        Local Dask workers of the sensitivity study and the fit. Default
+        1 (in this process): the report's studies are small, and starting
+        a local cluster costs more (about 6 s of CPU, measured) than it
+        saves on a few cores; an existing ``--scheduler`` is used anyway.
     progress : callable, optional
         ``progress(done, total)`` over the report's sections.
 
@@ -300,10 +340,11 @@ def build_report(parameters=None, changes=None, description=None,
                          read_chart_boundary, read_chart_min_growth)
     values = api.params(parameters, changes).params
     description = description or values.model
+    workers = 1 if workers is None else workers
     grid_freq = np.linspace(10, 220, 300) if grid_freq is None \
         else np.asarray(grid_freq, dtype=float)
-    map_freq = np.linspace(5, 250, 300) if map_freq is None else map_freq
-    map_pf = np.linspace(0, p_max_bar, 150) if map_pf is None else map_pf
+    map_freq = np.linspace(5, 250, 246) if map_freq is None else map_freq
+    map_pf = np.linspace(0, p_max_bar, 121) if map_pf is None else map_pf
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
     # bench data first: a bad file is refused before any work
@@ -330,7 +371,7 @@ def build_report(parameters=None, changes=None, description=None,
     if run_engagement:
         from .timedomain import class_fmu
         class_fmu(values, "report --engagement")   # refuses --fmu now
-    steps = 6 + bool(bench)
+    steps = 7 + bool(bench)
     done = [0]
 
     def step():
@@ -346,23 +387,10 @@ def build_report(parameters=None, changes=None, description=None,
         return f"<figure>{_png(fig)}<figcaption>{html.escape(title)}" \
                f"</figcaption></figure>"
 
-    # the driveline
+    # the driveline (its table closes the report, as an appendix)
     eig = api.eig(values).as_dict()
     data["natural_frequencies_hz"] = list(eig["natural_frequencies_hz"])
     data["damping_factor_12_percent"] = eig["damping_factor_12_percent"]
-    rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
-            for name, spec in values.specs.items()]
-    sections.append(
-        "<h2>1. The driveline</h2>"
-        "<p>Natural frequencies (Eq. 15): "
-        + ", ".join(f"{f:.3f} Hz" for f in eig["natural_frequencies_hz"])
-        + ("" if eig["damping_factor_12"] is None else
-           "; clutch-damper damping factor zeta_12 (Eq. 16): "
-           f"{eig['damping_factor_12_percent']:.2f} %")
-        + "; damped modes without dither: " + ", ".join(
-            f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
-            for m in eig["damped_modes"]) + ".</p>"
-        + _table(("parameter", "value", "unit", "meaning"), rows))
     step()
 
     # tongues, and the map they are drawn over
@@ -381,6 +409,7 @@ def build_report(parameters=None, changes=None, description=None,
                 for t in data["tongues"]]
 
     # the configured dither
+    verdict = point = None
     if freq_hz is not None and p_f_bar is not None:
         # judder check at the setting, at the growth rate that shades
         # the map (the tongues are the stability boundaries of Fig. 14)
@@ -392,25 +421,39 @@ def build_report(parameters=None, changes=None, description=None,
         verdict = {**checked.records()[0],
                    "leading_abs": float(point.leading_abs)}
         data["verdict"] = verdict
-        css = "judder" if verdict["verdict"] == "judder" else "safe"
-        sections.insert(0, (
-            f"<h2>Verdict: dither at {freq_hz:g} Hz, {p_f_bar:g} bar</h2>"
-            f'<p class="verdict {css}">'
-            f"{html.escape(_verdict_text(verdict))}</p>"
-            '<p class="small">Source: judder check --min-growth '
-            f"{min_growth:g}; the map below shades slower growth grey, its "
-            "tongues are the stability boundaries (Fig. 14).</p>"
+    step()
+
+    # what to do: safe windows and the smallest design change (advise)
+    advice, advice_error = None, None
+    try:
+        advice = api.advise(values, min_growth=min_growth)
+    except JudderError as error:        # e.g. no design parameter
+        advice_error = str(error)
+    step()
+    if advice is not None:
+        data["advice"] = advice.as_dict()
+    sections.append(_summary_section(verdict, advice, advice_error,
+                                     min_growth))
+
+    if point is not None:
+        sections.append(_keep(
+            "<h2>The configured dither: its multipliers</h2>"
             + figure(f"Floquet multipliers at {freq_hz:g} Hz, {p_f_bar:g} "
                      "bar (Fig. 15)",
                      multipliers_figure([point], title="Floquet multipliers "
-                                        "at the configured dither"))))
-    step()
+                                        f"at {freq_hz:g} Hz, {p_f_bar:g} "
+                                        f"bar, {description}"))))
 
-    sections.append(
-        "<h2>2. Where it judders: the stability map</h2>"
+    sections.append(_keep(
+        "<h2>Where it judders: the stability map</h2>"
+        f'<p class="small">Judder-relevant: growing faster than '
+        f"{min_growth:g} 1/s (judder check --min-growth {min_growth:g}); "
+        "slower growth is shaded grey; the lines are the exact stability "
+        "boundaries (Fig. 14).</p>"
         + figure("Stability map with the exact tongue boundaries and "
                  "numbers (Fig. 14)",
-                 stability.figure(title=f"stability map, {description}"))
+                 stability.figure(title=f"stability map, {description}",
+                                  stacked=True)))
         + "<p>Tongue tips (lowest amplitude that judders, refined between "
           "grid points); numbers as in Fig. 14:</p>"
         + _table(("#", "kind", "resonance", "tip f [Hz]", "tip p_f [bar]"),
@@ -426,12 +469,27 @@ def build_report(parameters=None, changes=None, description=None,
                                           p_max_bar), values,
                                       method=method).result)
     if inside:
-        sections.append(
+        sections.append(_keep(
             "<h3>How the multipliers leave the unit circle, by kind</h3>"
             + figure("Floquet multipliers just inside the lowest tongue of "
                      "each kind (Fig. 15)",
                      multipliers_figure(inside, title="Floquet multipliers "
-                                        "by kind of instability (Fig. 15)")))
+                                        "by kind of instability (Fig. 15), "
+                                        f"{description}"))))
+
+    if advice is not None:
+        sections.append(_keep(
+            "<h2>Safe dither windows and the design change</h2>"
+            + f"<p>{html.escape(_window_text(advice))}</p>"
+            + "<p>Design parameters ranked by how much of the way out of "
+              "the window a relative change takes the judder-relevant "
+              "tongues (share per unit change of ln value): "
+            + html.escape(", ".join(f"{n} {share:.2f}"
+                                    for n, share, _ in advice.ranking))
+            + ".</p>"
+            + figure("Safe dither amplitude per frequency, and the map of "
+                     "the advised design (judder advise)",
+                     advice.figure(title=description))))
 
     # sensitivity
     sens = api.sensitivity(names, grid_freq, p_max_bar, parameters=values,
@@ -440,8 +498,8 @@ def build_report(parameters=None, changes=None, description=None,
     focus = _focus_tongue(tongues.tongues, freq_hz)
     ranking = _ranking(sens.tip_shifts, focus)
     data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
-    sections.append(
-        "<h2>3. What moves the tongues: sensitivity</h2>"
+    sections.append(_keep(
+        "<h2>What moves the tongues: sensitivity</h2>"
         f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
         f"the largest relative move of tongue {focus}'s tip"
         + (" (the tongue nearest the configured dither)"
@@ -451,6 +509,7 @@ def build_report(parameters=None, changes=None, description=None,
                  [(e["parameter"], f"{e['p_f_percent']:.1f}",
                    f"{e['freq_percent']:.2f}",
                    "yes" if e["vanishes"] else "no") for e in ranking])
+        + _rankings_differ(ranking, advice))
         + figure("Sensitivity of the stability boundary (Fig. 17, 18)",
                  sens.figure(title=f"sensitivity, {description}")))
 
@@ -468,7 +527,7 @@ def build_report(parameters=None, changes=None, description=None,
         first = run.summaries[0]
         data["engagement"] = first
         sections.append(
-            "<h2>5. The engagement "
+            "<h2>The engagement "
             + ("on the bench model" if paper else "of the class's FMU")
             + f"</h2><p>Through the {html.escape(run.model_class)} FMU"
             + ("" if paper else " from its start values (a steady slip)")
@@ -501,6 +560,20 @@ def build_report(parameters=None, changes=None, description=None,
             "Measured and fitted boundaries (Fig. 16a)", fitted.figure())))
     step()
 
+    rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
+            for name, spec in values.specs.items()]
+    sections.append(_keep(
+        "<h2>The driveline and its parameters</h2>"
+        "<p>Natural frequencies (Eq. 15): "
+        + ", ".join(f"{f:.3f} Hz" for f in eig["natural_frequencies_hz"])
+        + ("" if eig["damping_factor_12"] is None else
+           "; clutch-damper damping factor zeta_12 (Eq. 16): "
+           f"{eig['damping_factor_12_percent']:.2f} %")
+        + "; damped modes without dither: " + ", ".join(
+            f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
+            for m in eig["damped_modes"]) + ".</p>"
+        + _table(("parameter", "value", "unit", "meaning"), rows)))
+
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime(
         "%Y-%m-%d %H:%M UTC")
     page = (
@@ -513,16 +586,19 @@ def build_report(parameters=None, changes=None, description=None,
         "amplitude in bar, parameters in SI units. Figures and equations "
         "as numbered in \"Parametric excitation as a cause of clutch "
         "judder: theoretical study and experimental validation\".</p>"
-        + "".join(sections) + "</body></html>")
+        + _number_sections("".join(sections)) + "</body></html>")
     return ReportResult(html=page, data=data, figures=figures)
 
 
 def _threshold_section(values, threshold, figure):
     """Section 4: the friction-gradient threshold without dither (Fig.
     19) of a registry driveline, from :func:`judder.api.threshold`."""
-    return (
-        "<h2>4. Without dither: the friction-gradient threshold</h2>"
-        f"<p>With the mean pressure in the slip damping, this driveline "
+    return _keep(
+        "<h2>Without dither: the friction-gradient threshold</h2>"
+        f"<p>This study puts the mean pressure's damping into the slip "
+        "damping (Eq. 2-4 taken literally, as Fig. 19 needs), while the "
+        "maps above keep only the dither's fluctuating part (see "
+        "docs/theory.md). With it, this driveline "
         f"is unstable without any dither for mu_g below "
         f"{threshold.study.threshold:.3g} s/rad (its mu_g is "
         f"{values['mu_g']:.3g} s/rad"
@@ -532,6 +608,77 @@ def _threshold_section(values, threshold, figure):
         + figure("Largest real part against mu_g and the threshold "
                  "against the external damping (Fig. 19)",
                  threshold.figure()))
+
+
+def _summary_section(verdict, advice, advice_error, min_growth):
+    """The first screen: the verdict of the configured dither (or why
+    there is none), the safe dither window and the smallest design change
+    of ``judder advise``."""
+    if verdict is None:
+        css, text = "none", (
+            "No dither setting given (--freq, --pf): choose one in the safe "
+            "window below, or check one with judder check.")
+    else:
+        css = {JUDDER: "judder", SLOW_GROWTH: "slow"}.get(verdict["verdict"],
+                                                          "safe")
+        text = _verdict_text(verdict)
+    if advice is None:
+        window = design = f"not computed: {advice_error}"
+    else:
+        window, design = _window_text(advice), _design_text(advice)
+    rows = "".join(
+        f"<tr><th>{html.escape(head)}</th><td>{html.escape(body)}</td></tr>"
+        for head, body in (("Safe dither window", window),
+                           ("Smallest design change", design)))
+    return (
+        "<h2>Verdict and advice</h2>"
+        f'<p class="verdict {css}">{html.escape(text)}</p>'
+        f'<table class="facts">{rows}</table>'
+        '<p class="small">JUDDER: an instability growing faster than '
+        f"{min_growth:g} 1/s, at least one e-fold within an engagement; "
+        "SLOW GROWTH: unstable (inside a stability tongue) but growing "
+        "slower, no judder within an engagement; STABLE: no instability. "
+        "Sources: judder check and judder advise (valve range 60-200 Hz, "
+        "up to 0.7 bar); the evidence follows.</p>")
+
+
+def _rankings_differ(ranking, advice):
+    """Why the sensitivity ranking and ``judder advise``'s differ, when
+    their first parameters do."""
+    if advice is None or not ranking or not advice.ranking:
+        return ""
+    first, design = ranking[0]["parameter"], advice.ranking[0][0]
+    if first == design:
+        return ""
+    return (
+        f"<p>This ranking puts {html.escape(first)} first, judder advise "
+        f"puts {html.escape(design)} first: they answer different "
+        "questions. Here each parameter is halved and doubled and the "
+        "table gives how far the tip of one tongue moves, mostly in "
+        "amplitude (the tip amplitude scales as 1/mu_g). judder advise "
+        "asks how far a small relative change of a design parameter "
+        "(inertias, stiffnesses, damping; the friction gradient is not "
+        "among them by default) moves every judder-relevant tongue out of "
+        "the valve's window, mostly in frequency, which the inertias and "
+        "stiffnesses set (Eq. 15).</p>")
+
+
+def _keep(part):
+    """``part`` (a heading and what opens its section) kept on one printed
+    page."""
+    return f'<div class="keep">{part}</div>'
+
+
+def _number_sections(body):
+    """Number the ``<h2>`` headings 1, 2, ... in their order (a number a
+    section wrote itself is replaced), so the numbering has no gap
+    whichever sections the report has."""
+    count = [0]
+
+    def numbered(match):
+        count[0] += 1
+        return f"<h2>{count[0]}. "
+    return re.sub(r"<h2>(?:\d+\. )?", numbered, body)
 
 
 def _focus_tongue(found, freq_hz):
@@ -574,5 +721,8 @@ def print_pdf(html_path, pdf_path):
         if not target.exists() or target.stat().st_size == 0:
             raise JudderError(f"--pdf: chromium could not print the report "
                               f"(exit {proc.returncode})")
-        data = target.read_bytes()
+        # a comment line after the end marks the file as the tool's
+        # (infra.files.written_by_us), so the next run may replace it:
+        # Chromium writes the title into the metadata as UTF-16
+        data = target.read_bytes() + f"\n% {MARK}\n".encode()
     atomic_write(pdf_path, lambda stream: stream.write(data))

@@ -102,6 +102,14 @@ class EigResult:
                                                  self.damping_ratio)]}
 
 
+def complex_record(value):
+    """A complex number as JSON fields a script reads without knowing a
+    convention: ``re``, ``im``, ``abs`` and ``arg`` (rad, in (-pi, pi])."""
+    value = complex(value)
+    return {"re": value.real, "im": value.imag, "abs": abs(value),
+            "arg": math.atan2(value.imag, value.real)}
+
+
 @dataclass(frozen=True)
 class FloquetPoint:
     """``judder floquet``: the multipliers at one dither setting.
@@ -122,10 +130,11 @@ class FloquetPoint:
         return {"model": self.params.model, "freq_hz": r.freq_hz,
                 "p_f_bar": self.p_f_bar, "p_f_pa": r.p_f,
                 "period_s": r.period, "method": self.method,
-                "multipliers": r.multipliers, "leading": r.leading,
+                "multipliers": [complex_record(z) for z in r.multipliers],
+                "leading": complex_record(r.leading),
                 "leading_abs": r.leading_abs, "kind": r.kind,
                 "growth_rate_per_s": r.growth_rate,
-                "exponents_per_s": r.exponents}
+                "exponents_per_s": [complex_record(z) for z in r.exponents]}
 
     def figure(self, title=None):
         """The multipliers on the complex plane (Fig. 15)."""
@@ -176,8 +185,15 @@ class MapResult:
         Arrays: ``freq_hz`` (nf,), ``p_f_pa`` and ``p_f_bar`` (np,),
         ``leading_re``/``leading_im``/``leading_abs``/``growth_rate_per_s``
         (nf, np), ``kind`` (nf, np, int8), ``kind_names``,
-        ``natural_frequencies_hz``; ``parameters`` holds a JSON string of
-        the model, the parameter values (SI), the method and ``meta``.
+        ``natural_frequencies_hz``, ``min_growth_per_s`` (the
+        judder-relevant rate, 0 when none was given: every instability);
+        with the exact boundaries, ``boundary_freq_hz`` (nb,),
+        ``boundary_p_f_bar`` (nb, 3; NaN: none up to ``boundary_p_max_bar``)
+        whose columns ``boundary_kinds`` names, and per tongue
+        ``tongue_number`` (0: unnumbered), ``tongue_kind``,
+        ``tongue_resonance``, ``tongue_tip_freq_hz``,
+        ``tongue_tip_p_f_bar``; ``parameters`` holds a JSON string of the
+        model, the parameter values (SI), the method and ``meta``.
         """
         m = self.map
         info = {"model": self.params.model,
@@ -191,15 +207,32 @@ class MapResult:
             "growth_rate_per_s": m.growth_rate, "kind": m.kind,
             "kind_names": np.array(KINDS),
             "natural_frequencies_hz": m.natural_frequencies_hz,
+            "min_growth_per_s": np.array(float(self.min_growth or 0.0)),
             "parameters": np.array(json.dumps(info)),
         }
+        if self.boundaries is not None:
+            b, found = self.boundaries, self.tongues or []
+            arrays.update({
+                "boundary_freq_hz": b.freq_hz,
+                "boundary_p_f_bar": b.amplitude / PA_PER_BAR,
+                "boundary_kinds": np.array(KINDS[1:]),
+                "boundary_p_max_bar": np.array(b.p_max / PA_PER_BAR),
+                "tongue_number": np.array([t.number or 0 for t in found],
+                                          dtype=int),
+                "tongue_kind": np.array([t.kind for t in found], dtype=str),
+                "tongue_resonance": np.array([t.resonance or ""
+                                              for t in found], dtype=str),
+                "tongue_tip_freq_hz": np.array([t.tip_freq_hz
+                                                for t in found]),
+                "tongue_tip_p_f_bar": np.array([t.tip_p_f / PA_PER_BAR
+                                                for t in found])})
         save_npz(path, arrays)
 
-    def figure(self, title=None):
+    def figure(self, title=None, stacked=False):
         from stability.plotting import map_figure
         return map_figure(self.map, title=title, tongues=self.tongues,
                           boundaries=self.boundaries,
-                          min_growth=self.min_growth)
+                          min_growth=self.min_growth, stacked=stacked)
 
 
 def tongue_record(tongue):
@@ -266,10 +299,14 @@ class TonguesResult:
 
     def figure(self, title=None):
         from stability.plotting import tongues_figure
+        from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+        # the map's shading as `judder map` draws it: slower growth than
+        # the judder-relevant rate grey
         return tongues_figure(
             self.boundaries, self.tongues, self.background,
             title=title or f"{self.params.model}: tongue boundaries over "
-                           "the map")
+                           "the map",
+            min_growth=self.boundaries.min_growth or DEFAULT_MIN_GROWTH_PER_S)
 
 
 @dataclass(frozen=True)
@@ -347,10 +384,20 @@ class ThresholdResult:
             zip(s.external_damping, s.thresholds, s.closed_form)]
         write_text(path, "\n".join(lines) + "\n")
 
-    def figure(self):
+    def figure(self, title=None):
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
-        self.study.plot(axes=axes)
+        from stability import build_driveline
+        from stability.plotting import figure_title, plot_threshold
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
+                                 layout="constrained")
+        driveline = build_driveline(self.params)
+        plot_threshold(self.study, axes=axes,
+                       own=(float(np.mean(driveline.external_damping)),
+                            float(self.params["mu_g"])))
+        figure_title(fig, f"Fig. 19 without dither, "
+                     f"{title or self.params.model + ' driveline'}: the "
+                     "mean pressure's damping in the slip damping (the maps "
+                     "keep only the dither's part)", fontsize=10)
         return fig
 
 
@@ -563,9 +610,9 @@ class CrosscheckResult:
     def save(self, path):
         write_text(path, _csv_text(self.rows()))
 
-    def figure(self):
+    def figure(self, title=None):
         from pysim.plotting import crosscheck_figure
-        return crosscheck_figure(self.check)
+        return crosscheck_figure(self.check, title=title)
 
 
 @dataclass(frozen=True)
@@ -662,7 +709,8 @@ class ChartResult:
     def save_boundary(self, path, force=False):
         """Write the experimental boundary as ``judder fit --boundary``
         reads it; with several groups, one file per group
-        (``STEM_GROUP.csv``). Returns the paths written.
+        (``STEM_GROUP.csv``, a number as 1000, not 1000.0). Returns the
+        paths written.
 
         Without ``force``, refuses (before writing any) to replace a file
         judder did not write (:func:`infra.files.check_output`).
@@ -672,7 +720,8 @@ class ChartResult:
         path = Path(path)
         groups = list(self.chart.groups())
         targets = [path if len(groups) == 1 else path.with_name(
-            f"{path.stem}_{'_'.join(group)}{path.suffix}")
+            f"{path.stem}_{'_'.join(_file_word(v) for v in group)}"
+            f"{path.suffix}")
             for group in groups]
         for target in targets:
             check_output(target, "--boundary", ("csv",), force)
@@ -695,16 +744,26 @@ class ChartResult:
 
 
 
-def setting_record(check, min_growth, engagement_s, p_max):
-    """One :class:`stability.margins.SettingCheck` as JSON fields."""
+def _file_word(value):
+    """A group value as it reads in a file name: a number without a
+    trailing ``.0`` (1000, not 1000.0), text as it is."""
+    try:
+        return f"{float(value):g}"
+    except ValueError:
+        return str(value)
+
+
+def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
+    """One :class:`stability.margins.SettingCheck` as JSON fields.
+
+    ``verdict`` is one of :data:`stability.relevance.VERDICTS`;
+    ``search_hz`` the (low, high) frequencies the Hz margin was searched
+    over (``frequency_search_hz``).
+    """
+    from stability.relevance import verdict
     m, point = check.margin, check.floquet
     rate = point.growth_rate
-    if check.judder:
-        verdict = "judder"
-    elif point.kind != "stable":
-        verdict = "slow-growth"
-    else:
-        verdict = "stable"
+    unstable = point.kind != KINDS[0]
 
     def tongue(t):
         return None if t is None else {"number": t.number, "kind": t.kind,
@@ -720,12 +779,15 @@ def setting_record(check, min_growth, engagement_s, p_max):
         key=lambda r: -abs(r["margin_hz_per_unit_log"] or 0.0)
         - abs(r["margin_bar_per_unit_log"] or 0.0) * 1e-6)
     return {"freq_hz": m.freq_hz, "p_f_bar": m.p_f / PA_PER_BAR,
-            "verdict": verdict, "kind": point.kind,
+            "verdict": verdict(unstable, rate, min_growth),
+            "kind": point.kind,
+            "inside_stability_tongue": bool(unstable),
+            "judder_relevant": bool(check.judder),
+            "tongue": tongue(check.tongue),
             "growth_rate_per_s": rate,
             "e_folding_time_s": 1.0 / rate if rate > 0 else None,
             "efolds_per_engagement": rate * engagement_s,
             "min_growth_per_s": min_growth,
-            "inside_tongue": m.inside,
             "boundary_p_f_bar": _finite_or_none(m.boundary_p_f / PA_PER_BAR),
             "margin_bar": _finite_or_none(m.margin_p_f / PA_PER_BAR),
             "margin_bar_at_least": (None if np.isfinite(m.margin_p_f)
@@ -736,33 +798,87 @@ def setting_record(check, min_growth, engagement_s, p_max):
             "crossing_tolerance_hz": m.crossing_tolerance_hz,
             "margin_hz": _finite_or_none(m.margin_hz),
             "margin_hz_tongue": tongue(check.hz_tongue),
+            "frequency_search_hz": (None if search_hz is None else
+                                    [float(f) for f in search_hz]),
             "sensitivity": sensitivity}
 
 
-def setting_summary(record):
-    """One line: verdict, growth, both margins, the strongest parameter."""
-    def named(t):
-        return "" if t is None else \
-            f" (tongue {t['number'] or '?'}, {t['kind']})"
-    parts = [f"{record['freq_hz']:g} Hz, {record['p_f_bar']:g} bar: "
-             f"{record['verdict'].upper()}",
-             f"growth {record['growth_rate_per_s']:+.3g} 1/s"]
-    if record["e_folding_time_s"] is not None:
-        parts.append(f"e-fold {record['e_folding_time_s']:.3g} s")
+def _named(tongue):
+    """`` (tongue N)`` of a record's tongue, or nothing."""
+    return "" if tongue is None else f" (tongue {tongue['number'] or '?'})"
+
+
+def growth_words(record, engagement_s):
+    """The growth of a record in words: rate, e-folding time against an
+    engagement of ``engagement_s`` seconds."""
+    rate = record["growth_rate_per_s"]
+    if record["e_folding_time_s"] is None:
+        return f"decays at {-rate:.3g} 1/s"
+    efold = record["e_folding_time_s"]
+    return (f"grows at {rate:.3g} 1/s, one e-fold in {efold:.3g} s ("
+            + ("longer than" if efold > engagement_s else "within")
+            + f" a {engagement_s:g} s engagement)")
+
+
+def margin_words(record):
+    """Both margins of a record in plain words (amplitude, frequency)."""
     bar = record["margin_bar"]
-    parts.append("margin " + (f"> {record['margin_bar_at_least']:+.3f} bar "
-                              "(no tongue up to p_max)" if bar is None else
-                              f"{bar:+.3f} bar") + named(
-                                  record["margin_bar_tongue"]))
+    if bar is None:
+        amplitude = ("no judder at this frequency up to "
+                     f"{record['p_f_bar'] + record['margin_bar_at_least']:.3g}"
+                     " bar")
+    elif bar >= 0:
+        amplitude = f"{bar:.3f} bar below judder" + _named(
+            record["margin_bar_tongue"])
+    else:
+        amplitude = f"{-bar:.3f} bar above the judder boundary" + _named(
+            record["margin_bar_tongue"])
     hz = record["margin_hz"]
-    parts.append(("no tongue edge in range" if hz is None else
-                  f"{hz:+.2f} Hz") + named(record["margin_hz_tongue"]))
-    if record["sensitivity"]:
-        top = record["sensitivity"][0]
-        if top["margin_hz_per_unit_log"] is not None:
-            parts.append(f"most sensitive: {top['parameter']} "
-                         f"({0.1 * top['margin_hz_per_unit_log']:+.2f} Hz "
-                         "per +10 %)")
+    if hz is None:
+        search = record["frequency_search_hz"]
+        frequency = (f"no dither frequency judders at {record['p_f_bar']:g} "
+                     "bar" + ("" if search is None else
+                              f" from {search[0]:.3g} to {search[1]:.3g} Hz"))
+    elif hz > 0:
+        frequency = (f"nearest judder {hz:.2f} Hz away, at "
+                     f"{record['crossing_hz']:.2f} Hz"
+                     + _named(record["margin_hz_tongue"]))
+    else:
+        frequency = (f"judder up to {-hz:.2f} Hz away, to "
+                     f"{record['crossing_hz']:.2f} Hz"
+                     + _named(record["margin_hz_tongue"]))
+    return amplitude, frequency
+
+
+def sensitivity_words(record, count=3):
+    """The ``count`` parameters that move the margin most, per +10 %
+    (Hz where the frequency margin exists, else bar); "" if none."""
+    parts = []
+    for entry in record["sensitivity"][:count]:
+        hz, bar = (entry["margin_hz_per_unit_log"],
+                   entry["margin_bar_per_unit_log"])
+        if hz is not None:
+            parts.append(f"{entry['parameter']} {0.1 * hz:+.2f} Hz")
+        elif bar is not None:
+            parts.append(f"{entry['parameter']} {0.1 * bar:+.3f} bar")
+    return "" if not parts else \
+        "margin per +10 %: " + ", ".join(parts)
+
+
+def setting_summary(record, engagement_s=1.0):
+    """One line: verdict, growth against an engagement, both margins, the
+    parameters that move the margin most."""
+    head = f"{record['freq_hz']:g} Hz, {record['p_f_bar']:g} bar: " \
+        f"{record['verdict']}"
+    if record["inside_stability_tongue"]:
+        tongue = record["tongue"]
+        head += (f" ({record['kind']})" if tongue is None else
+                 f" in tongue {tongue['number'] or '?'} ({record['kind']})")
+    parts = [head, growth_words(record, engagement_s),
+             *margin_words(record)]
+    sensitive = sensitivity_words(record)
+    if sensitive:
+        parts.append(sensitive)
     return "; ".join(parts)
 
 
@@ -784,8 +900,12 @@ class CheckResult:
     background: object = None
 
     def records(self):
+        from stability.margins import search_grid
+        grid = search_grid([c.margin.freq_hz for c in self.checks]) \
+            if self.checks else None
+        search = None if grid is None else (grid[0], grid[-1])
         return [setting_record(c, self.min_growth, self.engagement_s,
-                               self.p_max)
+                               self.p_max, search)
                 for c in self.checks]
 
     def as_dict(self):
@@ -796,7 +916,8 @@ class CheckResult:
                 "seconds": self.seconds, "settings": self.records()}
 
     def summary(self):
-        return "\n".join(setting_summary(r) for r in self.records())
+        return "\n".join(setting_summary(r, self.engagement_s)
+                         for r in self.records())
 
     @keeps_foreign_files
     def save(self, path):
@@ -806,8 +927,8 @@ class CheckResult:
         for r in self.records():
             row = {k: v for k, v in r.items()
                    if not isinstance(v, (dict, list)) and k not in
-                   ("margin_bar_tongue", "margin_hz_tongue")}
-            for key in ("margin_bar_tongue", "margin_hz_tongue"):
+                   ("tongue", "margin_bar_tongue", "margin_hz_tongue")}
+            for key in ("tongue", "margin_bar_tongue", "margin_hz_tongue"):
                 row[key] = None if r[key] is None else r[key]["number"]
             rows.append(row)
         write_text(path, _csv_text(rows))
@@ -999,13 +1120,22 @@ class EnvelopeResult:
     @keeps_foreign_files
     def save(self, path):
         """NPZ: every sample's values and boundaries, the nominal, the
-        broadest edge, the probability grid (bar where named so)."""
+        broadest edge, the probability grid (bar where named so).
+
+        ``amplitude_bar`` is (samples, frequencies, kinds) and
+        ``nominal_bar`` (frequencies, kinds): the lowest boundary of each
+        kind, the kinds named by ``amplitude_bar_axes`` and
+        ``kind_columns`` (NaN: none up to ``p_max_bar``); ``probability``
+        is (frequencies, amplitudes)."""
         e = self.envelope
         arrays = {"freq_hz": e.freq_hz, "p_f_bar": e.p_f / PA_PER_BAR,
                   "p_max_bar": e.p_max / PA_PER_BAR,
                   "names": np.array(e.names), "values": e.values,
                   "is_vertex": e.is_vertex, "ok": e.ok,
                   "amplitude_bar": e.amplitude / PA_PER_BAR,
+                  "amplitude_bar_axes": np.array(["sample", "freq_hz",
+                                                  "kind"]),
+                  "kind_columns": np.array(KINDS[1:]),
                   "nominal_bar": e.nominal / PA_PER_BAR,
                   "broadest_bar": e.broadest / PA_PER_BAR,
                   "probability": e.probability,

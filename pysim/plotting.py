@@ -34,22 +34,62 @@ def plot_run(run, ax=None, title=None, legend=True, verdict=None):
     the title."""
     if ax is None:
         _, ax = plt.subplots()
-    artists = [ax.plot(run.time, run[name] * RPM_PER_RAD_S, ls=style,
-                       color=color, label=label, lw=0.8)[0]
-               for name, (style, color, label) in SPEED_STYLES.items()]
+    right = ax.twinx()
+    traces = [(ax, run[name] * RPM_PER_RAD_S, style, color, label)
+              for name, (style, color, label) in SPEED_STYLES.items()]
+    traces.append((right, run["actuation_pressure"] / PA_PER_BAR, "-", "0.45",
+                   "actuation pressure (right axis)"))
+    period = 1.0 / run.freq_hz if run.p_f > 0 else None
+    banded = period is not None and (run.time[-1] - run.time[0]) \
+        > BANDED_PERIODS * period
+    artists = []
+    for axis, values, style, color, label in traces:
+        if banded:
+            # unresolved at this scale: the band the dither swings over,
+            # and its mean per period
+            t, low, high, mean = _per_period(run.time, values, period)
+            axis.fill_between(t, low, high, color=color, alpha=0.3, lw=0)
+            artists.append(axis.plot(t, mean, ls=style, color=color, lw=1.0,
+                                     label=label)[0])
+        else:
+            artists.append(axis.plot(run.time, values, ls=style,
+                                     color=color, lw=0.8, label=label)[0])
     ax.set_xlabel("time [s]")
     ax.set_ylabel("speed [rpm]")
-    right = ax.twinx()
-    artists.append(right.plot(run.time, run["actuation_pressure"] / PA_PER_BAR,
-                              color="0.55", lw=0.5,
-                              label="actuation pressure (right axis)")[0])
     right.set_ylabel("actuation pressure [bar]")
     if legend:
-        ax.legend(handles=artists, loc="upper center", fontsize=7,
-                  bbox_to_anchor=(0.5, -0.2), ncols=3, borderaxespad=0.0)
+        from matplotlib.patches import Patch
+        notes = [Patch(facecolor="0.6", alpha=0.3,
+                       label="shaded: swing per dither period, line: mean")
+                 ] if banded else []
+        ax.legend(handles=artists + notes, loc="upper center", fontsize=7,
+                  bbox_to_anchor=(0.5, -0.2), ncols=2, borderaxespad=0.0)
     ax.set_title((f"{title}: " if title else "") + _dither_text(run)
                  + (f"\n{verdict}" if verdict else ""), fontsize=9)
     return artists
+
+
+#: More dither periods than this in a time history and each trace is drawn
+#: as its swing per period (a band) and its mean: the oscillation itself
+#: would fill the axes solid.
+BANDED_PERIODS = 150
+
+
+def _per_period(time, values, period):
+    """Per dither period: centre time, minimum, maximum and mean of
+    ``values``."""
+    index = np.floor((time - time[0]) / period).astype(int)
+    count = index[-1] + 1
+    edges = np.searchsorted(index, np.arange(count + 1))
+    keep = np.diff(edges) > 0
+    starts = edges[:-1][keep]
+    low = np.minimum.reduceat(values, starts)
+    high = np.maximum.reduceat(values, starts)
+    mean = np.add.reduceat(values, starts) / np.diff(
+        np.append(starts, len(values)))
+    centre = np.add.reduceat(time, starts) / np.diff(
+        np.append(starts, len(values)))
+    return centre, low, high, mean
 
 
 def _spectra(run, start):
@@ -125,12 +165,17 @@ def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
         if run.p_f > 0:
             ax.axvline(run.freq_hz, color=colours[index], lw=0.6,
                        ls=styles[index % len(styles)], alpha=0.6)
+            ax.annotate(f"dither {run.freq_hz:g} Hz", (run.freq_hz, 1.0),
+                        xycoords=("data", "axes fraction"), xytext=(3, -3),
+                        textcoords="offset points", ha="left", va="top",
+                        fontsize=7, color=colours[index])
     ax.set_xlim(0, f_max)
-    ax.set_ylim(0, 1.08 * max(top, 1e-9))
+    # a log scale: a run 100 times quieter than another stays visible
+    ax.set_yscale("log")
+    ax.set_ylim(max(top, 1e-9) * 1e-4, 2.0 * max(top, 1e-9))
     ax.set_xlabel("frequency [Hz]")
-    ax.set_ylabel("upstream speed amplitude [rpm]")
-    ax.set_title("speed spectra overlaid (vertical lines: each run's "
-                 "dither frequency)", fontsize=9)
+    ax.set_ylabel("upstream speed amplitude [rpm] (log)")
+    ax.set_title("speed spectra overlaid", fontsize=9)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
               borderaxespad=0.0)
     return artists
@@ -164,34 +209,40 @@ def run_figure(runs, start=0.0, title=None, verdicts=None):
 
 
 def crosscheck_figure(check, title=None):
-    """Fitted against Floquet growth rates, and verdicts on the grid."""
+    """Fitted against Floquet growth rates, and verdicts on the grid;
+    ``title`` (the model) follows the share of agreeing verdicts."""
     fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5),
                                       layout="constrained")
     floquet = np.array([p.floquet_rate for p in check.points])
     fitted = np.array([p.fitted_rate for p in check.points])
     agree = np.array([p.agree for p in check.points])
-    left.plot(floquet[agree], fitted[agree], "o", ms=4, label="verdicts agree")
-    left.plot(floquet[~agree], fitted[~agree], "rx", ms=6,
-              label="verdicts disagree")
+    left.plot(floquet[agree], fitted[agree], "o", ms=4, color="#1f4e99",
+              label="verdicts agree")
+    left.plot(floquet[~agree], fitted[~agree], "x", ms=7, mew=1.5,
+              color="k", label="verdicts disagree")
     span = [min(floquet.min(), fitted.min()), max(floquet.max(), fitted.max())]
     left.plot(span, span, "k-", lw=0.6, label="equal")
-    left.set_xlabel("Floquet exponent ln|lambda|/T [1/s]")
+    left.set_xlabel(r"Floquet exponent $\ln|\lambda|/T$ [1/s]")
     left.set_ylabel("growth rate fitted to the FMU run [1/s]")
-    left.legend(fontsize=8)
     f = np.array([p.freq_hz for p in check.points])
     p = np.array([p.p_f for p in check.points]) / PA_PER_BAR
     unstable = np.array([q.floquet_unstable for q in check.points])
-    right.scatter(f[unstable & agree], p[unstable & agree], c="C3", s=18,
-                  label="unstable, both")
-    right.scatter(f[~unstable & agree], p[~unstable & agree], c="C2", s=18,
-                  label="stable, both")
-    right.scatter(f[~agree], p[~agree], marker="x", c="k", s=30,
-                  label="disagree")
+    # shapes tell the verdicts apart without colour (not red against green)
+    right.scatter(f[unstable & agree], p[unstable & agree], marker="^",
+                  c="#d55e00", edgecolors="k", linewidths=0.4, s=26,
+                  label="unstable in both")
+    right.scatter(f[~unstable & agree], p[~unstable & agree], marker="o",
+                  facecolors="none", edgecolors="#1f4e99", s=22,
+                  label="stable in both")
+    right.scatter(f[~agree], p[~agree], marker="x", c="k", s=40,
+                  linewidths=1.5, label="verdicts disagree")
     right.set_xlabel("dither frequency [Hz]")
     right.set_ylabel("dither amplitude $p_f$ [bar]")
-    right.legend(fontsize=8)
-    fig.suptitle(title or f"cross-check: {100 * check.agreement:.1f} % of the "
-                          "verdicts agree")
+    for ax in (left, right):     # legends below the data
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+                  ncols=3, borderaxespad=0.0, frameon=False)
+    fig.suptitle(f"cross-check: {100 * check.agreement:.1f} % of the verdicts "
+                 "agree" + (f", {title}" if title else ""))
     return fig
 
 
@@ -283,11 +334,21 @@ def plot_chart(chart, group, ax=None, levels=None):
                                   facecolors="none", edgecolors="#1f77b4",
                                   s=60, zorder=4, clip_on=False,
                                   label="no judder up to here"))
-    ax.margins(x=0.02, y=0.04)
+    _pad_limits(ax, f, p)
     ax.set_xlabel("dither frequency [Hz]")
-    ax.set_ylabel("dither amplitude p_f [bar]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
     ax.set_title(_group_title(chart.group_by, group), fontsize=10)
     return artists
+
+
+def _pad_limits(ax, freq_hz, p_f_bar, share=0.05):
+    """Axis limits a share of the span beyond the runs, so no marker sits
+    on the frame or under the title (a contour fill stops at the runs)."""
+    for values, setter in ((freq_hz, ax.set_xlim), (p_f_bar, ax.set_ylim)):
+        low, high = float(np.min(values)), float(np.max(values))
+        pad = share * (high - low) if high > low else 0.05 * max(abs(high),
+                                                                 1.0)
+        setter(low - pad, high + pad)
 
 
 def chart_figure(chart, title=None):
@@ -309,6 +370,10 @@ def chart_figure(chart, title=None):
         panels[group] = ax
     for ax in list(axes.flat)[len(groups):]:
         ax.set_visible(False)
+    if chart.read:               # shared axes: the limits of every run
+        _pad_limits(next(iter(panels.values())),
+                    [r.analysis.freq_hz for r in chart.read],
+                    [r.analysis.p_f_bar for r in chart.read])
     for ax in panels.values():
         ax.label_outer()         # axis labels on the outer panels only
     from matplotlib.cm import ScalarMappable

@@ -254,6 +254,11 @@ class SettingCheck:
         (:func:`stability.relevance.is_judder_relevant`).
     bar_tongue, hz_tongue : stability.tongues.Tongue or None
         The judder-relevant tongue whose boundary gives each margin.
+    tongue : stability.tongues.Tongue or None
+        The tongue the setting lies in, when it is unstable: the tongue of
+        the leading multiplier's kind whose frequency range holds the
+        setting (else the one with the nearest tip), numbered by its
+        resonance as in Fig. 14.
     sensitivity : dict
         :func:`margin_sensitivity` (empty if not asked for).
     """
@@ -264,6 +269,7 @@ class SettingCheck:
     bar_tongue: object
     hz_tongue: object
     sensitivity: dict
+    tongue: object = None
 
 
 def _tongue_at(tongues, kind, freq_hz):
@@ -318,7 +324,9 @@ def check_settings(params, freq_hz, p_f, min_growth, p_max, names=(),
             judder=bool(is_judder_relevant(point.growth_rate, min_growth)),
             bar_tongue=_tongue_at(tongues, margin.bar_kind, f0),
             hz_tongue=_tongue_at(tongues, margin.hz_kind, margin.crossing_hz),
-            sensitivity=sens))
+            sensitivity=sens,
+            tongue=(None if point.kind == KINDS[0] else
+                    _tongue_at(tongues, point.kind, f0))))
         if callback is not None:
             callback(index + 1, len(freq_hz))
     return out

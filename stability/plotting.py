@@ -20,20 +20,61 @@ __all__ = ["KIND_COLORS", "KIND_LINESTYLES", "plot_map", "plot_growth_rate", "ma
            "resonance_lines", "plot_boundaries", "tongues_figure",
            "sensitivity_figure", "plot_threshold", "plot_fit",
            "check_figure", "advice_figure", "plot_multipliers",
-           "multipliers_figure", "boundary_curve", "kind_legend"]
+           "multipliers_figure", "boundary_curve", "kind_legend",
+           "figure_title", "readable_number", "settle_labels"]
 
-#: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then
-#: Okabe-Ito blue, orange and yellow, which colour-blind readers tell
-#: apart and which stay distinct in greyscale (luminance about 0.45, 0.66
-#: and 0.87).
-KIND_COLORS = ("#ffffff", "#4c78a8", "#e69f00", "#f0e442")
+#: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then a
+#: dark blue, Okabe-Ito vermillion and orange, which colour-blind readers
+#: tell apart and which stay apart in greyscale, with the grey of the
+#: slowly growing points (:data:`SLOW_COLOR`) between them: greyscale
+#: luminance (ITU-R 601) 1.00, 0.28, 0.47, 0.64 and 0.82, every pair at
+#: least 0.15 apart (tests/test_figures.py).
+KIND_COLORS = ("#ffffff", "#1f4e99", "#d55e00", "#e69f00")
+
+#: Colour of the unstable points that grow too slowly to be judder.
+SLOW_COLOR = "#d0d0d0"
+
+#: Line of growth = min_growth (the edge of the judder-relevant region):
+#: dash-dot, a style no kind's boundary uses.
+GROWTH_LINE = {"colors": "k", "linewidths": 1.3,
+               "linestyles": [(0, (7, 2, 1.5, 2))]}
 
 #: Line style of each kind's boundary, so kinds differ without colour.
 KIND_LINESTYLES = ("-", "-", "--", (0, (1, 1.5)))
 
 #: Colour map of continuous quantities (growth rates): cividis, made to
-#: read the same in colour, greyscale and with colour-vision deficiency.
-CONTINUOUS_CMAP = "cividis"
+#: read the same in colour, greyscale and with colour-vision deficiency,
+#: stopped at 80 % so its brightest colour (greyscale luminance 0.71)
+#: stays apart from the white of stable points.
+CONTINUOUS_CMAP = ListedColormap(
+    plt.get_cmap("cividis")(np.linspace(0.0, 0.8, 256)), name="cividis80")
+
+
+def figure_title(fig, title, fontsize=11):
+    """``fig.suptitle(title)``, wrapped onto lines that fit the figure's
+    width (a long model description is not clipped)."""
+    import textwrap
+    # DejaVu Sans averages about 0.55 em a character
+    width = max(20, int(fig.get_figwidth() * 72 / (0.58 * fontsize)))
+    return fig.suptitle(textwrap.fill(title, width), fontsize=fontsize)
+
+
+def readable_number(value, digits=4):
+    """``value`` to ``digits`` significant digits, without an exponent
+    between 1e-3 and 1e7 (thousands grouped by a space: 34 860, not
+    3.486e+04)."""
+    value = float(value)
+    if value == 0 or not np.isfinite(value):
+        return f"{value:g}"
+    magnitude = int(np.floor(np.log10(abs(value))))
+    if not -3 <= magnitude < 7:
+        return f"{value:.{digits}g}"
+    decimals = max(0, digits - 1 - magnitude)
+    text = f"{round(value, digits - 1 - magnitude):,.{decimals}f}"
+    if decimals:
+        text = text.rstrip("0").rstrip(".")
+    # group thousands only from 10 000 on (3856 reads as it is)
+    return text.replace(",", "\u2009" if magnitude >= 4 else "")
 
 
 def resonance_lines(natural_frequencies_hz):
@@ -56,6 +97,14 @@ def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
     """Legend of the kinds, outside the data (right of the axes) by
     default; with ``lines`` the boundary line style of each kind too; with
     ``min_growth`` the grey of the slowly growing (not judder) points."""
+    handles = _kind_handles(kinds, stable, lines, min_growth)
+    where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
+              "borderaxespad": 0.0} if outside else {"loc": "best"})
+    return ax.legend(handles=handles, fontsize=7, **where)
+
+
+def _kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
+    """Legend handles of :func:`kind_legend`."""
     handles = []
     if stable:
         handles.append(Patch(facecolor=KIND_COLORS[0], edgecolor="k",
@@ -66,12 +115,14 @@ def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
     if min_growth is not None and min_growth > 0:
         handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
                              label=f"grows < {min_growth:g} 1/s (not judder)"))
+        handles.append(Line2D([], [], color="k",
+                              linewidth=GROWTH_LINE["linewidths"],
+                              linestyle=GROWTH_LINE["linestyles"][0],
+                              label=f"growth = {min_growth:g} 1/s"))
     if lines:
         handles += [Line2D([], [], color="k", linestyle=KIND_LINESTYLES[k],
                            label=f"{KINDS[k]} boundary") for k in kinds]
-    where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
-              "borderaxespad": 0.0} if outside else {"loc": "best"})
-    return ax.legend(handles=handles, fontsize=7, **where)
+    return handles
 
 
 def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
@@ -105,12 +156,21 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
         _, ax = plt.subplots()
     m = stability_map
     bar = m.p_f / PA_PER_BAR
-    artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar), m.kind.T,
-                             cmap=ListedColormap(KIND_COLORS), vmin=-0.5,
-                             vmax=len(KINDS) - 0.5, shading="flat",
-                             rasterized=True)]
-    if min_growth is not None and min_growth > 0:
-        artists += _shade_slow(m, ax, min_growth)
+    slow = min_growth is not None and min_growth > 0
+    if boundaries is not None and boundaries.min_growth == 0 \
+            and len(m.freq_hz) > 1 and len(bar) > 1:
+        artists = [_exact_fill(m, boundaries, tongues or (), ax,
+                               min_growth if slow else None)]
+        if slow:
+            artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
+                                      levels=[min_growth], **GROWTH_LINE))
+    else:
+        artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar), m.kind.T,
+                                 cmap=ListedColormap(KIND_COLORS),
+                                 vmin=-0.5, vmax=len(KINDS) - 0.5,
+                                 shading="flat", rasterized=True)]
+        if slow:
+            artists += _shade_slow(m, ax, min_growth)
     if boundaries is not None:
         artists += plot_boundaries(boundaries, ax=ax, tongues=tongues or (),
                                    style={"color": "k"})
@@ -147,8 +207,82 @@ def _resonance_marks(ax, natural_frequencies_hz, low, high):
     return artists
 
 
-#: Colour of the unstable points that grow too slowly to be judder.
-SLOW_COLOR = "#bbbbbb"
+#: Pixels of the image :func:`_exact_fill` draws (frequency, amplitude).
+FILL_PIXELS = (1200, 600)
+
+
+def _boundary_at(freq_hz, boundaries, column, tips):
+    """One kind's lowest boundary (bar) at ``freq_hz``, as
+    :func:`plot_boundaries` draws it: straight between the grid points and
+    the inserted tips, NaN where a tongue is absent (its curve closes
+    vertically up to ``p_max`` at its last grid point)."""
+    f = boundaries.freq_hz
+    a = boundaries.amplitude[:, column] / PA_PER_BAR
+    if tips:
+        f = np.concatenate([f, [tf for tf, _ in tips]])
+        a = np.concatenate([a, [tp for _, tp in tips]])
+        order = np.argsort(f, kind="stable")
+        f, a = f[order], a[order]
+    i = np.clip(np.searchsorted(f, freq_hz, side="right") - 1, 0,
+                len(f) - 2)
+    share = (freq_hz - f[i]) / np.where(f[i + 1] > f[i], f[i + 1] - f[i], 1)
+    value = a[i] + np.clip(share, 0, 1) * (a[i + 1] - a[i])
+    return np.where((freq_hz >= f[0]) & (freq_hz <= f[-1]), value, np.nan)
+
+
+def _fine_grid(m, boundaries, tongues):
+    """Pixels of an image of the map clipped to the exact boundaries.
+
+    Returns
+    -------
+    extent : tuple
+        ``(f0, f1, p0, p1)``, Hz and bar.
+    index : tuple of ndarray
+        Nearest map point of each pixel, for ``array[index]`` of an
+        ``(nf, np)`` map array, giving ``(nP, nF)``.
+    inside : ndarray of bool, shape (3, nP, nF)
+        The pixel is on or above each kind's exact lowest boundary.
+    low : ndarray, shape (3, nF)
+        Those boundaries, bar (NaN: none).
+    """
+    bar = m.p_f / PA_PER_BAR
+    f_edges, p_edges = _edges(m.freq_hz), _edges(bar)
+    p_top = max(p_edges[-1], boundaries.p_max / PA_PER_BAR)
+    freq = np.linspace(f_edges[0], f_edges[-1], FILL_PIXELS[0])
+    amp = np.linspace(max(p_edges[0], 0.0), p_top, FILL_PIXELS[1])
+    low = np.array([
+        _boundary_at(freq, boundaries, column,
+                     [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
+                      for t in tongues if t.kind == KINDS[kind]])
+        for column, kind in enumerate((1, 2, 3))])
+    with np.errstate(invalid="ignore"):
+        inside = amp[None, :, None] >= low[:, None, :]
+    fi = np.clip(np.searchsorted(f_edges, freq) - 1, 0, len(m.freq_hz) - 1)
+    pi = np.clip(np.searchsorted(p_edges, amp) - 1, 0, len(bar) - 1)
+    index = (fi[None, :], pi[:, None])
+    return (freq[0], freq[-1], amp[0], amp[-1]), index, inside, low
+
+
+def _exact_fill(m, boundaries, tongues, ax, min_growth=None):
+    """The kinds as an image clipped to the exact boundaries: inside them
+    the grid's kind (nearest point), or that of the lowest boundary where
+    the grid point is stable; outside them white. With ``min_growth``,
+    the slowly growing points grey (a stable grid point inside the exact
+    boundaries counts as slow: it grows at about 0 there)."""
+    from .relevance import is_judder_relevant
+    extent, index, inside, low = _fine_grid(m, boundaries, tongues)
+    unstable = inside.any(axis=0)
+    lowest = 1 + np.argmin(np.where(inside, low[:, None, :], np.inf), axis=0)
+    grid = m.kind[index]
+    code = np.where(unstable, np.where(grid > 0, grid, lowest), 0)
+    if min_growth is not None:
+        slow = ~is_judder_relevant(m.growth_rate, min_growth)
+        code = np.where(unstable & (slow[index] | (grid == 0)),
+                        len(KINDS), code)
+    colours = ListedColormap([*KIND_COLORS, SLOW_COLOR])
+    return ax.imshow(code, origin="lower", aspect="auto",
+                     interpolation="nearest", cmap=colours, vmin=-0.5,
+                     vmax=len(KINDS) + 0.5, extent=extent)
 
 
 def _shade_slow(m, ax, min_growth):
@@ -162,17 +296,24 @@ def _shade_slow(m, ax, min_growth):
                              shading="flat")]
     if len(m.freq_hz) > 1 and len(bar) > 1:
         artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
-                                  levels=[min_growth], colors="k",
-                                  linewidths=1.2, linestyles=":"))
+                                  levels=[min_growth], **GROWTH_LINE))
     return artists
 
 
-VERDICT_MARKERS = {"judder": ("X", "#d62728"), "slow-growth": ("o", "#777777"),
-                   "stable": ("o", "#2ca02c")}
+#: Marker and colour of each verdict word
+#: (:data:`stability.relevance.VERDICTS`): shape tells them apart without
+#: colour; the colours are dark enough to read on every kind's fill.
+VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
+                   "SLOW GROWTH": ("s", "#404040"),
+                   "STABLE": ("o", "#1b7837")}
 
 
 def check_figure(records, background=None, min_growth=None, title=None):
     """Settings of ``judder check`` marked on the map (or alone).
+
+    Each setting is a marker of its verdict (:data:`VERDICT_MARKERS`, in
+    the legend) annotated with both margins to judder (bar, Hz; positive
+    = safe).
 
     Parameters
     ----------
@@ -181,37 +322,99 @@ def check_figure(records, background=None, min_growth=None, title=None):
     background : stability.maps.StabilityMap, optional
     min_growth : float, optional
         Passed to :func:`plot_map`.
+    title : str, optional
+        The model, after "dither settings: verdict and margins".
     """
-    fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
+    fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
+    handles = []
     if background is not None:
-        plot_map(background, ax=ax, min_growth=min_growth)
+        plot_map(background, ax=ax, min_growth=min_growth, legend=False)
+        handles = _kind_handles(min_growth=min_growth)
+    seen = {}
     for r in records:
         marker, color = VERDICT_MARKERS[r["verdict"]]
-        ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker, color=color,
-                markeredgecolor="k", markersize=9, linestyle="none")
+        line, = ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker,
+                        color=color, markeredgecolor="w", markersize=10,
+                        markeredgewidth=1.2, linestyle="none",
+                        label=f"setting: {r['verdict']}", clip_on=False)
+        seen.setdefault(r["verdict"], line)
         hz, bar = r["margin_hz"], r["margin_bar"]
         text = (("" if bar is None else f"{bar:+.3f} bar\n")
                 + ("" if hz is None else f"{hz:+.2f} Hz"))
-        ax.annotate(text, (r["freq_hz"], r["p_f_bar"]), xytext=(6, 6),
-                    textcoords="offset points", fontsize=7)
-    ax.set_xlabel("dither frequency [Hz]")
+        if text:
+            ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
+                        xytext=(7, 7), textcoords="offset points", fontsize=7,
+                        gid=LABEL_GID, bbox={"boxstyle": "round,pad=0.15",
+                                             "fc": "w", "ec": "none",
+                                             "alpha": 0.8})
+    ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
-    ax.set_title(title or "dither settings: verdict and margins")
+    ax.legend(handles=handles + list(seen.values()), fontsize=7,
+              loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              borderaxespad=0.0)
+    ax.set_title("dither settings: verdict and margins"
+                 + (f", {title}" if title else ""),
+                 fontsize=10, pad=16 if background is not None else 6)
+    settle_labels(fig)
     return fig
 
 
-def plot_growth_rate(stability_map, ax=None):
+#: ``gid`` of the texts :func:`settle_labels` keeps apart: tongue numbers
+#: and the margin notes of ``judder check``.
+LABEL_GID = "judder-label"
+
+
+def settle_labels(fig):
+    """Lay the figure out, then move each tongue number or margin note
+    (texts with ``gid`` :data:`LABEL_GID`) up until it overlaps none placed
+    before it in its axes: nearby tips and settings keep readable labels.
+    Figure builders call it last, once the axes have their final size."""
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        notes = sorted((t for t in ax.texts if t.get_gid() == LABEL_GID),
+                       key=lambda t: t.xy[0])
+        placed = []
+        for note in notes:
+            for _ in range(20):
+                box = note.get_window_extent(renderer)
+                if not any(_overlap(box, other) for other in placed):
+                    break
+                dx, dy = note.xyann
+                note.xyann = (dx, dy + box.height * 72.0 / fig.dpi + 2)
+            placed.append(note.get_window_extent(renderer))
+
+
+def _overlap(one, other, slack=1.0):
+    """Two boxes (pixels) share more than ``slack`` in both directions."""
+    return (min(one.x1, other.x1) - max(one.x0, other.x0) > slack
+            and min(one.y1, other.y1) - max(one.y0, other.y0) > slack)
+
+
+def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
     """Growth rate ``ln|lambda|/T`` (1/s) of the leading multiplier.
 
-    Stable points are drawn white; returns the artists drawn.
+    Stable points are drawn white; with the exact ``boundaries`` (of the
+    stability boundary) the coloured region is clipped to them, as
+    :func:`plot_map` clips the kinds. Returns the artists drawn.
     """
     if ax is None:
         _, ax = plt.subplots()
     m = stability_map
     rate = np.where(m.kind > 0, m.growth_rate, np.nan)
-    mesh = ax.pcolormesh(_edges(m.freq_hz), _edges(m.p_f / PA_PER_BAR),
-                         rate.T, cmap=CONTINUOUS_CMAP, shading="flat",
-                         rasterized=True)
+    if boundaries is not None and boundaries.min_growth == 0 \
+            and len(m.freq_hz) > 1 and len(m.p_f) > 1:
+        extent, index, inside, _ = _fine_grid(m, boundaries, tongues)
+        # inside the exact boundaries, a stable grid point grows at ~0
+        image = np.where(inside.any(axis=0),
+                         np.nan_to_num(rate[index], nan=0.0), np.nan)
+        mesh = ax.imshow(image, origin="lower", aspect="auto",
+                         interpolation="nearest", cmap=CONTINUOUS_CMAP,
+                         extent=extent)
+    else:
+        mesh = ax.pcolormesh(_edges(m.freq_hz), _edges(m.p_f / PA_PER_BAR),
+                             rate.T, cmap=CONTINUOUS_CMAP, shading="flat",
+                             rasterized=True)
     bar = ax.figure.colorbar(mesh, ax=ax, label="growth rate [1/s]")
     ax.set_xlabel("dither frequency $f$ [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
@@ -219,15 +422,17 @@ def plot_growth_rate(stability_map, ax=None):
 
 
 def map_figure(stability_map, title=None, tongues=None, boundaries=None,
-               min_growth=None):
+               min_growth=None, stacked=False):
     """Figure with the kinds (left, with the exact boundaries and tongue
     numbers when given, slowly growing points grey with ``min_growth``)
-    and the growth rate (right)."""
-    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5),
-                                      layout="constrained")
+    and the growth rate (right; below with ``stacked``, for a page)."""
+    fig, (left, right) = plt.subplots(
+        *((2, 1) if stacked else (1, 2)),
+        figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
              min_growth=min_growth)
-    plot_growth_rate(stability_map, ax=right)
+    plot_growth_rate(stability_map, ax=right, boundaries=boundaries,
+                     tongues=tongues or ())
     if boundaries is not None:
         plot_boundaries(boundaries, ax=right, tongues=tongues,
                         style={"color": "k", "linewidth": 0.8})
@@ -238,7 +443,8 @@ def map_figure(stability_map, title=None, tongues=None, boundaries=None,
     right.set_title(r"growth rate $\ln|\lambda|/T$ of the leading "
                     "multiplier", fontsize=10)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
+    settle_labels(fig)
     return fig
 
 
@@ -348,8 +554,9 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
 
 def _number_tips(ax, tongues, color):
     """A marker at each numbered tip and its number beside it (right),
-    clear of the frequency axis."""
-    artists = []
+    clear of the frequency axis; :func:`settle_labels` moves a number that
+    would overlap another."""
+    artists, numbers = [], []
     for tongue in tongues:
         if tongue.number is None:
             continue
@@ -357,21 +564,23 @@ def _number_tips(ax, tongues, color):
         artists.append(ax.plot(*xy, marker="v", color=color,
                                markeredgecolor="k", markersize=4,
                                linestyle="none")[0])
-        artists.append(ax.annotate(
+        numbers.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
             xytext=(4, 1), ha="left", va="bottom", fontsize=8,
-            fontweight="bold", color="k",
+            fontweight="bold", color="k", gid=LABEL_GID,
             bbox={"boxstyle": "round,pad=0.1", "fc": "w", "ec": "none",
                   "alpha": 0.7}))
-    return artists
+    return artists + numbers
 
 
-def tongues_figure(boundaries, tongues, stability_map=None, title=None):
-    """Boundaries and numbered tips, over the map when one is given."""
+def tongues_figure(boundaries, tongues, stability_map=None, title=None,
+                   min_growth=None):
+    """Boundaries and numbered tips, over the map when one is given (its
+    points growing slower than ``min_growth``, 1/s, grey)."""
     fig, ax = plt.subplots(figsize=(10, 5), layout="constrained")
     if stability_map is not None:
         plot_map(stability_map, ax=ax, tongues=tongues,
-                 boundaries=boundaries)
+                 boundaries=boundaries, min_growth=min_growth)
     else:
         plot_boundaries(boundaries, ax=ax, tongues=tongues)
         handles = [Line2D([], [], color=KIND_COLORS[k],
@@ -381,6 +590,7 @@ def tongues_figure(boundaries, tongues, stability_map=None, title=None):
                   bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     ax.set_title(title or "tongue boundaries (numbers as in Fig. 14)",
                  fontsize=10)
+    settle_labels(fig)
     return fig
 
 
@@ -408,10 +618,14 @@ def sensitivity_figure(study, title=None, params=None):
     for ax in list(axes.flat)[len(names):]:
         ax.remove()
     for ax, name in zip(axes.flat, names):
-        cases = [c for c in study.cases if c.parameter == name]
+        # a case at the nominal value is the nominal line: drawn once
+        cases = [c for c in study.cases if c.parameter == name
+                 and not np.isclose(c.factor, 1.0, rtol=1e-9, atol=0)]
         colours = plt.get_cmap(CONTINUOUS_CMAP)(
             np.linspace(0.15, 0.8, max(len(cases), 1)))
         _plot_lowest(study.nominal, ax, "k", "-", "nominal", lw=1.6)
+        # Fig. 14's numbers, at the tips the nominal curve reaches
+        _number_tips(ax, _tips_on_lowest(study.nominal), "k")
         for index, case in enumerate(cases):
             _plot_lowest(case, ax, colours[index],
                          CASE_STYLES[index % len(CASE_STYLES)],
@@ -420,7 +634,8 @@ def sensitivity_figure(study, title=None, params=None):
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
                   borderaxespad=0.2, handlelength=3)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
+    settle_labels(fig)
     return fig
 
 
@@ -442,7 +657,7 @@ def _panel_title(name, params):
     unit = params.specs[name].unit if params is not None else ""
     text = f"{name}" + (f" [{unit}]" if unit and unit != "1" else "")
     if params is not None:
-        text += f", nominal {params[name]:.4g}"
+        text += f", nominal {readable_number(params[name])}"
         if _is_damper(name, params):
             text += (rf" ($\zeta_{{12}}$ = "
                      f"{_zeta_percent(params, name, params[name]):.2g} %)")
@@ -450,11 +665,22 @@ def _panel_title(name, params):
 
 
 def _case_label(name, case, params):
-    label = f"{name} = {case.value:.4g} (x{case.factor:.3g})"
+    label = f"{name} = {readable_number(case.value)} (x{case.factor:.3g})"
     if _is_damper(name, params):
         label += (rf", $\zeta_{{12}}$ = "
                   f"{_zeta_percent(params, name, case.value):.2g} %")
     return label
+
+
+def _tips_on_lowest(case):
+    """The tongues of a case whose tip is on its lowest boundary: not
+    above the lowest boundary around it (another tongue's may be lower
+    there, and the tip is then hidden)."""
+    b = case.boundaries
+    lowest = b.stability_boundary / PA_PER_BAR
+    return [t for t in case.tongues
+            if not np.interp(t.tip_freq_hz, b.freq_hz, lowest)
+            < t.tip_p_f / PA_PER_BAR * (1 - 1e-9)]
 
 
 def _plot_lowest(case, ax, color, linestyle, label, lw=1.1):
@@ -462,11 +688,8 @@ def _plot_lowest(case, ax, color, linestyle, label, lw=1.1):
     b = case.boundaries
     p_max_bar = b.p_max / PA_PER_BAR
     lowest = b.stability_boundary / PA_PER_BAR
-    # a tip below the lowest boundary around it (another tongue's may be
-    # lower there)
-    tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR) for t in case.tongues
-            if not np.interp(t.tip_freq_hz, b.freq_hz, lowest)
-            < t.tip_p_f / PA_PER_BAR * (1 - 1e-9)]
+    tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
+            for t in _tips_on_lowest(case)]
     x, y = boundary_curve(b.freq_hz, lowest,
                           tips, p_max_bar)
     ax.plot(x, y, color=color, linestyle=linestyle, linewidth=lw,
@@ -477,37 +700,80 @@ def _plot_lowest(case, ax, color, linestyle, label, lw=1.1):
     ax.set_ylabel("$p_f$ [bar]")
 
 
-def plot_threshold(study, axes=None):
+def plot_threshold(study, axes=None, own=None):
     """Fig. 19a (largest real part against mu_g) and 19b (threshold in the
-    c_i - mu_g plane with regions A and B)."""
+    c_i - mu_g plane with regions A and B).
+
+    ``own = (c_i, mu_g)`` marks the driveline's own external damping and
+    friction gradient (N m s/rad, s/rad): a point where it lies inside the
+    axes, else an arrow at the edge towards it, with its value.
+    """
     if axes is None:
         _, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     left, right = axes
     artists = [left.plot(study.mu_g, study.max_real_part, "k-")[0],
                left.axhline(0, color="0.5", linewidth=0.8),
-               left.axvline(study.threshold, color="C3", linestyle="--",
-                            label=f"threshold {study.threshold:.3g} s/rad")]
+               left.axvline(study.threshold, color="k", linestyle="--",
+                            label=rf"threshold $\mu_g^*$ = "
+                                  f"{study.threshold:.3g} s/rad")]
     left.set_xlabel(r"friction gradient $\mu_g$ [s/rad]")
     left.set_ylabel("largest real part [1/s]")
-    left.set_title("without dither: unstable above the axis")
-    left.legend(fontsize=8)
+    left.set_title("without dither: unstable above 0", fontsize=10)
     left.ticklabel_format(axis="x", style="sci", scilimits=(0, 0))
     c, mu = study.external_damping, study.thresholds
     low = min(mu.min(), study.mu_g.min())
     high = max(mu.max(), study.mu_g.max())
-    artists += [right.plot(c, mu, "k-", label="threshold (python-control)")[0],
-                right.plot(c, study.closed_form, "C1:",
-                           label="rigid-chain closed form")[0],
-                right.fill_between(c, low, mu, color="C3", alpha=0.25),
-                right.fill_between(c, mu, high, color="C2", alpha=0.2)]
+    artists += [right.fill_between(c, low, mu, color="#d55e00", alpha=0.3,
+                                   linewidth=0),
+                right.fill_between(c, mu, high, color="#1f4e99", alpha=0.15,
+                                   linewidth=0),
+                right.plot(c, mu, "k-", label=r"threshold $\mu_g^*$ "
+                           "(eigenvalues)")[0],
+                right.plot(c, study.closed_form, linestyle="none",
+                           marker="o", mfc="w", mec="k", ms=4,
+                           markevery=max(1, len(c) // 10),
+                           label="rigid-chain closed form")[0]]
     right.text(c.mean(), (low + mu.min()) / 2, "A: unstable", ha="center")
     right.text(c.mean(), (high + mu.max()) / 2,
                "B: stable without dither", ha="center")
     right.set_xlabel("external damping $c_i$ [N m s/rad]")
     right.set_ylabel(r"$\mu_g$ [s/rad]")
     right.set_ylim(low, high)
+    right.set_title(r"threshold against the external damping", fontsize=10)
     right.ticklabel_format(axis="y", style="sci", scilimits=(0, 0))
-    right.legend(fontsize=8, loc="lower left")
+    if own is not None:
+        artists += _mark_own(left, right, own, (low, high))
+    for ax in (left, right):
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(0, -0.2),
+                  borderaxespad=0.0, frameon=False)
+    return artists
+
+
+def _mark_own(left, right, own, limits):
+    """The driveline's own (c_i, mu_g) on Fig. 19: a point (right) and a
+    line (left) where inside the axes, else an arrow at the edge."""
+    c_own, mu_own = own
+    label = rf"this driveline: $\mu_g$ = {mu_own:.3g} s/rad"
+    low, high = limits
+    artists = []
+    if low <= mu_own <= high:
+        artists.append(right.plot(c_own, mu_own, marker="*", ms=12,
+                                  color="k", linestyle="none",
+                                  label=label)[0])
+        artists.append(left.axvline(mu_own, color="k", linestyle=":",
+                                    label=label))
+        return artists
+    up = mu_own > high
+    for ax, x in ((right, c_own), (left, high if up else low)):
+        y = 0.97 if up else 0.03
+        artists.append(ax.annotate(
+            label + (" (above)" if up else " (below)"),
+            xy=(x, y), xycoords=("data", "axes fraction"),
+            xytext=(-8 if ax is left else 8, -22 if up else 22),
+            textcoords="offset points", fontsize=8,
+            ha="right" if ax is left else "left",
+            va="top" if up else "bottom",
+            arrowprops={"arrowstyle": "->", "color": "k"}))
     return artists
 
 
@@ -660,15 +926,18 @@ def advice_figure(advice, title=None):
         left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
     left.set_xlabel("dither frequency [Hz]")
     left.set_ylabel("safe dither amplitude $p_f$ [bar]")
-    left.set_title("safe dither windows, given design")
-    left.legend(fontsize=7)
+    left.set_title("safe dither windows, given design", fontsize=10)
+    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13),
+                ncols=2, frameon=False, borderaxespad=0.0)
     if advice.verification is not None:
         plot_map(advice.verification, ax=right,
                  min_growth=advice.min_growth)
+        # above the tongue numbers that head the axes
         right.set_title(f"advised design: {advice.judder_points} "
-                        "judder-relevant points")
-    if title:
-        fig.suptitle(title)
+                        "judder-relevant points", fontsize=10, pad=16)
+    figure_title(fig, "judder advise: safe dither windows and the advised "
+                 "design" + (f", {title}" if title else ""))
+    settle_labels(fig)
     return fig
 
 
@@ -735,9 +1004,14 @@ def multipliers_figure(results, title=None):
     results : sequence of stability.floquet.FloquetResult
     """
     results = list(results)
-    fig, axes = plt.subplots(2, len(results),
-                             figsize=(max(4.4 * len(results), 5.5), 9.0),
-                             layout="constrained", squeeze=False)
+    if len(results) == 1:       # one setting: the two views side by side
+        fig, pair = plt.subplots(1, 2, figsize=(9.0, 4.8),
+                                 layout="constrained")
+        axes = np.array(pair).reshape(2, 1)
+    else:
+        fig, axes = plt.subplots(2, len(results),
+                                 figsize=(4.4 * len(results), 9.0),
+                                 layout="constrained", squeeze=False)
     for column, result in enumerate(results):
         plot_multipliers(result, ax=axes[0, column])
         plot_multipliers(result, ax=axes[1, column], zoom=True)
@@ -755,5 +1029,5 @@ def multipliers_figure(results, title=None):
     fig.legend(handles, labels, loc="outside lower center", fontsize=8,
                ncols=1 if len(results) == 1 else 2)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
     return fig

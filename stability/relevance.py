@@ -20,6 +20,17 @@ bench charts. The slow slip-speed mode of a stiffly damped clutch damper
 judder-relevant: it needs 50 s for one e-fold.
 
 ``min_growth = 0`` gives back plain stability (``|lambda| > 1``).
+
+The verdict of a dither setting is one of three words, written the same
+in every output (``judder check``'s text and JSON, the figures, the
+report), :data:`VERDICTS`:
+
+* ``JUDDER``: a multiplier outside the unit circle whose growth rate
+  exceeds ``min_growth`` (inside a stability tongue and judder-relevant);
+* ``SLOW GROWTH``: a multiplier outside the unit circle (inside a
+  stability tongue) growing slower than that: less than one e-fold over
+  an engagement, no judder;
+* ``STABLE``: every non-rigid-body multiplier inside the unit circle.
 """
 
 import numpy as np
@@ -27,7 +38,8 @@ import numpy as np
 from infra.errors import JudderError
 
 __all__ = ["DEFAULT_MIN_GROWTH_PER_S", "ENGAGEMENT_DURATION_S",
-           "CHART_THRESHOLD_SPREAD_PER_S", "is_judder_relevant"]
+           "CHART_THRESHOLD_SPREAD_PER_S", "is_judder_relevant", "JUDDER",
+           "SLOW_GROWTH", "STABLE", "VERDICTS", "verdict"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -80,3 +92,37 @@ def is_judder_relevant(growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):
     rate = np.asarray(growth_rate_per_s, dtype=float)
     with np.errstate(invalid="ignore"):
         return rate > min_growth
+
+
+#: The verdict words (module docstring), most severe first.
+JUDDER, SLOW_GROWTH, STABLE = "JUDDER", "SLOW GROWTH", "STABLE"
+VERDICTS = (JUDDER, SLOW_GROWTH, STABLE)
+
+
+def verdict(unstable, growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):
+    """The verdict word of one setting.
+
+    Parameters
+    ----------
+    unstable : bool
+        The leading (non-rigid-body) multiplier lies outside the unit
+        circle: the setting is inside a stability tongue.
+    growth_rate_per_s : float
+        Its growth rate ``ln|lambda| / T``, 1/s.
+    min_growth : float
+        Smallest judder-relevant rate, 1/s (:func:`is_judder_relevant`).
+
+    Returns
+    -------
+    str
+        One of :data:`VERDICTS`.
+
+    Examples
+    --------
+    >>> verdict(True, 25.0), verdict(True, 0.56), verdict(False, -0.3)
+    ('JUDDER', 'SLOW GROWTH', 'STABLE')
+    """
+    if not unstable:
+        return STABLE
+    return JUDDER if is_judder_relevant(growth_rate_per_s, min_growth) \
+        else SLOW_GROWTH

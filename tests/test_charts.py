@@ -5,6 +5,7 @@ against the Floquet tongues (section 3.2, Fig. 10)."""
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -540,3 +541,21 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
                           pressure, downstream, freq_hz=f, p_f_bar=0.3)
     assert reading.judder == whole.judder
     _reads_like(reading, whole)
+
+
+def test_boundary_files_of_groups_are_named_without_a_trailing_zero(tmp_path):
+    # a chart grouped by engine speed (values read from an index as
+    # 1000.0) and oil temperature: one boundary file per group
+    from judder.results import ChartResult
+
+    class TwoGroups:
+        def groups(self):
+            return {("1000.0", "40"): [], ("1500.0", "hot"): []}
+
+        def boundary_csv(self, group):
+            return "freq_hz,p_f_bar\n"
+
+    written = ChartResult(chart=TwoGroups(), seconds=0.0).save_boundary(
+        tmp_path / "b.csv")
+    assert [Path(p).name for p in written] == ["b_1000_40.csv",
+                                               "b_1500_hot.csv"]

@@ -1,6 +1,8 @@
 """The ``judder`` command line, run as a user runs it (subprocess)."""
 
+import cmath
 import json
+import math
 import os
 import signal
 import subprocess
@@ -43,10 +45,18 @@ def test_eig_set_is_repeatable():
 def test_floquet_json():
     data = judder_json("floquet", "--freq", "102.9", "--pf", "0.3")
     assert data["kind"] == "single-period"
-    assert data["leading"] == pytest.approx([1.0261, 0.0], abs=1e-4)
+    lead = data["leading"]
+    assert (lead["re"], lead["im"], lead["abs"], lead["arg"]) == \
+        pytest.approx((1.0261, 0.0, 1.0261, 0.0), abs=1e-4)
     assert data["leading_abs"] == pytest.approx(1.0261, abs=1e-4)
     assert len(data["multipliers"]) == 6
-    assert all(len(m) == 2 for m in data["multipliers"])
+    # every complex number says what its numbers are; abs and arg agree
+    # with re and im, and each exponent is ln(multiplier) / T (Eq. 12)
+    period = data["period_s"]
+    for m, e in zip(data["multipliers"], data["exponents_per_s"]):
+        z = complex(m["re"], m["im"])
+        assert (m["abs"], m["arg"]) == pytest.approx((abs(z), cmath.phase(z)))
+        assert e["re"] == pytest.approx(math.log(m["abs"]) / period)
     literal = judder_json("floquet", "--freq", "102.9", "--pf", "0.5",
                           "--set", "mean_pressure_damping=1")
     assert literal["kind"] == "stable"
@@ -67,6 +77,31 @@ def test_map_writes_npz_and_plot(tmp_path):
         assert list(npz["kind_names"])[1] == "single-period"
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert not list(tmp_path.glob(".*.part"))
+
+
+def test_map_npz_holds_the_threshold_boundaries_and_tongues(tmp_path):
+    # --out alone computes the exact boundaries and stores them, with the
+    # judder-relevant rate the map was shaded with
+    out = tmp_path / "m.npz"
+    judder_json("map", "--freq", "10:220:40", "--pf", "0:1.5:4", "--out",
+                str(out))
+    tongues = judder_json("tongues", "--freq", "10:220:40")["tongues"]
+    with np.load(out) as npz:
+        assert float(npz["min_growth_per_s"]) == 1.0
+        assert list(npz["boundary_kinds"]) == ["single-period",
+                                               "double-period", "combination"]
+        assert npz["boundary_p_f_bar"].shape == (40, 3)
+        assert npz["boundary_freq_hz"] == pytest.approx(
+            np.linspace(10, 220, 40))
+        # the same tongues, numbers and tips as `judder tongues` on that grid
+        assert list(npz["tongue_number"]) == [t["number"] for t in tongues]
+        assert list(npz["tongue_kind"]) == [t["kind"] for t in tongues]
+        assert npz["tongue_tip_p_f_bar"] == pytest.approx(
+            [t["tip_p_f_bar"] for t in tongues], rel=1e-9)
+        # tongue 2's tip (paper-4dof): 102.9 Hz, 0.0275 bar
+        two = list(npz["tongue_number"]).index(2)
+        assert npz["tongue_tip_p_f_bar"][two] == pytest.approx(0.0275,
+                                                              abs=5e-4)
 
 
 def test_params_save_load_and_no_overwrite(tmp_path):

@@ -124,11 +124,11 @@ def test_check_reports_verdict_margins_and_the_strongest_parameters():
     result = api.check([102.9, 60.0], [0.3, 0.3],
                        sensitivity=["J1", "J3", "J4", "k24"])
     inside, outside = result.records()
-    assert inside["verdict"] == "judder"
+    assert inside["verdict"] == "JUDDER"
     assert inside["margin_hz_tongue"]["number"] == 2
     assert inside["e_folding_time_s"] == pytest.approx(
         1 / inside["growth_rate_per_s"])
-    assert outside["verdict"] == "stable" and outside["margin_hz"] > 20
+    assert outside["verdict"] == "STABLE" and outside["margin_hz"] > 20
     # tongue 2 grows from f2: its edge moves with f2 (Eq. 15) under k24,
     # J1 and J3 hardly move it (section 4.3)
     sens = {r["parameter"]: r["margin_hz_per_unit_log"]
@@ -145,6 +145,42 @@ def test_check_reports_verdict_margins_and_the_strongest_parameters():
                                                                   "J4"]
     assert abs(sens["J3"]) < 1e-2 * abs(sens["k24"])
     assert abs(sens["J1"]) < 1e-2 * abs(sens["k24"])
+
+
+def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
+    from stability.relevance import VERDICTS
+    result = api.check([102.9, 60.0, 102.9], [0.3, 0.3, 0.05],
+                       sensitivity=["J4", "k24"])
+    records = result.records()
+    judder, stable, slow = records
+    assert [r["verdict"] for r in (judder, slow, stable)] == list(VERDICTS)
+    # 102.9 Hz, 0.05 bar: inside tongue 2 (|lambda| > 1) but growing at
+    # 0.0947 1/s, slower than the judder-relevant 1 1/s
+    assert slow["inside_stability_tongue"] and not slow["judder_relevant"]
+    assert slow["tongue"]["number"] == 2
+    assert judder["inside_stability_tongue"] and judder["judder_relevant"]
+    assert not stable["inside_stability_tongue"] and stable["tongue"] is None
+    lines = result.summary().splitlines()
+    for record, line in zip(records, lines):
+        assert line.split(": ")[1].startswith(record["verdict"])
+    # the text line shows the parameters that move the margin most, in
+    # the JSON's order, per +10 % (0.1 of the per-unit-log value)
+    top = judder["sensitivity"][0]
+    assert top["parameter"] == "k24"
+    assert (f"margin per +10 %: k24 "
+            f"{0.1 * top['margin_hz_per_unit_log']:+.2f} Hz, J4") in lines[0]
+    # no frequency reaches judder at 0.05 bar: said in words, with the
+    # range searched, and true at every frequency of that range
+    low, high = slow["frequency_search_hz"]
+    assert (low, high) == pytest.approx((60.0 / 4, 102.9 * 4))
+    assert slow["margin_hz"] is None
+    assert (f"no dither frequency judders at 0.05 bar from {low:.3g} to "
+            f"{high:.3g} Hz") in lines[2]
+    paper4 = build_driveline(get_preset("paper-4dof"))
+    rates = [floquet(paper4, f, 0.05e5).growth_rate
+             for f in np.geomspace(low, high, 400)]
+    assert max(rates) < DEFAULT_MIN_GROWTH_PER_S
+    assert "no tongue edge" not in result.summary()
 
 
 def test_advise_reproduces_the_paper_and_clears_the_window():
@@ -179,7 +215,7 @@ def test_check_command_line(tmp_path):
                    "--json", "--out", str(tmp_path / "c.csv"))
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
-    assert [s["verdict"] for s in data["settings"]] == ["stable", "judder"]
+    assert [s["verdict"] for s in data["settings"]] == ["STABLE", "JUDDER"]
     assert (tmp_path / "c.csv").read_text().startswith(
         "# written by judder\nfreq_hz,p_f_bar")
     summary = _judder("check", "--freq", "102.9", "--pf", "0.3", "--params",
@@ -235,7 +271,7 @@ def test_check_far_inside_a_tongue_answers():
     # crossing is then known to the grid step (was a ValueError of brentq)
     from judder import api
     record = api.check([105.0], [5.0], sensitivity=()).records()[0]
-    assert record["verdict"] == "judder"
+    assert record["verdict"] == "JUDDER"
     assert record["margin_bar"] == pytest.approx(
         record["boundary_p_f_bar"] - 5.0)
     assert record["margin_hz"] < 0 and abs(record["margin_hz"]) < 50

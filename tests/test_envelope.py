@@ -194,6 +194,16 @@ def test_the_command_writes_npz_csv_plot_and_json(tmp_path):
     assert data["min_growth_per_s"] == 1.0
     with np.load(out) as arrays:
         assert arrays["amplitude_bar"].shape == (10, 2, 3)
+        # every axis named, and the kinds of the last one
+        assert list(arrays["amplitude_bar_axes"]) == ["sample", "freq_hz",
+                                                      "kind"]
+        assert list(arrays["kind_columns"]) == [
+            "single-period", "double-period", "combination"]
+        # the broadest edge is the lowest of every kind of every sample
+        # (refine 0: nothing between the samples)
+        ok = arrays["ok"]
+        assert_allclose(np.nanmin(arrays["amplitude_bar"][ok], axis=(0, 2)),
+                        arrays["broadest_bar"])
         assert_allclose(arrays["broadest_bar"], data["broadest_p_f_bar"])
     lines = table.read_text().splitlines()
     assert lines[0] == "# written by judder"     # the overwrite rule's mark

@@ -104,3 +104,157 @@ def test_boundary_curve_inserts_tips_and_closes_tongues():
                           p_max_bar=1.0)
     np.testing.assert_allclose(x, [1, 2, 2, np.nan, 4, 4, 5])
     np.testing.assert_allclose(y, [0.3, 0.4, 1, np.nan, 1, 0.5, 0.6])
+
+
+# --- colours that survive greyscale and colour-vision deficiency ---------
+
+#: Machado, Oliveira & Fernandes (2009), severity 1: linear-RGB matrices
+#: simulating protanopia, deuteranopia and tritanopia.
+DICHROMACY = {
+    "protanopia": [[0.152286, 1.052583, -0.204868],
+                   [0.114503, 0.786281, 0.099216],
+                   [-0.003882, -0.048116, 1.051998]],
+    "deuteranopia": [[0.367322, 0.860646, -0.227968],
+                     [0.280085, 0.672501, 0.047413],
+                     [-0.011820, 0.042940, 0.968881]],
+    "tritanopia": [[1.255528, -0.076749, -0.178779],
+                   [-0.078411, 0.930809, 0.147602],
+                   [0.004733, 0.691367, 0.303900]]}
+
+
+def _fill_colours():
+    """Every fill of a map: the kinds (stable white first) and the grey of
+    slow growth, as 8-bit RGB."""
+    from matplotlib.colors import to_rgb
+    from stability.plotting import SLOW_COLOR
+    return np.array([np.round(255 * np.array(to_rgb(c)))
+                     for c in (*KIND_COLORS, SLOW_COLOR)], dtype=np.uint8)
+
+
+def _greyscale(rgb8):
+    """Grey levels (0-255) as an image converter makes them: PIL's
+    ``convert('L')``, ITU-R 601-2 luma."""
+    from PIL import Image
+    image = Image.fromarray(rgb8.reshape(1, -1, 3), "RGB").convert("L")
+    return np.asarray(image, dtype=float).ravel()
+
+
+def test_kind_colours_stay_apart_in_greyscale():
+    grey = _greyscale(_fill_colours())
+    # every pair of fills (white, three kinds, slow grey) at least 15 % of
+    # the grey range apart, so a greyscale print tells them apart
+    gaps = np.abs(grey[:, None] - grey[None, :])[np.triu_indices(len(grey),
+                                                                 1)]
+    assert gaps.min() >= 0.15 * 255, grey
+
+
+@pytest.mark.parametrize("kind", sorted(DICHROMACY))
+def test_kind_colours_stay_apart_for_colour_blind_readers(kind):
+    srgb = _fill_colours() / 255.0
+    linear = np.where(srgb <= 0.04045, srgb / 12.92,
+                      ((srgb + 0.055) / 1.055) ** 2.4)
+    seen = np.clip(linear @ np.array(DICHROMACY[kind]).T, 0, 1)
+    back = np.where(seen <= 0.0031308, 12.92 * seen,
+                    1.055 * seen ** (1 / 2.4) - 0.055)
+    grey = _greyscale(np.round(255 * back).astype(np.uint8))
+    gaps = np.abs(grey[:, None] - grey[None, :])[np.triu_indices(len(grey),
+                                                                 1)]
+    assert gaps.min() >= 0.10 * 255, (kind, grey)
+
+
+# --- no clipped or colliding text -----------------------------------------
+
+def _text_problems(fig):
+    """Texts of ``fig`` that leave the figure or overlap another text, as
+    strings (empty: none). Tick labels, titles, axis labels, legends,
+    annotations and colour-bar labels all count."""
+    from matplotlib.text import Text
+    drawn, draw = [], Text.draw
+
+    def recording(text, renderer):       # the texts a draw really draws
+        draw(text, renderer)
+        drawn.append(text)
+    Text.draw = recording
+    try:
+        fig.canvas.draw()
+    finally:
+        Text.draw = draw
+    renderer = fig.canvas.get_renderer()
+    page = fig.bbox
+    boxes = []
+    for text in dict.fromkeys(drawn):
+        if not text.get_visible() or not text.get_text().strip():
+            continue
+        box = text.get_window_extent(renderer)
+        if box.width == 0 or box.height == 0:
+            continue
+        boxes.append((text.get_text(), box))
+    problems = [f"{t!r} leaves the figure" for t, b in boxes
+                if b.x0 < page.x0 - 1 or b.y0 < page.y0 - 1
+                or b.x1 > page.x1 + 1 or b.y1 > page.y1 + 1]
+    for i, (t1, b1) in enumerate(boxes):
+        for t2, b2 in boxes[i + 1:]:
+            dx = min(b1.x1, b2.x1) - max(b1.x0, b2.x0)
+            dy = min(b1.y1, b2.y1) - max(b1.y0, b2.y0)
+            if dx > 1 and dy > 1:
+                problems.append(f"{t1!r} overlaps {t2!r}")
+    return problems
+
+
+@pytest.fixture(scope="module")
+def small_map():
+    return api.stability_map(np.linspace(5, 250, 60), np.linspace(0, 1.5, 30),
+                             exact=True, min_growth=1.0)
+
+
+def _figures(paper4, small_map):
+    """One of each figure the commands draw, from small computations."""
+    from stability.plotting import check_figure
+    yield "map", small_map.figure(title="stability map (Fig. 14), 4dof "
+                                  "driveline, paper preset, c12=0.5")
+    yield "tongues", tongues_figure(small_map.boundaries, small_map.tongues,
+                                    small_map.map, title="tongues",
+                                    min_growth=1.0)
+    # two tips half a hertz apart (tongues 13 and 14 of BenchLib's
+    # Driveline6DOF were): their numbers must not run together
+    from dataclasses import replace
+    first, second = small_map.tongues[:2]
+    close = [replace(first, tip_freq_hz=88.0, tip_p_f=0.2 * BAR, number=13),
+             replace(second, tip_freq_hz=88.5, tip_p_f=0.2 * BAR, number=14)]
+    yield "close tips", tongues_figure(small_map.boundaries, close,
+                                       title="close tips")
+    yield "fig15", multipliers_figure(
+        [floquet(paper4, f, p * BAR) for f, p in
+         ((102.9, 0.3), (37.9, 0.5), (84.0, 0.5))], title="Fig. 15")
+    yield "multipliers", multipliers_figure([floquet(paper4, 102.9, 0.3 * BAR)],
+                                            title="one setting")
+    check = api.check([102.9, 104.0, 60.0], [0.3, 0.3, 0.2],
+                      sensitivity=())
+    yield "check", check_figure(check.records(), small_map.map,
+                                min_growth=1.0, title="check")
+    sens = api.sensitivity(["c12"], np.linspace(10, 220, 40), 1.5,
+                           values=[0.5, 2, 5, 10], workers=1)
+    # the titles the commands give (judder/cli/commands.py)
+    yield "sensitivity-c12", sens.figure(
+        title="sensitivity of the stability boundary (Fig. 17, 18), 4dof "
+              "driveline, paper preset")
+    yield "threshold", api.threshold(np.linspace(-1e-3, 1e-3, 21),
+                                     np.linspace(0, 2, 11)).figure(
+        title="4dof driveline, paper preset")
+    yield "advice", api.advise().figure(title="4dof driveline, paper preset")
+    bench = Path(__file__).parents[1] / "examples" / "bench"
+    yield "chart", api.chart([], index=bench / "runs.csv", channels={
+        "upstream_speed": "EngSpd_up", "pressure": "PressEVEN:bar",
+        "downstream_speed": "OutSpd"}, workers=1).figure(
+        title="experimental stability chart")
+
+
+def test_no_figure_text_is_clipped_or_collides(rc, paper4, small_map):
+    import matplotlib.pyplot as plt
+    found = {}
+    for name, fig in _figures(paper4, small_map):
+        problems = _text_problems(fig)
+        plt.close(fig)
+        if problems:
+            found[name] = problems
+    assert not found, found

@@ -60,12 +60,14 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     text = " ".join(_text(html).split())
     # 105 Hz, 0.2 bar is inside tongue 2 of the example driveline with
     # mu_g halved: `judder floquet --freq 105 --pf 0.2 --param-file
-    # examples/driveline.toml --set mu_g=0.011` gives 1.000668, 0.0701 1/s,
-    # slower than the judder-relevant 1 1/s that `judder check` uses
-    assert ("no judder: single-period instability growing at only 0.0701 "
-            "1/s (|lambda| = 1.0007), slower than the judder-relevant 1 1/s"
-            in text)
-    assert "Source: judder check --min-growth 1;" in text
+    # examples/driveline.toml --set mu_g=0.011` gives 1.000668, 0.0701 1/s
+    # (one e-fold in 1 / 0.0701 = 14.3 s), slower than the judder-relevant
+    # 1 1/s that `judder check` uses
+    assert ("SLOW GROWTH at 105 Hz, 0.2 bar: single-period instability in "
+            "tongue 2 (|\u03bb| = 1.0007); grows at 0.0701 1/s, one e-fold "
+            "in 14.3 s (longer than a 1 s engagement), slower than the "
+            "judder-relevant 1 1/s;" in text)
+    assert "(judder check --min-growth 1)" in text
     # tongue 2's tip, refined between grid points: 105.776 Hz, 0.1084 bar
     # (`judder tongues` on 500 frequencies; twice the 0.0542 bar of
     # mu_g = 0.022, as the tip scales with 1/mu_g)
@@ -78,6 +80,10 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
                         text)
     assert ranking.group(1) == "mu_g" and ranking.group(3) == "k24"
     assert float(ranking.group(2)) == pytest.approx(100.0, abs=0.5)
+    # judder advise ranks design parameters (mu_g is not one): the report
+    # says why the two rankings differ
+    assert "puts mu_g first, judder advise puts" in text
+    assert "they answer different questions" in text
     # without dither: mu_g* = -1.25e-4 c_i with every c_i = 0.1
     assert "for mu_g below -1.25e-05 s/rad" in text
     # the example boundary was made from this set (mu_g = 0.022) with
@@ -88,9 +94,54 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     assert float(fit.group(3)) < 0.022 < float(fit.group(4))
     assert "scatter of the onsets:" in text
     # self-contained: every image is inline, nothing is fetched
-    assert html.count("<img") == 6
-    assert html.count('src="data:image/png;base64,') == 6
+    assert html.count("<img") == 7
+    assert html.count('src="data:image/png;base64,') == 7
     assert not re.search(r'(src|href)="(?!data:)', html)
+
+
+def _first_screen_and_numbers(html):
+    """The text before the first figure, and the numbers of the <h2>
+    headings in order."""
+    first = " ".join(_text(html.split("<figure>")[0]).split())
+    numbers = [int(n) for n in re.findall(r"<h2>(\d+)\. ", html)]
+    return first, numbers
+
+
+def test_report_opens_with_verdict_window_and_design(report):
+    html = report.read_text()
+    first, numbers = _first_screen_and_numbers(html)
+    # the decision comes before any evidence: verdict, safe window,
+    # design change (judder advise's numbers, not a paraphrase)
+    verdict = first.index("SLOW GROWTH at 105 Hz")
+    window = first.index("Safe dither window")
+    design = first.index("Smallest design change")
+    assert verdict < window < design
+    from judder import api
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    advice = api.advise(example, {"mu_g": 0.011})
+    for w in advice.windows:
+        if w.full_range:
+            assert f"{w.freq_hz[0]:.1f}-{w.freq_hz[1]:.1f} Hz" in first
+    for name, factor in zip(advice.advice.names, advice.advice.factors):
+        if abs(factor - 1) > 0.01:
+            assert f"{name} x{factor:.2f}" in first
+    assert (f"has {advice.judder_points} judder points of "
+            f"{advice.verification.kind.size}") in first
+    # sections numbered 1, 2, ... without a gap
+    assert numbers == list(range(1, len(numbers) + 1)) and len(numbers) >= 7
+
+
+def test_report_without_a_setting_still_gives_the_window(tmp_path):
+    out = tmp_path / "r.html"
+    status = main(["report", "--sensitivity", "k24", "--grid=10:220:40",
+                   "--map-freq=5:250:20", "--map-pf=0:1.5:8",
+                   "--workers=1", "--out", str(out)])
+    assert status == 0
+    first, numbers = _first_screen_and_numbers(out.read_text())
+    assert first.index("No dither setting given (--freq, --pf)") \
+        < first.index("Safe dither window Within 60-200 Hz")
+    assert numbers == list(range(1, len(numbers) + 1))
 
 
 def test_report_verdict_is_judder_check_at_its_growth_rate():
@@ -105,12 +156,15 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
     record = {**check.records()[0],
               "leading_abs": check.checks[0].floquet.leading_abs}
     text = _verdict_text(record)
-    assert text.startswith("JUDDER: single-period instability, growing at "
-                           "0.0701 1/s (|lambda| = 1.0007); the stability "
-                           "boundary at 105 Hz is ")
-    boundary = float(text.split("105 Hz is ")[1].split(" bar")[0])
-    assert boundary == pytest.approx(record["boundary_p_f_bar"], abs=5e-4)
-    assert boundary < 0.2
+    assert text.startswith("JUDDER at 105 Hz, 0.2 bar: single-period "
+                           "instability in tongue 2 (|\u03bb| = 1.0007); "
+                           "grows at 0.0701 1/s, one e-fold in 14.3 s "
+                           "(longer than a 1 s engagement); ")
+    above = float(text.split("; ")[2].split(" bar above the judder "
+                                            "boundary")[0])
+    assert 0.2 - above == pytest.approx(record["boundary_p_f_bar"],
+                                        abs=5e-4)
+    assert 0 < above < 0.2
 
 
 @pytest.mark.parametrize("args, words", [
@@ -149,12 +203,13 @@ def test_report_renders_in_chromium(report, tmp_path):
     dom = _chromium("--virtual-time-budget=10000", "--dump-dom",
                     probe.as_uri(), cwd=tmp_path).stdout
     states = re.search(r'data-images="([^"]*)"', dom).group(1).split()
-    assert len(states) == 6
+    assert len(states) == 7
     for state in states:
         complete, size = state.split(":")
         width, height = map(int, size.split("x"))
         assert complete == "true" and width > 300 and height > 300, state
-    for words in ("Verdict: dither at 105 Hz, 0.2 bar", "Tongue tips",
+    for words in ("Verdict and advice", "SLOW GROWTH at 105 Hz, 0.2 bar",
+                  "Tongue tips",
                   "What moves the tongues", "The bench data and the fit"):
         assert words in dom
     # and it draws: a screenshot of the top of the page is not blank
@@ -169,10 +224,19 @@ def test_report_renders_in_chromium(report, tmp_path):
 @pytest.mark.skipif(CHROMIUM is None, reason="no chromium: run `make "
                     "browser` (Debian's chromium package)")
 def test_report_prints_to_pdf(report):
+    from infra.files import written_by_us
     pdf = (report.parent / "report.pdf").read_bytes()
     assert pdf.startswith(b"%PDF-")
+    # marked as the tool's: a second run replaces it without --force
+    assert written_by_us(report.parent / "report.pdf")
     # one page object per printed page: the report is several pages long
     assert len(re.findall(rb"/Type\s*/Page[^s]", pdf)) >= 3
+    # A4 (595 x 842 pt), not Letter (612 x 792)
+    boxes = re.findall(rb"/MediaBox\s*\[\s*0 0 ([\d.]+) ([\d.]+)", pdf)
+    assert boxes
+    for width, height in boxes:
+        assert float(width) == pytest.approx(595.3, abs=1.0)
+        assert float(height) == pytest.approx(841.9, abs=1.0)
 
 
 def test_report_shows_no_fit_the_data_cannot_determine():

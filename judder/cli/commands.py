@@ -147,8 +147,10 @@ def cmd_map(args):
     amplitudes = parse_grid(args.pf, "--pf", "bar")
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
+    # the exact boundaries are drawn on --plot and stored in --out
+    exact = args.plot is not None or args.out is not None
     _check_map_grid(params.replace(**changes), freqs, amplitudes,
-                    "--freq x --pf", args.method, args.plot is not None)
+                    "--freq x --pf", args.method, exact)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
         result = api.stability_map(
@@ -156,8 +158,10 @@ def cmd_map(args):
             progress=progress,
             min_growth=check_number("--min-growth", args.min_growth, "1/s",
                                     strict=False),
-            exact=args.plot is not None, waveform=waveform)
-    title = f"stability map (Fig. 12, 14), {model_title(args, params)}"
+            exact=exact, waveform=waveform)
+    paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
+    title = (f"stability map{f' ({paper})' if paper else ''}, "
+             f"{model_title(args, params)}")
     files = _write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set,
@@ -199,11 +203,28 @@ def cmd_tongues(args):
                     f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
                     f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
                     + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    missing = _missing_tongues(result, freqs, _pf_max(args))
+    if missing:
+        rows.append(missing)
     rows.append(f"{len(freqs)} frequencies in {result.seconds:.2f} s; "
                 "boundary points within "
                 f"{result.boundaries.max_multiplier_error:.1e} of the unit "
                 "circle")
     emit(args, data, "\n".join(rows) + _written(args.out, args.plot))
+
+
+def _missing_tongues(result, freqs, p_max_bar):
+    """A line naming the numbers no tongue got (numbers follow the
+    resonances, Fig. 14's scheme for every mode), or ''."""
+    from stability.tongues import resonances
+    found = {t.number for t in result.tongues}
+    gone = [f"{number} ({label}, {hz:.3g} Hz)" for number, label, hz, _
+            in resonances(result.boundaries.natural_frequencies_hz)
+            if number not in found]
+    return ("" if not gone else
+            "numbered by resonance; no tongue in "
+            f"{freqs[0]:g}-{freqs[-1]:g} Hz up to {p_max_bar:g} bar for "
+            + ", ".join(gone))
 
 
 def cmd_sensitivity(args):
@@ -269,7 +290,8 @@ def cmd_threshold(args):
     with Progress(len(damping), "threshold") as progress:
         result = api.threshold(mu_g, damping, params, changes,
                                progress=progress)
-    files = _write_outputs(args, result)
+    files = _write_outputs(args, result,
+                           figure={"title": model_title(args, params)})
     study = result.study
     text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
             f"(unstable without dither below it)")
@@ -491,7 +513,8 @@ def cmd_simulate(args):
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
                           "8)" if params.driveline is not None else
                           "time-domain run with dither")
-                + f", {model_title(args, params)}"})
+                + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
+                  f"parameters of {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          "\n".join(_engagement_line(s) for s in result.summaries)
          + _written(args.out, args.plot))
@@ -531,7 +554,8 @@ def cmd_crosscheck(args):
                                 parameters=params, changes=changes,
                                 method=args.method, workers=args.workers,
                                 progress=progress, perturb=args.perturb)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
     worst = data["max_rate_error_above_1_per_s"]
     text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "
             f"agree on {100 * data['agreement']:.1f} %; largest rate "
@@ -707,7 +731,8 @@ def cmd_check(args):
                            min_growth=args.min_growth, p_max_bar=args.pf_max,
                            sensitivity=names, background=bool(args.plot),
                            progress=progress)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + _written(args.out, args.plot))
 
 
@@ -745,7 +770,8 @@ def cmd_advise(args):
                             min_growth=args.min_growth, names=names,
                             weights=weights, design=not args.no_design,
                             progress=progress)
-    data = {**result.as_dict(), **_write_outputs(args, result)}
+    data = {**result.as_dict(), **_write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + _written(args.out, args.plot))
 
 
@@ -788,9 +814,7 @@ def cmd_report(args):
     verdict = result.data.get("verdict")
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
-               + ("judder (" + verdict["kind"] + ")"
-                  if verdict["verdict"] == "judder" else "no judder")
-               if verdict else "")
+               f"{verdict['verdict']}" if verdict else "")
             + (f"\nbench data: {result.data['fit_status']}"
                if "fit_status" in result.data else "")
             + _written(args.out, args.pdf))
@@ -831,7 +855,8 @@ def cmd_envelope(args):
     if args.csv:
         result.save_csv(args.csv, force=args.force)
     if args.plot:
-        _save_plot(args.plot, result.figure())
+        _save_plot(args.plot, result.figure(
+            title=f"envelope, {model_title(args, params)}"))
     result.discard_checkpoint()
     e, c = result.envelope, result.envelope.convergence
     lowest = e.broadest
