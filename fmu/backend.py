@@ -623,31 +623,60 @@ def _expose_constraint(system, states, known, time, unknowns):
     flange.phi`` and ``phi_rel = phi_other - flange.phi``: each equation
     holds states, knowns and the one algebraic ``flange.phi``, so neither
     is a constraint among states until ``flange.phi`` is solved from the
-    first (linear in it) and substituted into the second. Returns whether
-    such a variable was eliminated.
+    first (linear in it) and substituted into the second. MSL's
+    ``IdealGear`` hides it one level deeper (``phi_a = flange_a.phi -
+    phi_support``, ``phi_b = ...``, ``phi_a = ratio*phi_b``): the
+    variables determined by the states through a chain of such equations
+    are followed until an equation holds only them, states and knowns.
+    Returns whether such a variable was eliminated.
     """
     plain = set(states) | known
-    candidates = {}
+    defined = {}   # algebraic name -> equation that gives it from plain ones
+    progress = True
+    while progress:
+        progress = False
+        for index, residual in enumerate(system.residuals):
+            if index in defined.values():
+                continue
+            names = {s.name() for s in casadi.symvar(residual)}
+            extra = names - plain - set(defined)
+            if len(extra) != 1 or not names & (set(states) | set(defined)):
+                continue
+            name = extra.pop()
+            if name not in unknowns or name in system.eliminated:
+                continue
+            symbol = unknowns[name].symbol
+            slope = casadi.jacobian(residual, symbol)
+            if casadi.depends_on(slope, symbol) or not _nonzero(slope):
+                continue
+            defined[name] = index
+            progress = True
+    users = set(defined.values())
     for index, residual in enumerate(system.residuals):
         names = {s.name() for s in casadi.symvar(residual)}
-        extra = names - plain
-        if len(extra) == 1 and names & set(states):
-            name = extra.pop()
-            if name in unknowns and name not in system.eliminated:
-                candidates.setdefault(name, []).append(index)
-    for name, indices in candidates.items():
-        if len(indices) < 2:
+        if index in users or not names & set(defined) or \
+                not names <= plain | set(defined):
             continue
-        index = indices[0]
-        residual = system.residuals[index]
-        symbol = unknowns[name].symbol
-        slope = casadi.jacobian(residual, symbol)
-        if casadi.depends_on(slope, symbol) or not _nonzero(slope):
-            continue
-        formula = -casadi.substitute(residual, symbol, casadi.SX(0)) / slope
-        system.remove(index)
-        _replace(system, states, unknowns, symbol, formula, time)
-        return True
+        needed, pending = set(), list(names & set(defined))
+        while pending:   # the defined variables this constraint rests on
+            name = pending.pop()
+            if name not in needed:
+                needed.add(name)
+                pending += [s.name() for s in casadi.symvar(
+                    system.residuals[defined[name]]) if s.name() in defined]
+        for name in needed:
+            index = defined[name]
+            residual = system.residuals[index]
+            if {s.name() for s in casadi.symvar(residual)} - plain \
+                    != {name}:
+                continue
+            symbol = unknowns[name].symbol
+            slope = casadi.jacobian(residual, symbol)
+            formula = -casadi.substitute(residual, symbol,
+                                         casadi.SX(0)) / slope
+            system.remove(index)
+            _replace(system, states, unknowns, symbol, formula, time)
+            return True
     return False
 
 

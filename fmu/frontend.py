@@ -215,6 +215,8 @@ class _Expressions:
 
     def __init__(self, storage, symbols, derivatives, time):
         graph = storage["expressions"]
+        self._functions = storage.get("functions") or []
+        self._frames = []   # values of the inlined functions' variables
         self._nodes = graph["nodes"]
         self._operands = graph["operands"]
         self._symbols, self._derivatives = symbols, derivatives
@@ -275,6 +277,8 @@ class _Expressions:
                 return self._derivatives[position]
             if role == "pre_state" and self.pre_is_state:
                 return self._symbols[position]
+            if role.startswith("function_"):
+                return self._function_variable(role, position)
             if role not in _ROLES:
                 raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
                                     "references (pre, edge, change) are not "
@@ -328,8 +332,60 @@ class _Expressions:
         if kind == "conditional":
             args = self._args(index, body["operand_count"])
             return _conditional(args)
+        if kind == "call":
+            return self._call(index, body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
+
+    def _function_variable(self, role, reference):
+        """A parameter, output or local of the function being inlined."""
+        key = (role, reference.get("ordinal"))
+        if not self._frames or key not in self._frames[-1]:
+            raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
+                                f"{reference} is used before it has a value")
+        return self._frames[-1][key]
+
+    def _call(self, index, body):
+        """Inline a call of a Modelica function whose algorithm is a
+        sequence of assignments (``Modelica.Math``'s wrappers of the
+        builtins, small user functions); the requested output's value."""
+        function = self._functions[body["function"]]
+        name = function["name"]
+        args = self._args(index, body["operand_count"])
+        declared = function.get("parameters") or []
+        if len(args) > len(declared):
+            raise FrontEndError(f"{self.where}: {name}() takes "
+                                f"{len(declared)} arguments, not {len(args)}")
+        if len(args) < len(declared) or function.get("external") \
+                or len(self._frames) > 20:
+            why = "external functions" if function.get("external") else \
+                "default arguments" if len(args) < len(declared) else \
+                "recursive functions"
+            raise FrontEndError(f"{self.where}: {name}(): {why} are not "
+                                "supported by the FMU back end")
+        frame = {("function_parameter", k): value
+                 for k, value in enumerate(args)}
+        saved, self._cache = self._cache, {}
+        self._frames.append(frame)
+        try:
+            for statement in function.get("statements") or []:
+                kind, step = next(iter(statement.items()))
+                if kind != "assignment":
+                    raise FrontEndError(
+                        f"{self.where}: {name}(): {kind} statements in a "
+                        "function are not supported by the FMU back end "
+                        "(assignments are)")
+                frame[("function_output", step["target"])] = \
+                    self(step["rhs"])
+                self._cache = {}
+        finally:
+            self._frames.pop()
+            self._cache = saved
+        key = ("function_output", body["output"])
+        if key not in frame:
+            raise FrontEndError(f"{self.where}: {name}(): output "
+                                f"{body['output'] + 1} is never assigned")
+        return frame[key]
 
 
 def _conditional(args):
@@ -443,7 +499,7 @@ _REFUSED = {
     "structured_roots": "event conditions",
     "discrete_value_owners": "Integer or Boolean variables",
     "clocks": "clocked equations", "clock_ownerships": "clocked equations",
-    "delays": "delay()", "functions": "function calls",
+    "delays": "delay()",
     "domains": "for-equations and array equations",
     "terminals": "terminal()",
     "initial_discrete_values": "initial values of discrete variables",
@@ -499,7 +555,8 @@ def _check_supported(storage, model_name, where):
             raise FrontEndError(f"{place}: {raw['name']}: arrays of "
                                 "variables are not supported by the FMU back "
                                 "end (arrays of parameters are)")
-        if value_type.get("scalar") != "real":
+        if value_type.get("scalar") != "real" and \
+                raw["role"] not in ("parameter", "constant"):
             raise FrontEndError(f"{place}: {raw['name']}: "
                                 f"{value_type.get('scalar')} variables are "
                                 "not supported by the FMU back end")
@@ -560,10 +617,15 @@ def load_flat_model(path, model_name, roots=()):
             elements, values = np.array([elements], dtype=object), \
                 {k: np.array([v], dtype=object) for k, v in values.items()}
         quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
+        role = raw["role"]
+        if role == "parameter" and \
+                storage["value_types"][raw["value_type"]].get("scalar") \
+                != "real":
+            role = "constant"   # Boolean, Integer: evaluated at translation
         for position in np.ndindex(elements.shape):
             symbol = elements[position]
             variables.append(Variable(
-                name=symbol.name(), role=raw["role"], symbol=symbol,
+                name=symbol.name(), role=role, symbol=symbol,
                 derivative=derivatives.get(index),
                 unit=attributes.get("unit") or "",
                 description=attributes.get("description") or "",
@@ -588,6 +650,14 @@ def load_flat_model(path, model_name, roots=()):
                                     "back end")
             sections[section].append(convert(body["residual"]))
             places[section].append(convert.where)
+    for v in variables:
+        # a fixed start of a variable that is not a state is an initial
+        # equation (MSL's Spring(phi_rel(fixed=true)))
+        if v.role in ("algebraic", "output") and v.fixed and \
+                v.start is not None:
+            sections["initialization_equation_operations"].append(
+                v.symbol - v.start)
+            places["initialization_equation_operations"].append(v.where)
     whens = _whens(storage, convert, where, variables)
     return FlatModel(
         name=model_name, variables=variables,
