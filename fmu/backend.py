@@ -107,6 +107,12 @@ class OdeModel:
         Parameters bound to formulas in ``p``.
     outputs : list of Quantity
         Outputs of the model as formulas in ``t, x, p``.
+    locals : list of Quantity
+        Every other variable of the model (algebraic variables, states
+        removed by index reduction, outputs of components) as formulas
+        in ``t, x, p``, one per distinct formula.
+    aliases : list of (Quantity, str)
+        Variables whose formula is that of a local, with its name.
     experiment : dict
     eliminated : dict
         Variables removed by aliasing and index reduction, as formulas.
@@ -124,6 +130,8 @@ class OdeModel:
     inputs: list = field(default_factory=list)
     relations: list = field(default_factory=list)
     whens: list = field(default_factory=list)
+    locals: list = field(default_factory=list)
+    aliases: list = field(default_factory=list)
 
     def _symbols(self):
         x = _column(*[s.expression for s in self.states])
@@ -133,11 +141,11 @@ class OdeModel:
 
     def jacobian(self):
         """CasADi function ``jacobian(t, x, p) -> J``: the derivatives of
-        ``[der(x); y]`` with respect to ``[x; parameters; inputs]``
+        ``[der(x); y; locals]`` with respect to ``[x; parameters; inputs]``
         (automatic differentiation), dense, and its sparsity."""
         x, p = self._symbols()
         known = len(self.parameters) + len(self.inputs)
-        y = _column(*[o.expression for o in self.outputs])
+        y = _column(*[o.expression for o in self.outputs + self.locals])
         unknowns = casadi.vertcat(self.derivatives, y)
         knowns = casadi.vertcat(x, p[:known])
         jac = casadi.jacobian(unknowns, knowns)
@@ -164,12 +172,14 @@ class OdeModel:
                 casadi.Function("reinit", [self.time, x, p, fired],
                                 [_column(*after)]))
 
-    def functions(self):
+    def functions(self, with_locals=False):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
         -> y`` and ``start(p) -> x0``; ``p`` is the tunable parameters
-        followed by the inputs."""
+        followed by the inputs; ``y`` is followed by the locals if
+        ``with_locals``."""
         x, p = self._symbols()
-        y = _column(*[o.expression for o in self.outputs])
+        y = _column(*[o.expression for o in self.outputs
+                      + (self.locals if with_locals else [])])
         x0 = _column(*[s.start for s in self.states])
         return (casadi.Function("ode", [self.time, x, p], [self.derivatives],
                                 ["t", "x", "p"], ["xdot"]),
@@ -331,7 +341,8 @@ def _to_ode(model):
 
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
                        model.time)
-    _reduce_index(system, states, {q.name for q in tunable} | {"time"},
+    _reduce_index(system, states, {q.name for q in tunable} | {"time"}
+                  | {r.symbol.name() for r in model.relations},
                   model.time, unknown_vars)
     derivatives = _solve_sorted(system, states, unknown_vars)
 
@@ -355,12 +366,46 @@ def _to_ode(model):
             continue
         formula = v.symbol if v.name in states else system.eliminated[v.name]
         outputs.append(_quantity(v, formula))
+    derivative_column = _column(*[derivatives[v.name] for v in order])
+    locals_, aliases = _locals(model, order, derivative_column, outputs,
+                               system.eliminated)
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
-        derivatives=_column(*[derivatives[v.name] for v in order]),
+        derivatives=derivative_column,
         parameters=tunable, calculated=calculated, outputs=outputs,
         experiment=model.experiment, eliminated=system.eliminated,
-        inputs=inputs, relations=relations, whens=whens)
+        inputs=inputs, relations=relations, whens=whens,
+        locals=locals_, aliases=aliases)
+
+
+def _locals(model, order, derivatives, outputs, eliminated):
+    """Every variable that is neither a state nor an output kept, as a
+    formula in ``t, x, p``: ``(locals, aliases)``, where a variable whose
+    formula is that of an earlier local is an alias of it (connections
+    make most flange angles and torques equal). States, derivatives and
+    outputs have no aliases: fmpy's FMI 3 validator takes an alias for
+    the state a derivative belongs to, so a flange angle equal to a
+    body's angle is a local of its own."""
+    shown = {v.name for v in order} | {o.name for o in outputs}
+    hidden = [v for v in model.variables
+              if v.role in ("state", "algebraic", "output")
+              and v.name not in shown]
+    if not hidden:
+        return [], []
+    formulas = _in_states(_column(*[eliminated[v.name] for v in hidden]),
+                          order, {v.name: derivatives[i]
+                                  for i, v in enumerate(order)}, eliminated)
+    known = {}   # printed formula -> name of the local that has it
+    locals_, aliases = [], []
+    for i, v in enumerate(hidden):
+        formula = formulas[i]
+        key = str(formula)
+        if key in known:
+            aliases.append((_quantity(v, formula), known[key]))
+        else:
+            known[key] = v.name
+            locals_.append(_quantity(v, formula))
+    return locals_, aliases
 
 
 def _events(model, order, derivatives, eliminated, parameter_symbols,
@@ -552,6 +597,9 @@ def _reduce_index(system, states, known, time, unknowns=None):
             if unknowns and _expose_constraint(system, states, known, time,
                                                unknowns):
                 continue
+            if _substitute_state_derivatives(system, states, known,
+                                             anywhere=True):
+                continue
             return
         count = {}
         for _, involved in constraints:
@@ -575,7 +623,7 @@ def _reduce_index(system, states, known, time, unknowns=None):
                                f"linearly in the constraint {residual}")
 
 
-def _substitute_state_derivatives(system, states, known):
+def _substitute_state_derivatives(system, states, known, anywhere=False):
     """Turn equations in derivatives into the constraints they hide.
 
     After the bodies' angles replace a relative angle, ``w_rel =
@@ -583,8 +631,13 @@ def _substitute_state_derivatives(system, states, known):
     bodies' ``w = der(phi)`` (a derivative equal to a state) substituted
     it is ``w_rel = b.w - a.w``: a constraint among states, which the next
     pass of index reduction differentiates (a second time for the angles).
-    Only equations that become constraints are rewritten; the equations
-    ``w = der(phi)`` themselves stay. Returns whether one was rewritten.
+    Only equations that become constraints are rewritten, or, with
+    ``anywhere``, equations left without a derivative (MSL's ``Speed``
+    source writes ``w = der(phi)`` with its ``phi`` a body's angle whose
+    ``w`` is a state, and ``w = w_ref``: with the body's speed in it,
+    ``w = body.w`` exposes the constraint ``body.w = w_ref(t)``); the
+    equations ``w = der(phi)`` themselves stay. Returns whether one was
+    rewritten.
     """
     names = set(states)
     derivatives = {v.derivative.name(): v.derivative for v in states.values()}
@@ -610,7 +663,8 @@ def _substitute_state_derivatives(system, states, known):
             continue
         rewritten = casadi.substitute(residual, old, new)
         found = {s.name() for s in casadi.symvar(rewritten)}
-        if found & names and found <= names | known:
+        if found & names and (found <= names | known or anywhere and not
+                              found & set(derivatives)):
             system.residuals[index] = rewritten
             return True
     return False
@@ -640,7 +694,7 @@ def _expose_constraint(system, states, known, time, unknowns):
                 continue
             names = {s.name() for s in casadi.symvar(residual)}
             extra = names - plain - set(defined)
-            if len(extra) != 1 or not names & (set(states) | set(defined)):
+            if len(extra) != 1:
                 continue
             name = extra.pop()
             if name not in unknowns or name in system.eliminated:
@@ -658,12 +712,17 @@ def _expose_constraint(system, states, known, time, unknowns):
                 not names <= plain | set(defined):
             continue
         needed, pending = set(), list(names & set(defined))
+        touched = names & set(states)
         while pending:   # the defined variables this constraint rests on
             name = pending.pop()
             if name not in needed:
                 needed.add(name)
-                pending += [s.name() for s in casadi.symvar(
-                    system.residuals[defined[name]]) if s.name() in defined]
+                used = {s.name() for s in casadi.symvar(
+                    system.residuals[defined[name]])}
+                touched |= used & set(states)
+                pending += [n for n in used if n in defined]
+        if not touched:
+            continue   # among parameters only: not a constraint on states
         for name in needed:
             index = defined[name]
             residual = system.residuals[index]

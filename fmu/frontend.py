@@ -11,6 +11,7 @@ knows about drivelines: the equations come from the ``.mo`` source.
 
 from dataclasses import dataclass, field
 from itertools import product
+import os
 from pathlib import Path
 import re
 
@@ -20,7 +21,7 @@ import numpy as np
 from infra.errors import JudderError
 
 __all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
-           "FrontEndError"]
+           "find_class", "modelica_path", "FrontEndError"]
 
 
 class FrontEndError(JudderError):
@@ -216,6 +217,10 @@ class _Expressions:
     def __init__(self, storage, symbols, derivatives, time):
         graph = storage["expressions"]
         self._functions = storage.get("functions") or []
+        self._known = {raw["name"] for raw in storage["variables"]
+                       if raw["role"] in ("parameter", "constant")}
+        self._relation_count = len(storage.get("relations") or [])
+        self._no_event = 0   # depth of noEvent(...) being converted
         self._frames = []   # values of the inlined functions' variables
         self._nodes = graph["nodes"]
         self._operands = graph["operands"]
@@ -260,6 +265,17 @@ class _Expressions:
                 where=self.where)
         return self.relations[position].symbol
 
+    def _is_time_event(self, body):
+        """Whether a relation compares time with parameters (``time <
+        startTime`` of MSL's Step and Ramp): rumoca lists it as a time
+        event, not as a relation; it generates an event all the same,
+        located by its indicator ``time - startTime``."""
+        lhs, rhs = self(body["lhs"]), self(body["rhs"])
+        if isinstance(lhs, np.ndarray) or isinstance(rhs, np.ndarray):
+            return False
+        names = {v.name() for v in casadi.symvar(casadi.SX(lhs - rhs))}
+        return "time" in names and names - {"time"} <= self._known
+
     def _args(self, index, count):
         start = self._offsets[index]
         return [self(i) for i in self._operands[start:start + count]]
@@ -285,6 +301,11 @@ class _Expressions:
                                     "supported by the FMU back end")
             return self._symbols[position]
         if kind == "binary" and index in self.relation_of:
+            return self._relation(index, body)
+        if kind == "binary" and body["operator"] in _RELATIONS and \
+                not self._no_event and self._is_time_event(body):
+            self.relation_of[index] = self._relation_count
+            self._relation_count += 1
             return self._relation(index, body)
         if kind == "binary":
             op = body["operator"]
@@ -328,7 +349,12 @@ class _Expressions:
             if name not in _BUILTIN:
                 raise FrontEndError(f"{self.where}: function {name}() is not "
                                     "supported by the FMU back end")
-            return _BUILTIN[name](*self._args(index, body["operand_count"]))
+            self._no_event += name == "no_event"
+            try:
+                args = self._args(index, body["operand_count"])
+            finally:
+                self._no_event -= name == "no_event"
+            return _BUILTIN[name](*args)
         if kind == "conditional":
             args = self._args(index, body["operand_count"])
             return _conditional(args)
@@ -420,6 +446,44 @@ def class_source(library, name):
                         f"nor a package file holding it, in {library}")
 
 
+def modelica_path(libraries=()):
+    """The library roots, searched as Modelica tools search them: the
+    ``libraries`` given first, then the folders of the environment
+    variable ``MODELICAPATH`` (separated by ``os.pathsep``), each once."""
+    roots = []
+    entries = list(libraries) + \
+        os.environ.get("MODELICAPATH", "").split(os.pathsep)
+    for entry in entries:
+        if entry and Path(entry) not in roots:
+            roots.append(Path(entry))
+    return roots
+
+
+def find_class(name, roots):
+    """``(file, root)`` of class ``name``: the first root of ``roots``
+    holding its top-level package (``Modelica`` of
+    ``Modelica.Mechanics.Rotational.Examples.First``), as MODELICAPATH is
+    searched; a root may be a ``.mo`` file holding a whole package.
+
+    Raises
+    ------
+    FrontEndError
+        If no root holds it; the message lists the roots searched.
+    """
+    top = name.split(".")[0]
+    for root in map(Path, roots):
+        if root.is_file() and root.suffix == ".mo":
+            if root.stem == top:
+                return root, root.parent
+            continue
+        if (root / top).is_dir() or (root / f"{top}.mo").is_file():
+            return class_source(root, name), root
+    searched = ", ".join(str(r) for r in roots) or "(none)"
+    raise FrontEndError(f"{name}: no library on the path holds package "
+                        f"{top} (searched --library and MODELICAPATH: "
+                        f"{searched})")
+
+
 def package_version(model_name, roots):
     """The ``version`` annotation of the top-level package of
     ``model_name`` (``Judder`` of ``Judder.Examples.Driveline4DOF``), or
@@ -448,7 +512,19 @@ def package_version(model_name, roots):
 
 
 def _flatten(path, model_name, roots):
+    """rumoca's flat model of ``model_name``, from the cache
+    (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
     import rumoca
+    from . import cache
+    key = cache.cache_key(path, model_name, roots, rumoca.version())
+    flat = cache.load(key)
+    if flat is None:
+        flat = _flatten_with_rumoca(rumoca, path, model_name, roots)
+        cache.store(key, flat)
+    return flat
+
+
+def _flatten_with_rumoca(rumoca, path, model_name, roots):
     diagnostics = rumoca.validate(str(path), model=model_name)
     errors = [d for d in diagnostics
               if str(getattr(d, "severity", "error")).lower().endswith(
@@ -461,7 +537,7 @@ def _flatten(path, model_name, roots):
         model = session.load(str(path), model=model_name)
         return model.to_dict()
     except Exception as exc:   # rumoca raises its own error classes
-        message = f"{path}: {exc}{_library_errors(rumoca, roots)}"
+        message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}"
     finally:
         # rumoca's objects are unsendable: dropped in another thread (a
         # Dask worker's event loop holding this frame in a traceback)
@@ -470,10 +546,15 @@ def _flatten(path, model_name, roots):
     raise FrontEndError(message)
 
 
-def _library_errors(rumoca, roots):
-    """Syntax errors anywhere in the library (rumoca only says 'failed')."""
+def _library_errors(rumoca, roots, path):
+    """Syntax errors anywhere in the model's own library (rumoca only says
+    'failed'); the other libraries of the path (the MSL: 2,400 files) are
+    not searched."""
     found = []
+    path = Path(path).resolve()
     for root in roots:
+        if not path.is_relative_to(Path(root).resolve()):
+            continue
         for source in sorted(Path(root).rglob("*.mo")):
             try:
                 source.read_bytes().decode("utf-8")
@@ -495,7 +576,6 @@ _REFUSED = {
     "model_event_transactions": "when-equations",
     "discrete_real_equations": "discrete-time equations (when, sample)",
     "previous_values": "pre()",
-    "time_events": "time events (sample, time >= ...)",
     "structured_roots": "event conditions",
     "discrete_value_owners": "Integer or Boolean variables",
     "clocks": "clocked equations", "clock_ownerships": "clocked equations",
