@@ -40,6 +40,7 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
+from .balance import excess
 from .frontend import FrontEndError
 
 __all__ = ["OdeModel", "Quantity", "to_ode"]
@@ -395,11 +396,11 @@ def _locals(model, order, derivatives, outputs, eliminated):
     formulas = _in_states(_column(*[eliminated[v.name] for v in hidden]),
                           order, {v.name: derivatives[i]
                                   for i, v in enumerate(order)}, eliminated)
-    known = {}   # printed formula -> name of the local that has it
+    known = {}   # unit, printed formula -> name of the local that has it
     locals_, aliases = [], []
     for i, v in enumerate(hidden):
         formula = formulas[i]
-        key = str(formula)
+        key = (v.unit, str(formula))   # a torque is no alias of an angle
         if key in known:
             aliases.append((_quantity(v, formula), known[key]))
         else:
@@ -752,17 +753,23 @@ def _solve_sorted(system, states, unknown_vars):
         [v.symbol for n, v in unknown_vars.items() if n not in
          system.eliminated]
     residuals = system.residuals
-    if len(residuals) != len(unknowns):
-        raise BackEndError(f"{len(residuals)} equations for {len(unknowns)} "
-                           "unknowns after index reduction: the model is "
-                           "not balanced")
-    if not unknowns:
+    if not unknowns and not residuals:
         return {}
     sparsity = casadi.jacobian_sparsity(_column(*residuals),
                                         _column(*unknowns))
     rows, cols = sparsity.get_triplet()
     incidence = csr_matrix((np.ones(len(rows)), (rows, cols)),
                            shape=(len(residuals), len(unknowns)))
+    if len(residuals) != len(unknowns):
+        over, under = excess(incidence.toarray())
+        detail = ("; over-determined: " + system.describe(over[:12])
+                  if over else "") + \
+            ("; under-determined: " + ", ".join(str(unknowns[j])
+                                                for j in under[:12])
+             if under else "")
+        raise BackEndError(f"{len(residuals)} equations for {len(unknowns)} "
+                           "unknowns after index reduction: the model is "
+                           f"not balanced{detail}")
     match = maximum_bipartite_matching(incidence, perm_type="column")
     if np.any(match < 0):
         raise BackEndError("structurally singular: no unknown left for "

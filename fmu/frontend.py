@@ -511,11 +511,14 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots):
+def _flatten(path, model_name, roots, use_cache=True):
     """rumoca's flat model of ``model_name``, from the cache
     (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
     import rumoca
     from . import cache
+    if not use_cache:
+        return _flatten_with_rumoca(rumoca, path, model_name, roots,
+                                    use_cache=False)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
@@ -524,7 +527,7 @@ def _flatten(path, model_name, roots):
     return flat
 
 
-def _flatten_with_rumoca(rumoca, path, model_name, roots):
+def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
     diagnostics = rumoca.validate(str(path), model=model_name)
     errors = [d for d in diagnostics
               if str(getattr(d, "severity", "error")).lower().endswith(
@@ -537,7 +540,10 @@ def _flatten_with_rumoca(rumoca, path, model_name, roots):
         model = session.load(str(path), model=model_name)
         return model.to_dict()
     except Exception as exc:   # rumoca raises its own error classes
-        message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}"
+        from .balance import explain_unbalanced
+        message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}" + \
+            (explain_unbalanced(str(exc), model_name, roots)
+             if use_cache else "")
     finally:
         # rumoca's objects are unsendable: dropped in another thread (a
         # Dask worker's event loop holding this frame in a traceback)
@@ -649,7 +655,7 @@ def _check_supported(storage, model_name, where):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=()):
+def load_flat_model(path, model_name, roots=(), cache=True):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -660,6 +666,8 @@ def load_flat_model(path, model_name, roots=()):
         Full class name, e.g. ``Judder.Examples.Driveline4DOF``.
     roots : sequence of paths
         Library folders the model uses.
+    cache : bool
+        Read and keep rumoca's flat model in :mod:`fmu.cache`.
 
     Raises
     ------
@@ -668,7 +676,7 @@ def load_flat_model(path, model_name, roots=()):
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent])
+    flat = _flatten(path, model_name, roots or [path.parent], cache)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where)

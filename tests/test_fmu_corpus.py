@@ -46,6 +46,8 @@ REFUSED = [
      "supported", 2),
     ("Overdetermined", "the initialisation is overdetermined", 4),
     ("ArrayVariable", "arrays of variables are not supported", 3),
+    ("TooManyEquations", "1 equation(s) too many", 7),
+    ("TooFewEquations", "1 equation(s) missing", 3),
 ]
 #: The author attribute every corpus FMU is built with.
 AUTHOR = "Judder test corpus"
@@ -237,6 +239,23 @@ def test_refused_with_construct_and_place(tmp_path, capsys, name, words,
     assert words in stderr, stderr
     assert f"{name}.mo:{line}:" in stderr, stderr
     assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("name, named", [
+    ("TooManyEquations", [".mo:7: 0 = (y-(2.*x))", ".mo:8: 0 = (y-(x+1))"]),
+    ("TooFewEquations", [".mo:3: y", ".mo:4: z"])])
+def test_unbalanced_model_names_what_is_in_excess(tmp_path, capsys, name,
+                                                   named):
+    # rumoca counts 3 equations for 2 unknowns (or 2 for 3); the refusal
+    # names the over-determined equations (both give y) or the
+    # under-determined variables (y + z = x leaves one free), with lines
+    from fmu.__main__ import main
+    assert main([name, "--library", str(CORPUS), "--out", str(tmp_path),
+                 "--fmi", "2.0"]) == 2
+    stderr = capsys.readouterr().err
+    for words in named:
+        assert f"{name}{words}" in stderr, stderr
+    assert ".mo:6:" not in stderr and "x\n" not in stderr
 
 
 def test_refusal_from_the_command_line(tmp_path):
