@@ -52,23 +52,22 @@ def excess(incidence):
                                        perm_type="column")
     owner = np.full(cols, -1)
     owner[match[match >= 0]] = np.flatnonzero(match >= 0)
-    over, pending = set(), list(np.flatnonzero(match < 0))
+    over = _reachable(np.flatnonzero(match < 0), lambda row: [
+        owner[c] for c in np.flatnonzero(incidence[row]) if owner[c] >= 0])
+    under = _reachable(np.flatnonzero(owner < 0), lambda col: [
+        match[r] for r in np.flatnonzero(incidence[:, col]) if match[r] >= 0])
+    return over, under
+
+
+def _reachable(starts, step):
+    """Sorted nodes reached from ``starts`` by ``step(node) -> nodes``."""
+    seen, pending = set(), list(starts)
     while pending:
-        row = pending.pop()
-        if row in over:
-            continue
-        over.add(row)
-        pending += [owner[c] for c in np.flatnonzero(incidence[row])
-                    if owner[c] >= 0]
-    under, pending = set(), list(np.flatnonzero(owner < 0))
-    while pending:
-        col = pending.pop()
-        if col in under:
-            continue
-        under.add(col)
-        pending += [match[r] for r in np.flatnonzero(incidence[:, col])
-                    if match[r] >= 0]
-    return sorted(int(r) for r in over), sorted(int(c) for c in under)
+        node = pending.pop()
+        if node not in seen:
+            seen.add(node)
+            pending += step(node)
+    return sorted(int(n) for n in seen)
 
 
 def explain_unbalanced(message, model_name, roots):
