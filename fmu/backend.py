@@ -142,11 +142,12 @@ class OdeModel:
 
     def jacobian(self):
         """CasADi function ``jacobian(t, x, p) -> J``: the derivatives of
-        ``[der(x); y; locals]`` with respect to ``[x; parameters; inputs]``
-        (automatic differentiation), dense, and its sparsity."""
+        ``[der(x); y]`` with respect to ``[x; parameters; inputs]``
+        (automatic differentiation), dense, and its sparsity (the
+        unknowns of FMI: the locals have no directional derivatives)."""
         x, p = self._symbols()
         known = len(self.parameters) + len(self.inputs)
-        y = _column(*[o.expression for o in self.outputs + self.locals])
+        y = _column(*[o.expression for o in self.outputs])
         unknowns = casadi.vertcat(self.derivatives, y)
         knowns = casadi.vertcat(x, p[:known])
         jac = casadi.jacobian(unknowns, knowns)

@@ -116,6 +116,7 @@ def _config(ode, guid, tolerance):
         f"#define MODEL_NP {len(layout.parameters)}",
         f"#define MODEL_NC {len(layout.calculated)}",
         f"#define MODEL_NY {len(layout.outputs) + len(layout.locals)}",
+        f"#define MODEL_NYO {len(layout.outputs)}",
         f"#define MODEL_NU {len(layout.inputs)}",
         f"#define MODEL_NR {len(ode.relations)}",
         f"#define MODEL_NW {len(ode.whens)}",

@@ -231,8 +231,6 @@ def _dependencies(ode):
     found = {("derivative", i): [] for i in range(nx)}
     found.update({("output", i): [] for i in range(len(ode.outputs))})
     for row, col in sorted(zip(rows, cols), key=lambda rc: (rc[0], rc[1])):
-        if row >= nx + len(ode.outputs):
-            continue   # a local: not in ModelStructure
         unknown = ("derivative", row) if row < nx else ("output", row - nx)
         if col < nx:
             found[unknown].append(("state", col))

@@ -468,7 +468,8 @@ def find_class(name, roots):
     Raises
     ------
     FrontEndError
-        If no root holds it; the message lists the roots searched.
+        If no root holds it (the message lists the roots searched), or
+        the first root holding its package does not declare it.
     """
     top = name.split(".")[0]
     for root in map(Path, roots):
@@ -477,11 +478,24 @@ def find_class(name, roots):
                 return root, root.parent
             continue
         if (root / top).is_dir() or (root / f"{top}.mo").is_file():
-            return class_source(root, name), root
+            source = class_source(root, name)
+            short = name.split(".")[-1]
+            if source.stem == short or _declares(source, short):
+                return source, root
+            raise FrontEndError(f"{name}: not found: package {top} is in "
+                                f"{root}, but neither {short}.mo nor "
+                                f"{source} declares {short}")
     searched = ", ".join(str(r) for r in roots) or "(none)"
     raise FrontEndError(f"{name}: no library on the path holds package "
                         f"{top} (searched --library and MODELICAPATH: "
                         f"{searched})")
+
+
+def _declares(source, short_name):
+    """Whether a package file holds a class named ``short_name``."""
+    return re.search(r"\b(?:model|block|class|package|record|connector|"
+                     r"function|type)\s+" + re.escape(short_name) + r"\b",
+                     source.read_text(errors="replace")) is not None
 
 
 def package_version(model_name, roots):
