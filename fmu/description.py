@@ -5,9 +5,9 @@ their derivatives, the tunable parameters, the calculated parameters,
 the outputs, the locals (every other variable of the model, causality
 ``local``) and the inputs. A variable equal to another (connected flange
 angles and torques) is its alias: the same value reference in FMI 2, an
-``<Alias>`` element in FMI 3. States are calculated at initialisation from the parameters
-(their Modelica start values may depend on them), so their start values
-are set through parameters.
+``<Alias>`` element in FMI 3. States are calculated at initialisation
+from the parameters (their Modelica start values may depend on them), so
+their start values are set through parameters.
 """
 
 from datetime import datetime, timezone
@@ -410,7 +410,9 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool, about):
             attrs = _attr(**common, causality="output",
                           variability="continuous", initial="calculated",
                           **_typed(q))
-        shown = [f"      <Alias{_attr(name=a.name, description=a.description or None, displayUnit=_display_unit(a))}/>"
+        shown = ["      <Alias" + _attr(
+                     name=a.name, description=a.description or None,
+                     displayUnit=_display_unit(a)) + "/>"
                  for a in aliases.get(name, ())]
         lines += [f"    <Float64{attrs}>", *shown, "    </Float64>"] \
             if shown else [f"    <Float64{attrs}/>"]

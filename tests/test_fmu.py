@@ -29,7 +29,8 @@ from fmu.frontend import FrontEndError  # noqa: E402
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement",
-            "TestBenchFullEngagement", "TestBenchLockUp", "Driveline4DOFInputs"]
+            "TestBenchFullEngagement", "TestBenchLockUp",
+            "Driveline4DOFInputs"]
 W_IN = 1000 * 2 * np.pi / 60
 
 
