@@ -592,6 +592,44 @@ def test_a_second_importer_gives_the_same_results(fmus):
     assert_allclose(heights, result["h"][1:], atol=1e-12)
 
 
+def test_libcosim_and_fmi3(fmus):
+    # libcosimpy 0.0.6's libcosim does not load FMI 3.0 at all: creating
+    # the slave fails ("Unsupported FMI version", the same for the Reference
+    # FMUs' Dahlquist 3.0) and returns a null slave, which libcosimpy hands
+    # to cosim_execution_add_slave: the segfault. Check the refusal without
+    # crashing; should a libcosim load FMI 3, run it as the FMI 2 test does
+    pytest.importorskip("libcosimpy.CosimExecution")
+    import ctypes
+    import libcosimpy
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    library = ctypes.CDLL(str(next(Path(libcosimpy.__file__).parent.rglob(
+        "libcosimc.so"))))
+    library.cosim_last_error_message.restype = ctypes.c_char_p
+    slave = CosimLocalSlave(fmu_path=str(fmus[("BouncingBall", "3.0")]),
+                            instance_name="ball")
+    if not slave._CosimLocalSlave__ptr:
+        assert b"Unsupported FMI version" in \
+            library.cosim_last_error_message()
+        return
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimObserver import CosimObserver
+    execution = CosimExecution.from_step_size(step_size=10_000_000)
+    index = execution.add_local_slave(local_slave=slave)
+    refs = {v.name.decode() if isinstance(v.name, bytes) else v.name:
+            v.reference for v in execution.slave_variables(slave_index=index)}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    heights = []
+    for _ in range(300):
+        assert execution.step()
+        heights.append(observer.last_real_values(
+            slave_index=index, variable_references=[refs["h"]])[0])
+    assert_allclose(heights, _bouncing_ball(0.01 * np.arange(1, 301)),
+                    atol=1e-8)
+
+
 def test_windows_binary_from_mingw(tmp_path):
     # --windows: binaries/win64/NAME.dll (FMI 2) cross-compiled with
     # mingw-w64, exporting the FMI functions, importing only system DLLs
