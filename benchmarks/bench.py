@@ -541,6 +541,70 @@ def bench_fit():
                        "cores, as judder fit ran before issue 20"}
 
 
+#: MSL's first example, a driveline of Modelica.Mechanics.Rotational.
+MSL_CLASS = "Modelica.Mechanics.Rotational.Examples.First"
+
+
+def _msl_folder():
+    """The Modelica Standard Library: ../shared/msl beside the repository
+    or a folder of MODELICAPATH holding Modelica/package.mo; or None."""
+    import os
+    root = Path(__file__).resolve().parents[1]
+    for folder in [root.parent / "shared" / "msl"] + [
+            Path(p) for p in os.environ.get("MODELICAPATH", "").split(
+                os.pathsep) if p]:
+        if (folder / "Modelica" / "package.mo").is_file():
+            return folder
+    return None
+
+
+def bench_msl_compile():
+    """python -m fmu of MSL's Rotational.Examples.First (FMI 2.0): rumoca
+    flattening the model anew (the flat-model cache off; rumoca's own
+    cache of parsed files may be warm), against the same build from the
+    flat-model cache (fmu/cache.py); both FMUs simulated by fmpy."""
+    import os
+    import tempfile
+    from fmpy import simulate_fmu
+    from fmu.build import build_fmu
+    from fmu.frontend import find_class
+    msl = _msl_folder()
+    if msl is None:
+        print("msl-compile: no MSL in ../shared/msl nor on MODELICAPATH; "
+              "skipped", file=sys.stderr)
+        return
+    library = Path(__file__).resolve().parents[1] / "modelica"
+    roots = [msl, library]
+    source, _ = find_class(MSL_CLASS, roots)
+    runs = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        saved = os.environ.get("JUDDER_FMU_CACHE")
+        folder = str(Path(tmp) / "cache")
+        try:
+            for label, cache in (("cold", "off"), ("fill", folder),
+                                 ("cached", folder)):
+                os.environ["JUDDER_FMU_CACHE"] = cache
+                target = Path(tmp) / f"{label}.fmu"
+                _, runs[label] = _timed(build_fmu, source, MSL_CLASS, target,
+                                        roots=roots)
+        finally:
+            if saved is None:
+                os.environ.pop("JUDDER_FMU_CACHE")
+            else:
+                os.environ["JUDDER_FMU_CACHE"] = saved
+        speeds = [simulate_fmu(str(Path(tmp) / f"{label}.fmu"), stop_time=1,
+                               output=["inertia3.w"])["inertia3.w"]
+                  for label in ("cold", "cached")]
+    yield {"name": "msl-first-compile", "points": 1,
+           "seconds": runs["cached"], "baseline_seconds": runs["cold"],
+           "speedup": runs["cold"] / runs["cached"],
+           "max_error": float(np.abs(speeds[0] - speeds[1]).max()),
+           "target_seconds": 30.0,
+           "note": f"{MSL_CLASS} from {msl}: baseline rumoca flattening "
+                   "anew, fast path the flat-model cache; max_error: "
+                   "inertia3.w of the two FMUs (fmpy CS)"}
+
+
 BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "modelica-map": bench_modelica_map,
               "fmu-map": bench_fmu_map,
@@ -549,7 +613,8 @@ BENCHMARKS = {"floquet-maps": bench_floquet_maps,
               "engagement": bench_engagement,
               "chart": bench_chart,
               "fit": bench_fit,
-              "envelope": bench_envelope}
+              "envelope": bench_envelope,
+              "msl-compile": bench_msl_compile}
 
 
 def main(names):

@@ -37,7 +37,8 @@ import numpy as np
 import scipy.linalg
 
 from fmu.backend import to_ode
-from fmu.frontend import load_flat_model
+from fmu.frontend import (FrontEndError, find_class, load_flat_model,
+                          modelica_path)
 from infra.errors import JudderError, ParameterError
 
 from .specs import ParameterSpec, parse_overrides
@@ -63,15 +64,14 @@ class ModelicaError(JudderError):
 
 def _source(class_name, roots):
     """The ``.mo`` file of ``class_name`` in one of the library roots."""
-    for root in roots:
-        candidate = Path(root).joinpath(*class_name.split(".")) \
-            .with_suffix(".mo")
-        if candidate.is_file():
-            return candidate
-    raise ModelicaError(
-        f"modelica = {class_name!r} is not found in "
-        f"{', '.join(str(r) for r in roots)}; allowed: a class whose file is "
-        "<library>/<Package>/.../<Class>.mo")
+    try:
+        return find_class(class_name, roots)[0]
+    except FrontEndError:
+        raise ModelicaError(
+            f"modelica = {class_name!r} is not found in "
+            f"{', '.join(str(r) for r in roots)} (--library, the project's "
+            "library and MODELICAPATH); allowed: a class whose file is "
+            "<library>/<Package>/.../<Class>.mo or in a package.mo") from None
 
 
 @lru_cache(maxsize=16)
@@ -84,14 +84,17 @@ def compile_class(class_name, library=None):
         Full name, e.g. ``Judder.Examples.Driveline4DOF``.
     library : str or None
         Folder holding the user's top-level package; the project's library
-        (:data:`LIBRARY`) is always on the path, so a user's model can use
-        ``Judder.Components``.
+        (:data:`LIBRARY`) and the folders of ``MODELICAPATH`` (the
+        Modelica Standard Library, say) follow it on the path, so a
+        user's model can use ``Judder.Components`` and
+        ``Modelica.Mechanics.Rotational``.
 
     Returns
     -------
     fmu.backend.OdeModel
     """
-    roots = ([Path(library)] if library is not None else []) + [LIBRARY]
+    roots = modelica_path(([Path(library)] if library is not None else [])
+                          + [LIBRARY])
     if library is not None and not Path(library).is_dir():
         raise ModelicaError(f"library = {library!r} is not a folder")
     return to_ode(load_flat_model(_source(class_name, roots), class_name,

@@ -10,7 +10,7 @@ from pathlib import Path
 from infra.errors import EXIT_ERROR, EXIT_OK, JudderError
 
 from .build import DEFAULT_TOLERANCE, build_fmu
-from .frontend import FrontEndError, class_source
+from .frontend import FrontEndError, find_class, modelica_path
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 #: Package whose examples are built by default.
@@ -53,9 +53,13 @@ def _build(argv):
                         help="full class names (default: every class of "
                              f"{EXAMPLES_PACKAGE}, as listed in its "
                              "package.order)")
-    parser.add_argument("--library", default=str(LIBRARY), metavar="DIR",
-                        help="folder holding the Modelica packages, or one "
-                             ".mo file holding a whole package")
+    parser.add_argument("--library", action="append", default=[],
+                        metavar="DIR",
+                        help="folder holding Modelica packages, or one .mo "
+                             "file holding a whole package; repeatable, "
+                             "searched before the folders of MODELICAPATH "
+                             "and the project's library (default: the "
+                             "project's library)")
     parser.add_argument("--out", default="build/fmu", metavar="DIR",
                         help="folder for the FMUs (default build/fmu)")
     parser.add_argument("--fmi", choices=("2.0", "3.0", "both"),
@@ -78,7 +82,10 @@ def _build(argv):
               "allowed: a relative tolerance > 0 and < 1 (e.g. 1e-6)",
               file=sys.stderr)
         return EXIT_ERROR
-    library = Path(args.library)
+    roots = modelica_path(args.library)
+    if LIBRARY not in roots:
+        roots.append(LIBRARY)   # Judder's components, for any model
+    library = Path(args.library[0]) if args.library else LIBRARY
     names = args.models or examples(library)
     if not names:
         print(f"fmu: error: no class given, and {library} has no "
@@ -87,14 +94,13 @@ def _build(argv):
     versions = ("2.0", "3.0") if args.fmi == "both" else (args.fmi,)
     try:
         for name in names:
-            source = library if library.is_file() else \
-                class_source(library, name)
+            source, _ = find_class(name, roots)
             for version in versions:
                 suffix = "" if version == "2.0" else "_fmi3"
                 target = Path(args.out) / f"{name.split('.')[-1]}{suffix}.fmu"
                 result = build_fmu(source, name, target, version=version,
-                                   roots=[source.parent if library.is_file()
-                                          else library],
+                                   roots=[r.parent if r.is_file() else r
+                                          for r in roots],
                                    tolerance=args.tolerance,
                                    windows=args.windows,
                                    author=args.author)

@@ -40,6 +40,7 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
+from .balance import excess
 from .frontend import FrontEndError
 
 __all__ = ["OdeModel", "Quantity", "to_ode"]
@@ -107,6 +108,12 @@ class OdeModel:
         Parameters bound to formulas in ``p``.
     outputs : list of Quantity
         Outputs of the model as formulas in ``t, x, p``.
+    locals : list of Quantity
+        Every other variable of the model (algebraic variables, states
+        removed by index reduction, outputs of components) as formulas
+        in ``t, x, p``, one per distinct formula.
+    aliases : list of (Quantity, str)
+        Variables whose formula is that of a local, with its name.
     experiment : dict
     eliminated : dict
         Variables removed by aliasing and index reduction, as formulas.
@@ -124,6 +131,8 @@ class OdeModel:
     inputs: list = field(default_factory=list)
     relations: list = field(default_factory=list)
     whens: list = field(default_factory=list)
+    locals: list = field(default_factory=list)
+    aliases: list = field(default_factory=list)
 
     def _symbols(self):
         x = _column(*[s.expression for s in self.states])
@@ -134,7 +143,8 @@ class OdeModel:
     def jacobian(self):
         """CasADi function ``jacobian(t, x, p) -> J``: the derivatives of
         ``[der(x); y]`` with respect to ``[x; parameters; inputs]``
-        (automatic differentiation), dense, and its sparsity."""
+        (automatic differentiation), dense, and its sparsity (the
+        unknowns of FMI: the locals have no directional derivatives)."""
         x, p = self._symbols()
         known = len(self.parameters) + len(self.inputs)
         y = _column(*[o.expression for o in self.outputs])
@@ -164,12 +174,14 @@ class OdeModel:
                 casadi.Function("reinit", [self.time, x, p, fired],
                                 [_column(*after)]))
 
-    def functions(self):
+    def functions(self, with_locals=False):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
         -> y`` and ``start(p) -> x0``; ``p`` is the tunable parameters
-        followed by the inputs."""
+        followed by the inputs; ``y`` is followed by the locals if
+        ``with_locals``."""
         x, p = self._symbols()
-        y = _column(*[o.expression for o in self.outputs])
+        y = _column(*[o.expression for o in self.outputs
+                      + (self.locals if with_locals else [])])
         x0 = _column(*[s.start for s in self.states])
         return (casadi.Function("ode", [self.time, x, p], [self.derivatives],
                                 ["t", "x", "p"], ["xdot"]),
@@ -331,7 +343,8 @@ def _to_ode(model):
 
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
                        model.time)
-    _reduce_index(system, states, {q.name for q in tunable} | {"time"},
+    _reduce_index(system, states, {q.name for q in tunable} | {"time"}
+                  | {r.symbol.name() for r in model.relations},
                   model.time, unknown_vars)
     derivatives = _solve_sorted(system, states, unknown_vars)
 
@@ -355,12 +368,46 @@ def _to_ode(model):
             continue
         formula = v.symbol if v.name in states else system.eliminated[v.name]
         outputs.append(_quantity(v, formula))
+    derivative_column = _column(*[derivatives[v.name] for v in order])
+    locals_, aliases = _locals(model, order, derivative_column, outputs,
+                               system.eliminated)
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
-        derivatives=_column(*[derivatives[v.name] for v in order]),
+        derivatives=derivative_column,
         parameters=tunable, calculated=calculated, outputs=outputs,
         experiment=model.experiment, eliminated=system.eliminated,
-        inputs=inputs, relations=relations, whens=whens)
+        inputs=inputs, relations=relations, whens=whens,
+        locals=locals_, aliases=aliases)
+
+
+def _locals(model, order, derivatives, outputs, eliminated):
+    """Every variable that is neither a state nor an output kept, as a
+    formula in ``t, x, p``: ``(locals, aliases)``, where a variable whose
+    formula is that of an earlier local is an alias of it (connections
+    make most flange angles and torques equal). States, derivatives and
+    outputs have no aliases: fmpy's FMI 3 validator takes an alias for
+    the state a derivative belongs to, so a flange angle equal to a
+    body's angle is a local of its own."""
+    shown = {v.name for v in order} | {o.name for o in outputs}
+    hidden = [v for v in model.variables
+              if v.role in ("state", "algebraic", "output")
+              and v.name not in shown]
+    if not hidden:
+        return [], []
+    formulas = _in_states(_column(*[eliminated[v.name] for v in hidden]),
+                          order, {v.name: derivatives[i]
+                                  for i, v in enumerate(order)}, eliminated)
+    known = {}   # unit, printed formula -> name of the local that has it
+    locals_, aliases = [], []
+    for i, v in enumerate(hidden):
+        formula = formulas[i]
+        key = (v.unit, str(formula))   # a torque is no alias of an angle
+        if key in known:
+            aliases.append((_quantity(v, formula), known[key]))
+        else:
+            known[key] = v.name
+            locals_.append(_quantity(v, formula))
+    return locals_, aliases
 
 
 def _events(model, order, derivatives, eliminated, parameter_symbols,
@@ -552,6 +599,9 @@ def _reduce_index(system, states, known, time, unknowns=None):
             if unknowns and _expose_constraint(system, states, known, time,
                                                unknowns):
                 continue
+            if _substitute_state_derivatives(system, states, known,
+                                             anywhere=True):
+                continue
             return
         count = {}
         for _, involved in constraints:
@@ -575,7 +625,7 @@ def _reduce_index(system, states, known, time, unknowns=None):
                                f"linearly in the constraint {residual}")
 
 
-def _substitute_state_derivatives(system, states, known):
+def _substitute_state_derivatives(system, states, known, anywhere=False):
     """Turn equations in derivatives into the constraints they hide.
 
     After the bodies' angles replace a relative angle, ``w_rel =
@@ -583,8 +633,13 @@ def _substitute_state_derivatives(system, states, known):
     bodies' ``w = der(phi)`` (a derivative equal to a state) substituted
     it is ``w_rel = b.w - a.w``: a constraint among states, which the next
     pass of index reduction differentiates (a second time for the angles).
-    Only equations that become constraints are rewritten; the equations
-    ``w = der(phi)`` themselves stay. Returns whether one was rewritten.
+    Only equations that become constraints are rewritten, or, with
+    ``anywhere``, equations left without a derivative (MSL's ``Speed``
+    source writes ``w = der(phi)`` with its ``phi`` a body's angle whose
+    ``w`` is a state, and ``w = w_ref``: with the body's speed in it,
+    ``w = body.w`` exposes the constraint ``body.w = w_ref(t)``); the
+    equations ``w = der(phi)`` themselves stay. Returns whether one was
+    rewritten.
     """
     names = set(states)
     derivatives = {v.derivative.name(): v.derivative for v in states.values()}
@@ -610,7 +665,8 @@ def _substitute_state_derivatives(system, states, known):
             continue
         rewritten = casadi.substitute(residual, old, new)
         found = {s.name() for s in casadi.symvar(rewritten)}
-        if found & names and found <= names | known:
+        if found & names and (found <= names | known or anywhere and not
+                              found & set(derivatives)):
             system.residuals[index] = rewritten
             return True
     return False
@@ -623,31 +679,65 @@ def _expose_constraint(system, states, known, time, unknowns):
     flange.phi`` and ``phi_rel = phi_other - flange.phi``: each equation
     holds states, knowns and the one algebraic ``flange.phi``, so neither
     is a constraint among states until ``flange.phi`` is solved from the
-    first (linear in it) and substituted into the second. Returns whether
-    such a variable was eliminated.
+    first (linear in it) and substituted into the second. MSL's
+    ``IdealGear`` hides it one level deeper (``phi_a = flange_a.phi -
+    phi_support``, ``phi_b = ...``, ``phi_a = ratio*phi_b``): the
+    variables determined by the states through a chain of such equations
+    are followed until an equation holds only them, states and knowns.
+    Returns whether such a variable was eliminated.
     """
     plain = set(states) | known
-    candidates = {}
+    defined = {}   # algebraic name -> equation that gives it from plain ones
+    progress = True
+    while progress:
+        progress = False
+        for index, residual in enumerate(system.residuals):
+            if index in defined.values():
+                continue
+            names = {s.name() for s in casadi.symvar(residual)}
+            extra = names - plain - set(defined)
+            if len(extra) != 1:
+                continue
+            name = extra.pop()
+            if name not in unknowns or name in system.eliminated:
+                continue
+            symbol = unknowns[name].symbol
+            slope = casadi.jacobian(residual, symbol)
+            if casadi.depends_on(slope, symbol) or not _nonzero(slope):
+                continue
+            defined[name] = index
+            progress = True
+    users = set(defined.values())
     for index, residual in enumerate(system.residuals):
         names = {s.name() for s in casadi.symvar(residual)}
-        extra = names - plain
-        if len(extra) == 1 and names & set(states):
-            name = extra.pop()
-            if name in unknowns and name not in system.eliminated:
-                candidates.setdefault(name, []).append(index)
-    for name, indices in candidates.items():
-        if len(indices) < 2:
+        if index in users or not names & set(defined) or \
+                not names <= plain | set(defined):
             continue
-        index = indices[0]
-        residual = system.residuals[index]
-        symbol = unknowns[name].symbol
-        slope = casadi.jacobian(residual, symbol)
-        if casadi.depends_on(slope, symbol) or not _nonzero(slope):
-            continue
-        formula = -casadi.substitute(residual, symbol, casadi.SX(0)) / slope
-        system.remove(index)
-        _replace(system, states, unknowns, symbol, formula, time)
-        return True
+        needed, pending = set(), list(names & set(defined))
+        touched = names & set(states)
+        while pending:   # the defined variables this constraint rests on
+            name = pending.pop()
+            if name not in needed:
+                needed.add(name)
+                used = {s.name() for s in casadi.symvar(
+                    system.residuals[defined[name]])}
+                touched |= used & set(states)
+                pending += [n for n in used if n in defined]
+        if not touched:
+            continue   # among parameters only: not a constraint on states
+        for name in needed:
+            index = defined[name]
+            residual = system.residuals[index]
+            if {s.name() for s in casadi.symvar(residual)} - plain \
+                    != {name}:
+                continue
+            symbol = unknowns[name].symbol
+            slope = casadi.jacobian(residual, symbol)
+            formula = -casadi.substitute(residual, symbol,
+                                         casadi.SX(0)) / slope
+            system.remove(index)
+            _replace(system, states, unknowns, symbol, formula, time)
+            return True
     return False
 
 
@@ -664,17 +754,23 @@ def _solve_sorted(system, states, unknown_vars):
         [v.symbol for n, v in unknown_vars.items() if n not in
          system.eliminated]
     residuals = system.residuals
-    if len(residuals) != len(unknowns):
-        raise BackEndError(f"{len(residuals)} equations for {len(unknowns)} "
-                           "unknowns after index reduction: the model is "
-                           "not balanced")
-    if not unknowns:
+    if not unknowns and not residuals:
         return {}
     sparsity = casadi.jacobian_sparsity(_column(*residuals),
                                         _column(*unknowns))
     rows, cols = sparsity.get_triplet()
     incidence = csr_matrix((np.ones(len(rows)), (rows, cols)),
                            shape=(len(residuals), len(unknowns)))
+    if len(residuals) != len(unknowns):
+        over, under = excess(incidence.toarray())
+        detail = ("; over-determined: " + system.describe(over[:12])
+                  if over else "") + \
+            ("; under-determined: " + ", ".join(str(unknowns[j])
+                                                for j in under[:12])
+             if under else "")
+        raise BackEndError(f"{len(residuals)} equations for {len(unknowns)} "
+                           "unknowns after index reduction: the model is "
+                           f"not balanced{detail}")
     match = maximum_bipartite_matching(incidence, perm_type="column")
     if np.any(match < 0):
         raise BackEndError("structurally singular: no unknown left for "

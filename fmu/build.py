@@ -115,7 +115,8 @@ def _config(ode, guid, tolerance):
         f"#define MODEL_NX {len(layout.states)}",
         f"#define MODEL_NP {len(layout.parameters)}",
         f"#define MODEL_NC {len(layout.calculated)}",
-        f"#define MODEL_NY {len(layout.outputs)}",
+        f"#define MODEL_NY {len(layout.outputs) + len(layout.locals)}",
+        f"#define MODEL_NYO {len(layout.outputs)}",
         f"#define MODEL_NU {len(layout.inputs)}",
         f"#define MODEL_NR {len(ode.relations)}",
         f"#define MODEL_NW {len(ode.whens)}",
@@ -149,7 +150,7 @@ def _config(ode, guid, tolerance):
 
 
 def _generate_c(ode, folder):
-    ode_f, outputs_f, start_f = ode.functions()
+    ode_f, outputs_f, start_f = ode.functions(with_locals=True)
     p = casadi.vertcat(casadi.SX(0, 1),
                        *[q.expression for q in ode.parameters + ode.inputs
                          + ode.relations])

@@ -2,9 +2,12 @@
 
 Value references follow ``fmu/c/model.h``: 0 time, then the states,
 their derivatives, the tunable parameters, the calculated parameters,
-the outputs and the inputs. States are calculated at initialisation from the parameters
-(their Modelica start values may depend on them), so their start values
-are set through parameters.
+the outputs, the locals (every other variable of the model, causality
+``local``) and the inputs. A variable equal to another (connected flange
+angles and torques) is its alias: the same value reference in FMI 2, an
+``<Alias>`` element in FMI 3. States are calculated at initialisation
+from the parameters (their Modelica start values may depend on them), so
+their start values are set through parameters.
 """
 
 from datetime import datetime, timezone
@@ -24,6 +27,8 @@ class Layout:
         self.parameters = ode.parameters
         self.calculated = ode.calculated
         self.outputs = ode.outputs
+        self.locals = ode.locals
+        self.aliases = ode.aliases
         self.inputs = ode.inputs
         nx, np_, nc = len(ode.states), len(ode.parameters), len(ode.calculated)
         self.vr_states = 1
@@ -31,14 +36,16 @@ class Layout:
         self.vr_parameters = 1 + 2 * nx
         self.vr_calculated = self.vr_parameters + np_
         self.vr_outputs = self.vr_calculated + nc
-        self.vr_inputs = self.vr_outputs + len(ode.outputs)
+        self.vr_locals = self.vr_outputs + len(ode.outputs)
+        self.vr_inputs = self.vr_locals + len(ode.locals)
         self.vr_indicators = self.vr_inputs + len(ode.inputs)
         self.relations = ode.relations
 
     def units(self):
         names = {q.unit for group in (self.states, self.parameters,
                                       self.calculated, self.outputs,
-                                      self.inputs)
+                                      self.locals, self.inputs,
+                                      [q for q, _ in self.aliases])
                  for q in group if q.unit}
         for q in self.states:
             if q.unit:
@@ -82,7 +89,8 @@ def _unit_definitions(layout, extra=()):
     units = sorted(set(layout.units()) | set(extra))
     displays = {}
     for group in (layout.states, layout.parameters, layout.calculated,
-                  layout.outputs, layout.inputs):
+                  layout.outputs, layout.locals, layout.inputs,
+                  [q for q, _ in layout.aliases]):
         for q in group:
             if _display_unit(q):
                 displays.setdefault(q.unit, set()).add(q.display_unit)
@@ -152,9 +160,19 @@ def _variables(layout):
         rows.append((q.name, layout.vr_calculated + i, "calculated", q))
     for i, q in enumerate(layout.outputs):
         rows.append((q.name, layout.vr_outputs + i, "output", q))
+    for i, q in enumerate(layout.locals):
+        rows.append((q.name, layout.vr_locals + i, "local", q))
     for i, q in enumerate(layout.inputs):
         rows.append((q.name, layout.vr_inputs + i, "input", q))
     return rows
+
+
+def _aliases_of(layout):
+    """``{name: [alias Quantity, ...]}``: the aliases of each variable."""
+    found = {}
+    for q, target in layout.aliases:
+        found.setdefault(target, []).append(q)
+    return found
 
 
 def _indicators(layout):
@@ -258,8 +276,9 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool, about):
     lines.append("  <ModelVariables>")
     index_of = {}
     rows = _variables(layout)
-    for index, (name, vr, kind, q) in enumerate(rows, start=1):
-        index_of[(kind, name)] = index
+    aliases = _aliases_of(layout)
+    for name, vr, kind, q in rows:
+        index_of[(kind, name)] = len(index_of) + 1
         common = dict(name=name, valueReference=vr,
                       description=q.description or None)
         if kind == "state":
@@ -287,11 +306,22 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool, about):
                          variability="continuous")
             real = _attr(**_typed(q), start=_number(q.start),
                          **_bounds(q))
+        elif kind == "local":
+            head = _attr(**common, causality="local",
+                         variability="continuous", initial="calculated")
+            real = _attr(**_typed(q))
         else:
             head = _attr(**common, causality="output",
                          variability="continuous", initial="calculated")
             real = _attr(**_typed(q))
         lines.append(f"    <ScalarVariable{head}><Real{real}/></ScalarVariable>")
+        for alias in aliases.get(name, ()):
+            head = _attr(name=alias.name, valueReference=vr,
+                         description=alias.description or None,
+                         causality="local", variability="continuous")
+            lines.append(f"    <ScalarVariable{head}><Real"
+                         f"{_attr(**_typed(alias))}/></ScalarVariable>")
+            index_of[("alias", alias.name)] = len(index_of) + 1
     lines.append("  </ModelVariables>")
     outputs = [i for (k, _), i in index_of.items() if k == "output"]
     derivatives = [i for (k, _), i in index_of.items() if k == "derivative"]
@@ -344,6 +374,7 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool, about):
                  'causality="independent" variability="continuous" '
                  'description="Simulation time" unit="s"/>')
     state_vr = {}
+    aliases = _aliases_of(layout)
     for name, vr, kind, q in _variables(layout):
         common = dict(name=name, valueReference=vr,
                       description=q.description or None)
@@ -371,11 +402,20 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool, about):
             attrs = _attr(**common, causality="input",
                           variability="continuous", **_typed(q),
                           start=_number(q.start), **_bounds(q))
+        elif kind == "local":
+            attrs = _attr(**common, causality="local",
+                          variability="continuous", initial="calculated",
+                          **_typed(q))
         else:
             attrs = _attr(**common, causality="output",
                           variability="continuous", initial="calculated",
                           **_typed(q))
-        lines.append(f"    <Float64{attrs}/>")
+        shown = ["      <Alias" + _attr(
+                     name=a.name, description=a.description or None,
+                     displayUnit=_display_unit(a)) + "/>"
+                 for a in aliases.get(name, ())]
+        lines += [f"    <Float64{attrs}>", *shown, "    </Float64>"] \
+            if shown else [f"    <Float64{attrs}/>"]
     for name, vr, text in _indicators(layout):
         lines.append("    <Float64" + _attr(
             name=name, valueReference=vr, description=text,

@@ -11,6 +11,7 @@ knows about drivelines: the equations come from the ``.mo`` source.
 
 from dataclasses import dataclass, field
 from itertools import product
+import os
 from pathlib import Path
 import re
 
@@ -20,7 +21,7 @@ import numpy as np
 from infra.errors import JudderError
 
 __all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
-           "FrontEndError"]
+           "find_class", "modelica_path", "FrontEndError"]
 
 
 class FrontEndError(JudderError):
@@ -215,6 +216,12 @@ class _Expressions:
 
     def __init__(self, storage, symbols, derivatives, time):
         graph = storage["expressions"]
+        self._functions = storage.get("functions") or []
+        self._known = {raw["name"] for raw in storage["variables"]
+                       if raw["role"] in ("parameter", "constant")}
+        self._relation_count = len(storage.get("relations") or [])
+        self._no_event = 0   # depth of noEvent(...) being converted
+        self._frames = []   # values of the inlined functions' variables
         self._nodes = graph["nodes"]
         self._operands = graph["operands"]
         self._symbols, self._derivatives = symbols, derivatives
@@ -258,6 +265,17 @@ class _Expressions:
                 where=self.where)
         return self.relations[position].symbol
 
+    def _is_time_event(self, body):
+        """Whether a relation compares time with parameters (``time <
+        startTime`` of MSL's Step and Ramp): rumoca lists it as a time
+        event, not as a relation; it generates an event all the same,
+        located by its indicator ``time - startTime``."""
+        lhs, rhs = self(body["lhs"]), self(body["rhs"])
+        if isinstance(lhs, np.ndarray) or isinstance(rhs, np.ndarray):
+            return False
+        names = {v.name() for v in casadi.symvar(casadi.SX(lhs - rhs))}
+        return "time" in names and names - {"time"} <= self._known
+
     def _args(self, index, count):
         start = self._offsets[index]
         return [self(i) for i in self._operands[start:start + count]]
@@ -275,12 +293,19 @@ class _Expressions:
                 return self._derivatives[position]
             if role == "pre_state" and self.pre_is_state:
                 return self._symbols[position]
+            if role.startswith("function_"):
+                return self._function_variable(role, position)
             if role not in _ROLES:
                 raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
                                     "references (pre, edge, change) are not "
                                     "supported by the FMU back end")
             return self._symbols[position]
         if kind == "binary" and index in self.relation_of:
+            return self._relation(index, body)
+        if kind == "binary" and body["operator"] in _RELATIONS and \
+                not self._no_event and self._is_time_event(body):
+            self.relation_of[index] = self._relation_count
+            self._relation_count += 1
             return self._relation(index, body)
         if kind == "binary":
             op = body["operator"]
@@ -324,12 +349,69 @@ class _Expressions:
             if name not in _BUILTIN:
                 raise FrontEndError(f"{self.where}: function {name}() is not "
                                     "supported by the FMU back end")
-            return _BUILTIN[name](*self._args(index, body["operand_count"]))
+            self._no_event += name == "no_event"
+            try:
+                args = self._args(index, body["operand_count"])
+            finally:
+                self._no_event -= name == "no_event"
+            return _BUILTIN[name](*args)
         if kind == "conditional":
             args = self._args(index, body["operand_count"])
             return _conditional(args)
+        if kind == "call":
+            return self._call(index, body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
+
+    def _function_variable(self, role, reference):
+        """A parameter, output or local of the function being inlined."""
+        key = (role, reference.get("ordinal"))
+        if not self._frames or key not in self._frames[-1]:
+            raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
+                                f"{reference} is used before it has a value")
+        return self._frames[-1][key]
+
+    def _call(self, index, body):
+        """Inline a call of a Modelica function whose algorithm is a
+        sequence of assignments (``Modelica.Math``'s wrappers of the
+        builtins, small user functions); the requested output's value."""
+        function = self._functions[body["function"]]
+        name = function["name"]
+        args = self._args(index, body["operand_count"])
+        declared = function.get("parameters") or []
+        if len(args) > len(declared):
+            raise FrontEndError(f"{self.where}: {name}() takes "
+                                f"{len(declared)} arguments, not {len(args)}")
+        if len(args) < len(declared) or function.get("external") \
+                or len(self._frames) > 20:
+            why = "external functions" if function.get("external") else \
+                "default arguments" if len(args) < len(declared) else \
+                "recursive functions"
+            raise FrontEndError(f"{self.where}: {name}(): {why} are not "
+                                "supported by the FMU back end")
+        frame = {("function_parameter", k): value
+                 for k, value in enumerate(args)}
+        saved, self._cache = self._cache, {}
+        self._frames.append(frame)
+        try:
+            for statement in function.get("statements") or []:
+                kind, step = next(iter(statement.items()))
+                if kind != "assignment":
+                    raise FrontEndError(
+                        f"{self.where}: {name}(): {kind} statements in a "
+                        "function are not supported by the FMU back end "
+                        "(assignments are)")
+                frame[("function_output", step["target"])] = \
+                    self(step["rhs"])
+                self._cache = {}
+        finally:
+            self._frames.pop()
+            self._cache = saved
+        key = ("function_output", body["output"])
+        if key not in frame:
+            raise FrontEndError(f"{self.where}: {name}(): output "
+                                f"{body['output'] + 1} is never assigned")
+        return frame[key]
 
 
 def _conditional(args):
@@ -364,6 +446,58 @@ def class_source(library, name):
                         f"nor a package file holding it, in {library}")
 
 
+def modelica_path(libraries=()):
+    """The library roots, searched as Modelica tools search them: the
+    ``libraries`` given first, then the folders of the environment
+    variable ``MODELICAPATH`` (separated by ``os.pathsep``), each once."""
+    roots = []
+    entries = list(libraries) + \
+        os.environ.get("MODELICAPATH", "").split(os.pathsep)
+    for entry in entries:
+        if entry and Path(entry) not in roots:
+            roots.append(Path(entry))
+    return roots
+
+
+def find_class(name, roots):
+    """``(file, root)`` of class ``name``: the first root of ``roots``
+    holding its top-level package (``Modelica`` of
+    ``Modelica.Mechanics.Rotational.Examples.First``), as MODELICAPATH is
+    searched; a root may be a ``.mo`` file holding a whole package.
+
+    Raises
+    ------
+    FrontEndError
+        If no root holds it (the message lists the roots searched), or
+        the first root holding its package does not declare it.
+    """
+    top = name.split(".")[0]
+    for root in map(Path, roots):
+        if root.is_file() and root.suffix == ".mo":
+            if root.stem == top:
+                return root, root.parent
+            continue
+        if (root / top).is_dir() or (root / f"{top}.mo").is_file():
+            source = class_source(root, name)
+            short = name.split(".")[-1]
+            if source.stem == short or _declares(source, short):
+                return source, root
+            raise FrontEndError(f"{name}: not found: package {top} is in "
+                                f"{root}, but neither {short}.mo nor "
+                                f"{source} declares {short}")
+    searched = ", ".join(str(r) for r in roots) or "(none)"
+    raise FrontEndError(f"{name}: no library on the path holds package "
+                        f"{top} (searched --library and MODELICAPATH: "
+                        f"{searched})")
+
+
+def _declares(source, short_name):
+    """Whether a package file holds a class named ``short_name``."""
+    return re.search(r"\b(?:model|block|class|package|record|connector|"
+                     r"function|type)\s+" + re.escape(short_name) + r"\b",
+                     source.read_text(errors="replace")) is not None
+
+
 def package_version(model_name, roots):
     """The ``version`` annotation of the top-level package of
     ``model_name`` (``Judder`` of ``Judder.Examples.Driveline4DOF``), or
@@ -391,8 +525,23 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots):
+def _flatten(path, model_name, roots, use_cache=True):
+    """rumoca's flat model of ``model_name``, from the cache
+    (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
     import rumoca
+    from . import cache
+    if not use_cache:
+        return _flatten_with_rumoca(rumoca, path, model_name, roots,
+                                    use_cache=False)
+    key = cache.cache_key(path, model_name, roots, rumoca.version())
+    flat = cache.load(key)
+    if flat is None:
+        flat = _flatten_with_rumoca(rumoca, path, model_name, roots)
+        cache.store(key, flat)
+    return flat
+
+
+def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
     diagnostics = rumoca.validate(str(path), model=model_name)
     errors = [d for d in diagnostics
               if str(getattr(d, "severity", "error")).lower().endswith(
@@ -405,7 +554,10 @@ def _flatten(path, model_name, roots):
         model = session.load(str(path), model=model_name)
         return model.to_dict()
     except Exception as exc:   # rumoca raises its own error classes
-        message = f"{path}: {exc}{_library_errors(rumoca, roots)}"
+        from .balance import explain_unbalanced
+        message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}" + \
+            (explain_unbalanced(str(exc), model_name, roots)
+             if use_cache else "")
     finally:
         # rumoca's objects are unsendable: dropped in another thread (a
         # Dask worker's event loop holding this frame in a traceback)
@@ -414,10 +566,15 @@ def _flatten(path, model_name, roots):
     raise FrontEndError(message)
 
 
-def _library_errors(rumoca, roots):
-    """Syntax errors anywhere in the library (rumoca only says 'failed')."""
+def _library_errors(rumoca, roots, path):
+    """Syntax errors anywhere in the model's own library (rumoca only says
+    'failed'); the other libraries of the path (the MSL: 2,400 files) are
+    not searched."""
     found = []
+    path = Path(path).resolve()
     for root in roots:
+        if not path.is_relative_to(Path(root).resolve()):
+            continue
         for source in sorted(Path(root).rglob("*.mo")):
             try:
                 source.read_bytes().decode("utf-8")
@@ -439,11 +596,10 @@ _REFUSED = {
     "model_event_transactions": "when-equations",
     "discrete_real_equations": "discrete-time equations (when, sample)",
     "previous_values": "pre()",
-    "time_events": "time events (sample, time >= ...)",
     "structured_roots": "event conditions",
     "discrete_value_owners": "Integer or Boolean variables",
     "clocks": "clocked equations", "clock_ownerships": "clocked equations",
-    "delays": "delay()", "functions": "function calls",
+    "delays": "delay()",
     "domains": "for-equations and array equations",
     "terminals": "terminal()",
     "initial_discrete_values": "initial values of discrete variables",
@@ -499,7 +655,8 @@ def _check_supported(storage, model_name, where):
             raise FrontEndError(f"{place}: {raw['name']}: arrays of "
                                 "variables are not supported by the FMU back "
                                 "end (arrays of parameters are)")
-        if value_type.get("scalar") != "real":
+        if value_type.get("scalar") != "real" and \
+                raw["role"] not in ("parameter", "constant"):
             raise FrontEndError(f"{place}: {raw['name']}: "
                                 f"{value_type.get('scalar')} variables are "
                                 "not supported by the FMU back end")
@@ -512,7 +669,7 @@ def _check_supported(storage, model_name, where):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=()):
+def load_flat_model(path, model_name, roots=(), cache=True):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -523,6 +680,8 @@ def load_flat_model(path, model_name, roots=()):
         Full class name, e.g. ``Judder.Examples.Driveline4DOF``.
     roots : sequence of paths
         Library folders the model uses.
+    cache : bool
+        Read and keep rumoca's flat model in :mod:`fmu.cache`.
 
     Raises
     ------
@@ -531,7 +690,7 @@ def load_flat_model(path, model_name, roots=()):
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent])
+    flat = _flatten(path, model_name, roots or [path.parent], cache)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where)
@@ -560,10 +719,15 @@ def load_flat_model(path, model_name, roots=()):
             elements, values = np.array([elements], dtype=object), \
                 {k: np.array([v], dtype=object) for k, v in values.items()}
         quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
+        role = raw["role"]
+        if role == "parameter" and \
+                storage["value_types"][raw["value_type"]].get("scalar") \
+                != "real":
+            role = "constant"   # Boolean, Integer: evaluated at translation
         for position in np.ndindex(elements.shape):
             symbol = elements[position]
             variables.append(Variable(
-                name=symbol.name(), role=raw["role"], symbol=symbol,
+                name=symbol.name(), role=role, symbol=symbol,
                 derivative=derivatives.get(index),
                 unit=attributes.get("unit") or "",
                 description=attributes.get("description") or "",
@@ -588,6 +752,14 @@ def load_flat_model(path, model_name, roots=()):
                                     "back end")
             sections[section].append(convert(body["residual"]))
             places[section].append(convert.where)
+    for v in variables:
+        # a fixed start of a variable that is not a state is an initial
+        # equation (MSL's Spring(phi_rel(fixed=true)))
+        if v.role in ("algebraic", "output") and v.fixed and \
+                v.start is not None:
+            sections["initialization_equation_operations"].append(
+                v.symbol - v.start)
+            places["initialization_equation_operations"].append(v.where)
     whens = _whens(storage, convert, where, variables)
     return FlatModel(
         name=model_name, variables=variables,

@@ -29,7 +29,8 @@ from fmu.frontend import FrontEndError  # noqa: E402
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement",
-            "TestBenchFullEngagement", "TestBenchLockUp"]
+            "TestBenchFullEngagement", "TestBenchLockUp",
+            "Driveline4DOFInputs"]
 W_IN = 1000 * 2 * np.pi / 60
 
 
@@ -105,6 +106,84 @@ def test_4dof_fmu_matches_eq1(fmus, version, kind):
                           output=["w_upstream", "w_downstream",
                                   "inertia2.phi", "inertia1.w"], **options)
     assert _relative_error(result, _eq1(60.0, 0.3e5)) < 1e-6
+
+
+def _eq1_pieces(pieces, t_end):
+    """Eq. (1) by scipy with the pressure and the engine torque constant
+    on each piece: ``pieces`` are (start time, pressure, engine torque);
+    a pressure p is p_m + p_f cos(2 pi 0 t) with p_f = p - p_m."""
+    params = get_preset("paper-4dof")
+    driveline = build_driveline(params)
+    torque = params["mu0"] * params.clutch_factor * params["p_m"]
+    state = [0, -torque / 3856, -torque / 3856 - torque / 32885, 0,
+             W_IN, W_IN, W_IN, 0]
+    solutions = []
+    for k, (start, pressure, engine) in enumerate(pieces):
+        end = pieces[k + 1][0] if k + 1 < len(pieces) else t_end
+        p_f = pressure - params["p_m"]
+        solution = solve_ivp(
+            lambda t, x: driveline.state_matrix(t, 0.0, p_f) @ x
+            + driveline.state_forcing(t, 0.0, p_f, engine_torque=engine,
+                                      resistant_torque=torque),
+            (start, end), state, method="DOP853", rtol=1e-13, atol=1e-13,
+            dense_output=True)
+        state = solution.y[:, -1]
+        solutions.append((start, end, solution.sol))
+    return lambda t: np.column_stack([next(
+        sol for start, end, sol in solutions if start <= s <= end)(s)
+        for s in np.atleast_1d(t)])
+
+
+def test_input_variant_follows_its_inputs(fmus):
+    """Driveline4DOFInputs (clutch_pressure, engine_torque as FMU inputs):
+    constant inputs give Driveline4DOF without dither bit for bit; a step
+    of each input, on communication points of Co-Simulation, gives Eq. (1)
+    integrated piecewise."""
+    p_m, torque = 1e6, 0.09 * 8 * 0.075 * 0.01 * 1e6
+    names = ["w_upstream", "w_downstream", "inertia2.phi", "inertia1.w",
+             "actuation_pressure"]
+    fields = [("time", float), ("clutch_pressure", float),
+              ("engine_torque", float)]
+    constant = np.array([(0.0, p_m, torque), (1.0, p_m, torque)], fields)
+    for version in ("2.0", "3.0"):
+        variables = {v.name: v for v in fmpy.read_model_description(str(
+            fmus[("Driveline4DOFInputs", version)])).modelVariables}
+        assert [(n, variables[n].causality, variables[n].unit) for n in
+                ("clutch_pressure", "engine_torque")] == [
+            ("clutch_pressure", "input", "Pa"),
+            ("engine_torque", "input", "N.m")]
+        for kind in ("ModelExchange", "CoSimulation"):
+            ours = simulate_fmu(str(fmus[("Driveline4DOFInputs", version)]),
+                                fmi_type=kind, stop_time=0.5,
+                                output_interval=1e-3, input=constant,
+                                output=names)
+            theirs = simulate_fmu(str(fmus[("Driveline4DOF", version)]),
+                                  fmi_type=kind, stop_time=0.5,
+                                  output_interval=1e-3, output=names,
+                                  start_values={"p_f": 0.0})
+            for name in names:
+                assert np.array_equal(ours[name], theirs[name]), name
+    # +0.5 bar from 0.2 s, +100 N m from 0.4 s; Co-Simulation holds each
+    # input over a step, so the table changes just before those points
+    steps = np.array([(0.0, p_m, torque), (0.1995, p_m, torque),
+                      (0.2, p_m + 0.5e5, torque),
+                      (0.3995, p_m + 0.5e5, torque),
+                      (0.4, p_m + 0.5e5, torque + 100.0),
+                      (1.0, p_m + 0.5e5, torque + 100.0)], fields)
+    result = simulate_fmu(str(fmus[("Driveline4DOFInputs", "2.0")]),
+                          fmi_type="CoSimulation", stop_time=1.0,
+                          output_interval=1e-3, input=steps, output=names)
+    reference = _eq1_pieces([(0.0, p_m, torque), (0.2, p_m + 0.5e5, torque),
+                             (0.4, p_m + 0.5e5, torque + 100.0)], 1.0)
+    y = reference(result["time"])
+    for name, row in [("w_upstream", 6), ("w_downstream", 7),
+                      ("inertia2.phi", 1), ("inertia1.w", 4)]:
+        assert_allclose(result[name], y[row], rtol=0,
+                        atol=1e-7 * np.abs(y[row]).max(), err_msg=name)
+    # (fmpy records the outputs of a communication point before it sets
+    # the inputs there)
+    assert_allclose(result["actuation_pressure"],
+                    np.where(result["time"] <= 0.2, p_m, p_m + 0.5e5))
 
 
 #: Dither settings of the engagement benchmark (benchmarks/bench.py).

@@ -46,6 +46,8 @@ REFUSED = [
      "supported", 2),
     ("Overdetermined", "the initialisation is overdetermined", 4),
     ("ArrayVariable", "arrays of variables are not supported", 3),
+    ("TooManyEquations", "1 equation(s) too many", 7),
+    ("TooFewEquations", "1 equation(s) missing", 3),
 ]
 #: The author attribute every corpus FMU is built with.
 AUTHOR = "Judder test corpus"
@@ -237,6 +239,23 @@ def test_refused_with_construct_and_place(tmp_path, capsys, name, words,
     assert words in stderr, stderr
     assert f"{name}.mo:{line}:" in stderr, stderr
     assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("name, named", [
+    ("TooManyEquations", [".mo:7: 0 = (y-(2.*x))", ".mo:8: 0 = (y-(x+1))"]),
+    ("TooFewEquations", [".mo:3: y", ".mo:4: z"])])
+def test_unbalanced_model_names_what_is_in_excess(tmp_path, capsys, name,
+                                                   named):
+    # rumoca counts 3 equations for 2 unknowns (or 2 for 3); the refusal
+    # names the over-determined equations (both give y) or the
+    # under-determined variables (y + z = x leaves one free), with lines
+    from fmu.__main__ import main
+    assert main([name, "--library", str(CORPUS), "--out", str(tmp_path),
+                 "--fmi", "2.0"]) == 2
+    stderr = capsys.readouterr().err
+    for words in named:
+        assert f"{name}{words}" in stderr, stderr
+    assert ".mo:6:" not in stderr   # der(x) = -k*x is not in excess
 
 
 def test_refusal_from_the_command_line(tmp_path):
@@ -571,6 +590,44 @@ def test_a_second_importer_gives_the_same_results(fmus):
     result = _run(fmus, "BouncingBall", "2.0", "CoSimulation", output=["h"],
                   output_interval=0.01, stop_time=3.0)
     assert_allclose(heights, result["h"][1:], atol=1e-12)
+
+
+def test_libcosim_and_fmi3(fmus):
+    # libcosimpy 0.0.6's libcosim does not load FMI 3.0 at all: creating
+    # the slave fails ("Unsupported FMI version", the same for the Reference
+    # FMUs' Dahlquist 3.0) and returns a null slave, which libcosimpy hands
+    # to cosim_execution_add_slave: the segfault. Check the refusal without
+    # crashing; should a libcosim load FMI 3, run it as the FMI 2 test does
+    pytest.importorskip("libcosimpy.CosimExecution")
+    import ctypes
+    import libcosimpy
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    library = ctypes.CDLL(str(next(Path(libcosimpy.__file__).parent.rglob(
+        "libcosimc.so"))))
+    library.cosim_last_error_message.restype = ctypes.c_char_p
+    slave = CosimLocalSlave(fmu_path=str(fmus[("BouncingBall", "3.0")]),
+                            instance_name="ball")
+    if not slave._CosimLocalSlave__ptr:
+        assert b"Unsupported FMI version" in \
+            library.cosim_last_error_message()
+        return
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimObserver import CosimObserver
+    execution = CosimExecution.from_step_size(step_size=10_000_000)
+    index = execution.add_local_slave(local_slave=slave)
+    refs = {v.name.decode() if isinstance(v.name, bytes) else v.name:
+            v.reference for v in execution.slave_variables(slave_index=index)}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    heights = []
+    for _ in range(300):
+        assert execution.step()
+        heights.append(observer.last_real_values(
+            slave_index=index, variable_references=[refs["h"]])[0])
+    assert_allclose(heights, _bouncing_ball(0.01 * np.arange(1, 301)),
+                    atol=1e-8)
 
 
 def test_windows_binary_from_mingw(tmp_path):

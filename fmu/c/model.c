@@ -154,7 +154,8 @@ void model_bounds(unsigned vr, double *low, double *high) {
 
 static int unknown_row(unsigned vr) {
     if (vr >= VR_DERIVATIVES && vr < VR_PARAMETERS) return (int)(vr - VR_DERIVATIVES);
-    if (vr >= VR_OUTPUTS && vr < VR_INPUTS) return MODEL_NX + (int)(vr - VR_OUTPUTS);
+    if (vr >= VR_OUTPUTS && vr < VR_OUTPUTS + MODEL_NYO)
+        return MODEL_NX + (int)(vr - VR_OUTPUTS);
     return -1;
 }
 
@@ -168,7 +169,8 @@ static int known_column(unsigned vr) {
 int model_directional(Model *m, const unsigned *unknowns, size_t nz,
                       const unsigned *knowns, size_t nv,
                       const double *seed, double *result, int adjoint) {
-    enum { ROWS = MODEL_NX + MODEL_NY, COLUMNS = MODEL_NX + MODEL_NP + MODEL_NU };
+    enum { ROWS = MODEL_NX + MODEL_NYO,
+           COLUMNS = MODEL_NX + MODEL_NP + MODEL_NU };
     double jac[(ROWS > 0 ? ROWS : 1) * (COLUMNS > 0 ? COLUMNS : 1)];
     size_t i, j;
     for (i = 0; i < nz; i++) if (unknown_row(unknowns[i]) < 0) return 1;

@@ -12,8 +12,9 @@
 #include "model_config.h"
 
 /* Value references: 0 time, then states, derivatives, parameters,
- * calculated parameters, outputs and inputs, in this order. Inputs are
- * stored after the parameters in p. */
+ * calculated parameters, outputs and the model's other variables (y:
+ * MODEL_NYO outputs, then the locals, MODEL_NY in all) and inputs, in this
+ * order. Inputs are stored after the parameters in p. */
 #define VR_STATES 1
 #define VR_DERIVATIVES (VR_STATES + MODEL_NX)
 #define VR_PARAMETERS (VR_DERIVATIVES + MODEL_NX)

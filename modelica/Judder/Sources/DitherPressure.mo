@@ -5,6 +5,11 @@ block DitherPressure "Actuation pressure with dither, p = r(t)*(p_m + p_f*cos(2*
   parameter Units.Frequency f(min=0)=100 "Dither frequency";
   parameter Units.Time t_start=-1 "Start of the engagement ramp (the valve is energised)";
   parameter Units.Time t_ramp(min=0)=0 "Duration of the engagement ramp (0: a step at t_start)";
+  parameter Boolean use_p_in=false
+    "= true: p is the input p_in (a valve model's pressure); p_mean stays r(t)*p_m"
+    annotation (Evaluate=true);
+  Interfaces.RealInput p_in(unit="Pa") if use_p_in "Actuation pressure given from outside (use_p_in = true)"
+    annotation (Placement(transformation(extent={{-140,-20},{-100,20}})));
   Interfaces.RealOutput p(unit="Pa") "Actuation pressure"
     annotation (Placement(transformation(extent={{100,30},{120,50}})));
   Interfaces.RealOutput p_mean(unit="Pa") "Mean part of the actuation pressure"
@@ -14,7 +19,10 @@ equation
   ramp = noEvent(if time <= t_start then 0 else if time >= t_start + t_ramp then 1
     else (time - t_start)/t_ramp);
   p_mean = p_m*ramp;
-  p = ramp*(p_m + p_f*cos(2*3.141592653589793*f*time));
+  connect(p_in, p);
+  if not use_p_in then
+    p = ramp*(p_m + p_f*cos(2*3.141592653589793*f*time));
+  end if;
   annotation (
     Icon(coordinateSystem(preserveAspectRatio=true, extent={{-100,-100},{100,100}}),
       graphics={
@@ -42,6 +50,9 @@ gives r = 1 from t = 0, the steady slipping of the paper):</p>
   p_mean = r(t) p_m
 </pre>
 <p>p_mean, the mean part, goes to the clutch with p (see
-mean_pressure_damping of Interfaces.PartialWetClutch).</p>
+mean_pressure_damping of Interfaces.PartialWetClutch). With use_p_in =
+true the waveform is replaced by the input p_in (p = p_in, a valve
+model's pressure through an FMU input) and p_mean stays r(t) p_m, as in
+Examples.Driveline4DOFInputs.</p>
 </html>"));
 end DitherPressure;

@@ -1,0 +1,33 @@
+within MslDrivelines;
+model GearedStep "A torque step through an ideal gear: uniform acceleration after the step"
+  import Modelica.Mechanics.Rotational;
+  import Modelica.Units.SI;
+  parameter SI.Torque T=10 "Torque after the step";
+  parameter SI.Time t0=0.1 "Time of the step";
+  parameter SI.Inertia J1=0.5 "Motor inertia";
+  parameter SI.Inertia J2=2 "Load inertia";
+  parameter Real ratio=3 "Gear ratio";
+  Modelica.Blocks.Sources.Step step(height=T, startTime=t0);
+  Rotational.Sources.Torque torque(useSupport=true);
+  Rotational.Components.Fixed fixed;
+  Rotational.Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=0, fixed=true));
+  Rotational.Components.IdealGear gear(ratio=ratio, useSupport=true);
+  Rotational.Components.Inertia inertia2(J=J2);
+  Rotational.Sensors.SpeedSensor speed2;
+  Rotational.Sensors.TorqueSensor gearTorque;
+  Modelica.Blocks.Sources.Constant zero(k=0);
+  Rotational.Sources.Torque load;
+  output SI.AngularVelocity w_load=speed2.w "Speed of the load";
+equation
+  connect(step.y, torque.tau);
+  connect(torque.support, fixed.flange);
+  connect(gear.support, fixed.flange);
+  connect(torque.flange, inertia1.flange_a);
+  connect(inertia1.flange_b, gear.flange_a);
+  connect(gear.flange_b, gearTorque.flange_a);
+  connect(gearTorque.flange_b, inertia2.flange_a);
+  connect(inertia2.flange_b, speed2.flange);
+  connect(zero.y, load.tau);
+  connect(load.flange, inertia2.flange_b);
+  annotation(experiment(StopTime=1, Interval=1e-3));
+end GearedStep;

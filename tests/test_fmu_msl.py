@@ -1,0 +1,257 @@
+"""Drivelines written with the Modelica Standard Library (MSL 4.x).
+
+The MSL is read from ``../shared/msl`` beside the repository, or from the
+first folder of ``MODELICAPATH`` that holds it; without one the tests
+skip and say so. Models: MSL's own ``Rotational.Examples.First`` and the
+``MslDrivelines`` package of ``tests/msl_models`` (MSL parts around the
+Judder library's wet clutch), each compared with its closed form or with
+the same driveline in the Judder library.
+"""
+
+import json
+import os
+from pathlib import Path
+import re
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+import zipfile
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+
+from fmu.build import build_fmu
+from fmu.frontend import find_class
+
+ROOT = Path(__file__).resolve().parents[1]
+MODELS = ROOT / "tests" / "msl_models"
+LIBRARY = ROOT / "modelica"
+
+
+def _msl():
+    """The MSL folder (holding ``Modelica/package.mo``), or None."""
+    candidates = [ROOT.parent / "shared" / "msl"] + [
+        Path(p) for p in os.environ.get("MODELICAPATH", "").split(os.pathsep)
+        if p]
+    for folder in candidates:
+        if (folder / "Modelica" / "package.mo").is_file():
+            return folder
+    return None
+
+
+MSL = _msl()
+pytestmark = pytest.mark.skipif(
+    MSL is None, reason="the Modelica Standard Library 4.x is not in "
+    "../shared/msl nor on MODELICAPATH")
+
+
+@pytest.fixture(scope="module")
+def build(tmp_path_factory):
+    """Build (once per class and version) an FMU of a class found on the
+    path tests/msl_models, the MSL, the Judder library."""
+    folder = tmp_path_factory.mktemp("msl")
+    built = {}
+
+    def make(name, version="2.0"):
+        if (name, version) not in built:
+            roots = [MODELS, MSL, LIBRARY]
+            source, _ = find_class(name, roots)
+            target = folder / f"{name.split('.')[-1]}_{version}.fmu"
+            build_fmu(source, name, target, version=version, roots=roots)
+            built[(name, version)] = target
+        return built[(name, version)]
+    return make
+
+
+def _simulate(path, names, stop, **options):
+    from fmpy import simulate_fmu
+    result = simulate_fmu(str(path), stop_time=stop, output_interval=1e-3,
+                          output=names, relative_tolerance=1e-10, **options)
+    return result["time"], {n: result[n] for n in names}
+
+
+def _variables(path):
+    """``{name: (valueReference, causality, unit)}`` of an FMU, aliases
+    (FMI 3 ``<Alias>``) with the value reference of their variable."""
+    with zipfile.ZipFile(path) as fmu:
+        root = ET.fromstring(fmu.read("modelDescription.xml"))
+    found = {}
+    for element in root.find("ModelVariables"):
+        real = element.find("Real")
+        unit = (real if real is not None else element).get("unit")
+        found[element.get("name")] = (int(element.get("valueReference")),
+                                      element.get("causality"), unit)
+        for alias in element.findall("Alias"):
+            found[alias.get("name")] = found[element.get("name")]
+    return found
+
+
+def test_msl_first_matches_its_equations_of_motion(build):
+    """Rotational.Examples.First: sine torque on the motor, gear 10, the
+    gear's elasticity (spring 1e4) to the load, a damper on the gear's
+    bearing. Reduced to the load side of the gear:
+    (J1 r^2 + J2) a2 = r tau - c (phi2 - phi3) - d w2, J3 a3 = c (phi2 -
+    phi3), integrated by scipy (DOP853, 1e-12)."""
+    name = "Modelica.Mechanics.Rotational.Examples.First"
+    r, J1, J2, J3, c, d = 10.0, 0.1, 2.0, 2.0, 1e4, 10.0
+    tau = lambda t: 10 * np.sin(2 * np.pi * 5 * t)
+
+    def rhs(t, x):
+        phi2, w2, phi3, w3 = x
+        spring = c * (phi2 - phi3)
+        return [w2, (r * tau(t) - spring - d * w2) / (J1 * r ** 2 + J2),
+                w3, spring / J3]
+    for version in ("2.0", "3.0"):
+        path = build(name, version)
+        names = ["inertia2.w", "inertia3.w", "inertia1.w", "spring.tau",
+                 "idealGear.flange_a.tau"]
+        t, got = _simulate(path, names, 1.0)
+        ref = solve_ivp(rhs, (0, 1), [0, 0, 0, 0], method="DOP853",
+                        rtol=1e-12, atol=1e-12, t_eval=t)
+        assert_allclose(got["inertia2.w"], ref.y[1], atol=2e-6)
+        assert_allclose(got["inertia3.w"], ref.y[3], atol=2e-6)
+        # the motor behind the gear, and torques no output exposes
+        assert_allclose(got["inertia1.w"], r * ref.y[1], atol=2e-5)
+        # MSL's Spring: tau = c phi_rel, phi_rel = flange_b.phi -
+        # flange_a.phi = phi3 - phi2
+        assert_allclose(got["spring.tau"], c * (ref.y[2] - ref.y[0]),
+                        atol=1e-6 * c * np.abs(ref.y[0] - ref.y[2]).max())
+        a2 = rhs(t, ref.y)[1]
+        assert_allclose(got["idealGear.flange_a.tau"],
+                        tau(t) - J1 * r * a2, atol=1e-4)
+
+
+def test_geared_step_variables_are_declared_and_match_the_closed_form(
+        build):
+    """A torque step T at t0 through an ideal gear: a2 = T r / (J1 r^2 +
+    J2) after t0, the gear passes J2 a2 to the load; both behind sensors
+    or inside components, not outputs."""
+    T, t0, J1, J2, ratio = 10.0, 0.1, 0.5, 2.0, 3.0
+    a2 = T * ratio / (J1 * ratio ** 2 + J2)
+    for version in ("2.0", "3.0"):
+        path = build("MslDrivelines.GearedStep", version)
+        variables = _variables(path)
+        for name, unit in (("gearTorque.tau", "N.m"), ("inertia2.w", "rad/s"),
+                           ("inertia1.w", "rad/s"), ("gear.phi_b", "rad")):
+            assert variables[name][1:] == ("local", unit), name
+        # connected flanges are one variable: aliases share its reference
+        assert variables["inertia2.flange_a.phi"][0] == \
+            variables["gearTorque.flange_b.phi"][0]
+        references = [vr for vr, causality, _ in variables.values()
+                      if causality == "local"]
+        assert len(set(references)) < len(references)
+        t, got = _simulate(path, ["w_load", "inertia2.w", "inertia1.w",
+                                  "gearTorque.tau"], 1.0)
+        after = np.maximum(t - t0, 0)
+        assert_allclose(got["w_load"], a2 * after, atol=1e-9)
+        assert_allclose(got["inertia2.w"], a2 * after, atol=1e-9)
+        assert_allclose(got["inertia1.w"], ratio * a2 * after, atol=1e-9)
+        assert_allclose(got["gearTorque.tau"],
+                        np.where(t >= t0, J2 * a2, 0.0), atol=1e-9)
+
+
+def test_spring_damper_decay_is_the_damped_oscillator(build):
+    """J phi'' + d phi' + c phi = 0, phi(0) = phi0, w(0) = 0."""
+    J, c, d, phi0 = 0.2, 800.0, 1.5, 0.1
+    sigma, wd = d / (2 * J), np.sqrt(c / J - (d / (2 * J)) ** 2)
+    path = build("MslDrivelines.SpringDamperDecay")
+    t, got = _simulate(path, ["inertia.phi", "springDamper.tau"], 1.0)
+    phi = phi0 * np.exp(-sigma * t) * (np.cos(wd * t)
+                                       + sigma / wd * np.sin(wd * t))
+    w = -phi0 * np.exp(-sigma * t) * (sigma ** 2 + wd ** 2) / wd * \
+        np.sin(wd * t)
+    assert_allclose(got["inertia.phi"], phi, atol=1e-9)
+    assert_allclose(got["springDamper.tau"], c * phi + d * w, atol=1e-6)
+
+
+def test_speed_source_on_a_ramp_drags_an_inertia_through_a_damper(build):
+    """Speed(exact=true) follows Ramp(w_end, duration); J w' = d (w_ref -
+    w): w = k (t - tau + tau e^(-t/tau)) on the ramp, then an exponential
+    approach to w_end (tau = J/d)."""
+    w_end, duration, J, d = 100.0, 0.5, 0.3, 2.0
+    k, lag = w_end / duration, J / d
+    path = build("MslDrivelines.SpeedRamp")
+    t, got = _simulate(path, ["inertia.w", "drive.w", "damper.tau"], 1.0)
+    ramp = lambda s: k * (s - lag + lag * np.exp(-s / lag))
+    w = np.where(t <= duration, ramp(t), w_end + (ramp(duration) - w_end)
+                 * np.exp(-(t - duration) / lag))
+    assert_allclose(got["inertia.w"], w, atol=1e-8)
+    assert_allclose(got["drive.w"], np.minimum(k * t, w_end), atol=1e-10)
+    # MSL's Damper: tau = d w_rel, w_rel = flange_b.w - flange_a.w
+    assert_allclose(got["damper.tau"], d * (w - np.minimum(k * t, w_end)),
+                    atol=1e-7)
+
+
+def _cli(*args, modelicapath=None):
+    env = dict(os.environ)
+    env.pop("MODELICAPATH", None)
+    if modelicapath is not None:
+        env["MODELICAPATH"] = str(modelicapath)
+    return subprocess.run([sys.executable, *args], capture_output=True,
+                          text=True, cwd=ROOT, env=env)
+
+
+def test_modelicapath_finds_the_msl_and_library_adds_to_it(tmp_path):
+    name = "Modelica.Mechanics.Rotational.Examples.First"
+    done = _cli("-m", "fmu", name, "--out", str(tmp_path), "--fmi", "2.0",
+                modelicapath=MSL)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "First.fmu").is_file()
+    # --library goes before MODELICAPATH: MslDrivelines from the tests,
+    # Modelica from the path
+    done = _cli("-m", "fmu", "MslDrivelines.GearedStep", "--library",
+                str(MODELS), "--out", str(tmp_path), "--fmi", "2.0",
+                modelicapath=MSL)
+    assert done.returncode == 0, done.stderr
+    refused = _cli("-m", "fmu", name, "--out", str(tmp_path))
+    assert refused.returncode == 2
+    assert "no library on the path holds package Modelica" in \
+        refused.stderr and "MODELICAPATH" in refused.stderr
+
+
+def test_msl_driveline_with_the_judder_clutch_has_the_same_maps(tmp_path):
+    """The 4-DOF driveline of MSL Inertia, SpringDamper, Damper, Fixed,
+    ConstantTorque and TorqueSensor around Judder's SlippingClutch gives
+    `judder map --modelica` the multipliers and `eig` the frequencies of
+    Judder.Examples.Driveline4DOF (18.94 and 102.88 Hz, Eq. 15)."""
+    grid = ("--freq", "37.9:102.9:3", "--pf", "0.1:0.5:3")
+    maps = {}
+    for label, source in (("msl", ["--modelica", "MslDrivelines.Driveline4DOF",
+                                   "--library", str(MODELS)]),
+                          ("judder", ["--modelica",
+                                      "Judder.Examples.Driveline4DOF"])):
+        out = tmp_path / f"{label}.npz"
+        done = _cli("-m", "judder", "map", *source, *grid, "--out",
+                    str(out), modelicapath=MSL)
+        assert done.returncode == 0, done.stderr
+        maps[label] = np.load(out)
+        done = _cli("-m", "judder", "eig", *source, "--json",
+                    modelicapath=MSL)
+        assert done.returncode == 0, done.stderr
+        maps[label + "-eig"] = json.loads(done.stdout)
+    assert_allclose(maps["msl-eig"]["natural_frequencies_hz"],
+                    maps["judder-eig"]["natural_frequencies_hz"], rtol=1e-9)
+    assert_allclose(maps["msl-eig"]["natural_frequencies_hz"][-2:],
+                    [18.939, 102.884], atol=1e-3)
+    numbers = [k for k in maps["judder"].files
+               if np.issubdtype(maps["judder"][k].dtype, np.number)]
+    assert {"leading_abs", "leading_re", "leading_im"} <= set(numbers)
+    # the grid crosses tongues: the map is not flat at 1
+    assert maps["judder"]["leading_abs"].max() > 1.02
+    for key in numbers:
+        assert_allclose(maps["msl"][key], maps["judder"][key], rtol=1e-9,
+                        atol=1e-12, err_msg=key)
+
+
+def test_msl_clutch_is_refused_with_its_file():
+    """MSL's Clutch (mixed Boolean/Integer mode logic with pre(), an
+    external table object) is refused: rumoca itself stops in its DAE
+    stage, and the refusal names the model's file."""
+    name = "Modelica.Mechanics.Rotational.Examples.CoupledClutches"
+    done = _cli("-m", "fmu", name, "--library", str(MSL), "--out",
+                "build/never", "--fmi", "2.0")
+    assert done.returncode == 2
+    assert re.search(r"CoupledClutches\.mo", done.stderr), done.stderr
+    assert "Traceback" not in done.stderr
