@@ -191,8 +191,15 @@ class _Cluster:
         # a signal while Dask starts would leave half-made objects whose
         # clean-up blocks: hold it until the cluster can be closed
         pending = []
-        held = {s: signal.signal(s, lambda signum, _: pending.append(signum))
-                for s in (signal.SIGINT, signal.SIGTERM)}
+        held = {signal.SIGTERM: signal.signal(
+            signal.SIGTERM, lambda signum, _: pending.append(signum))}
+        # SIGINT ignored meanwhile: the worker processes inherit that
+        # (Python then leaves it ignored), so that a terminal's Ctrl-C,
+        # sent to the whole process group, reaches only this process,
+        # which closes them; a Ctrl-C in these seconds is lost (the next
+        # one stops the command). SIGTERM stays theirs: their parent's
+        # death sends it (infra.lifecycle).
+        held[signal.SIGINT] = signal.signal(signal.SIGINT, signal.SIG_IGN)
         try:
             self._connect(workers)
         finally:
