@@ -94,3 +94,140 @@ def test_in_process_calls_restore_the_handlers():
     assert main(["params", "--json"]) == 0
     assert (signal.getsignal(signal.SIGINT),
             signal.getsignal(signal.SIGTERM)) == before
+
+
+# -- a third-party FMU that crashes, hangs or returns NaN --------------
+
+FOUR = "Judder.Examples.Driveline4DOF"
+_DD = "fmi2Status fmi2GetDirectionalDerivative("
+#: C edits of the FMU's own fmi2.c: (text after which to insert, code).
+SABOTAGE = {
+    # a segfault in fmi2GetDirectionalDerivative
+    "crashdd": (None, "*(volatile int *)0 = 0;"),
+    # a segfault while the binary is loaded (dlopen runs constructors)
+    "crashload": ("#include \"model.h\"\n",
+                  "#include <signal.h>\n__attribute__((constructor)) static "
+                  "void judder_boom(void) { raise(SIGSEGV); }\n"),
+    # fmi2GetDirectionalDerivative never returns
+    "hangdd": (None, "for (volatile int spin = 1; spin;) {}"),
+    # fmi2GetDirectionalDerivative writes NaN after its result
+    "nandd": (None, "dz[0] = 0.0 / 0.0; return fmi2OK;"),
+}
+
+
+def _sabotaged(tmp_path, kind):
+    """A copy of the 4-DOF FMU whose binary is compiled from its own
+    sources with one edit of fmi2.c (see SABOTAGE)."""
+    import zipfile
+    from fmu.build import fmi_headers
+    from pysim.fmus import ensure_fmu
+    source = ensure_fmu(FOUR)
+    work = tmp_path / kind
+    with zipfile.ZipFile(source) as z:
+        z.extractall(work)
+    wrapper = work / "sources" / "fmi2.c"
+    text = wrapper.read_text()
+    after, code = SABOTAGE[kind]
+    if after is None:       # at the top of fmi2GetDirectionalDerivative
+        start = text.index(_DD)
+        brace = text.index("{", start) + 1
+        if kind == "nandd":     # after the model's own result
+            code = ""
+            text = text.replace(
+                "        return fmi2Error;\n    }\n    return fmi2OK;\n}",
+                "        return fmi2Error;\n    }\n    dz[0] = 0.0 / 0.0;\n"
+                "    return fmi2OK;\n}", 1)
+            assert "dz[0] = 0.0 / 0.0" in text
+        else:
+            text = text[:brace] + code + text[brace:]
+    else:
+        assert after in text
+        text = text.replace(after, after + code, 1)
+    wrapper.write_text(text)
+    library = next((work / "binaries" / "linux64").glob("*.so"))
+    sources = work / "sources"
+    subprocess.run(["gcc", "-shared", "-fPIC", "-O2", "-fvisibility=hidden",
+                    "-std=c99", f"-I{sources}", f"-I{fmi_headers()}",
+                    str(sources / "model_functions.c"),
+                    str(sources / "model.c"), str(wrapper),
+                    "-o", str(library), "-lm"], check=True)
+    target = tmp_path / f"{kind}.fmu"
+    with zipfile.ZipFile(target, "w") as z:
+        for item in sorted(work.rglob("*")):
+            if item.is_file():
+                z.write(item, item.relative_to(work).as_posix())
+    return target
+
+
+def _fmu_folders():
+    import tempfile
+    return set(os.listdir(tempfile.gettempdir()))
+
+
+@pytest.mark.parametrize("kind, command, words", [
+    ("crashdd", ["map", "--freq", "100:110:3", "--pf", "0:0.3:3"],
+     ["crashed (SIGSEGV)", "fmi2GetDirectionalDerivative at t = 0 s"]),
+    ("crashdd", ["check", "--freq", "105", "--pf", "0.2"],
+     ["crashed (SIGSEGV)", "fmi2GetDirectionalDerivative"]),
+    ("crashload", ["map", "--freq", "100:110:3", "--pf", "0:0.3:3"],
+     ["crashed (SIGSEGV)", "loading the binary"]),
+    ("nandd", ["check", "--freq", "105", "--pf", "0.2"],
+     ["fmi2GetDirectionalDerivative returned a non-finite value"]),
+])
+def test_a_crashing_fmu_is_one_line(tmp_path, kind, command, words):
+    fmu = _sabotaged(tmp_path, kind)
+    before = _fmu_folders()
+    done = subprocess.run([sys.executable, "-m", "judder", *command,
+                           "--fmu", str(fmu)], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 2, done.stderr
+    line = _one_line(done.stderr)
+    assert line.startswith(f"judder: error: --fmu {fmu}: "), line
+    for word in words:
+        assert word in line, line
+    assert not {n for n in _fmu_folders() - before
+                if n.startswith(("judder-fmu-", "tmp"))}
+
+
+def test_a_hanging_fmu_is_stopped(tmp_path):
+    fmu = _sabotaged(tmp_path, "hangdd")
+    before = _fmu_folders()
+    start = time.monotonic()
+    done = subprocess.run([sys.executable, "-m", "judder", "check", "--freq",
+                           "105", "--pf", "0.2", "--fmu", str(fmu)],
+                          capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "JUDDER_FMU_TIMEOUT": "3"})
+    assert time.monotonic() - start < 30
+    assert done.returncode == 2, done.stderr
+    line = _one_line(done.stderr)
+    assert "no answer within 3 s" in line, line
+    assert "fmi2GetDirectionalDerivative at t = 0 s" in line, line
+    assert "JUDDER_FMU_TIMEOUT" in line
+    assert not {n for n in _fmu_folders() - before
+                if n.startswith(("judder-fmu-", "tmp"))}
+
+
+def test_the_fmu_child_is_killed_with_its_command(tmp_path):
+    """SIGTERM while a hung FMU's child runs: the command ends with 143,
+    the child and the extracted folder go with it."""
+    import psutil
+    fmu = _sabotaged(tmp_path, "hangdd")
+    before = _fmu_folders()
+    proc = _start(["check", "--freq", "105", "--pf", "0.2", "--fmu",
+                   str(fmu)])
+    deadline = time.monotonic() + 60
+    children = []
+    while time.monotonic() < deadline and not children:
+        time.sleep(0.2)
+        children = [c for c in psutil.Process(proc.pid).children()
+                    if "drivelines.fmu_calls" in " ".join(c.cmdline())]
+    assert children
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGTERM)
+    _, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 143, stderr
+    assert "terminated" in _one_line(stderr)
+    gone, alive = psutil.wait_procs(children, timeout=10)
+    assert alive == []
+    assert not {n for n in _fmu_folders() - before
+                if n.startswith("judder-fmu-")}
