@@ -231,3 +231,103 @@ def test_the_fmu_child_is_killed_with_its_command(tmp_path):
     assert alive == []
     assert not {n for n in _fmu_folders() - before
                 if n.startswith("judder-fmu-")}
+
+
+# -- a scheduler that is not one ---------------------------------------
+
+def _serve(sock, mode):
+    import socket
+    held = []
+    while True:
+        try:
+            conn, _ = sock.accept()
+        except OSError:
+            return
+        held.append(conn)          # kept open: a silent peer
+        if mode == "garbage":
+            try:
+                conn.sendall(b"HTTP/1.1 200 OK\r\n\r\nnot dask\r\n" * 8)
+            except OSError:
+                pass
+
+
+@pytest.fixture(scope="module")
+def fake_schedulers():
+    """Addresses: one that accepts and says nothing, one that answers
+    garbage, one where nothing listens."""
+    import socket
+    import threading
+    addresses, sockets = {}, []
+    for mode in ("silent", "garbage"):
+        sock = socket.socket()
+        sock.bind(("127.0.0.1", 0))
+        sock.listen(16)
+        sockets.append(sock)
+        threading.Thread(target=_serve, args=(sock, mode),
+                         daemon=True).start()
+        addresses[mode] = f"127.0.0.1:{sock.getsockname()[1]}"
+    closed = socket.socket()
+    closed.bind(("127.0.0.1", 0))
+    addresses["refused"] = f"127.0.0.1:{closed.getsockname()[1]}"
+    closed.close()
+    yield addresses
+    for sock in sockets:
+        sock.close()
+
+
+EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
+CHANNELS = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+            "pressure=PressEVEN:bar", "--channel", "downstream_speed=OutSpd"]
+#: Every command that takes --scheduler, with arguments that pass.
+SCHEDULED = {
+    "sensitivity": ["sensitivity", "--params", "k12", "--freq", "20:120:20"],
+    "fit": ["fit", "--boundary", f"{EXAMPLES}/measured_boundary.csv"],
+    "crosscheck": ["crosscheck", "--freq", "100", "--pf", "0.1"],
+    "campaign": ["campaign", "--freq", "40:60:3", "--pf", "0.5", "--out",
+                 "{tmp}/campaign"],
+    "chart": ["chart", "--index", f"{EXAMPLES}/bench/runs.csv", *CHANNELS],
+    "report": ["report", "--out", "{tmp}/report.html"],
+    "envelope": ["envelope", "--ranges", f"{EXAMPLES}/ranges.toml",
+                 "--freq", "60:200:11", "--samples", "4"],
+}
+
+
+def _in_process(argv, capsys):
+    from judder.cli import main
+    try:
+        status = main(argv)
+    except SystemExit as exc:
+        status = exc.code
+    return status, capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", sorted(SCHEDULED))
+def test_a_garbage_scheduler_is_refused_by_every_command(
+        command, fake_schedulers, tmp_path, capsys):
+    address = fake_schedulers["garbage"]
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in SCHEDULED[command]]
+    start = time.monotonic()
+    status, err = _in_process([*argv, "--scheduler", address], capsys)
+    assert time.monotonic() - start < 10
+    assert status == 2, err
+    assert _one_line(err) == (
+        f"judder: error: --scheduler {address}: it does not speak the Dask "
+        "protocol; allowed: the address of a running Dask scheduler")
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("mode, words", [
+    ("silent", "no Dask answer within 5 s"),
+    ("refused", "cannot connect (Connection refused)")])
+@pytest.mark.parametrize("command", ["sensitivity", "chart", "fit"])
+def test_a_dead_scheduler_is_refused_within_seconds(
+        command, mode, words, fake_schedulers, tmp_path, capsys):
+    address = fake_schedulers[mode]
+    start = time.monotonic()
+    status, err = _in_process([*SCHEDULED[command], "--scheduler", address],
+                              capsys)
+    assert time.monotonic() - start < 10
+    assert status == 2, err
+    line = _one_line(err)
+    assert line.startswith(f"judder: error: --scheduler {address}: ")
+    assert words in line
