@@ -6,6 +6,7 @@ pass the message on as it is.
 
 from pathlib import Path
 import stat
+import zipfile
 
 import numpy as np
 
@@ -187,10 +188,15 @@ def read_chart_boundary(path, group=None, option="--chart"):
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
-    except (ValueError, KeyError):
+    except (ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        # a truncated NPZ is a BadZipFile (or EOFError inside a member)
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file)") from None
+                          "chart --out (an NPZ file), or a truncated one") \
+            from None
     names = list(dict.fromkeys(groups.tolist()))
+    if not names:
+        raise JudderError(f"{option} {path}: the chart has no boundary (no "
+                          "run could be read into it)")
     if group is None and len(names) > 1:
         raise JudderError(f"{option} {path} has {len(names)} groups; give "
                           f"--group, one of {', '.join(names)}")
@@ -214,9 +220,10 @@ def read_chart_min_growth(path, option="--chart"):
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
-    except (ValueError):
+    except (ValueError, TypeError, EOFError, zipfile.BadZipFile):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file)") from None
+                          "chart --out (an NPZ file), or a truncated one") \
+            from None
     if not (np.isfinite(value) and value >= 0):
         raise JudderError(f"{option} {path}: its min_growth_per_s = {value!r} "
                           "is not allowed; allowed: a finite number >= 0")

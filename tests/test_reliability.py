@@ -331,3 +331,143 @@ def test_a_dead_scheduler_is_refused_within_seconds(
     line = _one_line(err)
     assert line.startswith(f"judder: error: --scheduler {address}: ")
     assert words in line
+
+
+# -- values at the boundary: ranges, units, files ----------------------
+
+F2 = '"fitted": {"c12": {"value": 10, "std": 1}, "mu_g": {"value": 0.02, "std": 0.001}}'
+BOUNDARY_FILES = {
+    "table_1e9.csv": "freq_hz,p_f_bar\n105,0.2\n1e9,0.2\n",
+    "ranges_list.toml": "parameters = [1, 2]\n",
+    "ranges_std.toml": '[parameters]\nmu_g = { distribution = "normal", '
+                       'mean = 0.022, std = "big" }\n',
+    "fit_size.json": "{" + F2 + ', "covariance": {"names": ["c12", "mu_g"],'
+                     ' "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}}',
+    "fit_names.json": "{" + F2 + ', "covariance": {"names": ["c12", "zz"], '
+                      '"matrix": [[1, 0], [0, 1]]}}',
+    "fit_std.json": '{"fitted": {"c12": {"value": 10, "std": "big"}}}',
+    "fit_value.json": '{"fitted": {"c12": {"std": 1}}}',
+    "ranges_fit_size.toml": '[fit]\nfile = "fit_size.json"\n',
+    "ranges_fit_names.toml": '[fit]\nfile = "fit_names.json"\n',
+    "ranges_fit_std.toml": '[fit]\nfile = "fit_std.json"\n',
+    "ranges_fit_value.toml": '[fit]\nfile = "fit_value.json"\n',
+    "NoClutch/package.mo": "package NoClutch\nend NoClutch;\n",
+    "NoClutch/Chain.mo": (
+        "within NoClutch;\nmodel Chain\n"
+        "  Judder.Components.Inertia J1(J = 0.1);\n"
+        "  Judder.Components.Inertia J2(J = 0.2);\n"
+        "  Judder.Components.SpringDamper s(c = 1000, d = 1);\n"
+        "  parameter Real p_f = 0;\n  parameter Real f_dither = 100;\n"
+        "equation\n  connect(J1.flange_b, s.flange_a);\n"
+        "  connect(s.flange_b, J2.flange_a);\nend Chain;\n"),
+}
+
+ENVELOPE = ["envelope", "--freq", "60:200:11", "--samples", "2", "--ranges"]
+CHECK = ["check", "--freq", "105", "--pf", "0.2"]
+
+BOUNDARY_CASES = [
+    # the documented frequency range, 0.001 Hz to 100 kHz
+    (["check", "--freq", "1e9", "--pf", "0.2"], 2,
+     ["--freq 1e9", "<= 100000 Hz"]),
+    (["check", "--freq", "105,1e9", "--pf", "0.2"], 2, ["--freq 1e9"]),
+    (["check", "--table", "{d}/table_1e9.csv"], 2,
+     ["freq_hz 1e+09 Hz (row 3)", "0.001 to 100000 Hz"]),
+    (["advise", "--no-design", "--freq-range=60:1e9"], 2,
+     ["--freq-range 1e9", "<= 100000 Hz"]),
+    (["advise", "--no-design", "--freq-range", "120:90"], 2,
+     ["--freq-range 120:90", "LOW < HIGH"]),
+    # growth thresholds
+    (["report", "--min-growth", "nan", "--out", "{d}/r.html"], 2,
+     ["--min-growth nan", ">= 0 1/s"]),
+    (["report", "--min-growth", "-1", "--out", "{d}/r.html"], 2,
+     ["--min-growth -1", ">= 0 1/s"]),
+    (["check", "--freq", "105", "--pf", "0.2", "--min-growth", "inf"], 2,
+     ["--min-growth inf"]),
+    # empty names of a driveline
+    ([*CHECK, "--modelica", ""], 2, ["--modelica ''", "full class name"]),
+    ([*CHECK, "--fmu", ""], 2, ["--fmu ''", ".fmu file"]),
+    # ranges and covariance files
+    ([*ENVELOPE, "{d}/ranges_list.toml"], 2,
+     ["parameters = [1, 2] is not allowed", "[parameters] table"]),
+    ([*ENVELOPE, "{d}/ranges_std.toml"], 2,
+     ["parameters.mu_g.std = 'big'", "finite number"]),
+    ([*ENVELOPE, "{d}/ranges_fit_size.toml"], 2,
+     ["covariance: the matrix is not 2 x 2"]),
+    ([*ENVELOPE, "{d}/ranges_fit_names.toml"], 2,
+     ["covariance has no row for 'mu_g'"]),
+    ([*ENVELOPE, "{d}/ranges_fit_std.toml"], 2,
+     ["fitted.c12.std = 'big'", "finite number"]),
+    ([*ENVELOPE, "{d}/ranges_fit_value.toml"], 2, ["fitted.c12 has no value"]),
+    # a chart NPZ cut short (its zip directory is at the end)
+    (["fit", "--chart", "{d}/truncated.npz", "--fit", "mu_g"], 2,
+     ["--chart", "truncated.npz", "truncated one"]),
+    (["report", "--chart", "{d}/truncated.npz", "--out", "{d}/r.html"], 2,
+     ["--chart", "truncated one"]),
+    # a Modelica driveline without a clutch
+    (["map", "--modelica", "NoClutch.Chain", "--library", "{d}", "--freq",
+      "100:110:3", "--pf", "0:0.3:3"], 2,
+     ["NoClutch.Chain", "p_f does not enter", "clutch"]),
+    # units where the README promises them
+    (["check", "--freq", "105Hz", "--pf", "200mbar", "--json"], 0, []),
+    (["check", "--freq", "0.105kHz,110", "--pf", "200mbar", "--json"], 0, []),
+]
+
+
+@pytest.fixture(scope="module")
+def boundary_folder(tmp_path_factory):
+    import numpy as np
+    d = tmp_path_factory.mktemp("boundary")
+    for name, text in BOUNDARY_FILES.items():
+        (d / name).parent.mkdir(exist_ok=True)
+        (d / name).write_text(text)
+    np.savez(d / "whole.npz", boundary_group=np.array(["all"]),
+             boundary_freq_hz=np.array([100.0]),
+             boundary_p_f_bar=np.array([0.2]),
+             boundary_tried_bar=np.array([1.0]))
+    data = (d / "whole.npz").read_bytes()
+    (d / "truncated.npz").write_bytes(data[:len(data) // 2])
+    return d
+
+
+@pytest.mark.parametrize("argv, status, words", BOUNDARY_CASES,
+                         ids=[" ".join(c[0])[:60] for c in BOUNDARY_CASES])
+def test_values_at_the_boundary(argv, status, words, boundary_folder, capsys):
+    argv = [a.replace("{d}", str(boundary_folder)) for a in argv]
+    got, err = _in_process(argv, capsys)
+    assert "Traceback" not in err and "internal error" not in err, err
+    assert got == status, err
+    if status:
+        line = _one_line(err)
+        assert line.startswith("judder: error: ")
+        for word in words:
+            assert word in line, line
+
+
+def test_units_mean_what_they_say(capsys):
+    """--freq 105Hz --pf 200mbar is --freq 105 --pf 0.2 (check, report);
+    --freq-range 90Hz:120Hz is 90:120 (advise)."""
+    import json
+    from judder.cli import main
+    results = []
+    for argv in (["check", "--freq", "105Hz", "--pf", "200mbar"],
+                 ["check", "--freq", "105", "--pf", "0.2"]):
+        assert main([*argv, "--params", "none", "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        out.pop("seconds", None)
+        results.append(out)
+    assert results[0] == results[1]
+    for argv in (["advise", "--no-design", "--freq-range", "90Hz:120Hz"],
+                 ["advise", "--no-design", "--freq-range", "90:120"]):
+        assert main([*argv, "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        out.pop("seconds", None)
+        results.append(out)
+    assert results[2] == results[3]
+    assert results[2]["operating_range"]["freq_hz"] == [90.0, 120.0]
+    # report --freq 105Hz --pf 200mbar: the configured setting in Hz, bar
+    from judder.cli.parser import build_parser
+    from judder.cli.values import normalise_options
+    args = build_parser().parse_args(["report", "--out", "r.html", "--freq",
+                                      "105Hz", "--pf", "200mbar"])
+    normalise_options(args)
+    assert (args.freq, args.pf) == (105.0, pytest.approx(0.2, rel=1e-15))

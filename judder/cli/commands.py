@@ -17,8 +17,8 @@ from infra.units import PA_PER_BAR
 from .. import api
 from ..inputs import (read_boundary, read_chart_boundary,
                       read_chart_min_growth)
-from .values import (check_amplitudes, check_campaign_disk,
-                     check_map_memory, check_work)
+from .values import (FREQ_RANGE_HZ, check_amplitudes, check_campaign_disk,
+                     check_map_memory, check_work, option_value)
 from . import estimates
 from .options import (emit, make_parents, model_title,
                       parameter_file, parameters_of, parse_grid, parse_list,
@@ -627,10 +627,13 @@ def cmd_chart(args):
 
 
 def _values(text, option, unit):
-    """A comma-separated list or a START:STOP:N grid."""
+    """A comma-separated list or a START:STOP:N grid, each value plain
+    (in ``unit``) or with a unit, in its documented range."""
     if ":" in text:
         return list(parse_grid(text, option, unit))
-    return parse_list(text, option)
+    low, high = FREQ_RANGE_HZ if unit == "Hz" else (0.0, math.inf)
+    return parse_list(text, option, lambda item: option_value(
+        item, option, unit, low, high))
 
 
 def _settings(args):
@@ -645,6 +648,12 @@ def _settings(args):
                               "freq_hz and p_f_bar; allowed: no empty cells")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
+        low, high = FREQ_RANGE_HZ
+        for row, f in enumerate(freqs, start=2):
+            if not low <= f <= high:
+                raise JudderError(
+                    f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
+                    f"not allowed; allowed: {low:g} to {high:g} Hz")
         return list(freqs), amplitudes
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
@@ -685,11 +694,14 @@ def cmd_check(args):
 def cmd_advise(args):
     """Safe dither windows, parameter ranking and design change."""
     low_high = args.freq_range.split(":")
-    try:
-        low, high = (float(v) for v in low_high)
-    except ValueError:
+    if len(low_high) != 2:
         raise JudderError(f"--freq-range {args.freq_range!r} is not "
-                          "LOW:HIGH in Hz (e.g. 60:200)") from None
+                          "LOW:HIGH in Hz (e.g. 60:200, 90Hz:120Hz)")
+    low, high = (option_value(v.strip(), "--freq-range", "Hz",
+                              *FREQ_RANGE_HZ) for v in low_high)
+    if not low < high:
+        raise JudderError(f"--freq-range {args.freq_range} is not allowed; "
+                          "allowed: LOW < HIGH")
     names = None if args.params is None else \
         parse_list(args.params, "--params", str)
     weights = None if args.weights is None else \

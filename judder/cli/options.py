@@ -161,6 +161,13 @@ def own_driveline(args, path=None, option="--param-file"):
     ``--modelica CLASS [--library DIR]`` (docs/onemodel.md), with the
     values of the file ``path`` if given; None if neither is given."""
     fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
+    for flag, given, allowed in (
+            ("--fmu", fmu, "a .fmu file"),
+            ("--modelica", modelica, "a full class name, e.g. "
+                                     "Judder.Examples.Driveline5DOFGeared")):
+        if given is not None and not given.strip():
+            raise JudderError(f"{flag} {given!r} is empty; allowed: "
+                              f"{allowed}")
     if fmu:
         from drivelines.fmu_linear import FmuParameters
         flag, given = "--fmu", fmu
@@ -276,6 +283,8 @@ def parse_list(text, option, convert=float):
     items = [item for item in items if item]
     try:
         values = [convert(item) for item in items]
+    except JudderError:          # a value out of range, or its unit
+        raise
     except ValueError:
         raise JudderError(f"{option} {text!r} is not a comma-separated list "
                           "of numbers") from None

@@ -49,7 +49,7 @@ _SINGLE = {"freq": ("--freq", "Hz", *FREQ_RANGE_HZ, False),
            "noise_rpm": ("--noise-rpm", "rpm", 0.0, math.inf, False),
            "min_amplitude": ("--min-amplitude", "rpm", 0.0, math.inf,
                              False)}
-_SINGLE_FREQ_COMMANDS = ("floquet", "simulate")
+_SINGLE_FREQ_COMMANDS = ("floquet", "simulate", "report")
 
 
 def warn(text):
