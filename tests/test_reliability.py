@@ -471,3 +471,55 @@ def test_units_mean_what_they_say(capsys):
                                       "105Hz", "--pf", "200mbar"])
     normalise_options(args)
     assert (args.freq, args.pf) == (105.0, pytest.approx(0.2, rel=1e-15))
+
+
+# -- memory and work a typo would take ---------------------------------
+
+@pytest.mark.parametrize("argv, words", [
+    # 199 901 frequencies 0.5 Hz apart; grew to 23 GB with 60:1e9 before
+    (["advise", "--no-design", "--freq-range=60:100000"],
+     ["--freq-range 60:100000 makes 199901 frequencies", "at most 100000"]),
+    # 1e10 settings: the list of pairs alone would not fit
+    (["check", "--freq", "60:200:100000", "--pf", "0:1:100000"],
+     ["--freq x --pf asks for 1e+10 settings", "at most 100000"]),
+])
+def test_a_typo_cannot_take_the_machine(argv, words, capsys):
+    import resource
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    start = time.monotonic()
+    status, err = _in_process(argv, capsys)
+    assert time.monotonic() - start < 10
+    assert status == 2, err
+    line = _one_line(err)
+    for word in words:
+        assert word in line, line
+    # refused before any allocation of that size (ru_maxrss in kB)
+    assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before \
+        < 200_000
+
+
+def test_advise_memory_estimate_names_the_option(monkeypatch, capsys):
+    """20 000 Hz at 0.5 Hz steps: 39 901 frequencies x 12.5 kB = 0.465 GiB,
+    refused when only 0.5 GiB is left (80 % of it is the bound)."""
+    from judder.cli import values
+    monkeypatch.setattr(values, "available_memory", lambda: 2 ** 29)
+    status, err = _in_process(["advise", "--no-design",
+                               "--freq-range=60:20000"], capsys)
+    assert status == 2
+    line = _one_line(err)
+    assert "--freq-range 60:20000 needs about 0.465 GiB (39901 frequencies" \
+        in line, line
+    assert "0.5 GiB are available" in line
+
+
+def test_available_memory_follows_ulimit():
+    """``ulimit -v`` is what a batch system sets: the estimate uses what
+    is left of it."""
+    script = ("import resource; from judder.cli.values import "
+              "available_memory as a; print(a())")
+    done = subprocess.run(
+        ["bash", "-c", f"ulimit -v 3000000; {sys.executable} -c '{script}'"],
+        capture_output=True, text=True, timeout=60,
+        cwd=os.path.join(os.path.dirname(__file__), ".."))
+    left = int(done.stdout)
+    assert 0 < left < 3000000 * 1024

@@ -17,8 +17,9 @@ from infra.units import PA_PER_BAR
 from .. import api
 from ..inputs import (read_boundary, read_chart_boundary,
                       read_chart_min_growth)
-from .values import (FREQ_RANGE_HZ, check_amplitudes, check_campaign_disk,
-                     check_map_memory, check_work, option_value)
+from .values import (FREQ_RANGE_HZ, check_advise_grid, check_amplitudes,
+                     check_campaign_disk, check_map_memory, check_work,
+                     option_value)
 from . import estimates
 from .options import (emit, make_parents, model_title,
                       parameter_file, parameters_of, parse_grid, parse_list,
@@ -636,8 +637,11 @@ def _values(text, option, unit):
         item, option, unit, low, high))
 
 
-def _settings(args):
-    """Frequencies (Hz) and amplitudes (bar) of ``judder check``."""
+def _settings(args, parameters):
+    """Frequencies (Hz) and amplitudes (bar) of ``judder check``; the
+    time of ``parameters`` sensitivity parameters per setting is estimated
+    before the settings are made (a grid x grid of 1e10 would fill the
+    memory first)."""
     from ..inputs import read_boundary
     if args.table:
         if args.freq or args.pf:
@@ -648,6 +652,8 @@ def _settings(args):
                               "freq_hz and p_f_bar; allowed: no empty cells")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
+        check_work(f"--table {args.table}", len(freqs), "settings")
+        estimates.check_settings(len(freqs), parameters)
         low, high = FREQ_RANGE_HZ
         for row, f in enumerate(freqs, start=2):
             if not low <= f <= high:
@@ -660,27 +666,28 @@ def _settings(args):
     freqs = _values(args.freq, "--freq", "Hz")
     amplitudes = _values(args.pf, "--pf", "bar")
     check_amplitudes(amplitudes, "--pf")
+    check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
+    estimates.check_settings(len(freqs) * len(amplitudes), parameters)
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]
 
 
 def cmd_check(args):
     """Verdict, growth and margins of dither settings."""
-    freqs, amplitudes = _settings(args)
-    check_amplitudes([args.pf_max], "--pf-max")
-    if args.pf_max is not None and not args.pf_max > max(amplitudes):
-        raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
-                          "allowed: above the largest setting, "
-                          f"{max(amplitudes):g} bar")
     if args.params is None:
         names = None
     elif args.params.strip().lower() == "none":
         names = []
     else:
         names = parse_list(args.params, "--params", str)
-    params, changes = parameters_of(args)
-    estimates.check_settings(len(freqs), len(
+    freqs, amplitudes = _settings(args, len(
         api.DEFAULT_CHECK_PARAMETERS if names is None else names))
+    check_amplitudes([args.pf_max], "--pf-max")
+    if args.pf_max is not None and not args.pf_max > max(amplitudes):
+        raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
+                          "allowed: above the largest setting, "
+                          f"{max(amplitudes):g} bar")
+    params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "check") as progress:
         result = api.check(freqs, amplitudes, params, changes,
@@ -711,6 +718,7 @@ def cmd_advise(args):
     check_number("--margin-hz", args.margin_hz, "Hz", strict=False)
     check_number("--min-growth", args.min_growth, "1/s", strict=False)
     check_amplitudes([args.pf_max], "--pf-max")
+    check_advise_grid(args.freq_range, low, high, args.margin_hz)
     if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
             args.margin_bar >= args.pf_max:
         raise JudderError(f"--margin-bar {args.margin_bar:g} bar is not "
