@@ -26,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import MARK, atomic_write, keeps_foreign_files, write_text
+from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
+                         write_text)
 from infra.units import PA_PER_BAR
 
 from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
@@ -525,5 +526,6 @@ def print_pdf(html_path, pdf_path):
         if not target.exists() or target.stat().st_size == 0:
             raise JudderError(f"--pdf: chromium could not print the report "
                               f"(exit {proc.returncode})")
-        data = target.read_bytes()
+        # marked, so that the next run may replace it (the overwrite rule)
+        data = mark_pdf(target.read_bytes())
     atomic_write(pdf_path, lambda stream: stream.write(data))

@@ -523,3 +523,83 @@ def test_available_memory_follows_ulimit():
         cwd=os.path.join(os.path.dirname(__file__), ".."))
     left = int(done.stdout)
     assert 0 < left < 3000000 * 1024
+
+
+# -- the overwrite rule ------------------------------------------------
+
+REPORT = ["report", "--map-freq", "90:120:10", "--map-pf", "0:1:10",
+          "--grid", "90:120:20", "--sensitivity", "k24"]
+
+
+@pytest.mark.skipif(not __import__("shutil").which("chromium"),
+                    reason="--pdf needs Chromium")
+def test_report_pdf_twice(tmp_path):
+    """The second run recognises the first run's PDF and replaces it; a
+    PDF of the user's is kept."""
+    argv = [*REPORT, "--out", str(tmp_path / "r.html"), "--pdf",
+            str(tmp_path / "r.pdf")]
+    for _ in range(2):
+        done = subprocess.run([sys.executable, "-m", "judder", *argv],
+                              capture_output=True, text=True, timeout=600)
+        assert done.returncode == 0, done.stderr
+    from infra.files import written_by_us
+    assert written_by_us(tmp_path / "r.pdf")
+    _check_pdf_update((tmp_path / "r.pdf").read_bytes())
+    mine = tmp_path / "mine.pdf"
+    mine.write_bytes(b"%PDF-1.4\n% the user's\n")
+    done = subprocess.run([sys.executable, "-m", "judder", *REPORT, "--out",
+                           str(tmp_path / "s.html"), "--pdf", str(mine)],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 2
+    assert "--pdf" in _one_line(done.stderr) and "--force" in done.stderr
+    assert mine.read_bytes() == b"%PDF-1.4\n% the user's\n"
+    assert not (tmp_path / "s.html").exists()
+
+
+def _check_pdf_update(data):
+    """The last cross-reference section is where startxref says, and its
+    one entry points at the information dictionary, whose Creator is the
+    mark; the previous section is where /Prev says."""
+    import re
+    start = int(re.findall(rb"startxref\s+(\d+)", data)[-1])
+    assert data[start:start + 5] == b"xref\n"
+    entry = re.match(rb"xref\n(\d+) 1\n(\d{10}) (\d{5}) n \n", data[start:])
+    number, offset = int(entry.group(1)), int(entry.group(2))
+    assert data[offset:].startswith(b"%d 0 obj" % number)
+    assert b"/Creator (written by judder)>>" in data[offset:start]
+    trailer = data[start:]
+    assert b"/Info %d 0 R" % number in trailer
+    previous = int(re.search(rb"/Prev (\d+)", trailer).group(1))
+    assert data[previous:previous + 4] == b"xref"
+
+
+def test_mark_pdf_keeps_the_title_and_the_rest():
+    from infra.files import mark_pdf
+    body = (b"%PDF-1.4\n1 0 obj\n<</Title (a \\(b\\))\n/Creator (Chrome \\(X\\) "
+            b"x)>>\nendobj\n2 0 obj\n<</Type /Catalog>>\nendobj\n")
+    xref = len(body)
+    original = body + (b"xref\n0 3\n0000000000 65535 f \n0000000009 00000 n "
+                       b"\n%010d 00000 n \ntrailer\n<</Size 3\n/Root 2 0 R\n"
+                       b"/Info 1 0 R>>\nstartxref\n%d\n%%%%EOF\n"
+                       % (body.index(b"2 0 obj"), xref))
+    marked = mark_pdf(original)
+    assert marked.startswith(original)
+    _check_pdf_update(marked)
+    update = marked[len(original):]
+    assert b"/Title (a \\(b\\))" in update and b"Chrome" not in update
+    assert b"/Prev %d" % xref in update
+
+
+def test_checkpoint_on_the_output_is_refused_before_work(tmp_path, capsys):
+    out = tmp_path / "e.npz"
+    start = time.monotonic()
+    status, err = _in_process(
+        ["envelope", "--ranges", f"{EXAMPLES}/ranges.toml", "--freq",
+         "60:200:11", "--samples", "2", "--out", str(out), "--checkpoint",
+         str(out)], capsys)
+    assert time.monotonic() - start < 5
+    assert status == 2
+    assert _one_line(err) == (
+        f"judder: error: --checkpoint {out} is also given as --out; allowed: "
+        "a different file for the checkpoint and each output")
+    assert os.listdir(tmp_path) == []

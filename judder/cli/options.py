@@ -64,8 +64,28 @@ def check_outputs(args):
                               f"{seen[key]}; allowed: a different file for "
                               "each output")
         seen[key] = option
+    if args.command == "envelope":
+        _check_checkpoint(args, seen)
     if args.command == "campaign":
         check_campaign_folder(args.out)
+
+
+def _check_checkpoint(args, seen):
+    """The envelope's checkpoint (given, or beside the first output) on
+    none of its outputs: it is written during the work and removed at the
+    end, so the output would be lost (or refused only after the work)."""
+    from ..envelope import checkpoint_path
+    given = args.checkpoint
+    path = given or checkpoint_path(args.out, args.csv, args.plot)
+    if path is None:
+        return
+    other = seen.get(Path(path).resolve())
+    if other is not None:
+        what = f"--checkpoint {given}" if given else \
+            f"the checkpoint {path} (beside the first output)"
+        raise JudderError(f"{what} is also given as {other}; allowed: a "
+                          "different file for the checkpoint and each "
+                          "output")
 
 
 def check_campaign_folder(text):
