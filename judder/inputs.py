@@ -188,11 +188,11 @@ def read_chart_boundary(path, group=None, option="--chart"):
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
-    except (ValueError, KeyError, EOFError, zipfile.BadZipFile):
-        # a truncated NPZ is a BadZipFile (or EOFError inside a member)
+    except (EOFError, zipfile.BadZipFile):
+        raise _damaged(option, path) from None
+    except (ValueError, KeyError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file), or a truncated one") \
-            from None
+                          "chart --out (an NPZ file)") from None
     names = list(dict.fromkeys(groups.tolist()))
     if not names:
         raise JudderError(f"{option} {path}: the chart has no boundary (no "
@@ -209,6 +209,14 @@ def read_chart_boundary(path, group=None, option="--chart"):
             float(tried[keep].max()))
 
 
+def _damaged(option, path):
+    """A zip archive cut short (its directory is at the end) or with a
+    member cut short: numpy raises BadZipFile or EOFError."""
+    return JudderError(f"{option} {path}: a truncated or damaged NPZ file "
+                       "(its zip archive is incomplete); allowed: a chart "
+                       "written by judder chart --out")
+
+
 def read_chart_min_growth(path, option="--chart"):
     """The growth rate (1/s) from which the chart's verdict called a run
     judder (``judder chart --min-growth``); 0 for a chart without it."""
@@ -220,10 +228,11 @@ def read_chart_min_growth(path, option="--chart"):
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
-    except (ValueError, TypeError, EOFError, zipfile.BadZipFile):
+    except (EOFError, zipfile.BadZipFile):
+        raise _damaged(option, path) from None
+    except (ValueError, TypeError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file), or a truncated one") \
-            from None
+                          "chart --out (an NPZ file)") from None
     if not (np.isfinite(value) and value >= 0):
         raise JudderError(f"{option} {path}: its min_growth_per_s = {value!r} "
                           "is not allowed; allowed: a finite number >= 0")

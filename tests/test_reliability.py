@@ -400,9 +400,9 @@ BOUNDARY_CASES = [
     ([*ENVELOPE, "{d}/ranges_fit_value.toml"], 2, ["fitted.c12 has no value"]),
     # a chart NPZ cut short (its zip directory is at the end)
     (["fit", "--chart", "{d}/truncated.npz", "--fit", "mu_g"], 2,
-     ["--chart", "truncated.npz", "truncated one"]),
+     ["--chart", "truncated.npz", "a truncated or damaged NPZ file"]),
     (["report", "--chart", "{d}/truncated.npz", "--out", "{d}/r.html"], 2,
-     ["--chart", "truncated one"]),
+     ["--chart", "a truncated or damaged NPZ file"]),
     # a Modelica driveline without a clutch
     (["map", "--modelica", "NoClutch.Chain", "--library", "{d}", "--freq",
       "100:110:3", "--pf", "0:0.3:3"], 2,
@@ -603,3 +603,101 @@ def test_checkpoint_on_the_output_is_refused_before_work(tmp_path, capsys):
         f"judder: error: --checkpoint {out} is also given as --out; allowed: "
         "a different file for the checkpoint and each output")
     assert os.listdir(tmp_path) == []
+
+
+# -- bench channels that cannot be right -------------------------------
+
+def _bench_copy(tmp_path, edits):
+    """The example bench with some runs' CSV rows edited:
+    ``edits[name](rows)`` changes the rows (header first) in place."""
+    import csv
+    import shutil
+    folder = tmp_path / "bench"
+    shutil.copytree(os.path.join(EXAMPLES, "bench"), folder)
+    for name, edit in edits.items():
+        with open(folder / name, newline="") as stream:
+            rows = list(csv.reader(stream))
+        edit(rows)
+        with open(folder / name, "w", newline="") as stream:
+            csv.writer(stream).writerows(rows)
+    return folder
+
+
+def _one_huge_sample(rows):
+    rows[500][1] = "1e300"
+
+
+def _every_third_nan(rows):
+    for row in rows[1::3]:
+        row[1] = "nan"
+
+
+def test_implausible_bench_samples_are_refused_per_run(tmp_path, capsys):
+    """One speed sample of 1e300 rpm, or every third sample NaN: that run
+    is refused with its reason, never folded into the chart; the other
+    runs keep their verdicts."""
+    import json
+    from judder.cli import main
+    clean = _bench_copy(tmp_path / "clean", {})
+    assert main(["chart", "--index", str(clean / "runs.csv"), *CHANNELS,
+                 "--workers", "1", "--json"]) == 0
+    before = {os.path.basename(r["file"]): r
+              for r in json.loads(capsys.readouterr().out)["runs"]}
+    folder = _bench_copy(tmp_path, {"run01.csv": _one_huge_sample,
+                                    "run02.csv": _every_third_nan})
+    assert main(["chart", "--index", str(folder / "runs.csv"), *CHANNELS,
+                 "--workers", "1", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    runs = {os.path.basename(r["file"]): r for r in data["runs"]}
+    failed = {os.path.basename(f["file"]): f["message"]
+              for f in data["failed"]}
+    assert set(failed) == {"run01.csv", "run02.csv"}
+    assert "1e+300 rpm at 0.735818 s is not a value a bench records" in \
+        failed["run01.csv"]
+    assert "run02.csv" in failed
+    assert set(runs) == set(before) - {"run01.csv", "run02.csv"}
+    for name, run in runs.items():
+        assert run["judder"] == before[name]["judder"]
+        assert run["amplitude_rpm"] == before[name]["amplitude_rpm"]
+
+
+@pytest.mark.parametrize("rows", [1, "same"])
+def test_a_run_without_a_time_base_is_one_line(tmp_path, rows, capsys):
+    """A one-sample CSV, or one whose time stamps are all equal: the run
+    is refused naming the file and channel (it was a TypeError in a job,
+    reported with the job's Python repr)."""
+    import csv
+    with open(os.path.join(EXAMPLES, "bench", "run01.csv"),
+              newline="") as stream:
+        table = list(csv.reader(stream))
+    if rows == 1:
+        table = table[:2]
+    else:
+        table = [table[0]] + [["1.0", *row[1:]] for row in table[1:]]
+    with open(tmp_path / "run.csv", "w", newline="") as stream:
+        csv.writer(stream).writerows(table)
+    (tmp_path / "runs.csv").write_text("file,freq_hz,p_f_bar\nrun.csv,210,"
+                                       "0.4\n")
+    from judder.cli import main
+    status = main(["chart", "--index", str(tmp_path / "runs.csv"),
+                   *CHANNELS])
+    out, err = capsys.readouterr()
+    assert status == 2
+    assert "Traceback" not in err + out and "RunSource" not in err + out
+    assert (f"could not read {tmp_path / 'run.csv'}: " in out
+            and "upstream_speed channel 'EngSpd_up' has 1 distinct time "
+            "stamp(s)" in out), out
+    assert _one_line(err) == "judder: error: no run could be read"
+
+
+def test_a_flat_measured_period_says_so(tmp_path, capsys):
+    (tmp_path / "flat.csv").write_text("1\n1\n1\n1\n1\n1\n")
+    status, err = _in_process(["floquet", "--freq", "100", "--pf", "0.2",
+                               "--dither-wave",
+                               f"period:{tmp_path / 'flat.csv'}"], capsys)
+    assert status == 2
+    assert "np.float64" not in err
+    assert _one_line(err) == ("judder: error: the measured period has no "
+                              "fundamental (its first harmonic is 0, e.g. a "
+                              "constant); allowed: a period with a "
+                              "fundamental")
