@@ -202,6 +202,10 @@ def read_chart_boundary(path, group=None, option="--chart"):
                           f"--group, one of {', '.join(names)}")
     chosen = names[0] if group is None else group
     if chosen not in names:
+        if names == [""]:        # judder chart without --group-by
+            raise JudderError(f"--group {group!r}: {path} has one group of "
+                              "runs (charted without --group-by); allowed: "
+                              "no --group")
         raise JudderError(f"--group {group!r} is not in {path}; allowed: "
                           f"{', '.join(names)}")
     keep = groups == chosen

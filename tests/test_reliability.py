@@ -403,6 +403,9 @@ BOUNDARY_CASES = [
      ["--chart", "truncated.npz", "a truncated or damaged NPZ file"]),
     (["report", "--chart", "{d}/truncated.npz", "--out", "{d}/r.html"], 2,
      ["--chart", "a truncated or damaged NPZ file"]),
+    # --group of a chart charted without --group-by ('allowed:' and nothing)
+    (["fit", "--chart", "{d}/whole.npz", "--group", "65-70", "--fit",
+      "mu_g"], 2, ["--group '65-70'", "one group", "allowed: no --group"]),
     # a Modelica driveline without a clutch
     (["map", "--modelica", "NoClutch.Chain", "--library", "{d}", "--freq",
       "100:110:3", "--pf", "0:0.3:3"], 2,
@@ -420,7 +423,7 @@ def boundary_folder(tmp_path_factory):
     for name, text in BOUNDARY_FILES.items():
         (d / name).parent.mkdir(exist_ok=True)
         (d / name).write_text(text)
-    np.savez(d / "whole.npz", boundary_group=np.array(["all"]),
+    np.savez(d / "whole.npz", boundary_group=np.array([""]),
              boundary_freq_hz=np.array([100.0]),
              boundary_p_f_bar=np.array([0.2]),
              boundary_tried_bar=np.array([1.0]))
