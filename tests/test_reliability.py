@@ -478,15 +478,21 @@ def test_units_mean_what_they_say(capsys):
 
 # -- memory and work a typo would take ---------------------------------
 
-@pytest.mark.parametrize("argv, words", [
+@pytest.mark.parametrize("hours, argv, words", [
     # 199 901 frequencies 0.5 Hz apart; grew to 23 GB with 60:1e9 before
-    (["advise", "--no-design", "--freq-range=60:100000"],
+    (None, ["advise", "--no-design", "--freq-range=60:100000"],
      ["--freq-range 60:100000 makes 199901 frequencies", "at most 100000"]),
     # 1e10 settings: the list of pairs alone would not fit
-    (["check", "--freq", "60:200:100000", "--pf", "0:1:100000"],
+    (None, ["check", "--freq", "60:200:100000", "--pf", "0:1:100000"],
+     ["10000000000 settings", "fewer --freq x --pf settings"]),
+    # ... also when the time limit is raised
+    ("1e9", ["check", "--freq", "60:200:100000", "--pf", "0:1:100000"],
      ["--freq x --pf asks for 1e+10 settings", "at most 100000"]),
 ])
-def test_a_typo_cannot_take_the_machine(argv, words, capsys):
+def test_a_typo_cannot_take_the_machine(hours, argv, words, capsys,
+                                        monkeypatch):
+    if hours is not None:
+        monkeypatch.setenv("JUDDER_MAX_HOURS", hours)
     import resource
     before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     start = time.monotonic()

@@ -652,8 +652,8 @@ def _settings(args, parameters):
                               "freq_hz and p_f_bar; allowed: no empty cells")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
-        check_work(f"--table {args.table}", len(freqs), "settings")
         estimates.check_settings(len(freqs), parameters)
+        check_work(f"--table {args.table}", len(freqs), "settings")
         low, high = FREQ_RANGE_HZ
         for row, f in enumerate(freqs, start=2):
             if not low <= f <= high:
@@ -666,8 +666,10 @@ def _settings(args, parameters):
     freqs = _values(args.freq, "--freq", "Hz")
     amplitudes = _values(args.pf, "--pf", "bar")
     check_amplitudes(amplitudes, "--pf")
-    check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
+    # the time first (it says what to change); then, with the time limit
+    # raised, the count (the pairs of 1e10 settings would not fit)
     estimates.check_settings(len(freqs) * len(amplitudes), parameters)
+    check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]
 
