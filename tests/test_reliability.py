@@ -88,6 +88,31 @@ def test_ctrl_c_of_the_process_group_with_workers(tmp_path):
     assert alive == []
 
 
+def test_a_second_signal_does_not_wait_for_the_clean_up(tmp_path):
+    """Closing two Dask workers takes seconds; a second SIGTERM in them
+    ends the command at once, saying a .part file may remain."""
+    import psutil
+    proc = _start(["sensitivity", "--params", "k12,k24,J2,J4,c12,mu_g",
+                   "--freq", "20:220:2000", "--workers", "2", "--out",
+                   str(tmp_path / "s.csv")])
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and len(
+            psutil.Process(proc.pid).children(recursive=True)) < 2:
+        time.sleep(0.5)
+    time.sleep(5.0)
+    proc.send_signal(signal.SIGTERM)
+    time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    start = time.monotonic()
+    _, stderr = proc.communicate(timeout=60)
+    assert time.monotonic() - start < 2.0
+    assert proc.returncode == 143, stderr
+    assert stderr.splitlines()[0] == (
+        "judder: stopped again while cleaning up; a temporary "
+        ".NAME.*.part file may remain")
+    assert "Traceback" not in stderr
+
+
 def test_in_process_calls_restore_the_handlers():
     from judder.cli import main
     before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
