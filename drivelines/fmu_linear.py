@@ -23,27 +23,21 @@ the result is a :class:`~drivelines.modelica.LinearPeriodicModel` that
 
 fmpy loads the FMU here (not in :mod:`pysim`, the time-domain runs),
 because the stability layer needs the matrices and may import only
-:mod:`drivelines`.
+:mod:`drivelines`; its binary runs in a child process
+(:mod:`drivelines.fmu_calls`), so that a crash, a hang or a non-finite
+Jacobian of a third-party FMU is one error naming the call.
 """
 
-import contextlib
-import shutil
-from contextlib import contextmanager
-from ctypes import byref
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
-from fmpy import extract, read_model_description
-from fmpy import calloc, free
-from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE,
-                       fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
-                       fmi2CallbackLoggerTYPE, fmi2Real)
-from fmpy.logging import addLoggerProxy
+from fmpy import read_model_description
 
 from infra.errors import JudderError
 
+from .fmu_calls import SampleJob, sample_isolated
 from .modelica import (NamedParameters, check_no_acceleration, checked_values,
                        reduce_periodic)
 from .specs import ParameterSpec
@@ -163,82 +157,6 @@ def fmu_description(path):
     return _described(str(path.resolve()), path.stat().st_mtime_ns)
 
 
-class _Instance:
-    """One initialised Model Exchange instance at a parameter set; the
-    FMU's log messages are kept (the last one explains a failed call)."""
-
-    def __init__(self, description, folder, values):
-        self.d = description
-        self.n = len(description.states)
-        self.messages = []
-        self.callbacks = fmi2CallbackFunctions()
-        self.callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        addLoggerProxy(byref(self.callbacks))
-        self.fmu = None
-        names = list(values)
-        try:
-            with self._failing("loading the binary"):
-                self.fmu = FMU2Model(
-                    guid=description.guid, unzipDirectory=folder,
-                    modelIdentifier=description.model_identifier,
-                    instanceName="judder")
-            with self._failing("initialisation"):
-                self.fmu.instantiate(callbacks=self.callbacks)
-                self.fmu.setupExperiment(startTime=0.0)
-                self.fmu.setReal([description.references[n] for n in names],
-                                 [values[n] for n in names])
-                self.fmu.enterInitializationMode()
-                self.fmu.exitInitializationMode()
-                while True:
-                    update = self.fmu.newDiscreteStates()
-                    if not update[0] or update[1]:
-                        break
-                self.fmu.enterContinuousTimeMode()
-                buffer = (fmi2Real * self.n)()
-                self.fmu.getContinuousStates(buffer, self.n)
-        except FmuError:
-            self.close()
-            raise
-        self.x0 = np.array(buffer)
-
-    def _log(self, component, instance, status, category, message):
-        self.messages.append(message.decode("utf-8", "replace"))
-
-    @contextmanager
-    def _failing(self, stage):
-        try:
-            yield
-        except Exception as exc:       # fmpy's FMICallException, OSError
-            reason = self.messages[-1] if self.messages else str(exc)
-            raise FmuError(f"--fmu {self.d.path}: {stage} failed "
-                           f"({reason})") from None
-
-    def jacobian(self, time, x):
-        """``d der(x) / dx`` at ``(time, x)`` and ``der(x)``."""
-        rate = (fmi2Real * self.n)()
-        with self._failing(f"the Jacobian at t = {time:g} s"):
-            self.fmu.setTime(time)
-            self.fmu.setContinuousStates((fmi2Real * self.n)(*x), self.n)
-            columns = [self.fmu.getDirectionalDerivative(
-                list(self.d.derivatives), list(self.d.states), list(seed))
-                for seed in np.eye(self.n)]
-            self.fmu.getDerivatives(rate, self.n)
-        return np.array(columns).T, np.array(rate)
-
-    def close(self):
-        """Free the instance (whatever state a failed call left it in) and
-        unload the binary."""
-        if self.fmu is None:
-            return
-        with contextlib.suppress(Exception):
-            self.fmu.terminate()
-        with contextlib.suppress(Exception):
-            self.fmu.freeInstance()
-        self.fmu.freeLibrary()
-
-
 def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
     r"""Linear time-periodic system of an FMU, Eq. (6)-(7).
 
@@ -280,13 +198,13 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
              "allowed: a dither amplitude parameter that can be > 0")
     step = largest / 2
     times = np.arange(SAMPLES) / (SAMPLES * f0)
-    folder = extract(d.path)
-    try:
-        jacobians, x0, rate = _sampled(d, folder, values, amplitude, step,
-                                       times)
-    finally:
-        shutil.rmtree(folder, ignore_errors=True)
-    A, Ja, J2a = jacobians
+    sampled = _sampled(d.path, Path(d.path).stat().st_mtime_ns,
+                       tuple((n, v) for n, v in values.items()
+                             if n != amplitude), amplitude, step,
+                       tuple(times))
+    A, Ja, J2a = sampled["jacobians"]
+    _steady_slip(d, A[0], sampled["rate"], sampled["moved"],
+                 sampled["along"])
     A0 = A[0]
     B0 = (Ja[0] - A0) / step
     scale = max(np.abs(A0).max(), 1.0)
@@ -308,28 +226,23 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
                            frequency)
 
 
-def _sampled(d, folder, values, amplitude, step, times):
-    """Jacobians at amplitudes 0, ``step``, ``2 step`` (each shape
-    (samples, n, n)), the initial state and its derivative; checks the
-    steady slip on the way."""
-    out = []
-    for k in range(3):
-        instance = _Instance(d, folder, {**values, amplitude: k * step})
-        try:
-            if k == 0:
-                x0 = instance.x0
-                A0, rate = instance.jacobian(0.0, x0)
-                # a generic move of every state, and one along the slip
-                generic = 1e-2 * (1.0 + np.abs(x0)) * np.linspace(
-                    1.0, 2.0, len(x0))
-                _steady_slip(d, A0, rate,
-                             instance.jacobian(0.0, x0 + generic)[0],
-                             instance.jacobian(0.0, x0 + times[-1] * rate)[0])
-            out.append(np.array([instance.jacobian(t, x0)[0]
-                                 for t in times]))
-        finally:
-            instance.close()
-    return out, x0, rate
+@lru_cache(maxsize=8)
+def _sampled(path, mtime, values, amplitude, step, times):
+    """The Jacobians of :func:`drivelines.fmu_calls.sample` (read-only),
+    read once per FMU version and parameter set (a command asks for the
+    same linearisation for its estimates and its work). The FMU's binary
+    runs in a child process: a crash, a hang or a NaN of it becomes an
+    :class:`FmuError` naming the call."""
+    d = _described(path, mtime)
+    sampled = sample_isolated(SampleJob(
+        path=d.path, folder="", guid=d.guid,
+        model_identifier=d.model_identifier, states=d.states,
+        derivatives=d.derivatives, references=d.references,
+        values=dict(values), amplitude=amplitude,
+        amplitudes=(0.0, step, 2 * step), times=times), FmuError)
+    for array in sampled.values():
+        array.setflags(write=False)
+    return sampled
 
 
 def _steady_slip(d, A0, rate, moved, along):

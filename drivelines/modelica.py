@@ -441,6 +441,13 @@ def reduce_periodic(name, state_names, A0, B0, values, amplitude, frequency):
     -------
     LinearPeriodicModel
     """
+    # without a modulated damping (no clutch, or the dither parameter
+    # unused) the balancing divides by zero rows and the SVD fails
+    _require(np.isfinite(B0).all() and np.abs(B0).max() > 0,
+             f"{name}: the dither {amplitude} does not enter the "
+             "linearised equations (no clutch damping is modulated); "
+             "allowed: a driveline with a clutch whose pressure is "
+             f"{amplitude}")
     D = _balance(A0, B0)
     A_bal = A0 / D[:, None] * D[None, :]
     B_bal = B0 / D[:, None] * D[None, :]

@@ -25,8 +25,8 @@ import traceback
 from infra.errors import (EXIT_ERROR, EXIT_INTERRUPTED, EXIT_OK,
                           JudderError)
 
-__all__ = ["run_guarded", "EXIT_INTERNAL", "EXIT_TERMINATED",
-           "join_negative_values", "Terminated"]
+__all__ = ["run_guarded", "signals_held", "EXIT_INTERNAL",
+           "EXIT_TERMINATED", "join_negative_values", "Terminated"]
 
 #: A bug in the tool: the message says how to report it.
 EXIT_INTERNAL = 1
@@ -63,38 +63,142 @@ def join_negative_values(argv):
     return out
 
 
-def _on_sigterm(signum, frame):
-    raise Terminated()
+class _Signals:
+    """The handlers of SIGINT and SIGTERM while a command runs.
+
+    The first signal raises (``KeyboardInterrupt``, :class:`Terminated`)
+    in the main thread, so that ``finally`` blocks remove ``.part`` files
+    and close worker processes; a second one while that clean-up runs
+    ends the process at once with the same exit status (a clean-up that
+    blocks cannot hold the user; it says a ``.part`` file may remain:
+    the next campaign into the folder removes it). After the command,
+    while the report is printed and the interpreter exits, a signal ends
+    the process at once with the usual line. A SIGINT that the
+    parent ignores (a job started with ``&`` or ``nohup``) stays ignored.
+    """
+
+    def __init__(self, prog):
+        self.prog = prog
+        self.unwinding = False
+        self.done = False
+        self.held = None
+        self.previous = {}
+
+    def install(self):
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            try:
+                current = signal.getsignal(signum)
+                if signum == signal.SIGINT and current is signal.SIG_IGN:
+                    continue
+                self.previous[signum] = signal.signal(signum, self._handle)
+            except ValueError:      # not the main thread: leave it alone
+                return
+
+    def restore(self):
+        for signum, handler in self.previous.items():
+            signal.signal(signum, handler)
+        self.previous = {}
+
+    def _handle(self, signum, frame):
+        if self.done:
+            _say(_stopped(self.prog, signum))
+            os._exit(_stop_status(signum))
+        if self.unwinding:
+            _say(f"{self.prog}: stopped again while cleaning up; a "
+                 "temporary .NAME.*.part file may remain")
+            os._exit(_stop_status(signum))
+        if self.held is not None:
+            self.held.append(signum)
+            return
+        self.raise_for(signum)
+
+    def raise_for(self, signum):
+        self.unwinding = True
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt()
+        raise Terminated()
+
+
+_ACTIVE = []
 
 
 @contextlib.contextmanager
-def _sigterm_raises():
-    """SIGTERM raises :class:`Terminated` while the command runs."""
-    try:
-        previous = signal.signal(signal.SIGTERM, _on_sigterm)
-    except ValueError:          # not the main thread: leave it alone
+def signals_held():
+    """Hold SIGINT and SIGTERM in the block, act on the first at its end.
+
+    For imports of compiled libraries (numpy turns an exception raised
+    inside its import into an ``ImportError`` that reads like a broken
+    installation): the block runs to its end, then the signal raises as
+    usual. Outside :func:`run_guarded` it does nothing.
+    """
+    signals = _ACTIVE[-1] if _ACTIVE else None
+    if signals is None or signals.held is not None:
         yield
         return
+    signals.held = []
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        pending, signals.held = signals.held, None
+    if pending:
+        signals.raise_for(pending[0])
 
 
-def run_guarded(prog, command):
-    """Run ``command()`` under the error contract; returns the exit status."""
+def _stop_status(signum):
+    return EXIT_INTERRUPTED if signum == signal.SIGINT else EXIT_TERMINATED
+
+
+def _stopped(prog, signum):
+    word = "interrupted" if signum == signal.SIGINT else "terminated"
+    return f"{prog}: {word}; no partial output was written"
+
+
+def run_guarded(prog, command, whole_process=False):
+    """Run ``command()`` under the error contract; returns the exit status.
+
+    SIGINT and SIGTERM are handled from the first line of ``command`` on:
+    a command line calls this before its heavy imports (inside
+    ``command``), so that a signal at any moment gives one line and
+    exit 130 or 143.
+
+    Parameters
+    ----------
+    prog : str
+        The name the messages start with.
+    command : callable
+        Called without arguments.
+    whole_process : bool
+        The command is the whole process (a command line run from a
+        shell): the handlers stay until it exits, so that a signal while
+        the interpreter shuts down still gives one line. Otherwise (a
+        call inside a test) the previous handlers are restored.
+    """
+    signals = _Signals(prog)
+    signals.install()
+    _ACTIVE.append(signals)
     try:
-        with _sigterm_raises():
-            command()
+        return _guarded(prog, command)
+    finally:
+        _ACTIVE.remove(signals)
+        # from here on a signal ends the process at once (nothing is
+        # left to unwind)
+        signals.done = True
+        if not whole_process:
+            signals.restore()
+
+
+def _guarded(prog, command):
+    try:
+        command()
         sys.stdout.flush()
     except JudderError as exc:
         _say(f"{prog}: error: {exc}")
         return EXIT_ERROR
     except KeyboardInterrupt:
-        _say(f"{prog}: interrupted; no partial output was written")
+        _say(_stopped(prog, signal.SIGINT))
         return EXIT_INTERRUPTED
     except Terminated:
-        _say(f"{prog}: terminated; no partial output was written")
+        _say(_stopped(prog, signal.SIGTERM))
         return EXIT_TERMINATED
     except BrokenPipeError:
         _quiet_stdout()

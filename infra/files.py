@@ -24,7 +24,7 @@ from .errors import JudderError
 
 __all__ = ["atomic_write", "write_text", "save_figure", "to_json", "MARK",
            "NPZ_MARK", "written_by_us", "check_output", "save_npz",
-           "keeps_foreign_files",
+           "keeps_foreign_files", "mark_pdf",
            "check_folder_writable", "decode_text"]
 
 #: Text every file written by the tool carries.
@@ -101,6 +101,53 @@ def written_by_us(path):
         return False
     return any(mark in part for part in (head, tail)
                for mark in (MARK.encode(), f"{NPZ_MARK}.npy".encode()))
+
+
+def mark_pdf(data):
+    """A PDF (bytes) whose ``Creator`` is :data:`MARK`, for a PDF another
+    program wrote (Chromium prints the report).
+
+    An incremental update, as the PDF format provides for editing: the
+    document information dictionary again, with ``/Creator`` replaced,
+    then a cross-reference section for it and a trailer pointing back to
+    the previous one (``/Prev``); nothing before is changed. A file
+    without a classic trailer gets the mark as a comment at its end.
+    """
+    import re
+    fallback = data + f"%{MARK}\n".encode()
+    end = data.rfind(b"startxref")
+    at = data.rfind(b"trailer", 0, end)
+    found = re.match(rb"startxref\s+(\d+)", data[end:]) if end >= 0 else None
+    if at < 0 or found is None:
+        return fallback
+    trailer = data[at:end]
+    size = re.search(rb"/Size\s+(\d+)", trailer)
+    root = re.search(rb"/Root\s+(\d+\s+\d+\s+R)", trailer)
+    info = re.search(rb"/Info\s+(\d+)\s+(\d+)\s+R", trailer)
+    ident = re.search(rb"/ID\s*(\[[^\]]*\])", trailer)
+    if size is None or root is None:
+        return fallback
+    fields = b""
+    if info is not None:
+        number, generation = int(info.group(1)), int(info.group(2))
+        body = re.search(rb"(?<!\d)%d %d obj\s*<<(.*?)>>\s*endobj"
+                         % (number, generation), data, re.S)
+        if body is not None:
+            fields = re.sub(rb"/Creator\s*\((?:\\.|[^\\)])*\)", b"",
+                            body.group(1), flags=re.S)
+    else:
+        number, generation = int(size.group(1)), 0
+    offset = len(data) + 1
+    update = (b"\n%d %d obj\n<<%s\n/Creator (%s)>>\nendobj\n"
+              % (number, generation, fields.strip(), MARK.encode()))
+    xref = offset - 1 + len(update)
+    update += (b"xref\n%d 1\n%010d %05d n \ntrailer\n<</Size %d /Root %s "
+               b"/Info %d %d R%s /Prev %s>>\nstartxref\n%d\n%%%%EOF\n"
+               % (number, offset, generation,
+                  max(int(size.group(1)), number + 1), root.group(1), number,
+                  generation, b" /ID " + ident.group(1) if ident else b"",
+                  found.group(1), xref))
+    return data + update
 
 
 def keeps_foreign_files(save):

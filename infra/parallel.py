@@ -39,6 +39,12 @@ __all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures"]
 
 #: Seconds to wait for an existing scheduler to answer.
 CONNECT_TIMEOUT = 10
+#: Seconds an existing scheduler has to answer a first hello
+#: (:func:`_probe`), before any work.
+PROBE_TIMEOUT = 5
+#: Largest first message of a scheduler (its hello is a few hundred
+#: bytes); a longer one is not Dask.
+_HELLO_BYTES = 1 << 20
 #: Batches per worker process of one :func:`parallel_map`: Dask's cost of
 #: a task (about 2 ms here, paid in the process that also runs the
 #: scheduler, on the same 2 cores) is paid per batch of jobs, while
@@ -143,6 +149,70 @@ def _check_address(address):
                           "tcp://HOST:PORT") from None
 
 
+def _first_bytes(address, host, port):
+    """Over a plain socket: a refused connection fails at once (not after
+    Dask's retries), a silent peer after :data:`PROBE_TIMEOUT` s, and a
+    first message longer than a Dask hello (its first 8 bytes are the
+    length) before Dask would allocate that length."""
+    import socket
+    import struct
+
+    def refuse(reason):
+        raise JudderError(f"--scheduler {address}: {reason}; allowed: the "
+                          "address of a running Dask scheduler")
+    try:
+        with socket.create_connection((host, port),
+                                      timeout=PROBE_TIMEOUT) as sock:
+            head = b""
+            while len(head) < 8:
+                chunk = sock.recv(8 - len(head))
+                if not chunk:
+                    refuse("it closed the connection without a Dask hello")
+                head += chunk
+    except TimeoutError:
+        refuse(f"no Dask answer within {PROBE_TIMEOUT} s")
+    except OSError as exc:
+        refuse(f"cannot connect ({exc.strerror or exc})")
+    if struct.unpack("<Q", head)[0] > _HELLO_BYTES:
+        refuse("it does not speak the Dask protocol")
+
+
+def _probe(address):
+    """Refuse, in :data:`PROBE_TIMEOUT` seconds, a scheduler address where
+    nothing listens, where something accepts and stays silent, or where
+    what answers does not speak Dask or is not a scheduler (a Dask client
+    made on one waits 20 s, or for ever, then fails with a traceback).
+    """
+    import asyncio
+    from distributed.comm import connect
+    from distributed.comm.addressing import parse_address, parse_host_port
+    scheme, location = parse_address(address)
+    if scheme == "tcp":
+        _first_bytes(address, *parse_host_port(location))
+
+    async def identity():
+        comm = await connect(address, timeout=PROBE_TIMEOUT)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    try:
+        reply = asyncio.run(asyncio.wait_for(identity(), PROBE_TIMEOUT))
+    except (TimeoutError, asyncio.TimeoutError):
+        reason = f"no Dask answer within {PROBE_TIMEOUT} s"
+    except Exception as exc:   # noqa: BLE001 - whatever garbage it sent
+        reason = (f"it does not speak the Dask protocol "
+                  f"({type(exc).__name__})")
+    else:
+        if isinstance(reply, dict) and reply.get("type") == "Scheduler":
+            return
+        reason = "it answers, but is not a Dask scheduler"
+    raise JudderError(f"--scheduler {address}: {reason}; allowed: the "
+                      "address of a running Dask scheduler")
+
+
 class _Cluster:
     """A Dask client, started on first use; see :func:`cluster`."""
 
@@ -191,8 +261,15 @@ class _Cluster:
         # a signal while Dask starts would leave half-made objects whose
         # clean-up blocks: hold it until the cluster can be closed
         pending = []
-        held = {s: signal.signal(s, lambda signum, _: pending.append(signum))
-                for s in (signal.SIGINT, signal.SIGTERM)}
+        held = {signal.SIGTERM: signal.signal(
+            signal.SIGTERM, lambda signum, _: pending.append(signum))}
+        # SIGINT ignored meanwhile: the worker processes inherit that
+        # (Python then leaves it ignored), so that a terminal's Ctrl-C,
+        # sent to the whole process group, reaches only this process,
+        # which closes them; a Ctrl-C in these seconds is lost (the next
+        # one stops the command). SIGTERM stays theirs: their parent's
+        # death sends it (infra.lifecycle).
+        held[signal.SIGINT] = signal.signal(signal.SIGINT, signal.SIG_IGN)
         try:
             self._connect(workers)
         finally:
@@ -307,13 +384,17 @@ def cluster(workers=None, scheduler=None):
     ------
     JudderError
         ``workers`` not a whole number >= 1, ``workers`` together with
-        ``scheduler``, or the scheduler does not answer.
+        ``scheduler``, or the scheduler does not answer as a Dask
+        scheduler within :data:`PROBE_TIMEOUT` seconds.
     """
     if _ACTIVE and scheduler is None:
         # inside another one (a command's, around an API call): share it
         yield _ACTIVE[-1]
         return
     state = _Cluster(workers, scheduler)
+    if scheduler is not None:    # a dead scheduler is refused before work
+        _check_address(scheduler)
+        _probe(scheduler)
     _ACTIVE.append(state)
     try:
         yield state

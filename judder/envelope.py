@@ -23,6 +23,7 @@ import json
 import math
 import time
 import tomllib
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -106,13 +107,31 @@ def _fit(path, spec):
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise JudderError(f"{path}: [fit] file {source}: not the JSON of "
                           f"judder fit --json ({exc})") from None
-    names = list(spec.get("names", fitted))
+    if not isinstance(fitted, dict) or not all(
+            isinstance(entry, dict) for entry in fitted.values()):
+        raise JudderError(f"{path}: [fit] file {source}: 'fitted' is not "
+                          "a table of parameters; allowed: the JSON of "
+                          "judder fit --json")
+    names = spec.get("names", list(fitted))
+    if not isinstance(names, list) or not names or not all(
+            isinstance(n, str) for n in names):
+        raise JudderError(f"{path}: [fit] names = {names!r} is not allowed; "
+                          "allowed: a list of fitted parameter names")
     unknown = [n for n in names if n not in fitted]
     if unknown:
         raise JudderError(f"{path}: [fit] names: {unknown[0]!r} was not "
                           f"fitted in {source}; allowed: {', '.join(fitted)}")
-    mean = np.array([fitted[n]["value"] for n in names], dtype=float)
-    std = [fitted[n]["std"] for n in names]
+    where = f"[fit] file {source}: fitted"
+    for n in names:
+        if "value" not in fitted[n] or "std" not in fitted[n]:
+            missing = "value" if "value" not in fitted[n] else "std"
+            raise JudderError(f"{path}: {where}.{n} has no {missing}; "
+                              "allowed: the JSON of judder fit --json")
+    mean = np.array([_number(path, f"{where}.{n}.value",
+                             fitted[n]["value"]) for n in names])
+    std = [None if fitted[n]["std"] is None else
+           _number(path, f"{where}.{n}.std", fitted[n]["std"])
+           for n in names]
     bad = [n for n, s in zip(names, std) if s is None or s <= 0]
     if bad:
         raise JudderError(f"{path}: [fit] {bad[0]} is undetermined by the "
@@ -122,12 +141,42 @@ def _fit(path, spec):
     if covariance is None:
         matrix = np.diag(np.square(std))
     else:
-        order = [covariance["names"].index(n) for n in names]
-        full = np.array([[np.inf if v is None else v for v in row]
-                         for row in covariance["matrix"]], dtype=float)
-        matrix = full[np.ix_(order, order)]
+        matrix = _covariance(path, source, covariance, names)
     return Correlated(tuple(names), mean, matrix,
                       source=f"judder fit {source.name}")
+
+
+def _covariance(path, source, covariance, names):
+    """The block of ``names`` of a fit's covariance, checked: names that
+    the fit has, a square matrix of their number, numbers (null: an
+    undetermined entry, infinite)."""
+    where = f"{path}: [fit] file {source}: covariance"
+    allowed = "allowed: the JSON of judder fit --json"
+    if not isinstance(covariance, dict) or not isinstance(
+            covariance.get("names"), list) or not isinstance(
+            covariance.get("matrix"), list):
+        raise JudderError(f"{where} is not {{names, matrix}}; {allowed}")
+    known = covariance["names"]
+    missing = [n for n in names if n not in known]
+    if missing:
+        raise JudderError(f"{where} has no row for {missing[0]!r}; "
+                          f"{allowed}")
+    rows = covariance["matrix"]
+    if len(rows) != len(known) or not all(
+            isinstance(row, list) and len(row) == len(known)
+            for row in rows):
+        raise JudderError(f"{where}: the matrix is not {len(known)} x "
+                          f"{len(known)} (one row and column per name); "
+                          f"{allowed}")
+    cells = [v for row in rows for v in row if v is not None]
+    if any(isinstance(v, bool) or not isinstance(v, (int, float))
+           for v in cells):
+        raise JudderError(f"{where} holds something that is not a number; "
+                          f"{allowed}")
+    order = [known.index(n) for n in names]
+    full = np.array([[np.inf if v is None else v for v in row]
+                     for row in rows], dtype=float)
+    return full[np.ix_(order, order)]
 
 
 def read_ranges(path, params):
@@ -160,7 +209,12 @@ def read_ranges(path, params):
         raise JudderError(f"{path}: unknown key {unknown[0]!r}; allowed: "
                           f"{', '.join(sorted(_TOP_KEYS))}")
     items = []
-    for name, spec in data.get("parameters", {}).items():
+    table = data.get("parameters", {})
+    if not isinstance(table, dict):
+        raise JudderError(f"{path}: parameters = {table!r} is not allowed; "
+                          "allowed: a [parameters] table, one line a "
+                          "parameter (NAME = [low, high] or a table)")
+    for name, spec in table.items():
         if name not in params.specs:
             raise JudderError(f"{path}: unknown parameter {name!r} for the "
                               f"{params.model} model; allowed names: "
@@ -203,7 +257,8 @@ def _load(path, key, shape):
             arrays = {name: data[name] for name in (
                 "index", "amplitude", "refined_index", "refined_value",
                 "refined_unit")}
-    except (OSError, ValueError, KeyError) as exc:
+    except (OSError, ValueError, KeyError, EOFError,
+            zipfile.BadZipFile) as exc:
         raise JudderError(f"checkpoint {path}: unreadable ({exc}); delete "
                           "it to start again") from None
     if stored != key or arrays["amplitude"].shape[1:] != shape:

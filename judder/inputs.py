@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 import re
 import stat
+import zipfile
 
 import numpy as np
 
@@ -224,15 +225,24 @@ def read_chart_boundary(path, group=None, option="--chart"):
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
+    except (EOFError, zipfile.BadZipFile):
+        raise _damaged(option, path) from None
     except (ValueError, KeyError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
                           "chart --out (an NPZ file)") from None
     names = list(dict.fromkeys(groups.tolist()))
+    if not names:
+        raise JudderError(f"{option} {path}: the chart has no boundary (no "
+                          "run could be read into it)")
     if group is None and len(names) > 1:
         raise JudderError(f"{option} {path} has {len(names)} groups; give "
                           f"--group, one of {', '.join(names)}")
     chosen = names[0] if group is None else group
     if chosen not in names:
+        if names == [""]:        # judder chart without --group-by
+            raise JudderError(f"--group {group!r}: {path} has one group of "
+                              "runs (charted without --group-by); allowed: "
+                              "no --group")
         raise JudderError(f"--group {group!r} is not in {path}; allowed: "
                           f"{', '.join(names)}")
     keep = groups == chosen
@@ -256,6 +266,14 @@ def read_chart_below(path, group=None, option="--chart"):
     return below[groups == chosen] * PA_PER_BAR
 
 
+def _damaged(option, path):
+    """A zip archive cut short (its directory is at the end) or with a
+    member cut short: numpy raises BadZipFile or EOFError."""
+    return JudderError(f"{option} {path}: a truncated or damaged NPZ file "
+                       "(its zip archive is incomplete); allowed: a chart "
+                       "written by judder chart --out")
+
+
 def read_chart_min_growth(path, option="--chart"):
     """The growth rate (1/s) from which the chart's verdict called a run
     judder (``judder chart --min-growth``); 0 for a chart without it."""
@@ -267,7 +285,9 @@ def read_chart_min_growth(path, option="--chart"):
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
-    except (ValueError):
+    except (EOFError, zipfile.BadZipFile):
+        raise _damaged(option, path) from None
+    except (ValueError, TypeError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
                           "chart --out (an NPZ file)") from None
     if not (np.isfinite(value) and value >= 0):

@@ -27,7 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import MARK, atomic_write, keeps_foreign_files, write_text
+from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
+                         write_text)
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
 
@@ -721,8 +722,6 @@ def print_pdf(html_path, pdf_path):
         if not target.exists() or target.stat().st_size == 0:
             raise JudderError(f"--pdf: chromium could not print the report "
                               f"(exit {proc.returncode})")
-        # a comment line after the end marks the file as the tool's
-        # (infra.files.written_by_us), so the next run may replace it:
-        # Chromium writes the title into the metadata as UTF-16
-        data = target.read_bytes() + f"\n% {MARK}\n".encode()
+        # marked, so that the next run may replace it (the overwrite rule)
+        data = mark_pdf(target.read_bytes())
     atomic_write(pdf_path, lambda stream: stream.write(data))

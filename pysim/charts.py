@@ -178,6 +178,13 @@ def _analyse(job):
                        for k, v in acquisition.metadata.items()
                        if k in _METADATA_KEYS}, **source.settings}
         ch = acquisition.channels
+        speed = ch["upstream_speed"]
+        if len(speed.time) < 2:
+            # one sample, or every time stamp the same instant
+            raise JudderError(
+                f"{source.path}: upstream_speed channel {speed.name!r} has "
+                f"{len(speed.time)} distinct time stamp(s); allowed: a "
+                "recording of the engagement (many samples in time)")
 
         def pair(role):
             # an optional channel with too few samples is as good as none
@@ -368,7 +375,9 @@ def build_chart(sources, channels=None, group_by=None,
                           "speed upstream of the clutch)")
     jobs = [(s, channels, min_growth, min_amplitude_rpm) for s in sources]
     runs = []
-    for run in parallel_map(_analyse, jobs, workers):
+    # a failure names the file, not the job's Python repr
+    for run in parallel_map(_analyse, jobs, workers,
+                            describe=lambda job: str(job[0].path)):
         runs.append(run)
         if callback is not None:
             callback(len(runs), len(jobs))

@@ -184,7 +184,11 @@ def from_samples(samples, amplitude=None):
     c = spectrum[1:top + 1]
     scale = 2 * abs(c[0]) if amplitude is None else float(amplitude)
     if not np.isfinite(scale) or scale <= 0:
-        raise JudderError(f"amplitude = {scale!r} is not allowed; allowed: "
+        if amplitude is None:
+            raise JudderError("the measured period has no fundamental (its "
+                              "first harmonic is 0, e.g. a constant); "
+                              "allowed: a period with a fundamental")
+        raise JudderError(f"amplitude = {scale:g} is not allowed; allowed: "
                           "> 0 (and a period with a fundamental)")
     return FourierSeries(cos=tuple(2 * c.real / scale),
                          sin=tuple(-2 * c.imag / scale))

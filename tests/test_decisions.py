@@ -222,7 +222,7 @@ def test_check_command_line(tmp_path):
                       "none")
     assert summary.stdout.count("\n") == 1 and "JUDDER" in summary.stdout
     proc = _judder("check", "--freq", "60", "--pf", "-1")
-    assert proc.returncode == 2 and "p_f" in proc.stderr
+    assert proc.returncode == 2 and "--pf -1" in proc.stderr
     assert proc.stderr.count("\n") == 1
 
 

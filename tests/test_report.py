@@ -169,7 +169,7 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
 
 @pytest.mark.parametrize("args, words", [
     (["--freq", "105"], ["--freq and --pf go together"]),
-    (["--freq", "105", "--pf", "-1"], ["--pf -1 bar", ">= 0"]),
+    (["--freq", "105", "--pf", "-1"], ["--pf -1", ">= 0 bar"]),
     (["--sensitivity", "k99"], ["--sensitivity", "'k99'", "k12"]),
     (["--chart", "missing.npz"], ["--chart missing.npz"]),
     (["--grid", "0:220:10"], ["--grid 0 is not allowed", ">= 0.001"]),

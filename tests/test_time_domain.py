@@ -113,20 +113,28 @@ def test_forced_slip_is_the_frequency_response(preset, freq_hz):
 def _bench_jacobian(values, times):
     """d der(x)/dx of the bench FMU at its initial state, ordered as Eq.
     (6): [theta1, theta2, theta4, theta3, their speeds]."""
+    import shutil
     from fmpy import extract
-    from drivelines.fmu_linear import _Instance, fmu_description
+    from drivelines.fmu_calls import SampleJob, sample
+    from drivelines.fmu_linear import fmu_description
     from pysim.fmus import ensure_fmu
     path = ensure_fmu("Judder.Examples.TestBenchEngagement")
-    description = fmu_description(path)
-    order = [description.state_names.index(f"inertia{b}.{q}")
+    d = fmu_description(path)
+    order = [d.state_names.index(f"inertia{b}.{q}")
              for q in ("phi", "w") for b in "1243"]
     folder = extract(str(path))
-    instance = _Instance(description, folder, values)
     try:
-        return [instance.jacobian(t, instance.x0)[0][np.ix_(order, order)]
-                for t in times]
+        # in this process (sample_isolated runs the same in a child)
+        jacobians = sample(SampleJob(
+            path=str(path), folder=folder, guid=d.guid,
+            model_identifier=d.model_identifier, states=d.states,
+            derivatives=d.derivatives, references=d.references,
+            values={n: v for n, v in values.items() if n != "p_f"},
+            amplitude="p_f", amplitudes=(values["p_f"],),
+            times=tuple(times)))["jacobians"][0]
     finally:
-        instance.close()
+        shutil.rmtree(folder, ignore_errors=True)
+    return [jacobian[np.ix_(order, order)] for jacobian in jacobians]
 
 
 @pytest.mark.parametrize("rpm", [1000.0, 1500.0])

@@ -18,8 +18,9 @@ from .. import api
 from ..inputs import (read_boundary, read_boundary_min_growth,
                       read_chart_below, read_chart_boundary,
                       read_chart_min_growth)
-from .values import (check_amplitudes, check_campaign_disk,
-                     check_map_memory, check_work)
+from .values import (FREQ_RANGE_HZ, check_advise_grid, check_amplitudes,
+                     check_campaign_disk, check_map_memory, check_work,
+                     option_value)
 from . import estimates
 from .options import (emit, make_parents, model_title,
                       parameter_file, parameters_of, parse_grid, parse_list,
@@ -680,14 +681,20 @@ def cmd_chart(args):
 
 
 def _values(text, option, unit):
-    """A comma-separated list or a START:STOP:N grid."""
+    """A comma-separated list or a START:STOP:N grid, each value plain
+    (in ``unit``) or with a unit, in its documented range."""
     if ":" in text:
         return list(parse_grid(text, option, unit))
-    return parse_list(text, option)
+    low, high = FREQ_RANGE_HZ if unit == "Hz" else (0.0, math.inf)
+    return parse_list(text, option, lambda item: option_value(
+        item, option, unit, low, high))
 
 
-def _settings(args):
-    """Frequencies (Hz) and amplitudes (bar) of ``judder check``."""
+def _settings(args, parameters):
+    """Frequencies (Hz) and amplitudes (bar) of ``judder check``; the
+    time of ``parameters`` sensitivity parameters per setting is estimated
+    before the settings are made (a grid x grid of 1e10 would fill the
+    memory first)."""
     from ..inputs import read_boundary
     if args.table:
         if args.freq or args.pf:
@@ -698,33 +705,44 @@ def _settings(args):
                               "freq_hz and p_f_bar; allowed: no empty cells")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
+        estimates.check_settings(len(freqs), parameters)
+        check_work(f"--table {args.table}", len(freqs), "settings")
+        low, high = FREQ_RANGE_HZ
+        for row, f in enumerate(freqs, start=2):
+            if not low <= f <= high:
+                raise JudderError(
+                    f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
+                    f"not allowed; allowed: {low:g} to {high:g} Hz")
         return list(freqs), amplitudes
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
     freqs = _values(args.freq, "--freq", "Hz")
     amplitudes = _values(args.pf, "--pf", "bar")
     check_amplitudes(amplitudes, "--pf")
+    # the time first (it says what to change); then, with the time limit
+    # raised, the count (the pairs of 1e10 settings would not fit)
+    estimates.check_settings(len(freqs) * len(amplitudes), parameters)
+    check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]
 
 
 def cmd_check(args):
     """Verdict, growth and margins of dither settings."""
-    freqs, amplitudes = _settings(args)
-    check_amplitudes([args.pf_max], "--pf-max")
-    if args.pf_max is not None and not args.pf_max > max(amplitudes):
-        raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
-                          "allowed: above the largest setting, "
-                          f"{max(amplitudes):g} bar")
     if args.params is None:
         names = None
     elif args.params.strip().lower() == "none":
         names = []
     else:
         names = parse_list(args.params, "--params", str)
-    params, changes = parameters_of(args)
-    estimates.check_settings(len(freqs), len(
+    freqs, amplitudes = _settings(args, len(
         api.DEFAULT_CHECK_PARAMETERS if names is None else names))
+    check_amplitudes([args.pf_max], "--pf-max")
+    if args.pf_max is not None and not args.pf_max > max(amplitudes):
+        raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
+                          "allowed: above the largest setting, "
+                          f"{max(amplitudes):g} bar")
+    params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "check") as progress:
         result = api.check(freqs, amplitudes, params, changes,
@@ -739,11 +757,14 @@ def cmd_check(args):
 def cmd_advise(args):
     """Safe dither windows, parameter ranking and design change."""
     low_high = args.freq_range.split(":")
-    try:
-        low, high = (float(v) for v in low_high)
-    except ValueError:
+    if len(low_high) != 2:
         raise JudderError(f"--freq-range {args.freq_range!r} is not "
-                          "LOW:HIGH in Hz (e.g. 60:200)") from None
+                          "LOW:HIGH in Hz (e.g. 60:200, 90Hz:120Hz)")
+    low, high = (option_value(v.strip(), "--freq-range", "Hz",
+                              *FREQ_RANGE_HZ) for v in low_high)
+    if not low < high:
+        raise JudderError(f"--freq-range {args.freq_range} is not allowed; "
+                          "allowed: LOW < HIGH")
     names = None if args.params is None else \
         parse_list(args.params, "--params", str)
     weights = None if args.weights is None else \
@@ -753,6 +774,7 @@ def cmd_advise(args):
     check_number("--margin-hz", args.margin_hz, "Hz", strict=False)
     check_number("--min-growth", args.min_growth, "1/s", strict=False)
     check_amplitudes([args.pf_max], "--pf-max")
+    check_advise_grid(args.freq_range, low, high, args.margin_hz)
     if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
             args.margin_bar >= args.pf_max:
         raise JudderError(f"--margin-bar {args.margin_bar:g} bar is not "

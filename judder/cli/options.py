@@ -64,8 +64,28 @@ def check_outputs(args):
                               f"{seen[key]}; allowed: a different file for "
                               "each output")
         seen[key] = option
+    if args.command == "envelope":
+        _check_checkpoint(args, seen)
     if args.command == "campaign":
         check_campaign_folder(args.out)
+
+
+def _check_checkpoint(args, seen):
+    """The envelope's checkpoint (given, or beside the first output) on
+    none of its outputs: it is written during the work and removed at the
+    end, so the output would be lost (or refused only after the work)."""
+    from ..envelope import checkpoint_path
+    given = args.checkpoint
+    path = given or checkpoint_path(args.out, args.csv, args.plot)
+    if path is None:
+        return
+    other = seen.get(Path(path).resolve())
+    if other is not None:
+        what = f"--checkpoint {given}" if given else \
+            f"the checkpoint {path} (beside the first output)"
+        raise JudderError(f"{what} is also given as {other}; allowed: a "
+                          "different file for the checkpoint and each "
+                          "output")
 
 
 def check_campaign_folder(text):
@@ -161,6 +181,13 @@ def own_driveline(args, path=None, option="--param-file"):
     ``--modelica CLASS [--library DIR]`` (docs/onemodel.md), with the
     values of the file ``path`` if given; None if neither is given."""
     fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
+    for flag, given, allowed in (
+            ("--fmu", fmu, "a .fmu file"),
+            ("--modelica", modelica, "a full class name, e.g. "
+                                     "Judder.Examples.Driveline5DOFGeared")):
+        if given is not None and not given.strip():
+            raise JudderError(f"{flag} {given!r} is empty; allowed: "
+                              f"{allowed}")
     if fmu:
         from drivelines.fmu_linear import FmuParameters
         flag, given = "--fmu", fmu
@@ -276,6 +303,8 @@ def parse_list(text, option, convert=float):
     items = [item for item in items if item]
     try:
         values = [convert(item) for item in items]
+    except JudderError:          # a value out of range, or its unit
+        raise
     except ValueError:
         raise JudderError(f"{option} {text!r} is not a comma-separated list "
                           "of numbers") from None

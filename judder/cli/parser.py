@@ -120,7 +120,7 @@ MIN_GROWTH_HELP = (
 
 
 def _min_growth_option(parser, extra=""):
-    parser.add_argument("--min-growth", type=float,
+    parser.add_argument("--min-growth", type=str,
                         default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
                         help=MIN_GROWTH_HELP + extra)
 def _force_option(parser):
@@ -688,9 +688,9 @@ def build_parser():
     p.add_argument("--engagement", action="store_true",
                    help="with --freq and --pf: also run the bench "
                         "engagement through the FMU (Fig. 7, 8)")
-    p.add_argument("--freq", type=float, metavar="HZ",
+    p.add_argument("--freq", metavar="HZ",
                    help="dither frequency of the configured setting, Hz")
-    p.add_argument("--pf", type=float, metavar="BAR",
+    p.add_argument("--pf", metavar="BAR",
                    help="dither amplitude of the configured setting, bar")
     source = p.add_mutually_exclusive_group()
     source.add_argument("--chart", metavar="FILE.npz",

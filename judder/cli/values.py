@@ -21,7 +21,7 @@ from infra.units import PA_PER_BAR
 
 __all__ = ["normalise_options", "option_value", "check_pressures",
            "check_amplitudes", "check_plain_pressure", "check_file_pressure",
-           "check_plausible",
+           "check_plausible", "check_advise_grid",
            "FREQ_RANGE_HZ", "MAX_PLAIN_PF_BAR", "MIN_PLAIN_P_M_PA",
            "MAX_WORKERS", "warn"]
 
@@ -49,7 +49,7 @@ _SINGLE = {"freq": ("--freq", "Hz", *FREQ_RANGE_HZ, False),
            "noise_rpm": ("--noise-rpm", "rpm", 0.0, math.inf, False),
            "min_amplitude": ("--min-amplitude", "rpm", 0.0, math.inf,
                              False)}
-_SINGLE_FREQ_COMMANDS = ("floquet", "simulate")
+_SINGLE_FREQ_COMMANDS = ("floquet", "simulate", "report")
 
 
 def warn(text):
@@ -202,16 +202,59 @@ def check_plausible(args):
 
 
 def available_memory():
-    """Bytes of memory this process may use: the memory available now
-    (``MemAvailable`` of /proc/meminfo), else the physical memory."""
+    """Bytes of memory this process may still use: the least of the
+    memory available now (``MemAvailable`` of /proc/meminfo, else the
+    physical memory), what is left of its cgroup's limit (a batch job's
+    or a container's, v2 or v1) and what is left of its address-space
+    limit (``ulimit -v``)."""
+    import resource
     try:
         with open("/proc/meminfo") as stream:
-            for line in stream:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
+            free = next(int(line.split()[1]) * 1024 for line in stream
+                        if line.startswith("MemAvailable:"))
+    except (OSError, StopIteration, ValueError):
+        free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    limits = [free, _cgroup_left()]
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft != resource.RLIM_INFINITY:
+        limits.append(soft - _status_bytes("VmSize:"))
+    return max(0, min(v for v in limits if v is not None))
+
+
+def _status_bytes(key):
+    try:
+        with open("/proc/self/status") as stream:
+            return next(int(line.split()[1]) * 1024 for line in stream
+                        if line.startswith(key))
+    except (OSError, StopIteration, ValueError):
+        return 0
+
+
+def _cgroup_left():
+    """Limit minus usage of this process's memory cgroup, or None."""
+    try:
+        with open("/proc/self/cgroup") as stream:
+            lines = [line.strip().split(":", 2) for line in stream]
     except OSError:
-        pass
-    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        return None
+    places = []
+    for _, controllers, path in lines:
+        if controllers == "":                      # v2
+            places.append((f"/sys/fs/cgroup{path}", "memory.max",
+                           "memory.current"))
+        elif "memory" in controllers.split(","):   # v1
+            places.append((f"/sys/fs/cgroup/memory{path}",
+                           "memory.limit_in_bytes", "memory.usage_in_bytes"))
+    for folder, limit, usage in places:
+        try:
+            with open(os.path.join(folder, limit)) as a, \
+                    open(os.path.join(folder, usage)) as b:
+                text, used = a.read().strip(), int(b.read())
+        except (OSError, ValueError):
+            continue
+        if text != "max" and int(text) < 2 ** 60:
+            return int(text) - used
+    return None
 
 
 def check_map_memory(params, freq_hz, p_f_bar):
@@ -237,6 +280,36 @@ def check_map_memory(params, freq_hz, p_f_bar):
             "allowed: fewer amplitudes per frequency, or higher "
             "frequencies")
     return needed
+
+
+#: Bytes ``advise`` holds per frequency of its 0.5 Hz grid (peak resident
+#: memory of ``judder advise --no-design --freq-range=60:LOW`` grows by
+#: 12.2 kB per frequency from 60:200 to 60:20000, 117 to 599 MB).
+ADVISE_BYTES_PER_FREQUENCY = 12_500
+
+
+def check_advise_grid(text, low, high, margin_hz):
+    """Refuse an ``advise`` frequency range whose 0.5 Hz grid has more
+    than :data:`judder.cli.options.MAX_GRID_VALUES` frequencies or would
+    not fit in memory, naming ``--freq-range``; returns the number of
+    frequencies."""
+    from .options import MAX_GRID_VALUES
+    points = int(round(2 * (high - low + 2 * margin_hz))) + 1
+    widest = (MAX_GRID_VALUES - 1) / 2 - 2 * margin_hz
+    if points > MAX_GRID_VALUES:
+        raise JudderError(
+            f"--freq-range {text} makes {points} frequencies (0.5 Hz "
+            f"apart); allowed: at most {MAX_GRID_VALUES}, i.e. a range of "
+            f"at most {widest:g} Hz (--margin-hz {margin_hz:g})")
+    needed = points * ADVISE_BYTES_PER_FREQUENCY
+    free = available_memory()
+    if needed > 0.8 * free:
+        raise JudderError(
+            f"--freq-range {text} needs about {needed / 2**30:.3g} GiB "
+            f"({points} frequencies 0.5 Hz apart), and "
+            f"{free / 2**30:.3g} GiB are available; allowed: a narrower "
+            "range")
+    return points
 
 
 #: Most runs of one campaign, FMU runs of one crosscheck, cases of one

@@ -1,0 +1,364 @@
+"""The calls into a third-party FMU's binary, in a child process.
+
+A binary that crashes (a segfault on load or in
+``fmi2GetDirectionalDerivative``), hangs or returns NaN must not take the
+tool down nor pass as a result. :func:`sample_isolated` runs
+:func:`sample` in a child Python process (``python -m
+drivelines.fmu_calls``, the job pickled on its stdin, the result on its
+stdout); the child says which FMI call it is in (a line on its stderr)
+before each one, so that a crash, a hang past :func:`timeout_s` or a
+non-finite value becomes one :class:`~drivelines.fmu_linear.FmuError`
+naming the FMU and the call. The FMU is extracted into a folder of the
+parent's, removed on every path (also on a crash, a hang, Ctrl-C).
+
+The child imports numpy and fmpy only (about 0.2 s), runs in its own
+session (a terminal's Ctrl-C reaches the parent, which kills it) and
+dies with its parent.
+"""
+
+import ctypes
+import os
+import pickle
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+from ctypes import byref
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["SampleJob", "sample", "sample_isolated", "timeout_s",
+           "TIMEOUT_S"]
+
+#: Seconds the FMU's calls may take in all before they count as hung
+#: (a small FMU takes milliseconds); ``JUDDER_FMU_TIMEOUT`` sets another.
+TIMEOUT_S = 120.0
+#: Prefix of the child's lines that name the call it is in.
+_STAGE = "judder-fmu-call: "
+
+
+class FmuCallError(Exception):
+    """An FMI call returned an error (raised in the child, reported by
+    the parent as an ``FmuError``)."""
+
+
+@dataclass(frozen=True)
+class SampleJob:
+    """What the child needs: the FMU's identity, parameter values and the
+    points at which the Jacobian is read.
+
+    Attributes
+    ----------
+    path : str
+        The FMU file (for messages).
+    folder : str
+        Where it is extracted.
+    guid, model_identifier : str
+    states, derivatives : tuple of int
+        Value references of ``x`` and ``der(x)``.
+    references : dict of str to int
+        Value references of the Real parameters.
+    values : dict of str to float
+        Parameters (SI), without the amplitude.
+    amplitude : str
+        Name of the dither amplitude parameter.
+    amplitudes : tuple of float
+        Its values (Pa), one instance each.
+    times : tuple of float
+        Times (s) at which the Jacobian is read.
+    """
+
+    path: str
+    folder: str
+    guid: str
+    model_identifier: str
+    states: tuple
+    derivatives: tuple
+    references: dict
+    values: dict
+    amplitude: str
+    amplitudes: tuple
+    times: tuple
+
+
+def timeout_s():
+    """The hang limit: ``JUDDER_FMU_TIMEOUT`` (seconds) or
+    :data:`TIMEOUT_S`."""
+    from infra.errors import JudderError
+    text = os.environ.get("JUDDER_FMU_TIMEOUT")
+    if text is None:
+        return TIMEOUT_S
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not value > 0 or value == float("inf"):
+        raise JudderError(f"JUDDER_FMU_TIMEOUT={text} is not allowed; "
+                          "allowed: seconds > 0")
+    return value
+
+
+def _stage(text):
+    sys.stderr.write(f"{_STAGE}{text}\n")
+    sys.stderr.flush()
+
+
+class _Instance:
+    """One initialised Model Exchange instance at a parameter set; the
+    FMU's log messages are kept (the last one explains a failed call)."""
+
+    def __init__(self, job, values):
+        from fmpy import calloc, free
+        from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE,
+                               fmi2CallbackFreeMemoryTYPE,
+                               fmi2CallbackFunctions,
+                               fmi2CallbackLoggerTYPE, fmi2Real)
+        from fmpy.logging import addLoggerProxy
+        self.job = job
+        self.n = len(job.states)
+        self.real = fmi2Real
+        self.messages = []
+        self.callbacks = fmi2CallbackFunctions()
+        self.callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
+        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(byref(self.callbacks))
+        self.fmu = None
+        names = list(values)
+        self._call("loading the binary", lambda: setattr(
+            self, "fmu", FMU2Model(
+                guid=job.guid, unzipDirectory=job.folder,
+                modelIdentifier=job.model_identifier,
+                instanceName="judder")))
+        fmu = self.fmu
+        self._call("fmi2Instantiate", lambda: fmu.instantiate(
+            callbacks=self.callbacks))
+        self._call("fmi2SetupExperiment",
+                   lambda: fmu.setupExperiment(startTime=0.0))
+        self._call("fmi2SetReal", lambda: fmu.setReal(
+            [job.references[n] for n in names], [values[n] for n in names]))
+        self._call("fmi2EnterInitializationMode",
+                   fmu.enterInitializationMode)
+        self._call("fmi2ExitInitializationMode", fmu.exitInitializationMode)
+        while True:
+            update = self._call("fmi2NewDiscreteStates",
+                                fmu.newDiscreteStates)
+            if not update[0] or update[1]:
+                break
+        self._call("fmi2EnterContinuousTimeMode", fmu.enterContinuousTimeMode)
+        buffer = (fmi2Real * self.n)()
+        self._call("fmi2GetContinuousStates",
+                   lambda: fmu.getContinuousStates(buffer, self.n))
+        self.x0 = np.array(buffer)
+
+    def _log(self, component, instance, status, category, message):
+        self.messages.append(message.decode("utf-8", "replace"))
+
+    def _call(self, name, call):
+        _stage(name)
+        try:
+            return call()
+        except Exception as exc:       # fmpy's FMICallException, OSError
+            reason = self.messages[-1] if self.messages else str(exc)
+            raise FmuCallError(f"{name} failed ({reason})") from None
+
+    def jacobian(self, time, x):
+        """``d der(x) / dx`` at ``(time, x)`` and ``der(x)``."""
+        fmu, n, real = self.fmu, self.n, self.real
+        rate = (real * n)()
+        at = f" at t = {time:g} s"
+        self._call("fmi2SetTime" + at, lambda: fmu.setTime(time))
+        self._call("fmi2SetContinuousStates" + at,
+                   lambda: fmu.setContinuousStates((real * n)(*x), n))
+        columns = [self._call(
+            "fmi2GetDirectionalDerivative" + at,
+            lambda seed=seed: fmu.getDirectionalDerivative(
+                list(self.job.derivatives), list(self.job.states),
+                list(seed)))
+            for seed in np.eye(n)]
+        self._call("fmi2GetDerivatives" + at,
+                   lambda: fmu.getDerivatives(rate, n))
+        return np.array(columns).T, np.array(rate)
+
+    def close(self):
+        """Free the instance and unload the binary."""
+        if self.fmu is None:
+            return
+        for name, call in (("fmi2Terminate", self.fmu.terminate),
+                           ("fmi2FreeInstance", self.fmu.freeInstance)):
+            _stage(name)
+            try:
+                call()
+            except Exception:      # noqa: BLE001 - whatever state it is in
+                pass
+        _stage("unloading the binary")
+        self.fmu.freeLibrary()
+
+
+def sample(job):
+    """The Jacobians of every amplitude at every time, read in this
+    process.
+
+    Returns
+    -------
+    dict
+        ``jacobians``: array (amplitudes, times, n, n), 1/s (SI per SI);
+        ``x0``, ``rate``: the first instance's initial state and its
+        derivative, shape (n,); ``moved``, ``along``: its Jacobian at
+        ``x0`` plus a generic move of every state and plus the last time
+        along ``rate`` (for the steady-slip check), shape (n, n).
+    """
+    out, first = [], {}
+    for k, a in enumerate(job.amplitudes):
+        instance = _Instance(job, {**job.values, job.amplitude: a})
+        try:
+            x0 = instance.x0
+            if k == 0:
+                A0, rate = instance.jacobian(0.0, x0)
+                generic = 1e-2 * (1.0 + np.abs(x0)) * np.linspace(
+                    1.0, 2.0, len(x0))
+                first = {"x0": x0, "rate": rate,
+                         "moved": instance.jacobian(0.0, x0 + generic)[0],
+                         "along": instance.jacobian(
+                             0.0, x0 + job.times[-1] * rate)[0]}
+            out.append([instance.jacobian(t, first["x0"])[0]
+                        for t in job.times])
+        finally:
+            instance.close()
+    return {"jacobians": np.array(out), **first}
+
+
+def _signal_name(code):
+    try:
+        return signal.Signals(-code).name
+    except ValueError:
+        return f"signal {-code}"
+
+
+def sample_isolated(job, fmu_error):
+    """:func:`sample` of ``job`` in a child process.
+
+    Parameters
+    ----------
+    job : SampleJob
+        Its ``folder`` is ignored: the FMU is extracted into a temporary
+        folder, removed on every path.
+    fmu_error : type
+        The exception raised for an FMU that crashed, hung, failed a call
+        or returned a non-finite value (its message names the FMU and
+        the call).
+
+    Returns
+    -------
+    dict
+        As :func:`sample`, every array finite.
+    """
+    from fmpy import extract
+    limit = timeout_s()
+    folder = tempfile.mkdtemp(prefix="judder-fmu-")
+    try:
+        try:
+            extract(job.path, unzipdir=folder)
+        except Exception as exc:       # zip errors of a broken archive
+            raise fmu_error(f"--fmu {job.path}: cannot be extracted "
+                            f"({exc})") from None
+        job = SampleJob(**{**job.__dict__, "folder": folder})
+        reply, stages, status = _run_child(job, limit)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    where = stages[-1] if stages else "starting"
+    if status is None:
+        raise fmu_error(f"--fmu {job.path}: no answer within {limit:g} s "
+                        f"(in {where}); allowed: an FMU whose calls "
+                        "return (JUDDER_FMU_TIMEOUT=SECONDS allows more "
+                        "time)")
+    if status < 0:
+        raise fmu_error(f"--fmu {job.path}: the FMU's binary crashed "
+                        f"({_signal_name(status)}) in {where}; judder ran "
+                        "it in a child process: nothing else is affected, "
+                        "but this FMU cannot be used")
+    if reply is None:
+        raise RuntimeError(f"the FMU's child process ended with status "
+                           f"{status} in {where} without a result")
+    kind, value = reply
+    if kind == "error":
+        raise fmu_error(f"--fmu {job.path}: {value}")
+    _check_finite(job, value, fmu_error)
+    return value
+
+
+def _check_finite(job, value, fmu_error):
+    for name, call in (("x0", "fmi2GetContinuousStates"),
+                       ("rate", "fmi2GetDerivatives")):
+        if not np.isfinite(value[name]).all():
+            raise fmu_error(f"--fmu {job.path}: {call} returned a "
+                            "non-finite value (NaN or inf) at t = 0 s; "
+                            "allowed: finite states and derivatives")
+    for name in ("moved", "along"):
+        if not np.isfinite(value[name]).all():
+            raise fmu_error(f"--fmu {job.path}: fmi2GetDirectionalDerivative"
+                            " returned a non-finite value (NaN or inf) at "
+                            "t = 0 s near the start values; allowed: a "
+                            "finite Jacobian")
+    bad = np.argwhere(~np.isfinite(value["jacobians"]).all(axis=(2, 3)))
+    if len(bad):
+        k, i = bad[0]
+        raise fmu_error(
+            f"--fmu {job.path}: fmi2GetDirectionalDerivative returned a "
+            f"non-finite value (NaN or inf) at t = {job.times[i]:g} s, "
+            f"{job.amplitude} = {job.amplitudes[k]:g} Pa; allowed: a "
+            "finite Jacobian")
+
+
+def _run_child(job, limit):
+    """(reply, stages, exit status) of the child; status ``None`` if it
+    was killed after ``limit`` seconds."""
+    root = str(Path(__file__).resolve().parents[1])
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        filter(None, [root, os.environ.get("PYTHONPATH")]))}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "drivelines.fmu_calls"],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, env=env, start_new_session=True)
+    try:
+        out, err = proc.communicate(pickle.dumps(job), timeout=limit)
+        status = proc.returncode
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, err = proc.communicate()
+        status = None
+    finally:
+        if proc.poll() is None:        # Ctrl-C, SIGTERM in the parent
+            proc.kill()
+            proc.wait()
+    stages = [line[len(_STAGE):] for line in
+              err.decode("utf-8", "replace").splitlines()
+              if line.startswith(_STAGE)]
+    reply = pickle.loads(out) if status == 0 and out else None
+    return reply, stages, status
+
+
+def _die_with_parent():
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)   # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):           # not Linux
+        pass
+
+
+def _child():
+    _die_with_parent()
+    job = pickle.load(sys.stdin.buffer)
+    try:
+        reply = ("ok", sample(job))
+    except FmuCallError as exc:
+        reply = ("error", str(exc))
+    sys.stdout.buffer.write(pickle.dumps(reply))
+    sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    _child()
