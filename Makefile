@@ -5,7 +5,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test bench fmu clean browser
+.PHONY: setup run test bench fmu clean browser windows
 
 setup: $(STAMP)
 
@@ -20,7 +20,7 @@ $(STAMP): requirements.lock pyproject.toml
 run: setup
 	$(BIN)/judder map --preset paper-4dof --out out/map-4dof.npz --plot out/map-4dof.png
 
-test: setup browser
+test: setup browser windows
 	$(BIN)/python -m pytest -q
 
 # Debian's Chromium, in which tests/test_report.py opens the HTML report
@@ -29,6 +29,16 @@ browser:
 	@command -v chromium >/dev/null 2>&1 || apt-get install -y chromium >/dev/null 2>&1 \
 	  || (apt-get update >/dev/null 2>&1 && apt-get install -y chromium >/dev/null 2>&1) \
 	  || echo "chromium could not be installed: the report's browser test will skip"
+
+# Debian's mingw-w64 and wine (about 20 s to install), with which
+# tests/test_fmu_corpus.py cross-compiles the Windows binary of an FMU
+# (python -m fmu --windows) and runs it; without them those tests skip and
+# say why.
+windows:
+	@(command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 && test -x /usr/lib/wine/wine64) \
+	  || apt-get install -y --no-install-recommends gcc-mingw-w64-x86-64 wine64 >/dev/null 2>&1 \
+	  || (apt-get update >/dev/null 2>&1 && apt-get install -y --no-install-recommends gcc-mingw-w64-x86-64 wine64 >/dev/null 2>&1) \
+	  || echo "mingw-w64 or wine could not be installed: the Windows FMU tests will skip"
 
 bench: setup
 	$(BIN)/python benchmarks/bench.py
