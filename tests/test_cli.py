@@ -166,8 +166,10 @@ def test_tongues_json_and_csv(tmp_path):
     assert numbers[2]["kind"] == "single-period"
     assert abs(numbers[5]["tip_offset_percent"]) < 0.5
     assert data["max_boundary_multiplier_error"] < 1e-6
-    mark, header, first = out.read_text().splitlines()[:3]
+    mark, growth, header, first = out.read_text().splitlines()[:4]
     assert mark == "# written by judder"
+    # the growth rate these are the boundaries of (fit --boundary reads it)
+    assert growth == "# min_growth_per_s: 0"
     assert header.startswith("freq_hz,p_f_bar,single_period_bar")
     assert first.startswith("10,")
 

@@ -5,6 +5,7 @@ separate processes, and no worker left behind after Ctrl-C or SIGTERM."""
 import json
 import math
 import os
+import select
 import signal
 import subprocess
 import sys
@@ -125,12 +126,17 @@ def _descendants(pid):
         return []
 
 
-#: Jobs that never end on two local workers; Ctrl-C exits 130.
+#: Jobs that never end on two local workers, after a line 'ready' once the
+#: cluster runs (while it starts, Ctrl-C is ignored: infra.parallel);
+#: Ctrl-C exits 130.
 _ENDLESS = ("import sys, time\n"
-            "from infra.parallel import parallel_map\n"
+            "from infra.parallel import cluster, parallel_map\n"
             "if __name__ == '__main__':\n"
             "    try:\n"
-            "        list(parallel_map(time.sleep, [600] * 4, workers=2))\n"
+            "        with cluster(2):\n"
+            "            list(parallel_map(abs, [1, 2], workers=2))\n"
+            "            print('ready', flush=True)\n"
+            "            list(parallel_map(time.sleep, [600] * 4))\n"
             "    except KeyboardInterrupt:\n"
             "        sys.exit(130)\n")
 
@@ -146,13 +152,12 @@ def test_a_signal_closes_the_local_cluster(tmp_path, signum, status):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     try:
-        deadline = time.monotonic() + 60
-        workers = []
-        while time.monotonic() < deadline and proc.poll() is None \
-                and len(workers) < 2:
-            time.sleep(0.2)
-            workers = [p for p in _descendants(proc.pid)
-                       if "spawn_main" in " ".join(p.cmdline())]
+        ready, _, _ = select.select([proc.stdout], [], [], 120)
+        assert ready and proc.stdout.readline() == "ready\n", \
+            "the cluster did not start"
+        time.sleep(0.5)                 # the endless jobs reach the workers
+        workers = [p for p in _descendants(proc.pid)
+                   if "spawn_main" in " ".join(p.cmdline())]
         assert len(workers) == 2, "no Dask worker processes"
         os.kill(proc.pid, signum)
         _, err = proc.communicate(timeout=60)
