@@ -20,8 +20,16 @@ residuals that are not zero.
 
 With ``error_model='absolute'`` every residual is in bar (equal scatter
 at every amplitude). With ``'relative'`` each residual is divided by its
-measured amplitude (censored points by ``p_max``), which suits a scatter
-proportional to the amplitude (a noise of a few per cent).
+measured amplitude (at least 2 % of ``p_max``; censored points by
+``p_max``), which suits a scatter proportional to the amplitude (a noise
+of a few per cent). Dividing by the measured amplitude puts the fitted
+boundary 2 sigma^2 low (0.2 % with 3 % noise, about a seventh of mu_g's
+95 % half-width on the boundaries of ``benchmarks/fit_coverage.py``).
+Differences of logarithms would remove that, and were tried: they
+compress the residual of a point matched to a kind with no boundary
+below the search limit (3 bar against 0.57 bar: 1.7 instead of 4.3), and
+on 60 noisy boundaries three fits then stopped at k24 = 41 000-42 000
+N m/rad for a truth near 29 000 (reported as problems, but wrong).
 """
 
 import dataclasses

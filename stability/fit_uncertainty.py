@@ -186,9 +186,10 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
     amplitude = evaluator.amplitudes(z)
     residual = _residuals(problem, amplitude, columns)
     n = len(columns)
-    active = int(np.sum(~problem.censored | (residual[:n] != 0))
-                 + np.sum(residual[n:] != 0))
-    dof = max(active - k, 1)
+    # the scatter is sampled by the onsets alone: a one-sided residual
+    # (a bound the fit presses against) is no sample of it (counted, it
+    # made the intervals of 60 noisy boundaries too narrow)
+    dof = max(int(np.sum(~problem.censored)) - k, 1)
     notes, info = [], []
     if problem.scatter is None:
         s2 = 2 * cost / dof

@@ -435,7 +435,12 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
     fitted = problem.params_at(z)
     capped = _capped(problem, amplitude) if amplitude is not None else \
         np.full((len(columns), 3), problem.p_search)
-    raw_residual = residual[:n] * problem.weights / PA_PER_BAR
+    rows = np.arange(n)
+    raw_residual = np.where(
+        problem.censored,
+        -np.maximum(problem.p_max - capped.min(axis=1), 0.0),
+        capped[rows, np.maximum(columns, 0)]
+        - np.nan_to_num(problem.measured)) / PA_PER_BAR
     lowest = capped.min(axis=1)
     model_bar = np.where(lowest <= problem.p_max, lowest, np.nan) / PA_PER_BAR
     matched = np.where(problem.censored, np.nan,
