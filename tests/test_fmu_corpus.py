@@ -576,20 +576,26 @@ def test_a_second_importer_gives_the_same_results(fmus):
     execution = cosim.CosimExecution.from_step_size(step_size=10_000_000)
     index = execution.add_local_slave(local_slave=CosimLocalSlave(
         fmu_path=path, instance_name="ball"))
+    heights = _libcosim_heights(execution, index, CosimObserver)
+    time = 0.01 * np.arange(1, 301)
+    assert_allclose(heights, _bouncing_ball(time), atol=1e-8)
+    result = _run(fmus, "BouncingBall", "2.0", "CoSimulation", output=["h"],
+                  output_interval=0.01, stop_time=3.0)
+    assert_allclose(heights, result["h"][1:], atol=1e-12)
+
+
+def _libcosim_heights(execution, index, observer_class):
+    """The ball's height after each of 300 libcosim steps."""
     refs = {v.name.decode() if isinstance(v.name, bytes) else v.name:
             v.reference for v in execution.slave_variables(slave_index=index)}
-    observer = CosimObserver.create_last_value()
+    observer = observer_class.create_last_value()
     execution.add_observer(observer=observer)
     heights = []
     for _ in range(300):
         assert execution.step()
         heights.append(observer.last_real_values(
             slave_index=index, variable_references=[refs["h"]])[0])
-    time = 0.01 * np.arange(1, 301)
-    assert_allclose(heights, _bouncing_ball(time), atol=1e-8)
-    result = _run(fmus, "BouncingBall", "2.0", "CoSimulation", output=["h"],
-                  output_interval=0.01, stop_time=3.0)
-    assert_allclose(heights, result["h"][1:], atol=1e-12)
+    return heights
 
 
 def test_libcosim_and_fmi3(fmus):
@@ -617,15 +623,7 @@ def test_libcosim_and_fmi3(fmus):
     from libcosimpy.CosimObserver import CosimObserver
     execution = CosimExecution.from_step_size(step_size=10_000_000)
     index = execution.add_local_slave(local_slave=slave)
-    refs = {v.name.decode() if isinstance(v.name, bytes) else v.name:
-            v.reference for v in execution.slave_variables(slave_index=index)}
-    observer = CosimObserver.create_last_value()
-    execution.add_observer(observer=observer)
-    heights = []
-    for _ in range(300):
-        assert execution.step()
-        heights.append(observer.last_real_values(
-            slave_index=index, variable_references=[refs["h"]])[0])
+    heights = _libcosim_heights(execution, index, CosimObserver)
     assert_allclose(heights, _bouncing_ball(0.01 * np.arange(1, 301)),
                     atol=1e-8)
 
