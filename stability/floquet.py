@@ -13,6 +13,7 @@ from infra.errors import JudderError
 
 from .kinds import KINDS, classify
 from .monodromy import monodromy
+from .waveforms import waveform_of
 
 __all__ = ["FloquetResult", "floquet", "system_of", "leading_multipliers",
            "check_frequency", "check_amplitude"]
@@ -103,8 +104,25 @@ def system_of(driveline, form="reduced"):
         :meth:`~stability.model.Driveline.periodic_system`); ``'full'``:
         Eq. (6) as printed, with two multipliers at exactly 1;
         ``'augmented'``: Eq. (9), which adds two more at 1.
-        Only ``'reduced'`` works with the ``'dyson'`` engine.
+        Only ``'reduced'`` works with the ``'dyson'`` engine, and only
+        ``'reduced'`` takes another dither waveform
+        (:class:`stability.waveforms.Dithered`): Eq. (6) and (9) are
+        written for the paper's cosine.
+
+    Raises
+    ------
+    JudderError
+        An unknown form, or ``'full'``/``'augmented'`` of a driveline
+        dithered by another waveform than the cosine.
     """
+    if form in ("full", "augmented"):
+        shape = waveform_of(driveline.periodic_system())
+        if shape.name != "cosine":
+            raise JudderError(
+                f"form = {form!r} is Eq. ({6 if form == 'full' else 9}) "
+                "with the paper's cosine dither; this driveline is "
+                f"dithered by a {shape.name} waveform, which only the "
+                "reduced form takes; allowed: form = 'reduced'")
     forms = {"reduced": driveline.periodic_system,
              "full": lambda: _Form(driveline.state_matrix),
              "augmented": lambda: _Form(driveline.augmented_matrix)}

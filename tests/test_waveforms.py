@@ -150,3 +150,25 @@ def test_hill_solver_defers_to_scan_for_another_waveform(paper4):
     cosine = lowest_boundaries(paper4.periodic_system(), freqs, 1.5e5, "hill")
     assert np.isnan(cosine[1, 0]) and np.isfinite(
         lowest_boundaries(square, freqs, 1.5e5, "hill")[1, 0])
+
+
+def test_the_full_forms_take_the_cosine_only():
+    # Eq. (6) and (9) are written for the paper's cosine: a square-wave
+    # driveline in the full form gave the cosine's multiplier 1.026103
+    # where the square wave's is 1.035197 (issue 22); refused now
+    from drivelines import get_preset
+    from infra.errors import JudderError
+    from stability import build_driveline
+    from stability.floquet import floquet
+    from stability.waveforms import Cosine
+    driveline = build_driveline(get_preset("paper-4dof"))
+    square = Dithered(driveline, FilteredSquare(0.0))
+    for form in ("full", "augmented"):
+        with pytest.raises(JudderError, match="square waveform, which only "
+                                              "the reduced form takes"):
+            floquet(square, 102.9, 0.3e5, method="solve_ivp", form=form)
+    reduced = floquet(square, 102.9, 0.3e5, method="solve_ivp")
+    assert abs(reduced.leading) == pytest.approx(1.035197, abs=2e-6)
+    cosine = floquet(Dithered(driveline, Cosine()), 102.9, 0.3e5,
+                     method="solve_ivp", form="full")
+    assert abs(cosine.leading) == pytest.approx(1.026103, abs=2e-6)
