@@ -216,3 +216,12 @@ def test_study_commands_refuse_bad_input(args, words):
     assert "Traceback" not in proc.stderr
     for word in words:
         assert word in proc.stderr
+
+
+def test_version_is_pyprojects():
+    import tomllib
+    from pathlib import Path
+    project = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml")
+                            .read_text())["project"]
+    assert judder("--version").stdout.strip() == \
+        f"judder {project['version']}"

@@ -136,6 +136,15 @@ def _method_option(parser):
                              "solve_ivp (per-point reference)")
 
 
+def _version():
+    """The installed package's version (``pyproject.toml``)."""
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("judder")
+    except PackageNotFoundError:
+        return "(not installed: run make setup)"
+
+
 def build_parser():
     """The argparse parser of ``judder``."""
     parser = argparse.ArgumentParser(
@@ -149,6 +158,9 @@ def build_parser():
                "10 s the estimate is printed on a terminal, above 24 h the "
                "request is refused; the environment variable "
                "JUDDER_MAX_HOURS=HOURS sets another limit.")
+    parser.add_argument("--version", action="version",
+                        version=f"judder {_version()}",
+                        help="print the version and exit")
     sub = parser.add_subparsers(dest="command", required=True,
                                 metavar="COMMAND")
 
