@@ -130,17 +130,19 @@ def _describe(flat, difference, probe_file):
                         for j in range(column.shape[0])]
     over, under = excess(incidence)
     if difference > 0 and over:
-        shown = [f"{equations[i][1]}: 0 = {equations[i][0]}"
-                 for i in over[:_SHOWN]]
-        return (f"\n{difference} equation(s) too many, among these "
-                f"{len(over)} over-determined equations: "
-                + "; ".join(shown)
-                + ("; ..." if len(over) > _SHOWN else ""))
+        return _listed(f"{difference} equation(s) too many, among these "
+                       f"{len(over)} over-determined equations",
+                       [f"{equations[i][1]}: 0 = {equations[i][0]}"
+                        for i in over])
     if difference < 0 and under:
-        shown = [f"{unknowns[j][1].where}: {unknowns[j][1].name}"
-                 for j in under[:_SHOWN]]
-        return (f"\n{-difference} equation(s) missing, for these "
-                f"{len(under)} under-determined variables: "
-                + "; ".join(shown)
-                + ("; ..." if len(under) > _SHOWN else ""))
+        return _listed(f"{-difference} equation(s) missing, for these "
+                       f"{len(under)} under-determined variables",
+                       [f"{unknowns[j][1].where}: {unknowns[j][1].name}"
+                        for j in under])
     return ""
+
+
+def _listed(what, items):
+    """``what``, then the first :data:`_SHOWN` items (``...`` for more)."""
+    return (f"\n{what}: " + "; ".join(items[:_SHOWN])
+            + ("; ..." if len(items) > _SHOWN else ""))

@@ -9,7 +9,7 @@ digits are grouped by threes with a space (SI brochure, 5.4.4) from
 
 import math
 
-__all__ = ["format_uncertain", "format_interval"]
+__all__ = ["format_uncertain", "format_interval", "readable_number"]
 
 #: Decimal places beyond which numbers are written with a power of ten.
 _MAX_DECIMALS = 6
@@ -20,16 +20,41 @@ def _decimals(std):
     return 1 - math.floor(math.log10(std))
 
 
-def _group(text):
+def _group(text, separator=" "):
     """Digits grouped by threes from 10 000 up (``'34690'`` ->
-    ``'34 690'``)."""
+    ``'34 690'``; ``'3856'`` stays)."""
     sign = "-" if text.startswith("-") else ""
     whole, _, fraction = text.lstrip("-").partition(".")
     if len(whole) > 4:
         head = len(whole) % 3 or 3
-        whole = " ".join([whole[:head]] + [whole[i:i + 3] for i in
-                                           range(head, len(whole), 3)])
+        whole = separator.join([whole[:head]] + [whole[i:i + 3] for i in
+                                                 range(head, len(whole), 3)])
     return sign + whole + ("." + fraction if fraction else "")
+
+
+def readable_number(value, digits=4):
+    """``value`` to ``digits`` significant digits, without an exponent
+    between 1e-3 and 1e7, grouped by a thin space from 10 000 on (for
+    figures: 34 860, not 3.486e+04).
+
+    Examples
+    --------
+    >>> readable_number(34858.1)
+    '34\u2009860'
+    >>> readable_number(0.0220), readable_number(3856.2), readable_number(2e9)
+    ('0.022', '3856', '2e+09')
+    """
+    value = float(value)
+    if value == 0 or not math.isfinite(value):
+        return f"{value:g}"
+    magnitude = math.floor(math.log10(abs(value)))
+    if not -3 <= magnitude < 7:
+        return f"{value:.{digits}g}"
+    decimals = max(0, digits - 1 - magnitude)
+    text = f"{round(value, digits - 1 - magnitude):.{decimals}f}"
+    if decimals:
+        text = text.rstrip("0").rstrip(".")
+    return _group(text, "\u2009")
 
 
 def _fixed(number, decimals):

@@ -212,7 +212,7 @@ def _design_text(advice):
     if not a.success:
         return f"none found: {a.message}."
     advised = advice.advised_params()
-    from stability.plotting import readable_number
+    from infra.numbers import readable_number
     changes = [f"{n} x{f:.2f} ({readable_number(advice.params[n])} to "
                f"{readable_number(advised[n])} {advice.params.specs[n].unit})"
                for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]

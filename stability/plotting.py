@@ -10,6 +10,7 @@ from matplotlib.colors import ListedColormap
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from infra.numbers import readable_number
 from infra.units import PA_PER_BAR
 
 from .fit_model import fit_curves
@@ -21,7 +22,7 @@ __all__ = ["KIND_COLORS", "KIND_LINESTYLES", "plot_map", "plot_growth_rate", "ma
            "sensitivity_figure", "plot_threshold", "plot_fit",
            "check_figure", "advice_figure", "plot_multipliers",
            "multipliers_figure", "boundary_curve", "kind_legend",
-           "figure_title", "readable_number", "settle_labels"]
+           "figure_title", "settle_labels"]
 
 #: Colour of each kind of :data:`~stability.kinds.KINDS`: white, then a
 #: dark blue, Okabe-Ito vermillion and orange, which colour-blind readers
@@ -57,24 +58,6 @@ def figure_title(fig, title, fontsize=11):
     # DejaVu Sans averages about 0.55 em a character
     width = max(20, int(fig.get_figwidth() * 72 / (0.58 * fontsize)))
     return fig.suptitle(textwrap.fill(title, width), fontsize=fontsize)
-
-
-def readable_number(value, digits=4):
-    """``value`` to ``digits`` significant digits, without an exponent
-    between 1e-3 and 1e7 (thousands grouped by a space: 34 860, not
-    3.486e+04)."""
-    value = float(value)
-    if value == 0 or not np.isfinite(value):
-        return f"{value:g}"
-    magnitude = int(np.floor(np.log10(abs(value))))
-    if not -3 <= magnitude < 7:
-        return f"{value:.{digits}g}"
-    decimals = max(0, digits - 1 - magnitude)
-    text = f"{round(value, digits - 1 - magnitude):,.{decimals}f}"
-    if decimals:
-        text = text.rstrip("0").rstrip(".")
-    # group thousands only from 10 000 on (3856 reads as it is)
-    return text.replace(",", "\u2009" if magnitude >= 4 else "")
 
 
 def resonance_lines(natural_frequencies_hz):
