@@ -89,7 +89,9 @@ def parse_quantity(text, unit, what):
         except ValueError:
             pass
     target = PINT_UNITS.get(unit, unit)
-    allowed = (f"allowed: a number in {unit}, or a number with a unit of "
+    allowed = ("allowed: a plain number, or a percentage (e.g. 3%)"
+               if unit == "1" else
+               f"allowed: a number in {unit}, or a number with a unit of "
                f"the same kind (e.g. {_example(unit)})")
     match = _WITH_UNIT.fullmatch(text)
     if match is None:
@@ -111,8 +113,9 @@ def parse_quantity(text, unit, what):
     try:
         value = float(quantity.to(target).magnitude)
     except _dimensionality_error():
-        raise JudderError(f"{what} {text!r} is not in a unit of "
-                          f"{unit}; {allowed}") from None
+        raise JudderError(f"{what} {text!r} is not "
+                          + ("a pure number" if unit == "1" else
+                             f"in a unit of {unit}") + f"; {allowed}") from None
     if not math.isfinite(value):
         raise JudderError(f"{what} {text!r} is not finite; {allowed}")
     return value

@@ -406,12 +406,8 @@ def _scatter(text, error_model):
     if text is None:
         return None
     if error_model == "relative":
-        number = text.strip().removesuffix("%")
-        try:
-            share = float(number) / (100 if number != text.strip() else 1)
-        except ValueError:
-            share = math.nan
-        if not (math.isfinite(share) and 0 < share <= 1):
+        share = parse_quantity(text, "1", "--scatter")
+        if not 0 < share <= 1:
             raise JudderError(
                 f"--scatter {text} is not allowed with the relative error "
                 "model; allowed: a share of the amplitude above 0 and up to "
