@@ -837,7 +837,8 @@ def plot_fit(result, ax=None):
     ax.set_ylim(0, 1.12 * p_max)
     ax.set_xlabel("dither frequency [Hz]")
     ax.set_ylabel("dither amplitude $p_f$ [bar]")
-    ax.set_title("fit (Fig. 16a): " + "; ".join(
+    # one line per value: three with their intervals overrun one line
+    ax.set_title("fit (Fig. 16a)\n" + "\n".join(
         _fitted_label(result, i) for i in range(len(result.names))),
         fontsize=8)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
@@ -845,9 +846,9 @@ def plot_fit(result, ax=None):
 
 
 def _fitted_label(result, i):
-    """``name = value ± std unit`` with the interval's digits, or why
-    there is no value."""
-    from infra.numbers import format_uncertain
+    """``name = value ± std unit, 95 %: [low, high]`` with the interval's
+    digits, or why there is no value."""
+    from infra.numbers import format_interval, format_uncertain
     name = result.names[i]
     specs = getattr(result.params, "specs", {})
     unit = specs[name].unit if name in specs else ""
@@ -856,7 +857,9 @@ def _fitted_label(result, i):
     if name in getattr(result, "undetermined", ()):
         return f"{name} not determined"
     value = format_uncertain(result.values[i], result.std[i], unit)
-    return f"{name} = {value}"
+    interval = format_interval(result.ci_low[i], result.ci_high[i],
+                               result.std[i])
+    return f"{name} = {value}, 95 %: {interval}"
 
 
 def _wrapped(problems, width=130):
