@@ -12,6 +12,9 @@ nothing else changes). ``make run`` runs the ``judder`` line of the
 Makefile's ``run`` recipe. The ```python block runs last.
 """
 
+import json
+import math
+import os
 import re
 import shlex
 import shutil
@@ -177,3 +180,79 @@ def test_params_lists_the_allowed_range_of_every_parameter(capsys):
     for name, spec in params.specs.items():
         assert f" {spec.allowed()} " in rows[name], name
         assert f"(allowed: {spec.allowed()})" in saved, name
+
+
+# --json of every README command, against the recording made before the
+# command layer was restructured (issue 22): wall-clock times (``seconds``)
+# and the scratch folder's path left out, numbers to 1e-9 relative (the same
+# kernels in the same order). JUDDER_RECORD_JSON=1 records it again after a
+# deliberate change of an output (say why in the commit).
+
+GOLDEN = ROOT / "tests" / "golden" / "readme_json.json"
+RECORD = os.environ.get("JUDDER_RECORD_JSON") == "1"
+#: Keys whose values are wall-clock times.
+TIMES = {"seconds", "elapsed_s"}
+RTOL = 1e-9
+
+
+def _judder_commands():
+    return [c for c in COMMANDS if c.startswith("judder ")
+            and c not in NOT_RUN]
+
+
+def _normalised(value, folder):
+    """``value`` without wall-clock times, with the scratch folder as
+    ``<work>``."""
+    if isinstance(value, dict):
+        return {k: _normalised(v, folder) for k, v in value.items()
+                if k not in TIMES}
+    if isinstance(value, list):
+        return [_normalised(v, folder) for v in value]
+    if isinstance(value, str):
+        return value.replace(str(folder), "<work>")
+    return value
+
+
+def _differences(got, want, where="$"):
+    """Where ``got`` and ``want`` differ, as lines."""
+    if isinstance(want, dict) and isinstance(got, dict):
+        lines = [f"{where}: keys {sorted(set(got) ^ set(want))} differ"
+                 ] if set(got) != set(want) else []
+        for key in sorted(set(got) & set(want)):
+            lines += _differences(got[key], want[key], f"{where}.{key}")
+        return lines
+    if isinstance(want, list) and isinstance(got, list):
+        if len(got) != len(want):
+            return [f"{where}: {len(got)} items, recorded {len(want)}"]
+        return [line for i, (g, w) in enumerate(zip(got, want))
+                for line in _differences(g, w, f"{where}[{i}]")]
+    numbers = (int, float)
+    if (isinstance(want, numbers) and isinstance(got, numbers)
+            and not isinstance(want, bool) and not isinstance(got, bool)):
+        if math.isclose(got, want, rel_tol=RTOL, abs_tol=1e-12):
+            return []
+    elif got == want:
+        return []
+    return [f"{where}: {got!r}, recorded {want!r}"]
+
+
+def test_every_readme_command_prints_the_recorded_json(
+        tmp_path, monkeypatch, capsys):
+    shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    monkeypatch.chdir(tmp_path)
+    recorded = {} if RECORD else json.loads(GOLDEN.read_text())
+    got = {}
+    for command in _judder_commands():
+        words = _smaller(shlex.split(command)[1:]) + ["--json"]
+        status = main(words)
+        captured = capsys.readouterr()
+        assert status == 0, f"{command}: {captured.err}"
+        got[command] = _normalised(json.loads(captured.out), tmp_path)
+    if RECORD:
+        GOLDEN.write_text(json.dumps(got, indent=1, sort_keys=True) + "\n")
+        return
+    assert sorted(got) == sorted(recorded), "the README's commands changed"
+    problems = [line for command in got
+                for line in _differences(got[command], recorded[command],
+                                         command)]
+    assert not problems, "\n".join(problems[:40])
