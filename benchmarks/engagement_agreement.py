@@ -27,7 +27,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from drivelines import get_preset  # noqa: E402
 from judder import api  # noqa: E402
-from judder.cli.options import parse_grid, parse_list  # noqa: E402
+from judder.commands._values import parse_grid, parse_list  # noqa: E402
 
 PRESETS = ("paper-4dof", "paper-4dof-fitted")
 

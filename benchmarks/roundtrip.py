@@ -37,6 +37,7 @@ from infra.errors import JudderError
 from infra.files import write_text
 from infra.units import PA_PER_BAR
 from judder import api
+from judder.commands._bench import bench_damping
 from judder.inputs import (read_chart_below, read_chart_boundary,
                            read_chart_min_growth)
 from stability import build_driveline, floquet
@@ -127,7 +128,7 @@ def main(argv=None):
     chart.save(npz)
     report["chart_s"] = round(time.perf_counter() - began, 1)
     runs = chart.as_dict()["runs"]
-    added = api.bench_damping(truth)
+    added = bench_damping(truth)
     bench = build_driveline(truth.replace(**{
         n: truth[n] + v for n, v in added.items()}))
     report["agreement"] = verdict_agreement(runs, bench, args.min_growth)

@@ -1,8 +1,9 @@
 """The application layer: the ``judder`` command line and its Python API.
 
-:mod:`judder.api` has one function per command, returning the result
-objects of :mod:`judder.results`; :mod:`judder.cli` only parses options
-and formats those results. :mod:`judder.inputs` reads what the user gives
+:mod:`judder.commands` holds one module per command (its options, its
+work, its API function and its result), registered in one table from
+which :mod:`judder.cli` makes the command line and :mod:`judder.api` the
+Python API. :mod:`judder.inputs` reads what the user gives
 (parameter files, measured boundaries); :mod:`judder.crosscheck` holds the
 time-domain and Floquet views of one model against each other.
 

@@ -546,7 +546,7 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
 def test_boundary_files_of_groups_are_named_without_a_trailing_zero(tmp_path):
     # a chart grouped by engine speed (values read from an index as
     # 1000.0) and oil temperature: one boundary file per group
-    from judder.results import ChartResult
+    from judder.commands.chart import ChartResult
 
     class TwoGroups:
         def groups(self):

@@ -18,7 +18,8 @@ from threadpoolctl import threadpool_limits
 
 from drivelines import get_preset
 from judder import api
-from judder.cli import estimates, main
+from judder.cli import main
+from judder.commands import _preflight as estimates
 from stability import build_driveline
 from stability.maps import stability_map
 from stability.monodromy import DysonPropagator

@@ -66,10 +66,10 @@ def test_full_disk_leaves_nothing(tmp_path):
 
 
 def test_internal_error_says_so(monkeypatch, capsys):
-    from judder import api
+    from judder.commands import eig
     def broken(*args, **kw):
         raise RuntimeError("kaboom")
-    monkeypatch.setattr(api, "eig", broken)
+    monkeypatch.setattr(eig, "eig", broken)
     assert main(["eig"]) == 1
     err = capsys.readouterr().err
     assert "internal error" in err and "kaboom" in err and "report" in err

@@ -319,7 +319,7 @@ def test_the_default_threshold_is_the_verdicts():
 
 
 def test_fit_text_has_the_digits_the_interval_supports():
-    from judder.results import FitReport
+    from judder.commands.fit import FitReport
     truth = get_preset("paper-4dof-fitted")
     freqs = np.linspace(96.0, 112.0, 5)
     measured = model_boundary(truth, freqs, 1.5 * BAR, **STABILITY) \

@@ -24,7 +24,7 @@ import pytest
 from threadpoolctl import threadpool_limits
 
 from judder.cli import main
-from judder.cli.parser import build_parser
+from judder.cli import build_parser
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"

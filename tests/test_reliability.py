@@ -493,8 +493,8 @@ def test_units_mean_what_they_say(capsys):
     assert results[2] == results[3]
     assert results[2]["operating_range"]["freq_hz"] == [90.0, 120.0]
     # report --freq 105Hz --pf 200mbar: the configured setting in Hz, bar
-    from judder.cli.parser import build_parser
-    from judder.cli.values import normalise_options
+    from judder.cli import build_parser
+    from judder.commands._values import normalise_options
     args = build_parser().parse_args(["report", "--out", "r.html", "--freq",
                                       "105Hz", "--pf", "200mbar"])
     normalise_options(args)
@@ -535,8 +535,8 @@ def test_a_typo_cannot_take_the_machine(hours, argv, words, capsys,
 def test_advise_memory_estimate_names_the_option(monkeypatch, capsys):
     """20 000 Hz at 0.5 Hz steps: 39 901 frequencies x 12.5 kB = 0.465 GiB,
     refused when only 0.5 GiB is left (80 % of it is the bound)."""
-    from judder.cli import values
-    monkeypatch.setattr(values, "available_memory", lambda: 2 ** 29)
+    from judder.commands import _preflight
+    monkeypatch.setattr(_preflight, "available_memory", lambda: 2 ** 29)
     status, err = _in_process(["advise", "--no-design",
                                "--freq-range=60:20000"], capsys)
     assert status == 2
@@ -549,8 +549,8 @@ def test_advise_memory_estimate_names_the_option(monkeypatch, capsys):
 def test_available_memory_follows_ulimit():
     """``ulimit -v`` is what a batch system sets: the estimate uses what
     is left of it."""
-    script = ("import resource; from judder.cli.values import "
-              "available_memory as a; print(a())")
+    script = ("import resource; from judder.commands._preflight "
+              "import available_memory as a; print(a())")
     done = subprocess.run(
         ["bash", "-c", f"ulimit -v 3000000; {sys.executable} -c '{script}'"],
         capture_output=True, text=True, timeout=60,

@@ -149,7 +149,7 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
     # judder, 0.2 bar above the boundary that `judder check` computes
     from judder import api
     from judder.inputs import load_parameters
-    from judder.report import _verdict_text
+    from judder.commands.report import _verdict_text
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     check = api.check([105.0], [0.2], example, {"mu_g": 0.011},
                       min_growth=0.0, sensitivity=())
@@ -242,7 +242,7 @@ def test_report_prints_to_pdf(report):
 def test_report_shows_no_fit_the_data_cannot_determine():
     # the README's chart: three onsets cannot give c12, mu_g and k24
     from judder.inputs import load_parameters
-    from judder.report import _fit_section
+    from judder.commands.report import _fit_section
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     bench = (np.array([210.0, 212.0, 214.0]),
              np.array([0.8, 0.6, 0.8]) * 1e5, 0.8, 1.0,

@@ -10,47 +10,204 @@ the driveline is, where it judders, whether the configured dither is
 safe and by how much, what moves the tongues most, and how well the model
 matches the bench. Figures are embedded as base64 PNG, so the file opens
 anywhere without its neighbours.
+
+The report is a composer above the other commands: it calls their API
+functions and lays their results out.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`report` and
+its result :class:`ReportResult`.
 """
 
 import base64
+import dataclasses
+from dataclasses import dataclass, field
 import datetime
 import html
 import io
+from pathlib import Path
 import re
 import shutil
 import subprocess
 import tempfile
-import dataclasses
-from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from infra.errors import JudderError
+from infra.errors import JudderError, check_number
 from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
-
 from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
                                  DEFAULT_MIN_GROWTH_PER_S,
                                  ENGAGEMENT_DURATION_S, JUDDER, SLOW_GROWTH)
 
-from . import api
-from .results import growth_words, margin_words
+from ._arguments import (force_option, method_option, min_growth_option,
+                         model_options, workers_option)
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, output_files, written
+from ._values import check_amplitudes, parse_grid, parse_list
+from .advise import advise
+from .check import check, growth_words, margin_words
+from .eig import eig
+from .fit import fit
+from .floquet import floquet
+from .map import _check_map_grid, stability_map
+from .params import params
+from .sensitivity import sensitivity
+from .simulate import simulate
+from .threshold import threshold
+from .tongues import tongues
 
-__all__ = ["ReportResult", "build_report", "print_pdf",
-           "DEFAULT_SENSITIVITY"]
+DESCRIPTION = 'Run the studies of the paper for one driveline and write one self-contained HTML file (figures embedded): the driveline, the verdict and margin of the configured dither (--freq, --pf) with its multipliers (Fig. 15), the map with the exact tongues (Fig. 14) and their tips, the sensitivity ranking (Fig. 17, 18), and the fit to bench data (--chart or --boundary, Fig. 16a). Open it in a browser; print it to PDF from there.'
+
+
+OUTPUTS = (('out', '--out', ('html',)), ('pdf', '--pdf', ('pdf',)))
+
 
 #: Parameters varied in the report's sensitivity study, per model: those
 #: of Fig. 17 and 18 where the model has them.
 DEFAULT_SENSITIVITY = ("k12", "k24", "k", "J1", "J2", "J24", "J3", "J4",
                        "mu_g", "c12", "c")
 
+
 #: Kinds of the Fig. 15 panels, in the paper's order (a, b, c); each
 #: panel is drawn just inside (1.5 times the tip amplitude) the
 #: driveline's lowest tongue of that kind.
 _KIND_ORDER = ("single-period", "double-period", "combination")
+
+
+_CSS = """
+@page{size:A4;margin:14mm 13mm}
+body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;
+color:#111;line-height:1.4}
+h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #999;
+margin-top:1.6em}
+h2,h3{break-after:avoid;page-break-after:avoid}
+table{border-collapse:collapse;margin:0.8em 0}
+td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:left;
+font-size:0.9em;vertical-align:top}
+th{background:#eee}
+table.facts th{width:12em}
+img{max-width:100%;height:auto;display:block;margin:0.8em auto}
+figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
+figcaption{font-size:0.85em;color:#444;text-align:center}
+tr,.keep{break-inside:avoid;page-break-inside:avoid}
+.verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
+.judder{border-color:#b00;background:#fee}
+.slow{border-color:#a60;background:#fff6e0}
+.safe{border-color:#070;background:#efe}
+.none{border-color:#555;background:#f4f4f4}
+.small{font-size:0.85em;color:#444}
+@media print{body{margin:0;max-width:none;font-size:10pt}
+img{max-height:235mm;width:auto}}
+"""
+
+
+#: Flags of a headless Chromium that reads only the given file.
+CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu",
+                  "--disable-background-networking",
+                  "--disable-component-update", "--disable-sync",
+                  "--no-first-run", "--no-pdf-header-footer")
+
+
+#: The report's map grid: 1 Hz x 0.0125 bar, two thirds of the points of
+#: ``judder map``'s (the exact boundaries are drawn over it; the report
+#: stays under 20 s, docs/figures.md).
+REPORT_MAP_FREQ = "5:250:246"
+
+
+REPORT_MAP_PF = "0:1.5:121"
+
+
+def add_arguments(p):
+    """The options of ``judder report``."""
+    p.add_argument("--out", required=True, metavar="FILE.html",
+                   help="the report")
+    p.add_argument("--pdf", metavar="FILE.pdf",
+                   help="also print it to PDF (needs Debian's chromium)")
+    p.add_argument("--engagement", action="store_true",
+                   help="with --freq and --pf: also run the bench "
+                        "engagement through the FMU (Fig. 7, 8)")
+    p.add_argument("--freq", metavar="HZ",
+                   help="dither frequency of the configured setting, Hz")
+    p.add_argument("--pf", metavar="BAR",
+                   help="dither amplitude of the configured setting, bar")
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--chart", metavar="FILE.npz",
+                        help="bench data: a chart (judder chart --out)")
+    source.add_argument("--boundary", metavar="FILE.csv",
+                        help="bench data: a measured boundary "
+                             "(freq_hz,p_f_bar)")
+    p.add_argument("--group", metavar="VALUE",
+                   help="group of the chart, when it has several")
+    p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
+                   help="parameters fitted to the bench data (default "
+                        "c12,mu_g,k24)")
+    p.add_argument("--sensitivity", metavar="NAMES",
+                   help="parameters of the sensitivity study (default the "
+                        "stiffnesses, inertias, mu_g and c12)")
+    p.add_argument("--grid", default="10:220:300", metavar="START:STOP:N",
+                   help="frequencies of the boundaries, Hz (default "
+                        "10:220:300)")
+    p.add_argument("--map-freq", default=REPORT_MAP_FREQ,
+                   metavar="START:STOP:N",
+                   help=f"map frequencies, Hz (default {REPORT_MAP_FREQ})")
+    p.add_argument("--map-pf", default=REPORT_MAP_PF, metavar="START:STOP:N",
+                   help=f"map amplitudes, bar (default {REPORT_MAP_PF})")
+    min_growth_option(p, "; the verdict and the map's shading use it")
+    workers_option(p)
+    method_option(p)
+    model_options(p)
+    force_option(p)
+
+
+def run(args):
+    """The paper's figures and tables for one driveline, as one HTML
+    file."""
+    if (args.freq is None) != (args.pf is None):
+        raise JudderError("--freq and --pf go together: give both for a "
+                          "dither setting, or neither")
+    if args.freq is not None:
+        check_number("--freq", args.freq, "Hz")
+        check_number("--pf", args.pf, "bar", strict=False)
+        check_amplitudes([args.pf], "--pf")
+    grid = parse_grid(args.grid, "--grid", "Hz")
+    map_freq = parse_grid(args.map_freq, "--map-freq", "Hz")
+    map_pf = parse_grid(args.map_pf, "--map-pf", "bar")
+    if grid[0] <= 0 or map_freq[0] <= 0:
+        raise JudderError("--grid, --map-freq: allowed: frequencies > 0 Hz")
+    params, changes = parameters_of(args)
+    _check_map_grid(params.replace(**changes), map_freq, map_pf,
+                    "--map-freq x --map-pf", args.method, True)
+    make_parents(args.out)
+    with Progress(None, "report") as progress:
+        result = report(
+            params, changes, description=model_title(args, params),
+            freq_hz=args.freq, p_f_bar=args.pf, chart=args.chart,
+            boundary=args.boundary, group=args.group,
+            fit_names=parse_list(args.fit, "--fit", str),
+            sensitivity_names=(parse_list(args.sensitivity, "--sensitivity",
+                                          str) if args.sensitivity else None),
+            grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
+            p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
+            method=args.method, workers=args.workers,
+            engagement=args.engagement, min_growth=args.min_growth,
+            progress=progress)
+    result.save(args.out, force=args.force)
+    if args.pdf:
+        make_parents(args.pdf)
+        result.save_pdf(args.pdf, args.out, force=args.force)
+    verdict = result.data.get("verdict")
+    text = (f"{len(result.figures)} figures"
+            + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
+               f"{verdict['verdict']}" if verdict else "")
+            + (f"\nbench data: {result.data['fit_status']}"
+               if "fit_status" in result.data else "")
+            + written(args.out, args.pdf))
+    emit(args, {**result.as_dict(), **output_files(out=args.out, pdf=args.pdf)},
+         text)
 
 
 @dataclass(frozen=True)
@@ -111,7 +268,7 @@ def _fit_section(bench, names, values, method, workers, source):
                  f"boundary of judder growing at {min_growth:g} 1/s or "
                  "faster.</p>")
     try:
-        report = api.fit(freqs, measured / PA_PER_BAR, tried,
+        fitted = fit(freqs, measured / PA_PER_BAR, tried,
                          names=list(names), parameters=values,
                          method=method, starts=1, workers=workers,
                          min_growth=min_growth, below_bar=below_bar,
@@ -122,7 +279,7 @@ def _fit_section(bench, names, values, method, workers, source):
                 ".</p>", {"fit": None, "fit_determined": False,
                           "fit_status": status, "fit_problems": [str(error)]},
                 None)
-    r = report.fit
+    r = fitted.fit
     problems = list(r.problems)
     if not r.determined:
         missing = list(r.undetermined) + [n for n in r.at_bound
@@ -135,7 +292,7 @@ def _fit_section(bench, names, values, method, workers, source):
                            for p in problems) + "</p>",
                 {"fit": None, "fit_determined": False, "fit_status": status,
                  "fit_problems": problems}, None)
-    lines = report.text()
+    lines = fitted.text()
     status = "fitted " + "; ".join(line.strip() for line in lines[:len(
         r.names)])
     rows = [(n, f"{s0:.5g}", format_uncertain(v, s, values.specs[n].unit),
@@ -153,7 +310,7 @@ def _fit_section(bench, names, values, method, workers, source):
                                                       r.ci_high)},
                    "fit_determined": True, "fit_status": status,
                    "fit_success": bool(r.success), "fit_problems": problems},
-            report)
+            fitted)
 
 
 def _table(header, rows):
@@ -165,7 +322,7 @@ def _table(header, rows):
 
 def _verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
     """The configured dither's verdict in words, from a record of
-    ``judder check`` (:func:`judder.results.setting_record`) with the
+    ``judder check`` (:func:`setting_record`) with the
     leading ``|lambda|`` added: the verdict word, what the multiplier
     does, the growth against an engagement of ``engagement_s`` seconds
     and both margins to judder."""
@@ -248,34 +405,7 @@ def _ranking(tip_shifts, tongue_number):
         not e["vanishes"], -max(e["p_f_percent"], e["freq_percent"])))
 
 
-_CSS = """
-@page{size:A4;margin:14mm 13mm}
-body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;
-color:#111;line-height:1.4}
-h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #999;
-margin-top:1.6em}
-h2,h3{break-after:avoid;page-break-after:avoid}
-table{border-collapse:collapse;margin:0.8em 0}
-td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:left;
-font-size:0.9em;vertical-align:top}
-th{background:#eee}
-table.facts th{width:12em}
-img{max-width:100%;height:auto;display:block;margin:0.8em auto}
-figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
-figcaption{font-size:0.85em;color:#444;text-align:center}
-tr,.keep{break-inside:avoid;page-break-inside:avoid}
-.verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
-.judder{border-color:#b00;background:#fee}
-.slow{border-color:#a60;background:#fff6e0}
-.safe{border-color:#070;background:#efe}
-.none{border-color:#555;background:#f4f4f4}
-.small{font-size:0.85em;color:#444}
-@media print{body{margin:0;max-width:none;font-size:10pt}
-img{max-height:235mm;width:auto}}
-"""
-
-
-def build_report(parameters=None, changes=None, description=None,
+def report(parameters=None, changes=None, description=None,
                  freq_hz=None, p_f_bar=None, chart=None, boundary=None,
                  group=None, fit_names=("c12", "mu_g", "k24"),
                  sensitivity_names=None, grid_freq=None, map_freq=None,
@@ -323,7 +453,7 @@ def build_report(parameters=None, changes=None, description=None,
         With a dither setting: also run the bench engagement at it and
         without dither through the FMU (Fig. 7, 8; a few seconds); for a
         Modelica class, its own FMU from its steady slip
-        (:func:`judder.api.simulate`). Refused for an FMU of ``--fmu``.
+        (:func:`judder.simulate`). Refused for an FMU of ``--fmu``.
     workers : int, optional
         Local Dask workers of the sensitivity study and the fit. Default
         1 (in this process): the report's studies are small, and starting
@@ -337,9 +467,10 @@ def build_report(parameters=None, changes=None, description=None,
     ReportResult
     """
     from stability.plotting import multipliers_figure
-    from .inputs import (read_boundary, read_chart_below,
-                         read_chart_boundary, read_chart_min_growth)
-    values = api.params(parameters, changes).params
+
+    from ..inputs import (read_boundary, read_chart_below, read_chart_boundary,
+                          read_chart_min_growth)
+    values = params(parameters, changes).params
     description = description or values.model
     workers = 1 if workers is None else workers
     grid_freq = np.linspace(10, 220, 300) if grid_freq is None \
@@ -370,7 +501,7 @@ def build_report(parameters=None, changes=None, description=None,
     run_engagement = engagement and freq_hz is not None and (
         not paper or values.driveline.bench_class is not None)
     if run_engagement:
-        from .timedomain import class_fmu
+        from ..timedomain import class_fmu
         class_fmu(values, "report --engagement")   # refuses --fmu now
     steps = 7 + bool(bench)
     done = [0]
@@ -389,22 +520,22 @@ def build_report(parameters=None, changes=None, description=None,
                f"</figcaption></figure>"
 
     # the driveline (its table closes the report, as an appendix)
-    eig = api.eig(values).as_dict()
-    data["natural_frequencies_hz"] = list(eig["natural_frequencies_hz"])
-    data["damping_factor_12_percent"] = eig["damping_factor_12_percent"]
+    modes = eig(values).as_dict()
+    data["natural_frequencies_hz"] = list(modes["natural_frequencies_hz"])
+    data["damping_factor_12_percent"] = modes["damping_factor_12_percent"]
     step()
 
     # tongues, and the map they are drawn over
-    tongues = api.tongues(grid_freq, p_max_bar, values, method=method)
+    found_tongues = tongues(grid_freq, p_max_bar, values, method=method)
     stability = dataclasses.replace(
-        api.stability_map(map_freq, map_pf, values, method=method,
+        stability_map(map_freq, map_pf, values, method=method,
                           min_growth=min_growth),
-        boundaries=tongues.boundaries, tongues=tongues.tongues)
+        boundaries=found_tongues.boundaries, tongues=found_tongues.tongues)
     step()
     data["tongues"] = [
         {"number": t.number, "kind": t.kind, "resonance": t.resonance,
          "tip_freq_hz": t.tip_freq_hz, "tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
-        for t in tongues.tongues]
+        for t in found_tongues.tongues]
     tip_rows = [(t["number"] or "-", t["kind"], t["resonance"] or "-",
                  f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}")
                 for t in data["tongues"]]
@@ -414,7 +545,7 @@ def build_report(parameters=None, changes=None, description=None,
     if freq_hz is not None and p_f_bar is not None:
         # judder check at the setting, at the growth rate that shades
         # the map (the tongues are the stability boundaries of Fig. 14)
-        checked = api.check([freq_hz], [p_f_bar], values,
+        checked = check([freq_hz], [p_f_bar], values,
                             min_growth=min_growth,
                             p_max_bar=max(p_max_bar, 2 * p_f_bar),
                             sensitivity=())
@@ -427,7 +558,7 @@ def build_report(parameters=None, changes=None, description=None,
     # what to do: safe windows and the smallest design change (advise)
     advice, advice_error = None, None
     try:
-        advice = api.advise(values, min_growth=min_growth)
+        advice = advise(values, min_growth=min_growth)
     except JudderError as error:        # e.g. no design parameter
         advice_error = str(error)
     step()
@@ -462,10 +593,10 @@ def build_report(parameters=None, changes=None, description=None,
     # Fig. 15 by kind, at points just inside each kind's lowest tongue
     inside = []
     for kind in _KIND_ORDER:
-        found = [t for t in tongues.tongues if t.kind == kind]
+        found = [t for t in found_tongues.tongues if t.kind == kind]
         if found:
             t = min(found, key=lambda t: t.tip_p_f)
-            inside.append(api.floquet(t.tip_freq_hz,
+            inside.append(floquet(t.tip_freq_hz,
                                       min(1.5 * t.tip_p_f / PA_PER_BAR,
                                           p_max_bar), values,
                                       method=method).result)
@@ -493,10 +624,10 @@ def build_report(parameters=None, changes=None, description=None,
                      advice.figure(title=description))))
 
     # sensitivity
-    sens = api.sensitivity(names, grid_freq, p_max_bar, parameters=values,
+    sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
                            method=method, workers=workers)
     step()
-    focus = _focus_tongue(tongues.tongues, freq_hz)
+    focus = _focus_tongue(found_tongues.tongues, freq_hz)
     ranking = _ranking(sens.tip_shifts, focus)
     data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
     sections.append(_keep(
@@ -516,14 +647,14 @@ def build_report(parameters=None, changes=None, description=None,
 
     # without dither (Fig. 19): a study of the paper's chains
     if paper:
-        threshold = api.threshold(np.linspace(-1e-3, 1e-3, 41),
+        study = threshold(np.linspace(-1e-3, 1e-3, 41),
                                   np.linspace(0, 2, 21), values)
-        data["mu_g_threshold"] = float(threshold.study.threshold)
-        sections.append(_threshold_section(values, threshold, figure))
+        data["mu_g_threshold"] = float(study.study.threshold)
+        sections.append(_threshold_section(values, study, figure))
     step()
 
     if run_engagement:
-        run = api.simulate(freq_hz, p_f_bar, compare="none",
+        run = simulate(freq_hz, p_f_bar, compare="none",
                            parameters=values, method=method)
         first = run.summaries[0]
         data["engagement"] = first
@@ -566,13 +697,13 @@ def build_report(parameters=None, changes=None, description=None,
     sections.append(_keep(
         "<h2>The driveline and its parameters</h2>"
         "<p>Natural frequencies (Eq. 15): "
-        + ", ".join(f"{f:.3f} Hz" for f in eig["natural_frequencies_hz"])
-        + ("" if eig["damping_factor_12"] is None else
+        + ", ".join(f"{f:.3f} Hz" for f in modes["natural_frequencies_hz"])
+        + ("" if modes["damping_factor_12"] is None else
            "; clutch-damper damping factor zeta_12 (Eq. 16): "
-           f"{eig['damping_factor_12_percent']:.2f} %")
+           f"{modes['damping_factor_12_percent']:.2f} %")
         + "; damped modes without dither: " + ", ".join(
             f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
-            for m in eig["damped_modes"]) + ".</p>"
+            for m in modes["damped_modes"]) + ".</p>"
         + _table(("parameter", "value", "unit", "meaning"), rows)))
 
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime(
@@ -591,9 +722,9 @@ def build_report(parameters=None, changes=None, description=None,
     return ReportResult(html=page, data=data, figures=figures)
 
 
-def _threshold_section(values, threshold, figure):
+def _threshold_section(values, study, figure):
     """Section 4: the friction-gradient threshold without dither (Fig.
-    19) of a registry driveline, from :func:`judder.api.threshold`."""
+    19) of a registry driveline, from :func:`judder.threshold`."""
     return _keep(
         "<h2>Without dither: the friction-gradient threshold</h2>"
         f"<p>This study puts the mean pressure's damping into the slip "
@@ -601,14 +732,14 @@ def _threshold_section(values, threshold, figure):
         "maps above keep only the dither's fluctuating part (see "
         "docs/theory.md). With it, this driveline "
         f"is unstable without any dither for mu_g below "
-        f"{threshold.study.threshold:.3g} s/rad (its mu_g is "
+        f"{study.study.threshold:.3g} s/rad (its mu_g is "
         f"{values['mu_g']:.3g} s/rad"
         + (", so it judders without dither" if values["mu_g"]
-           < threshold.study.threshold else "")
+           < study.study.threshold else "")
         + ").</p>"
         + figure("Largest real part against mu_g and the threshold "
                  "against the external damping (Fig. 19)",
-                 threshold.figure()))
+                 study.figure()))
 
 
 def _summary_section(verdict, advice, advice_error, min_growth):
@@ -691,13 +822,6 @@ def _focus_tongue(found, freq_hz):
     if freq_hz is None:
         return min(numbered, key=lambda t: t.tip_p_f).number
     return min(numbered, key=lambda t: abs(t.tip_freq_hz - freq_hz)).number
-
-
-#: Flags of a headless Chromium that reads only the given file.
-CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu",
-                  "--disable-background-networking",
-                  "--disable-component-update", "--disable-sync",
-                  "--no-first-run", "--no-pdf-header-footer")
 
 
 def print_pdf(html_path, pdf_path):

@@ -15,6 +15,9 @@ sub-intervals the fastest eigenvalue asks for (a strong modulation may
 add more), one thread at full speed (a loaded machine, or several BLAS
 threads fighting for the cores, is slower) and sizes other than 6 states
 by ``(m / 6)^2``.
+
+The memory and disk a request would take are checked here too
+(:func:`available_memory` follows ``ulimit -v`` and the cgroup).
 """
 
 import math
@@ -25,17 +28,20 @@ import numpy as np
 
 from infra.errors import JudderError
 
-__all__ = ["subintervals", "map_seconds", "tongues_seconds", "check_time",
-           "check_map", "check_floquet", "check_tongues", "check_sensitivity",
-           "check_crosscheck", "check_campaign", "check_envelope",
-           "MAX_HOURS", "ANNOUNCE_S"]
+from ._common import BACKGROUND_AMPLITUDES
+from ._values import MAX_GRID_VALUES
 
 #: Longest work allowed without ``JUDDER_MAX_HOURS``, hours.
 MAX_HOURS = 24.0
+
+
 #: Estimates above this (s) are printed on stderr before the work.
 ANNOUNCE_S = 10.0
+
+
 #: Environment variable raising (or lowering) the time limit, hours.
 LIMIT_VARIABLE = "JUDDER_MAX_HOURS"
+
 
 # Per-unit costs, CPU seconds of one thread on the development machine
 # (2 shared cores), measured by benchmarks/time_calibration.py:
@@ -47,29 +53,49 @@ LIMIT_VARIABLE = "JUDDER_MAX_HOURS"
 # 0.13 (0.17 s for 50 frequencies, 0.49 s for 500).
 #: Fixed cost of one frequency of a Dyson map.
 FREQUENCY_S = 1.1e-3
+
+
 #: Building the Dyson series on one sub-interval.
 SUBINTERVAL_S = 2.24e-4
+
+
 #: One amplitude on one sub-interval (Horner evaluation, matrix product).
 PRODUCT_S = 1.78e-6
+
+
 #: One frequency of ``tongues`` (default solver), and its fixed cost.
 TONGUE_FREQUENCY_S = 6.0e-4
+
+
 TONGUE_FIXED_S = 0.1
+
+
 #: One simulated second of one FMU run of ``crosscheck`` (4-DOF), and of
 #: one ``campaign`` run at 1000 rpm (its tooth signals), CPU seconds:
 #: from ``judder crosscheck --freq 40:60:3 --pf 0.5 --duration 3`` (6
 #: runs of 3 s, 5.8 s user time with the start-up) and ``judder campaign
 #: --freq 40:60:3 --pf 0.5 --duration 2`` (3 runs of 2 s, 5.6 s).
 FMU_SECOND_S = 0.25
+
+
 CAMPAIGN_SECOND_S = 0.5
+
+
 #: One setting of ``check`` (Floquet point and margins), and one
 #: parameter of its margin sensitivity per setting, CPU seconds: from
 #: ``judder check --freq 60:200:10 --pf 0:0.7:10`` with ``--params none``
 #: (6.1 s for 100 settings with the 1.5 s start-up) and with the 6
 #: default parameters (14.4 s).
 CHECK_SETTING_S = 0.045
+
+
 CHECK_PARAMETER_S = 0.014
+
+
 #: States of the calibration set (paper's 4-DOF).
 REFERENCE_SIZE = 6
+
+
 #: Largest phase per sub-interval, as in stability.monodromy (_MAX_PHASE).
 _MAX_PHASE = 8.0
 
@@ -169,11 +195,6 @@ def check_time(seconds, drivers, change, workers=1):
     return wall
 
 
-# The checks the commands call before work. Only the default engine
-# 'dyson' is estimated: 'solve_ivp' is the slow reference, its cost
-# follows the integrator's step control and is not estimated.
-
-
 def _dyson(method):
     return method == "dyson"
 
@@ -203,7 +224,6 @@ def check_floquet(params, freq_hz, method):
 
 def check_tongues(params, freq_hz, background=False):
     """``tongues``: frequencies (and the background map of --plot)."""
-    from judder.api import BACKGROUND_AMPLITUDES
     seconds = tongues_seconds(params, freq_hz) + (
         map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES))
         if background else 0.0)
@@ -248,7 +268,6 @@ def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
                    workers):
     """``envelope``: samples (and vertices) x the tongues and background
     map of one sample, and the refining boundary evaluations."""
-    from judder.api import BACKGROUND_AMPLITUDES
     names = len(ranges.names)
     jobs = samples + (2 ** names if vertices else 0)
     per_job = (tongues_seconds(params, freq_hz)
@@ -267,3 +286,146 @@ def _terminal():
 
 def _workers(workers):
     return workers or os.cpu_count() or 1
+
+
+#: Bytes ``advise`` holds per frequency of its 0.5 Hz grid (peak resident
+#: memory of ``judder advise --no-design --freq-range=60:LOW`` grows by
+#: 12.2 kB per frequency from 60:200 to 60:20000, 117 to 599 MB).
+ADVISE_BYTES_PER_FREQUENCY = 12_500
+
+
+#: Most runs of one campaign, FMU runs of one crosscheck, cases of one
+#: sensitivity study: beyond, a request is a typo or a week of work.
+MAX_RUNS = 100_000
+
+
+#: Bytes one campaign run writes per format, second of engagement and
+#: 1000 rpm (41 teeth; measured 29.6 kB CSV and 31.3 kB MF4 for 1 s).
+BYTES_PER_RUN_SECOND = 32_000
+
+
+def available_memory():
+    """Bytes of memory this process may still use: the least of the
+    memory available now (``MemAvailable`` of /proc/meminfo, else the
+    physical memory), what is left of its cgroup's limit (a batch job's
+    or a container's, v2 or v1) and what is left of its address-space
+    limit (``ulimit -v``)."""
+    import resource
+    try:
+        with open("/proc/meminfo") as stream:
+            free = next(int(line.split()[1]) * 1024 for line in stream
+                        if line.startswith("MemAvailable:"))
+    except (OSError, StopIteration, ValueError):
+        free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    limits = [free, _cgroup_left()]
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft != resource.RLIM_INFINITY:
+        limits.append(soft - _status_bytes("VmSize:"))
+    return max(0, min(v for v in limits if v is not None))
+
+
+def _status_bytes(key):
+    try:
+        with open("/proc/self/status") as stream:
+            return next(int(line.split()[1]) * 1024 for line in stream
+                        if line.startswith(key))
+    except (OSError, StopIteration, ValueError):
+        return 0
+
+
+def _cgroup_left():
+    """Limit minus usage of this process's memory cgroup, or None."""
+    try:
+        with open("/proc/self/cgroup") as stream:
+            lines = [line.strip().split(":", 2) for line in stream]
+    except OSError:
+        return None
+    places = []
+    for _, controllers, path in lines:
+        if controllers == "":                      # v2
+            places.append((f"/sys/fs/cgroup{path}", "memory.max",
+                           "memory.current"))
+        elif "memory" in controllers.split(","):   # v1
+            places.append((f"/sys/fs/cgroup/memory{path}",
+                           "memory.limit_in_bytes", "memory.usage_in_bytes"))
+    for folder, limit, usage in places:
+        try:
+            with open(os.path.join(folder, limit)) as a, \
+                    open(os.path.join(folder, usage)) as b:
+                text, used = a.read().strip(), int(b.read())
+        except (OSError, ValueError):
+            continue
+        if text != "max" and int(text) < 2 ** 60:
+            return int(text) - used
+    return None
+
+
+def check_map_memory(params, freq_hz, p_f_bar):
+    """Refuse a map whose Dyson series would not fit in memory.
+
+    At each frequency the engine holds, for every amplitude, one matrix
+    per sub-interval of the period (:class:`stability.monodromy.
+    DysonPropagator`); the sub-intervals at the lowest frequency follow
+    from the spectral radius of ``A0`` (the modulation only adds more).
+    """
+    f = float(np.min(freq_hz))
+    steps, size = subintervals(params, [f])
+    steps = int(steps[0])
+    needed = 3 * len(p_f_bar) * steps * size * size * 8 \
+        + 64 * len(freq_hz) * len(p_f_bar)
+    free = available_memory()
+    if needed > 0.8 * free:
+        raise JudderError(
+            f"--freq x --pf needs at least {needed / 2**30:.3g} GiB "
+            f"({len(p_f_bar)} amplitudes x {steps} sub-intervals at "
+            f"{f:g} Hz), and {free / 2**30:.3g} GiB are available; "
+            "allowed: fewer amplitudes per frequency, or higher "
+            "frequencies")
+    return needed
+
+
+def check_advise_grid(text, low, high, margin_hz):
+    """Refuse an ``advise`` frequency range whose 0.5 Hz grid has more
+    than :data:`judder.commands._values.MAX_GRID_VALUES` frequencies or would
+    not fit in memory, naming ``--freq-range``; returns the number of
+    frequencies."""
+    points = int(round(2 * (high - low + 2 * margin_hz))) + 1
+    widest = (MAX_GRID_VALUES - 1) / 2 - 2 * margin_hz
+    if points > MAX_GRID_VALUES:
+        raise JudderError(
+            f"--freq-range {text} makes {points} frequencies (0.5 Hz "
+            f"apart); allowed: at most {MAX_GRID_VALUES}, i.e. a range of "
+            f"at most {widest:g} Hz (--margin-hz {margin_hz:g})")
+    needed = points * ADVISE_BYTES_PER_FREQUENCY
+    free = available_memory()
+    if needed > 0.8 * free:
+        raise JudderError(
+            f"--freq-range {text} needs about {needed / 2**30:.3g} GiB "
+            f"({points} frequencies 0.5 Hz apart), and "
+            f"{free / 2**30:.3g} GiB are available; allowed: a narrower "
+            "range")
+    return points
+
+
+def check_work(option, count, what):
+    """Refuse more than :data:`MAX_RUNS` pieces of work."""
+    if count > MAX_RUNS:
+        raise JudderError(f"{option} asks for {count:.4g} {what}; allowed: "
+                          f"at most {MAX_RUNS} (split the study)")
+
+
+def check_campaign_disk(folder, runs, duration, rpm_max, formats):
+    """Refuse a campaign whose files would not fit on the disk."""
+    from pathlib import Path
+    import shutil
+    needed = (runs * duration * max(rpm_max, 1.0) / 1000.0
+              * BYTES_PER_RUN_SECOND * len(formats))
+    place = Path(folder)
+    while not place.exists():
+        place = place.parent
+    free = shutil.disk_usage(place).free
+    if needed > free:
+        raise JudderError(f"the campaign would write about "
+                          f"{needed / 2**30:.3g} GiB ({runs} runs) and "
+                          f"{free / 2**30:.3g} GiB are free on {place}; "
+                          "allowed: fewer runs, or another folder")

@@ -7,36 +7,43 @@ times s, speeds rpm, parameters SI); a number may carry a unit instead
 :func:`infra.quantities.parse_quantity`. A plain number far outside what
 its unit makes plausible is refused with the likely slip
 (``--pf 30000``: Pa given for bar; ``--set p_m=10``: bar given for Pa).
+
+Grids (``START:STOP:N``), lists and dither waveforms are parsed here too.
+Nothing here knows a command.
 """
 
 import math
-import os
 import sys
 
 import numpy as np
 
-from infra.errors import JudderError
+from infra.errors import JudderError, check_number
 from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
 
-__all__ = ["normalise_options", "option_value", "check_pressures",
-           "check_amplitudes", "check_plain_pressure", "check_file_pressure",
-           "check_plausible", "check_advise_grid",
-           "FREQ_RANGE_HZ", "MAX_PLAIN_PF_BAR", "MIN_PLAIN_P_M_PA",
-           "MAX_WORKERS", "warn"]
+from ..inputs import read_input
 
 #: Dither frequencies allowed, Hz: below, the period needs more
 #: sub-intervals than any engine takes; above, no hydraulic valve
 #: dithers and the multipliers round to 1.
 FREQ_RANGE_HZ = (1e-3, 1e5)
+
+
 #: A plain --pf above this (bar) is taken for a slip of unit (Pa for bar).
 MAX_PLAIN_PF_BAR = 100.0
+
+
 #: A plain p_m below this (Pa, i.e. 1 bar) is taken for bar given as Pa.
 MIN_PLAIN_P_M_PA = 1e5
+
+
 #: Most worker processes (a request for more is a typo).
 MAX_WORKERS = 256
+
+
 #: Longest simulated time of one run, s.
 MAX_DURATION_S = 3600.0
+
 
 #: Options holding one number: attribute -> (option, unit, low, high,
 #: low_open). ``freq`` and ``pf`` are single values only in these
@@ -49,6 +56,8 @@ _SINGLE = {"freq": ("--freq", "Hz", *FREQ_RANGE_HZ, False),
            "noise_rpm": ("--noise-rpm", "rpm", 0.0, math.inf, False),
            "min_amplitude": ("--min-amplitude", "rpm", 0.0, math.inf,
                              False)}
+
+
 _SINGLE_FREQ_COMMANDS = ("floquet", "simulate", "report")
 
 
@@ -177,168 +186,112 @@ def check_file_pressure(params, path):
             f"{p_m * PA_PER_BAR:g}")
 
 
-#: Where each command keeps its largest dither amplitude: (attribute,
-#: grid or single value).
-_AMPLITUDE = {"floquet": ("pf", False), "simulate": ("pf", False),
-              "map": ("pf", True), "crosscheck": ("pf", True),
-              "campaign": ("pf", True), "tongues": ("pf_max", False),
-              "sensitivity": ("pf_max", False), "fit": ("pf_max", False)}
+#: Most values of one grid axis (a typo like N = 100000000000 would
+#: otherwise allocate hundreds of GiB).
+MAX_GRID_VALUES = 100_000
 
 
-def check_plausible(args):
-    """Warn when the command's largest dither amplitude reaches the mean
-    pressure of its parameter set (see :func:`check_pressures`)."""
-    from .options import parameters_of, parse_grid
-    if args.command not in _AMPLITUDE:
-        return
-    attribute, grid = _AMPLITUDE[args.command]
-    value = getattr(args, attribute, None)
-    if value is None:
-        return
-    p_max_bar = parse_grid(value, "--pf", "bar").max() if grid else value
-    params, _ = parameters_of(args)
-    check_pressures(p_max_bar * PA_PER_BAR, params,
-                    "--pf" if attribute == "pf" else "--pf-max")
+#: Forms of --dither-wave, for its help and its error message.
+WAVEFORMS = ("cosine", "square[:TAU_MS]", "fourier:A1,A2,...[/B1,B2,...]",
+             "period:FILE.csv")
 
 
-def available_memory():
-    """Bytes of memory this process may still use: the least of the
-    memory available now (``MemAvailable`` of /proc/meminfo, else the
-    physical memory), what is left of its cgroup's limit (a batch job's
-    or a container's, v2 or v1) and what is left of its address-space
-    limit (``ulimit -v``)."""
-    import resource
-    try:
-        with open("/proc/meminfo") as stream:
-            free = next(int(line.split()[1]) * 1024 for line in stream
-                        if line.startswith("MemAvailable:"))
-    except (OSError, StopIteration, ValueError):
-        free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    limits = [free, _cgroup_left()]
-    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
-    if soft != resource.RLIM_INFINITY:
-        limits.append(soft - _status_bytes("VmSize:"))
-    return max(0, min(v for v in limits if v is not None))
+def parse_grid(text, option, unit, allow_negative=False):
+    """Parse ``START:STOP:N`` (or a single value) into a linspace.
 
+    START and STOP are plain numbers in ``unit`` or carry a unit
+    (``0:300mbar:10``); see :func:`option_value`.
 
-def _status_bytes(key):
-    try:
-        with open("/proc/self/status") as stream:
-            return next(int(line.split()[1]) * 1024 for line in stream
-                        if line.startswith(key))
-    except (OSError, StopIteration, ValueError):
-        return 0
-
-
-def _cgroup_left():
-    """Limit minus usage of this process's memory cgroup, or None."""
-    try:
-        with open("/proc/self/cgroup") as stream:
-            lines = [line.strip().split(":", 2) for line in stream]
-    except OSError:
-        return None
-    places = []
-    for _, controllers, path in lines:
-        if controllers == "":                      # v2
-            places.append((f"/sys/fs/cgroup{path}", "memory.max",
-                           "memory.current"))
-        elif "memory" in controllers.split(","):   # v1
-            places.append((f"/sys/fs/cgroup/memory{path}",
-                           "memory.limit_in_bytes", "memory.usage_in_bytes"))
-    for folder, limit, usage in places:
-        try:
-            with open(os.path.join(folder, limit)) as a, \
-                    open(os.path.join(folder, usage)) as b:
-                text, used = a.read().strip(), int(b.read())
-        except (OSError, ValueError):
-            continue
-        if text != "max" and int(text) < 2 ** 60:
-            return int(text) - used
-    return None
-
-
-def check_map_memory(params, freq_hz, p_f_bar):
-    """Refuse a map whose Dyson series would not fit in memory.
-
-    At each frequency the engine holds, for every amplitude, one matrix
-    per sub-interval of the period (:class:`stability.monodromy.
-    DysonPropagator`); the sub-intervals at the lowest frequency follow
-    from the spectral radius of ``A0`` (the modulation only adds more).
+    Raises
+    ------
+    JudderError
+        Naming ``option`` and saying what is allowed.
     """
-    from .estimates import subintervals
-    f = float(np.min(freq_hz))
-    steps, size = subintervals(params, [f])
-    steps = int(steps[0])
-    needed = 3 * len(p_f_bar) * steps * size * size * 8 \
-        + 64 * len(freq_hz) * len(p_f_bar)
-    free = available_memory()
-    if needed > 0.8 * free:
-        raise JudderError(
-            f"--freq x --pf needs at least {needed / 2**30:.3g} GiB "
-            f"({len(p_f_bar)} amplitudes x {steps} sub-intervals at "
-            f"{f:g} Hz), and {free / 2**30:.3g} GiB are available; "
-            "allowed: fewer amplitudes per frequency, or higher "
-            "frequencies")
-    return needed
+    parts = text.split(":")
+    lowest = "" if allow_negative else "0 <= "
+    allowed = (f"allowed: START:STOP:N with {lowest}START <= STOP in {unit} "
+               f"and N a whole number from 1 to {MAX_GRID_VALUES} (1 only "
+               f"when START = STOP), or one value (e.g. {option} 10:220:300)")
+    low, high = (-math.inf, math.inf) if allow_negative else (0.0, math.inf)
+    if unit == "Hz":
+        low, high = FREQ_RANGE_HZ
+    try:
+        if len(parts) == 1:
+            start = stop = option_value(parts[0], option, unit, low, high)
+            count = 1
+        elif len(parts) == 3:
+            start = option_value(parts[0], option, unit, low, high)
+            stop = option_value(parts[1], option, unit, low, high)
+            count = int(parts[2])
+        else:
+            raise ValueError
+    except JudderError:
+        raise
+    except ValueError:
+        raise JudderError(f"{option} {text!r} is not a grid; {allowed}") \
+            from None
+    if start > stop or count < 1 or count > MAX_GRID_VALUES \
+            or (count == 1 and start != stop):
+        raise JudderError(f"{option} {text!r} is not allowed; {allowed}")
+    return np.linspace(start, stop, count)
 
 
-#: Bytes ``advise`` holds per frequency of its 0.5 Hz grid (peak resident
-#: memory of ``judder advise --no-design --freq-range=60:LOW`` grows by
-#: 12.2 kB per frequency from 60:200 to 60:20000, 117 to 599 MB).
-ADVISE_BYTES_PER_FREQUENCY = 12_500
+def parse_waveform(text):
+    """The dither waveform of ``--dither-wave`` (None: the cosine).
+
+    ``square:TAU_MS`` is a square wave through a first-order valve lag of
+    time constant TAU_MS (ms, default 0); ``fourier:A/B`` the cosine and
+    sine coefficients of the harmonics 1, 2, ...; ``period:FILE.csv`` one
+    measured period of pressure, equally spaced, the last column of each
+    numeric row (a header line is skipped).
+    """
+    from stability.waveforms import FilteredSquare, FourierSeries, from_samples
+    kind, _, rest = (text or "cosine").partition(":")
+    option = f"--dither-wave {text!r}"
+    if kind == "cosine" and not rest:
+        return None
+    if kind == "square":
+        tau = parse_list(rest, "--dither-wave square:")[0] if rest else 0.0
+        check_number("--dither-wave square: TAU_MS", tau, "ms", strict=False)
+        return FilteredSquare(tau * 1e-3)
+    if kind == "fourier" and rest:
+        cos, _, sin = rest.partition("/")
+        return FourierSeries(
+            cos=tuple(parse_list(cos, option)) if cos.strip() else (),
+            sin=tuple(parse_list(sin, option)) if sin.strip() else ())
+    if kind == "period" and rest:
+        rows = [line.split(",")[-1].strip()
+                for line in read_input(rest, "--dither-wave period:")
+                .splitlines() if line.strip()]
+        if rows and not _is_float(rows[0]):
+            rows = rows[1:]
+        return from_samples(parse_list(",".join(rows), option))
+    raise JudderError(f"{option} is not allowed; allowed: "
+                      + ", ".join(WAVEFORMS))
 
 
-def check_advise_grid(text, low, high, margin_hz):
-    """Refuse an ``advise`` frequency range whose 0.5 Hz grid has more
-    than :data:`judder.cli.options.MAX_GRID_VALUES` frequencies or would
-    not fit in memory, naming ``--freq-range``; returns the number of
-    frequencies."""
-    from .options import MAX_GRID_VALUES
-    points = int(round(2 * (high - low + 2 * margin_hz))) + 1
-    widest = (MAX_GRID_VALUES - 1) / 2 - 2 * margin_hz
-    if points > MAX_GRID_VALUES:
-        raise JudderError(
-            f"--freq-range {text} makes {points} frequencies (0.5 Hz "
-            f"apart); allowed: at most {MAX_GRID_VALUES}, i.e. a range of "
-            f"at most {widest:g} Hz (--margin-hz {margin_hz:g})")
-    needed = points * ADVISE_BYTES_PER_FREQUENCY
-    free = available_memory()
-    if needed > 0.8 * free:
-        raise JudderError(
-            f"--freq-range {text} needs about {needed / 2**30:.3g} GiB "
-            f"({points} frequencies 0.5 Hz apart), and "
-            f"{free / 2**30:.3g} GiB are available; allowed: a narrower "
-            "range")
-    return points
+def _is_float(text):
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
-#: Most runs of one campaign, FMU runs of one crosscheck, cases of one
-#: sensitivity study: beyond, a request is a typo or a week of work.
-MAX_RUNS = 100_000
-#: Bytes one campaign run writes per format, second of engagement and
-#: 1000 rpm (41 teeth; measured 29.6 kB CSV and 31.3 kB MF4 for 1 s).
-BYTES_PER_RUN_SECOND = 32_000
-
-
-def check_work(option, count, what):
-    """Refuse more than :data:`MAX_RUNS` pieces of work."""
-    if count > MAX_RUNS:
-        raise JudderError(f"{option} asks for {count:.4g} {what}; allowed: "
-                          f"at most {MAX_RUNS} (split the study)")
-
-
-def check_campaign_disk(folder, runs, duration, rpm_max, formats):
-    """Refuse a campaign whose files would not fit on the disk."""
-    import shutil
-    from pathlib import Path
-    needed = (runs * duration * max(rpm_max, 1.0) / 1000.0
-              * BYTES_PER_RUN_SECOND * len(formats))
-    place = Path(folder)
-    while not place.exists():
-        place = place.parent
-    free = shutil.disk_usage(place).free
-    if needed > free:
-        raise JudderError(f"the campaign would write about "
-                          f"{needed / 2**30:.3g} GiB ({runs} runs) and "
-                          f"{free / 2**30:.3g} GiB are free on {place}; "
-                          "allowed: fewer runs, or another folder")
+def parse_list(text, option, convert=float):
+    """Comma-separated values of ``option``."""
+    items = [item.strip() for item in text.split(",")]
+    if len(items) > 1 and not all(items):
+        raise JudderError(f"{option} {text!r} has an empty item; allowed: "
+                          "values separated by single commas")
+    items = [item for item in items if item]
+    try:
+        values = [convert(item) for item in items]
+    except JudderError:          # a value out of range, or its unit
+        raise
+    except ValueError:
+        raise JudderError(f"{option} {text!r} is not a comma-separated list "
+                          "of numbers") from None
+    if not values:
+        raise JudderError(f"{option} is empty")
+    return values

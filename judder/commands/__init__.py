@@ -1,0 +1,86 @@
+"""The ``judder`` commands, one module each, registered in :data:`COMMANDS`.
+
+A command module holds everything of its command: ``DESCRIPTION`` (its
+``--help`` text), ``OUTPUTS`` (the files it writes: option attribute,
+option, suffixes; ``None`` for a figure), ``add_arguments(parser)`` (its
+options, parsed once with their units by argparse ``type=``), ``run(args)``
+(preflight checks, the API call, ``--out``/``--plot`` and the text or JSON
+printed), the API function and the result it returns (``as_dict()``,
+``save()``, ``figure()``).
+
+:data:`COMMANDS` is the one place a command is added: the command line
+(:mod:`judder.cli`) makes its subcommands and ``--help`` from it, the
+Python API (:mod:`judder.api`) its functions. Nothing here imports a
+command module: ``judder --help`` lists the commands from this table
+alone, and ``judder map`` imports the map's module only.
+
+Modules whose names start with ``_`` are shared by the commands: option
+groups and value parsers (``_arguments``, ``_values``), the model the
+options select (``_options``, ``_common``), preflight estimates
+(``_preflight``), outputs (``_output``) and records (``_records``), the
+emulated bench (``_bench``).
+"""
+
+from dataclasses import dataclass
+from importlib import import_module
+
+__all__ = ["Command", "COMMANDS", "API_FUNCTIONS", "command_module"]
+
+
+@dataclass(frozen=True)
+class Command:
+    """One ``judder`` command.
+
+    Attributes
+    ----------
+    name : str
+        The subcommand, and the module ``judder.commands.<name>``.
+    function : str
+        Its API function in that module (and in :mod:`judder.api`).
+    summary : str
+        One line for ``judder --help``.
+    """
+
+    name: str
+    function: str
+    summary: str
+
+
+#: Every command, in the order of ``judder --help``.
+COMMANDS = {c.name: c for c in (
+    Command("params", "params", "show, or save as TOML, a parameter set"),
+    Command("eig", "eig", "natural frequencies and damping factor"),
+    Command("floquet", "floquet", "Floquet multipliers at one point"),
+    Command("map", "stability_map",
+            "stability map over frequency x amplitude"),
+    Command("check", "check", "is a dither setting safe, and by how much"),
+    Command("advise", "advise", "safe dither windows and the design change "
+                                "that clears the dither range"),
+    Command("tongues", "tongues", "tongue boundaries, labels and tips"),
+    Command("sensitivity", "sensitivity",
+            "tongue shifts per parameter (Fig. 17, 18)"),
+    Command("threshold", "threshold",
+            "friction-gradient threshold without dither (Fig. 19)"),
+    Command("fit", "fit",
+            "fit parameters to a measured boundary (section 4.2)"),
+    Command("simulate", "simulate", "bench engagement with dither (Fig. 7, "
+                                    "8), run through the FMU"),
+    Command("crosscheck", "crosscheck",
+            "FMU growth rates against Floquet exponents"),
+    Command("campaign", "campaign", "bench emulator: engagement "
+                                    "acquisitions over a dither grid"),
+    Command("chart", "chart", "experimental stability chart from bench "
+                              "acquisitions (Fig. 10, 11)"),
+    Command("report", "report", "one HTML file with the paper's figures "
+                                "and tables for a driveline"),
+    Command("envelope", "envelope", "broadest unstable region over "
+                                    "uncertain parameters (Fig. 16)"),
+)}
+
+#: API function name -> command name.
+API_FUNCTIONS = {c.function: c.name for c in COMMANDS.values()}
+
+
+def command_module(name):
+    """The module of command ``name`` (imported on first use)."""
+    return import_module(f"{__name__}.{COMMANDS[name].name}")

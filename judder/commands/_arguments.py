@@ -1,0 +1,124 @@
+"""Option groups the commands share (model selection, waveform, workers,
+method, ``--force``, ``--min-growth``), with their help texts.
+
+Choices of models, presets and monodromy engines come from their
+registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
+"""
+
+from drivelines import DEFAULT_MODEL, MODELS, PRESETS
+from stability.monodromy import DEFAULT_METHOD, METHODS
+from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
+
+MIN_GROWTH_HELP = (
+    "judder-relevant growth rate, 1/s: an instability growing slower "
+    "than this stays below one e-fold over a {:g} s engagement (the "
+    "slipping phase), so it is not judder (default %(default)g = one "
+    "e-fold per engagement; 0: every instability)"
+    .format(ENGAGEMENT_DURATION_S))
+
+
+def model_options(parser, modelica=True):
+    """The model selection every analysis command shares: --model,
+    --preset, --param-file, --set, --json and, with ``modelica``, a
+    driveline of your own: --modelica CLASS [--library DIR] or --fmu
+    FILE.fmu, with --dither-amplitude/--dither-frequency NAME
+    (docs/onemodel.md, docs/fmu-path.md)."""
+    group = parser.add_argument_group(
+        "model", "Parameter set: a preset or a TOML file, then --set "
+        "overrides. Values in SI units (see `judder params`).")
+    group.add_argument("--model", choices=tuple(MODELS),
+                       help="driveline; picks the paper's preset for it "
+                            f"(default {DEFAULT_MODEL}): " + "; ".join(
+                                f"{m.name}: {m.title}"
+                                for m in MODELS.values()))
+    group.add_argument("--preset", choices=tuple(PRESETS),
+                       metavar="NAME",
+                       help="a preset: " + "; ".join(
+                           f"{name}: {text}" for name, text in
+                           PRESETS.items()).replace("%", "%%"))
+    group.add_argument("--param-file", metavar="FILE.toml",
+                       help="parameter file (see `judder params --save`)")
+    group.add_argument("--set", action="append", default=[],
+                       metavar="NAME=VALUE",
+                       help="override one parameter, SI units; repeatable "
+                            "(e.g. --set c12=10 --set "
+                            "mean_pressure_damping=1)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the result as JSON")
+    if modelica:
+        own_driveline_options(parser)
+
+
+def own_driveline_options(parser):
+    group = parser.add_argument_group(
+        "your own driveline", "Analyse a Modelica class or an FMU instead "
+        "of a preset: it is linearised about its start values (a steady "
+        "slip) and its rigid-body angles removed; --set NAME=VALUE then "
+        "sets its parameters by their names (SI), --param-file reads a "
+        "file of `judder params --modelica CLASS --save` (or --fmu). "
+        "Replaces --model and --preset.")
+    group.add_argument("--modelica", metavar="CLASS",
+                       help="full class name, e.g. "
+                            "Judder.Examples.Driveline5DOFGeared, compiled "
+                            "by the project's compiler")
+    group.add_argument("--library", metavar="DIR",
+                       help="folder holding your own top-level package "
+                            "(the Judder library is always available)")
+    group.add_argument(
+        "--fmu", metavar="FILE.fmu",
+        help="an FMI 2.0 Model Exchange FMU that provides directional "
+             "derivatives: its state Jacobian is read over one dither "
+             "period at its start values; replaces --modelica "
+             "(docs/fmu-path.md)")
+    group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
+                       help="parameter of the class or FMU that is the "
+                            "dither amplitude, Pa (default p_f)")
+    group.add_argument("--dither-frequency", default="f_dither",
+                       metavar="NAME",
+                       help="parameter of the class or FMU that is the "
+                            "dither frequency, Hz (default f_dither)")
+
+
+def waveform_option(parser):
+    parser.add_argument(
+        "--dither-wave", default="cosine", metavar="SPEC",
+        help="shape of the dither, per unit --pf: cosine (Eq. 4, default); "
+             "square[:TAU_MS], a square wave of amplitude 1 through the "
+             "valve's first-order lag TAU_MS (ms); fourier:A1,A2,...[/B1,"
+             "B2,...], cosine and sine coefficients of the harmonics; "
+             "period:FILE.csv, one measured period of pressure (last column, "
+             "equally spaced; --pf then scales its fundamental)")
+
+
+def pf_max_option(parser, meaning):
+    parser.add_argument("--pf-max", type=str, default=1.5, metavar="BAR",
+                        help=f"{meaning}, bar (default 1.5)")
+
+
+def workers_option(parser, default="all cores"):
+    parser.add_argument("--workers", type=int, default=None,
+                        help="local worker processes of a Dask cluster "
+                             f"started for the command (default: {default}; "
+                             "1 runs everything in this process)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run the jobs on an existing Dask cluster, "
+                             "e.g. tcp://127.0.0.1:8786 (see docs/envelope.md)")
+
+
+def min_growth_option(parser, extra=""):
+    parser.add_argument("--min-growth", type=str,
+                        default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
+                        help=MIN_GROWTH_HELP + extra)
+
+
+def force_option(parser):
+    parser.add_argument("--force", action="store_true",
+                        help="allow replacing output files judder did not "
+                             "write (a file it wrote is replaced anyway)")
+
+
+def method_option(parser):
+    parser.add_argument("--method", default=DEFAULT_METHOD,
+                        choices=tuple(METHODS),
+                        help="monodromy engine: dyson (fast, default) or "
+                             "solve_ivp (per-point reference)")

@@ -1,0 +1,75 @@
+"""What several API functions share: the parameter set with its changes,
+the dithered driveline, timing, and the checks of parameter names.
+"""
+
+import time
+
+from drivelines import DEFAULT_MODEL, default_preset, get_preset
+from infra.errors import JudderError, check_number
+from stability.model import build_driveline
+
+#: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
+BACKGROUND_AMPLITUDES = 150
+
+
+def checked_pf_max(args):
+    return check_number("--pf-max", args.pf_max, "bar")
+
+
+def resolve(parameters, changes):
+    """``parameters`` (default preset if None) with ``changes`` applied."""
+    base = parameters if parameters is not None else \
+        get_preset(default_preset(DEFAULT_MODEL))
+    return base.replace(**(changes or {}))
+
+
+def dithered(values, waveform):
+    """The driveline of ``values``, dithered by ``waveform`` (None: the
+    paper's cosine)."""
+    driveline = build_driveline(values)
+    if waveform is None:
+        return driveline
+    from stability.waveforms import Dithered
+    return Dithered(driveline, waveform)
+
+
+def timed(function, *args, **kwargs):
+    started = time.perf_counter()
+    result = function(*args, **kwargs)
+    return result, time.perf_counter() - started
+
+
+def structural_names(values, preferred, extra=()):
+    """``preferred`` if the model has them all, else its inertias,
+    stiffnesses and coupling dampings (from the registry), plus ``extra``.
+
+    A Modelica class or an FMU has no registry entry: those of
+    ``preferred`` it has (its names follow the paper's where it is the
+    paper's chain), and if it has none the names must be given."""
+    if all(name in values.specs for name in preferred):
+        return tuple(preferred)
+    model = values.driveline
+    if model is None:
+        names = tuple(n for n in preferred if n in values.specs)
+        if not names:
+            raise JudderError(
+                f"--params is required for {values.model}: it has none of "
+                f"the default names {','.join(preferred)}; allowed: its "
+                f"tunable parameters: {', '.join(values.specs)}")
+        return names
+    return (tuple(b.inertia for b in model.bodies)
+            + tuple(c.stiffness for c in model.couplings)
+            + tuple(c.damping for c in model.couplings) + tuple(extra))
+
+
+def check_names(values, names, option):
+    unknown = [n for n in names if n not in values.specs]
+    if unknown:
+        raise JudderError(f"{option} {unknown[0]!r} is not a parameter of the "
+                          f"{values.model} model; allowed: "
+                          f"{', '.join(values.specs)}")
+    zero = [n for n in names if values[n] == 0]
+    if zero:
+        raise JudderError(f"{option} {zero[0]!r} is 0 in this parameter set; "
+                          "allowed: parameters with a non-zero value (changes "
+                          "are relative)")

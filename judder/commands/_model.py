@@ -1,0 +1,139 @@
+"""The parameter set a command's model options select.
+
+``--model``, ``--preset``, ``--param-file`` and ``--set``, or a driveline
+of one's own (``--modelica``, ``--fmu``), turned into a parameter set and
+its explicit changes (:func:`parameters_of`), its title on figures, and
+the warning when the dither amplitude reaches the mean pressure.
+"""
+
+from infra.errors import JudderError
+from infra.units import PA_PER_BAR
+
+from ..inputs import load_parameters, read_input
+from ._values import (check_file_pressure, check_plain_pressure,
+                      check_pressures, parse_grid)
+
+
+def parameters_of(args):
+    """Base parameter set and explicit changes of a command's options.
+
+    Returns
+    -------
+    params : drivelines.Parameters, ModelicaParameters or FmuParameters
+        From --fmu, --modelica, --param-file, --preset or --model.
+    changes : dict
+        The --set values, validated (SI).
+    """
+    params = (own_driveline(args, args.param_file, "--param-file")
+              or load_parameters(preset=args.preset, model=args.model,
+                                 param_file=args.param_file))
+    changed = params.with_overrides(args.set)
+    names = [text.partition("=")[0].strip() for text in args.set]
+    if args.param_file:
+        check_file_pressure(params, args.param_file)
+    for text in args.set:
+        check_plain_pressure(text)
+    return params, {name: changed[name] for name in names}
+
+
+def parameter_file(args, path, option):
+    """The parameter set of a file of ``judder params --save`` for the
+    model the options select (``--also`` of ``advise``): a preset's
+    file, or with --modelica/--fmu a file of ``judder params --modelica
+    CLASS --save`` (``--fmu FILE.fmu --save``)."""
+    from drivelines import load_toml
+    return own_driveline(args, path, option) or load_toml(
+        read_input(path, option), source=str(path))
+
+
+def own_driveline(args, path=None, option="--param-file"):
+    """The parameter set of ``--fmu FILE.fmu`` (docs/fmu-path.md) or
+    ``--modelica CLASS [--library DIR]`` (docs/onemodel.md), with the
+    values of the file ``path`` if given; None if neither is given."""
+    fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
+    for flag, given, allowed in (
+            ("--fmu", fmu, "a .fmu file"),
+            ("--modelica", modelica, "a full class name, e.g. "
+                                     "Judder.Examples.Driveline5DOFGeared")):
+        if given is not None and not given.strip():
+            raise JudderError(f"{flag} {given!r} is empty; allowed: "
+                              f"{allowed}")
+    if fmu:
+        from drivelines.fmu_linear import FmuParameters
+        flag, given = "--fmu", fmu
+        replaced = ("modelica", "library", "model", "preset")
+    elif modelica:
+        from drivelines.modelica import ModelicaParameters
+        flag, given = "--modelica", modelica
+        replaced = ("model", "preset")
+    else:
+        return None
+    for name in replaced:
+        if getattr(args, name, None) is not None:
+            raise JudderError(f"{flag} {given} replaces "
+                              f"--{name.replace('_', '-')}; give one")
+    names = {"amplitude": args.dither_amplitude,
+             "frequency": args.dither_frequency}
+    base = (FmuParameters(fmu, **names) if fmu else
+            ModelicaParameters(modelica, args.library, **names))
+    if path is None:
+        return base
+    return base.replace(**_file_values(path, option, base.model,
+                                       f"{flag} {given}"))
+
+
+def _file_values(path, option, model, selected):
+    """The ``[parameters]`` of a file of ``judder params --save`` whose
+    ``model`` is ``model``."""
+    import tomllib
+    try:
+        table = tomllib.loads(read_input(path, option))
+    except tomllib.TOMLDecodeError as exc:
+        raise JudderError(f"{option} {path}: not TOML ({exc})") from None
+    if table.get("model") != model or \
+            not isinstance(table.get("parameters"), dict):
+        raise JudderError(
+            f"{option} {path}: model = {table.get('model')!r} is not "
+            f"{model!r} of {selected} (or the [parameters] table is "
+            f"missing); allowed: a file of `judder params {selected} "
+            "--save`")
+    return _flat(table["parameters"])
+
+
+def _flat(table, prefix=""):
+    """TOML reads ``housing.phi0 = 0`` as a table; back to dotted names."""
+    flat = {}
+    for key, value in table.items():
+        if isinstance(value, dict):
+            flat.update(_flat(value, f"{prefix}{key}."))
+        else:
+            flat[f"{prefix}{key}"] = value
+    return flat
+
+
+def model_title(args, params):
+    """The model and every change the options made, for figure titles:
+    ``'4dof, paper-4dof-fitted, c12=20'``."""
+    source = (getattr(args, "param_file", None)
+              or getattr(args, "preset", None)
+              or ("start values of the FMU" if getattr(args, "fmu", None)
+                  else "defaults of the class"
+                  if getattr(args, "modelica", None) else "paper preset"))
+    changes = [text.replace(" ", "") for text in getattr(args, "set", [])]
+    return ", ".join([f"{params.model} driveline", str(source)] + changes)
+
+
+def check_plausible(args):
+    """Warn when the command's largest dither amplitude reaches the mean
+    pressure of its parameter set (see :func:`check_pressures`)."""
+
+    if args.amplitude is None:
+        return
+    attribute, grid = args.amplitude
+    value = getattr(args, attribute, None)
+    if value is None:
+        return
+    p_max_bar = parse_grid(value, "--pf", "bar").max() if grid else value
+    params, _ = parameters_of(args)
+    check_pressures(p_max_bar * PA_PER_BAR, params,
+                    "--pf" if attribute == "pf" else "--pf-max")

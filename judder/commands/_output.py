@@ -1,0 +1,100 @@
+"""What a command writes: its output files checked before any work (a
+folder, an unknown format, a file judder did not write), written
+atomically after it, and the text or JSON it prints.
+"""
+
+from pathlib import Path
+import sys
+
+from infra.errors import JudderError
+from infra.files import check_output, save_figure, to_json
+
+
+def written(*paths):
+    return "".join(f"\nwrote {p}" for p in paths if p)
+
+
+def output_files(**paths):
+    return {name: (None if path is None else str(path))
+            for name, path in paths.items()}
+
+
+def write_outputs(args, result, save=None, figure=None):
+    """Write --out (``result.save``) and --plot (``result.figure``),
+    atomically; keyword arguments for each; returns their paths."""
+    if args.out:
+        result.save(args.out, force=args.force, **(save or {}))
+    if args.plot:
+        save_plot(args.plot, result.figure(**(figure or {})))
+    return output_files(out=args.out, plot=args.plot)
+
+
+def save_plot(path, figure):
+    """Save a figure the command drew, then free it (``main`` may run
+    many commands in one process)."""
+    import matplotlib.pyplot as plt
+    try:
+        save_figure(path, figure)
+    finally:
+        plt.close(figure)
+
+
+def _figure_formats():
+    from matplotlib.backend_bases import FigureCanvasBase
+    return set(FigureCanvasBase.get_supported_filetypes())
+
+
+def check_outputs(args):
+    """Refuse every output of the command before any work: a folder, a
+    parent that is a file, an unwritable folder, an unknown format, or a
+    file judder did not write (unless --force); see
+    :func:`infra.files.check_output`. A command's own checks
+    (``check_outputs(args, seen)`` of its module, ``seen`` the resolved
+    paths of its outputs) follow."""
+    force = getattr(args, "force", False)
+    seen = {}
+    for attribute, option, suffixes in args.outputs:
+        path = getattr(args, attribute, None)
+        if path is None:
+            continue
+        check_output(path, option, suffixes or _figure_formats(), force)
+        key = Path(path).resolve()
+        if key in seen:
+            raise JudderError(f"{option} {path} is also given as "
+                              f"{seen[key]}; allowed: a different file for "
+                              "each output")
+        seen[key] = option
+    if args.output_check is not None:
+        args.output_check(args, seen)
+
+
+def emit(args, data, text):
+    """Print ``data`` as JSON with --json, else ``text``."""
+    print(to_json(data) if args.json else text)
+
+
+def make_parents(*paths):
+    for path in paths:
+        if path is not None:
+            Path(path).parent.mkdir(parents=True, exist_ok=True)
+
+
+class Progress:
+    """tqdm bar on stderr (shown on a terminal only) as a map callback."""
+
+    def __init__(self, total, description):
+        from tqdm import tqdm
+        self._bar = tqdm(total=total, desc=description, unit="freq",
+                         disable=None, file=sys.stderr)
+
+    def __enter__(self):
+        return self._update
+
+    def _update(self, done, total):
+        if self._bar.total != total:
+            self._bar.total = total
+        self._bar.update(done - self._bar.n)
+
+    def __exit__(self, *exc):
+        self._bar.close()
+        return False

@@ -1,0 +1,339 @@
+"""``judder advise``: safe dither windows and the design change that clears the dither range.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`advise` and
+its result :class:`AdviceResult`.
+"""
+
+from dataclasses import dataclass
+import math
+import time
+
+import numpy as np
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files, write_text
+from infra.units import PA_PER_BAR
+
+from ._arguments import force_option, min_growth_option, model_options
+from ._common import check_names, resolve, structural_names
+from ._model import model_title, parameter_file, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_advise_grid
+from ._records import rows_to_csv
+from ._values import FREQ_RANGE_HZ, check_amplitudes, option_value, parse_list
+
+DESCRIPTION = "(a) The safe (frequency, amplitude) windows inside the valve's operating range, keeping --margin-bar and --margin-hz from every judder-relevant tongue (over every --also parameter set: the broadest region); (b) the ranking of the design parameters by the share of the way out of the window per relative change, and the smallest weighted relative change of them that clears the window of judder, checked by recomputing the Floquet map of the advised design (section 4.3, 5)."
+
+
+OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+
+
+def add_arguments(p):
+    """The options of ``judder advise``."""
+    p.add_argument("--freq-range", default="60:200", metavar="LOW:HIGH",
+                   help="dither operating frequencies, Hz (default "
+                        "%(default)s, the paper's valve)")
+    p.add_argument("--pf-max", type=float, default=0.7, metavar="BAR",
+                   help="highest operating dither amplitude, bar (default "
+                        "%(default)g)")
+    p.add_argument("--margin-bar", type=float, default=0.1, metavar="BAR",
+                   help="amplitude margin below every tongue, bar (default "
+                        "%(default)g)")
+    p.add_argument("--margin-hz", type=float, default=5.0, metavar="HZ",
+                   help="frequency margin from every tongue edge, Hz "
+                        "(default %(default)g)")
+    min_growth_option(p)
+    p.add_argument("--params", default=None, metavar="NAMES",
+                   help="design parameters that may change (default "
+                        "J2,J4,k12,k24,c12; for the 3-DOF model its "
+                        "inertias, stiffnesses and dampings; for --modelica"
+                        "/--fmu those of J2,J4,k12,k24,c12 it has, and "
+                        "NAMES is required if it has none: its tunable "
+                        "parameters by their names, e.g. k24,J4,k35)")
+    p.add_argument("--weights", default=None, metavar="W[,W...]",
+                   help="cost of a unit change of ln(value) of each design "
+                        "parameter, in the order of --params (default 1 "
+                        "each)")
+    p.add_argument("--also", action="append", default=[],
+                   metavar="FILE.toml",
+                   help="another parameter set the advice must hold for "
+                        "(an uncertainty envelope), a file of `judder params "
+                        "--save` for the same model (with --modelica or "
+                        "--fmu: of `judder params --modelica CLASS --save`)"
+                        "; repeatable")
+    p.add_argument("--no-design", action="store_true",
+                   help="only the windows and the ranking")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="safe amplitude per frequency: freq_hz,safe_p_f_bar")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="safe amplitude per frequency and the map of the "
+                        "advised design")
+    model_options(p)
+    force_option(p)
+
+
+def run(args):
+    """Safe dither windows, parameter ranking and design change."""
+    low_high = args.freq_range.split(":")
+    if len(low_high) != 2:
+        raise JudderError(f"--freq-range {args.freq_range!r} is not "
+                          "LOW:HIGH in Hz (e.g. 60:200, 90Hz:120Hz)")
+    low, high = (option_value(v.strip(), "--freq-range", "Hz",
+                              *FREQ_RANGE_HZ) for v in low_high)
+    if not low < high:
+        raise JudderError(f"--freq-range {args.freq_range} is not allowed; "
+                          "allowed: LOW < HIGH")
+    names = None if args.params is None else \
+        parse_list(args.params, "--params", str)
+    weights = None if args.weights is None else \
+        parse_list(args.weights, "--weights")
+    check_number("--pf-max", args.pf_max, "bar")
+    check_number("--margin-bar", args.margin_bar, "bar", strict=False)
+    check_number("--margin-hz", args.margin_hz, "Hz", strict=False)
+    check_number("--min-growth", args.min_growth, "1/s", strict=False)
+    check_amplitudes([args.pf_max], "--pf-max")
+    check_advise_grid(args.freq_range, low, high, args.margin_hz)
+    if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
+            args.margin_bar >= args.pf_max:
+        raise JudderError(f"--margin-bar {args.margin_bar:g} bar is not "
+                          "allowed; allowed: below --pf-max "
+                          f"({args.pf_max:g} bar), the top of the operating "
+                          "range")
+    params, changes = parameters_of(args)
+    extra = [parameter_file(args, path, "--also") for path in args.also]
+    make_parents(args.out, args.plot)
+    with Progress(8, "advise") as progress:
+        result = advise(params, changes, extra_sets=extra,
+                            freq_range=(low, high), p_max_bar=args.pf_max,
+                            margin_bar=args.margin_bar,
+                            margin_hz=args.margin_hz,
+                            min_growth=args.min_growth, names=names,
+                            weights=weights, design=not args.no_design,
+                            progress=progress)
+    data = {**result.as_dict(), **write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
+    emit(args, data, result.summary() + written(args.out, args.plot))
+
+
+def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0),
+           p_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
+           names=None, weights=None, design=True, progress=None):
+    """``judder advise``: safe dither windows, the ranking of the design
+    parameters, and the smallest weighted change that clears the window.
+
+    Parameters
+    ----------
+    extra_sets : sequence of drivelines.Parameters
+        More parameter sets (an uncertainty envelope): the windows are
+        those safe for every set, and the design must clear the window for
+        every set (each gets the same relative change).
+    freq_range : (float, float)
+        Dither operating frequencies, Hz (default the paper's 60-200).
+    p_max_bar : float
+        Highest dither amplitude, bar (default 0.7).
+    margin_bar, margin_hz : float
+        Margins kept from every judder-relevant tongue, bar and Hz.
+    min_growth : float, optional
+        1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
+    names : sequence of str, optional
+        Design parameters (default J2, J4, k12, k24, c12; for another
+        model its inertias, stiffnesses and coupling dampings; for a
+        Modelica class or an FMU those of the five it has, and
+        JudderError if none).
+    weights : sequence of float, optional
+        Cost of a unit change of ln(value) of each (default 1).
+    design : bool
+        Also search the design change and recompute its map.
+
+    Returns
+    -------
+    AdviceResult
+    """
+    from stability import advice as kernel
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    values = resolve(parameters, changes)
+    sets = [values, *extra_sets]
+    models = {p.model for p in sets}
+    if len(models) > 1:
+        raise JudderError(f"parameter sets of models {sorted(models)}; "
+                          "allowed: one model")
+    low, high = (float(v) for v in freq_range)
+    if not (np.isfinite(low) and np.isfinite(high) and 0 < low < high):
+        raise JudderError(f"freq range = {low:g}:{high:g} Hz is not allowed; "
+                          "allowed: 0 < LOW < HIGH")
+    check_number("p_max", p_max_bar, "bar")
+    check_number("margin_bar", margin_bar, "bar", strict=False)
+    check_number("margin_hz", margin_hz, "Hz", strict=False)
+    if margin_hz >= low:
+        raise JudderError(f"margin_hz = {margin_hz:g} Hz is not allowed; "
+                          f"allowed: below the lowest frequency {low:g} Hz")
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    check_number("min_growth", min_growth, "1/s", strict=False)
+    names = tuple(structural_names(values, kernel.DEFAULT_DESIGN_PARAMETERS)
+                  if names is None else names)
+    if not names:
+        raise JudderError("--params is empty; allowed: design parameters "
+                          "such as J2,J4,k24")
+    for p in sets:
+        check_names(p, names, "--params")
+    weights = np.ones(len(names)) if weights is None else \
+        np.asarray(weights, dtype=float)
+    if weights.shape != (len(names),):
+        raise JudderError(f"{len(weights)} weights for {len(names)} "
+                          "parameters; allowed: one weight per parameter")
+    kernel.check_weights(names, weights)
+    operating = kernel.OperatingRange(
+        freq_hz=(low, high), p_max=p_max_bar * PA_PER_BAR,
+        margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
+    p_search = max(1.5e5, 2 * operating.required_p_f)
+    started = time.perf_counter()
+    # 0.5 Hz steps, widened by the margin so that tongues just outside count
+    grid = np.linspace(low - margin_hz, high + margin_hz,
+                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+
+    def windows_of(param_sets):
+        boundary = kernel.window_boundary(param_sets, grid, min_growth,
+                                          p_search)
+        return kernel.safe_windows(grid, boundary, operating)
+    safe, windows = windows_of(sets)
+    order = kernel.ranking(values, names, operating, min_growth, p_search)
+    found = advised_windows = verification = judder_points = None
+    if design:
+        found = kernel.advise_design(sets, names, weights, operating,
+                                     min_growth, p_search, callback=progress)
+        if found.success:
+            factors = dict(zip(found.names, found.factors))
+            advised = [p.replace(**{n: p[n] * factors[n] for n in names})
+                       for p in sets]
+            _, advised_windows = windows_of(advised)
+            verification, judder_points = kernel.verify_design(
+                advised[0], operating, min_growth)
+    return AdviceResult(
+        params=values, operating=operating, min_growth=min_growth,
+        sets=len(sets), freq_hz=grid, safe_p_f=safe, windows=windows,
+        ranking=order, advice=found, advised_windows=advised_windows or [],
+        verification=verification, judder_points=judder_points,
+        seconds=time.perf_counter() - started)
+
+
+def _window_records(windows):
+    return [{"freq_hz": list(w.freq_hz), "max_p_f_bar": w.max_p_f / PA_PER_BAR,
+             "full_range": w.full_range} for w in windows]
+
+
+@dataclass(frozen=True)
+class AdviceResult:
+    """``judder advise``: safe dither windows, parameter ranking, design.
+
+    ``windows`` are :class:`stability.advice.SafeWindow` of the given
+    design (over every parameter set), ``ranking`` the list of
+    :func:`stability.advice.ranking`, ``advice`` the
+    :class:`stability.advice.Advice` (None if not asked for), and
+    ``verification`` the recomputed map of the advised design with its
+    count of judder-relevant points.
+    """
+
+    params: object
+    operating: object
+    min_growth: float
+    sets: int
+    freq_hz: np.ndarray
+    safe_p_f: np.ndarray
+    windows: list
+    ranking: list
+    advice: object
+    advised_windows: list
+    verification: object
+    judder_points: object
+    seconds: float
+
+    def advised_params(self):
+        """The advised parameter set (None if there is none)."""
+        a = self.advice
+        if a is None or not a.success:
+            return None
+        return self.params.replace(**{n: self.params[n] * f
+                                      for n, f in zip(a.names, a.factors)})
+
+    def as_dict(self):
+        op = self.operating
+        out = {"model": self.params.model,
+               "min_growth_per_s": self.min_growth,
+               "parameter_sets": self.sets,
+               "operating_range": {
+                   "freq_hz": list(op.freq_hz),
+                   "p_f_max_bar": op.p_max / PA_PER_BAR,
+                   "margin_bar": op.margin_p_f / PA_PER_BAR,
+                   "margin_hz": op.margin_hz},
+               "safe_windows": _window_records(self.windows),
+               "best_safe_setting": {
+                   "freq_hz": float(self.freq_hz[np.argmax(self.safe_p_f)]),
+                   "p_f_bar": float(self.safe_p_f.max() / PA_PER_BAR)},
+               "ranking": [{"parameter": name, "share_per_unit_log": share,
+                            "tongues": {str(n): {"d_ln_left_edge": d[0],
+                                                 "d_ln_right_edge": d[1],
+                                                 "d_ln_tip_p_f": d[2]}
+                                        for n, d in detail.items()}}
+                           for name, share, detail in self.ranking],
+               "seconds": self.seconds}
+        a = self.advice
+        if a is not None:
+            out["design"] = {
+                "success": a.success, "message": a.message,
+                "iterations": a.iterations,
+                "tongues_in_the_way": a.history,
+                "weighted_change": a.weighted_change,
+                "factors": dict(zip(a.names, a.factors.tolist())),
+                "values": ({n: self.advised_params()[n] for n in a.names}
+                           if a.success else None),
+                "nominal": {n: self.params[n] for n in a.names},
+                "safe_windows": _window_records(self.advised_windows),
+                "recomputed_map_judder_points": self.judder_points,
+                "recomputed_map_points": (None if self.verification is None
+                                          else int(self.verification.kind.size))}
+        return out
+
+    def summary(self):
+        lines = []
+        op = self.operating
+        lo, hi = op.freq_hz
+        best = int(np.argmax(self.safe_p_f))
+        lines.append(f"safe in {lo:g}-{hi:g} Hz (margins "
+                     f"{op.margin_p_f / PA_PER_BAR:g} bar, {op.margin_hz:g} "
+                     f"Hz): up to {self.safe_p_f[best] / PA_PER_BAR:.3f} bar "
+                     f"at best ({self.freq_hz[best]:.1f} Hz)")
+        for level in sorted({w.max_p_f for w in self.windows}, reverse=True):
+            lines.append(f"  up to {level / PA_PER_BAR:.3f} bar: " + ", ".join(
+                f"{w.freq_hz[0]:.1f}-{w.freq_hz[1]:.1f} Hz"
+                for w in self.windows if w.max_p_f == level))
+        if self.ranking:
+            lines.append("ranking (share of the way out per unit ln change): "
+                         + ", ".join(f"{n} {s:.3f}"
+                                     for n, s, _ in self.ranking))
+        a = self.advice
+        if a is not None:
+            if a.success:
+                lines.append("design: " + ", ".join(
+                    f"{n} x{f:.3f}" for n, f in zip(a.names, a.factors))
+                    + f" (weighted change {a.weighted_change:.3f}); "
+                    f"recomputed map: {self.judder_points} judder points of "
+                    f"{self.verification.kind.size}")
+            else:
+                lines.append(f"design: none found: {a.message}")
+        return "\n".join(lines)
+
+    @keeps_foreign_files
+    def save(self, path):
+        """CSV: freq_hz, safe_p_f_bar of the given design (operating
+        frequencies only)."""
+        low, high = self.operating.freq_hz
+        write_text(path, rows_to_csv(
+            [{"freq_hz": f, "safe_p_f_bar": p / PA_PER_BAR}
+             for f, p in zip(self.freq_hz, self.safe_p_f)
+             if low <= f <= high]))
+
+    def figure(self, title=None):
+        from stability.plotting import advice_figure
+        return advice_figure(self, title=title)

@@ -1,0 +1,176 @@
+"""``judder campaign``: bench emulator: engagement acquisitions over a dither grid.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`campaign` and
+its result :class:`CampaignResult`.
+"""
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from infra.errors import JudderError, check_number
+from infra.files import check_folder_writable
+
+from ._arguments import model_options, workers_option
+from ._common import resolve, timed
+from ._model import parameters_of
+from ._output import Progress, emit
+from ._preflight import check_campaign, check_campaign_disk, check_work
+from ._values import parse_grid, parse_list
+
+DESCRIPTION = 'Emulate a bench campaign (section 3): one engagement per dither frequency x amplitude x engine speed x oil temperature, speeds sampled by a 41-tooth pick-up (684 samples/s at 1000 rpm) with noise, pressure at 1 kHz; one CSV and/or MF4 per run and OUT/index.csv. Runs in parallel; an interrupted or failed campaign resumes when run again.'
+
+
+OUTPUTS = ()
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf", True)
+
+
+def check_campaign_folder(text):
+    """A campaign folder: a non-empty path that is not a file, in a
+    writable place."""
+    if not str(text).strip():
+        raise JudderError(f"--out {text!r}: allowed: a folder name (the "
+                          "campaign folder, created if needed)")
+    check_folder_writable(text, "--out", text)
+
+
+def check_outputs(args, seen):
+    """The campaign's --out is a folder (:func:`check_campaign_folder`)."""
+    check_campaign_folder(args.out)
+
+
+def add_arguments(p):
+    """The options of ``judder campaign``."""
+    p.add_argument("--freq", default="70:130:31", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 70:130:31: "
+                        "tongues 5, 2 and 6 of the paper's driveline)")
+    p.add_argument("--pf", default="0.1:0.7:7", metavar="START:STOP:N",
+                   help="dither amplitudes, bar (default 0.1:0.7:7)")
+    p.add_argument("--rpm", default="1000", metavar="N1,N2",
+                   help="engine (motor) speeds, rpm (default 1000; the "
+                        "paper also used 1500)")
+    p.add_argument("--temperatures", default="65-70", metavar="T1,T2|all",
+                   help="oil temperature ranges (55-60, 65-70, 75-80, "
+                        "85-90, or all): each run at the middle of its "
+                        "range, the external damping scaled with the oil's "
+                        "viscosity (pysim.bench.oil_viscosity)")
+    p.add_argument("--duration", type=str, default=3.0, metavar="S",
+                   help="length of each engagement, s (default 3: the "
+                        "0.6 s pressure ramp, then the judder's growth)")
+    p.add_argument("--noise-rpm", type=str, default=0.5,
+                   help="speed measurement noise, rpm (default 0.5)")
+    p.add_argument("--seed", type=int, default=1, help="noise seed")
+    p.add_argument("--format", default="csv,mf4", metavar="csv,mf4",
+                   help="file formats per run (default both)")
+    workers_option(p)
+    p.add_argument("--out", required=True, metavar="DIR",
+                   help="campaign folder (created; an existing campaign "
+                        "there is resumed)")
+    model_options(p, modelica=False)
+
+
+def run(args):
+    """Bench emulator: a campaign of engagement acquisitions."""
+    from pysim.bench import TEMPERATURES
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    if freqs[0] <= 0:
+        raise JudderError("--freq: allowed: frequencies > 0 Hz")
+    rpm = [check_number("--rpm", n, "rpm")
+           for n in parse_list(args.rpm, "--rpm")]
+    temperatures = (list(TEMPERATURES) if args.temperatures == "all"
+                    else [t.strip() for t in args.temperatures.split(",")])
+    for option, values in (("--rpm", [f"{n:g}" for n in rpm]),
+                           ("--temperatures", temperatures)):
+        twice = next((v for i, v in enumerate(values) if v in values[:i]),
+                     None)
+        if twice is not None:
+            raise JudderError(f"{option}: {twice} is given twice; allowed: "
+                              "each value once (one run per setting)")
+    formats = tuple(f.strip() for f in args.format.split(","))
+    if not set(formats) <= {"csv", "mf4"} or not formats:
+        raise JudderError(f"--format {args.format!r}: allowed: csv, mf4 or "
+                          "csv,mf4")
+    check_number("--duration", args.duration, "s")
+    check_number("--noise-rpm", args.noise_rpm, "rpm", strict=False)
+    params, changes = parameters_of(args)
+    runs = (len(freqs) * len(amplitudes) * len(rpm) * len(temperatures))
+    check_work("--freq x --pf x --rpm x --temperatures", runs, "runs")
+    check_campaign_disk(args.out, runs, args.duration, max(rpm), formats)
+    check_campaign(runs, args.duration, max(rpm), args.workers)
+    with Progress(runs, "bench runs") as progress:
+        result = campaign(args.out, freqs, amplitudes, engine_rpm=rpm,
+                              temperatures=temperatures,
+                              duration=args.duration,
+                              noise_rpm=args.noise_rpm, seed=args.seed,
+                              formats=formats, parameters=params,
+                              changes=changes, workers=args.workers,
+                              progress=progress)
+    data = result.as_dict()
+    text = (f"{data['runs']} runs ({data['ok']} ok"
+            + (f"; {data['reused']} already in the folder with the same "
+               "settings, kept" if data["reused"] else "")
+            + f") in {result.seconds:.1f} s; index {result.index}"
+            + "".join(f"\n  failed {r['run_id']}: {r['message']}"
+                      for r in result.failed))
+    emit(args, data, text)
+    if result.failed:
+        raise JudderError(f"{len(result.failed)} runs failed; the others "
+                          "were written (run the same command again to "
+                          "retry)")
+
+
+def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
+             temperatures=("65-70",), duration=3.0, noise_rpm=0.5, seed=1,
+             formats=("csv", "mf4"), parameters=None, changes=None,
+             workers=None, progress=None):
+    """``judder campaign``: emulate a bench campaign of engagements into
+    ``folder`` (resumed when run again).
+
+    Parameters
+    ----------
+    folder : path
+    freq_hz, p_f_bar : sequence of float
+        Dither grid, Hz and bar.
+    engine_rpm : sequence of float
+        Motor speeds, rpm.
+    temperatures : sequence of str
+        Keys of :data:`pysim.bench.TEMPERATURES`.
+
+    Returns
+    -------
+    CampaignResult
+    """
+    from pysim.bench import Campaign, run_campaign
+    values = resolve(parameters, changes)
+    plan = Campaign(freq_hz=tuple(freq_hz), p_f_bar=tuple(p_f_bar),
+                    engine_rpm=tuple(engine_rpm),
+                    temperatures=tuple(temperatures), duration=duration,
+                    noise_rpm=noise_rpm, formats=tuple(formats), seed=seed)
+    rows, seconds = timed(run_campaign, plan, values, folder,
+                           workers=workers, callback=progress)
+    return CampaignResult(rows=rows, index=str(Path(folder) / "index.csv"),
+                          seconds=seconds)
+
+
+@dataclass(frozen=True)
+class CampaignResult:
+    """``judder campaign``: the index rows of the campaign folder."""
+
+    rows: list
+    index: str
+    seconds: float
+
+    @property
+    def failed(self):
+        return [r for r in self.rows if r["status"] != "ok"]
+
+    def as_dict(self):
+        return {"runs": len(self.rows),
+                "ok": len(self.rows) - len(self.failed),
+                "reused": sum(bool(r.get("reused")) for r in self.rows),
+                "failed": self.failed, "index": self.index,
+                "seconds": self.seconds}

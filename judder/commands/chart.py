@@ -1,0 +1,301 @@
+"""``judder chart``: experimental stability chart from bench acquisitions (Fig. 10, 11).
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`chart` and
+its result :class:`ChartResult`.
+"""
+
+from dataclasses import dataclass
+import time
+
+import numpy as np
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files, save_npz, write_text
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import (force_option, method_option, model_options,
+                         workers_option)
+from ._model import parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from .tongues import tongues
+
+DESCRIPTION = "Read engagement acquisitions (a campaign folder, or MF4, CSV, TDMS and MAT files), find in each run the engagement window, the dither setting (given, from the file's metadata, or estimated from the pressure), the amplitude and growth of the upstream speed at f, f/2 and other peaks, and a judder verdict (the part not periodic with the dither grows at >= --min-growth; see README). Draws the amplitude contour per oil temperature or engine speed, and writes the experimental boundary for `judder fit --boundary`. Give --model, --preset, --param-file or --set to draw the model's tongue boundaries over it."
+
+
+OUTPUTS = (('out', '--out', ('npz',)), ('plot', '--plot', None), ('boundary', '--boundary', ('csv',)))
+
+
+def add_arguments(p):
+    """The options of ``judder chart``."""
+    p.add_argument("sources", nargs="*", metavar="SOURCE",
+                   help="campaign folder (with index.csv) or acquisition "
+                        "file (.mf4, .csv, .tdms, .mat)")
+    p.add_argument("--index", metavar="FILE.csv",
+                   help="CSV with a 'file' column (relative to it) and "
+                        "optional freq_hz, p_f_bar, oil_temperature, "
+                        "engine_rpm and further columns")
+    p.add_argument("--channel", action="append", default=[],
+                   metavar="ROLE=NAME[:UNIT[:KIND]]",
+                   help="channel of ROLE (upstream_speed, required; "
+                        "pressure; downstream_speed) in the files, with its "
+                        "unit if the file has none (rpm, rad/s, bar, Pa, "
+                        "...; an angle unit, rad, deg, rev or counts/N "
+                        "(N a revolution), for an encoder); for a speed, "
+                        "KIND says what its samples "
+                        "are: passage (a pick-up's tooth passages), "
+                        "sampled (a DAQ's rate), angle (an encoder), "
+                        "default told from the data; repeatable. Without "
+                        "any, the names judder campaign writes")
+    p.add_argument("--group-by", action="append", metavar="COLUMN",
+                   help="panel per value of COLUMN; repeatable (default: "
+                        "oil_temperature and engine_rpm where they vary)")
+    p.add_argument("--min-growth", type=str, default=None, metavar="1/S",
+                   help="growth rate of the non-periodic part from which "
+                        "a run is judder, 1/s (default 1)")
+    p.add_argument("--min-amplitude", type=str, default=None,
+                   metavar="RPM", help="smallest judder amplitude, rpm "
+                                       "(default 2)")
+    p.add_argument("--out", metavar="FILE.npz",
+                   help="per-run arrays and boundaries (NPZ)")
+    p.add_argument("--boundary", metavar="FILE.csv",
+                   help="experimental boundary (freq_hz,p_f_bar; empty = "
+                        "no judder), one file per group if several")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the chart, one panel per group")
+    workers_option(p)
+    method_option(p)
+    model_options(p, modelica=False)
+    force_option(p)
+
+
+def run(args):
+    """Experimental stability chart from bench acquisitions."""
+    channels = _channels(args.channel)
+    check_number("--min-growth", args.min_growth, "1/s", strict=False)
+    check_number("--min-amplitude", args.min_amplitude, "rpm", strict=False)
+    overlay = bool(args.model or args.preset or args.param_file or args.set)
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot, args.boundary)
+    with Progress(None, "runs") as progress:
+        result = chart(args.sources, index=args.index, channels=channels,
+                           group_by=args.group_by,
+                           min_growth=args.min_growth,
+                           min_amplitude_rpm=args.min_amplitude,
+                           model=overlay, parameters=params,
+                           changes=changes, method=args.method,
+                           workers=args.workers, progress=progress)
+    files = write_outputs(args, result, figure={
+        "title": "experimental stability chart"
+                 + (f" with the {params.model} model's boundaries"
+                    if overlay else "")})
+    boundaries = (result.save_boundary(args.boundary, force=args.force)
+                  if args.boundary
+                  and result.chart.read else [])
+    data = {**result.as_dict(), **files, "boundary_files": boundaries}
+    rows = []
+    for group, runs in result.chart.groups().items():
+        label = ", ".join(f"{c} {v}" for c, v in
+                          zip(result.chart.group_by, group)) or "all runs"
+        judder = sum(r.analysis.judder for r in runs)
+        estimated = sum(r.analysis.estimated for r in runs)
+        rows.append(f"{label}: {len(runs)} runs, {judder} with judder"
+                    + (f" ({estimated} with the dither estimated from the "
+                       "pressure)" if estimated else ""))
+        for f, p, top in result.chart.boundary(group):
+            rows.append(f"  {f:8.2f} Hz: " + (
+                f"judder from {p:.3g} bar" if p is not None else
+                f"no judder up to {top:.3g} bar"))
+    rows += [f"could not read {r.path}: {r.error}"
+             for r in result.chart.failed]
+    rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
+                + written(args.out, args.plot, *boundaries))
+    emit(args, data, "\n".join(rows))
+    if not result.chart.read:
+        raise JudderError("no run could be read")
+
+
+def _channels(items):
+    """``ROLE=NAME[:UNIT]`` strings as ``{role: ChannelSpec}`` (None if
+    none given: the names judder campaign writes)."""
+    from pysim.acquisitions import parse_channel_option
+    if not items:
+        return None
+    channels = dict(parse_channel_option(item) for item in items)
+    if "upstream_speed" not in channels:
+        raise JudderError("--channel upstream_speed=NAME is required when "
+                          "--channel is given")
+    return channels
+
+
+def chart(sources, index=None, channels=None, group_by=None,
+          min_growth=None, min_amplitude_rpm=None, model=False,
+          parameters=None, changes=None, method=DEFAULT_METHOD,
+          workers=None, progress=None):
+    """``judder chart``: experimental stability charts from bench
+    acquisitions (section 3.2, Fig. 10 and 11).
+
+    Parameters
+    ----------
+    sources : sequence of path
+        Campaign folders (``index.csv``) and acquisition files (MF4, CSV,
+        TDMS, MAT).
+    index : path, optional
+        CSV with a ``file`` column and the runs' settings.
+    channels : dict, optional
+        Role (``upstream_speed``, ``pressure``, ``downstream_speed``) ->
+        :class:`pysim.acquisitions.ChannelSpec`; default the names
+        ``judder campaign`` writes.
+    group_by : sequence of str, optional
+        Columns making the panels (default: oil temperature and engine
+        speed where they vary).
+    min_growth : float, optional
+        Growth rate (1/s) from which a run counts as judder (default
+        :data:`pysim.run_analysis.MIN_GROWTH`).
+    min_amplitude_rpm : float, optional
+    model : bool
+        Also compute the model's tongue boundaries (``parameters`` and
+        ``changes``) over the chart's frequencies, drawn by ``figure()``.
+
+    Returns
+    -------
+    ChartResult
+    """
+    from pysim.charts import build_chart, gather_sources
+    from pysim.run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH
+    started = time.perf_counter()
+    result = build_chart(
+        gather_sources(sources, index), channels=channels,
+        group_by=group_by,
+        min_growth=MIN_GROWTH if min_growth is None else min_growth,
+        min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None
+                           else min_amplitude_rpm),
+        workers=workers, callback=progress)
+    seconds = time.perf_counter() - started
+    overlay = None
+    if model and result.read:
+        freqs = [r.analysis.freq_hz for r in result.read]
+        top = max(r.analysis.p_f_bar for r in result.read)
+        overlay = tongues(np.linspace(min(freqs), max(freqs), 200),
+                          max(1.5 * top, 0.1), parameters, changes,
+                          method=method)
+    return ChartResult(chart=result, seconds=seconds, model=overlay)
+
+
+@dataclass(frozen=True)
+class ChartResult:
+    """``judder chart``: an experimental stability chart (Fig. 10, 11).
+
+    ``chart`` is the :class:`pysim.charts.Chart`; ``model`` the
+    :class:`TonguesResult` of the model drawn over it (None unless asked
+    for).
+    """
+
+    chart: object
+    seconds: float
+    model: object = None
+
+    def _boundaries(self):
+        return {"/".join(group): self.chart.boundary(group)
+                for group in self.chart.groups()}
+
+    def as_dict(self):
+        chart = self.chart
+        runs = []
+        for run in chart.read:
+            a = run.analysis
+            runs.append({"file": str(run.path), **{
+                c: run.settings.get(c) for c in chart.group_by},
+                "freq_hz": a.freq_hz, "p_f_bar": a.p_f_bar,
+                "dither_estimated": a.estimated,
+                "speed_kind": run.speed_kind,
+                "amplitude_rpm": a.amplitude_rpm,
+                "growth_per_s": a.growth_per_s, "judder": a.judder,
+                "kind": a.kind})
+        boundaries = self._boundaries()
+        single = next(iter(boundaries.values())) if len(boundaries) == 1 \
+            else None
+        return {"runs": runs, "group_by": list(chart.group_by),
+                "min_growth_per_s": chart.min_growth,
+                "boundary": None if single is None else
+                [[f, p] for f, p, _ in single],
+                "boundaries": {g: [[f, p] for f, p, _ in b]
+                               for g, b in boundaries.items()},
+                "set_points": {"/".join(group): [
+                    {"freq_hz": f, "spread_hz": spread, "runs": len(runs)}
+                    for f, spread, runs in chart.set_points(group)]
+                    for group in chart.groups()},
+                "failed": [{"file": str(r.path), "message": r.error}
+                           for r in chart.failed],
+                "seconds": self.seconds}
+
+    @keeps_foreign_files
+    def save(self, path):
+        """Save the chart as NPZ: the per-run arrays of
+        :meth:`pysim.charts.Chart.arrays` and, per group, the boundary
+        (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
+        with NaN where censored, ``boundary_tried_bar``, and
+        ``boundary_below_bar``: the highest amplitude without judder below
+        each onset, NaN where none)."""
+        chart = self.chart
+        rows = [("/".join(g), f, np.nan if p is None else p, top,
+                 np.nan if q is None else q)
+                for g in chart.groups()
+                for (f, p, top), q in zip(chart.boundary(g),
+                                          chart.quiet_below(g))]
+        arrays = {**chart.arrays(),
+                  "boundary_group": np.array([r[0] for r in rows]),
+                  "boundary_freq_hz": np.array([r[1] for r in rows]),
+                  "boundary_p_f_bar": np.array([r[2] for r in rows]),
+                  "boundary_tried_bar": np.array([r[3] for r in rows]),
+                  "boundary_below_bar": np.array([r[4] for r in rows]),
+                  "group_by": np.array(chart.group_by),
+                  "min_growth_per_s": np.array(chart.min_growth)}
+        save_npz(path, arrays)
+
+    def save_boundary(self, path, force=False):
+        """Write the experimental boundary as ``judder fit --boundary``
+        reads it; with several groups, one file per group
+        (``STEM_GROUP.csv``, a number as 1000, not 1000.0). Returns the
+        paths written.
+
+        Without ``force``, refuses (before writing any) to replace a file
+        judder did not write (:func:`infra.files.check_output`).
+        """
+        from pathlib import Path
+
+        from infra.files import check_output
+        path = Path(path)
+        groups = list(self.chart.groups())
+        targets = [path if len(groups) == 1 else path.with_name(
+            f"{path.stem}_{'_'.join(_file_word(v) for v in group)}"
+            f"{path.suffix}")
+            for group in groups]
+        for target in targets:
+            check_output(target, "--boundary", ("csv",), force)
+        for group, target in zip(groups, targets):
+            write_text(target, self.chart.boundary_csv(group))
+        return [str(target) for target in targets]
+
+    def figure(self, title=None):
+        from pysim.plotting import chart_figure
+        fig, panels = chart_figure(self.chart, title=title)
+        if self.model is not None:
+            from stability.plotting import plot_boundaries
+            for ax in panels.values():
+                limits = ax.get_xlim(), ax.get_ylim()
+                plot_boundaries(self.model.boundaries, ax=ax,
+                                label=f"model ({self.model.params.model})")
+                ax.set_xlim(*limits[0])
+                ax.set_ylim(*limits[1])
+        return fig
+
+
+def _file_word(value):
+    """A group value as it reads in a file name: a number without a
+    trailing ``.0`` (1000, not 1000.0), text as it is."""
+    try:
+        return f"{float(value):g}"
+    except ValueError:
+        return str(value)

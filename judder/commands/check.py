@@ -1,0 +1,397 @@
+"""``judder check``: is a dither setting safe, and by how much.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`check` and
+its result :class:`CheckResult`.
+"""
+
+import dataclasses
+from dataclasses import dataclass
+import math
+import time
+
+import numpy as np
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files, write_text
+from infra.units import PA_PER_BAR
+from stability.kinds import KINDS
+from stability.maps import stability_map as map_kernel
+from stability.model import build_driveline
+
+from ._arguments import force_option, min_growth_option, model_options
+from ._common import check_names, resolve, structural_names
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_settings, check_work
+from ._records import finite_or_none, rows_to_csv
+from ._values import (FREQ_RANGE_HZ, check_amplitudes, option_value,
+                      parse_grid, parse_list)
+
+DESCRIPTION = 'Verdict of each dither setting (judder if it grows faster than --min-growth), its growth rate and e-folding time against the engagement, the margin to the nearest judder-relevant tongue boundary in bar (at the same frequency) and in Hz (at the same amplitude), exact from the boundary curves, which tongue that is, and how much each parameter moves those margins. Settings: --freq x --pf (every pair), or --table.'
+
+
+OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+
+
+#: Parameters whose effect on the margins ``check`` reports by default
+#: (4-DOF model; other models: see :func:`structural_names`).
+DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
+
+
+def add_arguments(p):
+    """The options of ``judder check``."""
+    p.add_argument("--freq", metavar="HZ[,HZ...]",
+                   help="dither frequencies, Hz: a list or START:STOP:N")
+    p.add_argument("--pf", metavar="BAR[,BAR...]",
+                   help="dither amplitudes, bar: a list or START:STOP:N")
+    p.add_argument("--table", metavar="FILE.csv",
+                   help="a dither table instead: columns freq_hz,p_f_bar, "
+                        "one setting a row (e.g. a controller's table)")
+    min_growth_option(p)
+    p.add_argument("--pf-max", type=float, default=None, metavar="BAR",
+                   help="largest boundary amplitude searched, bar (default "
+                        "the larger of 1.5 and twice the largest setting)")
+    p.add_argument("--params", default=None, metavar="NAMES",
+                   help="parameters whose effect on the margins is reported "
+                        "(d margin / d ln value; default J2,J4,k12,k24,c12,"
+                        "mu_g, for the 3-DOF model its inertias, stiffnesses, "
+                        "dampings and mu_g; for --modelica/--fmu those of "
+                        "J2,J4,k12,k24,c12,mu_g it has, and NAMES is "
+                        "required if it has none; 'none' for none)")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="one row per setting (the scalar JSON fields)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the settings marked on the map")
+    model_options(p)
+    force_option(p)
+
+
+def run(args):
+    """Verdict, growth and margins of dither settings."""
+    if args.params is None:
+        names = None
+    elif args.params.strip().lower() == "none":
+        names = []
+    else:
+        names = parse_list(args.params, "--params", str)
+    freqs, amplitudes = _settings(args, len(
+        DEFAULT_CHECK_PARAMETERS if names is None else names))
+    check_amplitudes([args.pf_max], "--pf-max")
+    if args.pf_max is not None and not args.pf_max > max(amplitudes):
+        raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
+                          "allowed: above the largest setting, "
+                          f"{max(amplitudes):g} bar")
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs), "check") as progress:
+        result = check(freqs, amplitudes, params, changes,
+                           min_growth=args.min_growth, p_max_bar=args.pf_max,
+                           sensitivity=names, background=bool(args.plot),
+                           progress=progress)
+    data = {**result.as_dict(), **write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
+    emit(args, data, result.summary() + written(args.out, args.plot))
+
+
+def _values(text, option, unit):
+    """A comma-separated list or a START:STOP:N grid, each value plain
+    (in ``unit``) or with a unit, in its documented range."""
+    if ":" in text:
+        return list(parse_grid(text, option, unit))
+    low, high = FREQ_RANGE_HZ if unit == "Hz" else (0.0, math.inf)
+    return parse_list(text, option, lambda item: option_value(
+        item, option, unit, low, high))
+
+
+def _settings(args, parameters):
+    """Frequencies (Hz) and amplitudes (bar) of ``judder check``; the
+    time of ``parameters`` sensitivity parameters per setting is estimated
+    before the settings are made (a grid x grid of 1e10 would fill the
+    memory first)."""
+    from ..inputs import read_boundary
+    if args.table:
+        if args.freq or args.pf:
+            raise JudderError("--table and --freq/--pf: allowed: one of them")
+        freqs, p_f = read_boundary(args.table, "--table")
+        if not len(freqs) or not all(math.isfinite(p) for p in p_f):
+            raise JudderError(f"--table {args.table}: every row needs "
+                              "freq_hz and p_f_bar; allowed: no empty cells")
+        amplitudes = [p / PA_PER_BAR for p in p_f]
+        check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
+        check_settings(len(freqs), parameters)
+        check_work(f"--table {args.table}", len(freqs), "settings")
+        low, high = FREQ_RANGE_HZ
+        for row, f in enumerate(freqs, start=2):
+            if not low <= f <= high:
+                raise JudderError(
+                    f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
+                    f"not allowed; allowed: {low:g} to {high:g} Hz")
+        return list(freqs), amplitudes
+    if not (args.freq and args.pf):
+        raise JudderError("--freq and --pf are required (or --table)")
+    freqs = _values(args.freq, "--freq", "Hz")
+    amplitudes = _values(args.pf, "--pf", "bar")
+    check_amplitudes(amplitudes, "--pf")
+    # the time first (it says what to change); then, with the time limit
+    # raised, the count (the pairs of 1e10 settings would not fit)
+    check_settings(len(freqs) * len(amplitudes), parameters)
+    check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
+    pairs = [(f, p) for f in freqs for p in amplitudes]
+    return [f for f, _ in pairs], [p for _, p in pairs]
+
+
+def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
+          p_max_bar=None, sensitivity=None, background=False,
+          progress=None):
+    """``judder check``: is each dither setting safe, and by how much.
+
+    Parameters
+    ----------
+    freq_hz, p_f_bar : array_like, shape (n,)
+        The settings, Hz and bar (pairs: a dither table).
+    min_growth : float, optional
+        Judder-relevant growth rate, 1/s (default
+        :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`).
+    p_max_bar : float, optional
+        Largest boundary amplitude searched (default the larger of 1.5
+        bar and twice the largest setting).
+    sensitivity : sequence of str, optional
+        Parameters whose effect on the margins is reported (empty: none;
+        default :data:`DEFAULT_CHECK_PARAMETERS`, or the model's
+        inertias, stiffnesses, coupling dampings and mu_g; for a Modelica
+        class or an FMU those of :data:`DEFAULT_CHECK_PARAMETERS` it has,
+        and JudderError if none).
+    background : bool
+        Also compute the map ``figure()`` marks the settings on.
+
+    Returns
+    -------
+    CheckResult
+    """
+    from stability.margins import check_settings
+    from stability.relevance import (DEFAULT_MIN_GROWTH_PER_S,
+                                     ENGAGEMENT_DURATION_S)
+    values = resolve(parameters, changes)
+    freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
+    if freq_hz.shape != p_f_bar.shape or freq_hz.ndim != 1 or not len(freq_hz):
+        raise JudderError(f"freq and p_f have {freq_hz.size} and "
+                          f"{p_f_bar.size} values; allowed: as many of each")
+    for f in freq_hz:
+        check_number("freq", f, "Hz")
+    for p in p_f_bar:
+        check_number("p_f", p, "bar", strict=False)
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    check_number("min_growth", min_growth, "1/s", strict=False)
+    if p_max_bar is None:
+        p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
+    check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()))
+    if sensitivity is None:
+        sensitivity = structural_names(values, DEFAULT_CHECK_PARAMETERS,
+                                        ("mu_g",))
+    check_names(values, sensitivity, "--params")
+    started = time.perf_counter()
+    checks = check_settings(values, freq_hz, p_f_bar * PA_PER_BAR, min_growth,
+                            p_max_bar * PA_PER_BAR, tuple(sensitivity),
+                            callback=progress)
+    seconds = time.perf_counter() - started
+    result = CheckResult(params=values, checks=checks, min_growth=min_growth,
+                         engagement_s=ENGAGEMENT_DURATION_S,
+                         p_max=p_max_bar * PA_PER_BAR, seconds=seconds)
+    if background:
+        low, high = freq_hz.min(), freq_hz.max()
+        grid = np.linspace(max(low - 0.5 * (high - low) - 20, 1.0),
+                           high + 0.5 * (high - low) + 20, 200)
+        under = map_kernel(build_driveline(values), grid,
+                           np.linspace(0, max(2 * p_f_bar.max(), 0.5), 100)
+                           * PA_PER_BAR)
+        result = dataclasses.replace(result, background=under)
+    return result
+
+
+def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
+    """One :class:`stability.margins.SettingCheck` as JSON fields.
+
+    ``verdict`` is one of :data:`stability.relevance.VERDICTS`;
+    ``search_hz`` the (low, high) frequencies the Hz margin was searched
+    over (``frequency_search_hz``).
+    """
+    from stability.relevance import verdict
+    m, point = check.margin, check.floquet
+    rate = point.growth_rate
+    unstable = point.kind != KINDS[0]
+
+    def tongue(t):
+        return None if t is None else {"number": t.number, "kind": t.kind,
+                                       "resonance": t.resonance,
+                                       "tip_freq_hz": t.tip_freq_hz,
+                                       "tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
+    sensitivity = sorted(
+        ({"parameter": name,
+          "margin_bar_per_unit_log": finite_or_none(bar / PA_PER_BAR),
+          "margin_hz_per_unit_log": finite_or_none(hz)}
+         for name, (bar, hz) in check.sensitivity.items()
+         if np.isfinite(bar) or np.isfinite(hz)),
+        key=lambda r: -abs(r["margin_hz_per_unit_log"] or 0.0)
+        - abs(r["margin_bar_per_unit_log"] or 0.0) * 1e-6)
+    return {"freq_hz": m.freq_hz, "p_f_bar": m.p_f / PA_PER_BAR,
+            "verdict": verdict(unstable, rate, min_growth),
+            "kind": point.kind,
+            "inside_stability_tongue": bool(unstable),
+            "judder_relevant": bool(check.judder),
+            "tongue": tongue(check.tongue),
+            "growth_rate_per_s": rate,
+            "e_folding_time_s": 1.0 / rate if rate > 0 else None,
+            "efolds_per_engagement": rate * engagement_s,
+            "min_growth_per_s": min_growth,
+            "boundary_p_f_bar": finite_or_none(m.boundary_p_f / PA_PER_BAR),
+            "margin_bar": finite_or_none(m.margin_p_f / PA_PER_BAR),
+            "margin_bar_at_least": (None if np.isfinite(m.margin_p_f)
+                                    else (p_max - m.p_f) / PA_PER_BAR),
+            "margin_bar_tongue": (tongue(check.bar_tongue)
+                                  if np.isfinite(m.margin_p_f) else None),
+            "crossing_hz": m.crossing_hz,
+            "crossing_tolerance_hz": m.crossing_tolerance_hz,
+            "margin_hz": finite_or_none(m.margin_hz),
+            "margin_hz_tongue": tongue(check.hz_tongue),
+            "frequency_search_hz": (None if search_hz is None else
+                                    [float(f) for f in search_hz]),
+            "sensitivity": sensitivity}
+
+
+def _named(tongue):
+    """`` (tongue N)`` of a record's tongue, or nothing."""
+    return "" if tongue is None else f" (tongue {tongue['number'] or '?'})"
+
+
+def growth_words(record, engagement_s):
+    """The growth of a record in words: rate, e-folding time against an
+    engagement of ``engagement_s`` seconds."""
+    rate = record["growth_rate_per_s"]
+    if record["e_folding_time_s"] is None:
+        return f"decays at {-rate:.3g} 1/s"
+    efold = record["e_folding_time_s"]
+    return (f"grows at {rate:.3g} 1/s, one e-fold in {efold:.3g} s ("
+            + ("longer than" if efold > engagement_s else "within")
+            + f" a {engagement_s:g} s engagement)")
+
+
+def margin_words(record):
+    """Both margins of a record in plain words (amplitude, frequency)."""
+    bar = record["margin_bar"]
+    if bar is None:
+        amplitude = ("no judder at this frequency up to "
+                     f"{record['p_f_bar'] + record['margin_bar_at_least']:.3g}"
+                     " bar")
+    elif bar >= 0:
+        amplitude = f"{bar:.3f} bar below judder" + _named(
+            record["margin_bar_tongue"])
+    else:
+        amplitude = f"{-bar:.3f} bar above the judder boundary" + _named(
+            record["margin_bar_tongue"])
+    hz = record["margin_hz"]
+    if hz is None:
+        search = record["frequency_search_hz"]
+        frequency = (f"no dither frequency judders at {record['p_f_bar']:g} "
+                     "bar" + ("" if search is None else
+                              f" from {search[0]:.3g} to {search[1]:.3g} Hz"))
+    elif hz > 0:
+        frequency = (f"nearest judder {hz:.2f} Hz away, at "
+                     f"{record['crossing_hz']:.2f} Hz"
+                     + _named(record["margin_hz_tongue"]))
+    else:
+        frequency = (f"judder up to {-hz:.2f} Hz away, to "
+                     f"{record['crossing_hz']:.2f} Hz"
+                     + _named(record["margin_hz_tongue"]))
+    return amplitude, frequency
+
+
+def sensitivity_words(record, count=3):
+    """The ``count`` parameters that move the margin most, per +10 %
+    (Hz where the frequency margin exists, else bar); "" if none."""
+    parts = []
+    for entry in record["sensitivity"][:count]:
+        hz, bar = (entry["margin_hz_per_unit_log"],
+                   entry["margin_bar_per_unit_log"])
+        if hz is not None:
+            parts.append(f"{entry['parameter']} {0.1 * hz:+.2f} Hz")
+        elif bar is not None:
+            parts.append(f"{entry['parameter']} {0.1 * bar:+.3f} bar")
+    return "" if not parts else \
+        "margin per +10 %: " + ", ".join(parts)
+
+
+def setting_summary(record, engagement_s=1.0):
+    """One line: verdict, growth against an engagement, both margins, the
+    parameters that move the margin most."""
+    head = f"{record['freq_hz']:g} Hz, {record['p_f_bar']:g} bar: " \
+        f"{record['verdict']}"
+    if record["inside_stability_tongue"]:
+        tongue = record["tongue"]
+        head += (f" ({record['kind']})" if tongue is None else
+                 f" in tongue {tongue['number'] or '?'} ({record['kind']})")
+    parts = [head, growth_words(record, engagement_s),
+             *margin_words(record)]
+    sensitive = sensitivity_words(record)
+    if sensitive:
+        parts.append(sensitive)
+    return "; ".join(parts)
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """``judder check``: verdict and margins of each dither setting.
+
+    ``checks`` are :class:`stability.margins.SettingCheck` objects;
+    ``min_growth`` the judder-relevant rate (1/s), ``engagement_s`` the
+    engagement duration the e-folds are counted over.
+    """
+
+    params: object
+    checks: list
+    min_growth: float
+    engagement_s: float
+    p_max: float
+    seconds: float
+    background: object = None
+
+    def records(self):
+        from stability.margins import search_grid
+        grid = search_grid([c.margin.freq_hz for c in self.checks]) \
+            if self.checks else None
+        search = None if grid is None else (grid[0], grid[-1])
+        return [setting_record(c, self.min_growth, self.engagement_s,
+                               self.p_max, search)
+                for c in self.checks]
+
+    def as_dict(self):
+        return {"model": self.params.model,
+                "min_growth_per_s": self.min_growth,
+                "engagement_s": self.engagement_s,
+                "p_max_bar": self.p_max / PA_PER_BAR,
+                "seconds": self.seconds, "settings": self.records()}
+
+    def summary(self):
+        return "\n".join(setting_summary(r, self.engagement_s)
+                         for r in self.records())
+
+    @keeps_foreign_files
+    def save(self, path):
+        """CSV: one row per setting (the scalar fields; tongues by
+        number)."""
+        rows = []
+        for r in self.records():
+            row = {k: v for k, v in r.items()
+                   if not isinstance(v, (dict, list)) and k not in
+                   ("tongue", "margin_bar_tongue", "margin_hz_tongue")}
+            for key in ("tongue", "margin_bar_tongue", "margin_hz_tongue"):
+                row[key] = None if r[key] is None else r[key]["number"]
+            rows.append(row)
+        write_text(path, rows_to_csv(rows))
+
+    def figure(self, title=None):
+        from stability.plotting import check_figure
+        return check_figure(self.records(), self.background,
+                            min_growth=self.min_growth, title=title)

@@ -1,0 +1,167 @@
+"""``judder crosscheck``: FMU growth rates against Floquet exponents.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`crosscheck` and
+its result :class:`CrosscheckResult`.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files, write_text
+from infra.units import PA_PER_BAR
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import (force_option, method_option, model_options,
+                         workers_option)
+from ._common import resolve, timed
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_crosscheck, check_work
+from ._records import rows_to_csv
+from ._values import parse_grid
+
+DESCRIPTION = "Run the paper's driveline FMU (Eq. 1) on a grid, twice per point with initial speeds 1 rad/s apart; the difference is the free response, whose Floquet multipliers are fitted (Prony/Hankel DMD on samples once per dither period) and compared with the stability layer's. With --modelica CLASS: the class's FMU and its linearisation; --fmu is refused (the FMU path reads only its Jacobian, it has no time-domain run here)."
+
+
+OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf", True)
+
+
+#: Fewest dither periods of a crosscheck run (the multipliers are fitted
+#: to one sample per period).
+MIN_CROSSCHECK_PERIODS = 20
+
+
+def add_arguments(p):
+    """The options of ``judder crosscheck``."""
+    p.add_argument("--freq", default="75:130:23", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 75:130:23: tongues "
+                        "5, 2 and 6)")
+    p.add_argument("--pf", default="0.1:0.7:4", metavar="START:STOP:N",
+                   help="dither amplitudes, bar (default 0.1:0.7:4)")
+    p.add_argument("--duration", type=str, default=3.0, metavar="S",
+                   help="length of each run, s (default 3)")
+    workers_option(p)
+    p.add_argument("--out", metavar="FILE.csv", help="table of all points")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="fitted against Floquet rates, and the verdicts")
+    method_option(p)
+    model_options(p)
+    p.add_argument("--perturb", default="w_in", metavar="NAME",
+                   help="start-speed parameter raised by 1 rad/s in the "
+                        "second run of each point (default w_in)")
+    force_option(p)
+
+
+def run(args):
+    """FMU growth rates against Floquet exponents on a grid."""
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    if freqs[0] <= 0:
+        raise JudderError("--freq: allowed: frequencies > 0 Hz")
+    check_number("--duration", args.duration, "s")
+    if args.duration * freqs[0] < MIN_CROSSCHECK_PERIODS:
+        raise JudderError(
+            f"--duration {args.duration:g} s holds "
+            f"{args.duration * freqs[0]:.3g} periods at {freqs[0]:g} Hz; "
+            f"allowed: at least {MIN_CROSSCHECK_PERIODS} periods of the "
+            f"lowest frequency (>= {MIN_CROSSCHECK_PERIODS / freqs[0]:.3g} s)"
+            ", for the multipliers to be fitted")
+    check_work("--freq x --pf", 2 * len(freqs) * len(amplitudes),
+               "FMU runs")
+    check_crosscheck(2 * len(freqs) * len(amplitudes),
+                               args.duration, args.workers)
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs) * len(amplitudes), "FMU runs") as progress:
+        result = crosscheck(freqs, amplitudes, duration=args.duration,
+                                parameters=params, changes=changes,
+                                method=args.method, workers=args.workers,
+                                progress=progress, perturb=args.perturb)
+    data = {**result.as_dict(), **write_outputs(
+        args, result, figure={"title": model_title(args, params)})}
+    worst = data["max_rate_error_above_1_per_s"]
+    text = (f"{data['points']} points in {result.seconds:.1f} s: verdicts "
+            f"agree on {100 * data['agreement']:.1f} %; largest rate "
+            "difference where the exponent > 1/s: "
+            + ("none" if worst is None else f"{100 * worst:.2g} %")
+            + "".join(f"\n  disagree at {r['freq_hz']:g} Hz, "
+                      f"{r['p_f_bar']:g} bar: {r['reason']}"
+                      for r in data["disagreements"])
+            + written(args.out, args.plot))
+    emit(args, data, text)
+
+
+def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
+               changes=None, method=DEFAULT_METHOD, workers=None,
+               progress=None, perturb="w_in"):
+    """``judder crosscheck``: growth rates of the driveline's FMU against
+    the Floquet exponents on a grid (the two views of one model).
+
+    Parameters
+    ----------
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_f_bar : array_like
+        Dither amplitudes, bar.
+    duration : float
+        Length of each run, s.
+    perturb : str
+        Start-speed parameter raised in the second run of each point.
+
+    Returns
+    -------
+    CrosscheckResult
+    """
+    from ..crosscheck import crosscheck as crosscheck_study
+    values = resolve(parameters, changes)
+    check, seconds = timed(
+        crosscheck_study, values, freq_hz,
+        np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, duration=duration,
+        method=method, workers=workers, callback=progress, perturb=perturb)
+    return CrosscheckResult(params=values, check=check, seconds=seconds,
+                            method=method)
+
+
+@dataclass(frozen=True)
+class CrosscheckResult:
+    """``judder crosscheck``: a :class:`judder.crosscheck.Crosscheck`."""
+
+    params: object
+    check: object
+    seconds: float
+    method: str
+
+    def rows(self):
+        """One dict per grid point (Hz, bar, 1/s)."""
+        return [{"freq_hz": p.freq_hz, "p_f_bar": p.p_f / PA_PER_BAR,
+                 "floquet_kind": p.floquet_kind,
+                 "floquet_rate_per_s": p.floquet_rate,
+                 "fitted_rate_per_s": p.fitted_rate,
+                 "floquet_unstable": p.floquet_unstable,
+                 "time_unstable": p.time_unstable, "agree": p.agree,
+                 "reason": p.reason} for p in self.check.points]
+
+    def as_dict(self):
+        rows = self.rows()
+        return {"model": self.params.model, "method": self.method,
+                "points": len(rows), "seconds": self.seconds,
+                "duration_s": self.check.duration,
+                "agreement": self.check.agreement,
+                "max_rate_error_above_1_per_s":
+                    self.check.max_rate_error(above=1.0),
+                "disagreements": [r for r in rows if not r["agree"]]}
+
+    @keeps_foreign_files
+    def save(self, path):
+        write_text(path, rows_to_csv(self.rows()))
+
+    def figure(self, title=None):
+        from pysim.plotting import crosscheck_figure
+        return crosscheck_figure(self.check, title=title)

@@ -1,0 +1,110 @@
+"""``judder eig``: natural frequencies and damping factor.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`eig` and
+its result :class:`EigResult`.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from stability import modal
+from stability.model import build_driveline
+
+from ._arguments import model_options
+from ._common import resolve
+from ._model import parameters_of
+from ._output import emit
+
+DESCRIPTION = "Undamped natural frequencies (Eq. 14-15, Hz), clutch-damper damping factor (Eq. 16) and the damped modes without dither, rigid-body angles removed. For --modelica or --fmu: the frequencies of its Jacobian's stiffness part and its damped modes; Eq. 15-16 are the paper's chains' formulas (null in --json)."
+
+
+OUTPUTS = ()
+
+
+def add_arguments(p):
+    """The options of ``judder eig``."""
+    model_options(p)
+
+
+def run(args):
+    """Natural frequencies and the clutch-damper damping factor."""
+    result = eig(*parameters_of(args))
+    zeta = result.damping_factor_12
+    lines = [f"model {result.params.model}",
+             "undamped natural frequencies (Eq. 15): "
+             + ", ".join(f"{f:.3f} Hz" for f in result.natural_frequencies_hz),
+             "clutch-damper damping factor (Eq. 16): "
+             + ("not defined (a formula of the paper's chains)"
+                if zeta is None else f"{100 * zeta:.2f} %"),
+             "damped modes without dither, rigid-body angles removed: "
+             + ", ".join(f"{f:.3f} Hz ({100 * r:.2f} %)" for f, r in
+                         zip(result.damped_frequencies_hz,
+                             result.damping_ratio))]
+    emit(args, result.as_dict(), "\n".join(lines))
+
+
+def eig(parameters=None, changes=None):
+    """``judder eig``: natural frequencies (Eq. 14-15) and the
+    clutch-damper damping factor (Eq. 16), and the damped modes without
+    dither.
+
+    For a Modelica class or an FMU the natural frequencies are those of
+    its Jacobian's stiffness part and the damped modes those of its
+    system without dither, rigid-body angles removed; the closed forms
+    (Eq. 15) and the clutch-damper factor (Eq. 16) belong to the paper's
+    chains, so they are None there.
+
+    Returns
+    -------
+    EigResult
+
+    Examples
+    --------
+    >>> eig().natural_frequencies_hz.round(3)
+    array([ 18.939, 102.884])
+    """
+    values = resolve(parameters, changes)
+    driveline = build_driveline(values)
+    damped_hz, ratio = modal.damped_modes(driveline)
+    paper = values.driveline is not None
+    return EigResult(
+        params=values,
+        natural_frequencies_hz=modal.natural_frequencies(driveline),
+        closed_form_frequencies_hz=(modal.closed_form_frequencies(values)
+                                    if paper else None),
+        damping_factor_12=(float(modal.clutch_damper_damping_factor(values))
+                           if paper else None),
+        damped_frequencies_hz=damped_hz, damping_ratio=ratio)
+
+
+@dataclass(frozen=True)
+class EigResult:
+    """``judder eig``: natural frequencies (Eq. 15) and damping (Eq. 16).
+
+    Frequencies in Hz; ``damping_factor_12`` and ``damping_ratio`` as
+    fractions. ``closed_form_frequencies_hz`` and ``damping_factor_12``
+    are None for a Modelica class or an FMU (they are the paper's
+    formulas for its chains).
+    """
+
+    params: object
+    natural_frequencies_hz: np.ndarray
+    closed_form_frequencies_hz: np.ndarray
+    damping_factor_12: float
+    damped_frequencies_hz: np.ndarray
+    damping_ratio: np.ndarray
+
+    def as_dict(self):
+        return {"model": self.params.model,
+                "natural_frequencies_hz": self.natural_frequencies_hz,
+                "closed_form_frequencies_hz": self.closed_form_frequencies_hz,
+                "damping_factor_12": self.damping_factor_12,
+                "damping_factor_12_percent": (
+                    None if self.damping_factor_12 is None
+                    else 100 * self.damping_factor_12),
+                "damped_modes": [{"frequency_hz": f, "damping_ratio": r}
+                                 for f, r in zip(self.damped_frequencies_hz,
+                                                 self.damping_ratio)]}

@@ -1,0 +1,440 @@
+"""``judder fit``: fit parameters to a measured boundary (section 4.2).
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`fit` and
+its result :class:`FitReport`.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from drivelines import dumps_toml
+from infra.errors import JudderError, check_number
+from infra.files import write_text
+from infra.numbers import format_interval, format_uncertain
+from infra.units import PA_PER_BAR
+from stability.monodromy import DEFAULT_METHOD
+
+from ..inputs import (read_boundary, read_boundary_min_growth,
+                      read_chart_below, read_chart_boundary,
+                      read_chart_min_growth)
+from ._arguments import method_option, model_options, workers_option
+from ._bench import bench_damping, bench_values
+from ._common import resolve, timed
+from ._model import parameters_of
+from ._output import (Progress, emit, make_parents, output_files, save_plot,
+                      written)
+from ._records import finite_or_none
+from ._values import parse_list
+
+DESCRIPTION = "Adjust hard-to-know parameters so the model's boundary of judder growing at --min-growth matches a measured one (CSV: freq_hz,p_f_bar; empty p_f_bar = no judder up to --pf-max), or the boundary of a chart (judder chart --out). Reports each value with its standard uncertainty, 95 % interval and unit, their correlations and the scatter of the onsets; refuses what the data cannot determine (k parameters need k + 2 onsets, k with --scatter) and names a parameter that does not move the measured boundary."
+
+
+OUTPUTS = (('save_params', '--save-params', ('toml',)), ('plot', '--plot', None))
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf_max", False)
+
+
+def add_arguments(p):
+    """The options of ``judder fit``."""
+    source = p.add_mutually_exclusive_group(required=True)
+    source.add_argument("--boundary", metavar="FILE.csv",
+                        help="measured boundary, Hz and bar")
+    source.add_argument("--chart", metavar="FILE.npz",
+                        help="an experimental chart (judder chart --out); "
+                             "--pf-max defaults to its largest amplitude")
+    p.add_argument("--group", metavar="VALUE",
+                   help="group of the chart to fit, when it has several "
+                        "(e.g. 65-70)")
+    p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
+                   help="parameters to fit (default c12,mu_g,k24)")
+    p.add_argument("--bounds", action="append", default=[],
+                   metavar="NAME=LOW:HIGH",
+                   help="search range of a fitted parameter, SI; repeatable "
+                        "(default a factor 100 either way of the start)")
+    p.add_argument("--pf-max", type=str, default=None, metavar="BAR",
+                   help="largest amplitude tried on the bench (and searched "
+                        "in the model), bar (default 1.5, or the chart's)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="measured and fitted boundaries (Fig. 16a)")
+    p.add_argument("--starts", type=int, default=3, metavar="N",
+                   help="starts: the given one plus N-1 sampled within a "
+                        "factor 3 of it (default 3)")
+    p.add_argument("--uncertainty", default="auto",
+                   choices=("auto", "jacobian", "profile", "bootstrap"),
+                   help="how the 95 %% intervals are found (default auto: "
+                        "the Jacobian, profiled where it is not trusted)")
+    p.add_argument("--error-model", default="relative",
+                   choices=("relative", "absolute"),
+                   help="scatter of the measured onsets: a share of the "
+                        "amplitude (default, as a pressure sensor's and a "
+                        "valve's errors are) or the same in bar everywhere")
+    p.add_argument("--scatter", metavar="SHARE|BAR",
+                   help="the bench's known scatter of the onsets (its "
+                        "repeatability): a share of the amplitude such as "
+                        "3%% (relative error model) or bar such as 20mbar "
+                        "(absolute); default: estimated from the residuals, "
+                        "which needs two onsets more than the parameters")
+    p.add_argument("--seed", type=int, default=0,
+                   help="seed of the sampled starts and the bootstrap")
+    workers_option(p, "one, as starting Dask costs more than the few "
+                       "parallel starts gain; all cores for --uncertainty "
+                       "bootstrap")
+    p.add_argument("--save-params", metavar="FILE.toml",
+                   help="write the fitted set (never overwrites unless "
+                        "--force)")
+    p.add_argument("--force", action="store_true",
+                   help="allow --save-params to replace a file")
+    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
+                   help="compare with the model's boundary of judder "
+                        "growing at this rate, 1/s (default: the chart's "
+                        "--min-growth with --chart or its --boundary file, "
+                        "else check's 1 1/s, so "
+                        "fit, check and chart call the same point judder; "
+                        "0: the stability boundary)")
+    p.add_argument("--threshold-spread", type=float, default=None,
+                   metavar="1/S",
+                   help="how far the growth rate the onsets were called "
+                        "judder at may lie from --min-growth, 1/s: the fit "
+                        "is repeated at --min-growth minus and plus it and "
+                        "the intervals cover the values found (default: "
+                        "0.25 with --chart, as a 3 s run's growth is read "
+                        "to about that, docs/fitting.md; 0 with "
+                        "--boundary)")
+    p.add_argument("--bench-linearisation", action="store_true",
+                   help="compare with the bench's linearisation (c1 + "
+                        "d_control: its motor speed control damps body 1), "
+                        "as for a chart of `judder campaign` runs; the "
+                        "fitted values stay the driveline's")
+    p.add_argument("--bench", action="append", default=[],
+                   metavar="NAME=VALUE",
+                   help="bench parameter for --bench-linearisation (SI), "
+                        "e.g. d_control=2000; repeatable (default: the "
+                        "bench model's)")
+    method_option(p)
+    model_options(p)
+
+
+def run(args):
+    """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
+    from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
+                                     DEFAULT_MIN_GROWTH_PER_S)
+    params, changes = parameters_of(args)
+    names = _fit_names(args.fit, params)
+    bounds = _bounds(args.bounds, params, names)
+    default_p_max = 1.5
+    default_growth = DEFAULT_MIN_GROWTH_PER_S
+    default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
+    if args.chart:
+        freqs, measured, default_p_max = read_chart_boundary(args.chart,
+                                                             args.group)
+        default_growth = read_chart_min_growth(args.chart)
+        below = read_chart_below(args.chart, args.group)
+    else:
+        freqs, measured = read_boundary(args.boundary)
+        below = None
+        stated = read_boundary_min_growth(args.boundary)
+        default_growth = default_growth if stated is None else stated
+    min_growth = check_number("--min-growth", default_growth
+                              if args.min_growth is None else args.min_growth,
+                              "1/s", strict=False)
+    if args.bench and not args.bench_linearisation:
+        raise JudderError("--bench is for --bench-linearisation; give both")
+    bench = bench_values(args.bench) if args.bench_linearisation else None
+    p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
+                             else args.pf_max, "bar")
+    scatter = _scatter(args.scatter, args.error_model)
+    spread = check_number("--threshold-spread", default_spread
+                          if args.threshold_spread is None
+                          else args.threshold_spread, "1/s", strict=False)
+    make_parents(args.plot, args.save_params)
+    with Progress(None, "fit") as progress:
+        report = fit(freqs, measured / PA_PER_BAR, p_max_bar,
+                         names=names, bounds=bounds, parameters=params,
+                         changes=changes, method=args.method,
+                         starts=args.starts, uncertainty=args.uncertainty,
+                         error_model=args.error_model, seed=args.seed,
+                         workers=args.workers, progress=progress,
+                         min_growth=min_growth, bench=bench,
+                         scatter=scatter, below_bar=None if below is None
+                         else below / PA_PER_BAR, threshold_spread=spread)
+    result = report.fit
+    if args.save_params:
+        report.save_params(args.save_params, overwrite=args.force)
+    if args.plot:
+        save_plot(args.plot, report.figure())
+    rows = report.text()
+    rows.append("compared with: " + _compared_with(result))
+    rows += [f"note: {n}" for n in result.notes]
+    rows += [f"problem: {p}" for p in result.problems]
+    emit(args, {**report.as_dict(),
+                **output_files(saved_params=args.save_params, plot=args.plot)},
+         "\n".join(rows) + written(args.save_params, args.plot))
+    if not result.success:
+        raise JudderError("the fit cannot be trusted: "
+                          + "; ".join(result.problems or [result.message]))
+
+
+def _bounds(items, params, names):
+    """``NAME=LOW:HIGH`` strings of --bounds as ``{name: (low, high)}``,
+    each a fitted parameter with LOW < HIGH both allowed for it (SI, or
+    with units)."""
+    from infra.quantities import parse_quantity
+    bounds = {}
+    for item in items:
+        name, _, rng = item.partition("=")
+        name = name.strip()
+        parts = rng.split(":")
+        if name not in names or len(parts) != 2:
+            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
+                              "NAME=LOW:HIGH with NAME one of --fit ("
+                              f"{', '.join(names)})")
+        spec = params.specs[name]
+        low, high = (spec.check(parse_quantity(part, spec.unit,
+                                               f"--bounds {name}"))
+                     for part in parts)
+        if not low < high:
+            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
+                              f"LOW < HIGH, each {spec.allowed()} "
+                              f"[{spec.unit}]")
+        bounds[name] = (low, high)
+    return bounds
+
+
+def _fit_names(text, params):
+    names = parse_list(text, "--fit", str)
+    unknown = [n for n in names if n not in params.specs]
+    if unknown or len(set(names)) != len(names):
+        raise JudderError(f"--fit {text!r} is not allowed; allowed: "
+                          "distinct parameter names of the "
+                          f"{params.model} model: {', '.join(params.specs)}")
+    return names
+
+
+def _scatter(text, error_model):
+    """``--scatter``: a share of the amplitude (relative error model) or
+    Pa (absolute), or None."""
+    from infra.quantities import parse_quantity
+    if text is None:
+        return None
+    if error_model == "relative":
+        share = parse_quantity(text, "1", "--scatter")
+        if not 0 < share <= 1:
+            raise JudderError(
+                f"--scatter {text} is not allowed with the relative error "
+                "model; allowed: a share of the amplitude above 0 and up to "
+                "100 %, such as 3% or 0.03 (or --error-model absolute and "
+                "a scatter in bar, such as 20mbar)")
+        return share
+    return check_number("--scatter", parse_quantity(
+        text, "bar", "--scatter"), "bar") * PA_PER_BAR
+
+
+def _compared_with(result):
+    """Which model boundary the fit compared with, in words."""
+    what = ("the stability boundary" if result.min_growth == 0 else
+            f"the boundary of judder growing at {result.min_growth:g} 1/s "
+            "or faster")
+    model = (f"the {result.params.model} driveline" if not result.added else
+             "the bench's linearisation (the driveline with "
+             + ", ".join(f"{n} + {v:g}" for n, v in result.added) + ")")
+    return f"{what} of {model}; fitted: {', '.join(result.names)}"
+
+
+def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
+        parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
+        starts=3, uncertainty="auto", error_model="relative", seed=0,
+        workers=None, progress=None, min_growth=None, bench=None,
+        scatter=None, below_bar=None, threshold_spread=0.0):
+    """``judder fit``: fit parameters to a measured boundary (section 4.2,
+    Fig. 16a).
+
+    Parameters
+    ----------
+    freq_hz : array_like
+        Frequencies of the measured points, Hz.
+    measured_p_f_bar : array_like
+        Lowest amplitude with judder, bar; NaN where none was seen up to
+        ``p_max_bar`` (see :func:`judder.inputs.read_boundary`).
+    names : sequence of str, optional
+        Parameters to fit (default
+        :data:`stability.fitting.DEFAULT_FIT`).
+    bounds : dict, optional
+        ``{name: (low, high)}``, SI.
+    kinds, starts, uncertainty, error_model, seed, workers, scatter
+    threshold_spread
+        As :func:`stability.fitting.fit_boundary` takes them (``scatter``
+        in Pa with the absolute error model).
+    min_growth : float, optional
+        1/s: the model boundary compared is that of judder growing at
+        this rate; default ``judder check``'s
+        (:data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`), so fit,
+        check and chart call the same point judder.
+    below_bar : array_like, optional
+        The highest amplitude tried without judder below each onset, bar
+        (NaN: none; :func:`judder.inputs.read_chart_below`): the fit
+        compares with the middle of each interval (below, onset].
+    bench : dict, optional
+        Compare with the bench's linearisation, not the driveline alone:
+        the damping its motor control adds
+        (:attr:`drivelines.DrivelineModel.bench_damping`, ``c1 +
+        d_control``), from these bench parameters (SI) or the bench
+        model's defaults (``{}``). None: the driveline.
+
+    Returns
+    -------
+    FitReport
+        ``fit.success`` is False when any of ``fit.problems`` holds (no
+        convergence, a parameter on a bound or undetermined, another
+        minimum as good).
+    """
+    from stability.fitting import DEFAULT_FIT, fit_boundary
+    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    start = resolve(parameters, changes)
+    if min_growth is None:
+        min_growth = DEFAULT_MIN_GROWTH_PER_S
+    result, seconds = timed(
+        fit_boundary, start, freq_hz,
+        np.asarray(measured_p_f_bar, dtype=float) * PA_PER_BAR,
+        p_max_bar * PA_PER_BAR, names=names or DEFAULT_FIT, bounds=bounds,
+        method=method, kinds=kinds, starts=starts, uncertainty=uncertainty,
+        error_model=error_model, seed=seed, workers=workers,
+        callback=progress, min_growth=min_growth,
+        added=None if bench is None else bench_damping(start, bench),
+        scatter=scatter, below=None if below_bar is None else
+        np.asarray(below_bar, dtype=float) * PA_PER_BAR,
+        threshold_spread=threshold_spread)
+    return FitReport(fit=result, seconds=seconds, method=method)
+
+
+@dataclass(frozen=True)
+class FitReport:
+    """``judder fit``: a :class:`stability.fitting.FitResult` and timing."""
+
+    fit: object
+    seconds: float
+    method: str
+
+    def as_dict(self):
+        r = self.fit
+        return {"model": r.params.model, "method": self.method,
+                "seconds": self.seconds, "success": r.success,
+                "message": r.message,
+                "fitted": {n: {"value": v, "std": finite_or_none(s),
+                               "ci95": [finite_or_none(lo),
+                                        finite_or_none(hi)], "start": s0}
+                           for n, v, s, lo, hi, s0 in zip(
+                               r.names, r.values, r.std, r.ci_low,
+                               r.ci_high, r.start)},
+                "uncertainty": r.uncertainty, "problems": list(r.problems),
+                "notes": list(r.notes), "at_bound": list(r.at_bound),
+                "undetermined": list(r.undetermined),
+                "starts_tried": r.starts_tried,
+                "starts_agreeing": r.starts_agreeing,
+                "kinds": list(r.kinds),
+                "residual_rms_bar": r.residual_rms_bar,
+                "evaluations": r.evaluations, "freq_hz": r.freq_hz,
+                "measured_bar": [finite_or_none(v) for v in r.measured_bar],
+                "model_bar": [finite_or_none(v) for v in r.model_bar],
+                "min_growth_per_s": r.min_growth, "added": dict(r.added),
+                "determined": r.determined, "held": list(r.held),
+                "error_model": r.error_model,
+                "scatter": finite_or_none(r.scatter),
+                "scatter_unit": ("share of the amplitude"
+                                 if r.error_model == "relative" else "bar"),
+                "scatter_given": r.scatter_given,
+                "threshold_spread_per_s": r.threshold_spread,
+                "threshold_shifts": None if r.threshold_shifts is None else {
+                    n: {"lower_threshold": float(a),
+                        "higher_threshold": float(b)}
+                    for n, (a, b) in zip(r.names, r.threshold_shifts)},
+                "covariance": None if r.covariance is None else {
+                    "names": list(r.names),
+                    "matrix": [[finite_or_none(v) for v in row]
+                               for row in r.covariance]},
+                "correlation": None if r.covariance is None else {
+                    "names": list(r.names),
+                    "matrix": [[finite_or_none(v) for v in row]
+                               for row in r.correlation]}}
+
+    def text(self):
+        """The fit as ``judder fit`` prints it: each value with the digits
+        its interval supports and its unit, the correlations, the scatter
+        of the onsets, the starts, then notes and problems."""
+        r = self.fit
+        specs = r.params.specs
+        rows = []
+        for n, v, s, lo, hi, s0 in zip(r.names, r.values, r.std, r.ci_low,
+                                       r.ci_high, r.start):
+            unit = specs[n].unit if n in specs else ""
+            if n in r.held:
+                rows.append(f"{n:>8} = {v:.6g} {unit}: held at its start "
+                            "value (it does not move the measured boundary)")
+            elif n in r.undetermined:
+                rows.append(f"{n:>8} = {v:.6g} {unit}: not determined by "
+                            "the measured boundary (see the problems)")
+            else:
+                rows.append(f"{n:>8} = {format_uncertain(v, s, unit)}, 95 % "
+                            f"interval {format_interval(lo, hi, s)}  (start "
+                            f"{s0:.6g})")
+        pairs = [(a, b, r.correlation[i, j])
+                 for i, a in enumerate(r.names)
+                 for j, b in enumerate(r.names) if j > i]
+        pairs = [(a, b, c) for a, b, c in pairs if np.isfinite(c)]
+        if pairs:
+            rows.append("correlation of the fitted values: " + ", ".join(
+                f"{a}-{b} {c:+.2f}" for a, b, c in pairs))
+        scatter = (f"{100 * r.scatter:.2g} % of the amplitude"
+                   if r.error_model == "relative"
+                   else f"{r.scatter:.2g} bar")
+        rows.append(f"scatter of the onsets: {scatter} ("
+                    + ("given" if r.scatter_given else
+                       "estimated from the residuals") + f"; {r.error_model} "
+                    f"error model); residual rms {r.residual_rms_bar:.3g} "
+                    f"bar over {len(r.freq_hz)} points, "
+                    f"{int(np.sum(np.isfinite(r.measured_bar)))} with judder")
+        if r.threshold_shifts is not None:
+            low = max(r.min_growth - r.threshold_spread, 0.0)
+            high = r.min_growth + r.threshold_spread
+            rows.append(
+                f"growth threshold {low:g} and {high:g} 1/s instead of "
+                f"{r.min_growth:g}: " + ", ".join(
+                    f"{n} {a:+.2g}/{b:+.2g}" for n, (a, b) in zip(
+                        r.names, r.threshold_shifts))
+                + " (the intervals cover these shifts)")
+        rows.append(f"{_starts_text(r)}; intervals by {r.uncertainty}; "
+                    f"{r.evaluations} model boundaries in {self.seconds:.1f} s")
+        return rows
+
+    def save_params(self, path, overwrite=False):
+        """Write the fitted parameter set as TOML."""
+        write_text(path, dumps_toml(self.fit.params), overwrite=overwrite)
+
+    def figure(self):
+        return self.fit.plot()[0].figure
+
+
+def _starts_text(r):
+    """What the starts of a fit did, in words."""
+    origins = list(r.start_origins)
+    sampled = origins.count("sampled")
+    rematched = origins.count("rematched")
+    continued = origins.count("continued")
+    where = ["the given values"]
+    if sampled:
+        where.append(f"{sampled} sampled within a factor 3 of them")
+    if rematched:
+        where.append(f"{rematched} with ambiguous points matched to the "
+                     "other kind of tongue")
+    if continued:
+        where.append("the best one continued after its budget")
+    text = (f"{r.starts_tried} local fit{'s' if r.starts_tried > 1 else ''} "
+            f"(from {', '.join(where)})")
+    if r.starts_tried == 1:
+        return text
+    others = r.starts_tried - r.starts_agreeing
+    return (text + f": {r.starts_agreeing} reached this minimum"
+            + (f", {others} stopped at a worse one" if others else ""))

@@ -1,0 +1,135 @@
+"""``judder floquet``: Floquet multipliers at one point.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`floquet` and
+its result :class:`FloquetPoint`.
+"""
+
+from dataclasses import dataclass
+import math
+
+from infra.errors import check_number
+from infra.units import PA_PER_BAR
+from stability import floquet as floquet_kernel
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import (force_option, method_option, model_options,
+                         waveform_option)
+from ._common import dithered, resolve
+from ._model import model_title, parameters_of
+from ._output import emit, make_parents, output_files, save_plot, written
+from ._preflight import check_floquet
+from ._values import parse_waveform
+
+DESCRIPTION = 'Monodromy matrix over one dither period and its Floquet multipliers (Eq. 10-13), rigid-body angles removed; the leading multiplier is classified as in Fig. 15.'
+
+
+OUTPUTS = (('plot', '--plot', None),)
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf", False)
+
+
+def add_arguments(p):
+    """The options of ``judder floquet``."""
+    p.add_argument("--freq", type=str, required=True, metavar="HZ",
+                   help="dither frequency, Hz")
+    p.add_argument("--pf", type=str, required=True, metavar="BAR",
+                   help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="the multipliers on the complex plane with the "
+                        "unit circle, and near the leading one (Fig. 15)")
+    method_option(p)
+    model_options(p)
+    waveform_option(p)
+    force_option(p)
+
+
+def run(args):
+    """Floquet multipliers at one dither frequency and amplitude."""
+    check_number("--pf", args.pf, "bar", strict=False)
+    params, changes = parameters_of(args)
+    check_floquet(params.replace(**changes), args.freq, args.method)
+    make_parents(args.plot)
+    point = floquet(args.freq, args.pf, params, changes,
+                        method=args.method,
+                        waveform=parse_waveform(args.dither_wave))
+    if args.plot:
+        save_plot(args.plot, point.figure(
+            title=f"Floquet multipliers (Fig. 15), "
+                  f"{model_title(args, params)}"))
+    result = point.result
+    lam = result.leading
+    text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
+            f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
+            f"(|lambda| = {result.leading_abs:.6f}), growth rate "
+            f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
+            + ", ".join(f"{abs(m):.6f}" for m in result.multipliers)
+            + written(args.plot))
+    emit(args, {**point.as_dict(), **output_files(plot=args.plot)}, text)
+
+
+def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
+            method=DEFAULT_METHOD, waveform=None):
+    """``judder floquet``: Floquet multipliers at one dither setting
+    (Eq. 10-13), rigid-body angles removed.
+
+    Parameters
+    ----------
+    freq_hz : float
+        Dither frequency, Hz.
+    p_f_bar : float
+        Dither amplitude, bar.
+
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
+
+    Returns
+    -------
+    FloquetPoint
+    """
+    values = resolve(parameters, changes)
+    result = floquet_kernel(dithered(values, waveform), freq_hz,
+                            p_f_bar * PA_PER_BAR, method=method)
+    return FloquetPoint(params=values, method=method, result=result)
+
+
+def complex_record(value):
+    """A complex number as JSON fields a script reads without knowing a
+    convention: ``re``, ``im``, ``abs`` and ``arg`` (rad, in (-pi, pi])."""
+    value = complex(value)
+    return {"re": value.real, "im": value.imag, "abs": abs(value),
+            "arg": math.atan2(value.imag, value.real)}
+
+
+@dataclass(frozen=True)
+class FloquetPoint:
+    """``judder floquet``: the multipliers at one dither setting.
+
+    ``result`` is the :class:`stability.floquet.FloquetResult`.
+    """
+
+    params: object
+    method: str
+    result: object
+
+    @property
+    def p_f_bar(self):
+        return self.result.p_f / PA_PER_BAR
+
+    def as_dict(self):
+        r = self.result
+        return {"model": self.params.model, "freq_hz": r.freq_hz,
+                "p_f_bar": self.p_f_bar, "p_f_pa": r.p_f,
+                "period_s": r.period, "method": self.method,
+                "multipliers": [complex_record(z) for z in r.multipliers],
+                "leading": complex_record(r.leading),
+                "leading_abs": r.leading_abs, "kind": r.kind,
+                "growth_rate_per_s": r.growth_rate,
+                "exponents_per_s": [complex_record(z) for z in r.exponents]}
+
+    def figure(self, title=None):
+        """The multipliers on the complex plane (Fig. 15)."""
+        from stability.plotting import multipliers_figure
+        return multipliers_figure([self.result], title=title)

@@ -1,0 +1,247 @@
+"""``judder map``: stability map over frequency x amplitude.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`stability_map` and
+its result :class:`MapResult`.
+"""
+
+from dataclasses import dataclass
+import json
+
+import numpy as np
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files, save_npz
+from infra.units import PA_PER_BAR
+from stability.kinds import KINDS
+from stability.maps import stability_map as map_kernel
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import (force_option, method_option, min_growth_option,
+                         model_options, waveform_option)
+from ._common import dithered, resolve, timed
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_map, check_map_memory
+from ._values import parse_grid, parse_waveform
+
+DESCRIPTION = 'Leading Floquet multiplier on a grid of dither frequency (Hz) x amplitude (bar), classified single-period, double-period or combination (Fig. 14). Ctrl-C stops it without writing a partial file.'
+
+
+OUTPUTS = (('out', '--out', ('npz',)), ('plot', '--plot', None))
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf", True)
+
+
+#: Largest grid a map accepts, in points.
+MAX_MAP_POINTS = 2_000_000
+
+
+DEFAULT_MAP_FREQ = "5:250:300"
+
+
+DEFAULT_MAP_PF = "0:1.5:150"
+
+
+def add_arguments(p):
+    """The options of ``judder map``."""
+    p.add_argument("--freq", default=DEFAULT_MAP_FREQ, metavar="START:STOP:N",
+                   help=f"dither frequencies, Hz (default {DEFAULT_MAP_FREQ})")
+    p.add_argument("--pf", default=DEFAULT_MAP_PF, metavar="START:STOP:N",
+                   help=f"dither amplitudes, bar (default {DEFAULT_MAP_PF})")
+    p.add_argument("--out", metavar="FILE.npz",
+                   help="save the map arrays (NPZ, see README)")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="save a plot of the map (PNG, SVG or PDF), with the "
+                        "exact tongue boundaries and numbers")
+    min_growth_option(p, "; the plot shades slower ones grey")
+    method_option(p)
+    model_options(p)
+    waveform_option(p)
+    force_option(p)
+
+
+def run(args):
+    """Stability map over a frequency x amplitude grid."""
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    params, changes = parameters_of(args)
+    waveform = parse_waveform(args.dither_wave)
+    # the exact boundaries are drawn on --plot and stored in --out
+    exact = args.plot is not None or args.out is not None
+    _check_map_grid(params.replace(**changes), freqs, amplitudes,
+                    "--freq x --pf", args.method, exact)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs), "stability map") as progress:
+        result = stability_map(
+            freqs, amplitudes, params, changes, method=args.method,
+            progress=progress,
+            min_growth=check_number("--min-growth", args.min_growth, "1/s",
+                                    strict=False),
+            exact=exact, waveform=waveform)
+    paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
+    title = (f"stability map{f' ({paper})' if paper else ''}, "
+             f"{model_title(args, params)}")
+    files = write_outputs(args, result,
+                           save={"meta": {"preset": args.preset,
+                                          "set": args.set,
+                                          "dither_wave": args.dither_wave}},
+                           figure={"title": title})
+    counts = result.map.counts()
+    text = (f"{result.map.kind.size} points in {result.seconds:.2f} s: "
+            + ", ".join(f"{k} {v}" for k, v in counts.items())
+            + written(args.out, args.plot))
+    emit(args, {**result.as_dict(), **files}, text)
+
+
+def _check_map_grid(values, freqs, amplitudes, options, method, tongues):
+    """Refuse a map grid above :data:`MAX_MAP_POINTS`, or beyond the
+    memory or the time limit, before any work."""
+    if len(freqs) * len(amplitudes) > MAX_MAP_POINTS:
+        raise JudderError(f"{options} has {len(freqs) * len(amplitudes)} "
+                          f"points; allowed: at most {MAX_MAP_POINTS}")
+    check_map_memory(values, freqs, amplitudes)
+    check_map(values, freqs, amplitudes, method, tongues=tongues)
+
+
+def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
+                  method=DEFAULT_METHOD, progress=None, min_growth=None,
+                  exact=False, waveform=None):
+    """``judder map``: leading multiplier on a frequency x amplitude grid
+    (Fig. 12, Fig. 14).
+
+    Parameters
+    ----------
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_f_bar : array_like
+        Dither amplitudes, bar.
+
+    exact : bool
+        Also compute the exact tongue boundaries and tips on the map's
+        frequencies up to its largest amplitude
+        (:func:`stability.tongues.tongue_boundaries`), which
+        ``figure()`` draws over the grid with the tongue numbers.
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
+
+    Returns
+    -------
+    MapResult
+        ``save(path)`` writes NPZ, ``figure()`` draws it.
+    min_growth : float, optional
+        1/s: the figure shades unstable points growing slower than this
+        (not judder, :mod:`stability.relevance`) and the JSON counts the
+        faster ones.
+    """
+    values = resolve(parameters, changes)
+    driveline = dithered(values, waveform)
+    result, seconds = timed(
+        map_kernel, driveline, freq_hz,
+        np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
+        callback=progress)
+    boundaries = found = None
+    p_top = float(np.max(p_f_bar)) * PA_PER_BAR
+    if exact and len(result.freq_hz) > 1 and p_top > 0:
+        from stability.tongues import find_tongues, tongue_boundaries
+        boundaries = tongue_boundaries(driveline, result.freq_hz, p_top,
+                                       method)
+        found = find_tongues(driveline, boundaries)
+    return MapResult(params=values, map=result, seconds=seconds,
+                     boundaries=boundaries, tongues=found,
+                     min_growth=min_growth)
+
+
+@dataclass(frozen=True)
+class MapResult:
+    """``judder map``: the stability map (Fig. 12, 14) and its timing.
+
+    ``map`` is the :class:`stability.maps.StabilityMap`; ``seconds`` the
+    computing time.
+    """
+
+    params: object
+    map: object
+    seconds: float
+    boundaries: object = None
+    tongues: list = None
+    min_growth: object = None
+
+    def judder_relevant_points(self):
+        """Points growing faster than ``min_growth`` (all unstable ones if
+        it is None)."""
+        from stability.relevance import is_judder_relevant
+        return int(np.count_nonzero(
+            (self.map.kind > 0)
+            & is_judder_relevant(self.map.growth_rate, self.min_growth or 0)))
+
+    def as_dict(self):
+        m = self.map
+        bar = m.p_f / PA_PER_BAR
+        return {"model": self.params.model, "method": m.method,
+                "points": int(m.kind.size), "seconds": self.seconds,
+                "freq_hz": [m.freq_hz[0], m.freq_hz[-1], len(m.freq_hz)],
+                "p_f_bar": [bar[0], bar[-1], len(bar)],
+                "counts": m.counts(),
+                "min_growth_per_s": self.min_growth,
+                "judder_relevant_points": self.judder_relevant_points(),
+                "max_leading_abs": float(m.leading_abs.max()),
+                "natural_frequencies_hz": m.natural_frequencies_hz}
+
+    @keeps_foreign_files
+    def save(self, path, meta=None):
+        """Save the map as NPZ.
+
+        Arrays: ``freq_hz`` (nf,), ``p_f_pa`` and ``p_f_bar`` (np,),
+        ``leading_re``/``leading_im``/``leading_abs``/``growth_rate_per_s``
+        (nf, np), ``kind`` (nf, np, int8), ``kind_names``,
+        ``natural_frequencies_hz``, ``min_growth_per_s`` (the
+        judder-relevant rate, 0 when none was given: every instability);
+        with the exact boundaries, ``boundary_freq_hz`` (nb,),
+        ``boundary_p_f_bar`` (nb, 3; NaN: none up to ``boundary_p_max_bar``)
+        whose columns ``boundary_kinds`` names, and per tongue
+        ``tongue_number`` (0: unnumbered), ``tongue_kind``,
+        ``tongue_resonance``, ``tongue_tip_freq_hz``,
+        ``tongue_tip_p_f_bar``; ``parameters`` holds a JSON string of the
+        model, the parameter values (SI), the method and ``meta``.
+        """
+        m = self.map
+        info = {"model": self.params.model,
+                "parameters": self.params.as_dict(), "method": m.method,
+                "seconds": self.seconds, **(meta or {})}
+        arrays = {
+            "freq_hz": m.freq_hz, "p_f_pa": m.p_f,
+            "p_f_bar": m.p_f / PA_PER_BAR,
+            "leading_re": m.leading.real, "leading_im": m.leading.imag,
+            "leading_abs": m.leading_abs,
+            "growth_rate_per_s": m.growth_rate, "kind": m.kind,
+            "kind_names": np.array(KINDS),
+            "natural_frequencies_hz": m.natural_frequencies_hz,
+            "min_growth_per_s": np.array(float(self.min_growth or 0.0)),
+            "parameters": np.array(json.dumps(info)),
+        }
+        if self.boundaries is not None:
+            b, found = self.boundaries, self.tongues or []
+            arrays.update({
+                "boundary_freq_hz": b.freq_hz,
+                "boundary_p_f_bar": b.amplitude / PA_PER_BAR,
+                "boundary_kinds": np.array(KINDS[1:]),
+                "boundary_p_max_bar": np.array(b.p_max / PA_PER_BAR),
+                "tongue_number": np.array([t.number or 0 for t in found],
+                                          dtype=int),
+                "tongue_kind": np.array([t.kind for t in found], dtype=str),
+                "tongue_resonance": np.array([t.resonance or ""
+                                              for t in found], dtype=str),
+                "tongue_tip_freq_hz": np.array([t.tip_freq_hz
+                                                for t in found]),
+                "tongue_tip_p_f_bar": np.array([t.tip_p_f / PA_PER_BAR
+                                                for t in found])})
+        save_npz(path, arrays)
+
+    def figure(self, title=None, stacked=False):
+        from stability.plotting import map_figure
+        return map_figure(self.map, title=title, tongues=self.tongues,
+                          boundaries=self.boundaries,
+                          min_growth=self.min_growth, stacked=stacked)

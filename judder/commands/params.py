@@ -1,0 +1,80 @@
+"""``judder params``: show, or save as TOML, a parameter set.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`params` and
+its result :class:`ParamsResult`.
+"""
+
+from dataclasses import dataclass
+
+from drivelines import dumps_toml
+from infra.files import write_text
+
+from ._arguments import model_options
+from ._common import resolve
+from ._model import parameters_of
+from ._output import emit, make_parents
+
+DESCRIPTION = 'Show a parameter set with units, or save it (--save FILE.toml) to edit and load with --param-file.'
+
+
+OUTPUTS = (('save', '--save', ('toml',)),)
+
+
+def add_arguments(p):
+    """The options of ``judder params``."""
+    model_options(p)
+    p.add_argument("--save", metavar="FILE.toml",
+                   help="write the set as TOML (never overwrites unless "
+                        "--force)")
+    p.add_argument("--force", action="store_true",
+                   help="allow --save to replace an existing file")
+
+
+def run(args):
+    """Show (and optionally save) the parameter set."""
+    result = params(*parameters_of(args))
+    if args.save:
+        make_parents(args.save)
+        result.save(args.save, overwrite=args.force)
+    specs = result.params.specs
+    rows = [f"{'name':22s} {'value':14s} {'unit':10s} {'allowed':24s} "
+            "meaning"]
+    rows += [f"{name:22s} {result.params[name]:<14.6g} {spec.unit:10s} "
+            f"{spec.allowed():24s} {spec.description}"
+            for name, spec in specs.items()]
+    emit(args, {**result.as_dict(), "saved": args.save},
+         f"model {result.params.model}\n" + "\n".join(rows)
+         + (f"\nsaved to {args.save}" if args.save else ""))
+
+
+def params(parameters=None, changes=None):
+    """``judder params``: a parameter set with units and meanings.
+
+    Returns
+    -------
+    ParamsResult
+        ``save(path)`` writes it as TOML.
+    """
+    return ParamsResult(resolve(parameters, changes))
+
+
+@dataclass(frozen=True)
+class ParamsResult:
+    """``judder params``: a parameter set with units and meanings."""
+
+    params: object
+
+    def as_dict(self):
+        specs = self.params.specs
+        return {"model": self.params.model,
+                "parameters": {name: {"value": self.params[name],
+                                      "unit": spec.unit,
+                                      "allowed": spec.allowed(),
+                                      "description": spec.description}
+                               for name, spec in specs.items()}}
+
+    def save(self, path, overwrite=False):
+        """Write the set as TOML (refuses to replace a file by default)."""
+        write_text(path, dumps_toml(self.params), overwrite=overwrite)

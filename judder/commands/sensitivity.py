@@ -1,0 +1,194 @@
+"""``judder sensitivity``: tongue shifts per parameter (Fig. 17, 18).
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`sensitivity` and
+its result :class:`SensitivityResult`.
+"""
+
+from dataclasses import dataclass
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files, write_text
+from infra.units import PA_PER_BAR
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import (force_option, method_option, model_options,
+                         pf_max_option, workers_option)
+from ._common import checked_pf_max, resolve, timed
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_sensitivity, check_work
+from ._records import rows_to_csv
+from ._values import parse_grid, parse_list
+from .tongues import tongue_record
+
+DESCRIPTION = "Vary each parameter (by --factors, or to --values), recompute the boundaries and report how each tongue tip moves in frequency (Hz) and amplitude (bar); checks the paper's conclusions of section 4.3. Clutch-damper study: --params c12 --values 0.5,10."
+
+
+OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf_max", False)
+
+
+#: Multipliers of the nominal value in sensitivity without --factors.
+DEFAULT_FACTORS = "0.5,2"
+
+
+def add_arguments(p):
+    """The options of ``judder sensitivity``."""
+    p.add_argument("--params", required=True, metavar="NAMES",
+                   help="comma-separated parameters, e.g. "
+                        "k12,k24,J1,J2,J3,J4,mu_g,c12")
+    p.add_argument("--factors", metavar="F1,F2",
+                   help="multipliers of the nominal value (default 0.5,2)")
+    p.add_argument("--values", metavar="V1,V2",
+                   help="absolute values (SI) instead of --factors")
+    p.add_argument("--freq", default="10:220:200", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 10:220:200)")
+    pf_max_option(p, "largest amplitude searched")
+    workers_option(p)
+    p.add_argument("--out", metavar="FILE.csv", help="tip-shift table as CSV")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="one panel per parameter: nominal and varied "
+                        "boundaries")
+    method_option(p)
+    model_options(p)
+    force_option(p)
+
+
+def run(args):
+    """Tongue tips and boundaries with parameters varied (Fig. 17, 18)."""
+    names = parse_list(args.params, "--params", str)
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    p_max_bar = checked_pf_max(args)
+    params, changes = parameters_of(args)
+    if args.values is not None and args.factors is not None:
+        raise JudderError(f"--values {args.values} and --factors "
+                          f"{args.factors} given; allowed: one of them")
+    factors = parse_list(args.factors or DEFAULT_FACTORS, "--factors")
+    values = parse_list(args.values, "--values") if args.values else None
+    if values is None:
+        for factor in factors:
+            check_number("--factors", factor, "(factor)")
+        values_now = params.replace(**changes)
+        zero = [n for n in names if n in values_now.specs and
+                values_now[n] == 0]
+        if zero:
+            raise JudderError(
+                f"--params {zero[0]} is 0 in this parameter set, so "
+                "--factors cannot vary it; allowed: --values for it, or a "
+                "parameter with a non-zero value")
+    make_parents(args.out, args.plot)
+    cases = 1 + len(names) * len(values or factors)
+    check_work("--params x --values/--factors", cases, "cases")
+    check_sensitivity(params.replace(**changes), freqs, cases,
+                                args.workers)
+    with Progress(cases, "sensitivity cases") as progress:
+        result = sensitivity(names, freqs, p_max_bar, factors=factors,
+                                 values=values, parameters=params,
+                                 changes=changes, method=args.method,
+                                 workers=args.workers, progress=progress)
+    files = write_outputs(args, result, figure={
+        "title": "sensitivity of the stability boundary (Fig. 17, 18), "
+                 + model_title(args, params)})
+    rows = [f"{'param':>8} {'factor':>7} {'value':>10} {'#':>2} "
+            f"{'tip f [Hz]':>11} {'df [Hz]':>8} {'tip p_f':>8} {'dp_f':>8}"]
+    for r in result.tip_shifts:
+        if r["present"]:
+            rows.append(f"{r['parameter']:>8} {r['factor']:7.3g} "
+                        f"{r['value']:10.4g} {r['tongue']:>2} "
+                        f"{r['tip_freq_hz']:11.3f} {r['d_freq_hz']:+8.2f} "
+                        f"{r['tip_p_f_bar']:8.4f} {r['d_p_f_bar']:+8.4f}")
+        else:
+            rows.append(f"{r['parameter']:>8} {r['factor']:7.3g} "
+                        f"{r['value']:10.4g} {r['tongue']:>2}   above "
+                        f"{p_max_bar:g} bar (gone)")
+    rows += [f"[{'holds' if c['holds'] else 'does NOT hold'}] "
+             f"{c['statement']}: {c['evidence']}" for c in result.conclusions]
+    rows.append(f"{result.cases} cases in {result.seconds:.1f} s")
+    emit(args, {**result.as_dict(), **files},
+         "\n".join(rows) + written(args.out, args.plot))
+
+
+def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
+                values=None, parameters=None, changes=None,
+                method=DEFAULT_METHOD, workers=None, progress=None):
+    """``judder sensitivity``: tongue tips with parameters varied (Fig. 17,
+    18), and the paper's conclusions of section 4.3 where the driveline is
+    the paper's.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Parameters to vary.
+    factors : sequence of float
+        Multipliers of the nominal values (used when ``values`` is None).
+    values : sequence of float, optional
+        Absolute values instead, SI.
+    workers : int, optional
+        Processes (default all cores).
+
+    Returns
+    -------
+    SensitivityResult
+    """
+    from stability.sensitivity import (paper_conclusions, sensitivity_study,
+                                       tip_shifts)
+    nominal = resolve(parameters, changes)
+    for name in names:
+        if name not in nominal.specs:
+            raise JudderError(f"--params: unknown parameter {name!r} for the "
+                              f"{nominal.model} model; allowed names: "
+                              f"{', '.join(nominal.specs)}")
+    study, seconds = timed(
+        sensitivity_study, nominal, names, freq_hz, p_max_bar * PA_PER_BAR,
+        factors=factors, values=values, method=method, workers=workers,
+        callback=progress)
+    conclusions = (paper_conclusions(study)
+                   if nominal.driveline is not None
+                   and nominal.driveline.paper_sensitivity else [])
+    return SensitivityResult(params=nominal, study=study,
+                             tip_shifts=tip_shifts(study),
+                             conclusions=conclusions, seconds=seconds,
+                             method=method)
+
+
+@dataclass(frozen=True)
+class SensitivityResult:
+    """``judder sensitivity``: tip shifts per varied parameter.
+
+    ``study`` is the :class:`stability.sensitivity.SensitivityStudy`;
+    ``tip_shifts`` and ``conclusions`` as
+    :func:`stability.sensitivity.tip_shifts` and
+    :func:`stability.sensitivity.paper_conclusions` give them.
+    """
+
+    params: object
+    study: object
+    tip_shifts: list
+    conclusions: list
+    seconds: float
+    method: str
+
+    @property
+    def cases(self):
+        return 1 + len(self.study.cases)
+
+    def as_dict(self):
+        return {"model": self.params.model, "method": self.method,
+                "seconds": self.seconds, "cases": self.cases,
+                "nominal_tongues": [tongue_record(t)
+                                    for t in self.study.nominal.tongues],
+                "tip_shifts": self.tip_shifts,
+                "paper_conclusions": self.conclusions}
+
+    @keeps_foreign_files
+    def save(self, path):
+        write_text(path, rows_to_csv(self.tip_shifts))
+
+    def figure(self, title=None):
+        return self.study.plot(
+            title=title or f"{self.params.model}: sensitivity of the "
+                           "stability boundary", params=self.params)

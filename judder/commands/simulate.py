@@ -1,0 +1,258 @@
+"""``judder simulate``: bench engagement with dither (Fig. 7, 8), run through the FMU.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`simulate` and
+its result :class:`SimulationResult`.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from infra.errors import JudderError, check_number
+from infra.files import keeps_foreign_files
+from infra.units import PA_PER_BAR
+from stability import floquet as floquet_kernel
+from stability.model import build_driveline
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import force_option, method_option, model_options
+from ._bench import (added_damping, bench_fmu, bench_values, float_option,
+                     linear_validity, operating_friction)
+from ._common import resolve
+from ._model import model_title, parameters_of
+from ._output import emit, make_parents, write_outputs, written
+
+DESCRIPTION = "Engagement of the EVEN clutch at 1000 rpm on the test-bench model (TestBenchEngagement FMU, built if needed), run with fmpy. Writes the time histories (SI units) and reports the spectrum peaks of the upstream speed and of the pressure, the judder verdict, kind and growth as judder chart reads them, and the Floquet verdict of the bench's linearisation (c1 + d_control, the friction curve's value and slope at the slip), and whether the dither's forced slip swing stays within the curve's linear range (else the run need not follow that verdict). With --modelica CLASS: the class's FMU (built by the project's compiler) from its start values, a steady slip, with the dither, and the Floquet verdict of its linearisation; --fmu is refused (its Jacobian is all the FMU path reads)."
+
+
+OUTPUTS = (('out', '--out', ('csv', 'mf4')), ('plot', '--plot', None))
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf", False)
+
+
+def add_arguments(p):
+    """The options of ``judder simulate``."""
+    p.add_argument("--freq", type=str, required=True, metavar="HZ[,HZ...]",
+                   help="dither frequency, Hz; several (e.g. 86,206) give "
+                        "one engagement each, side by side, with their "
+                        "spectra overlaid (Fig. 1, Fig. 8)")
+    p.add_argument("--pf", type=str, required=True, metavar="BAR",
+                   help="dither amplitude, bar")
+    p.add_argument("--duration", type=str, metavar="S",
+                   help="simulated time, s (default: the model's "
+                        "StopTime, 4 s for the bench)")
+    p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
+                   help="also run a correct engagement: without dither, or "
+                        "with dither at HZ; plotted side by side (Fig. 7)")
+    p.add_argument("--bench", action="append", default=[],
+                   metavar="NAME=VALUE",
+                   help="bench parameter of the model (SI, or with a "
+                        "unit: w_motor=1500rpm): w_motor, w_gearbox (the "
+                        "steady slip is w_motor - w_gearbox), w_op and "
+                        "delta_mu (the EVEN friction curve: mu0 and mu_g "
+                        "are its value and slope at the slip w_op, mu stays "
+                        "within mu0 +- delta_mu), t_engage, t_ramp, "
+                        "p_load, load_share (REV torque over the EVEN "
+                        "mean torque: 1 keeps the slip steady), N_c_load, "
+                        "d_control; repeatable (not with --modelica: set "
+                        "the class's parameters with --set)")
+    p.add_argument("--out", metavar="run.csv|run.mf4",
+                   help="time histories as CSV or ASAM MDF4")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="time histories and spectra")
+    method_option(p)
+    model_options(p)
+    force_option(p)
+
+
+def run(args):
+    """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
+    freqs = [check_number("--freq", f, "Hz") for f in args.freq]
+    check_number("--pf", args.pf, "bar", strict=False)
+    check_number("--duration", args.duration, "s")
+    params, changes = parameters_of(args)
+    bench = bench_values(args.bench)
+    compare = None if args.compare is None else (
+        "none" if args.compare == "none" else
+        check_number("--compare", float_option(args.compare, "--compare"), "Hz"))
+    make_parents(args.out, args.plot)
+    result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
+                          duration=args.duration,
+                          compare=compare, bench=bench, parameters=params,
+                          changes=changes, method=args.method)
+    files = write_outputs(
+        args, result,
+        figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
+                          "8)" if params.driveline is not None else
+                          "time-domain run with dither")
+                + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
+                  f"parameters of {model_title(args, params)}"})
+    emit(args, {**result.as_dict(), **files},
+         "\n".join(_engagement_line(s) for s in result.summaries)
+         + written(args.out, args.plot))
+
+
+def _engagement_line(s):
+    growth = s["judder_growth_per_s"]
+    return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
+            f"{s['p_f_bar']:g} bar; upstream speed peak "
+            f"{s['speed_peak_amplitude_rpm']:.3g} rpm at "
+            f"{s['speed_peak_freq_hz']:.2f} Hz"
+            + (" (the dither frequency)"
+               if s["peak_at_dither_frequency"] else "")
+            + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
+            + ("" if s["judder"] is None else
+               "; judder: " + (s["judder_kind"] if s["judder"] else "none")
+               + ("" if growth is None else
+                  f" (non-periodic part grows at {growth:+.2f} 1/s)"))
+            + f"; Floquet at this point: {s['floquet_kind']} "
+              f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
+            + ("" if s.get("linearisation_holds") is not False else
+               f"; nonlinear: the dither's forced slip swing "
+               f"(+-{s['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
+               f"the friction curve's linear range "
+               f"(+-{s['friction_linear_range_rad_s']:.2g} rad/s), so the "
+               "run need not follow the Floquet verdict"))
+
+
+def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
+             parameters=None, changes=None, method=DEFAULT_METHOD):
+    """``judder simulate``: an engagement on the driveline's bench model
+    (Fig. 7, 8), run through its FMU, with the Floquet verdict of each
+    dither setting for the bench's linearisation (the damping its motor
+    control adds, :attr:`drivelines.DrivelineModel.bench_damping`).
+
+    A Modelica class (:class:`drivelines.modelica.ModelicaParameters`)
+    runs instead through its own FMU (the one ``crosscheck`` runs, see
+    :mod:`judder.timedomain`) from its start values, a steady slip, with
+    the dither; the Floquet verdict is that of its linearisation. An FMU
+    of ``--fmu`` is refused: it has no time-domain model here.
+
+    Parameters
+    ----------
+    freq_hz : float or sequence of float
+        Dither frequency, Hz; several give one engagement each (Fig. 1,
+        Fig. 8).
+    p_f_bar : float
+        Dither amplitude, bar.
+    duration : float, optional
+        Simulated time, s (default: the model's).
+    compare : 'none' or float, optional
+        Also run a correct engagement: ``'none'`` without dither, a number
+        with dither at that frequency (Hz).
+    bench : dict, optional
+        Further parameters of the bench model (``w_motor``, ...), SI; not
+        for a Modelica class (its parameters are ``changes``).
+
+    Returns
+    -------
+    SimulationResult
+    """
+    from drivelines.registry import SIGNALS
+    from pysim.engagement import engagement_summary
+    from pysim.runs import parameter_default, run_fmu
+
+    from ..timedomain import class_fmu, run_values
+    values = resolve(parameters, changes)
+    bench = dict(bench or {})
+    if values.driveline is not None:
+        model_class, fmu = bench_fmu(values)
+        ramp_end = sum(bench.get(name, parameter_default(fmu, name))
+                       for name in ("t_engage", "t_ramp"))
+        run_params, extra = values, bench
+        # the bench's linearisation: its motor control damps body 1, and
+        # its friction curve has its own value and slope at the slip
+        friction, linear_slip = operating_friction(values, fmu, bench)
+        driveline = build_driveline(values.replace(
+            **{name: values[name] + value for name, value in
+               added_damping(values, fmu, bench).items()}, **friction))
+    else:
+        fmu = class_fmu(values, "simulate")
+        if bench:
+            raise JudderError(f"--bench {', '.join(bench)} is not allowed "
+                              f"with the class {values.model}; allowed: "
+                              "its parameters with --set (the bench "
+                              "parameters belong to the bench model)")
+        model_class, ramp_end = values.model, 0.0   # starts slipping
+        run_params, extra = run_values(values)
+        driveline, linear_slip = build_driveline(values), None
+    if duration is not None and duration <= ramp_end:
+        raise JudderError(f"duration {duration:g} s ends before the "
+                          f"engagement (its pressure ramp ends at "
+                          f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
+    freqs = [float(f) for f in np.atleast_1d(freq_hz)]
+    settings = ([("with dither", freqs[0], p_f_bar * PA_PER_BAR)]
+                if len(freqs) == 1 else
+                [(f"dither at {f:g} Hz", f, p_f_bar * PA_PER_BAR)
+                 for f in freqs])
+    freq_hz = freqs[0]
+    if compare is not None:
+        settings.append(("without dither", freq_hz, 0.0)
+                        if compare == "none" else
+                        (f"dither at {float(compare):g} Hz", float(compare),
+                         p_f_bar * PA_PER_BAR))
+    interval = min(1e-3, 1.0 / (20 * max(f for _, f, _ in settings)))
+    runs = [(label, run_fmu(fmu, freq, p_f, params=run_params, extra=extra,
+                            duration=duration, output_interval=interval))
+            for label, freq, p_f in settings]
+    summaries = []
+    for label, run in runs:
+        linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
+                                method=method)
+        summaries.append({"label": label,
+                          **engagement_summary(run, ramp_end),
+                          "floquet_kind": linear.kind,
+                          "floquet_exponent_per_s": linear.growth_rate,
+                          **linear_validity(driveline, run, linear_slip)})
+    return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
+                            model_class=model_class, start=ramp_end,
+                            signals=dict(SIGNALS))
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """``judder simulate``: bench engagements through the FMU.
+
+    Attributes
+    ----------
+    runs : list of (str, pysim.runs.Run)
+        Labelled runs: the setting asked for first, then the comparison.
+    summaries : list of dict
+        Per run, :func:`pysim.engagement.engagement_summary` plus its
+        ``label`` and the Floquet verdict of its dither setting
+        (``floquet_kind``, ``floquet_exponent_per_s``).
+    fmu : path
+    model_class : str
+    start : float
+        End of the pressure ramp, s.
+    """
+
+    runs: list
+    summaries: list
+    fmu: object
+    model_class: str
+    start: float
+    signals: dict = field(default_factory=dict)
+
+    def as_dict(self):
+        return {"model": self.model_class.rsplit(".", 1)[-1],
+                "fmu": str(self.fmu), "runs": self.summaries}
+
+    @keeps_foreign_files
+    def save(self, path):
+        """Time histories of the first run as CSV or MF4 (by suffix)."""
+        from pysim.export import write_run
+        run = self.runs[0][1]
+        write_run(path, run.time, run.signals, self.signals,
+                  {"model": self.model_class, "freq_hz": run.freq_hz,
+                   "p_f_bar": run.p_f / PA_PER_BAR,
+                   "start_values": run.start_values})
+
+    def figure(self, title=None):
+        from pysim.engagement import verdict_line
+        from pysim.plotting import run_figure
+        return run_figure(self.runs, start=self.start, title=title,
+                          verdicts=[verdict_line(s) for s in self.summaries])

@@ -1,0 +1,155 @@
+"""``judder threshold``: friction-gradient threshold without dither (Fig. 19).
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`threshold` and
+its result :class:`ThresholdResult`.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from drivelines.specs import MEAN_PRESSURE_DAMPING
+from infra.errors import JudderError
+from infra.files import keeps_foreign_files, write_text
+
+from ._arguments import force_option, model_options
+from ._common import resolve
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import parse_grid
+
+DESCRIPTION = 'Largest real part of the eigenvalues without dither against mu_g (Fig. 19a), and the threshold mu_g* against the external damping c_i (Fig. 19b; every c_i set to the value). Uses the mean pressure in the damping (mean_pressure_damping = 1) unless --set gives it.'
+
+
+OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+
+
+def add_arguments(p):
+    """The options of ``judder threshold``."""
+    p.add_argument("--mu-g", default="-0.001:0.001:81",
+                   metavar="START:STOP:N",
+                   help="friction gradients for Fig. 19a, s/rad")
+    p.add_argument("--c-ext", default="0:2:41", metavar="START:STOP:N",
+                   help="external damping values for Fig. 19b, N m s/rad")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="threshold against c_i as CSV")
+    p.add_argument("--plot", metavar="FILE.png", help="Fig. 19a and 19b")
+    model_options(p, modelica=False)
+    force_option(p)
+
+
+def run(args):
+    """Friction-gradient threshold without dither (Fig. 19)."""
+    mu_g = parse_grid(args.mu_g, "--mu-g", "s/rad", allow_negative=True)
+    damping = parse_grid(args.c_ext, "--c-ext", "N m s/rad")
+    params, changes = parameters_of(args)
+    make_parents(args.out, args.plot)
+    with Progress(len(damping), "threshold") as progress:
+        result = threshold(mu_g, damping, params, changes,
+                               progress=progress)
+    files = write_outputs(args, result,
+                           figure={"title": model_title(args, params)})
+    study = result.study
+    text = (f"threshold mu_g* = {study.threshold:.6g} s/rad for this set "
+            f"(unstable without dither below it)")
+    if result.slope is not None:
+        text += (f"\nthreshold against c_i: slope {result.slope:.4g} s/rad "
+                 f"per N m s/rad over c_i = {damping[0]:g}..{damping[-1]:g}")
+    emit(args, {**result.as_dict(), **files},
+         text + written(args.out, args.plot))
+
+
+def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
+    """``judder threshold``: the friction-gradient threshold without
+    dither (Fig. 19).
+
+    Fig. 19 needs the mean pressure in the slip damping, so
+    ``mean_pressure_damping`` is 1 here unless ``changes`` sets it.
+
+    Parameters
+    ----------
+    mu_g : array_like
+        Friction gradients for Fig. 19a, s/rad.
+    c_ext : array_like
+        Values of every external damping c_i for Fig. 19b, N m s/rad.
+
+    Returns
+    -------
+    ThresholdResult
+
+    Examples
+    --------
+    With every c_i = 0.1 N m s/rad the threshold is -1.25e-4 c_i:
+
+    >>> r = threshold([0.0], [0.1])
+    >>> round(float(r.study.threshold), 10)
+    -1.25e-05
+    """
+    from stability.threshold import threshold_study
+    changes = dict(changes or {})
+    base = resolve(parameters, {})
+    if base.driveline is None:
+        raise JudderError(f"threshold of {base.model} is not possible: "
+                          "Fig. 19 varies mu_g and the external dampings "
+                          "of the paper's chains by their roles; allowed: "
+                          "a preset or a parameter file of one")
+    changes.setdefault(MEAN_PRESSURE_DAMPING, 1.0)
+    values = resolve(parameters, changes)
+    study = threshold_study(values, mu_g, c_ext, callback=progress)
+    return ThresholdResult(params=values, study=study)
+
+
+@dataclass(frozen=True)
+class ThresholdResult:
+    """``judder threshold``: Fig. 19 (a :class:`stability.threshold.ThresholdStudy`)."""
+
+    params: object
+    study: object
+
+    @property
+    def slope(self):
+        """Slope of the threshold against c_i, s/rad per N m s/rad (None
+        with one c_i)."""
+        s = self.study
+        if len(s.external_damping) < 2:
+            return None
+        return float(np.polyfit(s.external_damping, s.thresholds, 1)[0])
+
+    def as_dict(self):
+        s = self.study
+        return {"model": self.params.model,
+                "mean_pressure_damping":
+                    self.params["mean_pressure_damping"],
+                "mu_g": s.mu_g, "max_real_part_per_s": s.max_real_part,
+                "mu_g_threshold": s.threshold,
+                "external_damping": s.external_damping,
+                "mu_g_thresholds": s.thresholds,
+                "mu_g_thresholds_closed_form": s.closed_form,
+                "slope": self.slope}
+
+    @keeps_foreign_files
+    def save(self, path):
+        s = self.study
+        lines = ["c_ext,mu_g_threshold,mu_g_threshold_closed_form"] + [
+            f"{c:.9g},{m:.9g},{k:.9g}" for c, m, k in
+            zip(s.external_damping, s.thresholds, s.closed_form)]
+        write_text(path, "\n".join(lines) + "\n")
+
+    def figure(self, title=None):
+        import matplotlib.pyplot as plt
+
+        from stability import build_driveline
+        from stability.plotting import figure_title, plot_threshold
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
+                                 layout="constrained")
+        driveline = build_driveline(self.params)
+        plot_threshold(self.study, axes=axes,
+                       own=(float(np.mean(driveline.external_damping)),
+                            float(self.params["mu_g"])))
+        figure_title(fig, f"Fig. 19 without dither, "
+                     f"{title or self.params.model + ' driveline'}: the "
+                     "mean pressure's damping in the slip damping (the maps "
+                     "keep only the dither's part)", fontsize=10)
+        return fig

@@ -1,0 +1,231 @@
+"""``judder tongues``: tongue boundaries, labels and tips.
+
+One module holds the command: its options (:func:`add_arguments`),
+the command line's work (:func:`run`: preflight checks, the API call,
+the output files, text or JSON), the API function :func:`tongues` and
+its result :class:`TonguesResult`.
+"""
+
+from dataclasses import dataclass
+import math
+import time
+
+import numpy as np
+
+from infra.errors import check_number
+from infra.files import keeps_foreign_files, write_text
+from infra.units import PA_PER_BAR
+from stability.maps import stability_map as map_kernel
+from stability.monodromy import DEFAULT_METHOD
+
+from ._arguments import (force_option, method_option, model_options,
+                         pf_max_option, waveform_option)
+from ._common import BACKGROUND_AMPLITUDES, checked_pf_max, dithered, resolve
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_tongues
+from ._values import parse_grid, parse_waveform
+
+DESCRIPTION = "Exact tongue boundaries by Hill's method (--solver hill: every kind, all frequencies at once; scan: combination by Brent's method on the monodromy); each point checked against the monodromy. Tongues numbered as in Fig. 14, with their tips (lowest p_f)."
+
+
+OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+#: The option holding the largest dither amplitude, and whether it is a
+#: grid (checked against the mean pressure before the work).
+AMPLITUDE = ("pf_max", False)
+
+
+def add_arguments(p):
+    """The options of ``judder tongues``."""
+    p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
+                   help="dither frequencies, Hz (default 10:220:500)")
+    pf_max_option(p, "largest amplitude searched")
+    p.add_argument("--min-growth", type=str, default=0.0, metavar="1/S",
+                   help="boundaries of judder growing at least this fast, "
+                        "1/s (default 0: the stability boundaries of Fig. "
+                        "14; map, check and advise use 1, one e-fold per "
+                        "1 s engagement, the judder-relevant rate)")
+    p.add_argument("--solver", default="hill", choices=("hill", "scan"),
+                   help="boundary solver: hill (default, fast) or scan "
+                        "(per frequency, Brent on the monodromy)")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
+                        "if none), then per kind, bar")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="boundaries drawn over the map (Fig. 16)")
+    method_option(p)
+    model_options(p)
+    waveform_option(p)
+    force_option(p)
+
+
+def run(args):
+    """Tongue boundaries, labels and tips."""
+    freqs = parse_grid(args.freq, "--freq", "Hz")
+    params, changes = parameters_of(args)
+    waveform = parse_waveform(args.dither_wave)
+    check_tongues(params.replace(**changes), freqs,
+                            background=args.plot is not None)
+    make_parents(args.out, args.plot)
+    with Progress(len(freqs), "tongue boundaries") as progress:
+        result = tongues(freqs, checked_pf_max(args), params, changes,
+                             method=args.method, waveform=waveform,
+                             background=args.plot is not None,
+                             progress=progress,
+                             min_growth=check_number("--min-growth",
+                                                     args.min_growth, "1/s",
+                                                     low=-math.inf),
+                             solver=args.solver)
+    data = {**result.as_dict(), **write_outputs(args, result, figure={
+        "title": f"tongue boundaries over the map, "
+                 f"{model_title(args, params)}"})}
+    rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
+            f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
+    for r in data["tongues"]:
+        offset = ("" if r["tip_offset_percent"] is None
+                  else f"{r['tip_offset_percent']:+.2f} %")
+        rows.append(f"{r['number'] or '-':>3} {r['kind']:14s} "
+                    f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
+                    f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
+                    + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    missing = _missing_tongues(result, freqs, checked_pf_max(args))
+    if missing:
+        rows.append(missing)
+    rows.append(f"{len(freqs)} frequencies in {result.seconds:.2f} s; "
+                "boundary points within "
+                f"{result.boundaries.max_multiplier_error:.1e} of the unit "
+                "circle")
+    emit(args, data, "\n".join(rows) + written(args.out, args.plot))
+
+
+def _missing_tongues(result, freqs, p_max_bar):
+    """A line naming the numbers no tongue got (numbers follow the
+    resonances, Fig. 14's scheme for every mode), or ''."""
+    from stability.tongues import resonances
+    found = {t.number for t in result.tongues}
+    gone = [f"{number} ({label}, {hz:.3g} Hz)" for number, label, hz, _
+            in resonances(result.boundaries.natural_frequencies_hz)
+            if number not in found]
+    return ("" if not gone else
+            "numbered by resonance; no tongue in "
+            f"{freqs[0]:g}-{freqs[-1]:g} Hz up to {p_max_bar:g} bar for "
+            + ", ".join(gone))
+
+
+def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
+            method=DEFAULT_METHOD, background=False, progress=None,
+            min_growth=0.0, solver="hill", waveform=None):
+    """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
+    14) and tips.
+
+    Parameters
+    ----------
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_max_bar : float
+        Largest amplitude searched, bar.
+    background : bool
+        Also compute the map drawn under the boundaries by ``figure()``
+        (:data:`BACKGROUND_AMPLITUDES` amplitudes from 0 to ``p_max``).
+    min_growth : float
+        1/s: boundaries of judder growing at least this fast (0: the
+        stability boundaries).
+    solver : str
+        Boundary solver, a key of :data:`stability.tongues.SOLVERS`.
+    waveform : object, optional
+        Dither shape (:mod:`stability.waveforms`); default the cosine.
+
+    Returns
+    -------
+    TonguesResult
+    """
+    from stability.tongues import find_tongues, tongue_boundaries
+    values = resolve(parameters, changes)
+    driveline = dithered(values, waveform)
+    p_max = p_max_bar * PA_PER_BAR
+    started = time.perf_counter()
+    boundaries = tongue_boundaries(driveline, freq_hz, p_max, method,
+                                   callback=progress, min_growth=min_growth,
+                                   solver=solver)
+    found = find_tongues(driveline, boundaries)
+    seconds = time.perf_counter() - started
+    under = (map_kernel(driveline, freq_hz,
+                        np.linspace(0, p_max, BACKGROUND_AMPLITUDES),
+                        method=method) if background else None)
+    return TonguesResult(params=values, boundaries=boundaries,
+                         tongues=found, seconds=seconds, background=under)
+
+
+def tongue_record(tongue):
+    """A :class:`stability.tongues.Tongue` as JSON fields (bar, Hz)."""
+    return {"number": tongue.number, "kind": tongue.kind,
+            "resonance": tongue.resonance,
+            "resonance_hz": tongue.resonance_hz,
+            "tip_freq_hz": tongue.tip_freq_hz,
+            "tip_p_f_bar": tongue.tip_p_f / PA_PER_BAR,
+            "tip_offset_percent": None if tongue.resonance_hz is None else
+            100 * (tongue.tip_freq_hz / tongue.resonance_hz - 1),
+            "tip_multiplier_error": tongue.tip_multiplier_error,
+            "freq_range_hz": list(tongue.freq_range_hz),
+            "tip_at_edge": tongue.tip_at_edge}
+
+
+@dataclass(frozen=True)
+class TonguesResult:
+    """``judder tongues``: exact boundaries, labelled tongues and tips.
+
+    ``boundaries`` is a :class:`stability.tongues.Boundaries`, ``tongues``
+    a list of :class:`stability.tongues.Tongue`; ``background`` the map
+    drawn under them (None unless asked for).
+    """
+
+    params: object
+    boundaries: object
+    tongues: list
+    seconds: float
+    background: object = None
+
+    def as_dict(self):
+        b = self.boundaries
+        return {"model": self.params.model, "method": b.method,
+                "min_growth_per_s": b.min_growth, "seconds": self.seconds,
+                "freq_hz": [b.freq_hz[0], b.freq_hz[-1], len(b.freq_hz)],
+                "p_max_bar": b.p_max / PA_PER_BAR,
+                "max_boundary_multiplier_error": b.max_multiplier_error,
+                "natural_frequencies_hz": b.natural_frequencies_hz,
+                "tongues": [tongue_record(t) for t in self.tongues]}
+
+    def csv_text(self):
+        """Boundaries as CSV: freq_hz, p_f_bar (lowest, empty if none),
+        then the lowest boundary of each kind, bar; a first comment gives
+        the growth rate they are the boundaries of (``judder fit
+        --boundary`` compares with the model's boundary of that rate)."""
+        b = self.boundaries
+        lines = [f"# min_growth_per_s: {b.min_growth:g}",
+                 "freq_hz,p_f_bar,single_period_bar,double_period_bar,"
+                 "combination_bar"]
+
+        def cell(value):
+            return "" if not math.isfinite(value) \
+                else f"{value / PA_PER_BAR:.9g}"
+        for f, lowest, row in zip(b.freq_hz, b.stability_boundary,
+                                  b.amplitude):
+            lines.append(",".join([f"{f:.9g}", cell(lowest)]
+                                  + [cell(v) for v in row]))
+        return "\n".join(lines) + "\n"
+
+    @keeps_foreign_files
+    def save(self, path):
+        write_text(path, self.csv_text())
+
+    def figure(self, title=None):
+        from stability.plotting import tongues_figure
+        from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+
+        # the map's shading as `judder map` draws it: slower growth than
+        # the judder-relevant rate grey
+        return tongues_figure(
+            self.boundaries, self.tongues, self.background,
+            title=title or f"{self.params.model}: tongue boundaries over "
+                           "the map",
+            min_growth=self.boundaries.min_growth or DEFAULT_MIN_GROWTH_PER_S)
