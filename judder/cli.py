@@ -18,6 +18,7 @@ imported (``judder --help`` imports none).
 """
 
 import argparse
+import re
 import sys
 
 from .commands import COMMANDS, command_module
@@ -51,6 +52,23 @@ class _VersionAction(argparse.Action):
         parser.exit()
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, with the project's one-line errors for option values.
+
+    A value refused by its ``type=`` parser (:mod:`judder.commands._values`)
+    names the option, the value and what is allowed; it is reported as
+    every input error is (``judder: error: ...``, exit status 2), without
+    argparse's usage lines.
+    """
+
+    def error(self, message):
+        value_error = re.match(r"argument [^:]+: (--\S+ .*)$", message, re.S)
+        if value_error:
+            from infra.errors import JudderError
+            raise JudderError(value_error.group(1))
+        super().error(message)
+
+
 def build_parser(commands=None):
     """The argparse parser of ``judder``.
 
@@ -61,7 +79,7 @@ def build_parser(commands=None):
         imported); the others are listed with their summary only. Default:
         every command.
     """
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="judder",
         description="Clutch judder from parametric excitation by hydraulic "
                     "dither: Floquet stability of the 3-DOF and 4-DOF "
@@ -122,8 +140,6 @@ def main(argv=None):
 
             from .commands._output import check_outputs
             from .commands._model import check_plausible
-            from .commands._values import normalise_options
-        normalise_options(args)
         check_outputs(args)
         check_plausible(args)
         # the kernels work on many tiny matrices: BLAS threads only contend

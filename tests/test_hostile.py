@@ -226,7 +226,7 @@ CASES = [
     (["check", "--freq", "100", "--pf", "0.3", "--pf-max", "0.2"], 2,
      ["--pf-max 0.2 bar", "above the largest setting, 0.3 bar"]),
     (["advise", "--no-design", "--margin-hz", "-1"], 2,
-     ["--margin-hz -1 Hz", ">= 0"]),
+     ["--margin-hz -1", ">= 0 Hz"]),
     # argparse itself
     (["eig", "--bogus"], 2, ["unrecognized"]),
     (["floquet"], 2, ["required"]),

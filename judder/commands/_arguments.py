@@ -9,6 +9,8 @@ from drivelines import DEFAULT_MODEL, MODELS, PRESETS
 from stability.monodromy import DEFAULT_METHOD, METHODS
 from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 
+from ._values import MIN_GROWTH, PF_MAX, WORKERS
+
 MIN_GROWTH_HELP = (
     "judder-relevant growth rate, 1/s: an instability growing slower "
     "than this stays below one e-fold over a {:g} s engagement (the "
@@ -91,12 +93,12 @@ def waveform_option(parser):
 
 
 def pf_max_option(parser, meaning):
-    parser.add_argument("--pf-max", type=str, default=1.5, metavar="BAR",
+    parser.add_argument("--pf-max", type=PF_MAX, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
 
 
 def workers_option(parser, default="all cores"):
-    parser.add_argument("--workers", type=int, default=None,
+    parser.add_argument("--workers", type=WORKERS, default=None,
                         help="local worker processes of a Dask cluster "
                              f"started for the command (default: {default}; "
                              "1 runs everything in this process)")
@@ -106,7 +108,7 @@ def workers_option(parser, default="all cores"):
 
 
 def min_growth_option(parser, extra=""):
-    parser.add_argument("--min-growth", type=str,
+    parser.add_argument("--min-growth", type=MIN_GROWTH,
                         default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
                         help=MIN_GROWTH_HELP + extra)
 

@@ -5,15 +5,11 @@ the dithered driveline, timing, and the checks of parameter names.
 import time
 
 from drivelines import DEFAULT_MODEL, default_preset, get_preset
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from stability.model import build_driveline
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
-
-
-def checked_pf_max(args):
-    return check_number("--pf-max", args.pf_max, "bar")
 
 
 def resolve(parameters, changes):

@@ -6,12 +6,13 @@ its explicit changes (:func:`parameters_of`), its title on figures, and
 the warning when the dither amplitude reaches the mean pressure.
 """
 
+import numpy as np
+
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
 from ..inputs import load_parameters, read_input
-from ._values import (check_file_pressure, check_plain_pressure,
-                      check_pressures, parse_grid)
+from ._values import check_file_pressure, check_plain_pressure, check_pressures
 
 
 def parameters_of(args):
@@ -129,11 +130,10 @@ def check_plausible(args):
 
     if args.amplitude is None:
         return
-    attribute, grid = args.amplitude
-    value = getattr(args, attribute, None)
+    value = getattr(args, args.amplitude, None)
     if value is None:
         return
-    p_max_bar = parse_grid(value, "--pf", "bar").max() if grid else value
+    p_max_bar = float(np.max(value))
     params, _ = parameters_of(args)
     check_pressures(p_max_bar * PA_PER_BAR, params,
-                    "--pf" if attribute == "pf" else "--pf-max")
+                    "--pf" if args.amplitude == "pf" else "--pf-max")

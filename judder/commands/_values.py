@@ -12,6 +12,7 @@ Grids (``START:STOP:N``), lists and dither waveforms are parsed here too.
 Nothing here knows a command.
 """
 
+import argparse
 import math
 import sys
 
@@ -45,29 +46,13 @@ MAX_WORKERS = 256
 MAX_DURATION_S = 3600.0
 
 
-#: Options holding one number: attribute -> (option, unit, low, high,
-#: low_open). ``freq`` and ``pf`` are single values only in these
-#: commands (elsewhere they are grids).
-_SINGLE = {"freq": ("--freq", "Hz", *FREQ_RANGE_HZ, False),
-           "pf": ("--pf", "bar", 0.0, math.inf, False),
-           "pf_max": ("--pf-max", "bar", 0.0, math.inf, True),
-           "duration": ("--duration", "s", 0.0, MAX_DURATION_S, True),
-           "min_growth": ("--min-growth", "1/s", 0.0, math.inf, False),
-           "noise_rpm": ("--noise-rpm", "rpm", 0.0, math.inf, False),
-           "min_amplitude": ("--min-amplitude", "rpm", 0.0, math.inf,
-                             False)}
-
-
-_SINGLE_FREQ_COMMANDS = ("floquet", "simulate", "report")
-
-
 def warn(text):
     """A warning line on stderr (the command goes on)."""
     print(f"judder: warning: {text}", file=sys.stderr)
 
 
 def option_value(text, option, unit, low=-math.inf, high=math.inf,
-                 low_open=False):
+                 low_open=False, amplitude=True):
     """A number of an option, in ``unit`` (plain, or with a unit).
 
     Raises
@@ -81,7 +66,7 @@ def option_value(text, option, unit, low=-math.inf, high=math.inf,
             value <= low if low_open else value < low):
         raise JudderError(f"{option} {text} is not allowed; allowed: "
                           f"{allowed}")
-    if unit == "bar" and not has_unit(text):
+    if amplitude and unit == "bar" and not has_unit(text):
         check_amplitudes([value], option, f": write {text}Pa, or give the "
                                           "unit")
     return value
@@ -111,35 +96,122 @@ def _allowed(unit, low, high, low_open):
         else "")
 
 
-def normalise_options(args):
-    """Turn the number options of ``args`` into floats (in their units)
-    and check the whole numbers (--workers, --seed, --starts), before
-    any work."""
-    for attribute, (option, unit, low, high, low_open) in _SINGLE.items():
-        if attribute in ("freq", "pf") and \
-                args.command not in _SINGLE_FREQ_COMMANDS:
-            continue
-        value = getattr(args, attribute, None)
-        if attribute == "freq" and args.command == "simulate":
-            # one engagement per frequency (Fig. 1, 8): a list
-            setattr(args, attribute, [
-                option_value(text.strip(), option, unit, low, high, low_open)
-                for text in value.split(",")])
-        elif isinstance(value, str):
-            setattr(args, attribute, option_value(value, option, unit, low,
-                                                  high, low_open))
-    workers = getattr(args, "workers", None)
-    if workers is not None and not 1 <= workers <= MAX_WORKERS:
-        raise JudderError(f"--workers {workers} is not allowed; allowed: a "
-                          f"whole number from 1 to {MAX_WORKERS}")
-    seed = getattr(args, "seed", None)
-    if seed is not None and not 0 <= seed < 2 ** 63:
-        raise JudderError(f"--seed {seed} is not allowed; allowed: a whole "
-                          "number >= 0")
-    starts = getattr(args, "starts", None)
-    if starts is not None and not 1 <= starts <= 1000:
-        raise JudderError(f"--starts {starts} is not allowed; allowed: a "
-                          "whole number from 1 to 1000")
+class Quantity:
+    """An argparse ``type=``: one number of an option, in ``unit`` (plain)
+    or with a unit of its own (:func:`option_value`), within the allowed
+    range.
+
+    Parameters
+    ----------
+    option : str
+        The option, named in the error message.
+    unit : str
+        The unit of a plain number (Hz, bar, s, rpm, 1/s).
+    low, high : float
+        The allowed range; ``low_open`` excludes ``low`` itself.
+    amplitude : bool
+        A plain number in bar is a dither amplitude: one above
+        :data:`MAX_PLAIN_PF_BAR` is taken for Pa (False for a margin).
+    """
+
+    def __init__(self, option, unit, low=-math.inf, high=math.inf,
+                 low_open=False, amplitude=True):
+        self.option, self.unit = option, unit
+        self.low, self.high, self.low_open = low, high, low_open
+        self.amplitude = amplitude
+
+    def __call__(self, text):
+        try:
+            return option_value(text, self.option, self.unit, self.low,
+                                self.high, self.low_open, self.amplitude)
+        except JudderError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+class QuantityList(Quantity):
+    """An argparse ``type=``: comma-separated numbers, each a
+    :class:`Quantity`."""
+
+    def __call__(self, text):
+        return [super(QuantityList, self).__call__(item.strip())
+                for item in text.split(",")]
+
+
+class WholeNumber:
+    """An argparse ``type=``: a whole number of an option from ``low`` to
+    ``high``."""
+
+    def __init__(self, option, low, high):
+        self.option, self.low, self.high = option, low, high
+
+    def __call__(self, text):
+        try:
+            value = int(text)
+        except ValueError:
+            value = None
+        if value is None or not self.low <= value <= self.high:
+            allowed = (f"from {self.low} to {self.high}"
+                       if self.high < 2 ** 62 else f">= {self.low}")
+            raise argparse.ArgumentTypeError(
+                f"{self.option} {text} is not allowed; allowed: a whole "
+                f"number {allowed}")
+        return value
+
+
+class Grid:
+    """An argparse ``type=``: a grid of an option, ``START:STOP:N`` or a
+    list (:func:`parse_grid`), as an array in ``unit``."""
+
+    def __init__(self, option, unit, allow_negative=False):
+        self.option, self.unit = option, unit
+        self.allow_negative = allow_negative
+
+    def __call__(self, text):
+        try:
+            return parse_grid(text, self.option, self.unit,
+                              self.allow_negative)
+        except JudderError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+class Listed:
+    """An argparse ``type=``: comma-separated values of an option
+    (:func:`parse_list`), each made by ``convert``."""
+
+    def __init__(self, option, convert=float):
+        self.option, self.convert = option, convert
+
+    def __call__(self, text):
+        try:
+            return parse_list(text, self.option, self.convert)
+        except JudderError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+class Settings:
+    """An argparse ``type=``: dither settings of an option, a
+    ``START:STOP:N`` grid or a comma-separated list, each value plain (in
+    ``unit``) or with a unit, in its documented range."""
+
+    def __init__(self, option, unit):
+        self.option, self.unit = option, unit
+
+    def __call__(self, text):
+        if ":" in text:
+            return list(Grid(self.option, self.unit)(text))
+        low, high = FREQ_RANGE_HZ if self.unit == "Hz" else (0.0, math.inf)
+        return Listed(self.option, Quantity(self.option, self.unit, low,
+                                            high))(text)
+
+
+#: The options every command reads alike, as argparse ``type=``.
+FREQ = Quantity("--freq", "Hz", *FREQ_RANGE_HZ)
+PF = Quantity("--pf", "bar", 0.0)
+PF_MAX = Quantity("--pf-max", "bar", 0.0, low_open=True)
+DURATION = Quantity("--duration", "s", 0.0, MAX_DURATION_S, low_open=True)
+MIN_GROWTH = Quantity("--min-growth", "1/s", 0.0)
+WORKERS = WholeNumber("--workers", 1, MAX_WORKERS)
+SEED = WholeNumber("--seed", 0, 2 ** 63 - 1)
 
 
 def check_pressures(p_f_max_pa, params, option="--pf"):

@@ -1,4 +1,5 @@
-"""``judder advise``: safe dither windows and the design change that clears the dither range.
+"""``judder advise``: safe dither windows and the design change that clears
+the dither range.
 
 One module holds the command: its options (:func:`add_arguments`),
 the command line's work (:func:`run`: preflight checks, the API call,
@@ -22,9 +23,20 @@ from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
 from ._records import rows_to_csv
-from ._values import FREQ_RANGE_HZ, check_amplitudes, option_value, parse_list
+from ._values import (FREQ_RANGE_HZ, PF_MAX, Listed, Quantity,
+                      check_amplitudes, option_value)
 
-DESCRIPTION = "(a) The safe (frequency, amplitude) windows inside the valve's operating range, keeping --margin-bar and --margin-hz from every judder-relevant tongue (over every --also parameter set: the broadest region); (b) the ranking of the design parameters by the share of the way out of the window per relative change, and the smallest weighted relative change of them that clears the window of judder, checked by recomputing the Floquet map of the advised design (section 4.3, 5)."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "(a) The safe (frequency, amplitude) windows inside the valve's "
+    "operating range, keeping --margin-bar and --margin-hz from every "
+    "judder-relevant tongue (over every --also parameter set: the "
+    "broadest region); (b) the ranking of the design parameters by the "
+    "share of the way out of the window per relative change, and the "
+    "smallest weighted relative change of them that clears the window "
+    "of judder, checked by recomputing the Floquet map of the advised "
+    "design (section 4.3, 5).")
 
 
 OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
@@ -35,24 +47,29 @@ def add_arguments(p):
     p.add_argument("--freq-range", default="60:200", metavar="LOW:HIGH",
                    help="dither operating frequencies, Hz (default "
                         "%(default)s, the paper's valve)")
-    p.add_argument("--pf-max", type=float, default=0.7, metavar="BAR",
+    p.add_argument("--pf-max", type=PF_MAX, default=0.7, metavar="BAR",
                    help="highest operating dither amplitude, bar (default "
                         "%(default)g)")
-    p.add_argument("--margin-bar", type=float, default=0.1, metavar="BAR",
+    p.add_argument("--margin-bar", type=Quantity("--margin-bar", "bar", 0.0,
+                                               amplitude=False),
+                   default=0.1, metavar="BAR",
                    help="amplitude margin below every tongue, bar (default "
                         "%(default)g)")
-    p.add_argument("--margin-hz", type=float, default=5.0, metavar="HZ",
+    p.add_argument("--margin-hz", type=Quantity("--margin-hz", "Hz", 0.0),
+                   default=5.0, metavar="HZ",
                    help="frequency margin from every tongue edge, Hz "
                         "(default %(default)g)")
     min_growth_option(p)
-    p.add_argument("--params", default=None, metavar="NAMES",
+    p.add_argument("--params", type=Listed("--params", str),
+                   default=None, metavar="NAMES",
                    help="design parameters that may change (default "
                         "J2,J4,k12,k24,c12; for the 3-DOF model its "
                         "inertias, stiffnesses and dampings; for --modelica"
                         "/--fmu those of J2,J4,k12,k24,c12 it has, and "
                         "NAMES is required if it has none: its tunable "
                         "parameters by their names, e.g. k24,J4,k35)")
-    p.add_argument("--weights", default=None, metavar="W[,W...]",
+    p.add_argument("--weights", type=Listed("--weights"),
+                   default=None, metavar="W[,W...]",
                    help="cost of a unit change of ln(value) of each design "
                         "parameter, in the order of --params (default 1 "
                         "each)")
@@ -85,14 +102,7 @@ def run(args):
     if not low < high:
         raise JudderError(f"--freq-range {args.freq_range} is not allowed; "
                           "allowed: LOW < HIGH")
-    names = None if args.params is None else \
-        parse_list(args.params, "--params", str)
-    weights = None if args.weights is None else \
-        parse_list(args.weights, "--weights")
-    check_number("--pf-max", args.pf_max, "bar")
-    check_number("--margin-bar", args.margin_bar, "bar", strict=False)
-    check_number("--margin-hz", args.margin_hz, "Hz", strict=False)
-    check_number("--min-growth", args.min_growth, "1/s", strict=False)
+    names, weights = args.params, args.weights
     check_amplitudes([args.pf_max], "--pf-max")
     check_advise_grid(args.freq_range, low, high, args.margin_hz)
     if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
@@ -106,12 +116,12 @@ def run(args):
     make_parents(args.out, args.plot)
     with Progress(8, "advise") as progress:
         result = advise(params, changes, extra_sets=extra,
-                            freq_range=(low, high), p_max_bar=args.pf_max,
-                            margin_bar=args.margin_bar,
-                            margin_hz=args.margin_hz,
-                            min_growth=args.min_growth, names=names,
-                            weights=weights, design=not args.no_design,
-                            progress=progress)
+                        freq_range=(low, high), p_max_bar=args.pf_max,
+                        margin_bar=args.margin_bar,
+                        margin_hz=args.margin_hz,
+                        min_growth=args.min_growth, names=names,
+                        weights=weights, design=not args.no_design,
+                        progress=progress)
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + written(args.out, args.plot))

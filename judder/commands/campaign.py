@@ -1,4 +1,5 @@
-"""``judder campaign``: bench emulator: engagement acquisitions over a dither grid.
+"""``judder campaign``: bench emulator: engagement acquisitions over a
+dither grid.
 
 One module holds the command: its options (:func:`add_arguments`),
 the command line's work (:func:`run`: preflight checks, the API call,
@@ -9,7 +10,7 @@ its result :class:`CampaignResult`.
 from dataclasses import dataclass
 from pathlib import Path
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import check_folder_writable
 
 from ._arguments import model_options, workers_option
@@ -17,15 +18,23 @@ from ._common import resolve, timed
 from ._model import parameters_of
 from ._output import Progress, emit
 from ._preflight import check_campaign, check_campaign_disk, check_work
-from ._values import parse_grid, parse_list
+from ._values import DURATION, SEED, Grid, Listed, Quantity
 
-DESCRIPTION = 'Emulate a bench campaign (section 3): one engagement per dither frequency x amplitude x engine speed x oil temperature, speeds sampled by a 41-tooth pick-up (684 samples/s at 1000 rpm) with noise, pressure at 1 kHz; one CSV and/or MF4 per run and OUT/index.csv. Runs in parallel; an interrupted or failed campaign resumes when run again.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Emulate a bench campaign (section 3): one engagement per dither "
+    "frequency x amplitude x engine speed x oil temperature, speeds "
+    "sampled by a 41-tooth pick-up (684 samples/s at 1000 rpm) with "
+    "noise, pressure at 1 kHz; one CSV and/or MF4 per run and "
+    "OUT/index.csv. Runs in parallel; an interrupted or failed campaign "
+    "resumes when run again.")
 
 
 OUTPUTS = ()
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf", True)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf"
 
 
 def check_campaign_folder(text):
@@ -44,12 +53,16 @@ def check_outputs(args, seen):
 
 def add_arguments(p):
     """The options of ``judder campaign``."""
-    p.add_argument("--freq", default="70:130:31", metavar="START:STOP:N",
+    p.add_argument("--freq", type=Grid("--freq", "Hz"),
+                   default="70:130:31", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 70:130:31: "
                         "tongues 5, 2 and 6 of the paper's driveline)")
-    p.add_argument("--pf", default="0.1:0.7:7", metavar="START:STOP:N",
+    p.add_argument("--pf", type=Grid("--pf", "bar"),
+                   default="0.1:0.7:7", metavar="START:STOP:N",
                    help="dither amplitudes, bar (default 0.1:0.7:7)")
-    p.add_argument("--rpm", default="1000", metavar="N1,N2",
+    p.add_argument("--rpm", type=Listed("--rpm", Quantity("--rpm", "rpm", 0.0,
+                                                           low_open=True)),
+                   default="1000", metavar="N1,N2",
                    help="engine (motor) speeds, rpm (default 1000; the "
                         "paper also used 1500)")
     p.add_argument("--temperatures", default="65-70", metavar="T1,T2|all",
@@ -57,12 +70,13 @@ def add_arguments(p):
                         "85-90, or all): each run at the middle of its "
                         "range, the external damping scaled with the oil's "
                         "viscosity (pysim.bench.oil_viscosity)")
-    p.add_argument("--duration", type=str, default=3.0, metavar="S",
+    p.add_argument("--duration", type=DURATION, default=3.0, metavar="S",
                    help="length of each engagement, s (default 3: the "
                         "0.6 s pressure ramp, then the judder's growth)")
-    p.add_argument("--noise-rpm", type=str, default=0.5,
+    p.add_argument("--noise-rpm", type=Quantity("--noise-rpm", "rpm", 0.0),
+                   default=0.5,
                    help="speed measurement noise, rpm (default 0.5)")
-    p.add_argument("--seed", type=int, default=1, help="noise seed")
+    p.add_argument("--seed", type=SEED, default=1, help="noise seed")
     p.add_argument("--format", default="csv,mf4", metavar="csv,mf4",
                    help="file formats per run (default both)")
     workers_option(p)
@@ -75,12 +89,11 @@ def add_arguments(p):
 def run(args):
     """Bench emulator: a campaign of engagement acquisitions."""
     from pysim.bench import TEMPERATURES
-    freqs = parse_grid(args.freq, "--freq", "Hz")
-    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    freqs = args.freq
+    amplitudes = args.pf
     if freqs[0] <= 0:
         raise JudderError("--freq: allowed: frequencies > 0 Hz")
-    rpm = [check_number("--rpm", n, "rpm")
-           for n in parse_list(args.rpm, "--rpm")]
+    rpm = args.rpm
     temperatures = (list(TEMPERATURES) if args.temperatures == "all"
                     else [t.strip() for t in args.temperatures.split(",")])
     for option, values in (("--rpm", [f"{n:g}" for n in rpm]),
@@ -94,8 +107,6 @@ def run(args):
     if not set(formats) <= {"csv", "mf4"} or not formats:
         raise JudderError(f"--format {args.format!r}: allowed: csv, mf4 or "
                           "csv,mf4")
-    check_number("--duration", args.duration, "s")
-    check_number("--noise-rpm", args.noise_rpm, "rpm", strict=False)
     params, changes = parameters_of(args)
     runs = (len(freqs) * len(amplitudes) * len(rpm) * len(temperatures))
     check_work("--freq x --pf x --rpm x --temperatures", runs, "runs")
@@ -103,12 +114,12 @@ def run(args):
     check_campaign(runs, args.duration, max(rpm), args.workers)
     with Progress(runs, "bench runs") as progress:
         result = campaign(args.out, freqs, amplitudes, engine_rpm=rpm,
-                              temperatures=temperatures,
-                              duration=args.duration,
-                              noise_rpm=args.noise_rpm, seed=args.seed,
-                              formats=formats, parameters=params,
-                              changes=changes, workers=args.workers,
-                              progress=progress)
+                          temperatures=temperatures,
+                          duration=args.duration,
+                          noise_rpm=args.noise_rpm, seed=args.seed,
+                          formats=formats, parameters=params,
+                          changes=changes, workers=args.workers,
+                          progress=progress)
     data = result.as_dict()
     text = (f"{data['runs']} runs ({data['ok']} ok"
             + (f"; {data['reused']} already in the folder with the same "

@@ -1,4 +1,5 @@
-"""``judder chart``: experimental stability chart from bench acquisitions (Fig. 10, 11).
+"""``judder chart``: experimental stability chart from bench acquisitions
+(Fig. 10, 11).
 
 One module holds the command: its options (:func:`add_arguments`),
 the command line's work (:func:`run`: preflight checks, the API call,
@@ -11,7 +12,7 @@ import time
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from stability.monodromy import DEFAULT_METHOD
 
@@ -19,12 +20,27 @@ from ._arguments import (force_option, method_option, model_options,
                          workers_option)
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import MIN_GROWTH, Quantity
 from .tongues import tongues
 
-DESCRIPTION = "Read engagement acquisitions (a campaign folder, or MF4, CSV, TDMS and MAT files), find in each run the engagement window, the dither setting (given, from the file's metadata, or estimated from the pressure), the amplitude and growth of the upstream speed at f, f/2 and other peaks, and a judder verdict (the part not periodic with the dither grows at >= --min-growth; see README). Draws the amplitude contour per oil temperature or engine speed, and writes the experimental boundary for `judder fit --boundary`. Give --model, --preset, --param-file or --set to draw the model's tongue boundaries over it."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Read engagement acquisitions (a campaign folder, or MF4, CSV, TDMS "
+    "and MAT files), find in each run the engagement window, the dither "
+    "setting (given, from the file's metadata, or estimated from the "
+    "pressure), the amplitude and growth of the upstream speed at f, "
+    "f/2 and other peaks, and a judder verdict (the part not periodic "
+    "with the dither grows at >= --min-growth; see README). Draws the "
+    "amplitude contour per oil temperature or engine speed, and writes "
+    "the experimental boundary for `judder fit --boundary`. Give "
+    "--model, --preset, --param-file or --set to draw the model's "
+    "tongue boundaries over it.")
 
 
-OUTPUTS = (('out', '--out', ('npz',)), ('plot', '--plot', None), ('boundary', '--boundary', ('csv',)))
+OUTPUTS = (('out', '--out', ('npz',)),
+           ('plot', '--plot', None),
+           ('boundary', '--boundary', ('csv',)))
 
 
 def add_arguments(p):
@@ -51,10 +67,12 @@ def add_arguments(p):
     p.add_argument("--group-by", action="append", metavar="COLUMN",
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")
-    p.add_argument("--min-growth", type=str, default=None, metavar="1/S",
+    p.add_argument("--min-growth", type=MIN_GROWTH,
+                   default=None, metavar="1/S",
                    help="growth rate of the non-periodic part from which "
                         "a run is judder, 1/s (default 1)")
-    p.add_argument("--min-amplitude", type=str, default=None,
+    p.add_argument("--min-amplitude",
+                   type=Quantity("--min-amplitude", "rpm", 0.0), default=None,
                    metavar="RPM", help="smallest judder amplitude, rpm "
                                        "(default 2)")
     p.add_argument("--out", metavar="FILE.npz",
@@ -73,19 +91,17 @@ def add_arguments(p):
 def run(args):
     """Experimental stability chart from bench acquisitions."""
     channels = _channels(args.channel)
-    check_number("--min-growth", args.min_growth, "1/s", strict=False)
-    check_number("--min-amplitude", args.min_amplitude, "rpm", strict=False)
     overlay = bool(args.model or args.preset or args.param_file or args.set)
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot, args.boundary)
     with Progress(None, "runs") as progress:
         result = chart(args.sources, index=args.index, channels=channels,
-                           group_by=args.group_by,
-                           min_growth=args.min_growth,
-                           min_amplitude_rpm=args.min_amplitude,
-                           model=overlay, parameters=params,
-                           changes=changes, method=args.method,
-                           workers=args.workers, progress=progress)
+                       group_by=args.group_by,
+                       min_growth=args.min_growth,
+                       min_amplitude_rpm=args.min_amplitude,
+                       model=overlay, parameters=params,
+                       changes=changes, method=args.method,
+                       workers=args.workers, progress=progress)
     files = write_outputs(args, result, figure={
         "title": "experimental stability chart"
                  + (f" with the {params.model} model's boundaries"

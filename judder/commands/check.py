@@ -26,10 +26,19 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_settings, check_work
 from ._records import finite_or_none, rows_to_csv
-from ._values import (FREQ_RANGE_HZ, check_amplitudes, option_value,
-                      parse_grid, parse_list)
+from ._values import (FREQ_RANGE_HZ, PF_MAX, Settings, check_amplitudes,
+                      parse_list)
 
-DESCRIPTION = 'Verdict of each dither setting (judder if it grows faster than --min-growth), its growth rate and e-folding time against the engagement, the margin to the nearest judder-relevant tongue boundary in bar (at the same frequency) and in Hz (at the same amplitude), exact from the boundary curves, which tongue that is, and how much each parameter moves those margins. Settings: --freq x --pf (every pair), or --table.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Verdict of each dither setting (judder if it grows faster than "
+    "--min-growth), its growth rate and e-folding time against the "
+    "engagement, the margin to the nearest judder-relevant tongue "
+    "boundary in bar (at the same frequency) and in Hz (at the same "
+    "amplitude), exact from the boundary curves, which tongue that is, "
+    "and how much each parameter moves those margins. Settings: --freq "
+    "x --pf (every pair), or --table.")
 
 
 OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
@@ -42,15 +51,17 @@ DEFAULT_CHECK_PARAMETERS = ("J2", "J4", "k12", "k24", "c12", "mu_g")
 
 def add_arguments(p):
     """The options of ``judder check``."""
-    p.add_argument("--freq", metavar="HZ[,HZ...]",
+    p.add_argument("--freq", type=Settings("--freq", "Hz"),
+                   metavar="HZ[,HZ...]",
                    help="dither frequencies, Hz: a list or START:STOP:N")
-    p.add_argument("--pf", metavar="BAR[,BAR...]",
+    p.add_argument("--pf", type=Settings("--pf", "bar"),
+                   metavar="BAR[,BAR...]",
                    help="dither amplitudes, bar: a list or START:STOP:N")
     p.add_argument("--table", metavar="FILE.csv",
                    help="a dither table instead: columns freq_hz,p_f_bar, "
                         "one setting a row (e.g. a controller's table)")
     min_growth_option(p)
-    p.add_argument("--pf-max", type=float, default=None, metavar="BAR",
+    p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest boundary amplitude searched, bar (default "
                         "the larger of 1.5 and twice the largest setting)")
     p.add_argument("--params", default=None, metavar="NAMES",
@@ -87,22 +98,12 @@ def run(args):
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "check") as progress:
         result = check(freqs, amplitudes, params, changes,
-                           min_growth=args.min_growth, p_max_bar=args.pf_max,
-                           sensitivity=names, background=bool(args.plot),
-                           progress=progress)
+                       min_growth=args.min_growth, p_max_bar=args.pf_max,
+                       sensitivity=names, background=bool(args.plot),
+                       progress=progress)
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + written(args.out, args.plot))
-
-
-def _values(text, option, unit):
-    """A comma-separated list or a START:STOP:N grid, each value plain
-    (in ``unit``) or with a unit, in its documented range."""
-    if ":" in text:
-        return list(parse_grid(text, option, unit))
-    low, high = FREQ_RANGE_HZ if unit == "Hz" else (0.0, math.inf)
-    return parse_list(text, option, lambda item: option_value(
-        item, option, unit, low, high))
 
 
 def _settings(args, parameters):
@@ -131,8 +132,7 @@ def _settings(args, parameters):
         return list(freqs), amplitudes
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
-    freqs = _values(args.freq, "--freq", "Hz")
-    amplitudes = _values(args.pf, "--pf", "bar")
+    freqs, amplitudes = args.freq, args.pf
     check_amplitudes(amplitudes, "--pf")
     # the time first (it says what to change); then, with the time limit
     # raised, the count (the pairs of 1e10 settings would not fit)

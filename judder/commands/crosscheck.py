@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
@@ -22,15 +22,24 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_crosscheck, check_work
 from ._records import rows_to_csv
-from ._values import parse_grid
+from ._values import DURATION, Grid
 
-DESCRIPTION = "Run the paper's driveline FMU (Eq. 1) on a grid, twice per point with initial speeds 1 rad/s apart; the difference is the free response, whose Floquet multipliers are fitted (Prony/Hankel DMD on samples once per dither period) and compared with the stability layer's. With --modelica CLASS: the class's FMU and its linearisation; --fmu is refused (the FMU path reads only its Jacobian, it has no time-domain run here)."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Run the paper's driveline FMU (Eq. 1) on a grid, twice per point "
+    "with initial speeds 1 rad/s apart; the difference is the free "
+    "response, whose Floquet multipliers are fitted (Prony/Hankel DMD "
+    "on samples once per dither period) and compared with the stability "
+    "layer's. With --modelica CLASS: the class's FMU and its "
+    "linearisation; --fmu is refused (the FMU path reads only its "
+    "Jacobian, it has no time-domain run here).")
 
 
 OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf", True)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf"
 
 
 #: Fewest dither periods of a crosscheck run (the multipliers are fitted
@@ -40,12 +49,14 @@ MIN_CROSSCHECK_PERIODS = 20
 
 def add_arguments(p):
     """The options of ``judder crosscheck``."""
-    p.add_argument("--freq", default="75:130:23", metavar="START:STOP:N",
+    p.add_argument("--freq", type=Grid("--freq", "Hz"),
+                   default="75:130:23", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 75:130:23: tongues "
                         "5, 2 and 6)")
-    p.add_argument("--pf", default="0.1:0.7:4", metavar="START:STOP:N",
+    p.add_argument("--pf", type=Grid("--pf", "bar"),
+                   default="0.1:0.7:4", metavar="START:STOP:N",
                    help="dither amplitudes, bar (default 0.1:0.7:4)")
-    p.add_argument("--duration", type=str, default=3.0, metavar="S",
+    p.add_argument("--duration", type=DURATION, default=3.0, metavar="S",
                    help="length of each run, s (default 3)")
     workers_option(p)
     p.add_argument("--out", metavar="FILE.csv", help="table of all points")
@@ -61,11 +72,10 @@ def add_arguments(p):
 
 def run(args):
     """FMU growth rates against Floquet exponents on a grid."""
-    freqs = parse_grid(args.freq, "--freq", "Hz")
-    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    freqs = args.freq
+    amplitudes = args.pf
     if freqs[0] <= 0:
         raise JudderError("--freq: allowed: frequencies > 0 Hz")
-    check_number("--duration", args.duration, "s")
     if args.duration * freqs[0] < MIN_CROSSCHECK_PERIODS:
         raise JudderError(
             f"--duration {args.duration:g} s holds "
@@ -76,14 +86,14 @@ def run(args):
     check_work("--freq x --pf", 2 * len(freqs) * len(amplitudes),
                "FMU runs")
     check_crosscheck(2 * len(freqs) * len(amplitudes),
-                               args.duration, args.workers)
+                     args.duration, args.workers)
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(freqs) * len(amplitudes), "FMU runs") as progress:
         result = crosscheck(freqs, amplitudes, duration=args.duration,
-                                parameters=params, changes=changes,
-                                method=args.method, workers=args.workers,
-                                progress=progress, perturb=args.perturb)
+                            parameters=params, changes=changes,
+                            method=args.method, workers=args.workers,
+                            progress=progress, perturb=args.perturb)
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     worst = data["max_rate_error_above_1_per_s"]

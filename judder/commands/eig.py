@@ -18,7 +18,14 @@ from ._common import resolve
 from ._model import parameters_of
 from ._output import emit
 
-DESCRIPTION = "Undamped natural frequencies (Eq. 14-15, Hz), clutch-damper damping factor (Eq. 16) and the damped modes without dither, rigid-body angles removed. For --modelica or --fmu: the frequencies of its Jacobian's stiffness part and its damped modes; Eq. 15-16 are the paper's chains' formulas (null in --json)."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Undamped natural frequencies (Eq. 14-15, Hz), clutch-damper "
+    "damping factor (Eq. 16) and the damped modes without dither, "
+    "rigid-body angles removed. For --modelica or --fmu: the "
+    "frequencies of its Jacobian's stiffness part and its damped modes; "
+    "Eq. 15-16 are the paper's chains' formulas (null in --json).")
 
 
 OUTPUTS = ()

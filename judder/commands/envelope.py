@@ -1,4 +1,5 @@
-"""``judder envelope``: broadest unstable region over uncertain parameters (Fig. 16).
+"""``judder envelope``: broadest unstable region over uncertain parameters
+(Fig. 16).
 
 One module holds the command: its options (:func:`add_arguments`),
 the command line's work (:func:`run`: preflight checks, the API call,
@@ -14,7 +15,7 @@ import time
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
@@ -23,18 +24,28 @@ from stability.monodromy import DEFAULT_METHOD
 from ..envelope import checkpoint_path
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, pf_max_option, workers_option)
-from ._common import BACKGROUND_AMPLITUDES, checked_pf_max, resolve
+from ._common import BACKGROUND_AMPLITUDES, resolve
 from ._model import model_title, parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._preflight import check_envelope
 from ._records import finite_or_none, rows_to_csv
-from ._values import parse_grid
-
-DESCRIPTION = 'Exact tongue boundaries for every vertex of the parameter ranges and a space-filling sample of them (section 4.2): the broadest unstable region (their union, refined between the samples), the probability of instability over frequency x amplitude, and how converged the union is. Resumes from FILE.checkpoint.npz beside the first output when interrupted. See docs/envelope.md.'
+from ._values import SEED, Grid
 
 
-OUTPUTS = (('out', '--out', ('npz',)), ('csv', '--csv', ('csv',)), ('plot', '--plot', None))
+#: The command's --help text.
+DESCRIPTION = (
+    "Exact tongue boundaries for every vertex of the parameter ranges "
+    "and a space-filling sample of them (section 4.2): the broadest "
+    "unstable region (their union, refined between the samples), the "
+    "probability of instability over frequency x amplitude, and how "
+    "converged the union is. Resumes from FILE.checkpoint.npz beside "
+    "the first output when interrupted. See docs/envelope.md.")
+
+
+OUTPUTS = (('out', '--out', ('npz',)),
+           ('csv', '--csv', ('csv',)),
+           ('plot', '--plot', None))
 
 
 def check_outputs(args, seen):
@@ -60,7 +71,8 @@ def add_arguments(p):
                    help="uncertain parameters: intervals, uniform or normal "
                         "distributions, a judder fit's covariance (see "
                         "examples/ranges.toml)")
-    p.add_argument("--freq", default="10:220:106", metavar="START:STOP:N",
+    p.add_argument("--freq", type=Grid("--freq", "Hz"),
+                   default="10:220:106", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:106)")
     pf_max_option(p, "largest amplitude searched")
     p.add_argument("--samples", type=int, default=256, metavar="N",
@@ -68,7 +80,7 @@ def add_arguments(p):
                         "(default 256)")
     p.add_argument("--sampler", default="sobol", metavar="{sobol,lhs}",
                    help="scrambled Sobol (default) or Latin hypercube (lhs)")
-    p.add_argument("--seed", type=int, default=0,
+    p.add_argument("--seed", type=SEED, default=0,
                    help="seed of the sample (default 0)")
     p.add_argument("--no-vertices", action="store_true",
                    help="leave out the vertices of the ranges")
@@ -99,10 +111,9 @@ def add_arguments(p):
 def run(args):
     """Broadest unstable region over uncertain parameters (section 4.2)."""
     from ..envelope import checkpoint_path, read_ranges
-    freqs = parse_grid(args.freq, "--freq", "Hz")
-    p_max_bar = checked_pf_max(args)
-    growth = check_number("--min-growth", args.min_growth, "1/s",
-                          strict=False)
+    freqs = args.freq
+    p_max_bar = args.pf_max
+    growth = args.min_growth
     for option, value in (("--samples", args.samples),
                           ("--refine", args.refine)):
         if value < 0:
@@ -111,19 +122,19 @@ def run(args):
     params, changes = parameters_of(args)
     ranges = read_ranges(args.ranges, params.replace(**changes))
     check_envelope(params.replace(**changes), freqs, ranges,
-                             args.samples, not args.no_vertices, args.refine,
-                             args.workers)
+                   args.samples, not args.no_vertices, args.refine,
+                   args.workers)
     make_parents(args.out, args.csv, args.plot, args.checkpoint)
     checkpoint = args.checkpoint or checkpoint_path(args.out, args.csv,
                                                     args.plot)
     with Progress(None, "envelope samples") as progress:
         result = envelope(ranges, freqs, p_max_bar, samples=args.samples,
-                              seed=args.seed, sampler=args.sampler,
-                              vertices=not args.no_vertices,
-                              min_growth=growth, refine=args.refine,
-                              parameters=params, changes=changes,
-                              method=args.method, workers=args.workers,
-                              checkpoint=checkpoint, progress=progress)
+                          seed=args.seed, sampler=args.sampler,
+                          vertices=not args.no_vertices,
+                          min_growth=growth, refine=args.refine,
+                          parameters=params, changes=changes,
+                          method=args.method, workers=args.workers,
+                          checkpoint=checkpoint, progress=progress)
     if args.out:
         result.save(args.out, force=args.force)
     if args.csv:

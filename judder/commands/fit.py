@@ -27,15 +27,28 @@ from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._records import finite_or_none
-from ._values import parse_list
+from ._values import (MIN_GROWTH, PF_MAX, SEED, Quantity, WholeNumber,
+                      parse_list)
 
-DESCRIPTION = "Adjust hard-to-know parameters so the model's boundary of judder growing at --min-growth matches a measured one (CSV: freq_hz,p_f_bar; empty p_f_bar = no judder up to --pf-max), or the boundary of a chart (judder chart --out). Reports each value with its standard uncertainty, 95 % interval and unit, their correlations and the scatter of the onsets; refuses what the data cannot determine (k parameters need k + 2 onsets, k with --scatter) and names a parameter that does not move the measured boundary."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Adjust hard-to-know parameters so the model's boundary of judder "
+    "growing at --min-growth matches a measured one (CSV: "
+    "freq_hz,p_f_bar; empty p_f_bar = no judder up to --pf-max), or the "
+    "boundary of a chart (judder chart --out). Reports each value with "
+    "its standard uncertainty, 95 % interval and unit, their "
+    "correlations and the scatter of the onsets; refuses what the data "
+    "cannot determine (k parameters need k + 2 onsets, k with "
+    "--scatter) and names a parameter that does not move the measured "
+    "boundary.")
 
 
-OUTPUTS = (('save_params', '--save-params', ('toml',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf_max", False)
+OUTPUTS = (('save_params', '--save-params', ('toml',)),
+           ('plot', '--plot', None))
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf_max"
 
 
 def add_arguments(p):
@@ -55,12 +68,13 @@ def add_arguments(p):
                    metavar="NAME=LOW:HIGH",
                    help="search range of a fitted parameter, SI; repeatable "
                         "(default a factor 100 either way of the start)")
-    p.add_argument("--pf-max", type=str, default=None, metavar="BAR",
+    p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest amplitude tried on the bench (and searched "
                         "in the model), bar (default 1.5, or the chart's)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="measured and fitted boundaries (Fig. 16a)")
-    p.add_argument("--starts", type=int, default=3, metavar="N",
+    p.add_argument("--starts", type=WholeNumber("--starts", 1, 1000),
+                   default=3, metavar="N",
                    help="starts: the given one plus N-1 sampled within a "
                         "factor 3 of it (default 3)")
     p.add_argument("--uncertainty", default="auto",
@@ -78,24 +92,26 @@ def add_arguments(p):
                         "3%% (relative error model) or bar such as 20mbar "
                         "(absolute); default: estimated from the residuals, "
                         "which needs two onsets more than the parameters")
-    p.add_argument("--seed", type=int, default=0,
+    p.add_argument("--seed", type=SEED, default=0,
                    help="seed of the sampled starts and the bootstrap")
     workers_option(p, "one, as starting Dask costs more than the few "
-                       "parallel starts gain; all cores for --uncertainty "
-                       "bootstrap")
+                   "parallel starts gain; all cores for --uncertainty "
+                   "bootstrap")
     p.add_argument("--save-params", metavar="FILE.toml",
                    help="write the fitted set (never overwrites unless "
                         "--force)")
     p.add_argument("--force", action="store_true",
                    help="allow --save-params to replace a file")
-    p.add_argument("--min-growth", type=float, default=None, metavar="1/S",
+    p.add_argument("--min-growth", type=MIN_GROWTH,
+                   default=None, metavar="1/S",
                    help="compare with the model's boundary of judder "
                         "growing at this rate, 1/s (default: the chart's "
                         "--min-growth with --chart or its --boundary file, "
                         "else check's 1 1/s, so "
                         "fit, check and chart call the same point judder; "
                         "0: the stability boundary)")
-    p.add_argument("--threshold-spread", type=float, default=None,
+    p.add_argument("--threshold-spread",
+                   type=Quantity("--threshold-spread", "1/s", 0.0), default=None,
                    metavar="1/S",
                    help="how far the growth rate the onsets were called "
                         "judder at may lie from --min-growth, 1/s: the fit "
@@ -153,14 +169,14 @@ def run(args):
     make_parents(args.plot, args.save_params)
     with Progress(None, "fit") as progress:
         report = fit(freqs, measured / PA_PER_BAR, p_max_bar,
-                         names=names, bounds=bounds, parameters=params,
-                         changes=changes, method=args.method,
-                         starts=args.starts, uncertainty=args.uncertainty,
-                         error_model=args.error_model, seed=args.seed,
-                         workers=args.workers, progress=progress,
-                         min_growth=min_growth, bench=bench,
-                         scatter=scatter, below_bar=None if below is None
-                         else below / PA_PER_BAR, threshold_spread=spread)
+                     names=names, bounds=bounds, parameters=params,
+                     changes=changes, method=args.method,
+                     starts=args.starts, uncertainty=args.uncertainty,
+                     error_model=args.error_model, seed=args.seed,
+                     workers=args.workers, progress=progress,
+                     min_growth=min_growth, bench=bench,
+                     scatter=scatter, below_bar=None if below is None
+                     else below / PA_PER_BAR, threshold_spread=spread)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
@@ -324,11 +340,11 @@ class FitReport:
                 "seconds": self.seconds, "success": r.success,
                 "message": r.message,
                 "fitted": {n: {"value": v, "std": finite_or_none(s),
-                               "ci95": [finite_or_none(lo),
-                                        finite_or_none(hi)], "start": s0}
+                           "ci95": [finite_or_none(lo),
+                                    finite_or_none(hi)], "start": s0}
                            for n, v, s, lo, hi, s0 in zip(
-                               r.names, r.values, r.std, r.ci_low,
-                               r.ci_high, r.start)},
+                           r.names, r.values, r.std, r.ci_low,
+                           r.ci_high, r.start)},
                 "uncertainty": r.uncertainty, "problems": list(r.problems),
                 "notes": list(r.notes), "at_bound": list(r.at_bound),
                 "undetermined": list(r.undetermined),

@@ -9,7 +9,6 @@ its result :class:`FloquetPoint`.
 from dataclasses import dataclass
 import math
 
-from infra.errors import check_number
 from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
@@ -20,22 +19,27 @@ from ._common import dithered, resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, output_files, save_plot, written
 from ._preflight import check_floquet
-from ._values import parse_waveform
+from ._values import FREQ, PF, parse_waveform
 
-DESCRIPTION = 'Monodromy matrix over one dither period and its Floquet multipliers (Eq. 10-13), rigid-body angles removed; the leading multiplier is classified as in Fig. 15.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Monodromy matrix over one dither period and its Floquet "
+    "multipliers (Eq. 10-13), rigid-body angles removed; the leading "
+    "multiplier is classified as in Fig. 15.")
 
 
 OUTPUTS = (('plot', '--plot', None),)
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf", False)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf"
 
 
 def add_arguments(p):
     """The options of ``judder floquet``."""
-    p.add_argument("--freq", type=str, required=True, metavar="HZ",
+    p.add_argument("--freq", type=FREQ, required=True, metavar="HZ",
                    help="dither frequency, Hz")
-    p.add_argument("--pf", type=str, required=True, metavar="BAR",
+    p.add_argument("--pf", type=PF, required=True, metavar="BAR",
                    help="dither amplitude p_f, bar (1 bar = 1e5 Pa)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="the multipliers on the complex plane with the "
@@ -48,13 +52,12 @@ def add_arguments(p):
 
 def run(args):
     """Floquet multipliers at one dither frequency and amplitude."""
-    check_number("--pf", args.pf, "bar", strict=False)
     params, changes = parameters_of(args)
     check_floquet(params.replace(**changes), args.freq, args.method)
     make_parents(args.plot)
     point = floquet(args.freq, args.pf, params, changes,
-                        method=args.method,
-                        waveform=parse_waveform(args.dither_wave))
+                    method=args.method,
+                    waveform=parse_waveform(args.dither_wave))
     if args.plot:
         save_plot(args.plot, point.figure(
             title=f"Floquet multipliers (Fig. 15), "

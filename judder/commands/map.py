@@ -11,7 +11,7 @@ import json
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
@@ -24,15 +24,21 @@ from ._common import dithered, resolve, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_map, check_map_memory
-from ._values import parse_grid, parse_waveform
+from ._values import Grid, parse_waveform
 
-DESCRIPTION = 'Leading Floquet multiplier on a grid of dither frequency (Hz) x amplitude (bar), classified single-period, double-period or combination (Fig. 14). Ctrl-C stops it without writing a partial file.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Leading Floquet multiplier on a grid of dither frequency (Hz) x "
+    "amplitude (bar), classified single-period, double-period or "
+    "combination (Fig. 14). Ctrl-C stops it without writing a partial "
+    "file.")
 
 
 OUTPUTS = (('out', '--out', ('npz',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf", True)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf"
 
 
 #: Largest grid a map accepts, in points.
@@ -47,9 +53,11 @@ DEFAULT_MAP_PF = "0:1.5:150"
 
 def add_arguments(p):
     """The options of ``judder map``."""
-    p.add_argument("--freq", default=DEFAULT_MAP_FREQ, metavar="START:STOP:N",
+    p.add_argument("--freq", type=Grid("--freq", "Hz"),
+                   default=DEFAULT_MAP_FREQ, metavar="START:STOP:N",
                    help=f"dither frequencies, Hz (default {DEFAULT_MAP_FREQ})")
-    p.add_argument("--pf", default=DEFAULT_MAP_PF, metavar="START:STOP:N",
+    p.add_argument("--pf", type=Grid("--pf", "bar"),
+                   default=DEFAULT_MAP_PF, metavar="START:STOP:N",
                    help=f"dither amplitudes, bar (default {DEFAULT_MAP_PF})")
     p.add_argument("--out", metavar="FILE.npz",
                    help="save the map arrays (NPZ, see README)")
@@ -65,8 +73,8 @@ def add_arguments(p):
 
 def run(args):
     """Stability map over a frequency x amplitude grid."""
-    freqs = parse_grid(args.freq, "--freq", "Hz")
-    amplitudes = parse_grid(args.pf, "--pf", "bar")
+    freqs = args.freq
+    amplitudes = args.pf
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
     # the exact boundaries are drawn on --plot and stored in --out
@@ -78,8 +86,7 @@ def run(args):
         result = stability_map(
             freqs, amplitudes, params, changes, method=args.method,
             progress=progress,
-            min_growth=check_number("--min-growth", args.min_growth, "1/s",
-                                    strict=False),
+            min_growth=args.min_growth,
             exact=exact, waveform=waveform)
     paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
     title = (f"stability map{f' ({paper})' if paper else ''}, "

@@ -16,7 +16,11 @@ from ._common import resolve
 from ._model import parameters_of
 from ._output import emit, make_parents
 
-DESCRIPTION = 'Show a parameter set with units, or save it (--save FILE.toml) to edit and load with --param-file.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Show a parameter set with units, or save it (--save FILE.toml) to "
+    "edit and load with --param-file.")
 
 
 OUTPUTS = (('save', '--save', ('toml',)),)

@@ -34,7 +34,7 @@ import tempfile
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.numbers import format_interval, format_uncertain
@@ -47,7 +47,7 @@ from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, workers_option)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
-from ._values import check_amplitudes, parse_grid, parse_list
+from ._values import FREQ, PF, Grid, Listed
 from .advise import advise
 from .check import check, growth_words, margin_words
 from .eig import eig
@@ -60,7 +60,16 @@ from .simulate import simulate
 from .threshold import threshold
 from .tongues import tongues
 
-DESCRIPTION = 'Run the studies of the paper for one driveline and write one self-contained HTML file (figures embedded): the driveline, the verdict and margin of the configured dither (--freq, --pf) with its multipliers (Fig. 15), the map with the exact tongues (Fig. 14) and their tips, the sensitivity ranking (Fig. 17, 18), and the fit to bench data (--chart or --boundary, Fig. 16a). Open it in a browser; print it to PDF from there.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Run the studies of the paper for one driveline and write one "
+    "self-contained HTML file (figures embedded): the driveline, the "
+    "verdict and margin of the configured dither (--freq, --pf) with "
+    "its multipliers (Fig. 15), the map with the exact tongues (Fig. "
+    "14) and their tips, the sensitivity ranking (Fig. 17, 18), and the "
+    "fit to bench data (--chart or --boundary, Fig. 16a). Open it in a "
+    "browser; print it to PDF from there.")
 
 
 OUTPUTS = (('out', '--out', ('html',)), ('pdf', '--pdf', ('pdf',)))
@@ -130,9 +139,9 @@ def add_arguments(p):
     p.add_argument("--engagement", action="store_true",
                    help="with --freq and --pf: also run the bench "
                         "engagement through the FMU (Fig. 7, 8)")
-    p.add_argument("--freq", metavar="HZ",
+    p.add_argument("--freq", type=FREQ, metavar="HZ",
                    help="dither frequency of the configured setting, Hz")
-    p.add_argument("--pf", metavar="BAR",
+    p.add_argument("--pf", type=PF, metavar="BAR",
                    help="dither amplitude of the configured setting, bar")
     source = p.add_mutually_exclusive_group()
     source.add_argument("--chart", metavar="FILE.npz",
@@ -142,19 +151,24 @@ def add_arguments(p):
                              "(freq_hz,p_f_bar)")
     p.add_argument("--group", metavar="VALUE",
                    help="group of the chart, when it has several")
-    p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
+    p.add_argument("--fit", type=Listed("--fit", str),
+                   default="c12,mu_g,k24", metavar="NAMES",
                    help="parameters fitted to the bench data (default "
                         "c12,mu_g,k24)")
-    p.add_argument("--sensitivity", metavar="NAMES",
+    p.add_argument("--sensitivity", type=Listed("--sensitivity", str),
+                   metavar="NAMES",
                    help="parameters of the sensitivity study (default the "
                         "stiffnesses, inertias, mu_g and c12)")
-    p.add_argument("--grid", default="10:220:300", metavar="START:STOP:N",
+    p.add_argument("--grid", type=Grid("--grid", "Hz"),
+                   default="10:220:300", metavar="START:STOP:N",
                    help="frequencies of the boundaries, Hz (default "
                         "10:220:300)")
-    p.add_argument("--map-freq", default=REPORT_MAP_FREQ,
+    p.add_argument("--map-freq", type=Grid("--map-freq", "Hz"),
+                   default=REPORT_MAP_FREQ,
                    metavar="START:STOP:N",
                    help=f"map frequencies, Hz (default {REPORT_MAP_FREQ})")
-    p.add_argument("--map-pf", default=REPORT_MAP_PF, metavar="START:STOP:N",
+    p.add_argument("--map-pf", type=Grid("--map-pf", "bar"),
+                   default=REPORT_MAP_PF, metavar="START:STOP:N",
                    help=f"map amplitudes, bar (default {REPORT_MAP_PF})")
     min_growth_option(p, "; the verdict and the map's shading use it")
     workers_option(p)
@@ -169,13 +183,9 @@ def run(args):
     if (args.freq is None) != (args.pf is None):
         raise JudderError("--freq and --pf go together: give both for a "
                           "dither setting, or neither")
-    if args.freq is not None:
-        check_number("--freq", args.freq, "Hz")
-        check_number("--pf", args.pf, "bar", strict=False)
-        check_amplitudes([args.pf], "--pf")
-    grid = parse_grid(args.grid, "--grid", "Hz")
-    map_freq = parse_grid(args.map_freq, "--map-freq", "Hz")
-    map_pf = parse_grid(args.map_pf, "--map-pf", "bar")
+    grid = args.grid
+    map_freq = args.map_freq
+    map_pf = args.map_pf
     if grid[0] <= 0 or map_freq[0] <= 0:
         raise JudderError("--grid, --map-freq: allowed: frequencies > 0 Hz")
     params, changes = parameters_of(args)
@@ -187,9 +197,7 @@ def run(args):
             params, changes, description=model_title(args, params),
             freq_hz=args.freq, p_f_bar=args.pf, chart=args.chart,
             boundary=args.boundary, group=args.group,
-            fit_names=parse_list(args.fit, "--fit", str),
-            sensitivity_names=(parse_list(args.sensitivity, "--sensitivity",
-                                          str) if args.sensitivity else None),
+            fit_names=args.fit, sensitivity_names=args.sensitivity,
             grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
             p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
             method=args.method, workers=args.workers,
@@ -269,10 +277,10 @@ def _fit_section(bench, names, values, method, workers, source):
                  "faster.</p>")
     try:
         fitted = fit(freqs, measured / PA_PER_BAR, tried,
-                         names=list(names), parameters=values,
-                         method=method, starts=1, workers=workers,
-                         min_growth=min_growth, below_bar=below_bar,
-                         threshold_spread=spread)
+                     names=list(names), parameters=values,
+                     method=method, starts=1, workers=workers,
+                     min_growth=min_growth, below_bar=below_bar,
+                     threshold_spread=spread)
     except JudderError as error:
         status = f"no fit: {error}"
         return (head + f"<p><b>No fit is shown</b>: {html.escape(str(error))}"
@@ -406,12 +414,12 @@ def _ranking(tip_shifts, tongue_number):
 
 
 def report(parameters=None, changes=None, description=None,
-                 freq_hz=None, p_f_bar=None, chart=None, boundary=None,
-                 group=None, fit_names=("c12", "mu_g", "k24"),
-                 sensitivity_names=None, grid_freq=None, map_freq=None,
-                 map_pf=None, p_max_bar=1.5, method="dyson", workers=None,
-                 engagement=False, min_growth=DEFAULT_MIN_GROWTH_PER_S,
-                 progress=None):
+           freq_hz=None, p_f_bar=None, chart=None, boundary=None,
+           group=None, fit_names=("c12", "mu_g", "k24"),
+           sensitivity_names=None, grid_freq=None, map_freq=None,
+           map_pf=None, p_max_bar=1.5, method="dyson", workers=None,
+           engagement=False, min_growth=DEFAULT_MIN_GROWTH_PER_S,
+           progress=None):
     """``judder report``: the figures and tables of the paper for one
     driveline.
 
@@ -529,7 +537,7 @@ def report(parameters=None, changes=None, description=None,
     found_tongues = tongues(grid_freq, p_max_bar, values, method=method)
     stability = dataclasses.replace(
         stability_map(map_freq, map_pf, values, method=method,
-                          min_growth=min_growth),
+                      min_growth=min_growth),
         boundaries=found_tongues.boundaries, tongues=found_tongues.tongues)
     step()
     data["tongues"] = [
@@ -546,9 +554,9 @@ def report(parameters=None, changes=None, description=None,
         # judder check at the setting, at the growth rate that shades
         # the map (the tongues are the stability boundaries of Fig. 14)
         checked = check([freq_hz], [p_f_bar], values,
-                            min_growth=min_growth,
-                            p_max_bar=max(p_max_bar, 2 * p_f_bar),
-                            sensitivity=())
+                        min_growth=min_growth,
+                        p_max_bar=max(p_max_bar, 2 * p_f_bar),
+                        sensitivity=())
         point = checked.checks[0].floquet
         verdict = {**checked.records()[0],
                    "leading_abs": float(point.leading_abs)}
@@ -597,9 +605,9 @@ def report(parameters=None, changes=None, description=None,
         if found:
             t = min(found, key=lambda t: t.tip_p_f)
             inside.append(floquet(t.tip_freq_hz,
-                                      min(1.5 * t.tip_p_f / PA_PER_BAR,
-                                          p_max_bar), values,
-                                      method=method).result)
+                                  min(1.5 * t.tip_p_f / PA_PER_BAR,
+                                      p_max_bar), values,
+                                  method=method).result)
     if inside:
         sections.append(_keep(
             "<h3>How the multipliers leave the unit circle, by kind</h3>"
@@ -617,7 +625,7 @@ def report(parameters=None, changes=None, description=None,
               "the window a relative change takes the judder-relevant "
               "tongues (share per unit change of ln value): "
             + html.escape(", ".join(f"{n} {share:.2f}"
-                                    for n, share, _ in advice.ranking))
+                          for n, share, _ in advice.ranking))
             + ".</p>"
             + figure("Safe dither amplitude per frequency, and the map of "
                      "the advised design (judder advise)",
@@ -625,7 +633,7 @@ def report(parameters=None, changes=None, description=None,
 
     # sensitivity
     sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
-                           method=method, workers=workers)
+                       method=method, workers=workers)
     step()
     focus = _focus_tongue(found_tongues.tongues, freq_hz)
     ranking = _ranking(sens.tip_shifts, focus)
@@ -655,7 +663,7 @@ def report(parameters=None, changes=None, description=None,
 
     if run_engagement:
         run = simulate(freq_hz, p_f_bar, compare="none",
-                           parameters=values, method=method)
+                       parameters=values, method=method)
         first = run.summaries[0]
         data["engagement"] = first
         sections.append(

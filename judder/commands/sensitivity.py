@@ -15,21 +15,27 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          pf_max_option, workers_option)
-from ._common import checked_pf_max, resolve, timed
+from ._common import resolve, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_sensitivity, check_work
 from ._records import rows_to_csv
-from ._values import parse_grid, parse_list
+from ._values import Grid, Listed, parse_list
 from .tongues import tongue_record
 
-DESCRIPTION = "Vary each parameter (by --factors, or to --values), recompute the boundaries and report how each tongue tip moves in frequency (Hz) and amplitude (bar); checks the paper's conclusions of section 4.3. Clutch-damper study: --params c12 --values 0.5,10."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Vary each parameter (by --factors, or to --values), recompute the "
+    "boundaries and report how each tongue tip moves in frequency (Hz) "
+    "and amplitude (bar); checks the paper's conclusions of section "
+    "4.3. Clutch-damper study: --params c12 --values 0.5,10.")
 
 
 OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf_max", False)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf_max"
 
 
 #: Multipliers of the nominal value in sensitivity without --factors.
@@ -38,14 +44,16 @@ DEFAULT_FACTORS = "0.5,2"
 
 def add_arguments(p):
     """The options of ``judder sensitivity``."""
-    p.add_argument("--params", required=True, metavar="NAMES",
+    p.add_argument("--params", type=Listed("--params", str),
+                   required=True, metavar="NAMES",
                    help="comma-separated parameters, e.g. "
                         "k12,k24,J1,J2,J3,J4,mu_g,c12")
     p.add_argument("--factors", metavar="F1,F2",
                    help="multipliers of the nominal value (default 0.5,2)")
     p.add_argument("--values", metavar="V1,V2",
                    help="absolute values (SI) instead of --factors")
-    p.add_argument("--freq", default="10:220:200", metavar="START:STOP:N",
+    p.add_argument("--freq", type=Grid("--freq", "Hz"),
+                   default="10:220:200", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:200)")
     pf_max_option(p, "largest amplitude searched")
     workers_option(p)
@@ -60,9 +68,9 @@ def add_arguments(p):
 
 def run(args):
     """Tongue tips and boundaries with parameters varied (Fig. 17, 18)."""
-    names = parse_list(args.params, "--params", str)
-    freqs = parse_grid(args.freq, "--freq", "Hz")
-    p_max_bar = checked_pf_max(args)
+    names = args.params
+    freqs = args.freq
+    p_max_bar = args.pf_max
     params, changes = parameters_of(args)
     if args.values is not None and args.factors is not None:
         raise JudderError(f"--values {args.values} and --factors "
@@ -84,12 +92,12 @@ def run(args):
     cases = 1 + len(names) * len(values or factors)
     check_work("--params x --values/--factors", cases, "cases")
     check_sensitivity(params.replace(**changes), freqs, cases,
-                                args.workers)
+                      args.workers)
     with Progress(cases, "sensitivity cases") as progress:
         result = sensitivity(names, freqs, p_max_bar, factors=factors,
-                                 values=values, parameters=params,
-                                 changes=changes, method=args.method,
-                                 workers=args.workers, progress=progress)
+                             values=values, parameters=params,
+                             changes=changes, method=args.method,
+                             workers=args.workers, progress=progress)
     files = write_outputs(args, result, figure={
         "title": "sensitivity of the stability boundary (Fig. 17, 18), "
                  + model_title(args, params)})

@@ -1,4 +1,5 @@
-"""``judder simulate``: bench engagement with dither (Fig. 7, 8), run through the FMU.
+"""``judder simulate``: bench engagement with dither (Fig. 7, 8), run
+through the FMU.
 
 One module holds the command: its options (:func:`add_arguments`),
 the command line's work (:func:`run`: preflight checks, the API call,
@@ -23,25 +24,42 @@ from ._bench import (added_damping, bench_fmu, bench_values, float_option,
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
+from ._values import DURATION, FREQ_RANGE_HZ, PF, QuantityList
 
-DESCRIPTION = "Engagement of the EVEN clutch at 1000 rpm on the test-bench model (TestBenchEngagement FMU, built if needed), run with fmpy. Writes the time histories (SI units) and reports the spectrum peaks of the upstream speed and of the pressure, the judder verdict, kind and growth as judder chart reads them, and the Floquet verdict of the bench's linearisation (c1 + d_control, the friction curve's value and slope at the slip), and whether the dither's forced slip swing stays within the curve's linear range (else the run need not follow that verdict). With --modelica CLASS: the class's FMU (built by the project's compiler) from its start values, a steady slip, with the dither, and the Floquet verdict of its linearisation; --fmu is refused (its Jacobian is all the FMU path reads)."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Engagement of the EVEN clutch at 1000 rpm on the test-bench model "
+    "(TestBenchEngagement FMU, built if needed), run with fmpy. Writes "
+    "the time histories (SI units) and reports the spectrum peaks of "
+    "the upstream speed and of the pressure, the judder verdict, kind "
+    "and growth as judder chart reads them, and the Floquet verdict of "
+    "the bench's linearisation (c1 + d_control, the friction curve's "
+    "value and slope at the slip), and whether the dither's forced slip "
+    "swing stays within the curve's linear range (else the run need not "
+    "follow that verdict). With --modelica CLASS: the class's FMU "
+    "(built by the project's compiler) from its start values, a steady "
+    "slip, with the dither, and the Floquet verdict of its "
+    "linearisation; --fmu is refused (its Jacobian is all the FMU path "
+    "reads).")
 
 
 OUTPUTS = (('out', '--out', ('csv', 'mf4')), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf", False)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf"
 
 
 def add_arguments(p):
     """The options of ``judder simulate``."""
-    p.add_argument("--freq", type=str, required=True, metavar="HZ[,HZ...]",
+    p.add_argument("--freq", type=QuantityList("--freq", "Hz", *FREQ_RANGE_HZ),
+                   required=True, metavar="HZ[,HZ...]",
                    help="dither frequency, Hz; several (e.g. 86,206) give "
                         "one engagement each, side by side, with their "
                         "spectra overlaid (Fig. 1, Fig. 8)")
-    p.add_argument("--pf", type=str, required=True, metavar="BAR",
+    p.add_argument("--pf", type=PF, required=True, metavar="BAR",
                    help="dither amplitude, bar")
-    p.add_argument("--duration", type=str, metavar="S",
+    p.add_argument("--duration", type=DURATION, metavar="S",
                    help="simulated time, s (default: the model's "
                         "StopTime, 4 s for the bench)")
     p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
@@ -70,9 +88,7 @@ def add_arguments(p):
 
 def run(args):
     """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
-    freqs = [check_number("--freq", f, "Hz") for f in args.freq]
-    check_number("--pf", args.pf, "bar", strict=False)
-    check_number("--duration", args.duration, "s")
+    freqs = args.freq
     params, changes = parameters_of(args)
     bench = bench_values(args.bench)
     compare = None if args.compare is None else (
@@ -80,14 +96,14 @@ def run(args):
         check_number("--compare", float_option(args.compare, "--compare"), "Hz"))
     make_parents(args.out, args.plot)
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
-                          duration=args.duration,
-                          compare=compare, bench=bench, parameters=params,
-                          changes=changes, method=args.method)
+                      duration=args.duration,
+                      compare=compare, bench=bench, parameters=params,
+                      changes=changes, method=args.method)
     files = write_outputs(
         args, result,
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
-                          "8)" if params.driveline is not None else
-                          "time-domain run with dither")
+                "8)" if params.driveline is not None else
+                "time-domain run with dither")
                 + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
                   f"parameters of {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},

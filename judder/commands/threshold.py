@@ -18,9 +18,15 @@ from ._arguments import force_option, model_options
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
-from ._values import parse_grid
+from ._values import Grid
 
-DESCRIPTION = 'Largest real part of the eigenvalues without dither against mu_g (Fig. 19a), and the threshold mu_g* against the external damping c_i (Fig. 19b; every c_i set to the value). Uses the mean pressure in the damping (mean_pressure_damping = 1) unless --set gives it.'
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Largest real part of the eigenvalues without dither against mu_g "
+    "(Fig. 19a), and the threshold mu_g* against the external damping "
+    "c_i (Fig. 19b; every c_i set to the value). Uses the mean pressure "
+    "in the damping (mean_pressure_damping = 1) unless --set gives it.")
 
 
 OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
@@ -28,10 +34,12 @@ OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
 
 def add_arguments(p):
     """The options of ``judder threshold``."""
-    p.add_argument("--mu-g", default="-0.001:0.001:81",
+    p.add_argument("--mu-g", type=Grid("--mu-g", "s/rad", allow_negative=True),
+                   default="-0.001:0.001:81",
                    metavar="START:STOP:N",
                    help="friction gradients for Fig. 19a, s/rad")
-    p.add_argument("--c-ext", default="0:2:41", metavar="START:STOP:N",
+    p.add_argument("--c-ext", type=Grid("--c-ext", "N m s/rad"),
+                   default="0:2:41", metavar="START:STOP:N",
                    help="external damping values for Fig. 19b, N m s/rad")
     p.add_argument("--out", metavar="FILE.csv",
                    help="threshold against c_i as CSV")
@@ -42,13 +50,13 @@ def add_arguments(p):
 
 def run(args):
     """Friction-gradient threshold without dither (Fig. 19)."""
-    mu_g = parse_grid(args.mu_g, "--mu-g", "s/rad", allow_negative=True)
-    damping = parse_grid(args.c_ext, "--c-ext", "N m s/rad")
+    mu_g = args.mu_g
+    damping = args.c_ext
     params, changes = parameters_of(args)
     make_parents(args.out, args.plot)
     with Progress(len(damping), "threshold") as progress:
         result = threshold(mu_g, damping, params, changes,
-                               progress=progress)
+                           progress=progress)
     files = write_outputs(args, result,
                            figure={"title": model_title(args, params)})
     study = result.study

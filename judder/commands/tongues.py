@@ -12,7 +12,6 @@ import time
 
 import numpy as np
 
-from infra.errors import check_number
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.maps import stability_map as map_kernel
@@ -20,27 +19,34 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          pf_max_option, waveform_option)
-from ._common import BACKGROUND_AMPLITUDES, checked_pf_max, dithered, resolve
+from ._common import BACKGROUND_AMPLITUDES, dithered, resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
-from ._values import parse_grid, parse_waveform
+from ._values import MIN_GROWTH, Grid, parse_waveform
 
-DESCRIPTION = "Exact tongue boundaries by Hill's method (--solver hill: every kind, all frequencies at once; scan: combination by Brent's method on the monodromy); each point checked against the monodromy. Tongues numbered as in Fig. 14, with their tips (lowest p_f)."
+
+#: The command's --help text.
+DESCRIPTION = (
+    "Exact tongue boundaries by Hill's method (--solver hill: every "
+    "kind, all frequencies at once; scan: combination by Brent's method "
+    "on the monodromy); each point checked against the monodromy. "
+    "Tongues numbered as in Fig. 14, with their tips (lowest p_f).")
 
 
 OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude, and whether it is a
-#: grid (checked against the mean pressure before the work).
-AMPLITUDE = ("pf_max", False)
+#: The option holding the largest dither amplitude (checked against the
+#: mean pressure before the work).
+AMPLITUDE = "pf_max"
 
 
 def add_arguments(p):
     """The options of ``judder tongues``."""
-    p.add_argument("--freq", default="10:220:500", metavar="START:STOP:N",
+    p.add_argument("--freq", type=Grid("--freq", "Hz"),
+                   default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
     pf_max_option(p, "largest amplitude searched")
-    p.add_argument("--min-growth", type=str, default=0.0, metavar="1/S",
+    p.add_argument("--min-growth", type=MIN_GROWTH, default=0.0, metavar="1/S",
                    help="boundaries of judder growing at least this fast, "
                         "1/s (default 0: the stability boundaries of Fig. "
                         "14; map, check and advise use 1, one e-fold per "
@@ -61,21 +67,19 @@ def add_arguments(p):
 
 def run(args):
     """Tongue boundaries, labels and tips."""
-    freqs = parse_grid(args.freq, "--freq", "Hz")
+    freqs = args.freq
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
     check_tongues(params.replace(**changes), freqs,
-                            background=args.plot is not None)
+                  background=args.plot is not None)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "tongue boundaries") as progress:
-        result = tongues(freqs, checked_pf_max(args), params, changes,
-                             method=args.method, waveform=waveform,
-                             background=args.plot is not None,
-                             progress=progress,
-                             min_growth=check_number("--min-growth",
-                                                     args.min_growth, "1/s",
-                                                     low=-math.inf),
-                             solver=args.solver)
+        result = tongues(freqs, args.pf_max, params, changes,
+                         method=args.method, waveform=waveform,
+                         background=args.plot is not None,
+                         progress=progress,
+                         min_growth=args.min_growth,
+                         solver=args.solver)
     data = {**result.as_dict(), **write_outputs(args, result, figure={
         "title": f"tongue boundaries over the map, "
                  f"{model_title(args, params)}"})}
@@ -88,7 +92,7 @@ def run(args):
                     f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
                     f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
                     + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
-    missing = _missing_tongues(result, freqs, checked_pf_max(args))
+    missing = _missing_tongues(result, freqs, args.pf_max)
     if missing:
         rows.append(missing)
     rows.append(f"{len(freqs)} frequencies in {result.seconds:.2f} s; "
