@@ -46,7 +46,7 @@ from .waveforms import waveform_of
 
 __all__ = ["METHODS", "DEFAULT_METHOD", "DysonPropagator",
            "IntegratedPropagator", "monodromy", "monodromy_dyson",
-           "monodromy_solve_ivp", "get_method"]
+           "monodromy_solve_ivp", "get_method", "least_subintervals"]
 
 #: Chebyshev-Lobatto nodes per sub-interval.
 _NODES = 32
@@ -87,6 +87,32 @@ def _series_degree(strength):
     return max(degree, 1)
 
 
+def least_subintervals(A0, freq_hz):
+    """Sub-intervals per period the Dyson engine takes at least.
+
+    The integrand of one sub-interval turns through at most
+    :data:`_MAX_PHASE` rad, and it turns at twice the spectral radius of
+    ``A0`` plus the dither's angular frequency; a strong modulation asks
+    for more (:class:`DysonPropagator`). Time estimates use the same rule.
+
+    Parameters
+    ----------
+    A0 : ndarray, shape (m, m)
+        Constant part of the system, 1/s.
+    freq_hz : float or array_like
+        Dither frequencies, Hz (> 0).
+
+    Returns
+    -------
+    ndarray of float, shape (k,)
+        Sub-intervals per period, one per frequency.
+    """
+    radius = np.abs(np.linalg.eigvals(A0)).max()
+    f = np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    return np.maximum(1, np.ceil((1.0 / f) * (2 * radius + 2 * np.pi * f)
+                                 / _MAX_PHASE))
+
+
 class DysonPropagator:
     """Monodromy matrix as a function of ``p_f`` at one dither frequency.
 
@@ -113,8 +139,7 @@ class DysonPropagator:
         group = waveform.breakpoints
         peak = np.abs(waveform.values(np.linspace(0, 2 * np.pi, 257),
                                       freq_hz)).max()
-        radius = np.abs(np.linalg.eigvals(A0)).max()
-        steps = max(1, math.ceil(period * (2 * radius + omega) / _MAX_PHASE))
+        steps = int(least_subintervals(A0, freq_hz)[0])
         steps = group * math.ceil(steps / group)
         while True:
             if steps > MAX_SUBINTERVALS:

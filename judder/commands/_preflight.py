@@ -96,25 +96,16 @@ CHECK_PARAMETER_S = 0.014
 REFERENCE_SIZE = 6
 
 
-#: Largest phase per sub-interval, as in stability.monodromy (_MAX_PHASE).
-_MAX_PHASE = 8.0
 
 
 def subintervals(params, freq_hz):
     """Sub-intervals per period the Dyson engine needs at least, per
-    frequency, and the number of states.
-
-    As in :class:`stability.monodromy.DysonPropagator`: the integrand of
-    one sub-interval turns through at most 8 rad, and it turns at twice
-    the spectral radius of ``A0`` plus the dither's angular frequency.
-    """
+    frequency (:func:`stability.monodromy.least_subintervals`), and the
+    number of states."""
     from stability import build_driveline
+    from stability.monodromy import least_subintervals
     system = build_driveline(params).periodic_system()
-    radius = float(np.abs(np.linalg.eigvals(system.A0)).max())
-    f = np.atleast_1d(np.asarray(freq_hz, dtype=float))
-    steps = np.maximum(1, np.ceil((2 * radius + 2 * np.pi * f) / f
-                                  / _MAX_PHASE))
-    return steps, len(system.A0)
+    return least_subintervals(system.A0, freq_hz), len(system.A0)
 
 
 def _scale(size):
