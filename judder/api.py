@@ -41,7 +41,7 @@ from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
 from stability import modal
 from stability.maps import stability_map as map_kernel
-from stability.model import build_driveline
+from stability.source import build_driveline
 from stability.monodromy import DEFAULT_METHOD
 
 from .results import (CampaignResult, ChartResult, CrosscheckResult,
@@ -117,7 +117,7 @@ def eig(parameters=None, changes=None):
     values = _resolve(parameters, changes)
     driveline = build_driveline(values)
     damped_hz, ratio = modal.damped_modes(driveline)
-    paper = values.driveline is not None
+    paper = values.source_kind.is_chain
     return EigResult(
         params=values,
         natural_frequencies_hz=modal.natural_frequencies(driveline),
@@ -280,7 +280,7 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
         factors=factors, values=values, method=method, workers=workers,
         callback=progress)
     conclusions = (paper_conclusions(study)
-                   if nominal.driveline is not None
+                   if nominal.source_kind.is_chain
                    and nominal.driveline.paper_sensitivity else [])
     return SensitivityResult(params=nominal, study=study,
                              tip_shifts=tip_shifts(study),
@@ -317,7 +317,7 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
     from stability.threshold import threshold_study
     changes = dict(changes or {})
     base = _resolve(parameters, {})
-    if base.driveline is None:
+    if not base.source_kind.is_chain:
         raise JudderError(f"threshold of {base.model} is not possible: "
                           "Fig. 19 varies mu_g and the external dampings "
                           "of the paper's chains by their roles; allowed: "
@@ -398,7 +398,7 @@ def _bench_fmu(values):
     """The driveline's bench engagement model and its FMU (built if
     needed)."""
     from pysim.fmus import ensure_fmu
-    if values.driveline is None:
+    if not values.source_kind.is_chain:
         raise JudderError(f"{values.model} (a Modelica class or an FMU) "
                           "has no bench engagement model: the bench belongs "
                           "to the registry's 4-DOF driveline; allowed: a "
@@ -547,7 +547,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     from .timedomain import class_fmu, run_values
     values = _resolve(parameters, changes)
     bench = dict(bench or {})
-    if values.driveline is not None:
+    if values.source_kind.is_chain:
         model_class, fmu = _bench_fmu(values)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))
@@ -734,8 +734,7 @@ def _structural_names(values, preferred, extra=()):
     paper's chain), and if it has none the names must be given."""
     if all(name in values.specs for name in preferred):
         return tuple(preferred)
-    model = values.driveline
-    if model is None:
+    if not values.source_kind.is_chain:
         names = tuple(n for n in preferred if n in values.specs)
         if not names:
             raise JudderError(
@@ -743,6 +742,7 @@ def _structural_names(values, preferred, extra=()):
                 f"the default names {','.join(preferred)}; allowed: its "
                 f"tunable parameters: {', '.join(values.specs)}")
         return names
+    model = values.driveline
     return (tuple(b.inertia for b in model.bodies)
             + tuple(c.stiffness for c in model.couplings)
             + tuple(c.damping for c in model.couplings) + tuple(extra))

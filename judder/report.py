@@ -366,7 +366,7 @@ def build_report(parameters=None, changes=None, description=None,
                               f"{unknown[0]!r} for the {values.model} "
                               "model; allowed names: "
                               f"{', '.join(values.specs)}")
-    paper = values.driveline is not None     # a registry driveline
+    paper = values.source_kind.is_chain     # a registry driveline
     run_engagement = engagement and freq_hz is not None and (
         not paper or values.driveline.bench_class is not None)
     if run_engagement:

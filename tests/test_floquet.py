@@ -146,9 +146,9 @@ def test_bad_point_is_refused(paper4, freq, pf):
         floquet(paper4, freq, pf)
 
 
-def test_dyson_refuses_full_form(paper4):
+def test_dyson_refuses_augmented_form(paper4):
     with pytest.raises(JudderError, match="solve_ivp"):
-        floquet(paper4, 50.0, 1e4, method="dyson", form="full")
+        floquet(paper4, 50.0, 1e4, method="dyson", form="augmented")
 
 
 def test_unknown_method_lists_options(paper4):

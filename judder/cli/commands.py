@@ -508,7 +508,7 @@ def cmd_simulate(args):
     files = _write_outputs(
         args, result,
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
-                          "8)" if params.driveline is not None else
+                          "8)" if params.source_kind.is_chain else
                           "time-domain run with dither")
                 + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
                   f"parameters of {model_title(args, params)}"})
