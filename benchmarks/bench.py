@@ -302,8 +302,8 @@ def _linear_map(linear):
                                       - reference).max()),
             "baseline_max_error": float(np.abs(baseline - reference).max()),
             "states": len(linear.state_names),
-            "reduced_states": len(linear.A0_reduced),
-            "modulation_rank": linear.rank,
+            "reduced_states": len(driveline.reduction.A0),
+            "modulation_rank": driveline.reduction.rank,
             "baseline_note": f"baseline: solve_ivp DOP853 rtol "
                              f"{BASELINE_TOL['rtol']:g} on {points} points "
                              "of the grid, scaled; error against rtol "

@@ -12,7 +12,8 @@ from .parameters import (Parameters, default_preset, dumps_toml,
                          get_preset, load_toml)
 from .registry import (DEFAULT_MODEL, MODELS, PRESETS, SPECS, Body,
                        Coupling, DrivelineModel, get_model)
+from .sources import SourceKind
 
 __all__ = ["Parameters", "default_preset", "dumps_toml", "get_preset",
            "load_toml", "DEFAULT_MODEL", "MODELS", "PRESETS", "SPECS",
-           "Body", "Coupling", "DrivelineModel", "get_model"]
+           "Body", "Coupling", "DrivelineModel", "get_model", "SourceKind"]

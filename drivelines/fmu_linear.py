@@ -17,8 +17,9 @@ symbolic equations (Eq. (6)-(7) of the paper), and checked the same way:
 the amplitude enters affinely, the part without dither does not change
 with time, the dither part is the cosine of the frequency parameter times
 one matrix, and the Jacobian stays fixed along the slip. The rigid-body
-directions are removed by :func:`drivelines.modelica.reduce_periodic`, so
-the result is a :class:`~drivelines.modelica.LinearPeriodicModel` that
+directions are removed in :mod:`stability` (:mod:`stability.reduction`),
+as for the Modelica path: the result is a
+:class:`~drivelines.modelica.LinearPeriodicModel` that
 :class:`stability.LinearDriveline` turns into every study.
 
 fmpy loads the FMU here (not in :mod:`pysim`, the time-domain runs),
@@ -29,6 +30,7 @@ Jacobian of a third-party FMU is one error naming the call.
 """
 
 from dataclasses import dataclass
+from typing import ClassVar
 from functools import lru_cache
 from pathlib import Path
 
@@ -39,7 +41,8 @@ from infra.errors import JudderError
 
 from .fmu_calls import SampleJob, sample_isolated
 from .modelica import (NamedParameters, check_no_acceleration, checked_values,
-                       reduce_periodic)
+                       linear_periodic_model)
+from .sources import SourceKind
 from .specs import ParameterSpec
 
 __all__ = ["FmuError", "FmuParameters", "fmu_description", "linearize_fmu",
@@ -222,8 +225,8 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
         bscale, scale),
              f"{name}: the dither does not enter as {amplitude}*cos(2*pi*"
              f"{frequency}*time); allowed: the paper's cosine dither")
-    return reduce_periodic(name, d.state_names, A0, B0, values, amplitude,
-                           frequency)
+    return linear_periodic_model(name, d.state_names, A0, B0, values,
+                                 amplitude, frequency, SourceKind.FMU)
 
 
 @lru_cache(maxsize=8)
@@ -290,6 +293,8 @@ class FmuParameters(NamedParameters):
     values: dict = None
     amplitude: str = "p_f"
     frequency: str = "f_dither"
+    #: A third-party FMU: its Jacobian only, no time-domain run.
+    source_kind: ClassVar[SourceKind] = SourceKind.FMU
 
     def __post_init__(self):
         object.__setattr__(self, "values", _values(
@@ -305,17 +310,21 @@ class FmuParameters(NamedParameters):
         """Unit, bounds and description of the Real parameters."""
         return fmu_description(self.path).specs
 
-    @property
-    def driveline(self):
-        """None: an FMU has no entry in the registry."""
-        return None
-
     def replace(self, **changes):
         """A copy with some values changed (validated)."""
         return FmuParameters(self.path, {**self.values, **changes},
                              self.amplitude, self.frequency)
 
     def linear_model(self):
-        """:func:`linearize_fmu` of the FMU at these values."""
-        return linearize_fmu(self.path, self.values, self.amplitude,
-                             self.frequency)
+        """:func:`linearize_fmu` of the FMU at these values, once per FMU
+        version and values (the studies of one command share it)."""
+        return _linearized(self.path, Path(self.path).stat().st_mtime_ns,
+                           tuple(self.values.items()), self.amplitude,
+                           self.frequency)
+
+
+@lru_cache(maxsize=8)
+def _linearized(path, mtime, values, amplitude, frequency):
+    """:func:`linearize_fmu`, cached by its arguments and the FMU's
+    modification time."""
+    return linearize_fmu(path, dict(values), amplitude, frequency)

@@ -17,35 +17,32 @@ depend on time, and its ``p_f`` part must be the cosine of the dither
 frequency parameter times one matrix; otherwise :class:`ModelicaError`
 says what differs.
 
-Rigid-body directions are found from the matrices, not from the topology:
-the common null space of :math:`A_0` and :math:`B` (constant angles of
-freely turning groups of bodies; a multiplier at exactly 1 each) is
-removed by projecting on its orthogonal complement, after a diagonal
-balancing of the states (angles in rad, speeds in rad/s). The reduced
-system keeps every other multiplier of the full one.
+The rigid-body directions of the result are removed in :mod:`stability`
+(:mod:`stability.reduction`), once per model.
 
 Nothing here knows a driveline's name: a class of ``modelica/Judder`` or
 of the user's own package, with parameters set by their Modelica names.
 """
 
 from dataclasses import dataclass
+from typing import ClassVar
 from functools import lru_cache
 from pathlib import Path
 
 import casadi
 import numpy as np
-import scipy.linalg
 
 from fmu.backend import to_ode
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
 from infra.errors import JudderError, ParameterError
 
+from .sources import SourceKind
 from .specs import ParameterSpec, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
-           "linearize", "reduce_periodic", "NamedParameters",
+           "linearize", "linear_periodic_model", "NamedParameters",
            "check_no_acceleration"]
 
 #: The project's Modelica library (package ``Judder``).
@@ -101,13 +98,15 @@ def compile_class(class_name, library=None):
                                   roots=[str(r) for r in roots]))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class LinearPeriodicModel:
-    r"""Eq. (6)-(7) of a compiled Modelica class, full and reduced.
+    r"""Eq. (6)-(7) of a compiled Modelica class or an FMU.
 
-    .. math:: \dot x = (A_0 + p_f \cos(\omega t) B) x, \qquad
-              x = Q_s z, \quad
-              \dot z = (A_{0,r} + p_f \cos(\omega t) U V^T) z
+    .. math:: \dot x = (A_0 + p_f \cos(\omega t) B) x
+
+    The rigid-body reduction is :class:`stability.reduction.Reduction`
+    of ``A0`` and ``B``. Compared by identity: one linearisation is one
+    model.
 
     Attributes
     ----------
@@ -117,13 +116,6 @@ class LinearPeriodicModel:
     A0, B : ndarray, shape (n, n)
         Constant part (1/s) and modulation per Pa (1/(s Pa)) of the full
         Jacobian.
-    basis : ndarray, shape (n, m)
-        ``Q_s``: maps the reduced state ``z`` to ``x`` (balancing included).
-    rigid : ndarray, shape (n, n - m)
-        Rigid-body directions removed (columns, in ``x``).
-    A0_reduced : ndarray, shape (m, m)
-    U, V : ndarray, shape (m, r)
-        ``B`` in reduced coordinates, ``U V^T``; ``r`` is its rank.
     omega2 : ndarray
         Eigenvalues of the undamped stiffness ``M^{-1} K`` read from the
         Jacobian (rows of speeds, columns of the angles whose derivative
@@ -133,26 +125,19 @@ class LinearPeriodicModel:
         Every tunable parameter's value used, by Modelica name (SI).
     amplitude, frequency : str
         Names of the dither amplitude and frequency parameters.
+    source_kind : drivelines.sources.SourceKind
+        ``MODELICA`` or ``FMU``: where the Jacobian was read.
     """
 
     class_name: str
     state_names: tuple
     A0: np.ndarray
     B: np.ndarray
-    basis: np.ndarray
-    rigid: np.ndarray
-    A0_reduced: np.ndarray
-    U: np.ndarray
-    V: np.ndarray
     omega2: np.ndarray
     values: dict
     amplitude: str
     frequency: str
-
-    @property
-    def rank(self):
-        """Rank ``r`` of the modulation."""
-        return self.U.shape[1]
+    source_kind: SourceKind
 
 
 @lru_cache(maxsize=16)
@@ -232,9 +217,9 @@ class ModelicaParameters(NamedParameters):
 
     The parameter-set interface the application uses for the paper's
     drivelines (:class:`drivelines.Parameters`: ``model``, ``specs``,
-    ``replace``, ``with_overrides``, ``as_dict``), plus
+    ``replace``, ``with_overrides``, ``as_dict``, ``source_kind``), plus
     :meth:`linear_model`, the linear time-periodic system, which
-    :func:`stability.model.build_driveline` uses instead of the paper's
+    :func:`stability.source.build_driveline` uses instead of the paper's
     matrices.
 
     Attributes
@@ -252,6 +237,8 @@ class ModelicaParameters(NamedParameters):
     values: dict = None
     amplitude: str = "p_f"
     frequency: str = "f_dither"
+    #: A Modelica class: linearised from its equations, its FMU runs.
+    source_kind: ClassVar[SourceKind] = SourceKind.MODELICA
 
     def __post_init__(self):
         ode = compile_class(self.class_name, self.library)
@@ -268,11 +255,6 @@ class ModelicaParameters(NamedParameters):
         """:func:`parameter_specs` of the class."""
         return parameter_specs(self.class_name, self.library)
 
-    @property
-    def driveline(self):
-        """None: a Modelica class has no entry in the registry."""
-        return None
-
     def replace(self, **changes):
         """A copy with some values changed (validated)."""
         return ModelicaParameters(self.class_name, self.library,
@@ -287,32 +269,22 @@ class ModelicaParameters(NamedParameters):
                 if s.unit == "rad/s"]
 
     def linear_model(self):
-        """:func:`linearize` of the class at these values."""
-        return linearize(self.class_name, self.library, self.values,
-                         self.amplitude, self.frequency)
+        """:func:`linearize` of the class at these values, once per class
+        and values (the studies of one command share it)."""
+        return _linearized(self.class_name, self.library,
+                           tuple(self.values.items()), self.amplitude,
+                           self.frequency)
+
+
+@lru_cache(maxsize=16)
+def _linearized(class_name, library, values, amplitude, frequency):
+    """:func:`linearize`, cached by its (hashable) arguments."""
+    return linearize(class_name, library, dict(values), amplitude, frequency)
 
 
 def _require(condition, message):
     if not condition:
         raise ModelicaError(message)
-
-
-def _balance(A0, B):
-    """Diagonal ``D`` with ``D^-1 (|A0| + |B| p) D`` balanced (angles vs
-    speeds), as powers of 2 (exact)."""
-    magnitude = np.abs(A0) + np.abs(B) * 1e5
-    _, (scale, _) = scipy.linalg.matrix_balance(magnitude, permute=False,
-                                                separate=True)
-    return scale
-
-
-def _rigid_directions(A0, B):
-    """Orthonormal common null space of ``A0`` and ``B`` and its complement."""
-    stacked = np.vstack([A0, B * (np.linalg.norm(A0) / max(
-        np.linalg.norm(B), np.finfo(float).tiny))])
-    _, sigma, vt = np.linalg.svd(stacked)
-    rank = int(np.count_nonzero(sigma > _ZERO * sigma[0]))
-    return vt[rank:].T, vt[:rank].T
 
 
 def _undamped_omega2(A0, names):
@@ -364,8 +336,8 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     Examples
     --------
     >>> m = linearize("Judder.Examples.Driveline4DOF")
-    >>> m.A0.shape, m.A0_reduced.shape, m.rank
-    ((8, 8), (6, 6), 1)
+    >>> m.A0.shape, m.B.shape
+    ((8, 8), (8, 8))
     """
     ode = compile_class(class_name, library)
     values = _parameter_values(ode, dict(values or {}), class_name, library)
@@ -413,17 +385,18 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
                  "cosine of Sources.DitherPressure")
     _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p)
 
-    return reduce_periodic(class_name, tuple(s.name for s in ode.states),
-                           A0, B0, values, amplitude, frequency)
+    return linear_periodic_model(class_name,
+                                 tuple(s.name for s in ode.states), A0, B0,
+                                 values, amplitude, frequency,
+                                 SourceKind.MODELICA)
 
 
-def reduce_periodic(name, state_names, A0, B0, values, amplitude, frequency):
+def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
+                          frequency, source_kind):
     """The :class:`LinearPeriodicModel` of ``A0 + p_f cos(2 pi f t) B0``.
 
-    Removes the rigid-body directions (common null space of ``A0`` and
-    ``B0`` after a diagonal balancing) and factors the reduced modulation
-    as ``U V^T`` (Eq. 7); shared by :func:`linearize` and the FMU path
-    (:mod:`drivelines.fmu_linear`).
+    Checks that the dither enters and reads the undamped ``w^2``; shared
+    by :func:`linearize` and the FMU path (:mod:`drivelines.fmu_linear`).
 
     Parameters
     ----------
@@ -436,35 +409,23 @@ def reduce_periodic(name, state_names, A0, B0, values, amplitude, frequency):
         Parameter values used (SI).
     amplitude, frequency : str
         Names of the dither amplitude and frequency parameters.
+    source_kind : drivelines.sources.SourceKind
 
     Returns
     -------
     LinearPeriodicModel
     """
     # without a modulated damping (no clutch, or the dither parameter
-    # unused) the balancing divides by zero rows and the SVD fails
+    # unused) there is nothing to analyse
     _require(np.isfinite(B0).all() and np.abs(B0).max() > 0,
              f"{name}: the dither {amplitude} does not enter the "
              "linearised equations (no clutch damping is modulated); "
              "allowed: a driveline with a clutch whose pressure is "
              f"{amplitude}")
-    D = _balance(A0, B0)
-    A_bal = A0 / D[:, None] * D[None, :]
-    B_bal = B0 / D[:, None] * D[None, :]
-    rigid, complement = _rigid_directions(A_bal, B_bal)
-    A0r = complement.T @ A_bal @ complement
-    Br = complement.T @ B_bal @ complement
-    u_, sigma, vt = np.linalg.svd(Br)
-    rank = int(np.count_nonzero(sigma > _ZERO * max(sigma[0], 1e-300)))
-    _require(rank > 0, f"{name}: the dither {amplitude} does not enter "
-             "the linearised equations (no clutch damping is modulated)")
-    U = u_[:, :rank] * sigma[:rank]
-    V = vt[:rank].T
     return LinearPeriodicModel(
         class_name=name, state_names=state_names, A0=A0, B=B0,
-        basis=D[:, None] * complement, rigid=D[:, None] * rigid,
-        A0_reduced=A0r, U=U, V=V, omega2=_undamped_omega2(A0, state_names),
-        values=values, amplitude=amplitude, frequency=frequency)
+        omega2=_undamped_omega2(A0, state_names), values=values,
+        amplitude=amplitude, frequency=frequency, source_kind=source_kind)
 
 
 def check_no_acceleration(name, state_names, A0, rate, error):

@@ -11,10 +11,12 @@ sets can be overridden by name, saved to and loaded from TOML.
 from dataclasses import dataclass, field
 import tomllib
 from types import MappingProxyType
+from typing import ClassVar
 
 from infra.errors import ParameterError
 
 from .registry import MODELS, get_model
+from .sources import SourceKind
 from .specs import MEAN_PRESSURE_DAMPING, parse_overrides
 
 __all__ = ["Parameters", "get_preset", "default_preset", "load_toml",
@@ -48,6 +50,8 @@ class Parameters:
 
     model: str
     values: MappingProxyType = field(repr=False)
+    #: A registry chain (:mod:`drivelines.registry`).
+    source_kind: ClassVar[SourceKind] = SourceKind.CHAIN
 
     def __post_init__(self):
         specs = get_model(self.model).specs

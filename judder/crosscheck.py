@@ -21,7 +21,7 @@ from infra.parallel import parallel_map
 from pysim.runs import parameter_default, run_fmu
 from pysim.signals import free_response_growth
 from stability.floquet import floquet
-from stability.model import build_driveline
+from stability.source import build_driveline
 from stability.monodromy import DEFAULT_METHOD, get_method
 
 from .timedomain import class_fmu, run_values
@@ -136,7 +136,7 @@ def _fmu_and_speeds(params, perturb):
     is recorded. An FMU of ``--fmu`` is refused (:func:`class_fmu`).
     """
     fmu_path = class_fmu(params, "crosscheck")
-    if params.driveline is not None:
+    if params.source_kind.is_chain:
         if perturb not in run_values(params)[1]:
             parameter_default(fmu_path, perturb)   # refuses an unknown name
         return fmu_path, params.driveline.free_response_speeds

@@ -32,10 +32,9 @@ def class_fmu(params, command):
         For an FMU of ``--fmu``, or a Modelica class whose dither is not
         in the parameters ``p_f`` and ``f_dither`` (which a run sets).
     """
-    from drivelines.modelica import ModelicaParameters
-    if params.driveline is not None:
+    if params.source_kind.is_chain:
         return ensure_fmu(params.driveline.modelica_class)
-    if not isinstance(params, ModelicaParameters):
+    if not params.source_kind.runs_in_time_domain:
         raise JudderError(
             f"{command} --fmu {params.path} is not possible: {command} runs "
             "the driveline in the time domain, and the FMU path reads only "
@@ -53,7 +52,7 @@ def run_values(params):
     :func:`class_fmu`: a registry set maps onto the FMU parameters of the
     same names; a Modelica class's values are all given as ``extra``,
     without the dither (each run sets its own)."""
-    if params.driveline is not None:
+    if params.source_kind.is_chain:
         return params, {}
     return None, {name: value for name, value in params.values.items()
                   if name not in (params.amplitude, params.frequency)}

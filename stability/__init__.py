@@ -19,12 +19,13 @@ from .maps import StabilityMap, stability_map
 from .modal import (clutch_damper_damping_factor, closed_form_frequencies,
                     damped_modes, natural_frequencies)
 from .linear import LinearDriveline
-from .model import Driveline, ModulatedSystem, PeriodicSystem, build_driveline
+from .model import AugmentedSystem, Driveline, ModulatedSystem, PeriodicSystem
 from .monodromy import DEFAULT_METHOD, METHODS
+from .source import ModelSource, build_driveline
 
 __all__ = ["FloquetResult", "floquet", "KINDS", "Kind", "classify",
            "StabilityMap", "stability_map", "clutch_damper_damping_factor",
            "closed_form_frequencies", "damped_modes", "natural_frequencies",
-           "Driveline", "PeriodicSystem", "ModulatedSystem", "LinearDriveline",
-           "build_driveline",
+           "Driveline", "PeriodicSystem", "ModulatedSystem", "AugmentedSystem",
+           "LinearDriveline", "ModelSource", "build_driveline",
            "DEFAULT_METHOD", "METHODS"]

@@ -38,7 +38,7 @@ from scipy.optimize import minimize
 from infra.errors import JudderError
 
 from .kinds import KINDS
-from .model import build_driveline
+from .source import build_driveline
 from .relevance import is_judder_relevant
 from .tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
                       lowest_of_kinds, tongue_boundaries)

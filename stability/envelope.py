@@ -42,7 +42,7 @@ from scipy.optimize import minimize
 
 from infra.parallel import TaskFailure, parallel_map
 
-from .model import build_driveline
+from .source import build_driveline
 from .monodromy import DEFAULT_METHOD
 from .ranges import DEFAULT_COVERAGE
 from .tongues import lowest_of_kinds, tongue_boundaries

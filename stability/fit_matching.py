@@ -42,7 +42,7 @@ from infra.errors import JudderError
 from .fit_model import _capped
 from .kinds import Kind
 from .modal import natural_frequencies
-from .model import build_driveline
+from .source import build_driveline
 from .tongues import TONGUE_KINDS, resonances
 
 __all__ = ["parse_kind", "AMBIGUITY", "MATCH_ROUNDS"]

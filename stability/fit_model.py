@@ -42,7 +42,7 @@ from scipy.optimize import least_squares
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
-from .model import build_driveline
+from .source import build_driveline
 from .monodromy import DEFAULT_METHOD
 from .relevance import DEFAULT_MIN_GROWTH_PER_S
 from .tongues import tongue_boundaries

@@ -13,10 +13,9 @@ from infra.errors import JudderError
 
 from .kinds import KINDS, classify
 from .monodromy import monodromy
-from .waveforms import waveform_of
 
-__all__ = ["FloquetResult", "floquet", "system_of", "leading_multipliers",
-           "check_frequency", "check_amplitude"]
+__all__ = ["FloquetResult", "FORMS", "floquet", "system_of",
+           "leading_multipliers", "check_frequency", "check_amplitude"]
 
 def leading_multipliers(monodromies):
     """Eigenvalues and leading eigenvalue of a stack of monodromy matrices.
@@ -83,14 +82,11 @@ class FloquetResult:
     kind: str
 
 
-class _Form:
-    """Adapter giving Eq. (6) or Eq. (9) the ``matrix(t, omega, p_f)`` call."""
-
-    def __init__(self, builder):
-        self._builder = builder
-
-    def matrix(self, t, omega, p_f):
-        return self._builder(t, omega / (2 * np.pi), p_f)
+#: The forms of a model source's system, by name: ``f(source)`` gives the
+#: system whose monodromy is analysed.
+FORMS = {"reduced": lambda source: source.periodic_system(),
+         "full": lambda source: source.full_system(),
+         "augmented": lambda source: source.augmented_system()}
 
 
 def system_of(driveline, form="reduced"):
@@ -98,38 +94,25 @@ def system_of(driveline, form="reduced"):
 
     Parameters
     ----------
-    driveline : stability.model.Driveline
+    driveline : stability.source.ModelSource
     form : {'reduced', 'full', 'augmented'}
         ``'reduced'``: Eq. (6) without the rigid-body angles (default, see
         :meth:`~stability.model.Driveline.periodic_system`); ``'full'``:
         Eq. (6) as printed, with two multipliers at exactly 1;
-        ``'augmented'``: Eq. (9), which adds two more at 1.
-        Only ``'reduced'`` works with the ``'dyson'`` engine, and only
-        ``'reduced'`` takes another dither waveform
-        (:class:`stability.waveforms.Dithered`): Eq. (6) and (9) are
-        written for the paper's cosine.
+        ``'augmented'``: Eq. (9), which adds two more at 1. Each carries
+        the source's waveform (:class:`stability.waveforms.Dithered`), so
+        all three give that waveform's multipliers.
 
     Raises
     ------
     JudderError
-        An unknown form, or ``'full'``/``'augmented'`` of a driveline
-        dithered by another waveform than the cosine.
+        An unknown form, or ``'augmented'`` of a source without a forcing
+        term (a linearised model).
     """
-    if form in ("full", "augmented"):
-        shape = waveform_of(driveline.periodic_system())
-        if shape.name != "cosine":
-            raise JudderError(
-                f"form = {form!r} is Eq. ({6 if form == 'full' else 9}) "
-                "with the paper's cosine dither; this driveline is "
-                f"dithered by a {shape.name} waveform, which only the "
-                "reduced form takes; allowed: form = 'reduced'")
-    forms = {"reduced": driveline.periodic_system,
-             "full": lambda: _Form(driveline.state_matrix),
-             "augmented": lambda: _Form(driveline.augmented_matrix)}
-    if form not in forms:
+    if form not in FORMS:
         raise JudderError(f"form = {form!r} is unknown; allowed: "
-                          f"{', '.join(forms)}")
-    return forms[form]()
+                          f"{', '.join(FORMS)}")
+    return FORMS[form](driveline)
 
 
 def check_frequency(freq_hz, name="freq"):
@@ -153,7 +136,7 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
 
     Parameters
     ----------
-    driveline : stability.model.Driveline
+    driveline : stability.source.ModelSource
     freq_hz : float
         Dither frequency, Hz.
     p_f : float
@@ -183,9 +166,10 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
     check_amplitude(p_f)
     if method is None:
         method = "dyson" if form == "reduced" else "solve_ivp"
-    if method == "dyson" and form != "reduced":
-        raise JudderError(f"form = {form!r} needs method = 'solve_ivp'; "
-                          "the 'dyson' engine handles the reduced form only")
+    if method == "dyson" and form == "augmented":
+        raise JudderError("form = 'augmented' needs method = 'solve_ivp'; "
+                          "the 'dyson' engine takes A0 + p_f c(w t) U V^T, "
+                          "which Eq. (9)'s forcing column p_f D is not")
     system = system_of(driveline, form)
     matrices = monodromy(system, freq_hz, [p_f], method)
     lam, leading = leading_multipliers(matrices)

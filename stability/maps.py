@@ -66,7 +66,7 @@ def stability_map(driveline, freq_hz, p_f, method=DEFAULT_METHOD,
 
     Parameters
     ----------
-    driveline : stability.model.Driveline
+    driveline : stability.source.ModelSource
     freq_hz : array_like, shape (nf,)
         Dither frequencies, Hz (> 0).
     p_f : array_like, shape (np,)

@@ -26,7 +26,7 @@ from infra.errors import JudderError
 
 from .floquet import floquet
 from .kinds import KINDS
-from .model import build_driveline
+from .source import build_driveline
 from .relevance import is_judder_relevant
 from .tongues import (TONGUE_KINDS, find_tongues, kind_boundaries,
                       kind_boundary, lowest_boundaries, tongue_boundaries)

@@ -17,7 +17,7 @@ def natural_frequencies(driveline):
 
     Parameters
     ----------
-    driveline : stability.model.Driveline or stability.linear.LinearDriveline
+    driveline : stability.source.ModelSource
         Anything with ``undamped_omega2()``.
 
     Returns

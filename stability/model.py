@@ -2,25 +2,31 @@
 
 Every registered driveline (:mod:`drivelines.registry`) is a chain of
 inertias joined by spring-dampers (engine side, clutch damper, shafts) and
-a wet clutch between the last body of the chain and the gearbox-side body. :func:`build_driveline` turns a
-:class:`~drivelines.Parameters` set into a :class:`Driveline`,
-which writes the paper's matrices. Its :meth:`Driveline.periodic_system`
-gives the form the Floquet layer integrates, with the rigid-body angles
-removed.
+a wet clutch between the last body of the chain and the gearbox-side body.
+:func:`stability.source.build_driveline` turns a
+:class:`~drivelines.Parameters` set into a :class:`Driveline`, which
+writes the paper's matrices. Its :meth:`Driveline.periodic_system` gives
+the form the Floquet layer integrates, with the rigid-body angles
+removed; :meth:`Driveline.full_system` and
+:meth:`Driveline.augmented_system` give Eq. (6) and Eq. (9).
 
 Coordinates follow Eq. (6): for the 4-DOF model ``theta = [theta1, theta2,
 theta4, theta3]``, for the 3-DOF model ``[theta1, theta24, theta3]``.
 """
 
 from dataclasses import dataclass
+from functools import cached_property
+from typing import ClassVar
 
 import numpy as np
 import scipy.linalg
 
-from drivelines.specs import MEAN_PRESSURE_DAMPING
+from drivelines.sources import SourceKind
+
+from .waveforms import Cosine
 
 __all__ = ["Driveline", "PeriodicSystem", "ModulatedSystem",
-           "build_driveline"]
+           "AugmentedSystem"]
 
 
 def _shape(system, theta, omega):
@@ -86,6 +92,7 @@ class PeriodicSystem:
         Examples
         --------
         >>> from drivelines import get_preset
+        >>> from stability import build_driveline
         >>> s = build_driveline(get_preset("paper-4dof")).periodic_system()
         >>> bool(np.allclose(s.shifted(2.0).A0, s.A0 - 2 * np.eye(6)))
         True
@@ -136,6 +143,49 @@ class ModulatedSystem:
 
 
 @dataclass(frozen=True)
+class AugmentedSystem:
+    r"""The homogeneous augmented form of Eq. (8)-(9).
+
+    .. math:: \frac{d}{dt}\begin{bmatrix} x \\ y \\ \dot y
+              \end{bmatrix} = \begin{bmatrix} A(t) & p_f d & 0 \\
+              0 & 0 & 1 \\ 0 & -\omega^2 & 0 \end{bmatrix}
+              \begin{bmatrix} x \\ y \\ \dot y \end{bmatrix}
+
+    ``A(t)`` is the full system ``state`` (Eq. 6, with its waveform); the
+    two added states are the dither's fundamental ``y = cos(w t)`` and its
+    derivative, which drive the forcing column ``p_f d``. The form is
+    block-triangular, so its multipliers are those of ``state`` plus two
+    at 1, whatever the waveform.
+
+    Attributes
+    ----------
+    state : PeriodicSystem
+        The full system, shape (m, m).
+    forcing : ndarray, shape (m,)
+        ``d``: the dither part of the friction torque per Pa,
+        ``[0; -M^-1 e mu0 N_c R_m S]``, 1/(s^2 Pa).
+    """
+
+    state: PeriodicSystem
+    forcing: np.ndarray
+
+    @property
+    def waveform(self):
+        """The waveform of ``state``."""
+        return self.state.waveform
+
+    def matrix(self, t, omega, p_f):
+        """System matrix at time ``t`` (s), shape (m + 2, m + 2)."""
+        size = len(self.forcing)
+        A = np.zeros((size + 2, size + 2))
+        A[:size, :size] = self.state.matrix(t, omega, p_f)
+        A[:size, size] = p_f * self.forcing
+        A[size, size + 1] = 1.0
+        A[size + 1, size] = -omega ** 2
+        return A
+
+
+@dataclass(frozen=True)
 class Driveline:
     """A chain of inertias joined by spring-dampers, plus a wet clutch.
 
@@ -160,6 +210,10 @@ class Driveline:
         Mean actuation pressure, Pa.
     mean_pressure_damping : float
         Share of ``p_m`` in the slip damping ``mu_g N_c R_m S p(t)``.
+    name : str
+        The registry model the chain is built from.
+    kind : drivelines.sources.SourceKind
+        ``CHAIN``, for every instance.
     """
 
     names: tuple
@@ -172,6 +226,13 @@ class Driveline:
     mu_g: float
     p_m: float
     mean_pressure_damping: float
+    name: str
+    kind: ClassVar[SourceKind] = SourceKind.CHAIN
+
+    @property
+    def waveform(self):
+        """The paper's cosine (Eq. 4)."""
+        return Cosine()
 
     @property
     def dof(self):
@@ -265,24 +326,45 @@ class Driveline:
         g = self.forcing(t, freq_hz, p_f, **torques)
         return np.concatenate([np.zeros(self.dof), g / self.inertia])
 
-    def augmented_matrix(self, t, freq_hz, p_f):
-        """Homogeneous augmented matrix of Eq. (8)-(9), shape (2n+2, 2n+2).
+    def full_system(self):
+        """Eq. (6) as a :class:`PeriodicSystem` in ``x = [theta,
+        theta_dot]``: its ``matrix`` is :meth:`state_matrix`, the
+        rank-one modulation ``u v^T`` the slip damping's dither part."""
+        n = self.dof
+        Minv = np.diag(1.0 / self.inertia)
+        e = self.clutch_vector()
+        mean_damping = (self.mu_g * self.clutch_factor
+                        * self.mean_pressure_damping * self.p_m)
+        C0 = self.structural_damping() + mean_damping * np.outer(e, e)
+        A0 = np.block([[np.zeros((n, n)), np.eye(n)],
+                       [-Minv @ self.stiffness_matrix(), -Minv @ C0]])
+        gain = self.mu_g * self.clutch_factor
+        u = np.concatenate([np.zeros(n), -gain * e / self.inertia])
+        v = np.concatenate([np.zeros(n), e])
+        names = (tuple(f"angle {name}" for name in self.names)
+                 + tuple(f"speed {name}" for name in self.names))
+        return PeriodicSystem(A0, u, v, names)
+
+    def augmented_system(self):
+        """Eq. (8)-(9) as an :class:`AugmentedSystem`, shape (2n+2, 2n+2).
 
         The two added states are ``cos(w t)`` and its derivative; the
         column ``D`` carries the dither part of the friction torque
         ``mu0 N_c R_m S p_f``.
         """
-        n = self.dof
-        omega = 2 * np.pi * freq_hz
-        A = np.zeros((2 * n + 2, 2 * n + 2))
-        A[:2 * n, :2 * n] = self.state_matrix(t, freq_hz, p_f)
-        D = -self.mu0 * self.clutch_factor * p_f * self.clutch_vector()
-        A[n:2 * n, 2 * n] = D / self.inertia
-        A[2 * n, 2 * n + 1] = 1.0
-        A[2 * n + 1, 2 * n] = -omega ** 2
-        return A
+        e = self.clutch_vector()
+        forcing = np.concatenate([
+            np.zeros(self.dof),
+            -self.mu0 * self.clutch_factor * e / self.inertia])
+        return AugmentedSystem(self.full_system(), forcing)
 
     def periodic_system(self):
+        """Eq. (6) without its rigid-body angles, as a :class:`PeriodicSystem`
+        (computed once per driveline, see :attr:`reduced`)."""
+        return self.reduced
+
+    @cached_property
+    def reduced(self):
         """Eq. (6) without its rigid-body angles, as a :class:`PeriodicSystem`.
 
         The chain and the output body each turn freely: the constant angle
@@ -318,47 +400,3 @@ class Driveline:
                       for i, j, _, _ in self.springs)
         names += tuple(f"speed {name}" for name in self.names)
         return PeriodicSystem(A0, u, v, names)
-
-
-def build_driveline(params):
-    """Driveline of a parameter set, from its model's registry entry.
-
-    The bodies, couplings and clutch come from
-    :class:`drivelines.registry.DrivelineModel` (Fig. 12 for the 3-DOF
-    model, Fig. 13 for the 4-DOF model); the values from ``params``.
-
-    Parameters
-    ----------
-    params : drivelines.Parameters or drivelines.modelica.ModelicaParameters
-        A parameter set of the registry's drivelines, or of a Modelica
-        class (then the result is a :class:`~stability.linear.LinearDriveline`
-        of its compiled equations).
-
-    Returns
-    -------
-    Driveline or stability.linear.LinearDriveline
-
-    Examples
-    --------
-    >>> from drivelines import get_preset
-    >>> build_driveline(get_preset("paper-4dof")).names
-    ('1', '2', '4', '3')
-    """
-    linear_model = getattr(params, "linear_model", None)
-    if linear_model is not None:
-        # a Modelica class (drivelines.modelica.ModelicaParameters): its
-        # compiled and linearised system replaces the paper's matrices
-        from .linear import LinearDriveline
-        return LinearDriveline.from_model(linear_model())
-    p, model = params, params.driveline
-    index = model.body_index
-    return Driveline(
-        names=tuple(b.label for b in model.bodies),
-        inertia=np.array([p[b.inertia] for b in model.bodies]),
-        springs=tuple((index(c.body_a), index(c.body_b), p[c.stiffness],
-                       p[c.damping]) for c in model.couplings),
-        external_damping=np.array([p[b.external_damping]
-                                   for b in model.bodies]),
-        clutch=(index(model.clutch[0]), index(model.clutch[1])),
-        clutch_factor=p.clutch_factor, mu0=p["mu0"], mu_g=p["mu_g"],
-        p_m=p["p_m"], mean_pressure_damping=p[MEAN_PRESSURE_DAMPING])

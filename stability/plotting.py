@@ -626,7 +626,7 @@ def _is_damper(name, params):
     """``name`` is the damping of the clutch damper of a registry
     driveline (Eq. 16 applies; a Modelica class or an FMU has no such
     role)."""
-    return (params is not None and params.driveline is not None
+    return (params is not None and params.source_kind.is_chain
             and name == params.driveline.clutch_damper.damping)
 
 

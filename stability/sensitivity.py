@@ -15,7 +15,7 @@ from infra.errors import JudderError
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
-from .model import build_driveline
+from .source import build_driveline
 from .monodromy import DEFAULT_METHOD, get_method
 from .tongues import find_tongues, tongue_boundaries
 

@@ -33,7 +33,7 @@ from scipy.optimize import brentq
 from drivelines.specs import MEAN_PRESSURE_DAMPING
 from infra.errors import JudderError
 
-from .model import build_driveline
+from .source import build_driveline
 
 __all__ = ["constant_system", "max_real_part", "friction_threshold",
            "closed_form_threshold", "ThresholdStudy", "threshold_study"]

@@ -347,7 +347,7 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
 
     Parameters
     ----------
-    driveline : stability.model.Driveline
+    driveline : stability.source.ModelSource
     freq_hz : array_like, shape (nf,)
         Dither frequencies, Hz.
     p_max : float
@@ -500,7 +500,7 @@ def find_tongues(driveline, boundaries):
 
     Parameters
     ----------
-    driveline : stability.model.Driveline
+    driveline : stability.source.ModelSource
         The driveline the boundaries were computed for.
     boundaries : Boundaries
 

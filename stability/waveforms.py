@@ -207,22 +207,56 @@ def with_waveform(system, waveform):
 
 @dataclass(frozen=True)
 class Dithered:
-    """A driveline whose dither has another waveform.
+    """A model source whose dither has another waveform.
 
-    Delegates everything to ``driveline`` and sets ``waveform`` on the
-    systems it gives, so every study takes it as a driveline.
+    Implements :class:`stability.source.ModelSource` over ``driveline``
+    (any model source): every system it gives (reduced, full, augmented)
+    carries ``waveform``, so every form, engine and study takes it.
+
+    Attributes
+    ----------
+    driveline : stability.source.ModelSource
+    waveform : object
+        One of this module's waveforms.
+
+    Examples
+    --------
+    >>> from drivelines import get_preset
+    >>> from stability import build_driveline
+    >>> d = Dithered(build_driveline(get_preset("paper-4dof")),
+    ...              FilteredSquare(0.0))
+    >>> d.full_system().waveform.name
+    'square'
     """
 
     driveline: object
     waveform: object
 
+    @property
+    def name(self):
+        """The name of ``driveline``."""
+        return self.driveline.name
+
+    @property
+    def kind(self):
+        """The :class:`~drivelines.sources.SourceKind` of ``driveline``."""
+        return self.driveline.kind
+
     def periodic_system(self):
+        """The reduced system of ``driveline`` with ``waveform``."""
         return with_waveform(self.driveline.periodic_system(), self.waveform)
 
-    def undamped_omega2(self):
-        return self.driveline.undamped_omega2()
+    def full_system(self):
+        """The full system of ``driveline`` with ``waveform``."""
+        return with_waveform(self.driveline.full_system(), self.waveform)
 
-    def __getattr__(self, name):
-        if name.startswith("__") or name == "driveline":
-            raise AttributeError(name)
-        return getattr(self.driveline, name)
+    def augmented_system(self):
+        """The augmented system of ``driveline``, its full system with
+        ``waveform``."""
+        augmented = self.driveline.augmented_system()
+        return replace(augmented,
+                       state=with_waveform(augmented.state, self.waveform))
+
+    def undamped_omega2(self):
+        """``w^2`` of ``driveline``'s undamped modes, (rad/s)^2."""
+        return self.driveline.undamped_omega2()

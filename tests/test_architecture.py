@@ -70,6 +70,46 @@ def test_importing_a_library_loads_nothing_above_it(package):
     assert not loaded & forbidden
 
 
+def _module_imports(package):
+    """``{module: modules of the same package it imports}``, any depth
+    (lazy imports inside functions included)."""
+    graph = {}
+    for path in sorted((ROOT / package).rglob("*.py")):
+        parts = path.relative_to(ROOT).with_suffix("").parts
+        module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        here = ".".join(parts[:-1])          # the module's package
+        used = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    anchor = here.rsplit(".", node.level - 1)[0] \
+                        if node.level > 1 else here
+                    base = f"{anchor}.{base}" if base else anchor
+                used.add(base)
+                used |= {f"{base}.{alias.name}" for alias in node.names}
+            elif isinstance(node, ast.Import):
+                used |= {alias.name for alias in node.names}
+        graph[module] = used
+    return {m: {u for u in used if u in graph and u not in (m, package)}
+            for m, used in graph.items()}
+
+
+@pytest.mark.parametrize("package", ["drivelines", "stability"])
+def test_no_import_circle_inside_a_package(package):
+    # a circle hides which module is the lower one (issue 22: the
+    # stability.linear <-> stability.model circle, broken by a lazy import)
+    graph = _module_imports(package)
+
+    def reaches(start, goal, seen):
+        for nxt in graph[start] - seen:
+            if nxt == goal or reaches(nxt, goal, seen | {nxt}):
+                return True
+        return False
+    circles = [m for m in graph if reaches(m, m, set())]
+    assert not circles
+
+
 def test_stability_does_not_import_matplotlib():
     code = "import stability, sys; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True,

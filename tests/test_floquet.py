@@ -146,9 +146,9 @@ def test_bad_point_is_refused(paper4, freq, pf):
         floquet(paper4, freq, pf)
 
 
-def test_dyson_refuses_full_form(paper4):
+def test_dyson_refuses_augmented_form(paper4):
     with pytest.raises(JudderError, match="solve_ivp"):
-        floquet(paper4, 50.0, 1e4, method="dyson", form="full")
+        floquet(paper4, 50.0, 1e4, method="dyson", form="augmented")
 
 
 def test_unknown_method_lists_options(paper4):
@@ -160,3 +160,16 @@ def test_dyson_refuses_a_period_too_long_for_its_memory(paper4):
     # 0.001 Hz would need about 160 000 sub-intervals (GBs of coefficients)
     with pytest.raises(JudderError, match="solve_ivp"):
         floquet(paper4, 1e-3, 1e4)
+
+
+@pytest.mark.parametrize("t, freq, p_f", [(0.0, 102.9, 0.3e5),
+                                          (1.3e-3, 60.0, 1.2e5)])
+def test_full_system_is_eq6(paper4, t, freq, p_f):
+    # the full form's rank-one split A0 + p_f cos(w t) u v^T is Eq. (6)
+    # as written by state_matrix, and Eq. (9) borders it
+    matrix = paper4.full_system().matrix(t, 2 * np.pi * freq, p_f)
+    expected = paper4.state_matrix(t, freq, p_f)
+    assert np.abs(matrix - expected).max() <= 1e-12 * np.abs(expected).max()
+    augmented = paper4.augmented_system().matrix(t, 2 * np.pi * freq, p_f)
+    assert np.array_equal(augmented[:8, :8], matrix)
+    assert augmented[9, 8] == -(2 * np.pi * freq) ** 2

@@ -54,7 +54,8 @@ def test_jacobian_is_eq6_to_round_off(preset):
         eq6 = hand.state_matrix(t, freq, p_f)
         assert_allclose(extracted, eq6, rtol=1e-13, atol=1e-12)
     # two rigid-body angles found from the matrices, one modulated channel
-    assert linear.rigid.shape[1] == 2 and linear.rank == 1
+    reduction = LinearDriveline.from_model(linear).reduction
+    assert reduction.rigid.shape[1] == 2 and reduction.rank == 1
     assert_allclose(np.sqrt(np.sort(linear.omega2)[-len(model.couplings):]),
                     2 * np.pi * np.array(
                         [f for f in _hand_frequencies(hand)]), rtol=1e-12)
@@ -169,7 +170,7 @@ def test_slip_speed_is_a_map_parameter(geared):
 
 def test_two_clutches_give_a_rank_two_modulation():
     linear = linearize("Judder.Examples.Driveline4DOFTwoClutches")
-    assert linear.rank == 2
+    assert LinearDriveline.from_model(linear).reduction.rank == 2
     v = linear.values
     # by hand: Eq. (6) of the 4-DOF model plus the REV clutch's modulated
     # slip damping on body 3 (it slips against the housing)
@@ -238,7 +239,7 @@ def test_user_library_and_bad_names(tmp_path):
     # Mathieu-like oscillator: A0 = [[0, 1], [-100, -1]], B = -e2 e2^T
     assert_allclose(linear.A0, [[0, 1], [-100, -1]])
     assert_allclose(linear.B, [[0, 0], [0, -1]])
-    assert linear.rigid.shape[1] == 0
+    assert LinearDriveline.from_model(linear).reduction.rigid.shape[1] == 0
     with pytest.raises(ParameterError, match="not a tunable parameter"):
         linearize("MyLib.Oscillator", library=library, values={"J9": 1.0})
     with pytest.raises(ParameterError, match=">= 0"):
@@ -338,3 +339,26 @@ def test_crosscheck_fmu_of_the_rank_two_class_against_its_floquet_rates():
     for point in check.points:
         assert point.fitted_rate == pytest.approx(point.floquet_rate,
                                                   rel=1e-3)
+
+
+def test_one_map_linearises_the_class_once(monkeypatch, capsys):
+    # issue 22: the memory check, the two estimates and the map each built
+    # the driveline of the same class and values, 4 linearisations for one
+    # 3x3 map; now one (w_slip set to a value no other test uses, so no
+    # earlier linearisation is reused)
+    import json
+    import drivelines.modelica
+    from judder.cli import main
+    calls = []
+    linearize_once = drivelines.modelica.linearize
+
+    def counted(*args, **kwargs):
+        calls.append(args[0])
+        return linearize_once(*args, **kwargs)
+    monkeypatch.setattr(drivelines.modelica, "linearize", counted)
+    status = main(["map", "--modelica", "Judder.Examples.Driveline5DOFGeared",
+                   "--set", "w_slip=3.0625", "--freq", "10:200:3",
+                   "--pf", "0:1:3", "--json"])
+    assert status == 0
+    assert json.loads(capsys.readouterr().out)["max_leading_abs"] > 1
+    assert calls == ["Judder.Examples.Driveline5DOFGeared"]

@@ -7,7 +7,8 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import quad, solve_ivp
 
-from stability import natural_frequencies
+from infra.errors import JudderError
+from stability import floquet, natural_frequencies
 from stability.monodromy import DysonPropagator
 from stability.tongues import hill_boundary_amplitudes
 from stability.waveforms import (Dithered, FilteredSquare, FourierSeries,
@@ -152,23 +153,53 @@ def test_hill_solver_defers_to_scan_for_another_waveform(paper4):
         lowest_boundaries(square, freqs, 1.5e5, "hill")[1, 0])
 
 
-def test_the_full_forms_take_the_cosine_only():
-    # Eq. (6) and (9) are written for the paper's cosine: a square-wave
-    # driveline in the full form gave the cosine's multiplier 1.026103
-    # where the square wave's is 1.035197 (issue 22); refused now
-    from drivelines import get_preset
-    from infra.errors import JudderError
-    from stability import build_driveline
-    from stability.floquet import floquet
-    from stability.waveforms import Cosine
-    driveline = build_driveline(get_preset("paper-4dof"))
-    square = Dithered(driveline, FilteredSquare(0.0))
-    for form in ("full", "augmented"):
-        with pytest.raises(JudderError, match="square waveform, which only "
-                                              "the reduced form takes"):
-            floquet(square, 102.9, 0.3e5, method="solve_ivp", form=form)
-    reduced = floquet(square, 102.9, 0.3e5, method="solve_ivp")
-    assert abs(reduced.leading) == pytest.approx(1.035197, abs=2e-6)
-    cosine = floquet(Dithered(driveline, Cosine()), 102.9, 0.3e5,
-                     method="solve_ivp", form="full")
-    assert abs(cosine.leading) == pytest.approx(1.026103, abs=2e-6)
+#: Every form with the engines that take it: the Dyson engine needs
+#: ``A0 + p_f c(w t) U V^T``, which Eq. (9)'s forcing column p_f D is not.
+FORMS_AND_ENGINES = [("reduced", "dyson"), ("reduced", "solve_ivp"),
+                     ("full", "dyson"), ("full", "solve_ivp"),
+                     ("augmented", "solve_ivp")]
+#: A harmonic-rich smooth shape: 2nd harmonic in sine, 3rd in cosine.
+FOURIER = FourierSeries(cos=(1.0, 0.0, 0.3), sin=(0.0, 0.2))
+
+
+@pytest.mark.parametrize("wave, expected", [
+    # issue 22: the full form used to give the cosine's 1.026103 here
+    (FilteredSquare(0.0), 1.035197),
+    (FOURIER, 1.026751)])
+def test_every_form_and_engine_takes_the_waveform(paper4, wave, expected):
+    # inside tongue 2 near its tip (Fig. 14): the leading multiplier of
+    # the reduced Eq. (6), the full Eq. (6) and the augmented Eq. (9) is
+    # the waveform's, by every engine, to 1e-7 (the engines' tolerance)
+    dithered = Dithered(paper4, wave)
+    leading = {(form, engine): floquet(dithered, 102.9, 0.3e5, method=engine,
+                                       form=form).leading_abs
+               for form, engine in FORMS_AND_ENGINES}
+    assert leading[("reduced", "dyson")] == pytest.approx(expected, abs=1e-6)
+    assert_allclose(list(leading.values()), leading[("reduced", "dyson")],
+                    rtol=0, atol=1e-7)
+    # Hill's method (on the reduced form, the one without a pole at
+    # s = 0) gives the single-period boundary below: there every form and
+    # engine has its leading multiplier on the unit circle
+    p_star = hill_boundary_amplitudes(dithered.periodic_system(), 102.9)[0]
+    assert p_star < 0.3e5
+    for form, engine in FORMS_AND_ENGINES:
+        at_boundary = floquet(dithered, 102.9, p_star, method=engine,
+                              form=form).leading_abs
+        assert at_boundary == pytest.approx(1.0, abs=1e-7), (form, engine)
+
+
+def test_a_linearised_model_has_no_augmented_form():
+    from drivelines.modelica import LinearPeriodicModel
+    from drivelines.sources import SourceKind
+    from stability.linear import LinearDriveline
+    # Mathieu-like oscillator: A0 = [[0, 1], [-100, -1]], B = -e2 e2^T
+    model = LinearPeriodicModel(
+        "Oscillator", ("x", "v"), np.array([[0.0, 1.0], [-100.0, -1.0]]),
+        np.array([[0.0, 0.0], [0.0, -1.0]]), np.array([100.0]), {}, "p_f",
+        "f_dither", SourceKind.MODELICA)
+    square = Dithered(LinearDriveline.from_model(model), FilteredSquare(0.0))
+    with pytest.raises(JudderError, match="allowed: form = 'reduced' or "
+                                          "'full'"):
+        floquet(square, 3.2, 0.5, form="augmented")
+    assert floquet(square, 3.2, 0.5, form="full").leading_abs == \
+        pytest.approx(floquet(square, 3.2, 0.5).leading_abs, abs=1e-9)

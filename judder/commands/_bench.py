@@ -59,7 +59,7 @@ def bench_fmu(values):
     """The driveline's bench engagement model and its FMU (built if
     needed)."""
     from pysim.fmus import ensure_fmu
-    if values.driveline is None:
+    if not values.source_kind.is_chain:
         raise JudderError(f"{values.model} (a Modelica class or an FMU) "
                           "has no bench engagement model: the bench belongs "
                           "to the registry's 4-DOF driveline; allowed: a "

@@ -6,7 +6,7 @@ import time
 
 from drivelines import DEFAULT_MODEL, default_preset, get_preset
 from infra.errors import JudderError
-from stability.model import build_driveline
+from stability.source import build_driveline
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
@@ -44,8 +44,7 @@ def structural_names(values, preferred, extra=()):
     paper's chain), and if it has none the names must be given."""
     if all(name in values.specs for name in preferred):
         return tuple(preferred)
-    model = values.driveline
-    if model is None:
+    if not values.source_kind.is_chain:
         names = tuple(n for n in preferred if n in values.specs)
         if not names:
             raise JudderError(
@@ -53,6 +52,7 @@ def structural_names(values, preferred, extra=()):
                 f"the default names {','.join(preferred)}; allowed: its "
                 f"tunable parameters: {', '.join(values.specs)}")
         return names
+    model = values.driveline
     return (tuple(b.inertia for b in model.bodies)
             + tuple(c.stiffness for c in model.couplings)
             + tuple(c.damping for c in model.couplings) + tuple(extra))

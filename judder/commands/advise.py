@@ -26,7 +26,6 @@ from ._records import rows_to_csv
 from ._values import (FREQ_RANGE_HZ, PF_MAX, Listed, Quantity,
                       check_amplitudes, option_value)
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "(a) The safe (frequency, amplitude) windows inside the valve's "

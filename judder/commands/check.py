@@ -18,7 +18,7 @@ from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
-from stability.model import build_driveline
+from stability.source import build_driveline
 
 from ._arguments import force_option, min_growth_option, model_options
 from ._common import check_names, resolve, structural_names
@@ -28,7 +28,6 @@ from ._preflight import check_settings, check_work
 from ._records import finite_or_none, rows_to_csv
 from ._values import (FREQ_RANGE_HZ, PF_MAX, Settings, check_amplitudes,
                       parse_list)
-
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -24,7 +24,6 @@ from ._preflight import check_crosscheck, check_work
 from ._records import rows_to_csv
 from ._values import DURATION, Grid
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Run the paper's driveline FMU (Eq. 1) on a grid, twice per point "

@@ -11,13 +11,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from stability import modal
-from stability.model import build_driveline
+from stability.source import build_driveline
 
 from ._arguments import model_options
 from ._common import resolve
 from ._model import parameters_of
 from ._output import emit
-
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -76,7 +75,7 @@ def eig(parameters=None, changes=None):
     values = resolve(parameters, changes)
     driveline = build_driveline(values)
     damped_hz, ratio = modal.damped_modes(driveline)
-    paper = values.driveline is not None
+    paper = values.source_kind.is_chain
     return EigResult(
         params=values,
         natural_frequencies_hz=modal.natural_frequencies(driveline),

@@ -32,7 +32,6 @@ from ._preflight import check_envelope
 from ._records import finite_or_none, rows_to_csv
 from ._values import SEED, Grid
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Exact tongue boundaries for every vertex of the parameter ranges "

@@ -60,7 +60,6 @@ from .simulate import simulate
 from .threshold import threshold
 from .tongues import tongues
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Run the studies of the paper for one driveline and write one "
@@ -505,7 +504,7 @@ def report(parameters=None, changes=None, description=None,
                               f"{unknown[0]!r} for the {values.model} "
                               "model; allowed names: "
                               f"{', '.join(values.specs)}")
-    paper = values.driveline is not None     # a registry driveline
+    paper = values.source_kind.is_chain     # a registry driveline
     run_engagement = engagement and freq_hz is not None and (
         not paper or values.driveline.bench_class is not None)
     if run_engagement:

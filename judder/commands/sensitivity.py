@@ -23,7 +23,6 @@ from ._records import rows_to_csv
 from ._values import Grid, Listed, parse_list
 from .tongues import tongue_record
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Vary each parameter (by --factors, or to --values), recompute the "
@@ -155,7 +154,7 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
         factors=factors, values=values, method=method, workers=workers,
         callback=progress)
     conclusions = (paper_conclusions(study)
-                   if nominal.driveline is not None
+                   if nominal.source_kind.is_chain
                    and nominal.driveline.paper_sensitivity else [])
     return SensitivityResult(params=nominal, study=study,
                              tip_shifts=tip_shifts(study),

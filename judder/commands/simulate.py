@@ -15,8 +15,8 @@ from infra.errors import JudderError, check_number
 from infra.files import keeps_foreign_files
 from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
-from stability.model import build_driveline
 from stability.monodromy import DEFAULT_METHOD
+from stability.source import build_driveline
 
 from ._arguments import force_option, method_option, model_options
 from ._bench import (added_damping, bench_fmu, bench_values, float_option,
@@ -25,7 +25,6 @@ from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
 from ._values import DURATION, FREQ_RANGE_HZ, PF, QuantityList
-
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -102,7 +101,7 @@ def run(args):
     files = write_outputs(
         args, result,
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
-                "8)" if params.driveline is not None else
+                "8)" if params.source_kind.is_chain else
                 "time-domain run with dither")
                 + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
                   f"parameters of {model_title(args, params)}"})
@@ -174,7 +173,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     from ..timedomain import class_fmu, run_values
     values = resolve(parameters, changes)
     bench = dict(bench or {})
-    if values.driveline is not None:
+    if values.source_kind.is_chain:
         model_class, fmu = bench_fmu(values)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))

@@ -20,7 +20,6 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Grid
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Largest real part of the eigenvalues without dither against mu_g "
@@ -98,7 +97,7 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
     from stability.threshold import threshold_study
     changes = dict(changes or {})
     base = resolve(parameters, {})
-    if base.driveline is None:
+    if not base.source_kind.is_chain:
         raise JudderError(f"threshold of {base.model} is not possible: "
                           "Fig. 19 varies mu_g and the external dampings "
                           "of the paper's chains by their roles; allowed: "
