@@ -681,7 +681,7 @@ def chart(sources, index=None, channels=None, group_by=None,
         CSV with a ``file`` column and the runs' settings.
     channels : dict, optional
         Role (``upstream_speed``, ``pressure``, ``downstream_speed``) ->
-        :class:`pysim.acquisitions.ChannelSpec`; default the names
+        :class:`pysim.bench_data.acquisition.ChannelSpec`; default the names
         ``judder campaign`` writes.
     group_by : sequence of str, optional
         Columns making the panels (default: oil temperature and engine
@@ -698,7 +698,7 @@ def chart(sources, index=None, channels=None, group_by=None,
     -------
     judder.results.ChartResult
     """
-    from pysim.charts import build_chart, gather_sources
+    from pysim.bench_data.charts import build_chart, gather_sources
     from pysim.run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH
     started = time.perf_counter()
     result = build_chart(

@@ -639,7 +639,7 @@ class CampaignResult:
 class ChartResult:
     """``judder chart``: an experimental stability chart (Fig. 10, 11).
 
-    ``chart`` is the :class:`pysim.charts.Chart`; ``model`` the
+    ``chart`` is the :class:`pysim.bench_data.charts.Chart`; ``model`` the
     :class:`TonguesResult` of the model drawn over it (None unless asked
     for).
     """
@@ -685,7 +685,7 @@ class ChartResult:
     @keeps_foreign_files
     def save(self, path):
         """Save the chart as NPZ: the per-run arrays of
-        :meth:`pysim.charts.Chart.arrays` and, per group, the boundary
+        :meth:`pysim.bench_data.charts.Chart.arrays` and, per group, the boundary
         (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
         with NaN where censored, ``boundary_tried_bar``, and
         ``boundary_below_bar``: the highest amplitude without judder below

@@ -619,7 +619,7 @@ def cmd_campaign(args):
 def _channels(items):
     """``ROLE=NAME[:UNIT]`` strings as ``{role: ChannelSpec}`` (None if
     none given: the names judder campaign writes)."""
-    from pysim.acquisitions import parse_channel_option
+    from pysim.bench_data.channels import parse_channel_option
     if not items:
         return None
     channels = dict(parse_channel_option(item) for item in items)
