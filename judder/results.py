@@ -572,7 +572,7 @@ class SimulationResult:
 
     def figure(self, title=None):
         from pysim.engagement import verdict_line
-        from pysim.plotting import run_figure
+        from pysim.plots import run_figure
         return run_figure(self.runs, start=self.start, title=title,
                           verdicts=[verdict_line(s) for s in self.summaries])
 
@@ -730,7 +730,7 @@ class ChartResult:
         return [str(target) for target in targets]
 
     def figure(self, title=None):
-        from pysim.plotting import chart_figure
+        from pysim.bench_data.plots import chart_figure
         fig, panels = chart_figure(self.chart, title=title)
         if self.model is not None:
             from stability.plotting import plot_boundaries
