@@ -1,14 +1,21 @@
 """Units of bench channels: speeds, pressures, times and encoder angles.
 
-Units are converted with a small explicit table (:data:`SPEED_UNITS`,
-:data:`PRESSURE_UNITS`) built on :mod:`infra.units`, not with pint
-(0.25, which installs): pint reads ``Hz`` and ``1/min`` as 1/s and 1/60 s,
-i.e. 1 Hz = 1 rad/s, where a rotational speed in Hz or 1/min counts
-revolutions (1 Hz = 2 pi rad/s), it does not know ``rev``, and it accepts
-anything of dimension 1/time (``kHz``, ``1/h``, even ``U/min`` as enzyme
-units); every speed unit would need a correcting table anyway, for the
-price of three more packages and 0.4 s to build its registry. The table
-accepts exactly the units a bench writes and lists them when one is not.
+Each spelling a bench writes is a unit of the project's one table,
+:data:`infra.units.UNITS`, which gives its SI factor. One reading differs
+from the table's, deliberately: a speed channel in ``Hz`` (or ``rps``)
+counts revolutions, a tachometer's Hz (1 Hz = 2 pi rad/s, the table's
+``rev/s``), where the table, Modelica and the command line read Hz as 1/s,
+a frequency.
+
+The spellings are converted with these small explicit tables
+(:data:`SPEED_UNITS`, :data:`PRESSURE_UNITS`), not with pint (0.25, which
+installs): pint reads ``Hz`` and ``1/min`` as 1/s and 1/60 s, i.e. 1 Hz =
+1 rad/s, where a rotational speed in Hz or 1/min counts revolutions (1 Hz
+= 2 pi rad/s), it does not know ``rev``, and it accepts anything of
+dimension 1/time (``kHz``, ``1/h``, even ``U/min`` as enzyme units); every
+speed unit would need a correcting table anyway, for the price of three
+more packages and 0.4 s to build its registry. The tables accept exactly
+the units a bench writes and list them when one is not.
 
 Examples
 --------
@@ -20,34 +27,37 @@ Examples
 0.006135923
 """
 
-import math
 import re
 
 from infra.errors import JudderError
-from infra.units import PA_PER_BAR, RAD_S_PER_RPM
+from infra.units import UNITS
 
 __all__ = ["unit_factor", "angle_factor", "is_angle_unit", "allowed_units",
            "SPEED_UNITS", "PRESSURE_UNITS", "TIME_UNITS", "ANGLE_UNITS"]
 
-#: rad/s per unit of speed; Hz and 1/min count revolutions.
-SPEED_UNITS = {
-    "rpm": RAD_S_PER_RPM, "rev/min": RAD_S_PER_RPM, "1/min": RAD_S_PER_RPM,
-    "min^-1": RAD_S_PER_RPM, "min-1": RAD_S_PER_RPM, "r/min": RAD_S_PER_RPM,
-    "U/min": RAD_S_PER_RPM,
-    "rad/s": 1.0, "rad/sec": 1.0, "rad s^-1": 1.0,
-    "Hz": 2.0 * math.pi, "rev/s": 2.0 * math.pi, "rps": 2.0 * math.pi,
-}
+
+def _factors(spellings):
+    """Spelling -> SI factor of the unit of :data:`infra.units.UNITS` it
+    stands for."""
+    return {spelling: UNITS[unit].factor
+            for spelling, unit in spellings.items()}
+
+
+#: rad/s per unit of speed; Hz and 1/min count revolutions (rev/s, rpm).
+SPEED_UNITS = _factors({
+    "rpm": "rpm", "rev/min": "rpm", "1/min": "rpm", "min^-1": "rpm",
+    "min-1": "rpm", "r/min": "rpm", "U/min": "rpm",
+    "rad/s": "rad/s", "rad/sec": "rad/s", "rad s^-1": "rad/s",
+    "Hz": "rev/s", "rev/s": "rev/s", "rps": "rev/s"})
 #: rad per unit of a shaft angle (an encoder's), read as a speed channel.
-ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0, "°": math.pi / 180.0,
-               "rev": 2.0 * math.pi}
-#: Pa per unit of pressure (psi: lbf/in^2 from the exact pound and inch).
-PRESSURE_UNITS = {
-    "Pa": 1.0, "hPa": 1e2, "kPa": 1e3, "MPa": 1e6, "bar": PA_PER_BAR,
-    "mbar": PA_PER_BAR / 1000, "psi": 0.45359237 * 9.80665 / 0.0254 ** 2,
-}
+ANGLE_UNITS = _factors({"rad": "rad", "deg": "deg", "°": "deg",
+                        "rev": "rev"})
+#: Pa per unit of pressure.
+PRESSURE_UNITS = _factors({unit: unit for unit in (
+    "Pa", "hPa", "kPa", "MPa", "bar", "mbar", "psi")})
 #: s per unit of a time column or track.
-TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6,
-              "min": 60.0}
+TIME_UNITS = _factors({"s": "s", "sec": "s", "ms": "ms", "us": "us",
+                       "µs": "us", "min": "min"})
 _UNITS = {"speed": SPEED_UNITS, "pressure": PRESSURE_UNITS,
           "time": TIME_UNITS, "angle": ANGLE_UNITS}
 #: Units whose case carries a prefix (milli/mega): matched exactly only.
@@ -127,7 +137,7 @@ def angle_factor(unit):
         return factor
     counts = _COUNT_UNIT.fullmatch(text)
     if counts and int(counts.group(1)) > 0:
-        return 2.0 * math.pi / int(counts.group(1))
+        return UNITS["rev"].factor / int(counts.group(1))
     return None
 
 
