@@ -122,7 +122,8 @@ def parse_quantity(text, unit, what):
     except Exception:   # pint's parser raises many kinds on bad text
         raise JudderError(f"{what} {text!r}: unknown unit "
                           f"{match.group(2)!r}; {allowed}") from None
-    if _angle_power(quantity) != _reference_angle_power(unit, reference):
+    if _angle_power(quantity) != _reference_angle_power(unit,
+                                                        reference):
         raise JudderError(
             f"{what} {text!r}: a frequency (Hz) and an angular speed "
             f"(rad/s, rpm) do not convert into each other here; {allowed}")

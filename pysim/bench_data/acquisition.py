@@ -38,8 +38,8 @@ class ChannelSpec:
         needed where the file has none.
     kind : str, optional
         For a speed: what its samples are, a key of
-        :data:`pysim.bench_data.speed_channels.SPEED_KINDS`; default: ``angle`` for
-        an angle unit, else told from the time stamps.
+        :data:`pysim.bench_data.speed_channels.SPEED_KINDS`; default:
+        ``angle`` for an angle unit, else told from the time stamps.
     """
 
     name: str
@@ -63,8 +63,8 @@ class Channel:
         Channel name in the file.
     kind : str
         For a speed role, what the samples are (a key of
-        :data:`pysim.bench_data.speed_channels.SPEED_KINDS`): ``values`` are rad
-        for ``angle``; :meth:`interval_means` gives the speed as the
+        :data:`pysim.bench_data.speed_channels.SPEED_KINDS`): ``values``
+        are rad for ``angle``; :meth:`interval_means` gives the speed as the
         analysis reads it. None for a pressure.
     """
 

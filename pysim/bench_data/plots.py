@@ -44,7 +44,7 @@ def plot_chart(chart, group, ax=None, levels=None):
 
     Parameters
     ----------
-    chart : pysim.charts.Chart
+    chart : pysim.bench_data.charts.Chart
     group : tuple of str
         A key of ``chart.groups()``.
     levels : ndarray, optional
