@@ -2,32 +2,34 @@
 
 A unit string is a product of factors joined by ``.``, with at most one
 ``/`` (``N.m.s/rad``, ``kg.m2``, ``rad/s2``); a factor is a unit symbol
-with an optional integer exponent.
+with an optional integer exponent. The symbols, their dimensions and
+factors, and the display units an FMU declares are those of the project's
+one table of units, :data:`infra.units.UNITS`.
 """
 
 import re
 
-__all__ = ["base_exponents", "BASE_UNITS", "DISPLAY_UNITS"]
+from infra.units import BASE_UNITS, UNITS
 
-#: FMI BaseUnit attribute names.
-BASE_UNITS = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
+__all__ = ["base_exponents", "DISPLAY_UNITS"]
 
-_SYMBOLS = {
-    "1": {}, "kg": {"kg": 1}, "g": {"kg": 1}, "m": {"m": 1}, "s": {"s": 1},
-    "A": {"A": 1}, "K": {"K": 1}, "mol": {"mol": 1}, "cd": {"cd": 1},
-    "rad": {"rad": 1}, "N": {"kg": 1, "m": 1, "s": -2},
-    "Pa": {"kg": 1, "m": -1, "s": -2}, "J": {"kg": 1, "m": 2, "s": -2},
-    "W": {"kg": 1, "m": 2, "s": -3}, "Hz": {"s": -1},
-}
-_SCALE = {"g": 1e-3}
+#: Unit symbols a factor of a Modelica unit string may be (of
+#: :data:`infra.units.UNITS`): the SI base and derived units Modelica
+#: models write, and the gram.
+_SYMBOLS = ("1", "kg", "g", "m", "s", "A", "K", "mol", "cd", "rad", "N",
+            "Pa", "J", "W", "Hz")
 
+#: Display units an FMU declares (of :data:`infra.units.UNITS`), and the
+#: Modelica unit each displays.
+_DISPLAYED = {"bar": "Pa", "deg": "rad", "rpm": "rad/s", "mm": "m",
+              "degC": "K"}
 #: Display units an FMU declares: name -> (unit, factor, offset), with
 #: display value = factor * value + offset (FMI <DisplayUnit>).
 DISPLAY_UNITS = {
-    "bar": ("Pa", 1e-5, 0.0), "deg": ("rad", 180 / 3.141592653589793, 0.0),
-    "rpm": ("rad/s", 30 / 3.141592653589793, 0.0),
-    "mm": ("m", 1e3, 0.0), "degC": ("K", 1.0, -273.15),
-}
+    name: (unit, 1.0 / UNITS[name].factor,
+           -UNITS[name].offset / UNITS[name].factor if UNITS[name].offset
+           else 0.0)
+    for name, unit in _DISPLAYED.items()}
 
 
 def _factor(text, unit):
@@ -53,8 +55,8 @@ def base_exponents(unit):
             continue
         for text in part.split("."):
             symbol, power = _factor(text, unit)
-            for base, exponent in _SYMBOLS[symbol].items():
+            for base, exponent in UNITS[symbol].dimension.items():
                 exponents[base] = exponents.get(base, 0) + sign * power * exponent
-            scale *= _SCALE.get(symbol, 1.0) ** (sign * power)
+            scale *= UNITS[symbol].factor ** (sign * power)
     ordered = {b: exponents[b] for b in BASE_UNITS if exponents.get(b)}
     return ordered, scale

@@ -6,7 +6,10 @@
 :mod:`infra.files`
     Atomic output: a result file is complete or absent, never partial.
 :mod:`infra.units`
-    Conversion factors between SI and the units engineers read (bar, rpm).
+    The project's one table of units (SI factor and dimension of each),
+    and the factors between SI and the units engineers read (bar, rpm).
+:mod:`infra.quantities`
+    Numbers the user types, with or without a unit.
 :mod:`infra.parallel`
     The executor that runs independent jobs on all cores.
 

@@ -2,10 +2,12 @@
 ``1000rpm``), as floats in the unit the caller works in.
 
 A plain number keeps the caller's unit. A number with a unit is converted
-by pint (imported only then). Angles are kept apart from frequencies:
-pint treats the radian as dimensionless, so it would turn ``1Hz`` into
-1 rad/s; here a frequency (Hz) and an angular speed (rad/s, rpm) do not
-convert into each other, and the message says which to give.
+by pint (imported only then) into the caller's unit, a unit of the
+project's table (:data:`infra.units.UNITS`) or one pint reads. Angles are
+kept apart from frequencies: pint treats the radian as dimensionless, so
+it would turn ``1Hz`` into 1 rad/s; here, as in the table, where the
+radian is a base unit, a frequency (Hz) and an angular speed (rad/s, rpm)
+do not convert into each other, and the message says which to give.
 
 Examples
 --------
@@ -26,13 +28,9 @@ import math
 import re
 
 from .errors import JudderError
+from .units import UNITS
 
-__all__ = ["parse_quantity", "has_unit", "PINT_UNITS"]
-
-#: Unit strings of the tool, as pint reads them.
-PINT_UNITS = {"N m s/rad": "N*m*s/rad", "N m/rad": "N*m/rad",
-              "kg m^2": "kg*m**2", "m^2": "m**2", "1": "dimensionless",
-              "N m": "N*m"}
+__all__ = ["parse_quantity", "has_unit"]
 
 _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _WITH_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
@@ -62,6 +60,24 @@ def _angle_power(quantity):
     return dict(quantity.to_root_units().unit_items()).get("radian", 0)
 
 
+def _pint_spelling(unit):
+    """A unit of :data:`infra.units.UNITS` as pint reads it (``N m s/rad``:
+    ``N*m*s/rad``, ``kg m^2``: ``kg*m**2``, ``1``: ``dimensionless``);
+    any other unit as it is."""
+    if unit == "1":
+        return "dimensionless"
+    if unit in UNITS:
+        return unit.replace(" ", "*").replace("^", "**")
+    return unit
+
+
+def _reference_angle_power(unit, reference):
+    """Power of the radian in ``unit``: the table's, else pint's."""
+    if unit in UNITS:
+        return UNITS[unit].dimension.get("rad", 0)
+    return _angle_power(reference)
+
+
 def parse_quantity(text, unit, what):
     """``text`` as a float in ``unit``.
 
@@ -88,7 +104,7 @@ def parse_quantity(text, unit, what):
             return float(text)
         except ValueError:
             pass
-    target = PINT_UNITS.get(unit, unit)
+    target = _pint_spelling(unit)
     allowed = ("allowed: a plain number, or a percentage (e.g. 3%)"
                if unit == "1" else
                f"allowed: a number in {unit}, or a number with a unit of "
@@ -106,7 +122,8 @@ def parse_quantity(text, unit, what):
     except Exception:   # pint's parser raises many kinds on bad text
         raise JudderError(f"{what} {text!r}: unknown unit "
                           f"{match.group(2)!r}; {allowed}") from None
-    if _angle_power(quantity) != _angle_power(reference):
+    if _angle_power(quantity) != _reference_angle_power(unit,
+                                                        reference):
         raise JudderError(
             f"{what} {text!r}: a frequency (Hz) and an angular speed "
             f"(rad/s, rpm) do not convert into each other here; {allowed}")

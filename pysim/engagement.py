@@ -16,7 +16,7 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 from .run_analysis import analyse_run
 from .signals import amplitude_spectrum
 
-__all__ = ["engagement_summary", "verdict_line"]
+__all__ = ["engagement_summary", "verdict_line", "display_spectra"]
 
 
 def engagement_summary(run, start):
@@ -105,3 +105,15 @@ def verdict_line(summary):
                  f"the friction curve is linear over "
                  f"\u00b1{summary['friction_linear_range_rad_s']:.1f} rad/s")
     return line
+
+
+def display_spectra(run, start):
+    """Amplitude spectra of an engagement after ``start`` (s), as Fig. 8
+    shows them: the upstream speed in rpm and the actuation pressure in
+    bar (each a :class:`pysim.signals.Spectrum`)."""
+    keep = run.time >= start
+    speed = amplitude_spectrum(run.time[keep],
+                               run["w_upstream"][keep] * RPM_PER_RAD_S)
+    pressure = amplitude_spectrum(run.time[keep],
+                                  run["actuation_pressure"][keep] / PA_PER_BAR)
+    return speed, pressure

@@ -9,7 +9,8 @@ import numpy as np
 import scipy.signal
 
 __all__ = ["Spectrum", "amplitude_spectrum", "GrowthFit",
-           "stroboscopic_growth", "free_response_growth", "dither_envelope"]
+           "stroboscopic_growth", "free_response_growth", "dither_envelope",
+           "per_period"]
 
 
 @dataclass(frozen=True)
@@ -191,3 +192,34 @@ def dither_envelope(time, signal, freq_hz, start, window=0.4):
     keep = (time >= start) & (time <= start + window) & (envelope > 0)
     rate = np.polyfit(time[keep], np.log(envelope[keep]), 1)[0]
     return envelope, float(rate)
+
+
+def per_period(time, values, period):
+    """Per period: centre time, minimum, maximum and mean of ``values``.
+
+    Parameters
+    ----------
+    time : ndarray, shape (n,)
+        s, increasing.
+    values : ndarray, shape (n,)
+    period : float
+        s (a dither period).
+
+    Returns
+    -------
+    centre, low, high, mean : ndarray, shape (m,)
+        One entry per period that holds samples: the mean of its time
+        stamps (s), and the minimum, maximum and mean of its values.
+    """
+    index = np.floor((time - time[0]) / period).astype(int)
+    count = index[-1] + 1
+    edges = np.searchsorted(index, np.arange(count + 1))
+    keep = np.diff(edges) > 0
+    starts = edges[:-1][keep]
+    low = np.minimum.reduceat(values, starts)
+    high = np.maximum.reduceat(values, starts)
+    mean = np.add.reduceat(values, starts) / np.diff(
+        np.append(starts, len(values)))
+    centre = np.add.reduceat(time, starts) / np.diff(
+        np.append(starts, len(values)))
+    return centre, low, high, mean

@@ -321,7 +321,7 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
 
 
 def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
-    from pysim.charts import ChartRun
+    from pysim.bench_data.charts import ChartRun
     from pysim.run_analysis import RunAnalysis
     return ChartRun(path=f"run-{freq_hz}-{p_f_bar}.mf4", settings={},
                     analysis=RunAnalysis(
@@ -337,7 +337,7 @@ def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():
     # from the pressure scatter by far less than the spectral resolution
     # (1/2.4 s = 0.42 Hz), and are one set point (issue 19: 248 rows for
     # 248 runs before); given frequencies 0.5 Hz apart stay apart
-    from pysim.charts import Chart
+    from pysim.bench_data.charts import Chart
     runs = [_read_run(69.999345, 0.1, False, True),
             _read_run(69.999904, 0.3, True, True),
             _read_run(70.000310, 0.2, True, True),
@@ -359,7 +359,8 @@ def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
     # apart, which made the speed's resampling ask for 9.6 PiB; the
     # reading equals that of the channels on their own time bases
     from asammdf import MDF, Signal
-    from pysim.acquisitions import ChannelSpec, read_acquisition
+    from pysim.bench_data.acquisition import ChannelSpec
+    from pysim.bench_data.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     union = np.union1d(np.union1d(t_up, t_p), t_dn + 1e-18)
@@ -385,7 +386,8 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter):
     # base for all channels (the pressure's 1 kHz, the speeds interpolated
     # onto it): the same verdict and growth as the channels on their own
     # time bases
-    from pysim.acquisitions import ChannelSpec, read_acquisition
+    from pysim.bench_data.acquisition import ChannelSpec
+    from pysim.bench_data.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     own = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
@@ -428,7 +430,8 @@ def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
     # and the
     # verdict, growth and amplitude are those of the pick-up
     from asammdf import MDF, Signal
-    from pysim.acquisitions import ChannelSpec, read_acquisition
+    from pysim.bench_data.acquisition import ChannelSpec
+    from pysim.bench_data.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     fine = np.arange(0.0, 1.5, 2e-5)
     omega = (1000 + speed(fine)) * RPM
@@ -474,7 +477,8 @@ def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
     # a CSV whose times carry 9 significant digits after a 1234.5 s offset
     # (10 us): the channel is still told to be a pick-up's, and the
     # verdict and growth are those of the exact times
-    from pysim.acquisitions import ChannelSpec, read_acquisition
+    from pysim.bench_data.acquisition import ChannelSpec
+    from pysim.bench_data.readers import read_acquisition
     from pysim.export import write_csv
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
@@ -499,7 +503,8 @@ def test_tdms_speeds_as_2_khz_waveforms_read_as_the_pickup(tmp_path):
     # speed sampled at 2 kHz, told from its uniform time track, read as
     # the pick-up of the same engagement
     from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
-    from pysim.acquisitions import ChannelSpec, read_acquisition
+    from pysim.bench_data.acquisition import ChannelSpec
+    from pysim.bench_data.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), _ = _engagement(speed, f)
     pickup = analyse_run((t_up, up), (t_p, p), freq_hz=f, p_f_bar=0.3)
@@ -527,7 +532,7 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
     # every third NaN in the file, which the reader drops): each interval
     # then spans several teeth while its speed is that of one, and the
     # angle rebuilt from it must not lose them
-    from pysim.speed_channels import interval_means
+    from pysim.bench_data.speed_channels import interval_means
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), pressure, downstream = _engagement(speed, f)
     whole = analyse_run((t_up, up), pressure, downstream, freq_hz=f,

@@ -134,7 +134,7 @@ def run(args):
 def _channels(items):
     """``ROLE=NAME[:UNIT]`` strings as ``{role: ChannelSpec}`` (None if
     none given: the names judder campaign writes)."""
-    from pysim.acquisitions import parse_channel_option
+    from pysim.bench_data.channels import parse_channel_option
     if not items:
         return None
     channels = dict(parse_channel_option(item) for item in items)
@@ -160,7 +160,7 @@ def chart(sources, index=None, channels=None, group_by=None,
         CSV with a ``file`` column and the runs' settings.
     channels : dict, optional
         Role (``upstream_speed``, ``pressure``, ``downstream_speed``) ->
-        :class:`pysim.acquisitions.ChannelSpec`; default the names
+        :class:`pysim.bench_data.acquisition.ChannelSpec`; default the names
         ``judder campaign`` writes.
     group_by : sequence of str, optional
         Columns making the panels (default: oil temperature and engine
@@ -177,7 +177,7 @@ def chart(sources, index=None, channels=None, group_by=None,
     -------
     ChartResult
     """
-    from pysim.charts import build_chart, gather_sources
+    from pysim.bench_data.charts import build_chart, gather_sources
     from pysim.run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH
     started = time.perf_counter()
     result = build_chart(
@@ -202,7 +202,7 @@ def chart(sources, index=None, channels=None, group_by=None,
 class ChartResult:
     """``judder chart``: an experimental stability chart (Fig. 10, 11).
 
-    ``chart`` is the :class:`pysim.charts.Chart`; ``model`` the
+    ``chart`` is the :class:`pysim.bench_data.charts.Chart`; ``model`` the
     :class:`TonguesResult` of the model drawn over it (None unless asked
     for).
     """
@@ -248,7 +248,7 @@ class ChartResult:
     @keeps_foreign_files
     def save(self, path):
         """Save the chart as NPZ: the per-run arrays of
-        :meth:`pysim.charts.Chart.arrays` and, per group, the boundary
+        :meth:`pysim.bench_data.charts.Chart.arrays` and, per group, the boundary
         (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
         with NaN where censored, ``boundary_tried_bar``, and
         ``boundary_below_bar``: the highest amplitude without judder below
@@ -294,7 +294,7 @@ class ChartResult:
         return [str(target) for target in targets]
 
     def figure(self, title=None):
-        from pysim.plotting import chart_figure
+        from pysim.bench_data.plots import chart_figure
         fig, panels = chart_figure(self.chart, title=title)
         if self.model is not None:
             from stability.plotting import plot_boundaries

@@ -268,6 +268,6 @@ class SimulationResult:
 
     def figure(self, title=None):
         from pysim.engagement import verdict_line
-        from pysim.plotting import run_figure
+        from pysim.plots import run_figure
         return run_figure(self.runs, start=self.start, title=title,
                           verdicts=[verdict_line(s) for s in self.summaries])

@@ -26,8 +26,9 @@ import numpy as np
 from infra.errors import JudderError
 from infra.parallel import parallel_map
 
-from .acquisitions import ChannelSpec, read_acquisition
-from .run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH, analyse_run
+from ..run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH, analyse_run
+from .acquisition import ChannelSpec
+from .readers import read_acquisition
 
 __all__ = ["RunSource", "ChartRun", "Chart", "DEFAULT_CHANNELS",
            "GROUP_COLUMNS", "sources_from_campaign", "sources_from_index",
@@ -66,7 +67,7 @@ class ChartRun:
     ``analysis`` is a :class:`pysim.run_analysis.RunAnalysis`, or None
     when the run could not be read (``error`` says why); ``speed_kind``
     what the upstream speed's samples were
-    (:data:`pysim.speed_channels.SPEED_KINDS`).
+    (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`).
     """
 
     path: Path
@@ -353,7 +354,7 @@ def build_chart(sources, channels=None, group_by=None,
     ----------
     sources : sequence of RunSource
     channels : dict, optional
-        Role -> :class:`pysim.acquisitions.ChannelSpec`; default
+        Role -> :class:`pysim.bench_data.acquisition.ChannelSpec`; default
         :data:`DEFAULT_CHANNELS` (the names ``judder campaign`` writes).
     group_by : sequence of str, optional
         Group columns; default those of :data:`GROUP_COLUMNS` that take

@@ -1,0 +1,69 @@
+"""What the format readers share: names of a time channel, messages that
+list names, metadata as plain Python, ``name [unit]`` headers."""
+
+import re
+
+import numpy as np
+
+from infra.errors import JudderError
+
+from .units import unit_factor
+
+__all__ = ["TIME_NAMES", "one_line", "listing", "plain", "split_header",
+           "column_factor"]
+
+#: Names of a time channel, column or variable (lower case).
+TIME_NAMES = ("time", "t", "zeit", "timestamp")
+#: Channel names listed in a message, at most.
+LISTED = 40
+
+
+def one_line(exc, limit=200):
+    """An exception's message on one line, at most ``limit`` characters."""
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def listing(names):
+    """Names for a message: the first :data:`LISTED`, and how many more."""
+    if not names:
+        return "(none)"
+    shown = ", ".join(repr(n) for n in names[:LISTED])
+    more = len(names) - LISTED
+    return shown + (f" and {more} more" if more > 0 else "")
+
+
+def plain(value):
+    """A metadata value as plain Python (numpy scalars and arrays, dicts)."""
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, np.datetime64):
+        return str(value)
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    return value
+
+
+def split_header(cell):
+    """``name [unit]`` -> (name, unit); a plain name has unit None."""
+    match = re.fullmatch(r"\s*(.*?)\s*\[([^\[\]]*)\]\s*", cell)
+    if match:
+        return match.group(1), match.group(2).strip() or None
+    return cell.strip(), None
+
+
+def column_factor(path, column, kind):
+    """Factor of the unit of a (name, unit) column; 1 when it has none."""
+    name, unit = column
+    if unit is None:
+        return 1.0
+    try:
+        return unit_factor(unit, kind)
+    except JudderError as exc:
+        raise JudderError(f"{path}: column {name!r}: {exc}") from None

@@ -1,0 +1,201 @@
+"""Channels of an acquisition: which file channel plays which role (the
+``--channel`` option), and one file channel turned into a checked
+:class:`~pysim.bench_data.acquisition.Channel` in SI.
+
+Every channel keeps its own time base: a pick-up speed is sampled at tooth
+passages (non-uniform), the pressure at its own rate. NaN samples are
+dropped channel by channel, samples within :data:`SAME_INSTANT` of each
+other are one (their mean), and values no bench records are refused
+(:data:`PLAUSIBLE`).
+
+Examples
+--------
+>>> parse_channel_option("pressure=PressEVEN:bar")
+('pressure', ChannelSpec(name='PressEVEN', unit='bar', kind=None))
+"""
+
+import numpy as np
+
+from infra.errors import JudderError
+from infra.units import PA_PER_BAR, RAD_S_PER_RPM
+
+from ._common import listing
+from .acquisition import REQUIRED_ROLES, ROLES, Channel, ChannelSpec
+from .speed_channels import SPEED_KINDS, detect_speed_kind
+from .units import allowed_units, angle_factor, is_angle_unit, unit_factor
+
+__all__ = ["parse_channel_option", "checked_specs", "channel_in_si",
+           "PLAUSIBLE", "SAME_INSTANT"]
+
+#: Physical range of each kind (SI low, SI high, SI per unit shown, unit):
+#: a driveline shaft below 100 000 rpm either way, a clutch pressure from
+#: -1 bar (a sensor's offset) to 1000 bar.
+PLAUSIBLE = {"speed": (-1e5 * RAD_S_PER_RPM, 1e5 * RAD_S_PER_RPM,
+                       RAD_S_PER_RPM, "rpm"),
+             "pressure": (-PA_PER_BAR, 1000 * PA_PER_BAR, PA_PER_BAR,
+                          "bar")}
+#: Time stamps closer than this (s) are one instant (a 1 MHz DAQ's step).
+SAME_INSTANT = 1e-6
+
+
+def parse_channel_option(text):
+    """``ROLE=NAME``, ``ROLE=NAME:UNIT`` or ``ROLE=NAME:UNIT:KIND`` (the
+    ``--channel`` option); KIND, for a speed, is a key of
+    :data:`pysim.bench_data.speed_channels.SPEED_KINDS`.
+
+    A name containing ``:`` needs its unit appended.
+
+    Returns
+    -------
+    role : str
+    spec : ChannelSpec
+    """
+    role, equals, rest = str(text).partition("=")
+    role = role.strip()
+    if not equals or not rest.strip():
+        raise JudderError(f"--channel {text!r}: give ROLE=NAME, "
+                          f"ROLE=NAME:UNIT or ROLE=NAME:UNIT:KIND with ROLE "
+                          f"one of {', '.join(ROLES)}")
+    _check_role(role, f"--channel {text!r}")
+    kind = None
+    head, colon, last = rest.rpartition(":")
+    if colon and last.strip() in SPEED_KINDS:
+        if ROLES[role] != "speed":
+            raise JudderError(f"--channel {text!r}: a kind is for a speed "
+                              f"channel, not the {role}")
+        rest, kind = head, last.strip()
+    name, colon, unit = rest.rpartition(":")
+    if not colon:
+        if kind is not None:
+            raise JudderError(f"--channel {text!r}: give the unit before "
+                              f"the kind (ROLE=NAME:UNIT:{kind})")
+        return role, ChannelSpec(rest.strip())
+    if not (ROLES[role] == "speed" and is_angle_unit(unit)):
+        try:
+            unit_factor(unit, ROLES[role])
+        except JudderError as exc:
+            raise JudderError(f"--channel {text!r}: {exc}") from None
+    return role, ChannelSpec(name.strip(), unit.strip(), kind)
+
+
+def _check_role(role, where):
+    if role not in ROLES:
+        raise JudderError(f"{where}: role {role!r} is unknown; allowed: "
+                          f"{', '.join(ROLES)}")
+
+
+def checked_specs(path, channels):
+    """The role -> ChannelSpec mapping, checked."""
+    specs = {}
+    for role, spec in dict(channels).items():
+        _check_role(role, str(path))
+        if isinstance(spec, str):
+            spec = ChannelSpec(spec)
+        if not isinstance(spec, ChannelSpec) or not str(spec.name).strip():
+            raise JudderError(f"{path}: role {role}: give a ChannelSpec "
+                              f"(NAME, UNIT) or a channel name, not "
+                              f"{spec!r}")
+        specs[role] = spec
+    missing = [role for role in REQUIRED_ROLES if role not in specs]
+    if missing:
+        raise JudderError(f"{path}: no channel given for {missing[0]}; give "
+                          f"it with --channel {missing[0]}=NAME[:UNIT]")
+    return specs
+
+
+def channel_in_si(path, role, spec, names, raw):
+    """One role's channel: found, unit known, in SI, NaN dropped."""
+    where = f"{path}: {role} channel {spec.name!r}"
+    if raw is None:
+        raise JudderError(f"{path}: no channel {spec.name!r} (for {role}); "
+                          f"channels in the file: {listing(names)}")
+    time, values, file_unit = raw
+    unit = spec.unit if spec.unit is not None and str(spec.unit).strip() \
+        else file_unit
+    if unit is None or not str(unit).strip():
+        raise JudderError(f"{where} has no unit in the file; give it with "
+                          f"--channel {role}={spec.name}:UNIT (allowed: "
+                          f"{allowed_units(ROLES[role])})")
+    kind_of_unit = ROLES[role]
+    if kind_of_unit == "speed" and is_angle_unit(unit):
+        kind_of_unit = "angle"
+    try:
+        factor = angle_factor(unit) if kind_of_unit == "angle" \
+            else unit_factor(unit, kind_of_unit)
+    except JudderError as exc:
+        raise JudderError(f"{where}: {exc}") from None
+    time, values = _finite(where, time, values)
+    values = values * factor
+    if ROLES[role] != "speed":
+        _plausible(where, ROLES[role], time, values)
+        return Channel(time=time, values=values,
+                       unit_in_file=str(unit).strip(), name=spec.name)
+    kind = _speed_kind(where, spec, kind_of_unit, time, values)
+    if kind != "angle":
+        _plausible(where, "speed", time, values)
+    return Channel(time=time, values=values, unit_in_file=str(unit).strip(),
+                   name=spec.name, kind=kind)
+
+
+def _speed_kind(where, spec, kind_of_unit, time, values):
+    """What a speed channel's samples are: given, told by an angle unit,
+    or detected from the time stamps."""
+    if spec.kind is None:
+        return "angle" if kind_of_unit == "angle" else \
+            detect_speed_kind(time, values)
+    if (spec.kind == "angle") != (kind_of_unit == "angle"):
+        raise JudderError(f"{where}: kind {spec.kind!r} needs "
+                          + ("an angle unit (rad, deg, rev, counts/N)"
+                             if spec.kind == "angle" else "a speed unit")
+                          + f", the channel is in {kind_of_unit} units")
+    return spec.kind
+
+
+def _plausible(where, kind, time, values):
+    """Refuse values no bench records (a broken writer, a wrong unit):
+    :data:`PLAUSIBLE` bounds the magnitude of each kind (SI)."""
+    low, high, shown, unit = PLAUSIBLE[kind]
+    bad = (values < low) | (values > high)
+    if np.any(bad):
+        first = int(np.argmax(bad))
+        raise JudderError(
+            f"{where}: {values[first] / shown:.3g} {unit} at "
+            f"{time[first]:.6g} s is not a value a bench records; allowed: "
+            f"{low / shown:g} to {high / shown:g} {unit} (check the "
+            "channel's unit, or the file)")
+
+
+def _finite(where, time, values):
+    """Time and values as float arrays, NaN samples dropped, checked."""
+    time = np.atleast_1d(np.asarray(time))
+    values = np.atleast_1d(np.asarray(values))
+    if values.dtype.kind not in "biuf" or values.ndim != 1:
+        raise JudderError(f"{where} is not a 1-D numeric signal "
+                          f"(dtype {values.dtype}, shape {values.shape})")
+    time = time.astype(float)
+    values = values.astype(float)
+    if time.shape != values.shape:
+        raise JudderError(f"{where}: {len(values)} samples but "
+                          f"{time.size} time stamps; they must be as many")
+    keep = np.isfinite(time) & np.isfinite(values)
+    time, values = time[keep], values[keep]
+    if np.any(np.diff(time) < 0):
+        raise JudderError(f"{where}: time goes backwards at "
+                          f"{time[np.argmax(np.diff(time) < 0)]:.9g} s; "
+                          "time stamps must not decrease")
+    return _merge_instants(time, values)
+
+
+def _merge_instants(time, values):
+    """Samples closer in time than :data:`SAME_INSTANT` as one, their
+    mean: a DAQ that puts several channels on the union of their time
+    bases writes stamps 1e-18 s apart (and a repeated stamp), which no
+    sampling rate can be read from."""
+    if len(time) < 2:
+        return time, values
+    first = np.r_[True, np.diff(time) > SAME_INSTANT]
+    if first.all():
+        return time, values
+    group = np.cumsum(first) - 1
+    return time[first], (np.bincount(group, weights=values)
+                         / np.bincount(group))

@@ -1,0 +1,162 @@
+"""Plots of experimental stability charts (Fig. 10, 11).
+
+:func:`plot_chart` draws one group's panel on ``ax`` and returns the
+artists; :func:`chart_figure` returns the figure. They draw what the
+:class:`~pysim.bench_data.charts.Chart` holds; nothing calls
+``plt.show()``.
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+__all__ = ["plot_chart", "chart_figure"]
+
+
+#: How a group column reads in a panel title.
+_GROUP_TITLES = {"oil_temperature": "oil {} degC",
+                 "engine_rpm": "{} rpm"}
+
+
+def _group_title(columns, group):
+    parts = []
+    for column, value in zip(columns, group):
+        try:
+            value = f"{float(value):g}"
+        except ValueError:
+            pass
+        parts.append(_GROUP_TITLES.get(column, column + " {}").format(value))
+    return ", ".join(parts) or "all runs"
+
+
+def _amplitude_levels(low, high):
+    """Log-spaced contour levels of the amplitude, rpm, and round ticks."""
+    low, high = max(low, 1e-3), max(high, 1.0001 * max(low, 1e-3))
+    levels = np.geomspace(low, high * 1.0001, 12)
+    decades = np.arange(np.floor(np.log10(low)), np.ceil(np.log10(high)) + 1)
+    ticks = [m * 10 ** d for d in decades for m in (1, 3)
+             if low <= m * 10 ** d <= high]
+    return levels, ticks or [low, high]
+
+
+def plot_chart(chart, group, ax=None, levels=None):
+    """One panel of an experimental chart (Fig. 10): amplitude contour,
+    runs and the experimental boundary, over Hz and bar.
+
+    Parameters
+    ----------
+    chart : pysim.bench_data.charts.Chart
+    group : tuple of str
+        A key of ``chart.groups()``.
+    levels : ndarray, optional
+        Contour levels of the amplitude (rpm), shared by the panels of a
+        figure (:func:`chart_figure` draws their one colour bar); without
+        them the panel's own, with its colour bar.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    from matplotlib.colors import LogNorm
+    if ax is None:
+        _, ax = plt.subplots()
+    runs = chart.groups()[group]
+    f = np.array([r.analysis.freq_hz for r in runs])
+    p = np.array([r.analysis.p_f_bar for r in runs])
+    amplitude = np.array([max(r.analysis.amplitude_rpm, 1e-3) for r in runs])
+    judder = np.array([r.analysis.judder for r in runs])
+    artists = []
+    own = levels is None
+    if own:
+        levels, ticks = _amplitude_levels(amplitude.min(), amplitude.max())
+    if len(np.unique(f)) >= 3 and len(np.unique(p)) >= 3:
+        contour = ax.tricontourf(f, p, np.clip(amplitude, levels[0],
+                                               levels[-1]),
+                                 levels=levels, norm=LogNorm(levels[0],
+                                                             levels[-1]),
+                                 cmap="Greys", alpha=0.8)
+        if own:
+            bar = ax.figure.colorbar(contour, ax=ax, ticks=ticks,
+                                     label="amplitude of the judder "
+                                           "component [rpm]")
+            bar.ax.set_yticklabels([f"{t:g}" for t in ticks])
+        artists.append(contour)
+    artists.append(ax.scatter(f[judder], p[judder], marker="^",
+                              color="#d62728", zorder=3, clip_on=False,
+                              label="judder"))
+    artists.append(ax.scatter(f[~judder], p[~judder], marker="o",
+                              facecolors="none", edgecolors="black",
+                              zorder=3, clip_on=False, label="no judder"))
+    boundary = chart.boundary(group)
+    # the boundary is drawn only between neighbouring frequencies that
+    # both have judder: a censored frequency between them breaks it
+    lowest = np.array([np.nan if pb is None else pb for _, pb, _ in boundary])
+    if np.isfinite(lowest).any():
+        artists += ax.plot([fb for fb, _, _ in boundary], lowest,
+                           color="#1f77b4", lw=1.5, marker="_", ms=10,
+                           label="experimental boundary")
+    censored = [(fb, top) for fb, pb, top in boundary if pb is None]
+    if censored:
+        artists.append(ax.scatter(*zip(*censored), marker="^",
+                                  facecolors="none", edgecolors="#1f77b4",
+                                  s=60, zorder=4, clip_on=False,
+                                  label="no judder up to here"))
+    _pad_limits(ax, f, p)
+    ax.set_xlabel("dither frequency [Hz]")
+    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    ax.set_title(_group_title(chart.group_by, group), fontsize=10)
+    return artists
+
+
+def _pad_limits(ax, freq_hz, p_f_bar, share=0.05):
+    """Axis limits a share of the span beyond the runs, so no marker sits
+    on the frame or under the title (a contour fill stops at the runs)."""
+    for values, setter in ((freq_hz, ax.set_xlim), (p_f_bar, ax.set_ylim)):
+        low, high = float(np.min(values)), float(np.max(values))
+        pad = share * (high - low) if high > low else 0.05 * max(abs(high),
+                                                                 1.0)
+        setter(low - pad, high + pad)
+
+
+def chart_figure(chart, title=None):
+    """All panels of a chart, one per group (Fig. 11), up to four a row,
+    on one amplitude scale with one colour bar; returns the figure and
+    ``{group: ax}``."""
+    groups = list(chart.groups())
+    columns = min(max(len(groups), 1), 4)
+    rows = -(-max(len(groups), 1) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(5.2 * columns + 1.2,
+                                                     4.2 * rows + 0.8),
+                             layout="constrained", squeeze=False,
+                             sharex=True, sharey=True)
+    amplitudes = [r.analysis.amplitude_rpm for r in chart.read] or [1.0]
+    levels, ticks = _amplitude_levels(min(amplitudes), max(amplitudes))
+    panels = {}
+    for group, ax in zip(groups, axes.flat):
+        plot_chart(chart, group, ax=ax, levels=levels)
+        panels[group] = ax
+    for ax in list(axes.flat)[len(groups):]:
+        ax.set_visible(False)
+    if chart.read:               # shared axes: the limits of every run
+        _pad_limits(next(iter(panels.values())),
+                    [r.analysis.freq_hz for r in chart.read],
+                    [r.analysis.p_f_bar for r in chart.read])
+    for ax in panels.values():
+        ax.label_outer()         # axis labels on the outer panels only
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import BoundaryNorm
+    scale = ScalarMappable(norm=BoundaryNorm(levels, 256), cmap="Greys")
+    bar = fig.colorbar(scale, ax=axes, ticks=ticks, shrink=0.9,
+                       label="amplitude of the judder component [rpm]")
+    bar.ax.set_yscale("log")
+    bar.ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
+    bar.ax.minorticks_off()
+    if groups:
+        handles = {}
+        for ax in panels.values():
+            for handle, label in zip(*ax.get_legend_handles_labels()):
+                handles.setdefault(label, handle)
+        fig.legend(handles.values(), handles.keys(), loc="outside lower "
+                   "center", ncols=5, fontsize=8)
+    if title:
+        fig.suptitle(title)
+    return fig, panels

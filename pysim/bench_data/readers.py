@@ -1,0 +1,117 @@
+"""Reading bench acquisitions: one reader per file format, chosen by suffix.
+
+The experimental stability charts of section 3.2 are drawn from bench
+time histories: the speeds upstream and downstream of the EVEN clutch and
+its actuation pressure. :func:`read_acquisition` reads them from the file
+formats benches write, by the channel names of the user's file, through
+the reader :data:`READERS` holds for the file's suffix:
+
+* ``.mf4`` / ``.mdf``: ASAM MDF 4 (and 3) with asammdf; every channel
+  keeps the time base of its channel group, its unit is the file's; a
+  name in several groups is named ``GROUP/NAME`` (the group's
+  acquisition name or index) (:mod:`pysim.bench_data._mdf`);
+* ``.csv``: a ``time [s]`` (or ``time``, ``t``, ``Zeit``, ``timestamp``)
+  column, headers ``name [unit]`` or plain names with a units row under
+  them, ``# key: json-value`` metadata lines (what
+  :func:`pysim.export.write_csv` writes) or a DAQ's header block of
+  ``key;value`` lines before the names; ``,``, ``;`` or tab between
+  fields, a decimal comma with ``;`` or tab; a BOM
+  (:mod:`pysim.bench_data._csv`);
+* ``.tdms``: NI TDMS with npTDMS; a waveform channel
+  (``wf_increment``, ``wf_start_offset``) has its time track, any other
+  takes the ``time`` channel of its group; units from ``unit_string``;
+  a channel is named ``channel`` or ``group/channel``
+  (:mod:`pysim.bench_data._tdms`);
+* ``.mat``: MATLAB with scipy (up to v7) or h5py (v7.3, HDF5); each
+  signal is a variable (or a field of a struct, ``struct.field``) with a
+  time vector ``NAME_time``, ``t_NAME`` or a shared ``time`` / ``t``;
+  units from a ``units`` struct (:mod:`pysim.bench_data._mat`).
+
+A reader returns the raw channels; :mod:`pysim.bench_data.channels` turns
+each into SI on its own time base, and checks it.
+
+Every bad input raises :class:`infra.errors.JudderError` with a one-line
+message naming the file, what is wrong and what is allowed; a corrupt
+file does too.
+"""
+
+from pathlib import Path
+
+from infra.errors import JudderError
+
+from . import _csv, _mat, _mdf, _tdms
+from ._common import one_line
+from .acquisition import REQUIRED_ROLES, Acquisition
+from .channels import channel_in_si, checked_specs
+
+__all__ = ["read_acquisition", "READERS", "FORMATS"]
+
+#: File suffix -> reader. ``reader(path, wanted)`` returns the channel
+#: names in the file (list of str), its metadata (dict) and the wanted
+#: names found in it: name -> (time s, values, unit or None).
+READERS = {".mf4": _mdf.read, ".mdf": _mdf.read, ".csv": _csv.read,
+           ".tdms": _tdms.read, ".mat": _mat.read}
+#: What the files of each suffix are, for messages.
+FORMATS = {".mf4": "ASAM MDF4", ".mdf": "ASAM MDF", ".csv": "CSV",
+           ".tdms": "NI TDMS", ".mat": "MATLAB MAT"}
+
+
+def read_acquisition(path, channels):
+    """Read the channels of a bench acquisition file, in SI units.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        ``.mf4``, ``.mdf``, ``.csv``, ``.tdms`` or ``.mat`` (a key of
+        :data:`READERS`).
+    channels : dict
+        Role (``upstream_speed`` required, ``pressure`` and
+        ``downstream_speed`` optional) ->
+        :class:`~pysim.bench_data.acquisition.ChannelSpec` (or a channel
+        name).
+
+    Returns
+    -------
+    Acquisition
+        An optional channel may be left with no samples (a downstream
+        pick-up that saw fewer than two tooth passages, all NaN); the
+        upstream speed has at least one.
+
+    Raises
+    ------
+    JudderError
+        Unknown format, unreadable file, a channel that is not in the
+        file, a unit that is missing, unknown or of the wrong kind.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in READERS:
+        raise JudderError(f"{path}: unknown acquisition format "
+                          f"{suffix or '(no suffix)'!r}; allowed: "
+                          f"{', '.join(READERS)}")
+    specs = checked_specs(path, channels)
+    if not path.is_file():
+        raise JudderError(f"{path}: no such file")
+    names, metadata, raws = _load(path, suffix,
+                                  [spec.name for spec in specs.values()])
+    read = {role: channel_in_si(path, role, spec, names,
+                                raws.get(spec.name))
+            for role, spec in specs.items()}
+    for role in REQUIRED_ROLES:
+        if not len(read[role].values):
+            raise JudderError(f"{path}: {role} channel {specs[role].name!r} "
+                              "has no finite samples")
+    return Acquisition(path=path, format=suffix[1:], channels=read,
+                       metadata=metadata)
+
+
+def _load(path, suffix, wanted):
+    """What the reader of ``suffix`` returns; whatever else a corrupt
+    file makes its library raise becomes one JudderError."""
+    try:
+        return READERS[suffix](path, wanted)
+    except JudderError:
+        raise
+    except Exception as exc:   # whatever a corrupt file makes a library do
+        raise JudderError(f"{path}: not a readable {FORMATS[suffix]} file "
+                          f"({one_line(exc)})") from None

@@ -1,0 +1,146 @@
+"""Units of bench channels: speeds, pressures, times and encoder angles.
+
+Each spelling a bench writes is a unit of the project's one table,
+:data:`infra.units.UNITS`, which gives its SI factor. One reading differs
+from the table's, deliberately: a speed channel in ``Hz`` (or ``rps``)
+counts revolutions, a tachometer's Hz (1 Hz = 2 pi rad/s, the table's
+``rev/s``), where the table, Modelica and the command line read Hz as 1/s,
+a frequency.
+
+The spellings are converted with these small explicit tables
+(:data:`SPEED_UNITS`, :data:`PRESSURE_UNITS`), not with pint (0.25, which
+installs): pint reads ``Hz`` and ``1/min`` as 1/s and 1/60 s, i.e. 1 Hz =
+1 rad/s, where a rotational speed in Hz or 1/min counts revolutions (1 Hz
+= 2 pi rad/s), it does not know ``rev``, and it accepts anything of
+dimension 1/time (``kHz``, ``1/h``, even ``U/min`` as enzyme units); every
+speed unit would need a correcting table anyway, for the price of three
+more packages and 0.4 s to build its registry. The tables accept exactly
+the units a bench writes and list them when one is not.
+
+Examples
+--------
+>>> round(unit_factor("rpm", "speed"), 9)
+0.104719755
+>>> unit_factor("bar", "pressure")
+100000.0
+>>> round(angle_factor("counts/1024"), 9)
+0.006135923
+"""
+
+import re
+
+from infra.errors import JudderError
+from infra.units import UNITS
+
+__all__ = ["unit_factor", "angle_factor", "is_angle_unit", "allowed_units",
+           "SPEED_UNITS", "PRESSURE_UNITS", "TIME_UNITS", "ANGLE_UNITS"]
+
+
+def _factors(spellings):
+    """Spelling -> SI factor of the unit of :data:`infra.units.UNITS` it
+    stands for."""
+    return {spelling: UNITS[unit].factor
+            for spelling, unit in spellings.items()}
+
+
+#: rad/s per unit of speed; Hz and 1/min count revolutions (rev/s, rpm).
+SPEED_UNITS = _factors({
+    "rpm": "rpm", "rev/min": "rpm", "1/min": "rpm", "min^-1": "rpm",
+    "min-1": "rpm", "r/min": "rpm", "U/min": "rpm",
+    "rad/s": "rad/s", "rad/sec": "rad/s", "rad s^-1": "rad/s",
+    "Hz": "rev/s", "rev/s": "rev/s", "rps": "rev/s"})
+#: rad per unit of a shaft angle (an encoder's), read as a speed channel.
+ANGLE_UNITS = _factors({"rad": "rad", "deg": "deg", "°": "deg",
+                        "rev": "rev"})
+#: Pa per unit of pressure.
+PRESSURE_UNITS = _factors({unit: unit for unit in (
+    "Pa", "hPa", "kPa", "MPa", "bar", "mbar", "psi")})
+#: s per unit of a time column or track.
+TIME_UNITS = _factors({"s": "s", "sec": "s", "ms": "ms", "us": "us",
+                       "µs": "us", "min": "min"})
+_UNITS = {"speed": SPEED_UNITS, "pressure": PRESSURE_UNITS,
+          "time": TIME_UNITS, "angle": ANGLE_UNITS}
+#: Units whose case carries a prefix (milli/mega): matched exactly only.
+_CASE_SENSITIVE = {"mpa", "mbar"}
+
+
+def _normalise_unit(unit):
+    """A unit string with unicode minus and superscripts spelt in ASCII."""
+    text = str(unit).strip().replace("⁻¹", "^-1").replace("−", "-")
+    return re.sub(r"\s*/\s*", "/", text)
+
+
+def allowed_units(kind):
+    """The units of ``kind`` a channel may be in, for a message."""
+    text = ", ".join(_UNITS[kind])
+    if kind == "speed":
+        text += "; or an encoder's angle: " + ", ".join(ANGLE_UNITS) \
+            + ", counts/N (N a revolution)"
+    return text
+
+
+def unit_factor(unit, kind):
+    """SI units per ``unit`` of a quantity of ``kind``.
+
+    Parameters
+    ----------
+    unit : str
+    kind : {'speed', 'pressure', 'time'}
+
+    Returns
+    -------
+    float
+        rad/s, Pa or s per ``unit``.
+
+    Raises
+    ------
+    JudderError
+        The unit is unknown, or of another kind.
+    """
+    text = _normalise_unit(unit)
+    for table_kind, table in _UNITS.items():
+        factor = _lookup(table, text)
+        if factor is None:
+            continue
+        if table_kind != kind:
+            raise JudderError(f"unit {unit!r} is a {table_kind} unit, not a "
+                              f"{kind} unit; allowed: "
+                              f"{allowed_units(kind)}")
+        return factor
+    raise JudderError(f"unit {unit!r} is unknown; allowed for a {kind}: "
+                      f"{allowed_units(kind)}")
+
+
+def _lookup(table, text):
+    """Factor of ``text`` in ``table``: exact, or ignoring the case where
+    the case carries no prefix."""
+    if text in table:
+        return table[text]
+    if text.lower() in _CASE_SENSITIVE:
+        return None
+    by_lower = {key.lower(): value for key, value in table.items()}
+    return by_lower.get(text.lower())
+
+
+#: An encoder's counts as an angle unit: ``counts/N`` (N counts a
+#: revolution; also count, pulses, increments).
+_COUNT_UNIT = re.compile(r"(?:counts?|pulses?|increments?)\s*/\s*(\d+)",
+                         re.IGNORECASE)
+
+
+def angle_factor(unit):
+    """rad per ``unit`` of an angle channel: rad, deg, rev, or an
+    encoder's ``counts/N``; None where ``unit`` is not one."""
+    text = _normalise_unit(unit)
+    factor = _lookup(ANGLE_UNITS, text)
+    if factor is not None:
+        return factor
+    counts = _COUNT_UNIT.fullmatch(text)
+    if counts and int(counts.group(1)) > 0:
+        return UNITS["rev"].factor / int(counts.group(1))
+    return None
+
+
+def is_angle_unit(unit):
+    """True if ``unit`` is an angle (an encoder's), not a speed."""
+    return angle_factor(unit) is not None

@@ -1,0 +1,183 @@
+"""Plots of runs: time histories (Fig. 7) and spectra (Fig. 8).
+
+Functions take ``ax`` where they draw one panel and return the artists;
+:func:`run_figure` returns the figure. They draw what the kernels give
+(:func:`pysim.engagement.display_spectra`,
+:func:`pysim.signals.per_period`); nothing calls ``plt.show()``.
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from infra.units import PA_PER_BAR, RPM_PER_RAD_S
+
+from .engagement import display_spectra
+from .signals import per_period
+
+__all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure"]
+
+
+#: Line styles of the speeds, so they differ without colour.
+SPEED_STYLES = {"w_upstream": ("-", "#0072b2", "upstream of the clutch"),
+                "w_downstream": ("--", "#d55e00", "downstream of the clutch")}
+
+
+def _dither_text(run):
+    p_f = run.p_f / PA_PER_BAR
+    return ("no dither" if p_f == 0 else
+            f"f = {run.freq_hz:g} Hz, $p_f$ = {p_f:g} bar")
+
+
+def plot_run(run, ax=None, title=None, legend=True, verdict=None):
+    """Speeds upstream and downstream (rpm) and pressure (bar) vs time
+    (Fig. 1, Fig. 7); the legend goes below the axes, off the traces;
+    ``verdict``, a line of text (the judder verdict and growth), under
+    the title."""
+    if ax is None:
+        _, ax = plt.subplots()
+    right = ax.twinx()
+    traces = [(ax, run[name] * RPM_PER_RAD_S, style, color, label)
+              for name, (style, color, label) in SPEED_STYLES.items()]
+    traces.append((right, run["actuation_pressure"] / PA_PER_BAR, "-", "0.45",
+                   "actuation pressure (right axis)"))
+    period = 1.0 / run.freq_hz if run.p_f > 0 else None
+    banded = period is not None and (run.time[-1] - run.time[0]) \
+        > BANDED_PERIODS * period
+    artists = []
+    for axis, values, style, color, label in traces:
+        if banded:
+            # unresolved at this scale: the band the dither swings over,
+            # and its mean per period
+            t, low, high, mean = per_period(run.time, values, period)
+            axis.fill_between(t, low, high, color=color, alpha=0.3, lw=0)
+            artists.append(axis.plot(t, mean, ls=style, color=color, lw=1.0,
+                                     label=label)[0])
+        else:
+            artists.append(axis.plot(run.time, values, ls=style,
+                                     color=color, lw=0.8, label=label)[0])
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("speed [rpm]")
+    right.set_ylabel("actuation pressure [bar]")
+    if legend:
+        from matplotlib.patches import Patch
+        notes = [Patch(facecolor="0.6", alpha=0.3,
+                       label="shaded: swing per dither period, line: mean")
+                 ] if banded else []
+        ax.legend(handles=artists + notes, loc="upper center", fontsize=7,
+                  bbox_to_anchor=(0.5, -0.2), ncols=2, borderaxespad=0.0)
+    ax.set_title((f"{title}: " if title else "") + _dither_text(run)
+                 + (f"\n{verdict}" if verdict else ""), fontsize=9)
+    return artists
+
+
+#: More dither periods than this in a time history and each trace is drawn
+#: as its swing per period (a band) and its mean: the oscillation itself
+#: would fill the axes solid.
+BANDED_PERIODS = 150
+
+
+def plot_spectrum(run, ax=None, start=0.0, f_max=None):
+    """Amplitude spectra (Fig. 8): the upstream speed in rpm on the left
+    axis, the pressure in bar on its own right axis, both linear; the
+    dither frequency marked only when the run has dither.
+
+    Parameters
+    ----------
+    f_max : float, optional
+        Upper end of the frequency axis, Hz (default 3 f): give every
+        panel of a figure the same one.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    speed, pressure = display_spectra(run, start)
+    artists = [ax.plot(speed.freq_hz, speed.amplitude, color="#0072b2",
+                       lw=0.9, label="upstream speed [rpm] (left axis)")[0]]
+    right = ax.twinx()
+    artists.append(right.plot(pressure.freq_hz, pressure.amplitude,
+                              color="0.45", ls="--", lw=0.8,
+                              label="pressure [bar] (right axis)")[0])
+    if run.p_f > 0:
+        artists.append(ax.axvline(run.freq_hz, color="k", ls=":", lw=0.8,
+                                  label=f"dither frequency {run.freq_hz:g} "
+                                        "Hz"))
+    f_max = f_max or min(speed.freq_hz[-1], 3 * run.freq_hz)
+    ax.set_xlim(0, f_max)
+    band = speed.freq_hz <= f_max
+    ax.set_ylim(0, 1.08 * max(speed.amplitude[band].max(), 1e-9))
+    right.set_ylim(0, 1.08 * max(pressure.amplitude[band].max(), 1e-9))
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("speed amplitude [rpm]")
+    right.set_ylabel("pressure amplitude [bar]")
+    ax.legend(handles=artists, loc="upper center", fontsize=7,
+              bbox_to_anchor=(0.5, -0.2), ncols=3, borderaxespad=0.0)
+    return artists
+
+
+def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
+    """Speed spectra of several engagements on one axis (Fig. 8). Each
+    run's dither frequency is marked in its colour and style: a
+    single-period judder peaks there, a double-period one at half of it,
+    a combination one at natural frequencies of the driveline."""
+    if ax is None:
+        _, ax = plt.subplots()
+    colours = plt.get_cmap("cividis")(np.linspace(0.0, 0.75, len(runs)))
+    styles = ("-", "--", "-.", ":")
+    artists = []
+    top = 0.0
+    for index, (label, run) in enumerate(runs):
+        speed, _ = display_spectra(run, start)
+        band = speed.freq_hz <= (f_max or speed.freq_hz[-1])
+        top = max(top, speed.amplitude[band].max())
+        artists.append(ax.plot(speed.freq_hz, speed.amplitude,
+                               color=colours[index],
+                               ls=styles[index % len(styles)], lw=1.0,
+                               label=_dither_text(run).replace("$", "")
+                               .replace("p_f", "p_f"))[0])
+        if run.p_f > 0:
+            ax.axvline(run.freq_hz, color=colours[index], lw=0.6,
+                       ls=styles[index % len(styles)], alpha=0.6)
+            ax.annotate(f"dither {run.freq_hz:g} Hz", (run.freq_hz, 1.0),
+                        xycoords=("data", "axes fraction"), xytext=(3, -3),
+                        textcoords="offset points", ha="left", va="top",
+                        fontsize=7, color=colours[index])
+    ax.set_xlim(0, f_max)
+    # a log scale: a run 100 times quieter than another stays visible
+    ax.set_yscale("log")
+    ax.set_ylim(max(top, 1e-9) * 1e-4, 2.0 * max(top, 1e-9))
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("upstream speed amplitude [rpm] (log)")
+    ax.set_title("speed spectra overlaid", fontsize=9)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+              borderaxespad=0.0)
+    return artists
+
+
+def run_figure(runs, start=0.0, title=None, verdicts=None):
+    """Time histories (top) and spectra (middle), one column per run,
+    every spectrum over the same frequencies; with more than one run with
+    dither, their speed spectra overlaid (bottom). ``verdicts``: one line
+    of text per run, printed over its time histories."""
+    dithered = [(label, run) for label, run in runs if run.p_f > 0]
+    f_max = 2.5 * max([run.freq_hz for _, run in runs])
+    f_max = min(f_max, min(0.5 / np.median(np.diff(run.time))
+                           for _, run in runs))
+    overlay = len(dithered) > 1
+    rows = 3 if overlay else 2
+    fig = plt.figure(figsize=(6.5 * len(runs), 3.6 * rows + 0.6),
+                     layout="constrained")
+    grid = fig.add_gridspec(rows, len(runs))
+    for column, (label, run) in enumerate(runs):
+        plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label,
+                 verdict=None if verdicts is None else verdicts[column])
+        plot_spectrum(run, ax=fig.add_subplot(grid[1, column]), start=start,
+                      f_max=f_max)
+    if overlay:
+        plot_spectra_overlay(dithered, ax=fig.add_subplot(grid[2, :]),
+                             start=start, f_max=f_max)
+    if title:
+        fig.suptitle(title, fontsize=11)
+    return fig
