@@ -22,6 +22,8 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import maximum_bipartite_matching
 
+from infra.errors import JudderError
+
 __all__ = ["excess", "explain_unbalanced"]
 
 _UNBALANCED = re.compile(r"unbalanced model: (\d+) equations, (\d+) unknowns")
@@ -70,10 +72,15 @@ def _reachable(starts, step):
     return sorted(int(n) for n in seen)
 
 
-def explain_unbalanced(message, model_name, roots):
+def explain_unbalanced(message, model_name, roots, load_flat_model):
     """The equations or variables in excess, if ``message`` is rumoca's
     refusal of an unbalanced model; otherwise (or if the probe cannot be
-    read) ``""``."""
+    read) ``""``.
+
+    ``load_flat_model`` is the front end's
+    (:func:`fmu.frontend.load_flat_model`), which calls this function when
+    rumoca refuses a model: passed in, so that this module stays below the
+    front end."""
     found = _UNBALANCED.search(message)
     if not found:
         return ""
@@ -88,13 +95,12 @@ def explain_unbalanced(message, model_name, roots):
                 "does not compile")
     if difference == 0:
         return ""
-    from .frontend import FrontEndError, load_flat_model
     with tempfile.TemporaryDirectory(prefix="judder-balance-") as tmp:
         probe = Path(tmp) / f"{_PROBE}.mo"
         probe.write_text(_probe_source(model_name, difference))
         try:
             flat = load_flat_model(probe, _PROBE, [*roots, tmp], cache=False)
-        except FrontEndError as exc:
+        except JudderError as exc:    # the front end's FrontEndError
             # rumoca's count may be wrong where the back end would refuse
             # the model anyway (MSL's Clutch: Boolean modes with pre())
             return "" if str(probe) in str(exc) else \

@@ -554,9 +554,9 @@ def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
         model = session.load(str(path), model=model_name)
         return model.to_dict()
     except Exception as exc:   # rumoca raises its own error classes
-        from .balance import explain_unbalanced
+        from .balance import explain_unbalanced   # scipy, on failure only
         message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}" + \
-            (explain_unbalanced(str(exc), model_name, roots)
+            (explain_unbalanced(str(exc), model_name, roots, load_flat_model)
              if use_cache else "")
     finally:
         # rumoca's objects are unsendable: dropped in another thread (a
