@@ -164,3 +164,79 @@ def test_registry_topology_is_the_modelica_one(model):
     outputs = {v.name for v in flat.by_role("output")}
     assert set(entry.signals) <= outputs
     assert set(entry.free_response_speeds) <= names
+
+
+# -- the application layer: one room per command ------------------------
+
+#: Who may import whom inside judder (module prefixes): the command line
+#: and the API facade over the registry, the commands over their shared
+#: private modules and the services, the services over nothing of judder's.
+JUDDER_ROOMS = {
+    "judder.__main__": {"judder.cli"},
+    "judder.cli": {"judder.commands"},     # and, lazily, its _-modules
+    "judder.api": {"judder.commands"},
+    "judder.commands._": {"judder.commands._", "judder.inputs",
+                          "judder.envelope", "judder.crosscheck",
+                          "judder.timedomain", "judder.figures"},
+    "judder.commands.": {"judder.commands.", "judder.inputs",
+                         "judder.envelope", "judder.crosscheck",
+                         "judder.timedomain", "judder.figures"},
+    "judder.": {"judder.inputs", "judder.envelope", "judder.crosscheck",
+                "judder.timedomain", "judder.figures"},
+}
+
+
+def _room(module):
+    return next(prefix for prefix in JUDDER_ROOMS
+                if module == prefix or module.startswith(prefix))
+
+
+def test_judder_modules_import_only_the_rooms_below_them():
+    graph = _module_imports("judder")
+    for module, used in graph.items():
+        if module in ("judder", "judder.commands"):
+            assert not used, f"{module} imports {used}"
+            continue
+        allowed = JUDDER_ROOMS[_room(module)]
+        for name in used:
+            assert any(name == a or name.startswith(a) for a in allowed), \
+                f"{module} imports {name}"
+        if _room(module) == "judder.commands._":
+            # the shared modules know no command
+            assert all(n.split(".")[-1].startswith("_") for n in used
+                       if n.startswith("judder.commands.")), module
+
+
+def test_the_registry_is_the_one_place_a_command_is_added():
+    from judder import api
+    from judder.cli import build_parser
+    from judder.commands import COMMANDS, command_module
+    modules = {p.stem for p in (ROOT / "judder" / "commands").glob("*.py")
+               if not p.stem.startswith("_")}
+    assert modules == set(COMMANDS)
+    for name, command in COMMANDS.items():
+        module = command_module(name)
+        assert isinstance(module.DESCRIPTION, str) and module.DESCRIPTION
+        assert all(len(output) == 3 for output in module.OUTPUTS)
+        assert callable(module.add_arguments) and callable(module.run)
+        assert getattr(api, command.function) is \
+            getattr(module, command.function)
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command")
+    assert list(sub.choices) == list(COMMANDS)
+    assert sorted(api.__all__) == sorted(c.function
+                                         for c in COMMANDS.values())
+    # no table or branch keyed by the command's name outside its module
+    for path in (ROOT / "judder").rglob("*.py"):
+        assert "args.command" not in path.read_text(), path
+
+
+def test_help_imports_no_command_and_nothing_numerical():
+    code = ("import sys\n"
+            "from judder.cli import build_parser\n"
+            "build_parser(())\n"
+            "print(sorted(m for m in sys.modules if m.startswith("
+            "('numpy', 'judder.commands.'))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True,
+                         text=True, check=True, cwd=ROOT).stdout
+    assert out.strip() == "[]"
