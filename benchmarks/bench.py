@@ -7,6 +7,7 @@ names to run only those.
 """
 
 import json
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -605,7 +606,47 @@ def bench_msl_compile():
                    "inertia3.w of the two FMUs (fmpy CS)"}
 
 
-BENCHMARKS = {"floquet-maps": bench_floquet_maps,
+#: Whole-process start-up: the command, its target wall time (s, issue 22).
+STARTUP = ((("--help",), 0.2), (("--version",), 0.2), (("eig",), 0.6))
+STARTUP_RUNS = 7
+
+
+def _wall(argv):
+    start = time.perf_counter()
+    subprocess.run(argv, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+
+def bench_startup():
+    """``judder --help``, ``--version`` and ``eig`` as whole processes
+    (the installed console script), against a bare Python start in the
+    same run, taken in turn: medians of :data:`STARTUP_RUNS` runs after
+    one warm-up."""
+    script = Path(sys.executable).with_name("judder")
+    judder = [str(script)] if script.exists() else [sys.executable, "-m",
+                                                    "judder"]
+    bare = [sys.executable, "-c", "pass"]
+    for args, target in STARTUP:
+        _wall(judder + list(args))
+        _wall(bare)
+        times, bare_times = [], []
+        for _ in range(STARTUP_RUNS):
+            times.append(_wall(judder + list(args)))
+            bare_times.append(_wall(bare))
+        seconds, baseline = float(np.median(times)), float(np.median(
+            bare_times))
+        yield {"name": f"startup judder {' '.join(args)}", "points": 1,
+               "seconds": seconds, "baseline_seconds": baseline,
+               "speedup": baseline / seconds, "max_error": 0.0,
+               "ratio_to_bare_python": seconds / baseline,
+               "target_seconds": target, "within_target": seconds <= target,
+               "note": f"median wall time of {STARTUP_RUNS} whole-process "
+                       "runs; baseline: python -c pass"}
+
+
+BENCHMARKS = {"startup": bench_startup,
+              "floquet-maps": bench_floquet_maps,
               "modelica-map": bench_modelica_map,
               "fmu-map": bench_fmu_map,
               "tongue-boundaries": bench_tongue_boundaries,
