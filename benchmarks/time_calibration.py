@@ -1,10 +1,10 @@
-"""Calibrate the per-unit costs of judder/cli/timing.py on this machine.
+"""Calibrate the per-unit costs of judder/commands/_preflight.py on this machine.
 
 Run ``.venv/bin/python benchmarks/time_calibration.py``: it times, in CPU
 seconds of one thread (``time.process_time`` under
 ``threadpool_limits(1)``, so other users of the machine do not enter the
 numbers), the pieces the estimate adds up, and prints one JSON object
-with the constants to copy into :mod:`judder.cli.timing`:
+with the constants to copy into :mod:`judder.commands._preflight`:
 
 ``frequency_s``
     the fixed cost of one frequency of a Dyson map (node exponentials,
@@ -21,7 +21,7 @@ with the constants to copy into :mod:`judder.cli.timing`:
     frequencies at 10-220 Hz.
 
 The FMU costs of ``crosscheck`` and ``campaign`` are taken from the user
-time of those commands (see :mod:`judder.cli.estimates`).
+time of those commands (see :mod:`judder.commands._preflight`).
 """
 
 import json

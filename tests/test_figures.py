@@ -234,7 +234,7 @@ def _figures(paper4, small_map):
                                 min_growth=1.0, title="check")
     sens = api.sensitivity(["c12"], np.linspace(10, 220, 40), 1.5,
                            values=[0.5, 2, 5, 10], workers=1)
-    # the titles the commands give (judder/cli/commands.py)
+    # the titles the commands give (judder/commands/*.py)
     yield "sensitivity-c12", sens.figure(
         title="sensitivity of the stability boundary (Fig. 17, 18), 4dof "
               "driveline, paper preset")
