@@ -177,12 +177,12 @@ JUDDER_ROOMS = {
     "judder.api": {"judder.commands"},
     "judder.commands._": {"judder.commands._", "judder.inputs",
                           "judder.envelope", "judder.crosscheck",
-                          "judder.timedomain", "judder.figures"},
+                          "judder.timedomain", "judder.figures", "judder.bench"},
     "judder.commands.": {"judder.commands.", "judder.inputs",
                          "judder.envelope", "judder.crosscheck",
-                         "judder.timedomain", "judder.figures"},
+                         "judder.timedomain", "judder.figures", "judder.bench"},
     "judder.": {"judder.inputs", "judder.envelope", "judder.crosscheck",
-                "judder.timedomain", "judder.figures"},
+                "judder.timedomain", "judder.figures", "judder.bench"},
 }
 
 

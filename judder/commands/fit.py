@@ -17,11 +17,12 @@ from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
+from ..bench import bench_damping
 from ..inputs import (read_boundary, read_boundary_min_growth,
                       read_chart_below, read_chart_boundary,
                       read_chart_min_growth)
 from ._arguments import method_option, model_options, workers_option
-from ._bench import bench_damping, bench_values
+from ._bench import bench_values
 from ._common import resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,

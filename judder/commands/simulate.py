@@ -18,9 +18,10 @@ from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
+from ..bench import (added_damping, bench_fmu, linear_validity,
+                     operating_friction)
 from ._arguments import force_option, method_option, model_options
-from ._bench import (added_damping, bench_fmu, bench_values, float_option,
-                     linear_validity, operating_friction)
+from ._bench import bench_values
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
@@ -92,7 +93,7 @@ def run(args):
     bench = bench_values(args.bench)
     compare = None if args.compare is None else (
         "none" if args.compare == "none" else
-        check_number("--compare", float_option(args.compare, "--compare"), "Hz"))
+        check_number("--compare", _float_option(args.compare, "--compare"), "Hz"))
     make_parents(args.out, args.plot)
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
                       duration=args.duration,
@@ -271,3 +272,12 @@ class SimulationResult:
         from pysim.plots import run_figure
         return run_figure(self.runs, start=self.start, title=title,
                           verdicts=[verdict_line(s) for s in self.summaries])
+
+
+def _float_option(text, option):
+    try:
+        return float(text)
+    except ValueError:
+        raise JudderError(f"{option} {text!r} is not a number; allowed: a "
+                          "frequency in Hz, or nothing for no dither") \
+            from None

@@ -1,0 +1,133 @@
+"""The emulated bench of a registry driveline, as the API functions use it.
+
+``simulate`` runs an engagement on the bench's Modelica model, and
+``fit(bench=...)`` compares with what that bench measures: the damping it
+adds to the driveline's model (:func:`bench_damping`), the friction at
+its operating point, and whether the dither's forced slip stays where
+the linear model holds.
+"""
+
+import numpy as np
+
+from infra.errors import JudderError
+
+__all__ = ["bench_fmu", "bench_damping", "added_damping",
+           "operating_friction", "linear_validity"]
+
+
+def bench_fmu(values):
+    """The driveline's bench engagement model and its FMU (built if
+    needed)."""
+    from pysim.fmus import ensure_fmu
+    if not values.source_kind.is_chain:
+        raise JudderError(f"{values.model} (a Modelica class or an FMU) "
+                          "has no bench engagement model: the bench belongs "
+                          "to the registry's 4-DOF driveline; allowed: a "
+                          "preset or its parameter file (or add the bench's "
+                          "damping to the class with --set)")
+    model_class = values.driveline.bench_class
+    if model_class is None:
+        raise JudderError(f"the {values.model} driveline has no bench "
+                          "engagement model; give a parameter set of a "
+                          "driveline that has one (4-DOF)")
+    return model_class, ensure_fmu(model_class)
+
+
+
+def bench_damping(values, bench=None):
+    """What the bench's linearisation adds to the driveline's parameters.
+
+    The bench's motor holds its speed by a proportional control, which
+    acts on body 1 as a damping to ground about the set speed
+    (:attr:`drivelines.DrivelineModel.bench_damping`): the Floquet model of
+    the bench is the driveline with ``c1 + d_control``.
+
+    Parameters
+    ----------
+    values : drivelines.Parameters
+    bench : dict, optional
+        Bench parameters (SI); the others are the bench model's defaults.
+
+    Returns
+    -------
+    dict
+        ``{driveline parameter: added value}``, SI.
+
+    Raises
+    ------
+    JudderError
+        Where the bench's slip (``w_motor - w_gearbox``) is not its
+        friction curve's ``w_op``: there the linearisation also takes the
+        curve's value and slope at that slip (:func:`simulate` does), which
+        a sum cannot say.
+    """
+    fmu = bench_fmu(values)[1]
+    friction, _ = operating_friction(values, fmu, dict(bench or {}))
+    if not np.isclose(friction["mu_g"], values["mu_g"], rtol=1e-9):
+        raise JudderError(
+            "--bench: the bench's slip w_motor - w_gearbox is not its "
+            "friction curve's w_op, where mu0 and mu_g are the curve's; "
+            "its linearisation there has the slope "
+            f"{friction['mu_g']:.3g} s/rad, not a fitted mu_g; allowed: "
+            "a chart at the curve's operating slip (1000 rpm by default), "
+            "or --bench w_op set to that chart's slip")
+    return added_damping(values, fmu, bench)
+
+
+
+def added_damping(values, fmu, bench):
+    """:func:`bench_damping` with the bench's FMU ``fmu`` known."""
+    from pysim.runs import parameter_default
+    bench = dict(bench or {})
+    for name in bench:
+        parameter_default(fmu, name)    # the bench model must have it
+    return {name: float(bench.get(added, parameter_default(fmu, added)))
+            for name, added in values.driveline.bench_damping}
+
+
+
+def operating_friction(values, fmu, bench):
+    """The bench's friction at its operating point.
+
+    Returns ``({'mu0': ..., 'mu_g': ...}, linear range)``: the value and
+    slope of its EVEN clutch's friction curve
+    (:func:`stability.friction.curve_at`) at its steady slip, ``w_motor
+    - w_gearbox`` (``values``' own when that slip is the curve's
+    ``w_op``, as at the bench's default 1000 rpm), and the slip offset,
+    rad/s, over which the curve keeps that slope
+    (:func:`stability.friction.linear_range`).
+    """
+    from pysim.runs import parameter_default
+    from stability.friction import curve_at, linear_range
+
+    def bench_value(name):
+        return float(bench.get(name, parameter_default(fmu, name)))
+    if bench_value("w_gearbox") >= bench_value("w_motor"):
+        raise JudderError(
+            f"--bench w_gearbox {bench_value('w_gearbox'):g} rad/s is not "
+            f"allowed with w_motor {bench_value('w_motor'):g} rad/s; "
+            "allowed: below w_motor (the EVEN clutch slips forwards, "
+            "at w_motor - w_gearbox)")
+    delta_mu = bench_value("delta_mu")
+    point = curve_at(bench_value("w_motor") - bench_value("w_gearbox"),
+                     values["mu0"], values["mu_g"], delta_mu,
+                     bench_value("w_op"))
+    return ({"mu0": point.mu, "mu_g": point.slope},
+            linear_range(point.slope, delta_mu))
+
+
+
+def linear_validity(driveline, run, linear_slip):
+    """Whether the dither's forced slip swing stays within the friction
+    curve's linear range (the run can then follow its linearisation):
+    ``forced_slip_amplitude_rad_s``, ``friction_linear_range_rad_s`` and
+    ``linearisation_holds`` (None for a model without the curve)."""
+    from stability.friction import forced_slip_amplitude
+    if linear_slip is None or run.p_f == 0:
+        return {"forced_slip_amplitude_rad_s": None,
+                "friction_linear_range_rad_s": linear_slip,
+                "linearisation_holds": None}
+    forced = forced_slip_amplitude(driveline, run.freq_hz, run.p_f)
+    return {"forced_slip_amplitude_rad_s": forced,
+            "friction_linear_range_rad_s": linear_slip,
+            "linearisation_holds": bool(forced <= linear_slip)}
