@@ -375,8 +375,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         convergence, a parameter on a bound or undetermined, another
         minimum as good).
     """
-    from stability.fitting import DEFAULT_FIT, fit_boundary
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.fit import DEFAULT_FIT, fit_boundary
     start = _resolve(parameters, changes)
     if min_growth is None:
         min_growth = DEFAULT_MIN_GROWTH_PER_S
@@ -789,9 +789,9 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     -------
     judder.results.CheckResult
     """
-    from stability.margins import check_settings
-    from stability.relevance import (DEFAULT_MIN_GROWTH_PER_S,
-                                     ENGAGEMENT_DURATION_S)
+    from infra.criteria import (DEFAULT_MIN_GROWTH_PER_S,
+                                ENGAGEMENT_DURATION_S)
+    from stability.decisions.margins import check_settings
     values = _resolve(parameters, changes)
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
     p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
@@ -864,8 +864,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     -------
     judder.results.AdviceResult
     """
-    from stability import advice as kernel
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.decisions import advice as kernel
     values = _resolve(parameters, changes)
     sets = [values, *extra_sets]
     models = {p.model for p in sets}
@@ -984,8 +984,8 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     judder.results.EnvelopeResult
         ``failures`` lists the samples that failed (left out).
     """
-    from stability.ranges import Ranges
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.uncertainty.ranges import Ranges
     from .envelope import read_ranges, run_envelope
     values = _resolve(parameters, changes)
     if not isinstance(ranges, Ranges):

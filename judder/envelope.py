@@ -31,11 +31,12 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import atomic_write
 from infra.parallel import cluster
-from stability.envelope import (REFINE_EVALUATIONS, build_envelope,
-                                compute_samples, refine_union,
-                                refinement_starts)
-from stability.ranges import (DEFAULT_COVERAGE, Correlated, Normal, Ranges,
-                              Uniform, check_values, design_points)
+from stability.uncertainty.envelope import (REFINE_EVALUATIONS,
+                                            build_envelope, compute_samples,
+                                            refine_union, refinement_starts)
+from stability.uncertainty.ranges import (DEFAULT_COVERAGE, Correlated,
+                                          Normal, Ranges, Uniform,
+                                          check_values, design_points)
 from stability.tongues import lowest_of_kinds
 
 from .inputs import read_input

@@ -30,11 +30,11 @@ from infra.errors import JudderError
 from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.numbers import format_interval, format_uncertain
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 from infra.units import PA_PER_BAR
 
-from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
-                                 DEFAULT_MIN_GROWTH_PER_S,
-                                 ENGAGEMENT_DURATION_S, JUDDER, SLOW_GROWTH)
+from stability.decisions.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
+                                           JUDDER, SLOW_GROWTH)
 
 from . import api
 from .results import growth_words, margin_words
@@ -336,7 +336,7 @@ def build_report(parameters=None, changes=None, description=None,
     -------
     ReportResult
     """
-    from stability.plotting import multipliers_figure
+    from stability.plots import multipliers_figure
     from .inputs import (read_boundary, read_chart_below,
                          read_chart_boundary, read_chart_min_growth)
     values = api.params(parameters, changes).params

@@ -138,7 +138,7 @@ class FloquetPoint:
 
     def figure(self, title=None):
         """The multipliers on the complex plane (Fig. 15)."""
-        from stability.plotting import multipliers_figure
+        from stability.plots import multipliers_figure
         return multipliers_figure([self.result], title=title)
 
 
@@ -160,7 +160,7 @@ class MapResult:
     def judder_relevant_points(self):
         """Points growing faster than ``min_growth`` (all unstable ones if
         it is None)."""
-        from stability.relevance import is_judder_relevant
+        from stability.decisions.relevance import is_judder_relevant
         return int(np.count_nonzero(
             (self.map.kind > 0)
             & is_judder_relevant(self.map.growth_rate, self.min_growth or 0)))
@@ -229,7 +229,7 @@ class MapResult:
         save_npz(path, arrays)
 
     def figure(self, title=None, stacked=False):
-        from stability.plotting import map_figure
+        from stability.plots import map_figure
         return map_figure(self.map, title=title, tongues=self.tongues,
                           boundaries=self.boundaries,
                           min_growth=self.min_growth, stacked=stacked)
@@ -298,8 +298,8 @@ class TonguesResult:
         write_text(path, self.csv_text())
 
     def figure(self, title=None):
-        from stability.plotting import tongues_figure
-        from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+        from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+        from stability.plots import tongues_figure
         # the map's shading as `judder map` draws it: slower growth than
         # the judder-relevant rate grey
         return tongues_figure(
@@ -387,7 +387,8 @@ class ThresholdResult:
     def figure(self, title=None):
         import matplotlib.pyplot as plt
         from stability import build_driveline
-        from stability.plotting import figure_title, plot_threshold
+        from infra.plotstyle import figure_title
+        from stability.plots import plot_threshold
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
                                  layout="constrained")
         driveline = build_driveline(self.params)
@@ -611,7 +612,7 @@ class CrosscheckResult:
         write_text(path, _csv_text(self.rows()))
 
     def figure(self, title=None):
-        from pysim.plotting import crosscheck_figure
+        from .figures.crosscheck import crosscheck_figure
         return crosscheck_figure(self.check, title=title)
 
 
@@ -733,7 +734,7 @@ class ChartResult:
         from pysim.plotting import chart_figure
         fig, panels = chart_figure(self.chart, title=title)
         if self.model is not None:
-            from stability.plotting import plot_boundaries
+            from stability.plots import plot_boundaries
             for ax in panels.values():
                 limits = ax.get_xlim(), ax.get_ylim()
                 plot_boundaries(self.model.boundaries, ax=ax,
@@ -760,7 +761,7 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
     ``search_hz`` the (low, high) frequencies the Hz margin was searched
     over (``frequency_search_hz``).
     """
-    from stability.relevance import verdict
+    from stability.decisions.relevance import verdict
     m, point = check.margin, check.floquet
     rate = point.growth_rate
     unstable = point.kind != KINDS[0]
@@ -900,7 +901,7 @@ class CheckResult:
     background: object = None
 
     def records(self):
-        from stability.margins import search_grid
+        from stability.decisions.margins import search_grid
         grid = search_grid([c.margin.freq_hz for c in self.checks]) \
             if self.checks else None
         search = None if grid is None else (grid[0], grid[-1])
@@ -934,7 +935,7 @@ class CheckResult:
         write_text(path, _csv_text(rows))
 
     def figure(self, title=None):
-        from stability.plotting import check_figure
+        from .figures.check import check_figure
         return check_figure(self.records(), self.background,
                             min_growth=self.min_growth, title=title)
 
@@ -1056,7 +1057,7 @@ class AdviceResult:
              if low <= f <= high]))
 
     def figure(self, title=None):
-        from stability.plotting import advice_figure
+        from .figures.advice import advice_figure
         return advice_figure(self, title=title)
 
 
@@ -1155,5 +1156,5 @@ class EnvelopeResult:
             Path(self.checkpoint).unlink(missing_ok=True)
 
     def figure(self, title=None):
-        from stability.envelope_plotting import envelope_figure
+        from stability.plots import envelope_figure
         return envelope_figure(self.envelope, title=title)

@@ -1,5 +1,5 @@
-"""Plots of runs (Fig. 7), spectra (Fig. 8), cross-checks and experimental
-stability charts (Fig. 10, 11).
+"""Plots of runs (Fig. 7), spectra (Fig. 8) and experimental stability
+charts (Fig. 10, 11).
 
 Functions take ``ax``/``axes`` where they draw one panel and return the
 artists; figure builders return the figure. Nothing calls ``plt.show()``.
@@ -8,17 +8,18 @@ artists; figure builders return the figure. Nothing calls ``plt.show()``.
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.plotstyle import BLUE, VERMILLION, dither_axes
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .signals import amplitude_spectrum
 
-__all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure", "crosscheck_figure",
+__all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure",
            "plot_chart", "chart_figure"]
 
 
 #: Line styles of the speeds, so they differ without colour.
-SPEED_STYLES = {"w_upstream": ("-", "#0072b2", "upstream of the clutch"),
-                "w_downstream": ("--", "#d55e00", "downstream of the clutch")}
+SPEED_STYLES = {"w_upstream": ("-", BLUE, "upstream of the clutch"),
+                "w_downstream": ("--", VERMILLION, "downstream of the clutch")}
 
 
 def _dither_text(run):
@@ -119,7 +120,7 @@ def plot_spectrum(run, ax=None, start=0.0, f_max=None):
     if ax is None:
         _, ax = plt.subplots()
     speed, pressure = _spectra(run, start)
-    artists = [ax.plot(speed.freq_hz, speed.amplitude, color="#0072b2",
+    artists = [ax.plot(speed.freq_hz, speed.amplitude, color=BLUE,
                        lw=0.9, label="upstream speed [rpm] (left axis)")[0]]
     right = ax.twinx()
     artists.append(right.plot(pressure.freq_hz, pressure.amplitude,
@@ -205,44 +206,6 @@ def run_figure(runs, start=0.0, title=None, verdicts=None):
                              start=start, f_max=f_max)
     if title:
         fig.suptitle(title, fontsize=11)
-    return fig
-
-
-def crosscheck_figure(check, title=None):
-    """Fitted against Floquet growth rates, and verdicts on the grid;
-    ``title`` (the model) follows the share of agreeing verdicts."""
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5),
-                                      layout="constrained")
-    floquet = np.array([p.floquet_rate for p in check.points])
-    fitted = np.array([p.fitted_rate for p in check.points])
-    agree = np.array([p.agree for p in check.points])
-    left.plot(floquet[agree], fitted[agree], "o", ms=4, color="#1f4e99",
-              label="verdicts agree")
-    left.plot(floquet[~agree], fitted[~agree], "x", ms=7, mew=1.5,
-              color="k", label="verdicts disagree")
-    span = [min(floquet.min(), fitted.min()), max(floquet.max(), fitted.max())]
-    left.plot(span, span, "k-", lw=0.6, label="equal")
-    left.set_xlabel(r"Floquet exponent $\ln|\lambda|/T$ [1/s]")
-    left.set_ylabel("growth rate fitted to the FMU run [1/s]")
-    f = np.array([p.freq_hz for p in check.points])
-    p = np.array([p.p_f for p in check.points]) / PA_PER_BAR
-    unstable = np.array([q.floquet_unstable for q in check.points])
-    # shapes tell the verdicts apart without colour (not red against green)
-    right.scatter(f[unstable & agree], p[unstable & agree], marker="^",
-                  c="#d55e00", edgecolors="k", linewidths=0.4, s=26,
-                  label="unstable in both")
-    right.scatter(f[~unstable & agree], p[~unstable & agree], marker="o",
-                  facecolors="none", edgecolors="#1f4e99", s=22,
-                  label="stable in both")
-    right.scatter(f[~agree], p[~agree], marker="x", c="k", s=40,
-                  linewidths=1.5, label="verdicts disagree")
-    right.set_xlabel("dither frequency [Hz]")
-    right.set_ylabel("dither amplitude $p_f$ [bar]")
-    for ax in (left, right):     # legends below the data
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14),
-                  ncols=3, borderaxespad=0.0, frameon=False)
-    fig.suptitle(f"cross-check: {100 * check.agreement:.1f} % of the verdicts "
-                 "agree" + (f", {title}" if title else ""))
     return fig
 
 
@@ -335,8 +298,7 @@ def plot_chart(chart, group, ax=None, levels=None):
                                   s=60, zorder=4, clip_on=False,
                                   label="no judder up to here"))
     _pad_limits(ax, f, p)
-    ax.set_xlabel("dither frequency [Hz]")
-    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    dither_axes(ax, "dither frequency [Hz]")
     ax.set_title(_group_title(chart.group_by, group), fontsize=10)
     return artists
 

@@ -7,8 +7,8 @@ registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 import argparse
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 from stability.monodromy import DEFAULT_METHOD, METHODS
-from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 
 from . import commands
 
