@@ -26,9 +26,8 @@ from ._model import CURVE_POINTS
 from ._result import FitResult, problem_sentences, undetermined_names
 from ._starts import (ALTERNATIVE_ROUNDS, DEFAULT_STARTS, extra_starts,
                       run_starts)
-from ._uncertainty import (CONFIDENCE, DEFAULT_BOOTSTRAP,
-                           UNCERTAINTY_METHODS, intervals, threshold_shifts,
-                           uncertainty_steps)
+from ._uncertainty import (DEFAULT_BOOTSTRAP, UNCERTAINTY_METHODS,
+                           intervals, threshold_shifts, uncertainty_steps)
 
 __all__ = ["fit_boundary", "DEFAULT_FIT", "BOUND_FACTOR", "ERROR_MODELS"]
 

@@ -25,11 +25,12 @@ kind, and its residual uses the boundary of that kind only:
   matching (with ``p_max`` = 1 bar the fit stopped at c12 = 5.9 instead
   of 10 that way). So, from the best minimum, the *ambiguous* free points
   (a second kind nearly as near as the matched one, see
-  :data:`AMBIGUITY`) are matched the other way and fitted again
-  (:data:`ALTERNATIVE_ROUNDS` times at most); the better fit is kept.
+  :data:`~stability.fit._common.AMBIGUITY`) are matched the other way
+  and fitted again (:data:`~stability.fit._starts.ALTERNATIVE_ROUNDS`
+  times at most); the better fit is kept.
 
-Each kind's boundary is searched up to :data:`SEARCH_FACTOR` times
-``p_max``, so a model boundary a little above ``p_max`` still gives a
+Each kind's boundary is searched up to
+:data:`~stability.fit._common.SEARCH_FACTOR` times ``p_max``, so a model boundary a little above ``p_max`` still gives a
 residual that varies with the parameters (a capped one would not).
 """
 

@@ -61,7 +61,7 @@ def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
     does; 0 gives the stability boundary
     (:func:`stability.tongues.tongue_boundaries`). ``added`` are ``(name,
     value)`` pairs added to ``params`` for the model evaluated (see
-    :func:`evaluated`).
+    :func:`stability.fit._common.evaluated`).
     """
     return tongue_boundaries(build_driveline(evaluated(params, added)),
                              freq_hz, p_max, method,
