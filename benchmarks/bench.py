@@ -506,7 +506,7 @@ def bench_fit():
     sys.path.insert(0, str(Path(__file__).parent))
     from fit_coverage import noisy_boundary
     from judder.inputs import read_boundary
-    from stability.fitting import fit_boundary
+    from stability.fit import fit_boundary
     truth = get_preset("paper-4dof-fitted")
     freq15 = np.linspace(60.0, 200.0, 15)
     problems = [

@@ -8,7 +8,7 @@ as the chart's verdict sees it) at the frequencies of ``--grid`` is
 perturbed by ``--noise`` (3 %) multiplicative Gaussian noise; a point
 above ``p_max`` (1.5 bar) is censored, as on the bench. Each boundary is
 fitted from the preset's values with the defaults of ``judder fit``
-(:func:`stability.fitting.fit_boundary`). A boundary with too few onsets
+(:func:`stability.fit.fit_boundary`). A boundary with too few onsets
 for the parameters is refused by the fit, and counted apart. The script
 prints one line per boundary (on stderr), then one JSON object with the
 coverage of each parameter (how many of the 95 % intervals reported hold
@@ -32,7 +32,7 @@ import numpy as np
 
 from drivelines import get_preset
 from infra.errors import JudderError
-from stability.fitting import fit_boundary, model_boundary
+from stability.fit import fit_boundary, model_boundary
 
 BAR = 1e5
 TRUTH = "paper-4dof-fitted"
@@ -60,7 +60,7 @@ def write_example(path, seed=7, noise=0.03, p_max=1.5 * BAR):
     """Write examples/measured_boundary.csv: the preset's boundary of
     judder growing at check's 1 1/s at :data:`EXAMPLE_FREQS`, with
     ``noise`` multiplicative noise (``seed``), censored above ``p_max``."""
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     measured = noisy_boundary(get_preset(TRUTH), EXAMPLE_FREQS, p_max,
                               noise, np.random.default_rng(seed),
                               DEFAULT_MIN_GROWTH_PER_S)

@@ -13,7 +13,7 @@ Ranges file (TOML, SI units; see ``examples/ranges.toml``)::
     file = "fit.json"                # normal with the fit's covariance
     names = ["c12", "k24"]           # optional: a subset of its names
 
-The kernels are in :mod:`stability.envelope`; this module only reads
+The kernels are in :mod:`stability.uncertainty.envelope`; this module only reads
 files and keeps the checkpoint.
 """
 
@@ -31,11 +31,12 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import atomic_write
 from infra.parallel import cluster
-from stability.envelope import (REFINE_EVALUATIONS, build_envelope,
-                                compute_samples, refine_union,
-                                refinement_starts)
-from stability.ranges import (DEFAULT_COVERAGE, Correlated, Normal, Ranges,
-                              Uniform, check_values, design_points)
+from stability.uncertainty.envelope import (REFINE_EVALUATIONS,
+                                            build_envelope, compute_samples,
+                                            refine_union, refinement_starts)
+from stability.uncertainty.ranges import (DEFAULT_COVERAGE, Correlated,
+                                          Normal, Ranges, Uniform,
+                                          check_values, design_points)
 from stability.tongues import lowest_of_kinds
 
 from .inputs import read_input
@@ -191,7 +192,7 @@ def read_ranges(path, params):
 
     Returns
     -------
-    stability.ranges.Ranges
+    stability.uncertainty.ranges.Ranges
 
     Raises
     ------
@@ -319,13 +320,13 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
     ----------
     params : drivelines.Parameters
         The nominal set.
-    ranges : stability.ranges.Ranges
+    ranges : stability.uncertainty.ranges.Ranges
     freq_hz : array_like
         Dither frequencies, Hz.
     p_max : float
         Largest amplitude searched, Pa.
     samples, seed, sampler, vertices
-        As :func:`stability.ranges.design_points` takes them.
+        As :func:`stability.uncertainty.ranges.design_points` takes them.
     method, min_growth
         As :func:`stability.tongues.tongue_boundaries` takes them.
     amplitudes : int
@@ -333,7 +334,7 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
     refine : int
         Boundary evaluations per uncertain parameter at each frequency to
         refine the union between the samples
-        (:func:`stability.envelope.refine_union`); 0: no refinement.
+        (:func:`stability.uncertainty.envelope.refine_union`); 0: no refinement.
     checkpoint : path, optional
         NPZ of the boundaries computed so far, rewritten (atomically) at
         most every :data:`CHECKPOINT_SECONDS` and when interrupted; a run
@@ -341,7 +342,7 @@ def run_envelope(params, ranges, freq_hz, p_max, samples=256, seed=0,
 
     Returns
     -------
-    envelope : stability.envelope.Envelope
+    envelope : stability.uncertainty.envelope.Envelope
     failures : list of infra.parallel.TaskFailure
         Samples (and refinements) that failed: left out of the envelope,
         not checkpointed.

@@ -6,8 +6,7 @@ analyses time histories (spectrum, growth rates, free-response fits),
 :mod:`pysim.engagement` sums up an engagement, :mod:`pysim.bench`
 emulates bench campaigns, :mod:`pysim.export` writes CSV and MF4,
 :mod:`pysim.run_analysis` reads judder out of one run (simulated or
-measured), and :mod:`pysim.plots` draws runs and spectra
-(:mod:`pysim.plotting`, a cross-check).
+measured), and :mod:`pysim.plots` draws runs and spectra.
 :mod:`pysim.bench_data` reads bench files (MF4, CSV, TDMS, MAT) and makes
 experimental stability charts of many runs. Which FMU belongs to which
 driveline is the registry's knowledge (:mod:`drivelines.registry`).

@@ -9,6 +9,7 @@ Functions take ``ax`` where they draw one panel and return the artists;
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.plotstyle import BLUE, VERMILLION
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .engagement import display_spectra
@@ -18,8 +19,8 @@ __all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure"]
 
 
 #: Line styles of the speeds, so they differ without colour.
-SPEED_STYLES = {"w_upstream": ("-", "#0072b2", "upstream of the clutch"),
-                "w_downstream": ("--", "#d55e00", "downstream of the clutch")}
+SPEED_STYLES = {"w_upstream": ("-", BLUE, "upstream of the clutch"),
+                "w_downstream": ("--", VERMILLION, "downstream of the clutch")}
 
 
 def _dither_text(run):
@@ -94,7 +95,7 @@ def plot_spectrum(run, ax=None, start=0.0, f_max=None):
     if ax is None:
         _, ax = plt.subplots()
     speed, pressure = display_spectra(run, start)
-    artists = [ax.plot(speed.freq_hz, speed.amplitude, color="#0072b2",
+    artists = [ax.plot(speed.freq_hz, speed.amplitude, color=BLUE,
                        lw=0.9, label="upstream speed [rpm] (left axis)")[0]]
     right = ax.twinx()
     artists.append(right.plot(pressure.freq_hz, pressure.amplitude,

@@ -87,6 +87,7 @@ import scipy.signal
 from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
@@ -97,7 +98,7 @@ __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "SMOOTHING_S"]
 
 #: Smallest growth rate of the non-periodic part called judder, 1/s.
-MIN_GROWTH = 1.0
+MIN_GROWTH = DEFAULT_MIN_GROWTH_PER_S
 #: Share of its maximum up to which a growing component's rate is read
 #: (:func:`growth_phase`): the linear part of the rise.
 LINEAR_SHARE = 0.5

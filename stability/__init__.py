@@ -9,8 +9,26 @@ maps (Fig. 12, Fig. 14), tongue boundaries, sensitivity (Fig. 17-18), the
 friction-gradient threshold (Fig. 19) and fitting to a measured boundary
 (Fig. 16a). Kernels only: nothing here reads files or prints.
 
-Importing this package does not import matplotlib; plots live in
-:mod:`stability.plotting`.
+Where things are:
+
+* top level, the Floquet core: :mod:`~stability.model` and
+  :mod:`~stability.linear` (the periodic systems), :mod:`~stability.waveforms`,
+  :mod:`~stability.modal`, :mod:`~stability.monodromy` (the engines),
+  :mod:`~stability.floquet`, :mod:`~stability.hill`, :mod:`~stability.kinds`,
+  :mod:`~stability.maps`, :mod:`~stability.tongues`,
+  :mod:`~stability.sensitivity`, :mod:`~stability.threshold`,
+  :mod:`~stability.friction`;
+* :mod:`stability.fit`: fitting to a measured boundary (a facade over
+  private steps);
+* :mod:`stability.decisions`: judder relevance, margins of a setting,
+  design advice;
+* :mod:`stability.uncertainty`: parameter ranges and the envelope over
+  them;
+* :mod:`stability.plots`: one module per kind of result; plots draw what
+  a result holds and compute nothing.
+
+Importing this package does not import matplotlib; only
+:mod:`stability.plots` does.
 """
 
 from .floquet import FloquetResult, floquet

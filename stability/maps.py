@@ -54,9 +54,16 @@ class StabilityMap:
         return {name: int(np.count_nonzero(self.kind == code))
                 for code, name in enumerate(KINDS)}
 
+    def resonances(self):
+        """Frequencies the tongues grow from, numbered as in Fig. 14:
+        ``[(number, label, hz, kind code)]``
+        (:func:`stability.tongues.resonances`)."""
+        from .tongues import resonances
+        return resonances(self.natural_frequencies_hz)
+
     def plot(self, ax=None, **kwargs):
-        """Draw the map; see :func:`stability.plotting.plot_map`."""
-        from .plotting import plot_map
+        """Draw the map; see :func:`stability.plots.plot_map`."""
+        from .plots import plot_map
         return plot_map(self, ax=ax, **kwargs)
 
 

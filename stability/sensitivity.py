@@ -15,6 +15,7 @@ from infra.errors import JudderError
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
+from .modal import clutch_damper_damping_factor
 from .source import build_driveline
 from .monodromy import DEFAULT_METHOD, get_method
 from .tongues import find_tongues, tongue_boundaries
@@ -37,6 +38,10 @@ class SensitivityCase:
         Value used, SI units.
     boundaries : stability.tongues.Boundaries
     tongues : list of stability.tongues.Tongue
+    damper_zeta : float or None
+        Damping factor of the clutch damper with this case's values, Eq.
+        (16), as a fraction; None for a model without that role (a
+        Modelica class or an FMU).
     """
 
     parameter: object
@@ -44,6 +49,7 @@ class SensitivityCase:
     value: float
     boundaries: object
     tongues: list
+    damper_zeta: float = None
 
     def tongue(self, number):
         """The tongue with this number, or None if it is not there."""
@@ -66,8 +72,8 @@ class SensitivityStudy:
 
     def plot(self, **kwargs):
         """Figure of boundaries per parameter; see
-        :func:`stability.plotting.sensitivity_figure`."""
-        from .plotting import sensitivity_figure
+        :func:`stability.plots.sensitivity_figure`."""
+        from .plots import sensitivity_figure
         return sensitivity_figure(self, **kwargs)
 
 
@@ -82,7 +88,16 @@ def _run_case(args):
         parameter=parameter,
         factor=1.0 if parameter is None or nominal == 0 else value / nominal,
         value=value, boundaries=boundaries,
-        tongues=find_tongues(driveline, boundaries))
+        tongues=find_tongues(driveline, boundaries),
+        damper_zeta=_damper_zeta(case_params))
+
+
+def _damper_zeta(params):
+    """Eq. (16) of a registry driveline's clutch damper, else None."""
+    if not params.source_kind.is_chain or \
+            params.driveline.clutch_damper is None:
+        return None
+    return float(clutch_damper_damping_factor(params))
 
 
 def sensitivity_study(params, names, freq_hz, p_max, factors=(0.5, 2.0),

@@ -153,8 +153,8 @@ class ThresholdStudy:
     closed_form: np.ndarray
 
     def plot(self, axes=None):
-        """Draw Fig. 19a and 19b; see :func:`stability.plotting.plot_threshold`."""
-        from .plotting import plot_threshold
+        """Draw Fig. 19a and 19b; see :func:`stability.plots.plot_threshold`."""
+        from .plots import plot_threshold
         return plot_threshold(self, axes=axes)
 
 

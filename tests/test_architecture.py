@@ -117,6 +117,40 @@ def test_stability_does_not_import_matplotlib():
     assert out.strip() == "False"
 
 
+#: What a plot module may import from the project: the shared look, the
+#: names of the kinds and the judder criterion, and other plot modules. A
+#: plot draws what its result holds; a kernel it called would compute.
+PLOT_IMPORTS = {"stability/plots": ("infra", "stability.kinds",
+                                    "stability.decisions.relevance",
+                                    "stability.plots"),
+                "judder/figures": ("infra", "stability.plots")}
+
+
+def _absolute_imports(path):
+    """Modules one file imports, relative imports made absolute."""
+    package = ".".join(path.relative_to(ROOT).parent.parts)
+    names = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            names |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            base = package.rsplit(".", node.level - 1)[0] if node.level \
+                else ""
+            names.add(".".join(filter(None, [base, node.module])))
+    return names
+
+
+@pytest.mark.parametrize("folder", sorted(PLOT_IMPORTS))
+def test_plots_import_no_kernel(folder):
+    for path in sorted((ROOT / folder).glob("*.py")):
+        project = {name for name in _absolute_imports(path)
+                   if name.split(".")[0] in ALLOWED}
+        for name in project:
+            assert any(name == allowed or name.startswith(allowed + ".")
+                       for allowed in PLOT_IMPORTS[folder]), \
+                f"{path.relative_to(ROOT)} imports {name}"
+
+
 def test_no_model_name_branches_outside_the_registry():
     # knowledge of each driveline lives in drivelines/registry.py only
     for package in ALLOWED:

@@ -15,14 +15,15 @@ import pytest
 from numpy.testing import assert_allclose
 
 from drivelines import get_preset
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from judder import api
 from stability import build_driveline, floquet, natural_frequencies
-from stability.advice import OperatingRange, _clear
+from stability.decisions.advice import OperatingRange, _clear
+from stability.decisions.margins import search_grid, setting_margin
+from stability.decisions.relevance import is_judder_relevant
 from stability.hill import combination_boundaries, modal_transfer
-from stability.margins import search_grid, setting_margin
 from stability.monodromy import monodromy_solve_ivp
-from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, is_judder_relevant
 from stability.tongues import lowest_boundaries
 
 BAR = 1e5
@@ -148,7 +149,7 @@ def test_check_reports_verdict_margins_and_the_strongest_parameters():
 
 
 def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
-    from stability.relevance import VERDICTS
+    from stability.decisions.relevance import VERDICTS
     result = api.check([102.9, 60.0, 102.9], [0.3, 0.3, 0.05],
                        sensitivity=["J4", "k24"])
     records = result.records()
@@ -237,7 +238,7 @@ def test_check_refuses_bad_input(kwargs, word):
 
 def test_windows_over_an_envelope_are_safe_for_every_set():
     # section 4.2: the broadest region over the uncertain parameters
-    from stability.advice import safe_windows, window_boundary
+    from stability.decisions.advice import safe_windows, window_boundary
     nominal = get_preset("paper-4dof")
     stiffer = nominal.replace(k24=1.06 * nominal["k24"], mu_g=0.022)
     operating = OperatingRange()

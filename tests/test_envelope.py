@@ -16,9 +16,9 @@ from drivelines import get_preset
 from infra.errors import JudderError
 from judder import api
 from judder.envelope import read_ranges
-from stability.envelope import build_envelope, sample_boundary
-from stability.ranges import (Correlated, Normal, Ranges, Uniform,
-                              design_points)
+from stability.uncertainty import (Correlated, Normal, Ranges, Uniform,
+                                   build_envelope, design_points,
+                                   sample_boundary)
 
 ROOT = Path(__file__).resolve().parents[1]
 FITTED = get_preset("paper-4dof-fitted")

@@ -15,10 +15,11 @@ import numpy as np
 import pytest
 from matplotlib.testing.compare import compare_images
 
+from infra.plotstyle import KIND_COLORS
 from judder import api
 from stability import floquet
-from stability.plotting import (KIND_COLORS, boundary_curve,
-                                multipliers_figure, tongues_figure)
+from stability.plots import (boundary_curve, multipliers_figure,
+                             tongues_figure)
 
 matplotlib.use("Agg")
 
@@ -126,7 +127,7 @@ def _fill_colours():
     """Every fill of a map: the kinds (stable white first) and the grey of
     slow growth, as 8-bit RGB."""
     from matplotlib.colors import to_rgb
-    from stability.plotting import SLOW_COLOR
+    from infra.plotstyle import SLOW_COLOR
     return np.array([np.round(255 * np.array(to_rgb(c)))
                      for c in (*KIND_COLORS, SLOW_COLOR)], dtype=np.uint8)
 
@@ -209,7 +210,7 @@ def small_map():
 
 def _figures(paper4, small_map):
     """One of each figure the commands draw, from small computations."""
-    from stability.plotting import check_figure
+    from judder.figures.check import check_figure
     yield "map", small_map.figure(title="stability map (Fig. 14), 4dof "
                                   "driveline, paper preset, c12=0.5")
     yield "tongues", tongues_figure(small_map.boundaries, small_map.tongues,

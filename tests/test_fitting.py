@@ -6,7 +6,7 @@ import pytest
 from drivelines import get_preset
 from infra.errors import JudderError
 from judder.inputs import read_boundary_csv
-from stability.fitting import fit_boundary, model_boundary
+from stability.fit import fit_boundary, model_boundary
 
 BAR = 1e5
 FREQS = np.linspace(60.0, 200.0, 15)   # the bench's dither range
@@ -85,7 +85,7 @@ def test_a_boundary_without_judder_cannot_be_fitted():
 
 from drivelines import get_preset as _preset   # noqa: E402
 from stability import build_driveline          # noqa: E402
-from stability.fitting import parse_kind      # noqa: E402
+from stability.fit import parse_kind          # noqa: E402
 from stability.tongues import tongue_boundaries  # noqa: E402
 
 #: The cheap settings of the tests below: one start, no stored curves.
@@ -301,7 +301,7 @@ def test_a_given_scatter_needs_one_onset_per_parameter_and_is_checked():
 def test_the_default_threshold_is_the_verdicts():
     # a boundary of judder growing at check's 1 1/s is matched exactly by
     # the default fit (and not by the stability boundary's)
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     truth = get_preset("paper-4dof-fitted")
     freqs = np.linspace(90.0, 130.0, 9)
     measured = model_boundary(truth, freqs, 3.0 * BAR,
@@ -342,7 +342,7 @@ def test_fit_text_has_the_digits_the_interval_supports():
 
 
 def test_flat_pairs_are_the_correlations_beyond_the_limit():
-    from stability.fit_identifiability import FLAT_CORRELATION, flat_pairs
+    from stability.fit import FLAT_CORRELATION, flat_pairs
     covariance = np.array([[4.0, 1.999, 0.0], [1.999, 1.0, 0.0],
                            [0.0, 0.0, 1.0]])   # r(a, b) = 0.9995
     assert FLAT_CORRELATION == 0.999

@@ -22,7 +22,7 @@ from drivelines import get_preset
 from infra.errors import JudderError
 from infra.parallel import TaskFailure, TaskFailures, cluster, parallel_map
 from judder import api
-from stability.ranges import Normal, Ranges, Uniform
+from stability.uncertainty import Normal, Ranges, Uniform
 
 ROOT = Path(__file__).resolve().parents[1]
 DASK = Path(sys.executable).parent / "dask"

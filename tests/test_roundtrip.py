@@ -21,7 +21,7 @@ from drivelines import get_preset
 from infra.units import PA_PER_BAR
 from judder import api
 from pysim.bench import Campaign, run_campaign
-from stability.fitting import fit_boundary, model_boundary
+from stability.fit import fit_boundary, model_boundary
 
 FREQS = np.array([204.5, 206.0, 207.0])
 STEP = 0.025            # bar either side of the model boundary

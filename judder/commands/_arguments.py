@@ -7,7 +7,7 @@ registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
 from stability.monodromy import DEFAULT_METHOD, METHODS
-from stability.relevance import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 
 from ._values import MIN_GROWTH, PF_MAX, WORKERS
 

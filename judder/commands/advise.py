@@ -145,7 +145,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     margin_bar, margin_hz : float
         Margins kept from every judder-relevant tongue, bar and Hz.
     min_growth : float, optional
-        1/s, default :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`.
+        1/s, default :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`.
     names : sequence of str, optional
         Design parameters (default J2, J4, k12, k24, c12; for another
         model its inertias, stiffnesses and coupling dampings; for a
@@ -160,8 +160,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     -------
     AdviceResult
     """
-    from stability import advice as kernel
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from stability.decisions import advice as kernel
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     values = resolve(parameters, changes)
     sets = [values, *extra_sets]
     models = {p.model for p in sets}
@@ -236,10 +236,10 @@ def _window_records(windows):
 class AdviceResult:
     """``judder advise``: safe dither windows, parameter ranking, design.
 
-    ``windows`` are :class:`stability.advice.SafeWindow` of the given
+    ``windows`` are :class:`stability.decisions.advice.SafeWindow` of the given
     design (over every parameter set), ``ranking`` the list of
-    :func:`stability.advice.ranking`, ``advice`` the
-    :class:`stability.advice.Advice` (None if not asked for), and
+    :func:`stability.decisions.advice.ranking`, ``advice`` the
+    :class:`stability.decisions.advice.Advice` (None if not asked for), and
     ``verification`` the recomputed map of the advised design with its
     count of judder-relevant points.
     """
@@ -344,5 +344,5 @@ class AdviceResult:
              if low <= f <= high]))
 
     def figure(self, title=None):
-        from stability.plotting import advice_figure
+        from ..figures.advice import advice_figure
         return advice_figure(self, title=title)

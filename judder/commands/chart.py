@@ -297,7 +297,7 @@ class ChartResult:
         from pysim.bench_data.plots import chart_figure
         fig, panels = chart_figure(self.chart, title=title)
         if self.model is not None:
-            from stability.plotting import plot_boundaries
+            from stability.plots import plot_boundaries
             for ax in panels.values():
                 limits = ax.get_xlim(), ax.get_ylim()
                 plot_boundaries(self.model.boundaries, ax=ax,

@@ -152,7 +152,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         The settings, Hz and bar (pairs: a dither table).
     min_growth : float, optional
         Judder-relevant growth rate, 1/s (default
-        :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`).
+        :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
     p_max_bar : float, optional
         Largest boundary amplitude searched (default the larger of 1.5
         bar and twice the largest setting).
@@ -169,9 +169,9 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     -------
     CheckResult
     """
-    from stability.margins import check_settings
-    from stability.relevance import (DEFAULT_MIN_GROWTH_PER_S,
-                                     ENGAGEMENT_DURATION_S)
+    from stability.decisions.margins import check_settings
+    from infra.criteria import (DEFAULT_MIN_GROWTH_PER_S,
+                                ENGAGEMENT_DURATION_S)
     values = resolve(parameters, changes)
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
     p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
@@ -211,13 +211,13 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
 
 
 def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
-    """One :class:`stability.margins.SettingCheck` as JSON fields.
+    """One :class:`stability.decisions.margins.SettingCheck` as JSON fields.
 
-    ``verdict`` is one of :data:`stability.relevance.VERDICTS`;
+    ``verdict`` is one of :data:`stability.decisions.relevance.VERDICTS`;
     ``search_hz`` the (low, high) frequencies the Hz margin was searched
     over (``frequency_search_hz``).
     """
-    from stability.relevance import verdict
+    from stability.decisions.relevance import verdict
     m, point = check.margin, check.floquet
     rate = point.growth_rate
     unstable = point.kind != KINDS[0]
@@ -343,7 +343,7 @@ def setting_summary(record, engagement_s=1.0):
 class CheckResult:
     """``judder check``: verdict and margins of each dither setting.
 
-    ``checks`` are :class:`stability.margins.SettingCheck` objects;
+    ``checks`` are :class:`stability.decisions.margins.SettingCheck` objects;
     ``min_growth`` the judder-relevant rate (1/s), ``engagement_s`` the
     engagement duration the e-folds are counted over.
     """
@@ -357,7 +357,7 @@ class CheckResult:
     background: object = None
 
     def records(self):
-        from stability.margins import search_grid
+        from stability.decisions.margins import search_grid
         grid = search_grid([c.margin.freq_hz for c in self.checks]) \
             if self.checks else None
         search = None if grid is None else (grid[0], grid[-1])
@@ -391,6 +391,6 @@ class CheckResult:
         write_text(path, rows_to_csv(rows))
 
     def figure(self, title=None):
-        from stability.plotting import check_figure
+        from ..figures.check import check_figure
         return check_figure(self.records(), self.background,
                             min_growth=self.min_growth, title=title)

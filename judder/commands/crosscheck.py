@@ -172,5 +172,5 @@ class CrosscheckResult:
         write_text(path, rows_to_csv(self.rows()))
 
     def figure(self, title=None):
-        from pysim.plotting import crosscheck_figure
+        from ..figures.crosscheck import crosscheck_figure
         return crosscheck_figure(self.check, title=title)

@@ -176,7 +176,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
 
     Parameters
     ----------
-    ranges : path or stability.ranges.Ranges
+    ranges : path or stability.uncertainty.ranges.Ranges
         A ranges file (:func:`judder.envelope.read_ranges`) or the ranges.
     freq_hz : array_like
         Dither frequencies, Hz.
@@ -184,15 +184,15 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
         Largest amplitude searched, bar.
     samples, seed, sampler, vertices
         Space-filling samples after the vertices, as
-        :func:`stability.ranges.design_points` takes them.
+        :func:`stability.uncertainty.ranges.design_points` takes them.
     min_growth : float, optional
         1/s: count only judder growing at least this fast (default
-        :data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`; 0: every
+        :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`; 0: every
         instability).
     refine : int
         Boundary evaluations per uncertain parameter spent at each
         frequency searching the lowest boundary between the samples
-        (:func:`stability.envelope.refine_at`); 0: the union of the
+        (:func:`stability.uncertainty.envelope.refine_at`); 0: the union of the
         samples only.
     workers : int, optional
         Local Dask worker processes (see :mod:`infra.parallel`).
@@ -205,8 +205,8 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     EnvelopeResult
         ``failures`` lists the samples that failed (left out).
     """
-    from stability.ranges import Ranges
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from stability.uncertainty.ranges import Ranges
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 
     from ..envelope import read_ranges, run_envelope
     values = resolve(parameters, changes)
@@ -234,7 +234,7 @@ def _bar_or_none(values):
 
 @dataclass(frozen=True)
 class EnvelopeResult:
-    """``judder envelope``: a :class:`stability.envelope.Envelope`, the
+    """``judder envelope``: a :class:`stability.uncertainty.envelope.Envelope`, the
     ranges it was sampled from, the failed samples (each an
     :class:`infra.parallel.TaskFailure`) and how many samples came from the
     checkpoint."""
@@ -323,5 +323,5 @@ class EnvelopeResult:
             Path(self.checkpoint).unlink(missing_ok=True)
 
     def figure(self, title=None):
-        from stability.envelope_plotting import envelope_figure
+        from stability.plots import envelope_figure
         return envelope_figure(self.envelope, title=title)

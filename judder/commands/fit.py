@@ -136,8 +136,8 @@ def add_arguments(p):
 
 def run(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
-    from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
-                                     DEFAULT_MIN_GROWTH_PER_S)
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
     params, changes = parameters_of(args)
     names = _fit_names(args.fit, params)
     bounds = _bounds(args.bounds, params, names)
@@ -277,17 +277,17 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         ``p_max_bar`` (see :func:`judder.inputs.read_boundary`).
     names : sequence of str, optional
         Parameters to fit (default
-        :data:`stability.fitting.DEFAULT_FIT`).
+        :data:`stability.fit.DEFAULT_FIT`).
     bounds : dict, optional
         ``{name: (low, high)}``, SI.
     kinds, starts, uncertainty, error_model, seed, workers, scatter
     threshold_spread
-        As :func:`stability.fitting.fit_boundary` takes them (``scatter``
+        As :func:`stability.fit.fit_boundary` takes them (``scatter``
         in Pa with the absolute error model).
     min_growth : float, optional
         1/s: the model boundary compared is that of judder growing at
         this rate; default ``judder check``'s
-        (:data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`), so fit,
+        (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`), so fit,
         check and chart call the same point judder.
     below_bar : array_like, optional
         The highest amplitude tried without judder below each onset, bar
@@ -307,8 +307,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         convergence, a parameter on a bound or undetermined, another
         minimum as good).
     """
-    from stability.fitting import DEFAULT_FIT, fit_boundary
-    from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+    from stability.fit import DEFAULT_FIT, fit_boundary
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     start = resolve(parameters, changes)
     if min_growth is None:
         min_growth = DEFAULT_MIN_GROWTH_PER_S
@@ -328,7 +328,7 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
 
 @dataclass(frozen=True)
 class FitReport:
-    """``judder fit``: a :class:`stability.fitting.FitResult` and timing."""
+    """``judder fit``: a :class:`stability.fit.FitResult` and timing."""
 
     fit: object
     seconds: float

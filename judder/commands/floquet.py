@@ -133,5 +133,5 @@ class FloquetPoint:
 
     def figure(self, title=None):
         """The multipliers on the complex plane (Fig. 15)."""
-        from stability.plotting import multipliers_figure
+        from stability.plots import multipliers_figure
         return multipliers_figure([self.result], title=title)

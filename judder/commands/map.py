@@ -139,7 +139,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         ``save(path)`` writes NPZ, ``figure()`` draws it.
     min_growth : float, optional
         1/s: the figure shades unstable points growing slower than this
-        (not judder, :mod:`stability.relevance`) and the JSON counts the
+        (not judder, :mod:`stability.decisions.relevance`) and the JSON counts the
         faster ones.
     """
     values = resolve(parameters, changes)
@@ -178,7 +178,7 @@ class MapResult:
     def judder_relevant_points(self):
         """Points growing faster than ``min_growth`` (all unstable ones if
         it is None)."""
-        from stability.relevance import is_judder_relevant
+        from stability.decisions.relevance import is_judder_relevant
         return int(np.count_nonzero(
             (self.map.kind > 0)
             & is_judder_relevant(self.map.growth_rate, self.min_growth or 0)))
@@ -247,7 +247,7 @@ class MapResult:
         save_npz(path, arrays)
 
     def figure(self, title=None, stacked=False):
-        from stability.plotting import map_figure
+        from stability.plots import map_figure
         return map_figure(self.map, title=title, tongues=self.tongues,
                           boundaries=self.boundaries,
                           min_growth=self.min_growth, stacked=stacked)

@@ -38,10 +38,10 @@ from infra.errors import JudderError
 from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.numbers import format_interval, format_uncertain
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 from infra.units import PA_PER_BAR
-from stability.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
-                                 DEFAULT_MIN_GROWTH_PER_S,
-                                 ENGAGEMENT_DURATION_S, JUDDER, SLOW_GROWTH)
+from stability.decisions.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
+                                           JUDDER, SLOW_GROWTH)
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, workers_option)
@@ -452,7 +452,7 @@ def report(parameters=None, changes=None, description=None,
     p_max_bar : float
         Largest amplitude searched, bar.
     min_growth : float
-        Judder-relevant growth rate, 1/s (:mod:`stability.relevance`):
+        Judder-relevant growth rate, 1/s (:mod:`stability.decisions.relevance`):
         the verdict and the map's shading use it, as ``judder check``
         and ``judder map`` do (0: every instability); the tongues and
         tips are the stability boundaries of Fig. 14.
@@ -473,7 +473,7 @@ def report(parameters=None, changes=None, description=None,
     -------
     ReportResult
     """
-    from stability.plotting import multipliers_figure
+    from stability.plots import multipliers_figure
 
     from ..inputs import (read_boundary, read_chart_below, read_chart_boundary,
                           read_chart_min_growth)

@@ -148,7 +148,8 @@ class ThresholdResult:
         import matplotlib.pyplot as plt
 
         from stability import build_driveline
-        from stability.plotting import figure_title, plot_threshold
+        from infra.plotstyle import figure_title
+        from stability.plots import plot_threshold
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
                                  layout="constrained")
         driveline = build_driveline(self.params)

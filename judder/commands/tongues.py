@@ -222,8 +222,8 @@ class TonguesResult:
         write_text(path, self.csv_text())
 
     def figure(self, title=None):
-        from stability.plotting import tongues_figure
-        from stability.relevance import DEFAULT_MIN_GROWTH_PER_S
+        from stability.plots import tongues_figure
+        from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 
         # the map's shading as `judder map` draws it: slower growth than
         # the judder-relevant rate grey

@@ -9,6 +9,8 @@ artists; :func:`chart_figure` returns the figure. They draw what the
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.plotstyle import dither_axes
+
 __all__ = ["plot_chart", "chart_figure"]
 
 
@@ -101,8 +103,7 @@ def plot_chart(chart, group, ax=None, levels=None):
                                   s=60, zorder=4, clip_on=False,
                                   label="no judder up to here"))
     _pad_limits(ax, f, p)
-    ax.set_xlabel("dither frequency [Hz]")
-    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    dither_axes(ax, "dither frequency [Hz]")
     ax.set_title(_group_title(chart.group_by, group), fontsize=10)
     return artists
 

@@ -15,6 +15,7 @@ predicts judder where none was seen); another minimum that fits almost as
 well. ``success`` is True only when there is no problem.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 
@@ -22,10 +23,14 @@ import numpy as np
 
 from infra.units import PA_PER_BAR
 
-from .fit_model import _RELATIVE_FLOOR, _capped
-from .tongues import TONGUE_KINDS
+from ..monodromy import DEFAULT_METHOD
+from ..tongues import TONGUE_KINDS
+from ._common import _RELATIVE_FLOOR, _capped
+from ._identifiability import correlation
+from ._model import CURVE_POINTS, fit_curves
 
-__all__ = ["FitResult", "UNDETERMINED_RELATIVE"]
+__all__ = ["FitResult", "UNDETERMINED_RELATIVE", "undetermined_names",
+           "problem_sentences"]
 
 #: A relative uncertainty at or above this makes a parameter undetermined.
 UNDETERMINED_RELATIVE = 1.0
@@ -141,7 +146,7 @@ class FitResult:
         them. None without a spread.
     held : tuple of str
         Parameters that do not move the measured boundary, held at their
-        start values (:func:`stability.fit_identifiability.without_effect`);
+        start values (:func:`stability.fit._identifiability.without_effect`);
         also in ``undetermined`` and ``problems``.
     """
 
@@ -203,7 +208,6 @@ class FitResult:
     def correlation(self):
         """Correlation matrix of the fitted values, shape (k, k) (NaN in
         the rows and columns of undetermined parameters)."""
-        from .fit_identifiability import correlation
         return correlation(self.covariance)
 
     @property
@@ -212,15 +216,25 @@ class FitResult:
         return self.params.replace(**dict(zip(self.names,
                                               map(float, self.start))))
 
+    def with_curves(self, points=CURVE_POINTS, method=DEFAULT_METHOD):
+        """A copy holding the start and fitted curves :meth:`plot` draws,
+        computed by :func:`~stability.fit.fit_curves` (which takes
+        ``points`` and ``method``); ``fit_boundary`` stores them unless run
+        with ``curve_points=0``."""
+        freq, start_bar, fitted_bar = fit_curves(self, points, method)
+        return dataclasses.replace(self, curve_freq_hz=freq,
+                                   start_curve_bar=start_bar,
+                                   fitted_curve_bar=fitted_bar)
+
     def plot(self, ax=None):
         """Measured, first-attempt and fitted boundaries (Fig. 16a); see
-        :func:`stability.plotting.plot_fit`."""
-        from .plotting import plot_fit
+        :func:`stability.plots.plot_fit`."""
+        from ..plots import plot_fit
         return plot_fit(self, ax=ax)
 
 
-def _undetermined(names, values, std, low, high, at_bound, null_names,
-                  open_sides):
+def undetermined_names(names, values, std, low, high, at_bound,
+                       null_names, open_sides):
     """Parameters the measured boundary does not determine."""
     width = high - low
     out = []
@@ -236,9 +250,9 @@ def _undetermined(names, values, std, low, high, at_bound, null_names,
     return out
 
 
-def _problems(problem, best, alternatives, s2, at_bound, undetermined, std,
-              values, low, high, open_sides, amplitude, columns, boot_failed,
-              n_bootstrap, used):
+def problem_sentences(problem, best, alternatives, s2, at_bound,
+                      undetermined, std, values, low, high, open_sides,
+                      amplitude, columns, boot_failed, n_bootstrap, used):
     out = []
     names = problem.names
     if not best["success"]:

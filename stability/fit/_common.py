@@ -1,35 +1,11 @@
-r"""The model side of a boundary fit (section 4.2): the fitting problem,
-the model's tongue boundaries at trial parameters, and the residuals.
+"""What every step of a boundary fit shares: the fitting problem, the
+model's boundaries at scaled trial parameters, the residuals, the matching
+of points to the nearest kind, one bounded least-squares run, and the
+progress count of the parallel jobs.
 
-Residuals
----------
-The measured amplitude is the *lowest* at which judder was seen, so:
-
-* a point with judder: model boundary of its matched kind minus the
-  measured amplitude; and, as a second residual, how far the boundary of
-  any *other* kind lies below the measured amplitude (zero if none does:
-  the model must not predict judder of another kind below the measured
-  onset);
-* a censored point: how far the *lowest* model boundary (any kind) lies
-  below ``p_max`` (zero where the model is stable up to ``p_max`` too).
-
-Both one-sided residuals are zero with zero slope wherever the model
-agrees with the data, so near a good fit the sum of squares stays smooth.
-The degrees of freedom count the points with judder and the one-sided
-residuals that are not zero.
-
-With ``error_model='absolute'`` every residual is in bar (equal scatter
-at every amplitude). With ``'relative'`` each residual is divided by its
-measured amplitude (at least 2 % of ``p_max``; censored points by
-``p_max``), which suits a scatter proportional to the amplitude (a noise
-of a few per cent). Dividing by the measured amplitude puts the fitted
-boundary 2 sigma^2 low (0.2 % with 3 % noise, about a seventh of mu_g's
-95 % half-width on the boundaries of ``benchmarks/fit_coverage.py``).
-Differences of logarithms would remove that, and were tried: they
-compress the residual of a point matched to a kind with no boundary
-below the search limit (3 bar against 0.57 bar: 1.7 instead of 4.3), and
-on 60 noisy boundaries three fits then stopped at k24 = 41 000-42 000
-N m/rad for a truth near 29 000 (reported as problems, but wrong).
+Private to :mod:`stability.fit`; the residuals and the matching are
+explained in the docstrings of :mod:`stability.fit._model` and
+:mod:`stability.fit._matching`.
 """
 
 import dataclasses
@@ -42,46 +18,31 @@ from scipy.optimize import least_squares
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
-from .source import build_driveline
-from .monodromy import DEFAULT_METHOD
-from .relevance import DEFAULT_MIN_GROWTH_PER_S
-from .tongues import tongue_boundaries
+from ..source import build_driveline
+from ..tongues import tongue_boundaries
 
-__all__ = ["model_boundary", "evaluated", "fit_curves", "SEARCH_FACTOR", "CURVE_POINTS"]
 
 #: Each kind's boundary is searched up to this multiple of ``p_max``.
 SEARCH_FACTOR = 2.0
 
 
-#: Frequencies of the start and fitted curves stored for the plot.
-CURVE_POINTS = 100
-
 
 #: In the relative error model, amplitudes are divided by at least this
 #: share of ``p_max``.
 _RELATIVE_FLOOR = 0.02
+
+
+
 #: Residual rms (weighted, share of the unit) below which the data are
 #: taken as exact: the Jacobian is then used without the linearity check.
 _EXACT = 1e-7
 
 
-def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
-                   min_growth=DEFAULT_MIN_GROWTH_PER_S, added=()):
-    """Lowest amplitude of judder growing at ``min_growth`` (1/s) or
-    faster at each frequency, Pa: the model boundary
-    :func:`stability.fitting.fit_boundary` compares with.
 
-    NaN where there is none up to ``p_max``; ``method`` is the monodromy
-    engine (:data:`stability.monodromy.METHODS`). ``min_growth`` defaults
-    to ``judder check``'s judder-relevant rate, as ``fit_boundary``'s
-    does; 0 gives the stability boundary
-    (:func:`stability.tongues.tongue_boundaries`). ``added`` are ``(name,
-    value)`` pairs added to ``params`` for the model evaluated (see
-    :func:`evaluated`).
-    """
-    return tongue_boundaries(build_driveline(evaluated(params, added)),
-                             freq_hz, p_max, method,
-                             min_growth=min_growth).stability_boundary
+#: A second kind this many times as near as the matched one (plus 5 % of
+#: ``p_max``) makes a point's matching ambiguous.
+AMBIGUITY = 3.0
+
 
 
 def evaluated(params, added=()):
@@ -105,31 +66,6 @@ def evaluated(params, added=()):
     return params.replace(**{name: params[name] + value
                              for name, value in added})
 
-
-def fit_curves(result, points=CURVE_POINTS, method=DEFAULT_METHOD):
-    """Lowest model boundary with the start and the fitted values.
-
-    Parameters
-    ----------
-    result : FitResult
-    points : int
-        Frequencies over the measured range.
-    method : str
-        Monodromy engine.
-
-    Returns
-    -------
-    freq_hz, start_bar, fitted_bar : ndarray, shape (points,)
-        Hz, and the two boundaries in bar (NaN: stable up to ``p_max``),
-        as drawn in Fig. 16a (dotted: first attempt, solid: fitted).
-    """
-    p_max = result.p_max_bar * PA_PER_BAR
-    freq = np.linspace(result.freq_hz.min(), result.freq_hz.max(), points)
-    curves = [model_boundary(p, freq, p_max, method,
-                             min_growth=result.min_growth,
-                             added=result.added) / PA_PER_BAR
-              for p in (result.start_params, result.params)]
-    return freq, curves[0], curves[1]
 
 
 @dataclass(frozen=True)
@@ -177,6 +113,7 @@ class _Problem:
         return dataclasses.replace(self, measured=measured)
 
 
+
 class _Evaluator:
     """Model boundaries of each kind at scaled parameter vectors, counted."""
 
@@ -206,8 +143,10 @@ class _Evaluator:
         return _residuals(self.problem, self.amplitudes(z), columns)
 
 
+
 def _capped(problem, amplitude):
     return np.where(np.isnan(amplitude), problem.p_search, amplitude)
+
 
 
 def _residuals(problem, amplitude, columns):
@@ -239,6 +178,64 @@ def _residuals(problem, amplitude, columns):
     return np.concatenate([primary / weights, below / weights])
 
 
+
+def _nearest(problem, amplitude, given):
+    """Column of the kind nearest each measured point (``given`` >= 0
+    kept); censored points get -1."""
+    capped = _capped(problem, amplitude)
+    distance = np.abs(capped - np.nan_to_num(problem.measured)[:, None])
+    columns = np.argmin(distance, axis=1)
+    columns = np.where(given >= 0, given, columns)
+    return np.where(problem.censored, -1, columns)
+
+
+
+def _alternative(problem, amplitude, columns, given):
+    """The other matching of the ambiguous free points, or None.
+
+    A free point is ambiguous when a second kind's boundary is nearly as
+    near as its matched one (distance below :data:`AMBIGUITY` times the
+    matched one's plus 5 % of ``p_max``); the alternative flips every
+    ambiguous point to that second kind.
+    """
+    if amplitude is None:
+        return None
+    capped = _capped(problem, amplitude)
+    distance = np.abs(capped - np.nan_to_num(problem.measured)[:, None])
+    distance[np.isnan(amplitude)] = np.inf
+    rows = np.arange(len(columns))
+    own = distance[rows, np.maximum(columns, 0)]
+    others = distance.copy()
+    others[rows, np.maximum(columns, 0)] = np.inf
+    second = np.argmin(others, axis=1)
+    near = others[rows, second] < AMBIGUITY * own + 0.05 * problem.p_max
+    flip = near & (given < 0) & ~problem.censored
+    if not flip.any():
+        return None
+    return np.where(flip, second, columns)
+
+
+
+def _ambiguous_points(problem, amplitude, columns, given, s2):
+    """Free points with judder whose second-nearest kind lies within
+    three standard deviations of the scatter (and within a tenth of
+    ``p_max``): ``[(index, column)]``."""
+    if amplitude is None:
+        return []
+    sigma = math.sqrt(max(s2, 0.0)) * problem.weights
+    measured = np.nan_to_num(problem.measured)
+    out = []
+    for i in np.flatnonzero(~problem.censored & (given < 0)):
+        distance = np.abs(amplitude[i] - measured[i])
+        distance[columns[i]] = np.inf
+        distance[np.isnan(distance)] = np.inf
+        other = int(np.argmin(distance))
+        if distance[other] < min(3 * sigma[i], 0.1 * problem.p_max):
+            out.append((i, other))
+    return out
+
+
+
 def _least_squares(evaluator, z0, columns, free=None, loose=False,
                    max_nfev=200):
     """Bounded least squares over the ``free`` scaled parameters."""
@@ -264,6 +261,15 @@ def _least_squares(evaluator, z0, columns, free=None, loose=False,
     return z, fit
 
 
+
+def _exact(problem, run):
+    """True if a local fit matches the data to round-off."""
+    n = max(int(np.sum(~problem.censored)), 1)
+    unit = 1.0 if problem.relative else problem.p_max / PA_PER_BAR
+    return math.sqrt(2 * run["cost"] / n) < _EXACT * unit
+
+
+
 class _Progress:
     def __init__(self, callback, total):
         self.callback, self.total, self.done = callback, total, 0
@@ -278,6 +284,7 @@ class _Progress:
             self.callback(self.done, self.total)
 
 
+
 def _run(function, jobs, workers, progress):
     out = []
     for item in parallel_map(function, jobs, min(workers, len(jobs)),
@@ -285,10 +292,3 @@ def _run(function, jobs, workers, progress):
         out.append(item)
         progress.step()
     return out
-
-
-def _exact(problem, run):
-    """True if a local fit matches the data to round-off."""
-    n = max(int(np.sum(~problem.censored)), 1)
-    unit = 1.0 if problem.relative else problem.p_max / PA_PER_BAR
-    return math.sqrt(2 * run["cost"] / n) < _EXACT * unit

@@ -25,11 +25,12 @@ kind, and its residual uses the boundary of that kind only:
   matching (with ``p_max`` = 1 bar the fit stopped at c12 = 5.9 instead
   of 10 that way). So, from the best minimum, the *ambiguous* free points
   (a second kind nearly as near as the matched one, see
-  :data:`AMBIGUITY`) are matched the other way and fitted again
-  (:data:`ALTERNATIVE_ROUNDS` times at most); the better fit is kept.
+  :data:`~stability.fit._common.AMBIGUITY`) are matched the other way
+  and fitted again (:data:`~stability.fit._starts.ALTERNATIVE_ROUNDS`
+  times at most); the better fit is kept.
 
-Each kind's boundary is searched up to :data:`SEARCH_FACTOR` times
-``p_max``, so a model boundary a little above ``p_max`` still gives a
+Each kind's boundary is searched up to
+:data:`~stability.fit._common.SEARCH_FACTOR` times ``p_max``, so a model boundary a little above ``p_max`` still gives a
 residual that varies with the parameters (a capped one would not).
 """
 
@@ -39,17 +40,12 @@ import numpy as np
 
 from infra.errors import JudderError
 
-from .fit_model import _capped
-from .kinds import Kind
-from .modal import natural_frequencies
-from .source import build_driveline
-from .tongues import TONGUE_KINDS, resonances
+from ..kinds import Kind
+from ..modal import natural_frequencies
+from ..source import build_driveline
+from ..tongues import TONGUE_KINDS, resonances
 
-__all__ = ["parse_kind", "AMBIGUITY", "MATCH_ROUNDS"]
-
-#: A second kind this many times as near as the matched one (plus 5 % of
-#: ``p_max``) makes a point's matching ambiguous.
-AMBIGUITY = 3.0
+__all__ = ["parse_kind", "parse_kinds", "MATCH_ROUNDS"]
 
 
 #: Most fits of one start with re-matched kinds.
@@ -116,7 +112,7 @@ def _tongue_column(number, tongue_table, entry):
                       f"{len(tongue_table)} (numbered as in Fig. 14)")
 
 
-def _parse_kinds(kinds, params, n, censored):
+def parse_kinds(kinds, params, n, censored):
     if kinds is None:
         return np.full(n, -1)
     kinds = list(kinds)
@@ -132,55 +128,3 @@ def _natural_frequencies(params):
     return natural_frequencies(build_driveline(params))
 
 
-def _nearest(problem, amplitude, given):
-    """Column of the kind nearest each measured point (``given`` >= 0
-    kept); censored points get -1."""
-    capped = _capped(problem, amplitude)
-    distance = np.abs(capped - np.nan_to_num(problem.measured)[:, None])
-    columns = np.argmin(distance, axis=1)
-    columns = np.where(given >= 0, given, columns)
-    return np.where(problem.censored, -1, columns)
-
-
-def _alternative(problem, amplitude, columns, given):
-    """The other matching of the ambiguous free points, or None.
-
-    A free point is ambiguous when a second kind's boundary is nearly as
-    near as its matched one (distance below :data:`AMBIGUITY` times the
-    matched one's plus 5 % of ``p_max``); the alternative flips every
-    ambiguous point to that second kind.
-    """
-    if amplitude is None:
-        return None
-    capped = _capped(problem, amplitude)
-    distance = np.abs(capped - np.nan_to_num(problem.measured)[:, None])
-    distance[np.isnan(amplitude)] = np.inf
-    rows = np.arange(len(columns))
-    own = distance[rows, np.maximum(columns, 0)]
-    others = distance.copy()
-    others[rows, np.maximum(columns, 0)] = np.inf
-    second = np.argmin(others, axis=1)
-    near = others[rows, second] < AMBIGUITY * own + 0.05 * problem.p_max
-    flip = near & (given < 0) & ~problem.censored
-    if not flip.any():
-        return None
-    return np.where(flip, second, columns)
-
-
-def _ambiguous_points(problem, amplitude, columns, given, s2):
-    """Free points with judder whose second-nearest kind lies within
-    three standard deviations of the scatter (and within a tenth of
-    ``p_max``): ``[(index, column)]``."""
-    if amplitude is None:
-        return []
-    sigma = math.sqrt(max(s2, 0.0)) * problem.weights
-    measured = np.nan_to_num(problem.measured)
-    out = []
-    for i in np.flatnonzero(~problem.censored & (given < 0)):
-        distance = np.abs(amplitude[i] - measured[i])
-        distance[columns[i]] = np.inf
-        distance[np.isnan(distance)] = np.inf
-        other = int(np.argmin(distance))
-        if distance[other] < min(3 * sigma[i], 0.1 * problem.p_max):
-            out.append((i, other))
-    return out

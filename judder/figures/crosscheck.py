@@ -1,12 +1,10 @@
-"""Plot of a cross-check of FMU runs against Floquet growth rates.
-
-Run and spectrum plots are in :mod:`pysim.plots`, chart plots in
-:mod:`pysim.bench_data.plots`.
-"""
+"""``judder crosscheck``: growth rates fitted to FMU runs against the
+Floquet exponents, and the verdicts of both on the grid."""
 
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.plotstyle import DARK_BLUE, VERMILLION, dither_axes
 from infra.units import PA_PER_BAR
 
 __all__ = ["crosscheck_figure"]
@@ -20,7 +18,7 @@ def crosscheck_figure(check, title=None):
     floquet = np.array([p.floquet_rate for p in check.points])
     fitted = np.array([p.fitted_rate for p in check.points])
     agree = np.array([p.agree for p in check.points])
-    left.plot(floquet[agree], fitted[agree], "o", ms=4, color="#1f4e99",
+    left.plot(floquet[agree], fitted[agree], "o", ms=4, color=DARK_BLUE,
               label="verdicts agree")
     left.plot(floquet[~agree], fitted[~agree], "x", ms=7, mew=1.5,
               color="k", label="verdicts disagree")
@@ -33,15 +31,14 @@ def crosscheck_figure(check, title=None):
     unstable = np.array([q.floquet_unstable for q in check.points])
     # shapes tell the verdicts apart without colour (not red against green)
     right.scatter(f[unstable & agree], p[unstable & agree], marker="^",
-                  c="#d55e00", edgecolors="k", linewidths=0.4, s=26,
+                  c=VERMILLION, edgecolors="k", linewidths=0.4, s=26,
                   label="unstable in both")
     right.scatter(f[~unstable & agree], p[~unstable & agree], marker="o",
-                  facecolors="none", edgecolors="#1f4e99", s=22,
+                  facecolors="none", edgecolors=DARK_BLUE, s=22,
                   label="stable in both")
     right.scatter(f[~agree], p[~agree], marker="x", c="k", s=40,
                   linewidths=1.5, label="verdicts disagree")
-    right.set_xlabel("dither frequency [Hz]")
-    right.set_ylabel("dither amplitude $p_f$ [bar]")
+    dither_axes(right, "dither frequency [Hz]")
     for ax in (left, right):     # legends below the data
         ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14),
                   ncols=3, borderaxespad=0.0, frameon=False)

@@ -26,15 +26,14 @@ the optimiser could hide it behind a number:
   combination (:func:`flat_pairs`); a parameter whose standard
   uncertainty reaches its value, or whose interval reaches its search
   bound unclosed, is undetermined as well
-  (:func:`stability.fit_result._undetermined`).
+  (:func:`stability.fit._result.undetermined_names`).
 """
 
 import numpy as np
 
 from infra.errors import JudderError
 
-from .fit_matching import _nearest
-from .fit_model import _capped, _Evaluator
+from ._common import _capped, _Evaluator, _nearest
 
 __all__ = ["MIN_DOF", "EFFECT_STEP", "MIN_EFFECT", "FLAT_CORRELATION",
            "check_onsets", "without_effect", "flat_pairs", "correlation"]
@@ -105,7 +104,7 @@ def without_effect(problem, given):
 
     Parameters
     ----------
-    problem : stability.fit_model._Problem
+    problem : stability.fit._common._Problem
     given : ndarray of int, shape (n,)
         Kind column given for each point (-1: nearest).
 

@@ -1,46 +1,7 @@
-r"""Fitting the model's stability boundary to a measured one (section 4.2).
-
-The paper compares the judder region measured on the bench (Fig. 10) with
-the model's tongues and adjusts the parameters that cannot be measured
-(the clutch-damper damping ``c12``, the friction gradient ``mu_g`` and the
-stiffness ``k24``) until the model boundary follows the measured one: the
-dotted (first attempt) and solid (fitted) lines of Fig. 16a. This module
-does that adjustment by bounded least squares and says how far the result
-can be trusted.
-
-Measured boundary
------------------
-A list of dither frequencies with, for each, the lowest amplitude at
-which judder was seen, or none (no judder up to the largest amplitude
-tried, ``p_max``: a *censored* point). A point may carry the kind of
-judder seen (single-period, double-period, combination), or the tongue it
-belongs to (its number as in Fig. 14, or its resonance label such as
-``'f2'`` or ``'f1+f2'``).
-
-Which model boundary
---------------------
-A chart's verdict calls a run judder when it grows at ``min_growth`` or
-faster (``judder chart --min-growth``), so its boundary is the model's
-boundary of judder growing at that rate, not the stability boundary; and
-a bench is not the driveline alone: its motor's speed control damps body
-1 (``c1 + d_control``). ``fit_boundary(min_growth=, added=)`` compares
-with that model; the fitted values stay the driveline's. The round trip
-(emulated campaign -> chart -> fit) is measured in docs/roundtrip.md.
-
-The fit itself has its parts in modules of their own:
-
-* :mod:`stability.fit_identifiability`: what the data can determine
-  (enough onsets, parameters that move the measured boundary, flat
-  directions);
-* :mod:`stability.fit_model`: the problem, the model's boundaries at
-  trial parameters and the residuals;
-* :mod:`stability.fit_matching`: matching each measured point to a kind
-  of tongue;
-* :mod:`stability.fit_starts`: the local fits from several starts;
-* :mod:`stability.fit_uncertainty`: standard uncertainties and 95 %
-  intervals (Jacobian, profile likelihood, bootstrap);
-* :mod:`stability.fit_result`: :class:`FitResult` and the sentences
-  saying what went wrong.
+"""The boundary fit put together (section 4.2, Fig. 16a): checks the
+input, runs the local fits, the uncertainty and the identifiability
+checks, and builds the :class:`~stability.fit.FitResult`; the method is
+described in :mod:`stability.fit`.
 """
 
 import dataclasses
@@ -53,24 +14,22 @@ from infra.errors import JudderError
 from infra.parallel import cluster
 from infra.units import PA_PER_BAR
 
-from .fit_identifiability import (EFFECT_STEP, MIN_EFFECT, check_onsets,
-                                  flat_pairs, without_effect)
-from .fit_matching import _parse_kinds, parse_kind
-from .fit_model import (CURVE_POINTS, _capped, _Problem, _Progress,
-                        evaluated, fit_curves, model_boundary)
-from .fit_result import FitResult, _problems, _undetermined
-from .fit_starts import (ALTERNATIVE_ROUNDS, DEFAULT_STARTS, _extra_starts,
-                         run_starts)
-from .fit_uncertainty import (CONFIDENCE, DEFAULT_BOOTSTRAP,
-                              UNCERTAINTY_METHODS, intervals,
-                              threshold_shifts, uncertainty_steps)
-from .monodromy import DEFAULT_METHOD, get_method
-from .relevance import DEFAULT_MIN_GROWTH_PER_S
-from .tongues import TONGUE_KINDS
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 
-__all__ = ["FitResult", "model_boundary", "fit_boundary", "DEFAULT_FIT",
-           "UNCERTAINTY_METHODS", "ERROR_MODELS", "CONFIDENCE",
-           "parse_kind", "fit_curves"]
+from ..monodromy import DEFAULT_METHOD, get_method
+from ..tongues import TONGUE_KINDS
+from ._common import _capped, _Problem, _Progress, evaluated
+from ._identifiability import (EFFECT_STEP, MIN_EFFECT, check_onsets,
+                               flat_pairs, without_effect)
+from ._matching import parse_kinds
+from ._model import CURVE_POINTS
+from ._result import FitResult, problem_sentences, undetermined_names
+from ._starts import (ALTERNATIVE_ROUNDS, DEFAULT_STARTS, extra_starts,
+                      run_starts)
+from ._uncertainty import (DEFAULT_BOOTSTRAP, UNCERTAINTY_METHODS,
+                           intervals, threshold_shifts, uncertainty_steps)
+
+__all__ = ["fit_boundary", "DEFAULT_FIT", "BOUND_FACTOR", "ERROR_MODELS"]
 
 #: Parameters fitted by default: those the paper calls hard to estimate.
 DEFAULT_FIT = ("c12", "mu_g", "k24")
@@ -161,7 +120,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         rate (:func:`stability.tongues.tongue_boundaries`), as a chart
         whose verdict has a growth threshold sees it (``judder chart
         --min-growth``); the default is ``judder check``'s and ``judder
-        chart``'s (:data:`stability.relevance.DEFAULT_MIN_GROWTH_PER_S`),
+        chart``'s (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`),
         so the fit, the verdict and the chart call the same point judder;
         0 is the stability boundary.
     added : dict, optional
@@ -190,7 +149,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         Pa (``'absolute'``). Intervals then use it (normal quantiles) and
         ``k`` onsets suffice; residuals far larger than it are a problem.
         Default: estimated from the residuals (Student's t), which needs
-        ``k +`` :data:`stability.fit_identifiability.MIN_DOF` onsets.
+        ``k +`` :data:`stability.fit._identifiability.MIN_DOF` onsets.
 
     Returns
     -------
@@ -251,8 +210,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
               **(bounds or {})}
     x0 = np.array([params[n] for n in names], dtype=float)
     low, high = _check_bounds(params, names, bounds, x0)
-    given = _parse_kinds(kinds, evaluated(params, added), len(freq_hz),
-                         censored)
+    given = parse_kinds(kinds, evaluated(params, added), len(freq_hz),
+                        censored)
     scale = np.maximum(np.abs(x0), 1e-12)
     problem = _Problem(params=params, names=names, freq_hz=freq_hz,
                        measured=measured, p_max=float(p_max),
@@ -263,7 +222,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                            scatter if error_model == "relative"
                            else scatter / PA_PER_BAR),
                        threshold_spread=float(threshold_spread))
-    extra = _extra_starts(starts, names, low, high)
+    extra = extra_starts(starts, names, low, high)
     if workers is None:
         workers = (os.cpu_count() or 1) if uncertainty == "bootstrap" else 1
     with threadpool_limits(limits=1):
@@ -420,13 +379,15 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
     at_bound = tuple(n for n, v, a, b, w in zip(problem.names, values, low,
                                                 high, width)
                      if v - a <= 1e-6 * w or b - v <= 1e-6 * w)
-    undetermined = _undetermined(problem.names, values, std, low, high,
-                                 at_bound, found.null_names, open_sides)
+    undetermined = undetermined_names(problem.names, values, std, low,
+                                      high, at_bound, found.null_names,
+                                      open_sides)
 
 
-    problems = _problems(problem, best, alternatives, s2, at_bound,
-                         undetermined, std, values, low, high, open_sides,
-                         amplitude, columns, boot_failed, n_bootstrap, used)
+    problems = problem_sentences(problem, best, alternatives, s2, at_bound,
+                                 undetermined, std, values, low, high,
+                                 open_sides, amplitude, columns, boot_failed,
+                                 n_bootstrap, used)
     problems = notes + problems + [
         f"{a} and {b} are determined only in combination (correlation "
         f"{r:+.4f}): fix one of them (--set) and fit the other"
@@ -475,10 +436,8 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         scatter_given=problem.scatter is not None,
         threshold_spread=problem.threshold_spread, threshold_shifts=shifts)
     if curve_points:
-        freq, start_bar, fitted_bar = fit_curves(result, curve_points)
+        result = result.with_curves(curve_points)
         progress.step(2)
-        result = dataclasses.replace(result, curve_freq_hz=freq,
-                          start_curve_bar=start_bar,
-                          fitted_curve_bar=fitted_bar,
-                          evaluations=result.evaluations + 2)
+        result = dataclasses.replace(result,
+                                     evaluations=result.evaluations + 2)
     return result

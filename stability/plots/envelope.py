@@ -1,18 +1,16 @@
-"""The envelope in the manner of Fig. 16: probability of instability
-shaded over (frequency, amplitude), the broadest region's edge, the
-nominal boundary.
-
-Functions take an ``ax`` (a new figure is made when it is None), return the
-artists they drew and never call ``plt.show()``.
-"""
+"""The unstable region over uncertain parameters: probability bands, the
+broadest edge and the nominal boundary (section 4.2)."""
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.contour import ContourSet
 from matplotlib.patheffects import withStroke
 
+from infra.plotstyle import DARK_BLUE, dither_axes
 from infra.units import PA_PER_BAR
 
 __all__ = ["plot_envelope", "envelope_figure", "PROBABILITY_LEVELS"]
+
 
 #: Bands of the probability of instability the shading draws.
 PROBABILITY_LEVELS = (0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0)
@@ -25,7 +23,7 @@ def plot_envelope(envelope, ax=None):
 
     Parameters
     ----------
-    envelope : stability.envelope.Envelope
+    envelope : stability.uncertainty.Envelope
     ax : matplotlib.axes.Axes, optional
 
     Returns
@@ -52,13 +50,12 @@ def plot_envelope(envelope, ax=None):
                            label="50 % of the samples unstable")
     artists += ax.plot(f, e.broadest / PA_PER_BAR, color="k", linewidth=1.8,
                        label="broadest region (samples, refined)")
-    artists += ax.plot(f, e.nominal_boundary / PA_PER_BAR, color="#1f4e99",
+    artists += ax.plot(f, e.nominal_boundary / PA_PER_BAR, color=DARK_BLUE,
                        linestyle=(0, (1, 1.2)), linewidth=1.8,
                        label="nominal parameters")
     ax.set_xlim(f.min(), f.max())
     ax.set_ylim(0, e.p_max / PA_PER_BAR)
-    ax.set_xlabel("dither frequency [Hz]")
-    ax.set_ylabel("dither amplitude $p_f$ [bar]")
+    dither_axes(ax, "dither frequency [Hz]")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncols=3,
               fontsize=7, frameon=False, borderaxespad=0.0)
     return artists
@@ -69,7 +66,6 @@ def envelope_figure(envelope, title=None):
     model) follows the description of the envelope."""
     fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
     artists = plot_envelope(envelope, ax=ax)
-    from matplotlib.contour import ContourSet
     if isinstance(artists[0], ContourSet):
         fig.colorbar(artists[0], ax=ax, label="probability of instability",
                      ticks=PROBABILITY_LEVELS)

@@ -20,11 +20,12 @@ from scipy.stats import qmc
 
 from infra.errors import JudderError
 
-from .fit_matching import MATCH_ROUNDS, _alternative, _nearest
-from .fit_model import (_Evaluator, _exact, _least_squares, _residuals,
-                        _run)
+from ._common import (_alternative, _Evaluator, _exact, _least_squares,
+                      _nearest, _residuals, _run)
+from ._matching import MATCH_ROUNDS
 
-__all__ = ["DEFAULT_STARTS", "run_starts"]
+__all__ = ["DEFAULT_STARTS", "ALTERNATIVE_ROUNDS", "run_starts",
+           "fit_start", "extra_starts"]
 
 #: Local fits run by default: the given start and the best screened
 #: samples of the parameter box.
@@ -74,7 +75,7 @@ def run_starts(problem, given, extra, seed, workers, progress):
     Returns
     -------
     runs : list of dict
-        Each local fit (see :func:`_fit_start`), with its ``origin``.
+        Each local fit (see :func:`fit_start`), with its ``origin``.
     best : dict
         The run kept.
     evaluations : int
@@ -87,7 +88,7 @@ def run_starts(problem, given, extra, seed, workers, progress):
     z_start = problem.x0 / problem.scale
     start_evaluator.amplitudes(z_start, strict=True)
     evaluations += start_evaluator.count
-    first = _fit_start((problem, z_start, given, 0, None, START_EVALUATIONS))
+    first = fit_start((problem, z_start, given, 0, None, START_EVALUATIONS))
     first["origin"] = "given"
     runs = [first]
     progress.step()
@@ -101,7 +102,7 @@ def run_starts(problem, given, extra, seed, workers, progress):
             starts = list(candidates[np.argsort(costs)[:extra]])
         else:
             starts = list(extra / problem.scale)
-        sampled = _run(_fit_start, [(problem, z, given, i + 1, None,
+        sampled = _run(fit_start, [(problem, z, given, i + 1, None,
                                      EXTRA_START_EVALUATIONS)
                                     for i, z in enumerate(starts)], workers,
                        progress)
@@ -120,8 +121,8 @@ def run_starts(problem, given, extra, seed, workers, progress):
         evaluations += evaluator.count
         if columns is None:
             break
-        run = _fit_start((problem, best["z"], given, len(runs), columns,
-                          START_EVALUATIONS))
+        run = fit_start((problem, best["z"], given, len(runs), columns,
+                         START_EVALUATIONS))
         run["origin"] = "rematched"
         runs.append(run)
         progress.step()
@@ -130,8 +131,8 @@ def run_starts(problem, given, extra, seed, workers, progress):
         best = run
     if not best["success"] and not best["failed"]:
         # a start stopped by its budget: go on from where it stopped
-        run = _fit_start((problem, best["z"], given, len(runs),
-                          best["columns"], START_EVALUATIONS))
+        run = fit_start((problem, best["z"], given, len(runs),
+                         best["columns"], START_EVALUATIONS))
         run["origin"] = "continued"
         runs.append(run)
         progress.step()
@@ -142,7 +143,7 @@ def run_starts(problem, given, extra, seed, workers, progress):
     return runs, best, evaluations
 
 
-def _fit_start(job):
+def fit_start(job):
     """One start: fit, re-match the free points, refit if they changed.
 
     ``job`` is ``(problem, z0, given, index, columns0, max_nfev)``;
@@ -217,7 +218,7 @@ def _screen(problem, candidates, given):
     return np.array(costs), evaluator.count
 
 
-def _extra_starts(starts, names, low, high):
+def extra_starts(starts, names, low, high):
     if isinstance(starts, (int, np.integer)) and not isinstance(starts, bool):
         if starts < 1:
             raise JudderError(f"starts = {starts} is not allowed; allowed: "

@@ -61,11 +61,11 @@ from scipy import stats
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
-from .fit_matching import MATCH_ROUNDS, _ambiguous_points, _nearest
-from .fit_model import (_EXACT, _capped, _Evaluator, _least_squares,
-                        _residuals, _run)
-from .fit_starts import _fit_start
-from .tongues import TONGUE_KINDS
+from ..tongues import TONGUE_KINDS
+from ._common import (_EXACT, _ambiguous_points, _capped, _Evaluator,
+                      _least_squares, _nearest, _residuals, _run)
+from ._matching import MATCH_ROUNDS
+from ._starts import fit_start
 
 __all__ = ["UNCERTAINTY_METHODS", "CONFIDENCE", "DEFAULT_BOOTSTRAP",
            "uncertainty_steps", "intervals", "threshold_shifts"]
@@ -162,14 +162,14 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
     ----------
     problem : _Problem
     runs : list of dict
-        Every local fit (:func:`stability.fit_starts.run_starts`).
+        Every local fit (:func:`stability.fit._starts.run_starts`).
     best : dict
         The one kept.
     given : ndarray of int, shape (n,)
         Kinds given with the data (-1: matched by nearness).
     uncertainty : {'auto', 'jacobian', 'profile', 'bootstrap'}
     n_bootstrap, seed, workers
-        As :func:`stability.fitting.fit_boundary` takes them.
+        As :func:`stability.fit.fit_boundary` takes them.
     progress : _Progress
         Advanced by :func:`uncertainty_steps` steps.
 
@@ -390,8 +390,8 @@ def threshold_shifts(problem, best, given, progress):
     for side, sign in enumerate((-1, 1)):
         shifted = dataclasses.replace(
             problem, min_growth=max(problem.min_growth + sign * spread, 0.0))
-        run = _fit_start((shifted, best["z"], given, 0, best["columns"],
-                          THRESHOLD_EVALUATIONS))
+        run = fit_start((shifted, best["z"], given, 0, best["columns"],
+                         THRESHOLD_EVALUATIONS))
         out[:, side] = (run["z"] - best["z"]) * problem.scale
         evaluations += run["evaluations"]
         progress.step()

@@ -2,8 +2,8 @@ r"""Margins of a dither setting to the nearest judder-relevant tongue.
 
 For a setting :math:`(f_0, p_0)` the judder-relevant boundary is the
 lowest amplitude :math:`B(f)` at which the response grows at
-``min_growth`` (:mod:`stability.relevance`), the stability boundary of
-the shifted system (:meth:`~stability.model.PeriodicSystem.shifted`),
+``min_growth`` (:mod:`stability.decisions.relevance`), the stability
+boundary of the shifted system (:meth:`~stability.model.PeriodicSystem.shifted`),
 computed exactly by :mod:`stability.hill` for each kind of tongue:
 
 * margin in bar: :math:`B(f_0) - p_0` (negative inside a tongue);
@@ -24,15 +24,15 @@ from scipy.optimize import brentq
 
 from infra.errors import JudderError
 
-from .floquet import floquet
-from .kinds import KINDS
-from .source import build_driveline
-from .relevance import is_judder_relevant
-from .tongues import (TONGUE_KINDS, find_tongues, kind_boundaries,
+from ..floquet import floquet
+from ..kinds import KINDS
+from ..source import build_driveline
+from ..tongues import (TONGUE_KINDS, find_tongues, kind_boundaries,
                       kind_boundary, lowest_boundaries, tongue_boundaries)
+from .relevance import is_judder_relevant
 
 __all__ = ["Margin", "setting_margin", "margin_sensitivity", "search_grid",
-           "GRID_POINTS"]
+           "GRID_POINTS", "SettingCheck", "check_settings"]
 
 #: Points of the log-spaced frequency grid on which boundary crossings are
 #: bracketed before Brent's method refines them.
@@ -251,7 +251,7 @@ class SettingCheck:
         At the setting, without the growth shift.
     judder : bool
         The leading growth rate exceeds ``min_growth``
-        (:func:`stability.relevance.is_judder_relevant`).
+        (:func:`stability.decisions.relevance.is_judder_relevant`).
     bar_tongue, hz_tongue : stability.tongues.Tongue or None
         The judder-relevant tongue whose boundary gives each margin.
     tongue : stability.tongues.Tongue or None

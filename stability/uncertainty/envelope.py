@@ -3,7 +3,7 @@ r"""The broadest unstable region over uncertain parameters (section 4.2).
 The paper takes as the predicted unstable region "the broadest region
 obtained by considering all the variation ranges of parameters due to
 uncertainties in their estimation". Here each uncertain parameter is an
-interval or a distribution (:mod:`stability.ranges`). Every
+interval or a distribution (:mod:`stability.uncertainty.ranges`). Every
 sampled parameter set gets its exact tongue boundaries
 (:func:`stability.tongues.tongue_boundaries`, Hill's method and the
 monodromy, without the monodromy check of each boundary point); at a
@@ -42,10 +42,10 @@ from scipy.optimize import minimize
 
 from infra.parallel import TaskFailure, parallel_map
 
-from .source import build_driveline
-from .monodromy import DEFAULT_METHOD
+from ..source import build_driveline
+from ..monodromy import DEFAULT_METHOD
+from ..tongues import lowest_of_kinds, tongue_boundaries
 from .ranges import DEFAULT_COVERAGE
-from .tongues import lowest_of_kinds, tongue_boundaries
 
 __all__ = ["Envelope", "sample_boundary", "compute_samples", "refine_at",
            "refine_union", "refinement_starts", "build_envelope",

@@ -3,8 +3,8 @@ clears the dither window of judder (section 4.3, section 5 of the paper).
 
 Everything is read from the exact judder-relevant boundary :math:`B(f)`:
 the lowest amplitude at which the response grows at ``min_growth``
-(:mod:`stability.relevance`), by Hill's method (:mod:`stability.hill`),
-taken as the lowest over a list of parameter sets when the parameters are
+(:mod:`stability.decisions.relevance`), by Hill's method
+(:mod:`stability.hill`), taken as the lowest over a list of parameter sets when the parameters are
 uncertain (the broadest region of section 4.2).
 
 Safe windows
@@ -37,11 +37,11 @@ from scipy.optimize import minimize
 
 from infra.errors import JudderError
 
-from .kinds import KINDS
-from .source import build_driveline
-from .relevance import is_judder_relevant
-from .tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
+from ..kinds import KINDS
+from ..source import build_driveline
+from ..tongues import (TONGUE_KINDS, find_tongues, lowest_boundaries,
                       lowest_of_kinds, tongue_boundaries)
+from .relevance import is_judder_relevant
 
 __all__ = ["OperatingRange", "window_boundary", "safe_windows", "SafeWindow",
            "ranking", "Advice", "advise_design", "verify_design",
@@ -483,8 +483,8 @@ def verify_design(params, operating, min_growth, freq_points=141,
     judder_points : int
         Grid points growing faster than ``min_growth``.
     """
-    from .maps import stability_map
-    from .monodromy import DEFAULT_METHOD
+    from ..maps import stability_map
+    from ..monodromy import DEFAULT_METHOD
     low, high = operating.freq_hz
     result = stability_map(build_driveline(params),
                            np.linspace(low, high, freq_points),

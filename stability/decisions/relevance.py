@@ -5,15 +5,16 @@ becomes judder if it grows enough while the clutch slips. The response
 grows as :math:`e^{\sigma t}` with the growth rate
 :math:`\sigma = \ln|\lambda| / T` (Eq. 12-13, ``growth_rate_per_s`` of
 every result). A slipping phase of a wet-clutch engagement lasts about
-:data:`ENGAGEMENT_DURATION_S` (the bench engagements of section 2.2 run
-for 1-2 s); a mode that grows by less than one e-fold over it stays at the
-size of whatever started it. So an instability is *judder-relevant* when
+:data:`infra.criteria.ENGAGEMENT_DURATION_S` (the bench engagements of
+section 2.2 run for 1-2 s); a mode that grows by less than one e-fold
+over it stays at the size of whatever started it. So an instability is *judder-relevant* when
 
 .. math:: \sigma > \sigma_{min}, \qquad
           \sigma_{min} = 1 / t_{engagement} = 1\ \text{1/s}
 
-by default (:data:`DEFAULT_MIN_GROWTH_PER_S`). This is the same 1/s the
-time-domain verdict of :mod:`pysim.run_analysis` uses, so the maps, the
+by default (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`). This is
+the same 1/s the time-domain verdict of :mod:`pysim.run_analysis` uses
+(defined once, in :mod:`infra.criteria`), so the maps, the
 tongue boundaries, ``judder check`` and ``judder envelope`` agree with the
 bench charts. The slow slip-speed mode of a stiffly damped clutch damper
 (about 0.02 1/s at 60 Hz, 1.2 bar with ``c12 = 10``) is unstable but not
@@ -35,24 +36,17 @@ report), :data:`VERDICTS`:
 
 import numpy as np
 
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 
-__all__ = ["DEFAULT_MIN_GROWTH_PER_S", "ENGAGEMENT_DURATION_S",
-           "CHART_THRESHOLD_SPREAD_PER_S", "is_judder_relevant", "JUDDER",
+__all__ = ["CHART_THRESHOLD_SPREAD_PER_S", "is_judder_relevant", "JUDDER",
            "SLOW_GROWTH", "STABLE", "VERDICTS", "verdict"]
-
-#: Typical duration of the slipping phase of one engagement, s.
-ENGAGEMENT_DURATION_S = 1.0
-
-#: Smallest growth rate counted as judder, 1/s: one e-fold over
-#: :data:`ENGAGEMENT_DURATION_S`.
-DEFAULT_MIN_GROWTH_PER_S = 1.0 / ENGAGEMENT_DURATION_S
 
 #: How far the growth rate a chart's verdict calls judder from may lie
 #: from its threshold, 1/s: on the tongue-4 round trip (docs/roundtrip.md)
 #: runs of 3 s whose Floquet exponent lay within this of the threshold
 #: were called either way. ``judder fit --chart`` widens its intervals by
-#: the values this spread gives (:func:`stability.fitting.fit_boundary`,
+#: the values this spread gives (:func:`stability.fit.fit_boundary`,
 #: ``threshold_spread``).
 CHART_THRESHOLD_SPREAD_PER_S = 0.25
 

@@ -1,0 +1,67 @@
+"""``judder check``: the dither settings with their verdicts and margins,
+over the map when there is one."""
+
+import matplotlib.pyplot as plt
+
+from infra.plotstyle import LABEL_GID, dither_axes, settle_labels
+from stability.plots import kind_handles, plot_map
+
+__all__ = ["check_figure", "VERDICT_MARKERS"]
+
+
+#: Marker and colour of each verdict word
+#: (:data:`stability.decisions.relevance.VERDICTS`): shape tells them
+#: apart without colour; the colours are dark enough to read on every kind's fill.
+VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
+                   "SLOW GROWTH": ("s", "#404040"),
+                   "STABLE": ("o", "#1b7837")}
+
+
+def check_figure(records, background=None, min_growth=None, title=None):
+    """Settings of ``judder check`` marked on the map (or alone).
+
+    Each setting is a marker of its verdict (:data:`VERDICT_MARKERS`, in
+    the legend) annotated with both margins to judder (bar, Hz; positive
+    = safe).
+
+    Parameters
+    ----------
+    records : list of dict
+        :func:`judder.results.setting_record` fields (Hz, bar).
+    background : stability.maps.StabilityMap, optional
+    min_growth : float, optional
+        Passed to :func:`plot_map`.
+    title : str, optional
+        The model, after "dither settings: verdict and margins".
+    """
+    fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
+    handles = []
+    if background is not None:
+        plot_map(background, ax=ax, min_growth=min_growth, legend=False)
+        handles = kind_handles(min_growth=min_growth)
+    seen = {}
+    for r in records:
+        marker, color = VERDICT_MARKERS[r["verdict"]]
+        line, = ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker,
+                        color=color, markeredgecolor="w", markersize=10,
+                        markeredgewidth=1.2, linestyle="none",
+                        label=f"setting: {r['verdict']}", clip_on=False)
+        seen.setdefault(r["verdict"], line)
+        hz, bar = r["margin_hz"], r["margin_bar"]
+        text = (("" if bar is None else f"{bar:+.3f} bar\n")
+                + ("" if hz is None else f"{hz:+.2f} Hz"))
+        if text:
+            ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
+                        xytext=(7, 7), textcoords="offset points", fontsize=7,
+                        gid=LABEL_GID, bbox={"boxstyle": "round,pad=0.15",
+                                             "fc": "w", "ec": "none",
+                                             "alpha": 0.8})
+    dither_axes(ax)
+    ax.legend(handles=handles + list(seen.values()), fontsize=7,
+              loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              borderaxespad=0.0)
+    ax.set_title("dither settings: verdict and margins"
+                 + (f", {title}" if title else ""),
+                 fontsize=10, pad=16 if background is not None else 6)
+    settle_labels(fig)
+    return fig

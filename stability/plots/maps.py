@@ -1,0 +1,292 @@
+"""Stability maps (Fig. 12, Fig. 14): the kind of instability and the
+growth rate of the leading multiplier over dither frequency and amplitude,
+clipped to the exact boundaries when they are given.
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.colors import ListedColormap
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+
+from infra.plotstyle import (CONTINUOUS_CMAP, GROWTH_LINE, KIND_COLORS,
+                             KIND_LINESTYLES, SLOW_COLOR, dither_axes,
+                             figure_title, settle_labels)
+from infra.units import PA_PER_BAR
+
+from ..decisions.relevance import is_judder_relevant
+from ..kinds import KINDS
+from .boundaries import plot_boundaries
+
+__all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
+           "kind_handles"]
+
+
+def _edges(centres):
+    centres = np.asarray(centres, dtype=float)
+    if len(centres) == 1:
+        return centres + np.array([-0.5, 0.5])
+    mid = (centres[1:] + centres[:-1]) / 2
+    return np.concatenate([[2 * centres[0] - mid[0]], mid,
+                           [2 * centres[-1] - mid[-1]]])
+
+
+def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
+                min_growth=None):
+    """Legend of the kinds, outside the data (right of the axes) by
+    default; with ``lines`` the boundary line style of each kind too; with
+    ``min_growth`` the grey of the slowly growing (not judder) points."""
+    handles = kind_handles(kinds, stable, lines, min_growth)
+    where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
+              "borderaxespad": 0.0} if outside else {"loc": "best"})
+    return ax.legend(handles=handles, fontsize=7, **where)
+
+
+def kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
+    """Legend handles of :func:`kind_legend`."""
+    handles = []
+    if stable:
+        handles.append(Patch(facecolor=KIND_COLORS[0], edgecolor="k",
+                             label=KINDS[0]))
+    for k in kinds:
+        handles.append(Patch(facecolor=KIND_COLORS[k], edgecolor="k",
+                             label=KINDS[k]))
+    if min_growth is not None and min_growth > 0:
+        handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
+                             label=f"grows < {min_growth:g} 1/s (not judder)"))
+        handles.append(Line2D([], [], color="k",
+                              linewidth=GROWTH_LINE["linewidths"],
+                              linestyle=GROWTH_LINE["linestyles"][0],
+                              label=f"growth = {min_growth:g} 1/s"))
+    if lines:
+        handles += [Line2D([], [], color="k", linestyle=KIND_LINESTYLES[k],
+                           label=f"{KINDS[k]} boundary") for k in kinds]
+    return handles
+
+
+def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
+             boundaries=None, legend=True, min_growth=None):
+    """Regions of each kind of instability over frequency (Hz) and p_f (bar).
+
+    Parameters
+    ----------
+    stability_map : stability.maps.StabilityMap
+    ax : matplotlib.axes.Axes, optional
+    mark_resonances : bool
+        Without ``boundaries``: mark the frequencies tongues grow from
+        (Fig. 14's numbering) at the top of the axes.
+    tongues : sequence of stability.tongues.Tongue, optional
+    boundaries : stability.tongues.Boundaries, optional
+        The exact boundaries (:func:`stability.tongues.tongue_boundaries`),
+        drawn over the grid cells with their tips numbered as in Fig. 14;
+        without them the unit-modulus contour of the grid is drawn.
+    legend : bool
+        Legend of the kinds, outside the axes on the right.
+    min_growth : float, optional
+        1/s: shade grey the unstable points growing slower than this (not
+        judder, :mod:`stability.decisions.relevance`) and outline the
+        judder-relevant region.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    m = stability_map
+    bar = m.p_f / PA_PER_BAR
+    slow = min_growth is not None and min_growth > 0
+    if boundaries is not None and boundaries.min_growth == 0 \
+            and len(m.freq_hz) > 1 and len(bar) > 1:
+        artists = [_exact_fill(m, boundaries, tongues or (), ax,
+                               min_growth if slow else None)]
+        if slow:
+            artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
+                                      levels=[min_growth], **GROWTH_LINE))
+    else:
+        artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar), m.kind.T,
+                                 cmap=ListedColormap(KIND_COLORS),
+                                 vmin=-0.5, vmax=len(KINDS) - 0.5,
+                                 shading="flat", rasterized=True)]
+        if slow:
+            artists += _shade_slow(m, ax, min_growth)
+    if boundaries is not None:
+        artists += plot_boundaries(boundaries, ax=ax, tongues=tongues or (),
+                                   style={"color": "k"})
+        ax.set_xlim(_edges(m.freq_hz)[0], _edges(m.freq_hz)[-1])
+        ax.set_ylim(0, max(bar.max(), boundaries.p_max / PA_PER_BAR))
+    else:
+        if len(m.freq_hz) > 1 and len(bar) > 1:
+            artists.append(ax.contour(m.freq_hz, bar, m.leading_abs.T,
+                                      levels=[1.0], colors="k",
+                                      linewidths=0.8))
+        if mark_resonances:
+            artists += _resonance_marks(ax, m.resonances(),
+                                        m.freq_hz.min(), m.freq_hz.max())
+    dither_axes(ax)
+    if legend:
+        artists.append(kind_legend(ax, lines=boundaries is not None,
+                                   min_growth=min_growth))
+    return artists
+
+
+def _resonance_marks(ax, resonances, low, high):
+    """Tongue numbers (Fig. 14) above the axes at the frequencies the
+    tongues grow from, with a short tick."""
+    artists = []
+    for number, label, hz, kind in resonances:
+        if low <= hz <= high:
+            artists.append(ax.annotate(
+                f"{number}", (hz, 1.0), xycoords=("data", "axes fraction"),
+                xytext=(0, 3), textcoords="offset points", ha="center",
+                va="bottom", fontsize=8, fontweight="bold"))
+            artists.append(ax.axvline(hz, ymin=0.97, color="k",
+                                      linewidth=0.8))
+    return artists
+
+
+#: Pixels of the image :func:`_exact_fill` draws (frequency, amplitude).
+FILL_PIXELS = (1200, 600)
+
+
+def _boundary_at(freq_hz, boundaries, column, tips):
+    """One kind's lowest boundary (bar) at ``freq_hz``, as
+    :func:`plot_boundaries` draws it: straight between the grid points and
+    the inserted tips, NaN where a tongue is absent (its curve closes
+    vertically up to ``p_max`` at its last grid point)."""
+    f = boundaries.freq_hz
+    a = boundaries.amplitude[:, column] / PA_PER_BAR
+    if tips:
+        f = np.concatenate([f, [tf for tf, _ in tips]])
+        a = np.concatenate([a, [tp for _, tp in tips]])
+        order = np.argsort(f, kind="stable")
+        f, a = f[order], a[order]
+    i = np.clip(np.searchsorted(f, freq_hz, side="right") - 1, 0,
+                len(f) - 2)
+    share = (freq_hz - f[i]) / np.where(f[i + 1] > f[i], f[i + 1] - f[i], 1)
+    value = a[i] + np.clip(share, 0, 1) * (a[i + 1] - a[i])
+    return np.where((freq_hz >= f[0]) & (freq_hz <= f[-1]), value, np.nan)
+
+
+def _fine_grid(m, boundaries, tongues):
+    """Pixels of an image of the map clipped to the exact boundaries.
+
+    Returns
+    -------
+    extent : tuple
+        ``(f0, f1, p0, p1)``, Hz and bar.
+    index : tuple of ndarray
+        Nearest map point of each pixel, for ``array[index]`` of an
+        ``(nf, np)`` map array, giving ``(nP, nF)``.
+    inside : ndarray of bool, shape (3, nP, nF)
+        The pixel is on or above each kind's exact lowest boundary.
+    low : ndarray, shape (3, nF)
+        Those boundaries, bar (NaN: none).
+    """
+    bar = m.p_f / PA_PER_BAR
+    f_edges, p_edges = _edges(m.freq_hz), _edges(bar)
+    p_top = max(p_edges[-1], boundaries.p_max / PA_PER_BAR)
+    freq = np.linspace(f_edges[0], f_edges[-1], FILL_PIXELS[0])
+    amp = np.linspace(max(p_edges[0], 0.0), p_top, FILL_PIXELS[1])
+    low = np.array([
+        _boundary_at(freq, boundaries, column,
+                     [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
+                      for t in tongues if t.kind == KINDS[kind]])
+        for column, kind in enumerate((1, 2, 3))])
+    with np.errstate(invalid="ignore"):
+        inside = amp[None, :, None] >= low[:, None, :]
+    fi = np.clip(np.searchsorted(f_edges, freq) - 1, 0, len(m.freq_hz) - 1)
+    pi = np.clip(np.searchsorted(p_edges, amp) - 1, 0, len(bar) - 1)
+    index = (fi[None, :], pi[:, None])
+    return (freq[0], freq[-1], amp[0], amp[-1]), index, inside, low
+
+
+def _exact_fill(m, boundaries, tongues, ax, min_growth=None):
+    """The kinds as an image clipped to the exact boundaries: inside them
+    the grid's kind (nearest point), or that of the lowest boundary where
+    the grid point is stable; outside them white. With ``min_growth``,
+    the slowly growing points grey (a stable grid point inside the exact
+    boundaries counts as slow: it grows at about 0 there)."""
+    extent, index, inside, low = _fine_grid(m, boundaries, tongues)
+    unstable = inside.any(axis=0)
+    lowest = 1 + np.argmin(np.where(inside, low[:, None, :], np.inf), axis=0)
+    grid = m.kind[index]
+    code = np.where(unstable, np.where(grid > 0, grid, lowest), 0)
+    if min_growth is not None:
+        slow = ~is_judder_relevant(m.growth_rate, min_growth)
+        code = np.where(unstable & (slow[index] | (grid == 0)),
+                        len(KINDS), code)
+    colours = ListedColormap([*KIND_COLORS, SLOW_COLOR])
+    return ax.imshow(code, origin="lower", aspect="auto",
+                     interpolation="nearest", cmap=colours, vmin=-0.5,
+                     vmax=len(KINDS) + 0.5, extent=extent)
+
+
+def _shade_slow(m, ax, min_growth):
+    """Grey where 0 < growth <= min_growth; a line at growth = min_growth."""
+    slow = (m.kind > 0) & ~is_judder_relevant(m.growth_rate, min_growth)
+    bar = m.p_f / PA_PER_BAR
+    artists = [ax.pcolormesh(_edges(m.freq_hz), _edges(bar),
+                             np.ma.masked_where(~slow, slow).T,
+                             cmap=ListedColormap([SLOW_COLOR]),
+                             shading="flat")]
+    if len(m.freq_hz) > 1 and len(bar) > 1:
+        artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
+                                  levels=[min_growth], **GROWTH_LINE))
+    return artists
+
+
+def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
+    """Growth rate ``ln|lambda|/T`` (1/s) of the leading multiplier.
+
+    Stable points are drawn white; with the exact ``boundaries`` (of the
+    stability boundary) the coloured region is clipped to them, as
+    :func:`plot_map` clips the kinds. Returns the artists drawn.
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    m = stability_map
+    rate = np.where(m.kind > 0, m.growth_rate, np.nan)
+    if boundaries is not None and boundaries.min_growth == 0 \
+            and len(m.freq_hz) > 1 and len(m.p_f) > 1:
+        extent, index, inside, _ = _fine_grid(m, boundaries, tongues)
+        # inside the exact boundaries, a stable grid point grows at ~0
+        image = np.where(inside.any(axis=0),
+                         np.nan_to_num(rate[index], nan=0.0), np.nan)
+        mesh = ax.imshow(image, origin="lower", aspect="auto",
+                         interpolation="nearest", cmap=CONTINUOUS_CMAP,
+                         extent=extent)
+    else:
+        mesh = ax.pcolormesh(_edges(m.freq_hz), _edges(m.p_f / PA_PER_BAR),
+                             rate.T, cmap=CONTINUOUS_CMAP, shading="flat",
+                             rasterized=True)
+    bar = ax.figure.colorbar(mesh, ax=ax, label="growth rate [1/s]")
+    dither_axes(ax)
+    return [mesh, bar]
+
+
+def map_figure(stability_map, title=None, tongues=None, boundaries=None,
+               min_growth=None, stacked=False):
+    """Figure with the kinds (left, with the exact boundaries and tongue
+    numbers when given, slowly growing points grey with ``min_growth``)
+    and the growth rate (right; below with ``stacked``, for a page)."""
+    fig, (left, right) = plt.subplots(
+        *((2, 1) if stacked else (1, 2)),
+        figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
+    plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
+             min_growth=min_growth)
+    plot_growth_rate(stability_map, ax=right, boundaries=boundaries,
+                     tongues=tongues or ())
+    if boundaries is not None:
+        plot_boundaries(boundaries, ax=right, tongues=tongues,
+                        style={"color": "k", "linewidth": 0.8})
+        right.set_xlim(left.get_xlim())
+        right.set_ylim(left.get_ylim())
+    left.set_title("kind of instability (leading Floquet multiplier)",
+                   fontsize=10)
+    right.set_title(r"growth rate $\ln|\lambda|/T$ of the leading "
+                    "multiplier", fontsize=10)
+    if title:
+        figure_title(fig, title)
+    settle_labels(fig)
+    return fig
