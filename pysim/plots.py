@@ -1,9 +1,10 @@
 """Plots of runs: time histories (Fig. 7) and spectra (Fig. 8).
 
 Functions take ``ax`` where they draw one panel and return the artists;
-:func:`run_figure` returns the figure. They draw what the kernels give
-(:func:`pysim.engagement.display_spectra`,
-:func:`pysim.signals.per_period`); nothing calls ``plt.show()``.
+:func:`run_figure` returns the figure. They draw what they are given:
+spectra come computed (:func:`pysim.engagement.display_spectra`), a
+long run's time history is banded per dither period for display
+(:func:`pysim.signals.per_period`); nothing calls ``plt.show()``.
 """
 
 import matplotlib.pyplot as plt
@@ -12,7 +13,6 @@ import numpy as np
 from infra.plotstyle import BLUE, VERMILLION
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
-from .engagement import display_spectra
 from .signals import per_period
 
 __all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure"]
@@ -77,13 +77,17 @@ def plot_run(run, ax=None, title=None, legend=True, verdict=None):
 BANDED_PERIODS = 150
 
 
-def plot_spectrum(run, ax=None, start=0.0, f_max=None):
+def plot_spectrum(run, spectra, ax=None, f_max=None):
     """Amplitude spectra (Fig. 8): the upstream speed in rpm on the left
     axis, the pressure in bar on its own right axis, both linear; the
     dither frequency marked only when the run has dither.
 
     Parameters
     ----------
+    run : pysim.runs.RunResult
+    spectra : tuple
+        ``(speed, pressure)`` spectra of the run, as
+        :func:`pysim.engagement.display_spectra` gives them.
     f_max : float, optional
         Upper end of the frequency axis, Hz (default 3 f): give every
         panel of a figure the same one.
@@ -94,7 +98,7 @@ def plot_spectrum(run, ax=None, start=0.0, f_max=None):
     """
     if ax is None:
         _, ax = plt.subplots()
-    speed, pressure = display_spectra(run, start)
+    speed, pressure = spectra
     artists = [ax.plot(speed.freq_hz, speed.amplitude, color=BLUE,
                        lw=0.9, label="upstream speed [rpm] (left axis)")[0]]
     right = ax.twinx()
@@ -118,19 +122,22 @@ def plot_spectrum(run, ax=None, start=0.0, f_max=None):
     return artists
 
 
-def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
+def plot_spectra_overlay(runs, speed_spectra, ax=None, f_max=None):
     """Speed spectra of several engagements on one axis (Fig. 8). Each
     run's dither frequency is marked in its colour and style: a
     single-period judder peaks there, a double-period one at half of it,
-    a combination one at natural frequencies of the driveline."""
+    a combination one at natural frequencies of the driveline.
+
+    ``runs`` are ``(label, run)`` pairs, ``speed_spectra`` their speed
+    spectra (:func:`pysim.engagement.display_spectra`)."""
     if ax is None:
         _, ax = plt.subplots()
     colours = plt.get_cmap("cividis")(np.linspace(0.0, 0.75, len(runs)))
     styles = ("-", "--", "-.", ":")
     artists = []
     top = 0.0
-    for index, (label, run) in enumerate(runs):
-        speed, _ = display_spectra(run, start)
+    for index, ((label, run), speed) in enumerate(zip(runs,
+                                                     speed_spectra)):
         band = speed.freq_hz <= (f_max or speed.freq_hz[-1])
         top = max(top, speed.amplitude[band].max())
         artists.append(ax.plot(speed.freq_hz, speed.amplitude,
@@ -157,12 +164,18 @@ def plot_spectra_overlay(runs, ax=None, start=0.0, f_max=None):
     return artists
 
 
-def run_figure(runs, start=0.0, title=None, verdicts=None):
+def run_figure(runs, spectra, title=None, verdicts=None):
     """Time histories (top) and spectra (middle), one column per run,
     every spectrum over the same frequencies; with more than one run with
-    dither, their speed spectra overlaid (bottom). ``verdicts``: one line
-    of text per run, printed over its time histories."""
+    dither, their speed spectra overlaid (bottom).
+
+    ``runs`` are ``(label, run)`` pairs, ``spectra`` their ``(speed,
+    pressure)`` spectra (:func:`pysim.engagement.display_spectra`),
+    ``verdicts`` one line of text per run, printed over its time
+    histories."""
     dithered = [(label, run) for label, run in runs if run.p_f > 0]
+    dithered_speeds = [speed for (_, run), (speed, _) in zip(runs, spectra)
+                       if run.p_f > 0]
     f_max = 2.5 * max([run.freq_hz for _, run in runs])
     f_max = min(f_max, min(0.5 / np.median(np.diff(run.time))
                            for _, run in runs))
@@ -174,11 +187,11 @@ def run_figure(runs, start=0.0, title=None, verdicts=None):
     for column, (label, run) in enumerate(runs):
         plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label,
                  verdict=None if verdicts is None else verdicts[column])
-        plot_spectrum(run, ax=fig.add_subplot(grid[1, column]), start=start,
-                      f_max=f_max)
+        plot_spectrum(run, spectra[column],
+                      ax=fig.add_subplot(grid[1, column]), f_max=f_max)
     if overlay:
-        plot_spectra_overlay(dithered, ax=fig.add_subplot(grid[2, :]),
-                             start=start, f_max=f_max)
+        plot_spectra_overlay(dithered, dithered_speeds,
+                             ax=fig.add_subplot(grid[2, :]), f_max=f_max)
     if title:
         fig.suptitle(title, fontsize=11)
     return fig

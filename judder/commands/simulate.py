@@ -267,10 +267,17 @@ class SimulationResult:
                    "p_f_bar": run.p_f / PA_PER_BAR,
                    "start_values": run.start_values})
 
+    def spectra(self):
+        """The ``(speed, pressure)`` amplitude spectra of each run after
+        ``start`` (:func:`pysim.engagement.display_spectra`), as
+        ``--plot`` draws them."""
+        from pysim.engagement import display_spectra
+        return [display_spectra(run, self.start) for _, run in self.runs]
+
     def figure(self, title=None):
         from pysim.engagement import verdict_line
         from pysim.plots import run_figure
-        return run_figure(self.runs, start=self.start, title=title,
+        return run_figure(self.runs, self.spectra(), title=title,
                           verdicts=[verdict_line(s) for s in self.summaries])
 
 

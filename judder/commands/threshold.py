@@ -13,6 +13,7 @@ import numpy as np
 from drivelines.specs import MEAN_PRESSURE_DAMPING
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
+from stability.source import build_driveline
 
 from ._arguments import force_option, model_options
 from ._common import resolve
@@ -105,15 +106,23 @@ def threshold(mu_g, c_ext, parameters=None, changes=None, progress=None):
     changes.setdefault(MEAN_PRESSURE_DAMPING, 1.0)
     values = resolve(parameters, changes)
     study = threshold_study(values, mu_g, c_ext, callback=progress)
-    return ThresholdResult(params=values, study=study)
+    own = (float(np.mean(build_driveline(values).external_damping)),
+           float(values["mu_g"]))
+    return ThresholdResult(params=values, study=study, own=own)
 
 
 @dataclass(frozen=True)
 class ThresholdResult:
-    """``judder threshold``: Fig. 19 (a :class:`stability.threshold.ThresholdStudy`)."""
+    """``judder threshold``: Fig. 19.
+
+    ``study`` is the :class:`stability.threshold.ThresholdStudy`; ``own``
+    the driveline's own point on Fig. 19b: (mean external damping c_i,
+    N m s/rad; mu_g, s/rad).
+    """
 
     params: object
     study: object
+    own: tuple
 
     @property
     def slope(self):
@@ -147,15 +156,11 @@ class ThresholdResult:
     def figure(self, title=None):
         import matplotlib.pyplot as plt
 
-        from stability import build_driveline
         from infra.plotstyle import figure_title
         from stability.plots import plot_threshold
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
                                  layout="constrained")
-        driveline = build_driveline(self.params)
-        plot_threshold(self.study, axes=axes,
-                       own=(float(np.mean(driveline.external_damping)),
-                            float(self.params["mu_g"])))
+        plot_threshold(self.study, axes=axes, own=self.own)
         figure_title(fig, f"Fig. 19 without dither, "
                      f"{title or self.params.model + ' driveline'}: the "
                      "mean pressure's damping in the slip damping (the maps "
