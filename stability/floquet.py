@@ -15,7 +15,8 @@ from .kinds import KINDS, classify
 from .monodromy import monodromy
 
 __all__ = ["FloquetResult", "FORMS", "floquet", "system_of",
-           "leading_multipliers", "check_frequency", "check_amplitude"]
+           "leading_multipliers"]
+
 
 def leading_multipliers(monodromies):
     """Eigenvalues and leading eigenvalue of a stack of monodromy matrices.
@@ -115,22 +116,6 @@ def system_of(driveline, form="reduced"):
     return FORMS[form](driveline)
 
 
-def check_frequency(freq_hz, name="freq"):
-    """Raise JudderError unless ``freq_hz`` is finite and positive."""
-    freq = np.asarray(freq_hz, dtype=float)
-    if not np.all(np.isfinite(freq)) or np.any(freq <= 0):
-        raise JudderError(f"{name} = {freq_hz!r} Hz is not allowed; "
-                          "allowed: finite dither frequencies > 0 Hz")
-
-
-def check_amplitude(p_f, name="p_f"):
-    """Raise JudderError unless ``p_f`` is finite and non-negative."""
-    amp = np.asarray(p_f, dtype=float)
-    if not np.all(np.isfinite(amp)) or np.any(amp < 0):
-        raise JudderError(f"{name} = {p_f!r} Pa is not allowed; "
-                          "allowed: finite dither amplitudes >= 0")
-
-
 def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
     """Floquet multipliers of the driveline at one dither setting.
 
@@ -162,8 +147,6 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
     >>> r.kind, round(r.leading_abs, 4)
     ('single-period', 1.0261)
     """
-    check_frequency(freq_hz)
-    check_amplitude(p_f)
     if method is None:
         method = "dyson" if form == "reduced" else "solve_ivp"
     if method == "dyson" and form == "augmented":

@@ -4,7 +4,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .floquet import check_amplitude, check_frequency, leading_multipliers
+from .floquet import leading_multipliers
 from .kinds import KINDS, classify
 from .modal import natural_frequencies
 from .monodromy import DEFAULT_METHOD, get_method
@@ -100,8 +100,6 @@ def stability_map(driveline, freq_hz, p_f, method=DEFAULT_METHOD,
     """
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
     p_f = np.atleast_1d(np.asarray(p_f, dtype=float))
-    check_frequency(freq_hz)
-    check_amplitude(p_f)
     engine = get_method(method)
     system = driveline.periodic_system()
     p_max = np.abs(p_f).max()

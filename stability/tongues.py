@@ -63,7 +63,6 @@ from scipy.signal import find_peaks
 
 from infra.errors import JudderError
 
-from .floquet import check_amplitude, check_frequency
 from .hill import (applies as hill_applies, combination_boundaries,
                    modal_transfer, real_boundaries)
 from .kinds import Kind, is_real
@@ -377,8 +376,6 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
     0.3642
     """
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
-    check_frequency(freq_hz)
-    check_amplitude(p_max, "p_max")
     if p_max <= 0:
         raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
                           "> 0")

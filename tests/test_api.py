@@ -120,3 +120,18 @@ def test_run_fmu_refuses_a_parameter_the_fmu_lacks():
 def test_simulate_needs_a_driveline_with_a_bench_model():
     with pytest.raises(JudderError, match="bench"):
         api.simulate(100.0, 0.1, parameters=get_preset("paper-3dof"))
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: api.floquet(2e5, 0.3), "freq_hz = 200000 Hz"),
+    (lambda: api.stability_map([10.0, -1.0], [0.0, 0.3]), "freq_hz = -1 Hz"),
+    (lambda: api.tongues([100.0], 0.0), "p_max_bar = 0 bar"),
+    (lambda: api.sensitivity(["c12"], [100.0], np.nan), "p_max_bar = nan"),
+    (lambda: api.check([100.0], [-0.1]), "p_f_bar = -0.1 bar"),
+    (lambda: api.crosscheck([100.0], [np.inf]), "p_f_bar = inf bar"),
+])
+def test_the_api_validates_its_values_once(call, words):
+    # the same rule as the command line's (judder.commands._values), at
+    # the API; the kernels below trust their inputs
+    with pytest.raises(JudderError, match=words.replace("(", r"\(")):
+        call()

@@ -6,8 +6,8 @@ registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 """
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
-from stability.monodromy import DEFAULT_METHOD, METHODS
 from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
+from stability.monodromy import DEFAULT_METHOD, METHODS
 
 from ._values import MIN_GROWTH, PF_MAX, WORKERS
 

@@ -85,15 +85,15 @@ def check_amplitudes(values_bar, option, fix=""):
                 f"at most {MAX_PLAIN_PF_BAR:g} bar)")
 
 
-def _allowed(unit, low, high, low_open):
+def _allowed(unit, low, high, low_open, hint=True):
     parts = []
     if low > -math.inf:
         parts.append(f"{'>' if low_open else '>='} {low:g}")
     if high < math.inf:
         parts.append(f"<= {high:g}")
     return (" and ".join(parts) or "a finite number") + f" {unit}" + (
-        " (a plain number; or with a unit, e.g. 1.2kHz)" if unit == "Hz"
-        else "")
+        " (a plain number; or with a unit, e.g. 1.2kHz)"
+        if hint and unit == "Hz" else "")
 
 
 class Quantity:
@@ -126,6 +126,20 @@ class Quantity:
                                 self.high, self.low_open, self.amplitude)
         except JudderError as exc:
             raise argparse.ArgumentTypeError(str(exc)) from None
+
+    def check(self, value, name):
+        """``value`` (a number or an array, in ``unit``) if every element
+        is finite and allowed, else a :class:`JudderError` naming
+        ``name``: the same rule at the API as on the command line."""
+        values = np.atleast_1d(np.asarray(value, dtype=float))
+        below = values <= self.low if self.low_open else values < self.low
+        bad = ~np.isfinite(values) | below | (values > self.high)
+        if bad.any():
+            allowed = _allowed(self.unit, self.low, self.high, self.low_open,
+                               hint=False)
+            raise JudderError(f"{name} = {values[bad][0]:g} {self.unit} is "
+                              f"not allowed; allowed: {allowed}")
+        return value
 
 
 class QuantityList(Quantity):

@@ -23,8 +23,7 @@ from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
 from ._records import rows_to_csv
-from ._values import (FREQ_RANGE_HZ, PF_MAX, Listed, Quantity,
-                      check_amplitudes, option_value)
+from ._values import FREQ_RANGE_HZ, PF_MAX, Listed, Quantity, option_value
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -102,7 +101,6 @@ def run(args):
         raise JudderError(f"--freq-range {args.freq_range} is not allowed; "
                           "allowed: LOW < HIGH")
     names, weights = args.params, args.weights
-    check_amplitudes([args.pf_max], "--pf-max")
     check_advise_grid(args.freq_range, low, high, args.margin_hz)
     if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
             args.margin_bar >= args.pf_max:
@@ -160,8 +158,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     -------
     AdviceResult
     """
-    from stability.decisions import advice as kernel
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.decisions import advice as kernel
     values = resolve(parameters, changes)
     sets = [values, *extra_sets]
     models = {p.model for p in sets}

@@ -26,8 +26,8 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_settings, check_work
 from ._records import finite_or_none, rows_to_csv
-from ._values import (FREQ_RANGE_HZ, PF_MAX, Settings, check_amplitudes,
-                      parse_list)
+from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, Settings,
+                      check_amplitudes, parse_list)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -88,7 +88,6 @@ def run(args):
         names = parse_list(args.params, "--params", str)
     freqs, amplitudes = _settings(args, len(
         DEFAULT_CHECK_PARAMETERS if names is None else names))
-    check_amplitudes([args.pf_max], "--pf-max")
     if args.pf_max is not None and not args.pf_max > max(amplitudes):
         raise JudderError(f"--pf-max {args.pf_max:g} bar is not allowed; "
                           "allowed: above the largest setting, "
@@ -169,19 +168,16 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     -------
     CheckResult
     """
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
     from stability.decisions.margins import check_settings
-    from infra.criteria import (DEFAULT_MIN_GROWTH_PER_S,
-                                ENGAGEMENT_DURATION_S)
     values = resolve(parameters, changes)
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
     p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
     if freq_hz.shape != p_f_bar.shape or freq_hz.ndim != 1 or not len(freq_hz):
         raise JudderError(f"freq and p_f have {freq_hz.size} and "
                           f"{p_f_bar.size} values; allowed: as many of each")
-    for f in freq_hz:
-        check_number("freq", f, "Hz")
-    for p in p_f_bar:
-        check_number("p_f", p, "bar", strict=False)
+    FREQ.check(freq_hz, "freq_hz")
+    PF.check(p_f_bar, "p_f_bar")
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     check_number("min_growth", min_growth, "1/s", strict=False)
     if p_max_bar is None:

@@ -22,7 +22,7 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_crosscheck, check_work
 from ._records import rows_to_csv
-from ._values import DURATION, Grid
+from ._values import DURATION, FREQ, PF, Grid
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -129,6 +129,8 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     CrosscheckResult
     """
     from ..crosscheck import crosscheck as crosscheck_study
+    FREQ.check(freq_hz, "freq_hz")
+    PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)
     check, seconds = timed(
         crosscheck_study, values, freq_hz,

@@ -30,7 +30,7 @@ from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._preflight import check_envelope
 from ._records import finite_or_none, rows_to_csv
-from ._values import SEED, Grid
+from ._values import FREQ, PF_MAX, SEED, Grid
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -205,10 +205,12 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     EnvelopeResult
         ``failures`` lists the samples that failed (left out).
     """
-    from stability.uncertainty.ranges import Ranges
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.uncertainty.ranges import Ranges
 
     from ..envelope import read_ranges, run_envelope
+    FREQ.check(freq_hz, "freq_hz")
+    PF_MAX.check(p_max_bar, "p_max_bar")
     values = resolve(parameters, changes)
     if not isinstance(ranges, Ranges):
         ranges = read_ranges(ranges, values)

@@ -307,8 +307,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         convergence, a parameter on a bound or undetermined, another
         minimum as good).
     """
-    from stability.fit import DEFAULT_FIT, fit_boundary
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.fit import DEFAULT_FIT, fit_boundary
     start = resolve(parameters, changes)
     if min_growth is None:
         min_growth = DEFAULT_MIN_GROWTH_PER_S

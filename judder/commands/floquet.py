@@ -91,6 +91,8 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     -------
     FloquetPoint
     """
+    FREQ.check(freq_hz, "freq_hz")
+    PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)
     result = floquet_kernel(dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)

@@ -24,7 +24,7 @@ from ._common import dithered, resolve, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_map, check_map_memory
-from ._values import Grid, parse_waveform
+from ._values import FREQ, PF, Grid, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -142,6 +142,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         (not judder, :mod:`stability.decisions.relevance`) and the JSON counts the
         faster ones.
     """
+    FREQ.check(freq_hz, "freq_hz")
+    PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)
     driveline = dithered(values, waveform)
     result, seconds = timed(

@@ -34,11 +34,11 @@ import tempfile
 
 import numpy as np
 
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 from infra.errors import JudderError
 from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.numbers import format_interval, format_uncertain
-from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
                                            JUDDER, SLOW_GROWTH)

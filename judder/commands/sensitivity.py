@@ -20,7 +20,7 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_sensitivity, check_work
 from ._records import rows_to_csv
-from ._values import Grid, Listed, parse_list
+from ._values import FREQ, PF_MAX, Grid, Listed, parse_list
 from .tongues import tongue_record
 
 #: The command's --help text.
@@ -143,6 +143,8 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     """
     from stability.sensitivity import (paper_conclusions, sensitivity_study,
                                        tip_shifts)
+    FREQ.check(freq_hz, "freq_hz")
+    PF_MAX.check(p_max_bar, "p_max_bar")
     nominal = resolve(parameters, changes)
     for name in names:
         if name not in nominal.specs:

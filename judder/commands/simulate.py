@@ -25,7 +25,7 @@ from ._bench import bench_values
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
-from ._values import DURATION, FREQ_RANGE_HZ, PF, QuantityList
+from ._values import DURATION, FREQ, FREQ_RANGE_HZ, PF, QuantityList
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -172,6 +172,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     from pysim.runs import parameter_default, run_fmu
 
     from ..timedomain import class_fmu, run_values
+    FREQ.check(freq_hz, "freq_hz")
+    PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)
     bench = dict(bench or {})
     if values.source_kind.is_chain:

@@ -23,7 +23,7 @@ from ._common import BACKGROUND_AMPLITUDES, dithered, resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
-from ._values import MIN_GROWTH, Grid, parse_waveform
+from ._values import FREQ, MIN_GROWTH, PF_MAX, Grid, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -143,6 +143,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     TonguesResult
     """
     from stability.tongues import find_tongues, tongue_boundaries
+    FREQ.check(freq_hz, "freq_hz")
+    PF_MAX.check(p_max_bar, "p_max_bar")
     values = resolve(parameters, changes)
     driveline = dithered(values, waveform)
     p_max = p_max_bar * PA_PER_BAR
@@ -222,8 +224,8 @@ class TonguesResult:
         write_text(path, self.csv_text())
 
     def figure(self, title=None):
-        from stability.plots import tongues_figure
         from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+        from stability.plots import tongues_figure
 
         # the map's shading as `judder map` draws it: slower growth than
         # the judder-relevant rate grey

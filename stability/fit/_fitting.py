@@ -370,7 +370,7 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         # the interval covers the values the threshold's spread gives
         ci_low = ci_low + np.minimum(shifts.min(axis=1), 0.0)
         ci_high = ci_high + np.maximum(shifts.max(axis=1), 0.0)
-    amplitude, residual, s2 = found.amplitude, found.residual, found.s2
+    amplitude, s2 = found.amplitude, found.s2
     used, open_sides = found.used, found.open_sides
     alternatives, same, minima = found.alternatives, found.same, found.minima
     boot_failed, notes, info = found.boot_failed, found.notes, found.info

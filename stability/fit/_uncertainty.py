@@ -185,7 +185,6 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
     evaluator = _Evaluator(problem)
     amplitude = evaluator.amplitudes(z)
     residual = _residuals(problem, amplitude, columns)
-    n = len(columns)
     # the scatter is sampled by the onsets alone: a one-sided residual
     # (a bound the fit presses against) is no sample of it (counted, it
     # made the intervals of 60 noisy boundaries too narrow)
