@@ -2,7 +2,10 @@
 
 A command module holds everything of its command: ``DESCRIPTION`` (its
 ``--help`` text), ``OUTPUTS`` (the files it writes: option attribute,
-option, suffixes; ``None`` for a figure), ``add_arguments(parser)`` (its
+option, suffixes; ``None`` for a figure; checked before any work),
+optionally ``AMPLITUDE`` (the option holding its largest dither
+amplitude, checked against the mean pressure) and ``check_outputs(args,
+seen)`` (checks of its own outputs), ``add_arguments(parser)`` (its
 options, parsed once with their units by argparse ``type=``), ``run(args)``
 (preflight checks, the API call, ``--out``/``--plot`` and the text or JSON
 printed), the API function and the result it returns (``as_dict()``,

@@ -1,10 +1,5 @@
 """``judder advise``: safe dither windows and the design change that clears
 the dither range.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`advise` and
-its result :class:`AdviceResult`.
 """
 
 from dataclasses import dataclass
@@ -25,6 +20,7 @@ from ._preflight import check_advise_grid
 from ._records import rows_to_csv
 from ._values import FREQ_RANGE_HZ, PF_MAX, Listed, Quantity, option_value
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "(a) The safe (frequency, amplitude) windows inside the valve's "
@@ -35,9 +31,7 @@ DESCRIPTION = (
     "smallest weighted relative change of them that clears the window "
     "of judder, checked by recomputing the Floquet map of the advised "
     "design (section 4.3, 5).")
-
-
-OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 
 
 def add_arguments(p):

@@ -1,10 +1,5 @@
 """``judder campaign``: bench emulator: engagement acquisitions over a
 dither grid.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`campaign` and
-its result :class:`CampaignResult`.
 """
 
 from dataclasses import dataclass
@@ -20,6 +15,7 @@ from ._output import Progress, emit
 from ._preflight import check_campaign, check_campaign_disk, check_work
 from ._values import DURATION, FREQ, PF, SEED, Grid, Listed, Quantity
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Emulate a bench campaign (section 3): one engagement per dither "
@@ -28,11 +24,7 @@ DESCRIPTION = (
     "noise, pressure at 1 kHz; one CSV and/or MF4 per run and "
     "OUT/index.csv. Runs in parallel; an interrupted or failed campaign "
     "resumes when run again.")
-
-
 OUTPUTS = ()
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
 AMPLITUDE = "pf"
 
 

@@ -1,10 +1,5 @@
 """``judder chart``: experimental stability chart from bench acquisitions
 (Fig. 10, 11).
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`chart` and
-its result :class:`ChartResult`.
 """
 
 from dataclasses import dataclass
@@ -23,6 +18,7 @@ from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import MIN_GROWTH, Quantity
 from .tongues import tongues
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Read engagement acquisitions (a campaign folder, or MF4, CSV, TDMS "
@@ -35,11 +31,9 @@ DESCRIPTION = (
     "the experimental boundary for `judder fit --boundary`. Give "
     "--model, --preset, --param-file or --set to draw the model's "
     "tongue boundaries over it.")
-
-
-OUTPUTS = (('out', '--out', ('npz',)),
-           ('plot', '--plot', None),
-           ('boundary', '--boundary', ('csv',)))
+OUTPUTS = (("out", "--out", ("npz",)),
+           ("plot", "--plot", None),
+           ("boundary", "--boundary", ("csv",)))
 
 
 def add_arguments(p):
@@ -248,8 +242,8 @@ class ChartResult:
     @keeps_foreign_files
     def save(self, path):
         """Save the chart as NPZ: the per-run arrays of
-        :meth:`pysim.bench_data.charts.Chart.arrays` and, per group, the boundary
-        (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
+        :meth:`pysim.bench_data.charts.Chart.arrays` and, per group, the
+        boundary (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
         with NaN where censored, ``boundary_tried_bar``, and
         ``boundary_below_bar``: the highest amplitude without judder below
         each onset, NaN where none)."""

@@ -1,10 +1,4 @@
-"""``judder check``: is a dither setting safe, and by how much.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`check` and
-its result :class:`CheckResult`.
-"""
+"""``judder check``: is a dither setting safe, and by how much."""
 
 import dataclasses
 from dataclasses import dataclass
@@ -29,6 +23,7 @@ from ._records import finite_or_none, rows_to_csv
 from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, Settings,
                       check_amplitudes, parse_list)
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Verdict of each dither setting (judder if it grows faster than "
@@ -38,9 +33,7 @@ DESCRIPTION = (
     "amplitude), exact from the boundary curves, which tongue that is, "
     "and how much each parameter moves those margins. Settings: --freq "
     "x --pf (every pair), or --table.")
-
-
-OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 
 
 #: Parameters whose effect on the margins ``check`` reports by default

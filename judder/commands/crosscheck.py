@@ -1,10 +1,4 @@
-"""``judder crosscheck``: FMU growth rates against Floquet exponents.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`crosscheck` and
-its result :class:`CrosscheckResult`.
-"""
+"""``judder crosscheck``: FMU growth rates against Floquet exponents."""
 
 from dataclasses import dataclass
 
@@ -24,6 +18,7 @@ from ._preflight import check_crosscheck, check_work
 from ._records import rows_to_csv
 from ._values import DURATION, FREQ, PF, Grid
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Run the paper's driveline FMU (Eq. 1) on a grid, twice per point "
@@ -33,11 +28,7 @@ DESCRIPTION = (
     "layer's. With --modelica CLASS: the class's FMU and its "
     "linearisation; --fmu is refused (the FMU path reads only its "
     "Jacobian, it has no time-domain run here).")
-
-
-OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
 

@@ -1,10 +1,4 @@
-"""``judder eig``: natural frequencies and damping factor.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`eig` and
-its result :class:`EigResult`.
-"""
+"""``judder eig``: natural frequencies and damping factor."""
 
 from dataclasses import dataclass
 
@@ -18,6 +12,7 @@ from ._common import resolve
 from ._model import parameters_of
 from ._output import emit
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Undamped natural frequencies (Eq. 14-15, Hz), clutch-damper "
@@ -25,8 +20,6 @@ DESCRIPTION = (
     "rigid-body angles removed. For --modelica or --fmu: the "
     "frequencies of its Jacobian's stiffness part and its damped modes; "
     "Eq. 15-16 are the paper's chains' formulas (null in --json).")
-
-
 OUTPUTS = ()
 
 

@@ -1,10 +1,5 @@
 """``judder envelope``: broadest unstable region over uncertain parameters
 (Fig. 16).
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`envelope` and
-its result :class:`EnvelopeResult`.
 """
 
 from dataclasses import dataclass
@@ -32,6 +27,7 @@ from ._preflight import check_envelope
 from ._records import finite_or_none, rows_to_csv
 from ._values import FREQ, PF_MAX, SEED, Grid
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Exact tongue boundaries for every vertex of the parameter ranges "
@@ -40,11 +36,9 @@ DESCRIPTION = (
     "probability of instability over frequency x amplitude, and how "
     "converged the union is. Resumes from FILE.checkpoint.npz beside "
     "the first output when interrupted. See docs/envelope.md.")
-
-
-OUTPUTS = (('out', '--out', ('npz',)),
-           ('csv', '--csv', ('csv',)),
-           ('plot', '--plot', None))
+OUTPUTS = (("out", "--out", ("npz",)),
+           ("csv", "--csv", ("csv",)),
+           ("plot", "--plot", None))
 
 
 def check_outputs(args, seen):
@@ -236,7 +230,8 @@ def _bar_or_none(values):
 
 @dataclass(frozen=True)
 class EnvelopeResult:
-    """``judder envelope``: a :class:`stability.uncertainty.envelope.Envelope`, the
+    """``judder envelope``: a
+    :class:`stability.uncertainty.envelope.Envelope`, the
     ranges it was sampled from, the failed samples (each an
     :class:`infra.parallel.TaskFailure`) and how many samples came from the
     checkpoint."""

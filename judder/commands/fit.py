@@ -1,10 +1,4 @@
-"""``judder fit``: fit parameters to a measured boundary (section 4.2).
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`fit` and
-its result :class:`FitReport`.
-"""
+"""``judder fit``: fit parameters to a measured boundary (section 4.2)."""
 
 from dataclasses import dataclass
 
@@ -31,6 +25,7 @@ from ._records import finite_or_none
 from ._values import (MIN_GROWTH, PF_MAX, SEED, Quantity, WholeNumber,
                       parse_list)
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Adjust hard-to-know parameters so the model's boundary of judder "
@@ -42,12 +37,8 @@ DESCRIPTION = (
     "cannot determine (k parameters need k + 2 onsets, k with "
     "--scatter) and names a parameter that does not move the measured "
     "boundary.")
-
-
-OUTPUTS = (('save_params', '--save-params', ('toml',)),
-           ('plot', '--plot', None))
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("save_params", "--save-params", ("toml",)),
+           ("plot", "--plot", None))
 AMPLITUDE = "pf_max"
 
 
@@ -111,7 +102,8 @@ def add_arguments(p):
                         "fit, check and chart call the same point judder; "
                         "0: the stability boundary)")
     p.add_argument("--threshold-spread",
-                   type=Quantity("--threshold-spread", "1/s", 0.0), default=None,
+                   type=Quantity("--threshold-spread", "1/s", 0.0),
+                   default=None,
                    metavar="1/S",
                    help="how far the growth rate the onsets were called "
                         "judder at may lie from --min-growth, 1/s: the fit "

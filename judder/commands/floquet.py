@@ -1,10 +1,4 @@
-"""``judder floquet``: Floquet multipliers at one point.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`floquet` and
-its result :class:`FloquetPoint`.
-"""
+"""``judder floquet``: Floquet multipliers at one point."""
 
 from dataclasses import dataclass
 import math
@@ -21,16 +15,13 @@ from ._output import emit, make_parents, output_files, save_plot, written
 from ._preflight import check_floquet
 from ._values import FREQ, PF, parse_waveform
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Monodromy matrix over one dither period and its Floquet "
     "multipliers (Eq. 10-13), rigid-body angles removed; the leading "
     "multiplier is classified as in Fig. 15.")
-
-
-OUTPUTS = (('plot', '--plot', None),)
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("plot", "--plot", None),)
 AMPLITUDE = "pf"
 
 

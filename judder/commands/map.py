@@ -1,10 +1,4 @@
-"""``judder map``: stability map over frequency x amplitude.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`stability_map` and
-its result :class:`MapResult`.
-"""
+"""``judder map``: stability map over frequency x amplitude."""
 
 from dataclasses import dataclass
 import json
@@ -26,17 +20,14 @@ from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_map, check_map_memory
 from ._values import FREQ, PF, Grid, parse_waveform
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Leading Floquet multiplier on a grid of dither frequency (Hz) x "
     "amplitude (bar), classified single-period, double-period or "
     "combination (Fig. 14). Ctrl-C stops it without writing a partial "
     "file.")
-
-
-OUTPUTS = (('out', '--out', ('npz',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("out", "--out", ("npz",)), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
 
@@ -139,8 +130,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         ``save(path)`` writes NPZ, ``figure()`` draws it.
     min_growth : float, optional
         1/s: the figure shades unstable points growing slower than this
-        (not judder, :mod:`stability.decisions.relevance`) and the JSON counts the
-        faster ones.
+        (not judder, :mod:`stability.decisions.relevance`) and the JSON
+        counts the faster ones.
     """
     FREQ.check(freq_hz, "freq_hz")
     PF.check(p_f_bar, "p_f_bar")

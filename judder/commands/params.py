@@ -1,10 +1,4 @@
-"""``judder params``: show, or save as TOML, a parameter set.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`params` and
-its result :class:`ParamsResult`.
-"""
+"""``judder params``: show, or save as TOML, a parameter set."""
 
 from dataclasses import dataclass
 
@@ -16,13 +10,12 @@ from ._common import resolve
 from ._model import parameters_of
 from ._output import emit, make_parents
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Show a parameter set with units, or save it (--save FILE.toml) to "
     "edit and load with --param-file.")
-
-
-OUTPUTS = (('save', '--save', ('toml',)),)
+OUTPUTS = (("save", "--save", ("toml",)),)
 
 
 def add_arguments(p):

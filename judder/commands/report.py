@@ -13,11 +13,6 @@ anywhere without its neighbours.
 
 The report is a composer above the other commands: it calls their API
 functions and lays their results out.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`report` and
-its result :class:`ReportResult`.
 """
 
 import base64
@@ -60,6 +55,7 @@ from .simulate import simulate
 from .threshold import threshold
 from .tongues import tongues
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Run the studies of the paper for one driveline and write one "
@@ -69,9 +65,7 @@ DESCRIPTION = (
     "14) and their tips, the sensitivity ranking (Fig. 17, 18), and the "
     "fit to bench data (--chart or --boundary, Fig. 16a). Open it in a "
     "browser; print it to PDF from there.")
-
-
-OUTPUTS = (('out', '--out', ('html',)), ('pdf', '--pdf', ('pdf',)))
+OUTPUTS = (("out", "--out", ("html",)), ("pdf", "--pdf", ("pdf",)))
 
 
 #: Parameters varied in the report's sensitivity study, per model: those
@@ -213,7 +207,8 @@ def run(args):
             + (f"\nbench data: {result.data['fit_status']}"
                if "fit_status" in result.data else "")
             + written(args.out, args.pdf))
-    emit(args, {**result.as_dict(), **output_files(out=args.out, pdf=args.pdf)},
+    emit(args, {**result.as_dict(),
+                **output_files(out=args.out, pdf=args.pdf)},
          text)
 
 
@@ -452,7 +447,8 @@ def report(parameters=None, changes=None, description=None,
     p_max_bar : float
         Largest amplitude searched, bar.
     min_growth : float
-        Judder-relevant growth rate, 1/s (:mod:`stability.decisions.relevance`):
+        Judder-relevant growth rate, 1/s
+        (:mod:`stability.decisions.relevance`):
         the verdict and the map's shading use it, as ``judder check``
         and ``judder map`` do (0: every instability); the tongues and
         tips are the stability boundaries of Fig. 14.

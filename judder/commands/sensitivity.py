@@ -1,10 +1,4 @@
-"""``judder sensitivity``: tongue shifts per parameter (Fig. 17, 18).
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`sensitivity` and
-its result :class:`SensitivityResult`.
-"""
+"""``judder sensitivity``: tongue shifts per parameter (Fig. 17, 18)."""
 
 from dataclasses import dataclass
 
@@ -23,17 +17,14 @@ from ._records import rows_to_csv
 from ._values import FREQ, PF_MAX, Grid, Listed, parse_list
 from .tongues import tongue_record
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Vary each parameter (by --factors, or to --values), recompute the "
     "boundaries and report how each tongue tip moves in frequency (Hz) "
     "and amplitude (bar); checks the paper's conclusions of section "
     "4.3. Clutch-damper study: --params c12 --values 0.5,10.")
-
-
-OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 AMPLITUDE = "pf_max"
 
 

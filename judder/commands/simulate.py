@@ -1,10 +1,5 @@
 """``judder simulate``: bench engagement with dither (Fig. 7, 8), run
 through the FMU.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`simulate` and
-its result :class:`SimulationResult`.
 """
 
 from dataclasses import dataclass, field
@@ -27,6 +22,7 @@ from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
 from ._values import DURATION, FREQ, FREQ_RANGE_HZ, PF, QuantityList
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Engagement of the EVEN clutch at 1000 rpm on the test-bench model "
@@ -42,11 +38,7 @@ DESCRIPTION = (
     "slip, with the dither, and the Floquet verdict of its "
     "linearisation; --fmu is refused (its Jacobian is all the FMU path "
     "reads).")
-
-
-OUTPUTS = (('out', '--out', ('csv', 'mf4')), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
 
@@ -93,7 +85,8 @@ def run(args):
     bench = bench_values(args.bench)
     compare = None if args.compare is None else (
         "none" if args.compare == "none" else
-        check_number("--compare", _float_option(args.compare, "--compare"), "Hz"))
+        check_number("--compare", _float_option(args.compare, "--compare"),
+                     "Hz"))
     make_parents(args.out, args.plot)
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
                       duration=args.duration,

@@ -1,9 +1,4 @@
 """``judder threshold``: friction-gradient threshold without dither (Fig. 19).
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`threshold` and
-its result :class:`ThresholdResult`.
 """
 
 from dataclasses import dataclass
@@ -21,15 +16,14 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Grid
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Largest real part of the eigenvalues without dither against mu_g "
     "(Fig. 19a), and the threshold mu_g* against the external damping "
     "c_i (Fig. 19b; every c_i set to the value). Uses the mean pressure "
     "in the damping (mean_pressure_damping = 1) unless --set gives it.")
-
-
-OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
+OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 
 
 def add_arguments(p):

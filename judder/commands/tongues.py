@@ -1,10 +1,4 @@
-"""``judder tongues``: tongue boundaries, labels and tips.
-
-One module holds the command: its options (:func:`add_arguments`),
-the command line's work (:func:`run`: preflight checks, the API call,
-the output files, text or JSON), the API function :func:`tongues` and
-its result :class:`TonguesResult`.
-"""
+"""``judder tongues``: tongue boundaries, labels and tips."""
 
 from dataclasses import dataclass
 import math
@@ -25,17 +19,14 @@ from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
 from ._values import FREQ, MIN_GROWTH, PF_MAX, Grid, parse_waveform
 
+
 #: The command's --help text.
 DESCRIPTION = (
     "Exact tongue boundaries by Hill's method (--solver hill: every "
     "kind, all frequencies at once; scan: combination by Brent's method "
     "on the monodromy); each point checked against the monodromy. "
     "Tongues numbered as in Fig. 14, with their tips (lowest p_f).")
-
-
-OUTPUTS = (('out', '--out', ('csv',)), ('plot', '--plot', None))
-#: The option holding the largest dither amplitude (checked against the
-#: mean pressure before the work).
+OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 AMPLITUDE = "pf_max"
 
 
