@@ -91,7 +91,8 @@ def _allowed(unit, low, high, low_open, hint=True):
         parts.append(f"{'>' if low_open else '>='} {low:g}")
     if high < math.inf:
         parts.append(f"<= {high:g}")
-    return (" and ".join(parts) or "a finite number") + f" {unit}" + (
+    unit_text = "" if unit == "1" else f" {unit}"     # a plain ratio
+    return (" and ".join(parts) or "a finite number") + unit_text + (
         " (a plain number; or with a unit, e.g. 1.2kHz)"
         if hint and unit == "Hz" else "")
 

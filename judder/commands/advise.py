@@ -20,7 +20,6 @@ from ._preflight import check_advise_grid
 from ._records import rows_to_csv
 from ._values import FREQ_RANGE_HZ, PF_MAX, Listed, Quantity, option_value
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "(a) The safe (frequency, amplitude) windows inside the valve's "

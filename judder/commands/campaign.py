@@ -15,7 +15,6 @@ from ._output import Progress, emit
 from ._preflight import check_campaign, check_campaign_disk, check_work
 from ._values import DURATION, FREQ, PF, SEED, Grid, Listed, Quantity
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Emulate a bench campaign (section 3): one engagement per dither "

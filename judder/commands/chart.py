@@ -18,7 +18,6 @@ from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import MIN_GROWTH, Quantity
 from .tongues import tongues
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Read engagement acquisitions (a campaign folder, or MF4, CSV, TDMS "

@@ -23,7 +23,6 @@ from ._records import finite_or_none, rows_to_csv
 from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, Settings,
                       check_amplitudes, parse_list)
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Verdict of each dither setting (judder if it grows faster than "

@@ -18,7 +18,6 @@ from ._preflight import check_crosscheck, check_work
 from ._records import rows_to_csv
 from ._values import DURATION, FREQ, PF, Grid
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Run the paper's driveline FMU (Eq. 1) on a grid, twice per point "

@@ -12,7 +12,6 @@ from ._common import resolve
 from ._model import parameters_of
 from ._output import emit
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Undamped natural frequencies (Eq. 14-15, Hz), clutch-damper "

@@ -27,7 +27,6 @@ from ._preflight import check_envelope
 from ._records import finite_or_none, rows_to_csv
 from ._values import FREQ, PF_MAX, SEED, Grid
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Exact tongue boundaries for every vertex of the parameter ranges "

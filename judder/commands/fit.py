@@ -25,7 +25,6 @@ from ._records import finite_or_none
 from ._values import (MIN_GROWTH, PF_MAX, SEED, Quantity, WholeNumber,
                       parse_list)
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Adjust hard-to-know parameters so the model's boundary of judder "

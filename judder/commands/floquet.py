@@ -15,7 +15,6 @@ from ._output import emit, make_parents, output_files, save_plot, written
 from ._preflight import check_floquet
 from ._values import FREQ, PF, parse_waveform
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Monodromy matrix over one dither period and its Floquet "

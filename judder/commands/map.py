@@ -20,7 +20,6 @@ from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_map, check_map_memory
 from ._values import FREQ, PF, Grid, parse_waveform
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Leading Floquet multiplier on a grid of dither frequency (Hz) x "

@@ -10,7 +10,6 @@ from ._common import resolve
 from ._model import parameters_of
 from ._output import emit, make_parents
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Show a parameter set with units, or save it (--save FILE.toml) to "

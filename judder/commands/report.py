@@ -55,7 +55,6 @@ from .simulate import simulate
 from .threshold import threshold
 from .tongues import tongues
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Run the studies of the paper for one driveline and write one "

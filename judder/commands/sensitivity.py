@@ -2,7 +2,7 @@
 
 from dataclasses import dataclass
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
@@ -14,9 +14,8 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_sensitivity, check_work
 from ._records import rows_to_csv
-from ._values import FREQ, PF_MAX, Grid, Listed, parse_list
+from ._values import FREQ, PF_MAX, Grid, Listed, Quantity
 from .tongues import tongue_record
-
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -29,7 +28,7 @@ AMPLITUDE = "pf_max"
 
 
 #: Multipliers of the nominal value in sensitivity without --factors.
-DEFAULT_FACTORS = "0.5,2"
+DEFAULT_FACTORS = (0.5, 2.0)
 
 
 def add_arguments(p):
@@ -39,8 +38,10 @@ def add_arguments(p):
                    help="comma-separated parameters, e.g. "
                         "k12,k24,J1,J2,J3,J4,mu_g,c12")
     p.add_argument("--factors", metavar="F1,F2",
+                   type=Listed("--factors", Quantity("--factors", "1", 0.0,
+                                                     low_open=True)),
                    help="multipliers of the nominal value (default 0.5,2)")
-    p.add_argument("--values", metavar="V1,V2",
+    p.add_argument("--values", metavar="V1,V2", type=Listed("--values"),
                    help="absolute values (SI) instead of --factors")
     p.add_argument("--freq", type=Grid("--freq", "Hz"),
                    default="10:220:200", metavar="START:STOP:N",
@@ -63,13 +64,11 @@ def run(args):
     p_max_bar = args.pf_max
     params, changes = parameters_of(args)
     if args.values is not None and args.factors is not None:
-        raise JudderError(f"--values {args.values} and --factors "
-                          f"{args.factors} given; allowed: one of them")
-    factors = parse_list(args.factors or DEFAULT_FACTORS, "--factors")
-    values = parse_list(args.values, "--values") if args.values else None
+        raise JudderError("--values and --factors given; allowed: one of "
+                          "them")
+    factors = args.factors or DEFAULT_FACTORS
+    values = args.values
     if values is None:
-        for factor in factors:
-            check_number("--factors", factor, "(factor)")
         values_now = params.replace(**changes)
         zero = [n for n in names if n in values_now.specs and
                 values_now[n] == 0]

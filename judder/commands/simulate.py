@@ -22,7 +22,6 @@ from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
 from ._values import DURATION, FREQ, FREQ_RANGE_HZ, PF, QuantityList
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Engagement of the EVEN clutch at 1000 rpm on the test-bench model "

@@ -16,7 +16,6 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Grid
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Largest real part of the eigenvalues without dither against mu_g "

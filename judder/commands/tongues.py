@@ -19,7 +19,6 @@ from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
 from ._values import FREQ, MIN_GROWTH, PF_MAX, Grid, parse_waveform
 
-
 #: The command's --help text.
 DESCRIPTION = (
     "Exact tongue boundaries by Hill's method (--solver hill: every "
