@@ -44,7 +44,8 @@ up to where the envelope last rises through :data:`LINEAR_SHARE` of the
 maximum (:func:`growth_phase`): the rise before the nonlinear limit (the
 friction curve's flattening) bends it. A run has judder when some
 component's linear rise lasts :data:`MIN_GROWTH_PERIODS` periods, grows at
-``min_growth`` or more (default :data:`MIN_GROWTH`, 1/s) over at least
+``min_growth`` or more (default
+:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`, 1/s) over at least
 one e-fold to the maximum (two if the rise is shorter than
 :data:`MIN_PHASE_S`: noise makes short rises), reaches
 :data:`NOISE_FLOOR_RPM` or more, and stays after its maximum (median
@@ -93,12 +94,11 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "engagement_window", "component_envelope", "nonperiodic_part",
-           "growth_phase", "LINEAR_SHARE", "MIN_GROWTH", "MIN_AMPLITUDE_RPM",
-           "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM", "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
+           "growth_phase", "LINEAR_SHARE", "MIN_AMPLITUDE_RPM",
+           "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
+           "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
            "SMOOTHING_S"]
 
-#: Smallest growth rate of the non-periodic part called judder, 1/s.
-MIN_GROWTH = DEFAULT_MIN_GROWTH_PER_S
 #: Share of its maximum up to which a growing component's rate is read
 #: (:func:`growth_phase`): the linear part of the rise.
 LINEAR_SHARE = 0.5
@@ -547,7 +547,7 @@ def _judder_phase(time, envelope, freq_hz, min_growth):
 
 
 def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
-                p_f_bar=None, min_growth=MIN_GROWTH,
+                p_f_bar=None, min_growth=DEFAULT_MIN_GROWTH_PER_S,
                 min_amplitude_rpm=MIN_AMPLITUDE_RPM):
     """Read one engagement run: window, dither, components, verdict.
 

@@ -160,7 +160,7 @@ def chart(sources, index=None, channels=None, group_by=None,
         speed where they vary).
     min_growth : float, optional
         Growth rate (1/s) from which a run counts as judder (default
-        :data:`pysim.run_analysis.MIN_GROWTH`).
+        :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
     min_amplitude_rpm : float, optional
     model : bool
         Also compute the model's tongue boundaries (``parameters`` and
@@ -171,12 +171,13 @@ def chart(sources, index=None, channels=None, group_by=None,
     ChartResult
     """
     from pysim.bench_data.charts import build_chart, gather_sources
-    from pysim.run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from pysim.run_analysis import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
     result = build_chart(
         gather_sources(sources, index), channels=channels,
         group_by=group_by,
-        min_growth=MIN_GROWTH if min_growth is None else min_growth,
+        min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth,
         min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None
                            else min_amplitude_rpm),
         workers=workers, callback=progress)

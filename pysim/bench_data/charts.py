@@ -23,10 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
+from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.parallel import parallel_map
 
-from ..run_analysis import MIN_AMPLITUDE_RPM, MIN_GROWTH, analyse_run
+from ..run_analysis import MIN_AMPLITUDE_RPM, analyse_run
 from .acquisition import ChannelSpec
 from .readers import read_acquisition
 
@@ -346,7 +347,7 @@ class Chart:
 
 
 def build_chart(sources, channels=None, group_by=None,
-                min_growth=MIN_GROWTH, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
+                min_growth=DEFAULT_MIN_GROWTH_PER_S, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
                 workers=None, callback=None):
     """Read every run and make the chart.
 
