@@ -135,11 +135,9 @@ def main(argv=None):
         args = parser.parse_args(join_negative_values(words))
         with signals_held():
             from threadpoolctl import threadpool_limits
-
             from infra.parallel import cluster
-
-            from .commands._output import check_outputs
             from .commands._model import check_plausible
+            from .commands._output import check_outputs
         check_outputs(args)
         check_plausible(args)
         # the kernels work on many tiny matrices: BLAS threads only contend
