@@ -184,9 +184,10 @@ def test_params_lists_the_allowed_range_of_every_parameter(capsys):
 
 # --json of every README command, against the recording made before the
 # command layer was restructured (issue 22): wall-clock times (``seconds``)
-# and the scratch folder's path left out, numbers to 1e-9 relative (the same
-# kernels in the same order). JUDDER_RECORD_JSON=1 records it again after a
-# deliberate change of an output (say why in the commit).
+# and the scratch folder's and the checkout's paths left out, numbers to
+# 1e-9 relative (the same kernels in the same order). JUDDER_RECORD_JSON=1
+# records it again after a deliberate change of an output (say why in the
+# commit).
 
 GOLDEN = ROOT / "tests" / "golden" / "readme_json.json"
 RECORD = os.environ.get("JUDDER_RECORD_JSON") == "1"
@@ -202,14 +203,16 @@ def _judder_commands():
 
 def _normalised(value, folder):
     """``value`` without wall-clock times, with the scratch folder as
-    ``<work>``."""
+    ``<work>`` and the checkout as ``<root>`` (the FMUs are built under
+    it)."""
     if isinstance(value, dict):
         return {k: _normalised(v, folder) for k, v in value.items()
                 if k not in TIMES}
     if isinstance(value, list):
         return [_normalised(v, folder) for v in value]
     if isinstance(value, str):
-        return value.replace(str(folder), "<work>")
+        return value.replace(str(folder), "<work>").replace(str(ROOT),
+                                                            "<root>")
     return value
 
 
