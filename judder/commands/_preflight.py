@@ -375,11 +375,12 @@ def check_map_memory(params, freq_hz, p_f_bar):
     return needed
 
 
-def check_advise_grid(text, low, high, margin_hz):
+def check_advise_grid(low, high, margin_hz):
     """Refuse an ``advise`` frequency range whose 0.5 Hz grid has more
     than :data:`judder.commands._values.MAX_GRID_VALUES` frequencies or would
     not fit in memory, naming ``--freq-range``; returns the number of
     frequencies."""
+    text = f"{low:g}:{high:g}"
     points = int(round(2 * (high - low + 2 * margin_hz))) + 1
     widest = (MAX_GRID_VALUES - 1) / 2 - 2 * margin_hz
     if points > MAX_GRID_VALUES:

@@ -219,6 +219,47 @@ class Settings:
                                             high))(text)
 
 
+class Interval:
+    """An argparse ``type=``: ``LOW:HIGH`` of an option, each a
+    :class:`Quantity` (``90Hz:120Hz``), with LOW < HIGH."""
+
+    def __init__(self, option, unit, low=-math.inf, high=math.inf):
+        self.option, self.unit = option, unit
+        self.value = Quantity(option, unit, low, high)
+
+    def __call__(self, text):
+        ends = text.split(":")
+        if len(ends) != 2:
+            raise argparse.ArgumentTypeError(
+                f"{self.option} {text!r} is not LOW:HIGH in {self.unit} "
+                "(e.g. 60:200, 90Hz:120Hz)")
+        low, high = (self.value(end.strip()) for end in ends)
+        if not low < high:
+            raise argparse.ArgumentTypeError(
+                f"{self.option} {text} is not allowed; allowed: LOW < HIGH")
+        return low, high
+
+
+class NameList(Listed):
+    """An argparse ``type=``: comma-separated names of an option, or
+    ``none`` for an empty list."""
+
+    def __init__(self, option):
+        super().__init__(option, str)
+
+    def __call__(self, text):
+        return [] if text.strip().lower() == "none" else \
+            super().__call__(text)
+
+
+class OrNone(Quantity):
+    """An argparse ``type=``: the word ``none``, or a :class:`Quantity`."""
+
+    def __call__(self, text):
+        return "none" if text.strip().lower() == "none" else \
+            super().__call__(text)
+
+
 #: The options every command reads alike, as argparse ``type=``.
 FREQ = Quantity("--freq", "Hz", *FREQ_RANGE_HZ)
 PF = Quantity("--pf", "bar", 0.0)

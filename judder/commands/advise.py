@@ -18,7 +18,7 @@ from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
 from ._records import rows_to_csv
-from ._values import FREQ_RANGE_HZ, PF_MAX, Listed, Quantity, option_value
+from ._values import FREQ_RANGE_HZ, PF_MAX, Interval, Listed, Quantity
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -35,7 +35,9 @@ OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 
 def add_arguments(p):
     """The options of ``judder advise``."""
-    p.add_argument("--freq-range", default="60:200", metavar="LOW:HIGH",
+    p.add_argument("--freq-range", type=Interval("--freq-range", "Hz",
+                                                 *FREQ_RANGE_HZ),
+                   default="60:200", metavar="LOW:HIGH",
                    help="dither operating frequencies, Hz (default "
                         "%(default)s, the paper's valve)")
     p.add_argument("--pf-max", type=PF_MAX, default=0.7, metavar="BAR",
@@ -84,17 +86,9 @@ def add_arguments(p):
 
 def run(args):
     """Safe dither windows, parameter ranking and design change."""
-    low_high = args.freq_range.split(":")
-    if len(low_high) != 2:
-        raise JudderError(f"--freq-range {args.freq_range!r} is not "
-                          "LOW:HIGH in Hz (e.g. 60:200, 90Hz:120Hz)")
-    low, high = (option_value(v.strip(), "--freq-range", "Hz",
-                              *FREQ_RANGE_HZ) for v in low_high)
-    if not low < high:
-        raise JudderError(f"--freq-range {args.freq_range} is not allowed; "
-                          "allowed: LOW < HIGH")
+    low, high = args.freq_range
     names, weights = args.params, args.weights
-    check_advise_grid(args.freq_range, low, high, args.margin_hz)
+    check_advise_grid(low, high, args.margin_hz)
     if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
             args.margin_bar >= args.pf_max:
         raise JudderError(f"--margin-bar {args.margin_bar:g} bar is not "

@@ -20,8 +20,8 @@ from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_settings, check_work
 from ._records import finite_or_none, rows_to_csv
-from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, Settings,
-                      check_amplitudes, parse_list)
+from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, NameList, Settings,
+                      check_amplitudes)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -55,7 +55,8 @@ def add_arguments(p):
     p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest boundary amplitude searched, bar (default "
                         "the larger of 1.5 and twice the largest setting)")
-    p.add_argument("--params", default=None, metavar="NAMES",
+    p.add_argument("--params", type=NameList("--params"), default=None,
+                   metavar="NAMES",
                    help="parameters whose effect on the margins is reported "
                         "(d margin / d ln value; default J2,J4,k12,k24,c12,"
                         "mu_g, for the 3-DOF model its inertias, stiffnesses, "
@@ -72,12 +73,7 @@ def add_arguments(p):
 
 def run(args):
     """Verdict, growth and margins of dither settings."""
-    if args.params is None:
-        names = None
-    elif args.params.strip().lower() == "none":
-        names = []
-    else:
-        names = parse_list(args.params, "--params", str)
+    names = args.params
     freqs, amplitudes = _settings(args, len(
         DEFAULT_CHECK_PARAMETERS if names is None else names))
     if args.pf_max is not None and not args.pf_max > max(amplitudes):

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files
 from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
@@ -20,7 +20,7 @@ from ._bench import bench_values
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
-from ._values import DURATION, FREQ, FREQ_RANGE_HZ, PF, QuantityList
+from ._values import DURATION, FREQ, FREQ_RANGE_HZ, PF, OrNone, QuantityList
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -54,6 +54,7 @@ def add_arguments(p):
                    help="simulated time, s (default: the model's "
                         "StopTime, 4 s for the bench)")
     p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
+                   type=OrNone("--compare", "Hz", *FREQ_RANGE_HZ),
                    help="also run a correct engagement: without dither, or "
                         "with dither at HZ; plotted side by side (Fig. 7)")
     p.add_argument("--bench", action="append", default=[],
@@ -82,10 +83,7 @@ def run(args):
     freqs = args.freq
     params, changes = parameters_of(args)
     bench = bench_values(args.bench)
-    compare = None if args.compare is None else (
-        "none" if args.compare == "none" else
-        check_number("--compare", _float_option(args.compare, "--compare"),
-                     "Hz"))
+    compare = args.compare
     make_parents(args.out, args.plot)
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
                       duration=args.duration,
@@ -273,12 +271,3 @@ class SimulationResult:
         from pysim.plots import run_figure
         return run_figure(self.runs, self.spectra(), title=title,
                           verdicts=[verdict_line(s) for s in self.summaries])
-
-
-def _float_option(text, option):
-    try:
-        return float(text)
-    except ValueError:
-        raise JudderError(f"{option} {text!r} is not a number; allowed: a "
-                          "frequency in Hz, or nothing for no dither") \
-            from None
