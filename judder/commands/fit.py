@@ -22,8 +22,7 @@ from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._records import finite_or_none
-from ._values import (MIN_GROWTH, PF_MAX, SEED, Quantity, WholeNumber,
-                      parse_list)
+from ._values import MIN_GROWTH, PF_MAX, SEED, Listed, Quantity, WholeNumber
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -52,7 +51,8 @@ def add_arguments(p):
     p.add_argument("--group", metavar="VALUE",
                    help="group of the chart to fit, when it has several "
                         "(e.g. 65-70)")
-    p.add_argument("--fit", default="c12,mu_g,k24", metavar="NAMES",
+    p.add_argument("--fit", type=Listed("--fit", str),
+                   default="c12,mu_g,k24", metavar="NAMES",
                    help="parameters to fit (default c12,mu_g,k24)")
     p.add_argument("--bounds", action="append", default=[],
                    metavar="NAME=LOW:HIGH",
@@ -211,12 +211,12 @@ def _bounds(items, params, names):
     return bounds
 
 
-def _fit_names(text, params):
-    names = parse_list(text, "--fit", str)
+def _fit_names(names, params):
+    """The ``--fit`` names, if they are distinct parameters of the set."""
     unknown = [n for n in names if n not in params.specs]
     if unknown or len(set(names)) != len(names):
-        raise JudderError(f"--fit {text!r} is not allowed; allowed: "
-                          "distinct parameter names of the "
+        raise JudderError(f"--fit {','.join(names)!r} is not allowed; "
+                          "allowed: distinct parameter names of the "
                           f"{params.model} model: {', '.join(params.specs)}")
     return names
 
