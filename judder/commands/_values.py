@@ -9,7 +9,10 @@ its unit makes plausible is refused with the likely slip
 (``--pf 30000``: Pa given for bar; ``--set p_m=10``: bar given for Pa).
 
 Grids (``START:STOP:N``), lists and dither waveforms are parsed here too.
-Nothing here knows a command.
+The argparse ``type=`` parsers (:class:`Quantity`, :class:`Grid`,
+:class:`Listed`, ...) parse each option once, with its unit; the API
+functions check their arguments with the same rule objects
+(:meth:`Quantity.check`). Nothing here knows a command.
 """
 
 import argparse

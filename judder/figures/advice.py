@@ -16,7 +16,7 @@ def advice_figure(advice, title=None):
 
     Parameters
     ----------
-    advice : judder.results.AdviceResult
+    advice : judder.commands.advise.AdviceResult
     """
     if advice.verification is None:
         fig, left = plt.subplots(figsize=(7, 5), layout="constrained")
