@@ -11,7 +11,8 @@ __all__ = ["check_figure", "VERDICT_MARKERS"]
 
 #: Marker and colour of each verdict word
 #: (:data:`stability.decisions.relevance.VERDICTS`): shape tells them
-#: apart without colour; the colours are dark enough to read on every kind's fill.
+#: apart without colour; the colours are dark enough to read on every
+#: kind's fill.
 VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
                    "SLOW GROWTH": ("s", "#404040"),
                    "STABLE": ("o", "#1b7837")}
