@@ -64,11 +64,9 @@ def option_value(text, option, unit, low=-math.inf, high=math.inf,
         Naming the option, the value and the allowed range.
     """
     value = parse_quantity(text, unit, option)
-    allowed = _allowed(unit, low, high, low_open)
-    if not math.isfinite(value) or value > high or (
-            value <= low if low_open else value < low):
+    if _outside(value, low, high, low_open).any():
         raise JudderError(f"{option} {text} is not allowed; allowed: "
-                          f"{allowed}")
+                          f"{_allowed(unit, low, high, low_open)}")
     if amplitude and unit == "bar" and not has_unit(text):
         check_amplitudes([value], option, f": write {text}Pa, or give the "
                                           "unit")
@@ -86,6 +84,14 @@ def check_amplitudes(values_bar, option, fix=""):
                 f"amplitude (a plain number is in bar); did you give Pa? "
                 f"{value:g} Pa = {value / PA_PER_BAR:g} bar{fix} (allowed: "
                 f"at most {MAX_PLAIN_PF_BAR:g} bar)")
+
+
+def _outside(values, low, high, low_open):
+    """Where ``values`` are not finite or not in the range, as a boolean
+    array."""
+    values = np.atleast_1d(np.asarray(values, dtype=float))
+    below = values <= low if low_open else values < low
+    return ~np.isfinite(values) | below | (values > high)
 
 
 def _allowed(unit, low, high, low_open, hint=True):
@@ -136,8 +142,7 @@ class Quantity:
         is finite and allowed, else a :class:`JudderError` naming
         ``name``: the same rule at the API as on the command line."""
         values = np.atleast_1d(np.asarray(value, dtype=float))
-        below = values <= self.low if self.low_open else values < self.low
-        bad = ~np.isfinite(values) | below | (values > self.high)
+        bad = _outside(values, self.low, self.high, self.low_open)
         if bad.any():
             allowed = _allowed(self.unit, self.low, self.high, self.low_open,
                                hint=False)

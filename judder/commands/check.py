@@ -119,7 +119,6 @@ def _settings(args, parameters):
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
     freqs, amplitudes = args.freq, args.pf
-    check_amplitudes(amplitudes, "--pf")
     # the time first (it says what to change); then, with the time limit
     # raised, the count (the pairs of 1e10 settings would not fit)
     check_settings(len(freqs) * len(amplitudes), parameters)

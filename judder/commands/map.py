@@ -68,7 +68,7 @@ def run(args):
     waveform = parse_waveform(args.dither_wave)
     # the exact boundaries are drawn on --plot and stored in --out
     exact = args.plot is not None or args.out is not None
-    _check_map_grid(params.replace(**changes), freqs, amplitudes,
+    check_map_grid(params.replace(**changes), freqs, amplitudes,
                     "--freq x --pf", args.method, exact)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "stability map") as progress:
@@ -92,7 +92,7 @@ def run(args):
     emit(args, {**result.as_dict(), **files}, text)
 
 
-def _check_map_grid(values, freqs, amplitudes, options, method, tongues):
+def check_map_grid(values, freqs, amplitudes, options, method, tongues):
     """Refuse a map grid above :data:`MAX_MAP_POINTS`, or beyond the
     memory or the time limit, before any work."""
     if len(freqs) * len(amplitudes) > MAX_MAP_POINTS:

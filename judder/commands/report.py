@@ -48,7 +48,7 @@ from .check import check, growth_words, margin_words
 from .eig import eig
 from .fit import fit
 from .floquet import floquet
-from .map import _check_map_grid, stability_map
+from .map import check_map_grid, stability_map
 from .params import params
 from .sensitivity import sensitivity
 from .simulate import simulate
@@ -181,7 +181,7 @@ def run(args):
     if grid[0] <= 0 or map_freq[0] <= 0:
         raise JudderError("--grid, --map-freq: allowed: frequencies > 0 Hz")
     params, changes = parameters_of(args)
-    _check_map_grid(params.replace(**changes), map_freq, map_pf,
+    check_map_grid(params.replace(**changes), map_freq, map_pf,
                     "--map-freq x --map-pf", args.method, True)
     make_parents(args.out)
     with Progress(None, "report") as progress:
