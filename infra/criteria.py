@@ -4,7 +4,8 @@ time-domain verdict of a run (:mod:`pysim.run_analysis`), defined once
 below both so the maps, ``judder check`` and the bench charts agree.
 """
 
-__all__ = ["ENGAGEMENT_DURATION_S", "DEFAULT_MIN_GROWTH_PER_S"]
+__all__ = ["ENGAGEMENT_DURATION_S", "DEFAULT_MIN_GROWTH_PER_S",
+           "DEFAULT_JUDDER_LIMIT_RPM"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -12,3 +13,12 @@ ENGAGEMENT_DURATION_S = 1.0
 #: Smallest growth rate counted as judder, 1/s: one e-fold over
 #: :data:`ENGAGEMENT_DURATION_S`.
 DEFAULT_MIN_GROWTH_PER_S = 1.0 / ENGAGEMENT_DURATION_S
+
+#: NVH limit of an engagement, rpm: an oscillation of the upstream speed
+#: at the dither-related frequencies larger than this is judder, whatever
+#: its mechanism. 30 rpm at 100 Hz is an angular acceleration of about
+#: 2000 rad/s^2 of the clutch plates (an inertia torque of about 250 N m
+#: on the 4-DOF model's J4, half the clutch's mean torque), and 3 % of
+#: the 1000 rpm of the paper's bench: a vibration a driver feels and a
+#: bench engineer reads as judder in a peak-amplitude chart (Fig. 10).
+DEFAULT_JUDDER_LIMIT_RPM = 30.0

@@ -12,7 +12,7 @@ import numpy as np
 from infra.errors import JudderError
 
 __all__ = ["bench_fmu", "bench_damping", "added_damping",
-           "operating_friction", "linear_validity"]
+           "operating_friction", "linear_validity", "engagement_model"]
 
 
 def bench_fmu(values):
@@ -113,7 +113,8 @@ def operating_friction(values, fmu, bench):
                      values["mu0"], values["mu_g"], delta_mu,
                      bench_value("w_op"))
     return ({"mu0": point.mu, "mu_g": point.slope},
-            linear_range(point.slope, delta_mu))
+            linear_range(bench_value("w_motor") - bench_value("w_gearbox"),
+                         values["mu_g"], delta_mu, bench_value("w_op")))
 
 
 
@@ -131,3 +132,37 @@ def linear_validity(driveline, run, linear_slip):
     return {"forced_slip_amplitude_rad_s": forced,
             "friction_linear_range_rad_s": linear_slip,
             "linearisation_holds": bool(forced <= linear_slip)}
+
+
+def engagement_model(values, bench=None, fmu=None):
+    """The bench's engagement about its steady slip, for the periodic
+    orbit (:class:`stability.orbit.EngagementModel`): the driveline with
+    the damping the bench adds (:func:`added_damping`), the EVEN clutch's
+    friction curve (``mu0``, ``mu_g`` at ``w_op``, ``delta_mu``,
+    ``even.w_small``) and the slip ``w_motor - w_gearbox``, all read from
+    the bench model's FMU where ``bench`` does not set them.
+
+    Returns
+    -------
+    (EngagementModel, stability.model.Driveline)
+        The model and the bench's linearisation at its slip (the Floquet
+        view of the same bench, as ``simulate`` prints it).
+    """
+    from pysim.runs import parameter_default
+    from stability.orbit import EngagementModel
+    from stability.source import build_driveline
+    bench = dict(bench or {})
+    fmu = fmu or bench_fmu(values)[1]
+
+    def bench_value(name):
+        return float(bench.get(name, parameter_default(fmu, name)))
+    friction, _ = operating_friction(values, fmu, bench)
+    damped = values.replace(**{name: values[name] + added for name, added
+                               in added_damping(values, fmu,
+                                                bench).items()})
+    model = EngagementModel.from_driveline(
+        build_driveline(damped), delta_mu=bench_value("delta_mu"),
+        w_op=bench_value("w_op"),
+        slip=bench_value("w_motor") - bench_value("w_gearbox"),
+        w_small=float(parameter_default(fmu, "even.w_small")))
+    return model, build_driveline(damped.replace(**friction))

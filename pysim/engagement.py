@@ -11,16 +11,19 @@ frequency), and which kind it is.
 
 import numpy as np
 
+from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .run_analysis import analyse_run
 from .signals import amplitude_spectrum
 
-__all__ = ["engagement_summary", "verdict_line", "display_spectra"]
+__all__ = ["engagement_summary", "verdict_line", "judder_words",
+           "display_spectra"]
 
 
-def engagement_summary(run, start):
-    """Spectrum peaks and judder growth of one engagement after ``start``.
+def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
+                       judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM):
+    """Spectrum peaks and judder verdict of one engagement after ``start``.
 
     Parameters
     ----------
@@ -28,6 +31,10 @@ def engagement_summary(run, start):
         A run of a bench model (signals of :data:`drivelines.registry.SIGNALS`).
     start : float
         End of the pressure ramp, s: the analysis uses ``t >= start``.
+    min_growth : float
+        Growth rate from which an instability is judder, 1/s.
+    judder_limit_rpm : float
+        NVH limit of the dither-related oscillation, rpm.
 
     Returns
     -------
@@ -38,11 +45,13 @@ def engagement_summary(run, start):
         ``pressure_peak_freq_hz``, ``pressure_peak_amplitude_bar``;
         ``peak_at_dither_frequency``: the speed peak is within two
         frequency bins of the dither frequency;
-        ``judder``, ``judder_kind``, ``judder_growth_per_s``: the verdict,
-        its kind and the growth rate of the non-periodic part (1/s), as
-        :func:`pysim.run_analysis.analyse_run` reads them (None without
-        dither); ``dither_envelope_max_rpm``: the largest envelope at the
-        dither frequency; ``final_slip_rad_s``.
+        ``judder``, ``judder_kind``, ``judder_growth_per_s``,
+        ``mechanism``, ``judder_limit_rpm``, ``oscillation_rpm``,
+        ``forced_rpm``: the verdict, its kind, the growth rate of the
+        non-periodic part (1/s), why it judders and the oscillation
+        compared with the limit, as :func:`pysim.run_analysis.analyse_run`
+        reads them (None without dither); ``dither_envelope_max_rpm``: the
+        largest envelope at the dither frequency; ``final_slip_rad_s``.
     """
     keep = run.time >= start
     reading = None
@@ -51,7 +60,9 @@ def engagement_summary(run, start):
                               (run.time, run["actuation_pressure"]),
                               (run.time, run["w_downstream"]),
                               freq_hz=run.freq_hz,
-                              p_f_bar=run.p_f / PA_PER_BAR)
+                              p_f_bar=run.p_f / PA_PER_BAR,
+                              min_growth=min_growth,
+                              judder_limit_rpm=judder_limit_rpm)
         at_dither = next(c for c in reading.components
                          if c.name == "dither")
     speed = amplitude_spectrum(run.time[keep], run["w_upstream"][keep])
@@ -73,6 +84,11 @@ def engagement_summary(run, start):
             "judder_kind": None if reading is None else reading.kind,
             "judder_growth_per_s": None if reading is None
             else reading.growth_per_s,
+            "mechanism": None if reading is None else reading.mechanism,
+            "judder_limit_rpm": float(judder_limit_rpm),
+            "oscillation_rpm": None if reading is None
+            else reading.oscillation_rpm,
+            "forced_rpm": None if reading is None else reading.forced_rpm,
             "dither_envelope_max_rpm": None if reading is None
             else at_dither.amplitude_rpm,
             "final_slip_rad_s": float(run["slip"][-1])}
@@ -87,13 +103,8 @@ def verdict_line(summary):
     """
     if summary["judder"] is None:
         run = "no dither"
-    elif summary["judder"]:
-        growth = summary["judder_growth_per_s"]
-        run = (f"judder ({summary['judder_kind']}"
-               + (f", grows at {growth:.2f} 1/s)" if growth is not None
-                  else ", saturated)"))
     else:
-        run = "no judder"
+        run = judder_words(summary)
     exponent = summary.get("floquet_exponent_per_s")
     if exponent is None:
         return run
@@ -105,6 +116,28 @@ def verdict_line(summary):
                  f"the friction curve is linear over "
                  f"\u00b1{summary['friction_linear_range_rad_s']:.1f} rad/s")
     return line
+
+
+def judder_words(summary):
+    """The run's verdict in words, e.g. ``judder, forced: 276 rpm at the
+    dither frequency (limit 30 rpm)``, ``judder, parametric:
+    double-period, grows at 2.45 1/s; 41 rpm (limit 30 rpm)`` or ``no
+    judder: 12 rpm (limit 30 rpm)``."""
+    limit = f"(limit {summary['judder_limit_rpm']:.3g} rpm)"
+    amplitude = f"{summary['oscillation_rpm']:.3g} rpm"
+    if not summary["judder"]:
+        return f"no judder: {amplitude} {limit}"
+    mechanism = summary["mechanism"]
+    if mechanism == "forced":
+        return (f"judder, forced: {amplitude} at the dither frequency "
+                + limit)
+    growth = summary["judder_growth_per_s"]
+    instability = summary["judder_kind"] + (
+        f", grows at {growth:.2f} 1/s" if growth is not None else "")
+    if mechanism == "both":
+        instability += (f", over a forced {summary['forced_rpm']:.3g} rpm "
+                        "at the dither frequency")
+    return f"judder, {mechanism}: {instability}; {amplitude} {limit}"
 
 
 def display_spectra(run, start):

@@ -88,15 +88,17 @@ import scipy.signal
 from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
-from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
-           "engagement_window", "component_envelope", "nonperiodic_part",
+           "engagement_window", "component_envelope", "component_phasor",
+           "single_period_growth", "nonperiodic_part",
            "growth_phase", "LINEAR_SHARE", "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
            "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
+           "LONG_LAG_S", "SINGLE_PERIOD_BAND_HZ",
            "SMOOTHING_S"]
 
 #: Share of its maximum up to which a growing component's rate is read
@@ -111,6 +113,14 @@ LATE_SHARE = 2.0 / 3.0
 #: Non-periodic part, relative to the component at ``f``, that marks a
 #: saturated instability.
 SATURATED_SHARE = 0.5
+#: Lag of the non-periodic part read at the dither frequency, s (a whole
+#: number of periods): long enough that a slow single-period judder shows
+#: above a pick-up's noise, short against the window.
+LONG_LAG_S = 0.1
+#: Demodulation band of a single-period judder at f, Hz: it has the
+#: dither's frequency exactly, while a combination response and the free
+#: modes near f lie at f1 or more (18.9 Hz) and a few Hz away.
+SINGLE_PERIOD_BAND_HZ = 5.0
 #: Shortest growth phase called judder, s (and in dither periods below).
 MIN_PHASE_S = 0.25
 #: Shortest growth phase called judder, in dither periods.
@@ -150,12 +160,17 @@ class Component:
     freq_hz : float
     amplitude_rpm : float
         Largest envelope in the window, rpm.
+    sustained_rpm : float
+        What the component keeps in the window, rpm: its largest
+        envelope if it stays after it, else its median over the window's
+        last third (a transient dies away).
     """
 
     name: str
     kind: str
     freq_hz: float
     amplitude_rpm: float
+    sustained_rpm: float
 
 
 @dataclass(frozen=True)
@@ -172,9 +187,13 @@ class RunAnalysis:
         True if the dither setting was estimated from the pressure.
     components : tuple of Component
     judder : bool
-        The verdict (module docstring).
+        The verdict (module docstring): the dither-related oscillation
+        exceeds ``judder_limit_rpm`` or an instability grows at
+        ``min_growth`` or faster.
     kind : str
-        Kind of judder ('stable' without).
+        Kind of the parametric judder ('single-period', 'double-period',
+        'combination'), 'forced' for a forced one alone, 'stable'
+        without judder.
     growth_per_s : float or None
         Growth rate of the non-periodic part in its growth phase, 1/s
         (None when there is no growth phase of :data:`MIN_GROWTH_PERIODS`
@@ -186,6 +205,17 @@ class RunAnalysis:
         Largest envelope of the component at the dither frequency, or of
         the judder component if that is larger, rpm: what the chart
         contours (Fig. 10).
+    oscillation_rpm : float
+        The dither-related oscillation the verdict compares with the
+        limit: the largest sustained component (at ``f``, ``f/2`` or
+        another frequency), rpm.
+    forced_rpm : float
+        The part of the oscillation at ``f`` the dither forces, rpm
+        (without the single-period judder grown out of it).
+    mechanism : {'parametric', 'forced', 'both'} or None
+        Why the run judders (None without judder).
+    judder_limit_rpm : float
+        The NVH limit the oscillation was compared with, rpm.
     """
 
     window_s: tuple
@@ -199,6 +229,10 @@ class RunAnalysis:
     growth_phase_s: object
     nonperiodic_rpm: float
     amplitude_rpm: float
+    oscillation_rpm: float
+    forced_rpm: float
+    mechanism: object
+    judder_limit_rpm: float
 
     def as_dict(self):
         """JSON fields (Hz, bar, rpm, 1/s)."""
@@ -210,6 +244,10 @@ class RunAnalysis:
                 else list(self.growth_phase_s),
                 "nonperiodic_rpm": self.nonperiodic_rpm,
                 "amplitude_rpm": self.amplitude_rpm,
+                "oscillation_rpm": self.oscillation_rpm,
+                "forced_rpm": self.forced_rpm,
+                "mechanism": self.mechanism,
+                "judder_limit_rpm": self.judder_limit_rpm,
                 "components": [c.__dict__ for c in self.components]}
 
 
@@ -333,26 +371,73 @@ def _bandwidth(freq_hz):
     return np.minimum(_BANDWIDTH_SHARE * freq_hz, _MAX_BANDWIDTH_HZ)
 
 
-def component_envelope(time, values, freq_hz):
-    """Envelope of the component at ``freq_hz`` by complex demodulation.
+def component_phasor(time, values, freq_hz, bandwidth_hz=None):
+    """Complex amplitude of the component at ``freq_hz`` over time, by
+    complex demodulation: ``2 LP[y e^{-2 pi i f t}]`` (a Butterworth low
+    pass of :func:`_bandwidth`, forwards and backwards).
 
     Parameters
     ----------
     time, values : ndarray
         Uniform samples.
     freq_hz : float
+    bandwidth_hz : float, optional
+        Of the low pass (default :func:`_bandwidth`).
 
     Returns
     -------
-    ndarray
-        ``2 |LP[y e^{-2 pi i f t}]|``, in the unit of ``values``.
+    ndarray, complex
+        In the unit of ``values``.
     """
     fs = 1.0 / (time[1] - time[0])
-    sos = scipy.signal.butter(4, _bandwidth(freq_hz), fs=fs, output="sos")
+    sos = scipy.signal.butter(4, bandwidth_hz or _bandwidth(freq_hz), fs=fs,
+                              output="sos")
     base = values * np.exp(-2j * np.pi * freq_hz * time)
-    low = (scipy.signal.sosfiltfilt(sos, base.real)
-           + 1j * scipy.signal.sosfiltfilt(sos, base.imag))
-    return 2 * np.abs(low)
+    return 2 * (scipy.signal.sosfiltfilt(sos, base.real)
+                + 1j * scipy.signal.sosfiltfilt(sos, base.imag))
+
+
+def component_envelope(time, values, freq_hz, bandwidth_hz=None):
+    """Envelope ``|component_phasor|`` of the component at ``freq_hz``."""
+    return np.abs(component_phasor(time, values, freq_hz, bandwidth_hz))
+
+
+def single_period_growth(time, phasor):
+    """Growth rate of a single-period judder over a forced response.
+
+    A single-period Floquet response has the dither's frequency exactly
+    (a real multiplier), so the speed's phasor at ``f`` is
+    ``z(t) = P + A e^{g t}``: the forced response ``P`` and the growing
+    judder. ``g`` minimises the least-squares residual of that model
+    (``P``, ``A`` complex, linear for each ``g``); a forced response still
+    building up fits a negative ``g``.
+
+    Returns
+    -------
+    rate : float
+        ``g``, 1/s.
+    judder : ndarray, complex
+        ``A e^{g t}`` at ``time``.
+    """
+    tau = time - time[0]
+
+    def fitted(rate):
+        basis = np.column_stack([np.ones_like(tau), np.exp(rate * tau)])
+        coef, *_ = np.linalg.lstsq(basis.astype(complex), phasor,
+                                   rcond=None)
+        return coef, float(np.sum(np.abs(basis @ coef - phasor) ** 2))
+    span = max(tau[-1], 1e-9)
+    rates = np.linspace(-20.0 / span, 20.0 / span, 161)
+    errors = [fitted(r)[1] for r in rates]
+    best = int(np.argmin(errors))
+    found = minimize_scalar(lambda r: fitted(r)[1], bracket=(
+        rates[max(best - 1, 0)], rates[best],
+        rates[min(best + 1, len(rates) - 1)])) if 0 < best < len(rates) - 1 \
+        else None
+    rate = float(found.x) if found is not None and found.success \
+        else float(rates[best])
+    coef, _ = fitted(rate)
+    return rate, coef[1] * np.exp(rate * tau)
 
 
 def nonperiodic_part(angle, time, period):
@@ -404,7 +489,8 @@ def growth_phase(time, rms):
     rises through :data:`LINEAR_SHARE` of the maximum, before the
     nonlinear limit bends the rise (the friction curve's slope falls as
     the slip swings wider), when that part spans at least one e-fold;
-    else up to the maximum.
+    else over its first e-fold (a judder that saturates gradually bends
+    before it), or up to the maximum where it never grows by one.
 
     Returns
     -------
@@ -425,7 +511,12 @@ def growth_phase(time, rms):
     below = np.flatnonzero(rms[low:top + 1] < LINEAR_SHARE * rms[top])
     end = low + int(below[-1]) + 1 if below.size else top
     if end - low < 4 or rms[end] < np.e * rms[low]:
-        end = top
+        # less than an e-fold to the share: read the first e-fold (a
+        # saturating growth bends early), or up to the maximum
+        efold = np.flatnonzero(rms[low:top + 1] >= np.e * rms[low])
+        end = low + int(efold[0]) if efold.size else top
+        if end - low < 4:
+            end = top
     rate = float(np.polyfit(time[low:end + 1], np.log(rms[low:end + 1]),
                             1)[0])
     return (float(time[low]), float(time[end])), rate, float(time[top])
@@ -479,68 +570,164 @@ def _dominant(freq, spectrum, dither_hz, centre=None):
 
 
 def _growing_components(time, difference, freq_hz, min_growth,
-                        amplitude_of, min_amplitude_rpm):
+                        envelope_of, phasor_of, min_amplitude_rpm,
+                        long_difference):
     """Components of the non-periodic part that grow as judder does.
 
-    The difference ``y(t + T) - y(t)`` is demodulated at ``f``, ``f/2``
-    and the two largest other peaks of its spectrum over the last
+    The difference ``y(t + T) - y(t)`` is demodulated at ``f/2`` and the
+    two largest other peaks of its spectrum over the last
     :data:`LATE_SHARE` of the window, so that a growing component is not
-    hidden by a larger decaying one (the engagement transient).
+    hidden by a larger decaying one (the engagement transient). At ``f``
+    the difference over :data:`LONG_LAG_S` (a whole number of periods,
+    ``long_difference``: times, difference, lag) is demodulated instead:
+    a single-period judder grows by ``exp(g T) - 1`` per period (1.5 % at
+    1.5 1/s and 100 Hz), below a pick-up's noise, and by ``exp(g L) - 1``
+    over the lag ``L`` (16 % over 0.1 s), while the forced response still
+    cancels.
 
-    ``amplitude_of(fc)`` is the envelope of the speed itself at ``fc``,
-    which must reach ``min_amplitude_rpm`` (the difference of a
-    single-period judder is only ``lambda - 1`` times it).
+    ``envelope_of(fc)`` and ``phasor_of(fc)`` are the envelope and
+    phasor of the speed itself at ``fc`` (rpm, at ``time``); the largest
+    envelope must reach ``min_amplitude_rpm``. A single-period growth
+    found in the long difference is measured on the speed's phasor
+    (:func:`single_period_growth`), which a pick-up's noise disturbs far
+    less than a difference.
+
+    The band around ``f`` is also read as the others are (the
+    difference over one period, the wide band): a combination response
+    near ``f`` (at ``f2`` for tongue 6) grows there.
 
     Returns
     -------
-    list of (rate, (start, stop), largest envelope in rpm, frequency)
+    list of (rate, (start, stop), largest speed envelope in rpm,
+    frequency, kind name or None)
     """
     fs = 1.0 / (time[1] - time[0])
     late = time >= time[-1] - LATE_SHARE * (time[-1] - time[0])
     freq, spectrum = _difference_spectrum(difference[late], fs)
-    targets = [freq_hz, freq_hz / 2]
+    # (frequency, how it is read, the kind it names: None from the
+    # spectrum of the non-periodic part)
+    targets = [(freq_hz, "single", "dither"), (freq_hz, "near", None),
+               (freq_hz / 2, "period", "half")]
     for _ in range(2):
         other = _other_peak(freq, spectrum, freq_hz, freq[1])
         if other is None:
             break
-        targets.append(other)
+        targets.append((other, "period", None))
         spectrum = np.where(np.abs(freq - other) <= _bandwidth(other), 0.0,
                             spectrum)
     found = []
-    for fc in targets:
+    for fc, reading, hint in targets:
+        t, d, lag = (long_difference if reading == "single"
+                     else (time, difference, 1.0 / freq_hz))
         guard = 1.0 / float(_bandwidth(fc))
-        read = (time >= time[0] + guard) & (time <= time[-1] - guard)
+        read = (t >= t[0] + guard) & (t <= t[-1] - guard)
         if fc >= 0.45 * fs or np.count_nonzero(read) < 8:
             continue
-        envelope = (component_envelope(time, difference, fc)[read]
+        band = SINGLE_PERIOD_BAND_HZ if reading == "single" else None
+        envelope = (component_envelope(t, d, fc, band)[read]
                     * 2 * np.pi * fc * RPM_PER_RAD_S)
-        phase = _judder_phase(time[read], envelope, freq_hz, min_growth)
-        if phase is not None and amplitude_of(fc) >= min_amplitude_rpm:
-            found.append((*phase, float(envelope.max()), fc))
+        speed = envelope_of(fc)[:len(t)][read]
+        if reading == "single":
+            phase = _single_period_phase(t[read], envelope, freq_hz,
+                                         min_growth, speed,
+                                         phasor_of(fc)[:len(t)][read])
+        else:
+            phase = _judder_phase(t[read], envelope, freq_hz, min_growth,
+                                  component_hz=fc, speed_envelope=speed,
+                                  lag=lag)
+        if phase is not None and speed.max() >= min_amplitude_rpm:
+            found.append((*phase, float(speed.max()), fc, hint))
     return found
 
 
-def _judder_phase(time, envelope, freq_hz, min_growth):
+def _difference_gain(rate, component_hz, lag):
+    """How much larger the non-periodic part ``y(t + L) - y(t)`` of a
+    component at ``component_hz`` growing at ``rate`` is than the
+    component itself: ``|exp((rate + 2 pi i f_c) L) - 1|``. A single-period
+    component (``f_c = f``, ``L = T``) gives ``exp(rate T) - 1`` (0.015 at
+    1.5 1/s and 100 Hz), a double-period one about 2."""
+    return abs(np.exp((rate + 2j * np.pi * component_hz) * lag) - 1.0)
+
+
+def _single_period_phase(time, envelope, freq_hz, min_growth, speed,
+                         phasor):
+    """``(rate, (start, stop))`` of a single-period judder, or None.
+
+    Where the long difference's envelope rises (:func:`growth_phase`),
+    the rate is fitted to the speed's phasor from the window's start to
+    the end of that rise (:func:`single_period_growth`); it counts as
+    judder as :func:`_judder_phase` says, the e-folds and the floor being
+    those of the fitted judder itself.
+    """
+    phase = growth_phase(time, envelope)
+    if phase is None:
+        return None
+    (_, stop), _, peak = phase
+    rise = time <= stop
+    if np.count_nonzero(rise) < 8:
+        return None
+    rate, judder = single_period_growth(time[rise], phasor[rise])
+    size = np.abs(judder)
+    if not np.all(np.isfinite(size)) or size[0] <= 0:
+        return None
+    start = float(time[0])
+    efolds = np.log(size[-1] / size[0])
+    after = time >= peak
+    grown = np.median(speed[after])
+    stays = grown >= LINEAR_SHARE * speed[after].max() and \
+        grown >= np.e * size[0]
+    if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
+            and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
+            and size[-1] >= NOISE_FLOOR_RPM and rate >= min_growth \
+            and efolds >= 1.0 and stays:
+        return rate, (start, float(stop))
+    return None
+
+
+def _judder_phase(time, envelope, freq_hz, min_growth, component_hz=None,
+                  speed_envelope=None, lag=None):
     """``(rate, (start, stop))`` of a growth phase that counts as judder:
     its linear part (:func:`growth_phase`) :data:`MIN_GROWTH_PERIODS`
     periods long, at least ``min_growth`` over at least one e-fold to the
     maximum (and two, or a linear part of :data:`MIN_PHASE_S`: noise makes
-    short rises), up to at least :data:`NOISE_FLOOR_RPM` (pick-up noise),
-    and staying, after its maximum, above :data:`LINEAR_SHARE` of it in
-    the median (a beat of decaying modes dies away); else None."""
+    short rises), up to at least :data:`NOISE_FLOOR_RPM` of the speed
+    (pick-up noise), and staying, after its maximum, above
+    :data:`LINEAR_SHARE` of it in the median (a beat of decaying modes
+    dies away); else None.
+
+    ``envelope`` is that of the non-periodic part at ``component_hz``
+    over the lag ``lag`` (default ``T``; ``component_hz`` None: of the
+    whole non-periodic part, taken as it is); its speed equivalent is
+    ``envelope`` over :func:`_difference_gain`, so that a
+    single-period judder, whose non-periodic part is only ``exp(rate T) -
+    1`` times its amplitude, is held to the same floor as the others.
+    ``speed_envelope``, the speed's own component at the same times, tells
+    a judder that saturated (periodic again, its non-periodic part gone,
+    the speed's component grown and staying) from a beat that died."""
     phase = growth_phase(time, envelope)
     if phase is None:
         return None
     (start, stop), rate, peak = phase
+    gain = (1.0 if component_hz is None else max(_difference_gain(
+        rate, component_hz, lag or 1.0 / freq_hz), 1e-12))
     # e-folds at that rate up to the maximum (a rise that bent after half
     # its maximum still counts them); the linear part must be long
     efolds = rate * (peak - start)
     # judder stays once grown (it saturates); a beat of decaying free
     # modes rises from a null and dies away again
-    stays = np.median(envelope[time >= peak]) >= LINEAR_SHARE * envelope.max()
+    after = time >= peak
+    stays = np.median(envelope[after]) >= LINEAR_SHARE * envelope.max()
+    if not stays and speed_envelope is not None:
+        # a single-period judder that saturates becomes periodic with the
+        # dither, so its non-periodic part falls back: the speed's own
+        # component stays, having grown by an e-fold from the phase start
+        first = speed_envelope[np.searchsorted(time, start)]
+        grown = np.median(speed_envelope[after])
+        stays = grown >= np.e * first and \
+            grown >= LINEAR_SHARE * speed_envelope[after].max()
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
-            and envelope.max() >= NOISE_FLOOR_RPM \
+            and envelope.max() / gain >= NOISE_FLOOR_RPM \
             and rate >= min_growth and efolds >= 1.0 and stays:
         return rate, (start, stop)
     return None
@@ -548,7 +735,8 @@ def _judder_phase(time, envelope, freq_hz, min_growth):
 
 def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                 p_f_bar=None, min_growth=DEFAULT_MIN_GROWTH_PER_S,
-                min_amplitude_rpm=MIN_AMPLITUDE_RPM):
+                min_amplitude_rpm=MIN_AMPLITUDE_RPM,
+                judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM):
     """Read one engagement run: window, dither, components, verdict.
 
     Parameters
@@ -565,6 +753,9 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     min_growth : float
         1/s; see the module docstring.
     min_amplitude_rpm : float
+        Smallest growing component counted as an instability, rpm.
+    judder_limit_rpm : float
+        NVH limit of the dither-related oscillation, rpm.
 
     Returns
     -------
@@ -604,27 +795,41 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     freq, spectrum = _spectrum(y[inside], fs)
     targets = {"dither": freq_hz, "half": freq_hz / 2,
                "other": _other_peak(freq, spectrum, freq_hz, freq[1])}
+    envelopes = {fc: component_envelope(t, y, fc) for fc in targets.values()
+                 if fc is not None and fc < 0.45 * fs}
     components = tuple(
         Component(name=name, kind=_KIND_OF[name], freq_hz=float(fc),
-                  amplitude_rpm=float(component_envelope(t, y, fc)[
-                      inside].max()))
-        for name, fc in targets.items()
-        if fc is not None and fc < 0.45 * fs)
+                  amplitude_rpm=float(envelopes[fc][inside].max()),
+                  sustained_rpm=_sustained(t[inside], envelopes[fc][inside]))
+        for name, fc in targets.items() if fc in envelopes)
     t_all, difference = nonperiodic_part(angle, t, period)
     read = inside[:len(t_all)]
     t_r, difference = t_all[read], difference[read]
     rms = _speed_rms(difference, freq_hz, fs)
-    def amplitude_of(fc):
-        return float(component_envelope(t, y, fc)[inside].max())
-    growing = _growing_components(t_r, difference, freq_hz, min_growth,
-                                  amplitude_of, min_amplitude_rpm)
+
+    def envelope_of(fc):
+        """The speed's envelope at ``fc`` over the window (rpm)."""
+        return (envelopes[fc] if fc in envelopes
+                else component_envelope(t, y, fc))[inside]
+
+    def phasor_of(fc):
+        """The speed's phasor at ``fc`` over the window (rpm), in the
+        narrow band of a single-period judder."""
+        return component_phasor(t, y, fc, SINGLE_PERIOD_BAND_HZ)[inside]
+    lag = max(1, round(LONG_LAG_S * freq_hz)) * period
+    t_long, long_difference = nonperiodic_part(angle, t, lag)
+    inside_long = inside[:len(t_long)]
+    growing = _growing_components(
+        t_r, difference, freq_hz, min_growth, envelope_of, phasor_of,
+        min_amplitude_rpm, (t_long[inside_long],
+                            long_difference[inside_long], lag))
     whole = _judder_phase(t_r, rms, freq_hz, min_growth)
     if not growing and whole is not None and \
             max(c.amplitude_rpm for c in components) >= min_amplitude_rpm:
-        growing = [(*whole, float(rms.max()), None)]
-    growth = phase = during = centre = None
+        growing = [(*whole, float(rms.max()), None, None)]
+    growth = phase = during = centre = hint = None
     if growing:
-        growth, phase, _, centre = max(growing, key=lambda g: g[2])
+        growth, phase, _, centre, hint = max(growing, key=lambda g: g[2])
         during = (t_r >= phase[0]) & (t_r <= phase[1])
     else:
         by_kind = {c.kind: c for c in components}
@@ -632,18 +837,84 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
         last = t_r >= t_r[-1] - third
         late = float(rms[last].mean())
         early = float(rms[t_r <= t_r[0] + third].mean())
+        # saturated: it has not died away, it is not the beat of a forced
+        # resonance, and it is above the limit (a lightly damped free
+        # mode rings for seconds at a few rpm; an instability that
+        # stays below the limit must show its growth to count)
         if late >= SATURATED_SHARE * early and late >= max(
                 SATURATED_SHARE * by_kind["single-period"].amplitude_rpm,
-                min_amplitude_rpm):
+                min_amplitude_rpm, judder_limit_rpm):
             during = last
-    kind = ("stable" if during is None else _KIND_OF[_dominant(
+    # a component at f or f/2 is of its own kind; elsewhere the spectrum
+    # of the non-periodic part tells
+    unstable = ("stable" if during is None else _KIND_OF[hint or _dominant(
         *_difference_spectrum(difference[during], fs), freq_hz, centre)])
+    forced_rpm = _forced_level(t[inside], y[inside], freq_hz, unstable,
+                               phase, envelope_of(freq_hz))
+    mechanism, kind = _mechanism(components, unstable, forced_rpm,
+                                 judder_limit_rpm)
+    oscillation = max(c.sustained_rpm for c in components)
     lead = max((c for c in components
                 if c.kind in (kind, "single-period")),
                key=lambda c: c.amplitude_rpm)
     return RunAnalysis(window_s=window, freq_hz=float(freq_hz),
                        p_f_bar=float(p_f_bar), estimated=estimated,
-                       components=components, judder=kind != "stable",
+                       components=components, judder=mechanism is not None,
                        kind=kind, growth_per_s=growth, growth_phase_s=phase,
                        nonperiodic_rpm=float(rms.max()),
-                       amplitude_rpm=lead.amplitude_rpm)
+                       amplitude_rpm=lead.amplitude_rpm,
+                       oscillation_rpm=oscillation, forced_rpm=forced_rpm,
+                       mechanism=mechanism,
+                       judder_limit_rpm=float(judder_limit_rpm))
+
+
+def _sustained(time, envelope):
+    """What a component keeps in the window, rpm: its largest envelope if
+    it stays after it (median above :data:`LINEAR_SHARE` of it: a forced
+    response, a judder grown and saturated), else its median over the
+    last third of the window (a transient that dies away is not judder)."""
+    top = int(np.argmax(envelope))
+    if np.median(envelope[top:]) >= LINEAR_SHARE * envelope[top]:
+        return float(envelope[top])
+    return float(np.median(envelope[time >= time[-1] - (time[-1] - time[0])
+                                    / 3]))
+
+
+def _forced_level(time, speed, freq_hz, unstable, phase, dither_envelope):
+    """The oscillation at ``f`` that the dither forces, rpm.
+
+    Where no single-period instability grows, the Fourier amplitude of
+    the speed at exactly ``f`` over the window's last third (a Hann
+    window: its band of about ``4/T`` keeps out a combination response
+    at ``f2`` near ``f``); where one does, the envelope at ``f`` as the
+    growth begins (the rest is the judder grown out of it); a
+    single-period instability saturated before the window leaves no
+    forced level to read (0).
+    """
+    if unstable != "single-period":
+        late = time >= time[-1] - (time[-1] - time[0]) / 3
+        return float(_fourier_amplitude(time[late], speed[late], freq_hz))
+    if phase is None:
+        return 0.0
+    return float(dither_envelope[np.searchsorted(time, phase[0])])
+
+
+def _mechanism(components, unstable, forced_rpm, limit_rpm):
+    """``(mechanism, kind)`` of a run (module docstring, "The verdict").
+
+    Parametric: an instability grows (``unstable`` names its kind), or a
+    component at ``f/2`` or at another frequency exceeds ``limit_rpm``
+    (a sub-harmonic or combination oscillation the dither cannot force);
+    forced: the oscillation at ``f`` the dither forces exceeds
+    ``limit_rpm``. ``mechanism`` is None without judder; ``kind`` is the
+    parametric kind, ``'forced'``, or ``'stable'``.
+    """
+    if unstable == "stable":
+        beyond = [c for c in components if c.name != "dither"
+                  and c.sustained_rpm > limit_rpm]
+        if beyond:
+            unstable = max(beyond, key=lambda c: c.sustained_rpm).kind
+    forced = forced_rpm > limit_rpm
+    if unstable != "stable":
+        return ("both" if forced else "parametric"), unstable
+    return ("forced", "forced") if forced else (None, "stable")

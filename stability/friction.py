@@ -117,21 +117,40 @@ def curve_from_table(slip, mu, w_op):
 SLOPE_LOSS = 0.2
 
 
-def linear_range(mu_g, delta_mu, loss=SLOPE_LOSS):
-    """Slip offset from the operating slip over which the curve keeps its
-    slope to within ``loss``, rad/s: ``sech^2(mu_g x/delta_mu) = 1 - loss``.
+def linear_range(slip, mu_g, delta_mu, w_op, loss=SLOPE_LOSS):
+    """Slip offset from ``slip`` over which the curve keeps its slope there
+    to within ``loss`` (either way), rad/s.
 
-    A slip that swings wider samples a flatter curve: the engagement then
-    grows more slowly than the linearisation's Floquet exponent says.
+    With ``x = mu_g (|w| - w_op)/delta_mu`` the slope is ``mu_g
+    sech^2 x``; from ``x0`` at ``slip`` the offset is the smallest ``dx``
+    with ``sech^2(x0 +- dx) = (1 +- loss) sech^2 x0``, in slip units. At
+    the steep middle (``x0 = 0``) this is ``arctanh(sqrt(loss)) delta_mu
+    / mu_g``; on a flat tail the slope still changes by ``loss`` within
+    about ``loss delta_mu / (2 mu_g)``, however small it is there (the
+    tail of the curve is not linear over a wide range because its slope
+    is small).
+
+    A slip that swings wider samples another slope: the engagement then
+    need not follow the linearisation's Floquet exponent.
 
     Examples
     --------
-    >>> round(linear_range(0.022, 0.09), 2)
+    >>> round(linear_range(84.7, 0.022, 0.09, 84.7), 2)
     1.97
+    >>> round(linear_range(137.0, 0.017, 0.09, 84.7), 2)
+    0.48
     """
     if mu_g == 0:
         return float("inf")
-    return float(np.arctanh(np.sqrt(loss)) * delta_mu / abs(mu_g))
+    scale = delta_mu / abs(mu_g)
+    x0 = (abs(slip) - w_op) / scale
+    sech2 = 1.0 / np.cosh(x0) ** 2
+    # |x| where the slope has fallen, or risen (towards the middle), by
+    # the share ``loss``; a rise beyond the middle's slope never comes
+    targets = [(1 - loss) * sech2] + ([(1 + loss) * sech2]
+                                      if (1 + loss) * sech2 < 1 else [])
+    return float(min(abs(abs(x0) - np.arccosh(1.0 / np.sqrt(target)))
+                     for target in targets) * scale)
 
 
 def forced_slip_amplitude(driveline, freq_hz, p_f):

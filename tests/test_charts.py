@@ -118,9 +118,10 @@ def test_growing_unrelated_frequency_is_combination():
     assert reading.growth_per_s == pytest.approx(3.0, rel=0.15)
 
 
-def test_forced_resonance_with_beating_is_not_judder():
+def test_forced_resonance_with_beating_is_forced_judder():
     # a large forced response at 100 Hz beating against a free 103 Hz
-    # mode that decays (0.2 % damping): large, but not growing
+    # mode that decays (0.2 % damping): large, so judder as the bench
+    # reads it, but not growing, so forced and not parametric
     f = 100.0
     sigma = 0.002 * 2 * np.pi * 103
 
@@ -132,8 +133,59 @@ def test_forced_resonance_with_beating_is_not_judder():
                      * np.cos(2 * np.pi * 103 * t)
                      + 30 * np.exp(-3 * s) * np.cos(2 * np.pi * 16.5 * t))
     reading = analyse_run(*_engagement(speed, f), freq_hz=f, p_f_bar=0.3)
-    assert not reading.judder and reading.kind == "stable"
+    assert reading.judder and reading.mechanism == "forced"
+    assert reading.kind == "forced" and reading.growth_per_s is None
     assert reading.amplitude_rpm > 400
+    # the forced part is the 500 rpm at exactly f, not the 103 Hz beat
+    # (whose leak into the short window's last third is a few per cent)
+    assert reading.forced_rpm == pytest.approx(500, rel=0.1)
+    # below a limit above it, the same run is not judder
+    quiet = analyse_run(*_engagement(speed, f), freq_hz=f, p_f_bar=0.3,
+                        judder_limit_rpm=1000.0)
+    assert not quiet.judder and quiet.mechanism is None
+
+
+def _saturating(growth, top, forced=1.5, start_rpm=0.5, f=103.0):
+    """Speed fluctuation, rpm: a forced response of ``forced`` at f and a
+    single-period judder at f growing at ``growth`` from ``start_rpm`` and
+    saturating at ``top`` (envelope ``top tanh(start e^{g t}/top)``)."""
+    def speed(t):
+        s = np.clip(t - 0.15, 0.0, None)
+        envelope = top * np.tanh(start_rpm * np.exp(growth * s) / top)
+        return _after_ramp(t) * (forced * np.cos(2 * np.pi * f * t + 0.3)
+                                 + envelope * np.cos(2 * np.pi * f * t
+                                                     + 1.1))
+    return speed
+
+
+def _sampled(speed_rpm_of_t, freq_hz, p_f_bar=0.3, duration=3.0, rate=5e3):
+    """The engagement of :func:`_engagement` with the upstream speed
+    sampled uniformly at ``rate`` (a DAQ's speed channel) instead."""
+    _, pressure, downstream = _engagement(lambda t: 0 * t, freq_hz, p_f_bar,
+                                          duration)
+    t = np.arange(0, duration, 1 / rate)
+    return (t, (1000 + speed_rpm_of_t(t)) * RPM), pressure, downstream
+
+
+@pytest.mark.parametrize("growth,top", [(1.5, 12.0), (3.0, 40.0),
+                                        (6.0, 60.0)])
+@pytest.mark.parametrize("sampling", ["5 kHz", "41-tooth pick-up"])
+def test_saturating_single_period_judder_over_a_small_forced_response(
+        growth, top, sampling):
+    # a single-period judder growing out of a 1.5 rpm forced response and
+    # saturating: its non-periodic part is only exp(g T) - 1 (1.5-6 %) of
+    # it and falls back once it saturates; judder, parametric, at its rate
+    speed = _saturating(growth, top)
+    record = (_sampled(speed, 103.0) if sampling == "5 kHz"
+              else _engagement(speed, 103.0, 0.3, duration=3.0))
+    reading = analyse_run(*record, freq_hz=103.0, p_f_bar=0.3)
+    assert reading.judder and reading.mechanism == "parametric"
+    assert reading.kind == "single-period"
+    assert reading.growth_per_s == pytest.approx(growth, rel=0.3)
+    # the envelope it has reached by the window's end (0.1 s before the
+    # end of the record), over the forced response
+    reached = top * np.tanh(0.5 * np.exp(growth * (2.9 - 0.15)) / top)
+    assert reading.oscillation_rpm == pytest.approx(reached, rel=0.15)
 
 
 def test_dither_setting_is_estimated_from_the_pressure():
@@ -213,6 +265,7 @@ def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
     assert lowest in (0.2, 0.3)
     assert boundary.read_text().splitlines() == ["# written by judder",
                                                  "# min_growth_per_s: 1",
+                                                 "# judder_limit_rpm: 30",
                                                  "freq_hz,p_f_bar", "60,",
                                                  f"206,{lowest:g}"]
     assert plot.read_bytes()[:4] == b"\x89PNG"
@@ -329,7 +382,10 @@ def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
                         estimated=estimated, components=(), judder=judder,
                         kind="double-period" if judder else "stable",
                         growth_per_s=None, growth_phase_s=None,
-                        nonperiodic_rpm=0.0, amplitude_rpm=0.0))
+                        nonperiodic_rpm=0.0, amplitude_rpm=0.0,
+                        oscillation_rpm=0.0, forced_rpm=0.0,
+                        mechanism="parametric" if judder else None,
+                        judder_limit_rpm=30.0))
 
 
 def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():

@@ -41,11 +41,28 @@ def test_curve_has_mu0_and_mu_g_at_the_operating_slip_and_stays_bounded():
 
 
 def test_linear_range_is_where_the_slope_has_lost_a_fifth():
-    edge = linear_range(0.022, 0.09)
+    edge = linear_range(84.7, 0.022, 0.09, 84.7)
     assert curve_at(84.7 + edge, 0.09, 0.022, 0.09, 84.7).slope \
         == pytest.approx(0.8 * 0.022, rel=1e-12)
     # closed form: atanh(sqrt(0.2)) delta_mu / mu_g
     assert edge == pytest.approx(0.481212 * 0.09 / 0.022, rel=1e-6)
+
+
+@pytest.mark.parametrize("slip", [86.0, 90.0, 137.0])
+def test_linear_range_off_the_middle_is_where_the_slope_changed_a_fifth(
+        slip):
+    # off the middle the slope changes by a fifth within the range, one
+    # way or the other, and not before; on the flat tail of 1500 rpm
+    # (slope 1e-10) the range stays below a rad/s instead of 2.5e8
+    edge = linear_range(slip, 0.017, 0.09, 84.7)
+    here = curve_at(slip, 0.09, 0.017, 0.09, 84.7).slope
+    ends = [curve_at(slip + s * edge, 0.09, 0.017, 0.09, 84.7).slope / here
+            for s in (-1, 1)]
+    assert max(abs(r - 1) for r in ends) == pytest.approx(0.2, rel=1e-9)
+    inside = [curve_at(slip + s * 0.99 * edge, 0.09, 0.017, 0.09,
+                       84.7).slope / here for s in (-1, 1)]
+    assert max(abs(r - 1) for r in inside) < 0.2
+    assert edge < 3.0
 
 
 def test_curve_from_a_measured_table():

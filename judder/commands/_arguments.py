@@ -1,15 +1,17 @@
 """Option groups the commands share (model selection, waveform, workers,
-method, ``--force``, ``--min-growth``), with their help texts.
+method, ``--force``, ``--min-growth``, ``--limit``), with their help
+texts.
 
 Choices of models, presets and monodromy engines come from their
 registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 """
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
-from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
+                            ENGAGEMENT_DURATION_S)
 from stability.monodromy import DEFAULT_METHOD, METHODS
 
-from ._values import MIN_GROWTH, PF_MAX, WORKERS
+from ._values import LIMIT, MIN_GROWTH, PF_MAX, WORKERS
 
 MIN_GROWTH_HELP = (
     "judder-relevant growth rate, 1/s: an instability growing slower "
@@ -111,6 +113,17 @@ def min_growth_option(parser, extra=""):
     parser.add_argument("--min-growth", type=MIN_GROWTH,
                         default=DEFAULT_MIN_GROWTH_PER_S, metavar="1/S",
                         help=MIN_GROWTH_HELP + extra)
+
+
+def limit_option(parser):
+    parser.add_argument("--limit", type=LIMIT,
+                        default=DEFAULT_JUDDER_LIMIT_RPM, metavar="RPM",
+                        help="NVH limit, rpm: an oscillation of the "
+                             "upstream speed at the dither frequency, its "
+                             "half or a combination frequency larger than "
+                             "this in the engagement window is judder, "
+                             "forced or parametric (default "
+                             f"{DEFAULT_JUDDER_LIMIT_RPM:g})")
 
 
 def force_option(parser):

@@ -274,6 +274,7 @@ PF = Quantity("--pf", "bar", 0.0)
 PF_MAX = Quantity("--pf-max", "bar", 0.0, low_open=True)
 DURATION = Quantity("--duration", "s", 0.0, MAX_DURATION_S, low_open=True)
 MIN_GROWTH = Quantity("--min-growth", "1/s", 0.0)
+LIMIT = Quantity("--limit", "rpm", 0.0, low_open=True)
 WORKERS = WholeNumber("--workers", 1, MAX_WORKERS)
 SEED = WholeNumber("--seed", 0, 2 ** 63 - 1)
 

@@ -7,12 +7,13 @@ import time
 
 import numpy as np
 
+from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, model_options,
-                         workers_option)
+from ._arguments import (force_option, limit_option, method_option,
+                         model_options, workers_option)
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import MIN_GROWTH, Quantity
@@ -24,12 +25,16 @@ DESCRIPTION = (
     "and MAT files), find in each run the engagement window, the dither "
     "setting (given, from the file's metadata, or estimated from the "
     "pressure), the amplitude and growth of the upstream speed at f, "
-    "f/2 and other peaks, and a judder verdict (the part not periodic "
-    "with the dither grows at >= --min-growth; see README). Draws the "
+    "f/2 and other peaks, and the judder verdict as a bench engineer "
+    "reads it: the dither-related oscillation exceeds --limit (rpm) or "
+    "an instability grows at >= --min-growth, with its mechanism: "
+    "forced (the dither drives a resonance), parametric (an instability: "
+    "growth, f/2 or a combination frequency) or both. Draws the "
     "amplitude contour per oil temperature or engine speed, and writes "
     "the experimental boundary for `judder fit --boundary`. Give "
     "--model, --preset, --param-file or --set to draw the model's "
-    "tongue boundaries over it.")
+    "tongue boundaries over it (with --bench-linearisation those of the "
+    "emulated bench: c1 + d_control).")
 OUTPUTS = (("out", "--out", ("npz",)),
            ("plot", "--plot", None),
            ("boundary", "--boundary", ("csv",)))
@@ -67,6 +72,13 @@ def add_arguments(p):
                    type=Quantity("--min-amplitude", "rpm", 0.0), default=None,
                    metavar="RPM", help="smallest judder amplitude, rpm "
                                        "(default 2)")
+    limit_option(p)
+    p.add_argument("--bench-linearisation", action="store_true",
+                   help="draw the tongues of the bench's linearisation "
+                        "(c1 + d_control: the motor's speed control damps "
+                        "body 1), the tongues a `judder campaign` chart "
+                        "shows (tongues 5, 6 at 86.4 and 119.4 Hz with "
+                        "the Appendix values, not 84 and 122)")
     p.add_argument("--out", metavar="FILE.npz",
                    help="per-run arrays and boundaries (NPZ)")
     p.add_argument("--boundary", metavar="FILE.csv",
@@ -91,7 +103,9 @@ def run(args):
                        group_by=args.group_by,
                        min_growth=args.min_growth,
                        min_amplitude_rpm=args.min_amplitude,
+                       judder_limit_rpm=args.limit,
                        model=overlay, parameters=params,
+                       bench_linearisation=args.bench_linearisation,
                        changes=changes, method=args.method,
                        workers=args.workers, progress=progress)
     files = write_outputs(args, result, figure={
@@ -108,7 +122,11 @@ def run(args):
                           zip(result.chart.group_by, group)) or "all runs"
         judder = sum(r.analysis.judder for r in runs)
         estimated = sum(r.analysis.estimated for r in runs)
+        mechanisms = ", ".join(
+            f"{n} {m}" for m in ("forced", "parametric", "both")
+            if (n := sum(r.analysis.mechanism == m for r in runs)))
         rows.append(f"{label}: {len(runs)} runs, {judder} with judder"
+                    + (f" ({mechanisms})" if mechanisms else "")
                     + (f" ({estimated} with the dither estimated from the "
                        "pressure)" if estimated else ""))
         for f, p, top in result.chart.boundary(group):
@@ -138,9 +156,10 @@ def _channels(items):
 
 
 def chart(sources, index=None, channels=None, group_by=None,
-          min_growth=None, min_amplitude_rpm=None, model=False,
+          min_growth=None, min_amplitude_rpm=None,
+          judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, model=False,
           parameters=None, changes=None, method=DEFAULT_METHOD,
-          workers=None, progress=None):
+          workers=None, progress=None, bench_linearisation=False):
     """``judder chart``: experimental stability charts from bench
     acquisitions (section 3.2, Fig. 10 and 11).
 
@@ -162,9 +181,14 @@ def chart(sources, index=None, channels=None, group_by=None,
         Growth rate (1/s) from which a run counts as judder (default
         :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
     min_amplitude_rpm : float, optional
+    judder_limit_rpm : float
+        NVH limit of the dither-related oscillation, rpm.
     model : bool
         Also compute the model's tongue boundaries (``parameters`` and
         ``changes``) over the chart's frequencies, drawn by ``figure()``.
+    bench_linearisation : bool
+        Those of the bench's linearisation (:func:`judder.bench.
+        bench_damping`), as a chart of ``judder campaign`` runs has them.
 
     Returns
     -------
@@ -180,12 +204,20 @@ def chart(sources, index=None, channels=None, group_by=None,
         min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth,
         min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None
                            else min_amplitude_rpm),
+        judder_limit_rpm=judder_limit_rpm,
         workers=workers, callback=progress)
     seconds = time.perf_counter() - started
     overlay = None
     if model and result.read:
         freqs = [r.analysis.freq_hz for r in result.read]
         top = max(r.analysis.p_f_bar for r in result.read)
+        if bench_linearisation:
+            from ..bench import bench_damping
+            from ._common import resolve
+            values = resolve(parameters, changes)
+            changes = {**dict(changes or {}), **{
+                name: values[name] + added for name, added in
+                bench_damping(values).items()}}
         overlay = tongues(np.linspace(min(freqs), max(freqs), 200),
                           max(1.5 * top, 0.1), parameters, changes,
                           method=method)
@@ -221,12 +253,15 @@ class ChartResult:
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s, "judder": a.judder,
-                "kind": a.kind})
+                "kind": a.kind, "mechanism": a.mechanism,
+                "oscillation_rpm": a.oscillation_rpm,
+                "forced_rpm": a.forced_rpm})
         boundaries = self._boundaries()
         single = next(iter(boundaries.values())) if len(boundaries) == 1 \
             else None
         return {"runs": runs, "group_by": list(chart.group_by),
                 "min_growth_per_s": chart.min_growth,
+                "judder_limit_rpm": chart.judder_limit_rpm,
                 "boundary": None if single is None else
                 [[f, p] for f, p, _ in single],
                 "boundaries": {g: [[f, p] for f, p, _ in b]
@@ -260,7 +295,8 @@ class ChartResult:
                   "boundary_tried_bar": np.array([r[3] for r in rows]),
                   "boundary_below_bar": np.array([r[4] for r in rows]),
                   "group_by": np.array(chart.group_by),
-                  "min_growth_per_s": np.array(chart.min_growth)}
+                  "min_growth_per_s": np.array(chart.min_growth),
+                  "judder_limit_rpm": np.array(chart.judder_limit_rpm)}
         save_npz(path, arrays)
 
     def save_boundary(self, path, force=False):

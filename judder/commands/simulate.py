@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files
 from infra.units import PA_PER_BAR
@@ -15,20 +16,24 @@ from stability.source import build_driveline
 
 from ..bench import (added_damping, bench_fmu, linear_validity,
                      operating_friction)
-from ._arguments import force_option, method_option, model_options
+from ._arguments import (force_option, limit_option, method_option,
+                         min_growth_option, model_options)
 from ._bench import bench_values
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
-from ._values import DURATION, FREQ, FREQ_RANGE_HZ, PF, OrNone, QuantityList
+from ._values import (DURATION, FREQ, FREQ_RANGE_HZ, LIMIT, MIN_GROWTH, PF,
+                      OrNone, QuantityList)
 
 #: The command's --help text.
 DESCRIPTION = (
     "Engagement of the EVEN clutch at 1000 rpm on the test-bench model "
     "(TestBenchEngagement FMU, built if needed), run with fmpy. Writes "
     "the time histories (SI units) and reports the spectrum peaks of "
-    "the upstream speed and of the pressure, the judder verdict, kind "
-    "and growth as judder chart reads them, and the Floquet verdict of "
+    "the upstream speed and of the pressure, the judder verdict as "
+    "judder chart reads it (the dither-related oscillation above --limit "
+    "or growing at --min-growth or faster) with its mechanism (forced, "
+    "parametric or both), and the Floquet verdict of "
     "the bench's linearisation (c1 + d_control, the friction curve's "
     "value and slope at the slip), and whether the dither's forced slip "
     "swing stays within the curve's linear range (else the run need not "
@@ -73,6 +78,8 @@ def add_arguments(p):
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
                    help="time histories and spectra")
+    limit_option(p)
+    min_growth_option(p)
     method_option(p)
     model_options(p)
     force_option(p)
@@ -88,7 +95,9 @@ def run(args):
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
                       duration=args.duration,
                       compare=compare, bench=bench, parameters=params,
-                      changes=changes, method=args.method)
+                      changes=changes, method=args.method,
+                      min_growth=args.min_growth,
+                      judder_limit_rpm=args.limit)
     files = write_outputs(
         args, result,
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
@@ -102,7 +111,7 @@ def run(args):
 
 
 def _engagement_line(s):
-    growth = s["judder_growth_per_s"]
+    from pysim.engagement import judder_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
             f"{s['p_f_bar']:g} bar; upstream speed peak "
             f"{s['speed_peak_amplitude_rpm']:.3g} rpm at "
@@ -110,10 +119,7 @@ def _engagement_line(s):
             + (" (the dither frequency)"
                if s["peak_at_dither_frequency"] else "")
             + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
-            + ("" if s["judder"] is None else
-               "; judder: " + (s["judder_kind"] if s["judder"] else "none")
-               + ("" if growth is None else
-                  f" (non-periodic part grows at {growth:+.2f} 1/s)"))
+            + ("" if s["judder"] is None else "; " + judder_words(s))
             + f"; Floquet at this point: {s['floquet_kind']} "
               f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
             + ("" if s.get("linearisation_holds") is not False else
@@ -125,7 +131,9 @@ def _engagement_line(s):
 
 
 def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
-             parameters=None, changes=None, method=DEFAULT_METHOD):
+             parameters=None, changes=None, method=DEFAULT_METHOD,
+             min_growth=DEFAULT_MIN_GROWTH_PER_S,
+             judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM):
     """``judder simulate``: an engagement on the driveline's bench model
     (Fig. 7, 8), run through its FMU, with the Floquet verdict of each
     dither setting for the bench's linearisation (the damping its motor
@@ -152,6 +160,11 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     bench : dict, optional
         Further parameters of the bench model (``w_motor``, ...), SI; not
         for a Modelica class (its parameters are ``changes``).
+    min_growth : float
+        Growth rate from which an instability is judder, 1/s.
+    judder_limit_rpm : float
+        NVH limit of the dither-related oscillation of the upstream
+        speed, rpm: larger is judder, forced or parametric.
 
     Returns
     -------
@@ -164,6 +177,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     from ..timedomain import class_fmu, run_values
     FREQ.check(freq_hz, "freq_hz")
     PF.check(p_f_bar, "p_f_bar")
+    MIN_GROWTH.check(min_growth, "min_growth")
+    LIMIT.check(judder_limit_rpm, "judder_limit_rpm")
     values = resolve(parameters, changes)
     bench = dict(bench or {})
     if values.source_kind.is_chain:
@@ -211,7 +226,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
                                 method=method)
         summaries.append({"label": label,
-                          **engagement_summary(run, ramp_end),
+                          **engagement_summary(run, ramp_end, min_growth,
+                                               judder_limit_rpm),
                           "floquet_kind": linear.kind,
                           "floquet_exponent_per_s": linear.growth_rate,
                           **linear_validity(driveline, run, linear_slip)})

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.parallel import parallel_map
 
@@ -173,7 +173,7 @@ def gather_sources(paths, index=None):
 
 
 def _analyse(job):
-    source, channels, min_growth, min_amplitude = job
+    source, channels, min_growth, min_amplitude, limit = job
     try:
         acquisition = read_acquisition(source.path, channels)
         settings = {**{_METADATA_KEYS[k]: v
@@ -197,7 +197,8 @@ def _analyse(job):
                                freq_hz=settings.get("freq_hz"),
                                p_f_bar=settings.get("p_f_bar"),
                                min_growth=min_growth,
-                               min_amplitude_rpm=min_amplitude)
+                               min_amplitude_rpm=min_amplitude,
+                               judder_limit_rpm=limit)
         return ChartRun(source.path, settings, analysis,
                         speed_kind=ch["upstream_speed"].kind)
     except JudderError as exc:
@@ -221,11 +222,14 @@ class Chart:
         Columns whose values make the groups (panels).
     min_growth : float
         1/s, the verdict's growth threshold.
+    judder_limit_rpm : float
+        rpm, the verdict's NVH limit of the dither-related oscillation.
     """
 
     runs: list
     group_by: tuple
     min_growth: float
+    judder_limit_rpm: float = DEFAULT_JUDDER_LIMIT_RPM
 
     @property
     def read(self):
@@ -321,6 +325,7 @@ class Chart:
         growth rate the verdict called judder from (``judder fit``
         compares with the model's boundary of that growth)."""
         lines = [f"# min_growth_per_s: {self.min_growth:g}",
+                 f"# judder_limit_rpm: {self.judder_limit_rpm:g}",
                  "freq_hz,p_f_bar"] + [
             f"{f:.9g}," + ("" if p is None else f"{p:.9g}")
             for f, p, _ in self.boundary(group)]
@@ -342,13 +347,19 @@ class Chart:
                                       for r in runs]),
             "judder": np.array([r.analysis.judder for r in runs]),
             "kind": np.array([r.analysis.kind for r in runs]),
+            "mechanism": np.array([r.analysis.mechanism or ""
+                                   for r in runs]),
+            "oscillation_rpm": np.array([r.analysis.oscillation_rpm
+                                         for r in runs]),
+            "forced_rpm": np.array([r.analysis.forced_rpm for r in runs]),
             "dither_estimated": np.array([r.analysis.estimated
                                           for r in runs])}
 
 
 def build_chart(sources, channels=None, group_by=None,
                 min_growth=DEFAULT_MIN_GROWTH_PER_S, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
-                workers=None, callback=None):
+                judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, workers=None,
+                callback=None):
     """Read every run and make the chart.
 
     Parameters
@@ -360,7 +371,7 @@ def build_chart(sources, channels=None, group_by=None,
     group_by : sequence of str, optional
         Group columns; default those of :data:`GROUP_COLUMNS` that take
         more than one value.
-    min_growth, min_amplitude_rpm : float
+    min_growth, min_amplitude_rpm, judder_limit_rpm : float
         The verdict's thresholds (:mod:`pysim.run_analysis`).
     workers : int, optional
     callback : callable, optional
@@ -375,7 +386,8 @@ def build_chart(sources, channels=None, group_by=None,
     if "upstream_speed" not in channels:
         raise JudderError("--channel upstream_speed=NAME is required (the "
                           "speed upstream of the clutch)")
-    jobs = [(s, channels, min_growth, min_amplitude_rpm) for s in sources]
+    jobs = [(s, channels, min_growth, min_amplitude_rpm, judder_limit_rpm)
+            for s in sources]
     runs = []
     # a failure names the file, not the job's Python repr
     for run in parallel_map(_analyse, jobs, workers,
@@ -391,4 +403,5 @@ def build_chart(sources, channels=None, group_by=None,
     if unknown:
         raise JudderError(f"--group-by {unknown[0]}: no run has that column; "
                           f"allowed: {', '.join(sorted(known)) or 'none'}")
-    return Chart(runs=runs, group_by=tuple(group_by), min_growth=min_growth)
+    return Chart(runs=runs, group_by=tuple(group_by), min_growth=min_growth,
+                 judder_limit_rpm=judder_limit_rpm)

@@ -19,6 +19,13 @@ _GROUP_TITLES = {"oil_temperature": "oil {} degC",
                  "engine_rpm": "{} rpm"}
 
 
+#: Marker and colour of a judder run by its mechanism
+#: (:attr:`pysim.run_analysis.RunAnalysis.mechanism`).
+_MECHANISM_MARKERS = {"parametric": ("^", "#d62728"),
+                      "forced": ("s", "#ff7f0e"),
+                      "both": ("D", "#9467bd")}
+
+
 def _group_title(columns, group):
     parts = []
     for column, value in zip(columns, group):
@@ -66,6 +73,7 @@ def plot_chart(chart, group, ax=None, levels=None):
     p = np.array([r.analysis.p_f_bar for r in runs])
     amplitude = np.array([max(r.analysis.amplitude_rpm, 1e-3) for r in runs])
     judder = np.array([r.analysis.judder for r in runs])
+    mechanism = np.array([r.analysis.mechanism or "" for r in runs])
     artists = []
     own = levels is None
     if own:
@@ -78,13 +86,16 @@ def plot_chart(chart, group, ax=None, levels=None):
                                  cmap="Greys", alpha=0.8)
         if own:
             bar = ax.figure.colorbar(contour, ax=ax, ticks=ticks,
-                                     label="amplitude of the judder "
-                                           "component [rpm]")
+                                     label="dither-related oscillation "
+                                           "[rpm]")
             bar.ax.set_yticklabels([f"{t:g}" for t in ticks])
         artists.append(contour)
-    artists.append(ax.scatter(f[judder], p[judder], marker="^",
-                              color="#d62728", zorder=3, clip_on=False,
-                              label="judder"))
+    for name, (marker, colour) in _MECHANISM_MARKERS.items():
+        these = judder & (mechanism == name)
+        if these.any():
+            artists.append(ax.scatter(f[these], p[these], marker=marker,
+                                      color=colour, zorder=3, clip_on=False,
+                                      label=f"judder, {name}"))
     artists.append(ax.scatter(f[~judder], p[~judder], marker="o",
                               facecolors="none", edgecolors="black",
                               zorder=3, clip_on=False, label="no judder"))
@@ -147,7 +158,7 @@ def chart_figure(chart, title=None):
     from matplotlib.colors import BoundaryNorm
     scale = ScalarMappable(norm=BoundaryNorm(levels, 256), cmap="Greys")
     bar = fig.colorbar(scale, ax=axes, ticks=ticks, shrink=0.9,
-                       label="amplitude of the judder component [rpm]")
+                       label="dither-related oscillation [rpm]")
     bar.ax.set_yscale("log")
     bar.ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
     bar.ax.minorticks_off()
@@ -156,8 +167,10 @@ def chart_figure(chart, title=None):
         for ax in panels.values():
             for handle, label in zip(*ax.get_legend_handles_labels()):
                 handles.setdefault(label, handle)
+        # a row holds as many entries as a panel's width has room for
         fig.legend(handles.values(), handles.keys(), loc="outside lower "
-                   "center", ncols=5, fontsize=8)
+                   "center", ncols=min(len(handles), 2 * columns + 1),
+                   fontsize=8)
     if title:
         fig.suptitle(title)
     return fig, panels

@@ -1,0 +1,591 @@
+r"""The periodic orbit of a dithered engagement, by harmonic balance.
+
+What the bench sees as judder is the motion the engagement settles into:
+the forced response of the driveline to the dither, made nonlinear by the
+bounded friction curve, and, where that motion is unstable, what grows
+out of it. This module computes that motion and its stability on the
+equations the bench FMU runs (``Judder.Examples.TestBenchEngagement``):
+the driveline of Eq. (1)-(2) about a steady slip :math:`w_s`, with the
+clutch torque of ``Judder.Components.CurveWetClutch``,
+
+.. math::
+   M\ddot x + C\dot x + K x = -e\,\bigl(\tau(w_s + e^T\dot x, t)
+   - \tau_s\bigr), \qquad
+   \tau(w, t) = N_c R_m S \tanh\frac{w}{w_\varepsilon}
+   \bigl(\mu(w)(m p_m + p_f\cos\omega t) + (1 - m)\mu_0 p_m\bigr),
+
+:math:`\mu(w) = \mu_0 + \Delta\mu\tanh(\mu_g(|w| - w_{op})/\Delta\mu)`
+(:mod:`stability.friction`), ``C`` the structural damping with the
+bench's speed control (``c1 + d_control``) and :math:`\tau_s` the torque
+of the steady slip, which the motor and the load balance. The mean slip
+is held at :math:`w_s` (the frozen-slip view of an engagement, whose slip
+changes slowly against the dither period): the mean torque the dither
+rectifies, which would drift the slip on the bench, is reported
+(:attr:`Orbit.drift_torque`), not balanced.
+
+Only the slip speed enters the nonlinearity, so the balance condenses to
+the harmonics of the slip-speed deviation :math:`u = e^T\dot x` (the
+alternating frequency-time method):
+
+.. math:: U_k + H(k\nu)\,F_k[\tau(w_s + u(t), t)] = 0, \qquad
+          H(\Omega) = i\Omega\, e^T (K - \Omega^2 M + i\Omega C)^{-1} e,
+
+for :math:`k = 1 \dots` with base frequency :math:`\nu = \omega`
+(T-periodic orbits) or :math:`\omega/2` (2T, the double-period judder
+that grows out of an orbit unstable through -1), solved by Newton's
+method with the exact Jacobian. The orbit's own Floquet multipliers come
+from the variational equation about it, whose slip damping is
+:math:`\partial\tau/\partial w` along the orbit (for a small orbit, the
+:math:`\mu_g N_c R_m S (m p_m + p_f\cos\omega t)` of Eq. 2-5: the
+stability layer's view), with the rigid-body directions removed as
+:mod:`stability.reduction` does. Its amplitude is the upstream speed's
+(body ``e`` > 0, the clutch's engine-side disc), what the bench records.
+
+A combination (quasi-periodic) judder is not a periodic orbit: where the
+T-orbit loses stability through a complex pair, the orbit is reported
+unstable and no settled amplitude is claimed.
+
+References: Eq. (1)-(9) of the paper; the harmonic-balance and
+pseudo-arclength continuation as in NLvib (Krack and Gross, *Harmonic
+Balance for Nonlinear Vibration Problems*, Springer 2019, ch. 2-4).
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+
+__all__ = ["EngagementModel", "Orbit", "OrbitBranch", "periodic_orbit",
+           "continue_orbit", "DEFAULT_HARMONICS"]
+
+#: Harmonics of the base frequency kept in the balance (T-orbits; twice
+#: as many for 2T orbits).
+DEFAULT_HARMONICS = 9
+#: Newton stops when the residual is below this share of the slip-speed
+#: amplitude scale (rad/s).
+_TOLERANCE = 1e-10
+_MAX_NEWTON = 40
+#: Sub-steps of one period in the monodromy (fourth-order Magnus).
+_MONODROMY_STEPS = 96
+
+
+@dataclass(frozen=True)
+class EngagementModel:
+    """The bench engagement about a steady slip, as the orbit needs it.
+
+    Attributes
+    ----------
+    mass, stiffness, damping : ndarray, shape (n, n)
+        ``M`` (kg m^2), ``K`` (N m/rad) and the structural damping ``C``
+        with the bench's additions (N m s/rad), without the clutch.
+    clutch : ndarray, shape (n,)
+        ``e``: ``e @ w`` is the slip speed.
+    upstream : int
+        Body whose speed the bench records (the clutch's engine side).
+    clutch_factor : float
+        ``N_c R_m S``, m^3.
+    mu0, mu_g, delta_mu, w_op : float
+        Friction curve (1, s/rad, 1, rad/s), :func:`stability.friction.
+        curve_at`.
+    slip : float
+        Steady slip ``w_s``, rad/s.
+    p_m : float
+        Mean pressure, Pa.
+    mean_pressure_damping : float
+        ``m``: share of the mean load that follows the curve.
+    w_small : float
+        Slip over which the friction torque changes sign, rad/s.
+    """
+
+    mass: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    clutch: np.ndarray
+    upstream: int
+    clutch_factor: float
+    mu0: float
+    mu_g: float
+    delta_mu: float
+    w_op: float
+    slip: float
+    p_m: float
+    mean_pressure_damping: float = 0.0
+    w_small: float = 0.01
+
+    @classmethod
+    def from_driveline(cls, driveline, delta_mu, w_op, slip=None,
+                       w_small=0.01):
+        """The engagement of a :class:`stability.model.Driveline` whose
+        ``mu0`` and ``mu_g`` are the curve's at ``w_op``, with its
+        structural damping as the linear part (the bench's additions
+        already in its parameters), at the slip ``slip`` (default
+        ``w_op``)."""
+        return cls(mass=driveline.mass_matrix(),
+                   stiffness=driveline.stiffness_matrix(),
+                   damping=driveline.structural_damping(),
+                   clutch=driveline.clutch_vector(),
+                   upstream=int(driveline.clutch[0]),
+                   clutch_factor=driveline.clutch_factor,
+                   mu0=driveline.mu0, mu_g=driveline.mu_g,
+                   delta_mu=delta_mu, w_op=w_op,
+                   slip=w_op if slip is None else float(slip),
+                   p_m=driveline.p_m,
+                   mean_pressure_damping=driveline.mean_pressure_damping,
+                   w_small=w_small)
+
+    def friction(self, w):
+        """``mu(w)`` and ``d mu/d w`` of the curve."""
+        x = self.mu_g * (np.abs(w) - self.w_op) / self.delta_mu
+        return (self.mu0 + self.delta_mu * np.tanh(x),
+                np.sign(w) * self.mu_g / np.cosh(x) ** 2)
+
+    def torque(self, w, t, omega, p_f):
+        """Clutch torque ``tau(w, t)`` (N m) and ``d tau/d w``
+        (N m s/rad)."""
+        mu, slope = self.friction(w)
+        m = self.mean_pressure_damping
+        load = m * self.p_m + p_f * np.cos(omega * t)
+        direction = np.tanh(w / self.w_small)
+        d_direction = (1.0 - direction ** 2) / self.w_small
+        inner = mu * load + (1.0 - m) * self.mu0 * self.p_m
+        return (self.clutch_factor * direction * inner,
+                self.clutch_factor * (d_direction * inner
+                                      + direction * slope * load))
+
+    def steady_torque(self):
+        """Clutch torque of the steady slip without dither, N m."""
+        return float(self.torque(np.array(self.slip), 0.0, 0.0, 0.0)[0])
+
+    def dynamic_inverse(self, omega_k):
+        """``(K - W^2 M + i W C)^-1 e`` for each ``W`` of ``omega_k``,
+        shape (len, n)."""
+        e = self.clutch.astype(complex)
+        return np.array([np.linalg.solve(
+            self.stiffness - w ** 2 * self.mass + 1j * w * self.damping, e)
+            for w in omega_k])
+
+
+@dataclass(frozen=True)
+class Orbit:
+    """A periodic orbit of the dithered engagement and its stability.
+
+    Attributes
+    ----------
+    freq_hz, p_f : float
+        Dither frequency (Hz) and amplitude (Pa).
+    period_multiple : int
+        1 for a T-periodic orbit, 2 for a 2T one (double period).
+    slip_harmonics : ndarray, complex, shape (h,)
+        ``U_k``, k = 1..h, of the slip-speed deviation at multiples of
+        ``freq_hz / period_multiple``, rad/s.
+    upstream_harmonics : ndarray, complex, shape (h,)
+        The same harmonics of the upstream speed (the bench's channel),
+        rad/s.
+    upstream_amplitude : float
+        Half the peak-to-peak swing of the upstream speed over the orbit,
+        rad/s.
+    dither_amplitude : float
+        ``|W_up|`` at the dither frequency, rad/s.
+    slip_range : (float, float)
+        Lowest and highest slip over the orbit, rad/s.
+    drift_torque : float
+        Mean clutch torque beyond the steady slip's, N m: what the dither
+        rectifies (positive: more torque to the gearbox side).
+    multipliers : ndarray, complex
+        Floquet multipliers of the orbit over its period (rigid-body
+        directions removed), largest modulus first.
+    growth_rate : float
+        ``ln|lambda_max| / period``, 1/s.
+    kind : str
+        How it loses stability: 'stable', 'single-period',
+        'double-period' or 'combination' (:mod:`stability.kinds`).
+    success : bool
+    message : str
+    residual : float
+        Final residual of the balance, rad/s.
+    """
+
+    freq_hz: float
+    p_f: float
+    period_multiple: int
+    slip_harmonics: np.ndarray
+    upstream_harmonics: np.ndarray
+    upstream_amplitude: float
+    dither_amplitude: float
+    slip_range: tuple
+    drift_torque: float
+    multipliers: np.ndarray
+    growth_rate: float
+    kind: str
+    success: bool
+    message: str
+    residual: float
+
+    @property
+    def stable(self):
+        """The orbit attracts: every multiplier inside the unit circle."""
+        return self.growth_rate < 0
+
+    @property
+    def subharmonic_share(self):
+        """Share of the upstream speed at the odd half-harmonics (0 for a
+        T-orbit)."""
+        if self.period_multiple == 1:
+            return 0.0
+        odd = np.abs(self.upstream_harmonics[0::2])
+        return float(np.sqrt((odd ** 2).sum()
+                             / max((np.abs(self.upstream_harmonics)
+                                    ** 2).sum(), 1e-300)))
+
+
+class _Balance:
+    """The condensed harmonic balance of one dither frequency."""
+
+    def __init__(self, model, freq_hz, harmonics, period_multiple):
+        self.model = model
+        self.omega = 2 * np.pi * freq_hz
+        self.base = self.omega / period_multiple
+        self.period_multiple = period_multiple
+        self.h = harmonics * period_multiple
+        k = np.arange(1, self.h + 1)
+        samples = max(8 * self.h, 64)
+        self.t = np.arange(samples) * (2 * np.pi / self.base) / samples
+        phase = np.outer(k, self.base * self.t)
+        self.cos, self.sin = np.cos(phase), np.sin(phase)
+        self.analysis = np.exp(-1j * phase) * 2.0 / samples
+        inverse = model.dynamic_inverse(k * self.base)
+        # H(k nu) for the slip speed and the upstream speed
+        self.slip_gain = 1j * k * self.base * (inverse @ model.clutch)
+        self.upstream_gain = 1j * k * self.base * inverse[:, model.upstream]
+        self.steady = model.steady_torque()
+
+    def slip(self, harmonics):
+        return harmonics.real @ self.cos - harmonics.imag @ self.sin
+
+    def residual(self, x, p_f):
+        """Residual (real, 2h), its Jacobian in ``x`` and in ``p_f``."""
+        U = x[:self.h] + 1j * x[self.h:]
+        w = self.model.slip + self.slip(U)
+        tau, dtau = self.model.torque(w, self.t, self.omega, p_f)
+        F = self.analysis @ tau
+        R = U + self.slip_gain * F
+        # d F_k / d (Re U_l, Im U_l)
+        dF = self.analysis @ (dtau[:, None] * np.hstack([self.cos.T,
+                                                         -self.sin.T]))
+        J = np.hstack([np.eye(self.h), 1j * np.eye(self.h)]) + \
+            self.slip_gain[:, None] * dF
+        mu, _ = self.model.friction(w)
+        dtau_dp = (self.model.clutch_factor
+                   * np.tanh(w / self.model.w_small) * mu
+                   * np.cos(self.omega * self.t))
+        Rp = self.slip_gain * (self.analysis @ dtau_dp)
+        return (np.concatenate([R.real, R.imag]),
+                np.vstack([J.real, J.imag]),
+                np.concatenate([Rp.real, Rp.imag]))
+
+    def newton(self, x, p_f):
+        scale = max(np.abs(x).max(), 1.0)
+        for _ in range(_MAX_NEWTON):
+            R, J, _ = self.residual(x, p_f)
+            norm = np.abs(R).max()
+            if norm < _TOLERANCE * scale:
+                return x, norm, True
+            try:
+                step = np.linalg.solve(J, -R)
+            except np.linalg.LinAlgError:
+                return x, norm, False
+            x = x + step
+            if not np.all(np.isfinite(x)):
+                return x, np.inf, False
+            scale = max(np.abs(x).max(), 1.0)
+        R = self.residual(x, p_f)[0]
+        norm = np.abs(R).max()
+        return x, norm, norm < _TOLERANCE * scale * 1e3
+
+    def orbit(self, x, p_f, success, residual, message=""):
+        model = self.model
+        U = x[:self.h] + 1j * x[self.h:]
+        w = model.slip + self.slip(U)
+        tau, _ = model.torque(w, self.t, self.omega, p_f)
+        F = self.analysis @ tau
+        upstream = -self.upstream_gain * F
+        speed = upstream.real @ self.cos - upstream.imag @ self.sin
+        at_dither = upstream[self.period_multiple - 1]
+        multipliers = self.multipliers(U, p_f)
+        period = 2 * np.pi / self.base
+        lead = multipliers[0] if len(multipliers) else 1.0
+        growth = float(np.log(max(abs(lead), 1e-300)) / period)
+        return Orbit(freq_hz=self.omega / (2 * np.pi), p_f=float(p_f),
+                     period_multiple=self.period_multiple,
+                     slip_harmonics=U, upstream_harmonics=upstream,
+                     upstream_amplitude=float(0.5 * np.ptp(speed)),
+                     dither_amplitude=float(abs(at_dither)),
+                     slip_range=(float(w.min()), float(w.max())),
+                     drift_torque=float(np.mean(tau) - self.steady),
+                     multipliers=multipliers, growth_rate=growth,
+                     kind=_kind(lead, growth), success=bool(success),
+                     message=message or ("converged" if success else
+                                         "the balance did not converge"),
+                     residual=float(residual))
+
+    def multipliers(self, U, p_f):
+        """Floquet multipliers of the variational equation about the
+        orbit over its period (fourth-order Magnus, rigid-body directions
+        removed)."""
+        model = self.model
+        n = len(model.clutch)
+        period = 2 * np.pi / self.base
+        steps = _MONODROMY_STEPS * self.period_multiple
+        h = period / steps
+        gauss = 0.5 + np.array([-1, 1]) * np.sqrt(3) / 6
+        times = (np.arange(steps)[:, None] + gauss[None, :]) * h
+        k = np.arange(1, self.h + 1)
+        phase = np.multiply.outer(times, k * self.base)
+        u = (np.cos(phase) @ U.real - np.sin(phase) @ U.imag)
+        _, slope = model.torque(model.slip + u, times, self.omega, p_f)
+        minv = np.linalg.inv(model.mass)
+        e = model.clutch
+        base = np.zeros((2 * n, 2 * n))
+        base[:n, n:] = np.eye(n)
+        base[n:, :n] = -minv @ model.stiffness
+        base[n:, n:] = -minv @ model.damping
+        coupling = np.zeros((2 * n, 2 * n))
+        coupling[n:, n:] = -minv @ np.outer(e, e)
+        A = base + slope[..., None, None] * coupling
+        A1, A2 = A[:, 0], A[:, 1]
+        magnus = 0.5 * h * (A1 + A2) + (np.sqrt(3) / 12) * h ** 2 * (
+            A2 @ A1 - A1 @ A2)
+        steps_exp = scipy.linalg.expm(magnus)
+        phi = np.eye(2 * n)
+        for step in steps_exp:
+            phi = step @ phi
+        rigid = _rigid_directions(model.stiffness, n)
+        if rigid.shape[1]:
+            q = scipy.linalg.null_space(rigid.T)
+            phi = q.T @ phi @ q
+        values = np.linalg.eigvals(phi)
+        return values[np.argsort(-np.abs(values))]
+
+
+def _rigid_directions(stiffness, n):
+    """Constant-angle directions ``(x, 0)`` with ``K x = 0``, shape
+    (2n, r)."""
+    null = scipy.linalg.null_space(stiffness, rcond=1e-10)
+    return np.vstack([null, np.zeros_like(null)])
+
+
+def _kind(lead, growth):
+    if growth < 0:
+        return "stable"
+    if abs(lead.imag) > 1e-6 * abs(lead):
+        return "combination"
+    return "single-period" if lead.real > 0 else "double-period"
+
+
+def periodic_orbit(model, freq_hz, p_f, harmonics=DEFAULT_HARMONICS,
+                   period_multiple=1, start=None):
+    """The periodic orbit of the dithered engagement at one setting.
+
+    Parameters
+    ----------
+    model : EngagementModel
+    freq_hz : float
+        Dither frequency, Hz.
+    p_f : float
+        Dither amplitude, Pa.
+    harmonics : int
+        Harmonics of the dither frequency kept.
+    period_multiple : {1, 2}
+        1: the T-periodic orbit (the forced response grown out of zero);
+        2: a 2T orbit, seeded from ``start``.
+    start : Orbit, optional
+        An orbit to start Newton's method from (its harmonics; a T-orbit
+        seeds a 2T one with its half-harmonics set by the leading
+        multiplier's direction, see :func:`double_period_orbit`).
+
+    Returns
+    -------
+    Orbit
+        ``success`` False when the balance did not converge.
+    """
+    balance = _Balance(model, freq_hz, harmonics, period_multiple)
+    x = np.zeros(2 * balance.h)
+    if start is not None:
+        x = _seed(balance, start)
+    x, residual, success = balance.newton(x, p_f)
+    if not success and start is None:
+        # from zero up in amplitude: continue from a small dither
+        branch = continue_orbit(model, freq_hz, [p_f * s for s in
+                                                 (0.25, 0.5, 0.75, 1.0)],
+                                harmonics=harmonics)
+        return branch.orbits[-1]
+    return balance.orbit(x, p_f, success, residual)
+
+
+def _seed(balance, orbit):
+    """Newton's start for ``balance`` from another orbit's harmonics."""
+    U = np.zeros(balance.h, dtype=complex)
+    if orbit.period_multiple == balance.period_multiple:
+        count = min(len(orbit.slip_harmonics), balance.h)
+        U[:count] = orbit.slip_harmonics[:count]
+    else:
+        # a T-orbit's harmonic k is the 2T orbit's 2k
+        even = orbit.slip_harmonics[:balance.h // 2]
+        U[1::2][:len(even)] = even
+    return np.concatenate([U.real, U.imag])
+
+
+def double_period_orbit(model, orbit, harmonics=DEFAULT_HARMONICS,
+                        amplitudes=(1.0, 4.0, 16.0)):
+    """The 2T orbit that grows out of a T-orbit unstable through -1.
+
+    Newton's method starts from the T-orbit with a half-harmonic of the
+    slip speed added (``amplitudes`` in rad/s, two phases); the first
+    solution with a half-harmonic share above 1 % is returned, else None.
+    """
+    balance = _Balance(model, orbit.freq_hz, harmonics, 2)
+    base = _seed(balance, orbit)
+    for amplitude in amplitudes:
+        for phase in (0.0, 0.5 * np.pi):
+            x = base.copy()
+            x[0] += amplitude * np.cos(phase)
+            x[balance.h] += amplitude * np.sin(phase)
+            x, residual, success = balance.newton(x, orbit.p_f)
+            if not success:
+                continue
+            found = balance.orbit(x, orbit.p_f, success, residual)
+            if found.subharmonic_share > 0.01:
+                return found
+    return None
+
+
+@dataclass(frozen=True)
+class OrbitBranch:
+    """Orbits of one dither frequency continued in ``p_f``.
+
+    Attributes
+    ----------
+    orbits : list of Orbit
+        Along the branch, in order (``p_f`` may turn back at a fold).
+    folds : list of int
+        Indices where ``p_f`` turns back (saddle-node points).
+    complete : bool
+        The branch reached the last amplitude asked for.
+    """
+
+    orbits: list
+    folds: list = field(default_factory=list)
+    complete: bool = True
+
+
+def continue_orbit(model, freq_hz, p_f_values, harmonics=DEFAULT_HARMONICS,
+                   start=None, max_steps=400):
+    """T-orbits of one frequency from the first to the last of
+    ``p_f_values`` by pseudo-arclength continuation, with an orbit at
+    each of them.
+
+    The branch is followed through folds (``p_f`` turning back, where two
+    orbits meet and the T-orbit jumps), so that stable and unstable parts
+    are both drawn; at each requested ``p_f`` the orbit of the branch's
+    first pass is kept.
+
+    Parameters
+    ----------
+    model : EngagementModel
+    freq_hz : float
+    p_f_values : sequence of float
+        Increasing amplitudes, Pa (the first may be 0).
+    start : Orbit, optional
+        Orbit at ``p_f_values[0]`` (default: solved from rest).
+
+    Returns
+    -------
+    OrbitBranch
+        ``orbits`` holds the branch at the requested amplitudes and at the
+        folds, in branch order.
+    """
+    balance = _Balance(model, freq_hz, harmonics, 1)
+    targets = [float(p) for p in p_f_values]
+    x = np.zeros(2 * balance.h) if start is None else _seed(balance, start)
+    x, residual, success = balance.newton(x, targets[0])
+    orbits = [balance.orbit(x, targets[0], success, residual)]
+    if not success:
+        return OrbitBranch(orbits, complete=False)
+    span = max(targets[-1] - targets[0], 1e-9)
+    scale = _amplitude_scale(balance, x, targets[-1])
+    y = np.concatenate([x / scale, [targets[0] / span]])
+    tangent = _tangent(balance, y, scale, span, None)
+    ds = 0.05
+    folds, next_target, steps = [], 1, 0
+    while next_target < len(targets) and steps < max_steps:
+        steps += 1
+        guess = y + ds * tangent
+        solved, ok = _corrector(balance, guess, y, tangent, ds, scale, span)
+        if not ok:
+            ds *= 0.5
+            if ds < 1e-6:
+                break
+            continue
+        new_tangent = _tangent(balance, solved, scale, span, tangent)
+        p_old, p_new = y[-1] * span, solved[-1] * span
+        # requested amplitudes crossed in this step, on the first pass
+        while next_target < len(targets) and \
+                min(p_old, p_new) <= targets[next_target] <= max(p_old,
+                                                                 p_new) \
+                and p_new > p_old:
+            target = targets[next_target]
+            share = (target - p_old) / (p_new - p_old)
+            xt = (y[:-1] + share * (solved[:-1] - y[:-1])) * scale
+            xt, residual, success = balance.newton(xt, target)
+            orbits.append(balance.orbit(xt, target, success, residual))
+            next_target += 1
+        if new_tangent[-1] * tangent[-1] < 0:
+            x_fold = solved[:-1] * scale
+            orbits.append(balance.orbit(x_fold, p_new, True, 0.0,
+                                        "fold: p_f turns back"))
+            folds.append(len(orbits) - 1)
+        y, tangent = solved, new_tangent
+        ds = min(ds * 1.5, 0.2)
+    return OrbitBranch(orbits, folds, complete=next_target >= len(targets))
+
+
+def _amplitude_scale(balance, x, p_f):
+    """Slip-speed scale of the harmonics, rad/s (the linear forced
+    response at ``p_f``, at least 1)."""
+    linear = abs(balance.slip_gain[balance.period_multiple - 1]) * \
+        balance.model.clutch_factor * balance.model.mu0 * p_f
+    return max(float(linear), np.abs(x).max(), 1.0)
+
+
+def _tangent(balance, y, scale, span, previous):
+    """Unit tangent of the branch at ``y`` (scaled harmonics and p_f),
+    oriented along ``previous`` (or towards higher ``p_f``)."""
+    _, J, Rp = balance.residual(y[:-1] * scale, y[-1] * span)
+    augmented = np.hstack([J * scale, (Rp * span)[:, None]])
+    tangent = scipy.linalg.null_space(augmented)[:, 0]
+    reference = previous if previous is not None else \
+        np.eye(len(y))[-1]
+    if tangent @ reference < 0:
+        tangent = -tangent
+    return tangent
+
+
+def _corrector(balance, guess, y, tangent, ds, scale, span):
+    """Newton's method on the balance plus the arclength condition."""
+    z = guess.copy()
+    for _ in range(_MAX_NEWTON):
+        R, J, Rp = balance.residual(z[:-1] * scale, z[-1] * span)
+        arc = tangent @ (z - y) - ds
+        if np.abs(R).max() < _TOLERANCE * scale and abs(arc) < 1e-12:
+            return z, True
+        full = np.vstack([np.hstack([J * scale, (Rp * span)[:, None]]),
+                          tangent[None, :]])
+        try:
+            step = np.linalg.solve(full, -np.concatenate([R, [arc]]))
+        except np.linalg.LinAlgError:
+            return z, False
+        z = z + step
+        if not np.all(np.isfinite(z)):
+            return z, False
+    R = balance.residual(z[:-1] * scale, z[-1] * span)[0]
+    return z, bool(np.abs(R).max() < 1e-7 * scale)
