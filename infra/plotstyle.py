@@ -16,7 +16,7 @@ from matplotlib.colors import ListedColormap
 __all__ = ["DARK_BLUE", "VERMILLION", "ORANGE", "BLUE", "KIND_COLORS",
            "SLOW_COLOR", "GROWTH_LINE", "KIND_LINESTYLES", "CONTINUOUS_CMAP",
            "FREQUENCY_LABEL", "AMPLITUDE_LABEL", "dither_axes",
-           "figure_title", "LABEL_GID", "settle_labels"]
+           "figure_title", "LABEL_GID", "settle_labels", "log_levels"]
 
 #: Dark blue of single-period judder and of "stable" marks.
 DARK_BLUE = "#1f4e99"
@@ -67,6 +67,17 @@ FREQUENCY_LABEL = "dither frequency $f$ [Hz]"
 
 #: Label of the dither-amplitude axis.
 AMPLITUDE_LABEL = "dither amplitude $p_f$ [bar]"
+
+
+def log_levels(low, high, count=12):
+    """Log-spaced contour levels from ``low`` to ``high`` (rpm) and the
+    round ticks (1, 3, 10, 30, ...) between them."""
+    low, high = max(low, 1e-3), max(high, 1.0001 * max(low, 1e-3))
+    levels = np.geomspace(low, high * 1.0001, count)
+    decades = np.arange(np.floor(np.log10(low)), np.ceil(np.log10(high)) + 1)
+    ticks = [m * 10 ** d for d in decades for m in (1, 3)
+             if low <= m * 10 ** d <= high]
+    return levels, ticks or [low, high]
 
 
 def dither_axes(ax, frequency=FREQUENCY_LABEL, amplitude=AMPLITUDE_LABEL):

@@ -22,53 +22,79 @@ own time base. :func:`analyse_run` does, in order:
 
 The verdict
 -----------
-Near a resonance the dither forces a large response at ``f`` (at 100 Hz,
-0.3 bar the 103 Hz mode, damped 0.2 %, swings by hundreds of rpm), the
-same frequency as single-period judder, so neither the amplitude nor the
-frequency tells them apart. What does is periodicity: the forced response
-repeats every dither period ``T``, the free response does not. So the
-verdict reads the **non-periodic part** (as :func:`pysim.signals.
-stroboscopic_growth` does for simulations),
+Judder is what the bench sees (Fig. 7b, Fig. 10): an oscillation of the
+upstream speed at the dither-related frequencies that is large or
+growing. A run has judder when, in the engagement window,
 
-.. math:: d(t) = y(t + T) - y(t), \qquad
-          r(t) = \sqrt{\overline{d^2}}\ \text{(mean over two periods)}:
+- the oscillation at ``f``, ``f/2`` or the other peak (each component's
+  largest envelope if it stays after it, else its level over the
+  window's last third: a transient that dies away does not count)
+  exceeds ``judder_limit_rpm`` (:data:`infra.criteria.
+  DEFAULT_JUDDER_LIMIT_RPM`, 30 rpm), or
+- an instability grows at ``min_growth`` or faster (default
+  :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`, 1/s).
 
-the forced response cancels, the engagement transient and the beating of
-a forced resonance decay, and a parametric instability grows as its
-Floquet multiplier says (a single-period one scaled by ``lambda - 1``, a
-double-period one by 2). ``d`` is demodulated at ``f``, ``f/2`` and its
-two largest other peaks, so that a small growing component is not hidden
-by a larger decaying one. In each envelope (and in ``r``) the growth rate
-is the least-squares log-slope from the lowest value before the maximum
-up to where the envelope last rises through :data:`LINEAR_SHARE` of the
-maximum (:func:`growth_phase`): the rise before the nonlinear limit (the
-friction curve's flattening) bends it. A run has judder when some
-component's linear rise lasts :data:`MIN_GROWTH_PERIODS` periods, grows at
-``min_growth`` or more (default
-:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`, 1/s) over at least
-one e-fold to the maximum (two if the rise is shorter than
-:data:`MIN_PHASE_S`: noise makes short rises), reaches
-:data:`NOISE_FLOOR_RPM` or more, and stays after its maximum (median
-above :data:`LINEAR_SHARE` of it: a beat of decaying free modes rising
-from a null dies away again), while the speed's own component there
-reaches ``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`). The
-largest growing component gives the growth rate, and the peak of the
-spectrum of ``d`` within its band over its growth phase the kind: within
-:data:`_KIND_BAND` of a multiple of ``f`` single-period, of an odd
-multiple of ``f/2`` double-period, elsewhere combination (a combination
-response at ``f2 = 103 Hz`` lies within the band of ``f = 119.4 Hz``).
+Its **mechanism** is a second statement. *Forced*: the part of the
+oscillation at ``f`` that the dither forces (periodic with it) exceeds
+the limit; near a natural frequency (tongues 1 and 2 lie on f1 and f2)
+the dither drives the mode directly, and the amplitude grows with p_f
+without a threshold. *Parametric*: an instability grows (the part that is
+not periodic with the dither grows, at ``f``, ``f/2`` or a combination
+frequency; the Floquet exponent), or a component at ``f/2`` or at another
+frequency, which the dither cannot force, exceeds the limit. *Both*
+where both hold (a single-period judder growing out of a forced
+resonance above the limit). ``kind`` names the parametric kind, or
+``'forced'``.
+
+What separates the two is periodicity: the forced response repeats every
+dither period ``T``, the free response does not. So growth is read on
+the **non-periodic part** (as :func:`pysim.signals.stroboscopic_growth`
+does for simulations),
+
+.. math:: d(t) = y(t + L) - y(t), \qquad
+          r(t) = \sqrt{\overline{d^2}}\ \text{(mean over two periods)},
+
+with the lag ``L = T`` for ``f/2`` and the other peaks, where ``d`` is
+about twice the component; the forced response cancels, the engagement
+transient and the beating of a forced resonance decay. A single-period
+judder grows by only ``exp(g T) - 1`` per period (1.5 % at 1.5 1/s and
+100 Hz, below a pick-up's noise), so at ``f`` the lag is
+:data:`LONG_LAG_S` (a whole number of periods), the band
+:data:`SINGLE_PERIOD_BAND_HZ`, and the rate is fitted to the speed's own
+phasor as a forced part plus a growing one (:func:`single_period_growth`).
+The band around ``f`` is also read with ``L = T`` and the wide band,
+where a combination response near ``f`` grows. In each envelope (and in
+``r``) the growth rate is the least-squares log-slope from the lowest
+value before the maximum up to where the envelope last rises through
+:data:`READ_SHARE` of the maximum, or over its first e-fold
+(:func:`growth_phase`): the rise before the nonlinear limit (the
+friction curve's flattening) bends it. A growth counts when its linear
+rise lasts :data:`MIN_GROWTH_PERIODS` periods, grows at ``min_growth``
+or more over at least one e-fold to the maximum (two if the rise is
+shorter than :data:`MIN_PHASE_S`: noise makes short rises), reaches
+:data:`NOISE_FLOOR_RPM` of the speed or more, and stays after its maximum
+(a beat of decaying free modes rising from a null dies away again; a
+single-period judder that saturates is periodic again, and the speed's
+own component stays), while the speed's own component there reaches
+``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`). The largest
+growing component gives the growth rate; its kind is that of its
+frequency (``f``: single-period, ``f/2``: double-period), or read from
+the spectrum of ``d`` within its band: within :data:`_KIND_BAND` of a
+multiple of ``f`` single-period, of an odd multiple of ``f/2``
+double-period, elsewhere combination.
 
 A strong instability saturates (the friction curve limits it) within a
-tenth of a second, before the window's first filter settling
-time has passed, and what follows creeps. Such a run also has judder when,
+tenth of a second, before the window's first filter settling time has
+passed, and what follows creeps. Such a run is parametric judder when,
 over the last third of the window, ``r`` keeps at least
 :data:`SATURATED_SHARE` of its mean over the first third (it has not died
-away) and of the component at ``f``: a stable run's free part has died out
-by then, or, beating against a lightly damped mode near ``f``, is only
-``2 sin(pi f_n/f)`` times a free amplitude smaller than the forced one
-(0.19 for 103 Hz against 100 Hz). The kind of a saturated judder, read
-from the spectrum of ``d``, is unreliable: the motion is no longer
-near-linear.
+away) and of the component at ``f``, and is above the limit: a stable
+run's free part has died out by then, or, beating against a lightly
+damped mode near ``f``, is only ``2 sin(pi f_n/f)`` times a free
+amplitude smaller than the forced one (0.19 for 103 Hz against 100 Hz),
+and a lightly damped free mode that rings for seconds at a few rpm
+is below the limit. The kind of a saturated judder, read from the
+spectrum of ``d``, is unreliable: the motion is no longer near-linear.
 
 Measured on emulated campaigns (``judder campaign``, the bench with its
 bounded friction curve) against the Floquet exponent of the bench's
@@ -95,15 +121,22 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "engagement_window", "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
-           "growth_phase", "LINEAR_SHARE", "MIN_AMPLITUDE_RPM",
+           "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
            "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
            "LONG_LAG_S", "SINGLE_PERIOD_BAND_HZ",
            "SMOOTHING_S"]
 
-#: Share of its maximum up to which a growing component's rate is read
-#: (:func:`growth_phase`): the linear part of the rise.
+#: Share of its maximum a judder keeps after it (a beat of decaying modes
+#: falls below it), and of its largest envelope a component keeps to be
+#: sustained.
 LINEAR_SHARE = 0.5
+#: Share of its maximum up to which a growing component's rate is read
+#: (:func:`growth_phase`): below it the rise is still near-linear, above
+#: it the friction curve's limit bends it (a curve of +-0.04 around mu0
+#: bends a judder from about a third of its saturated amplitude; below
+#: 0.4 a pick-up's noise on the shorter rise costs more than the bend).
+READ_SHARE = 0.4
 #: Smallest judder component of the speed, rpm.
 MIN_AMPLITUDE_RPM = 2.0
 #: Smallest growing non-periodic part, rpm: above the noise of a pick-up.
@@ -486,7 +519,7 @@ def growth_phase(time, rms):
 
     The rate is read while the component grows as the linearisation
     says: from the lowest value before the maximum up to where it last
-    rises through :data:`LINEAR_SHARE` of the maximum, before the
+    rises through :data:`READ_SHARE` of the maximum, before the
     nonlinear limit bends the rise (the friction curve's slope falls as
     the slip swings wider), when that part spans at least one e-fold;
     else over its first e-fold (a judder that saturates gradually bends
@@ -508,7 +541,7 @@ def growth_phase(time, rms):
     if top - low < 4 or rms[low] <= 0:
         return None
     # where it last rises through the share (noise makes early spikes)
-    below = np.flatnonzero(rms[low:top + 1] < LINEAR_SHARE * rms[top])
+    below = np.flatnonzero(rms[low:top + 1] < READ_SHARE * rms[top])
     end = low + int(below[-1]) + 1 if below.size else top
     if end - low < 4 or rms[end] < np.e * rms[low]:
         # less than an e-fold to the share: read the first e-fold (a

@@ -137,7 +137,7 @@ class EngagementModel:
         """``mu(w)`` and ``d mu/d w`` of the curve."""
         x = self.mu_g * (np.abs(w) - self.w_op) / self.delta_mu
         return (self.mu0 + self.delta_mu * np.tanh(x),
-                np.sign(w) * self.mu_g / np.cosh(x) ** 2)
+                np.sign(w) * self.mu_g * (1.0 - np.tanh(x) ** 2))
 
     def torque(self, w, t, omega, p_f):
         """Clutch torque ``tau(w, t)`` (N m) and ``d tau/d w``
@@ -355,9 +355,8 @@ class _Balance:
         A1, A2 = A[:, 0], A[:, 1]
         magnus = 0.5 * h * (A1 + A2) + (np.sqrt(3) / 12) * h ** 2 * (
             A2 @ A1 - A1 @ A2)
-        steps_exp = scipy.linalg.expm(magnus)
         phi = np.eye(2 * n)
-        for step in steps_exp:
+        for step in _batched_expm(magnus):
             phi = step @ phi
         rigid = _rigid_directions(model.stiffness, n)
         if rigid.shape[1]:
@@ -365,6 +364,25 @@ class _Balance:
             phi = q.T @ phi @ q
         values = np.linalg.eigvals(phi)
         return values[np.argsort(-np.abs(values))]
+
+
+def _batched_expm(matrices, order=12):
+    """``exp`` of each of ``matrices`` (shape (m, n, n)): scaling by a
+    power of 2 to a 1-norm of at most 1/2, Taylor series of ``order``
+    (truncation below 1e-13) and squaring, vectorised over the batch
+    (SciPy's ``expm`` treats a batch one matrix at a time)."""
+    norm = np.abs(matrices).sum(axis=1).max()
+    squarings = max(0, int(np.ceil(np.log2(max(norm, 1e-300) / 0.5))))
+    scaled = matrices / 2.0 ** squarings
+    result = np.broadcast_to(np.eye(matrices.shape[-1]),
+                             matrices.shape).copy()
+    term = result.copy()
+    for k in range(1, order + 1):
+        term = term @ scaled / k
+        result += term
+    for _ in range(squarings):
+        result = result @ result
+    return result
 
 
 def _rigid_directions(stiffness, n):

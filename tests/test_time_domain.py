@@ -167,8 +167,12 @@ def test_bench_jacobian_is_the_linear_model(rpm):
     bench = {"t_engage": -1.0, "t_ramp": 0.0, "w_motor": w_motor,
              "f_dither": f, "p_f": p_f}
     jacobians = _bench_jacobian({**params.as_dict(), **bench}, times)
-    point = curve_at(w_motor - 20.0, params["mu0"], params["mu_g"], 0.09,
-                     1000 * np.pi / 30 - 20.0)
+    from pysim.fmus import ensure_fmu
+    from pysim.runs import parameter_default
+    delta_mu = parameter_default(
+        ensure_fmu("Judder.Examples.TestBenchEngagement"), "delta_mu")
+    point = curve_at(w_motor - 20.0, params["mu0"], params["mu_g"],
+                     delta_mu, 1000 * np.pi / 30 - 20.0)
     linear = build_driveline(params.replace(
         c1=params["c1"] + D_CONTROL, mu0=point.mu, mu_g=point.slope))
     for t, jacobian in zip(times, jacobians):
@@ -211,7 +215,7 @@ def test_judder_grows_at_the_floquet_exponent(preset, freq_hz, p_f_bar):
     summary, swing = _engagement(preset, freq_hz, p_f_bar)
     assert summary["linearisation_holds"]
     assert summary["floquet_exponent_per_s"] > 0.75
-    assert summary["judder"]
+    assert summary["judder"] and summary["mechanism"] == "parametric"
     assert summary["judder_kind"] == summary["floquet_kind"]
     assert summary["judder_growth_per_s"] == pytest.approx(
         summary["floquet_exponent_per_s"], rel=0.3)
@@ -223,8 +227,26 @@ def test_stable_engagement_is_a_small_forced_response(preset, freq_hz,
                                                       p_f_bar):
     summary, swing = _engagement(preset, freq_hz, p_f_bar)
     assert summary["floquet_exponent_per_s"] < 0
-    assert not summary["judder"]
+    assert not summary["judder"] and summary["mechanism"] is None
+    assert summary["oscillation_rpm"] < summary["judder_limit_rpm"]
     assert swing < 100
+
+
+@pytest.mark.parametrize("freq_hz, p_f_bar", [(100.0, 0.5), (103.0, 0.1),
+                                               (103.0, 0.3), (104.0, 0.2),
+                                               (106.0, 0.5)])
+def test_tongue_2_is_judder_forced_by_the_dither(freq_hz, p_f_bar):
+    # on f2 the dither drives mode 2 directly: hundreds of rpm at the
+    # dither frequency, periodic with it (Fig. 7b): judder as the bench
+    # reads it, forced, as large as the periodic orbit of the same bench
+    from judder import api
+    summary, _ = _engagement("paper-4dof", freq_hz, p_f_bar)
+    assert summary["judder"] and summary["mechanism"] in ("forced", "both")
+    assert summary["oscillation_rpm"] > summary["judder_limit_rpm"]
+    orbit = api.orbit(freq_hz, p_f_bar, parameters=get_preset("paper-4dof"))
+    assert orbit.rows()[0]["mechanism"] in ("forced", "both")
+    assert summary["forced_rpm"] == pytest.approx(
+        orbit.rows()[0]["amplitude_at_dither_rpm"], rel=0.15)
 
 
 def test_inside_tongue_2_the_run_is_said_to_be_nonlinear():

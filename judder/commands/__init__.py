@@ -68,6 +68,8 @@ COMMANDS = {c.name: c for c in (
             "fit parameters to a measured boundary (section 4.2)"),
     Command("simulate", "simulate", "bench engagement with dither (Fig. 7, "
                                     "8), run through the FMU"),
+    Command("orbit", "orbit", "periodic orbit of a dithered engagement, "
+                              "its stability and the predicted chart"),
     Command("crosscheck", "crosscheck",
             "FMU growth rates against Floquet exponents"),
     Command("campaign", "campaign", "bench emulator: engagement "

@@ -9,7 +9,7 @@ artists; :func:`chart_figure` returns the figure. They draw what the
 import matplotlib.pyplot as plt
 import numpy as np
 
-from infra.plotstyle import dither_axes
+from infra.plotstyle import dither_axes, log_levels
 
 __all__ = ["plot_chart", "chart_figure"]
 
@@ -35,16 +35,6 @@ def _group_title(columns, group):
             pass
         parts.append(_GROUP_TITLES.get(column, column + " {}").format(value))
     return ", ".join(parts) or "all runs"
-
-
-def _amplitude_levels(low, high):
-    """Log-spaced contour levels of the amplitude, rpm, and round ticks."""
-    low, high = max(low, 1e-3), max(high, 1.0001 * max(low, 1e-3))
-    levels = np.geomspace(low, high * 1.0001, 12)
-    decades = np.arange(np.floor(np.log10(low)), np.ceil(np.log10(high)) + 1)
-    ticks = [m * 10 ** d for d in decades for m in (1, 3)
-             if low <= m * 10 ** d <= high]
-    return levels, ticks or [low, high]
 
 
 def plot_chart(chart, group, ax=None, levels=None):
@@ -77,7 +67,7 @@ def plot_chart(chart, group, ax=None, levels=None):
     artists = []
     own = levels is None
     if own:
-        levels, ticks = _amplitude_levels(amplitude.min(), amplitude.max())
+        levels, ticks = log_levels(amplitude.min(), amplitude.max())
     if len(np.unique(f)) >= 3 and len(np.unique(p)) >= 3:
         contour = ax.tricontourf(f, p, np.clip(amplitude, levels[0],
                                                levels[-1]),
@@ -141,7 +131,7 @@ def chart_figure(chart, title=None):
                              layout="constrained", squeeze=False,
                              sharex=True, sharey=True)
     amplitudes = [r.analysis.amplitude_rpm for r in chart.read] or [1.0]
-    levels, ticks = _amplitude_levels(min(amplitudes), max(amplitudes))
+    levels, ticks = log_levels(min(amplitudes), max(amplitudes))
     panels = {}
     for group, ax in zip(groups, axes.flat):
         plot_chart(chart, group, ax=ax, levels=levels)

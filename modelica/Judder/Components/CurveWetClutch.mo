@@ -1,7 +1,7 @@
 within Judder.Components;
 model CurveWetClutch "Wet clutch with a bounded friction curve mu(slip) whose value and slope at the operating slip are mu0 and mu_g (engagements)"
   extends Interfaces.PartialPressureClutch;
-  parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.09
+  parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.04
     "Half the rise of the friction curve: mu stays within mu0 +- delta_mu";
   parameter Units.AngularVelocity w_op(min=0)=84.71975511965977
     "Operating slip speed, where the curve has the value mu0 and the slope mu_g";

@@ -2,8 +2,9 @@ within Judder.Examples;
 model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clutch slipping steadily at 1000 rpm with a bounded friction curve, REV clutch as the load"
   extends PartialTestBench(redeclare Components.CurveWetClutch even(mu0=mu0, mu_g=mu_g,
     delta_mu=delta_mu, w_op=w_op, N_c=N_c, R_m=R_m, S=S,
-    mean_pressure_damping=mean_pressure_damping));
-  parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.09
+    mean_pressure_damping=mean_pressure_damping),
+    S_load=load_share*(N_c*S*p_m - c3*w_gearbox/(mu0*R_m))/(N_c_load*p_load));
+  parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.04
     "Half the rise of the EVEN friction curve (mu within mu0 +- delta_mu)";
   parameter Units.AngularVelocity w_op(min=0)=84.71975511965977
     "Slip at which the EVEN curve has the value mu0 and the slope mu_g (w_motor - w_gearbox at 1000 rpm)";
@@ -21,9 +22,11 @@ modified gearbox, the REV clutch, whose gear is fixed to the frame,
 slips against the housing (flat friction, mu0) and is the load on body
 3; its pressure ramps with the EVEN pressure to p_load, and its default
 piston area S_load makes its torque equal to the EVEN clutch's mean
-torque mu0 N_c R_m S p_m. The gearbox side then keeps its initial speed
-w_gearbox and the EVEN clutch slips steadily at w_motor - w_gearbox, the
-operating point of the stability model: the judder seen at the start of
+torque mu0 N_c R_m S p_m less the drag c3 w_gearbox of the gearbox side
+(2 N m, which would otherwise slow it by 2 rad/s in 4 s and move the
+slip along the curve's steep part). The gearbox side then keeps its
+initial speed w_gearbox and the EVEN clutch slips steadily at w_motor -
+w_gearbox, the operating point of the stability model: the judder seen at the start of
 an engagement (Fig. 7b), held long enough to measure its growth.</p>
 <p>Linearised about that operating point, the bench is the driveline of
 Eq. (6) with mu0 and mu_g the curve's value and slope at the slip, and

@@ -1,0 +1,169 @@
+"""The predicted judder chart: the periodic orbit over a dither grid.
+
+For each dither frequency the T-periodic orbit of the engagement
+(:mod:`stability.orbit`) is continued in ``p_f`` over the grid; where it
+loses stability through -1, the 2T orbit that grows out of it is
+computed. Each point then gets the verdict a bench engineer reads off an
+engagement (:mod:`pysim.run_analysis`) and its mechanism:
+
+* judder: the settled oscillation of the upstream speed at ``f`` or
+  ``f/2`` exceeds the NVH limit, or the T-orbit is unstable and grows at
+  ``min_growth`` or faster (the engagement leaves it that fast);
+* forced: the T-orbit's oscillation at ``f`` exceeds the limit (the
+  dither drives it: the forced response, made nonlinear by the friction
+  curve);
+* parametric: the T-orbit grows at ``min_growth`` or faster, or the 2T
+  orbit's oscillation at ``f/2`` exceeds the limit;
+* both, where both hold.
+
+Where the T-orbit loses stability through a complex pair (a combination
+tongue), the motion is quasi-periodic and no periodic orbit gives its
+amplitude: the point is marked (:attr:`OrbitChart.quasi_periodic`) and
+judged by the growth.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .orbit import DEFAULT_HARMONICS, continue_orbit, double_period_orbit
+
+__all__ = ["OrbitChart", "orbit_chart", "MECHANISMS"]
+
+#: Mechanism codes of :attr:`OrbitChart.mechanism`.
+MECHANISMS = ("none", "forced", "parametric", "both")
+
+
+@dataclass(frozen=True)
+class OrbitChart:
+    """Periodic orbits and verdicts over a dither grid.
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (nf,)
+    p_f : ndarray, shape (np,)
+        Dither amplitudes, Pa.
+    forced_amplitude : ndarray, shape (nf, np)
+        Upstream speed of the T-orbit at ``f``, rad/s (NaN where the
+        balance did not converge).
+    half_amplitude : ndarray, shape (nf, np)
+        Upstream speed of the 2T orbit at ``f/2``, rad/s (0 where there is
+        none).
+    settled_amplitude : ndarray, shape (nf, np)
+        The larger of the settled orbit's components at ``f`` and
+        ``f/2`` (the 2T orbit where one exists), rad/s.
+    growth_rate : ndarray, shape (nf, np)
+        Of the T-orbit, 1/s.
+    kind : ndarray of str, shape (nf, np)
+        How the T-orbit loses stability (:data:`stability.kinds.KINDS`).
+    quasi_periodic : ndarray of bool, shape (nf, np)
+        Unstable through a complex pair: no periodic orbit settles.
+    drift_torque : ndarray, shape (nf, np)
+        Mean torque the dither rectifies on the T-orbit, N m.
+    judder : ndarray of bool, shape (nf, np)
+    mechanism : ndarray of int8, shape (nf, np)
+        Index into :data:`MECHANISMS`.
+    limit : float
+        NVH limit, rad/s.
+    min_growth : float
+        1/s.
+    """
+
+    freq_hz: np.ndarray
+    p_f: np.ndarray
+    forced_amplitude: np.ndarray
+    half_amplitude: np.ndarray
+    settled_amplitude: np.ndarray
+    growth_rate: np.ndarray
+    kind: np.ndarray
+    quasi_periodic: np.ndarray
+    drift_torque: np.ndarray
+    judder: np.ndarray
+    mechanism: np.ndarray
+    limit: float
+    min_growth: float
+
+    def counts(self):
+        """Points per mechanism, ``{name: count}`` (``none``: no
+        judder)."""
+        return {name: int(np.count_nonzero(self.mechanism == code))
+                for code, name in enumerate(MECHANISMS)}
+
+    def onsets(self):
+        """Per frequency the lowest amplitude of the grid with judder, Pa
+        (NaN where none): the predicted experimental boundary."""
+        out = np.full(len(self.freq_hz), np.nan)
+        for i, row in enumerate(self.judder):
+            if row.any():
+                out[i] = self.p_f[np.argmax(row)]
+        return out
+
+
+def orbit_chart(model, freq_hz, p_f, limit, min_growth,
+                harmonics=DEFAULT_HARMONICS, callback=None):
+    """Periodic orbits and verdicts over a dither grid.
+
+    Parameters
+    ----------
+    model : stability.orbit.EngagementModel
+    freq_hz : array_like, shape (nf,)
+        Dither frequencies, Hz.
+    p_f : array_like, shape (np,)
+        Dither amplitudes, Pa, increasing.
+    limit : float
+        NVH limit of the upstream speed's oscillation, rad/s.
+    min_growth : float
+        Growth rate from which an instability is judder, 1/s.
+    callback : callable, optional
+        ``callback(done, total)`` after each frequency.
+
+    Returns
+    -------
+    OrbitChart
+    """
+    freq_hz = np.asarray(freq_hz, dtype=float)
+    p_f = np.asarray(p_f, dtype=float)
+    shape = (len(freq_hz), len(p_f))
+    forced = np.full(shape, np.nan)
+    half = np.zeros(shape)
+    settled = np.full(shape, np.nan)
+    growth = np.full(shape, np.nan)
+    kind = np.full(shape, "stable", dtype=object)
+    drift = np.full(shape, np.nan)
+    amplitudes = np.concatenate([[0.0], p_f]) if p_f[0] > 0 else p_f
+    offset = len(amplitudes) - len(p_f)
+    for i, f in enumerate(freq_hz):
+        branch = continue_orbit(model, f, amplitudes, harmonics=harmonics)
+        on_grid = [o for o in branch.orbits if "fold" not in o.message]
+        for j, orbit in enumerate(on_grid[offset:]):
+            if not orbit.success:
+                continue
+            forced[i, j] = orbit.dither_amplitude
+            settled[i, j] = orbit.dither_amplitude
+            growth[i, j] = orbit.growth_rate
+            kind[i, j] = orbit.kind
+            drift[i, j] = orbit.drift_torque
+            if orbit.kind == "double-period":
+                doubled = double_period_orbit(model, orbit,
+                                              harmonics=harmonics)
+                if doubled is not None:
+                    half[i, j] = abs(doubled.upstream_harmonics[0])
+                    settled[i, j] = max(half[i, j],
+                                        abs(doubled.upstream_harmonics[1]))
+        if callback is not None:
+            callback(i + 1, len(freq_hz))
+    quasi = kind == "combination"
+    is_forced = forced > limit
+    above = np.nan_to_num(settled) > limit
+    parametric = (growth >= min_growth) | (half > limit) | \
+        (above & ~is_forced)
+    judder = above | parametric
+    mechanism = np.where(parametric & is_forced, 3,
+                         np.where(parametric, 2,
+                                  np.where(is_forced, 1, 0))).astype(np.int8)
+    return OrbitChart(freq_hz=freq_hz, p_f=p_f, forced_amplitude=forced,
+                      half_amplitude=half, settled_amplitude=settled,
+                      growth_rate=growth, kind=kind.astype(str),
+                      quasi_periodic=quasi, drift_torque=drift,
+                      judder=judder, mechanism=mechanism,
+                      limit=float(limit), min_growth=float(min_growth))

@@ -1,0 +1,152 @@
+"""Plots of periodic orbits: amplitude against a parameter with stable
+and unstable branches (as NLvib draws them), and the predicted judder
+chart (:class:`stability.orbit_chart.OrbitChart`)."""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from infra.plotstyle import dither_axes, log_levels
+from infra.units import PA_PER_BAR, RPM_PER_RAD_S
+
+from ..orbit_chart import MECHANISMS
+
+__all__ = ["plot_orbit_curve", "orbit_curve_figure", "plot_orbit_chart",
+           "orbit_chart_figure"]
+
+#: Marker and colour of a judder point by mechanism (as the experimental
+#: chart draws its runs).
+_MECHANISM_STYLE = {"forced": ("s", "#ff7f0e"), "parametric": ("^", "#d62728"),
+                    "both": ("D", "#9467bd")}
+
+
+def plot_orbit_curve(x, amplitude, stable, ax=None, label=None,
+                     color="black"):
+    """One branch of an amplitude curve: solid where the orbit is stable,
+    dashed where it is not.
+
+    Parameters
+    ----------
+    x : ndarray, shape (k,)
+        Parameter along the branch (p_f in bar, or f in Hz).
+    amplitude : ndarray, shape (k,)
+        Amplitude, rpm (NaN: no orbit).
+    stable : ndarray of bool, shape (k,)
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    if ax is None:
+        _, ax = plt.subplots()
+    x, amplitude = np.asarray(x), np.asarray(amplitude)
+    stable = np.asarray(stable, dtype=bool)
+    bounds = [0, *(np.flatnonzero(np.diff(stable.astype(int))) + 1),
+              len(x)]
+    artists, labelled = [], set()
+    for start, stop in zip(bounds[:-1], bounds[1:]):
+        # each part runs on to the next point, so the branch has no gaps
+        stop = min(stop + 1, len(x))
+        if np.all(np.isnan(amplitude[start:stop])):
+            continue
+        word = "stable" if stable[start] else "unstable"
+        artists += ax.plot(x[start:stop], amplitude[start:stop],
+                           "-" if stable[start] else "--", color=color,
+                           label=None if word in labelled else
+                           (f"{label}, {word}" if label else word))
+        labelled.add(word)
+    return artists
+
+
+def orbit_curve_figure(curves, limit_rpm, xlabel, title=None, folds=()):
+    """Amplitude curves of periodic orbits (``curves``: list of ``(x,
+    amplitude rpm, stable, label, colour)``), the NVH limit and the folds
+    (``(x, amplitude)`` points)."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.6), layout="constrained")
+    for x, amplitude, stable, label, color in curves:
+        plot_orbit_curve(x, amplitude, stable, ax=ax, label=label,
+                         color=color)
+    ax.axhline(limit_rpm, color="#d62728", lw=1, ls=":",
+               label=f"NVH limit {limit_rpm:g} rpm")
+    if folds:
+        ax.plot(*zip(*folds), "o", mfc="none", color="black", ms=7,
+                label="fold (jump)")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("upstream speed oscillation [rpm]")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    if title:
+        ax.set_title(title, fontsize=10)
+    return fig
+
+
+def plot_orbit_chart(chart, ax=None, levels=None):
+    """The predicted chart: the settled oscillation (rpm, grey contour),
+    the judder points by mechanism and the predicted boundary.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    from matplotlib.colors import LogNorm
+    if ax is None:
+        _, ax = plt.subplots()
+    bar = chart.p_f / PA_PER_BAR
+    rpm = np.clip(np.nan_to_num(chart.settled_amplitude) * RPM_PER_RAD_S,
+                  1e-2, None)
+    if levels is None:
+        levels, _ = log_levels(max(rpm.min(), 0.1), max(rpm.max(), 1.0))
+    artists = [ax.contourf(chart.freq_hz, bar, np.clip(rpm.T, levels[0],
+                                                        levels[-1]),
+                           levels=levels, norm=LogNorm(levels[0],
+                                                       levels[-1]),
+                           cmap="Greys", alpha=0.8)]
+    limit = chart.limit * RPM_PER_RAD_S
+    if rpm.min() < limit < rpm.max():
+        artists.append(ax.contour(chart.freq_hz, bar, rpm.T, levels=[limit],
+                                  colors="#d62728", linewidths=1.0,
+                                  linestyles=":"))
+    f, p = np.meshgrid(chart.freq_hz, bar, indexing="ij")
+    for code, name in enumerate(MECHANISMS):
+        if name not in _MECHANISM_STYLE:
+            continue
+        marker, colour = _MECHANISM_STYLE[name]
+        these = chart.judder & (chart.mechanism == code)
+        if these.any():
+            artists.append(ax.scatter(f[these], p[these], marker=marker,
+                                      s=10, color=colour, zorder=3,
+                                      label=f"judder, {name}"))
+    onsets = chart.onsets() / PA_PER_BAR
+    artists += ax.plot(chart.freq_hz, onsets, color="#1f77b4", lw=1.5,
+                       label="predicted boundary")
+    dither_axes(ax, "dither frequency [Hz]")
+    return artists
+
+
+def orbit_chart_figure(chart, title=None, boundaries=None):
+    """The predicted chart with its colour bar, and the Floquet tongue
+    boundaries of the same bench (``boundaries``, a
+    :class:`stability.tongues.TongueBoundaries`) over it."""
+    from .boundaries import plot_boundaries
+    fig, ax = plt.subplots(figsize=(8.0, 5.2), layout="constrained")
+    rpm = np.clip(np.nan_to_num(chart.settled_amplitude) * RPM_PER_RAD_S,
+                  1e-2, None)
+    levels, ticks = log_levels(max(rpm.min(), 0.1), max(rpm.max(), 1.0))
+    artists = plot_orbit_chart(chart, ax=ax, levels=levels)
+    bar = fig.colorbar(artists[0], ax=ax, ticks=ticks,
+                       label="settled upstream speed oscillation [rpm]")
+    bar.ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
+    bar.ax.minorticks_off()
+    if boundaries is not None:
+        limits = ax.get_xlim(), ax.get_ylim()
+        plot_boundaries(boundaries, ax=ax, label="Floquet, |lambda| = 1")
+        ax.set_xlim(*limits[0])
+        ax.set_ylim(*limits[1])
+    from matplotlib.lines import Line2D
+    handles, labels = ax.get_legend_handles_labels()
+    handles.append(Line2D([], [], color="#d62728", lw=1.0, ls=":"))
+    labels.append(f"NVH limit, {chart.limit * RPM_PER_RAD_S:.3g} rpm")
+    ax.legend(handles, labels, fontsize=8, loc="upper right")
+    if title:
+        ax.set_title(title, fontsize=10)
+    return fig

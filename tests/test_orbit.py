@@ -1,0 +1,128 @@
+"""The periodic orbit of the dithered engagement (stability.orbit):
+against the closed-form forced response and the Floquet layer where the
+orbit is small, and against long engagements of the bench FMU (an
+independent integration of the same equations, compiled from Modelica)
+where it is not."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from drivelines import get_preset
+from infra.units import PA_PER_BAR, RPM_PER_RAD_S
+from stability import floquet
+from stability.friction import forced_slip_amplitude
+from stability.orbit import (continue_orbit, double_period_orbit,
+                             periodic_orbit)
+from stability.orbit_chart import orbit_chart
+
+BAR = PA_PER_BAR
+
+
+@pytest.fixture(scope="module")
+def bench():
+    """The bench engagement of the Appendix set and its linearisation."""
+    pytest.importorskip("fmpy")
+    from judder.bench import engagement_model
+    return engagement_model(get_preset("paper-4dof"))
+
+
+@pytest.mark.parametrize("freq_hz, p_f_bar", [(60.0, 0.01), (103.0, 0.001),
+                                              (206.0, 0.3), (86.0, 0.25)])
+def test_small_orbit_is_the_linear_forced_response_and_floquet(
+        bench, freq_hz, p_f_bar):
+    # where the slip stays on the curve's straight part, the orbit's slip
+    # swing is the forced response of Eq. 6 driven by column D of Eq. 9,
+    # and its multipliers are the stability layer's (Eq. 10-13)
+    model, linear = bench
+    orbit = periodic_orbit(model, freq_hz, p_f_bar * BAR)
+    assert orbit.success
+    assert abs(orbit.slip_harmonics[0]) == pytest.approx(
+        forced_slip_amplitude(linear, freq_hz, p_f_bar * BAR), rel=2e-3)
+    point = floquet(linear, freq_hz, p_f_bar * BAR)
+    assert orbit.kind == point.kind
+    assert orbit.growth_rate == pytest.approx(point.growth_rate, abs=2e-2,
+                                              rel=1e-2)
+
+
+def test_orbit_of_tongue_2_is_forced_and_proportional_to_the_dither(bench):
+    # at f2 the dither drives mode 2: the T-orbit grows in proportion to
+    # p_f from zero (no threshold) and stays stable: forced judder
+    model, _ = bench
+    branch = continue_orbit(model, 103.0, np.array([0.0, 0.1, 0.2, 0.4])
+                            * BAR)
+    rpm = np.array([o.dither_amplitude for o in branch.orbits[1:]]) \
+        * RPM_PER_RAD_S
+    assert branch.complete and not branch.folds
+    assert_allclose(rpm / rpm[0], [1, 2, 4], rtol=0.05)
+    assert all(o.stable for o in branch.orbits[1:])
+
+
+def test_period_doubling_gives_a_stable_2t_orbit(bench):
+    # tongue 4 (2 f2): the T-orbit loses stability through -1 and a 2T
+    # orbit at f/2 takes over, stable, its amplitude growing from the
+    # tongue's edge
+    model, _ = bench
+    t_orbit = periodic_orbit(model, 206.0, 0.5 * BAR)
+    assert t_orbit.kind == "double-period" and t_orbit.growth_rate > 1
+    doubled = double_period_orbit(model, t_orbit)
+    assert doubled is not None and doubled.stable
+    assert doubled.subharmonic_share > 0.99
+    weaker = double_period_orbit(model, periodic_orbit(model, 206.0,
+                                                       0.3 * BAR))
+    assert abs(weaker.upstream_harmonics[0]) < abs(
+        doubled.upstream_harmonics[0])
+
+
+#: Settings across tongues 1-4 and stable points, and the component of
+#: the upstream speed compared: 'f' (T-orbit) or 'half' (2T orbit).
+LONG_RUNS = [(103.0, 0.1, "f"), (103.0, 0.3, "f"), (100.0, 0.3, "f"),
+             (106.0, 0.2, "f"), (60.0, 0.5, "f"), (21.0, 0.5, "f"),
+             (19.0, 0.3, "f"), (150.0, 0.5, "f"), (206.0, 0.3, "half"),
+             (206.0, 0.5, "half")]
+
+
+@pytest.mark.parametrize("freq_hz, p_f_bar, component", LONG_RUNS)
+def test_orbit_is_the_long_engagement_steady_state(bench, freq_hz, p_f_bar,
+                                                   component):
+    # the bench FMU run for 8 s; over its last 1.5 s the upstream speed's
+    # Fourier amplitude at f (or f/2) against the orbit's at the run's
+    # mean slip (the dither's rectified torque moves it at 103 Hz)
+    from judder.bench import bench_fmu
+    from pysim.runs import run_fmu
+    model, _ = bench
+    params = get_preset("paper-4dof")
+    run = run_fmu(bench_fmu(params)[1], freq_hz, p_f_bar * BAR,
+                  params=params, duration=8.0,
+                  output_interval=min(1e-3, 1 / (20 * freq_hz)))
+    late = run.time >= run.time[-1] - 1.5
+    t, speed = run.time[late], run["w_upstream"][late]
+    at = freq_hz if component == "f" else freq_hz / 2
+    window = np.hanning(len(t))
+    measured = 2 * abs(np.sum(window * (speed - speed.mean())
+                              * np.exp(-2j * np.pi * at * t))) / window.sum()
+    orbit = periodic_orbit(replace(model, slip=float(
+        run["slip"][late].mean())), freq_hz, p_f_bar * BAR)
+    if component == "half":
+        orbit = double_period_orbit(model, orbit)
+        predicted = abs(orbit.upstream_harmonics[0])
+    else:
+        predicted = orbit.dither_amplitude
+    assert orbit.stable         # the engagement settles on it
+    assert predicted == pytest.approx(measured, rel=0.1)
+
+
+def test_predicted_chart_has_tongue_2_forced_and_tongues_5_6_parametric(
+        bench):
+    model, _ = bench
+    chart = orbit_chart(model, np.arange(80.0, 125.0, 1.0),
+                        np.array([0.1, 0.3, 0.5]) * BAR,
+                        limit=30 / RPM_PER_RAD_S, min_growth=1.0)
+    mechanism = dict(zip(chart.freq_hz, chart.mechanism[:, -1]))
+    assert mechanism[103.0] == 1                      # forced
+    assert mechanism[86.0] == 2 and mechanism[119.0] == 2  # parametric
+    assert mechanism[95.0] == 0 and mechanism[112.0] == 0
+    onsets = chart.onsets() / BAR
+    assert onsets[chart.freq_hz == 103.0][0] == pytest.approx(0.1)
