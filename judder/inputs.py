@@ -20,8 +20,8 @@ from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary", "read_boundary_min_growth",
-           "read_chart_boundary", "read_chart_below",
-           "read_chart_min_growth"]
+           "read_boundary_limit", "read_chart_boundary", "read_chart_below",
+           "read_chart_min_growth", "read_chart_limit"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -196,6 +196,51 @@ def read_boundary_min_growth(path, option="--boundary"):
                                   "number >= 0 (1/s)")
             return value
     return None
+
+
+#: The comment of a boundary file that gives the NVH limit its onsets
+#: were called judder from (``judder chart --boundary`` writes it).
+_LIMIT_COMMENT = re.compile(r"#\s*judder_limit_rpm\s*[:=]\s*([^\s#]+)")
+
+
+def read_boundary_limit(path, option="--boundary"):
+    """The NVH limit (rpm) a boundary file says its onsets were called
+    judder from (a comment ``# judder_limit_rpm: 30``), or None (onsets
+    of an instability alone)."""
+    for line in read_input(path, option).splitlines():
+        match = _LIMIT_COMMENT.match(line.strip())
+        if match:
+            text = match.group(1)
+            value = float(text) if _is_number(text) else math.nan
+            if not (math.isfinite(value) and value > 0):
+                raise JudderError(f"{option} {path}: judder_limit_rpm = "
+                                  f"{text} is not allowed; allowed: a "
+                                  "finite number > 0 (rpm)")
+            return value
+    return None
+
+
+def read_chart_limit(path, option="--chart"):
+    """The NVH limit (rpm) of the chart's verdict (``judder chart
+    --limit``), or None for a chart written before it had one."""
+    try:
+        with np.load(path, allow_pickle=False) as npz:
+            if "judder_limit_rpm" not in npz.files:
+                return None
+            value = float(npz["judder_limit_rpm"])
+    except OSError as exc:
+        raise JudderError(f"{option} {path}: cannot read it "
+                          f"({exc.strerror or exc})") from None
+    except (EOFError, zipfile.BadZipFile):
+        raise _damaged(option, path) from None
+    except (ValueError, TypeError):
+        raise JudderError(f"{option} {path}: not a chart written by judder "
+                          "chart --out (an NPZ file)") from None
+    if not (np.isfinite(value) and value > 0):
+        raise JudderError(f"{option} {path}: its judder_limit_rpm = "
+                          f"{value!r} is not allowed; allowed: a finite "
+                          "number > 0")
+    return value
 
 
 def read_chart_boundary(path, group=None, option="--chart"):

@@ -240,8 +240,9 @@ class RunAnalysis:
         contours (Fig. 10).
     oscillation_rpm : float
         The dither-related oscillation the verdict compares with the
-        limit: the largest sustained component (at ``f``, ``f/2`` or
-        another frequency), rpm.
+        limit, rpm: the largest of the forced part at ``f`` (or the
+        single-period judder there) and the sustained components at
+        ``f/2`` and another frequency.
     forced_rpm : float
         The part of the oscillation at ``f`` the dither forces, rpm
         (without the single-period judder grown out of it).
@@ -886,7 +887,13 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                                phase, envelope_of(freq_hz))
     mechanism, kind = _mechanism(components, unstable, forced_rpm,
                                  judder_limit_rpm)
-    oscillation = max(c.sustained_rpm for c in components)
+    # the oscillation the verdict compared with the limit: at f the
+    # narrow-band forced part (a combination response or a free mode
+    # near f lies in the wide band), or the single-period judder grown
+    at_f = next(c.sustained_rpm for c in components if c.name == "dither")
+    oscillation = max([at_f if unstable == "single-period" else forced_rpm]
+                      + [c.sustained_rpm for c in components
+                         if c.name != "dither"])
     lead = max((c for c in components
                 if c.kind in (kind, "single-period")),
                key=lambda c: c.amplitude_rpm)

@@ -22,7 +22,8 @@ import numpy as np
 from infra.errors import JudderError
 
 __all__ = ["FrictionPoint", "curve_at", "curve_from_table", "linear_range",
-           "forced_slip_amplitude", "SLOPE_LOSS"]
+           "forced_slip_amplitude", "forced_speed_per_pa", "forced_onset",
+           "SLOPE_LOSS"]
 
 
 @dataclass(frozen=True)
@@ -185,3 +186,53 @@ def forced_slip_amplitude(driveline, freq_hz, p_f):
     theta = np.linalg.solve(dynamic, -driveline.mu0 * driveline.clutch_factor
                             * p_f * e.astype(complex))
     return float(abs(1j * omega * (e @ theta)))
+
+
+def forced_speed_per_pa(driveline, freq_hz, body=None):
+    """Speed amplitude of one body forced by the dither, per Pa of
+    ``p_f``, rad/(s Pa).
+
+    The steady response of Eq. (6) to the column ``D`` of Eq. (9), as in
+    :func:`forced_slip_amplitude`, read at ``body`` (default the clutch's
+    engine-side disc, whose speed the bench records upstream of the
+    clutch). It is the fundamental of the periodic orbit at any amplitude
+    the friction curve allows: an odd curve about the operating slip
+    adds harmonics and a rectified torque, not a fundamental
+    (:mod:`stability.orbit`; 257 rpm against 263 rpm on the bench at 103
+    Hz and 0.3 bar, where the slip swings over 40 times the curve's
+    linear range).
+
+    Parameters
+    ----------
+    driveline : stability.model.Driveline
+    freq_hz : array_like
+        Dither frequencies, Hz (> 0).
+    body : int, optional
+
+    Returns
+    -------
+    ndarray
+        Same shape as ``freq_hz``.
+    """
+    e = driveline.clutch_vector()
+    body = driveline.clutch[0] if body is None else body
+    damping = driveline.structural_damping() + (
+        driveline.mu_g * driveline.clutch_factor
+        * driveline.mean_pressure_damping * driveline.p_m) * np.outer(e, e)
+    omega = 2 * np.pi * np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    dynamic = (driveline.stiffness_matrix()[None]
+               - omega[:, None, None] ** 2 * driveline.mass_matrix()[None]
+               + 1j * omega[:, None, None] * damping[None])
+    theta = np.linalg.solve(dynamic, np.broadcast_to(
+        -driveline.mu0 * driveline.clutch_factor * e.astype(complex),
+        (len(omega), len(e)))[..., None])[..., 0]
+    speed = np.abs(omega * theta[:, body])
+    return speed.reshape(np.shape(freq_hz))
+
+
+def forced_onset(driveline, freq_hz, limit):
+    """Dither amplitude at which the forced oscillation of the upstream
+    speed reaches ``limit`` (rad/s), Pa: the boundary of forced judder,
+    ``limit`` over :func:`forced_speed_per_pa` (no threshold: the
+    amplitude is proportional to ``p_f``)."""
+    return limit / forced_speed_per_pa(driveline, freq_hz)

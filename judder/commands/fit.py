@@ -8,12 +8,13 @@ from drivelines import dumps_toml
 from infra.errors import JudderError, check_number
 from infra.files import write_text
 from infra.numbers import format_interval, format_uncertain
-from infra.units import PA_PER_BAR
+from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
 
 from ..bench import bench_damping
-from ..inputs import (read_boundary, read_boundary_min_growth,
-                      read_chart_below, read_chart_boundary,
+from ..inputs import (read_boundary, read_boundary_limit,
+                      read_boundary_min_growth, read_chart_below,
+                      read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
 from ._arguments import method_option, model_options, workers_option
 from ._bench import bench_values
@@ -22,7 +23,8 @@ from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._records import finite_or_none
-from ._values import MIN_GROWTH, PF_MAX, SEED, Listed, Quantity, WholeNumber
+from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SEED, Listed, Quantity,
+                      WholeNumber)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -92,6 +94,13 @@ def add_arguments(p):
                         "--force)")
     p.add_argument("--force", action="store_true",
                    help="allow --save-params to replace a file")
+    p.add_argument("--limit", type=LIMIT, default=None, metavar="RPM",
+                   help="NVH limit the onsets were called judder from, "
+                        "rpm (default: the chart's or the boundary file's "
+                        "`# judder_limit_rpm`; none for a file without "
+                        "it): the model's onset is then also where the "
+                        "dither's forced oscillation of the upstream speed "
+                        "reaches it, as at tongues 1 and 2")
     p.add_argument("--min-growth", type=MIN_GROWTH,
                    default=None, metavar="1/S",
                    help="compare with the model's boundary of judder "
@@ -139,12 +148,15 @@ def run(args):
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
         default_growth = read_chart_min_growth(args.chart)
+        default_limit = read_chart_limit(args.chart)
         below = read_chart_below(args.chart, args.group)
     else:
         freqs, measured = read_boundary(args.boundary)
         below = None
         stated = read_boundary_min_growth(args.boundary)
         default_growth = default_growth if stated is None else stated
+        default_limit = read_boundary_limit(args.boundary)
+    limit = default_limit if args.limit is None else args.limit
     min_growth = check_number("--min-growth", default_growth
                               if args.min_growth is None else args.min_growth,
                               "1/s", strict=False)
@@ -167,14 +179,18 @@ def run(args):
                      workers=args.workers, progress=progress,
                      min_growth=min_growth, bench=bench,
                      scatter=scatter, below_bar=None if below is None
-                     else below / PA_PER_BAR, threshold_spread=spread)
+                     else below / PA_PER_BAR, threshold_spread=spread,
+                     judder_limit_rpm=limit)
     result = report.fit
     if args.save_params:
         report.save_params(args.save_params, overwrite=args.force)
     if args.plot:
         save_plot(args.plot, report.figure())
     rows = report.text()
-    rows.append("compared with: " + _compared_with(result))
+    rows.append("compared with: " + _compared_with(result)
+                + ("" if report.judder_limit_rpm is None else
+                   f", and the dither's forced oscillation reaching "
+                   f"{report.judder_limit_rpm:g} rpm"))
     rows += [f"note: {n}" for n in result.notes]
     rows += [f"problem: {p}" for p in result.problems]
     emit(args, {**report.as_dict(),
@@ -255,7 +271,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         parameters=None, changes=None, method=DEFAULT_METHOD, kinds=None,
         starts=3, uncertainty="auto", error_model="relative", seed=0,
         workers=None, progress=None, min_growth=None, bench=None,
-        scatter=None, below_bar=None, threshold_spread=0.0):
+        scatter=None, below_bar=None, threshold_spread=0.0,
+        judder_limit_rpm=None):
     """``judder fit``: fit parameters to a measured boundary (section 4.2,
     Fig. 16a).
 
@@ -284,6 +301,12 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         The highest amplitude tried without judder below each onset, bar
         (NaN: none; :func:`judder.inputs.read_chart_below`): the fit
         compares with the middle of each interval (below, onset].
+    judder_limit_rpm : float, optional
+        The NVH limit (rpm) the onsets were called judder from, as a
+        bench reads them (``judder chart --limit``): the model's onset is
+        then also where the dither's forced oscillation of the upstream
+        speed reaches it (tongues 1 and 2). None: the Floquet boundaries
+        alone (a boundary of instabilities).
     bench : dict, optional
         Compare with the bench's linearisation, not the driveline alone:
         the damping its motor control adds
@@ -313,8 +336,11 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         added=None if bench is None else bench_damping(start, bench),
         scatter=scatter, below=None if below_bar is None else
         np.asarray(below_bar, dtype=float) * PA_PER_BAR,
-        threshold_spread=threshold_spread)
-    return FitReport(fit=result, seconds=seconds, method=method)
+        threshold_spread=threshold_spread,
+        forced_limit=None if judder_limit_rpm is None
+        else judder_limit_rpm * RAD_S_PER_RPM)
+    return FitReport(fit=result, seconds=seconds, method=method,
+                     judder_limit_rpm=judder_limit_rpm)
 
 
 @dataclass(frozen=True)
@@ -324,11 +350,13 @@ class FitReport:
     fit: object
     seconds: float
     method: str
+    judder_limit_rpm: float = None
 
     def as_dict(self):
         r = self.fit
         return {"model": r.params.model, "method": self.method,
                 "seconds": self.seconds, "success": r.success,
+                "judder_limit_rpm": self.judder_limit_rpm,
                 "message": r.message,
                 "fitted": {n: {"value": v, "std": finite_or_none(s),
                            "ci95": [finite_or_none(lo),

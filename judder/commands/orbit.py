@@ -164,7 +164,7 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
                        model=model, linear=linear)
 
 
-def _orbit_row(found, doubled, limit_rpm, min_growth):
+def orbit_row(found, doubled, limit_rpm, min_growth):
     """One orbit as a JSON row (Hz, bar, rpm, 1/s, N m), with the
     verdict of :mod:`stability.orbit_chart`."""
     forced = found.dither_amplitude * RPM_PER_RAD_S
@@ -223,7 +223,7 @@ class OrbitResult:
 
     def rows(self):
         """The orbits as JSON rows."""
-        return [_orbit_row(o, d, self.limit_rpm, self.min_growth)
+        return [orbit_row(o, d, self.limit_rpm, self.min_growth)
                 for o, d in zip(self.orbits, self.doubled)]
 
     def as_dict(self):

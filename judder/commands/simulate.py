@@ -14,8 +14,8 @@ from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
-from ..bench import (added_damping, bench_fmu, linear_validity,
-                     operating_friction)
+from ..bench import (added_damping, bench_fmu, engagement_model,
+                     linear_validity, operating_friction)
 from ._arguments import (force_option, limit_option, method_option,
                          min_growth_option, model_options)
 from ._bench import bench_values
@@ -122,6 +122,11 @@ def _engagement_line(s):
             + ("" if s["judder"] is None else "; " + judder_words(s))
             + f"; Floquet at this point: {s['floquet_kind']} "
               f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
+            + ("" if s.get("orbit_kind") is None else
+               f"; periodic orbit: {s['orbit_settled_rpm']:.3g} rpm, "
+               f"{s['orbit_kind']} ({s['orbit_growth_per_s']:+.2f} 1/s), "
+               + (f"judder ({s['orbit_mechanism']})"
+                  if s["orbit_mechanism"] else "no judder"))
             + ("" if s.get("linearisation_holds") is not False else
                f"; nonlinear: the dither's forced slip swing "
                f"(+-{s['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
@@ -192,6 +197,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         driveline = build_driveline(values.replace(
             **{name: values[name] + value for name, value in
                added_damping(values, fmu, bench).items()}, **friction))
+        orbit_model = engagement_model(values, bench, fmu)[0]
     else:
         fmu = class_fmu(values, "simulate")
         if bench:
@@ -202,6 +208,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         model_class, ramp_end = values.model, 0.0   # starts slipping
         run_params, extra = run_values(values)
         driveline, linear_slip = build_driveline(values), None
+        orbit_model = None
     if duration is not None and duration <= ramp_end:
         raise JudderError(f"duration {duration:g} s ends before the "
                           f"engagement (its pressure ramp ends at "
@@ -230,10 +237,33 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                                                judder_limit_rpm),
                           "floquet_kind": linear.kind,
                           "floquet_exponent_per_s": linear.growth_rate,
-                          **linear_validity(driveline, run, linear_slip)})
+                          **linear_validity(driveline, run, linear_slip),
+                          **_orbit_fields(orbit_model, run, min_growth,
+                                          judder_limit_rpm)})
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
                             model_class=model_class, start=ramp_end,
                             signals=dict(SIGNALS))
+
+
+def _orbit_fields(model, run, min_growth, judder_limit_rpm):
+    """The periodic orbit of the bench at the run's setting
+    (:mod:`stability.orbit`), what the engagement settles into: its
+    settled amplitude (rpm), kind, growth (1/s) and judder mechanism, as
+    ``orbit_*`` fields (None for a model without the bench, or without
+    dither)."""
+    names = ("orbit_settled_rpm", "orbit_kind", "orbit_growth_per_s",
+             "orbit_mechanism")
+    if model is None or run.p_f == 0:
+        return dict.fromkeys(names)
+    from stability.orbit import double_period_orbit, periodic_orbit
+
+    from .orbit import orbit_row
+    found = periodic_orbit(model, run.freq_hz, run.p_f)
+    doubled = (double_period_orbit(model, found)
+               if found.kind == "double-period" else None)
+    row = orbit_row(found, doubled, judder_limit_rpm, min_growth)
+    return dict(zip(names, (row["settled_rpm"], row["kind"],
+                            row["growth_per_s"], row["mechanism"])))
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,7 @@ from scipy.optimize import least_squares
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
+from ..friction import forced_onset
 from ..source import build_driveline
 from ..tongues import tongue_boundaries
 
@@ -86,6 +87,8 @@ class _Problem:
     scatter: float = None       # known scatter, weighted units; None:
                                 # estimated from the residuals
     threshold_spread: float = 0.0   # 1/s: uncertainty of min_growth
+    forced_limit: float = None  # rad/s: onsets also where the forced
+                                # upstream oscillation reaches it
 
     @property
     def p_search(self):
@@ -130,10 +133,18 @@ class _Evaluator:
         p = self.problem
         self.count += 1
         try:
-            return tongue_boundaries(
-                build_driveline(evaluated(self.params_at(z), p.added)),
-                p.freq_hz, p.p_search, p.method,
-                min_growth=p.min_growth).amplitude
+            driveline = build_driveline(evaluated(self.params_at(z),
+                                                  p.added))
+            amplitude = tongue_boundaries(driveline, p.freq_hz, p.p_search,
+                                          p.method,
+                                          min_growth=p.min_growth).amplitude
+            if p.forced_limit is not None:
+                # the bench's verdict: forced judder at f is single-period
+                # judder at its own onset
+                amplitude = amplitude.copy()
+                amplitude[:, 0] = np.fmin(amplitude[:, 0], forced_onset(
+                    driveline, p.freq_hz, p.forced_limit))
+            return amplitude
         except (ValueError, ArithmeticError, np.linalg.LinAlgError):
             if strict:
                 raise

@@ -52,7 +52,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                  seed=0, workers=None, callback=None,
                  curve_points=CURVE_POINTS,
                  min_growth=DEFAULT_MIN_GROWTH_PER_S, added=None,
-                 scatter=None, below=None, threshold_spread=0.0):
+                 scatter=None, below=None, threshold_spread=0.0,
+                 forced_limit=None):
     """Fit parameters so the model boundary matches a measured one.
 
     Section 4.2 of the paper, Fig. 16a: the parameters that cannot be
@@ -143,6 +144,15 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         ``min_growth`` minus and plus it, the shifts are reported
         (``threshold_shifts``) and each interval covers them; 0 (default):
         the threshold is taken as exact.
+    forced_limit : float, optional
+        rad/s: the onsets are judder as a bench reads it, where the
+        oscillation of the upstream speed exceeds this NVH limit or an
+        instability grows at ``min_growth`` (:mod:`pysim.run_analysis`);
+        the model's single-period boundary is then the lower of the
+        Floquet one and the amplitude at which the dither's forced
+        response reaches the limit (:func:`stability.friction.
+        forced_onset`; on tongues 1 and 2, the natural frequencies, it is
+        the lower). None: the Floquet boundaries alone.
     scatter : float, optional
         The bench's known scatter of the onsets (its repeatability): a
         share of the amplitude (``error_model='relative'``, e.g. 0.03) or
@@ -221,7 +231,9 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                        scatter=None if scatter is None else float(
                            scatter if error_model == "relative"
                            else scatter / PA_PER_BAR),
-                       threshold_spread=float(threshold_spread))
+                       threshold_spread=float(threshold_spread),
+                       forced_limit=None if forced_limit is None
+                       else float(forced_limit))
     extra = extra_starts(starts, names, low, high)
     if workers is None:
         workers = (os.cpu_count() or 1) if uncertainty == "bootstrap" else 1
