@@ -242,7 +242,8 @@ def _figures(paper4, small_map):
     yield "threshold", api.threshold(np.linspace(-1e-3, 1e-3, 21),
                                      np.linspace(0, 2, 11)).figure(
         title="4dof driveline, paper preset")
-    yield "advice", api.advise().figure(title="4dof driveline, paper preset")
+    yield "advice", api.advise(background=True).figure(
+        title="4dof driveline, paper preset")
     bench = Path(__file__).parents[1] / "examples" / "bench"
     yield "chart", api.chart([], index=bench / "runs.csv", channels={
         "upstream_speed": "EngSpd_up", "pressure": "PressEVEN:bar",
