@@ -105,6 +105,26 @@ def test_map_counts_only_judder_relevant_growth():
                              min_growth=0.0).judder_relevant_points() == 1
 
 
+def test_map_text_names_unstable_and_judder_points_and_its_times():
+    from judder.commands.map import count_words, time_words
+    result = api.stability_map(np.linspace(60, 130, 15),
+                               np.linspace(0, 1.2, 7), changes={"c12": 10.0},
+                               min_growth=1.0, exact=True)
+    counts = result.map.counts()
+    unstable = int(np.count_nonzero(result.map.kind > 0))
+    judder = result.judder_relevant_points()
+    assert 0 < judder < unstable      # the slow dome of c12 = 10
+    assert count_words(result) == (
+        f"105 points: {counts['stable']} stable, {unstable} unstable "
+        f"(|lambda| > 1: " + ", ".join(
+            f"{k} {v}" for k, v in counts.items() if k != "stable")
+        + f"), of which {judder} judder (growth >= 1 1/s)")
+    words = time_words(result, 9.5)
+    assert words.startswith(f"time: Floquet map {result.seconds:.2f} s, "
+                            "exact boundaries ")
+    assert "9.50 s in all" in words
+
+
 @pytest.mark.parametrize("freq, p_bar, inside", [(102.9, 0.3, True),
                                                   (101.5, 0.3, False),
                                                   (83.0, 0.3, False)])
