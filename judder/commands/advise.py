@@ -299,14 +299,6 @@ def _wide_view(given, advised, operating):
             "given_boundaries": theirs}
 
 
-def _number(value):
-    """A parameter value to read: 4 significant digits, large values in
-    full with a space per thousand (34 858, not 3.486e+04)."""
-    if 1e3 <= abs(value) < 1e9:
-        return f"{value:,.0f}".replace(",", " ")
-    return f"{value:.4g}"
-
-
 def _window_records(windows):
     return [{"freq_hz": list(w.freq_hz), "max_p_f_bar": w.max_p_f / PA_PER_BAR,
              "full_range": w.full_range} for w in windows]
@@ -435,6 +427,7 @@ class AdviceResult:
     def _design_lines(self, a):
         """The design in the parameters' units, its check, and the
         instability it still has."""
+        from infra.numbers import readable_number
         from stability.decisions.advice import bounds_words
         bounds = f"bounds {bounds_words(a.names, a.bounds)}"
         if not a.success:
@@ -446,7 +439,8 @@ class AdviceResult:
                    if abs(f - 1) > 5e-4]
         kept = [n for n, f in zip(a.names, a.factors) if abs(f - 1) <= 5e-4]
         lines = ["design: " + ", ".join(
-            f"{n} {_number(self.params[n])} -> {_number(advised[n])} "
+            f"{n} {readable_number(self.params[n])} -> "
+            f"{readable_number(advised[n])} "
             f"{self.params.specs[n].unit} (x{f:.3f})" for n, f in changed)
             + (f"; unchanged: {', '.join(kept)}" if kept else ""),
             f"  weighted change {a.weighted_change:.3f}; {bounds}; "

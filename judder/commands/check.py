@@ -274,13 +274,13 @@ def margin_words(record):
     top = record["p_f_bar"] + (record["margin_bar_at_least"] or 0.0)
     unstable = record.get("unstable_boundary_p_f_bar")
     here = f" at {record['freq_hz']:g} Hz"
-    if record["min_growth_per_s"] == 0:
+    if record["min_growth_per_s"] == 0 or unstable is None:
         onset = ""
-    elif unstable is None:
-        onset = f"; not unstable{here} up to {top:.3g} bar"
     else:
         onset = f"; unstable (|lambda| > 1){here} from {unstable:.3f} bar"
-    if bar is None:
+    if bar is None and unstable is None:
+        amplitude = f"stable (|lambda| < 1){here} up to {top:.3g} bar"
+    elif bar is None:
         amplitude = f"no judder ({rate}){here} up to {top:.3g} bar" + onset
     elif bar >= 0:
         amplitude = f"{bar:.3f} bar below {judder}" + onset
