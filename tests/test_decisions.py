@@ -215,6 +215,21 @@ def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
             f"(|lambda| > 1) at 102.9 Hz from {onset:.3f} bar") in lines[2]
 
 
+def test_floquet_names_the_threshold_its_point_passes():
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    slow = api.floquet(105, 0.2, example)      # README: growing at 0.56 1/s
+    assert slow.result.growth_rate == pytest.approx(0.5625, abs=5e-5)
+    assert slow.verdict() == "SLOW GROWTH"
+    assert slow.as_dict()["verdict"] == "SLOW GROWTH"
+    assert ("unstable (|lambda| > 1), growing at 0.5625 1/s, slower than "
+            "judder (growth >= 1 1/s)") in slow.verdict_words()
+    assert api.floquet(105, 0.2, example, min_growth=0.5).verdict() == \
+        "JUDDER"
+    assert api.floquet(102.9, 0.3).verdict() == "JUDDER"
+    assert api.floquet(60, 0.3).verdict() == "STABLE"
+
+
 def test_tongues_give_where_each_tongue_becomes_unstable_and_judder():
     from judder.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
