@@ -269,8 +269,8 @@ def margin_words(record):
     bar = record["margin_bar"]
     rate = f">= {record['min_growth_per_s']:g} 1/s"
     tongue = record["margin_bar_tongue"]
-    judder = f"judder ({rate})" if tongue is None else \
-        f"judder ({rate}, tongue {tongue['number'] or '?'})"
+    which = f"({rate})" if tongue is None else \
+        f"({rate}, tongue {tongue['number'] or '?'})"
     top = record["p_f_bar"] + (record["margin_bar_at_least"] or 0.0)
     unstable = record.get("unstable_boundary_p_f_bar")
     here = f" at {record['freq_hz']:g} Hz"
@@ -283,9 +283,10 @@ def margin_words(record):
     elif bar is None:
         amplitude = f"no judder ({rate}){here} up to {top:.3g} bar" + onset
     elif bar >= 0:
-        amplitude = f"{bar:.3f} bar below {judder}" + onset
+        amplitude = f"{bar:.3f} bar below judder {which}" + onset
     else:
-        amplitude = f"{-bar:.3f} bar above the boundary of {judder}" + onset
+        amplitude = (f"{-bar:.3f} bar above the judder boundary {which}"
+                     + onset)
     hz = record["margin_hz"]
     if hz is None:
         search = record["frequency_search_hz"]
