@@ -27,6 +27,7 @@ import math
 import os
 import shutil
 import signal
+import sys
 import tempfile
 import threading
 
@@ -297,15 +298,17 @@ class _Cluster:
         self._children = {p.pid for p in psutil.Process().children(
             recursive=True)}
         self._scratch = tempfile.mkdtemp(prefix="judder-dask-")
-        self._cluster = LocalCluster(
-            n_workers=self.workers or workers or os.cpu_count() or 1,
-            threads_per_worker=1, processes=True, host="127.0.0.1",
-            dashboard_address=None, silence_logs=logging.CRITICAL,
-            # no dashboard; its HTTP server (health checks) on any free port
-            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
-            local_directory=self._scratch,
-            env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
-                 "MKL_NUM_THREADS": "1"})
+        with _main_script_hidden():
+            self._cluster = LocalCluster(
+                n_workers=self.workers or workers or os.cpu_count() or 1,
+                threads_per_worker=1, processes=True, host="127.0.0.1",
+                dashboard_address=None, silence_logs=logging.CRITICAL,
+                # no dashboard; its HTTP server (health checks) on any
+                # free port
+                scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+                local_directory=self._scratch,
+                env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
+                     "MKL_NUM_THREADS": "1"})
         self._client = Client(self._cluster, set_as_default=False)
         # every worker dies with this process, also when it is killed
         # (SIGKILL leaves no chance to close the cluster)
@@ -361,6 +364,33 @@ def _reap(before):
 
 
 _ACTIVE = []
+
+
+@contextmanager
+def _main_script_hidden():
+    """Start worker processes without importing the calling script again.
+
+    A worker process is spawned: it imports the ``__main__`` of its parent
+    from its file (as ``__mp_main__``) before it runs. A plain script that
+    calls the API without an ``if __name__ == "__main__":`` guard would
+    then run its calls again in every worker, start a cluster of its own
+    there and fail ("Nanny failed to start"). The jobs sent to the workers
+    are functions of the project's modules, never of ``__main__``, so the
+    script's file is hidden while the workers start. A ``__main__`` run as
+    a module (``python -m judder``, pytest) is imported by its name and
+    left alone.
+    """
+    main = sys.modules.get("__main__")
+    path = getattr(main, "__file__", None)
+    if main is None or path is None or \
+            getattr(main, "__spec__", None) is not None:
+        yield
+        return
+    del main.__file__
+    try:
+        yield
+    finally:
+        main.__file__ = path
 
 
 @contextmanager

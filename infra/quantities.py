@@ -21,6 +21,8 @@ Examples
 0.3
 >>> parse_quantity("2.5", "bar", "--pf")
 2.5
+>>> parse_quantity("10Nms/rad", "N m s/rad", "--set c12")
+10.0
 """
 
 import functools
@@ -35,6 +37,12 @@ __all__ = ["parse_quantity", "has_unit"]
 _NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
 _WITH_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
                         r"\s*([^\d\s.+-].*?)\s*")
+
+
+#: The table's units with spaces, written without them (``Nms/rad``,
+#: ``Nm/rad``, ``kgm^2``, ``Nm``): pint would read ``Nms`` as a
+#: "number_meter"; these are the table's units.
+_COMPACT = {name.replace(" ", ""): name for name in UNITS if " " in name}
 
 
 def has_unit(text):
@@ -116,8 +124,10 @@ def parse_quantity(text, unit, what):
     registry = _registry()
     try:
         # only the unit goes to pint's parser (it evaluates expressions)
+        written = _COMPACT.get(match.group(2), match.group(2))
         quantity = registry.Quantity(float(match.group(1)),
-                                     registry.parse_units(match.group(2)))
+                                     registry.parse_units(
+                                         _pint_spelling(written)))
         reference = registry.Quantity(1.0, registry.parse_units(target))
     except Exception:   # pint's parser raises many kinds on bad text
         raise JudderError(f"{what} {text!r}: unknown unit "

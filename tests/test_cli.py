@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -172,6 +173,47 @@ def test_tongues_json_and_csv(tmp_path):
     assert growth == "# min_growth_per_s: 0"
     assert header.startswith("freq_hz,p_f_bar,single_period_bar")
     assert first.startswith("10,")
+
+
+def test_compare_puts_two_sets_side_by_side(tmp_path):
+    paper = tmp_path / "paper.toml"
+    judder("params", "--preset", "paper-4dof", "--save", str(paper))
+    fitted = str(Path(__file__).parents[1] / "examples" / "driveline.toml")
+    plot = tmp_path / "compare.png"
+    data = judder_json("compare", fitted, str(paper), "--freq", "105",
+                       "--pf", "0.2", "--grid", "10:220:106", "--plot",
+                       str(plot))
+    a, b = data["sets"]
+    assert (a["file"], b["file"]) == (fitted, str(paper))
+    # the same numbers as the single commands give for each set
+    for side, source in ((a, ["--param-file", fitted]),
+                         (b, ["--preset", "paper-4dof"])):
+        eig = judder_json("eig", *source)
+        assert side["natural_frequencies_hz"] == pytest.approx(
+            eig["natural_frequencies_hz"], rel=1e-12)
+        tips = judder_json("tongues", *source, "--freq", "10:220:106")
+        assert [t["tip_p_f_bar"] for t in side["tongues"]] == pytest.approx(
+            [t["tip_p_f_bar"] for t in tips["tongues"]], rel=1e-9)
+        assert [t["judder_tip_p_f_bar"] for t in side["tongues"]] == \
+            pytest.approx([t["judder_tip_p_f_bar"] for t in tips["tongues"]],
+                          rel=1e-9)
+    # README: 105 Hz, 0.2 bar is slow growth at 0.563 1/s with the fitted
+    # set; the paper's tongue 2 (f2 = 102.9 Hz) is narrower: stable there
+    assert a["settings"][0]["verdict"] == "SLOW GROWTH"
+    assert a["settings"][0]["growth_rate_per_s"] == pytest.approx(0.563,
+                                                                  abs=5e-4)
+    assert b["settings"][0]["verdict"] == "STABLE"
+    # the paper's driveline has fewer safe windows at 0.7 bar
+    full = [[w for w in s["safe_windows"] if w["full_range"]] for s in (a, b)]
+    assert len(full[0]) == 2 and len(full[1]) == 4
+    assert plot.stat().st_size > 0
+    text = judder("compare", fitted, str(paper), "--freq", "105", "--pf",
+                  "0.2", "--grid", "10:220:106").stdout
+    assert "SLOW GROWTH (+0.563 1/s)" in text and "STABLE" in text
+    assert "tongue 2 (f2) unstable from" in text
+    assert "judder (>= 1 1/s) from" in text
+    one = judder("compare", fitted, check=False)
+    assert one.returncode == 2
 
 
 def test_sensitivity_json_c12_study():

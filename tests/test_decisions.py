@@ -7,6 +7,7 @@ paper's ranking (section 4.3, section 5).
 """
 
 import json
+from pathlib import Path
 import subprocess
 import sys
 
@@ -25,6 +26,8 @@ from stability.decisions.relevance import is_judder_relevant
 from stability.hill import combination_boundaries, modal_transfer
 from stability.monodromy import monodromy_solve_ivp
 from stability.tongues import lowest_boundaries
+
+EXAMPLES = Path(__file__).parents[1] / "examples"
 
 BAR = 1e5
 #: Frequencies through all six tongues of Fig. 14 and between them.
@@ -102,6 +105,26 @@ def test_map_counts_only_judder_relevant_growth():
                              min_growth=0.0).judder_relevant_points() == 1
 
 
+def test_map_text_names_unstable_and_judder_points_and_its_times():
+    from judder.commands.map import count_words, time_words
+    result = api.stability_map(np.linspace(60, 130, 15),
+                               np.linspace(0, 1.2, 7), changes={"c12": 10.0},
+                               min_growth=1.0, exact=True)
+    counts = result.map.counts()
+    unstable = int(np.count_nonzero(result.map.kind > 0))
+    judder = result.judder_relevant_points()
+    assert 0 < judder < unstable      # the slow dome of c12 = 10
+    assert count_words(result) == (
+        f"105 points: {counts['stable']} stable, {unstable} unstable "
+        f"(|lambda| > 1: " + ", ".join(
+            f"{k} {v}" for k, v in counts.items() if k != "stable")
+        + f"), of which {judder} judder (growth >= 1 1/s)")
+    words = time_words(result, 9.5)
+    assert words.startswith(f"time: Floquet map {result.seconds:.2f} s, "
+                            "exact boundaries ")
+    assert "9.50 s in all" in words
+
+
 @pytest.mark.parametrize("freq, p_bar, inside", [(102.9, 0.3, True),
                                                   (101.5, 0.3, False),
                                                   (83.0, 0.3, False)])
@@ -175,19 +198,71 @@ def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
     low, high = slow["frequency_search_hz"]
     assert (low, high) == pytest.approx((60.0 / 4, 102.9 * 4))
     assert slow["margin_hz"] is None
-    assert (f"no dither frequency judders at 0.05 bar from {low:.3g} to "
-            f"{high:.3g} Hz") in lines[2]
+    assert (f"no dither frequency judders at 0.05 bar in the range "
+            f"searched, {low:.3g} to {high:.3g} Hz") in lines[2]
     paper4 = build_driveline(get_preset("paper-4dof"))
     rates = [floquet(paper4, f, 0.05e5).growth_rate
              for f in np.geomspace(low, high, 400)]
     assert max(rates) < DEFAULT_MIN_GROWTH_PER_S
     assert "no tongue edge" not in result.summary()
+    # both thresholds, named: judder (>= 1 1/s) for the margin, and where
+    # the setting's frequency becomes unstable (|lambda| = 1, growth 0)
+    onset = slow["unstable_boundary_p_f_bar"]
+    assert floquet(paper4, 102.9, onset * BAR).growth_rate == pytest.approx(
+        0.0, abs=1e-9)
+    assert onset < 0.05 < slow["boundary_p_f_bar"]
+    assert ("0.098 bar below judder (>= 1 1/s, tongue 2); unstable "
+            f"(|lambda| > 1) at 102.9 Hz from {onset:.3f} bar") in lines[2]
+
+
+def test_floquet_names_the_threshold_its_point_passes():
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    slow = api.floquet(105, 0.2, example)      # README: growing at 0.56 1/s
+    assert slow.result.growth_rate == pytest.approx(0.5625, abs=5e-5)
+    assert slow.verdict() == "SLOW GROWTH"
+    assert slow.as_dict()["verdict"] == "SLOW GROWTH"
+    assert ("unstable (|lambda| > 1), growing at 0.5625 1/s, slower than "
+            "judder (growth >= 1 1/s)") in slow.verdict_words()
+    assert api.floquet(105, 0.2, example, min_growth=0.5).verdict() == \
+        "JUDDER"
+    assert api.floquet(102.9, 0.3).verdict() == "JUDDER"
+    assert api.floquet(60, 0.3).verdict() == "STABLE"
+
+
+def test_tongues_give_where_each_tongue_becomes_unstable_and_judder():
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    result = api.tongues(np.linspace(10, 220, 211), parameters=example)
+    data = result.as_dict()
+    assert data["min_growth_per_s"] == 0.0
+    assert data["judder_min_growth_per_s"] == DEFAULT_MIN_GROWTH_PER_S
+    two = next(t for t in data["tongues"] if t["number"] == 2)
+    # README: tongue 2 unstable from 0.054 bar at 105.8 Hz
+    assert two["tip_freq_hz"] == pytest.approx(105.8, abs=0.05)
+    assert two["tip_p_f_bar"] == pytest.approx(0.054, abs=5e-4)
+    driveline = build_driveline(example)
+    assert floquet(driveline, two["tip_freq_hz"], two["tip_p_f_bar"] * BAR
+                   ).growth_rate == pytest.approx(0.0, abs=1e-6)
+    # judder from the tip of the 1 1/s boundary, above the unstable one
+    late = floquet(driveline, two["judder_tip_freq_hz"],
+                   two["judder_tip_p_f_bar"] * BAR).growth_rate
+    assert late == pytest.approx(DEFAULT_MIN_GROWTH_PER_S, rel=1e-6)
+    assert two["judder_tip_p_f_bar"] > 4 * two["tip_p_f_bar"]
+    from judder.commands.tongues import tip_table
+    text = "\n".join(tip_table(data))
+    assert "unstable from" in text and "judder (>= 1 1/s) from" in text
+    assert (f"{two['tip_p_f_bar']:.4f} bar at {two['tip_freq_hz']:.3f} Hz"
+            in text)
+    assert (f"{two['judder_tip_p_f_bar']:.4f} bar at "
+            f"{two['judder_tip_freq_hz']:.3f} Hz") in text
 
 
 def test_advise_reproduces_the_paper_and_clears_the_window():
     """Acceptance: section 4.3/5 ranking, and a design whose recomputed map
-    has no judder-relevant point in 60-200 Hz x 0-0.7 bar."""
-    result = api.advise()
+    has no judder-relevant point in 60-200 Hz x 0-0.7 bar (k24 may triple:
+    the default bounds, halved to doubled, hold no design, below)."""
+    result = api.advise(bounds={"k24": (0.5, 4.0)})
     ranking = [name for name, _, _ in result.ranking]
     assert set(ranking[:3]) == {"J2", "J4", "k24"}
     assert result.advice.success
@@ -202,6 +277,55 @@ def test_advise_reproduces_the_paper_and_clears_the_window():
                       operating, 1.0, 1.6 * BAR)
     assert _clear([result.params], result.advice.names, x, operating, 1.0,
                   1.6 * BAR)
+    # k24 tripled moves f2 above the window: nothing is unstable there
+    assert result.unstable == []
+    assert "the advised design is stable" in result.summary()
+
+
+def test_advise_within_bounds_or_says_there_is_none():
+    from judder.inputs import load_parameters
+    # the paper's driveline: within a factor 2 nothing clears 60-200 Hz
+    nothing = api.advise(bounds={})
+    assert not nothing.advice.success
+    assert nothing.as_dict()["design"]["bounds"]["k24"] == [0.5, 2.0]
+    assert "design: none: no design inside the bounds (J2 x0.5-2" in \
+        nothing.summary()
+    # the fitted example with J4 held to -20 %..+25 % (and c12 up to x5)
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    result = api.advise(example, bounds={"J4": (0.8, 1.25),
+                                         "c12": (0.5, 5.0)})
+    assert result.advice.success and result.judder_points == 0
+    bounds = result.as_dict()["design"]["bounds"]
+    for name, factor in zip(result.advice.names, result.advice.factors):
+        low, high = bounds[name]
+        assert low - 1e-12 <= factor <= high + 1e-12
+    assert bounds["J4"] == [0.8, 1.25] and bounds["J2"] == [0.5, 2.0]
+    # the change in the parameter's own unit beside the factor
+    advised = result.advised_params()
+    j4 = dict(zip(result.advice.names, result.advice.factors))["J4"]
+    assert (f"J4 {example['J4']:.4g} -> {advised['J4']:.4g} kg m^2 "
+            f"(x{j4:.3f})") in result.summary()
+    # clear of judder, but tongue 2 is still unstable below 0.7 bar,
+    # growing slower than 1 1/s: the advice says where, and it is so
+    region = max(result.unstable, key=lambda r: r.freq_hz[1] - r.freq_hz[0])
+    assert region.freq_hz[0] < 105 < region.freq_hz[1]
+    driveline = build_driveline(advised)
+    above = floquet(driveline, region.lowest_at_hz,
+                    1.02 * region.lowest_p_f).growth_rate
+    below = floquet(driveline, region.lowest_at_hz,
+                    0.98 * region.lowest_p_f).growth_rate
+    assert 0 < above < 1.0 and below < 0
+    assert "still unstable (|lambda| > 1) but not judder" in result.summary()
+
+
+@pytest.mark.parametrize("bound, words", [
+    ("J4=2:3", "0 < LOW <= 1 <= HIGH"), ("J4", "NAME=LOW:HIGH"),
+    ("J4=0.8:x", "NAME=LOW:HIGH"), ("mu_g=0.5:2", "not a design parameter")])
+def test_advise_refuses_bad_bounds(bound, words):
+    proc = _judder("advise", "--bounds", bound, "--no-design")
+    assert proc.returncode == 2
+    assert words in proc.stderr and "--bounds" in proc.stderr
+    assert proc.stderr.count("\n") == 1
 
 
 def _judder(*args):

@@ -242,7 +242,15 @@ def _figures(paper4, small_map):
     yield "threshold", api.threshold(np.linspace(-1e-3, 1e-3, 21),
                                      np.linspace(0, 2, 11)).figure(
         title="4dof driveline, paper preset")
-    yield "advice", api.advise().figure(title="4dof driveline, paper preset")
+    yield "advice", api.advise(bounds={"k24": (0.5, 4.0)},
+                               background=True).figure(
+        title="4dof driveline, paper preset")
+    from drivelines import get_preset
+    yield "compare", api.compare(
+        get_preset("paper-4dof"), get_preset("paper-4dof-fitted"),
+        labels=("paper-4dof", "paper-4dof-fitted"),
+        freq_hz=np.linspace(10, 220, 60), maps=True).figure(
+        title="two presets")
     bench = Path(__file__).parents[1] / "examples" / "bench"
     yield "chart", api.chart([], index=bench / "runs.csv", channels={
         "upstream_speed": "EngSpd_up", "pressure": "PressEVEN:bar",

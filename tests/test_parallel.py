@@ -168,3 +168,24 @@ def test_a_signal_closes_the_local_cluster(tmp_path, signum, status):
     gone, alive = psutil.wait_procs(workers, timeout=10)
     assert not alive, f"worker processes left: {alive}"
     assert err == "", err
+
+
+def test_a_plain_script_without_a_main_guard_runs_once(tmp_path):
+    # worker processes import their parent's __main__ from its file: an
+    # unguarded script ran its calls again in each worker and died with
+    # "RuntimeError: Nanny failed to start" (the README's snippet did)
+    script = tmp_path / "unguarded.py"
+    script.write_text(
+        "import numpy as np\n"
+        "from judder import api\n"
+        "print('body', flush=True)\n"
+        "r = api.sensitivity(['k24'], np.linspace(80, 130, 12), 1.0,\n"
+        "                    workers=2)\n"
+        "print('cases', r.cases)\n")
+    root = Path(__file__).resolve().parents[1]
+    proc = subprocess.run([sys.executable, str(script)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=600,
+                          env={**os.environ, "PYTHONPATH": str(root)})
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert proc.stdout.split() == ["body", "cases", "3"]
+    assert "Nanny" not in proc.stderr

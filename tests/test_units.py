@@ -62,3 +62,19 @@ def test_hz_is_a_frequency_on_the_command_line_but_revolutions_on_a_bench():
     # a bench's speed channel in Hz counts revolutions (rev/s)
     assert unit_factor("Hz", "speed") == UNITS["rev/s"].factor
     assert SPEED_UNITS["Hz"] == pytest.approx(2 * math.pi, rel=1e-15)
+
+
+@pytest.mark.parametrize("text, unit, value", [
+    ("10Nms/rad", "N m s/rad", 10.0), ("10 N m s/rad", "N m s/rad", 10.0),
+    ("3856Nm/rad", "N m/rad", 3856.0), ("0.122kgm^2", "kg m^2", 0.122),
+    ("150Nm", "N m", 150.0)])
+def test_the_tables_units_may_be_written_without_spaces(text, unit, value):
+    # pint alone reads "Nms" as a "number_meter": --set c12=10Nms/rad was
+    # refused as "not in a unit of N m s/rad"
+    assert parse_quantity(text, unit, "--set") == pytest.approx(value,
+                                                                rel=1e-12)
+
+
+def test_a_compact_unit_of_another_kind_is_still_refused():
+    with pytest.raises(JudderError, match="c12"):
+        parse_quantity("10Nm/rad", "N m s/rad", "--set c12")

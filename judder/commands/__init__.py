@@ -60,6 +60,8 @@ COMMANDS = {c.name: c for c in (
     Command("advise", "advise", "safe dither windows and the design change "
                                 "that clears the dither range"),
     Command("tongues", "tongues", "tongue boundaries, labels and tips"),
+    Command("compare", "compare", "two parameter sets side by side: "
+                                  "frequencies, tips, windows, verdicts"),
     Command("sensitivity", "sensitivity",
             "tongue shifts per parameter (Fig. 17, 18)"),
     Command("threshold", "threshold",

@@ -2,6 +2,7 @@
 the dither range.
 """
 
+import argparse
 from dataclasses import dataclass
 import math
 import time
@@ -11,6 +12,7 @@ import numpy as np
 from infra.errors import JudderError, check_number
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
+from stability.decisions.advice import DEFAULT_BOUNDS
 
 from ._arguments import force_option, min_growth_option, model_options
 from ._common import check_names, resolve, structural_names
@@ -28,8 +30,11 @@ DESCRIPTION = (
     "broadest region); (b) the ranking of the design parameters by the "
     "share of the way out of the window per relative change, and the "
     "smallest weighted relative change of them that clears the window "
-    "of judder, checked by recomputing the Floquet map of the advised "
-    "design (section 4.3, 5).")
+    "of judder, each parameter inside its --bounds, checked by "
+    "recomputing the Floquet map of the advised design (section 4.3, 5). "
+    "'Judder' is growth at --min-growth (1 1/s) or faster; the advice "
+    "also says where its design is still unstable (|lambda| > 1) but "
+    "growing slower.")
 OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 
 
@@ -41,8 +46,8 @@ def add_arguments(p):
                    help="dither operating frequencies, Hz (default "
                         "%(default)s, the paper's valve)")
     p.add_argument("--pf-max", type=PF_MAX, default=0.7, metavar="BAR",
-                   help="highest operating dither amplitude, bar (default "
-                        "%(default)g)")
+                   help="the valve's highest dither amplitude, the top of "
+                        "the operating range, bar (default %(default)g)")
     p.add_argument("--margin-bar", type=Quantity("--margin-bar", "bar", 0.0,
                                                amplitude=False),
                    default=0.1, metavar="BAR",
@@ -66,6 +71,13 @@ def add_arguments(p):
                    help="cost of a unit change of ln(value) of each design "
                         "parameter, in the order of --params (default 1 "
                         "each)")
+    p.add_argument("--bounds", action="append", default=[],
+                   type=_bound, metavar="NAME=LOW:HIGH",
+                   help="factors of its nominal value a design parameter "
+                        "may take, e.g. J4=0.8:1.25 (LOW <= 1 <= HIGH); "
+                        "repeatable; default %g:%g for each, halved to "
+                        "doubled, the range of the paper's sensitivity "
+                        "study (Fig. 17, 18)" % DEFAULT_BOUNDS)
     p.add_argument("--also", action="append", default=[],
                    metavar="FILE.toml",
                    help="another parameter set the advice must hold for "
@@ -84,6 +96,36 @@ def add_arguments(p):
     force_option(p)
 
 
+def _bound(text):
+    """``NAME=LOW:HIGH`` of --bounds as ``(name, low, high)``."""
+    name, sep, span = text.partition("=")
+    low, colon, high = span.partition(":")
+    allowed = ("allowed: NAME=LOW:HIGH, factors of the nominal value with "
+               "0 < LOW <= 1 <= HIGH, e.g. J4=0.8:1.25")
+    try:
+        low, high = float(low), float(high)
+    except ValueError:
+        low = high = math.nan
+    if not (sep and colon and name.strip() and math.isfinite(low)
+            and math.isfinite(high) and 0 < low <= 1 <= high
+            and low < high):
+        raise argparse.ArgumentTypeError(
+            f"--bounds {text} is not allowed; {allowed}")
+    return name.strip(), low, high
+
+
+def _bounds_of(names, given):
+    """``(len(names), 2)`` factors: ``given[name]`` where given, else
+    :data:`DEFAULT_BOUNDS`; a bound on a name that is not a design
+    parameter is refused."""
+    for name, (low, high) in given.items():
+        if name not in names:
+            raise JudderError(f"--bounds {name}={low:g}:{high:g}: {name} is "
+                              "not a design parameter; allowed: one of "
+                              f"--params ({','.join(names)})")
+    return [given.get(n, DEFAULT_BOUNDS) for n in names]
+
+
 def run(args):
     """Safe dither windows, parameter ranking and design change."""
     low, high = args.freq_range
@@ -95,6 +137,12 @@ def run(args):
                           "allowed; allowed: below --pf-max "
                           f"({args.pf_max:g} bar), the top of the operating "
                           "range")
+    bounds = {}
+    for name, lo, hi in args.bounds:
+        if name in bounds:
+            raise JudderError(f"--bounds {name} is given twice; allowed: "
+                              "one bound per parameter")
+        bounds[name] = (lo, hi)
     params, changes = parameters_of(args)
     extra = [parameter_file(args, path, "--also") for path in args.also]
     make_parents(args.out, args.plot)
@@ -105,7 +153,8 @@ def run(args):
                         margin_hz=args.margin_hz,
                         min_growth=args.min_growth, names=names,
                         weights=weights, design=not args.no_design,
-                        progress=progress)
+                        progress=progress, bounds=bounds,
+                        background=args.plot is not None)
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + written(args.out, args.plot))
@@ -113,7 +162,8 @@ def run(args):
 
 def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0),
            p_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
-           names=None, weights=None, design=True, progress=None):
+           names=None, weights=None, design=True, progress=None,
+           bounds=None, background=False):
     """``judder advise``: safe dither windows, the ranking of the design
     parameters, and the smallest weighted change that clears the window.
 
@@ -140,6 +190,14 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         Cost of a unit change of ln(value) of each (default 1).
     design : bool
         Also search the design change and recompute its map.
+    bounds : dict, optional
+        ``{name: (low, high)}``: factors of the nominal value a design
+        parameter may take (default
+        :data:`stability.decisions.advice.DEFAULT_BOUNDS` for each).
+    background : bool
+        Also compute what ``figure()`` draws beyond the operating range:
+        the advised design's map over a wider range and both designs'
+        stability boundaries.
 
     Returns
     -------
@@ -178,6 +236,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         raise JudderError(f"{len(weights)} weights for {len(names)} "
                           "parameters; allowed: one weight per parameter")
     kernel.check_weights(names, weights)
+    bounds = kernel.check_bounds(names, _bounds_of(names, bounds or {}))
     operating = kernel.OperatingRange(
         freq_hz=(low, high), p_max=p_max_bar * PA_PER_BAR,
         margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
@@ -194,9 +253,11 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     safe, windows = windows_of(sets)
     order = kernel.ranking(values, names, operating, min_growth, p_search)
     found = advised_windows = verification = judder_points = None
+    unstable = view = None
     if design:
         found = kernel.advise_design(sets, names, weights, operating,
-                                     min_growth, p_search, callback=progress)
+                                     min_growth, p_search, callback=progress,
+                                     bounds=bounds)
         if found.success:
             factors = dict(zip(found.names, found.factors))
             advised = [p.replace(**{n: p[n] * factors[n] for n in names})
@@ -204,12 +265,38 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
             _, advised_windows = windows_of(advised)
             verification, judder_points = kernel.verify_design(
                 advised[0], operating, min_growth)
+            unstable = kernel.unstable_regions(advised, operating)
+            if background:
+                view = _wide_view(values, advised[0], operating)
     return AdviceResult(
         params=values, operating=operating, min_growth=min_growth,
         sets=len(sets), freq_hz=grid, safe_p_f=safe, windows=windows,
         ranking=order, advice=found, advised_windows=advised_windows or [],
         verification=verification, judder_points=judder_points,
-        seconds=time.perf_counter() - started)
+        seconds=time.perf_counter() - started, unstable=unstable,
+        view=view)
+
+
+def _wide_view(given, advised, operating):
+    """What the figure shows beyond the operating range: the advised
+    design's map from half the lowest to 1.5 times the highest frequency
+    and up to twice the operating amplitude, with the stability
+    boundaries (|lambda| = 1) of both designs and the advised one's
+    tongues."""
+    from stability.maps import stability_map as map_kernel
+    from stability.source import build_driveline
+    from stability.tongues import find_tongues, tongue_boundaries
+    low, high = operating.freq_hz
+    freqs = np.linspace(max(0.5 * low, 1.0), 1.5 * high, 160)
+    p_top = max(2 * operating.p_max, 1.2 * operating.required_p_f)
+    driveline = build_driveline(advised)
+    view = map_kernel(driveline, freqs, np.linspace(0, p_top, 50))
+    mine = tongue_boundaries(driveline, freqs, p_top, check=False)
+    theirs = tongue_boundaries(build_driveline(given), freqs, p_top,
+                               check=False)
+    return {"map": view, "boundaries": mine,
+            "tongues": find_tongues(driveline, mine),
+            "given_boundaries": theirs}
 
 
 def _window_records(windows):
@@ -226,7 +313,10 @@ class AdviceResult:
     :func:`stability.decisions.advice.ranking`, ``advice`` the
     :class:`stability.decisions.advice.Advice` (None if not asked for), and
     ``verification`` the recomputed map of the advised design with its
-    count of judder-relevant points.
+    count of judder-relevant points, ``unstable`` the
+    :class:`stability.decisions.advice.UnstableRegion` of the advised
+    design (unstable but slower than judder), ``view`` what the figure
+    draws beyond the operating range (None unless asked for).
     """
 
     params: object
@@ -242,6 +332,8 @@ class AdviceResult:
     verification: object
     judder_points: object
     seconds: float
+    unstable: list = None
+    view: dict = None
 
     def advised_params(self):
         """The advised parameter set (None if there is none)."""
@@ -250,6 +342,14 @@ class AdviceResult:
             return None
         return self.params.replace(**{n: self.params[n] * f
                                       for n, f in zip(a.names, a.factors)})
+
+    def _max_growth(self):
+        """Fastest growth of an unstable point of the recomputed map of
+        the advised design, 1/s (None: no map, or nothing unstable)."""
+        v = self.verification
+        if v is None or not np.any(v.kind > 0):
+            return None
+        return float(v.growth_rate[v.kind > 0].max())
 
     def as_dict(self):
         op = self.operating
@@ -280,6 +380,15 @@ class AdviceResult:
                 "tongues_in_the_way": a.history,
                 "weighted_change": a.weighted_change,
                 "factors": dict(zip(a.names, a.factors.tolist())),
+                "bounds": {n: list(b) for n, b in
+                           zip(a.names, a.bounds.tolist())},
+                "units": {n: self.params.specs[n].unit for n in a.names},
+                "unstable_regions": (None if self.unstable is None else [
+                    {"freq_hz": list(r.freq_hz),
+                     "lowest_p_f_bar": r.lowest_p_f / PA_PER_BAR,
+                     "lowest_at_hz": r.lowest_at_hz}
+                    for r in self.unstable]),
+                "max_growth_per_s_in_range": self._max_growth(),
                 "values": ({n: self.advised_params()[n] for n in a.names}
                            if a.success else None),
                 "nominal": {n: self.params[n] for n in a.names},
@@ -306,17 +415,58 @@ class AdviceResult:
             lines.append("ranking (share of the way out per unit ln change): "
                          + ", ".join(f"{n} {s:.3f}"
                                      for n, s, _ in self.ranking))
+            lines.append("  share: the part of its way out of the window "
+                         "(up, down or up in amplitude, the easiest) that "
+                         "a change of ln(value) by 1, x2.72, moves the "
+                         "tongue that needs most; 1 = all the way")
         a = self.advice
         if a is not None:
-            if a.success:
-                lines.append("design: " + ", ".join(
-                    f"{n} x{f:.3f}" for n, f in zip(a.names, a.factors))
-                    + f" (weighted change {a.weighted_change:.3f}); "
-                    f"recomputed map: {self.judder_points} judder points of "
-                    f"{self.verification.kind.size}")
-            else:
-                lines.append(f"design: none found: {a.message}")
+            lines += self._design_lines(a)
         return "\n".join(lines)
+
+    def _design_lines(self, a):
+        """The design in the parameters' units, its check, and the
+        instability it still has."""
+        from infra.numbers import readable_number
+        from stability.decisions.advice import bounds_words
+        bounds = f"bounds {bounds_words(a.names, a.bounds)}"
+        if not a.success:
+            return [f"design: none: {a.message}",
+                    "  to find one: widen --bounds, add --params, or "
+                    "narrow the operating range (--freq-range, --pf-max)"]
+        advised = self.advised_params()
+        changed = [(n, f) for n, f in zip(a.names, a.factors)
+                   if abs(f - 1) > 5e-4]
+        kept = [n for n, f in zip(a.names, a.factors) if abs(f - 1) <= 5e-4]
+        lines = ["design: " + ", ".join(
+            f"{n} {readable_number(self.params[n])} -> "
+            f"{readable_number(advised[n])} "
+            f"{self.params.specs[n].unit} (x{f:.3f})" for n, f in changed)
+            + (f"; unchanged: {', '.join(kept)}" if kept else ""),
+            f"  weighted change {a.weighted_change:.3f}; {bounds}; "
+            f"recomputed map: {self.judder_points} judder points "
+            f"(>= {self.min_growth:g} 1/s) of {self.verification.kind.size}"
+            f" in the operating range"]
+        lines.append("  " + self._unstable_words())
+        return lines
+
+    def _unstable_words(self):
+        """What instability the advised design still has, in words."""
+        low, high = self.operating.freq_hz
+        top = self.operating.p_max / PA_PER_BAR
+        if not self.unstable:
+            return (f"the advised design is stable (|lambda| < 1) in "
+                    f"{low:g}-{high:g} Hz up to {top:g} bar")
+        where = ", ".join(
+            f"{r.freq_hz[0]:.1f}-{r.freq_hz[1]:.1f} Hz from "
+            f"{r.lowest_p_f / PA_PER_BAR:.3f} bar (at "
+            f"{r.lowest_at_hz:.1f} Hz)" for r in self.unstable)
+        fastest = self._max_growth()
+        rate = ("" if fastest is None else
+                f", growing at most {fastest:.2g} 1/s there (one e-fold in "
+                f"{1 / fastest:.2g} s)" if fastest > 0 else "")
+        return (f"still unstable (|lambda| > 1) but not judder (growth < "
+                f"{self.min_growth:g} 1/s) at {where}{rate}")
 
     @keeps_foreign_files
     def save(self, path):

@@ -229,6 +229,8 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
             "efolds_per_engagement": rate * engagement_s,
             "min_growth_per_s": min_growth,
             "boundary_p_f_bar": finite_or_none(m.boundary_p_f / PA_PER_BAR),
+            "unstable_boundary_p_f_bar": finite_or_none(
+                check.unstable_p_f / PA_PER_BAR),
             "margin_bar": finite_or_none(m.margin_p_f / PA_PER_BAR),
             "margin_bar_at_least": (None if np.isfinite(m.margin_p_f)
                                     else (p_max - m.p_f) / PA_PER_BAR),
@@ -261,24 +263,38 @@ def growth_words(record, engagement_s):
 
 
 def margin_words(record):
-    """Both margins of a record in plain words (amplitude, frequency)."""
+    """Both margins of a record in plain words (amplitude, frequency),
+    the amplitude one with where the setting's frequency becomes unstable
+    (|lambda| = 1) as well as judder (growth >= min-growth)."""
     bar = record["margin_bar"]
-    if bar is None:
-        amplitude = ("no judder at this frequency up to "
-                     f"{record['p_f_bar'] + record['margin_bar_at_least']:.3g}"
-                     " bar")
-    elif bar >= 0:
-        amplitude = f"{bar:.3f} bar below judder" + _named(
-            record["margin_bar_tongue"])
+    rate = f">= {record['min_growth_per_s']:g} 1/s"
+    tongue = record["margin_bar_tongue"]
+    which = f"({rate})" if tongue is None else \
+        f"({rate}, tongue {tongue['number'] or '?'})"
+    top = record["p_f_bar"] + (record["margin_bar_at_least"] or 0.0)
+    unstable = record.get("unstable_boundary_p_f_bar")
+    here = f" at {record['freq_hz']:g} Hz"
+    if record["min_growth_per_s"] == 0 or unstable is None:
+        onset = ""
     else:
-        amplitude = f"{-bar:.3f} bar above the judder boundary" + _named(
-            record["margin_bar_tongue"])
+        onset = f"; unstable (|lambda| > 1){here} from {unstable:.3f} bar"
+    if bar is None and unstable is None:
+        amplitude = f"stable (|lambda| < 1){here} up to {top:.3g} bar"
+    elif bar is None:
+        amplitude = f"no judder ({rate}){here} up to {top:.3g} bar" + onset
+    elif bar >= 0:
+        amplitude = f"{bar:.3f} bar below judder {which}" + onset
+    else:
+        amplitude = (f"{-bar:.3f} bar above the judder boundary {which}"
+                     + onset)
     hz = record["margin_hz"]
     if hz is None:
         search = record["frequency_search_hz"]
         frequency = (f"no dither frequency judders at {record['p_f_bar']:g} "
                      "bar" + ("" if search is None else
-                              f" from {search[0]:.3g} to {search[1]:.3g} Hz"))
+                              f" in the range searched, {search[0]:.3g} to "
+                              f"{search[1]:.3g} Hz (from a quarter of the "
+                              "lowest to four times the highest setting)"))
     elif hz > 0:
         frequency = (f"nearest judder {hz:.2f} Hz away, at "
                      f"{record['crossing_hz']:.2f} Hz"

@@ -7,13 +7,13 @@ from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, model_options,
-                         waveform_option)
+from ._arguments import (force_option, method_option, min_growth_option,
+                         model_options, waveform_option)
 from ._common import dithered, resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, output_files, save_plot, written
 from ._preflight import check_floquet
-from ._values import FREQ, PF, parse_waveform
+from ._values import FREQ, MIN_GROWTH, PF, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -33,6 +33,7 @@ def add_arguments(p):
     p.add_argument("--plot", metavar="FILE.png",
                    help="the multipliers on the complex plane with the "
                         "unit circle, and near the leading one (Fig. 15)")
+    min_growth_option(p, "; the verdict line says which the point is")
     method_option(p)
     model_options(p)
     waveform_option(p)
@@ -46,7 +47,8 @@ def run(args):
     make_parents(args.plot)
     point = floquet(args.freq, args.pf, params, changes,
                     method=args.method,
-                    waveform=parse_waveform(args.dither_wave))
+                    waveform=parse_waveform(args.dither_wave),
+                    min_growth=args.min_growth)
     if args.plot:
         save_plot(args.plot, point.figure(
             title=f"Floquet multipliers (Fig. 15), "
@@ -58,12 +60,12 @@ def run(args):
             f"(|lambda| = {result.leading_abs:.6f}), growth rate "
             f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
             + ", ".join(f"{abs(m):.6f}" for m in result.multipliers)
-            + written(args.plot))
+            + "\n" + point.verdict_words() + written(args.plot))
     emit(args, {**point.as_dict(), **output_files(plot=args.plot)}, text)
 
 
 def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
-            method=DEFAULT_METHOD, waveform=None):
+            method=DEFAULT_METHOD, waveform=None, min_growth=None):
     """``judder floquet``: Floquet multipliers at one dither setting
     (Eq. 10-13), rigid-body angles removed.
 
@@ -76,17 +78,24 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
 
     waveform : object, optional
         Dither shape (:mod:`stability.waveforms`); default the cosine.
+    min_growth : float, optional
+        Judder rate, 1/s, of the verdict (default
+        :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
 
     Returns
     -------
     FloquetPoint
     """
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    MIN_GROWTH.check(min_growth, "min_growth")
     FREQ.check(freq_hz, "freq_hz")
     PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)
     result = floquet_kernel(dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)
-    return FloquetPoint(params=values, method=method, result=result)
+    return FloquetPoint(params=values, method=method, result=result,
+                        min_growth=min_growth)
 
 
 def complex_record(value):
@@ -101,12 +110,32 @@ def complex_record(value):
 class FloquetPoint:
     """``judder floquet``: the multipliers at one dither setting.
 
-    ``result`` is the :class:`stability.floquet.FloquetResult`.
+    ``result`` is the :class:`stability.floquet.FloquetResult`;
+    ``min_growth`` the judder rate (1/s) of its verdict.
     """
 
     params: object
     method: str
     result: object
+    min_growth: float = 1.0
+
+    def verdict(self):
+        """One of :data:`stability.decisions.relevance.VERDICTS`."""
+        from stability.decisions.relevance import verdict
+        from stability.kinds import KINDS
+        r = self.result
+        return verdict(r.kind != KINDS[0], r.growth_rate, self.min_growth)
+
+    def verdict_words(self):
+        """The verdict with both thresholds named."""
+        word, rate = self.verdict(), self.result.growth_rate
+        judder = f"judder (growth >= {self.min_growth:g} 1/s)"
+        if word == "STABLE":
+            return f"{word}: every multiplier inside the unit circle"
+        if word == "SLOW GROWTH":
+            return (f"{word}: unstable (|lambda| > 1), growing at "
+                    f"{rate:.4g} 1/s, slower than {judder}")
+        return f"{word}: unstable (|lambda| > 1) and {judder}"
 
     @property
     def p_f_bar(self):
@@ -121,6 +150,8 @@ class FloquetPoint:
                 "leading": complex_record(r.leading),
                 "leading_abs": r.leading_abs, "kind": r.kind,
                 "growth_rate_per_s": r.growth_rate,
+                "verdict": self.verdict(),
+                "min_growth_per_s": self.min_growth,
                 "exponents_per_s": [complex_record(z) for z in r.exponents]}
 
     def figure(self, title=None):

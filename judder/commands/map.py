@@ -2,6 +2,7 @@
 
 from dataclasses import dataclass
 import json
+import time
 
 import numpy as np
 
@@ -24,7 +25,9 @@ from ._values import FREQ, PF, Grid, parse_waveform
 DESCRIPTION = (
     "Leading Floquet multiplier on a grid of dither frequency (Hz) x "
     "amplitude (bar), classified single-period, double-period or "
-    "combination (Fig. 14). Ctrl-C stops it without writing a partial "
+    "combination (Fig. 14): unstable where |lambda| > 1; judder where it "
+    "grows at --min-growth (1 1/s) or faster, the rest of the unstable "
+    "region shaded grey. Ctrl-C stops it without writing a partial "
     "file.")
 OUTPUTS = (("out", "--out", ("npz",)), ("plot", "--plot", None))
 AMPLITUDE = "pf"
@@ -62,6 +65,7 @@ def add_arguments(p):
 
 def run(args):
     """Stability map over a frequency x amplitude grid."""
+    started = time.perf_counter()
     freqs = args.freq
     amplitudes = args.pf
     params, changes = parameters_of(args)
@@ -85,11 +89,37 @@ def run(args):
                                           "set": args.set,
                                           "dither_wave": args.dither_wave}},
                            figure={"title": title})
-    counts = result.map.counts()
-    text = (f"{result.map.kind.size} points in {result.seconds:.2f} s: "
-            + ", ".join(f"{k} {v}" for k, v in counts.items())
+    text = (count_words(result) + "\n" + time_words(
+        result, time.perf_counter() - started)
             + written(args.out, args.plot))
     emit(args, {**result.as_dict(), **files}, text)
+
+
+def count_words(result):
+    """The points of a map by what they are: stable, unstable
+    (|lambda| > 1) by kind, and judder (growth >= min-growth) among
+    them."""
+    counts = result.map.counts()
+    stable = counts.pop(KINDS[0], 0)
+    unstable = sum(counts.values())
+    rate = result.min_growth or 0.0
+    return (f"{result.map.kind.size} points: {stable} stable, {unstable} "
+            "unstable (|lambda| > 1: "
+            + ", ".join(f"{k} {v}" for k, v in counts.items()) + ")"
+            + (f", of which {result.judder_relevant_points()} judder "
+               f"(growth >= {rate:g} 1/s)" if rate > 0 else ""))
+
+
+def time_words(result, total=None):
+    """What the time went on: the Floquet map, the exact boundaries, and
+    the whole command (with the figure and the files)."""
+    parts = [f"Floquet map {result.seconds:.2f} s"]
+    if result.boundaries_seconds is not None:
+        parts.append(f"exact boundaries {result.boundaries_seconds:.2f} s")
+    return ("time: " + ", ".join(parts)
+            + ("" if total is None else
+               f"; {total:.2f} s in all after start-up (with the figure and "
+               "the files)"))
 
 
 def check_map_grid(values, freqs, amplitudes, options, method, tongues):
@@ -140,16 +170,18 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         map_kernel, driveline, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
         callback=progress)
-    boundaries = found = None
+    boundaries = found = exact_seconds = None
     p_top = float(np.max(p_f_bar)) * PA_PER_BAR
     if exact and len(result.freq_hz) > 1 and p_top > 0:
         from stability.tongues import find_tongues, tongue_boundaries
+        started = time.perf_counter()
         boundaries = tongue_boundaries(driveline, result.freq_hz, p_top,
                                        method)
         found = find_tongues(driveline, boundaries)
+        exact_seconds = time.perf_counter() - started
     return MapResult(params=values, map=result, seconds=seconds,
                      boundaries=boundaries, tongues=found,
-                     min_growth=min_growth)
+                     min_growth=min_growth, boundaries_seconds=exact_seconds)
 
 
 @dataclass(frozen=True)
@@ -157,7 +189,8 @@ class MapResult:
     """``judder map``: the stability map (Fig. 12, 14) and its timing.
 
     ``map`` is the :class:`stability.maps.StabilityMap`; ``seconds`` the
-    computing time.
+    time of the Floquet map, ``boundaries_seconds`` that of the exact
+    boundaries (None without them).
     """
 
     params: object
@@ -166,6 +199,7 @@ class MapResult:
     boundaries: object = None
     tongues: list = None
     min_growth: object = None
+    boundaries_seconds: object = None
 
     def judder_relevant_points(self):
         """Points growing faster than ``min_growth`` (all unstable ones if

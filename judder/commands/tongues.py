@@ -6,25 +6,30 @@ import time
 
 import numpy as np
 
+from infra.errors import check_number
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, model_options,
-                         pf_max_option, waveform_option)
+from ._arguments import (force_option, method_option, min_growth_option,
+                         model_options, pf_max_option, waveform_option)
 from ._common import BACKGROUND_AMPLITUDES, dithered, resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
-from ._values import FREQ, MIN_GROWTH, PF_MAX, Grid, parse_waveform
+from ._values import FREQ, PF_MAX, Grid, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (
     "Exact tongue boundaries by Hill's method (--solver hill: every "
     "kind, all frequencies at once; scan: combination by Brent's method "
     "on the monodromy); each point checked against the monodromy. "
-    "Tongues numbered as in Fig. 14, with their tips (lowest p_f).")
+    "Tongues numbered as in Fig. 14, with two tips each: where it "
+    "becomes unstable (a Floquet multiplier outside the unit circle, "
+    "|lambda| > 1) and where it becomes judder (growing at --min-growth, "
+    "1 1/s by default, or faster). The boundaries drawn and written are "
+    "the unstable ones (Fig. 14, 16).")
 OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 AMPLITUDE = "pf_max"
 
@@ -35,17 +40,16 @@ def add_arguments(p):
                    default="10:220:500", metavar="START:STOP:N",
                    help="dither frequencies, Hz (default 10:220:500)")
     pf_max_option(p, "largest amplitude searched")
-    p.add_argument("--min-growth", type=MIN_GROWTH, default=0.0, metavar="1/S",
-                   help="boundaries of judder growing at least this fast, "
-                        "1/s (default 0: the stability boundaries of Fig. "
-                        "14; map, check and advise use 1, one e-fold per "
-                        "1 s engagement, the judder-relevant rate)")
+    min_growth_option(p, "; the 'judder from' tips are where the growth "
+                         "reaches it, the 'unstable from' tips where "
+                         "|lambda| = 1 (growth 0)")
     p.add_argument("--solver", default="hill", choices=("hill", "scan"),
                    help="boundary solver: hill (default, fast) or scan "
                         "(per frequency, Brent on the monodromy)")
     p.add_argument("--out", metavar="FILE.csv",
-                   help="boundaries as CSV: freq_hz, p_f_bar (lowest, empty "
-                        "if none), then per kind, bar")
+                   help="the unstable boundaries (|lambda| = 1) as CSV: "
+                        "freq_hz, p_f_bar (lowest, empty if none), then "
+                        "per kind, bar")
     p.add_argument("--plot", metavar="FILE.png",
                    help="boundaries drawn over the map (Fig. 16)")
     method_option(p)
@@ -67,20 +71,12 @@ def run(args):
                          method=args.method, waveform=waveform,
                          background=args.plot is not None,
                          progress=progress,
-                         min_growth=args.min_growth,
+                         judder_growth=args.min_growth,
                          solver=args.solver)
     data = {**result.as_dict(), **write_outputs(args, result, figure={
         "title": f"tongue boundaries over the map, "
                  f"{model_title(args, params)}"})}
-    rows = [f"{'#':>3} {'kind':14s} {'resonance':>10s} {'tip f [Hz]':>11s} "
-            f"{'tip p_f [bar]':>14s} {'offset':>8s}"]
-    for r in data["tongues"]:
-        offset = ("" if r["tip_offset_percent"] is None
-                  else f"{r['tip_offset_percent']:+.2f} %")
-        rows.append(f"{r['number'] or '-':>3} {r['kind']:14s} "
-                    f"{(r['resonance'] or '-'):>10s} {r['tip_freq_hz']:11.3f} "
-                    f"{r['tip_p_f_bar']:14.4f} {offset:>8s}"
-                    + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    rows = tip_table(data)
     missing = _missing_tongues(result, freqs, args.pf_max)
     if missing:
         rows.append(missing)
@@ -89,6 +85,37 @@ def run(args):
                 f"{result.boundaries.max_multiplier_error:.1e} of the unit "
                 "circle")
     emit(args, data, "\n".join(rows) + written(args.out, args.plot))
+
+
+def tip_table(data):
+    """The tips of a :meth:`TonguesResult.as_dict` as text lines: number,
+    kind, resonance, where each tongue becomes unstable and where it
+    becomes judder, how far its tip lies from its resonance, and a line
+    saying what those words mean."""
+    rate = data["judder_min_growth_per_s"]
+    judder = f"judder (>= {rate:g} 1/s) from"
+    rows = [f"{'#':>3} {'kind':14s} {'resonance':>9s} "
+            f" {'unstable from':>25s}  {judder:>26s}  {'tip off res.':>12s}"]
+    for r in data["tongues"]:
+        offset = ("" if r["tip_offset_percent"] is None
+                  else f"{r['tip_offset_percent']:+.2f} %")
+        unstable = f"{r['tip_p_f_bar']:.4f} bar at {r['tip_freq_hz']:.3f} Hz"
+        late = ("above the searched range" if r["judder_tip_p_f_bar"] is None
+                else f"{r['judder_tip_p_f_bar']:.4f} bar at "
+                     f"{r['judder_tip_freq_hz']:.3f} Hz")
+        rows.append(f"{r['number'] or '-':>3} {r['kind']:14s} "
+                    f"{(r['resonance'] or '-'):>9s} {unstable:>25s}  "
+                    f"{late:>26s}  {offset:>12s}"
+                    + ("  (tip at grid edge)" if r["tip_at_edge"] else ""))
+    rows.append(f"unstable: a Floquet multiplier outside the unit circle "
+                f"(|lambda| > 1), growth > 0; judder: growth >= {rate:g} "
+                "1/s (--min-growth), at least one e-fold per "
+                f"{1 / rate:.3g} s" if rate > 0 else
+                "unstable: a Floquet multiplier outside the unit circle "
+                "(|lambda| > 1); judder: the same (--min-growth 0)")
+    rows.append("tip off res.: tip frequency of the unstable tongue "
+                "relative to the resonance it grows from (f_tip / f_res - 1)")
+    return rows
 
 
 def _missing_tongues(result, freqs, p_max_bar):
@@ -107,7 +134,8 @@ def _missing_tongues(result, freqs, p_max_bar):
 
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
-            min_growth=0.0, solver="hill", waveform=None):
+            min_growth=0.0, solver="hill", waveform=None,
+            judder_growth=None):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -121,8 +149,13 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
         Also compute the map drawn under the boundaries by ``figure()``
         (:data:`BACKGROUND_AMPLITUDES` amplitudes from 0 to ``p_max``).
     min_growth : float
-        1/s: boundaries of judder growing at least this fast (0: the
-        stability boundaries).
+        1/s: the boundaries (``boundaries``, ``tongues``) are those of
+        growth at this rate (0: the stability boundaries, where a tongue
+        becomes unstable).
+    judder_growth : float, optional
+        1/s: also the tongues of judder, growing at this rate
+        (``judder_tongues``; default
+        :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
     solver : str
         Boundary solver, a key of :data:`stability.tongues.SOLVERS`.
     waveform : object, optional
@@ -132,9 +165,13 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     -------
     TonguesResult
     """
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.tongues import find_tongues, tongue_boundaries
     FREQ.check(freq_hz, "freq_hz")
     PF_MAX.check(p_max_bar, "p_max_bar")
+    judder_growth = (DEFAULT_MIN_GROWTH_PER_S if judder_growth is None
+                     else float(judder_growth))
+    check_number("judder_growth", judder_growth, "1/s", strict=False)
     values = resolve(parameters, changes)
     driveline = dithered(values, waveform)
     p_max = p_max_bar * PA_PER_BAR
@@ -143,16 +180,31 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
                                    callback=progress, min_growth=min_growth,
                                    solver=solver)
     found = find_tongues(driveline, boundaries)
+    if judder_growth == boundaries.min_growth:
+        judder = found
+    else:
+        judder = find_tongues(driveline, tongue_boundaries(
+            driveline, freq_hz, p_max, method, min_growth=judder_growth,
+            solver=solver, check=False))
     seconds = time.perf_counter() - started
     under = (map_kernel(driveline, freq_hz,
                         np.linspace(0, p_max, BACKGROUND_AMPLITUDES),
                         method=method) if background else None)
     return TonguesResult(params=values, boundaries=boundaries,
-                         tongues=found, seconds=seconds, background=under)
+                         tongues=found, seconds=seconds, background=under,
+                         judder_tongues=judder, judder_growth=judder_growth)
 
 
-def tongue_record(tongue):
-    """A :class:`stability.tongues.Tongue` as JSON fields (bar, Hz)."""
+def tongue_record(tongue, judder=None):
+    """A :class:`stability.tongues.Tongue` as JSON fields (bar, Hz); with
+    ``judder`` (the tongues of judder), the tip of the same number there
+    (``judder_tip_*``, None where it does not reach judder)."""
+    late = None if judder is None or tongue.number is None else next(
+        (t for t in judder if t.number == tongue.number), None)
+    extra = {} if judder is None else {
+        "judder_tip_freq_hz": None if late is None else late.tip_freq_hz,
+        "judder_tip_p_f_bar": (None if late is None
+                               else late.tip_p_f / PA_PER_BAR)}
     return {"number": tongue.number, "kind": tongue.kind,
             "resonance": tongue.resonance,
             "resonance_hz": tongue.resonance_hz,
@@ -162,7 +214,7 @@ def tongue_record(tongue):
             100 * (tongue.tip_freq_hz / tongue.resonance_hz - 1),
             "tip_multiplier_error": tongue.tip_multiplier_error,
             "freq_range_hz": list(tongue.freq_range_hz),
-            "tip_at_edge": tongue.tip_at_edge}
+            "tip_at_edge": tongue.tip_at_edge, **extra}
 
 
 @dataclass(frozen=True)
@@ -170,8 +222,11 @@ class TonguesResult:
     """``judder tongues``: exact boundaries, labelled tongues and tips.
 
     ``boundaries`` is a :class:`stability.tongues.Boundaries`, ``tongues``
-    a list of :class:`stability.tongues.Tongue`; ``background`` the map
-    drawn under them (None unless asked for).
+    a list of :class:`stability.tongues.Tongue` (of growth
+    ``boundaries.min_growth``, 0: where each becomes unstable);
+    ``judder_tongues`` those of growth ``judder_growth`` (1/s, where each
+    becomes judder); ``background`` the map drawn under them (None unless
+    asked for).
     """
 
     params: object
@@ -179,6 +234,8 @@ class TonguesResult:
     tongues: list
     seconds: float
     background: object = None
+    judder_tongues: list = None
+    judder_growth: float = None
 
     def as_dict(self):
         b = self.boundaries
@@ -188,7 +245,9 @@ class TonguesResult:
                 "p_max_bar": b.p_max / PA_PER_BAR,
                 "max_boundary_multiplier_error": b.max_multiplier_error,
                 "natural_frequencies_hz": b.natural_frequencies_hz,
-                "tongues": [tongue_record(t) for t in self.tongues]}
+                "judder_min_growth_per_s": self.judder_growth,
+                "tongues": [tongue_record(t, self.judder_tongues or [])
+                            for t in self.tongues]}
 
     def csv_text(self):
         """Boundaries as CSV: freq_hz, p_f_bar (lowest, empty if none),
@@ -223,4 +282,5 @@ class TonguesResult:
             self.boundaries, self.tongues, self.background,
             title=title or f"{self.params.model}: tongue boundaries over "
                            "the map",
-            min_growth=self.boundaries.min_growth or DEFAULT_MIN_GROWTH_PER_S)
+            min_growth=(self.judder_growth or self.boundaries.min_growth
+                        or DEFAULT_MIN_GROWTH_PER_S))

@@ -1,18 +1,27 @@
 """``judder advise``: the safe dither windows of the given design and the
-recomputed map of the advised one."""
+map of the advised one, wide enough to show where its tongues went."""
 
 import matplotlib.pyplot as plt
+from matplotlib.lines import Line2D
+from matplotlib.patches import Rectangle
 
 from infra.plotstyle import figure_title, settle_labels
 from infra.units import PA_PER_BAR
-from stability.plots import plot_map
+from stability.plots import kind_handles, plot_boundaries, plot_map
 
 __all__ = ["advice_figure"]
 
+#: The given design's stability boundaries over the advised design's map.
+GIVEN_STYLE = {"color": "#7f7f7f", "linestyle": (0, (4, 2)),
+               "linewidth": 1.0}
+
 
 def advice_figure(advice, title=None):
-    """Safe amplitude per frequency (left) and the recomputed map of the
-    advised design (right, if any).
+    """Safe amplitude per frequency (left) and the map of the advised
+    design (right, if any): over the operating range, or, when the result
+    holds its wide view (``advise(background=True)``), from half the
+    lowest to 1.5 times the highest operating frequency, with the given
+    design's stability boundaries dashed and the operating range framed.
 
     Parameters
     ----------
@@ -21,16 +30,17 @@ def advice_figure(advice, title=None):
     if advice.verification is None:
         fig, left = plt.subplots(figsize=(7, 5), layout="constrained")
     else:
-        fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5),
+        fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.4),
                                           layout="constrained")
     op = advice.operating
+    top = op.p_max / PA_PER_BAR
     inside = ((advice.freq_hz >= op.freq_hz[0])
               & (advice.freq_hz <= op.freq_hz[1]))
     left.fill_between(advice.freq_hz[inside], 0,
                       advice.safe_p_f[inside] / PA_PER_BAR, color="#2ca02c",
                       alpha=0.5, label="safe (with margins)")
-    left.axhline(op.p_max / PA_PER_BAR, color="k", linestyle="--",
-                 linewidth=0.8, label="operating amplitude")
+    left.axhline(top, color="k", linestyle="--", linewidth=0.8,
+                 label="valve's highest amplitude (--pf-max)")
     for edge in op.freq_hz:
         left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
     left.set_xlabel("dither frequency [Hz]")
@@ -39,12 +49,39 @@ def advice_figure(advice, title=None):
     left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13),
                 ncols=2, frameon=False, borderaxespad=0.0)
     if advice.verification is not None:
-        plot_map(advice.verification, ax=right,
-                 min_growth=advice.min_growth)
-        # above the tongue numbers that head the axes
-        right.set_title(f"advised design: {advice.judder_points} "
-                        "judder-relevant points", fontsize=10, pad=16)
+        _advised_map(advice, right)
     figure_title(fig, "judder advise: safe dither windows and the advised "
                  "design" + (f", {title}" if title else ""))
     settle_labels(fig)
     return fig
+
+
+def _advised_map(advice, ax):
+    """The advised design's map; with the wide view, its exact tongues,
+    the given design's boundaries and the operating range."""
+    op = advice.operating
+    view = advice.view
+    if view is None:
+        plot_map(advice.verification, ax=ax, min_growth=advice.min_growth)
+    else:
+        plot_map(view["map"], ax=ax, tongues=view["tongues"],
+                 boundaries=view["boundaries"], legend=False,
+                 min_growth=advice.min_growth)
+        plot_boundaries(view["given_boundaries"], ax=ax, style=GIVEN_STYLE,
+                        numbers=False)
+        low, high = op.freq_hz
+        ax.add_patch(Rectangle((low, 0), high - low, op.p_max / PA_PER_BAR,
+                               fill=False, edgecolor="#2ca02c",
+                               linewidth=1.6, zorder=5))
+        ax.set_xlim(view["map"].freq_hz[0], view["map"].freq_hz[-1])
+        handles = kind_handles(lines=True, min_growth=advice.min_growth)
+        handles += [Line2D([], [], label="given design's boundaries",
+                           **GIVEN_STYLE),
+                    Rectangle((0, 0), 1, 1, fill=False, edgecolor="#2ca02c",
+                              linewidth=1.6, label="operating range")]
+        ax.legend(handles=handles, fontsize=7, loc="upper left",
+                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    # above the tongue numbers that head the axes
+    ax.set_title(f"advised design: {advice.judder_points} judder points "
+                 f"(>= {advice.min_growth:g} 1/s) in the operating range",
+                 fontsize=10, pad=16)

@@ -2,6 +2,7 @@
 over the map when there is one."""
 
 import matplotlib.pyplot as plt
+from matplotlib.lines import Line2D
 
 from infra.plotstyle import LABEL_GID, dither_axes, settle_labels
 from stability.plots import kind_handles, plot_map
@@ -39,7 +40,10 @@ def check_figure(records, background=None, min_growth=None, title=None):
     handles = []
     if background is not None:
         plot_map(background, ax=ax, min_growth=min_growth, legend=False)
-        handles = kind_handles(min_growth=min_growth)
+        # the map's black line: where the grid's |lambda| reaches 1
+        handles = kind_handles(min_growth=min_growth) + [
+            Line2D([], [], color="k", linewidth=0.8,
+                   label=r"unstable from here ($|\lambda| = 1$)")]
     seen = {}
     for r in records:
         marker, color = VERDICT_MARKERS[r["verdict"]]
@@ -61,7 +65,8 @@ def check_figure(records, background=None, min_growth=None, title=None):
     ax.legend(handles=handles + list(seen.values()), fontsize=7,
               loc="upper left", bbox_to_anchor=(1.01, 1.0),
               borderaxespad=0.0)
-    ax.set_title("dither settings: verdict and margins"
+    rate = "" if not min_growth else f" (>= {min_growth:g} 1/s)"
+    ax.set_title(f"dither settings: verdict and margins to judder{rate}"
                  + (f", {title}" if title else ""),
                  fontsize=10, pad=16 if background is not None else 6)
     settle_labels(fig)

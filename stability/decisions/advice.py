@@ -26,8 +26,15 @@ Clearing the window
     sequential linear programming, each step the smallest weighted step
     that satisfies the linearised exits (elasticities of the edges and tips
     by central differences on the exact boundaries), then a line search and
-    a per-parameter shrink with the exact boundaries. The result is
-    checked by a recomputed Floquet map of the advised design.
+    a per-parameter shrink with the exact boundaries. Each parameter stays
+    inside its bounds (factors of the nominal value, default
+    :data:`DEFAULT_BOUNDS`). The result is checked by a recomputed Floquet
+    map of the advised design.
+
+Clear of judder, not always stable
+    The design keeps the judder-relevant tongues (growth at ``min_growth``
+    or faster) out of the window; a tongue may still be unstable there,
+    growing slower. :func:`unstable_regions` says where.
 """
 
 from dataclasses import dataclass, field
@@ -45,14 +52,18 @@ from .relevance import is_judder_relevant
 
 __all__ = ["OperatingRange", "window_boundary", "safe_windows", "SafeWindow",
            "ranking", "Advice", "advise_design", "verify_design",
-           "DEFAULT_DESIGN_PARAMETERS"]
+           "unstable_regions", "UnstableRegion", "DEFAULT_DESIGN_PARAMETERS",
+           "DEFAULT_BOUNDS", "check_bounds"]
 
 #: Design parameters the advice may change by default (section 4.3).
 DEFAULT_DESIGN_PARAMETERS = ("J2", "J4", "k12", "k24", "c12")
 #: Relative step of the elasticities (central differences in ln theta).
 _STEP = 0.02
-#: Largest factor the advice may change a parameter by.
-MAX_FACTOR = 10.0
+#: Factors of the nominal value each design parameter may take by default:
+#: halved to doubled, the range of the paper's sensitivity study (Fig. 17,
+#: 18), over which the tongue shifts it reports were computed; a change
+#: beyond it is a new component rather than a revision of the given one.
+DEFAULT_BOUNDS = (0.5, 2.0)
 #: Frequency points of the boundary grid per design evaluation.
 _GRID_POINTS = 600
 
@@ -327,6 +338,8 @@ class Advice:
     iterations : int
     history : list
         Tongues in the way at each iteration (their numbers).
+    bounds : ndarray, shape (n, 2)
+        Lowest and highest factor each parameter was allowed.
     """
 
     names: tuple
@@ -336,6 +349,7 @@ class Advice:
     message: str
     iterations: int
     history: list = field(default_factory=list)
+    bounds: np.ndarray = None
 
 
 def _clear(param_sets, names, x, operating, min_growth, p_search):
@@ -349,7 +363,8 @@ def _clear(param_sets, names, x, operating, min_growth, p_search):
 
 
 def _smallest_step(x, weights, rows, targets, limit):
-    """min ||w (x + d)|| subject to rows @ d >= targets, |x + d| <= limit."""
+    """min ||w (x + d)|| subject to rows @ d >= targets and
+    limit[:, 0] <= x + d <= limit[:, 1]."""
     def objective(d):
         return float(np.sum((weights * (x + d)) ** 2))
 
@@ -357,7 +372,7 @@ def _smallest_step(x, weights, rows, targets, limit):
         return 2 * weights ** 2 * (x + d)
     constraints = [{"type": "ineq", "fun": lambda d: rows @ d - targets,
                     "jac": lambda d: rows}]
-    bounds = [(-limit - xi, limit - xi) for xi in x]
+    bounds = [(low - xi, high - xi) for xi, (low, high) in zip(x, limit)]
     start = np.zeros_like(x)
     result = minimize(objective, start, jac=gradient, bounds=bounds,
                       constraints=constraints, method="SLSQP",
@@ -391,8 +406,31 @@ def _combined_step(x, weights, way, slopes, operating, limit):
     return None if best is None else best[1]
 
 
+def check_bounds(names, bounds):
+    """The bounds of the design parameters as an ``(n, 2)`` array of
+    factors; JudderError unless each is ``0 < low <= 1 <= high <
+    inf`` (the nominal design lies inside)."""
+    bounds = np.asarray(bounds, dtype=float)
+    if bounds.shape != (len(names), 2):
+        raise JudderError(f"{len(bounds)} bounds for {len(names)} "
+                          "parameters; allowed: one (low, high) each")
+    for name, (low, high) in zip(names, bounds):
+        if not (np.isfinite(low) and np.isfinite(high) and 0 < low <= 1
+                <= high and low < high):
+            raise JudderError(f"bounds of {name} = {low:g}:{high:g} are not "
+                              "allowed; allowed: factors 0 < LOW <= 1 <= "
+                              "HIGH, LOW < HIGH, finite")
+    return bounds
+
+
+def bounds_words(names, bounds):
+    """``J2 x0.5-2, J4 x0.8-1.25``."""
+    return ", ".join(f"{n} x{low:g}-{high:g}"
+                     for n, (low, high) in zip(names, bounds))
+
+
 def advise_design(param_sets, names, weights, operating, min_growth,
-                  p_search, max_iterations=8, callback=None):
+                  p_search, max_iterations=8, callback=None, bounds=None):
     """:class:`Advice`: the smallest weighted change that clears the window.
 
     Parameters
@@ -411,10 +449,15 @@ def advise_design(param_sets, names, weights, operating, min_growth,
         Largest boundary amplitude searched, Pa (> required amplitude).
     callback : callable, optional
         ``callback(done, total)`` after each iteration.
+    bounds : array_like, shape (n, 2), optional
+        Lowest and highest factor of each parameter (default
+        :data:`DEFAULT_BOUNDS` for each).
     """
     names = tuple(names)
     weights = np.asarray(weights, dtype=float)
-    limit = np.log(MAX_FACTOR)
+    bounds = check_bounds(names, [DEFAULT_BOUNDS] * len(names)
+                          if bounds is None else bounds)
+    limit = np.log(bounds)
     x = np.zeros(len(names))
     history = []
     message = "no design found within the iteration limit"
@@ -430,25 +473,31 @@ def advise_design(param_sets, names, weights, operating, min_growth,
             success, message = True, "the window is clear"
             break
         if not way:   # only an uncertain set or an unnumbered tongue left
-            x = x * 1.1 + 0.02 * np.sign(x)
+            x = np.clip(x * 1.1 + 0.02 * np.sign(x), limit[:, 0], limit[:, 1])
             continue
         slopes = _elasticities(param_sets, names, x, list(way), operating,
                                min_growth, p_search)
         step = _combined_step(x, weights, way, slopes, operating, limit)
         if step is None:
-            message = (f"no change within a factor {MAX_FACTOR:g} of "
-                       f"{', '.join(names)} moves tongues "
-                       f"{', '.join(map(str, sorted(way)))} out of the window")
+            message = (f"no design inside the bounds ({bounds_words(names, bounds)}) "
+                       f"moves tongue{'s' if len(way) > 1 else ''} "
+                       f"{', '.join(map(str, sorted(way)))} out of the "
+                       "window by the linearised exits (up, down or up in "
+                       "amplitude) from this design")
             break
-        x = x + step
+        x = np.clip(x + step, limit[:, 0], limit[:, 1])
         if callback is not None:
             callback(iterations, max_iterations)
     if success:
         x = _shrink(param_sets, names, x, operating, min_growth, p_search)
+    elif message.startswith("no design found within"):
+        message = (f"no design inside the bounds ({bounds_words(names, bounds)}) "
+                   f"found in {max_iterations} iterations; tongues "
+                   f"{', '.join(map(str, history[-1]))} still in the window")
     return Advice(names=names, factors=np.exp(x),
                   weighted_change=float(np.linalg.norm(weights * x)),
                   success=success, message=message, iterations=iterations,
-                  history=history)
+                  history=history, bounds=bounds)
 
 
 def _shrink(param_sets, names, x, operating, min_growth, p_search,
@@ -493,6 +542,53 @@ def verify_design(params, operating, min_growth, freq_points=141,
     judder = (result.kind > 0) & is_judder_relevant(result.growth_rate,
                                                      min_growth)
     return result, int(np.count_nonzero(judder))
+
+
+@dataclass(frozen=True)
+class UnstableRegion:
+    """Frequencies of the operating range where a design is unstable
+    (``|lambda| > 1``) below the operating amplitude.
+
+    Attributes
+    ----------
+    freq_hz : (float, float)
+        Hz.
+    lowest_p_f : float
+        Lowest unstable amplitude there, Pa.
+    lowest_at_hz : float
+        Its frequency, Hz.
+    """
+
+    freq_hz: tuple
+    lowest_p_f: float
+    lowest_at_hz: float
+
+
+def unstable_regions(param_sets, operating, freq_points=561):
+    """Where a design is unstable in the operating range, at any growth.
+
+    The stability boundary (growth 0) of every set, lowest over the sets,
+    exact from Hill's method on ``freq_points`` frequencies of the range.
+
+    Returns
+    -------
+    list of UnstableRegion
+        Intervals where it lies at or below ``operating.p_max``.
+    """
+    low, high = operating.freq_hz
+    grid = np.linspace(low, high, freq_points)
+    boundary = window_boundary(param_sets, grid, 0.0,
+                               max(1.5e5, 2 * operating.required_p_f))
+    below = boundary <= operating.p_max
+    out = []
+    edges = np.diff(np.concatenate([[0], below.astype(int), [0]]))
+    for start, stop in zip(np.flatnonzero(edges == 1),
+                           np.flatnonzero(edges == -1)):
+        at = start + int(np.argmin(boundary[start:stop]))
+        out.append(UnstableRegion(
+            freq_hz=(float(grid[start]), float(grid[stop - 1])),
+            lowest_p_f=float(boundary[at]), lowest_at_hz=float(grid[at])))
+    return out
 
 
 def check_weights(names, weights):

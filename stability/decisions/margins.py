@@ -261,6 +261,12 @@ class SettingCheck:
         resonance as in Fig. 14.
     sensitivity : dict
         :func:`margin_sensitivity` (empty if not asked for).
+    unstable_p_f : float
+        The stability boundary at the setting's frequency: the lowest
+        amplitude at which a multiplier leaves the unit circle
+        (``|lambda| = 1``, growth 0), Pa (``inf``: none up to ``p_max``).
+        Below the judder-relevant ``margin.boundary_p_f`` unless
+        ``min_growth`` is 0.
     """
 
     margin: Margin
@@ -270,6 +276,7 @@ class SettingCheck:
     hz_tongue: object
     sensitivity: dict
     tongue: object = None
+    unstable_p_f: float = np.inf
 
 
 def _tongue_at(tongues, kind, freq_hz):
@@ -313,9 +320,12 @@ def check_settings(params, freq_hz, p_f, min_growth, p_max, names=(),
                                    min_growth=min_growth, check=False)
     amplitude = boundaries.amplitude
     tongues = find_tongues(driveline, boundaries)
+    # where the setting's frequency becomes unstable (growth 0)
+    unstable_curves = kind_boundaries(driveline.periodic_system(), p_max)
     out = []
     for index, (f0, p0) in enumerate(zip(freq_hz, p_f)):
         margin = setting_margin(system, f0, p0, p_max, grid, amplitude)
+        unstable = min(float(curve(f0)) for curve in unstable_curves)
         point = floquet(driveline, f0, p0)
         sens = (margin_sensitivity(params, names, f0, p0, margin, min_growth,
                                    p_max) if names else {})
@@ -326,7 +336,8 @@ def check_settings(params, freq_hz, p_f, min_growth, p_max, names=(),
             hz_tongue=_tongue_at(tongues, margin.hz_kind, margin.crossing_hz),
             sensitivity=sens,
             tongue=(None if point.kind == KINDS[0] else
-                    _tongue_at(tongues, point.kind, f0))))
+                    _tongue_at(tongues, point.kind, f0)),
+            unstable_p_f=unstable))
         if callback is not None:
             callback(index + 1, len(freq_hz))
     return out

@@ -53,14 +53,18 @@ def kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
                              label=KINDS[k]))
     if min_growth is not None and min_growth > 0:
         handles.append(Patch(facecolor=SLOW_COLOR, edgecolor="k",
-                             label=f"grows < {min_growth:g} 1/s (not judder)"))
+                             label=f"unstable, grows < {min_growth:g} 1/s "
+                                   "(not judder)"))
         handles.append(Line2D([], [], color="k",
                               linewidth=GROWTH_LINE["linewidths"],
                               linestyle=GROWTH_LINE["linestyles"][0],
-                              label=f"growth = {min_growth:g} 1/s"))
+                              label=f"judder from here (growth = "
+                                    f"{min_growth:g} 1/s)"))
     if lines:
         handles += [Line2D([], [], color="k", linestyle=KIND_LINESTYLES[k],
-                           label=f"{KINDS[k]} boundary") for k in kinds]
+                           label=f"{KINDS[k]} boundary "
+                                 r"($|\lambda| = 1$)")
+                    for k in kinds]
     return handles
 
 
