@@ -446,7 +446,8 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         added=problem.added, covariance=found.covariance,
         scatter=float(np.sqrt(max(found.s2, 0.0))),
         scatter_given=problem.scatter is not None,
-        threshold_spread=problem.threshold_spread, threshold_shifts=shifts)
+        threshold_spread=problem.threshold_spread, threshold_shifts=shifts,
+        forced_limit=problem.forced_limit)
     if curve_points:
         result = result.with_curves(curve_points)
         progress.step(2)

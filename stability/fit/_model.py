@@ -37,6 +37,7 @@ import numpy as np
 from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.units import PA_PER_BAR
 
+from ..friction import forced_onset
 from ..source import build_driveline
 from ..monodromy import DEFAULT_METHOD
 from ..tongues import tongue_boundaries
@@ -50,7 +51,8 @@ CURVE_POINTS = 100
 
 
 def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
-                   min_growth=DEFAULT_MIN_GROWTH_PER_S, added=()):
+                   min_growth=DEFAULT_MIN_GROWTH_PER_S, added=(),
+                   forced_limit=None):
     """Lowest amplitude of judder growing at ``min_growth`` (1/s) or
     faster at each frequency, Pa: the model boundary
     :func:`stability.fit.fit_boundary` compares with.
@@ -61,11 +63,19 @@ def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
     does; 0 gives the stability boundary
     (:func:`stability.tongues.tongue_boundaries`). ``added`` are ``(name,
     value)`` pairs added to ``params`` for the model evaluated (see
-    :func:`stability.fit._common.evaluated`).
+    :func:`stability.fit._common.evaluated`). With ``forced_limit``
+    (rad/s), the lower of that and the amplitude at which the forced
+    oscillation of the upstream speed reaches it
+    (:func:`stability.friction.forced_onset`), as a bench's verdict has
+    it.
     """
-    return tongue_boundaries(build_driveline(evaluated(params, added)),
-                             freq_hz, p_max, method,
-                             min_growth=min_growth).stability_boundary
+    driveline = build_driveline(evaluated(params, added))
+    boundary = tongue_boundaries(driveline, freq_hz, p_max, method,
+                                 min_growth=min_growth).stability_boundary
+    if forced_limit is None:
+        return boundary
+    forced = forced_onset(driveline, freq_hz, forced_limit)
+    return np.fmin(boundary, np.where(forced <= p_max, forced, np.nan))
 
 
 def fit_curves(result, points=CURVE_POINTS, method=DEFAULT_METHOD):
@@ -89,7 +99,8 @@ def fit_curves(result, points=CURVE_POINTS, method=DEFAULT_METHOD):
     freq = np.linspace(result.freq_hz.min(), result.freq_hz.max(), points)
     curves = [model_boundary(p, freq, p_max, method,
                              min_growth=result.min_growth,
-                             added=result.added) / PA_PER_BAR
+                             added=result.added,
+                             forced_limit=result.forced_limit) / PA_PER_BAR
               for p in (result.start_params, result.params)]
     return freq, curves[0], curves[1]
 

@@ -123,6 +123,10 @@ class FitResult:
     min_growth : float
         1/s: the model boundaries compared are those of judder growing at
         this rate (0: the stability boundary).
+    forced_limit : float or None
+        rad/s: the model's single-period onset is also where the forced
+        oscillation of the upstream speed reaches it (a bench's verdict,
+        :func:`stability.friction.forced_onset`); None: Floquet alone.
     added : tuple of (str, float)
         Added to the parameters for the model compared (a bench's
         linearisation: ``(('c1', d_control),)``); ``values`` and
@@ -195,6 +199,7 @@ class FitResult:
     threshold_shifts: np.ndarray = None
     held: tuple = ()
     onset_bar: np.ndarray = None
+    forced_limit: float = None
 
     @property
     def determined(self):
