@@ -95,27 +95,40 @@ def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
 
 
 def verdict_line(summary):
-    """The judder verdict of one engagement and the Floquet verdict of its
-    linearisation, in one line for a figure.
+    """The judder verdict of one engagement, the Floquet verdict of its
+    linearisation and its periodic orbit, a short line each for a
+    figure's panel.
 
     ``summary`` is a dict of :func:`engagement_summary` with
-    ``floquet_kind`` and ``floquet_exponent_per_s`` added.
+    ``floquet_kind`` and ``floquet_exponent_per_s`` (and the ``orbit_*``
+    fields of ``judder simulate``) added.
     """
     if summary["judder"] is None:
-        run = "no dither"
+        return "no dither"
+    if not summary["judder"]:
+        run = f"no judder, {summary['oscillation_rpm']:.3g} rpm"
     else:
-        run = judder_words(summary)
+        growth = summary["judder_growth_per_s"]
+        run = (f"judder, {summary['mechanism']}, "
+               f"{summary['oscillation_rpm']:.3g} rpm"
+               + ("" if summary["mechanism"] == "forced" else
+                  f" ({summary['judder_kind']}"
+                  + ("" if growth is None else f", {growth:+.2f} 1/s")
+                  + ")"))
+    lines = [f"run: {run} (limit {summary['judder_limit_rpm']:.3g} rpm)"]
     exponent = summary.get("floquet_exponent_per_s")
-    if exponent is None:
-        return run
-    line = (f"run: {run}; Floquet: {summary['floquet_kind']}, "
-            f"{exponent:+.2f} 1/s")
+    if exponent is not None:
+        lines.append(f"Floquet: {summary['floquet_kind']}, "
+                     f"{exponent:+.2f} 1/s"
+                     + ("" if summary.get("orbit_kind") is None else
+                        f"; orbit: {summary['orbit_settled_rpm']:.3g} rpm, "
+                        + (summary["orbit_mechanism"] or "no judder")))
     if summary.get("linearisation_holds") is False:
-        line += (f"\nnonlinear: the forced slip swings "
-                 f"\u00b1{summary['forced_slip_amplitude_rad_s']:.1f} rad/s, "
-                 f"the friction curve is linear over "
-                 f"\u00b1{summary['friction_linear_range_rad_s']:.1f} rad/s")
-    return line
+        lines.append(f"slip swing \u00b1"
+                     f"{summary['forced_slip_amplitude_rad_s']:.1f} rad/s, "
+                     f"curve linear over \u00b1"
+                     f"{summary['friction_linear_range_rad_s']:.1f} rad/s")
+    return "\n".join(lines)
 
 
 def judder_words(summary):
