@@ -1,18 +1,22 @@
-"""Bench engagements against the Floquet exponents of their linearisation.
+"""Bench engagements against the Floquet exponents and the periodic orbit.
 
 For each preset, a grid of dither settings across tongues 1-6 is run
-through the bench FMU (``judder simulate``), and each run's verdict and
-growth rate are compared with the Floquet exponent of the bench's
-linearisation (the acceptance of issue 18):
+through the bench FMU (``judder simulate``). Each run's verdict (the
+dither-related oscillation above the NVH limit, or an instability
+growing at 1/s or faster), mechanism and growth are compared with
 
-* exponent > 0.75 1/s: the run should have judder, growing within 30 %
-  of the exponent;
-* exponent < 0: no judder, and the upstream speed's swing after the
-  pressure ramp below 100 rpm.
+* the Floquet exponent of the bench's linearisation (issue 18): above
+  0.75 1/s the run should be parametric judder, growing within 30 % of
+  the exponent where the dither's forced slip swing stays in the friction
+  curve's linear range; between 0 and 0.75 1/s and below 0 the verdict
+  is the amplitude's (forced judder where the forced oscillation exceeds
+  the limit);
+* the periodic orbit of the same bench at the same setting (``judder
+  orbit``, issue 29): the same verdict and mechanism, and, where the
+  orbit settles (not a combination tongue, whose motion is
+  quasi-periodic), its amplitude against the run's.
 
-The settings are split by whether the dither's forced slip swing stays
-within the friction curve's linear range (``linearisation_holds``).
-Prints a table per class of setting; docs/time-domain.md quotes it.
+Prints the tables docs/time-domain.md quotes.
 
     python benchmarks/engagement_agreement.py [--freq 10:230:56] [--pf 0.2,0.5,0.8]
 """
@@ -20,8 +24,6 @@ Prints a table per class of setting; docs/time-domain.md quotes it.
 import argparse
 import sys
 from pathlib import Path
-
-import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
@@ -33,28 +35,44 @@ PRESETS = ("paper-4dof", "paper-4dof-fitted")
 
 
 def _run(preset, freq_hz, p_f_bar):
-    result = api.simulate(freq_hz, p_f_bar, parameters=get_preset(preset))
-    run, s = result.runs[0][1], result.summaries[0]
-    after = run.time >= result.start
-    swing = float(np.ptp(run["w_upstream"][after]) / 2 * 30 / np.pi)
+    s = api.simulate(freq_hz, p_f_bar,
+                     parameters=get_preset(preset)).summaries[0]
     return {"preset": preset, "freq_hz": freq_hz, "p_f_bar": p_f_bar,
             "exponent": s["floquet_exponent_per_s"],
             "floquet_kind": s["floquet_kind"], "judder": s["judder"],
-            "kind": s["judder_kind"], "growth": s["judder_growth_per_s"],
-            "holds": s["linearisation_holds"], "swing_rpm": swing}
+            "mechanism": s["mechanism"], "kind": s["judder_kind"],
+            "growth": s["judder_growth_per_s"],
+            "holds": s["linearisation_holds"],
+            "rpm": s["oscillation_rpm"], "limit": s["judder_limit_rpm"],
+            "orbit_rpm": s["orbit_settled_rpm"],
+            "orbit_kind": s["orbit_kind"],
+            "orbit_mechanism": s["orbit_mechanism"]}
 
 
-def _summary(rows, label):
+def _by_exponent(rows, label):
     judder = [r for r in rows if r["exponent"] > 0.75]
+    middle = [r for r in rows if 0 <= r["exponent"] <= 0.75]
     stable = [r for r in rows if r["exponent"] < 0]
-    found = [r for r in judder if r["judder"]]
-    within = [r for r in found if r["growth"] is not None
+    parametric = [r for r in judder if r["mechanism"] in ("parametric",
+                                                          "both")]
+    within = [r for r in parametric if r["growth"] is not None
               and abs(r["growth"] / r["exponent"] - 1) <= 0.3]
-    quiet = [r for r in stable if not r["judder"]]
-    small = [r for r in stable if r["swing_rpm"] < 100]
-    print(f"| {label} | {len(judder)} | {len(found)} | {len(within)} | "
-          f"{len(stable)} | {len(quiet)} | {len(small)} |")
-    return judder, stable
+    print(f"| {label} | {len(judder)} | {len(parametric)} | {len(within)} | "
+          f"{len(middle)} | {sum(r['judder'] for r in middle)} | "
+          f"{len(stable)} | {sum(r['judder'] for r in stable)} | "
+          f"{sum(r['mechanism'] == 'forced' for r in stable)} |")
+
+
+def _against_orbit(rows, label):
+    same = [r for r in rows if r["judder"] == (r["orbit_mechanism"]
+                                               is not None)]
+    mechanism = [r for r in rows if r["mechanism"] == r["orbit_mechanism"]]
+    settled = [r for r in rows if r["orbit_kind"] != "combination"
+               and r["rpm"] >= 3.0]
+    within = [r for r in settled if abs(r["orbit_rpm"] / r["rpm"] - 1)
+              <= 0.1]
+    print(f"| {label} | {len(rows)} | {len(same)} | {len(mechanism)} | "
+          f"{len(settled)} | {len(within)} |")
 
 
 def main(argv=None):
@@ -72,33 +90,35 @@ def main(argv=None):
                 rows.append(_run(preset, float(f), p))
                 print(f"\r{len(rows)}/{total} runs", end="", file=sys.stderr)
     print(file=sys.stderr)
-    print("| settings | exponent > 0.75 | judder | growth within 30 % | "
-          "exponent < 0 | no judder | swing < 100 rpm |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("| settings | exponent > 0.75 | parametric judder | growth "
+          "within 30 % | 0 to 0.75 | judder | exponent < 0 | judder | "
+          "of it forced |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for preset in PRESETS:
         for holds, label in ((True, "forced swing within the linear range"),
                              (False, "forced swing beyond it")):
-            _summary([r for r in rows if r["preset"] == preset
-                      and r["holds"] is holds], f"{preset}, {label}")
-    print("\njudder points (exponent > 0.75 1/s):")
+            _by_exponent([r for r in rows if r["preset"] == preset
+                          and r["holds"] is holds], f"{preset}, {label}")
+    print("\n| preset | runs | same verdict as the orbit | same mechanism | "
+          "orbit settles, run >= 3 rpm | amplitude within 10 % |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for preset in PRESETS:
+        _against_orbit([r for r in rows if r["preset"] == preset], preset)
+    print("\njudder runs and the runs that differ from the orbit:")
     print("| preset | f (Hz) | p_f (bar) | Floquet | run | growth / "
-          "exponent | swing (rpm) | linear |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+          "exponent | run (rpm) | orbit (rpm) | orbit |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in rows:
-        if r["exponent"] > 0.75:
-            ratio = "-" if r["growth"] is None else \
-                f"{r['growth'] / r['exponent']:.2f}"
-            print(f"| {r['preset']} | {r['freq_hz']:g} | {r['p_f_bar']:g} | "
-                  f"{r['floquet_kind']} {r['exponent']:+.2f} | "
-                  f"{r['kind'] if r['judder'] else 'no judder'} | {ratio} | "
-                  f"{r['swing_rpm']:.0f} | {'yes' if r['holds'] else 'no'} |")
-    misses = [r for r in rows if r["exponent"] < 0
-              and (r["judder"] or r["swing_rpm"] >= 100)]
-    print(f"\nstable settings with judder or a swing >= 100 rpm: "
-          f"{len(misses)}")
-    for r in misses:
-        print(f"  {r['preset']} {r['freq_hz']:g} Hz {r['p_f_bar']:g} bar: "
-              f"{r['kind']}, swing {r['swing_rpm']:.0f} rpm")
+        if not (r["judder"] or r["orbit_mechanism"]):
+            continue
+        ratio = "-" if r["growth"] is None or r["exponent"] <= 0 else \
+            f"{r['growth'] / r['exponent']:.2f}"
+        run = (f"{r['mechanism']} ({r['kind']})" if r["judder"]
+               else "no judder")
+        print(f"| {r['preset']} | {r['freq_hz']:g} | {r['p_f_bar']:g} | "
+              f"{r['floquet_kind']} {r['exponent']:+.2f} | {run} | {ratio} | "
+              f"{r['rpm']:.3g} | {r['orbit_rpm']:.3g} | "
+              f"{r['orbit_mechanism'] or 'no judder'} ({r['orbit_kind']}) |")
 
 
 if __name__ == "__main__":

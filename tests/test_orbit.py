@@ -126,3 +126,41 @@ def test_predicted_chart_has_tongue_2_forced_and_tongues_5_6_parametric(
     assert mechanism[95.0] == 0 and mechanism[112.0] == 0
     onsets = chart.onsets() / BAR
     assert onsets[chart.freq_hz == 103.0][0] == pytest.approx(0.1)
+
+
+def test_orbit_command_gives_the_chart_and_a_branch(tmp_path):
+    # the command line: a small predicted chart as JSON and NPZ, and one
+    # frequency continued in p_f as CSV; a bad value is one clear line
+    import json
+    import subprocess
+    import sys
+    pytest.importorskip("fmpy")
+    out = tmp_path / "chart.npz"
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "orbit", "--freq", "100:106:4",
+         "--pf", "0.1:0.3:3", "--out", str(out), "--json"],
+        capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["mode"] == "chart" and data["counts"]["forced"] >= 1
+    with np.load(out) as npz:
+        assert npz["settled_rpm"].shape == (4, 3)
+        assert npz["judder"].sum() == sum(
+            v for k, v in data["counts"].items() if k != "none")
+    branch = tmp_path / "branch.csv"
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "orbit", "--freq", "206", "--pf",
+         "0.1,0.3,0.5", "--out", str(branch), "--json"],
+        capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    rows = json.loads(proc.stdout)["orbits"]
+    assert [r["mechanism"] for r in rows] == [None, "parametric",
+                                              "parametric"]
+    assert rows[2]["double_period"]["stable"]
+    assert branch.read_text().splitlines()[1].startswith("freq_hz,p_f_bar")
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "orbit", "--freq", "103", "--pf",
+         "0.3", "--limit", "-5"], capture_output=True, text=True,
+        timeout=300)
+    assert proc.returncode == 2
+    assert "--limit" in proc.stderr and "Traceback" not in proc.stderr

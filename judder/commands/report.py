@@ -656,8 +656,10 @@ def report(parameters=None, changes=None, description=None,
     step()
 
     if run_engagement:
+        from pysim.engagement import judder_words
         run = simulate(freq_hz, p_f_bar, compare="none",
-                       parameters=values, method=method)
+                       parameters=values, method=method,
+                       min_growth=min_growth)
         first = run.summaries[0]
         data["engagement"] = first
         sections.append(
@@ -667,11 +669,18 @@ def report(parameters=None, changes=None, description=None,
             + ("" if paper else " from its start values (a steady slip)")
             + ": upstream speed peak "
             f"{first['speed_peak_amplitude_rpm']:.3g} rpm at "
-            f"{first['speed_peak_freq_hz']:.2f} Hz; judder read as a chart "
-            "reads a bench run: "
-            + ("none" if not first["judder"] else str(first["judder_kind"]))
-            + f"; Floquet exponent of its linearisation "
-            f"{first['floquet_exponent_per_s']:+.2f} 1/s"
+            f"{first['speed_peak_freq_hz']:.2f} Hz; read as a chart reads "
+            "a bench run: " + html.escape(judder_words(first))
+            + f"; Floquet exponent of the bench's linearisation (the "
+            f"driveline with the damping of the bench's speed control, "
+            f"so not section 1's) {first['floquet_exponent_per_s']:+.2f} 1/s"
+            + ("" if first.get("orbit_kind") is None else
+               f"; the periodic orbit it settles on: "
+               f"{first['orbit_settled_rpm']:.3g} rpm, "
+               f"{first['orbit_kind']} "
+               f"({first['orbit_growth_per_s']:+.2f} 1/s), "
+               + (f"judder ({first['orbit_mechanism']})"
+                  if first["orbit_mechanism"] else "no judder"))
             + ("" if first.get("linearisation_holds") is not False else
                f". The dither's forced slip swing "
                f"({first['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
