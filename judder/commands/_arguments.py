@@ -6,6 +6,8 @@ Choices of models, presets and monodromy engines come from their
 registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 """
 
+import argparse
+
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
 from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
                             ENGAGEMENT_DURATION_S)
@@ -21,7 +23,7 @@ MIN_GROWTH_HELP = (
     .format(ENGAGEMENT_DURATION_S))
 
 
-def model_options(parser, modelica=True):
+def model_options(parser, modelica=True, fmu=True):
     """The model selection every analysis command shares: --model,
     --preset, --param-file, --set, --json and, with ``modelica``, a
     driveline of your own: --modelica CLASS [--library DIR] or --fmu
@@ -50,10 +52,10 @@ def model_options(parser, modelica=True):
     parser.add_argument("--json", action="store_true",
                         help="print the result as JSON")
     if modelica:
-        own_driveline_options(parser)
+        own_driveline_options(parser, fmu=fmu)
 
 
-def own_driveline_options(parser):
+def own_driveline_options(parser, fmu=True):
     group = parser.add_argument_group(
         "your own driveline", "Analyse a Modelica class or an FMU instead "
         "of a preset: it is linearised about its start values (a steady "
@@ -68,12 +70,14 @@ def own_driveline_options(parser):
     group.add_argument("--library", metavar="DIR",
                        help="folder holding your own top-level package "
                             "(the Judder library is always available)")
+    # a command that cannot take an FMU still reads --fmu, to refuse it
+    # with its reason, but does not offer it in its --help
     group.add_argument(
         "--fmu", metavar="FILE.fmu",
         help="an FMI 2.0 Model Exchange FMU that provides directional "
              "derivatives: its state Jacobian is read over one dither "
              "period at its start values; replaces --modelica "
-             "(docs/fmu-path.md)")
+             "(docs/fmu-path.md)" if fmu else argparse.SUPPRESS)
     group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
                        help="parameter of the class or FMU that is the "
                             "dither amplitude, Pa (default p_f)")

@@ -52,7 +52,7 @@ def add_arguments(p):
     p.add_argument("--plot", metavar="FILE.png",
                    help="fitted against Floquet rates, and the verdicts")
     method_option(p)
-    model_options(p)
+    model_options(p, fmu=False)
     p.add_argument("--perturb", default="w_in", metavar="NAME",
                    help="start-speed parameter raised by 1 rad/s in the "
                         "second run of each point (default w_in)")

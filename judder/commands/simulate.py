@@ -81,7 +81,7 @@ def add_arguments(p):
     limit_option(p)
     min_growth_option(p)
     method_option(p)
-    model_options(p)
+    model_options(p, fmu=False)
     force_option(p)
 
 
