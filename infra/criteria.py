@@ -5,7 +5,7 @@ below both so the maps, ``judder check`` and the bench charts agree.
 """
 
 __all__ = ["ENGAGEMENT_DURATION_S", "DEFAULT_MIN_GROWTH_PER_S",
-           "DEFAULT_JUDDER_LIMIT_RPM"]
+           "DEFAULT_JUDDER_LIMIT_RPM", "MECHANISMS"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -22,3 +22,8 @@ DEFAULT_MIN_GROWTH_PER_S = 1.0 / ENGAGEMENT_DURATION_S
 #: the 1000 rpm of the paper's bench: a vibration a driver feels and a
 #: bench engineer reads as judder in a peak-amplitude chart (Fig. 10).
 DEFAULT_JUDDER_LIMIT_RPM = 30.0
+
+#: Why a setting judders, as codes of the predicted chart
+#: (:mod:`stability.orbit_chart`): none (no judder), forced (the dither's
+#: forced oscillation above the limit), parametric (an instability), both.
+MECHANISMS = ("none", "forced", "parametric", "both")

@@ -26,13 +26,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from infra.criteria import MECHANISMS
+
 from .orbit import DEFAULT_HARMONICS, continue_orbit, double_period_orbit
 
-__all__ = ["OrbitChart", "orbit_chart", "MECHANISMS"]
-
-#: Mechanism codes of :attr:`OrbitChart.mechanism`.
-MECHANISMS = ("none", "forced", "parametric", "both")
-
+__all__ = ["OrbitChart", "orbit_chart"]
 
 @dataclass(frozen=True)
 class OrbitChart:
@@ -62,7 +60,7 @@ class OrbitChart:
         Mean torque the dither rectifies on the T-orbit, N m.
     judder : ndarray of bool, shape (nf, np)
     mechanism : ndarray of int8, shape (nf, np)
-        Index into :data:`MECHANISMS`.
+        Index into :data:`infra.criteria.MECHANISMS`.
     limit : float
         NVH limit, rad/s.
     min_growth : float

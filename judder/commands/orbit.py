@@ -6,7 +6,8 @@ import time
 
 import numpy as np
 
-from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
+                            MECHANISMS)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
@@ -298,8 +299,6 @@ class OrbitResult:
         ``mechanism`` (index into ``mechanism_names``), all (nf, np);
         ``judder_limit_rpm``, ``min_growth_per_s``)."""
         from pathlib import Path
-
-        from stability.orbit_chart import MECHANISMS
         if Path(path).suffix.lower() == ".npz":
             c = self._chart_for(path)
             save_npz(path, {
@@ -330,7 +329,6 @@ class OrbitResult:
         return self.chart
 
     def _chart_rows(self):
-        from stability.orbit_chart import MECHANISMS
         c = self.chart
         return [{"freq_hz": f, "p_f_bar": p / PA_PER_BAR,
                  "amplitude_at_dither_rpm":

@@ -5,10 +5,9 @@ chart (:class:`stability.orbit_chart.OrbitChart`)."""
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.criteria import MECHANISMS
 from infra.plotstyle import dither_axes, log_levels
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
-
-from ..orbit_chart import MECHANISMS
 
 __all__ = ["plot_orbit_curve", "orbit_curve_figure", "plot_orbit_chart",
            "orbit_chart_figure"]
