@@ -894,6 +894,10 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     oscillation = max([at_f if unstable == "single-period" else forced_rpm]
                       + [c.sustained_rpm for c in components
                          if c.name != "dither"])
+    if growth is None and oscillation <= judder_limit_rpm:
+        # judder exactly when the oscillation exceeds the limit or a
+        # growth is read: a saturated instability below the limit is not
+        mechanism, kind = None, "stable"
     lead = max((c for c in components
                 if c.kind in (kind, "single-period")),
                key=lambda c: c.amplitude_rpm)

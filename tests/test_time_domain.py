@@ -189,6 +189,12 @@ def _engagement(preset, freq_hz, p_f_bar):
     from judder import api
     result = api.simulate(freq_hz, p_f_bar, parameters=get_preset(preset))
     run, summary = result.runs[0][1], result.summaries[0]
+    # the verdict is the bench's: judder exactly when the oscillation
+    # exceeds the limit or an instability grows at min_growth or faster
+    assert summary["judder"] == (
+        summary["oscillation_rpm"] > summary["judder_limit_rpm"]
+        or summary["judder_growth_per_s"] is not None)
+    assert (summary["mechanism"] is None) == (not summary["judder"])
     after = run.time >= result.start
     swing = np.ptp(run["w_upstream"][after]) / 2 * 30 / np.pi
     return summary, swing
