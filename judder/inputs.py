@@ -165,15 +165,28 @@ def read_boundary(path, option="--boundary"):
     return read_boundary_csv(read_input(path, option), source=str(path))
 
 
-#: The comment of a boundary file that gives the growth rate its onsets
-#: were called judder from (``judder chart --boundary`` writes it).
-_MIN_GROWTH_COMMENT = re.compile(
-    r"#\s*min_growth_per_s\s*[:=]\s*([^\s#]+)")
+def _boundary_comment(path, option, name, unit, positive):
+    """The number of a boundary file's comment ``# NAME: VALUE`` (finite,
+    >= 0, or > 0 with ``positive``), or None where the file has none."""
+    pattern = re.compile(rf"#\s*{name}\s*[:=]\s*([^\s#]+)")
+    for line in read_input(path, option).splitlines():
+        match = pattern.match(line.strip())
+        if match:
+            text = match.group(1)
+            value = float(text) if _is_number(text) else math.nan
+            if not (math.isfinite(value)
+                    and (value > 0 if positive else value >= 0)):
+                raise JudderError(f"{option} {path}: {name} = {text} is "
+                                  "not allowed; allowed: a finite number "
+                                  f"{'>' if positive else '>='} 0 ({unit})")
+            return value
+    return None
 
 
 def read_boundary_min_growth(path, option="--boundary"):
     r"""The growth rate (1/s) a boundary file says its onsets were called
-    judder from (a comment ``# min_growth_per_s: 1``), or None.
+    judder from (a comment ``# min_growth_per_s: 1``, which ``judder chart
+    --boundary`` writes), or None.
 
     Examples
     --------
@@ -185,49 +198,24 @@ def read_boundary_min_growth(path, option="--boundary"):
     >>> read_boundary_min_growth(path)
     0.5
     """
-    for line in read_input(path, option).splitlines():
-        match = _MIN_GROWTH_COMMENT.match(line.strip())
-        if match:
-            text = match.group(1)
-            value = float(text) if _is_number(text) else math.nan
-            if not (math.isfinite(value) and value >= 0):
-                raise JudderError(f"{option} {path}: min_growth_per_s = "
-                                  f"{text} is not allowed; allowed: a finite "
-                                  "number >= 0 (1/s)")
-            return value
-    return None
-
-
-#: The comment of a boundary file that gives the NVH limit its onsets
-#: were called judder from (``judder chart --boundary`` writes it).
-_LIMIT_COMMENT = re.compile(r"#\s*judder_limit_rpm\s*[:=]\s*([^\s#]+)")
+    return _boundary_comment(path, option, "min_growth_per_s", "1/s", False)
 
 
 def read_boundary_limit(path, option="--boundary"):
     """The NVH limit (rpm) a boundary file says its onsets were called
-    judder from (a comment ``# judder_limit_rpm: 30``), or None (onsets
-    of an instability alone)."""
-    for line in read_input(path, option).splitlines():
-        match = _LIMIT_COMMENT.match(line.strip())
-        if match:
-            text = match.group(1)
-            value = float(text) if _is_number(text) else math.nan
-            if not (math.isfinite(value) and value > 0):
-                raise JudderError(f"{option} {path}: judder_limit_rpm = "
-                                  f"{text} is not allowed; allowed: a "
-                                  "finite number > 0 (rpm)")
-            return value
-    return None
+    judder from (a comment ``# judder_limit_rpm: 30``, which ``judder
+    chart --boundary`` writes), or None (onsets of an instability alone)."""
+    return _boundary_comment(path, option, "judder_limit_rpm", "rpm", True)
 
 
-def read_chart_limit(path, option="--chart"):
-    """The NVH limit (rpm) of the chart's verdict (``judder chart
-    --limit``), or None for a chart written before it had one."""
+def _chart_scalar(path, key, option, positive):
+    """A chart NPZ's number ``key`` (finite, >= 0, or > 0 with
+    ``positive``), or None for a chart written before it had one."""
     try:
         with np.load(path, allow_pickle=False) as npz:
-            if "judder_limit_rpm" not in npz.files:
+            if key not in npz.files:
                 return None
-            value = float(npz["judder_limit_rpm"])
+            value = float(npz[key])
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
@@ -236,11 +224,17 @@ def read_chart_limit(path, option="--chart"):
     except (ValueError, TypeError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
                           "chart --out (an NPZ file)") from None
-    if not (np.isfinite(value) and value > 0):
-        raise JudderError(f"{option} {path}: its judder_limit_rpm = "
-                          f"{value!r} is not allowed; allowed: a finite "
-                          "number > 0")
+    if not (np.isfinite(value) and (value > 0 if positive else value >= 0)):
+        raise JudderError(f"{option} {path}: its {key} = {value!r} is not "
+                          "allowed; allowed: a finite number "
+                          f"{'>' if positive else '>='} 0")
     return value
+
+
+def read_chart_limit(path, option="--chart"):
+    """The NVH limit (rpm) of the chart's verdict (``judder chart
+    --limit``), or None for a chart written before it had one."""
+    return _chart_scalar(path, "judder_limit_rpm", option, True)
 
 
 def read_chart_boundary(path, group=None, option="--chart"):
@@ -322,23 +316,8 @@ def _damaged(option, path):
 def read_chart_min_growth(path, option="--chart"):
     """The growth rate (1/s) from which the chart's verdict called a run
     judder (``judder chart --min-growth``); 0 for a chart without it."""
-    try:
-        with np.load(path, allow_pickle=False) as npz:
-            if "min_growth_per_s" not in npz.files:
-                return 0.0
-            value = float(npz["min_growth_per_s"])
-    except OSError as exc:
-        raise JudderError(f"{option} {path}: cannot read it "
-                          f"({exc.strerror or exc})") from None
-    except (EOFError, zipfile.BadZipFile):
-        raise _damaged(option, path) from None
-    except (ValueError, TypeError):
-        raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file)") from None
-    if not (np.isfinite(value) and value >= 0):
-        raise JudderError(f"{option} {path}: its min_growth_per_s = {value!r} "
-                          "is not allowed; allowed: a finite number >= 0")
-    return value
+    value = _chart_scalar(path, "min_growth_per_s", option, False)
+    return 0.0 if value is None else value
 
 
 def _is_number(text):
