@@ -243,11 +243,52 @@ class _Expressions:
                 offset += body["operand_count"]
 
     def __call__(self, index):
+        """The expression of node ``index``.
+
+        The nodes below it are converted first, children before parents,
+        from an explicit stack: a long expression (a sum of 5,000 terms
+        is a chain of 5,000 nodes) needs no Python recursion. Only the
+        operands of ``noEvent(...)``, whose conversion depends on that
+        context, and the bodies of inlined functions (a frame of their
+        own) are converted by a nested call.
+        """
         if index is None:
             return None
-        if index not in self._cache:
-            self._cache[index] = self._convert(index)
+        if index in self._cache:
+            return self._cache[index]
+        pending, order, seen = [index], [], {index}
+        while pending:
+            node = pending.pop()
+            order.append(node)
+            for child in self._children(node):
+                if child is not None and child not in seen and \
+                        child not in self._cache:
+                    seen.add(child)
+                    pending.append(child)
+        # every child stands after its parent in order: reversed, after
+        for node in reversed(order):
+            if node not in self._cache:
+                self._cache[node] = self._convert(node)
         return self._cache[index]
+
+    def _children(self, index):
+        """The operand nodes of node ``index`` that :meth:`_convert`
+        converts in the same context (see :meth:`__call__`)."""
+        kind, body = next(iter(self._nodes[index].items()))
+        if kind in ("binary",):
+            return (body["lhs"], body["rhs"])
+        if kind == "unary":
+            return (body["operand"],)
+        if kind == "index":
+            return (body["base"], *range(index - body["subscript_count"],
+                                         index))
+        if kind == "builtin" and body["builtin"] == "no_event":
+            return ()
+        if kind in ("array", "builtin", "conditional", "call") and \
+                index in self._offsets:
+            start = self._offsets[index]
+            return self._operands[start:start + body["operand_count"]]
+        return ()
 
     def _relation(self, index, body):
         """The symbol of an event-generating relation, recorded once."""
@@ -542,28 +583,34 @@ def _flatten(path, model_name, roots, use_cache=True):
 
 
 def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
-    diagnostics = rumoca.validate(str(path), model=model_name)
-    errors = [d for d in diagnostics
-              if str(getattr(d, "severity", "error")).lower().endswith(
-                  "error")]
-    if errors:
-        raise FrontEndError("\n".join(str(d) for d in errors))
-    session = model = None
+    """rumoca's flat model, flattened in a child process
+    (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
+    becomes a :class:`FrontEndError`, never the end of this process."""
+    from .rumoca_child import flatten_isolated
+    check_source_text(path)
     try:
-        session = rumoca.Session(roots=[str(r) for r in roots])
-        model = session.load(str(path), model=model_name)
-        return model.to_dict()
-    except Exception as exc:   # rumoca raises its own error classes
-        from .balance import explain_unbalanced   # scipy, on failure only
-        message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}" + \
-            (explain_unbalanced(str(exc), model_name, roots, load_flat_model)
-             if use_cache else "")
-    finally:
-        # rumoca's objects are unsendable: dropped in another thread (a
-        # Dask worker's event loop holding this frame in a traceback)
-        # they panic, so they never outlive this call
-        del session, model
+        return flatten_isolated(path, model_name, roots)
+    except FrontEndError as exc:
+        message = str(exc)
+    from .balance import explain_unbalanced   # scipy, on failure only
+    if use_cache:
+        message += explain_unbalanced(message, model_name, roots,
+                                      load_flat_model)
     raise FrontEndError(message)
+
+
+def check_source_text(path):
+    """Refuse a source that is not UTF-8 text (Modelica's encoding),
+    naming the file, the byte, its offset and its line."""
+    data = Path(path).read_bytes()
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise FrontEndError(
+            f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} at "
+            f"offset {exc.start}, line {line}); allowed: UTF-8 text, as "
+            "Modelica requires (save the file as UTF-8)") from None
 
 
 def _library_errors(rumoca, roots, path):
