@@ -20,6 +20,8 @@ import numpy as np
 
 from infra.errors import JudderError
 
+from .limits import check_flat_arrays
+
 __all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
            "find_class", "modelica_path", "FrontEndError"]
 
@@ -586,8 +588,9 @@ def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
+    from .limits import check_source_arrays
     from .rumoca_child import flatten_isolated
-    check_source_text(path)
+    check_source_arrays(path, check_source_text(path))
     try:
         return flatten_isolated(path, model_name, roots)
     except FrontEndError as exc:
@@ -600,11 +603,12 @@ def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
 
 
 def check_source_text(path):
-    """Refuse a source that is not UTF-8 text (Modelica's encoding),
-    naming the file, the byte, its offset and its line."""
+    """The text of ``path``; refuse a source that is not UTF-8 text
+    (Modelica's encoding), naming the file, the byte, its offset and its
+    line."""
     data = Path(path).read_bytes()
     try:
-        data.decode("utf-8")
+        return data.decode("utf-8")
     except UnicodeDecodeError as exc:
         line = data[:exc.start].count(b"\n") + 1
         raise FrontEndError(
@@ -741,6 +745,7 @@ def load_flat_model(path, model_name, roots=(), cache=True):
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where)
+    check_flat_arrays(storage, where)
     time = casadi.SX.sym("time")
     symbols, derivatives, variables = [], {}, []
     for index, raw in enumerate(storage["variables"]):
