@@ -928,12 +928,66 @@ def _is_fixed(value):
     return bool(value)
 
 
+_CLASS_HEAD = re.compile(
+    r"\b(?:model|block|class|package|record|connector|function|type)\s+"
+    r"(\w+)(\s*=)?")
+_CLASS_END = re.compile(r"\bend\s+(\w+)\s*;")
+_WITHIN = re.compile(r"^\s*within\s+([\w.]*)\s*;")
+
+
+def _blank(text):
+    """``text`` with its comments and string literals blanked (same
+    length, newlines kept), so positions still index the source."""
+    def spaces(found):
+        return re.sub(r"[^\n]", " ", found.group(0))
+    return re.sub(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\])*"', spaces, text,
+                  flags=re.S)
+
+
+def class_spans(text):
+    """``{full name: (start, end)}`` of the long class definitions in a
+    source text (``within`` prefix included), from each ``model NAME``
+    (or block, package, ...) to its ``end NAME;``; short definitions
+    (``type T = Real``) have no body and are left out."""
+    clean = _blank(text)
+    within = _WITHIN.match(clean)
+    prefix = [within.group(1)] if within and within.group(1) else []
+    events = [(m.start(), "head", m) for m in _CLASS_HEAD.finditer(clean)
+              if not m.group(2)]
+    events += [(m.start(), "end", m) for m in _CLASS_END.finditer(clean)]
+    stack, spans = [], {}
+    for at, kind, found in sorted(events, key=lambda e: e[0]):
+        if kind == "head":
+            stack.append((found.group(1), at))
+        elif stack and stack[-1][0] == found.group(1):
+            name, begin = stack.pop()
+            full = ".".join(prefix + [n for n, _ in stack] + [name])
+            spans[full] = (begin, found.end())
+    return spans
+
+
 def _experiment(path, model_name):
-    """StopTime and Interval of the experiment annotation in the source."""
-    import re
-    text = Path(path).read_text()
-    found = re.search(r"experiment\s*\(([^)]*)\)", text)
+    """StopTime and Interval of the class's own ``experiment``
+    annotation: the one in its body, outside the classes nested in it
+    (a package file holds many examples, each with its own)."""
+    text = Path(path).read_text(encoding="utf-8")
+    spans = class_spans(text)
+    own = spans.get(model_name)
+    if own is None:   # a file without its within clause
+        short = [v for k, v in spans.items()
+                 if model_name.endswith("." + k) or k == model_name]
+        own = short[0] if len(short) == 1 else None
+    if own is None:
+        return {}
+    clean = _blank(text)
+    begin, end = own
+    body = list(clean[begin:end])
+    for other, (a, b) in spans.items():
+        if other != model_name and begin < a and b <= end:
+            body[a - begin:b - begin] = " " * (b - a)
+    body = "".join(body)
     values = {}
+    found = re.search(r"\bexperiment\s*\(([^)]*)\)", body)
     if found:
         for key, value in re.findall(r"(\w+)\s*=\s*([-+\d.eE]+)",
                                      found.group(1)):

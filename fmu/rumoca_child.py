@@ -43,6 +43,8 @@ STACK_BYTES = 1 << 30
 #: Seconds rumoca may take for one model before the child is stopped
 #: (MSL models take 10-25 s); ``JUDDER_FLATTEN_TIMEOUT`` sets another.
 TIME_LIMIT_S = 900.0
+#: Arguments of the Python child (the tests put a child that crashes).
+_CHILD = ("-m", "fmu.rumoca_child")
 #: Prefix of the child's lines that name the step it is in.
 _STAGE = "judder-rumoca: "
 #: Address space of the child beyond what it may allocate: the Python
@@ -159,7 +161,7 @@ def _run_child(job, limit):
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         filter(None, [root, os.environ.get("PYTHONPATH")]))}
     proc = subprocess.Popen(
-        [sys.executable, "-m", "fmu.rumoca_child"],
+        [sys.executable, *_CHILD],
         stdin=subprocess.PIPE, stdout=subprocess.PIPE,
         stderr=subprocess.PIPE, env=env, start_new_session=True)
     try:
