@@ -1,0 +1,423 @@
+"""The compiler's guards (issue 34): what a hostile tester gave it, each
+compiled right or refused with one line naming the file, the variable or
+the equations and what is allowed, never a crash, a traceback or a
+silently wrong FMU; and the FMU's DefaultExperiment from the built
+class's own experiment annotation (issue 30).
+
+Every model here is written by the test into its own folder (rumoca
+reads every file of a library folder).
+"""
+
+import math
+import os
+from pathlib import Path
+import re
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+import zipfile
+
+import casadi
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+pytest.importorskip("rumoca")
+fmpy = pytest.importorskip("fmpy")
+
+from fmu import backend, limits, rumoca_child  # noqa: E402
+from fmu.build import _run, build_fmu  # noqa: E402
+from fmu.frontend import (FrontEndError, _experiment,  # noqa: E402
+                          load_flat_model)
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True)
+def _no_cache(monkeypatch):
+    monkeypatch.setenv("JUDDER_FMU_CACHE", "off")
+
+
+def _model(tmp_path, name, text, data=None):
+    folder = tmp_path / name
+    folder.mkdir()
+    path = folder / f"{name}.mo"
+    if data is None:
+        path.write_text(text)
+    else:
+        path.write_bytes(data)
+    return path
+
+
+def _cli(*args, **kw):
+    """``python -m fmu ...``: (exit status, stderr lines)."""
+    env = {**os.environ, "JUDDER_FMU_CACHE": "off", **kw.pop("env", {})}
+    done = subprocess.run([sys.executable, "-m", "fmu", *args],
+                          capture_output=True, text=True, cwd=ROOT, env=env,
+                          timeout=300, **kw)
+    return done.returncode, [line for line in done.stderr.splitlines()
+                             if line.strip()]
+
+
+def _one_error(lines):
+    assert len(lines) == 1, lines
+    assert lines[0].startswith("fmu: error: "), lines
+    return lines[0]
+
+
+def _x_at(fmu_path, stop, name="x"):
+    result = fmpy.simulate_fmu(str(fmu_path), stop_time=stop,
+                               output=[name], relative_tolerance=1e-10,
+                               fmi_type="ModelExchange")
+    return result["time"], result[name]
+
+
+# -- long expressions ---------------------------------------------------
+
+def test_a_sum_of_5000_terms_compiles_and_is_right(tmp_path):
+    # 330 terms were a RecursionError in the front end, 5,000 a SIGSEGV
+    # of rumoca in the tool's own process
+    terms = "+".join(["1e-4"] * 5000)   # k = 0.5
+    path = _model(tmp_path, "Long", "model Long\n  Real x(start=1, "
+                  f"fixed=true);\nequation\n  der(x) = -x*({terms});\n"
+                  "end Long;\n")
+    fmu = build_fmu(path, "Long", tmp_path / "Long.fmu").path
+    t, x = _x_at(fmu, 1.0)
+    assert_allclose(x, np.exp(-0.5 * t), rtol=1e-7)   # x = e^(-k t)
+
+
+# -- rumoca's crashes, aborts and hangs, in its child ------------------
+
+@pytest.mark.parametrize("code, words", [
+    ("import ctypes, sys\n"
+     "sys.stderr.write('judder-rumoca: flattening\\n'); sys.stderr.flush()\n"
+     "ctypes.string_at(0)\n",
+     ["rumoca crashed (SIGSEGV) while flattening of M",
+      "nothing else is affected"]),
+    ("import os, sys\n"
+     "sys.stderr.write('judder-rumoca: flattening\\n')\n"
+     "sys.stderr.write('memory allocation of 7200000000 bytes failed\\n')\n"
+     "sys.stderr.flush(); os.abort()\n",
+     ["M needs more memory than the", "available to the compiler while "
+      "flattening (it asked for 7.2 GB at once)"]),
+])
+def test_a_crash_of_rumoca_is_one_error(tmp_path, monkeypatch, code, words):
+    path = _model(tmp_path, "M", "model M\nend M;\n")
+    monkeypatch.setattr(rumoca_child, "_CHILD", ("-c", code))
+    with pytest.raises(FrontEndError) as error:
+        rumoca_child.flatten_isolated(path, "M", [path.parent])
+    message = str(error.value)
+    assert message.startswith(f"{path}: ")
+    for word in words:
+        assert word in message
+
+
+def test_a_hanging_rumoca_is_stopped(tmp_path, monkeypatch):
+    path = _model(tmp_path, "M", "model M\nend M;\n")
+    monkeypatch.setattr(rumoca_child, "_CHILD", (
+        "-c", "import sys, signal\n"
+        "sys.stderr.write('judder-rumoca: loading the libraries\\n')\n"
+        "sys.stderr.flush(); signal.pause()\n"))
+    monkeypatch.setenv("JUDDER_FLATTEN_TIMEOUT", "1")
+    with pytest.raises(FrontEndError, match=r"rumoca did not finish loading "
+                       r"the libraries of M within 1 s"):
+        rumoca_child.flatten_isolated(path, "M", [path.parent])
+
+
+def test_the_flatten_time_limit_is_checked(monkeypatch):
+    monkeypatch.setenv("JUDDER_FLATTEN_TIMEOUT", "-3")
+    with pytest.raises(FrontEndError, match="JUDDER_FLATTEN_TIMEOUT=-3 is "
+                       "not allowed; allowed: seconds > 0"):
+        rumoca_child.time_limit()
+
+
+# -- arrays beyond the limit, refused before allocating ----------------
+
+@pytest.mark.parametrize("n", [100_000_000, 60_000])
+def test_a_huge_parameter_array_is_refused_from_the_source(tmp_path, n):
+    # n = 1e8 made rumoca ask for 7.2 GB and abort the tool (exit 134)
+    path = _model(tmp_path, "Big", f"model Big\n  parameter Integer n={n};\n"
+                  "  parameter Real p[n]=fill(1.0,n);\n  Real x(start=1, "
+                  "fixed=true);\nequation\n  der(x) = -x*p[1];\nend Big;\n")
+    status, lines = _cli("Big", "--library", str(path.parent), "--out",
+                         str(tmp_path / "out"))
+    assert status == 2
+    assert _one_error(lines) == (
+        f"fmu: error: {path}:3: p[n]: {n:,} elements (n = {n:,}); allowed: "
+        "at most 50,000 elements per array (every element is a variable of "
+        "its own; about 3 ms of compiling each)")
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_array_sized_in_another_file_is_refused_from_the_flat_model(
+        tmp_path):
+    lib = tmp_path / "Lib"
+    lib.mkdir()
+    (lib / "package.mo").write_text("package Lib\nend Lib;\n")
+    (lib / "package.order").write_text("Comp\nTop\n")
+    (lib / "Comp.mo").write_text(
+        "within Lib;\nmodel Comp\n  parameter Integer n = 2;\n"
+        "  parameter Real p[n](each start = 1);\nend Comp;\n")
+    (lib / "Top.mo").write_text(
+        "within Lib;\nmodel Top\n  Lib.Comp c(n = 60000);\n"
+        "  Real x(start=1, fixed=true);\nequation\n  der(x) = -x;\n"
+        "end Top;\n")
+    with pytest.raises(FrontEndError) as error:
+        load_flat_model(lib / "Top.mo", "Lib.Top", roots=[tmp_path])
+    assert str(error.value) == (
+        f"{lib / 'Comp.mo'}:4: c.p[60000]: 60,000 elements; allowed: at "
+        "most 50,000 elements per array (every element is a variable of "
+        "its own; about 3 ms of compiling each)")
+
+
+def test_an_array_within_the_limit_still_compiles(tmp_path):
+    path = _model(tmp_path, "Table", "model Table\n  parameter Integer n=3;\n"
+                  "  parameter Real p[n] = {0.5, 2, 4};\n  Real x(start=1, "
+                  "fixed=true);\nequation\n  der(x) = -p[1]*x;\nend Table;\n")
+    limits.check_source_arrays(path, path.read_text())
+    flat = load_flat_model(path, "Table")
+    names = [v.name for v in flat.variables if v.role == "parameter"]
+    assert names == ["p[1]", "p[2]", "p[3]"]
+
+
+# -- unreadable source ---------------------------------------------------
+
+def test_a_source_that_is_not_utf8_is_an_input_error(tmp_path):
+    path = _model(tmp_path, "Latin", None, data=(
+        "model Latin\n  // Größe\n  Real x(start=1, fixed=true);\n"
+        "equation\n  der(x) = -x;\nend Latin;\n").encode("latin-1"))
+    status, lines = _cli("Latin", "--library", str(path.parent), "--out",
+                         str(tmp_path / "out"))
+    assert status == 2
+    assert _one_error(lines) == (
+        f"fmu: error: {path}: not UTF-8 text (byte 0xf6 at offset 19, line "
+        "2); allowed: UTF-8 text, as Modelica requires (save the file as "
+        "UTF-8)")
+
+
+def test_another_file_of_the_library_that_is_not_utf8_is_named(tmp_path):
+    path = _model(tmp_path, "Good", "model Good\n  Real x(start=1, "
+                  "fixed=true);\nequation\n  der(x) = -x;\nend Good;\n")
+    other = path.parent / "Bad.mo"
+    other.write_bytes(b"model Bad\n  // \xe9\nend Bad;\n")
+    with pytest.raises(FrontEndError) as error:
+        load_flat_model(path, "Good")
+    assert f"{other}: not UTF-8 text (byte 0xe9 at offset 15)" in \
+        str(error.value)
+
+
+# -- algebraic loops -----------------------------------------------------
+
+LOOP = """model {name}
+  parameter Real a = {a};
+  Real x(start=1, fixed=true);
+  Real y;
+  Real z;
+equation
+  der(x) = y;
+  a*y + z = -x;
+  y + z = 0;
+end {name};
+"""
+
+
+def test_a_regular_loop_gives_the_closed_form(tmp_path):
+    # a y + z = -x, y + z = 0: y = -x/(a - 1) = -x for a = 2
+    path = _model(tmp_path, "Loop", LOOP.format(name="Loop", a=2))
+    fmu = build_fmu(path, "Loop", tmp_path / "Loop.fmu").path
+    t, x = _x_at(fmu, 1.0)
+    assert_allclose(x, np.exp(-t), rtol=1e-7)
+    assert_allclose(x[-1], math.exp(-1), rtol=1e-8)
+
+
+@pytest.mark.parametrize("name, text, words", [
+    ("Singular", "model Singular\n  Real x(start=1, fixed=true);\n  Real y;"
+     "\n  Real z;\nequation\n  der(x) = -y;\n  y = z + x;\n  z = y - x;\n"
+     "end Singular;\n",
+     ["Singular.mo:7: 0 = (y-(z+x)); ", "Singular.mo:8: 0 = (z-(y-x)): "
+      "this algebraic loop in y, z is singular (rank 1 of 2)"]),
+    ("Forced", "model Forced\n  Real x(start=1, fixed=true);\n  Real y;\n"
+     "  Real z;\nequation\n  der(x) = y;\n  y + z = -5*x;\n"
+     "  2*y + 2*z = -10*x;\nend Forced;\n",
+     ["Forced.mo:7: ", "Forced.mo:8: ", "this algebraic loop in y, z is "
+      "singular (rank 1 of 2)"]),
+    # singular only at the parameter's default, a = 1 (z = -y is an
+    # alias, eliminated first: the loop left is line 8 with it put in)
+    ("AtStart", LOOP.format(name="AtStart", a=1),
+     ["AtStart.mo:8: 0 = (((a*y)-y)+x): this algebraic loop in y is "
+      "singular at the start values (rank 0 of 1)"]),
+    # y = z; z = y + 5 x forces 0 = 5 x, against x(0) = 1
+    ("Contradicted", "model Contradicted\n  Real x(start=1, fixed=true);\n"
+     "  Real y;\n  Real z;\nequation\n  der(x) = y;\n  y = z;\n"
+     "  z = y + 5*x;\nend Contradicted;\n",
+     ["Contradicted.mo:2: x has the fixed start value 1, but ",
+      "Contradicted.mo:8: 0 = (-(5*x)) makes it 0 at the start"]),
+])
+def test_a_singular_loop_is_refused_naming_its_equations(tmp_path, name,
+                                                         text, words):
+    path = _model(tmp_path, name, text)
+    status, lines = _cli(name, "--library", str(path.parent), "--out",
+                         str(tmp_path / "out"), "--fmi", "2.0")
+    assert status == 2
+    line = _one_error(lines)
+    for word in words:
+        assert word in line
+    assert not (tmp_path / "out" / f"{name}.fmu").exists()
+
+
+def test_a_slope_with_a_zero_column_is_structurally_singular():
+    # the slope of y, z after earlier unknowns are substituted: z's
+    # column holds only zeros (entries kept in the structure)
+    slope = casadi.SX(casadi.Sparsity.dense(2, 2), casadi.SX([1, 1, 0, 0]))
+    with pytest.raises(backend.BackEndError) as error:
+        backend._check_structure("M.mo:3: 0 = ...", ["y", "z"], slope)
+    assert str(error.value) == (
+        "M.mo:3: 0 = ...: this algebraic loop in y, z is structurally "
+        "singular: its equations do not determine z; allowed: a loop whose "
+        "equations each add a condition on its unknowns")
+    y, z = casadi.SX.sym("y"), casadi.SX.sym("z")
+    backend._check_structure("M.mo:3: 0 = ...", ["y", "z"], casadi.jacobian(
+        casadi.vertcat(y - z, z - y), casadi.vertcat(y, z)))   # full
+
+
+# -- long compiles: estimate, refusal, progress -------------------------
+
+def _chain(tmp_path, bodies):
+    lines = [f"model Chain{bodies}", "  parameter Real k = 100;"]
+    for i in range(1, bodies + 1):
+        lines += [f"  Real phi{i}(start={1 if i == 1 else 0}, fixed=true);",
+                  f"  Real w{i}(start=0, fixed=true);"]
+    lines.append("equation")
+    for i in range(1, bodies + 1):
+        left = f"phi{i - 1}" if i > 1 else "0"
+        right = f" + k*(phi{i + 1} - phi{i})" if i < bodies else ""
+        lines += [f"  der(phi{i}) = w{i};",
+                  f"  der(w{i}) = -k*(phi{i} - {left}){right};"]
+    lines.append(f"end Chain{bodies};")
+    return _model(tmp_path, f"Chain{bodies}", "\n".join(lines) + "\n")
+
+
+def test_the_compile_estimate_grows_with_the_dense_jacobian(tmp_path):
+    from fmu.build import _functions
+    estimates = []
+    for bodies in (10, 20):
+        path = _chain(tmp_path, bodies)
+        ode = backend.to_ode(load_flat_model(path, f"Chain{bodies}"))
+        estimates.append(limits.compile_estimate(_functions(ode)))
+    (small, s_small, b_small), (large, s_large, b_large) = estimates
+    # the dense Jacobian, (2n)^2 entries, makes most of the operations
+    assert 3.0 < large / small < 4.0
+    assert s_large / s_small == pytest.approx((large / small) ** 1.45)
+    assert b_large - b_small == pytest.approx(13e3 * (large - small))
+
+
+def test_a_compile_beyond_the_memory_is_refused_before_gcc(tmp_path):
+    path = _chain(tmp_path, 10)
+    ode = backend.to_ode(load_flat_model(path, "Chain10"))
+    from fmu.build import _functions
+    estimate = limits.compile_estimate(_functions(ode))
+    with pytest.raises(FrontEndError) as error:
+        limits.check_compile("Chain10", 20, estimate, memory=45e6)
+    assert re.fullmatch(
+        r"Chain10: compiling it \(20 states, 630 operations in its C "
+        r"code\) would need about 0\.0482 GB for gcc, more than the 0\.045 "
+        r"GB available; allowed: a model that fits \(about 384 operations; the "
+        r"Jacobian grows as the square of the states\)", str(error.value))
+    limits.check_compile("Chain10", 20, estimate, memory=1e9)   # fits
+
+
+def test_a_compile_beyond_the_time_limit_is_refused(monkeypatch):
+    monkeypatch.setenv("JUDDER_MAX_HOURS", "0.001")
+    with pytest.raises(FrontEndError, match=r"would take about 0\.0111 h, "
+                       r"more than the limit of 0\.001 h"):
+        limits.check_compile("M", 300, (98_400, 40.0, 1e8), memory=1e10)
+
+
+class _Terminal:
+    def __init__(self, tty):
+        self.tty, self.text = tty, ""
+
+    def isatty(self):
+        return self.tty
+
+    def write(self, text):
+        self.text += text
+
+    def flush(self):
+        pass
+
+
+def test_a_long_compile_is_announced_on_a_terminal_only():
+    # the 300-state chain of the issue: 98,400 operations
+    estimate = (98_400, 0.52 * 98.4 ** 1.45, 40e6 + 13e3 * 98_400)
+    terminal, pipe = _Terminal(True), _Terminal(False)
+    assert limits.announce("Chain150", 300, estimate, terminal)
+    assert terminal.text == ("fmu: compiling Chain150 (300 states, 98,400 "
+                             "operations of C) takes about 7 min and 1.3 GB "
+                             "with gcc\n")
+    assert not limits.announce("Chain150", 300, estimate, pipe)
+    assert pipe.text == ""
+    assert not limits.announce("Small", 2, (500, 0.2, 4e7), terminal)
+
+
+def test_the_compile_with_a_progress_bar_reports_gcc_errors(tmp_path):
+    bad = tmp_path / "bad.c"
+    bad.write_text("int f( {\n")
+    done = _run(["gcc", "-c", str(bad), "-o", str(tmp_path / "bad.o")],
+                seconds=30.0)
+    assert done.returncode != 0
+    assert "bad.c:1" in done.stderr
+
+
+# -- the experiment of the class built ----------------------------------
+
+TWO = """package Two
+  model First
+    Real x(start=1, fixed=true);
+  equation
+    der(x) = -x;
+    annotation(experiment(StopTime=4, Interval=1e-3));
+  end First;
+  model Second "experiment( StopTime=9 ) in a string is no annotation"
+    Real x(start=1, fixed=true);
+  equation
+    der(x) = -2*x;
+    // experiment(StopTime=7)
+    annotation(experiment(StopTime=1, Interval=1e-4));
+  end Second;
+end Two;
+"""
+
+
+def test_the_default_experiment_is_the_built_classs_own(tmp_path):
+    folder = tmp_path / "lib"
+    folder.mkdir()
+    (folder / "Two.mo").write_text(TWO)
+    fmu = build_fmu(folder / "Two.mo", "Two.Second", tmp_path / "S.fmu",
+                    roots=[folder]).path
+    with zipfile.ZipFile(fmu) as archive:
+        root = ET.fromstring(archive.read("modelDescription.xml"))
+    experiment = root.find("DefaultExperiment").attrib
+    assert float(experiment["stopTime"]) == 1.0
+    assert float(experiment["stepSize"]) == 1e-4
+    assert _experiment(folder / "Two.mo", "Two.First") == {
+        "StopTime": 4.0, "Interval": 1e-3}
+
+
+def _msl():
+    for folder in [ROOT.parent / "shared" / "msl"] + [
+            Path(p) for p in os.environ.get("MODELICAPATH", "").split(
+                os.pathsep) if p]:
+        if (folder / "Modelica" / "package.mo").is_file():
+            return folder
+    return None
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+def test_msl_modulation_has_its_own_experiment():
+    # the first experiment of Blocks/package.mo is another example's
+    # (StopTime=4); Modulation's is StopTime=1.0, Interval=0.0001
+    source = _msl() / "Modelica" / "Blocks" / "package.mo"
+    assert _experiment(source, "Modelica.Blocks.Examples.Modulation") == {
+        "StopTime": 1.0, "Interval": 1e-4}
