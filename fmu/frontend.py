@@ -18,16 +18,13 @@ import re
 import casadi
 import numpy as np
 
-from infra.errors import JudderError
-
+from .errors import FrontEndError
 from .limits import check_flat_arrays
 
 __all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
            "find_class", "modelica_path", "FrontEndError"]
 
 
-class FrontEndError(JudderError):
-    """The Modelica source could not be compiled; the message says where."""
 
 
 @dataclass
@@ -615,28 +612,6 @@ def check_source_text(path):
             f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} at "
             f"offset {exc.start}, line {line}); allowed: UTF-8 text, as "
             "Modelica requires (save the file as UTF-8)") from None
-
-
-def _library_errors(rumoca, roots, path):
-    """Syntax errors anywhere in the model's own library (rumoca only says
-    'failed'); the other libraries of the path (the MSL: 2,400 files) are
-    not searched."""
-    found = []
-    path = Path(path).resolve()
-    for root in roots:
-        if not path.is_relative_to(Path(root).resolve()):
-            continue
-        for source in sorted(Path(root).rglob("*.mo")):
-            try:
-                source.read_bytes().decode("utf-8")
-            except UnicodeDecodeError as exc:
-                found.append(f"{source}: not UTF-8 text (byte "
-                             f"0x{exc.object[exc.start]:02x} at offset "
-                             f"{exc.start}); save the file as UTF-8")
-                continue
-            found += [str(d) for d in rumoca.validate(str(source))
-                      if "error" in str(d).lower()]
-    return ("\n" + "\n".join(found)) if found else ""
 
 
 #: Roles of rumoca's flat variables that the back end compiles.

@@ -20,6 +20,8 @@ import os
 import re
 import sys
 
+from .errors import FrontEndError
+
 __all__ = ["MAX_ARRAY_ELEMENTS", "check_source_arrays", "check_flat_arrays",
            "compile_estimate", "check_compile", "announce"]
 
@@ -61,7 +63,6 @@ def _size(text, known):
 
 
 def _refusal(place, what, size, dims, known):
-    from .frontend import FrontEndError
     values = ", ".join(f"{name} = {known[name]:,}" for name in
                        re.findall(r"\w+", dims) if name in known)
     raise FrontEndError(
@@ -112,7 +113,6 @@ def check_flat_arrays(storage, where):
     """Refuse an array of the flat model (rumoca's ``storage``) with more
     than :data:`MAX_ARRAY_ELEMENTS` elements, before the front end makes
     a symbol for each; ``where`` gives a declaration's ``file:line``."""
-    from .frontend import FrontEndError
     for raw in storage["variables"]:
         shape = storage["value_types"][raw["value_type"]].get("dimensions")
         if not shape:
@@ -159,7 +159,6 @@ def compile_estimate(functions):
 
 
 def _hours():
-    from .frontend import FrontEndError
     text = os.environ.get("JUDDER_MAX_HOURS")
     if text is None:
         return MAX_HOURS
@@ -177,7 +176,6 @@ def check_compile(model_name, states, estimate, memory):
     """Refuse a model whose C code gcc could not compile in the memory
     available (``memory`` bytes) or within the time limit, naming the
     model, its size, the estimate and the limit."""
-    from .frontend import FrontEndError
     operations, seconds, needed = estimate
     size = f"{states} states, {operations:,} operations in its C code"
     if needed > memory:

@@ -34,6 +34,8 @@ import sys
 import threading
 from pathlib import Path
 
+from .errors import FrontEndError
+
 __all__ = ["flatten_isolated", "memory_limit", "time_limit",
            "STACK_BYTES", "TIME_LIMIT_S"]
 
@@ -54,7 +56,6 @@ _BASE_BYTES = (1 << 30) + STACK_BYTES
 
 def time_limit():
     """``JUDDER_FLATTEN_TIMEOUT`` (seconds) or :data:`TIME_LIMIT_S`."""
-    from .frontend import FrontEndError
     text = os.environ.get("JUDDER_FLATTEN_TIMEOUT")
     if text is None:
         return TIME_LIMIT_S
@@ -116,7 +117,6 @@ def flatten_isolated(path, model_name, roots):
         crashed, ran out of the memory allowed or of time, naming the
         file, the step and the limit.
     """
-    from .frontend import FrontEndError
     limit, memory = time_limit(), memory_limit()
     job = {"path": str(path), "model": model_name,
            "roots": [str(r) for r in roots], "memory": memory}
@@ -193,7 +193,6 @@ def _die_with_parent():
 def _flatten(job):
     """``('ok', flat dict)`` or ``('error', message)``, in this process."""
     import rumoca
-    from .frontend import _library_errors
     path, model_name, roots = job["path"], job["model"], job["roots"]
     try:
         _stage("checking the source")
@@ -219,6 +218,28 @@ def _flatten(job):
                 f"{_library_errors(rumoca, roots, path)}")
     finally:
         del session, model
+
+
+def _library_errors(rumoca, roots, path):
+    """Syntax errors anywhere in the model's own library (rumoca only says
+    'failed'); the other libraries of the path (the MSL: 2,400 files) are
+    not searched."""
+    found = []
+    path = Path(path).resolve()
+    for root in roots:
+        if not path.is_relative_to(Path(root).resolve()):
+            continue
+        for source in sorted(Path(root).rglob("*.mo")):
+            try:
+                source.read_bytes().decode("utf-8")
+            except UnicodeDecodeError as exc:
+                found.append(f"{source}: not UTF-8 text (byte "
+                             f"0x{exc.object[exc.start]:02x} at offset "
+                             f"{exc.start}); save the file as UTF-8")
+                continue
+            found += [str(d) for d in rumoca.validate(str(source))
+                      if "error" in str(d).lower()]
+    return ("\n" + "\n".join(found)) if found else ""
 
 
 def _child():
