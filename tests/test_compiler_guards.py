@@ -28,7 +28,7 @@ fmpy = pytest.importorskip("fmpy")
 from fmu import backend, limits, rumoca_child  # noqa: E402
 from fmu.build import _run, build_fmu  # noqa: E402
 from fmu.frontend import (FrontEndError, _experiment,  # noqa: E402
-                          load_flat_model)
+                          class_spans, load_flat_model)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -402,6 +402,18 @@ def test_the_default_experiment_is_the_built_classs_own(tmp_path):
     assert float(experiment["stepSize"]) == 1e-4
     assert _experiment(folder / "Two.mo", "Two.First") == {
         "StopTime": 4.0, "Interval": 1e-3}
+
+
+def test_class_spans_nest_and_skip_short_classes():
+    text = ("within Lib;\npackage P\n  type T = Real(unit=\"m\");\n"
+            "  redeclare model extends M \"end Q;\"\n  end M;\n"
+            "  block B\n  equation\n    if true then\n    end if;\n"
+            "  end B;\nend P;\n")
+    spans = class_spans(text)
+    assert sorted(spans) == ["Lib.P", "Lib.P.B", "Lib.P.M"]
+    begin, end = spans["Lib.P.B"]
+    assert text[begin:end] == text[text.index("block B"):
+                                   text.index("end B;") + 6]
 
 
 def _msl():
