@@ -143,8 +143,10 @@ class OdeModel:
     def jacobian(self):
         """CasADi function ``jacobian(t, x, p) -> J``: the derivatives of
         ``[der(x); y]`` with respect to ``[x; parameters; inputs]``
-        (automatic differentiation), dense, and its sparsity (the
-        unknowns of FMI: the locals have no directional derivatives)."""
+        (automatic differentiation), its structural nonzeros only, and
+        its sparsity (the unknowns of FMI: the locals have no directional
+        derivatives). Written densely, its C code grew as the square of
+        the states (a 300-state chain: 98,400 operations, 7 min of gcc)."""
         x, p = self._symbols()
         known = len(self.parameters) + len(self.inputs)
         y = _column(*[o.expression for o in self.outputs])
@@ -152,7 +154,7 @@ class OdeModel:
         knowns = casadi.vertcat(x, p[:known])
         jac = casadi.jacobian(unknowns, knowns)
         return (casadi.Function("jacobian", [self.time, x, p],
-                                [casadi.densify(jac)]), jac.sparsity())
+                                [jac]), jac.sparsity())
 
     def event_functions(self):
         """CasADi functions of the events: ``indicators(t, x, p) -> z``

@@ -149,6 +149,8 @@ def _config(ode, guid, tolerance):
         "#define MODEL_REINIT_WORK judder_reinit_work",
         "#define MODEL_JACOBIAN judder_jacobian",
         "#define MODEL_JACOBIAN_WORK judder_jacobian_work",
+        "#define MODEL_JACOBIAN_SPARSITY judder_jacobian_sparsity_out",
+        f"#define MODEL_JACOBIAN_NNZ {ode.jacobian()[1].nnz()}",
         "#endif", ""])
 
 

@@ -131,15 +131,18 @@ def check_flat_arrays(storage, where):
 # -- the C compile -----------------------------------------------------
 
 #: gcc -O2 on the generated C, measured on this project's 2-core machine
-#: (chains of 20, 50, 100 and 200 states: 960, 3,900, 12,800 and 45,600
-#: CasADi operations, 0.94, 4.0, 20.6 and 130 s, 45, 87, 216 and 598 MB;
-#: the dense Jacobian is nine tenths of the operations):
+#: shared with other work: chains of 50, 100 and 200 states with the
+#: Jacobian written densely (3,900, 12,800 and 45,600 CasADi operations:
+#: 4.0, 20.6 and 130 s, 87, 216 and 598 MB) and chains of 200, 300 and
+#: 1500 states with its nonzeros only (6,000, 9,000 and 45,000: 8.6, 11.9
+#: and 41 s, 82, 110 and 393 MB; 100 states 3,000: 2.2 s, 59 MB). Fitted
+#: to all seven, within a factor 2 of each:
 #: seconds = GCC_S * (operations / 1000) ** GCC_POWER,
 #: bytes = GCC_BASE_BYTES + GCC_BYTES_PER_OPERATION * operations.
-GCC_S = 0.52
-GCC_POWER = 1.45
+GCC_S = 0.77
+GCC_POWER = 1.22
 GCC_BASE_BYTES = 40e6
-GCC_BYTES_PER_OPERATION = 13e3
+GCC_BYTES_PER_OPERATION = 10e3
 #: Estimates above this (s) are said on stderr, with a progress bar, on
 #: a terminal.
 ANNOUNCE_S = 10.0
@@ -184,7 +187,7 @@ def check_compile(model_name, states, estimate, memory):
             f"{needed / 1e9:.3g} GB for gcc, more than the "
             f"{memory / 1e9:.3g} GB available; allowed: a model that fits "
             f"(about {int((memory - GCC_BASE_BYTES) / GCC_BYTES_PER_OPERATION):,}"
-            " operations; the Jacobian grows as the square of the states)")
+            " operations)")
     hours = _hours()
     if seconds > 3600 * hours:
         raise FrontEndError(

@@ -297,18 +297,20 @@ def _chain(tmp_path, bodies):
     return _model(tmp_path, f"Chain{bodies}", "\n".join(lines) + "\n")
 
 
-def test_the_compile_estimate_grows_with_the_dense_jacobian(tmp_path):
+def test_the_compile_estimate_grows_as_the_states(tmp_path):
+    # the Jacobian's nonzeros only: a chain's operations grow as its
+    # states (written densely they grew as their square)
     from fmu.build import _functions
     estimates = []
     for bodies in (10, 20):
         path = _chain(tmp_path, bodies)
         ode = backend.to_ode(load_flat_model(path, f"Chain{bodies}"))
+        assert ode.jacobian()[1].nnz() == 5 * bodies - 2   # tridiagonal
         estimates.append(limits.compile_estimate(_functions(ode)))
     (small, s_small, b_small), (large, s_large, b_large) = estimates
-    # the dense Jacobian, (2n)^2 entries, makes most of the operations
-    assert 3.0 < large / small < 4.0
-    assert s_large / s_small == pytest.approx((large / small) ** 1.45)
-    assert b_large - b_small == pytest.approx(13e3 * (large - small))
+    assert 1.9 < large / small < 2.1
+    assert s_large / s_small == pytest.approx((large / small) ** 1.22)
+    assert b_large - b_small == pytest.approx(10e3 * (large - small))
 
 
 def test_a_compile_beyond_the_memory_is_refused_before_gcc(tmp_path):
@@ -317,13 +319,62 @@ def test_a_compile_beyond_the_memory_is_refused_before_gcc(tmp_path):
     from fmu.build import _functions
     estimate = limits.compile_estimate(_functions(ode))
     with pytest.raises(FrontEndError) as error:
-        limits.check_compile("Chain10", 20, estimate, memory=45e6)
-    assert re.fullmatch(
-        r"Chain10: compiling it \(20 states, 630 operations in its C "
-        r"code\) would need about 0\.0482 GB for gcc, more than the 0\.045 "
-        r"GB available; allowed: a model that fits \(about 384 operations; the "
-        r"Jacobian grows as the square of the states\)", str(error.value))
+        limits.check_compile("Chain10", 20, estimate, memory=41e6)
+    assert str(error.value) == (
+        "Chain10: compiling it (20 states, 257 operations in its C code) "
+        "would need about 0.0426 GB for gcc, more than the 0.041 GB "
+        "available; allowed: a model that fits (about 100 operations)")
     limits.check_compile("Chain10", 20, estimate, memory=1e9)   # fits
+
+
+def test_the_sparse_jacobian_gives_the_directional_derivatives(tmp_path):
+    # the chain's d der(w_i)/d phi_j: -2k on the diagonal, k beside it
+    # (-k for the last body), from FMI 2 and FMI 3 forward and adjoint
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Model
+    from fmpy.fmi3 import FMU3Model
+    path = _chain(tmp_path, 4)
+    k, n = 100.0, 4
+    expected = np.zeros((2 * n, 2 * n + 1))   # knowns: states, then k
+    for i in range(n):
+        expected[2 * i, 2 * i + 1] = 1.0      # der(phi_i) = w_i
+        expected[2 * i + 1, 2 * i] = -2 * k if i < n - 1 else -k
+        if i > 0:
+            expected[2 * i + 1, 2 * i - 2] = k
+        if i < n - 1:
+            expected[2 * i + 1, 2 * i + 2] = k
+    for version, model in (("2.0", FMU2Model), ("3.0", FMU3Model)):
+        fmu = build_fmu(path, "Chain4", tmp_path / f"C{version}.fmu",
+                        version=version).path
+        md = read_model_description(str(fmu))
+        derivatives = [u.variable.valueReference for u in md.derivatives]
+        states = [u.variable.derivative.valueReference
+                  for u in md.derivatives]
+        assert [u.variable.derivative.name for u in md.derivatives] == [
+            f"{a}{i}" for i in range(1, n + 1) for a in ("phi", "w")]
+        knowns = states + [v.valueReference for v in md.modelVariables
+                           if v.name == "k"]
+        instance = model(guid=md.guid, unzipDirectory=extract(str(fmu)),
+                         modelIdentifier=md.modelExchange.modelIdentifier)
+        instance.instantiate()
+        if version == "2.0":
+            instance.setupExperiment()
+        instance.enterInitializationMode()
+        instance.exitInitializationMode()
+        instance.enterContinuousTimeMode()
+        forward = np.array([instance.getDirectionalDerivative(
+            derivatives, knowns, list(seed))
+            for seed in np.eye(len(knowns))]).T
+        assert_allclose(forward[:, :2 * n], expected[:, :2 * n], atol=0)
+        if version == "3.0":
+            adjoint = np.array([instance.getAdjointDerivative(
+                derivatives, knowns, list(seed), nSensitivity=len(knowns))
+                for seed in np.eye(len(derivatives))])
+            assert_allclose(adjoint, forward, atol=0)
+        # d der(w1)/dk at the start: -(2 phi1 - phi2) = -2
+        assert forward[1, -1] == -2.0
+        instance.terminate()
+        instance.freeInstance()
 
 
 def test_a_compile_beyond_the_time_limit_is_refused(monkeypatch):
@@ -348,14 +399,14 @@ class _Terminal:
 
 
 def test_a_long_compile_is_announced_on_a_terminal_only():
-    # the 300-state chain of the issue: 98,400 operations
-    estimate = (98_400, 0.52 * 98.4 ** 1.45, 40e6 + 13e3 * 98_400)
+    # the 1500-state chain of the issue: 44,995 operations
+    estimate = (44_995, 0.77 * 44.995 ** 1.22, 40e6 + 10e3 * 44_995)
     terminal, pipe = _Terminal(True), _Terminal(False)
-    assert limits.announce("Chain150", 300, estimate, terminal)
-    assert terminal.text == ("fmu: compiling Chain150 (300 states, 98,400 "
-                             "operations of C) takes about 7 min and 1.3 GB "
+    assert limits.announce("Chain750", 1500, estimate, terminal)
+    assert terminal.text == ("fmu: compiling Chain750 (1500 states, 44,995 "
+                             "operations of C) takes about 80 s and 0.49 GB "
                              "with gcc\n")
-    assert not limits.announce("Chain150", 300, estimate, pipe)
+    assert not limits.announce("Chain750", 1500, estimate, pipe)
     assert pipe.text == ""
     assert not limits.announce("Small", 2, (500, 0.2, 4e7), terminal)
 
