@@ -25,8 +25,6 @@ __all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
            "find_class", "modelica_path", "FrontEndError"]
 
 
-
-
 @dataclass
 class Variable:
     """One scalar of the flat model.
@@ -253,28 +251,24 @@ class _Expressions:
         """
         if index is None:
             return None
-        if index in self._cache:
-            return self._cache[index]
-        pending, order, seen = [index], [], {index}
+        pending = [(index, False)]   # (node, its children are done)
         while pending:
-            node = pending.pop()
-            order.append(node)
-            for child in self._children(node):
-                if child is not None and child not in seen and \
-                        child not in self._cache:
-                    seen.add(child)
-                    pending.append(child)
-        # every child stands after its parent in order: reversed, after
-        for node in reversed(order):
-            if node not in self._cache:
+            node, ready = pending.pop()
+            if node in self._cache:
+                continue
+            if ready:
                 self._cache[node] = self._convert(node)
+                continue
+            pending.append((node, True))
+            pending.extend((child, False) for child in self._children(node)
+                           if child is not None and child not in self._cache)
         return self._cache[index]
 
     def _children(self, index):
         """The operand nodes of node ``index`` that :meth:`_convert`
         converts in the same context (see :meth:`__call__`)."""
         kind, body = next(iter(self._nodes[index].items()))
-        if kind in ("binary",):
+        if kind == "binary":
             return (body["lhs"], body["rhs"])
         if kind == "unary":
             return (body["operand"],)
@@ -571,17 +565,17 @@ def _flatten(path, model_name, roots, use_cache=True):
     import rumoca
     from . import cache
     if not use_cache:
-        return _flatten_with_rumoca(rumoca, path, model_name, roots,
+        return _flatten_with_rumoca(path, model_name, roots,
                                     use_cache=False)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
-        flat = _flatten_with_rumoca(rumoca, path, model_name, roots)
+        flat = _flatten_with_rumoca(path, model_name, roots)
         cache.store(key, flat)
     return flat
 
 
-def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
+def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
