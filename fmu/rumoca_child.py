@@ -124,11 +124,13 @@ def flatten_isolated(path, model_name, roots):
     where = stages[-1] if stages else "starting"
     if status is None:
         raise FrontEndError(
-            f"{path}: rumoca did not finish {where} of {model_name} within "
-            f"{limit:g} s; allowed: a model that flattens in that time "
+            f"{path}: rumoca did not finish {model_name} within {limit:g} s "
+            f"(it was {where}); allowed: a model that flattens in that time "
             "(JUDDER_FLATTEN_TIMEOUT=SECONDS allows more)")
+    kind, value = reply if reply is not None else ("", "")
     wanted = re.search(r"memory allocation of (\d+) bytes failed", err)
-    if wanted or (status != 0 and "MemoryError" in err):
+    if wanted or (status != 0 and "MemoryError" in err) or \
+            (kind == "failed" and value.startswith("MemoryError")):
         asked = f" (it asked for {int(wanted.group(1)) / 1e9:.3g} GB at " \
             "once)" if wanted else ""
         raise FrontEndError(
@@ -138,8 +140,8 @@ def flatten_isolated(path, model_name, roots):
             "arrays: every element is a variable of its own)")
     if status < 0:
         raise FrontEndError(
-            f"{path}: rumoca crashed ({_signal_name(status)}) while "
-            f"{where} of {model_name}; judder ran it in a child process: "
+            f"{path}: rumoca crashed ({_signal_name(status)}) on "
+            f"{model_name} while {where}; judder ran it in a child process: "
             "nothing else is affected, but this model cannot be compiled "
             f"as written (a deeply nested expression beyond the "
             f"{STACK_BYTES >> 20} MiB stack given to rumoca is one cause: "
@@ -148,9 +150,14 @@ def flatten_isolated(path, model_name, roots):
         raise RuntimeError(f"rumoca's child process ended with status "
                            f"{status} while {where} without a result: "
                            f"{err.strip()[-2000:]}")
-    kind, value = reply
     if kind == "error":
         raise FrontEndError(value)
+    if kind == "failed":   # a panic of rumoca's Rust code, say
+        raise FrontEndError(
+            f"{path}: rumoca failed on {model_name} while {where} "
+            f"({value.strip()[:500]}); judder ran it in a child process: "
+            "nothing else is affected, but rumoca cannot compile this "
+            "model as written")
     return value
 
 
@@ -251,11 +258,15 @@ def _child():
         resource.setrlimit(resource.RLIMIT_AS, (memory, hard))
     threading.stack_size(STACK_BYTES)
     reply = []
-    worker = threading.Thread(target=lambda: reply.append(_flatten(job)))
+
+    def work():
+        try:
+            reply.append(_flatten(job))
+        except BaseException as exc:   # rumoca's panics are BaseException
+            reply.append(("failed", f"{type(exc).__name__}: {exc}"))
+    worker = threading.Thread(target=work)
     worker.start()
     worker.join()
-    if not reply:       # the thread raised: a MemoryError, or a bug
-        sys.exit(1)
     sys.stdout.buffer.write(pickle.dumps(reply[0]))
     sys.stdout.flush()
 

@@ -92,7 +92,7 @@ def test_a_sum_of_5000_terms_compiles_and_is_right(tmp_path):
     ("import ctypes, sys\n"
      "sys.stderr.write('judder-rumoca: flattening\\n'); sys.stderr.flush()\n"
      "ctypes.string_at(0)\n",
-     ["rumoca crashed (SIGSEGV) while flattening of M",
+     ["rumoca crashed (SIGSEGV) on M while flattening; ",
       "nothing else is affected"]),
     ("import os, sys\n"
      "sys.stderr.write('judder-rumoca: flattening\\n')\n"
@@ -112,6 +112,24 @@ def test_a_crash_of_rumoca_is_one_error(tmp_path, monkeypatch, code, words):
         assert word in message
 
 
+def test_a_panic_of_rumoca_is_one_error(tmp_path, monkeypatch):
+    # pyo3 raises a Rust panic as PanicException, a BaseException
+    path = _model(tmp_path, "M", "model M\nend M;\n")
+    monkeypatch.setattr(rumoca_child, "_CHILD", (
+        "-c", "import fmu.rumoca_child as child\n"
+        "class PanicException(BaseException): pass\n"
+        "def flatten(job):\n"
+        "    child._stage('flattening')\n"
+        "    raise PanicException('index out of bounds')\n"
+        "child._flatten = flatten\nchild._child()\n"))
+    with pytest.raises(FrontEndError) as error:
+        rumoca_child.flatten_isolated(path, "M", [path.parent])
+    assert str(error.value) == (
+        f"{path}: rumoca failed on M while flattening (PanicException: "
+        "index out of bounds); judder ran it in a child process: nothing "
+        "else is affected, but rumoca cannot compile this model as written")
+
+
 def test_a_hanging_rumoca_is_stopped(tmp_path, monkeypatch):
     path = _model(tmp_path, "M", "model M\nend M;\n")
     monkeypatch.setattr(rumoca_child, "_CHILD", (
@@ -119,8 +137,8 @@ def test_a_hanging_rumoca_is_stopped(tmp_path, monkeypatch):
         "sys.stderr.write('judder-rumoca: loading the libraries\\n')\n"
         "sys.stderr.flush(); signal.pause()\n"))
     monkeypatch.setenv("JUDDER_FLATTEN_TIMEOUT", "1")
-    with pytest.raises(FrontEndError, match=r"rumoca did not finish loading "
-                       r"the libraries of M within 1 s"):
+    with pytest.raises(FrontEndError, match=r"rumoca did not finish M within "
+                       r"1 s \(it was loading the libraries\); allowed: "):
         rumoca_child.flatten_isolated(path, "M", [path.parent])
 
 
