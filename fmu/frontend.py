@@ -899,7 +899,7 @@ def _is_fixed(value):
 
 _CLASS_HEAD = re.compile(
     r"\b(?:model|block|class|package|record|connector|function|type)\s+"
-    r"(?:extends\s+)?(\w+)(\s*=)?")
+    r"(?:extends\s+)?(\w+)(?![\w.])(?!\s*\()(\s*=)?")
 _CLASS_END = re.compile(r"\bend\s+(\w+)\s*;")
 _WITHIN = re.compile(r"^\s*within\s+([\w.]*)\s*;")
 

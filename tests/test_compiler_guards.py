@@ -27,8 +27,8 @@ fmpy = pytest.importorskip("fmpy")
 
 from fmu import backend, limits, rumoca_child  # noqa: E402
 from fmu.build import _run, build_fmu  # noqa: E402
-from fmu.frontend import (FrontEndError, _experiment,  # noqa: E402
-                          class_spans, load_flat_model)
+from fmu.frontend import (FrontEndError, _blank,  # noqa: E402
+                          _experiment, class_spans, load_flat_model)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -474,9 +474,11 @@ def test_the_default_experiment_is_the_built_classs_own(tmp_path):
 
 
 def test_class_spans_nest_and_skip_short_classes():
+    # a function's partial application (MSL Math.Nonlinear) is no class
     text = ("within Lib;\npackage P\n  type T = Real(unit=\"m\");\n"
             "  redeclare model extends M \"end Q;\"\n  end M;\n"
             "  block B\n  equation\n    if true then\n    end if;\n"
+            "    y = q(function P.f(w=3), function g());\n"
             "  end B;\nend P;\n")
     spans = class_spans(text)
     assert sorted(spans) == ["Lib.P", "Lib.P.B", "Lib.P.M"]
@@ -502,3 +504,24 @@ def test_msl_modulation_has_its_own_experiment():
     source = _msl() / "Modelica" / "Blocks" / "package.mo"
     assert _experiment(source, "Modelica.Blocks.Examples.Modulation") == {
         "StopTime": 1.0, "Interval": 1e-4}
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+def test_every_msl_experiment_is_read_for_its_own_class():
+    # the 535 experiment annotations of MSL 4.x, each read back from the
+    # innermost class that holds it
+    checked = 0
+    for source in sorted(_msl().rglob("*.mo")):
+        text = source.read_text(encoding="utf-8")
+        if "experiment" not in text:
+            continue
+        clean, spans = _blank(text), class_spans(text)
+        for found in re.finditer(r"\bexperiment\s*\(([^)]*)\)", clean):
+            owner = max((begin, name) for name, (begin, end) in spans.items()
+                        if begin <= found.start() < end)[1]
+            expected = {key: float(value) for key, value in re.findall(
+                r"(\w+)\s*=\s*([-+\d.eE]+)", found.group(1))}
+            assert _experiment(source, owner) == expected, (source, owner)
+            checked += 1
+    assert checked > 500
