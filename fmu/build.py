@@ -24,6 +24,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import uuid
 import zipfile
@@ -190,6 +191,51 @@ def _generate_c(functions, folder):
         os.chdir(cwd)
 
 
+class Stages:
+    """A status line on stderr naming the step of a build and its
+    elapsed time, refreshed every half second: a tqdm bar without total,
+    shown on a terminal only and only once the build has taken ``delay``
+    seconds (a small model's build says nothing).
+    ``with Stages(name) as stage: stage("...")``.
+    """
+
+    def __init__(self, name, delay=2.0, stream=None):
+        from tqdm import tqdm
+        self._bar = tqdm(total=None, desc=name, disable=None, leave=False,
+                         delay=delay, file=stream or sys.stderr,
+                         bar_format="{desc} [{elapsed}]")
+        self._name, self._delay, self._shown = name, delay, False
+        self._done = threading.Event()
+        self._ticker = threading.Thread(target=self._tick, daemon=True)
+
+    def _tick(self):
+        started = time.monotonic()
+        while not self._done.wait(0.5):
+            if time.monotonic() - started >= self._delay:
+                self._shown = True
+                self._bar.refresh()
+
+    def __enter__(self):
+        if not self._bar.disable:
+            self._ticker.start()
+        return self._stage
+
+    def _stage(self, text):
+        self._bar.set_description_str(f"{self._name}: {text}",
+                                      refresh=False)
+
+    def __exit__(self, *exc):
+        self._done.set()
+        if self._ticker.is_alive():
+            self._ticker.join()
+        if self._shown:   # tqdm clears only what its own updates showed
+            self._bar.display(msg="")
+            self._bar.fp.write("\r")
+            self._bar.fp.flush()
+        self._bar.close()
+        return False
+
+
 def _run(command, seconds=None):
     """Run the C compiler; with ``seconds`` (its estimate), a progress bar
     on stderr over the estimate (tqdm, shown on a terminal only, as the
@@ -287,8 +333,13 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         raise BuildError(f"FMI version {version!r}; allowed: "
                          f"{', '.join(_WRAPPER)}")
     started = time.perf_counter()
-    ode = to_ode(load_flat_model(mo_file, model_name, roots=roots))
-    functions = _functions(ode)
+    with Stages(model_name) as stage:
+        stage("flattening (rumoca)")
+        flat = load_flat_model(mo_file, model_name, roots=roots)
+        stage(f"reducing {len(flat.residuals)} equations to an ODE")
+        ode = to_ode(flat)
+        stage("estimating the C code")
+        functions = _functions(ode)
     estimate = compile_estimate(functions)
     check_compile(model_name, len(ode.states), estimate, memory_limit())
     long = announce(model_name, len(ode.states), estimate)

@@ -429,6 +429,24 @@ def test_a_long_compile_is_announced_on_a_terminal_only():
     assert not limits.announce("Small", 2, (500, 0.2, 4e7), terminal)
 
 
+def test_a_long_build_says_its_step_on_a_terminal_only():
+    import time
+    from fmu.build import Stages
+    terminal, pipe = _Terminal(True), _Terminal(False)
+    with Stages("M", delay=0, stream=terminal) as stage:
+        stage("flattening (rumoca)")
+        deadline = time.monotonic() + 60
+        while "M: flattening (rumoca) [00:" not in terminal.text:
+            assert time.monotonic() < deadline, terminal.text
+            time.sleep(0.05)   # until the status line is shown
+        shown = len(terminal.text)
+    blank = terminal.text[shown:]
+    assert blank.strip() == "" and blank.endswith("\r")   # line cleared
+    with Stages("M", delay=0, stream=pipe) as stage:
+        stage("flattening (rumoca)")
+    assert pipe.text == ""
+
+
 def test_the_compile_with_a_progress_bar_reports_gcc_errors(tmp_path):
     bad = tmp_path / "bad.c"
     bad.write_text("int f( {\n")
