@@ -40,7 +40,9 @@ __all__ = ["flatten_isolated", "memory_limit", "time_limit",
            "STACK_BYTES", "TIME_LIMIT_S"]
 
 #: Stack of the thread that runs rumoca (virtual memory: only what is
-#: used is committed). 1 GiB holds a sum of more than 50,000 terms.
+#: used is committed). 1 GiB holds a sum of 50,000 terms (which rumoca
+#: then takes 250 s to flatten, against 3.5 s for 5,000) and parentheses
+#: nested 200,000 deep.
 STACK_BYTES = 1 << 30
 #: Seconds rumoca may take for one model before the child is stopped
 #: (MSL models take 10-25 s); ``JUDDER_FLATTEN_TIMEOUT`` sets another.
