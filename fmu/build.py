@@ -22,7 +22,9 @@ import os
 from pathlib import Path
 import shutil
 import subprocess
+import sys
 import tempfile
+import threading
 import time
 import uuid
 import zipfile
@@ -34,6 +36,8 @@ from infra.files import atomic_write
 from .backend import Quantity, to_ode
 from .description import Layout, build_description, model_description
 from .frontend import FrontEndError, load_flat_model, package_version
+from .limits import announce, check_compile, compile_estimate
+from .rumoca_child import memory_limit
 
 __all__ = ["BuildError", "BuildResult", "build_fmu", "fmi_headers"]
 
@@ -146,10 +150,13 @@ def _config(ode, guid, tolerance):
         "#define MODEL_REINIT_WORK judder_reinit_work",
         "#define MODEL_JACOBIAN judder_jacobian",
         "#define MODEL_JACOBIAN_WORK judder_jacobian_work",
+        "#define MODEL_JACOBIAN_SPARSITY judder_jacobian_sparsity_out",
+        f"#define MODEL_JACOBIAN_NNZ {ode.jacobian()[1].nnz()}",
         "#endif", ""])
 
 
-def _generate_c(ode, folder):
+def _functions(ode):
+    """The CasADi functions whose C code the FMU holds."""
     ode_f, outputs_f, start_f = ode.functions(with_locals=True)
     p = casadi.vertcat(casadi.SX(0, 1),
                        *[q.expression for q in ode.parameters + ode.inputs
@@ -167,6 +174,10 @@ def _generate_c(ode, folder):
         functions.append(casadi.Function(
             f"judder_{function.name()}", function.sx_in(),
             function.call(function.sx_in())))
+    return functions
+
+
+def _generate_c(functions, folder):
     generator = casadi.CodeGenerator("model_functions.c",
                                      {"with_header": True,
                                       "prefix": "judder_"})
@@ -180,9 +191,86 @@ def _generate_c(ode, folder):
         os.chdir(cwd)
 
 
-def _compile(folder, version, identifier, windows=False):
+class Stages:
+    """A status line on stderr naming the step of a build and its
+    elapsed time, refreshed every half second: a tqdm bar without total,
+    shown on a terminal only and only once the build has taken ``delay``
+    seconds (a small model's build says nothing).
+    ``with Stages(name) as stage: stage("...")``.
+    """
+
+    def __init__(self, name, delay=2.0, stream=None):
+        from tqdm import tqdm
+        self._bar = tqdm(total=None, desc=name, disable=None, leave=False,
+                         delay=delay, file=stream or sys.stderr,
+                         bar_format="{desc} [{elapsed}]")
+        self._name, self._delay, self._shown = name, delay, False
+        self._done = threading.Event()
+        self._ticker = threading.Thread(target=self._tick, daemon=True)
+
+    def _tick(self):
+        started = time.monotonic()
+        while not self._done.wait(0.5):
+            if time.monotonic() - started >= self._delay:
+                self._shown = True
+                self._bar.refresh()
+
+    def __enter__(self):
+        if not self._bar.disable:
+            self._ticker.start()
+        return self._stage
+
+    def _stage(self, text):
+        self._bar.set_description_str(f"{self._name}: {text}",
+                                      refresh=False)
+
+    def __exit__(self, *exc):
+        self._done.set()
+        if self._ticker.is_alive():
+            self._ticker.join()
+        if self._shown:   # tqdm clears only what its own updates showed
+            self._bar.display(msg="")
+            self._bar.fp.write("\r")
+            self._bar.fp.flush()
+        self._bar.close()
+        return False
+
+
+def _run(command, seconds=None):
+    """Run the C compiler; with ``seconds`` (its estimate), a progress bar
+    on stderr over the estimate (tqdm, shown on a terminal only, as the
+    project's commands show theirs)."""
+    if seconds is None:
+        return subprocess.run(command, capture_output=True, text=True)
+    from tqdm import tqdm
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err, \
+            tqdm(total=round(seconds), desc="gcc", unit="s", disable=None,
+                 file=sys.stderr, bar_format="{desc}: {percentage:3.0f}%|"
+                 "{bar}| {n:.0f}/{total:.0f} s estimated") as bar:
+        proc = subprocess.Popen(command, stdout=out, stderr=err)
+        started = time.monotonic()
+        try:
+            while True:
+                try:
+                    proc.wait(timeout=0.5)
+                    break
+                except subprocess.TimeoutExpired:
+                    bar.update(min(time.monotonic() - started, bar.total)
+                               - bar.n)
+        finally:
+            if proc.poll() is None:   # Ctrl-C, SIGTERM
+                proc.kill()
+                proc.wait()
+        err.seek(0)
+        return subprocess.CompletedProcess(
+            command, proc.returncode, "",
+            err.read().decode("utf-8", "replace"))
+
+
+def _compile(folder, version, identifier, windows=False, seconds=None):
     """Shared library of the FMU: Linux with gcc (``CC``), or Windows
-    64-bit with mingw-w64 (``windows=True``)."""
+    64-bit with mingw-w64 (``windows=True``); ``seconds``: the estimate
+    of a long compile, for its progress bar."""
     if windows:
         compiler, library = _WINDOWS_CC, folder / f"{identifier}.dll"
         flags = ["-shared", "-O2", "-static-libgcc"]
@@ -199,7 +287,7 @@ def _compile(folder, version, identifier, windows=False):
                f"-I{fmi_headers()}", str(folder / "model_functions.c"),
                str(C_SOURCES / "model.c"), str(C_SOURCES / _WRAPPER[version]),
                "-o", str(library), "-lm"]
-    done = subprocess.run(command, capture_output=True, text=True)
+    done = _run(command, seconds)
     if done.returncode != 0:
         raise BuildError(f"{compiler} failed for {identifier}:\n"
                          f"{done.stderr.strip()}")
@@ -245,13 +333,23 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         raise BuildError(f"FMI version {version!r}; allowed: "
                          f"{', '.join(_WRAPPER)}")
     started = time.perf_counter()
-    ode = to_ode(load_flat_model(mo_file, model_name, roots=roots))
+    with Stages(model_name) as stage:
+        stage("flattening (rumoca)")
+        flat = load_flat_model(mo_file, model_name, roots=roots)
+        stage(f"reducing {len(flat.residuals)} equations to an ODE")
+        ode = to_ode(flat)
+        stage("estimating the C code")
+        functions = _functions(ode)
+    estimate = compile_estimate(functions)
+    check_compile(model_name, len(ode.states), estimate, memory_limit())
+    long = announce(model_name, len(ode.states), estimate)
+    seconds = estimate[1] if long else None
     identifier = model_name.split(".")[-1]
     out_file = Path(out_file)
     out_file.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="judder-fmu-") as tmp:
         folder = Path(tmp)
-        _generate_c(ode, folder)
+        _generate_c(functions, folder)
         code = (folder / "model_functions.c").read_bytes()
         guid = "{" + str(uuid.UUID(hashlib.md5(
             code + model_name.encode() + version.encode()).hexdigest())) + "}"
@@ -260,9 +358,9 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
             ode, version, identifier, guid, tolerance, author=author,
             model_version=package_version(
                 model_name, list(roots) or [Path(mo_file).parent]))
-        library = _compile(folder, version, identifier)
-        dll = _compile(folder, version, identifier, windows=True) \
-            if windows else None
+        library = _compile(folder, version, identifier, seconds=seconds)
+        dll = _compile(folder, version, identifier, windows=True,
+                       seconds=seconds) if windows else None
 
         def write_zip(stream):
             with zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as fmu:

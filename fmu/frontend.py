@@ -18,14 +18,11 @@ import re
 import casadi
 import numpy as np
 
-from infra.errors import JudderError
+from .errors import FrontEndError
+from .limits import check_flat_arrays
 
 __all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
            "find_class", "modelica_path", "FrontEndError"]
-
-
-class FrontEndError(JudderError):
-    """The Modelica source could not be compiled; the message says where."""
 
 
 @dataclass
@@ -243,11 +240,48 @@ class _Expressions:
                 offset += body["operand_count"]
 
     def __call__(self, index):
+        """The expression of node ``index``.
+
+        The nodes below it are converted first, children before parents,
+        from an explicit stack: a long expression (a sum of 5,000 terms
+        is a chain of 5,000 nodes) needs no Python recursion. Only the
+        operands of ``noEvent(...)``, whose conversion depends on that
+        context, and the bodies of inlined functions (a frame of their
+        own) are converted by a nested call.
+        """
         if index is None:
             return None
-        if index not in self._cache:
-            self._cache[index] = self._convert(index)
+        pending = [(index, False)]   # (node, its children are done)
+        while pending:
+            node, ready = pending.pop()
+            if node in self._cache:
+                continue
+            if ready:
+                self._cache[node] = self._convert(node)
+                continue
+            pending.append((node, True))
+            pending.extend((child, False) for child in self._children(node)
+                           if child is not None and child not in self._cache)
         return self._cache[index]
+
+    def _children(self, index):
+        """The operand nodes of node ``index`` that :meth:`_convert`
+        converts in the same context (see :meth:`__call__`)."""
+        kind, body = next(iter(self._nodes[index].items()))
+        if kind == "binary":
+            return (body["lhs"], body["rhs"])
+        if kind == "unary":
+            return (body["operand"],)
+        if kind == "index":
+            return (body["base"], *range(index - body["subscript_count"],
+                                         index))
+        if kind == "builtin" and body["builtin"] == "no_event":
+            return ()
+        if kind in ("array", "builtin", "conditional", "call") and \
+                index in self._offsets:
+            start = self._offsets[index]
+            return self._operands[start:start + body["operand_count"]]
+        return ()
 
     def _relation(self, index, body):
         """The symbol of an event-generating relation, recorded once."""
@@ -531,61 +565,47 @@ def _flatten(path, model_name, roots, use_cache=True):
     import rumoca
     from . import cache
     if not use_cache:
-        return _flatten_with_rumoca(rumoca, path, model_name, roots,
+        return _flatten_with_rumoca(path, model_name, roots,
                                     use_cache=False)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
-        flat = _flatten_with_rumoca(rumoca, path, model_name, roots)
+        flat = _flatten_with_rumoca(path, model_name, roots)
         cache.store(key, flat)
     return flat
 
 
-def _flatten_with_rumoca(rumoca, path, model_name, roots, use_cache=True):
-    diagnostics = rumoca.validate(str(path), model=model_name)
-    errors = [d for d in diagnostics
-              if str(getattr(d, "severity", "error")).lower().endswith(
-                  "error")]
-    if errors:
-        raise FrontEndError("\n".join(str(d) for d in errors))
-    session = model = None
+def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
+    """rumoca's flat model, flattened in a child process
+    (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
+    becomes a :class:`FrontEndError`, never the end of this process."""
+    from .limits import check_source_arrays
+    from .rumoca_child import flatten_isolated
+    check_source_arrays(path, check_source_text(path))
     try:
-        session = rumoca.Session(roots=[str(r) for r in roots])
-        model = session.load(str(path), model=model_name)
-        return model.to_dict()
-    except Exception as exc:   # rumoca raises its own error classes
-        from .balance import explain_unbalanced   # scipy, on failure only
-        message = f"{path}: {exc}{_library_errors(rumoca, roots, path)}" + \
-            (explain_unbalanced(str(exc), model_name, roots, load_flat_model)
-             if use_cache else "")
-    finally:
-        # rumoca's objects are unsendable: dropped in another thread (a
-        # Dask worker's event loop holding this frame in a traceback)
-        # they panic, so they never outlive this call
-        del session, model
+        return flatten_isolated(path, model_name, roots)
+    except FrontEndError as exc:
+        message = str(exc)
+    from .balance import explain_unbalanced   # scipy, on failure only
+    if use_cache:
+        message += explain_unbalanced(message, model_name, roots,
+                                      load_flat_model)
     raise FrontEndError(message)
 
 
-def _library_errors(rumoca, roots, path):
-    """Syntax errors anywhere in the model's own library (rumoca only says
-    'failed'); the other libraries of the path (the MSL: 2,400 files) are
-    not searched."""
-    found = []
-    path = Path(path).resolve()
-    for root in roots:
-        if not path.is_relative_to(Path(root).resolve()):
-            continue
-        for source in sorted(Path(root).rglob("*.mo")):
-            try:
-                source.read_bytes().decode("utf-8")
-            except UnicodeDecodeError as exc:
-                found.append(f"{source}: not UTF-8 text (byte "
-                             f"0x{exc.object[exc.start]:02x} at offset "
-                             f"{exc.start}); save the file as UTF-8")
-                continue
-            found += [str(d) for d in rumoca.validate(str(source))
-                      if "error" in str(d).lower()]
-    return ("\n" + "\n".join(found)) if found else ""
+def check_source_text(path):
+    """The text of ``path``; refuse a source that is not UTF-8 text
+    (Modelica's encoding), naming the file, the byte, its offset and its
+    line."""
+    data = Path(path).read_bytes()
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise FrontEndError(
+            f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} at "
+            f"offset {exc.start}, line {line}); allowed: UTF-8 text, as "
+            "Modelica requires (save the file as UTF-8)") from None
 
 
 #: Roles of rumoca's flat variables that the back end compiles.
@@ -694,6 +714,7 @@ def load_flat_model(path, model_name, roots=(), cache=True):
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where)
+    check_flat_arrays(storage, where)
     time = casadi.SX.sym("time")
     symbols, derivatives, variables = [], {}, []
     for index, raw in enumerate(storage["variables"]):
@@ -876,12 +897,66 @@ def _is_fixed(value):
     return bool(value)
 
 
+_CLASS_HEAD = re.compile(
+    r"\b(?:model|block|class|package|record|connector|function|type)\s+"
+    r"(?:extends\s+)?(\w+)(?![\w.])(?!\s*\()(\s*=)?")
+_CLASS_END = re.compile(r"\bend\s+(\w+)\s*;")
+_WITHIN = re.compile(r"^\s*within\s+([\w.]*)\s*;")
+
+
+def _blank(text):
+    """``text`` with its comments and string literals blanked (same
+    length, newlines kept), so positions still index the source."""
+    def spaces(found):
+        return re.sub(r"[^\n]", " ", found.group(0))
+    return re.sub(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\])*"', spaces, text,
+                  flags=re.S)
+
+
+def class_spans(text):
+    """``{full name: (start, end)}`` of the long class definitions in a
+    source text (``within`` prefix included), from each ``model NAME``
+    (or block, package, ...) to its ``end NAME;``; short definitions
+    (``type T = Real``) have no body and are left out."""
+    clean = _blank(text)
+    within = _WITHIN.match(clean)
+    prefix = [within.group(1)] if within and within.group(1) else []
+    events = [(m.start(), "head", m) for m in _CLASS_HEAD.finditer(clean)
+              if not m.group(2)]
+    events += [(m.start(), "end", m) for m in _CLASS_END.finditer(clean)]
+    stack, spans = [], {}
+    for at, kind, found in sorted(events, key=lambda e: e[0]):
+        if kind == "head":
+            stack.append((found.group(1), at))
+        elif stack and stack[-1][0] == found.group(1):
+            name, begin = stack.pop()
+            full = ".".join(prefix + [n for n, _ in stack] + [name])
+            spans[full] = (begin, found.end())
+    return spans
+
+
 def _experiment(path, model_name):
-    """StopTime and Interval of the experiment annotation in the source."""
-    import re
-    text = Path(path).read_text()
-    found = re.search(r"experiment\s*\(([^)]*)\)", text)
+    """StopTime and Interval of the class's own ``experiment``
+    annotation: the one in its body, outside the classes nested in it
+    (a package file holds many examples, each with its own)."""
+    text = Path(path).read_text(encoding="utf-8")
+    spans = class_spans(text)
+    own = spans.get(model_name)
+    if own is None:   # a file without its within clause
+        short = [v for k, v in spans.items()
+                 if model_name.endswith("." + k) or k == model_name]
+        own = short[0] if len(short) == 1 else None
+    if own is None:
+        return {}
+    clean = _blank(text)
+    begin, end = own
+    body = list(clean[begin:end])
+    for other, (a, b) in spans.items():
+        if other != model_name and begin < a and b <= end:
+            body[a - begin:b - begin] = " " * (b - a)
+    body = "".join(body)
     values = {}
+    found = re.search(r"\bexperiment\s*\(([^)]*)\)", body)
     if found:
         for key, value in re.findall(r"(\w+)\s*=\s*([-+\d.eE]+)",
                                      found.group(1)):

@@ -22,7 +22,7 @@ def counted(monkeypatch, tmp_path):
     real = frontend._flatten_with_rumoca
 
     def flatten(*args, **kwargs):
-        calls.append(args[2])
+        calls.append(args[1])
         return real(*args, **kwargs)
     monkeypatch.setattr(frontend, "_flatten_with_rumoca", flatten)
     return calls

@@ -169,29 +169,34 @@ static int known_column(unsigned vr) {
 int model_directional(Model *m, const unsigned *unknowns, size_t nz,
                       const unsigned *knowns, size_t nv,
                       const double *seed, double *result, int adjoint) {
-    enum { ROWS = MODEL_NX + MODEL_NYO,
-           COLUMNS = MODEL_NX + MODEL_NP + MODEL_NU };
-    double jac[(ROWS > 0 ? ROWS : 1) * (COLUMNS > 0 ? COLUMNS : 1)];
+    enum { ROWS = MODEL_NX + MODEL_NYO };
+    /* CasADi writes the Jacobian's structural nonzeros column by column:
+     * its sparsity is {rows, columns, colind[columns + 1], row[nnz]},
+     * or {rows, columns, 1} for a dense one */
+    double jac[MODEL_JACOBIAN_NNZ > 0 ? MODEL_JACOBIAN_NNZ : 1];
+    const casadi_int *sp = MODEL_JACOBIAN_SPARSITY(0);
+    const casadi_int ncol = sp[1];
+    const int dense = sp[2] == 1;
+    const casadi_int *colind = sp + 2, *row = sp + 3 + ncol;
     size_t i, j;
+    casadi_int k, start, stop;
     for (i = 0; i < nz; i++) if (unknown_row(unknowns[i]) < 0) return 1;
     for (j = 0; j < nv; j++) if (known_column(knowns[j]) < 0) return 1;
     m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
     m->res[0] = jac;
     MODEL_JACOBIAN(m->arg, m->res, m->iw, m->w, 0);
-    /* CasADi writes dense matrices column by column */
-    if (!adjoint) {
-        for (i = 0; i < nz; i++) {
-            int r = unknown_row(unknowns[i]);
-            result[i] = 0;
-            for (j = 0; j < nv; j++)
-                result[i] += jac[known_column(knowns[j]) * ROWS + r] * seed[j];
-        }
-    } else {
-        for (j = 0; j < nv; j++) {
-            int col = known_column(knowns[j]);
-            result[j] = 0;
-            for (i = 0; i < nz; i++)
-                result[j] += jac[col * ROWS + unknown_row(unknowns[i])] * seed[i];
+    for (i = 0; i < (adjoint ? nv : nz); i++) result[i] = 0;
+    for (j = 0; j < nv; j++) {
+        int col = known_column(knowns[j]);
+        start = dense ? (casadi_int)col * ROWS : colind[col];
+        stop = dense ? start + ROWS : colind[col + 1];
+        for (k = start; k < stop; k++) {
+            casadi_int r = dense ? k - start : row[k];
+            for (i = 0; i < nz; i++) {
+                if (unknown_row(unknowns[i]) != r) continue;
+                if (adjoint) result[j] += jac[k] * seed[i];
+                else result[i] += jac[k] * seed[j];
+            }
         }
     }
     return 0;
