@@ -47,7 +47,7 @@ SMALLER = {
     "sensitivity": {"--freq": "10:220:24", "--workers": "1"},
     "threshold": {"--mu-g": "-0.001:0.001:9", "--c-ext": "0:2:5"},
     "fit": {"--starts": "1", "--workers": "1"},
-    "simulate": {"--duration": "1.5"},
+    "simulate": {"--duration": "2.5"},
     "crosscheck": {"--freq": "100:106:2", "--pf": "0.3", "--duration": "0.6",
                    "--workers": "1"},
     "campaign": {"--freq": "204:208:2", "--pf": "0.3", "--duration": "2",
