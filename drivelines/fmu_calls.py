@@ -16,19 +16,18 @@ session (a terminal's Ctrl-C reaches the parent, which kills it) and
 dies with its parent.
 """
 
-import ctypes
 import os
 import pickle
 import shutil
-import signal
-import subprocess
 import sys
 import tempfile
 from ctypes import byref
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
+
+from infra.children import (die_with_parent, run_child, signal_name,
+                             write_stage)
 
 __all__ = ["SampleJob", "sample", "sample_isolated", "timeout_s",
            "TIMEOUT_S"]
@@ -38,6 +37,11 @@ __all__ = ["SampleJob", "sample", "sample_isolated", "timeout_s",
 TIMEOUT_S = 120.0
 #: Prefix of the child's lines that name the call it is in.
 _STAGE = "judder-fmu-call: "
+
+
+def _stage(text):
+    """In the child: name the step it starts (:data:`_STAGE`)."""
+    write_stage(_STAGE, text)
 
 
 class FmuCallError(Exception):
@@ -99,11 +103,6 @@ def timeout_s():
         raise JudderError(f"JUDDER_FMU_TIMEOUT={text} is not allowed; "
                           "allowed: seconds > 0")
     return value
-
-
-def _stage(text):
-    sys.stderr.write(f"{_STAGE}{text}\n")
-    sys.stderr.flush()
 
 
 class _Instance:
@@ -231,13 +230,6 @@ def sample(job):
     return {"jacobians": np.array(out), **first}
 
 
-def _signal_name(code):
-    try:
-        return signal.Signals(-code).name
-    except ValueError:
-        return f"signal {-code}"
-
-
 def sample_isolated(job, fmu_error):
     """:func:`sample` of ``job`` in a child process.
 
@@ -266,7 +258,8 @@ def sample_isolated(job, fmu_error):
             raise fmu_error(f"--fmu {job.path}: cannot be extracted "
                             f"({exc})") from None
         job = SampleJob(**{**job.__dict__, "folder": folder})
-        reply, stages, status = _run_child(job, limit)
+        reply, stages, status, _ = run_child(
+            ("-m", "drivelines.fmu_calls"), job, limit, _STAGE)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     where = stages[-1] if stages else "starting"
@@ -277,7 +270,7 @@ def sample_isolated(job, fmu_error):
                         "time)")
     if status < 0:
         raise fmu_error(f"--fmu {job.path}: the FMU's binary crashed "
-                        f"({_signal_name(status)}) in {where}; judder ran "
+                        f"({signal_name(status)}) in {where}; judder ran "
                         "it in a child process: nothing else is affected, "
                         "but this FMU cannot be used")
     if reply is None:
@@ -313,44 +306,8 @@ def _check_finite(job, value, fmu_error):
             "finite Jacobian")
 
 
-def _run_child(job, limit):
-    """(reply, stages, exit status) of the child; status ``None`` if it
-    was killed after ``limit`` seconds."""
-    root = str(Path(__file__).resolve().parents[1])
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
-        filter(None, [root, os.environ.get("PYTHONPATH")]))}
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "drivelines.fmu_calls"],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE, env=env, start_new_session=True)
-    try:
-        out, err = proc.communicate(pickle.dumps(job), timeout=limit)
-        status = proc.returncode
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        out, err = proc.communicate()
-        status = None
-    finally:
-        if proc.poll() is None:        # Ctrl-C, SIGTERM in the parent
-            proc.kill()
-            proc.wait()
-    stages = [line[len(_STAGE):] for line in
-              err.decode("utf-8", "replace").splitlines()
-              if line.startswith(_STAGE)]
-    reply = pickle.loads(out) if status == 0 and out else None
-    return reply, stages, status
-
-
-def _die_with_parent():
-    try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL, 0, 0, 0)   # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):           # not Linux
-        pass
-
-
 def _child():
-    _die_with_parent()
+    die_with_parent()
     job = pickle.load(sys.stdin.buffer)
     try:
         reply = ("ok", sample(job))

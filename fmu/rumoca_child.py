@@ -6,8 +6,8 @@ overflows its stack (SIGSEGV), an allocation it cannot get aborts the
 process (``memory allocation of 7200000000 bytes failed``, SIGABRT), and
 neither can be caught in Python. :func:`flatten_isolated` therefore runs
 it as the project runs a third-party FMU's binary
-(:mod:`drivelines.fmu_calls`, which this package, a lower layer, cannot
-import): a child Python process (``python -m fmu.rumoca_child``), the job
+(:mod:`infra.children`, which :mod:`drivelines.fmu_calls` uses too): a
+child Python process (``python -m fmu.rumoca_child``), the job
 pickled on its stdin and the answer on its stdout, a line on its stderr
 before each step, in its own session, dying with its parent, killed
 after a time limit. In addition the child
@@ -23,16 +23,17 @@ The parent turns each way the child can end into one
 :class:`~fmu.frontend.FrontEndError` naming the file and what happened.
 """
 
-import ctypes
 import os
 import pickle
 import re
 import resource
-import signal
-import subprocess
 import sys
 import threading
 from pathlib import Path
+
+from infra.children import (die_with_parent, run_child, signal_name,
+                             write_stage)
+from infra.memory import available_memory
 
 from .errors import FrontEndError
 
@@ -72,40 +73,16 @@ def time_limit():
 
 
 def memory_limit():
-    """Bytes the compiler may allocate: the least of the memory available
-    now (``MemAvailable``), what is left of the cgroup's limit and of
-    ``ulimit -v``, less a tenth for the rest of the machine."""
-    try:
-        with open("/proc/meminfo") as stream:
-            free = next(int(line.split()[1]) * 1024 for line in stream
-                        if line.startswith("MemAvailable:"))
-    except (OSError, StopIteration, ValueError):
-        free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    limits = [free]
-    for limit, usage in (("/sys/fs/cgroup/memory.max",
-                          "/sys/fs/cgroup/memory.current"),):
-        try:
-            text = Path(limit).read_text().strip()
-            if text != "max":
-                limits.append(int(text) - int(Path(usage).read_text()))
-        except (OSError, ValueError):
-            pass
-    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
-    if soft != resource.RLIM_INFINITY:
-        limits.append(soft - _BASE_BYTES)
-    return max(1 << 28, int(0.9 * min(limits)))
+    """Bytes the compiler may allocate: nine tenths of what this process
+    may still use (:func:`infra.memory.available_memory`: the memory
+    available now, the cgroup's and ``ulimit -v``'s room), at least 256
+    MiB."""
+    return max(1 << 28, int(0.9 * available_memory()))
 
 
 def _stage(text):
-    sys.stderr.write(f"{_STAGE}{text}\n")
-    sys.stderr.flush()
-
-
-def _signal_name(code):
-    try:
-        return signal.Signals(-code).name
-    except ValueError:
-        return f"signal {-code}"
+    """In the child: name the step it starts (:data:`_STAGE`)."""
+    write_stage(_STAGE, text)
 
 
 def flatten_isolated(path, model_name, roots):
@@ -122,7 +99,7 @@ def flatten_isolated(path, model_name, roots):
     limit, memory = time_limit(), memory_limit()
     job = {"path": str(path), "model": model_name,
            "roots": [str(r) for r in roots], "memory": memory}
-    reply, stages, status, err = _run_child(job, limit)
+    reply, stages, status, err = run_child(_CHILD, job, limit, _STAGE)
     where = stages[-1] if stages else "starting"
     if status is None:
         raise FrontEndError(
@@ -142,7 +119,7 @@ def flatten_isolated(path, model_name, roots):
             "arrays: every element is a variable of its own)")
     if status < 0:
         raise FrontEndError(
-            f"{path}: rumoca crashed ({_signal_name(status)}) on "
+            f"{path}: rumoca crashed ({signal_name(status)}) on "
             f"{model_name} while {where}; judder ran it in a child process: "
             "nothing else is affected, but this model cannot be compiled "
             f"as written (a deeply nested expression beyond the "
@@ -161,42 +138,6 @@ def flatten_isolated(path, model_name, roots):
             "nothing else is affected, but rumoca cannot compile this "
             "model as written")
     return value
-
-
-def _run_child(job, limit):
-    """(reply, stages, exit status, stderr) of the child; status ``None``
-    if it was killed after ``limit`` seconds."""
-    root = str(Path(__file__).resolve().parents[1])
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
-        filter(None, [root, os.environ.get("PYTHONPATH")]))}
-    proc = subprocess.Popen(
-        [sys.executable, *_CHILD],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE, env=env, start_new_session=True)
-    try:
-        out, err = proc.communicate(pickle.dumps(job), timeout=limit)
-        status = proc.returncode
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        out, err = proc.communicate()
-        status = None
-    finally:
-        if proc.poll() is None:        # Ctrl-C, SIGTERM in the parent
-            proc.kill()
-            proc.wait()
-    err = err.decode("utf-8", "replace")
-    stages = [line[len(_STAGE):] for line in err.splitlines()
-              if line.startswith(_STAGE)]
-    reply = pickle.loads(out) if status == 0 and out else None
-    return reply, stages, status, err
-
-
-def _die_with_parent():
-    try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL, 0, 0, 0)   # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):           # not Linux
-        pass
 
 
 def _flatten(job):
@@ -252,7 +193,7 @@ def _library_errors(rumoca, roots, path):
 
 
 def _child():
-    _die_with_parent()
+    die_with_parent()
     job = pickle.load(sys.stdin.buffer)
     memory = job["memory"] + _BASE_BYTES
     _, hard = resource.getrlimit(resource.RLIMIT_AS)

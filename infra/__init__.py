@@ -12,6 +12,13 @@
     Numbers the user types, with or without a unit.
 :mod:`infra.parallel`
     The executor that runs independent jobs on all cores.
+:mod:`infra.children`
+    One job in a child process (compiled code that may crash or hang).
+:mod:`infra.memory`
+    How much memory this process may still use.
+:mod:`infra.criteria`
+    When an oscillation is judder: the growth rate, the NVH limit and the
+    mechanisms.
 
 This package imports no other package of the project: ``fmu``,
 ``drivelines``, ``stability``, ``pysim`` and the ``judder`` application

@@ -17,7 +17,8 @@ threads fighting for the cores, is slower) and sizes other than 6 states
 by ``(m / 6)^2``.
 
 The memory and disk a request would take are checked here too
-(:func:`available_memory` follows ``ulimit -v`` and the cgroup).
+(:func:`infra.memory.available_memory` follows ``ulimit -v`` and the
+cgroup).
 """
 
 import math
@@ -27,6 +28,7 @@ import sys
 import numpy as np
 
 from infra.errors import JudderError
+from infra.memory import available_memory
 
 from ._common import BACKGROUND_AMPLITUDES
 from ._values import MAX_GRID_VALUES
@@ -293,62 +295,6 @@ MAX_RUNS = 100_000
 #: Bytes one campaign run writes per format, second of engagement and
 #: 1000 rpm (41 teeth; measured 29.6 kB CSV and 31.3 kB MF4 for 1 s).
 BYTES_PER_RUN_SECOND = 32_000
-
-
-def available_memory():
-    """Bytes of memory this process may still use: the least of the
-    memory available now (``MemAvailable`` of /proc/meminfo, else the
-    physical memory), what is left of its cgroup's limit (a batch job's
-    or a container's, v2 or v1) and what is left of its address-space
-    limit (``ulimit -v``)."""
-    import resource
-    try:
-        with open("/proc/meminfo") as stream:
-            free = next(int(line.split()[1]) * 1024 for line in stream
-                        if line.startswith("MemAvailable:"))
-    except (OSError, StopIteration, ValueError):
-        free = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    limits = [free, _cgroup_left()]
-    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
-    if soft != resource.RLIM_INFINITY:
-        limits.append(soft - _status_bytes("VmSize:"))
-    return max(0, min(v for v in limits if v is not None))
-
-
-def _status_bytes(key):
-    try:
-        with open("/proc/self/status") as stream:
-            return next(int(line.split()[1]) * 1024 for line in stream
-                        if line.startswith(key))
-    except (OSError, StopIteration, ValueError):
-        return 0
-
-
-def _cgroup_left():
-    """Limit minus usage of this process's memory cgroup, or None."""
-    try:
-        with open("/proc/self/cgroup") as stream:
-            lines = [line.strip().split(":", 2) for line in stream]
-    except OSError:
-        return None
-    places = []
-    for _, controllers, path in lines:
-        if controllers == "":                      # v2
-            places.append((f"/sys/fs/cgroup{path}", "memory.max",
-                           "memory.current"))
-        elif "memory" in controllers.split(","):   # v1
-            places.append((f"/sys/fs/cgroup/memory{path}",
-                           "memory.limit_in_bytes", "memory.usage_in_bytes"))
-    for folder, limit, usage in places:
-        try:
-            with open(os.path.join(folder, limit)) as a, \
-                    open(os.path.join(folder, usage)) as b:
-                text, used = a.read().strip(), int(b.read())
-        except (OSError, ValueError):
-            continue
-        if text != "max" and int(text) < 2 ** 60:
-            return int(text) - used
-    return None
 
 
 def check_map_memory(params, freq_hz, p_f_bar):
