@@ -16,7 +16,6 @@ session (a terminal's Ctrl-C reaches the parent, which kills it) and
 dies with its parent.
 """
 
-import os
 import pickle
 import shutil
 import sys
@@ -26,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from infra.environment import positive_setting
 from infra.children import (die_with_parent, run_child, signal_name,
                              write_stage)
 
@@ -91,18 +91,7 @@ class SampleJob:
 def timeout_s():
     """The hang limit: ``JUDDER_FMU_TIMEOUT`` (seconds) or
     :data:`TIMEOUT_S`."""
-    from infra.errors import JudderError
-    text = os.environ.get("JUDDER_FMU_TIMEOUT")
-    if text is None:
-        return TIMEOUT_S
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not value > 0 or value == float("inf"):
-        raise JudderError(f"JUDDER_FMU_TIMEOUT={text} is not allowed; "
-                          "allowed: seconds > 0")
-    return value
+    return positive_setting("JUDDER_FMU_TIMEOUT", TIMEOUT_S, "seconds")
 
 
 class _Instance:

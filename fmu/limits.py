@@ -16,9 +16,10 @@ the variable, its size and the limit.
 """
 
 import math
-import os
 import re
 import sys
+
+from infra.environment import positive_setting
 
 from .errors import FrontEndError
 
@@ -162,17 +163,8 @@ def compile_estimate(functions):
 
 
 def _hours():
-    text = os.environ.get("JUDDER_MAX_HOURS")
-    if text is None:
-        return MAX_HOURS
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not 0 < value < float("inf"):
-        raise FrontEndError(f"JUDDER_MAX_HOURS={text} is not allowed; "
-                            "allowed: hours > 0")
-    return value
+    return positive_setting("JUDDER_MAX_HOURS", MAX_HOURS, "hours",
+                            FrontEndError)
 
 
 def check_compile(model_name, states, estimate, memory):

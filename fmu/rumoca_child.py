@@ -23,7 +23,6 @@ The parent turns each way the child can end into one
 :class:`~fmu.frontend.FrontEndError` naming the file and what happened.
 """
 
-import os
 import pickle
 import re
 import resource
@@ -33,6 +32,7 @@ from pathlib import Path
 
 from infra.children import (die_with_parent, run_child, signal_name,
                              write_stage)
+from infra.environment import positive_setting
 from infra.memory import available_memory
 
 from .errors import FrontEndError
@@ -59,17 +59,8 @@ _BASE_BYTES = (1 << 30) + STACK_BYTES
 
 def time_limit():
     """``JUDDER_FLATTEN_TIMEOUT`` (seconds) or :data:`TIME_LIMIT_S`."""
-    text = os.environ.get("JUDDER_FLATTEN_TIMEOUT")
-    if text is None:
-        return TIME_LIMIT_S
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not 0 < value < float("inf"):
-        raise FrontEndError(f"JUDDER_FLATTEN_TIMEOUT={text} is not allowed; "
-                            "allowed: seconds > 0")
-    return value
+    return positive_setting("JUDDER_FLATTEN_TIMEOUT", TIME_LIMIT_S,
+                            "seconds", FrontEndError)
 
 
 def memory_limit():

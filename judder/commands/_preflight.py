@@ -21,12 +21,12 @@ The memory and disk a request would take are checked here too
 cgroup).
 """
 
-import math
 import os
 import sys
 
 import numpy as np
 
+from infra.environment import positive_setting
 from infra.errors import JudderError
 from infra.memory import available_memory
 
@@ -133,17 +133,8 @@ def tongues_seconds(params, freq_hz):
 
 def time_limit():
     """The time limit, s (``JUDDER_MAX_HOURS`` or :data:`MAX_HOURS`)."""
-    text = os.environ.get(LIMIT_VARIABLE)
-    if text is None:
-        return MAX_HOURS * 3600.0
-    try:
-        hours = float(text)
-    except ValueError:
-        hours = math.nan
-    if not hours > 0 or not math.isfinite(hours):
-        raise JudderError(f"{LIMIT_VARIABLE}={text!r} is not allowed; "
-                          "allowed: a number of hours > 0")
-    return hours * 3600.0
+    return positive_setting(LIMIT_VARIABLE, MAX_HOURS, "a number of hours") \
+        * 3600.0
 
 
 def _duration(seconds):
