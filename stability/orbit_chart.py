@@ -132,7 +132,8 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
     offset = len(amplitudes) - len(p_f)
     for i, f in enumerate(freq_hz):
         branch = continue_orbit(model, f, amplitudes, harmonics=harmonics)
-        on_grid = [o for o in branch.orbits if "fold" not in o.message]
+        on_grid = [o for k, o in enumerate(branch.orbits)
+                   if k not in branch.folds]
         for j, orbit in enumerate(on_grid[offset:]):
             if not orbit.success:
                 continue

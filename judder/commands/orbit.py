@@ -141,8 +141,10 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
         start = [0.0] if amplitudes[0] > 0 else []
         branch = continue_orbit(model, freqs[0], [p * PA_PER_BAR for p in
                                                   start + amplitudes])
-        orbits = [o for o in branch.orbits[len(start):]]
-        folds = [o for o in branch.orbits if "fold" in o.message]
+        # the requested amplitudes in order; the folds between them apart
+        orbits = [o for k, o in enumerate(branch.orbits)
+                  if k not in branch.folds][len(start):]
+        folds = [branch.orbits[k] for k in branch.folds]
         if not branch.complete:
             raise JudderError(
                 f"the orbit at {freqs[0]:g} Hz could not be continued "
