@@ -176,16 +176,26 @@ def forced_slip_amplitude(driveline, freq_hz, p_f):
     float
         ``|i omega e . Theta|``, rad/s.
     """
+    theta = _forced_angles(driveline, freq_hz)[0] * p_f
     omega = 2 * np.pi * freq_hz
+    return float(abs(1j * omega * (driveline.clutch_vector() @ theta)))
+
+
+def _forced_angles(driveline, freq_hz):
+    """Complex angle amplitudes per Pa of ``p_f`` forced by the dither,
+    shape (len, n): ``(K - omega^2 M + i omega C_0) Theta = -mu0 N_c R_m S
+    e`` at each frequency (Eq. 6 driven by the column D of Eq. 9)."""
     e = driveline.clutch_vector()
     damping = driveline.structural_damping() + (
         driveline.mu_g * driveline.clutch_factor
         * driveline.mean_pressure_damping * driveline.p_m) * np.outer(e, e)
-    dynamic = (driveline.stiffness_matrix()
-               - omega ** 2 * driveline.mass_matrix() + 1j * omega * damping)
-    theta = np.linalg.solve(dynamic, -driveline.mu0 * driveline.clutch_factor
-                            * p_f * e.astype(complex))
-    return float(abs(1j * omega * (e @ theta)))
+    omega = 2 * np.pi * np.atleast_1d(np.asarray(freq_hz, dtype=float))
+    dynamic = (driveline.stiffness_matrix()[None]
+               - omega[:, None, None] ** 2 * driveline.mass_matrix()[None]
+               + 1j * omega[:, None, None] * damping[None])
+    force = -driveline.mu0 * driveline.clutch_factor * e.astype(complex)
+    return np.linalg.solve(dynamic, np.broadcast_to(
+        force, (len(omega), len(e)))[..., None])[..., 0]
 
 
 def forced_speed_per_pa(driveline, freq_hz, body=None):
@@ -214,19 +224,9 @@ def forced_speed_per_pa(driveline, freq_hz, body=None):
     ndarray
         Same shape as ``freq_hz``.
     """
-    e = driveline.clutch_vector()
     body = driveline.clutch[0] if body is None else body
-    damping = driveline.structural_damping() + (
-        driveline.mu_g * driveline.clutch_factor
-        * driveline.mean_pressure_damping * driveline.p_m) * np.outer(e, e)
     omega = 2 * np.pi * np.atleast_1d(np.asarray(freq_hz, dtype=float))
-    dynamic = (driveline.stiffness_matrix()[None]
-               - omega[:, None, None] ** 2 * driveline.mass_matrix()[None]
-               + 1j * omega[:, None, None] * damping[None])
-    theta = np.linalg.solve(dynamic, np.broadcast_to(
-        -driveline.mu0 * driveline.clutch_factor * e.astype(complex),
-        (len(omega), len(e)))[..., None])[..., 0]
-    speed = np.abs(omega * theta[:, body])
+    speed = np.abs(omega * _forced_angles(driveline, freq_hz)[:, body])
     return speed.reshape(np.shape(freq_hz))
 
 

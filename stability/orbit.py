@@ -55,8 +55,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
+from .kinds import KINDS, classify
+
 __all__ = ["EngagementModel", "Orbit", "OrbitBranch", "periodic_orbit",
-           "continue_orbit", "DEFAULT_HARMONICS"]
+           "double_period_orbit", "continue_orbit", "DEFAULT_HARMONICS"]
 
 #: Harmonics of the base frequency kept in the balance (T-orbits; twice
 #: as many for 2T orbits).
@@ -323,7 +325,7 @@ class _Balance:
                      slip_range=(float(w.min()), float(w.max())),
                      drift_torque=float(np.mean(tau) - self.steady),
                      multipliers=multipliers, growth_rate=growth,
-                     kind=_kind(lead, growth), success=bool(success),
+                     kind=KINDS[int(classify(lead))], success=bool(success),
                      message=message or ("converged" if success else
                                          "the balance did not converge"),
                      residual=float(residual))
@@ -390,14 +392,6 @@ def _rigid_directions(stiffness, n):
     (2n, r)."""
     null = scipy.linalg.null_space(stiffness, rcond=1e-10)
     return np.vstack([null, np.zeros_like(null)])
-
-
-def _kind(lead, growth):
-    if growth < 0:
-        return "stable"
-    if abs(lead.imag) > 1e-6 * abs(lead):
-        return "combination"
-    return "single-period" if lead.real > 0 else "double-period"
 
 
 def periodic_orbit(model, freq_hz, p_f, harmonics=DEFAULT_HARMONICS,
