@@ -104,7 +104,7 @@ def verdict_line(summary):
     fields of ``judder simulate``) added.
     """
     if summary["judder"] is None:
-        return "no dither"
+        return ""                  # a run without dither: its label says so
     if not summary["judder"]:
         run = f"no judder, {summary['oscillation_rpm']:.3g} rpm"
     else:
