@@ -15,7 +15,8 @@ from pathlib import Path
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from drivelines import get_model, get_preset
+from drivelines import get_model
+from sources import get_preset
 from stability import build_driveline
 from stability.floquet import leading_multipliers
 from stability.maps import stability_map
@@ -204,7 +205,7 @@ def bench_engagement():
     (LockingWetClutch) against scipy on the smooth clutch's equations."""
     from fmu.backend import to_ode
     from fmu.frontend import load_flat_model
-    from pysim.fmus import LIBRARY, ensure_fmu
+    from pysim.simulation.fmus import LIBRARY, ensure_fmu
 
     bench_class = SMOOTH_BENCH_CLASS
     fmus = {"": str(ensure_fmu(bench_class)),
@@ -285,7 +286,7 @@ MODELICA_LIBRARY = Path(__file__).resolve().parents[1] / "examples" / "modelica"
 
 def _linear_map(linear):
     """The 300 x 150 map of a linearised driveline
-    (:class:`drivelines.modelica.LinearPeriodicModel`) by the Dyson
+    (:class:`sources.modelica.LinearPeriodicModel`) by the Dyson
     engine, against per-point solve_ivp on the subset, scaled: the fields
     of a record shared by the Modelica and FMU benchmarks."""
     from stability import LinearDriveline
@@ -315,7 +316,7 @@ def bench_modelica_map():
     """300 x 150 map of a 12-state Modelica driveline: the Dyson engine on
     the system compiled and linearised from Modelica, against per-point
     solve_ivp on the same system."""
-    from drivelines.modelica import linearize
+    from sources.modelica import linearize
 
     linear, compile_seconds = _timed(linearize, MODELICA_CLASS,
                                      str(MODELICA_LIBRARY))
@@ -330,12 +331,12 @@ def bench_modelica_map():
 
 def bench_fmu_map():
     """300 x 150 map of the 4-DOF driveline read from its FMU's
-    directional derivatives (drivelines.fmu_linear), against per-point
+    directional derivatives (sources.fmus), against per-point
     solve_ivp on the same system; how far the FMU's system is from the
     symbolic one."""
-    from drivelines.fmu_linear import linearize_fmu
-    from drivelines.modelica import linearize
-    from pysim.fmus import ensure_fmu
+    from sources.fmus import linearize_fmu
+    from sources.modelica import linearize
+    from pysim.simulation.fmus import ensure_fmu
 
     model_class = get_model("4dof").modelica_class
     path = ensure_fmu(model_class)
@@ -445,8 +446,8 @@ def _acquisition(folder, index, freq_hz, p_f_bar, rng):
     and a double-period judder growing where p_f > 0.2 bar), 1 kHz
     pressure, the downstream pick-up; a dither frequency read 1e-3 Hz off
     its set point, as an estimate would be."""
-    from pysim.bench import pickup_samples
-    from pysim.export import write_csv
+    from pysim.simulation.bench import pickup_samples
+    from pysim.simulation.export import write_csv
     fine = np.arange(0.0, 3.0, 2e-5)
     on = fine > 0.6
     growth = 3.0 * (p_f_bar - 0.2) / 0.2

@@ -27,7 +27,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from drivelines import get_preset  # noqa: E402
+from sources import get_preset  # noqa: E402
 from judder import api  # noqa: E402
 from judder.commands._values import parse_grid, parse_list  # noqa: E402
 

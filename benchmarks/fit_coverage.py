@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from stability.fit import fit_boundary, model_boundary
 

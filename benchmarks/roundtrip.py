@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from infra.files import write_text
 from infra.units import PA_PER_BAR

@@ -30,7 +30,7 @@ import time
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from drivelines import get_preset
+from sources import get_preset
 from judder import api
 from stability import build_driveline
 from stability.maps import stability_map

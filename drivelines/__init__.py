@@ -1,19 +1,16 @@
-"""The driveline registry: every model the tool knows, in one place.
+"""The driveline registry: the names of every model the tool knows.
 
-:mod:`drivelines.registry` describes each driveline (its bodies and
-couplings by parameter name, the clutch, its Modelica class and FMU, the
-signals a run reports, its presets); :mod:`drivelines.parameters` holds
-validated parameter sets of those models, their presets and TOML files.
-Packages above (``stability``, ``pysim``, the ``judder`` application) ask
+:mod:`drivelines.registry` describes each driveline of the paper's kind
+(its bodies and couplings by parameter name, the clutch, its Modelica
+class and FMU, the signals a run reports, the names of its presets);
+:mod:`drivelines.specs` holds the rules of a parameter (unit, allowed
+range). The values of a model, and the models a user brings (a Modelica
+class, an FMU), are model sources: :mod:`sources`. Packages above ask
 the registry instead of branching on a model's name.
 """
 
-from .parameters import (Parameters, default_preset, dumps_toml,
-                         get_preset, load_toml)
 from .registry import (DEFAULT_MODEL, MODELS, PRESETS, SPECS, Body,
                        Coupling, DrivelineModel, get_model)
-from .sources import SourceKind
 
-__all__ = ["Parameters", "default_preset", "dumps_toml", "get_preset",
-           "load_toml", "DEFAULT_MODEL", "MODELS", "PRESETS", "SPECS",
-           "Body", "Coupling", "DrivelineModel", "get_model", "SourceKind"]
+__all__ = ["DEFAULT_MODEL", "MODELS", "PRESETS", "SPECS", "Body",
+           "Coupling", "DrivelineModel", "get_model"]

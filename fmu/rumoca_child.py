@@ -6,7 +6,7 @@ overflows its stack (SIGSEGV), an allocation it cannot get aborts the
 process (``memory allocation of 7200000000 bytes failed``, SIGABRT), and
 neither can be caught in Python. :func:`flatten_isolated` therefore runs
 it as the project runs a third-party FMU's binary
-(:mod:`infra.children`, which :mod:`drivelines.fmu_calls` uses too): a
+(:mod:`infra.children`, which :mod:`sources.fmu_host` uses too): a
 child Python process (``python -m fmu.rumoca_child``), the job
 pickled on its stdin and the answer on its stdout, a line on its stderr
 before each step, in its own session, dying with its parent, killed

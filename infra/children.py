@@ -4,7 +4,7 @@ the tool down: the job pickled on the child's stdin and the answer on
 its stdout, a line on its stderr before each step, in its own session,
 dying with its parent, killed after a time limit.
 
-Used by :mod:`drivelines.fmu_calls` (FMU calls) and
+Used by :mod:`sources.fmu_host` (FMU calls) and
 :mod:`fmu.rumoca_child` (the Modelica front end); each writes its child's
 side (``python -m ...``) and reads the reply.
 """
@@ -26,7 +26,7 @@ def run_child(arguments, job, limit, stage_prefix):
     Parameters
     ----------
     arguments : sequence of str
-        After the interpreter, e.g. ``("-m", "drivelines.fmu_calls")``.
+        After the interpreter, e.g. ``("-m", "sources.fmu_host")``.
     job : object
         Pickled to the child's stdin.
     limit : float

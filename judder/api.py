@@ -13,8 +13,8 @@ Every function takes the parameter set as ``params`` (a
 :class:`drivelines.Parameters`; default: the paper preset of the default
 driveline, see :func:`judder.inputs.load_parameters` for files; or a
 driveline of one's own, a Modelica class
-:class:`drivelines.modelica.ModelicaParameters` or an FMU
-:class:`drivelines.fmu_linear.FmuParameters`) and ``changes``, the values
+:class:`sources.modelica.ModelicaParameters` or an FMU
+:class:`sources.fmus.FmuParameters`) and ``changes``, the values
 the user set explicitly (``--set``), applied on top. What needs a
 time-domain run (:func:`crosscheck`, :func:`simulate`) refuses an FMU,
 what needs the bench (``fit(bench=...)``) or the paper's chains

@@ -6,7 +6,7 @@ layer. For each (frequency, amplitude) point the driveline's FMU (Eq. 1,
 ``SlippingClutch``: linear) is run twice, the second time with the initial
 speed ``w_in`` raised by :data:`SPEED_STEP`. The difference of the two
 runs is the free response (the forced response cancels), and its growth
-rate is fitted (:func:`pysim.signals.free_response_growth`); the
+rate is fitted (:func:`pysim.analysis.signals.free_response_growth`); the
 Floquet exponent ``ln|lambda| / T`` of the same point comes from the
 stability layer. The two verdicts and rates are compared, and every
 disagreement gets a reason.
@@ -18,8 +18,8 @@ import numpy as np
 
 from infra.errors import JudderError
 from infra.parallel import parallel_map
-from pysim.runs import parameter_default, run_fmu
-from pysim.signals import free_response_growth
+from pysim.simulation.runs import parameter_default, run_fmu
+from pysim.analysis.signals import free_response_growth
 from stability.floquet import floquet
 from stability.source import build_driveline
 from stability.monodromy import DEFAULT_METHOD, get_method
@@ -132,7 +132,7 @@ def _fmu_and_speeds(params, perturb):
     """The FMU to run and the speeds whose difference is the free response.
 
     A registry driveline names the speeds; of a Modelica class
-    (:class:`drivelines.modelica.ModelicaParameters`) every state in rad/s
+    (:class:`sources.modelica.ModelicaParameters`) every state in rad/s
     is recorded. An FMU of ``--fmu`` is refused (:func:`class_fmu`).
     """
     fmu_path = class_fmu(params, "crosscheck")
@@ -154,7 +154,7 @@ def crosscheck(params, freq_hz, p_f, duration=3.0, method=DEFAULT_METHOD,
 
     Parameters
     ----------
-    params : drivelines.Parameters or drivelines.modelica.ModelicaParameters
+    params : drivelines.Parameters or sources.modelica.ModelicaParameters
         The FMU of its driveline (registry) or of its Modelica class is
         run.
     freq_hz, p_f : array_like

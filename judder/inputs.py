@@ -12,8 +12,8 @@ import zipfile
 
 import numpy as np
 
-from drivelines import (DEFAULT_MODEL, default_preset, get_preset,
-                        load_toml)
+from drivelines import DEFAULT_MODEL
+from sources import default_preset, get_preset, load_toml
 from infra.errors import JudderError
 from infra.files import decode_text
 from infra.units import PA_PER_BAR

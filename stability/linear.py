@@ -3,8 +3,8 @@
 :class:`LinearDriveline` is the model source
 (:class:`stability.source.ModelSource`) of a driveline whose matrices
 come from somewhere other than the paper's chain of Eq. (2): a Modelica
-class compiled and linearised by :func:`drivelines.modelica.linearize`,
-or an FMU's Jacobian (:func:`drivelines.fmu_linear.linearize_fmu`). Its
+class compiled and linearised by :func:`sources.modelica.linearize`,
+or an FMU's Jacobian (:func:`sources.fmus.linearize_fmu`). Its
 rigid-body reduction (:mod:`stability.reduction`) is computed once, on
 first use.
 """
@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from drivelines.sources import SourceKind
+from sources.kinds import SourceKind
 from infra.errors import JudderError
 
 from .model import ModulatedSystem, PeriodicSystem
@@ -47,7 +47,7 @@ class LinearDriveline:
     name : str
         Where the system comes from (a Modelica class name, an FMU's
         model name).
-    kind : drivelines.sources.SourceKind
+    kind : sources.kinds.SourceKind
         ``MODELICA`` or ``FMU``.
     """
 
@@ -60,7 +60,7 @@ class LinearDriveline:
 
     @classmethod
     def from_model(cls, model):
-        """From a :class:`drivelines.modelica.LinearPeriodicModel`."""
+        """From a :class:`sources.modelica.LinearPeriodicModel`."""
         return cls(A0=model.A0, B=model.B, omega2=model.omega2,
                    state_names=model.state_names, name=model.class_name,
                    kind=model.source_kind)

@@ -21,7 +21,7 @@ from typing import ClassVar
 import numpy as np
 import scipy.linalg
 
-from drivelines.sources import SourceKind
+from sources.kinds import SourceKind
 
 from .waveforms import Cosine
 
@@ -212,7 +212,7 @@ class Driveline:
         Share of ``p_m`` in the slip damping ``mu_g N_c R_m S p(t)``.
     name : str
         The registry model the chain is built from.
-    kind : drivelines.sources.SourceKind
+    kind : sources.kinds.SourceKind
         ``CHAIN``, for every instance.
     """
 

@@ -10,7 +10,7 @@ another waveform (:class:`stability.waveforms.Dithered`). Each declares
 
 :func:`build_driveline` makes the source of a parameter set, by the kind
 the set declares (``params.source_kind``, a
-:class:`drivelines.sources.SourceKind`) through :data:`SOURCES`; the
+:class:`sources.kinds.SourceKind`) through :data:`SOURCES`; the
 linearised sources are built once per model.
 """
 
@@ -19,7 +19,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from drivelines.sources import SourceKind
+from sources.kinds import SourceKind
 from drivelines.specs import MEAN_PRESSURE_DAMPING
 
 from .linear import LinearDriveline
@@ -43,7 +43,7 @@ class ModelSource(Protocol):
     ----------
     name : str
         The model (a registry model, a Modelica class, an FMU).
-    kind : drivelines.sources.SourceKind
+    kind : sources.kinds.SourceKind
         Where the equations come from; says what the time-domain side
         may do with the model (``kind.is_chain``,
         ``kind.runs_in_time_domain``).
@@ -64,7 +64,7 @@ class ModelSource(Protocol):
 
     @property
     def kind(self):
-        """The :class:`~drivelines.sources.SourceKind`."""
+        """The :class:`~sources.kinds.SourceKind`."""
 
     @property
     def waveform(self):
@@ -154,7 +154,7 @@ def build_driveline(params):
 
     Parameters
     ----------
-    params : drivelines.Parameters, drivelines.modelica.ModelicaParameters or drivelines.fmu_linear.FmuParameters
+    params : drivelines.Parameters, sources.modelica.ModelicaParameters or sources.fmus.FmuParameters
         Any parameter set that declares its ``source_kind``.
 
     Returns

@@ -239,7 +239,7 @@ class Dithered:
 
     @property
     def kind(self):
-        """The :class:`~drivelines.sources.SourceKind` of ``driveline``."""
+        """The :class:`~sources.kinds.SourceKind` of ``driveline``."""
         return self.driveline.kind
 
     def periodic_system(self):

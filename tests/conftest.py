@@ -3,7 +3,7 @@ that is not a driveline."""
 
 import pytest
 
-from drivelines import get_preset
+from sources import get_preset
 from stability import build_driveline
 
 

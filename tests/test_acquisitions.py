@@ -19,7 +19,7 @@ from pysim.bench_data.acquisition import Acquisition, ChannelSpec
 from pysim.bench_data.channels import parse_channel_option
 from pysim.bench_data.readers import FORMATS, READERS, read_acquisition
 from pysim.bench_data.units import unit_factor
-from pysim.export import write_csv
+from pysim.simulation.export import write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
 # expected factors, written independently of the module's table
@@ -485,8 +485,8 @@ def test_module_does_not_import_matplotlib(mf4):
 def test_bench_campaign_csv_and_mf4_agree(tmp_path):
     pytest.importorskip("rumoca")
     pytest.importorskip("fmpy")
-    from drivelines import get_preset
-    from pysim.bench import Campaign, run_campaign
+    from sources import get_preset
+    from pysim.simulation.bench import Campaign, run_campaign
     campaign = Campaign(freq_hz=(105.0,), p_f_bar=(0.1,), duration=0.3,
                         formats=("csv", "mf4"))
     rows = run_campaign(campaign, get_preset("paper-4dof"), tmp_path,

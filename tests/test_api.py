@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_model, get_preset
+from drivelines import get_model
+from sources import get_preset
 from infra.errors import JudderError
 from judder import api
 from judder.cli import build_parser
@@ -109,8 +110,8 @@ def test_crosscheck_takes_the_engine():
 
 
 def test_run_fmu_refuses_a_parameter_the_fmu_lacks():
-    from pysim.fmus import ensure_fmu
-    from pysim.runs import run_fmu
+    from pysim.simulation.fmus import ensure_fmu
+    from pysim.simulation.runs import run_fmu
     fmu = ensure_fmu(get_model("4dof").modelica_class)
     with pytest.raises(JudderError, match="J24"):
         run_fmu(fmu, 100.0, 0.0, params=get_preset("paper-3dof"),

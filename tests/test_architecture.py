@@ -10,7 +10,8 @@ from pathlib import Path
 import casadi
 import pytest
 
-from drivelines import MODELS, get_preset
+from drivelines import MODELS
+from sources import get_preset
 from fmu.frontend import load_flat_model
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -21,10 +22,18 @@ ALLOWED = {
     "infra": set(),
     "fmu": {"infra"},
     "drivelines": {"infra", "fmu"},
-    "stability": {"infra", "drivelines"},
-    "pysim": {"infra", "drivelines", "fmu"},
-    "judder": {"infra", "drivelines", "stability", "pysim", "fmu"},
+    "sources": {"infra", "fmu", "drivelines"},
+    "stability": {"infra", "drivelines", "sources"},
+    "pysim": {"infra", "drivelines", "sources", "fmu"},
+    "judder": {"infra", "drivelines", "sources", "stability", "pysim",
+               "fmu"},
 }
+
+#: What each subpackage of pysim may import of the others: running FMUs
+#: and reading bench files both read time histories, and neither knows
+#: the other.
+PYSIM_ALLOWED = {"analysis": set(), "simulation": {"analysis"},
+                 "bench_data": {"analysis"}}
 
 
 def _imported_packages(path):
@@ -68,6 +77,22 @@ def test_importing_a_library_loads_nothing_above_it(package):
         check=True, cwd=ROOT).stdout))
     forbidden = set(ALLOWED) - ALLOWED[package] - {package}
     assert not loaded & forbidden
+
+
+@pytest.mark.parametrize("room", sorted(PYSIM_ALLOWED))
+def test_pysim_subpackages_import_one_way(room):
+    for path in sorted((ROOT / "pysim" / room).rglob("*.py")):
+        used = {name.split(".")[1] for name in _absolute_imports(path)
+                if name.startswith("pysim.") and name.count(".") >= 1}
+        assert used - {room} <= PYSIM_ALLOWED[room], (
+            f"{path.relative_to(ROOT)} imports pysim."
+            f"{sorted(used - {room} - PYSIM_ALLOWED[room])}")
+
+
+def test_pysim_has_no_module_outside_its_subpackages():
+    loose = [p.name for p in (ROOT / "pysim").glob("*.py")
+             if p.name != "__init__.py"]
+    assert not loose
 
 
 def _module_imports(package):

@@ -10,11 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
-from pysim.bench import Campaign, pickup_samples, run_campaign
-from pysim.run_analysis import analyse_run, engagement_window, estimate_dither
+from pysim.simulation.bench import Campaign, pickup_samples, run_campaign
+from pysim.analysis.verdict import analyse_run, engagement_window, estimate_dither
 from stability import build_driveline, floquet
 
 RPM = RAD_S_PER_RPM
@@ -23,7 +23,7 @@ RNG = np.random.default_rng(7)
 
 def _engagement(speed_rpm_of_t, freq_hz=100.0, p_f_bar=0.2, duration=1.5):
     """What the bench records: the upstream speed 1000 rpm + the given
-    fluctuation, measured by a 41-tooth pick-up (pysim.bench) with 0.5 rpm
+    fluctuation, measured by a 41-tooth pick-up (pysim.simulation.bench) with 0.5 rpm
     noise; a 1 kHz pressure with a 0.1-0.15 s ramp; and a downstream speed
     that never catches up (the clutch slips)."""
     fine = np.arange(0, duration, 2e-5)
@@ -375,7 +375,7 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
 
 def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
     from pysim.bench_data.charts import ChartRun
-    from pysim.run_analysis import RunAnalysis
+    from pysim.analysis.verdict import RunAnalysis
     return ChartRun(path=f"run-{freq_hz}-{p_f_bar}.mf4", settings={},
                     analysis=RunAnalysis(
                         window_s=window, freq_hz=freq_hz, p_f_bar=p_f_bar,
@@ -535,7 +535,7 @@ def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
     # verdict and growth are those of the exact times
     from pysim.bench_data.acquisition import ChannelSpec
     from pysim.bench_data.readers import read_acquisition
-    from pysim.export import write_csv
+    from pysim.simulation.export import write_csv
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     exact = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,

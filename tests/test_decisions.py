@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from judder import api
@@ -51,7 +51,7 @@ def test_hill_solver_equals_the_scan_solver(preset):
 def test_hill_solver_finds_the_narrow_combination_tongue_of_the_geared_5dof():
     # the f3 - f1 = 95.6 Hz tongue sits next to a mode damped 5e-3 1/s;
     # Newton from the first-order seed alone missed 94, 94.5, 96, 97 Hz
-    from drivelines.modelica import ModelicaParameters
+    from sources.modelica import ModelicaParameters
     system = build_driveline(ModelicaParameters(
         "Judder.Examples.Driveline5DOFGeared",
         values={"w_slip": 2.6})).periodic_system()

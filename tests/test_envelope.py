@@ -12,7 +12,7 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 from scipy.stats import norm
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from judder import api
 from judder.envelope import read_ranges

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
-from drivelines import get_preset
+from sources import get_preset
 from judder import api
 from judder.cli import main
 from judder.commands import _preflight as estimates

@@ -245,7 +245,7 @@ def _figures(paper4, small_map):
     yield "advice", api.advise(bounds={"k24": (0.5, 4.0)},
                                background=True).figure(
         title="4dof driveline, paper preset")
-    from drivelines import get_preset
+    from sources import get_preset
     yield "compare", api.compare(
         get_preset("paper-4dof"), get_preset("paper-4dof-fitted"),
         labels=("paper-4dof", "paper-4dof-fitted"),

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from judder.inputs import read_boundary_csv
 from stability.fit import fit_boundary, model_boundary
@@ -83,7 +83,7 @@ def test_a_boundary_without_judder_cannot_be_fitted():
 # --------------------------------------------------------------------------
 # kinds, problems, coverage, progress (the issue on noisy boundaries)
 
-from drivelines import get_preset as _preset   # noqa: E402
+from sources import get_preset as _preset  # noqa: E402
 from stability import build_driveline          # noqa: E402
 from stability.fit import parse_kind          # noqa: E402
 from stability.tongues import tongue_boundaries  # noqa: E402

@@ -5,7 +5,7 @@ import pytest
 import scipy.linalg
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from stability import KINDS, build_driveline, classify, floquet
 from stability.monodromy import monodromy_dyson, monodromy_solve_ivp

@@ -16,7 +16,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
-from drivelines import get_preset
+from sources import get_preset
 from stability import build_driveline
 
 pytest.importorskip("rumoca")

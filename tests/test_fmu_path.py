@@ -1,5 +1,5 @@
-"""The FMU path (drivelines.fmu_linear): a driveline read from an FMU's
-directional derivatives against the symbolic path (drivelines.modelica)
+"""The FMU path (sources.fmus): a driveline read from an FMU's
+directional derivatives against the symbolic path (sources.modelica)
 on the project's own FMUs, and FMUs it must refuse."""
 
 import json
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines.fmu_linear import FmuError, FmuParameters, linearize_fmu
-from drivelines.modelica import linearize
+from sources.fmus import FmuError, FmuParameters, linearize_fmu
+from sources.modelica import linearize
 from fmu.build import build_fmu
 from infra.errors import ParameterError
-from pysim.fmus import ensure_fmu
+from pysim.simulation.fmus import ensure_fmu
 from stability import LinearDriveline, build_driveline, floquet
 
 BAR = 1e5
@@ -159,7 +159,7 @@ def test_cli_map_of_a_rank_two_fmu():
 
 
 def test_sensitivity_through_the_fmu_equals_the_symbolic_path(four_fmu):
-    from drivelines.modelica import ModelicaParameters
+    from sources.modelica import ModelicaParameters
     from judder import api
     freq = np.linspace(95.0, 110.0, 6)
     ours, theirs = (api.sensitivity(["c12"], freq, parameters=params,

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
+from sources import get_preset
 from stability import (build_driveline, clutch_damper_damping_factor,
                        closed_form_frequencies, natural_frequencies)
 

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from drivelines import get_preset
+from sources import get_preset
 from stability import build_driveline
 
 rumoca = pytest.importorskip("rumoca")

@@ -1,4 +1,4 @@
-"""The Floquet layer on systems compiled from Modelica (drivelines.modelica).
+"""The Floquet layer on systems compiled from Modelica (sources.modelica).
 
 Independent checks: the hand-written Eq. (2)-(9) (stability.model) for
 the paper's drivelines, and equations of motion written here by hand for
@@ -10,8 +10,8 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
-from drivelines import get_preset
-from drivelines.modelica import ModelicaError, linearize
+from sources import get_preset
+from sources.modelica import ModelicaError, linearize
 from infra.errors import ParameterError
 from stability import (LinearDriveline, build_driveline, classify,
                        stability_map)
@@ -285,7 +285,7 @@ def test_cli_fit_recovers_the_slip_speed_of_a_modelica_class(tmp_path,
                                                              geared):
     # a boundary of the geared 5-DOF class at w_slip = 2.6 rad/s; the fit
     # from the class's default 2 rad/s finds it again
-    from drivelines.modelica import ModelicaParameters
+    from sources.modelica import ModelicaParameters
     import json
     truth = ModelicaParameters("Judder.Examples.Driveline5DOFGeared",
                                values={"w_slip": 2.6})
@@ -329,7 +329,7 @@ def test_crosscheck_fmu_of_the_rank_two_class_against_its_floquet_rates():
     # the two views of one Modelica class: its FMU's free response (two
     # runs, w_in 1 rad/s apart) grows at the Floquet exponent of the
     # system linearised from the same class
-    from drivelines.modelica import ModelicaParameters
+    from sources.modelica import ModelicaParameters
     from judder.crosscheck import crosscheck
     params = ModelicaParameters("Judder.Examples.Driveline4DOFTwoClutches")
     check = crosscheck(params, [105.0], [0.1 * BAR, 0.5 * BAR], workers=1)
@@ -347,15 +347,15 @@ def test_one_map_linearises_the_class_once(monkeypatch, capsys):
     # 3x3 map; now one (w_slip set to a value no other test uses, so no
     # earlier linearisation is reused)
     import json
-    import drivelines.modelica
+    import sources.modelica
     from judder.cli import main
     calls = []
-    linearize_once = drivelines.modelica.linearize
+    linearize_once = sources.modelica.linearize
 
     def counted(*args, **kwargs):
         calls.append(args[0])
         return linearize_once(*args, **kwargs)
-    monkeypatch.setattr(drivelines.modelica, "linearize", counted)
+    monkeypatch.setattr(sources.modelica, "linearize", counted)
     status = main(["map", "--modelica", "Judder.Examples.Driveline5DOFGeared",
                    "--set", "w_slip=3.0625", "--freq", "10:200:3",
                    "--pf", "0:1:3", "--json"])

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 from stability import floquet
 from stability.friction import forced_slip_amplitude
@@ -91,7 +91,7 @@ def test_orbit_is_the_long_engagement_steady_state(bench, freq_hz, p_f_bar,
     # Fourier amplitude at f (or f/2) against the orbit's at the run's
     # mean slip (the dither's rectified torque moves it at 103 Hz)
     from judder.bench import bench_fmu
-    from pysim.runs import run_fmu
+    from pysim.simulation.runs import run_fmu
     model, _ = bench
     params = get_preset("paper-4dof")
     run = run_fmu(bench_fmu(params)[1], freq_hz, p_f_bar * BAR,

@@ -12,13 +12,13 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
-from drivelines.fmu_linear import FmuParameters
-from drivelines.modelica import ModelicaParameters
+from sources import get_preset
+from sources.fmus import FmuParameters
+from sources.modelica import ModelicaParameters
 from infra.errors import JudderError
 from judder import api
 from judder.cli import main
-from pysim.fmus import ensure_fmu
+from pysim.simulation.fmus import ensure_fmu
 from stability import build_driveline, floquet
 
 BAR = 1e5

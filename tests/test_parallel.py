@@ -17,7 +17,7 @@ import psutil
 import pytest
 from numpy.testing import assert_array_equal
 
-from drivelines import get_preset
+from sources import get_preset
 
 from infra.errors import JudderError
 from infra.parallel import TaskFailure, TaskFailures, cluster, parallel_map

@@ -4,7 +4,8 @@ import math
 
 import pytest
 
-from drivelines import SPECS, dumps_toml, get_preset, load_toml
+from drivelines import SPECS
+from sources import dumps_toml, get_preset, load_toml
 from infra.errors import ParameterError
 
 

@@ -184,7 +184,7 @@ def test_readme_python_block_runs_as_a_script(workdir):
 
 def test_params_lists_the_allowed_range_of_every_parameter(capsys):
     # the README says so: the table and the saved file both give it
-    from drivelines import get_preset, dumps_toml
+    from sources import get_preset, dumps_toml
     assert main(["params"]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[1].split()[:5] == ["name", "value", "unit", "allowed",

@@ -145,7 +145,7 @@ def _sabotaged(tmp_path, kind):
     sources with one edit of fmi2.c (see SABOTAGE)."""
     import zipfile
     from fmu.build import fmi_headers
-    from pysim.fmus import ensure_fmu
+    from pysim.simulation.fmus import ensure_fmu
     source = ensure_fmu(FOUR)
     work = tmp_path / kind
     with zipfile.ZipFile(source) as z:
@@ -245,7 +245,7 @@ def test_the_fmu_child_is_killed_with_its_command(tmp_path):
     while time.monotonic() < deadline and not children:
         time.sleep(0.2)
         children = [c for c in psutil.Process(proc.pid).children()
-                    if "drivelines.fmu_calls" in " ".join(c.cmdline())]
+                    if "sources.fmu_host" in " ".join(c.cmdline())]
     assert children
     time.sleep(0.5)
     proc.send_signal(signal.SIGTERM)

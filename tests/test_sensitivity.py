@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import ParameterError
 from stability.sensitivity import (paper_conclusions, sensitivity_study,
                                    tip_shifts)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from stability import build_driveline
 from stability.threshold import (closed_form_threshold, constant_system,

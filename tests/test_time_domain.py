@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
+from sources import get_preset
 from stability import build_driveline, floquet
 from stability.friction import (curve_at, curve_from_table,
                                 forced_slip_amplitude, linear_range)
@@ -132,9 +132,9 @@ def _bench_jacobian(values, times):
     (6): [theta1, theta2, theta4, theta3, their speeds]."""
     import shutil
     from fmpy import extract
-    from drivelines.fmu_calls import SampleJob, sample
-    from drivelines.fmu_linear import fmu_description
-    from pysim.fmus import ensure_fmu
+    from sources.fmu_host import SampleJob, sample
+    from sources.fmus import fmu_description
+    from pysim.simulation.fmus import ensure_fmu
     path = ensure_fmu("Judder.Examples.TestBenchEngagement")
     d = fmu_description(path)
     order = [d.state_names.index(f"inertia{b}.{q}")
@@ -167,8 +167,8 @@ def test_bench_jacobian_is_the_linear_model(rpm):
     bench = {"t_engage": -1.0, "t_ramp": 0.0, "w_motor": w_motor,
              "f_dither": f, "p_f": p_f}
     jacobians = _bench_jacobian({**params.as_dict(), **bench}, times)
-    from pysim.fmus import ensure_fmu
-    from pysim.runs import parameter_default
+    from pysim.simulation.fmus import ensure_fmu
+    from pysim.simulation.runs import parameter_default
     delta_mu = parameter_default(
         ensure_fmu("Judder.Examples.TestBenchEngagement"), "delta_mu")
     point = curve_at(w_motor - 20.0, params["mu0"], params["mu_g"],

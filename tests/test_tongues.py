@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from drivelines import get_preset
+from sources import get_preset
 from infra.errors import JudderError
 from stability import KINDS, build_driveline, floquet, natural_frequencies
 from stability.monodromy import monodromy_solve_ivp

@@ -189,8 +189,8 @@ def test_every_form_and_engine_takes_the_waveform(paper4, wave, expected):
 
 
 def test_a_linearised_model_has_no_augmented_form():
-    from drivelines.modelica import LinearPeriodicModel
-    from drivelines.sources import SourceKind
+    from sources.modelica import LinearPeriodicModel
+    from sources.kinds import SourceKind
     from stability.linear import LinearDriveline
     # Mathieu-like oscillator: A0 = [[0, 1], [-100, -1]], B = -e2 e2^T
     model = LinearPeriodicModel(

@@ -4,7 +4,8 @@ the dithered driveline, timing, and the checks of parameter names.
 
 import time
 
-from drivelines import DEFAULT_MODEL, default_preset, get_preset
+from drivelines import DEFAULT_MODEL
+from sources import default_preset, get_preset
 from infra.errors import JudderError
 from stability.source import build_driveline
 

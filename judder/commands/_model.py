@@ -42,7 +42,7 @@ def parameter_file(args, path, option):
     model the options select (``--also`` of ``advise``): a preset's
     file, or with --modelica/--fmu a file of ``judder params --modelica
     CLASS --save`` (``--fmu FILE.fmu --save``)."""
-    from drivelines import load_toml
+    from sources import load_toml
     return own_driveline(args, path, option) or load_toml(
         read_input(path, option), source=str(path))
 
@@ -60,11 +60,11 @@ def own_driveline(args, path=None, option="--param-file"):
             raise JudderError(f"{flag} {given!r} is empty; allowed: "
                               f"{allowed}")
     if fmu:
-        from drivelines.fmu_linear import FmuParameters
+        from sources.fmus import FmuParameters
         flag, given = "--fmu", fmu
         replaced = ("modelica", "library", "model", "preset")
     elif modelica:
-        from drivelines.modelica import ModelicaParameters
+        from sources.modelica import ModelicaParameters
         flag, given = "--modelica", modelica
         replaced = ("model", "preset")
     else:

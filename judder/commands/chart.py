@@ -196,7 +196,7 @@ def chart(sources, index=None, channels=None, group_by=None,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from pysim.bench_data.charts import build_chart, gather_sources
-    from pysim.run_analysis import MIN_AMPLITUDE_RPM
+    from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
     result = build_chart(
         gather_sources(sources, index), channels=channels,

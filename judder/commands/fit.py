@@ -4,7 +4,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from drivelines import dumps_toml
+from sources import dumps_toml
 from infra.errors import JudderError, check_number
 from infra.files import write_text
 from infra.numbers import format_interval, format_uncertain

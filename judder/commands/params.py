@@ -2,7 +2,7 @@
 
 from dataclasses import dataclass
 
-from drivelines import dumps_toml
+from sources import dumps_toml
 from infra.files import write_text
 
 from ._arguments import model_options

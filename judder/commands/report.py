@@ -656,7 +656,7 @@ def report(parameters=None, changes=None, description=None,
     step()
 
     if run_engagement:
-        from pysim.engagement import judder_words
+        from pysim.simulation.engagement import judder_words
         run = simulate(freq_hz, p_f_bar, compare="none",
                        parameters=values, method=method,
                        min_growth=min_growth)

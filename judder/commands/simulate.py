@@ -111,7 +111,7 @@ def run(args):
 
 
 def _engagement_line(s):
-    from pysim.engagement import judder_words
+    from pysim.simulation.engagement import judder_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
             f"{s['p_f_bar']:g} bar; upstream speed peak "
             f"{s['speed_peak_amplitude_rpm']:.3g} rpm at "
@@ -144,7 +144,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     dither setting for the bench's linearisation (the damping its motor
     control adds, :attr:`drivelines.DrivelineModel.bench_damping`).
 
-    A Modelica class (:class:`drivelines.modelica.ModelicaParameters`)
+    A Modelica class (:class:`sources.modelica.ModelicaParameters`)
     runs instead through its own FMU (the one ``crosscheck`` runs, see
     :mod:`judder.timedomain`) from its start values, a steady slip, with
     the dither; the Floquet verdict is that of its linearisation. An FMU
@@ -176,8 +176,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     SimulationResult
     """
     from drivelines.registry import SIGNALS
-    from pysim.engagement import engagement_summary
-    from pysim.runs import parameter_default, run_fmu
+    from pysim.simulation.engagement import engagement_summary
+    from pysim.simulation.runs import parameter_default, run_fmu
 
     from ..timedomain import class_fmu, run_values
     FREQ.check(freq_hz, "freq_hz")
@@ -272,10 +272,10 @@ class SimulationResult:
 
     Attributes
     ----------
-    runs : list of (str, pysim.runs.Run)
+    runs : list of (str, pysim.simulation.runs.Run)
         Labelled runs: the setting asked for first, then the comparison.
     summaries : list of dict
-        Per run, :func:`pysim.engagement.engagement_summary` plus its
+        Per run, :func:`pysim.simulation.engagement.engagement_summary` plus its
         ``label`` and the Floquet verdict of its dither setting
         (``floquet_kind``, ``floquet_exponent_per_s``).
     fmu : path
@@ -298,7 +298,7 @@ class SimulationResult:
     @keeps_foreign_files
     def save(self, path):
         """Time histories of the first run as CSV or MF4 (by suffix)."""
-        from pysim.export import write_run
+        from pysim.simulation.export import write_run
         run = self.runs[0][1]
         write_run(path, run.time, run.signals, self.signals,
                   {"model": self.model_class, "freq_hz": run.freq_hz,
@@ -307,13 +307,13 @@ class SimulationResult:
 
     def spectra(self):
         """The ``(speed, pressure)`` amplitude spectra of each run after
-        ``start`` (:func:`pysim.engagement.display_spectra`), as
+        ``start`` (:func:`pysim.simulation.engagement.display_spectra`), as
         ``--plot`` draws them."""
-        from pysim.engagement import display_spectra
+        from pysim.simulation.engagement import display_spectra
         return [display_spectra(run, self.start) for _, run in self.runs]
 
     def figure(self, title=None):
-        from pysim.engagement import verdict_line
-        from pysim.plots import run_figure
+        from pysim.simulation.engagement import verdict_line
+        from pysim.simulation.plots import run_figure
         return run_figure(self.runs, self.spectra(), title=title,
                           verdicts=[verdict_line(s) for s in self.summaries])

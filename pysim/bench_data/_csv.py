@@ -1,4 +1,4 @@
-"""CSV acquisitions, as :func:`pysim.export.write_csv` writes them and as
+"""CSV acquisitions, as :func:`pysim.simulation.export.write_csv` writes them and as
 DAQ software exports them."""
 
 import csv
@@ -15,7 +15,7 @@ __all__ = ["read"]
 
 
 def read(path, wanted):
-    """CSV as :func:`pysim.export.write_csv` writes it, and as DAQ software
+    """CSV as :func:`pysim.simulation.export.write_csv` writes it, and as DAQ software
     exports it: ``,``, ``;`` or tab between fields, a decimal comma with
     ``;`` or tab, a header block before the column names (``key;value``
     lines, kept as metadata), a units row under them."""

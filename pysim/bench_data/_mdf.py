@@ -121,7 +121,7 @@ def _mdf_signal(mdf, group, index):
 
 
 def _mdf_metadata(header):
-    """The header comment (JSON as :mod:`pysim.export` writes it, else
+    """The header comment (JSON as :mod:`pysim.simulation.export` writes it, else
     text) and the header's author, department, project, subject."""
     metadata = {}
     for key in ("author", "department", "project", "subject"):

@@ -2,7 +2,7 @@
 
 A chart is a set of engagement runs, each at a dither frequency and
 amplitude and in a group (an oil temperature, an engine speed, ...), read
-by :func:`pysim.run_analysis.analyse_run`. Contoured over (frequency,
+by :func:`pysim.analysis.verdict.analyse_run`. Contoured over (frequency,
 amplitude) per group it is Fig. 10 and Fig. 11 of the paper; per
 frequency the lowest amplitude with judder is the experimental stability
 boundary that section 4.2 fits the model to.
@@ -27,7 +27,7 @@ from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.parallel import parallel_map
 
-from ..run_analysis import MIN_AMPLITUDE_RPM, analyse_run
+from ..analysis.verdict import MIN_AMPLITUDE_RPM, analyse_run
 from .acquisition import ChannelSpec
 from .readers import read_acquisition
 
@@ -65,7 +65,7 @@ class RunSource:
 class ChartRun:
     """One run of a chart: where it came from, its settings, its reading.
 
-    ``analysis`` is a :class:`pysim.run_analysis.RunAnalysis`, or None
+    ``analysis`` is a :class:`pysim.analysis.verdict.RunAnalysis`, or None
     when the run could not be read (``error`` says why); ``speed_kind``
     what the upstream speed's samples were
     (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`).
@@ -372,7 +372,7 @@ def build_chart(sources, channels=None, group_by=None,
         Group columns; default those of :data:`GROUP_COLUMNS` that take
         more than one value.
     min_growth, min_amplitude_rpm, judder_limit_rpm : float
-        The verdict's thresholds (:mod:`pysim.run_analysis`).
+        The verdict's thresholds (:mod:`pysim.analysis.verdict`).
     workers : int, optional
     callback : callable, optional
         ``callback(done, total)`` after each run.

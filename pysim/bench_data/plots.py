@@ -20,7 +20,7 @@ _GROUP_TITLES = {"oil_temperature": "oil {} degC",
 
 
 #: Marker and colour of a judder run by its mechanism
-#: (:attr:`pysim.run_analysis.RunAnalysis.mechanism`).
+#: (:attr:`pysim.analysis.verdict.RunAnalysis.mechanism`).
 _MECHANISM_MARKERS = {"parametric": ("^", "#d62728"),
                       "forced": ("s", "#ff7f0e"),
                       "both": ("D", "#9467bd")}

@@ -13,7 +13,7 @@ the reader :data:`READERS` holds for the file's suffix:
 * ``.csv``: a ``time [s]`` (or ``time``, ``t``, ``Zeit``, ``timestamp``)
   column, headers ``name [unit]`` or plain names with a units row under
   them, ``# key: json-value`` metadata lines (what
-  :func:`pysim.export.write_csv` writes) or a DAQ's header block of
+  :func:`pysim.simulation.export.write_csv` writes) or a DAQ's header block of
   ``key;value`` lines before the names; ``,``, ``;`` or tab between
   fields, a decimal comma with ``;`` or tab; a BOM
   (:mod:`pysim.bench_data._csv`);

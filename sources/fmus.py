@@ -12,20 +12,20 @@ these
 
 .. math:: J(t) = A_0 + p_f \cos(2\pi f t)\, B
 
-is built as :func:`drivelines.modelica.linearize` builds it from the
+is built as :func:`sources.modelica.linearize` builds it from the
 symbolic equations (Eq. (6)-(7) of the paper), and checked the same way:
 the amplitude enters affinely, the part without dither does not change
 with time, the dither part is the cosine of the frequency parameter times
 one matrix, and the Jacobian stays fixed along the slip. The rigid-body
 directions are removed in :mod:`stability` (:mod:`stability.reduction`),
 as for the Modelica path: the result is a
-:class:`~drivelines.modelica.LinearPeriodicModel` that
+:class:`~sources.modelica.LinearPeriodicModel` that
 :class:`stability.LinearDriveline` turns into every study.
 
 fmpy loads the FMU here (not in :mod:`pysim`, the time-domain runs),
 because the stability layer needs the matrices and may import only
 :mod:`drivelines`; its binary runs in a child process
-(:mod:`drivelines.fmu_calls`), so that a crash, a hang or a non-finite
+(:mod:`sources.fmu_host`), so that a crash, a hang or a non-finite
 Jacobian of a third-party FMU is one error naming the call.
 """
 
@@ -39,11 +39,11 @@ from fmpy import read_model_description
 
 from infra.errors import JudderError
 
-from .fmu_calls import SampleJob, sample_isolated
+from .fmu_host import SampleJob, sample_isolated
 from .modelica import (NamedParameters, check_no_acceleration, checked_values,
                        linear_periodic_model)
-from .sources import SourceKind
-from .specs import ParameterSpec
+from .kinds import SourceKind
+from drivelines.specs import ParameterSpec
 
 __all__ = ["FmuError", "FmuParameters", "fmu_description", "linearize_fmu",
            "SAMPLES"]
@@ -174,7 +174,7 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
 
     Returns
     -------
-    drivelines.modelica.LinearPeriodicModel
+    sources.modelica.LinearPeriodicModel
         Named after the FMU's ``modelName``.
 
     Raises
@@ -231,7 +231,7 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
 
 @lru_cache(maxsize=8)
 def _sampled(path, mtime, values, amplitude, step, times):
-    """The Jacobians of :func:`drivelines.fmu_calls.sample` (read-only),
+    """The Jacobians of :func:`sources.fmu_host.sample` (read-only),
     read once per FMU version and parameter set (a command asks for the
     same linearisation for its estimates and its work). The FMU's binary
     runs in a child process: a crash, a hang or a NaN of it becomes an
@@ -251,7 +251,7 @@ def _sampled(path, mtime, values, amplitude, step, times):
 def _steady_slip(d, A0, rate, moved, along):
     """The start is a steady slip along which the Jacobian is fixed.
 
-    As :func:`drivelines.modelica.linearize` checks it, with Jacobians
+    As :func:`sources.modelica.linearize` checks it, with Jacobians
     instead of expressions: a Jacobian that a generic move of the states
     (``moved``) leaves unchanged is free of the states (the paper's
     linear clutch) and needs nothing more; otherwise ``A0 der(x) = 0``
@@ -277,7 +277,7 @@ class FmuParameters(NamedParameters):
     """A parameter set of an FMU, by the FMU's variable names (SI).
 
     The parameter-set interface of
-    :class:`drivelines.modelica.ModelicaParameters`; :meth:`linear_model`
+    :class:`sources.modelica.ModelicaParameters`; :meth:`linear_model`
     is :func:`linearize_fmu`, which :func:`stability.build_driveline`
     uses instead of the paper's matrices.
 

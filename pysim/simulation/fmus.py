@@ -12,7 +12,7 @@ from infra.errors import JudderError
 
 __all__ = ["ensure_fmu", "FMU_DIR", "LIBRARY"]
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 LIBRARY = ROOT / "modelica"
 FMU_DIR = ROOT / "build" / "fmu"
 

@@ -4,10 +4,10 @@ A binary that crashes (a segfault on load or in
 ``fmi2GetDirectionalDerivative``), hangs or returns NaN must not take the
 tool down nor pass as a result. :func:`sample_isolated` runs
 :func:`sample` in a child Python process (``python -m
-drivelines.fmu_calls``, the job pickled on its stdin, the result on its
+sources.fmu_host``, the job pickled on its stdin, the result on its
 stdout); the child says which FMI call it is in (a line on its stderr)
 before each one, so that a crash, a hang past :func:`timeout_s` or a
-non-finite value becomes one :class:`~drivelines.fmu_linear.FmuError`
+non-finite value becomes one :class:`~sources.fmus.FmuError`
 naming the FMU and the call. The FMU is extracted into a folder of the
 parent's, removed on every path (also on a crash, a hang, Ctrl-C).
 
@@ -248,7 +248,7 @@ def sample_isolated(job, fmu_error):
                             f"({exc})") from None
         job = SampleJob(**{**job.__dict__, "folder": folder})
         reply, stages, status, _ = run_child(
-            ("-m", "drivelines.fmu_calls"), job, limit, _STAGE)
+            ("-m", "sources.fmu_host"), job, limit, _STAGE)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     where = stages[-1] if stages else "starting"

@@ -1,8 +1,8 @@
 """The kind of model a parameter set describes, declared by the set.
 
 Every parameter set (:class:`drivelines.Parameters`,
-:class:`drivelines.modelica.ModelicaParameters`,
-:class:`drivelines.fmu_linear.FmuParameters`) names its
+:class:`sources.modelica.ModelicaParameters`,
+:class:`sources.fmus.FmuParameters`) names its
 :class:`SourceKind` in ``source_kind``; the layers above ask it what the
 model offers instead of testing for a registry entry or a class.
 """

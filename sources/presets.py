@@ -15,9 +15,9 @@ from typing import ClassVar
 
 from infra.errors import ParameterError
 
-from .registry import MODELS, get_model
-from .sources import SourceKind
-from .specs import MEAN_PRESSURE_DAMPING, parse_overrides
+from drivelines.registry import MODELS, get_model
+from .kinds import SourceKind
+from drivelines.specs import MEAN_PRESSURE_DAMPING, parse_overrides
 
 __all__ = ["Parameters", "get_preset", "default_preset", "load_toml",
            "dumps_toml", "MEAN_PRESSURE_DAMPING"]

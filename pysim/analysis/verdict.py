@@ -48,7 +48,7 @@ resonance above the limit). ``kind`` names the parametric kind, or
 
 What separates the two is periodicity: the forced response repeats every
 dither period ``T``, the free response does not. So growth is read on
-the **non-periodic part** (as :func:`pysim.signals.stroboscopic_growth`
+the **non-periodic part** (as :func:`pysim.analysis.signals.stroboscopic_growth`
 does for simulations),
 
 .. math:: d(t) = y(t + L) - y(t), \qquad

@@ -37,8 +37,8 @@ from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
 from infra.errors import JudderError, ParameterError
 
-from .sources import SourceKind
-from .specs import ParameterSpec, parse_overrides
+from .kinds import SourceKind
+from drivelines.specs import ParameterSpec, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
@@ -125,7 +125,7 @@ class LinearPeriodicModel:
         Every tunable parameter's value used, by Modelica name (SI).
     amplitude, frequency : str
         Names of the dither amplitude and frequency parameters.
-    source_kind : drivelines.sources.SourceKind
+    source_kind : sources.kinds.SourceKind
         ``MODELICA`` or ``FMU``: where the Jacobian was read.
     """
 
@@ -396,7 +396,7 @@ def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
     """The :class:`LinearPeriodicModel` of ``A0 + p_f cos(2 pi f t) B0``.
 
     Checks that the dither enters and reads the undamped ``w^2``; shared
-    by :func:`linearize` and the FMU path (:mod:`drivelines.fmu_linear`).
+    by :func:`linearize` and the FMU path (:mod:`sources.fmus`).
 
     Parameters
     ----------
@@ -409,7 +409,7 @@ def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
         Parameter values used (SI).
     amplitude, frequency : str
         Names of the dither amplitude and frequency parameters.
-    source_kind : drivelines.sources.SourceKind
+    source_kind : sources.kinds.SourceKind
 
     Returns
     -------
