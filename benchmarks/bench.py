@@ -446,7 +446,7 @@ def _acquisition(folder, index, freq_hz, p_f_bar, rng):
     and a double-period judder growing where p_f > 0.2 bar), 1 kHz
     pressure, the downstream pick-up; a dither frequency read 1e-3 Hz off
     its set point, as an estimate would be."""
-    from pysim.simulation.bench import pickup_samples
+    from pysim.simulation.campaigns import pickup_samples
     from pysim.simulation.export import write_csv
     fine = np.arange(0.0, 3.0, 2e-5)
     on = fine > 0.6

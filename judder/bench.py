@@ -1,18 +1,65 @@
-"""The emulated bench of a registry driveline, as the API functions use it.
+"""The test bench of a registry driveline: everything the tool knows of it.
 
-``simulate`` runs an engagement on the bench's Modelica model, and
-``fit(bench=...)`` compares with what that bench measures: the damping it
-adds to the driveline's model (:func:`bench_damping`), the friction at
-its operating point, and whether the dither's forced slip stays where
-the linear model holds.
+The bench is a Modelica class of the library (``PartialTestBench`` and
+its engagement models), named by the driveline's registry entry and
+built to an FMU. Its parameters, their units and allowed ranges are the
+ones that FMU's model description declares (:func:`bench_parameters`,
+read by ``--bench NAME=VALUE``: :func:`parse_bench`). ``simulate`` and
+``orbit`` run an engagement on it, and ``fit(bench=...)`` compares with
+what it measures: the damping it adds to the driveline's model
+(:func:`bench_damping`), the friction at its operating point, and
+whether the dither's forced slip stays where the linear model holds.
+Campaigns of bench runs written as acquisitions are
+:mod:`pysim.simulation.campaigns`.
 """
+
+from dataclasses import dataclass
+import math
 
 import numpy as np
 
 from infra.errors import JudderError
+from infra.quantities import parse_quantity
+from infra.units import UNITS
 
-__all__ = ["bench_fmu", "bench_damping", "added_damping",
+__all__ = ["BenchParameter", "bench_fmu", "bench_parameters", "parse_bench",
+           "check_bench", "refuse_bench_of_class", "bench_damping", "added_damping",
            "operating_friction", "linear_validity", "engagement_model"]
+
+#: Parameters of the bench class that are the dither's, set by
+#: ``--freq`` and ``--pf``, not by ``--bench``.
+DITHER_PARAMETERS = ("f_dither", "p_f")
+
+
+@dataclass(frozen=True)
+class BenchParameter:
+    """One parameter of the bench, as its FMU declares it.
+
+    Attributes
+    ----------
+    name : str
+    unit : str
+        A unit of :data:`infra.units.UNITS` (SI).
+    low, high : float
+        The declared ``min`` and ``max`` (infinite where not declared).
+    default : float
+        The declared start value.
+    description : str
+    """
+
+    name: str
+    unit: str
+    low: float
+    high: float
+    default: float
+    description: str
+
+    def allowed(self):
+        """The allowed range in words."""
+        if math.isinf(self.high):
+            return f"at least {self.low:g} {self.unit}" \
+                if math.isfinite(self.low) else f"any number in {self.unit}"
+        return f"{self.low:g} to {self.high:g} {self.unit}"
 
 
 def bench_fmu(values):
@@ -32,6 +79,108 @@ def bench_fmu(values):
                           "driveline that has one (4-DOF)")
     return model_class, ensure_fmu(model_class)
 
+
+def _unit(modelica_unit):
+    """The :data:`infra.units.UNITS` name of a Modelica unit string
+    (``N.m.s/rad`` -> ``N m s/rad``)."""
+    from fmu.units import base_exponents
+    if not modelica_unit or modelica_unit == "1":
+        return "1"
+    exponents, factor = base_exponents(modelica_unit)
+    return next(name for name, unit in UNITS.items()
+                if unit.dimension == exponents and unit.factor == factor
+                and not unit.offset)
+
+
+def bench_parameters(values):
+    """The bench's own parameters, from its FMU's model description.
+
+    They are the top-level parameters of the bench class that are neither
+    the driveline's (``values``) nor the dither's: the motor and gearbox
+    speeds, the pressure ramp, the load clutch, the friction curve's
+    shape, the speed control.
+
+    Parameters
+    ----------
+    values : sources.Parameters
+        A parameter set of a registry driveline with a bench.
+
+    Returns
+    -------
+    dict of str -> BenchParameter
+        In the order the class declares them.
+    """
+    from pysim.simulation.runs import model_description
+    description = model_description(bench_fmu(values)[1])
+    own = set(values.values) | set(DITHER_PARAMETERS)
+    return {v.name: BenchParameter(
+                v.name, _unit(v.unit),
+                -math.inf if v.min is None else float(v.min),
+                math.inf if v.max is None else float(v.max),
+                float(v.start), v.description or "")
+            for v in description.modelVariables
+            if v.causality == "parameter" and "." not in v.name
+            and v.name not in own}
+
+
+def refuse_bench_of_class(values, names):
+    """Bench parameters given with a Modelica class or an FMU, which has
+    no bench model: refused, saying where its parameters go."""
+    raise JudderError(f"--bench {', '.join(names)} is not allowed with the "
+                      f"class {values.model}; allowed: its parameters with "
+                      "--set (the bench parameters belong to the bench "
+                      "model)")
+
+
+def parse_bench(assignments, values):
+    """The ``--bench NAME=VALUE`` texts as SI numbers, by the units the
+    bench declares (``w_motor=1000rpm``, ``p_load=9.8bar``).
+
+    The ranges are checked by :func:`check_bench`, where the API takes
+    the values.
+    """
+    names = [text.partition("=")[0].strip() for text in assignments]
+    if assignments and not values.source_kind.is_chain:
+        refuse_bench_of_class(values, names)
+    parameters = bench_parameters(values) if assignments else {}
+    bench = {}
+    for text, name in zip(assignments, names):
+        _, sep, value = text.partition("=")
+        if not sep or name not in parameters:
+            raise JudderError(f"--bench {text!r} is not allowed; allowed: "
+                              "NAME=VALUE with NAME one of "
+                              f"{', '.join(parameters)}")
+        bench[name] = parse_quantity(value.strip(), parameters[name].unit,
+                                     f"--bench {name}")
+    return bench
+
+
+def check_bench(values, bench):
+    """Refuse a bench parameter the bench does not have, or a value
+    outside the range its model declares.
+
+    Returns
+    -------
+    dict
+        ``bench`` as floats (SI).
+    """
+    bench = dict(bench or {})
+    parameters = bench_parameters(values) if bench else {}
+    for name, value in bench.items():
+        if name not in parameters:
+            raise JudderError(f"bench parameter {name!r} is not allowed; "
+                              f"allowed: {', '.join(parameters)}")
+        parameter = parameters[name]
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            number = math.nan
+        if not parameter.low <= number <= parameter.high:
+            raise JudderError(f"bench parameter {name} {value!r} "
+                              f"{parameter.unit} is not allowed; allowed: "
+                              f"{parameter.allowed()}")
+        bench[name] = number
+    return bench
 
 
 def bench_damping(values, bench=None):

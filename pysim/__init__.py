@@ -5,7 +5,7 @@ Three subpackages, each with one job:
 - :mod:`pysim.simulation` runs FMUs: builds the FMU of a library class
   when it is stale (``fmus``), runs it at a dither setting (``runs``),
   sums up an engagement (``engagement``), emulates bench campaigns
-  (``bench``), writes CSV and MF4 (``export``) and draws runs
+  (``campaigns``), writes CSV and MF4 (``export``) and draws runs
   (``plots``);
 - :mod:`pysim.bench_data` reads the files benches write (MF4, CSV, TDMS,
   MAT) and makes experimental stability charts of many runs;

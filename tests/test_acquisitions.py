@@ -486,7 +486,7 @@ def test_bench_campaign_csv_and_mf4_agree(tmp_path):
     pytest.importorskip("rumoca")
     pytest.importorskip("fmpy")
     from sources import get_preset
-    from pysim.simulation.bench import Campaign, run_campaign
+    from pysim.simulation.campaigns import Campaign, run_campaign
     campaign = Campaign(freq_hz=(105.0,), p_f_bar=(0.1,), duration=0.3,
                         formats=("csv", "mf4"))
     rows = run_campaign(campaign, get_preset("paper-4dof"), tmp_path,

@@ -13,7 +13,7 @@ import pytest
 from sources import get_preset
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
-from pysim.simulation.bench import Campaign, pickup_samples, run_campaign
+from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
 from pysim.analysis.verdict import analyse_run, engagement_window, estimate_dither
 from stability import build_driveline, floquet
 
@@ -23,7 +23,7 @@ RNG = np.random.default_rng(7)
 
 def _engagement(speed_rpm_of_t, freq_hz=100.0, p_f_bar=0.2, duration=1.5):
     """What the bench records: the upstream speed 1000 rpm + the given
-    fluctuation, measured by a 41-tooth pick-up (pysim.simulation.bench) with 0.5 rpm
+    fluctuation, measured by a 41-tooth pick-up (pysim.simulation.campaigns) with 0.5 rpm
     noise; a 1 kHz pressure with a 0.1-0.15 s ramp; and a downstream speed
     that never catches up (the clutch slips)."""
     fine = np.arange(0, duration, 2e-5)

@@ -18,7 +18,7 @@ from sources import get_preset
 from infra.errors import JudderError
 from infra.files import MARK, save_npz, write_text, written_by_us
 from judder.cli import main
-from pysim.simulation.bench import Campaign, run_campaign
+from pysim.simulation.campaigns import Campaign, run_campaign
 
 BIG_MAP = ["map", "--freq", "1:250:40000", "--pf", "0:1:50"]
 

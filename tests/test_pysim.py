@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from sources import get_preset
-from pysim.simulation.bench import Campaign, pickup_samples, run_campaign
+from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
 from pysim.analysis.signals import (amplitude_spectrum, dither_envelope,
                            free_response_growth, stroboscopic_growth)
 
@@ -175,11 +175,11 @@ def test_time_domain_commands_refuse_bad_input(args, words):
 
 def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
                                                            monkeypatch):
-    import pysim.simulation.bench
+    import pysim.simulation.campaigns
     # a temperature case that cannot be run (below absolute zero); run
     # here, where the patched table is seen (Dask's worker processes are
     # spawned: they import the unpatched module)
-    monkeypatch.setitem(pysim.simulation.bench.TEMPERATURES, "85-90", -300.0)
+    monkeypatch.setitem(pysim.simulation.campaigns.TEMPERATURES, "85-90", -300.0)
     campaign = Campaign(freq_hz=(60.0,), p_f_bar=(0.05,),
                         temperatures=("65-70", "85-90"), duration=0.3,
                         formats=("csv",))

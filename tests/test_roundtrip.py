@@ -20,7 +20,7 @@ import pytest
 from sources import get_preset
 from infra.units import PA_PER_BAR
 from judder import api
-from pysim.simulation.bench import Campaign, run_campaign
+from pysim.simulation.campaigns import Campaign, run_campaign
 from stability.fit import fit_boundary, model_boundary
 
 FREQS = np.array([204.5, 206.0, 207.0])

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from pysim.simulation.bench import pickup_samples
+from pysim.simulation.campaigns import pickup_samples
 from pysim.bench_data.speed_channels import detect_speed_kind, interval_means
 
 #: A shaft at 1000 rpm with a 20 rpm oscillation at 103 Hz, rad and s.

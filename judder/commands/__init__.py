@@ -20,8 +20,8 @@ alone, and ``judder map`` imports the map's module only.
 Modules whose names start with ``_`` are shared by the commands: option
 groups and value parsers (``_arguments``, ``_values``), the model the
 options select (``_options``, ``_common``), preflight estimates
-(``_preflight``), outputs (``_output``) and records (``_records``), the
-emulated bench (``_bench``).
+(``_preflight``), outputs (``_output``) and records (``_records``). The
+bench (its model, parameters and linearisation) is :mod:`judder.bench`.
 """
 
 from dataclasses import dataclass

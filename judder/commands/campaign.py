@@ -59,7 +59,7 @@ def add_arguments(p):
                    help="oil temperature ranges (55-60, 65-70, 75-80, "
                         "85-90, or all): each run at the middle of its "
                         "range, the external damping scaled with the oil's "
-                        "viscosity (pysim.simulation.bench.oil_viscosity)")
+                        "viscosity (pysim.simulation.campaigns.oil_viscosity)")
     p.add_argument("--duration", type=DURATION, default=3.0, metavar="S",
                    help="length of each engagement, s (default 3: the "
                         "0.6 s pressure ramp, then the judder's growth)")
@@ -78,7 +78,7 @@ def add_arguments(p):
 
 def run(args):
     """Bench emulator: a campaign of engagement acquisitions."""
-    from pysim.simulation.bench import TEMPERATURES
+    from pysim.simulation.campaigns import TEMPERATURES
     freqs = args.freq
     amplitudes = args.pf
     if freqs[0] <= 0:
@@ -139,13 +139,13 @@ def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
     engine_rpm : sequence of float
         Motor speeds, rpm.
     temperatures : sequence of str
-        Keys of :data:`pysim.simulation.bench.TEMPERATURES`.
+        Keys of :data:`pysim.simulation.campaigns.TEMPERATURES`.
 
     Returns
     -------
     CampaignResult
     """
-    from pysim.simulation.bench import Campaign, run_campaign
+    from pysim.simulation.campaigns import Campaign, run_campaign
     FREQ.check(freq_hz, "freq_hz")
     PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)

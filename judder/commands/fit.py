@@ -11,13 +11,12 @@ from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
 
-from ..bench import bench_damping
+from ..bench import bench_damping, check_bench, parse_bench
 from ..inputs import (read_boundary, read_boundary_limit,
                       read_boundary_min_growth, read_chart_below,
                       read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
 from ._arguments import method_option, model_options, workers_option
-from ._bench import bench_values
 from ._common import resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
@@ -162,7 +161,8 @@ def run(args):
                               "1/s", strict=False)
     if args.bench and not args.bench_linearisation:
         raise JudderError("--bench is for --bench-linearisation; give both")
-    bench = bench_values(args.bench) if args.bench_linearisation else None
+    bench = parse_bench(args.bench, resolve(params, changes)) \
+        if args.bench_linearisation else None
     p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
                              else args.pf_max, "bar")
     scatter = _scatter(args.scatter, args.error_model)
@@ -333,7 +333,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         method=method, kinds=kinds, starts=starts, uncertainty=uncertainty,
         error_model=error_model, seed=seed, workers=workers,
         callback=progress, min_growth=min_growth,
-        added=None if bench is None else bench_damping(start, bench),
+        added=None if bench is None else bench_damping(
+            start, check_bench(start, bench)),
         scatter=scatter, below=None if below_bar is None else
         np.asarray(below_bar, dtype=float) * PA_PER_BAR,
         threshold_spread=threshold_spread,

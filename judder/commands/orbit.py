@@ -14,7 +14,7 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
 
 from ._arguments import (force_option, limit_option, min_growth_option,
                          model_options)
-from ._bench import bench_values
+from ..bench import parse_bench
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -79,7 +79,8 @@ def run(args):
     with Progress(len(freqs) if len(freqs) > 1 and len(amplitudes) > 1
                   else None, "orbits") as progress:
         result = orbit(freqs, amplitudes, params, changes,
-                       bench=bench_values(args.bench),
+                       bench=parse_bench(args.bench,
+                                          resolve(params, changes)),
                        judder_limit_rpm=args.limit,
                        min_growth=args.min_growth, progress=progress)
     files = write_outputs(args, result, figure={
@@ -117,7 +118,7 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
                                  periodic_orbit)
     from stability.orbit_chart import orbit_chart
 
-    from ..bench import engagement_model
+    from ..bench import check_bench, engagement_model
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     amplitudes = sorted(float(p) for p in np.atleast_1d(p_f_bar))
     for f in freqs:
@@ -127,7 +128,7 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
     LIMIT.check(judder_limit_rpm, "judder_limit_rpm")
     MIN_GROWTH.check(min_growth, "min_growth")
     values = resolve(parameters, changes)
-    model, linear = engagement_model(values, bench)
+    model, linear = engagement_model(values, check_bench(values, bench))
     limit = judder_limit_rpm * RAD_S_PER_RPM
     started = time.perf_counter()
     orbits, doubled, chart, folds = [], [], None, []

@@ -14,11 +14,11 @@ from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
-from ..bench import (added_damping, bench_fmu, engagement_model,
-                     linear_validity, operating_friction)
+from ..bench import (added_damping, bench_fmu, check_bench, engagement_model,
+                     linear_validity, operating_friction, parse_bench,
+                     refuse_bench_of_class)
 from ._arguments import (force_option, limit_option, method_option,
                          min_growth_option, model_options)
-from ._bench import bench_values
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
@@ -89,7 +89,7 @@ def run(args):
     """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
     freqs = args.freq
     params, changes = parameters_of(args)
-    bench = bench_values(args.bench)
+    bench = parse_bench(args.bench, resolve(params, changes))
     compare = args.compare
     make_parents(args.out, args.plot)
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
@@ -187,6 +187,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     values = resolve(parameters, changes)
     bench = dict(bench or {})
     if values.source_kind.is_chain:
+        bench = check_bench(values, bench)
         model_class, fmu = bench_fmu(values)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))
@@ -201,10 +202,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     else:
         fmu = class_fmu(values, "simulate")
         if bench:
-            raise JudderError(f"--bench {', '.join(bench)} is not allowed "
-                              f"with the class {values.model}; allowed: "
-                              "its parameters with --set (the bench "
-                              "parameters belong to the bench model)")
+            refuse_bench_of_class(values, bench)
         model_class, ramp_end = values.model, 0.0   # starts slipping
         run_params, extra = run_values(values)
         driveline, linear_slip = build_driveline(values), None

@@ -98,7 +98,7 @@ class Acquisition:
     metadata : dict
         What the file carries (e.g. ``dither_frequency_hz``,
         ``dither_amplitude_bar``, ``oil_temperature_degC``,
-        ``engine_speed_rpm`` in files of :mod:`pysim.simulation.bench`).
+        ``engine_speed_rpm`` in files of :mod:`pysim.simulation.campaigns`).
     """
 
     path: Path

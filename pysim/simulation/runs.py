@@ -20,7 +20,7 @@ from drivelines.registry import SIGNALS
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
-__all__ = ["Run", "run_fmu", "parameter_default"]
+__all__ = ["Run", "run_fmu", "parameter_default", "model_description"]
 
 
 @dataclass(frozen=True)
@@ -83,9 +83,15 @@ def _unpacked(fmu_path, mtime):
     return str(target), read_model_description(fmu_path)
 
 
+def model_description(fmu_path):
+    """The FMU's model description (fmpy's), read once per file
+    version."""
+    return _unpacked(str(fmu_path), Path(fmu_path).stat().st_mtime)[1]
+
+
 def parameter_default(fmu_path, name):
     """Default (start) value of an FMU parameter, SI."""
-    _, description = _unpacked(str(fmu_path), Path(fmu_path).stat().st_mtime)
+    description = model_description(fmu_path)
     for variable in description.modelVariables:
         if variable.name == name:
             return float(variable.start)

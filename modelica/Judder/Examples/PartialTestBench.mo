@@ -22,15 +22,15 @@ partial model PartialTestBench "Test bench of Fig. 5 and section 2.2 without the
   parameter Units.Frequency f_dither=102.9 "Dither frequency";
   parameter Units.Fraction mean_pressure_damping=0 "Share of p_m in the slip damping";
   parameter Units.Time t_engage=0.1 "Start of the EVEN pressure ramp";
-  parameter Units.Time t_ramp=0.5 "Duration of the EVEN and REV pressure ramps (clutch fill)";
+  parameter Units.Time t_ramp(min=0)=0.5 "Duration of the EVEN and REV pressure ramps (clutch fill)";
   parameter Real N_c_load(min=1)=10 "Plate pairs of the REV clutch (two more than EVEN)";
-  parameter Units.Pressure p_load=0.98e6 "REV pressure (670 mA, about 9.8 bar)";
+  parameter Units.Pressure p_load(min=0)=0.98e6 "REV pressure (670 mA, about 9.8 bar)";
   parameter Real load_share(min=0)=1
     "REV torque over the EVEN clutch's mean torque mu0 N_c R_m S p_m (1: the slip stays steady; below 1 the gearbox side speeds up)";
   parameter Units.Area S_load=load_share*N_c*S*p_m/(N_c_load*p_load)
     "Piston area of the REV clutch";
-  parameter Units.AngularVelocity w_motor=104.71975511965977 "Motor speed (1000 rpm)";
-  parameter Units.AngularVelocity w_gearbox=20 "Initial speed of the gearbox side, at which the REV clutch slips";
+  parameter Units.AngularVelocity w_motor(min=0)=104.71975511965977 "Motor speed (1000 rpm)";
+  parameter Units.AngularVelocity w_gearbox(min=0)=20 "Initial speed of the gearbox side, at which the REV clutch slips";
   parameter Units.RotationalDampingConstant d_control=2000 "Gain of the motor speed controller";
   Components.Inertia inertia1(J=J1, phi(start=0, fixed=true), w(start=w_motor, fixed=true))
     annotation (Placement(transformation(extent={{-150,-10},{-130,10}})));

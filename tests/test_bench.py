@@ -1,0 +1,58 @@
+"""The bench's parameters come from its model: names, units, ranges and
+defaults as the bench FMU's model description declares them."""
+
+import math
+
+import pytest
+
+from infra.errors import JudderError
+from judder.bench import bench_parameters, check_bench, parse_bench
+from sources import get_preset
+
+PAPER = get_preset("paper-4dof")
+
+
+def test_the_bench_parameters_are_the_bench_class_own():
+    parameters = bench_parameters(PAPER)
+    # PartialTestBench and TestBenchEngagement declare these, besides the
+    # driveline's Appendix A values and the dither's f_dither and p_f
+    assert set(parameters) == {"t_engage", "t_ramp", "N_c_load", "p_load",
+                               "load_share", "w_motor", "w_gearbox",
+                               "d_control", "delta_mu", "w_op"}
+    assert parameters["w_motor"].unit == "rad/s"
+    assert parameters["w_motor"].default == pytest.approx(1000 * math.pi / 30)
+    assert parameters["d_control"].unit == "N m s/rad"
+    assert parameters["d_control"].default == 2000.0
+    assert parameters["p_load"].unit == "Pa"
+    assert parameters["N_c_load"].unit == "1"
+    assert parameters["N_c_load"].low == 1.0
+    assert parameters["delta_mu"].low == 1e-6
+    assert parameters["t_engage"].low == -math.inf   # engaged from the start
+
+
+def test_text_is_read_in_the_declared_unit():
+    bench = parse_bench(["w_motor=1500rpm", "p_load = 9.8bar",
+                         "t_ramp=200ms"], PAPER)
+    assert bench == pytest.approx({"w_motor": 1500 * math.pi / 30,
+                                   "p_load": 9.8e5, "t_ramp": 0.2})
+
+
+@pytest.mark.parametrize("bench, words", [
+    ({"w_gearbox": -1.0}, ["w_gearbox", "at least 0 rad/s"]),
+    ({"N_c_load": 0.5}, ["N_c_load", "at least 1"]),
+    ({"delta_mu": float("nan")}, ["delta_mu", "nan"]),
+    ({"w_moter": 1.0}, ["'w_moter'", "w_motor"]),
+])
+def test_values_outside_the_declared_range_are_refused(bench, words):
+    with pytest.raises(JudderError) as error:
+        check_bench(PAPER, bench)
+    for word in words:
+        assert word in str(error.value)
+
+
+def test_a_class_without_a_bench_takes_no_bench_parameter():
+    from sources.modelica import ModelicaParameters
+    values = ModelicaParameters("Judder.Examples.Driveline4DOF")
+    with pytest.raises(JudderError, match="--bench w_motor is not allowed "
+                                          "with the class"):
+        parse_bench(["w_motor=100"], values)
