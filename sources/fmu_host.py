@@ -2,7 +2,7 @@
 
 A binary that crashes (a segfault on load or in
 ``fmi2GetDirectionalDerivative``), hangs or returns NaN must not take the
-tool down nor pass as a result. :func:`sample_isolated` runs
+tool down nor pass as a result (FMI 2.0 and 3.0 Model Exchange alike). :func:`sample_isolated` runs
 :func:`sample` in a child Python process (``python -m
 sources.fmu_host``, the job pickled on its stdin, the result on its
 stdout); the child says which FMI call it is in (a line on its stderr)
@@ -16,6 +16,7 @@ session (a terminal's Ctrl-C reaches the parent, which kills it) and
 dies with its parent.
 """
 
+import ctypes
 import pickle
 import shutil
 import sys
@@ -61,6 +62,11 @@ class SampleJob:
     folder : str
         Where it is extracted.
     guid, model_identifier : str
+    fmi_version : str
+        ``"2.0"`` or ``"3.0"``.
+    directional : bool
+        The FMU provides directional derivatives (else the Jacobian is
+        read by central differences).
     states, derivatives : tuple of int
         Value references of ``x`` and ``der(x)``.
     references : dict of str to int
@@ -79,6 +85,8 @@ class SampleJob:
     folder: str
     guid: str
     model_identifier: str
+    fmi_version: str
+    directional: bool
     states: tuple
     derivatives: tuple
     references: dict
@@ -94,56 +102,94 @@ def timeout_s():
     return positive_setting("JUDDER_FMU_TIMEOUT", TIMEOUT_S, "seconds")
 
 
+#: Relative step of the central differences that read the Jacobian of an
+#: FMU without directional derivatives: about the cube root of the
+#: machine epsilon, where truncation and round-off balance.
+DIFFERENCE_STEP = 6e-6
+
+
 class _Instance:
-    """One initialised Model Exchange instance at a parameter set; the
-    FMU's log messages are kept (the last one explains a failed call)."""
+    """One initialised Model Exchange instance at a parameter set (FMI 2.0
+    or 3.0); the FMU's log messages are kept (the last one explains a
+    failed call)."""
 
     def __init__(self, job, values):
-        from fmpy import calloc, free
-        from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE,
-                               fmi2CallbackFreeMemoryTYPE,
-                               fmi2CallbackFunctions,
-                               fmi2CallbackLoggerTYPE, fmi2Real)
-        from fmpy.logging import addLoggerProxy
         self.job = job
         self.n = len(job.states)
-        self.real = fmi2Real
         self.messages = []
-        self.callbacks = fmi2CallbackFunctions()
-        self.callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        addLoggerProxy(byref(self.callbacks))
         self.fmu = None
+        self.prefix = "fmi3" if job.fmi_version == "3.0" else "fmi2"
         names = list(values)
         self._call("loading the binary", lambda: setattr(
-            self, "fmu", FMU2Model(
-                guid=job.guid, unzipDirectory=job.folder,
-                modelIdentifier=job.model_identifier,
-                instanceName="judder")))
+            self, "fmu", self._load()))
         fmu = self.fmu
-        self._call("fmi2Instantiate", lambda: fmu.instantiate(
-            callbacks=self.callbacks))
-        self._call("fmi2SetupExperiment",
-                   lambda: fmu.setupExperiment(startTime=0.0))
-        self._call("fmi2SetReal", lambda: fmu.setReal(
-            [job.references[n] for n in names], [values[n] for n in names]))
-        self._call("fmi2EnterInitializationMode",
-                   fmu.enterInitializationMode)
-        self._call("fmi2ExitInitializationMode", fmu.exitInitializationMode)
+        if self.prefix == "fmi2":
+            self._call("fmi2Instantiate", lambda: fmu.instantiate(
+                callbacks=self.callbacks))
+            self._call("fmi2SetupExperiment",
+                       lambda: fmu.setupExperiment(startTime=0.0))
+            self._call("fmi2SetReal", lambda: fmu.setReal(
+                [job.references[n] for n in names],
+                [values[n] for n in names]))
+            self._call("fmi2EnterInitializationMode",
+                       fmu.enterInitializationMode)
+        else:
+            self._call("fmi3InstantiateModelExchange",
+                       lambda: fmu.instantiate(logMessage=self.callback))
+            self._call("fmi3SetFloat64", lambda: fmu.setFloat64(
+                [job.references[n] for n in names],
+                [values[n] for n in names]))
+            self._call("fmi3EnterInitializationMode",
+                       lambda: fmu.enterInitializationMode(startTime=0.0))
+        self._call(f"{self.prefix}ExitInitializationMode",
+                   fmu.exitInitializationMode)
+        new_states = fmu.newDiscreteStates if self.prefix == "fmi2" \
+            else fmu.updateDiscreteStates
         while True:
-            update = self._call("fmi2NewDiscreteStates",
-                                fmu.newDiscreteStates)
+            update = self._call(
+                "fmi2NewDiscreteStates" if self.prefix == "fmi2"
+                else "fmi3UpdateDiscreteStates", new_states)
             if not update[0] or update[1]:
                 break
-        self._call("fmi2EnterContinuousTimeMode", fmu.enterContinuousTimeMode)
-        buffer = (fmi2Real * self.n)()
-        self._call("fmi2GetContinuousStates",
+        self._call(f"{self.prefix}EnterContinuousTimeMode",
+                   fmu.enterContinuousTimeMode)
+        buffer = (ctypes.c_double * self.n)()
+        self._call(f"{self.prefix}GetContinuousStates",
                    lambda: fmu.getContinuousStates(buffer, self.n))
         self.x0 = np.array(buffer)
 
-    def _log(self, component, instance, status, category, message):
-        self.messages.append(message.decode("utf-8", "replace"))
+    def _load(self):
+        """The FMU's binary, loaded, with the logger kept alive."""
+        job = self.job
+        if self.prefix == "fmi2":
+            from fmpy import calloc, free
+            from fmpy.fmi2 import (FMU2Model,
+                                   fmi2CallbackAllocateMemoryTYPE,
+                                   fmi2CallbackFreeMemoryTYPE,
+                                   fmi2CallbackFunctions,
+                                   fmi2CallbackLoggerTYPE)
+            from fmpy.logging import addLoggerProxy
+            self.callbacks = fmi2CallbackFunctions()
+            self.callbacks.logger = fmi2CallbackLoggerTYPE(
+                lambda component, instance, status, category, message:
+                self._log(message))
+            self.callbacks.allocateMemory = \
+                fmi2CallbackAllocateMemoryTYPE(calloc)
+            self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+            addLoggerProxy(byref(self.callbacks))
+            model = FMU2Model
+        else:
+            from fmpy.fmi3 import FMU3Model
+            self.callback = (lambda environment, status, category, message:
+                             self._log(message))
+            model = FMU3Model
+        return model(guid=job.guid, unzipDirectory=job.folder,
+                     modelIdentifier=job.model_identifier,
+                     instanceName="judder")
+
+    def _log(self, message):
+        self.messages.append(message.decode("utf-8", "replace")
+                             if isinstance(message, bytes) else str(message))
 
     def _call(self, name, call):
         _stage(name)
@@ -153,30 +199,53 @@ class _Instance:
             reason = self.messages[-1] if self.messages else str(exc)
             raise FmuCallError(f"{name} failed ({reason})") from None
 
+    def _rate(self, x, at):
+        """``der(x)`` at the instance's time and the states ``x``."""
+        fmu, n = self.fmu, self.n
+        rate = (ctypes.c_double * n)()
+        self._call(f"{self.prefix}SetContinuousStates" + at,
+                   lambda: fmu.setContinuousStates(
+                       (ctypes.c_double * n)(*x), n))
+        get = fmu.getDerivatives if self.prefix == "fmi2" \
+            else fmu.getContinuousStateDerivatives
+        self._call(("fmi2GetDerivatives" if self.prefix == "fmi2"
+                    else "fmi3GetContinuousStateDerivatives") + at,
+                   lambda: get(rate, n))
+        return np.array(rate)
+
     def jacobian(self, time, x):
-        """``d der(x) / dx`` at ``(time, x)`` and ``der(x)``."""
-        fmu, n, real = self.fmu, self.n, self.real
-        rate = (real * n)()
+        """``d der(x) / dx`` at ``(time, x)`` and ``der(x)``: by
+        directional derivatives where the FMU provides them, else by
+        central differences (steps :data:`DIFFERENCE_STEP` relative)."""
+        fmu = self.fmu
         at = f" at t = {time:g} s"
-        self._call("fmi2SetTime" + at, lambda: fmu.setTime(time))
-        self._call("fmi2SetContinuousStates" + at,
-                   lambda: fmu.setContinuousStates((real * n)(*x), n))
+        self._call(f"{self.prefix}SetTime" + at, lambda: fmu.setTime(time))
+        if not self.job.directional:
+            columns = []
+            for i in range(self.n):
+                step = DIFFERENCE_STEP * max(1.0, abs(x[i]))
+                up, down = np.array(x, float), np.array(x, float)
+                up[i] += step
+                down[i] -= step
+                columns.append((self._rate(up, at) - self._rate(down, at))
+                               / (2 * step))
+            return np.array(columns).T, self._rate(x, at)
+        rate = self._rate(x, at)
         columns = [self._call(
-            "fmi2GetDirectionalDerivative" + at,
+            f"{self.prefix}GetDirectionalDerivative" + at,
             lambda seed=seed: fmu.getDirectionalDerivative(
                 list(self.job.derivatives), list(self.job.states),
                 list(seed)))
-            for seed in np.eye(n)]
-        self._call("fmi2GetDerivatives" + at,
-                   lambda: fmu.getDerivatives(rate, n))
-        return np.array(columns).T, np.array(rate)
+            for seed in np.eye(self.n)]
+        return np.array(columns).T, rate
 
     def close(self):
         """Free the instance and unload the binary."""
         if self.fmu is None:
             return
-        for name, call in (("fmi2Terminate", self.fmu.terminate),
-                           ("fmi2FreeInstance", self.fmu.freeInstance)):
+        for name, call in ((f"{self.prefix}Terminate", self.fmu.terminate),
+                           (f"{self.prefix}FreeInstance",
+                            self.fmu.freeInstance)):
             _stage(name)
             try:
                 call()
@@ -281,15 +350,15 @@ def _check_finite(job, value, fmu_error):
                             "allowed: finite states and derivatives")
     for name in ("moved", "along"):
         if not np.isfinite(value[name]).all():
-            raise fmu_error(f"--fmu {job.path}: fmi2GetDirectionalDerivative"
-                            " returned a non-finite value (NaN or inf) at "
+            raise fmu_error(f"--fmu {job.path}: the FMU's Jacobian"
+                            " has a non-finite value (NaN or inf) at "
                             "t = 0 s near the start values; allowed: a "
                             "finite Jacobian")
     bad = np.argwhere(~np.isfinite(value["jacobians"]).all(axis=(2, 3)))
     if len(bad):
         k, i = bad[0]
         raise fmu_error(
-            f"--fmu {job.path}: fmi2GetDirectionalDerivative returned a "
+            f"--fmu {job.path}: the FMU's Jacobian has a "
             f"non-finite value (NaN or inf) at t = {job.times[i]:g} s, "
             f"{job.amplitude} = {job.amplitudes[k]:g} Pa; allowed: a "
             "finite Jacobian")

@@ -1,10 +1,12 @@
 r"""Linear time-periodic system of a driveline given as an FMU.
 
-A third-party FMI 2.0 Model Exchange FMU that provides directional
-derivatives (``providesDirectionalDerivative="true"``) is analysed
-without its equations: the state Jacobian :math:`J = \partial\,\dot x /
-\partial x` is read column by column with ``fmi2GetDirectionalDerivative``
-(unknowns ``der(x)``, knowns ``x``) at the FMU's initial state (its start
+A third-party FMI 2.0 or 3.0 Model Exchange FMU is analysed without its
+equations: the state Jacobian :math:`J = \partial\,\dot x / \partial x`
+is read column by column with ``fmi2GetDirectionalDerivative`` (unknowns
+``der(x)``, knowns ``x``; ``fmi3GetDirectionalDerivative``) where the FMU
+provides directional derivatives, else by central differences of the
+derivatives (:data:`sources.fmu_host.DIFFERENCE_STEP`, the checks below
+then within :data:`_ZERO_DIFFERENCES`), at the FMU's initial state (its start
 values: a steady slip), at :data:`SAMPLES` times over one dither period
 and at the dither amplitudes ``0``, ``a/2`` and ``a`` (``a`` the set's
 amplitude, or 1 bar if that is zero, at most the declared maximum). From
@@ -54,8 +56,14 @@ SAMPLES = 16
 #: parameter set has none: J is affine in it, so any size is exact up to
 #: round-off.
 _AMPLITUDE_STEP = 1e5
-#: Relative size below which a residual of the checks counts as zero.
+#: Relative size below which a residual of the checks counts as zero,
+#: with directional derivatives (exact up to round-off) ...
 _ZERO = 1e-10
+#: ... and with central differences (truncation error of the step).
+_ZERO_DIFFERENCES = 1e-6
+#: Model Exchange FMI versions read, and the type names of a Real.
+FMI_VERSIONS = ("2.0", "3.0")
+_REAL_TYPES = ("Real", "Float64")
 
 
 class FmuError(JudderError):
@@ -76,6 +84,9 @@ class FmuDescription:
     path : str
     model_name : str
     guid, model_identifier : str
+    fmi_version : str
+    directional : bool
+        The FMU provides directional derivatives.
     states, derivatives : tuple of int
         Value references of ``x`` and ``der(x)``, in the order of
         ``<Derivatives>`` (the order of ``fmi2GetContinuousStates``).
@@ -90,6 +101,8 @@ class FmuDescription:
     model_name: str
     guid: str
     model_identifier: str
+    fmi_version: str
+    directional: bool
     states: tuple
     derivatives: tuple
     state_names: tuple
@@ -111,18 +124,16 @@ def _described(path, mtime):
             type(exc).__name__
         raise FmuError(f"--fmu {path}: not a readable FMU ({reason})") \
             from None
-    _require(md.fmiVersion == "2.0",
-             f"--fmu {path}: fmiVersion {md.fmiVersion}; allowed: 2.0")
+    _require(md.fmiVersion in FMI_VERSIONS,
+             f"--fmu {path}: fmiVersion {md.fmiVersion}; allowed: "
+             f"{' or '.join(FMI_VERSIONS)}")
     _require(md.modelExchange is not None,
              f"--fmu {path}: no Model Exchange interface (Co-Simulation "
-             "only); allowed: an FMI 2.0 Model Exchange FMU")
-    _require(md.modelExchange.providesDirectionalDerivative,
-             f"--fmu {path}: providesDirectionalDerivative is not true; "
-             "allowed: an FMU that provides directional derivatives")
+             "only); allowed: an FMI 2.0 or 3.0 Model Exchange FMU")
     _require(md.derivatives, f"--fmu {path}: the FMU has no states")
     specs, starts, references = {}, {}, {}
     for v in md.modelVariables:
-        if v.causality != "parameter" or v.type != "Real" or \
+        if v.causality != "parameter" or v.type not in _REAL_TYPES or \
                 v.variability not in ("fixed", "tunable") or v.start is None:
             continue
         declared = v.declaredType
@@ -138,6 +149,8 @@ def _described(path, mtime):
     return FmuDescription(
         path=path, model_name=md.modelName, guid=md.guid,
         model_identifier=md.modelExchange.modelIdentifier,
+        fmi_version=md.fmiVersion,
+        directional=bool(md.modelExchange.providesDirectionalDerivative),
         states=tuple(s.valueReference for s in states),
         derivatives=tuple(d.variable.valueReference for d in md.derivatives),
         state_names=tuple(s.name for s in states), specs=specs,
@@ -151,8 +164,8 @@ def fmu_description(path):
     Raises
     ------
     FmuError
-        If the file is missing or not an FMI 2.0 Model Exchange FMU with
-        directional derivatives.
+        If the file is missing or not an FMI 2.0 or 3.0 Model Exchange
+        FMU.
     """
     path = Path(path)
     _require(path.is_file(), f"--fmu {path}: no such file; allowed: an "
@@ -166,7 +179,8 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
     Parameters
     ----------
     path : str or Path
-        FMI 2.0 Model Exchange FMU with directional derivatives.
+        FMI 2.0 or 3.0 Model Exchange FMU (with directional derivatives,
+        or read by central differences).
     values : dict, optional
         Parameters by name (SI); the others keep their start values.
     amplitude, frequency : str
@@ -206,22 +220,23 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
                              if n != amplitude), amplitude, step,
                        tuple(times))
     A, Ja, J2a = sampled["jacobians"]
+    zero = _ZERO if d.directional else _ZERO_DIFFERENCES
     _steady_slip(d, A[0], sampled["rate"], sampled["moved"],
-                 sampled["along"])
+                 sampled["along"], zero)
     A0 = A[0]
     B0 = (Ja[0] - A0) / step
     scale = max(np.abs(A0).max(), 1.0)
     bscale = max(np.abs(B0).max() * step, np.finfo(float).tiny)
     name = d.model_name
-    _require(np.abs(J2a - 2 * Ja + A).max() <= _ZERO * scale,
+    _require(np.abs(J2a - 2 * Ja + A).max() <= zero * scale,
              f"{name}: the Jacobian is not affine in {amplitude} (the dither "
              "amplitude multiplies the states nonlinearly); allowed: "
              "J = A0 + p_f cos(2 pi f t) B")
-    _require(np.abs(A - A0).max() <= _ZERO * scale,
+    _require(np.abs(A - A0).max() <= zero * scale,
              f"{name}: the Jacobian without dither changes with time; "
              "allowed: time enters through the dither only")
     shape = np.cos(2 * np.pi * f0 * times)[:, None, None]
-    _require(np.abs(Ja - A - step * shape * B0).max() <= _ZERO * max(
+    _require(np.abs(Ja - A - step * shape * B0).max() <= zero * max(
         bscale, scale),
              f"{name}: the dither does not enter as {amplitude}*cos(2*pi*"
              f"{frequency}*time); allowed: the paper's cosine dither")
@@ -239,7 +254,8 @@ def _sampled(path, mtime, values, amplitude, step, times):
     d = _described(path, mtime)
     sampled = sample_isolated(SampleJob(
         path=d.path, folder="", guid=d.guid,
-        model_identifier=d.model_identifier, states=d.states,
+        model_identifier=d.model_identifier, fmi_version=d.fmi_version,
+        directional=d.directional, states=d.states,
         derivatives=d.derivatives, references=d.references,
         values=dict(values), amplitude=amplitude,
         amplitudes=(0.0, step, 2 * step), times=times), FmuError)
@@ -248,21 +264,22 @@ def _sampled(path, mtime, values, amplitude, step, times):
     return sampled
 
 
-def _steady_slip(d, A0, rate, moved, along):
+def _steady_slip(d, A0, rate, moved, along, zero):
     """The start is a steady slip along which the Jacobian is fixed.
 
     As :func:`sources.modelica.linearize` checks it, with Jacobians
-    instead of expressions: a Jacobian that a generic move of the states
+    instead of expressions (residuals below ``zero`` relative count as
+    none): a Jacobian that a generic move of the states
     (``moved``) leaves unchanged is free of the states (the paper's
     linear clutch) and needs nothing more; otherwise ``A0 der(x) = 0``
     (no acceleration builds up) and the Jacobian one period further
     along the slip (``along``) must still be ``A0``.
     """
     size = max(np.abs(A0).max(), 1.0)
-    if np.abs(moved - A0).max() <= _ZERO * size:
+    if np.abs(moved - A0).max() <= zero * size:
         return
     check_no_acceleration(d.model_name, d.state_names, A0, rate, FmuError)
-    _require(np.abs(along - A0).max() <= _ZERO * size,
+    _require(np.abs(along - A0).max() <= zero * size,
              f"{d.model_name}: the linearisation changes along the slip; "
              "allowed: forces that depend on angles linearly")
 

@@ -74,8 +74,9 @@ def own_driveline_options(parser, fmu=True):
     # with its reason, but does not offer it in its --help
     group.add_argument(
         "--fmu", metavar="FILE.fmu",
-        help="an FMI 2.0 Model Exchange FMU that provides directional "
-             "derivatives: its state Jacobian is read over one dither "
+        help="an FMI 2.0 or 3.0 Model Exchange FMU: its state Jacobian "
+             "(directional derivatives, else central differences) is "
+             "read over one dither "
              "period at its start values; replaces --modelica "
              "(docs/fmu-path.md)" if fmu else argparse.SUPPRESS)
     group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
