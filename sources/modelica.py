@@ -127,6 +127,11 @@ class LinearPeriodicModel:
         Names of the dither amplitude and frequency parameters.
     source_kind : sources.kinds.SourceKind
         ``MODELICA`` or ``FMU``: where the Jacobian was read.
+    frequency_dependent : bool
+        ``A0`` or ``B`` change with the frequency parameter beyond the
+        dither's cosine (a valve's roll-off written with ``f_dither``):
+        the model holds at ``values[frequency]`` only, and a study at
+        another frequency must be linearised there.
     """
 
     class_name: str
@@ -138,6 +143,7 @@ class LinearPeriodicModel:
     amplitude: str
     frequency: str
     source_kind: SourceKind
+    frequency_dependent: bool = False
 
 
 @lru_cache(maxsize=16)
@@ -384,15 +390,18 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
                  f"{amplitude}*cos(2*pi*{frequency}*time); allowed: the "
                  "cosine of Sources.DitherPressure")
     _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p)
-
+    f = ode.parameters[names.index(frequency)].expression
+    frequency_dependent = bool(
+        casadi.depends_on(casadi.substitute(jac, pf, casadi.SX(0.0)), f)
+        or casadi.depends_on(casadi.substitute(d_pf, t, casadi.SX(0.0)), f))
     return linear_periodic_model(class_name,
                                  tuple(s.name for s in ode.states), A0, B0,
                                  values, amplitude, frequency,
-                                 SourceKind.MODELICA)
+                                 SourceKind.MODELICA, frequency_dependent)
 
 
 def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
-                          frequency, source_kind):
+                          frequency, source_kind, frequency_dependent=False):
     """The :class:`LinearPeriodicModel` of ``A0 + p_f cos(2 pi f t) B0``.
 
     Checks that the dither enters and reads the undamped ``w^2``; shared
@@ -410,6 +419,8 @@ def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
     amplitude, frequency : str
         Names of the dither amplitude and frequency parameters.
     source_kind : sources.kinds.SourceKind
+    frequency_dependent : bool
+        See :class:`LinearPeriodicModel`.
 
     Returns
     -------
@@ -425,7 +436,8 @@ def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
     return LinearPeriodicModel(
         class_name=name, state_names=state_names, A0=A0, B=B0,
         omega2=_undamped_omega2(A0, state_names), values=values,
-        amplitude=amplitude, frequency=frequency, source_kind=source_kind)
+        amplitude=amplitude, frequency=frequency, source_kind=source_kind,
+        frequency_dependent=frequency_dependent)
 
 
 def check_no_acceleration(name, state_names, A0, rate, error):

@@ -141,7 +141,7 @@ def floquet(driveline, freq_hz, p_f, method=None, form="reduced"):
     --------
     Inside tongue 2 of Fig. 14, near its tip at f2 = 102.9 Hz:
 
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> from stability import build_driveline
     >>> r = floquet(build_driveline(get_preset("paper-4dof")), 102.9, 0.3e5)
     >>> r.kind, round(r.leading_abs, 4)

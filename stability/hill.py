@@ -197,7 +197,7 @@ def real_boundaries(transfer, freq_hz, multiplier, harmonics=HARMONICS):
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> from stability import build_driveline
     >>> g = modal_transfer(build_driveline(get_preset("paper-4dof"))
     ...                    .periodic_system())

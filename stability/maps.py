@@ -91,7 +91,7 @@ def stability_map(driveline, freq_hz, p_f, method=DEFAULT_METHOD,
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> from stability import build_driveline
     >>> m = stability_map(build_driveline(get_preset("paper-4dof")),
     ...                   [37.9, 60.0, 102.9], [0.0, 0.5e5])

@@ -27,7 +27,7 @@ def natural_frequencies(driveline):
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> from stability import build_driveline
     >>> natural_frequencies(build_driveline(get_preset("paper-4dof"))).round(3)
     array([ 18.939, 102.884])

@@ -91,7 +91,7 @@ class PeriodicSystem:
 
         Examples
         --------
-        >>> from drivelines import get_preset
+        >>> from sources import get_preset
         >>> from stability import build_driveline
         >>> s = build_driveline(get_preset("paper-4dof")).periodic_system()
         >>> bool(np.allclose(s.shifted(2.0).A0, s.A0 - 2 * np.eye(6)))

@@ -52,7 +52,7 @@ class ModelSource(Protocol):
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> d = build_driveline(get_preset("paper-4dof"))
     >>> isinstance(d, ModelSource), d.kind.is_chain
     (True, True)
@@ -165,7 +165,7 @@ def build_driveline(params):
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> build_driveline(get_preset("paper-4dof")).names
     ('1', '2', '4', '3')
     """

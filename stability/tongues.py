@@ -73,7 +73,8 @@ from .waveforms import waveform_of
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS", "SOLVERS",
            "DEFAULT_SOLVER", "get_solver", "lowest_boundaries",
            "hill_boundary_amplitudes", "tongue_boundaries", "kind_boundary",
-           "kind_boundaries", "lowest_of_kinds", "find_tongues", "resonances"]
+           "kind_boundaries", "lowest_of_kinds", "find_tongues", "resonances",
+           "higher_order_resonances", "resonance_of"]
 
 #: Harmonics kept on each side in Hill's matrix; the boundary amplitudes
 #: of the paper's model are converged to machine precision from about 4.
@@ -368,7 +369,7 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> from stability import build_driveline
     >>> b = tongue_boundaries(build_driveline(get_preset("paper-4dof")),
     ...                       [100.0], 1e5)
@@ -426,6 +427,60 @@ def resonances(natural_frequencies_hz):
     return out
 
 
+def higher_order_resonances(natural_frequencies_hz):
+    """Resonances of higher order: ``(None, label, hz, kind code)``.
+
+    A mode of frequency ``f_i`` is excited parametrically at ``2 f_i /
+    k`` with the multiplier ``(-1)^k`` (Mathieu's tongues; k = 1, 2 are
+    Fig. 14's ``2f_i`` and ``f_i``): here k = 3 (double-period,
+    ``2f1/3``) and k = 4 (single-period, ``f1/2``). Two modes are excited
+    at ``(f_j -+ f_i) / k``, complex multipliers (combination): here k =
+    2 and 3. They carry no number of Fig. 14.
+    """
+    f = np.sort(np.asarray(natural_frequencies_hz, dtype=float))
+    out = [(None, f"2f{i + 1}/3", 2 * fi / 3, Kind.DOUBLE_PERIOD)
+           for i, fi in enumerate(f)]
+    out += [(None, f"f{i + 1}/2", fi / 2, Kind.SINGLE_PERIOD)
+            for i, fi in enumerate(f)]
+    for k in (2, 3):
+        for (i, fi), (j, fj) in itertools.combinations(enumerate(f), 2):
+            out += [(None, f"(f{j + 1}-f{i + 1})/{k}", (fj - fi) / k,
+                     Kind.COMBINATION),
+                    (None, f"(f{i + 1}+f{j + 1})/{k}", (fi + fj) / k,
+                     Kind.COMBINATION)]
+    return out
+
+
+def resonance_of(tip_hz, kind, natural_frequencies_hz):
+    """The resonance a tongue of ``kind`` tipped at ``tip_hz`` grows from.
+
+    The nearest of its kind among :func:`resonances` and
+    :func:`higher_order_resonances`, within :data:`_LABEL_TOLERANCE`
+    relative (the first order where two are as near).
+
+    Returns
+    -------
+    tuple
+        ``(number, label, hz, kind)``; ``(None, None, None, kind)`` when
+        none is near.
+
+    Examples
+    --------
+    >>> resonance_of(65.2, Kind.COMBINATION, [30.0, 100.0])[1]
+    '(f1+f2)/2'
+    >>> resonance_of(68.0, Kind.DOUBLE_PERIOD, [18.9, 102.9])[1]
+    '2f2/3'
+    """
+    candidates = [r for r in resonances(natural_frequencies_hz)
+                  + higher_order_resonances(natural_frequencies_hz)
+                  if r[3] == kind and r[2] > 0]
+    best = min(candidates, key=lambda r: abs(r[2] - tip_hz) / r[2],
+               default=None)
+    if best is None or abs(best[2] - tip_hz) > _LABEL_TOLERANCE * best[2]:
+        return (None, None, None, kind)
+    return best
+
+
 @dataclass(frozen=True)
 class Tongue:
     """One instability tongue and its tip.
@@ -433,12 +488,14 @@ class Tongue:
     Attributes
     ----------
     number : int or None
-        Number as in Fig. 14; None when the tongue is far from every
-        first-order resonance of its kind.
+        Number as in Fig. 14; None when it grows from a resonance of
+        higher order (:func:`higher_order_resonances`) or from none.
     kind : str
         ``'single-period'``, ``'double-period'`` or ``'combination'``.
     resonance : str or None
-        ``'f2'``, ``'2f1'``, ``'f2-f1'``, ... the resonance it grows from.
+        ``'f2'``, ``'2f1'``, ``'f2-f1'``, ``'2f2/3'``, ``'(f1+f2)/2'``,
+        ... the resonance it grows from (:func:`resonance_of`); None when
+        none of its kind is near.
     resonance_hz : float or None
     tip_freq_hz : float
         Frequency of the lowest boundary point, Hz (refined by Brent's
@@ -510,7 +567,6 @@ def find_tongues(driveline, boundaries):
     """
     system = driveline.periodic_system().shifted(boundaries.min_growth)
     f = boundaries.freq_hz
-    table = resonances(boundaries.natural_frequencies_hz)
     found = []
     engine = get_method(boundaries.method)
     curves = kind_boundaries(system, boundaries.p_max, boundaries.solver,
@@ -527,11 +583,8 @@ def find_tongues(driveline, boundaries):
             error = (_multiplier_error(engine(system, tip_f, boundaries.p_max),
                                        tip_p, kind)
                      if boundaries.checked else float("nan"))
-            candidates = [r for r in table if r[3] == kind]
-            best = min(candidates, key=lambda r: abs(r[2] - tip_f),
-                       default=None)
-            if best is None or abs(best[2] - tip_f) > _LABEL_TOLERANCE * best[2]:
-                best = (None, None, None, kind)
+            best = resonance_of(tip_f, kind,
+                                boundaries.natural_frequencies_hz)
             found.append(Tongue(
                 number=best[0], kind=kind.label, resonance=best[1],
                 resonance_hz=best[2], tip_freq_hz=float(tip_f),

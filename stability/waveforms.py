@@ -221,7 +221,7 @@ class Dithered:
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> from stability import build_driveline
     >>> d = Dithered(build_driveline(get_preset("paper-4dof")),
     ...              FilteredSquare(0.0))

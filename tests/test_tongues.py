@@ -8,8 +8,9 @@ from sources import get_preset
 from infra.errors import JudderError
 from stability import KINDS, build_driveline, floquet, natural_frequencies
 from stability.monodromy import monodromy_solve_ivp
+from stability.kinds import Kind
 from stability.tongues import (find_tongues, hill_boundary_amplitudes,
-                               tongue_boundaries)
+                               resonance_of, tongue_boundaries)
 
 BAR = 1e5
 GRID = np.linspace(10.0, 220.0, 211)
@@ -168,3 +169,28 @@ def test_growth_boundary_is_where_the_exponent_reaches_the_rate(paper4,
             growth, abs=1e-6)
     stable = tongue_boundaries(paper4, freqs, 1.5e5)
     assert np.all(b.amplitude[:, 0] > stable.amplitude[:, 0])
+
+
+def test_a_tongue_of_higher_order_is_labelled(paper4):
+    # up to 3 bar the paper's 4-DOF driveline has a double-period tongue
+    # at 2 f2 / 3 (68.6 Hz, Mathieu's third tongue of mode 2): labelled,
+    # without a number of Fig. 14
+    freqs = np.linspace(64.0, 72.0, 33)
+    boundaries = tongue_boundaries(paper4, freqs, 3 * BAR)
+    tongue, = find_tongues(paper4, boundaries)
+    f2 = natural_frequencies(paper4)[1]
+    assert tongue.kind == "double-period"
+    assert tongue.resonance == "2f2/3" and tongue.number is None
+    assert tongue.resonance_hz == pytest.approx(2 * f2 / 3, rel=1e-12)
+    assert tongue.tip_freq_hz == pytest.approx(2 * f2 / 3, rel=0.03)
+
+
+def test_the_nearest_resonance_of_the_kind_names_a_tongue():
+    # f1 = 30, f2 = 100 Hz: a combination tongue tipped at 65.2 Hz grows
+    # from (f1 + f2) / 2 = 65 Hz, not from f2 - f1 = 70 Hz (7 % away, once
+    # taken for it); one at 69.5 Hz from f2 - f1, tongue 5 of Fig. 14
+    assert resonance_of(65.2, Kind.COMBINATION, [30.0, 100.0])[:3] == \
+        (None, "(f1+f2)/2", 65.0)
+    assert resonance_of(69.5, Kind.COMBINATION, [30.0, 100.0])[:3] == \
+        (5, "f2-f1", 70.0)
+    assert resonance_of(20.0, Kind.SINGLE_PERIOD, [30.0, 100.0])[1] is None

@@ -58,7 +58,7 @@ def evaluated(params, added=()):
 
     Examples
     --------
-    >>> from drivelines import get_preset
+    >>> from sources import get_preset
     >>> evaluated(get_preset("paper-4dof"), (("c1", 2000.0),))["c1"]
     2000.1
     """
