@@ -42,7 +42,8 @@ from fmpy import read_model_description
 from infra.errors import JudderError
 
 from .fmu_host import SampleJob, sample_isolated
-from .modelica import (NamedParameters, check_no_acceleration, checked_values,
+from .modelica import (OTHER_FREQUENCY, NamedParameters,
+                       check_no_acceleration, checked_values,
                        linear_periodic_model)
 from .kinds import SourceKind
 from drivelines.specs import ParameterSpec
@@ -240,8 +241,27 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
         bscale, scale),
              f"{name}: the dither does not enter as {amplitude}*cos(2*pi*"
              f"{frequency}*time); allowed: the paper's cosine dither")
-    return linear_periodic_model(name, d.state_names, A0, B0, values,
-                                 amplitude, frequency, SourceKind.FMU)
+    return linear_periodic_model(
+        name, d.state_names, A0, B0, values, amplitude, frequency,
+        SourceKind.FMU, _frequency_dependent(d, values, amplitude,
+                                             frequency, step, A0, B0, zero))
+
+
+def _frequency_dependent(d, values, amplitude, frequency, step, A0, B0,
+                         zero):
+    """Whether ``A0`` or ``B0`` change with the frequency parameter beyond
+    the dither's cosine: the Jacobian read again at t = 0 with the
+    frequency at :data:`OTHER_FREQUENCY` times its value."""
+    other = dict(values)
+    other[frequency] = values[frequency] * OTHER_FREQUENCY
+    A, Ja, _ = _sampled(d.path, Path(d.path).stat().st_mtime_ns,
+                        tuple((n, v) for n, v in other.items()
+                              if n != amplitude), amplitude, step,
+                        (0.0,))["jacobians"]
+    scale = max(np.abs(A0).max(), 1.0)
+    return bool(np.abs(A[0] - A0).max() > zero * scale
+                or np.abs((Ja[0] - A[0]) / step - B0).max()
+                > zero * max(np.abs(B0).max(), np.finfo(float).tiny))
 
 
 @lru_cache(maxsize=8)

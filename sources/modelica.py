@@ -288,6 +288,12 @@ def _linearized(class_name, library, values, amplitude, frequency):
     return linearize(class_name, library, dict(values), amplitude, frequency)
 
 
+#: Ratio of the second value of the frequency parameter at which ``A0``
+#: and ``B`` are read, to tell whether they depend on it beyond the
+#: dither's cosine (:attr:`LinearPeriodicModel.frequency_dependent`).
+OTHER_FREQUENCY = 0.8
+
+
 def _require(condition, message):
     if not condition:
         raise ModelicaError(message)
@@ -390,10 +396,15 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
                  f"{amplitude}*cos(2*pi*{frequency}*time); allowed: the "
                  "cosine of Sources.DitherPressure")
     _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p)
-    f = ode.parameters[names.index(frequency)].expression
+    # A0 and B read again with another value of the frequency parameter
+    other = vector.copy()
+    other[names.index(frequency)] *= OTHER_FREQUENCY
+    other_mean = other.copy()
+    other_mean[names.index(amplitude)] = 0.0
     frequency_dependent = bool(
-        casadi.depends_on(casadi.substitute(jac, pf, casadi.SX(0.0)), f)
-        or casadi.depends_on(casadi.substitute(d_pf, t, casadi.SX(0.0)), f))
+        np.abs(evaluate(0.0, other_mean)[0] - A0).max() > _ZERO * scale
+        or np.abs(evaluate(0.0, other)[1] - B0).max()
+        > _ZERO * max(np.abs(B0).max(), 1e-300))
     return linear_periodic_model(class_name,
                                  tuple(s.name for s in ode.states), A0, B0,
                                  values, amplitude, frequency,
