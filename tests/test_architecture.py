@@ -151,6 +151,37 @@ def test_plots_import_no_kernel(folder):
                 f"{path.relative_to(ROOT)} imports {name}"
 
 
+#: Calls that make a figure or axes: a command delegates them to
+#: judder/figures or stability/plots.
+DRAWING_CALLS = {"subplots", "subplot", "figure", "add_subplot", "add_axes",
+                 "subplot_mosaic"}
+
+
+def _drawing_calls(path):
+    """``plt.subplots(...)``-like calls of one file: on ``plt``/``pyplot``
+    any of :data:`DRAWING_CALLS`, on anything ``add_subplot``/``add_axes``."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        if not (isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Attribute)
+                and node.func.attr in DRAWING_CALLS):
+            continue
+        owner = node.func.value
+        if (isinstance(owner, ast.Name) and owner.id in ("plt", "pyplot")) \
+                or node.func.attr in ("add_subplot", "add_axes"):
+            found.append(f"{path.relative_to(ROOT)}:{node.lineno}")
+    return found
+
+
+def test_no_command_draws_its_own_figure():
+    drawn = [call for path in sorted((ROOT / "judder" / "commands")
+                                     .glob("*.py"))
+             for call in _drawing_calls(path)]
+    assert not drawn
+    # the check sees a figure drawn where figures live
+    assert _drawing_calls(ROOT / "judder" / "figures" / "threshold.py")
+
+
 def test_no_model_name_branches_outside_the_registry():
     # knowledge of each driveline lives in drivelines/registry.py only
     for package in ALLOWED:
