@@ -330,9 +330,10 @@ def test_crosscheck_fmu_of_the_rank_two_class_against_its_floquet_rates():
     # runs, w_in 1 rad/s apart) grows at the Floquet exponent of the
     # system linearised from the same class
     from drivelines.modelica import ModelicaParameters
-    from judder.crosscheck import crosscheck
+    from judder.crosscheck import crosscheck_study
     params = ModelicaParameters("Judder.Examples.Driveline4DOFTwoClutches")
-    check = crosscheck(params, [105.0], [0.1 * BAR, 0.5 * BAR], workers=1)
+    check = crosscheck_study(params, [105.0], [0.1 * BAR, 0.5 * BAR],
+                             workers=1)
     assert [p.floquet_kind for p in check.points] == ["stable",
                                                       "single-period"]
     assert all(p.agree for p in check.points)

@@ -18,7 +18,7 @@ from ._arguments import force_option, min_growth_option, model_options
 from ._common import check_names, resolve, structural_names
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
-from ._preflight import check_settings, check_work
+from ._preflight import check_settings_time, check_work
 from ._records import finite_or_none, rows_to_csv
 from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, NameList, Settings,
                       check_amplitudes)
@@ -107,7 +107,7 @@ def _settings(args, parameters):
                               "freq_hz and p_f_bar; allowed: no empty cells")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
-        check_settings(len(freqs), parameters)
+        check_settings_time(len(freqs), parameters)
         check_work(f"--table {args.table}", len(freqs), "settings")
         low, high = FREQ_RANGE_HZ
         for row, f in enumerate(freqs, start=2):
@@ -121,7 +121,7 @@ def _settings(args, parameters):
     freqs, amplitudes = args.freq, args.pf
     # the time first (it says what to change); then, with the time limit
     # raised, the count (the pairs of 1e10 settings would not fit)
-    check_settings(len(freqs) * len(amplitudes), parameters)
+    check_settings_time(len(freqs) * len(amplitudes), parameters)
     check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]
