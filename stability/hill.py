@@ -112,15 +112,14 @@ class ModalTransfer:
     def __call__(self, s):
         """``G`` at the complex points ``s`` (any shape), shape
         ``s.shape + (r, r)``."""
-        s = np.asarray(s, dtype=complex)
-        return np.tensordot(1 / (s[..., None] - self.poles), self.residues,
-                            axes=1)
+        s = np.asarray(s, dtype=complex)[..., None, None, None]
+        return (self.residues / (s - self.poles[:, None, None])).sum(axis=-3)
 
     def derivative(self, s):
         """``dG/ds`` at ``s``, shape ``s.shape + (r, r)``."""
-        s = np.asarray(s, dtype=complex)
-        return -np.tensordot(1 / (s[..., None] - self.poles) ** 2,
-                             self.residues, axes=1)
+        s = np.asarray(s, dtype=complex)[..., None, None, None]
+        return -(self.residues
+                 / (s - self.poles[:, None, None]) ** 2).sum(axis=-3)
 
     def oscillating_poles(self):
         """Poles with positive imaginary part (the vibration modes), by
@@ -191,6 +190,49 @@ def _hill_matrices(transfer, freq_hz, k):
         len(freq_hz), size * rank, size * rank)
 
 
+def _half_spectrum(gains):
+    """``mu^2`` of ``H = diag(gains) S / 2``, shape (..., ceil(n/2)).
+
+    ``H`` maps even harmonics to odd ones and back, so ``H^2`` restricted
+    to the even ones holds every ``mu^2``; it is tridiagonal, with
+    ``h_{2r} (h_{2r-1} + h_{2r+1})`` on the diagonal and ``h_{2r}
+    h_{2r+-1}`` beside it (``h = gains / 2``).
+    """
+    half = 0.5 * gains
+    n = half.shape[-1]
+    m = (n + 1) // 2
+    padded = np.zeros(half.shape[:-1] + (2 * m + 1,), dtype=complex)
+    padded[..., 1:n + 1] = half               # padded[i + 1] = h_i
+    even, before, after = (padded[..., 1:2 * m:2], padded[..., 0:2 * m - 1:2],
+                           padded[..., 2:2 * m + 1:2])
+    square = np.zeros(half.shape[:-1] + (m, m), dtype=complex)
+    rows = np.arange(m)
+    square[..., rows, rows] = even * (before + after)
+    square[..., rows[:-1], rows[1:]] = (even * after)[..., :-1]
+    square[..., rows[1:], rows[:-1]] = (even * before)[..., 1:]
+    return np.linalg.eigvals(square)
+
+
+def _tridiagonal_boundaries(transfer, freq_hz, multiplier, harmonics):
+    """:func:`real_boundaries` of the rank-one cosine, shape (nf, h + 1).
+
+    Its Hill matrix ``diag(G(ik omega)) S / 2`` is tridiagonal with a zero
+    diagonal: the eigenvalues come in pairs ``+-mu``, one ``mu^2`` per
+    pair from :func:`_half_spectrum`, a problem half the size.
+    """
+    omega = 2 * np.pi * freq_hz
+    k = _harmonics(multiplier, harmonics)
+    # a harmonic with zero gain decouples exactly: both kinds one size
+    gains = np.zeros((len(omega), 2 * harmonics + 2), dtype=complex)
+    gains[:, :len(k)] = transfer(1j * omega[:, None] * k[None, :])[..., 0, 0]
+    mu2 = _half_spectrum(gains)
+    real = ((np.abs(mu2.imag) <= _REAL_TOLERANCE * np.abs(mu2))
+            & (mu2.real > 0))
+    with np.errstate(divide="ignore"):
+        amplitude = np.where(real, 1.0 / np.sqrt(np.abs(mu2.real)), np.nan)
+    return np.sort(amplitude, axis=-1)
+
+
 def real_boundaries(transfer, freq_hz, multiplier=1, harmonics=None):
     """Amplitudes where a multiplier equals +1 or -1, every frequency at once.
 
@@ -207,6 +249,13 @@ def real_boundaries(transfer, freq_hz, multiplier=1, harmonics=None):
         Harmonics kept on each side; default the waveform's
         ``hill_harmonics`` (a square wave's harmonics decay slowly and
         need more), else :data:`HARMONICS`.
+
+    Notes
+    -----
+    The eigenvalues of Hill's matrix of every frequency are found in one
+    batched call; for the rank-one cosine (the paper's chains) that
+    matrix is tridiagonal and the eigenproblem is halved
+    (:func:`_tridiagonal_boundaries`).
 
     Returns
     -------
@@ -230,7 +279,13 @@ def real_boundaries(transfer, freq_hz, multiplier=1, harmonics=None):
     # the double-period set has one harmonic more: pad with NaN
     width = (2 * harmonics + 2) * transfer.residues.shape[-1]
     amplitude = np.full((len(kinds), len(freq_hz), width), np.nan)
+    tridiagonal = (transfer.residues.shape[-1] == 1
+                   and isinstance(transfer.waveform, Cosine))
     for row, m in enumerate(kinds):
+        if tridiagonal:
+            found = _tridiagonal_boundaries(transfer, freq_hz, m, harmonics)
+            amplitude[row, :, :found.shape[-1]] = found
+            continue
         lam = np.linalg.eigvals(
             _hill_matrices(transfer, freq_hz, _harmonics(m, harmonics)))
         real = ((np.abs(lam.imag) <= _REAL_TOLERANCE * np.abs(lam))
