@@ -3,6 +3,7 @@ time, and the driveline registry as the one place that knows each model."""
 
 import ast
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -180,6 +181,23 @@ def test_no_command_draws_its_own_figure():
     assert not drawn
     # the check sees a figure drawn where figures live
     assert _drawing_calls(ROOT / "judder" / "figures" / "threshold.py")
+
+
+@pytest.mark.parametrize("folder, mention", [
+    ("infra", ":mod:`infra.{}`"), ("judder/commands", "``{}``")])
+def test_package_docstring_names_every_shared_module(folder, mention):
+    # infra lists all its modules; judder.commands its shared _-modules
+    doc = ast.get_docstring(ast.parse((ROOT / folder / "__init__.py")
+                                      .read_text()))
+    modules = [path.stem for path in sorted((ROOT / folder).glob("*.py"))
+               if path.stem != "__init__"
+               and (folder == "infra" or path.stem.startswith("_"))]
+    assert modules
+    missing = [m for m in modules if mention.format(m) not in doc]
+    assert not missing
+    named = set(re.findall(r"``(_[a-z_]+)``", doc)) if folder != "infra" \
+        else set(re.findall(r":mod:`infra\.([a-z_]+)`", doc))
+    assert named <= set(modules), named - set(modules)
 
 
 def test_no_model_name_branches_outside_the_registry():

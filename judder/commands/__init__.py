@@ -18,10 +18,12 @@ command module: ``judder --help`` lists the commands from this table
 alone, and ``judder map`` imports the map's module only.
 
 Modules whose names start with ``_`` are shared by the commands: option
-groups and value parsers (``_arguments``, ``_values``), the model the
-options select (``_options``, ``_common``), preflight estimates
-(``_preflight``), outputs (``_output``) and records (``_records``), the
-emulated bench (``_bench``).
+groups and value parsers (``_arguments``, ``_values``), the parameter set
+the model options select (``_model``), what the API functions share (the
+set with its changes and the dithered driveline, ``_common``), preflight
+estimates (``_preflight``), outputs (``_output``) and records
+(``_records``), the ``--bench`` values (``_bench``), and the sections of
+``judder report`` (``_report_sections``).
 """
 
 from dataclasses import dataclass
