@@ -60,9 +60,9 @@ __all__ = ["ModalTransfer", "applies", "modal_transfer", "real_boundaries",
 #: Harmonics kept on each side for the single- and double-period
 #: boundaries of a waveform without its own ``hill_harmonics``: 10 to 220
 #: Hz on the paper's model, the lowest boundary up to 1.5 bar differs from
-#: 14 harmonics by 1e-9 relative with 6, 1e-14 with 8, and from the exact
-#: boundary of the monodromy by at most 2e-12 with 7 up to 11 bar
-#: (tests/test_tongues.py).
+#: 14 harmonics by 1e-9 relative with 6, 1e-14 with 8; with 7 it is
+#: within 6e-13 of the exact boundary of the monodromy up to 1.5 bar, and
+#: 6e-11 at 11 bar (200 Hz; tests/test_tongues.py).
 HARMONICS = 7
 #: Harmonics kept on each side for the combination boundaries (same
 #: test: 1e-10 with 4, 1e-14 with 6).
