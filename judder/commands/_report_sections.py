@@ -428,7 +428,7 @@ def engagement_section(page, run, paper):
 
 
 def fit_section(bench, names, values, method, workers, source):
-    """Section 6: the fit to the bench data, shown only when the data
+    """The fit to the bench data, shown only when the data
     determine every fitted value (else one sentence saying why not).
 
     Returns the section's HTML, its data (``fit``, ``fit_determined``,
