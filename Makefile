@@ -43,7 +43,7 @@ windows:
 bench: setup
 	$(BIN)/python benchmarks/bench.py
 
-# FMUs of the Modelica examples (FMI 2.0 ME+CS and FMI 3.0 ME) under
+# FMUs of the Modelica examples (FMI 2.0 and FMI 3.0, ME+CS each) under
 # build/fmu; rebuilt only when the library or the compiler changed.
 MO_SOURCES := $(shell find modelica -name '*.mo' -o -name package.order)
 FMU_COMPILER := $(wildcard fmu/*.py fmu/c/*.c fmu/c/*.h)

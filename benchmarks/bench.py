@@ -18,7 +18,7 @@ from threadpoolctl import threadpool_limits
 from drivelines import get_model
 from sources import get_preset
 from stability import build_driveline
-from stability.floquet import leading_multipliers
+from stability.multipliers import leading_multipliers
 from stability.maps import stability_map
 from stability.monodromy import monodromy_solve_ivp
 from stability.tongues import find_tongues, tongue_boundaries

@@ -1,8 +1,12 @@
 """Infrastructure every package of the project uses, and nothing else.
 
 :mod:`infra.errors`
-    The exceptions for bad input and the exit-code contract of every
-    command line (``judder`` and ``python -m fmu``).
+    The exceptions for bad input, the check of a number a user gives and
+    the exit codes.
+:mod:`infra.contract`
+    The exit-code contract of every command line (``judder`` and
+    ``python -m fmu``): what escapes a command becomes an exit status
+    and one line on stderr.
 :mod:`infra.files`
     Atomic output: a result file is complete or absent, never partial.
 :mod:`infra.units`
@@ -10,15 +14,27 @@
     and the factors between SI and the units engineers read (bar, rpm).
 :mod:`infra.quantities`
     Numbers the user types, with or without a unit.
+:mod:`infra.numbers`
+    Numbers as an engineer reads them: a value with the digits its
+    uncertainty supports.
+:mod:`infra.environment`
+    Settings given through the environment (time limits), read with one
+    rule.
 :mod:`infra.parallel`
-    The executor that runs independent jobs on all cores.
+    The executor that runs independent jobs on Dask (all cores, or an
+    existing cluster).
 :mod:`infra.children`
     One job in a child process (compiled code that may crash or hang).
+:mod:`infra.lifecycle`
+    Worker processes that die with their parent and clean up on the way.
 :mod:`infra.memory`
     How much memory this process may still use.
 :mod:`infra.criteria`
     When an oscillation is judder: the growth rate, the NVH limit and the
     mechanisms.
+:mod:`infra.plotstyle`
+    The look every plot shares (imports matplotlib; only plotting modules
+    import it).
 
 This package imports no other package of the project: ``fmu``,
 ``drivelines``, ``stability``, ``pysim`` and the ``judder`` application

@@ -23,8 +23,9 @@ from infra.quantities import parse_quantity
 from infra.units import UNITS
 
 __all__ = ["BenchParameter", "bench_fmu", "bench_parameters", "parse_bench",
-           "check_bench", "refuse_bench_of_class", "bench_damping", "added_damping",
-           "operating_friction", "linear_validity", "engagement_model"]
+           "check_bench", "refuse_bench_of_class", "bench_damping",
+           "added_damping", "operating_friction", "linear_validity",
+           "engagement_model"]
 
 #: Parameters of the bench class that are the dither's, set by
 #: ``--freq`` and ``--pf``, not by ``--bench``.

@@ -20,13 +20,13 @@ from infra.errors import JudderError
 from infra.parallel import parallel_map
 from pysim.simulation.runs import parameter_default, run_fmu
 from pysim.analysis.signals import free_response_growth
-from stability.floquet import floquet
+from stability.multipliers import floquet
 from stability.source import build_driveline
 from stability.monodromy import DEFAULT_METHOD, get_method
 
 from .timedomain import class_fmu, run_values
 
-__all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck"]
+__all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck_study"]
 
 #: Samples per dither period in the runs.
 SAMPLES_PER_PERIOD = 16
@@ -148,8 +148,9 @@ def _fmu_and_speeds(params, perturb):
     return fmu_path, tuple(params.speed_states)
 
 
-def crosscheck(params, freq_hz, p_f, duration=3.0, method=DEFAULT_METHOD,
-               workers=None, callback=None, perturb="w_in"):
+def crosscheck_study(params, freq_hz, p_f, duration=3.0,
+                     method=DEFAULT_METHOD, workers=None, callback=None,
+                     perturb="w_in"):
     """Run the FMU over a grid and compare with the Floquet exponents.
 
     Parameters

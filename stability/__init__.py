@@ -14,7 +14,7 @@ Where things are:
 * top level, the Floquet core: :mod:`~stability.model` and
   :mod:`~stability.linear` (the periodic systems), :mod:`~stability.waveforms`,
   :mod:`~stability.modal`, :mod:`~stability.monodromy` (the engines),
-  :mod:`~stability.floquet`, :mod:`~stability.hill`, :mod:`~stability.kinds`,
+  :mod:`~stability.multipliers`, :mod:`~stability.hill`, :mod:`~stability.kinds`,
   :mod:`~stability.maps`, :mod:`~stability.tongues`,
   :mod:`~stability.sensitivity`, :mod:`~stability.threshold`,
   :mod:`~stability.friction`;
@@ -31,7 +31,7 @@ Importing this package does not import matplotlib; only
 :mod:`stability.plots` does.
 """
 
-from .floquet import FloquetResult, floquet
+from .multipliers import FloquetResult, floquet
 from .kinds import KINDS, Kind, classify
 from .maps import StabilityMap, stability_map
 from .modal import (clutch_damper_damping_factor, closed_form_frequencies,

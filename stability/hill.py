@@ -1,41 +1,48 @@
 r"""Tongue boundaries of all kinds by Hill's method, vectorised over frequency.
 
-The modulation of Eq. (7) has rank one, :math:`p_f\cos\omega t\,u v^T`.
-A Floquet solution :math:`z = e^{st}\sum_k c_k e^{ik\omega t}` projected on
-the modulated channel :math:`w_k = v^T c_k` obeys
+Eq. (7) is :math:`\dot z = (A_0 + p_f\, c(\omega t)\, U V^T) z`, with the
+dither's waveform :math:`c` (:mod:`stability.waveforms`; the paper's
+cosine has :math:`c_{\pm1} = 1/2`) and a modulation :math:`U V^T` of rank
+``r`` (one for the paper's chains, more for a driveline compiled from
+Modelica, :class:`~stability.model.ModulatedSystem`). A Floquet solution
+:math:`z = e^{st}\sum_k c_k e^{ik\omega t}` projected on the modulated
+channels :math:`w_k = V^T c_k` obeys
 
-.. math:: w_k = \tfrac{p_f}{2}\, G(s + ik\omega)\,(w_{k-1} + w_{k+1}),
-          \qquad G(s) = v^T (sI - A_0)^{-1} u,
+.. math:: w_k = p_f\, G(s + ik\omega) \sum_n c_n w_{k-n},
+          \qquad G(s) = V^T (sI - A_0)^{-1} U,
 
-so the Floquet exponents at amplitude :math:`p_f` are the zeros of the
-determinant :math:`F(p_f, s) = \det(I - p_f H(s))` of the tridiagonal
-matrix :math:`H(s) = \tfrac12 \operatorname{diag}(G(s + ik\omega)) S`
-(``S`` has ones next to the diagonal). A boundary is a multiplier
-:math:`e^{sT}` on the unit circle, :math:`s = i\nu`:
+so the Floquet exponents at amplitude :math:`p_f` are the zeros of
+:math:`F(p_f, s) = \det(I - p_f H(s))`, with the Hill matrix :math:`H(s)`
+of blocks :math:`G(s + ik\omega)\, c_{k-l}`. Projecting on :math:`w_k`
+removes exactly the infinite eigenvalues that the singular (rank ``r``)
+modulation gives the unprojected block problem. A boundary is a
+multiplier :math:`e^{sT}` on the unit circle, :math:`s = i\nu`:
 
-* single-period (multiplier +1): :math:`\nu = 0`, and :math:`1/p_f` is a real
-  eigenvalue of :math:`H(0)`;
+* single-period (multiplier +1): :math:`\nu = 0`, and :math:`1/p_f` is a
+  real eigenvalue of :math:`H(0)` (:func:`real_boundaries`);
 * double-period (-1): :math:`\nu = \omega/2`, the same with half-integer
   harmonics;
-* combination (a complex pair :math:`e^{\pm i\nu T}`): :math:`\nu` is a
-  second unknown. :math:`F(p_f, i\nu) = 0` is two real equations in the
-  two real unknowns :math:`(p_f, \nu)`, solved by Newton's method from
-  seeds at the first-order combination resonances
-  :math:`\omega \approx \omega_i \pm \omega_j` (where the exponents
-  :math:`i\omega_i` and :math:`\pm i\omega_j - i\omega` meet).
-  A lightly damped pole of :math:`G` close to the axis makes :math:`F`
-  steep in :math:`\nu`, so Newton runs on :math:`F` times a factor that
-  moves every pole of :math:`G` away from the axis (same zeros on the
-  axis), and points of narrow tongues where it still fails from the seed
-  are found by continuation in frequency from a converged neighbour.
+* combination (a complex pair :math:`e^{\pm i\nu T}`), for the rank-one
+  cosine (:func:`applies`): :math:`\nu` is a second unknown.
+  :math:`H` is then :math:`\tfrac12 \operatorname{diag}(G(s + ik\omega))
+  S` (``S`` has ones next to the diagonal), and :math:`F(p_f, i\nu) = 0`
+  is two real equations in the two real unknowns :math:`(p_f, \nu)`,
+  solved by Newton's method (:func:`combination_boundaries`) from seeds at
+  the first-order combination resonances :math:`\omega \approx \omega_i
+  \pm \omega_j` (where the exponents :math:`i\omega_i` and :math:`\pm
+  i\omega_j - i\omega` meet). A lightly damped pole of :math:`G` close to
+  the axis makes :math:`F` steep in :math:`\nu`, so Newton runs on
+  :math:`F` times a factor that moves every pole of :math:`G` away from
+  the axis (same zeros on the axis), and points of narrow tongues where it
+  still fails from the seed are found by continuation in frequency from a
+  converged neighbour. With the tridiagonal :math:`H` the determinant is
+  a three-term recurrence in :math:`p_f^2`.
 
-:math:`H` has a zero diagonal, so its eigenvalues come in pairs
-:math:`\pm\mu` and :math:`\mu^2` are the eigenvalues of a matrix half the
-size, and the determinant is a three-term recurrence in :math:`p_f^2`.
-:math:`G` is a sum of poles, :math:`G(s) = \sum_i r_i / (s - \lambda_i)`
-with the eigenvalues :math:`\lambda_i` of :math:`A_0`, so all of it is
-evaluated for every frequency at once, with no per-frequency propagator.
-The monodromy (:mod:`stability.monodromy`) stays the independent check.
+:math:`G` is a sum of poles, :math:`G(s) = \sum_i R_i / (s - \lambda_i)`
+with the eigenvalues :math:`\lambda_i` of :math:`A_0`
+(:class:`ModalTransfer`), so all of it is evaluated for every frequency
+at once, with no per-frequency propagator. The monodromy
+(:mod:`stability.monodromy`) stays the independent check.
 """
 
 from dataclasses import dataclass
@@ -44,19 +51,31 @@ import numpy as np
 
 from infra.errors import JudderError
 
+from .model import PeriodicSystem
+from .waveforms import Cosine, waveform_of
+
 __all__ = ["ModalTransfer", "applies", "modal_transfer", "real_boundaries",
            "combination_boundaries", "HARMONICS", "COMBINATION_HARMONICS"]
 
 #: Harmonics kept on each side for the single- and double-period
-#: boundaries: 10 to 220 Hz on the paper's model, the lowest boundary up to
-#: 1.5 bar differs from 14 harmonics by 1e-9 relative with 6, 1e-14 with 8.
+#: boundaries of a waveform without its own ``hill_harmonics``: 10 to 220
+#: Hz on the paper's model, the lowest boundary up to 1.5 bar differs from
+#: 14 harmonics by 1e-9 relative with 6, 1e-14 with 8; with 7 it is
+#: within 6e-13 of the exact boundary of the monodromy up to 1.5 bar, and
+#: 6e-11 at 11 bar (200 Hz; tests/test_tongues.py).
 HARMONICS = 7
 #: Harmonics kept on each side for the combination boundaries (same
 #: test: 1e-10 with 4, 1e-14 with 6).
 COMBINATION_HARMONICS = 6
-#: An eigenvalue ``mu^2`` of the halved Hill matrix is real positive when
-#: its imaginary part is below this share of its modulus.
+#: An eigenvalue ``1/p_f`` of Hill's (complex) matrix is real when its
+#: imaginary part is below this share of its modulus. Not a multiplier
+#: test: Hill's eigenvalues carry round-off from the complex transfer
+#: function, so the margin is wider than
+#: :data:`stability.kinds.REAL_TOLERANCE`.
 _REAL_TOLERANCE = 1e-8
+#: Two boundary amplitudes closer than this share are one (``+p`` and
+#: ``-p`` are the same solution shifted by half a period).
+_DISTINCT = 1e-9
 #: Newton iterations for the combination boundaries, and their tolerance
 #: (relative step in p_f and in nu / omega).
 _NEWTON_ITERATIONS = 30
@@ -73,28 +92,34 @@ _REAL_MULTIPLIER_GAP = 1e-4
 
 @dataclass(frozen=True)
 class ModalTransfer:
-    r"""``G(s) = v^T (sI - A0)^-1 u`` as a sum of poles.
+    r"""``G(s) = V^T (sI - A0)^-1 U`` as a sum of poles, and the waveform
+    of the dither that modulates it: the system as Hill's method sees it.
 
     Attributes
     ----------
     poles : ndarray of complex, shape (m,)
         Eigenvalues of ``A0``, 1/s.
-    residues : ndarray of complex, shape (m,)
-        ``r_i`` with ``G(s) = sum r_i / (s - poles_i)``, in 1/Pa.
+    residues : ndarray of complex, shape (m, r, r)
+        ``R_i`` with ``G(s) = sum R_i / (s - poles_i)``, in 1/Pa.
+    waveform : object
+        Shape of the dither (:mod:`stability.waveforms`).
     """
 
     poles: np.ndarray
     residues: np.ndarray
+    waveform: object
 
     def __call__(self, s):
-        """``G`` at the complex points ``s`` (any shape)."""
-        s = np.asarray(s, dtype=complex)
-        return (self.residues / (s[..., None] - self.poles)).sum(axis=-1)
+        """``G`` at the complex points ``s`` (any shape), shape
+        ``s.shape + (r, r)``."""
+        s = np.asarray(s, dtype=complex)[..., None, None, None]
+        return (self.residues / (s - self.poles[:, None, None])).sum(axis=-3)
 
     def derivative(self, s):
-        """``dG/ds`` at ``s``."""
-        s = np.asarray(s, dtype=complex)
-        return -(self.residues / (s[..., None] - self.poles) ** 2).sum(axis=-1)
+        """``dG/ds`` at ``s``, shape ``s.shape + (r, r)``."""
+        s = np.asarray(s, dtype=complex)[..., None, None, None]
+        return -(self.residues
+                 / (s - self.poles[:, None, None]) ** 2).sum(axis=-3)
 
     def oscillating_poles(self):
         """Poles with positive imaginary part (the vibration modes), by
@@ -104,12 +129,12 @@ class ModalTransfer:
 
 
 def applies(system):
-    """Whether this module's method fits ``system``: the rank-one cosine
-    modulation of :class:`stability.model.PeriodicSystem`. Other systems
-    (a modulation of higher rank, another waveform) need the per-frequency
-    Hill matrices of :mod:`stability.tongues` (solver ``'scan'``)."""
-    from .model import PeriodicSystem
-    from .waveforms import Cosine, waveform_of
+    """Whether :func:`combination_boundaries` fits ``system``: the
+    rank-one cosine modulation of :class:`stability.model.PeriodicSystem`.
+    Other systems (a modulation of higher rank, another waveform) have
+    their combination boundaries found on the monodromy (solver
+    ``'scan'`` of :mod:`stability.tongues`); :func:`real_boundaries` takes
+    every system."""
     return (isinstance(system, PeriodicSystem)
             and isinstance(waveform_of(system), Cosine))
 
@@ -119,29 +144,50 @@ def modal_transfer(system):
 
     Parameters
     ----------
-    system : stability.model.PeriodicSystem
+    system : stability.model.PeriodicSystem or ModulatedSystem
 
     Raises
     ------
     JudderError
-        If :func:`applies` is false for ``system``, or if the system
-        without dither turns freely (all external damping
+        If the system without dither turns freely (all external damping
         zero): a pole at 0 puts a multiplier at 1 for every amplitude and
         the boundaries are undefined.
     """
-    if not applies(system):
-        raise JudderError("this system has a modulation of rank above one "
-                          "or a non-cosine dither; allowed here: the "
-                          "rank-one cosine (use the 'scan' solver)")
     poles, vectors = np.linalg.eig(system.A0)
     scale = np.abs(poles).max()
     if np.abs(poles).min() <= 1e-12 * scale:
         raise JudderError("the driveline without dither turns freely "
                           "(external damping c_i all zero): the tongue "
                           "boundaries need some c_i > 0")
-    left = system.v @ vectors
-    right = np.linalg.solve(vectors, system.u.astype(complex))
-    return ModalTransfer(poles=poles, residues=left * right)
+    left = system.V.T @ vectors                              # (r, m)
+    right = np.linalg.solve(vectors, system.U.astype(complex))  # (m, r)
+    return ModalTransfer(poles=poles,
+                         residues=left.T[:, :, None] * right[:, None, :],
+                         waveform=waveform_of(system))
+
+
+def _harmonics(multiplier, harmonics):
+    """Integer (``multiplier = 1``) or half-integer (-1) harmonics, a
+    set symmetric about 0 so that ``det(I - p H)`` is real for real p."""
+    if multiplier == 1:
+        return np.arange(-harmonics, harmonics + 1, dtype=float)
+    return np.arange(-harmonics - 1, harmonics + 1) + 0.5
+
+
+def _hill_matrices(transfer, freq_hz, k):
+    """Hill's matrices at ``s = 0``, shape (nf, len(k) r, len(k) r): block
+    ``(k, l)`` is ``G(ik omega) c_(k-l)`` with the waveform's harmonics
+    ``c_n`` (``c_-n`` their conjugates)."""
+    size = len(k)
+    gains = transfer(1j * 2 * np.pi * freq_hz[:, None] * k[None, :])
+    lag = np.subtract.outer(np.arange(size), np.arange(size))
+    c = np.stack([transfer.waveform.coefficients(size - 1, f)
+                  for f in freq_hz])                         # (nf, size)
+    toeplitz = np.where(lag >= 0, c[:, np.abs(lag)],
+                        np.conj(c[:, np.abs(lag)]))
+    rank = gains.shape[-1]
+    return np.einsum("fkab,fkl->fkalb", gains, toeplitz).reshape(
+        len(freq_hz), size * rank, size * rank)
 
 
 def _half_spectrum(gains):
@@ -167,33 +213,55 @@ def _half_spectrum(gains):
     return np.linalg.eigvals(square)
 
 
-def _harmonics(multiplier, harmonics):
-    """Integer (``multiplier = 1``) or half-integer (-1) harmonics, a
-    set symmetric about 0 so that ``det(I - p H)`` is real for real p."""
-    if multiplier == 1:
-        return np.arange(-harmonics, harmonics + 1, dtype=float)
-    return np.arange(-harmonics - 1, harmonics + 1) + 0.5
+def _tridiagonal_boundaries(transfer, freq_hz, multiplier, harmonics):
+    """:func:`real_boundaries` of the rank-one cosine, shape (nf, h + 1).
+
+    Its Hill matrix ``diag(G(ik omega)) S / 2`` is tridiagonal with a zero
+    diagonal: the eigenvalues come in pairs ``+-mu``, one ``mu^2`` per
+    pair from :func:`_half_spectrum`, a problem half the size.
+    """
+    omega = 2 * np.pi * freq_hz
+    k = _harmonics(multiplier, harmonics)
+    # a harmonic with zero gain decouples exactly: both kinds one size
+    gains = np.zeros((len(omega), 2 * harmonics + 2), dtype=complex)
+    gains[:, :len(k)] = transfer(1j * omega[:, None] * k[None, :])[..., 0, 0]
+    mu2 = _half_spectrum(gains)
+    real = ((np.abs(mu2.imag) <= _REAL_TOLERANCE * np.abs(mu2))
+            & (mu2.real > 0))
+    with np.errstate(divide="ignore"):
+        amplitude = np.where(real, 1.0 / np.sqrt(np.abs(mu2.real)), np.nan)
+    return np.sort(amplitude, axis=-1)
 
 
-def real_boundaries(transfer, freq_hz, multiplier, harmonics=HARMONICS):
+def real_boundaries(transfer, freq_hz, multiplier=1, harmonics=None):
     """Amplitudes where a multiplier equals +1 or -1, every frequency at once.
 
     Parameters
     ----------
     transfer : ModalTransfer
-    freq_hz : ndarray, shape (nf,)
+    freq_hz : array_like, shape (nf,)
         Dither frequencies, Hz.
     multiplier : {1, -1} or sequence of them
         +1: single-period boundary (integer harmonics); -1: double-period
         (half-integer harmonics). A sequence stacks its results on a new
-        first axis (one batched eigenproblem).
-    harmonics : int
-        Harmonics kept on each side.
+        first axis.
+    harmonics : int, optional
+        Harmonics kept on each side; default the waveform's
+        ``hill_harmonics`` (a square wave's harmonics decay slowly and
+        need more), else :data:`HARMONICS`.
+
+    Notes
+    -----
+    The eigenvalues of Hill's matrix of every frequency are found in one
+    batched call; for the rank-one cosine (the paper's chains) that
+    matrix is tridiagonal and the eigenproblem is halved
+    (:func:`_tridiagonal_boundaries`).
 
     Returns
     -------
     ndarray, shape (nf, n) (or (len(multiplier), nf, n))
-        Boundary amplitudes (Pa), ascending along each row, NaN-padded.
+        Distinct boundary amplitudes (Pa), ascending along each row,
+        NaN-padded.
 
     Examples
     --------
@@ -204,20 +272,31 @@ def real_boundaries(transfer, freq_hz, multiplier, harmonics=HARMONICS):
     >>> round(float(real_boundaries(g, [100.0], 1)[0, 0]) / 1e5, 4)
     0.3642
     """
+    if harmonics is None:
+        harmonics = getattr(transfer.waveform, "hill_harmonics", HARMONICS)
+    freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
     kinds = np.atleast_1d(multiplier)
-    omega = 2 * np.pi * np.atleast_1d(np.asarray(freq_hz, dtype=float))
-    # a harmonic with zero gain decouples exactly: pad to a common size
-    size = 2 * harmonics + 2
-    gains = np.zeros((len(kinds), len(omega), size), dtype=complex)
+    # the double-period set has one harmonic more: pad with NaN
+    width = (2 * harmonics + 2) * transfer.residues.shape[-1]
+    amplitude = np.full((len(kinds), len(freq_hz), width), np.nan)
+    tridiagonal = (transfer.residues.shape[-1] == 1
+                   and isinstance(transfer.waveform, Cosine))
     for row, m in enumerate(kinds):
-        k = _harmonics(m, harmonics)
-        gains[row, :, :len(k)] = transfer(1j * omega[:, None] * k[None, :])
-    mu2 = _half_spectrum(gains)
-    real = ((np.abs(mu2.imag) <= _REAL_TOLERANCE * np.abs(mu2))
-            & (mu2.real > 0))
-    with np.errstate(divide="ignore"):
-        amplitude = np.where(real, 1.0 / np.sqrt(np.abs(mu2.real)), np.nan)
-    amplitude = np.sort(amplitude, axis=-1)
+        if tridiagonal:
+            found = _tridiagonal_boundaries(transfer, freq_hz, m, harmonics)
+            amplitude[row, :, :found.shape[-1]] = found
+            continue
+        lam = np.linalg.eigvals(
+            _hill_matrices(transfer, freq_hz, _harmonics(m, harmonics)))
+        real = ((np.abs(lam.imag) <= _REAL_TOLERANCE * np.abs(lam))
+                & (lam.real != 0))
+        with np.errstate(divide="ignore"):
+            found = np.sort(np.where(real, 1 / np.abs(lam.real), np.nan),
+                            axis=-1)
+        # +p and -p are the same solution shifted by half a period
+        repeated = np.diff(found, axis=-1) <= _DISTINCT * found[..., 1:]
+        found[..., 1:][repeated] = np.nan
+        amplitude[row, :, :found.shape[-1]] = np.sort(found, axis=-1)
     return amplitude if np.ndim(multiplier) else amplitude[0]
 
 
@@ -233,7 +312,8 @@ def _determinant(transfer, omega, p, nu, harmonics):
     """
     k = np.arange(-harmonics, harmonics + 1)
     s = 1j * (k[None, :] * omega[:, None] + nu[:, None])
-    g, dg = transfer(s), 1j * transfer.derivative(s)
+    g = transfer(s)[..., 0, 0]                     # rank one: scalar G
+    dg = 1j * transfer.derivative(s)[..., 0, 0]
     a = g[:, 1:] * g[:, :-1]
     da = dg[:, 1:] * g[:, :-1] + g[:, 1:] * dg[:, :-1]
     q = 0.25 * p * p
@@ -272,7 +352,8 @@ def _combination_seeds(transfer, omega):
         for j in range(i + 1, len(w)):
             for nu, side in ((0.5 * (omega + w[i] - w[j]), -1),
                              (0.5 * (w[i] + w[j] - omega), 1)):
-                pair = transfer(1j * nu) * transfer(1j * (nu + side * omega))
+                pair = (transfer(1j * nu)
+                        * transfer(1j * (nu + side * omega)))[..., 0, 0]
                 nus.append(nu)
                 amps.append(2.0 / np.sqrt(np.abs(pair)))
     if not nus:

@@ -4,7 +4,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .floquet import leading_multipliers
+from .multipliers import leading_multipliers
 from .kinds import KINDS, classify
 from .modal import natural_frequencies
 from .monodromy import DEFAULT_METHOD, get_method

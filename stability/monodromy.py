@@ -223,7 +223,7 @@ def monodromy_solve_ivp(system, freq_hz, p_f, rtol=1e-10, atol=1e-12):
     system : object with ``matrix(t, omega, p_f)``
         A :class:`~stability.model.PeriodicSystem`, or any object whose
         ``matrix`` gives the system matrix (for example the full Eq. (6)
-        or the augmented Eq. (9), see :func:`stability.floquet.system_of`).
+        or the augmented Eq. (9), see :func:`stability.multipliers.system_of`).
     freq_hz : float
         Dither frequency, Hz.
     p_f : array_like, shape (k,)

@@ -2,40 +2,24 @@ r"""Tongue boundaries, labels and tips (Fig. 14, Fig. 16).
 
 Boundaries
 ----------
-A single-period boundary is where a Floquet multiplier passes +1: the
-system has a T-periodic solution :math:`z = \sum_k c_k e^{ik\omega t}`.
-Substituted in :math:`\dot z = (A_0 + p_f\cos\omega t\, u v^T) z` this is
-Hill's infinite system
-
-.. math:: (ik\omega - A_0) c_k = \tfrac{p_f}{2} u v^T (c_{k-1} + c_{k+1}).
-
-The modulation has rank one, so the block matrix multiplying :math:`p_f`
-is singular and its generalised eigenproblem has infinite eigenvalues.
-Projecting on the modulated channel :math:`w_k = v^T c_k` removes them
-exactly: with the transfer function :math:`G(s) = v^T (sI - A_0)^{-1} u`
-of the constant system,
-
-.. math:: w_k = \tfrac{p_f}{2} G(ik\omega) (w_{k-1} + w_{k+1}),
-
-so :math:`1/p_f` is an eigenvalue of the tridiagonal matrix
-:math:`\tfrac12 \operatorname{diag}(G(ik\omega)) S` (``S`` has ones next to
-the diagonal). A modulation :math:`U V^T` of rank ``r`` (a driveline
-compiled from Modelica, :class:`~stability.model.ModulatedSystem`) gives
-the same with the ``r x r`` transfer matrix :math:`V^T (sI - A_0)^{-1} U`
-in each block, :math:`w_k = V^T c_k` of length ``r``. Half-integer ``k`` give the double-period boundary
-(multiplier -1). Real eigenvalues give the boundary amplitudes.
-Combination boundaries (a complex pair on the unit circle) add the unknown
-Floquet exponent. Two solvers (:data:`SOLVERS`) find all of them:
+A single-period boundary is the lowest amplitude where a Floquet
+multiplier passes +1, a double-period one where it passes -1, a
+combination boundary where a complex pair reaches the unit circle. Hill's
+method (:mod:`stability.hill`) gives the first two for every system and
+waveform: ``1/p_f`` is a real eigenvalue of Hill's matrix, projected on
+the modulated channels. Two solvers (:data:`SOLVERS`) add the combination
+boundaries:
 
 ``'hill'`` (default)
-    :mod:`stability.hill`: the same projected Hill problem with the
-    exponent ``i nu`` as a second unknown, solved by Newton's method, and
-    every kind for all frequencies at once (about 45x faster, `make
-    bench`).
+    :func:`stability.hill.combination_boundaries`: the same projected Hill
+    problem with the exponent ``i nu`` as a second unknown, solved by
+    Newton's method, every kind for all frequencies at once (about 45x
+    faster, `make bench`). It needs the paper's rank-one cosine
+    modulation (:func:`stability.hill.applies`); other systems go to
+    ``'scan'``.
 ``'scan'``
-    Per frequency: the Hill eigenproblem for +-1, and Brent's method on the
-    monodromy of the chosen engine (:data:`~stability.monodromy.METHODS`)
-    for the combination boundary.
+    Brent's method, per frequency, on the monodromy of the chosen engine
+    (:data:`~stability.monodromy.METHODS`) for the combination boundary.
 
 With ``check=True`` every boundary point is checked against the monodromy
 multiplier of the chosen engine (an independent computation).
@@ -68,17 +52,13 @@ from .hill import (applies as hill_applies, combination_boundaries,
 from .kinds import Kind, is_real
 from .modal import natural_frequencies
 from .monodromy import DEFAULT_METHOD, get_method
-from .waveforms import waveform_of
 
 __all__ = ["Boundaries", "Tongue", "TONGUE_KINDS", "SOLVERS",
            "DEFAULT_SOLVER", "get_solver", "lowest_boundaries",
-           "hill_boundary_amplitudes", "tongue_boundaries", "kind_boundary",
+           "tongue_boundaries", "kind_boundary",
            "kind_boundaries", "lowest_of_kinds", "find_tongues", "resonances",
            "higher_order_resonances", "resonance_of"]
 
-#: Harmonics kept on each side in Hill's matrix; the boundary amplitudes
-#: of the paper's model are converged to machine precision from about 4.
-HILL_HARMONICS = 12
 #: Amplitudes scanned per frequency before refining a combination boundary.
 _SCAN_POINTS = 48
 #: A tongue tip farther than this share from every resonance of its kind
@@ -86,82 +66,6 @@ _SCAN_POINTS = 48
 _LABEL_TOLERANCE = 0.15
 #: Smallest dip (share of p_max) of a boundary curve counted as a tongue.
 TIP_PROMINENCE = 0.02
-#: An eigenvalue ``1/p_f`` of Hill's (complex) matrix below this share of
-#: its modulus in imaginary part is a real boundary amplitude. Not a
-#: multiplier test: Hill's eigenvalues carry round-off from the complex
-#: transfer function, so the margin is wider than
-#: :data:`stability.kinds.REAL_TOLERANCE`.
-_HILL_REAL_TOLERANCE = 1e-8
-
-
-def _transfer(system, s):
-    """``G(s) = V^T (s I - A0)^-1 U`` at the complex points ``s``,
-    shape (len(s), r, r)."""
-    size = len(system.A0)
-    matrices = s[:, None, None] * np.eye(size) - system.A0
-    rhs = np.broadcast_to(system.U, (len(s),) + system.U.shape)
-    return system.V.T @ np.linalg.solve(matrices, rhs)
-
-
-def hill_boundary_amplitudes(system, freq_hz, multiplier=1,
-                             harmonics=None):
-    """Amplitudes at which a multiplier equals +1 or -1 (Hill's method).
-
-    Parameters
-    ----------
-    system : stability.model.PeriodicSystem
-    freq_hz : float
-        Dither frequency, Hz.
-    multiplier : {1, -1}
-        +1: single-period boundary (integer harmonics); -1: double-period
-        (half-integer harmonics).
-    harmonics : int, optional
-        Harmonics kept on each side; default :data:`HILL_HARMONICS`, or
-        the waveform's ``hill_harmonics`` (a square wave's harmonics decay
-        slowly and need more).
-
-    Returns
-    -------
-    ndarray
-        Distinct positive amplitudes (Pa), ascending.
-
-    Raises
-    ------
-    JudderError
-        If the system without dither has an undamped free rotation (all
-        external damping zero): a multiplier then sits at 1 for every
-        amplitude and the boundary is undefined.
-    """
-    if harmonics is None:
-        harmonics = getattr(waveform_of(system), "hill_harmonics",
-                            HILL_HARMONICS)
-    shift = 0.0 if multiplier == 1 else 0.5
-    k = np.arange(-harmonics, harmonics + 1) + shift
-    try:
-        with np.errstate(all="ignore"):
-            gains = _transfer(system, 1j * 2 * np.pi * freq_hz * k)
-    except np.linalg.LinAlgError:
-        gains = np.array([np.inf])
-    if not np.all(np.isfinite(gains)):
-        raise JudderError("the driveline without dither turns freely "
-                          "(external damping c_i all zero): the tongue "
-                          "boundaries need some c_i > 0")
-    # block (k, l) of Hill's matrix is G(ik omega) c_(k-l), with the
-    # waveform's harmonics c_n (the cosine: c_(+-1) = 1/2)
-    rank = gains.shape[-1]
-    size = len(k)
-    c = waveform_of(system).coefficients(size - 1, freq_hz)
-    lag = np.subtract.outer(np.arange(size), np.arange(size))
-    toeplitz = np.where(lag >= 0, c[np.abs(lag)], np.conj(c[np.abs(lag)]))
-    hill = np.einsum("kab,kl->kalb", gains, toeplitz).reshape(
-        size * rank, size * rank)
-    lam = np.linalg.eigvals(hill)
-    real = lam[(np.abs(lam.imag) <= _HILL_REAL_TOLERANCE * np.abs(lam))
-               & (lam.real != 0)].real
-    # +p and -p are the same solution shifted by half a period
-    amplitudes = np.sort(1.0 / np.abs(real))
-    distinct = np.diff(amplitudes, prepend=-np.inf) > 1e-9 * amplitudes
-    return amplitudes[distinct]
 
 
 def _combination_excess(propagator, p_f):
@@ -195,41 +99,39 @@ def _multiplier_error(propagator, p_f, kind):
     return float(np.abs(np.abs(pair) - 1.0).min())
 
 
-def _lowest(amplitudes, p_max):
-    inside = amplitudes[amplitudes <= p_max]
-    return inside[0] if len(inside) else np.nan
-
-
 #: The kinds of tongue, in the order of the columns of
 #: :attr:`Boundaries.amplitude`.
 TONGUE_KINDS = (Kind.SINGLE_PERIOD, Kind.DOUBLE_PERIOD, Kind.COMBINATION)
 
 
+def _real_lowest(transfer, freq_hz, p_max):
+    """Lowest single- and double-period boundary up to ``p_max`` (Pa, NaN
+    where none), shape (2, nf)."""
+    real = real_boundaries(transfer, freq_hz, [1, -1])[..., 0]
+    return np.where(real <= p_max, real, np.nan)
+
+
 def _scan_lowest(system, freq_hz, p_max, method):
-    """``'scan'`` solver: per-frequency Hill for +-1, Brent for pairs."""
+    """``'scan'`` solver: Hill's method for +-1, Brent's method on the
+    monodromy, per frequency, for pairs."""
     engine = get_method(method)
-    out = np.empty((len(freq_hz), 3))
-    for index, freq in enumerate(freq_hz):
-        out[index] = [
-            _lowest(hill_boundary_amplitudes(system, freq, 1), p_max),
-            _lowest(hill_boundary_amplitudes(system, freq, -1), p_max),
-            _combination_boundary(engine(system, freq, p_max), p_max)]
-    return out
+    combination = [_combination_boundary(engine(system, freq, p_max), p_max)
+                   for freq in freq_hz]
+    return np.column_stack([*_real_lowest(modal_transfer(system), freq_hz,
+                                          p_max), combination])
 
 
 def _hill_lowest(system, freq_hz, p_max, method):
     """``'hill'`` solver: every kind and frequency at once.
 
     It assumes the paper's rank-one cosine modulation; a modulation of
-    higher rank or another waveform goes to the ``'scan'`` solver, whose
-    Hill matrices take both."""
+    higher rank or another waveform goes to the ``'scan'`` solver."""
     if not hill_applies(system):
         return _scan_lowest(system, freq_hz, p_max, method)
     transfer = modal_transfer(system)
-    real = real_boundaries(transfer, freq_hz, [1, -1])[..., 0]
-    real = np.where(real <= p_max, real, np.nan)
     combination, _ = combination_boundaries(transfer, freq_hz, p_max)
-    return np.column_stack([real[0], real[1], combination])
+    return np.column_stack([*_real_lowest(transfer, freq_hz, p_max),
+                            combination])
 
 
 #: Boundary solvers by name: ``f(system, freq_hz, p_max, method)`` gives the
@@ -612,8 +514,7 @@ def kind_boundaries(system, p_max, solver=DEFAULT_SOLVER,
                     method=DEFAULT_METHOD):
     """:func:`kind_boundary` of each of :data:`TONGUE_KINDS`, in that
     order, sharing one modal transfer."""
-    transfer = (modal_transfer(system) if solver == "hill"
-                and hill_applies(system) else None)
+    transfer = modal_transfer(system)
     return [kind_boundary(system, column, p_max, solver, method, transfer)
             for column in range(len(TONGUE_KINDS))]
 
@@ -641,14 +542,15 @@ def kind_boundary(system, column, p_max, solver=DEFAULT_SOLVER,
         ``f(freq_hz)`` for a float: Pa, or ``inf`` where there is no
         boundary up to ``p_max``.
     """
-    if solver == "hill" and hill_applies(system):
-        transfer = modal_transfer(system) if transfer is None else transfer
-        multiplier = 1 if column == 0 else -1
+    transfer = modal_transfer(system) if transfer is None else transfer
+    if TONGUE_KINDS[column] is not Kind.COMBINATION:
+        multiplier = 1 if TONGUE_KINDS[column] is Kind.SINGLE_PERIOD else -1
 
         def lowest(freq):
-            if column == 2:
-                return combination_boundaries(transfer, [freq], p_max)[0][0]
             return real_boundaries(transfer, [freq], multiplier)[0, 0]
+    elif solver == "hill" and hill_applies(system):
+        def lowest(freq):
+            return combination_boundaries(transfer, [freq], p_max)[0][0]
     else:
         def lowest(freq):
             return lowest_boundaries(system, [freq], p_max, solver,

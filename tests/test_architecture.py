@@ -3,6 +3,7 @@ time, and the driveline registry as the one place that knows each model."""
 
 import ast
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -174,6 +175,54 @@ def test_plots_import_no_kernel(folder):
             assert any(name == allowed or name.startswith(allowed + ".")
                        for allowed in PLOT_IMPORTS[folder]), \
                 f"{path.relative_to(ROOT)} imports {name}"
+
+
+#: Calls that make a figure or axes: a command delegates them to
+#: judder/figures or stability/plots.
+DRAWING_CALLS = {"subplots", "subplot", "figure", "add_subplot", "add_axes",
+                 "subplot_mosaic"}
+
+
+def _drawing_calls(path):
+    """``plt.subplots(...)``-like calls of one file: on ``plt``/``pyplot``
+    any of :data:`DRAWING_CALLS`, on anything ``add_subplot``/``add_axes``."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        if not (isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Attribute)
+                and node.func.attr in DRAWING_CALLS):
+            continue
+        owner = node.func.value
+        if (isinstance(owner, ast.Name) and owner.id in ("plt", "pyplot")) \
+                or node.func.attr in ("add_subplot", "add_axes"):
+            found.append(f"{path.relative_to(ROOT)}:{node.lineno}")
+    return found
+
+
+def test_no_command_draws_its_own_figure():
+    drawn = [call for path in sorted((ROOT / "judder" / "commands")
+                                     .glob("*.py"))
+             for call in _drawing_calls(path)]
+    assert not drawn
+    # the check sees a figure drawn where figures live
+    assert _drawing_calls(ROOT / "judder" / "figures" / "threshold.py")
+
+
+@pytest.mark.parametrize("folder, mention", [
+    ("infra", ":mod:`infra.{}`"), ("judder/commands", "``{}``")])
+def test_package_docstring_names_every_shared_module(folder, mention):
+    # infra lists all its modules; judder.commands its shared _-modules
+    doc = ast.get_docstring(ast.parse((ROOT / folder / "__init__.py")
+                                      .read_text()))
+    modules = [path.stem for path in sorted((ROOT / folder).glob("*.py"))
+               if path.stem != "__init__"
+               and (folder == "infra" or path.stem.startswith("_"))]
+    assert modules
+    missing = [m for m in modules if mention.format(m) not in doc]
+    assert not missing
+    named = set(re.findall(r"``(_[a-z_]+)``", doc)) if folder != "infra" \
+        else set(re.findall(r":mod:`infra\.([a-z_]+)`", doc))
+    assert named <= set(modules), named - set(modules)
 
 
 def test_no_model_name_branches_outside_the_registry():

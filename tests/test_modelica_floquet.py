@@ -15,9 +15,9 @@ from sources.modelica import ModelicaError, linearize
 from infra.errors import ParameterError
 from stability import (LinearDriveline, build_driveline, classify,
                        stability_map)
+from stability.hill import modal_transfer, real_boundaries
 from stability.monodromy import DysonPropagator, monodromy_solve_ivp
-from stability.tongues import (find_tongues, hill_boundary_amplitudes,
-                               tongue_boundaries)
+from stability.tongues import find_tongues, tongue_boundaries
 
 BAR = 1e5
 
@@ -156,8 +156,8 @@ def test_slip_speed_is_a_map_parameter(geared):
     def tip(w_slip):
         linear = linearize("Judder.Examples.Driveline5DOFGeared",
                            values={"w_slip": w_slip})
-        return hill_boundary_amplitudes(
-            LinearDriveline.from_model(linear).periodic_system(), 102.88)[0]
+        system = LinearDriveline.from_model(linear).periodic_system()
+        return real_boundaries(modal_transfer(system), [102.88])[0, 0]
     v = geared.values
     top = (v["mu_max"] - v["mu0"]) / v["w_char"]
 
@@ -192,7 +192,7 @@ def test_two_clutches_give_a_rank_two_modulation():
     direct = monodromy_solve_ivp(system, freq, [p_f, BAR], rtol=1e-12,
                                  atol=1e-14)
     assert_allclose(dyson, direct, atol=1e-9)
-    boundary = hill_boundary_amplitudes(system, freq)[0]
+    boundary = real_boundaries(modal_transfer(system), [freq])[0, 0]
     lam = np.linalg.eigvals(monodromy_solve_ivp(system, freq, [boundary],
                                                 rtol=1e-12, atol=1e-14)[0])
     assert np.abs(lam - 1).min() < 1e-7
@@ -330,9 +330,10 @@ def test_crosscheck_fmu_of_the_rank_two_class_against_its_floquet_rates():
     # runs, w_in 1 rad/s apart) grows at the Floquet exponent of the
     # system linearised from the same class
     from sources.modelica import ModelicaParameters
-    from judder.crosscheck import crosscheck
+    from judder.crosscheck import crosscheck_study
     params = ModelicaParameters("Judder.Examples.Driveline4DOFTwoClutches")
-    check = crosscheck(params, [105.0], [0.1 * BAR, 0.5 * BAR], workers=1)
+    check = crosscheck_study(params, [105.0], [0.1 * BAR, 0.5 * BAR],
+                             workers=1)
     assert [p.floquet_kind for p in check.points] == ["stable",
                                                       "single-period"]
     assert all(p.agree for p in check.points)

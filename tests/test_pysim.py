@@ -79,10 +79,11 @@ def test_dither_envelope_growth():
 # --- the FMU against the Floquet layer ------------------------------------
 
 def test_crosscheck_on_tongues_2_5_6():
-    from judder.crosscheck import crosscheck
+    from judder.crosscheck import crosscheck_study
     # grid spanning tongue 5 (84 Hz), tongue 2 (103 Hz), tongue 6 (122 Hz)
-    check = crosscheck(get_preset("paper-4dof"), np.linspace(80, 126, 24),
-                       np.array([0.2, 0.45, 0.7]) * BAR, duration=3.0)
+    check = crosscheck_study(get_preset("paper-4dof"),
+                             np.linspace(80, 126, 24),
+                             np.array([0.2, 0.45, 0.7]) * BAR, duration=3.0)
     unstable = [p for p in check.points if p.floquet_unstable]
     kinds = {p.floquet_kind for p in unstable}
     assert {"single-period", "combination"} <= kinds

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
+from infra.errors import JudderError
 from matplotlib.image import imread
 
 from judder.cli import main
@@ -149,13 +151,13 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
     # judder, 0.2 bar above the boundary that `judder check` computes
     from judder import api
     from judder.inputs import load_parameters
-    from judder.commands.report import _verdict_text
+    from judder.commands._report_sections import verdict_text
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     check = api.check([105.0], [0.2], example, {"mu_g": 0.011},
                       min_growth=0.0, sensitivity=())
     record = {**check.records()[0],
               "leading_abs": check.checks[0].floquet.leading_abs}
-    text = _verdict_text(record)
+    text = verdict_text(record)
     assert text.startswith("JUDDER at 105 Hz, 0.2 bar: single-period "
                            "instability in tongue 2 (|\u03bb| = 1.0007); "
                            "grows at 0.0701 1/s, one e-fold in 14.3 s "
@@ -242,13 +244,20 @@ def test_report_prints_to_pdf(report):
 def test_report_shows_no_fit_the_data_cannot_determine():
     # the README's chart: three onsets cannot give c12, mu_g and k24
     from judder.inputs import load_parameters
-    from judder.commands.report import _fit_section
+    from judder.commands._report_sections import fit_section
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     bench = (np.array([210.0, 212.0, 214.0]),
              np.array([0.8, 0.6, 0.8]) * 1e5, 0.8, 1.0,
              np.array([0.6, 0.4, 0.6]), 0.25)
-    text, data, fitted = _fit_section(bench, ("c12", "mu_g", "k24"),
-                                      example, "dyson", 1, "chart.npz")
+    from judder.commands.fit import fit
+    freqs, measured, tried, growth, below, spread = bench
+    with pytest.raises(JudderError) as refused:
+        fit(freqs, measured / 1e5, tried, names=["c12", "mu_g", "k24"],
+            parameters=example, starts=1, workers=1, min_growth=growth,
+            below_bar=below, threshold_spread=spread)
+    text, data, fitted = fit_section(bench, ("c12", "mu_g", "k24"),
+                                     example, "chart.npz", None,
+                                     refused.value)
     assert fitted is None and data["fit"] is None
     assert not data["fit_determined"]
     assert "No fit is shown" in text and "needs at least 5" in text

@@ -8,9 +8,9 @@ from sources import get_preset
 from infra.errors import JudderError
 from stability import KINDS, build_driveline, floquet, natural_frequencies
 from stability.monodromy import monodromy_solve_ivp
+from stability.hill import modal_transfer, real_boundaries
 from stability.kinds import Kind
-from stability.tongues import (find_tongues, hill_boundary_amplitudes,
-                               resonance_of, tongue_boundaries)
+from stability.tongues import find_tongues, resonance_of, tongue_boundaries
 
 BAR = 1e5
 GRID = np.linspace(10.0, 220.0, 211)
@@ -29,17 +29,37 @@ def test_hill_boundary_is_a_multiplier_on_the_unit_circle(paper4, freq,
                                                           multiplier):
     # independent check: a tight solve_ivp monodromy at the Hill amplitude
     system = paper4.periodic_system()
-    p = hill_boundary_amplitudes(system, freq, multiplier)[0]
+    p = real_boundaries(modal_transfer(system), [freq], multiplier)[0, 0]
     lam = np.linalg.eigvals(monodromy_solve_ivp(system, freq, [p],
                                                 rtol=1e-12, atol=1e-14)[0])
     assert np.abs(lam - multiplier).min() < 1e-6
 
 
-def test_hill_truncation_is_converged(paper4):
+@pytest.mark.parametrize("freq, multiplier, exact_bar", [
+    # the lowest root of det(M(p_f) - multiplier I) by Brent's method on
+    # a solve_ivp monodromy (rtol 1e-13), to 10 digits
+    (20.0, 1, 0.2173594551), (100.0, 1, 0.3641545256),
+    (130.0, 1, 3.4040183125), (200.0, 1, 10.9737812939),
+    (45.0, -1, 3.1715192139), (200.0, -1, 1.3934439216)])
+def test_hill_boundary_is_the_exact_floquet_boundary(paper4, freq,
+                                                     multiplier, exact_bar):
     system = paper4.periodic_system()
+    p = real_boundaries(modal_transfer(system), [freq], multiplier)[0, 0]
+    assert p / BAR == pytest.approx(exact_bar, rel=1e-9)
+    # and the monodromy's det(M - multiplier I) changes sign across it
+    below, above = monodromy_solve_ivp(system, freq,
+                                       [p * (1 - 1e-9), p * (1 + 1e-9)],
+                                       rtol=1e-13, atol=1e-15)
+    eye = np.eye(len(system.A0))
+    assert (np.linalg.det(below - multiplier * eye)
+            * np.linalg.det(above - multiplier * eye)) < 0
+
+
+def test_hill_truncation_is_converged(paper4):
+    g = modal_transfer(paper4.periodic_system())
     for freq, mult in [(102.9, 1), (60.0, 1), (205.8, -1)]:
-        few = hill_boundary_amplitudes(system, freq, mult, harmonics=6)[0]
-        many = hill_boundary_amplitudes(system, freq, mult, harmonics=30)[0]
+        few = real_boundaries(g, [freq], mult, harmonics=6)[0, 0]
+        many = real_boundaries(g, [freq], mult, harmonics=30)[0, 0]
         assert few == pytest.approx(many, rel=1e-10)
 
 
@@ -134,7 +154,7 @@ def test_free_rotation_is_refused():
     free = build_driveline(get_preset("paper-4dof").replace(
         c1=0.0, c2=0.0, c3=0.0, c4=0.0))
     with pytest.raises(JudderError, match="c_i"):
-        hill_boundary_amplitudes(free.periodic_system(), 50.0)
+        modal_transfer(free.periodic_system())
 
 
 def test_tongue_reaching_the_grid_edges(paper4):

@@ -9,12 +9,18 @@ from scipy.integrate import quad, solve_ivp
 
 from infra.errors import JudderError
 from stability import floquet, natural_frequencies
+from stability.hill import modal_transfer, real_boundaries
 from stability.monodromy import DysonPropagator
-from stability.tongues import hill_boundary_amplitudes
 from stability.waveforms import (Dithered, FilteredSquare, FourierSeries,
                                  from_samples, with_waveform)
 
 TAU = 0.5e-3          # valve time constant, s
+
+
+def _lowest(system, freq, harmonics=None):
+    """Lowest single-period boundary by Hill's method, Pa."""
+    return real_boundaries(modal_transfer(system), [freq], 1,
+                           harmonics)[0, 0]
 
 
 def _direct(system, freq, p_f, breaks=(0.25, 0.75)):
@@ -71,8 +77,8 @@ def test_cosine_waveform_is_the_default(paper4):
                     DysonPropagator(system, 60.0, 1e5).monodromy([1e5]),
                     atol=1e-13)
     # the lowest boundary (the higher ones, near 460 bar, are truncation's)
-    assert hill_boundary_amplitudes(cosine, 102.9)[0] == pytest.approx(
-        hill_boundary_amplitudes(system, 102.9)[0], rel=1e-12)
+    assert _lowest(cosine, 102.9) == pytest.approx(_lowest(system, 102.9),
+                                                   rel=1e-12)
 
 
 @pytest.mark.parametrize("freq, p_f, tau", [
@@ -95,8 +101,8 @@ def test_square_wave_third_harmonic_excites_the_f2_tongue_at_f2_over_3(
     square = Dithered(paper4, wave).periodic_system()
     cosine = paper4.periodic_system()
     freq = f2 / 3
-    p_star = hill_boundary_amplitudes(square, freq, harmonics=24)[0]
-    assert hill_boundary_amplitudes(cosine, freq)[0] > 2e5
+    p_star = _lowest(square, freq, harmonics=24)
+    assert _lowest(cosine, freq) > 2e5
     # Hill's boundary is a multiplier at +1 of the directly integrated
     # monodromy; just above it the square wave is unstable, single-period
     lam = np.linalg.eigvals(_direct(square, freq, p_star))
@@ -108,11 +114,11 @@ def test_square_wave_third_harmonic_excites_the_f2_tongue_at_f2_over_3(
     assert np.abs(below).max() < 1
     # as the harmonics predict: the cosine's tip of tongue 2 at f2 scaled
     # by c_1 = 1/2 over the square wave's third harmonic |c_3| at f2/3
-    tip_cosine = hill_boundary_amplitudes(cosine, f2)[0]
+    tip_cosine = _lowest(cosine, f2)
     c3 = abs(wave.coefficients(3, freq)[3])
     assert p_star == pytest.approx(tip_cosine * 0.5 / c3, rel=5e-3)
     # and the lowest boundary around f2/3 dips there
-    nearby = [hill_boundary_amplitudes(square, freq * (1 + d))[0]
+    nearby = [_lowest(square, freq * (1 + d))
               for d in (-0.01, 0.01)]
     assert min(nearby) > p_star
 
@@ -180,7 +186,7 @@ def test_every_form_and_engine_takes_the_waveform(paper4, wave, expected):
     # Hill's method (on the reduced form, the one without a pole at
     # s = 0) gives the single-period boundary below: there every form and
     # engine has its leading multiplier on the unit circle
-    p_star = hill_boundary_amplitudes(dithered.periodic_system(), 102.9)[0]
+    p_star = _lowest(dithered.periodic_system(), 102.9)
     assert p_star < 0.3e5
     for form, engine in FORMS_AND_ENGINES:
         at_boundary = floquet(dithered, 102.9, p_star, method=engine,

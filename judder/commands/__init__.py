@@ -18,10 +18,13 @@ command module: ``judder --help`` lists the commands from this table
 alone, and ``judder map`` imports the map's module only.
 
 Modules whose names start with ``_`` are shared by the commands: option
-groups and value parsers (``_arguments``, ``_values``), the model the
-options select (``_options``, ``_common``), preflight estimates
-(``_preflight``), outputs (``_output``) and records (``_records``). The
-bench (its model, parameters and linearisation) is :mod:`judder.bench`.
+groups and value parsers (``_arguments``, ``_values``), the parameter set
+the model options select (``_model``), what the API functions share (the
+set with its changes and the dithered driveline, ``_common``), preflight
+estimates (``_preflight``), outputs (``_output``) and records
+(``_records``), a check's verdict in words (``_words``), and the
+sections of ``judder report`` (``_report_sections``). The bench (its model, parameters and
+linearisation) is :mod:`judder.bench`.
 """
 
 from dataclasses import dataclass

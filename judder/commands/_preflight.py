@@ -223,7 +223,7 @@ def check_sensitivity(params, freq_hz, cases, workers):
                       _workers(workers))
 
 
-def check_settings(settings, parameters):
+def check_settings_time(settings, parameters):
     """``check``: settings x (one point + the sensitivity parameters)."""
     return check_time(
         settings * (CHECK_SETTING_S + parameters * CHECK_PARAMETER_S),

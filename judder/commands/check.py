@@ -16,9 +16,10 @@ from stability.source import build_driveline
 
 from ._arguments import force_option, min_growth_option, model_options
 from ._common import check_names, resolve, structural_names
+from ._words import growth_words, margin_words
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
-from ._preflight import check_settings, check_work
+from ._preflight import check_settings_time, check_work
 from ._records import finite_or_none, rows_to_csv
 from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, NameList, Settings,
                       check_amplitudes)
@@ -107,7 +108,7 @@ def _settings(args, parameters):
                               "freq_hz and p_f_bar; allowed: no empty cells")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
-        check_settings(len(freqs), parameters)
+        check_settings_time(len(freqs), parameters)
         check_work(f"--table {args.table}", len(freqs), "settings")
         low, high = FREQ_RANGE_HZ
         for row, f in enumerate(freqs, start=2):
@@ -121,7 +122,7 @@ def _settings(args, parameters):
     freqs, amplitudes = args.freq, args.pf
     # the time first (it says what to change); then, with the time limit
     # raised, the count (the pairs of 1e10 settings would not fit)
-    check_settings(len(freqs) * len(amplitudes), parameters)
+    check_settings_time(len(freqs) * len(amplitudes), parameters)
     check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]
@@ -243,67 +244,6 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
             "frequency_search_hz": (None if search_hz is None else
                                     [float(f) for f in search_hz]),
             "sensitivity": sensitivity}
-
-
-def _named(tongue):
-    """`` (tongue N)`` of a record's tongue, or nothing."""
-    return "" if tongue is None else f" (tongue {tongue['number'] or '?'})"
-
-
-def growth_words(record, engagement_s):
-    """The growth of a record in words: rate, e-folding time against an
-    engagement of ``engagement_s`` seconds."""
-    rate = record["growth_rate_per_s"]
-    if record["e_folding_time_s"] is None:
-        return f"decays at {-rate:.3g} 1/s"
-    efold = record["e_folding_time_s"]
-    return (f"grows at {rate:.3g} 1/s, one e-fold in {efold:.3g} s ("
-            + ("longer than" if efold > engagement_s else "within")
-            + f" a {engagement_s:g} s engagement)")
-
-
-def margin_words(record):
-    """Both margins of a record in plain words (amplitude, frequency),
-    the amplitude one with where the setting's frequency becomes unstable
-    (|lambda| = 1) as well as judder (growth >= min-growth)."""
-    bar = record["margin_bar"]
-    rate = f">= {record['min_growth_per_s']:g} 1/s"
-    tongue = record["margin_bar_tongue"]
-    which = f"({rate})" if tongue is None else \
-        f"({rate}, tongue {tongue['number'] or '?'})"
-    top = record["p_f_bar"] + (record["margin_bar_at_least"] or 0.0)
-    unstable = record.get("unstable_boundary_p_f_bar")
-    here = f" at {record['freq_hz']:g} Hz"
-    if record["min_growth_per_s"] == 0 or unstable is None:
-        onset = ""
-    else:
-        onset = f"; unstable (|lambda| > 1){here} from {unstable:.3f} bar"
-    if bar is None and unstable is None:
-        amplitude = f"stable (|lambda| < 1){here} up to {top:.3g} bar"
-    elif bar is None:
-        amplitude = f"no judder ({rate}){here} up to {top:.3g} bar" + onset
-    elif bar >= 0:
-        amplitude = f"{bar:.3f} bar below judder {which}" + onset
-    else:
-        amplitude = (f"{-bar:.3f} bar above the judder boundary {which}"
-                     + onset)
-    hz = record["margin_hz"]
-    if hz is None:
-        search = record["frequency_search_hz"]
-        frequency = (f"no dither frequency judders at {record['p_f_bar']:g} "
-                     "bar" + ("" if search is None else
-                              f" in the range searched, {search[0]:.3g} to "
-                              f"{search[1]:.3g} Hz (from a quarter of the "
-                              "lowest to four times the highest setting)"))
-    elif hz > 0:
-        frequency = (f"nearest judder {hz:.2f} Hz away, at "
-                     f"{record['crossing_hz']:.2f} Hz"
-                     + _named(record["margin_hz_tongue"]))
-    else:
-        frequency = (f"judder up to {-hz:.2f} Hz away, to "
-                     f"{record['crossing_hz']:.2f} Hz"
-                     + _named(record["margin_hz_tongue"]))
-    return amplitude, frequency
 
 
 def sensitivity_words(record, count=3):

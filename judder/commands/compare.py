@@ -80,7 +80,8 @@ def add_arguments(p):
 def run(args):
     """Two parameter sets side by side."""
     from ..inputs import load_parameters
-    from ._preflight import check_advise_grid, check_settings, check_tongues
+    from ._preflight import (check_advise_grid, check_settings_time,
+                             check_tongues)
     if bool(args.freq) != bool(args.pf):
         raise JudderError("--freq and --pf: allowed: both (every pair is a "
                           "setting) or neither")
@@ -94,7 +95,7 @@ def run(args):
     settings = ([(f, p) for f in args.freq for p in args.pf]
                 if args.freq else [])
     if settings:
-        check_settings(2 * len(settings), 0)
+        check_settings_time(2 * len(settings), 0)
         if args.pf_max <= max(p for _, p in settings):
             raise JudderError(f"--pf-max {args.pf_max:g} bar is not "
                               "allowed; allowed: above the largest --pf, "

@@ -118,7 +118,7 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     -------
     CrosscheckResult
     """
-    from ..crosscheck import crosscheck as crosscheck_study
+    from ..crosscheck import crosscheck_study
     FREQ.check(freq_hz, "freq_hz")
     PF.check(p_f_bar, "p_f_bar")
     values = resolve(parameters, changes)

@@ -110,7 +110,7 @@ def complex_record(value):
 class FloquetPoint:
     """``judder floquet``: the multipliers at one dither setting.
 
-    ``result`` is the :class:`stability.floquet.FloquetResult`;
+    ``result`` is the :class:`stability.multipliers.FloquetResult`;
     ``min_growth`` the judder rate (1/s) of its verdict.
     """
 

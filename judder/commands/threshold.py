@@ -147,15 +147,5 @@ class ThresholdResult:
         write_text(path, "\n".join(lines) + "\n")
 
     def figure(self, title=None):
-        import matplotlib.pyplot as plt
-
-        from infra.plotstyle import figure_title
-        from stability.plots import plot_threshold
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4.4),
-                                 layout="constrained")
-        plot_threshold(self.study, axes=axes, own=self.own)
-        figure_title(fig, f"Fig. 19 without dither, "
-                     f"{title or self.params.model + ' driveline'}: the "
-                     "mean pressure's damping in the slip damping (the maps "
-                     "keep only the dither's part)", fontsize=10)
-        return fig
+        from ..figures.threshold import threshold_figure
+        return threshold_figure(self, title=title)

@@ -24,7 +24,7 @@ from scipy.optimize import brentq
 
 from infra.errors import JudderError
 
-from ..floquet import floquet
+from ..multipliers import floquet
 from ..kinds import KINDS
 from ..source import build_driveline
 from ..tongues import (TONGUE_KINDS, find_tongues, kind_boundaries,
@@ -247,7 +247,7 @@ class SettingCheck:
     Attributes
     ----------
     margin : Margin
-    floquet : stability.floquet.FloquetResult
+    floquet : stability.multipliers.FloquetResult
         At the setting, without the growth shift.
     judder : bool
         The leading growth rate exceeds ``min_growth``

@@ -17,7 +17,7 @@ def plot_multipliers(result, ax=None, zoom=False):
 
     Parameters
     ----------
-    result : stability.floquet.FloquetResult
+    result : stability.multipliers.FloquetResult
     ax : matplotlib.axes.Axes, optional
     zoom : bool
         Show only the neighbourhood of the leading multiplier (the paper's
@@ -70,7 +70,7 @@ def multipliers_figure(results, title=None):
 
     Parameters
     ----------
-    results : sequence of stability.floquet.FloquetResult
+    results : sequence of stability.multipliers.FloquetResult
     """
     results = list(results)
     if len(results) == 1:       # one setting: the two views side by side

@@ -1,0 +1,500 @@
+"""The sections of ``judder report``, one function each, and the page
+around them.
+
+Each section function takes the results of the studies it shows (computed
+by :func:`judder.commands.report.report`) and returns its HTML; its
+figures go through :meth:`Page.figure`, which embeds them and keeps
+their titles in order. Nothing here computes a study, except
+:func:`fit_section`, whose fit decides what the section says.
+"""
+
+import base64
+from dataclasses import dataclass, field
+import datetime
+import html
+import io
+import re
+
+import numpy as np
+
+from infra.criteria import ENGAGEMENT_DURATION_S
+from infra.files import MARK
+from infra.numbers import format_interval, format_uncertain, readable_number
+from infra.units import PA_PER_BAR
+from stability.decisions.relevance import JUDDER, SLOW_GROWTH
+
+from ._words import growth_words, margin_words
+
+_CSS = """
+@page{size:A4;margin:14mm 13mm}
+body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;
+color:#111;line-height:1.4}
+h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #999;
+margin-top:1.6em}
+h2,h3{break-after:avoid;page-break-after:avoid}
+table{border-collapse:collapse;margin:0.8em 0}
+td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:left;
+font-size:0.9em;vertical-align:top}
+th{background:#eee}
+table.facts th{width:12em}
+img{max-width:100%;height:auto;display:block;margin:0.8em auto}
+figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
+figcaption{font-size:0.85em;color:#444;text-align:center}
+tr,.keep{break-inside:avoid;page-break-inside:avoid}
+.verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
+.judder{border-color:#b00;background:#fee}
+.slow{border-color:#a60;background:#fff6e0}
+.safe{border-color:#070;background:#efe}
+.none{border-color:#555;background:#f4f4f4}
+.small{font-size:0.85em;color:#444}
+@media print{body{margin:0;max-width:none;font-size:10pt}
+img{max-height:235mm;width:auto}}
+"""
+
+
+@dataclass
+class Page:
+    """The report being written: its sections and embedded figures.
+
+    Attributes
+    ----------
+    description : str
+        The driveline, for the title and the figures' titles.
+    sections : list of str
+        HTML of each section, in order.
+    figures : list of str
+        Titles of the embedded figures, in order.
+    """
+
+    description: str
+    sections: list = field(default_factory=list)
+    figures: list = field(default_factory=list)
+
+    def figure(self, title, fig):
+        """``fig`` as an embedded ``<figure>`` captioned ``title``."""
+        self.figures.append(title)
+        return f"<figure>{_png(fig)}<figcaption>{html.escape(title)}" \
+               f"</figcaption></figure>"
+
+    def html(self):
+        """The whole page: title, sections numbered, the style sheet."""
+        stamp = datetime.datetime.now(datetime.timezone.utc).strftime(
+            "%Y-%m-%d %H:%M UTC")
+        description = html.escape(self.description)
+        return (
+            "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<meta name=\"generator\" content=\"{MARK}\">"
+            f"<title>judder report: {description}</title>"
+            f"<style>{_CSS}</style></head><body>"
+            f"<h1>Clutch judder from dither: {description}</h1>"
+            f'<p class="small">judder report, {stamp}. Dither frequency in '
+            "Hz, amplitude in bar, parameters in SI units. Figures and "
+            "equations as numbered in \"Parametric excitation as a cause of "
+            "clutch judder: theoretical study and experimental "
+            "validation\".</p>"
+            + _number_sections("".join(self.sections)) + "</body></html>")
+
+
+def _png(fig, dpi=100):
+    """A figure as a base64 PNG ``<img>``; closes the figure."""
+    import matplotlib.pyplot as plt
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi)
+    plt.close(fig)
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    return f'<img alt="" src="data:image/png;base64,{data}">'
+
+
+def _table(header, rows):
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>"
+                                    for c in row) + "</tr>" for row in rows)
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _keep(part):
+    """``part`` (a heading and what opens its section) kept on one printed
+    page."""
+    return f'<div class="keep">{part}</div>'
+
+
+def _number_sections(body):
+    """Number the ``<h2>`` headings 1, 2, ... in their order (a number a
+    section wrote itself is replaced), so the numbering has no gap
+    whichever sections the report has."""
+    count = [0]
+
+    def numbered(match):
+        count[0] += 1
+        return f"<h2>{count[0]}. "
+    return re.sub(r"<h2>(?:\d+\. )?", numbered, body)
+
+
+def verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
+    """The configured dither's verdict in words, from a record of
+    ``judder check`` (:func:`setting_record`) with the
+    leading ``|lambda|`` added: the verdict word, what the multiplier
+    does, the growth against an engagement of ``engagement_s`` seconds
+    and both margins to judder."""
+    tongue = v["tongue"]
+    if not v["inside_stability_tongue"]:
+        what = "every multiplier inside the unit circle"
+    else:
+        what = (f"{v['kind']} instability"
+                + ("" if tongue is None else
+                   f" in tongue {tongue['number'] or '?'}"))
+    growth = growth_words(v, engagement_s)
+    if v["verdict"] == SLOW_GROWTH:
+        growth += (f", slower than the judder-relevant "
+                   f"{v['min_growth_per_s']:g} 1/s")
+    amplitude, frequency = margin_words(v)
+    return (f"{v['verdict']} at {v['freq_hz']:g} Hz, {v['p_f_bar']:g} bar: "
+            f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {growth}; "
+            f"{amplitude}; {frequency}.")
+
+
+def _window_text(advice):
+    """The safe dither windows of ``judder advise`` in one sentence."""
+    op = advice.operating
+    top = op.p_max / PA_PER_BAR
+    full = [w for w in advice.windows if w.full_range]
+    head = (f"Within {op.freq_hz[0]:g}-{op.freq_hz[1]:g} Hz, keeping "
+            f"{op.margin_p_f / PA_PER_BAR:g} bar and {op.margin_hz:g} Hz "
+            "from every judder-relevant tongue: ")
+    if full:
+        return head + f"safe up to {top:g} bar at " + ", ".join(
+            f"{w.freq_hz[0]:.1f}-{w.freq_hz[1]:.1f} Hz" for w in full) + "."
+    best = int(np.argmax(advice.safe_p_f))
+    return head + (f"no frequency is safe up to {top:g} bar; the most "
+                   f"amplitude is {advice.safe_p_f[best] / PA_PER_BAR:.3f} "
+                   f"bar, at {advice.freq_hz[best]:.1f} Hz.")
+
+
+def _design_text(advice):
+    """The smallest design change of ``judder advise`` in one sentence
+    (factors within 1 % of 1 left out)."""
+    a = advice.advice
+    if a is None:
+        return "not searched."
+    if not a.success:
+        return f"none found: {a.message}."
+    advised = advice.advised_params()
+    changes = [f"{n} x{f:.2f} ({readable_number(advice.params[n])} to "
+               f"{readable_number(advised[n])} {advice.params.specs[n].unit})"
+               for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]
+    if not changes:
+        return "none needed: the window is already clear."
+    return (", ".join(changes) + " clears the window; the map recomputed "
+            f"with it has {advice.judder_points} judder points of "
+            f"{advice.verification.kind.size}.")
+
+
+def summary_section(verdict, advice, advice_error, min_growth):
+    """The first screen: the verdict of the configured dither (or why
+    there is none), the safe dither window and the smallest design change
+    of ``judder advise``."""
+    if verdict is None:
+        css, text = "none", (
+            "No dither setting given (--freq, --pf): choose one in the safe "
+            "window below, or check one with judder check.")
+    else:
+        css = {JUDDER: "judder", SLOW_GROWTH: "slow"}.get(verdict["verdict"],
+                                                          "safe")
+        text = verdict_text(verdict)
+    if advice is None:
+        window = design = f"not computed: {advice_error}"
+    else:
+        window, design = _window_text(advice), _design_text(advice)
+    rows = "".join(
+        f"<tr><th>{html.escape(head)}</th><td>{html.escape(body)}</td></tr>"
+        for head, body in (("Safe dither window", window),
+                           ("Smallest design change", design)))
+    return (
+        "<h2>Verdict and advice</h2>"
+        f'<p class="verdict {css}">{html.escape(text)}</p>'
+        f'<table class="facts">{rows}</table>'
+        '<p class="small">JUDDER: an instability growing faster than '
+        f"{min_growth:g} 1/s, at least one e-fold within an engagement; "
+        "SLOW GROWTH: unstable (inside a stability tongue) but growing "
+        "slower, no judder within an engagement; STABLE: no instability. "
+        "Sources: judder check and judder advise (valve range 60-200 Hz, "
+        "up to 0.7 bar); the evidence follows.</p>")
+
+
+def setting_section(page, point, freq_hz, p_f_bar):
+    """The configured dither's Floquet multipliers (Fig. 15)."""
+    from stability.plots import multipliers_figure
+    return _keep(
+        "<h2>The configured dither: its multipliers</h2>"
+        + page.figure(f"Floquet multipliers at {freq_hz:g} Hz, {p_f_bar:g} "
+                      "bar (Fig. 15)",
+                      multipliers_figure([point], title="Floquet multipliers "
+                                         f"at {freq_hz:g} Hz, {p_f_bar:g} "
+                                         f"bar, {page.description}")))
+
+
+def map_section(page, stability, tongue_records, min_growth):
+    """The stability map with the exact tongues (Fig. 14) and the table of
+    their tips (``tongue_records``: the report's ``tongues`` data)."""
+    tip_rows = [(t["number"] or "-", t["kind"], t["resonance"] or "-",
+                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}")
+                for t in tongue_records]
+    return (_keep(
+        "<h2>Where it judders: the stability map</h2>"
+        f'<p class="small">Judder-relevant: growing faster than '
+        f"{min_growth:g} 1/s (judder check --min-growth {min_growth:g}); "
+        "slower growth is shaded grey; the lines are the exact stability "
+        "boundaries (Fig. 14).</p>"
+        + page.figure("Stability map with the exact tongue boundaries and "
+                      "numbers (Fig. 14)",
+                      stability.figure(
+                          title=f"stability map, {page.description}",
+                          stacked=True)))
+        + "<p>Tongue tips (lowest amplitude that judders, refined between "
+          "grid points); numbers as in Fig. 14:</p>"
+        + _table(("#", "kind", "resonance", "tip f [Hz]", "tip p_f [bar]"),
+                 tip_rows))
+
+
+def kinds_section(page, inside):
+    """Fig. 15 by kind: the multipliers just inside the lowest tongue of
+    each kind (``inside``: their Floquet results); empty without one."""
+    from stability.plots import multipliers_figure
+    if not inside:
+        return ""
+    return _keep(
+        "<h3>How the multipliers leave the unit circle, by kind</h3>"
+        + page.figure("Floquet multipliers just inside the lowest tongue of "
+                      "each kind (Fig. 15)",
+                      multipliers_figure(inside, title="Floquet multipliers "
+                                         "by kind of instability (Fig. 15), "
+                                         f"{page.description}")))
+
+
+def advice_section(page, advice):
+    """The safe dither windows and the design parameters' ranking of
+    ``judder advise``, with its figure."""
+    return _keep(
+        "<h2>Safe dither windows and the design change</h2>"
+        + f"<p>{html.escape(_window_text(advice))}</p>"
+        + "<p>Design parameters ranked by how much of the way out of "
+          "the window a relative change takes the judder-relevant "
+          "tongues (share per unit change of ln value): "
+        + html.escape(", ".join(f"{n} {share:.2f}"
+                      for n, share, _ in advice.ranking))
+        + ".</p>"
+        + page.figure("Safe dither amplitude per frequency, and the map of "
+                      "the advised design (judder advise)",
+                      advice.figure(title=page.description)))
+
+
+def tip_ranking(tip_shifts, tongue_number):
+    """Per parameter, the largest relative move of one tongue's tip (in
+    amplitude and frequency) over its variations, largest first."""
+    table = {}
+    for row in tip_shifts:
+        if row["tongue"] != tongue_number:
+            continue
+        base_p = row["tip_p_f_bar"] - row["d_p_f_bar"] if row["present"] \
+            else None
+        entry = table.setdefault(row["parameter"],
+                                 {"parameter": row["parameter"],
+                                  "p_f_percent": 0.0, "freq_percent": 0.0,
+                                  "vanishes": False})
+        if not row["present"]:
+            entry["vanishes"] = True
+            continue
+        base_f = row["tip_freq_hz"] - row["d_freq_hz"]
+        entry["p_f_percent"] = max(entry["p_f_percent"],
+                                   abs(100 * row["d_p_f_bar"] / base_p))
+        entry["freq_percent"] = max(entry["freq_percent"],
+                                    abs(100 * row["d_freq_hz"] / base_f))
+    return sorted(table.values(), key=lambda e: (
+        not e["vanishes"], -max(e["p_f_percent"], e["freq_percent"])))
+
+
+def focus_tongue(found, freq_hz):
+    """Number of the tongue the ranking follows: the one nearest the
+    configured dither frequency, else the lowest tip."""
+    numbered = [t for t in found if t.number is not None]
+    if not numbered:
+        return None
+    if freq_hz is None:
+        return min(numbered, key=lambda t: t.tip_p_f).number
+    return min(numbered, key=lambda t: abs(t.tip_freq_hz - freq_hz)).number
+
+
+def _rankings_differ(ranking, advice):
+    """Why the sensitivity ranking and ``judder advise``'s differ, when
+    their first parameters do."""
+    if advice is None or not ranking or not advice.ranking:
+        return ""
+    first, design = ranking[0]["parameter"], advice.ranking[0][0]
+    if first == design:
+        return ""
+    return (
+        f"<p>This ranking puts {html.escape(first)} first, judder advise "
+        f"puts {html.escape(design)} first: they answer different "
+        "questions. Here each parameter is halved and doubled and the "
+        "table gives how far the tip of one tongue moves, mostly in "
+        "amplitude (the tip amplitude scales as 1/mu_g). judder advise "
+        "asks how far a small relative change of a design parameter "
+        "(inertias, stiffnesses, damping; the friction gradient is not "
+        "among them by default) moves every judder-relevant tongue out of "
+        "the valve's window, mostly in frequency, which the inertias and "
+        "stiffnesses set (Eq. 15).</p>")
+
+
+def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
+    """The sensitivity study (Fig. 17, 18): the ranking of the
+    parameters by how far they move tongue ``focus``'s tip
+    (:func:`tip_ranking`), why it may differ from ``judder advise``'s, and
+    the figure. ``near_setting``: the focus is the tongue nearest the
+    configured dither."""
+    return (_keep(
+        "<h2>What moves the tongues: sensitivity</h2>"
+        f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
+        f"the largest relative move of tongue {focus}'s tip"
+        + (" (the tongue nearest the configured dither)"
+           if near_setting else "") + ":</p>"
+        + _table(("parameter", "tip p_f moves up to [%]",
+                  "tip f moves up to [%]", "tongue vanishes"),
+                 [(e["parameter"], f"{e['p_f_percent']:.1f}",
+                   f"{e['freq_percent']:.2f}",
+                   "yes" if e["vanishes"] else "no") for e in ranking])
+        + _rankings_differ(ranking, advice))
+        + page.figure("Sensitivity of the stability boundary (Fig. 17, 18)",
+                      sens.figure(title=f"sensitivity, {page.description}")))
+
+
+def threshold_section(page, values, study):
+    """The friction-gradient threshold without dither (Fig. 19) of a
+    registry driveline, from :func:`judder.threshold`."""
+    return _keep(
+        "<h2>Without dither: the friction-gradient threshold</h2>"
+        f"<p>This study puts the mean pressure's damping into the slip "
+        "damping (Eq. 2-4 taken literally, as Fig. 19 needs), while the "
+        "maps above keep only the dither's fluctuating part (see "
+        "docs/theory.md). With it, this driveline "
+        f"is unstable without any dither for mu_g below "
+        f"{study.study.threshold:.3g} s/rad (its mu_g is "
+        f"{values['mu_g']:.3g} s/rad"
+        + (", so it judders without dither" if values["mu_g"]
+           < study.study.threshold else "")
+        + ").</p>"
+        + page.figure("Largest real part against mu_g and the threshold "
+                      "against the external damping (Fig. 19)",
+                      study.figure()))
+
+
+def engagement_section(page, run, paper):
+    """The engagement through the FMU at the configured dither (Fig. 7,
+    8), read as a chart reads a bench run; ``paper``: a registry
+    driveline (its bench model) rather than a Modelica class."""
+    from pysim.simulation.engagement import judder_words
+    first = run.summaries[0]
+    return (
+        "<h2>The engagement "
+        + ("on the bench model" if paper else "of the class's FMU")
+        + f"</h2><p>Through the {html.escape(run.model_class)} FMU"
+        + ("" if paper else " from its start values (a steady slip)")
+        + ": upstream speed peak "
+        f"{first['speed_peak_amplitude_rpm']:.3g} rpm at "
+        f"{first['speed_peak_freq_hz']:.2f} Hz; read as a chart reads "
+        "a bench run: " + html.escape(judder_words(first))
+        + f"; Floquet exponent of the bench's linearisation (the "
+        f"driveline with the damping of the bench's speed control, "
+        f"so not section 1's) {first['floquet_exponent_per_s']:+.2f} 1/s"
+        + ("" if first.get("orbit_kind") is None else
+           f"; the periodic orbit it settles on: "
+           f"{first['orbit_settled_rpm']:.3g} rpm, "
+           f"{first['orbit_kind']} "
+           f"({first['orbit_growth_per_s']:+.2f} 1/s), "
+           + (f"judder ({first['orbit_mechanism']})"
+              if first["orbit_mechanism"] else "no judder"))
+        + ("" if first.get("linearisation_holds") is not False else
+           f". The dither's forced slip swing "
+           f"({first['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
+           f"the friction curve's linear range "
+           f"({first['friction_linear_range_rad_s']:.2g} rad/s): the run "
+           "is nonlinear and need not follow the Floquet verdict")
+        + ".</p>"
+        + page.figure("Engagement with the configured dither and without "
+                      "(Fig. 7, 8)",
+                      run.figure(title=f"time-domain run, "
+                                 f"{page.description}")))
+
+
+def fit_section(bench, names, values, source, fitted, error):
+    """The fit to the bench data, shown only when the data
+    determine every fitted value (else one sentence saying why not).
+
+    ``fitted`` is the fit's result, or None with ``error`` the
+    :class:`~infra.errors.JudderError` that refused it.
+
+    Returns the section's HTML, its data (``fit``, ``fit_determined``,
+    ``fit_status``, ``fit_problems``) and the fit report to draw (None when
+    the fit is not shown)."""
+    freqs, measured, tried, min_growth, below_bar, spread = bench
+    onsets = int(np.sum(np.isfinite(measured)))
+    head = _keep("<h2>The bench data and the fit</h2>"
+                 f"<p>{len(freqs)} measured points from {source}, {onsets} "
+                 f"with judder; fitting {', '.join(names)} to the model's "
+                 f"boundary of judder growing at {min_growth:g} 1/s or "
+                 "faster.</p>")
+    if fitted is None:
+        status = f"no fit: {error}"
+        return (head + f"<p><b>No fit is shown</b>: {html.escape(str(error))}"
+                ".</p>", {"fit": None, "fit_determined": False,
+                          "fit_status": status, "fit_problems": [str(error)]},
+                None)
+    r = fitted.fit
+    problems = list(r.problems)
+    if not r.determined:
+        missing = list(r.undetermined) + [n for n in r.at_bound
+                                          if n not in r.undetermined]
+        status = ("no fit: the bench data do not determine "
+                  + ", ".join(missing or r.names))
+        return (head + f"<p><b>No fit is shown</b>: the bench data do not "
+                f"determine {html.escape(', '.join(missing or r.names))}. "
+                + " ".join(html.escape(p[0].upper() + p[1:]) + "."
+                           for p in problems) + "</p>",
+                {"fit": None, "fit_determined": False, "fit_status": status,
+                 "fit_problems": problems}, None)
+    lines = fitted.text()
+    status = "fitted " + "; ".join(line.strip() for line in lines[:len(
+        r.names)])
+    rows = [(n, f"{s0:.5g}", format_uncertain(v, s, values.specs[n].unit),
+             format_interval(lo, hi, s))
+            for n, s0, v, s, lo, hi in zip(r.names, r.start, r.values, r.std,
+                                           r.ci_low, r.ci_high)]
+    text = (head + _table(("parameter", "start", "fitted", "95 % interval"),
+                          rows)
+            + "".join(f"<p>{html.escape(line)}</p>"
+                      for line in lines[len(r.names):])
+            + "".join(f"<p>problem: {html.escape(p)}</p>" for p in problems))
+    return (text, {"fit": {n: {"value": v, "std": s, "ci95": [lo, hi]}
+                           for n, v, s, lo, hi in zip(r.names, r.values,
+                                                      r.std, r.ci_low,
+                                                      r.ci_high)},
+                   "fit_determined": True, "fit_status": status,
+                   "fit_success": bool(r.success), "fit_problems": problems},
+            fitted)
+
+
+def driveline_section(values, modes):
+    """The driveline (an appendix): natural frequencies, damping and the
+    table of its parameters."""
+    rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
+            for name, spec in values.specs.items()]
+    return _keep(
+        "<h2>The driveline and its parameters</h2>"
+        "<p>Natural frequencies (Eq. 15): "
+        + ", ".join(f"{f:.3f} Hz" for f in modes["natural_frequencies_hz"])
+        + ("" if modes["damping_factor_12"] is None else
+           "; clutch-damper damping factor zeta_12 (Eq. 16): "
+           f"{modes['damping_factor_12_percent']:.2f} %")
+        + "; damped modes without dither: " + ", ".join(
+            f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
+            for m in modes["damped_modes"]) + ".</p>"
+        + _table(("parameter", "value", "unit", "meaning"), rows))
