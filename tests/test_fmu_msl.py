@@ -255,3 +255,25 @@ def test_msl_clutch_is_refused_with_its_file():
     assert done.returncode == 2
     assert re.search(r"CoupledClutches\.mo", done.stderr), done.stderr
     assert "Traceback" not in done.stderr
+
+
+def test_modelica_linearises_a_class_with_a_step(monkeypatch):
+    """An MSL Blocks.Sources.Step driving the engine torque (its relation
+    `time < startTime`) is held at its value at the operating point: with
+    the step at 10 s the class linearises to Driveline4DOF's Jacobian;
+    with the step at 0 the held torque 1.1 T_e accelerates the driveline
+    (not a steady slip); with the step inside the dither period the
+    relation changes there and is refused, naming its place."""
+    from drivelines.modelica import ModelicaError, linearize
+    monkeypatch.setenv("MODELICAPATH", str(MSL))
+    stepped = linearize("MslDrivelines.SteppedEngine", str(MODELS))
+    plain = linearize("MslDrivelines.Driveline4DOF", str(MODELS))
+    assert_allclose(stepped.A0, plain.A0, rtol=0, atol=0)
+    assert_allclose(stepped.B, plain.B, rtol=0, atol=0)
+    stepped = linearize("MslDrivelines.SteppedEngine", str(MODELS),
+                        {"t_step": 0.0})
+    assert_allclose(stepped.A0, plain.A0, rtol=0, atol=0)
+    with pytest.raises(ModelicaError, match=r"relation at .*Sources\.mo:\d+ "
+                       r"changes at t = 0\.005\d* s within a dither period"):
+        linearize("MslDrivelines.SteppedEngine", str(MODELS),
+                  {"t_step": 0.005})
