@@ -580,8 +580,10 @@ def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
     from .limits import check_source_arrays
+    from .precheck import refuse_unsupported
     from .rumoca_child import flatten_isolated
     check_source_arrays(path, check_source_text(path))
+    refuse_unsupported(path, model_name, roots)
     try:
         return flatten_isolated(path, model_name, roots)
     except FrontEndError as exc:
