@@ -28,7 +28,7 @@ from pathlib import Path
 import re
 
 from .errors import FrontEndError
-from .frontend import _blank, class_spans, find_class
+from .classes import blank, class_spans, find_class
 
 __all__ = ["refuse_unsupported", "REPLACEMENTS"]
 
@@ -84,7 +84,7 @@ class _Source:
     @lru_cache(maxsize=None)
     def _file(self, path):
         text = Path(path).read_text(encoding="utf-8", errors="replace")
-        return text, _blank(text), class_spans(text)
+        return text, blank(text), class_spans(text)
 
     @lru_cache(maxsize=None)
     def long(self, name):

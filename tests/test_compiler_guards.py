@@ -27,8 +27,9 @@ fmpy = pytest.importorskip("fmpy")
 
 from fmu import backend, limits, rumoca_child  # noqa: E402
 from fmu.build import _run, build_fmu  # noqa: E402
-from fmu.frontend import (FrontEndError, _blank,  # noqa: E402
-                          _experiment, class_spans, load_flat_model)
+from fmu.classes import blank, class_spans  # noqa: E402
+from fmu.frontend import (FrontEndError, _experiment,  # noqa: E402
+                          load_flat_model)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -534,7 +535,7 @@ def test_every_msl_experiment_is_read_for_its_own_class():
         text = source.read_text(encoding="utf-8")
         if "experiment" not in text:
             continue
-        clean, spans = _blank(text), class_spans(text)
+        clean, spans = blank(text), class_spans(text)
         for found in re.finditer(r"\bexperiment\s*\(([^)]*)\)", clean):
             owner = max((begin, name) for name, (begin, end) in spans.items()
                         if begin <= found.start() < end)[1]
