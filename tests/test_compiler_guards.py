@@ -544,3 +544,67 @@ def test_every_msl_experiment_is_read_for_its_own_class():
             assert _experiment(source, owner) == expected, (source, owner)
             checked += 1
     assert checked > 500
+
+
+# -- constructs refused from the source, before rumoca ------------------
+
+_LIB = {
+    "Lib/package.mo": """within;
+package Lib
+  import M = Lib.Parts;
+  package Types
+    connector BoolIn = input Boolean "A Boolean input";
+  end Types;
+end Lib;
+""",
+    "Lib/Parts/package.mo": "within Lib;\npackage Parts\nend Parts;\n",
+    "Lib/Parts/Counter.mo": """within Lib.Parts;
+model Counter "Holds a Boolean through a short type"
+  Types.BoolIn on;
+  Real x(start = 1, fixed = true);
+equation
+  der(x) = -x;
+end Counter;
+""",
+    "Lib/Parts/Optional.mo": """within Lib.Parts;
+model Optional "A conditional Counter, off by default"
+  parameter Boolean use = false;
+  Counter counter if use;
+  Real y(start = 1, fixed = true);
+equation
+  der(y) = -y;
+end Optional;
+""",
+    "Lib/Rig.mo": """within Lib;
+model Rig
+  Real z(start = 1, fixed = true);
+  M.Optional optional;
+  M.Counter counter(x(start = 2));
+equation
+  der(z) = -z;
+end Rig;
+""",
+}
+
+
+def test_a_boolean_is_refused_from_the_source_with_its_components(tmp_path):
+    """`Lib.Rig` reaches `Counter`'s Boolean input through an import alias
+    (`M.Counter`), a relative name (`Types.BoolIn`, found in the
+    enclosing package) and a short connector definition; the refusal
+    names the Boolean's line and the component's, without rumoca. The
+    conditional `Optional.counter` is not followed, so `Optional` alone
+    passes."""
+    from fmu.precheck import refuse_unsupported
+    for name, text in _LIB.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(tmp_path / "Lib" / "Rig.mo", "Lib.Rig",
+                           [tmp_path])
+    message = str(refused.value)
+    assert re.match(r"\S*Counter\.mo:3: on: Integer, Boolean and discrete "
+                    r"variables are not supported \(a Boolean variable\), "
+                    r"in counter \(Lib\.Parts\.Counter, \S*Rig\.mo:5\)",
+                    message), message
+    refuse_unsupported(tmp_path / "Lib" / "Parts" / "Optional.mo",
+                       "Lib.Parts.Optional", [tmp_path])
