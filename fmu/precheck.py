@@ -134,12 +134,13 @@ def _statements(body):
     """``(offset, text)`` of the statements of a clean class body (split
     at ``;`` outside brackets)."""
     depth, start = 0, 0
-    for i, char in enumerate(body):
+    for found in re.finditer(r"[;()\[\]{}]", body):
+        char, i = found.group(0), found.start()
         if char in "([{":
             depth += 1
         elif char in ")]}":
             depth -= 1
-        elif char == ";" and depth == 0:
+        elif depth == 0:
             yield start, body[start:i]
             start = i + 1
 
@@ -169,15 +170,17 @@ class _Walker:
     def __init__(self, roots):
         self.source = _Source(roots)
         self.done = {}
+        self.imports = {}
 
     def _scope_imports(self, scope):
-        found = self.source.long(scope)
-        if found is None:
-            return {}, []
-        body = found[4]
-        cut = _SECTION.search(body)
-        return _imports(list(_statements(body[:cut.start()] if cut
-                                          else body)))
+        """The imports of class ``scope`` (see :func:`_imports`), read
+        once per class."""
+        if scope not in self.imports:
+            found = self.source.long(scope)
+            self.imports[scope] = _imports(
+                (0, statement) for statement in re.findall(
+                    r"\bimport\s[^;]*", found[4])) if found else ({}, [])
+        return self.imports[scope]
 
     def resolve(self, name, scope):
         """The full name of ``name`` used in class ``scope`` (lexical
