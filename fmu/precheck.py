@@ -17,9 +17,11 @@ It refuses only what the back end certainly refuses later (the checks of
 misses): variables of type Integer, Boolean or an enumeration,
 ``discrete`` variables, arrays of Real variables, parameters of an
 ``ExternalObject`` type (MSL's table objects), ``edge``, ``change``,
-``sample``, ``initial()`` and ``pre`` outside a when-clause. Conditional components
-(``... if useHeatPort``) are not followed: whether they exist is known
-only after the parameters are evaluated.
+``sample``, ``initial()`` and ``pre`` outside a when-clause.
+Conditional components (``... if useHeatPort``) are not followed:
+whether they exist is known only after the parameters are evaluated;
+nor are replaceable components and classes, which a modifier may
+redeclare.
 """
 
 from dataclasses import dataclass
@@ -117,8 +119,9 @@ class _Source:
             return None
         path, text, _, begin, body = found
         match = re.search(_SHORT.format(re.escape(short_name)), body)
-        if match is None:
-            return None
+        if match is None or re.search(r"\breplaceable\s+$",
+                                      body[:match.start()]):
+            return None   # a replaceable class may be redeclared
         return (match.group(1).split(), match.group(2),
                 _place(path, text, begin + match.start()))
 
@@ -260,8 +263,9 @@ class _Walker:
             return []
         prefixes, type_name, dims, component, more = found.groups()
         prefixes = prefixes.split()
-        if _conditional(statement[found.end():]):
-            return []
+        if _conditional(statement[found.end():]) or \
+                "replaceable" in prefixes:
+            return []     # may not exist, or be redeclared another type
         full, base, external = self.kind(type_name, scope)
         if external:
             return [_Finding(where, f"{component}: an external object "

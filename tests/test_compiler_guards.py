@@ -575,6 +575,11 @@ equation
   der(y) = -y;
 end Optional;
 """,
+    "Lib/Parts/Swappable.mo": """within Lib.Parts;
+model Swappable "A replaceable Counter, which a modifier may redeclare"
+  replaceable Counter counter;
+end Swappable;
+""",
     "Lib/Rig.mo": """within Lib;
 model Rig
   Real z(start = 1, fixed = true);
@@ -592,8 +597,8 @@ def test_a_boolean_is_refused_from_the_source_with_its_components(tmp_path):
     (`M.Counter`), a relative name (`Types.BoolIn`, found in the
     enclosing package) and a short connector definition; the refusal
     names the Boolean's line and the component's, without rumoca. The
-    conditional `Optional.counter` is not followed, so `Optional` alone
-    passes."""
+    conditional `Optional.counter` and the replaceable
+    `Swappable.counter` are not followed, so these classes pass."""
     from fmu.precheck import refuse_unsupported
     for name, text in _LIB.items():
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
@@ -606,5 +611,6 @@ def test_a_boolean_is_refused_from_the_source_with_its_components(tmp_path):
                     r"variables are not supported \(a Boolean variable\), "
                     r"in counter \(Lib\.Parts\.Counter, \S*Rig\.mo:5\)",
                     message), message
-    refuse_unsupported(tmp_path / "Lib" / "Parts" / "Optional.mo",
-                       "Lib.Parts.Optional", [tmp_path])
+    for name in ("Optional", "Swappable"):
+        refuse_unsupported(tmp_path / "Lib" / "Parts" / f"{name}.mo",
+                           f"Lib.Parts.{name}", [tmp_path])
