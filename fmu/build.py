@@ -34,7 +34,8 @@ import casadi
 from infra.files import atomic_write
 
 from .backend import Quantity, to_ode
-from .description import Layout, build_description, model_description
+from .description import (SOURCES, Layout, build_description,
+                          model_description)
 from .frontend import FrontEndError, load_flat_model, package_version
 from .limits import announce, check_compile, compile_estimate
 from .rumoca_child import memory_limit
@@ -48,7 +49,8 @@ _PLATFORM = {"2.0": "linux64", "3.0": "x86_64-linux"}
 _WINDOWS_PLATFORM = {"2.0": "win64", "3.0": "x86_64-windows"}
 #: mingw-w64 cross compiler for the optional Windows 64-bit binary.
 _WINDOWS_CC = "x86_64-w64-mingw32-gcc"
-_WRAPPER = {"2.0": "fmi2.c", "3.0": "fmi3.c"}
+#: Headers of the FMI core shipped beside its sources (description.SOURCES).
+_HEADERS = ("model.h", "instance.h")
 
 
 class BuildError(FrontEndError):
@@ -285,7 +287,7 @@ def _compile(folder, version, identifier, windows=False, seconds=None):
                          "build FMUs")
     command = [compiler, *flags, "-std=c99", f"-I{folder}", f"-I{C_SOURCES}",
                f"-I{fmi_headers()}", str(folder / "model_functions.c"),
-               str(C_SOURCES / "model.c"), str(C_SOURCES / _WRAPPER[version]),
+               *[str(C_SOURCES / name) for name in SOURCES[version][1:]],
                "-o", str(library), "-lm"]
     done = _run(command, seconds)
     if done.returncode != 0:
@@ -329,9 +331,9 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         Missing compiler, errors in the Modelica source (with rumoca's
         diagnostics), or a model the back end cannot handle.
     """
-    if version not in _WRAPPER:
+    if version not in SOURCES:
         raise BuildError(f"FMI version {version!r}; allowed: "
-                         f"{', '.join(_WRAPPER)}")
+                         f"{', '.join(SOURCES)}")
     started = time.perf_counter()
     with Stages(model_name) as stage:
         stage("flattening (rumoca)")
@@ -383,7 +385,7 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                 for source in ("model_functions.c", "model_functions.h",
                                "model_config.h"):
                     fmu.write(folder / source, f"sources/{source}")
-                for source in ("model.c", "model.h", _WRAPPER[version]):
+                for source in SOURCES[version][1:] + _HEADERS:
                     fmu.write(C_SOURCES / source, f"sources/{source}")
         atomic_write(out_file, write_zip)
     # the temporary file of atomic_write is private (0600); an FMU is a

@@ -194,9 +194,11 @@ def _bounds(q):
 
 
 #: C files of the FMU's sources/ folder that make its binary, per version
-#: (the headers beside them: model.h, model_config.h, model_functions.h).
-SOURCES = {"2.0": ("model_functions.c", "model.c", "fmi2.c"),
-           "3.0": ("model_functions.c", "model.c", "fmi3.c")}
+#: (the headers beside them: model.h, instance.h, model_config.h,
+#: model_functions.h): the generated functions, the model core, the FMI
+#: calls common to both versions and the version's adapter.
+SOURCES = {"2.0": ("model_functions.c", "model.c", "instance.c", "fmi2.c"),
+           "3.0": ("model_functions.c", "model.c", "instance.c", "fmi3.c")}
 
 
 def _source_files(version):

@@ -360,24 +360,25 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     x = casadi.vertcat(*[s.expression for s in ode.states])
     p = casadi.vertcat(*[q.expression for q in ode.parameters])
     t, pf = ode.time, ode.parameters[names.index(amplitude)].expression
-    jac = casadi.jacobian(ode.derivatives, x)
+    start = casadi.Function("start", [p], [casadi.vertcat(
+        *[s.start for s in ode.states])])
+    vector = np.array([values[n] for n in names])
+    x0 = np.asarray(start(vector)).ravel()
+    f0 = values[frequency]
+    _require(f0 > 0, f"{frequency} = {f0!r} Hz is not allowed; allowed: > 0")
+    times = np.arange(_SAMPLES) / (_SAMPLES * f0)
+    derivatives = _held_relations(class_name, ode, x, p, x0, vector, times)
+
+    jac = casadi.jacobian(derivatives, x)
     d_pf = casadi.jacobian(casadi.vec(jac), pf)
     _require(not casadi.depends_on(d_pf, pf),
              f"{class_name}: the Jacobian is not affine in {amplitude} (the "
              "dither amplitude multiplies the states nonlinearly); allowed: "
              "J = A0 + p_f cos(2 pi f t) B")
     functions = casadi.Function("lin", [t, x, p], [
-        jac, casadi.reshape(d_pf, jac.shape), ode.derivatives])
-    start = casadi.Function("start", [p], [casadi.vertcat(
-        *[s.start for s in ode.states])])
-
-    vector = np.array([values[n] for n in names])
-    x0 = np.asarray(start(vector)).ravel()
+        jac, casadi.reshape(d_pf, jac.shape), derivatives])
     mean = vector.copy()
     mean[names.index(amplitude)] = 0.0
-    f0 = values[frequency]
-    _require(f0 > 0, f"{frequency} = {f0!r} Hz is not allowed; allowed: > 0")
-    times = np.arange(_SAMPLES) / (_SAMPLES * f0)
 
     def evaluate(time, params):
         return [np.asarray(out) for out in functions(time, x0, params)]
@@ -409,6 +410,37 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
                                  tuple(s.name for s in ode.states), A0, B0,
                                  values, amplitude, frequency,
                                  SourceKind.MODELICA, frequency_dependent)
+
+
+def _held_relations(class_name, ode, x, p, x0, vector, times):
+    """``der(x)`` with each relation that triggers events (``time <
+    startTime`` of MSL's ``Step``, ``if w > 0``) held at its value at the
+    operating point, as the FMU holds it between events.
+
+    The relations are evaluated along the steady slip ``x0 + t der(x)``
+    over one dither period (``times``); one that changes there has no
+    single linearisation and is refused, naming its place.
+    """
+    if not ode.relations:
+        return ode.derivatives
+    symbols = casadi.vertcat(*[r.expression for r in ode.relations])
+    relations = casadi.Function("relations", [ode.time, x, p], [
+        casadi.vertcat(*[r.minimum for r in ode.relations])])
+    held = np.asarray(relations(0.0, x0, vector)).ravel()
+    derivatives = casadi.substitute(ode.derivatives, symbols,
+                                    casadi.DM(held))
+    rate = np.asarray(casadi.Function("rate", [ode.time, x, p], [
+        derivatives])(0.0, x0, vector)).ravel()
+    for time in times:
+        now = np.asarray(relations(time, x0 + time * rate, vector)).ravel()
+        for changed in np.flatnonzero(now != held):
+            raise ModelicaError(
+                f"{class_name}: the {ode.relations[changed].description} "
+                f"changes at t = {time:.4g} s within a dither period of the "
+                "operating point (the start values); allowed: relations "
+                "that hold their value over the period (a step's startTime "
+                "after it, say)")
+    return derivatives
 
 
 def linear_periodic_model(name, state_names, A0, B0, values, amplitude,

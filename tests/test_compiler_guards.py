@@ -27,8 +27,9 @@ fmpy = pytest.importorskip("fmpy")
 
 from fmu import backend, limits, rumoca_child  # noqa: E402
 from fmu.build import _run, build_fmu  # noqa: E402
-from fmu.frontend import (FrontEndError, _blank,  # noqa: E402
-                          _experiment, class_spans, load_flat_model)
+from fmu.classes import blank, class_spans  # noqa: E402
+from fmu.frontend import (FrontEndError, _experiment,  # noqa: E402
+                          load_flat_model)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -534,7 +535,7 @@ def test_every_msl_experiment_is_read_for_its_own_class():
         text = source.read_text(encoding="utf-8")
         if "experiment" not in text:
             continue
-        clean, spans = _blank(text), class_spans(text)
+        clean, spans = blank(text), class_spans(text)
         for found in re.finditer(r"\bexperiment\s*\(([^)]*)\)", clean):
             owner = max((begin, name) for name, (begin, end) in spans.items()
                         if begin <= found.start() < end)[1]
@@ -543,3 +544,73 @@ def test_every_msl_experiment_is_read_for_its_own_class():
             assert _experiment(source, owner) == expected, (source, owner)
             checked += 1
     assert checked > 500
+
+
+# -- constructs refused from the source, before rumoca ------------------
+
+_LIB = {
+    "Lib/package.mo": """within;
+package Lib
+  import M = Lib.Parts;
+  package Types
+    connector BoolIn = input Boolean "A Boolean input";
+  end Types;
+end Lib;
+""",
+    "Lib/Parts/package.mo": "within Lib;\npackage Parts\nend Parts;\n",
+    "Lib/Parts/Counter.mo": """within Lib.Parts;
+model Counter "Holds a Boolean through a short type"
+  Types.BoolIn on;
+  Real x(start = 1, fixed = true);
+equation
+  der(x) = -x;
+end Counter;
+""",
+    "Lib/Parts/Optional.mo": """within Lib.Parts;
+model Optional "A conditional Counter, off by default"
+  parameter Boolean use = false;
+  Counter counter if use;
+  Real y(start = 1, fixed = true);
+equation
+  der(y) = -y;
+end Optional;
+""",
+    "Lib/Parts/Swappable.mo": """within Lib.Parts;
+model Swappable "A replaceable Counter, which a modifier may redeclare"
+  replaceable Counter counter;
+end Swappable;
+""",
+    "Lib/Rig.mo": """within Lib;
+model Rig
+  Real z(start = 1, fixed = true);
+  M.Optional optional;
+  M.Counter counter(x(start = 2));
+equation
+  der(z) = -z;
+end Rig;
+""",
+}
+
+
+def test_a_boolean_is_refused_from_the_source_with_its_components(tmp_path):
+    """`Lib.Rig` reaches `Counter`'s Boolean input through an import alias
+    (`M.Counter`), a relative name (`Types.BoolIn`, found in the
+    enclosing package) and a short connector definition; the refusal
+    names the Boolean's line and the component's, without rumoca. The
+    conditional `Optional.counter` and the replaceable
+    `Swappable.counter` are not followed, so these classes pass."""
+    from fmu.precheck import refuse_unsupported
+    for name, text in _LIB.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(tmp_path / "Lib" / "Rig.mo", "Lib.Rig",
+                           [tmp_path])
+    message = str(refused.value)
+    assert re.match(r"\S*Counter\.mo:3: on: Integer, Boolean and discrete "
+                    r"variables are not supported \(a Boolean variable\), "
+                    r"in counter \(Lib\.Parts\.Counter, \S*Rig\.mo:5\)",
+                    message), message
+    for name in ("Optional", "Swappable"):
+        refuse_unsupported(tmp_path / "Lib" / "Parts" / f"{name}.mo",
+                           f"Lib.Parts.{name}", [tmp_path])

@@ -54,7 +54,8 @@ AUTHOR = "Judder test corpus"
 KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
          ("3.0", "ModelExchange"), ("3.0", "CoSimulation")]
 #: Models also built as FMI 3.0 (one of each kind of construct: the C
-#: core is shared, fmi3.c differs from fmi2.c only in the API).
+#: calls are shared in instance.c, fmi3.c and fmi2.c adapt them to their
+#: API).
 FMI3 = ["Decay", "AlgebraicOnly", "FirstOrderInput", "InitialEquation",
         "TableClutchRig", "BouncingBall"]
 

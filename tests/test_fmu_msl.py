@@ -14,6 +14,7 @@ from pathlib import Path
 import re
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 import zipfile
 
@@ -245,13 +246,69 @@ def test_msl_driveline_with_the_judder_clutch_has_the_same_maps(tmp_path):
                         atol=1e-12, err_msg=key)
 
 
-def test_msl_clutch_is_refused_with_its_file():
+def test_msl_clutch_is_refused_within_seconds_naming_its_construct():
     """MSL's Clutch (mixed Boolean/Integer mode logic with pre(), an
-    external table object) is refused: rumoca itself stops in its DAE
-    stage, and the refusal names the model's file."""
+    external table object) is refused before rumoca flattens (which took
+    400 s for CoupledClutches and ended in a miscount): the refusal names
+    the Boolean of PartialFriction with its line, the clutch component
+    with the example's line, and the project library's replacement."""
     name = "Modelica.Mechanics.Rotational.Examples.CoupledClutches"
+    started = time.monotonic()
     done = _cli("-m", "fmu", name, "--library", str(MSL), "--out",
                 "build/never", "--fmi", "2.0")
+    elapsed = time.monotonic() - started
     assert done.returncode == 2
-    assert re.search(r"CoupledClutches\.mo", done.stderr), done.stderr
+    assert re.search(r"PartialFriction\.mo:16: free: Integer, Boolean and "
+                     r"discrete variables are not supported \(a Boolean "
+                     r"variable\), in clutch1 \(Modelica\.Mechanics\."
+                     r"Rotational\.Components\.Clutch, \S*CoupledClutches"
+                     r"\.mo:16\)", done.stderr), done.stderr
+    assert "use Judder.Components.LockingWetClutch" in done.stderr
+    assert "unbalanced" not in done.stderr
     assert "Traceback" not in done.stderr
+    assert elapsed < 60, elapsed   # the interpreter, imports, no flatten
+
+
+@pytest.mark.parametrize("example, place, words", [
+    ("Backlash", "ElastoBacklash.mo:30", "initial() (equations that differ"),
+    ("LossyGearDemo1", "LossyGear.mo:29",
+     "interpolation_result: arrays of variables"),
+    ("OneWayClutch", "OneWayClutch.mo:26", "startForward: Integer, Boolean"),
+    ("First", None, None), ("CompareBrakingTorque", None, None)])
+def test_rotational_examples_are_read_before_flattening(example, place,
+                                                         words):
+    """The source check refuses the friction and backlash examples at
+    the construct's line and lets the examples that build through."""
+    from fmu.errors import FrontEndError
+    from fmu.precheck import refuse_unsupported
+    name = f"Modelica.Mechanics.Rotational.Examples.{example}"
+    roots = [MSL, LIBRARY]
+    source, _ = find_class(name, roots)
+    if place is None:
+        refuse_unsupported(source, name, roots)
+        return
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(source, name, roots)
+    assert f"{place}: {words}" in str(refused.value)
+
+
+def test_modelica_linearises_a_class_with_a_step(monkeypatch):
+    """An MSL Blocks.Sources.Step driving the engine torque (its relation
+    `time < startTime`) is held at its value at the operating point: with
+    the step at 10 s the class linearises to Driveline4DOF's Jacobian;
+    with the step at 0 the held torque 1.1 T_e accelerates the driveline
+    (not a steady slip); with the step inside the dither period the
+    relation changes there and is refused, naming its place."""
+    from sources.modelica import ModelicaError, linearize
+    monkeypatch.setenv("MODELICAPATH", str(MSL))
+    stepped = linearize("MslDrivelines.SteppedEngine", str(MODELS))
+    plain = linearize("MslDrivelines.Driveline4DOF", str(MODELS))
+    assert_allclose(stepped.A0, plain.A0, rtol=0, atol=0)
+    assert_allclose(stepped.B, plain.B, rtol=0, atol=0)
+    stepped = linearize("MslDrivelines.SteppedEngine", str(MODELS),
+                        {"t_step": 0.0})
+    assert_allclose(stepped.A0, plain.A0, rtol=0, atol=0)
+    with pytest.raises(ModelicaError, match=r"relation at .*Sources\.mo:\d+ "
+                       r"changes at t = 0\.005\d* s within a dither period"):
+        linearize("MslDrivelines.SteppedEngine", str(MODELS),
+                  {"t_step": 0.005})

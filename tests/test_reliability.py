@@ -130,7 +130,7 @@ SABOTAGE = {
     # a segfault in fmi2GetDirectionalDerivative
     "crashdd": (None, "*(volatile int *)0 = 0;"),
     # a segfault while the binary is loaded (dlopen runs constructors)
-    "crashload": ("#include \"model.h\"\n",
+    "crashload": ("#include \"instance.h\"\n",
                   "#include <signal.h>\n__attribute__((constructor)) static "
                   "void judder_boom(void) { raise(SIGSEGV); }\n"),
     # fmi2GetDirectionalDerivative never returns
@@ -145,6 +145,7 @@ def _sabotaged(tmp_path, kind):
     sources with one edit of fmi2.c (see SABOTAGE)."""
     import zipfile
     from fmu.build import fmi_headers
+    from fmu.description import SOURCES
     from pysim.simulation.fmus import ensure_fmu
     source = ensure_fmu(FOUR)
     work = tmp_path / kind
@@ -159,9 +160,11 @@ def _sabotaged(tmp_path, kind):
         if kind == "nandd":     # after the model's own result
             code = ""
             text = text.replace(
-                "        return fmi2Error;\n    }\n    return fmi2OK;\n}",
-                "        return fmi2Error;\n    }\n    dz[0] = 0.0 / 0.0;\n"
-                "    return fmi2OK;\n}", 1)
+                "    return STATUS(instance_directional(CORE(c), z, nz, v, nv, "
+                "dv, dz, 0));",
+                "    fmi2Status status = STATUS(instance_directional(CORE(c), "
+                "z, nz, v, nv, dv, dz, 0));\n    dz[0] = 0.0 / 0.0;\n"
+                "    return status;", 1)
             assert "dz[0] = 0.0 / 0.0" in text
         else:
             text = text[:brace] + code + text[brace:]
@@ -173,8 +176,7 @@ def _sabotaged(tmp_path, kind):
     sources = work / "sources"
     subprocess.run(["gcc", "-shared", "-fPIC", "-O2", "-fvisibility=hidden",
                     "-std=c99", f"-I{sources}", f"-I{fmi_headers()}",
-                    str(sources / "model_functions.c"),
-                    str(sources / "model.c"), str(wrapper),
+                    *[str(sources / name) for name in SOURCES["2.0"]],
                     "-o", str(library), "-lm"], check=True)
     target = tmp_path / f"{kind}.fmu"
     with zipfile.ZipFile(target, "w") as z:

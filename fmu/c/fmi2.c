@@ -1,35 +1,31 @@
-/* FMI 2.0 Model Exchange and Co-Simulation on the generic model core.
+/* FMI 2.0 Model Exchange and Co-Simulation: an adapter of the calls
+ * common to FMI 2 and 3 (instance.c) to the FMI 2.0 API.
  *
  * Model Exchange: the importer integrates der(x) = f(t, x, p).
  * Co-Simulation: fmi2DoStep integrates with the embedded Dormand-Prince
  * 5(4) of model.c under the tolerance of fmi2SetupExperiment (or the
  * model's default) and lands exactly on each communication point.
  */
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "fmi2Functions.h"
-#include "model.h"
+#include "instance.h"
 
 typedef struct {
-    Model model;
-    fmi2Type type;
+    Instance core;             /* first: an Fmi2 is an Instance */
     fmi2CallbackFunctions callbacks;
-    char *name;
     int logging;
-} Instance;
+} Fmi2;
 
-static void logmsg(Instance *c, fmi2Status status, const char *format, ...) {
-    char text[512];
-    va_list args;
+#define CORE(c) ((Instance *)(c))
+#define STATUS(failed) ((failed) ? fmi2Error : fmi2OK)
+
+static void fmi2_log(Instance *core, int error, const char *text) {
+    Fmi2 *c = (Fmi2 *)core;
     if (!c->callbacks.logger) return;
-    va_start(args, format);
-    vsnprintf(text, sizeof(text), format, args);
-    va_end(args);
-    c->callbacks.logger(c->callbacks.componentEnvironment, c->name, status,
-                        status == fmi2OK ? "logAll" : "logStatusError", "%s",
-                        text);
+    c->callbacks.logger(c->callbacks.componentEnvironment, core->name,
+                        error ? fmi2Error : fmi2OK,
+                        error ? "logStatusError" : "logAll", "%s", text);
 }
 
 const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
@@ -38,7 +34,7 @@ const char *fmi2GetVersion(void) { return fmi2Version; }
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean on, size_t n,
                                const fmi2String categories[]) {
     (void)n; (void)categories;
-    ((Instance *)c)->logging = on;
+    ((Fmi2 *)c)->logging = on;
     return fmi2OK;
 }
 
@@ -46,8 +42,8 @@ fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
                               fmi2String location,
                               const fmi2CallbackFunctions *callbacks,
                               fmi2Boolean visible, fmi2Boolean logging) {
-    Instance *c;
-    (void)location; (void)visible;
+    Fmi2 *c;
+    (void)type; (void)location; (void)visible;
     if (!guid || strcmp(guid, MODEL_GUID) != 0) {
         if (callbacks && callbacks->logger)
             callbacks->logger(callbacks->componentEnvironment, name, fmi2Error,
@@ -55,94 +51,57 @@ fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
                               guid ? guid : "(null)", MODEL_GUID);
         return NULL;
     }
-    c = calloc(1, sizeof(Instance));
+    c = calloc(1, sizeof(Fmi2));
     if (!c) return NULL;
-    c->type = type;
     if (callbacks) c->callbacks = *callbacks;
-    c->name = malloc(strlen(name ? name : "") + 1);
-    if (c->name) strcpy(c->name, name ? name : "");
     c->logging = logging;
-    if (!c->name || model_init(&c->model) != 0) {
-        free(c->name); free(c);
+    if (instance_init(&c->core, name, fmi2_log) != 0) {
+        free(c);
         return NULL;
     }
     return c;
 }
 
 void fmi2FreeInstance(fmi2Component c) {
-    Instance *inst = c;
-    if (!inst) return;
-    model_free(&inst->model);
-    free(inst->name);
-    free(inst);
+    if (!c) return;
+    instance_free(CORE(c));
+    free(c);
 }
 
 fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
                                fmi2Real tolerance, fmi2Real startTime,
                                fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
-    Instance *inst = c;
     (void)stopTimeDefined; (void)stopTime;
-    if (toleranceDefined && tolerance > 0)
-        inst->model.relative_tolerance = tolerance < 1e-3 ? tolerance : 1e-3;
-    inst->model.time = startTime;
-    inst->model.stale = 1;
+    instance_setup(CORE(c), toleranceDefined, tolerance, startTime);
     return fmi2OK;
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
-    Instance *inst = c;
-    model_start(&inst->model); /* states follow the parameters set */
+    model_start(&CORE(c)->model); /* states follow the parameters set */
     return fmi2OK;
 }
 
 fmi2Status fmi2Terminate(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2Reset(fmi2Component c) {
-    Instance *inst = c;
-    model_free(&inst->model);
-    return model_init(&inst->model) == 0 ? fmi2OK : fmi2Fatal;
+    return instance_reset(CORE(c)) ? fmi2Fatal : fmi2OK;
 }
 
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[],
                        size_t nvr, fmi2Real value[]) {
-    Instance *inst = c;
-    size_t i;
-    for (i = 0; i < nvr; i++) {
-        if (model_get(&inst->model, vr[i], &value[i]) != 0) {
-            logmsg(inst, fmi2Error, "no Real variable with value reference %u", vr[i]);
-            return fmi2Error;
-        }
-    }
-    return fmi2OK;
+    return STATUS(instance_get(CORE(c), vr, nvr, value, "Real"));
 }
 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[],
                        size_t nvr, const fmi2Real value[]) {
-    Instance *inst = c;
-    size_t i;
-    for (i = 0; i < nvr; i++) {
-        int done = model_set(&inst->model, vr[i], value[i], 0);
-        if (done == 2) {
-            double low, high;
-            model_bounds(vr[i], &low, &high);
-            logmsg(inst, fmi2Error, "value %g of value reference %u is outside "
-                   "its declared range [%g, %g]", value[i], vr[i], low, high);
-            return fmi2Error;
-        }
-        if (done != 0) {
-            logmsg(inst, fmi2Error, "value reference %u cannot be set", vr[i]);
-            return fmi2Error;
-        }
-    }
-    return fmi2OK;
+    return STATUS(instance_set(CORE(c), vr, nvr, value));
 }
 
 #define NO_VARIABLES(name, type) \
     fmi2Status name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, type value[]) { \
-        (void)vr; (void)value; if (nvr == 0) return fmi2OK; \
-        logmsg(c, fmi2Error, "the model has no variables of this type"); return fmi2Error; }
+        (void)vr; (void)value; return STATUS(instance_no_variables(CORE(c), #name, nvr)); }
 NO_VARIABLES(fmi2GetInteger, fmi2Integer)
 NO_VARIABLES(fmi2GetBoolean, fmi2Boolean)
 NO_VARIABLES(fmi2GetString, fmi2String)
@@ -150,65 +109,37 @@ NO_VARIABLES(fmi2SetInteger, const fmi2Integer)
 NO_VARIABLES(fmi2SetBoolean, const fmi2Boolean)
 NO_VARIABLES(fmi2SetString, const fmi2String)
 
-#define NOT_SUPPORTED(call) \
-    { (void)c; logmsg(c, fmi2Error, call " is not supported"); return fmi2Error; }
+#define NOT_SUPPORTED(call) { return STATUS(instance_not_supported(CORE(c), call)); }
+
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s) {
-    Instance *inst = c;
-    Model *copy = *s ? (Model *)*s : calloc(1, sizeof(Model));
-    if (!copy) return fmi2Error;
-    model_copy_state(copy, &inst->model);
-    *s = copy;
-    return fmi2OK;
+    return STATUS(instance_get_state(CORE(c), s));
 }
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s) {
-    if (!s) return fmi2Error;
-    model_copy_state(&((Instance *)c)->model, (const Model *)s);
-    return fmi2OK;
+    return STATUS(instance_set_state(CORE(c), s));
 }
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s) {
-    (void)c;
-    if (s) { free(*s); *s = NULL; }
-    return fmi2OK;
+    (void)c; instance_free_state(s); return fmi2OK;
 }
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *n) {
     (void)c; (void)s; *n = model_serialized_size(); return fmi2OK;
 }
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], size_t n) {
-    if (!s || n < model_serialized_size()) {
-        logmsg(c, fmi2Error, "fmi2SerializeFMUstate: %zu bytes given, %zu needed",
-               n, model_serialized_size());
-        return fmi2Error;
-    }
-    model_serialize((const Model *)s, b);
-    return fmi2OK;
+    return STATUS(instance_serialize(CORE(c), s, b, n, "fmi2SerializeFMUstate"));
 }
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *s) {
-    Model *copy = calloc(1, sizeof(Model));
-    if (!copy) return fmi2Error;
-    if (model_deserialize(copy, b, n) != 0) {
-        free(copy);
-        logmsg(c, fmi2Error, "fmi2DeSerializeFMUstate: not a state of this FMU");
-        return fmi2Error;
-    }
-    *s = copy;
-    return fmi2OK;
+    return STATUS(instance_deserialize(CORE(c), b, n, s, "fmi2DeSerializeFMUstate"));
 }
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference z[], size_t nz,
         const fmi2ValueReference v[], size_t nv, const fmi2Real dv[], fmi2Real dz[]) {
-    if (model_directional(&((Instance *)c)->model, z, nz, v, nv, dv, dz, 0) != 0) {
-        logmsg(c, fmi2Error, "fmi2GetDirectionalDerivative: the unknowns must be "
-               "derivatives or outputs, the knowns states, parameters or inputs");
-        return fmi2Error;
-    }
-    return fmi2OK;
+    return STATUS(instance_directional(CORE(c), z, nz, v, nv, dv, dz, 0));
 }
 
 /* Model Exchange */
 fmi2Status fmi2EnterEventMode(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
-    Instance *inst = c;
-    int again = 0, changed = model_event(&inst->model, &again);
+    int again, changed;
+    instance_event(CORE(c), &again, &changed);
     info->newDiscreteStatesNeeded = again ? fmi2True : fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
@@ -230,52 +161,28 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet,
 }
 
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time) {
-    Instance *inst = c;
-    inst->model.time = time;
-    inst->model.stale = 1;
+    instance_set_time(CORE(c), time);
     return fmi2OK;
 }
 
 fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx) {
-    Instance *inst = c;
-    if (nx != MODEL_NX) return fmi2Error;
-    memcpy(inst->model.x, x, sizeof(double) * nx);
-    inst->model.stale = 1;
-    return fmi2OK;
+    return STATUS(instance_set_states(CORE(c), x, nx));
 }
 
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t nx) {
-    Instance *inst = c;
-    if (nx != MODEL_NX) return fmi2Error;
-    model_evaluate(&inst->model);
-    memcpy(dx, inst->model.xdot, sizeof(double) * nx);
-    if (model_finite(&inst->model) != 0) {
-        logmsg(inst, fmi2Error, "der(%s) is not finite at t = %g (check the "
-               "parameters)", model_state_name(model_finite(&inst->model) - 1),
-               inst->model.time);
-        return fmi2Error;
-    }
-    return fmi2OK;
+    return STATUS(instance_derivatives(CORE(c), dx, nx));
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t nz) {
-    if (nz != MODEL_NR) return fmi2Error;
-    if (nz) model_indicators(&((Instance *)c)->model, z);
-    return fmi2OK;
+    return STATUS(instance_indicators(CORE(c), z, nz));
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {
-    Instance *inst = c;
-    if (nx != MODEL_NX) return fmi2Error;
-    memcpy(x, inst->model.x, sizeof(double) * nx);
-    return fmi2OK;
+    return STATUS(instance_get_states(CORE(c), x, nx));
 }
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {
-    size_t i;
-    (void)c;
-    for (i = 0; i < nx; i++) x[i] = 1.0;
-    return fmi2OK;
+    (void)c; instance_nominals(x, nx); return fmi2OK;
 }
 
 /* Co-Simulation */
@@ -294,22 +201,8 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
 }
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real t, fmi2Real h, fmi2Boolean noSetPrior) {
-    Instance *inst = c;
     (void)noSetPrior;
-    if (h < 0) return fmi2Error;
-    inst->model.time = t;
-    switch (model_integrate(&inst->model, t + h)) {
-    case 0: break;
-    case 2:
-        logmsg(inst, fmi2Error, "the derivatives are not finite in the step "
-               "from t = %g (check the parameters)", inst->model.time);
-        return fmi2Error;
-    default:
-        logmsg(inst, fmi2Error, "the integrator failed at t = %g (step size too small)",
-               inst->model.time);
-        return fmi2Error;
-    }
-    return fmi2OK;
+    return STATUS(instance_do_step(CORE(c), t, h));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c) { NOT_SUPPORTED("fmi2CancelStep") }
@@ -318,8 +211,7 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *v)
     (void)s; (void)v; NOT_SUPPORTED("fmi2GetStatus") }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *v) {
-    Instance *inst = c;
-    if (s == fmi2LastSuccessfulTime) { *v = inst->model.time; return fmi2OK; }
+    if (s == fmi2LastSuccessfulTime) { *v = CORE(c)->model.time; return fmi2OK; }
     return fmi2Discard;
 }
 

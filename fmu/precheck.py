@@ -1,0 +1,349 @@
+"""Constructs the back end does not compile, found in the source before
+rumoca flattens.
+
+rumoca flattens the whole model before the front end can see an Integer
+mode or a ``pre()`` (MSL's ``CoupledClutches``: 400 s), and then often
+stops in its own DAE stage with a miscount ("unbalanced model: 115
+equations, 112 unknowns") that names neither the construct nor its place.
+:func:`refuse_unsupported` instead walks the classes the model
+instantiates (its components' types and the classes they extend) in the
+source text, resolving names as Modelica does (nested classes, imports,
+enclosing packages), and refuses the first definite obstacle with its
+``file:line``, the components that lead to it and, for the MSL's
+friction elements, the project library's replacement.
+
+It refuses only what the back end certainly refuses later (the checks of
+:func:`fmu.frontend._check_supported` remain for what this reading
+misses): variables of type Integer, Boolean or an enumeration,
+``discrete`` variables, arrays of Real variables, parameters of an
+``ExternalObject`` type (MSL's table objects), ``edge``, ``change``,
+``sample``, ``initial()`` and ``pre`` outside a when-clause.
+Conditional components (``... if useHeatPort``) are not followed:
+whether they exist is known only after the parameters are evaluated;
+nor are replaceable components and classes, which a modifier may
+redeclare.
+"""
+
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+import re
+
+from .errors import FrontEndError
+from .classes import blank, class_spans, find_class
+
+__all__ = ["refuse_unsupported", "REPLACEMENTS"]
+
+#: The project library's replacements of MSL classes it refuses.
+REPLACEMENTS = {
+    "Modelica.Mechanics.Rotational.Components.Clutch":
+        "Judder.Components.LockingWetClutch (locks and breaks away by "
+        "events) or Judder.Components.SlippingClutch (always slipping)",
+    "Modelica.Mechanics.Rotational.Components.Brake":
+        "Judder.Components.LockingWetClutch with flange_b on a "
+        "Rotational.Components.Fixed",
+}
+_BUILTIN = {"Real", "Integer", "Boolean", "String"}
+_DISCRETE = {"Integer": "an Integer variable", "Boolean": "a Boolean variable",
+             "String": "a String variable",
+             "enumeration": "an enumeration variable"}
+_PREFIXES = ("final", "inner", "outer", "replaceable", "redeclare", "flow",
+             "stream", "discrete", "parameter", "constant", "input", "output",
+             "each")
+_SECTION = re.compile(r"\b(?:initial\s+)?(?:equation|algorithm)\b")
+_DECLARATION = re.compile(
+    r"^\s*((?:(?:" + "|".join(_PREFIXES) + r")\s+)*)"
+    r"([A-Za-z_][\w.]*)\s*(\[[^\]]*\])?\s+([A-Za-z_]\w*)\s*(\[[^\]]*\])?",
+    re.S)
+_IMPORT = re.compile(r"^\s*import\s+(?:(\w+)\s*=\s*)?([\w.]+?)"
+                     r"(?:\.(\*)|\.\{([^}]*)\})?\s*$", re.S)
+_EXTENDS = re.compile(r"^\s*extends\s+([\w.]+)")
+_SHORT = r"\b(?:type|connector|model|block|record|class)\s+{}\s*=\s*" \
+    r"((?:(?:input|output|flow|stream|discrete)\s+)*)([\w.]+)"
+_WHEN = re.compile(r"\bwhen\b(.*?)\bend\s+when\s*;", re.S)
+_OPERATORS = {"edge": "edge() is not supported",
+              "change": "change() is not supported",
+              "sample": "sample(): clocked equations are not supported",
+              "initial": "initial() (equations that differ at the "
+                         "initialisation) is not supported"}
+
+
+@dataclass(frozen=True)
+class _Finding:
+    """One construct the back end does not compile."""
+
+    place: str
+    what: str
+    chain: tuple   # (component, class name, place) from the model down
+
+
+class _Source:
+    """Class definitions of the libraries on the path, read on demand."""
+
+    def __init__(self, roots):
+        self.roots = [str(r) for r in roots]
+
+    @lru_cache(maxsize=None)
+    def _file(self, path):
+        text = Path(path).read_text(encoding="utf-8", errors="replace")
+        return text, blank(text), class_spans(text)
+
+    @lru_cache(maxsize=None)
+    def long(self, name):
+        """``(path, text, clean, begin, body)`` of a long class definition:
+        ``body`` its clean text with the nested classes blanked; or None."""
+        try:
+            path, _ = find_class(name, self.roots)
+        except FrontEndError:
+            return None
+        text, clean, spans = self._file(str(path))
+        span = spans.get(name)
+        if span is None:
+            return None
+        begin, end = span
+        body = list(clean[begin:end])
+        for other, (a, b) in spans.items():
+            if other != name and begin < a and b <= end:
+                body[a - begin:b - begin] = " " * (b - a)
+        head = re.match(r"\s*\w+\s+(?:extends\s+)?\w+", "".join(body))
+        body[:head.end()] = " " * head.end()
+        return str(path), text, clean, begin, "".join(body)
+
+    @lru_cache(maxsize=None)
+    def short(self, name):
+        """``(prefixes, base name, place)`` of a short definition ``type
+        T = ...`` inside its enclosing class; or None."""
+        parent, _, short_name = name.rpartition(".")
+        found = self.long(parent) if parent else None
+        if found is None:
+            return None
+        path, text, _, begin, body = found
+        match = re.search(_SHORT.format(re.escape(short_name)), body)
+        if match is None or re.search(r"\breplaceable\s+$",
+                                      body[:match.start()]):
+            return None   # a replaceable class may be redeclared
+        return (match.group(1).split(), match.group(2),
+                _place(path, text, begin + match.start()))
+
+    def exists(self, name):
+        return self.long(name) is not None or self.short(name) is not None
+
+
+def _place(path, text, offset):
+    return f"{path}:{text[:offset].count(chr(10)) + 1}"
+
+
+def _statements(body):
+    """``(offset, text)`` of the statements of a clean class body (split
+    at ``;`` outside brackets)."""
+    depth, start = 0, 0
+    for found in re.finditer(r"[;()\[\]{}]", body):
+        char, i = found.group(0), found.start()
+        if char in "([{":
+            depth += 1
+        elif char in ")]}":
+            depth -= 1
+        elif depth == 0:
+            yield start, body[start:i]
+            start = i + 1
+
+
+def _imports(statements):
+    """``{alias: full name}`` and the packages imported whole (``.*``)."""
+    named, whole = {}, []
+    for _, statement in statements:
+        found = _IMPORT.match(statement)
+        if not found:
+            continue
+        alias, target, star, listed = found.groups()
+        if star:
+            whole.append(target)
+        elif listed:
+            named.update({n.strip(): f"{target}.{n.strip()}"
+                          for n in listed.split(",")})
+        else:
+            named[alias or target.rsplit(".", 1)[-1]] = target
+    return named, whole
+
+
+class _Walker:
+    """Finds what the back end does not compile in the classes a model
+    instantiates (each class read once)."""
+
+    def __init__(self, roots):
+        self.source = _Source(roots)
+        self.done = {}
+        self.imports = {}
+
+    def _scope_imports(self, scope):
+        """The imports of class ``scope`` (see :func:`_imports`), read
+        once per class."""
+        if scope not in self.imports:
+            found = self.source.long(scope)
+            self.imports[scope] = _imports(
+                (0, statement) for statement in re.findall(
+                    r"\bimport\s[^;]*", found[4])) if found else ({}, [])
+        return self.imports[scope]
+
+    def resolve(self, name, scope):
+        """The full name of ``name`` used in class ``scope`` (lexical
+        lookup: nested classes and imports of the class and of its
+        enclosing packages, then the top level); None if not found."""
+        if name in _BUILTIN or name == "ExternalObject":
+            return name
+        first, _, rest = name.partition(".")
+        parts = scope.split(".")
+        for count in range(len(parts), 0, -1):
+            enclosing = ".".join(parts[:count])
+            candidate = f"{enclosing}.{name}"
+            if self.source.exists(f"{enclosing}.{first}"):
+                return candidate
+            named, whole = self._scope_imports(enclosing)
+            if first in named:
+                return named[first] + (f".{rest}" if rest else "")
+            for package in whole:
+                if self.source.exists(f"{package}.{first}"):
+                    return f"{package}.{name}"
+        return name if self.source.exists(name) else None
+
+    def kind(self, name, scope, seen=()):
+        """``(full name, builtin base or None, extends ExternalObject)``
+        of a type, following short definitions."""
+        full = self.resolve(name, scope)
+        if full is None or full in _BUILTIN:
+            return full, full, False
+        short = self.source.short(full)
+        if short is not None and full not in seen:
+            base = short[1]
+            if base == "enumeration":
+                return full, "enumeration", False
+            return self.kind(base, full.rpartition(".")[0], seen + (full,))
+        found = self.source.long(full)
+        if found is not None and re.search(r"\bextends\s+ExternalObject\b",
+                                           found[4]):
+            return full, None, True
+        if found is not None and re.search(r"\benumeration\s*\(", found[4]):
+            return full, "enumeration", False
+        return full, None, False
+
+    def findings(self, name):
+        """What class ``name`` (and what it extends and instantiates)
+        holds that the back end does not compile."""
+        if name in self.done:
+            return self.done[name]
+        self.done[name] = []    # a class that instantiates itself
+        found = self.source.long(name)
+        if found is None:
+            return []
+        path, text, _, begin, body = found
+        cut = _SECTION.search(body)
+        result = []
+        for at, statement in _statements(body[:cut.start()] if cut
+                                         else body):
+            statement = re.sub(r"^(\s*)(?:protected|public)\b",
+                               lambda m: m.group(1) + " " * (
+                                   len(m.group(0)) - len(m.group(1))),
+                               statement)
+            where = _place(path, text, begin + at + len(statement)
+                           - len(statement.lstrip()))
+            result += self._statement(statement, name, where)
+        if cut:
+            result += self._equations(body[cut.start():], path, text,
+                                      begin + cut.start())
+        self.done[name] = result
+        return result
+
+    def _statement(self, statement, scope, where):
+        extends = _EXTENDS.match(statement)
+        if extends:
+            full = self.resolve(extends.group(1), scope)
+            return self.findings(full) if full else []
+        found = _DECLARATION.match(statement)
+        if not found or re.match(r"\s*(?:import|annotation)\b", statement):
+            return []
+        prefixes, type_name, dims, component, more = found.groups()
+        prefixes = prefixes.split()
+        if _conditional(statement[found.end():]) or \
+                "replaceable" in prefixes:
+            return []     # may not exist, or be redeclared another type
+        full, base, external = self.kind(type_name, scope)
+        if external:
+            return [_Finding(where, f"{component}: an external object "
+                             f"({full}) is not supported", ())]
+        if "parameter" in prefixes or "constant" in prefixes:
+            return []
+        if "discrete" in prefixes or base in _DISCRETE:
+            what = _DISCRETE.get(base, "a discrete variable")
+            return [_Finding(where, f"{component}: Integer, Boolean and "
+                             f"discrete variables are not supported ({what})",
+                             ())]
+        if base == "Real" and (dims or more):
+            return [_Finding(where, f"{component}: arrays of variables are "
+                             "not supported", ())]
+        if base is None and full is not None:
+            return [_Finding(f.place, f.what,
+                             ((component, full, where),) + f.chain)
+                    for f in self.findings(full)]
+        return []
+
+    def _equations(self, sections, path, text, begin):
+        outside = _WHEN.sub(lambda m: " " * len(m.group(0)), sections)
+        hits = [(found.start(), what) for operator, what in
+                _OPERATORS.items()
+                for found in re.finditer(rf"\b{operator}\s*\(", sections)]
+        hits += [(found.start(), "pre() outside a when-clause's reinit is not "
+                  "supported")
+                 for found in re.finditer(r"\bpre\s*\(", outside)]
+        return [_Finding(_place(path, text, begin + at), what, ())
+                for at, what in sorted(hits)]
+
+
+def _conditional(rest):
+    """Whether the text after a component's name (its modification,
+    binding, condition and comment) makes it conditional (``... if
+    useSupport``)."""
+    rest = rest.lstrip()
+    if rest.startswith("("):
+        depth = 0
+        for i, char in enumerate(rest):
+            depth += {"(": 1, ")": -1}.get(char, 0)
+            if depth == 0:
+                rest = rest[i + 1:].lstrip()
+                break
+    return re.match(r"if\b", rest) is not None
+
+
+def _describe(finding):
+    chain = ", in ".join(f"{component} ({name}, {place})" for component,
+                         name, place in reversed(finding.chain))
+    return f"{finding.place}: {finding.what}" + \
+        (f", in {chain}" if chain else "")
+
+
+def refuse_unsupported(path, model_name, roots):
+    """Refuse ``model_name`` if the classes it instantiates hold a
+    construct the back end does not compile, before rumoca flattens it.
+
+    Raises
+    ------
+    FrontEndError
+        ``FILE:LINE: construct``, the components that lead there from the
+        model, and the replacement of :data:`REPLACEMENTS` when one of
+        them is an MSL class listed there.
+    """
+    walker = _Walker(roots)
+    findings = walker.findings(model_name)
+    if not findings:
+        return
+    first = findings[0]
+    message = f"{_describe(first)}, in model {model_name} ({path})"
+    replaced = [REPLACEMENTS[name] for _, name, _ in first.chain
+                if name in REPLACEMENTS]
+    if replaced:
+        message += f"; use {replaced[0]}"
+    others = sorted({f.place for f in findings[1:]} - {first.place})
+    if others:
+        message += (f"; also at {', '.join(others[:4])}"
+                    + (f" and {len(others) - 4} more" if len(others) > 4
+                       else ""))
+    raise FrontEndError(message + " (found before flattening)")
