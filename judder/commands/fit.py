@@ -6,7 +6,7 @@ import numpy as np
 
 from drivelines import dumps_toml
 from infra.errors import JudderError, check_number
-from infra.files import write_text
+from infra.files import keeps_foreign_files, write_text
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
@@ -16,7 +16,8 @@ from ..inputs import (read_boundary, read_boundary_limit,
                       read_boundary_min_growth, read_chart_below,
                       read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
-from ._arguments import method_option, model_options, workers_option
+from ._arguments import (force_option, method_option, model_options,
+                         workers_option)
 from ._bench import bench_values
 from ._common import resolve, timed
 from ._model import parameters_of
@@ -90,10 +91,8 @@ def add_arguments(p):
                    "parallel starts gain; all cores for --uncertainty "
                    "bootstrap")
     p.add_argument("--save-params", metavar="FILE.toml",
-                   help="write the fitted set (never overwrites unless "
-                        "--force)")
-    p.add_argument("--force", action="store_true",
-                   help="allow --save-params to replace a file")
+                   help="write the fitted set, to load with --param-file")
+    force_option(p)
     p.add_argument("--limit", type=LIMIT, default=None, metavar="RPM",
                    help="NVH limit the onsets were called judder from, "
                         "rpm (default: the chart's or the boundary file's "
@@ -183,7 +182,7 @@ def run(args):
                      judder_limit_rpm=limit)
     result = report.fit
     if args.save_params:
-        report.save_params(args.save_params, overwrite=args.force)
+        report.save_params(args.save_params, force=args.force)
     if args.plot:
         save_plot(args.plot, report.figure())
     rows = report.text()
@@ -444,9 +443,11 @@ class FitReport:
                     f"{r.evaluations} model boundaries in {self.seconds:.1f} s")
         return rows
 
-    def save_params(self, path, overwrite=False):
-        """Write the fitted parameter set as TOML."""
-        write_text(path, dumps_toml(self.fit.params), overwrite=overwrite)
+    @keeps_foreign_files
+    def save_params(self, path):
+        """Write the fitted parameter set as TOML, atomically (a file
+        judder did not write is replaced only with ``force=True``)."""
+        write_text(path, dumps_toml(self.fit.params))
 
     def figure(self):
         return self.fit.plot()[0].figure
