@@ -109,17 +109,17 @@ def _described(path, mtime):
     except Exception as exc:           # fmpy raises zip, XML and schema errors
         reason = str(exc).splitlines()[0] if str(exc) else \
             type(exc).__name__
-        raise FmuError(f"--fmu {path}: not a readable FMU ({reason})") \
+        raise FmuError(f"`path` {path}: not a readable FMU ({reason})") \
             from None
     _require(md.fmiVersion == "2.0",
-             f"--fmu {path}: fmiVersion {md.fmiVersion}; allowed: 2.0")
+             f"`path` {path}: fmiVersion {md.fmiVersion}; allowed: 2.0")
     _require(md.modelExchange is not None,
-             f"--fmu {path}: no Model Exchange interface (Co-Simulation "
+             f"`path` {path}: no Model Exchange interface (Co-Simulation "
              "only); allowed: an FMI 2.0 Model Exchange FMU")
     _require(md.modelExchange.providesDirectionalDerivative,
-             f"--fmu {path}: providesDirectionalDerivative is not true; "
+             f"`path` {path}: providesDirectionalDerivative is not true; "
              "allowed: an FMU that provides directional derivatives")
-    _require(md.derivatives, f"--fmu {path}: the FMU has no states")
+    _require(md.derivatives, f"`path` {path}: the FMU has no states")
     specs, starts, references = {}, {}, {}
     for v in md.modelVariables:
         if v.causality != "parameter" or v.type != "Real" or \
@@ -155,7 +155,7 @@ def fmu_description(path):
         directional derivatives.
     """
     path = Path(path)
-    _require(path.is_file(), f"--fmu {path}: no such file; allowed: an "
+    _require(path.is_file(), f"`path` {path}: no such file; allowed: an "
              ".fmu file")
     return _described(str(path.resolve()), path.stat().st_mtime_ns)
 
@@ -189,7 +189,7 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
     values = _values(d, dict(values or {}))
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         if name not in d.specs:
-            raise FmuError(f"--dither-{role} {name!r} is not a Real "
+            raise FmuError(f"`{role}` {name!r} is not a Real "
                            f"parameter of {d.model_name}; allowed: "
                            f"{', '.join(d.specs)}")
     f0 = values[frequency]

@@ -4,12 +4,18 @@ the exit codes every command line uses.
 A :class:`JudderError` carries a message that names the input, its value
 and what is allowed; a command line prints it as ``PROG: error: MESSAGE``
 and exits with :data:`EXIT_ERROR`. Anything else escaping is a bug.
+
+A library module names an argument of its own in backticks, as SciPy
+does (`` `scatter` ``); a command line puts its option in its
+place (:func:`in_options`), so a Python caller reads the argument it
+passed and a command-line user the option they typed.
 """
 
 import math
+import re
 
-__all__ = ["JudderError", "ParameterError", "check_number", "EXIT_OK",
-           "EXIT_ERROR", "EXIT_INTERRUPTED"]
+__all__ = ["JudderError", "ParameterError", "check_number", "in_options",
+           "EXIT_OK", "EXIT_ERROR", "EXIT_INTERRUPTED"]
 
 #: The command did what was asked.
 EXIT_OK = 0
@@ -55,3 +61,17 @@ def check_number(name, value, unit, low=0.0, strict=True):
     allowed = ("a finite number" if low == -math.inf else
                f"a finite value {'>' if strict else '>='} {low:g} {unit}")
     raise JudderError(f"{given} {unit} is not allowed; allowed: {allowed}")
+
+
+def in_options(message, options):
+    """``message`` with each argument named in backticks that ``options``
+    maps (argument name -> option) replaced by its option.
+
+    Examples
+    --------
+    >>> in_options("`scatter` 0 is not allowed; see `seed`",
+    ...            {"scatter": "--scatter"})
+    '--scatter 0 is not allowed; see `seed`'
+    """
+    return re.sub(r"`(\w+)`", lambda m: options.get(m.group(1), m.group(0)),
+                  message)

@@ -18,8 +18,9 @@ command module: ``judder --help`` lists the commands from this table
 alone, and ``judder map`` imports the map's module only.
 
 Modules whose names start with ``_`` are shared by the commands: option
-groups and value parsers (``_arguments``, ``_values``), the model the
-options select (``_options``, ``_common``), preflight estimates
+groups and value parsers (``_arguments``, ``_values``), the options that
+carry the library's arguments in its messages (``_flags``), the model the
+options select (``_model``, ``_common``), preflight estimates
 (``_preflight``), outputs (``_output``) and records (``_records``), the
 emulated bench (``_bench``).
 """

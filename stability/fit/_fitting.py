@@ -333,7 +333,7 @@ def _default_bounds(params, name):
     elif value < 0:
         low, high = value * BOUND_FACTOR, value / BOUND_FACTOR
     else:
-        raise JudderError(f"give --bounds for {name}: its start value is 0")
+        raise JudderError(f"give `bounds` for {name}: its start value is 0")
     spec = params.specs[name]
     return max(low, spec.lower), min(high, spec.upper)
 
@@ -402,7 +402,7 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
                                  n_bootstrap, used)
     problems = notes + problems + [
         f"{a} and {b} are determined only in combination (correlation "
-        f"{r:+.4f}): fix one of them (--set) and fit the other"
+        f"{r:+.4f}): fix one of them and fit the other"
         for a, b, r in flat_pairs(found.covariance, problem.names)]
 
     fitted = problem.params_at(z)
