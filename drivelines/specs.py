@@ -31,8 +31,8 @@ def split_assignment(text):
     name, sep, value = text.partition("=")
     name, value = name.strip(), value.strip()
     if not sep or not name or not value:
-        raise ParameterError(f"--set {text!r} is not of the form NAME=VALUE "
-                             "(for example --set c12=10)")
+        raise ParameterError(f"`assignments` {text!r} is not of the form "
+                             "NAME=VALUE (for example c12=10)")
     return name, value
 
 
@@ -60,13 +60,13 @@ def parse_overrides(assignments, specs, model):
         name, value = split_assignment(text)
         if name not in specs:
             raise ParameterError(
-                f"--set {text!r}: unknown parameter, {name!r} is not a "
+                f"`assignments` {text!r}: unknown parameter, {name!r} is not a "
                 f"tunable parameter of the {model} model; allowed names: "
                 f"{', '.join(specs)}")
         spec = specs[name]
         try:
             number = parse_quantity(value, spec.unit,
-                                    f"--set {name}: parameter {name} =")
+                                    f"`assignments` {name}: parameter {name} =")
         except JudderError as exc:
             raise ParameterError(str(exc)) from None
         changes[name] = spec.check(number)

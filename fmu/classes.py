@@ -80,7 +80,7 @@ def find_class(name, roots):
                                 f"{source} declares {short}")
     searched = ", ".join(str(r) for r in roots) or "(none)"
     raise FrontEndError(f"{name}: no library on the path holds package "
-                        f"{top} (searched --library and MODELICAPATH: "
+                        f"{top} (searched the library roots and MODELICAPATH: "
                         f"{searched})")
 
 

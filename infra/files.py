@@ -60,8 +60,8 @@ def atomic_write(path, write, overwrite=True):
         raise JudderError(f"cannot write {path}: folder {path.parent} does "
                           "not exist")
     if not overwrite and path.exists():
-        raise JudderError(f"{path} exists; not overwriting it (use --force "
-                          "to replace it)")
+        raise JudderError(f"{path} exists; not overwriting it (`overwrite` "
+                          "replaces it)")
     handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.",
                                          suffix=".part", dir=path.parent)
     try:
@@ -158,8 +158,7 @@ def keeps_foreign_files(save):
     def guarded(self, path, *args, force=False, **kwargs):
         if not force and Path(path).is_file() and not written_by_us(path):
             raise JudderError(f"{path} exists and judder did not write it; "
-                              "not replacing it (force=True, or --force on "
-                              "the command line, replaces it)")
+                              "not replacing it (`force` replaces it)")
         return save(self, path, *args, **kwargs)
     return guarded
 
@@ -231,8 +230,8 @@ def check_output(path, option, suffixes=None, force=False):
     check_folder_writable(path.parent, option, text)
     if path.exists() and not force and not written_by_us(path):
         raise JudderError(f"{option} {text} exists and was not written by "
-                          "judder; not replacing it (use --force to "
-                          "replace it)")
+                          "judder; not replacing it (`force` replaces "
+                          "it)")
 
 
 def write_text(path, text, overwrite=True):

@@ -145,7 +145,7 @@ def _check_address(address):
         if scheme in ("tcp", "tls"):
             parse_host_port(location)
     except (ValueError, TypeError) as exc:
-        raise JudderError(f"--scheduler {address}: not a scheduler address "
+        raise JudderError(f"`scheduler` {address}: not a scheduler address "
                           f"({exc}); allowed: HOST:PORT or "
                           "tcp://HOST:PORT") from None
 
@@ -159,7 +159,7 @@ def _first_bytes(address, host, port):
     import struct
 
     def refuse(reason):
-        raise JudderError(f"--scheduler {address}: {reason}; allowed: the "
+        raise JudderError(f"`scheduler` {address}: {reason}; allowed: the "
                           "address of a running Dask scheduler")
     try:
         with socket.create_connection((host, port),
@@ -210,7 +210,7 @@ def _probe(address):
         if isinstance(reply, dict) and reply.get("type") == "Scheduler":
             return
         reason = "it answers, but is not a Dask scheduler"
-    raise JudderError(f"--scheduler {address}: {reason}; allowed: the "
+    raise JudderError(f"`scheduler` {address}: {reason}; allowed: the "
                       "address of a running Dask scheduler")
 
 
@@ -219,11 +219,11 @@ class _Cluster:
 
     def __init__(self, workers=None, scheduler=None):
         if workers is not None and (int(workers) != workers or workers < 1):
-            raise JudderError(f"--workers {workers} is not allowed; "
+            raise JudderError(f"`workers` {workers} is not allowed; "
                               "allowed: a whole number >= 1")
         if workers is not None and scheduler is not None:
-            raise JudderError(f"--workers {workers} is not allowed with "
-                              f"--scheduler {scheduler}: the cluster's own "
+            raise JudderError(f"`workers` {workers} is not allowed with "
+                              f"`scheduler` {scheduler}: the cluster's own "
                               "workers run the jobs")
         self.workers = workers
         self.scheduler = scheduler
@@ -291,7 +291,7 @@ class _Cluster:
                                       set_as_default=False)
             except (OSError, TimeoutError, ValueError) as exc:
                 self.close()
-                raise JudderError(f"--scheduler {self.scheduler}: cannot "
+                raise JudderError(f"`scheduler` {self.scheduler}: cannot "
                                   f"connect ({exc})") from None
             return
         import psutil

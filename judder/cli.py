@@ -136,13 +136,20 @@ def main(argv=None):
         with signals_held():
             from threadpoolctl import threadpool_limits
             from infra.parallel import cluster
+            from infra.errors import JudderError
+            from .commands._flags import in_flags
             from .commands._model import check_plausible
             from .commands._output import check_outputs
-        check_outputs(args)
-        check_plausible(args)
-        # the kernels work on many tiny matrices: BLAS threads only contend
-        with threadpool_limits(limits=1), cluster(
-                getattr(args, "workers", None),
-                getattr(args, "scheduler", None)):
-            args.handler(args)
+        try:
+            check_outputs(args)
+            check_plausible(args)
+            # the kernels work on many tiny matrices: BLAS threads only
+            # contend
+            with threadpool_limits(limits=1), cluster(
+                    getattr(args, "workers", None),
+                    getattr(args, "scheduler", None)):
+                args.handler(args)
+        except JudderError as exc:
+            # the library's messages name its arguments: say the options
+            raise JudderError(in_flags(str(exc))) from None
     return run_guarded("judder", command, whole_process=argv is None)

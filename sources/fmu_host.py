@@ -313,7 +313,7 @@ def sample_isolated(job, fmu_error):
         try:
             extract(job.path, unzipdir=folder)
         except Exception as exc:       # zip errors of a broken archive
-            raise fmu_error(f"--fmu {job.path}: cannot be extracted "
+            raise fmu_error(f"`path` {job.path}: cannot be extracted "
                             f"({exc})") from None
         job = SampleJob(**{**job.__dict__, "folder": folder})
         reply, stages, status, _ = run_child(
@@ -322,12 +322,12 @@ def sample_isolated(job, fmu_error):
         shutil.rmtree(folder, ignore_errors=True)
     where = stages[-1] if stages else "starting"
     if status is None:
-        raise fmu_error(f"--fmu {job.path}: no answer within {limit:g} s "
+        raise fmu_error(f"`path` {job.path}: no answer within {limit:g} s "
                         f"(in {where}); allowed: an FMU whose calls "
                         "return (JUDDER_FMU_TIMEOUT=SECONDS allows more "
                         "time)")
     if status < 0:
-        raise fmu_error(f"--fmu {job.path}: the FMU's binary crashed "
+        raise fmu_error(f"`path` {job.path}: the FMU's binary crashed "
                         f"({signal_name(status)}) in {where}; judder ran "
                         "it in a child process: nothing else is affected, "
                         "but this FMU cannot be used")
@@ -336,7 +336,7 @@ def sample_isolated(job, fmu_error):
                            f"{status} in {where} without a result")
     kind, value = reply
     if kind == "error":
-        raise fmu_error(f"--fmu {job.path}: {value}")
+        raise fmu_error(f"`path` {job.path}: {value}")
     _check_finite(job, value, fmu_error)
     return value
 
@@ -345,12 +345,12 @@ def _check_finite(job, value, fmu_error):
     for name, call in (("x0", "fmi2GetContinuousStates"),
                        ("rate", "fmi2GetDerivatives")):
         if not np.isfinite(value[name]).all():
-            raise fmu_error(f"--fmu {job.path}: {call} returned a "
+            raise fmu_error(f"`path` {job.path}: {call} returned a "
                             "non-finite value (NaN or inf) at t = 0 s; "
                             "allowed: finite states and derivatives")
     for name in ("moved", "along"):
         if not np.isfinite(value[name]).all():
-            raise fmu_error(f"--fmu {job.path}: the FMU's Jacobian"
+            raise fmu_error(f"`path` {job.path}: the FMU's Jacobian"
                             " has a non-finite value (NaN or inf) at "
                             "t = 0 s near the start values; allowed: a "
                             "finite Jacobian")
@@ -358,7 +358,7 @@ def _check_finite(job, value, fmu_error):
     if len(bad):
         k, i = bad[0]
         raise fmu_error(
-            f"--fmu {job.path}: the FMU's Jacobian has a "
+            f"`path` {job.path}: the FMU's Jacobian has a "
             f"non-finite value (NaN or inf) at t = {job.times[i]:g} s, "
             f"{job.amplitude} = {job.amplitudes[k]:g} Pa; allowed: a "
             "finite Jacobian")

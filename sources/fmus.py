@@ -123,15 +123,15 @@ def _described(path, mtime):
     except Exception as exc:           # fmpy raises zip, XML and schema errors
         reason = str(exc).splitlines()[0] if str(exc) else \
             type(exc).__name__
-        raise FmuError(f"--fmu {path}: not a readable FMU ({reason})") \
+        raise FmuError(f"`path` {path}: not a readable FMU ({reason})") \
             from None
     _require(md.fmiVersion in FMI_VERSIONS,
-             f"--fmu {path}: fmiVersion {md.fmiVersion}; allowed: "
+             f"`path` {path}: fmiVersion {md.fmiVersion}; allowed: "
              f"{' or '.join(FMI_VERSIONS)}")
     _require(md.modelExchange is not None,
-             f"--fmu {path}: no Model Exchange interface (Co-Simulation "
+             f"`path` {path}: no Model Exchange interface (Co-Simulation "
              "only); allowed: an FMI 2.0 or 3.0 Model Exchange FMU")
-    _require(md.derivatives, f"--fmu {path}: the FMU has no states")
+    _require(md.derivatives, f"`path` {path}: the FMU has no states")
     specs, starts, references = {}, {}, {}
     for v in md.modelVariables:
         if v.causality != "parameter" or v.type not in _REAL_TYPES or \
@@ -169,7 +169,7 @@ def fmu_description(path):
         FMU.
     """
     path = Path(path)
-    _require(path.is_file(), f"--fmu {path}: no such file; allowed: an "
+    _require(path.is_file(), f"`path` {path}: no such file; allowed: an "
              ".fmu file")
     return _described(str(path.resolve()), path.stat().st_mtime_ns)
 
@@ -204,7 +204,7 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
     values = _values(d, dict(values or {}))
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         if name not in d.specs:
-            raise FmuError(f"--dither-{role} {name!r} is not a Real "
+            raise FmuError(f"`{role}` {name!r} is not a Real "
                            f"parameter of {d.model_name}; allowed: "
                            f"{', '.join(d.specs)}")
     f0 = values[frequency]

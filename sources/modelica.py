@@ -66,7 +66,7 @@ def _source(class_name, roots):
     except FrontEndError:
         raise ModelicaError(
             f"modelica = {class_name!r} is not found in "
-            f"{', '.join(str(r) for r in roots)} (--library, the project's "
+            f"{', '.join(str(r) for r in roots)} (`library`, the project's "
             "library and MODELICAPATH); allowed: a class whose file is "
             "<library>/<Package>/.../<Class>.mo or in a package.mo") from None
 

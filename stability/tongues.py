@@ -279,14 +279,6 @@ def tongue_boundaries(driveline, freq_hz, p_max, method=DEFAULT_METHOD,
     0.3642
     """
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
-    if p_max <= 0:
-        raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
-                          "> 0")
-    get_method(method)
-    if not np.isfinite(min_growth):
-        raise JudderError(f"min_growth = {min_growth!r} 1/s is not allowed; "
-                          "allowed: a finite rate")
-    get_solver(solver)
     system = driveline.periodic_system().shifted(min_growth)
     amplitude = lowest_boundaries(system, freq_hz, p_max, solver, method)
     errors = np.full((len(freq_hz), 3), np.nan)

@@ -349,7 +349,7 @@ def test_missing_unit_says_how_to_give_it(tmp_path, bench):
     scipy.io.savemat(path, variables)
     message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up")})
     assert str(path) in message and "upstream_speed" in message
-    assert "--channel upstream_speed=EngSpd_up:UNIT" in message
+    assert "`channels` upstream_speed=EngSpd_up:UNIT" in message
 
 
 def test_wrong_unit_kind_in_the_file(tmp_path, bench):

@@ -315,6 +315,57 @@ def test_judder_modules_import_only_the_rooms_below_them():
                        if n.startswith("judder.commands.")), module
 
 
+#: A command-line option in a string: ``--name``.
+OPTION = re.compile(r"(?<![\w-])--[a-z][a-z0-9-]*")
+#: Library modules that are command lines themselves.
+COMMAND_LINES = {"fmu/__main__.py"}
+
+
+def _strings_outside_docstrings(path):
+    """``(line, text)`` of every string constant of a file (the literal
+    parts of f-strings included) but its docstrings."""
+    tree = ast.parse(path.read_text())
+    documented = (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef,
+                  ast.ClassDef)
+    docstrings = {id(node.body[0].value) for node in ast.walk(tree)
+                  if isinstance(node, documented) and node.body
+                  and isinstance(node.body[0], ast.Expr)
+                  and isinstance(node.body[0].value, ast.Constant)}
+    return [(node.lineno, node.value) for node in ast.walk(tree)
+            if isinstance(node, ast.Constant) and isinstance(node.value, str)
+            and id(node) not in docstrings]
+
+
+def test_the_option_scan_sees_options_in_messages(tmp_path):
+    module = tmp_path / "m.py"
+    module.write_text('"""Docs may say --pf."""\nx = 1\n'
+                      'raise ValueError(f"--fmu {x}: bad")\n'
+                      'y = "`path` --> a-- b"\n')
+    found = [(line, OPTION.findall(text))
+             for line, text in _strings_outside_docstrings(module)]
+    assert [f for f in found if f[1]] == [(3, ["--fmu"])]
+
+
+@pytest.mark.parametrize("package", sorted(set(ALLOWED) - {"judder"}))
+def test_no_library_module_names_a_command_line_option(package):
+    # a library names its own arguments (`scatter`); judder.commands._flags
+    # maps them to the options of the command line
+    for path in sorted((ROOT / package).rglob("*.py")):
+        relative = path.relative_to(ROOT).as_posix()
+        if relative in COMMAND_LINES:
+            continue
+        for line, text in _strings_outside_docstrings(path):
+            assert not OPTION.search(text), f"{relative}:{line}: {text!r}"
+
+
+def test_library_arguments_become_options_on_the_command_line():
+    from judder.commands._flags import in_flags
+    assert in_flags("fit fewer parameters (`names`), or give the bench's "
+                    "known scatter (`scatter`); `seed`") == (
+        "fit fewer parameters (--fit), or give the bench's known scatter "
+        "(--scatter); `seed`")
+
+
 def test_the_registry_is_the_one_place_a_command_is_added():
     from judder import api
     from judder.cli import build_parser

@@ -119,7 +119,7 @@ def test_params_save_load_and_no_overwrite(tmp_path):
 
 @pytest.mark.parametrize("args, words", [
     (["eig", "--set", "J1=-1"], ["J1", "-1", "> 0"]),
-    (["eig", "--set", "J9=1"], ["J9", "unknown"]),
+    (["eig", "--set", "J9=1"], ["--set 'J9=1'", "unknown"]),
     (["eig", "--preset", "nope"], ["nope", "paper-4dof"]),
     (["eig", "--model", "3dof", "--preset", "paper-4dof"], ["--model"]),
     (["floquet", "--freq", "0", "--pf", "1"], ["freq", "0"]),
@@ -237,12 +237,15 @@ def test_fit_from_tongues_csv(tmp_path):
     judder("tongues", "--preset", "paper-4dof-fitted", "--freq", "70:140:8",
            "--out", str(boundary))
     saved = tmp_path / "fitted.toml"
+    saved.write_text("# written by judder\nan older fit\n")
+    # the outputs rule: the fit.toml judder wrote is replaced, no --force
     data = judder_json("fit", "--boundary", str(boundary), "--fit",
                        "mu_g,k24", "--set", "c12=10", "--save-params",
                        str(saved))
     assert data["fitted"]["mu_g"]["value"] == pytest.approx(0.022, rel=1e-4)
     assert data["fitted"]["k24"]["value"] == pytest.approx(34858.1, rel=1e-4)
     assert "mu_g = 0.022" in saved.read_text()
+    assert "an older fit" not in saved.read_text()
 
 
 @pytest.mark.parametrize("args, words", [

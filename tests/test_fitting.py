@@ -391,3 +391,29 @@ def test_the_growth_threshold_spread_moves_the_damping_and_widens():
                                               rel=1e-6)
     assert spread.ci_low[0] == pytest.approx(plain.ci_low[0] + c12_high,
                                              rel=1e-6)
+
+
+def test_the_fit_reads_the_checked_boundaries_without_their_check():
+    # the fit's evaluator skips the monodromy check of each boundary point
+    # (most of a fit's time): its amplitudes are those of the boundaries
+    # with the check, and the check confirms them
+    from stability import build_driveline
+    from stability.fit._common import _Evaluator, _Problem
+    from stability.monodromy import DEFAULT_METHOD
+    from stability.tongues import tongue_boundaries
+    params = get_preset("paper-4dof")
+    names = ("mu_g", "k24")
+    x0 = np.array([params[n] for n in names])
+    problem = _Problem(params=params, names=names, freq_hz=FREQS,
+                       measured=np.full(len(FREQS), np.nan), p_max=1.5 * BAR,
+                       low=np.full(2, 0.01), high=np.full(2, 100.0),
+                       scale=x0, method=DEFAULT_METHOD, relative=True, x0=x0,
+                       min_growth=1.0)
+    z = np.array([1.1, 0.9])
+    amplitude = _Evaluator(problem).amplitudes(z, strict=True)
+    checked = tongue_boundaries(build_driveline(problem.params_at(z)), FREQS,
+                                problem.p_search, min_growth=1.0, check=True)
+    assert np.isfinite(amplitude).sum() >= 8      # of all three kinds
+    assert np.isfinite(amplitude).any(axis=0).all()
+    np.testing.assert_array_equal(amplitude, checked.amplitude)
+    assert checked.max_multiplier_error < 1e-6

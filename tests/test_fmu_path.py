@@ -162,7 +162,7 @@ def test_the_form_of_the_dither_is_checked(oscillator):
         linearize_fmu(oscillator, {"s": 1.0})
     with pytest.raises(FmuError, match="not affine in p_f"):
         linearize_fmu(oscillator, {"q": 1.0})
-    with pytest.raises(FmuError, match="--dither-amplitude 'a'"):
+    with pytest.raises(FmuError, match="`amplitude` 'a'"):
         linearize_fmu(oscillator, amplitude="a")
 
 

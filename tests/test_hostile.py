@@ -121,6 +121,8 @@ CASES = [
     (["sensitivity", "--params", "c12", "--workers", "100000"], 2,
      ["--workers"]),
     (FIT + ["--fit", "bogus"], 2, ["--fit", "bogus"]),
+    # the kernel names its arguments (`names`, `scatter`): the options here
+    (FIT, 2, ["fit fewer parameters (--fit)", "known scatter (--scatter)"]),
     (FIT + ["--fit", "c12,c12"], 2, ["--fit", "distinct"]),
     (FIT + ["--bounds", "c12=nan:5"], 2, ["c12"]),
     (FIT + ["--bounds", "c12=-1:5"], 2, ["c12", ">= 0"]),

@@ -110,11 +110,12 @@ def test_an_envelope_on_the_cluster_equals_the_serial_one(scheduler):
 
 
 def test_workers_and_scheduler_together_are_refused():
-    with pytest.raises(JudderError, match="--workers 2 is not allowed with "
-                                          "--scheduler"):
+    # the library names its arguments; the command line says its options
+    with pytest.raises(JudderError, match="`workers` 2 is not allowed with "
+                                          "`scheduler`"):
         with cluster(workers=2, scheduler="tcp://127.0.0.1:1"):
             pass
-    with pytest.raises(JudderError, match="--workers 0"):
+    with pytest.raises(JudderError, match="`workers` 0"):
         with cluster(workers=0):
             pass
 

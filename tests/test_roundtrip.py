@@ -133,8 +133,6 @@ def test_a_judder_that_runs_away_keeps_the_whole_engagement_window():
 
 
 @pytest.mark.parametrize("options, words", [
-    ({"min_growth": -1.0}, "min_growth = -1.0 1/s is not allowed"),
-    ({"min_growth": float("nan")}, "min_growth = nan"),
     ({"added": {"c99": 1.0}}, "'c99' is not a parameter"),
     ({"added": {"c1": float("inf")}}, "added c1 = inf is not allowed")])
 def test_bad_comparison_options_are_refused(truth, options, words):
@@ -142,6 +140,23 @@ def test_bad_comparison_options_are_refused(truth, options, words):
     with pytest.raises(JudderError, match=words):
         fit_boundary(truth, FREQS, np.full(3, 0.3 * PA_PER_BAR), PA_PER_BAR,
                      names=("mu_g",), **options)
+
+
+@pytest.mark.parametrize("options, words", [
+    ({"min_growth": -1.0}, "min_growth = -1 1/s is not allowed"),
+    ({"min_growth": float("nan")}, "min_growth = nan"),
+    ({"threshold_spread": -0.5}, "threshold_spread = -0.5 1/s"),
+    ({"p_max_bar": 0.0}, "p_max_bar = 0 bar is not allowed"),
+    ({"scatter": 1.5}, "scatter = 1.5 is not allowed"),
+    ({"scatter": 0.0, "error_model": "absolute"}, "scatter = 0 bar"),
+    ({"judder_limit_rpm": -3.0}, "judder_limit_rpm = -3 rpm")])
+def test_the_api_checks_the_numbers_where_they_enter(truth, options, words):
+    # the rules of the options (judder.commands._values.RULES), before any
+    # work; the kernel below trusts them
+    from infra.errors import JudderError
+    with pytest.raises(JudderError, match=words):
+        api.fit(FREQS, np.full(3, 0.3), parameters=truth, names=("mu_g",),
+                **{"p_max_bar": 1.0, **options})
 
 
 def test_bench_option_needs_the_bench_linearisation(tmp_path):

@@ -1,5 +1,6 @@
-"""What several API functions share: the parameter set with its changes,
-the dithered driveline, timing, and the checks of parameter names.
+"""What several API functions share: a caller's arguments checked and
+the parameter set with its changes, the dithered driveline, timing, and
+the checks of parameter names.
 """
 
 import time
@@ -11,6 +12,34 @@ from stability.source import build_driveline
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
 BACKGROUND_AMPLITUDES = 150
+
+
+def check_arguments(**arguments):
+    """Refuse any of ``arguments`` (``freq_hz=...``, ``p_f_bar=...``) its
+    rule does not allow: the rule of its name,
+    :data:`judder.commands._values.RULES`, the option's own (None: not
+    given).
+
+    The API functions check a Python caller's values here, where they
+    enter, as the command line's parser checks the options; the kernels
+    below trust them.
+
+    Raises
+    ------
+    JudderError
+        Naming the argument, its value and what is allowed.
+    """
+    from ._values import RULES
+    for name, value in arguments.items():
+        if value is not None:
+            RULES[name].check(value, name)
+
+
+def checked_values(parameters, changes, **arguments):
+    """The parameter set an API function works on (:func:`resolve`), once
+    :func:`check_arguments` allowed ``arguments``."""
+    check_arguments(**arguments)
+    return resolve(parameters, changes)
 
 
 def resolve(parameters, changes):

@@ -11,8 +11,8 @@ its unit makes plausible is refused with the likely slip
 Grids (``START:STOP:N``), lists and dither waveforms are parsed here too.
 The argparse ``type=`` parsers (:class:`Quantity`, :class:`Grid`,
 :class:`Listed`, ...) parse each option once, with its unit; the API
-functions check their arguments with the same rule objects
-(:meth:`Quantity.check`). Nothing here knows a command.
+functions check a Python caller's arguments with the same rule objects
+(:data:`RULES`, :meth:`Quantity.check`). Nothing here knows a command.
 """
 
 import argparse
@@ -21,7 +21,7 @@ import sys
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
 
@@ -146,8 +146,9 @@ class Quantity:
         if bad.any():
             allowed = _allowed(self.unit, self.low, self.high, self.low_open,
                                hint=False)
-            raise JudderError(f"{name} = {values[bad][0]:g} {self.unit} is "
-                              f"not allowed; allowed: {allowed}")
+            unit = "" if self.unit == "1" else f" {self.unit}"
+            raise JudderError(f"{name} = {values[bad][0]:g}{unit} is not "
+                              f"allowed; allowed: {allowed}")
         return value
 
 
@@ -274,9 +275,29 @@ PF = Quantity("--pf", "bar", 0.0)
 PF_MAX = Quantity("--pf-max", "bar", 0.0, low_open=True)
 DURATION = Quantity("--duration", "s", 0.0, MAX_DURATION_S, low_open=True)
 MIN_GROWTH = Quantity("--min-growth", "1/s", 0.0)
+THRESHOLD_SPREAD = Quantity("--threshold-spread", "1/s", 0.0)
+#: The bench's known scatter of the onsets, by error model: a share of
+#: the amplitude, or bar.
+SCATTER = {"relative": Quantity("--scatter", "1", 0.0, 1.0, low_open=True),
+           "absolute": Quantity("--scatter", "bar", 0.0, low_open=True,
+                                amplitude=False)}
 LIMIT = Quantity("--limit", "rpm", 0.0, low_open=True)
 WORKERS = WholeNumber("--workers", 1, MAX_WORKERS)
 SEED = WholeNumber("--seed", 0, 2 ** 63 - 1)
+
+#: The margins of the safe dither windows (advise, compare) and the
+#: valve's largest amplitude (compare --valve-max, as advise --pf-max).
+MARGIN_BAR = Quantity("--margin-bar", "bar", 0.0, amplitude=False)
+MARGIN_HZ = Quantity("--margin-hz", "Hz", 0.0)
+VALVE_MAX = Quantity("--valve-max", "bar", 0.0, low_open=True)
+
+#: The rule of each argument of the API functions that an option above
+#: carries: a Python caller's value is checked by the same rule as the
+#: option's (:func:`judder.commands._common.checked_values`).
+RULES = {"freq_hz": FREQ, "p_f_bar": PF, "p_max_bar": PF_MAX,
+         "min_growth": MIN_GROWTH, "threshold_spread": THRESHOLD_SPREAD,
+         "judder_limit_rpm": LIMIT, "margin_bar": MARGIN_BAR,
+         "margin_hz": MARGIN_HZ, "valve_max_bar": VALVE_MAX}
 
 
 def check_pressures(p_f_max_pa, params, option="--pf"):
@@ -389,7 +410,8 @@ def parse_waveform(text):
         return None
     if kind == "square":
         tau = parse_list(rest, "--dither-wave square:")[0] if rest else 0.0
-        check_number("--dither-wave square: TAU_MS", tau, "ms", strict=False)
+        Quantity("--dither-wave square:", "ms", 0.0).check(
+            tau, "--dither-wave square: TAU_MS")
         return FilteredSquare(tau * 1e-3)
     if kind == "fourier" and rest:
         cos, _, sin = rest.partition("/")

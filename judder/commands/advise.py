@@ -9,18 +9,19 @@ import time
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.decisions.advice import DEFAULT_BOUNDS
 
 from ._arguments import force_option, min_growth_option, model_options
-from ._common import check_names, resolve, structural_names
+from ._common import check_names, checked_values, structural_names
 from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
 from ._records import rows_to_csv
-from ._values import FREQ_RANGE_HZ, PF_MAX, Interval, Listed, Quantity
+from ._values import (FREQ_RANGE_HZ, MARGIN_BAR, MARGIN_HZ, PF_MAX, Interval,
+                      Listed, Quantity)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -48,12 +49,11 @@ def add_arguments(p):
     p.add_argument("--pf-max", type=PF_MAX, default=0.7, metavar="BAR",
                    help="the valve's highest dither amplitude, the top of "
                         "the operating range, bar (default %(default)g)")
-    p.add_argument("--margin-bar", type=Quantity("--margin-bar", "bar", 0.0,
-                                               amplitude=False),
+    p.add_argument("--margin-bar", type=MARGIN_BAR,
                    default=0.1, metavar="BAR",
                    help="amplitude margin below every tongue, bar (default "
                         "%(default)g)")
-    p.add_argument("--margin-hz", type=Quantity("--margin-hz", "Hz", 0.0),
+    p.add_argument("--margin-hz", type=MARGIN_HZ,
                    default=5.0, metavar="HZ",
                    help="frequency margin from every tongue edge, Hz "
                         "(default %(default)g)")
@@ -205,7 +205,9 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.decisions import advice as kernel
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, p_max_bar=p_max_bar,
+                            margin_bar=margin_bar, margin_hz=margin_hz,
+                            min_growth=min_growth)
     sets = [values, *extra_sets]
     models = {p.model for p in sets}
     if len(models) > 1:
@@ -215,14 +217,10 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     if not (np.isfinite(low) and np.isfinite(high) and 0 < low < high):
         raise JudderError(f"freq range = {low:g}:{high:g} Hz is not allowed; "
                           "allowed: 0 < LOW < HIGH")
-    check_number("p_max", p_max_bar, "bar")
-    check_number("margin_bar", margin_bar, "bar", strict=False)
-    check_number("margin_hz", margin_hz, "Hz", strict=False)
     if margin_hz >= low:
         raise JudderError(f"margin_hz = {margin_hz:g} Hz is not allowed; "
                           f"allowed: below the lowest frequency {low:g} Hz")
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    check_number("min_growth", min_growth, "1/s", strict=False)
     names = tuple(structural_names(values, kernel.DEFAULT_DESIGN_PARAMETERS)
                   if names is None else names)
     if not names:

@@ -9,11 +9,11 @@ from infra.errors import JudderError
 from infra.files import check_folder_writable
 
 from ._arguments import model_options, workers_option
-from ._common import resolve, timed
+from ._common import checked_values, timed
 from ._model import parameters_of
 from ._output import Progress, emit
 from ._preflight import check_campaign, check_campaign_disk, check_work
-from ._values import DURATION, FREQ, PF, SEED, Grid, Listed, Quantity
+from ._values import DURATION, SEED, Grid, Listed, Quantity
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -146,9 +146,8 @@ def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
     CampaignResult
     """
     from pysim.simulation.campaigns import Campaign, run_campaign
-    FREQ.check(freq_hz, "freq_hz")
-    PF.check(p_f_bar, "p_f_bar")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar)
     plan = Campaign(freq_hz=tuple(freq_hz), p_f_bar=tuple(p_f_bar),
                     engine_rpm=tuple(engine_rpm),
                     temperatures=tuple(temperatures), duration=duration,

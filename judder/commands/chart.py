@@ -14,6 +14,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, limit_option, method_option,
                          model_options, workers_option)
+from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import MIN_GROWTH, Quantity
@@ -116,6 +117,8 @@ def run(args):
                   if args.boundary
                   and result.chart.read else [])
     data = {**result.as_dict(), **files, "boundary_files": boundaries}
+    data["failed"] = [{**failed, "message": in_flags(failed["message"])}
+                      for failed in data["failed"]]
     rows = []
     for group, runs in result.chart.groups().items():
         label = ", ".join(f"{c} {v}" for c, v in
@@ -133,7 +136,7 @@ def run(args):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
-    rows += [f"could not read {r.path}: {r.error}"
+    rows += [f"could not read {r.path}: {in_flags(r.error)}"
              for r in result.chart.failed]
     rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
                 + written(args.out, args.plot, *boundaries))

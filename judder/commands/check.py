@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from infra.errors import JudderError, check_number
+from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
@@ -15,7 +15,7 @@ from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
 from ._arguments import force_option, min_growth_option, model_options
-from ._common import check_names, resolve, structural_names
+from ._common import check_names, checked_values, structural_names
 from ._words import growth_words, margin_words
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -158,19 +158,21 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
     from stability.decisions.margins import check_settings
-    values = resolve(parameters, changes)
     freq_hz = np.atleast_1d(np.asarray(freq_hz, dtype=float))
     p_f_bar = np.atleast_1d(np.asarray(p_f_bar, dtype=float))
     if freq_hz.shape != p_f_bar.shape or freq_hz.ndim != 1 or not len(freq_hz):
         raise JudderError(f"freq and p_f have {freq_hz.size} and "
                           f"{p_f_bar.size} values; allowed: as many of each")
-    FREQ.check(freq_hz, "freq_hz")
-    PF.check(p_f_bar, "p_f_bar")
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar, min_growth=min_growth,
+                            p_max_bar=p_max_bar)
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    check_number("min_growth", min_growth, "1/s", strict=False)
     if p_max_bar is None:
         p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
-    check_number("p_max", p_max_bar, "bar", low=float(p_f_bar.max()))
+    elif not p_max_bar > p_f_bar.max():
+        raise JudderError(f"p_max_bar = {p_max_bar:g} bar is not allowed; "
+                          "allowed: above the largest p_f_bar, "
+                          f"{p_f_bar.max():g} bar")
     if sensitivity is None:
         sensitivity = structural_names(values, DEFAULT_CHECK_PARAMETERS,
                                         ("mu_g",))

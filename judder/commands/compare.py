@@ -9,9 +9,10 @@ from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
 from ._arguments import force_option, min_growth_option
+from ._common import check_arguments
 from ._output import Progress, emit, make_parents, save_plot, written
-from ._values import (FREQ_RANGE_HZ, PF_MAX, Grid, Interval, Quantity,
-                      Settings)
+from ._values import (FREQ_RANGE_HZ, MARGIN_BAR, MARGIN_HZ, PF_MAX,
+                      VALVE_MAX, Grid, Interval, Quantity, Settings)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -54,18 +55,16 @@ def add_arguments(p):
                    default="60:200", metavar="LOW:HIGH",
                    help="dither operating frequencies of the safe windows, "
                         "Hz (default %(default)s, as judder advise)")
-    p.add_argument("--valve-max", type=Quantity("--valve-max", "bar", 0.0,
-                                                low_open=True),
+    p.add_argument("--valve-max", type=VALVE_MAX,
                    default=0.7, metavar="BAR",
                    help="the valve's highest dither amplitude, the top of "
                         "the operating range, bar (default %(default)g, as "
                         "judder advise --pf-max)")
-    p.add_argument("--margin-bar", type=Quantity("--margin-bar", "bar", 0.0,
-                                                 amplitude=False),
+    p.add_argument("--margin-bar", type=MARGIN_BAR,
                    default=0.1, metavar="BAR",
                    help="amplitude margin of the safe windows, bar "
                         "(default %(default)g)")
-    p.add_argument("--margin-hz", type=Quantity("--margin-hz", "Hz", 0.0),
+    p.add_argument("--margin-hz", type=MARGIN_HZ,
                    default=5.0, metavar="HZ",
                    help="frequency margin of the safe windows, Hz (default "
                         "%(default)g)")
@@ -154,7 +153,6 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     CompareResult
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
-    from infra.errors import check_number
     from stability.decisions.advice import (OperatingRange, safe_windows,
                                             window_boundary)
     from .check import check
@@ -163,9 +161,9 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     from .tongues import tongues
     freq_hz = (np.linspace(10.0, 220.0, 500) if freq_hz is None
                else np.asarray(freq_hz, dtype=float))
+    check_arguments(min_growth=min_growth, valve_max_bar=valve_max_bar,
+                    margin_bar=margin_bar, margin_hz=margin_hz)
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    check_number("min_growth", min_growth, "1/s", strict=False)
-    check_number("valve_max", valve_max_bar, "bar")
     low, high = (float(v) for v in freq_range)
     operating = OperatingRange(
         freq_hz=(low, high), p_max=valve_max_bar * PA_PER_BAR,

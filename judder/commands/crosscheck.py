@@ -11,12 +11,12 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          workers_option)
-from ._common import resolve, timed
+from ._common import checked_values, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_crosscheck, check_work
 from ._records import rows_to_csv
-from ._values import DURATION, FREQ, PF, Grid
+from ._values import DURATION, Grid
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -119,9 +119,8 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     CrosscheckResult
     """
     from ..crosscheck import crosscheck_study
-    FREQ.check(freq_hz, "freq_hz")
-    PF.check(p_f_bar, "p_f_bar")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar)
     check, seconds = timed(
         crosscheck_study, values, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, duration=duration,

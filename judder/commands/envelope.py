@@ -19,13 +19,13 @@ from stability.monodromy import DEFAULT_METHOD
 from ..envelope import checkpoint_path
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, pf_max_option, workers_option)
-from ._common import BACKGROUND_AMPLITUDES, resolve
+from ._common import BACKGROUND_AMPLITUDES, checked_values
 from ._model import model_title, parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._preflight import check_envelope
 from ._records import finite_or_none, rows_to_csv
-from ._values import FREQ, PF_MAX, SEED, Grid
+from ._values import SEED, Grid
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -202,15 +202,11 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     from stability.uncertainty.ranges import Ranges
 
     from ..envelope import read_ranges, run_envelope
-    FREQ.check(freq_hz, "freq_hz")
-    PF_MAX.check(p_max_bar, "p_max_bar")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_max_bar=p_max_bar, min_growth=min_growth)
     if not isinstance(ranges, Ranges):
         ranges = read_ranges(ranges, values)
     growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    if not np.isfinite(growth) or growth < 0:
-        raise JudderError(f"--min-growth {growth!r} 1/s is not allowed; "
-                          "allowed: a finite rate >= 0")
     started = time.perf_counter()
     result, failures, resumed = run_envelope(
         values, ranges, freq_hz, p_max_bar * PA_PER_BAR, samples=samples,

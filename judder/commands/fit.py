@@ -5,8 +5,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from sources import dumps_toml
-from infra.errors import JudderError, check_number
-from infra.files import write_text
+from infra.errors import JudderError
+from infra.files import keeps_foreign_files, write_text
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
@@ -16,14 +16,15 @@ from ..inputs import (read_boundary, read_boundary_limit,
                       read_boundary_min_growth, read_chart_below,
                       read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
-from ._arguments import method_option, model_options, workers_option
-from ._common import resolve, timed
+from ._arguments import (force_option, method_option, model_options,
+                         workers_option)
+from ._common import checked_values, resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
 from ._records import finite_or_none
-from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SEED, Listed, Quantity,
-                      WholeNumber)
+from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED,
+                      THRESHOLD_SPREAD, Listed, WholeNumber, option_value)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -89,10 +90,8 @@ def add_arguments(p):
                    "parallel starts gain; all cores for --uncertainty "
                    "bootstrap")
     p.add_argument("--save-params", metavar="FILE.toml",
-                   help="write the fitted set (never overwrites unless "
-                        "--force)")
-    p.add_argument("--force", action="store_true",
-                   help="allow --save-params to replace a file")
+                   help="write the fitted set, to load with --param-file")
+    force_option(p)
     p.add_argument("--limit", type=LIMIT, default=None, metavar="RPM",
                    help="NVH limit the onsets were called judder from, "
                         "rpm (default: the chart's or the boundary file's "
@@ -109,7 +108,7 @@ def add_arguments(p):
                         "fit, check and chart call the same point judder; "
                         "0: the stability boundary)")
     p.add_argument("--threshold-spread",
-                   type=Quantity("--threshold-spread", "1/s", 0.0),
+                   type=THRESHOLD_SPREAD,
                    default=None,
                    metavar="1/S",
                    help="how far the growth rate the onsets were called "
@@ -155,35 +154,31 @@ def run(args):
         stated = read_boundary_min_growth(args.boundary)
         default_growth = default_growth if stated is None else stated
         default_limit = read_boundary_limit(args.boundary)
-    limit = default_limit if args.limit is None else args.limit
-    min_growth = check_number("--min-growth", default_growth
-                              if args.min_growth is None else args.min_growth,
-                              "1/s", strict=False)
     if args.bench and not args.bench_linearisation:
         raise JudderError("--bench is for --bench-linearisation; give both")
     bench = parse_bench(args.bench, resolve(params, changes)) \
         if args.bench_linearisation else None
-    p_max_bar = check_number("--pf-max", default_p_max if args.pf_max is None
-                             else args.pf_max, "bar")
-    scatter = _scatter(args.scatter, args.error_model)
-    spread = check_number("--threshold-spread", default_spread
-                          if args.threshold_spread is None
-                          else args.threshold_spread, "1/s", strict=False)
+    p_max_bar = default_p_max if args.pf_max is None else args.pf_max
     make_parents(args.plot, args.save_params)
+    # the options were checked by their parsers, the files by their
+    # readers: the fit itself, in Pa, without the API's checks
     with Progress(None, "fit") as progress:
-        report = fit(freqs, measured / PA_PER_BAR, p_max_bar,
-                     names=names, bounds=bounds, parameters=params,
-                     changes=changes, method=args.method,
-                     starts=args.starts, uncertainty=args.uncertainty,
-                     error_model=args.error_model, seed=args.seed,
-                     workers=args.workers, progress=progress,
-                     min_growth=min_growth, bench=bench,
-                     scatter=scatter, below_bar=None if below is None
-                     else below / PA_PER_BAR, threshold_spread=spread,
-                     judder_limit_rpm=limit)
+        report = _fitted(
+            params.replace(**changes), freqs, measured,
+            p_max_bar * PA_PER_BAR, below, names=names, bounds=bounds,
+            method=args.method, starts=args.starts,
+            uncertainty=args.uncertainty, error_model=args.error_model,
+            seed=args.seed, workers=args.workers, progress=progress,
+            min_growth=default_growth if args.min_growth is None
+            else args.min_growth, bench=bench,
+            scatter=_scatter(args.scatter, args.error_model),
+            threshold_spread=default_spread if args.threshold_spread is None
+            else args.threshold_spread,
+            judder_limit_rpm=default_limit if args.limit is None
+            else args.limit)
     result = report.fit
     if args.save_params:
-        report.save_params(args.save_params, overwrite=args.force)
+        report.save_params(args.save_params, force=args.force)
     if args.plot:
         save_plot(args.plot, report.figure())
     rows = report.text()
@@ -252,8 +247,10 @@ def _scatter(text, error_model):
                 "100 %, such as 3% or 0.03 (or --error-model absolute and "
                 "a scatter in bar, such as 20mbar)")
         return share
-    return check_number("--scatter", parse_quantity(
-        text, "bar", "--scatter"), "bar") * PA_PER_BAR
+    rule = SCATTER["absolute"]
+    return option_value(text, rule.option, rule.unit, rule.low,
+                        low_open=rule.low_open,
+                        amplitude=rule.amplitude) * PA_PER_BAR
 
 
 def _compared_with(result):
@@ -291,7 +288,8 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
     kinds, starts, uncertainty, error_model, seed, workers, scatter
     threshold_spread
         As :func:`stability.fit.fit_boundary` takes them (``scatter``
-        in Pa with the absolute error model).
+        in bar with the absolute error model). With ``workers``, the
+        rounds of parallel jobs share one Dask cluster.
     min_growth : float, optional
         1/s: the model boundary compared is that of judder growing at
         this rate; default ``judder check``'s
@@ -320,27 +318,56 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
         ``fit.success`` is False when any of ``fit.problems`` holds (no
         convergence, a parameter on a bound or undetermined, another
         minimum as good).
+
+    Raises
+    ------
+    JudderError
+        For an argument the option carrying it would refuse, naming the
+        argument.
     """
+    from infra.parallel import cluster
+    start = checked_values(parameters, changes, p_max_bar=p_max_bar,
+                           min_growth=min_growth,
+                           threshold_spread=threshold_spread,
+                           judder_limit_rpm=judder_limit_rpm)
+    if error_model in SCATTER and scatter is not None:
+        SCATTER[error_model].check(scatter, "scatter")
+        if error_model == "absolute":
+            scatter = scatter * PA_PER_BAR
+    if bench is not None:
+        bench = check_bench(start, bench)
+    with cluster(workers):
+        return _fitted(
+            start, freq_hz, np.asarray(measured_p_f_bar, dtype=float)
+            * PA_PER_BAR, p_max_bar * PA_PER_BAR, None if below_bar is None
+            else np.asarray(below_bar, dtype=float) * PA_PER_BAR,
+            names=names, bounds=bounds, method=method, kinds=kinds,
+            starts=starts, uncertainty=uncertainty, error_model=error_model,
+            seed=seed, workers=workers, progress=progress,
+            min_growth=min_growth, bench=bench, scatter=scatter,
+            threshold_spread=threshold_spread,
+            judder_limit_rpm=judder_limit_rpm)
+
+
+def _fitted(start, freq_hz, measured, p_max, below, names=None,
+            bench=None, min_growth=None, judder_limit_rpm=None,
+            progress=None, **options):
+    """:func:`fit` of the parameter set ``start``, amplitudes in Pa
+    (``scatter`` too with the absolute error model), its arguments
+    checked where they entered; ``options`` as
+    :func:`stability.fit.fit_boundary` takes them."""
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.fit import DEFAULT_FIT, fit_boundary
-    start = resolve(parameters, changes)
-    if min_growth is None:
-        min_growth = DEFAULT_MIN_GROWTH_PER_S
     result, seconds = timed(
-        fit_boundary, start, freq_hz,
-        np.asarray(measured_p_f_bar, dtype=float) * PA_PER_BAR,
-        p_max_bar * PA_PER_BAR, names=names or DEFAULT_FIT, bounds=bounds,
-        method=method, kinds=kinds, starts=starts, uncertainty=uncertainty,
-        error_model=error_model, seed=seed, workers=workers,
-        callback=progress, min_growth=min_growth,
-        added=None if bench is None else bench_damping(
-            start, check_bench(start, bench)),
-        scatter=scatter, below=None if below_bar is None else
-        np.asarray(below_bar, dtype=float) * PA_PER_BAR,
-        threshold_spread=threshold_spread,
+        fit_boundary, start, freq_hz, measured, p_max,
+        names=names or DEFAULT_FIT, callback=progress, below=below,
+        min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None
+        else min_growth,
+        added=None if bench is None else bench_damping(start, bench),
         forced_limit=None if judder_limit_rpm is None
-        else judder_limit_rpm * RAD_S_PER_RPM)
-    return FitReport(fit=result, seconds=seconds, method=method,
+        else judder_limit_rpm * RAD_S_PER_RPM, **options)
+    return FitReport(fit=result, seconds=seconds,
+                     method=options.get("method", DEFAULT_METHOD),
                      judder_limit_rpm=judder_limit_rpm)
 
 
@@ -445,9 +472,11 @@ class FitReport:
                     f"{r.evaluations} model boundaries in {self.seconds:.1f} s")
         return rows
 
-    def save_params(self, path, overwrite=False):
-        """Write the fitted parameter set as TOML."""
-        write_text(path, dumps_toml(self.fit.params), overwrite=overwrite)
+    @keeps_foreign_files
+    def save_params(self, path):
+        """Write the fitted parameter set as TOML, atomically (a file
+        judder did not write is replaced only with ``force=True``)."""
+        write_text(path, dumps_toml(self.fit.params))
 
     def figure(self):
         return self.fit.plot()[0].figure

@@ -9,7 +9,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, waveform_option)
-from ._common import dithered, resolve
+from ._common import checked_values, dithered
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, output_files, save_plot, written
 from ._preflight import check_floquet
@@ -88,10 +88,8 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
-    MIN_GROWTH.check(min_growth, "min_growth")
-    FREQ.check(freq_hz, "freq_hz")
-    PF.check(p_f_bar, "p_f_bar")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar, min_growth=min_growth)
     result = floquet_kernel(dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)
     return FloquetPoint(params=values, method=method, result=result,

@@ -15,7 +15,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, waveform_option)
-from ._common import dithered, resolve, timed
+from ._common import checked_values, dithered, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_map, check_map_memory
@@ -162,9 +162,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         (not judder, :mod:`stability.decisions.relevance`) and the JSON
         counts the faster ones.
     """
-    FREQ.check(freq_hz, "freq_hz")
-    PF.check(p_f_bar, "p_f_bar")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar)
     driveline = dithered(values, waveform)
     result, seconds = timed(
         map_kernel, driveline, freq_hz,

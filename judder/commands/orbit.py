@@ -15,7 +15,7 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
 from ._arguments import (force_option, limit_option, min_growth_option,
                          model_options)
 from ..bench import parse_bench
-from ._common import resolve
+from ._common import checked_values, resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import FREQ, LIMIT, MIN_GROWTH, PF, Settings
@@ -121,13 +121,10 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
     from ..bench import check_bench, engagement_model
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     amplitudes = sorted(float(p) for p in np.atleast_1d(p_f_bar))
-    for f in freqs:
-        FREQ.check(f, "freq_hz")
-    for p in amplitudes:
-        PF.check(p, "p_f_bar")
-    LIMIT.check(judder_limit_rpm, "judder_limit_rpm")
-    MIN_GROWTH.check(min_growth, "min_growth")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freqs,
+                            p_f_bar=amplitudes,
+                            judder_limit_rpm=judder_limit_rpm,
+                            min_growth=min_growth)
     model, linear = engagement_model(values, check_bench(values, bench))
     limit = judder_limit_rpm * RAD_S_PER_RPM
     started = time.perf_counter()

@@ -9,12 +9,12 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          pf_max_option, workers_option)
-from ._common import resolve, timed
+from ._common import checked_values, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_sensitivity, check_work
 from ._records import rows_to_csv
-from ._values import FREQ, PF_MAX, Grid, Listed, Quantity
+from ._values import Grid, Listed, Quantity
 from .tongues import tongue_record
 
 #: The command's --help text.
@@ -143,9 +143,8 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     """
     from stability.sensitivity import (paper_conclusions, sensitivity_study,
                                        tip_shifts)
-    FREQ.check(freq_hz, "freq_hz")
-    PF_MAX.check(p_max_bar, "p_max_bar")
-    nominal = resolve(parameters, changes)
+    nominal = checked_values(parameters, changes, freq_hz=freq_hz,
+                             p_max_bar=p_max_bar)
     for name in names:
         if name not in nominal.specs:
             raise JudderError(f"--params: unknown parameter {name!r} for the "

@@ -19,7 +19,7 @@ from ..bench import (added_damping, bench_fmu, check_bench, engagement_model,
                      refuse_bench_of_class)
 from ._arguments import (force_option, limit_option, method_option,
                          min_growth_option, model_options)
-from ._common import resolve
+from ._common import checked_values, resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
 from ._values import (DURATION, FREQ, FREQ_RANGE_HZ, LIMIT, MIN_GROWTH, PF,
@@ -180,11 +180,9 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     from pysim.simulation.runs import parameter_default, run_fmu
 
     from ..timedomain import class_fmu, run_values
-    FREQ.check(freq_hz, "freq_hz")
-    PF.check(p_f_bar, "p_f_bar")
-    MIN_GROWTH.check(min_growth, "min_growth")
-    LIMIT.check(judder_limit_rpm, "judder_limit_rpm")
-    values = resolve(parameters, changes)
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar, min_growth=min_growth,
+                            judder_limit_rpm=judder_limit_rpm)
     bench = dict(bench or {})
     if values.source_kind.is_chain:
         bench = check_bench(values, bench)

@@ -6,7 +6,6 @@ import time
 
 import numpy as np
 
-from infra.errors import check_number
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.maps import stability_map as map_kernel
@@ -14,11 +13,11 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, pf_max_option, waveform_option)
-from ._common import BACKGROUND_AMPLITUDES, dithered, resolve
+from ._common import BACKGROUND_AMPLITUDES, checked_values, dithered
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
-from ._values import FREQ, PF_MAX, Grid, parse_waveform
+from ._values import MIN_GROWTH, Grid, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -167,12 +166,11 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.tongues import find_tongues, tongue_boundaries
-    FREQ.check(freq_hz, "freq_hz")
-    PF_MAX.check(p_max_bar, "p_max_bar")
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_max_bar=p_max_bar)
     judder_growth = (DEFAULT_MIN_GROWTH_PER_S if judder_growth is None
-                     else float(judder_growth))
-    check_number("judder_growth", judder_growth, "1/s", strict=False)
-    values = resolve(parameters, changes)
+                     else float(MIN_GROWTH.check(judder_growth,
+                                                 "judder_growth")))
     driveline = dithered(values, waveform)
     p_max = p_max_bar * PA_PER_BAR
     started = time.perf_counter()

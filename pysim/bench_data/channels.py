@@ -53,28 +53,28 @@ def parse_channel_option(text):
     role, equals, rest = str(text).partition("=")
     role = role.strip()
     if not equals or not rest.strip():
-        raise JudderError(f"--channel {text!r}: give ROLE=NAME, "
+        raise JudderError(f"`channels` {text!r}: give ROLE=NAME, "
                           f"ROLE=NAME:UNIT or ROLE=NAME:UNIT:KIND with ROLE "
                           f"one of {', '.join(ROLES)}")
-    _check_role(role, f"--channel {text!r}")
+    _check_role(role, f"`channels` {text!r}")
     kind = None
     head, colon, last = rest.rpartition(":")
     if colon and last.strip() in SPEED_KINDS:
         if ROLES[role] != "speed":
-            raise JudderError(f"--channel {text!r}: a kind is for a speed "
+            raise JudderError(f"`channels` {text!r}: a kind is for a speed "
                               f"channel, not the {role}")
         rest, kind = head, last.strip()
     name, colon, unit = rest.rpartition(":")
     if not colon:
         if kind is not None:
-            raise JudderError(f"--channel {text!r}: give the unit before "
+            raise JudderError(f"`channels` {text!r}: give the unit before "
                               f"the kind (ROLE=NAME:UNIT:{kind})")
         return role, ChannelSpec(rest.strip())
     if not (ROLES[role] == "speed" and is_angle_unit(unit)):
         try:
             unit_factor(unit, ROLES[role])
         except JudderError as exc:
-            raise JudderError(f"--channel {text!r}: {exc}") from None
+            raise JudderError(f"`channels` {text!r}: {exc}") from None
     return role, ChannelSpec(name.strip(), unit.strip(), kind)
 
 
@@ -99,7 +99,7 @@ def checked_specs(path, channels):
     missing = [role for role in REQUIRED_ROLES if role not in specs]
     if missing:
         raise JudderError(f"{path}: no channel given for {missing[0]}; give "
-                          f"it with --channel {missing[0]}=NAME[:UNIT]")
+                          f"it as `channels` {missing[0]}=NAME[:UNIT]")
     return specs
 
 
@@ -114,7 +114,7 @@ def channel_in_si(path, role, spec, names, raw):
         else file_unit
     if unit is None or not str(unit).strip():
         raise JudderError(f"{where} has no unit in the file; give it with "
-                          f"--channel {role}={spec.name}:UNIT (allowed: "
+                          f"`channels` {role}={spec.name}:UNIT (allowed: "
                           f"{allowed_units(ROLES[role])})")
     kind_of_unit = ROLES[role]
     if kind_of_unit == "speed" and is_angle_unit(unit):

@@ -138,9 +138,9 @@ def sources_from_campaign(folder):
 def sources_from_index(index):
     """Runs listed in an index CSV with a ``file`` column."""
     index = Path(index)
-    rows = _read_csv(index, "--index")
+    rows = _read_csv(index, "`index`")
     if not rows or "file" not in rows[0]:
-        raise JudderError(f"--index {index}: needs a 'file' column (and "
+        raise JudderError(f"`index` {index}: needs a 'file' column (and "
                           "optionally freq_hz, p_f_bar, oil_temperature, "
                           "engine_rpm)")
     return [RunSource(index.parent / row["file"], _settings(row, index))
@@ -162,13 +162,13 @@ def gather_sources(paths, index=None):
         elif path.exists():
             files.append(path)
         else:
-            raise JudderError(f"SOURCE {path}: no such file or folder")
+            raise JudderError(f"`paths` {path}: no such file or folder")
     sources += sources_from_files(files)
     if index is not None:
         sources += sources_from_index(index)
     if not sources:
         raise JudderError("give at least one SOURCE (campaign folder or "
-                          "acquisition file) or --index")
+                          "acquisition file) or `index`")
     return sources
 
 
@@ -384,7 +384,7 @@ def build_chart(sources, channels=None, group_by=None,
     """
     channels = dict(channels or DEFAULT_CHANNELS)
     if "upstream_speed" not in channels:
-        raise JudderError("--channel upstream_speed=NAME is required (the "
+        raise JudderError("`channels` upstream_speed=NAME is required (the "
                           "speed upstream of the clutch)")
     jobs = [(s, channels, min_growth, min_amplitude_rpm, judder_limit_rpm)
             for s in sources]
@@ -401,7 +401,7 @@ def build_chart(sources, channels=None, group_by=None,
     known = {c for r in runs for c in r.settings}
     unknown = [c for c in group_by if c not in known]
     if unknown:
-        raise JudderError(f"--group-by {unknown[0]}: no run has that column; "
+        raise JudderError(f"`group_by` {unknown[0]}: no run has that column; "
                           f"allowed: {', '.join(sorted(known)) or 'none'}")
     return Chart(runs=runs, group_by=tuple(group_by), min_growth=min_growth,
                  judder_limit_rpm=judder_limit_rpm)

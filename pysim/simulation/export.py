@@ -81,4 +81,4 @@ def write_run(path, time, signals, units, metadata):
         write_mdf(path, [(n, units[n], time, signals[n]) for n in signals],
                   metadata)
     else:
-        raise JudderError(f"--out {path}: allowed suffixes: .csv, .mf4")
+        raise JudderError(f"{path}: allowed suffixes: .csv, .mf4")

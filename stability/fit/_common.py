@@ -135,9 +135,10 @@ class _Evaluator:
         try:
             driveline = build_driveline(evaluated(self.params_at(z),
                                                   p.added))
+            # the optimiser reads the amplitudes only: no monodromy check
             amplitude = tongue_boundaries(driveline, p.freq_hz, p.p_search,
-                                          p.method,
-                                          min_growth=p.min_growth).amplitude
+                                          p.method, min_growth=p.min_growth,
+                                          check=False).amplitude
             if p.forced_limit is not None:
                 # the bench's verdict: forced judder at f is single-period
                 # judder at its own onset

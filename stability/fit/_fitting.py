@@ -11,7 +11,6 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from infra.errors import JudderError
-from infra.parallel import cluster
 from infra.units import PA_PER_BAR
 
 from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
@@ -107,7 +106,9 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         Processes for the starts, profile sides and bootstrap refits
         (default: one, all cores for the bootstrap: starting Dask's
         workers costs more than the few parallel starts and profile
-        sides gain, see docs/benchmarks.md).
+        sides gain, see docs/benchmarks.md). Call it inside
+        :func:`infra.parallel.cluster` (as ``judder fit`` and
+        :func:`judder.api.fit` do) for its rounds to share one cluster.
     callback : callable, optional
         ``callback(done, total)`` after each local fit, profile side,
         bootstrap refit and curve; ``total`` is fixed at the first call
@@ -170,7 +171,10 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     ------
     JudderError
         On inconsistent input (shapes, bounds, kinds, fewer points than
-        parameters, no point with judder, an unknown option).
+        parameters, no point with judder, an unknown option). The
+        numbers (``p_max``, ``min_growth``, ``threshold_spread``,
+        ``scatter``) are trusted: :func:`judder.api.fit` and the command
+        line check them where they enter.
     """
     names = tuple(names)
     if not names:
@@ -193,20 +197,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     if censored.all():
         raise JudderError("the measured boundary has no point with judder: "
                           "it cannot determine the parameters")
-    if scatter is not None and not (np.isfinite(scatter) and scatter > 0):
-        raise JudderError(f"scatter = {scatter!r} is not allowed; allowed: "
-                          "a finite number > 0 (a share of the amplitude, "
-                          "or Pa with error_model='absolute')")
     check_onsets(int(np.sum(~censored)), names, scatter is not None)
-    if not (np.isfinite(p_max) and p_max > 0):
-        raise JudderError(f"p_max = {p_max!r} Pa is not allowed; allowed: "
-                          "> 0")
-    if not (np.isfinite(min_growth) and min_growth >= 0):
-        raise JudderError(f"min_growth = {min_growth!r} 1/s is not allowed; "
-                          "allowed: a finite number >= 0")
-    if not (np.isfinite(threshold_spread) and threshold_spread >= 0):
-        raise JudderError(f"threshold_spread = {threshold_spread!r} 1/s is "
-                          "not allowed; allowed: a finite number >= 0")
     params = params.replace(**(start or {}))
     added = tuple(sorted((added or {}).items()))
     for name, value in added:
@@ -248,11 +239,8 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         free = np.array([j not in dict(held) for j in range(len(names))])
         if not isinstance(extra, int):
             extra = extra[:, free]
-        # one cluster for all the rounds of parallel jobs
-        with cluster(workers):
-            result = _fit(_restricted(problem, free), given, extra,
-                          uncertainty, n_bootstrap, seed, workers, callback,
-                          curve_points)
+        result = _fit(_restricted(problem, free), given, extra, uncertainty,
+                      n_bootstrap, seed, workers, callback, curve_points)
     if held:
         result = _with_held(result, problem, free, held)
     return dataclasses.replace(result, onset_bar=onsets / PA_PER_BAR)
@@ -333,7 +321,7 @@ def _default_bounds(params, name):
     elif value < 0:
         low, high = value * BOUND_FACTOR, value / BOUND_FACTOR
     else:
-        raise JudderError(f"give --bounds for {name}: its start value is 0")
+        raise JudderError(f"give `bounds` for {name}: its start value is 0")
     spec = params.specs[name]
     return max(low, spec.lower), min(high, spec.upper)
 
@@ -402,7 +390,7 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
                                  n_bootstrap, used)
     problems = notes + problems + [
         f"{a} and {b} are determined only in combination (correlation "
-        f"{r:+.4f}): fix one of them (--set) and fit the other"
+        f"{r:+.4f}): fix one of them and fit the other"
         for a, b, r in flat_pairs(found.covariance, problem.names)]
 
     fitted = problem.params_at(z)

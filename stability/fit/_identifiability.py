@@ -73,7 +73,7 @@ def check_onsets(n_onsets, names, scatter_given=False):
     >>> check_onsets(1, ("mu_g",))
     Traceback (most recent call last):
     ...
-    infra.errors.JudderError: the measured boundary has 1 point with judder: fitting 1 parameter (mu_g) needs at least 3, 2 more than the parameters to estimate the scatter of the onsets; fit fewer parameters (--fit), measure the onset at more frequencies, or give the bench's known scatter (--scatter)
+    infra.errors.JudderError: the measured boundary has 1 point with judder: fitting 1 parameter (mu_g) needs at least 3, 2 more than the parameters to estimate the scatter of the onsets; fit fewer parameters (`names`), measure the onset at more frequencies, or give the bench's known scatter (`scatter`)
     """
     k = len(names)
     needed = k if scatter_given else k + MIN_DOF
@@ -86,10 +86,10 @@ def check_onsets(n_onsets, names, scatter_given=False):
         f"the measured boundary has {n_onsets} point"
         f"{'' if n_onsets == 1 else 's'} with judder: fitting {k} "
         f"parameter{'s' if k > 1 else ''} ({', '.join(names)}) needs at "
-        f"least {needed}, {why}; fit fewer parameters (--fit), measure the "
+        f"least {needed}, {why}; fit fewer parameters (`names`), measure the "
         "onset at more frequencies"
         + ("" if scatter_given else
-           ", or give the bench's known scatter (--scatter)"))
+           ", or give the bench's known scatter (`scatter`)"))
 
 
 def without_effect(problem, given):

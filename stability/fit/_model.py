@@ -71,7 +71,8 @@ def model_boundary(params, freq_hz, p_max, method=DEFAULT_METHOD, *,
     """
     driveline = build_driveline(evaluated(params, added))
     boundary = tongue_boundaries(driveline, freq_hz, p_max, method,
-                                 min_growth=min_growth).stability_boundary
+                                 min_growth=min_growth,
+                                 check=False).stability_boundary
     if forced_limit is None:
         return boundary
     forced = forced_onset(driveline, freq_hz, forced_limit)
