@@ -144,8 +144,9 @@ def _bench_jacobian(values, times):
         # in this process (sample_isolated runs the same in a child)
         jacobians = sample(SampleJob(
             path=str(path), folder=folder, guid=d.guid,
-            model_identifier=d.model_identifier, states=d.states,
-            derivatives=d.derivatives, references=d.references,
+            model_identifier=d.model_identifier,
+            fmi_version=d.fmi_version, directional=d.directional,
+            states=d.states, derivatives=d.derivatives, references=d.references,
             values={n: v for n, v in values.items() if n != "p_f"},
             amplitude="p_f", amplitudes=(values["p_f"],),
             times=tuple(times)))["jacobians"][0]

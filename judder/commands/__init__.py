@@ -18,7 +18,8 @@ command module: ``judder --help`` lists the commands from this table
 alone, and ``judder map`` imports the map's module only.
 
 Modules whose names start with ``_`` are shared by the commands: option
-groups and value parsers (``_arguments``, ``_values``), the parameter set
+groups and value parsers (``_arguments``, ``_values``), the options that
+carry the library's arguments in its messages (``_flags``), the parameter set
 the model options select (``_model``), what the API functions share (the
 set with its changes and the dithered driveline, ``_common``), preflight
 estimates (``_preflight``), outputs (``_output``) and records
