@@ -281,10 +281,11 @@ def test_tunable_parameters_have_units_and_descriptions(fmus):
 
 
 def test_changed_source_changes_the_fmu(tmp_path):
-    # one parameter default changed in a temporary copy of the library
+    # one parameter default changed in a temporary copy of the library:
+    # in the record of Appendix A the example extends
     copy = tmp_path / "modelica"
     shutil.copytree(LIBRARY, copy)
-    path = copy / "Judder" / "Examples" / "Driveline4DOF.mo"
+    path = copy / "Judder" / "Data" / "Driveline4DOFData.mo"
     text = path.read_text()
     assert "parameter Units.Inertia J4=0.122" in text
     path.write_text(text.replace("parameter Units.Inertia J4=0.122",
