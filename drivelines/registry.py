@@ -8,7 +8,10 @@ know about one driveline, so none of them branches on a model's name:
   bodies;
 * the clutch damper whose damping factor Eq. (16) reports, and the closed
   form of the natural frequencies (Eq. 15);
-* its parameter specifications and presets (Appendix A, section 4.2);
+* its parameter specifications and presets (Appendix A, section 4.2),
+  read from the parameter records of the Modelica library
+  (``modelica/Judder/Data``, :mod:`drivelines.records`), which the
+  Modelica examples extend: the values are written once;
 * the Modelica class it is written as, hence its FMU, the bench model of
   its engagements, and the signals a run reports.
 
@@ -27,7 +30,7 @@ area confidential. They enter Eq. (3) only as the product
   16.8 % damping (c12 = 10) the combination tongues 5 and 6 lie above the
   0.7 bar the paper states (at 1.45 bar).
 
-The Modelica examples carry the same defaults; a test compares every one.
+The record ``Judder.Data.ClutchData`` holds these values.
 """
 
 from dataclasses import dataclass
@@ -37,7 +40,8 @@ import numpy as np
 
 from infra.errors import ParameterError
 
-from .specs import CLUTCH_SPECS, MEAN_PRESSURE_DAMPING, nonnegative, positive
+from .records import record_values
+from .specs import CLUTCH_SPECS, nonnegative, positive
 
 __all__ = ["Body", "Coupling", "Preset", "DrivelineModel", "MODELS",
            "DEFAULT_MODEL", "SPECS", "PRESETS", "SIGNALS",
@@ -181,12 +185,6 @@ def _presets(**items):
         for name, (description, values) in items.items()})
 
 
-def _clutch_defaults():
-    # N_c R_m S = 6e-3 m^3, see the module docstring for the calibration.
-    return {"mu0": 0.09, "mu_g": 0.017, "N_c": 8.0, "R_m": 0.075, "S": 0.01,
-            "p_m": 1.0e6, MEAN_PRESSURE_DAMPING: 0.0}
-
-
 def _omega2_4dof(p):
     """Eq. (15): the two non-zero eigenvalues of the undamped 4-DOF chain."""
     J1, J2, J4 = p["J1"], p["J2"], p["J4"]
@@ -203,11 +201,6 @@ def _omega2_3dof(p):
     """Two-inertia oscillator: ``w^2 = k (J1 + J24) / (J1 J24)``."""
     return np.array([p["k"] * (p["J1"] + p["J24"]) / (p["J1"] * p["J24"])])
 
-
-_APPENDIX_4DOF = {"J1": 1.12, "J2": 0.231, "J3": 4.07, "J4": 0.122,
-                  "k12": 3856.0, "k24": 32885.0, "c12": 0.5, "c24": 0.1,
-                  "c1": 0.1, "c2": 0.1, "c3": 0.1, "c4": 0.1,
-                  **_clutch_defaults()}
 
 _DAMPER_12 = Coupling("1", "2", "k12", "c12")
 _DAMPER_3DOF = Coupling("1", "24", "k", "c")
@@ -238,14 +231,12 @@ FOUR_DOF = DrivelineModel(
         nonnegative("c3", "N m s/rad", "external damping of body 3"),
         nonnegative("c4", "N m s/rad", "external damping of body 4")),
     presets=_presets(**{
-        # Appendix A, 4 DOFs model.
         "paper-4dof": ("4-DOF model, Appendix A of the paper",
-                       _APPENDIX_4DOF),
-        # Section 4.2, solid line of Fig. 16: c12 = 10, mu_g = 0.022, k24 + 6 %.
+                       record_values("Driveline4DOFData")),
+        # Section 4.2, solid line of Fig. 16.
         "paper-4dof-fitted": ("4-DOF model fitted to the bench (section "
                               "4.2): c12 = 10, mu_g = 0.022, k24 + 6 %",
-                              {**_APPENDIX_4DOF, "c12": 10.0, "mu_g": 0.022,
-                               "k24": 32885.0 * 1.06})}),
+                              record_values("Driveline4DOFFitted"))}),
     default_preset="paper-4dof",
     modelica_class="Judder.Examples.Driveline4DOF",
     bench_class="Judder.Examples.TestBenchEngagement",
@@ -277,12 +268,8 @@ THREE_DOF = DrivelineModel(
         nonnegative("c24", "N m s/rad", "external damping of body 2-4"),
         nonnegative("c3", "N m s/rad", "external damping of body 3")),
     presets=_presets(**{
-        # Appendix A, 3 DOFs model; external damping as c_i of the 4-DOF
-        # table.
         "paper-3dof": ("3-DOF model, Appendix A of the paper",
-                       {"J1": 1.12, "J24": 0.353, "J3": 4.07, "k": 3451.0,
-                        "c": 0.5, "c1": 0.1, "c24": 0.1, "c3": 0.1,
-                        **_clutch_defaults()})}),
+                       record_values("Driveline3DOFData"))}),
     default_preset="paper-3dof",
     modelica_class="Judder.Examples.Driveline3DOF",
     bench_class=None,

@@ -289,7 +289,7 @@ def engagement_model(values, bench=None, fmu=None):
     orbit (:class:`stability.orbit.EngagementModel`): the driveline with
     the damping the bench adds (:func:`added_damping`), the EVEN clutch's
     friction curve (``mu0``, ``mu_g`` at ``w_op``, ``delta_mu``,
-    ``even.w_small``) and the slip ``w_motor - w_gearbox``, all read from
+    ``clutch.w_small``) and the slip ``w_motor - w_gearbox``, all read from
     the bench model's FMU where ``bench`` does not set them.
 
     Returns
@@ -314,5 +314,5 @@ def engagement_model(values, bench=None, fmu=None):
         build_driveline(damped), delta_mu=bench_value("delta_mu"),
         w_op=bench_value("w_op"),
         slip=bench_value("w_motor") - bench_value("w_gearbox"),
-        w_small=float(parameter_default(fmu, "even.w_small")))
+        w_small=float(parameter_default(fmu, "clutch.w_small")))
     return model, build_driveline(damped.replace(**friction))

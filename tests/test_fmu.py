@@ -197,7 +197,7 @@ def _engagement(fmus, name, kind, setting, stop_time):
     """A bench engagement, on the 1 ms grid only (fmpy adds event rows);
     the locking clutch's mode counters with it."""
     options = {"relative_tolerance": 1e-8} if kind == "ModelExchange" else {}
-    extra = ["even.lockups", "even.breakaways"] if "LockUp" in name else []
+    extra = ["clutch.lockups", "clutch.breakaways"] if "LockUp" in name else []
     result = simulate_fmu(str(fmus[(name, "2.0")]), fmi_type=kind,
                           stop_time=stop_time, output_interval=1e-3,
                           start_values=setting, output=BENCH_OUTPUTS + extra,
@@ -224,9 +224,9 @@ def test_locking_clutch_engagement_ends_in_lock_up(fmus, kind,
     smooth = _engagement(fmus, "TestBenchFullEngagement", kind,
                          OUTSIDE_TONGUES, 4.0)
     t = locking["time"]
-    assert locking["even.lockups"][-1] == 1
-    assert locking["even.breakaways"][-1] == 0
-    stuck = locking["even.lockups"] > 0.5
+    assert locking["clutch.lockups"][-1] == 1
+    assert locking["clutch.breakaways"][-1] == 0
+    stuck = locking["clutch.lockups"] > 0.5
     t_lock = t[stuck][0]
     assert 3.2 < t_lock < 3.25 and np.all(stuck[t >= t_lock])
     slipping = (t < t_lock) & (smooth["slip"] > 0.2)
@@ -252,9 +252,9 @@ def test_locking_clutch_breaks_away_at_once_inside_tongue_2(fmus, kind):
     locking = _engagement(fmus, "TestBenchLockUp", kind, TONGUE_2, 2.0)
     smooth = _engagement(fmus, "TestBenchFullEngagement", kind, TONGUE_2,
                          2.0)
-    lockups = locking["even.lockups"]
+    lockups = locking["clutch.lockups"]
     assert lockups[-1] > 300
-    assert_allclose(lockups, locking["even.breakaways"], atol=0)
+    assert_allclose(lockups, locking["clutch.breakaways"], atol=0)
     assert np.abs(locking["slip"] - smooth["slip"]).max() \
         < 1e-4 * np.abs(smooth["slip"]).max()
 
@@ -281,10 +281,11 @@ def test_tunable_parameters_have_units_and_descriptions(fmus):
 
 
 def test_changed_source_changes_the_fmu(tmp_path):
-    # one parameter default changed in a temporary copy of the library
+    # one parameter default changed in a temporary copy of the library:
+    # in the record of Appendix A the example extends
     copy = tmp_path / "modelica"
     shutil.copytree(LIBRARY, copy)
-    path = copy / "Judder" / "Examples" / "Driveline4DOF.mo"
+    path = copy / "Judder" / "Data" / "Driveline4DOFData.mo"
     text = path.read_text()
     assert "parameter Units.Inertia J4=0.122" in text
     path.write_text(text.replace("parameter Units.Inertia J4=0.122",

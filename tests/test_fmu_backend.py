@@ -94,10 +94,11 @@ def test_outputs_follow_the_source():
 
 
 def test_a_changed_source_changes_the_ode(tmp_path):
-    # a temporary copy of the library with one parameter default changed
+    # a temporary copy of the library with one parameter default changed,
+    # in the record of Appendix A the example extends
     copy = tmp_path / "modelica"
     shutil.copytree(LIBRARY, copy)
-    path = copy / "Judder" / "Examples" / "Driveline4DOF.mo"
+    path = copy / "Judder" / "Data" / "Driveline4DOFData.mo"
     path.write_text(path.read_text().replace(
         "parameter Units.Inertia J4=0.122", "parameter Units.Inertia J4=0.244"))
     changed = _ode("Driveline4DOF", library=copy)

@@ -25,10 +25,9 @@ rumoca = pytest.importorskip("rumoca")
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 PACKAGE = LIBRARY / "Judder"
 EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement"]
-#: The class whose file holds an example's diagram (instances, connections,
-#: outputs) when the example extends it: the bench's EVEN clutch is chosen
-#: by TestBenchEngagement and TestBenchLockUp on one PartialTestBench.
-DIAGRAM = {"TestBenchEngagement": "PartialTestBench"}
+#: Examples wire the 4-DOF chain once, in PartialDriveline4DOF, and
+#: extend it: an example's diagram (instances, connections, outputs) is
+#: that of its file and of the files of the examples it extends.
 # rumoca counts as a state every variable that appears under der() and
 # does not reduce the index: besides the angle and speed of each body
 # (8, 6, 8) it keeps the relative angle phi_rel of every compliant
@@ -43,8 +42,8 @@ STATES = {"Driveline4DOF": 8 + 7 + 3, "Driveline3DOF": 6 + 5 + 3,
 # TestBenchEngagement with its EVEN clutch redeclared as LockingWetClutch:
 # rumoca also keeps the clutch's relative speed (under der() in the stuck
 # branch) and its three mode states
-MODE_STATES = {"TestBenchLockUp": {"even.w_rel", "even.lockups",
-                                   "even.breakaways", "even.sense"}}
+MODE_STATES = {"TestBenchLockUp": {"clutch.w_rel", "clutch.lockups",
+                                   "clutch.breakaways", "clutch.sense"}}
 
 
 @pytest.fixture(scope="module")
@@ -106,9 +105,9 @@ def test_examples_declare_outputs_and_experiment(name):
     text = (PACKAGE / "Examples" / f"{name}.mo").read_text()
     assert re.search(r"experiment\(StopTime=[\d.]+, Interval=[\d.e-]+\)",
                      text)
-    diagram = (PACKAGE / "Examples" / f"{DIAGRAM.get(name, name)}.mo")
-    outputs = re.findall(r"output Units\.(\w+) (\w+)=",
-                         diagram.read_text())
+    outputs = [found for path in _example_files(name) for found in
+               re.findall(r"output Units\.(\w+) (\w+)=", path.read_text())]
+    assert len(outputs) == 5
     assert {o[1] for o in outputs} == {"w_upstream", "w_downstream", "slip",
                                        "clutch_torque", "actuation_pressure"}
 
@@ -225,20 +224,71 @@ def _enclosed(text, start):
     raise ValueError(f"unbalanced {opening!r} at {start}")
 
 
-@pytest.mark.parametrize("path", _icon_classes(), ids=lambda p: p.stem)
-def test_components_sources_sensors_and_connectors_have_icons(path):
+def _bases(path):
+    """Files of the classes a library class extends, directly or not
+    (``Interfaces.PartialWetClutch``, ``Icons.Clutch``, a sibling)."""
+    found = []
+    for base in re.findall(r"\bextends\s+([\w.]+)", _code(path)):
+        parts = base.split(".")
+        candidates = [PACKAGE.joinpath(*parts).with_suffix(".mo"),
+                      path.parent.joinpath(*parts).with_suffix(".mo")]
+        for candidate in candidates:
+            if candidate.exists():
+                found += [candidate] + _bases(candidate)
+                break
+    return found
+
+
+def _graphics(path):
+    """The graphic primitives of a class's own icon (empty without)."""
     text = path.read_text()
-    assert text.count("Icon(") == 1, f"{path.name}: one Icon annotation"
+    if "Icon(" not in text:
+        return ""
     icon = _enclosed(text, text.index("Icon(") + len("Icon"))
     assert re.match(r"coordinateSystem\(.*extent=\{\{-100,-100\},"
                     r"\{100,100\}\}", icon)
-    graphics = _enclosed(icon, icon.index("graphics={") + len("graphics="))
+    return _enclosed(icon, icon.index("graphics={") + len("graphics="))
+
+
+@pytest.mark.parametrize("path", _icon_classes(), ids=lambda p: p.stem)
+def test_components_sources_sensors_and_connectors_have_icons(path):
+    # a class draws its own icon on top of those of the classes it
+    # extends (Icons.Clutch), as in MSL
+    assert path.read_text().count("Icon(") == 1, \
+        f"{path.name}: one Icon annotation"
+    graphics = _graphics(path)
     primitives = re.findall(r"\b(Line|Rectangle|Ellipse|Polygon|Text)\(",
-                            graphics)
+                            "".join([graphics] + [_graphics(base) for base
+                                                  in _bases(path)]))
     assert primitives, f"{path.name}: an empty icon"
     if path.stem not in CONNECTORS:
         assert 'textString="%name"' in graphics
         assert len(primitives) >= 3
+
+
+PRESSURE_INPUT = "RealInput p(unit=\"Pa\")"
+
+
+def test_every_pressure_clutch_extends_one_partial_and_one_icon():
+    # the clutches with a pressure input are the components that extend
+    # Interfaces.PartialPressureClutch; it alone declares the plate pack
+    # and the input, and only Icons.Clutch draws the plates
+    clutches = [p for p in sorted((PACKAGE / "Components").glob("*.mo"))
+                if "Clutch" in p.stem]
+    assert len(clutches) == 6
+    partial = PACKAGE / "Interfaces" / "PartialPressureClutch.mo"
+    icon = PACKAGE / "Icons" / "Clutch.mo"
+    for path in clutches:
+        assert partial in _bases(path), path.stem
+        assert icon in _bases(path), path.stem
+    plates = "Rectangle(extent={{-30,60},{-10,-60}}"
+    for path in PACKAGE.rglob("*.mo"):
+        code = _code(path)
+        assert (plates in code) == (path == icon), path.name
+        assert (PRESSURE_INPUT in path.read_text()) == (path == partial), \
+            path.name
+        assert (re.search(r"parameter Real N_c\b", code) is not None) == (
+            path in (partial, PACKAGE / "Data" / "ClutchData.mo")), path.name
 
 
 def _declarations(path, types):
@@ -302,25 +352,40 @@ def _connector_positions(class_name):
     return positions
 
 
+def _example_files(name):
+    """The file of an example and those of the examples it extends, the
+    most basic first."""
+    path = PACKAGE / "Examples" / f"{name}.mo"
+    bases = re.findall(r"\bextends\s+(\w+)\b", _code(path))
+    return [base for b in bases if (PACKAGE / "Examples" / f"{b}.mo").exists()
+            for base in _example_files(b)] + [path]
+
+
 def _example(name):
     """Instances (name -> (type, transformation)), connections
-    ((a, b, line points)) and output bindings of an example."""
-    path = PACKAGE / "Examples" / f"{DIAGRAM.get(name, name)}.mo"
-    instances = {}
-    for kind, instance, statement in _declarations(
-            path, r"(?:Components|Sources|Sensors)\.\w+"):
-        assert "Placement(transformation(" in statement, \
-            f"{name}: {instance} has no Placement"
-        instances[instance] = (kind, _transformation(statement))
-    connections = []
-    for a, b, annotation in re.findall(
-            r"connect\(([\w.]+),\s*([\w.]+)\)\s*(annotation\s*\(Line\("
-            r"points=\{[^;]*?\}\)?[^;]*?\))?;", _code(path)):
-        points = [(float(x), float(y)) for x, y in re.findall(
-            r"\{(N),(N)\}".replace("N", _NUMBER), annotation)]
-        connections.append((a, b, points))
-    bindings = dict(re.findall(r"output Units\.\w+ (\w+)=([^\"]+?)\s*\"",
-                               path.read_text()))
+    ((a, b, line points)) and output bindings of an example, with those
+    it inherits. An instance of a replaceable model (``Clutch clutch``)
+    has the class last bound to it (``redeclare model Clutch = ...``)."""
+    instances, connections, bindings, classes = {}, [], {}, {}
+    for path in _example_files(name):
+        classes.update(re.findall(r"(?:replaceable|redeclare) model (\w+)"
+                                  r"\s*=\s*([\w.]+)", _code(path)))
+        for kind, instance, statement in _declarations(
+                path, r"(?:Components|Sources|Sensors)\.\w+|"
+                + "|".join(classes or ["(?!)"])):
+            assert "Placement(transformation(" in statement, \
+                f"{name}: {instance} has no Placement"
+            instances[instance] = (kind, _transformation(statement))
+        for a, b, annotation in re.findall(
+                r"connect\(([\w.]+),\s*([\w.]+)\)\s*(annotation\s*\(Line\("
+                r"points=\{[^;]*?\}\)?[^;]*?\))?;", _code(path)):
+            points = [(float(x), float(y)) for x, y in re.findall(
+                r"\{(N),(N)\}".replace("N", _NUMBER), annotation)]
+            connections.append((a, b, points))
+        bindings.update(re.findall(r"output Units\.\w+ (\w+)=([^\"]+?)\s*\"",
+                                   path.read_text()))
+    instances = {instance: (classes.get(kind, kind), transformation)
+                 for instance, (kind, transformation) in instances.items()}
     return instances, connections, bindings
 
 
@@ -342,7 +407,7 @@ CHAINS = {
     "Driveline3DOF": ["engine", "inertia1", "damper", "inertia24", "clutch",
                       "torqueSensor", "inertia3", "load"],
     "TestBenchEngagement": ["motor", "inertia1", "damper12", "inertia2",
-                            "shaft24", "inertia4", "even", "torqueSensor",
+                            "shaft24", "inertia4", "clutch", "torqueSensor",
                             "inertia3", "rev"],
 }
 
@@ -380,8 +445,8 @@ def test_diagram_lines_end_on_their_connectors(name):
 # and the source of its pressure
 CLUTCHES = {"Driveline4DOF": ("clutch", "inertia4", "inertia3", "pressure"),
             "Driveline3DOF": ("clutch", "inertia24", "inertia3", "pressure"),
-            "TestBenchEngagement": ("even", "inertia4", "inertia3",
-                                    "evenPressure")}
+            "TestBenchEngagement": ("clutch", "inertia4", "inertia3",
+                                    "pressure")}
 
 
 @pytest.mark.parametrize("name", EXAMPLES)

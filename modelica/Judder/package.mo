@@ -11,6 +11,9 @@ torque (flange_a, flange_b), partial models that write the balance once,
 and components that add only their own law. Units are SI.</p>
 <ul>
 <li><b>Units</b>: the SI types of the library.</li>
+<li><b>Icons</b>: icons drawn once (the wet clutch).</li>
+<li><b>Data</b>: parameter records of the paper's Appendix A and of the
+set fitted to the bench (section 4.2).</li>
 <li><b>Interfaces</b>: flanges, signal connectors and partial models.</li>
 <li><b>Components</b>: inertia, spring-damper, damper, housing and the
 wet clutch of Eq. (3)-(5).</li>

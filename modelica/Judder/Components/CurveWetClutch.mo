@@ -1,6 +1,8 @@
 within Judder.Components;
 model CurveWetClutch "Wet clutch with a bounded friction curve mu(slip) whose value and slope at the operating slip are mu0 and mu_g (engagements)"
-  extends Interfaces.PartialPressureClutch;
+  extends Interfaces.PartialDitheredClutch;
+  parameter Units.FrictionGradient mu_g=0.017
+    "Slope of the friction curve at the operating slip w_op (the mu_g of Eq. 5)";
   parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.04
     "Half the rise of the friction curve: mu stays within mu0 +- delta_mu";
   parameter Units.AngularVelocity w_op(min=0)=84.71975511965977
@@ -16,16 +18,6 @@ equation
   annotation (
     Icon(coordinateSystem(preserveAspectRatio=true, extent={{-100,-100},{100,100}}),
       graphics={
-        Rectangle(extent={{-100,10},{-30,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{30,10},{100,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{-30,60},{-10,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Rectangle(extent={{10,60},{30,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Line(points={{-40,90},{-40,70},{-20,70},{-20,60}}, color={0,0,127}),
-        Line(points={{40,90},{40,70},{20,70},{20,60}}, color={0,0,127}),
         Line(points={{-60,-85},{-20,-84},{0,-75},{20,-66},{60,-65}}),
         Text(extent={{-150,-65},{150,-100}}, textString="%name", textColor={0,0,255})}),
     Documentation(info="<html>

@@ -1,42 +1,18 @@
 within Judder.Components;
 model FrictionCurveClutch "Wet clutch slipping forwards with a saturating friction curve mu(slip)"
-  extends Interfaces.PartialCompliantWithRelativeStates;
-  parameter Units.FrictionCoefficient mu0(min=0)=0.09
-    "Friction coefficient at zero slip";
+  extends Interfaces.PartialDitheredClutch;
   parameter Units.FrictionCoefficient mu_max(min=0)=0.12
     "Friction coefficient the curve tends to at large slip";
   parameter Units.AngularVelocity w_char(min=1e-6)=1
     "Characteristic slip speed of the curve (its slope at zero slip is (mu_max - mu0)/w_char)";
-  parameter Real N_c(min=1)=8 "Number of pairs of clutch plates";
-  parameter Units.Length R_m(min=0)=0.075 "Mean radius of the friction surfaces";
-  parameter Units.Area S(min=0)=0.01 "Area the actuation pressure acts on";
-  parameter Units.Fraction mean_pressure_damping=0
-    "Share of the mean pressure in the slip-dependent friction (1: mu(slip)*p literally, 0: dither part only)";
-  Interfaces.RealInput p(unit="Pa") "Actuation pressure"
-    annotation (Placement(transformation(origin={40,110}, extent={{-20,-20},{20,20}}, rotation=270)));
-  Interfaces.RealInput p_mean(unit="Pa") "Mean part of the actuation pressure"
-    annotation (Placement(transformation(origin={-40,110}, extent={{-20,-20},{20,20}}, rotation=270)));
-  Units.AngularVelocity slip "Slip speed, flange_a minus flange_b";
   Units.FrictionCoefficient mu "Friction coefficient at the present slip";
-  Units.Torque tau_c "Friction torque transmitted from flange_a to flange_b";
 equation
-  slip = -w_rel;
+  direction = 1;
   mu = mu0 + (mu_max - mu0)*tanh(slip/w_char);
-  tau_c = N_c*R_m*S*(mu0*p + (mu - mu0)*(p - (1 - mean_pressure_damping)*p_mean));
-  tau = -tau_c;
+  tau_c = N_c*R_m*S*direction*(mu0*p + (mu - mu0)*(p - (1 - mean_pressure_damping)*p_mean));
   annotation (
     Icon(coordinateSystem(preserveAspectRatio=true, extent={{-100,-100},{100,100}}),
       graphics={
-        Rectangle(extent={{-100,10},{-30,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{30,10},{100,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{-30,60},{-10,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Rectangle(extent={{10,60},{30,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Line(points={{-40,90},{-40,70},{-20,70},{-20,60}}, color={0,0,127}),
-        Line(points={{40,90},{40,70},{20,70},{20,60}}, color={0,0,127}),
         Line(points={{-40,-90},{-30,-75},{-10,-70},{40,-68}}),
         Text(extent={{-150,-95},{150,-130}}, textString="%name", textColor={0,0,255})}),
     Documentation(info="<html>

@@ -1,21 +1,12 @@
 within Judder.Components;
 model TableClutch "Wet clutch whose friction coefficient is a table of the slip speed (as MSL Clutch mu_pos)"
-  extends Interfaces.PartialCompliantWithRelativeStates;
+  extends Interfaces.PartialPressureClutch;
   parameter Real mu_pos[:, 2]={{0, 0.09}, {50, 0.1}, {100, 0.11}, {200, 0.115}}
     "Friction coefficient (column 2, 1) against the absolute slip speed (column 1, rad/s, increasing)";
-  parameter Real N_c(min=1)=8 "Number of pairs of clutch plates";
-  parameter Units.Length R_m(min=0)=0.075 "Mean radius of the friction surfaces";
-  parameter Units.Area S(min=0)=0.01 "Area the actuation pressure acts on";
   parameter Units.AngularVelocity w_small(min=0)=0.01
     "Slip speed over which the friction torque changes sign smoothly";
-  Interfaces.RealInput p(unit="Pa") "Actuation pressure"
-    annotation (Placement(transformation(origin={40,110}, extent={{-20,-20},{20,20}}, rotation=270)));
-  Units.AngularVelocity slip "Slip speed, flange_a minus flange_b";
   Units.FrictionCoefficient mu "Friction coefficient at the present slip speed";
-  Real direction(unit="1") "Direction of the friction torque (+1 when slipping forwards)";
-  Units.Torque tau_c "Friction torque transmitted from flange_a to flange_b";
 equation
-  slip = -w_rel;
   direction = noEvent(tanh(slip/w_small));
   // linear interpolation in mu_pos at |slip|, the end values held outside
   mu = noEvent(if abs(slip) < mu_pos[1, 1] then mu_pos[1, 2] else 0)
@@ -26,19 +17,9 @@ equation
     + noEvent(if abs(slip) >= mu_pos[size(mu_pos, 1), 1]
       then mu_pos[size(mu_pos, 1), 2] else 0);
   tau_c = N_c*R_m*S*mu*direction*p;
-  tau = -tau_c;
   annotation (
     Icon(coordinateSystem(preserveAspectRatio=true, extent={{-100,-100},{100,100}}),
       graphics={
-        Rectangle(extent={{-100,10},{-30,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{30,10},{100,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{-30,60},{-10,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Rectangle(extent={{10,60},{30,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Line(points={{40,90},{40,70},{20,70},{20,60}}, color={0,0,127}),
         Line(points={{-80,-40},{-40,-30},{0,-25},{60,-22}}, color={0,0,255}),
         Text(extent={{-150,-65},{150,-100}}, textString="%name", textColor={0,0,255})}),
     Documentation(info="<html>

@@ -8,16 +8,6 @@ equation
   annotation (
     Icon(coordinateSystem(preserveAspectRatio=true, extent={{-100,-100},{100,100}}),
       graphics={
-        Rectangle(extent={{-100,10},{-30,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{30,10},{100,-10}}, lineColor={0,0,0},
-          fillPattern=FillPattern.HorizontalCylinder, fillColor={192,192,192}),
-        Rectangle(extent={{-30,60},{-10,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Rectangle(extent={{10,60},{30,-60}}, lineColor={0,0,0},
-          fillPattern=FillPattern.Solid, fillColor={192,192,192}),
-        Line(points={{-40,90},{-40,70},{-20,70},{-20,60}}, color={0,0,127}),
-        Line(points={{40,90},{40,70},{20,70},{20,60}}, color={0,0,127}),
         Text(extent={{-150,-65},{150,-100}}, textString="%name", textColor={0,0,255})}),
     Documentation(info="<html>
 <p>Wet clutch for engagements: the friction law of Eq. (3)-(5)

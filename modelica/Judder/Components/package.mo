@@ -13,6 +13,9 @@ through zero slip (engagements). For drivelines beyond the paper's:
 <code>IdealGear</code> (a ratio, MSL equations) and
 <code>FrictionCurveClutch</code>, whose friction coefficient is a smooth
 saturating curve of the slip; its local slope at the operating slip is
-the paper's mu_g.</p>
+the paper's mu_g. Every wet clutch (also CurveWetClutch,
+LockingWetClutch and TableClutch) extends
+Interfaces.PartialPressureClutch, which declares the plate pack and the
+pressure input once and draws Icons.Clutch.</p>
 </html>"));
 end Components;

@@ -1,22 +1,8 @@
 within Judder.Examples;
 model Driveline3DOF "3-DOF driveline of Fig. 12: steady slipping with dither (Appendix A values)"
-  parameter Units.Inertia J1=1.12 "Inertia of the engine-side body";
-  parameter Units.Inertia J24=0.353 "Inertia of the clutch damper and the parts up to the clutch pack";
-  parameter Units.Inertia J3=4.07 "Inertia of the gearbox-side body";
-  parameter Units.RotationalSpringConstant k=3451 "Stiffness of the clutch damper";
-  parameter Units.RotationalDampingConstant c=0.5 "Damping of the clutch damper";
-  parameter Units.RotationalDampingConstant c1=0.1 "External damping of body 1";
-  parameter Units.RotationalDampingConstant c24=0.1 "External damping of body 2-4";
-  parameter Units.RotationalDampingConstant c3=0.1 "External damping of body 3";
-  parameter Units.FrictionCoefficient mu0=0.09 "Friction coefficient at zero slip";
-  parameter Units.FrictionGradient mu_g=0.017 "Friction gradient with slip speed";
-  parameter Real N_c(min=1)=8 "Number of pairs of clutch plates";
-  parameter Units.Length R_m=0.075 "Mean radius of the friction surfaces";
-  parameter Units.Area S=0.01 "Area the actuation pressure acts on";
-  parameter Units.Pressure p_m=1e6 "Mean actuation pressure";
+  extends Data.Driveline3DOFData;
   parameter Units.Pressure p_f=0.3e5 "Dither amplitude";
   parameter Units.Frequency f_dither=18.05 "Dither frequency";
-  parameter Units.Fraction mean_pressure_damping=0 "Share of p_m in the slip damping";
   parameter Units.AngularVelocity w_in=104.71975511965977 "Initial speed of bodies 1 and 2-4 (1000 rpm)";
   parameter Units.AngularVelocity w_out=0 "Initial speed of body 3";
   parameter Units.Torque T_e=mu0*N_c*R_m*S*p_m "Engine torque on body 1";
@@ -103,7 +89,8 @@ equation
     Diagram(coordinateSystem(preserveAspectRatio=true, extent={{-160,-100},{160,100}})),
     Documentation(info="<html>
 <p>The essential 3-DOF model of Fig. 12 (the authors' earlier model,
-reference [26] of the paper), with the values of its Appendix:
+reference [26] of the paper), with the values of its Appendix
+(Data.Driveline3DOFData, which it extends):
 engine-side body 1 (J1), body 2-4 (J24: the clutch damper and all the
 parts up to the clutch pack) behind the clutch damper k, c, and the
 gearbox side 3 (J3); each body has an external damper c_i to the

@@ -1,8 +1,7 @@
 within Judder.Examples;
 model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clutch slipping steadily at 1000 rpm with a bounded friction curve, REV clutch as the load"
-  extends PartialTestBench(redeclare Components.CurveWetClutch even(mu0=mu0, mu_g=mu_g,
-    delta_mu=delta_mu, w_op=w_op, N_c=N_c, R_m=R_m, S=S,
-    mean_pressure_damping=mean_pressure_damping),
+  extends PartialTestBench(redeclare model Clutch = Components.CurveWetClutch,
+    clutch(mu_g=mu_g, delta_mu=delta_mu, w_op=w_op),
     S_load=load_share*(N_c*S*p_m - c3*w_gearbox/(mu0*R_m))/(N_c_load*p_load));
   parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.04
     "Half the rise of the EVEN friction curve (mu within mu0 +- delta_mu)";

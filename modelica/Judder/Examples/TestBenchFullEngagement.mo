@@ -1,6 +1,7 @@
 within Judder.Examples;
 model TestBenchFullEngagement "Bench engagement that ends: the EVEN clutch (WetClutch, Eq. 5) brings the gearbox side up to the motor speed"
-  extends PartialTestBench(S_load=0.006, w_gearbox=0, t_ramp=0.05);
+  extends PartialTestBench(S_load=0.006, w_gearbox=0, t_ramp=0.05,
+    redeclare model Clutch = Components.WetClutch, clutch(mu_g=mu_g));
   annotation (
     experiment(StopTime=4, Interval=1e-3),
     Documentation(info="<html>

@@ -1,8 +1,7 @@
 within Judder.Examples;
 model TestBenchLockUp "Bench engagement of TestBenchFullEngagement ending in lock-up: the EVEN clutch sticks and breaks away by events"
   extends PartialTestBench(S_load=0.006, w_gearbox=0, t_ramp=0.05,
-    redeclare Components.LockingWetClutch even(mu0=mu0, mu_g=mu_g,
-    N_c=N_c, R_m=R_m, S=S, mean_pressure_damping=mean_pressure_damping));
+    redeclare model Clutch = Components.LockingWetClutch, clutch(mu_g=mu_g));
   annotation (
     experiment(StopTime=4, Interval=1e-3),
     Documentation(info="<html>
@@ -14,6 +13,6 @@ clutch transmits the torque the load takes. Inside tongue 2 (the default
 102.9 Hz, 0.3 bar) the slip oscillates through zero; at each zero the
 torque needed to stay stuck exceeds mu0 N_c R_m S p, so the clutch
 breaks away in the same event and no lock holds. The mode is
-even.lockups - even.breakaways (1 stuck, 0 slipping).</p>
+clutch.lockups - clutch.breakaways (1 stuck, 0 slipping).</p>
 </html>"));
 end TestBenchLockUp;

@@ -6,6 +6,10 @@ outputs, each taken from a sensor: w_upstream and w_downstream (speeds
 on each side of the clutch), slip, clutch_torque and
 actuation_pressure.</p>
 <ul>
+<li><code>PartialDriveline4DOF</code>: the 4-DOF chain of Fig. 13 with
+the values of Appendix A (Data.Driveline4DOFData), a replaceable EVEN
+clutch, its dither pressure and the sensors, wired once; the 4-DOF
+examples and the bench extend it.</li>
 <li><code>Driveline4DOF</code>: the minimal 4-DOF model of Fig. 13,
 Eq. (1)-(5), slipping steadily with dither.</li>
 <li><code>Driveline3DOF</code>: the essential 3-DOF model of Fig. 12.</li>

@@ -1,6 +1,8 @@
 within Judder.Interfaces;
 partial model PartialWetClutch "Wet clutch actuated by a pressure: friction law of Eq. (3)-(5); the direction of friction is left to the component"
-  extends PartialPressureClutch;
+  extends PartialDitheredClutch;
+  parameter Units.FrictionGradient mu_g=0.017
+    "Gradient of the friction coefficient with slip speed (Eq. 5)";
 equation
   tau_c = N_c*R_m*S*(mu0*direction*p
     + mu_g*slip*(p - (1 - mean_pressure_damping)*p_mean));

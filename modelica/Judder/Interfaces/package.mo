@@ -9,7 +9,8 @@ Modelica.Mechanics.Rotational.Interfaces:</p>
 <li><code>RealInput</code>, <code>RealOutput</code>: signal connectors
 (the actuation pressure, the sensor outputs),</li>
 <li>partial models that write the flange equations once: two flanges,
-one flange, compliant connection, the wet clutch of Eq. (3)-(5), and the
+one flange, compliant connection, the wet clutches (a pressure clutch,
+one fed by a dither pressure, the linear law of Eq. (3)-(5)), and the
 absolute and relative sensors.</li>
 </ul>
 </html>"));
