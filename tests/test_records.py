@@ -10,7 +10,7 @@ import re
 
 import pytest
 
-from drivelines import get_preset
+from sources import get_preset
 from drivelines.records import DATA, RecordError, record_values
 
 
