@@ -14,7 +14,9 @@ the kernels work on many tiny matrices, where threaded BLAS only
 contends (measured 5x slower). A failed job never stops the others and
 is never lost: it is reported with its inputs (:class:`TaskFailure`),
 either in place of its result or, after all the other jobs, in one
-:class:`TaskFailures` error. Ctrl-C and SIGTERM close the cluster and its
+:class:`TaskFailures` error: an input error (exit 2) when every job
+failed on its input (:class:`~infra.errors.JudderError`, or memory),
+else a bug (exit 1, the jobs named). Ctrl-C and SIGTERM close the cluster and its
 worker processes. Dask logs nothing below CRITICAL and serves no
 dashboard.
 """
@@ -36,7 +38,8 @@ from threadpoolctl import threadpool_limits
 from .errors import JudderError
 from .lifecycle import die_with_parent
 
-__all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures"]
+__all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures",
+           "TaskInputErrors"]
 
 #: Seconds to wait for an existing scheduler to answer.
 CONNECT_TIMEOUT = 10
@@ -71,20 +74,27 @@ class TaskFailure:
     inputs : str
         The job, described (``describe(job)``).
     message : str
-        ``'ExceptionType: text'`` of what it raised.
+        ``'ExceptionType: text'`` of what it raised (the text alone for
+        an input error).
+    input_error : bool
+        It failed on its input (:class:`~infra.errors.JudderError`, or
+        memory), not by a bug.
     """
 
     index: int
     inputs: str
     message: str
+    input_error: bool = False
 
     def __str__(self):
         return f"job {self.index} ({self.inputs}): {self.message}"
 
 
-class TaskFailures(JudderError):
-    """Some jobs of a :func:`parallel_map` failed; ``failures`` lists them
-    (the others completed)."""
+class TaskFailures(Exception):
+    """Some jobs of a :func:`parallel_map` failed, one at least by a bug;
+    ``failures`` lists them (the others completed). Not an input error:
+    a command line reports it as an internal error (exit 1) naming the
+    jobs."""
 
     def __init__(self, failures, total):
         self.failures = tuple(failures)
@@ -96,6 +106,22 @@ class TaskFailures(JudderError):
             + (f"; and {more} more" if more > 0 else ""))
 
 
+class TaskInputErrors(TaskFailures, JudderError):
+    """Some jobs of a :func:`parallel_map` failed, every one on its input
+    (exit 2, the reasons named)."""
+
+
+def _failures(failed, total):
+    """The error of the failed jobs: input errors, or bugs."""
+    kind = TaskInputErrors if all(f.input_error for f in failed) \
+        else TaskFailures
+    return kind(failed, total)
+
+
+def _input_error(exc):
+    return isinstance(exc, (JudderError, MemoryError))
+
+
 def _describe(job):
     text = repr(job)
     return text if len(text) <= _DESCRIPTION else \
@@ -103,6 +129,10 @@ def _describe(job):
 
 
 def _message(exc):
+    """What a job raised: the text of an input error, else
+    ``'ExceptionType: text'``."""
+    if isinstance(exc, JudderError):
+        return str(exc)
     return f"{type(exc).__name__}: {exc}"
 
 
@@ -120,15 +150,15 @@ def _call(function, job):
 
 
 def _call_batch(function, jobs):
-    """Run a batch of jobs on a worker: ``(True, result)`` per job, or
-    ``(False, 'ExceptionType: text')`` for one that raised (the others go
-    on)."""
+    """Run a batch of jobs on a worker: ``(True, result, None)`` per job,
+    or ``(False, message, input_error)`` for one that raised (the others
+    go on; see :func:`_message`)."""
     results = []
     for job in jobs:
         try:
-            results.append((True, _call(function, job)))
+            results.append((True, _call(function, job), None))
         except Exception as exc:   # reported, the others go on
-            results.append((False, _message(exc)))
+            results.append((False, _message(exc), _input_error(exc)))
     return results
 
 
@@ -466,8 +496,9 @@ def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
     describe = describe or _describe
     failed = []
 
-    def outcome(index, message):
-        failure = TaskFailure(index, describe(jobs[index]), message)
+    def outcome(index, message, input_error=False):
+        failure = TaskFailure(index, describe(jobs[index]), message,
+                              input_error)
         failed.append(failure)
         return failure
 
@@ -485,7 +516,7 @@ def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
         if not _ACTIVE or state is not _ACTIVE[-1]:
             state.close()
     if failed and failures == "raise":
-        raise TaskFailures(failed, len(jobs))
+        raise _failures(failed, len(jobs))
 
 
 def _serial(function, jobs, outcome):
@@ -494,7 +525,7 @@ def _serial(function, jobs, outcome):
             try:
                 result = function(job)
             except Exception as exc:   # reported, the others go on
-                yield outcome(index, _message(exc))
+                yield outcome(index, _message(exc), _input_error(exc))
             else:
                 yield result
 
@@ -516,10 +547,10 @@ def _distributed(client, function, jobs, ordered, outcome):
             try:
                 results = future.result()
             except (Exception, CancelledError) as exc:   # the worker died
-                results = [(False, _message(exc))] * len(batch)
+                results = [(False, _message(exc), False)] * len(batch)
             future.release()
-            for index, (done, value) in zip(batch, results):
-                item = value if done else outcome(index, value)
+            for index, (done, value, input_error) in zip(batch, results):
+                item = value if done else outcome(index, value, input_error)
                 if not ordered:
                     yield item
                     continue

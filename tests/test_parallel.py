@@ -20,7 +20,8 @@ from numpy.testing import assert_array_equal
 from drivelines import get_preset
 
 from infra.errors import JudderError
-from infra.parallel import TaskFailure, TaskFailures, cluster, parallel_map
+from infra.parallel import (TaskFailure, TaskFailures, TaskInputErrors,
+                            cluster, parallel_map)
 from judder import api
 from stability.uncertainty import Normal, Ranges, Uniform
 
@@ -77,8 +78,33 @@ def test_serial_failures_are_reported_and_the_others_go_on():
     assert done == [0.0, 1.0, math.sqrt(2), 2.0, math.sqrt(5)]
     (failure,) = caught.value.failures
     assert failure == TaskFailure(3, "-1.0", DOMAIN)
-    assert isinstance(caught.value, JudderError)     # exit status 2
+    # a ValueError inside a job is a bug (exit 1), not an input error
+    assert not isinstance(caught.value, JudderError)
     assert f"1 of 6 jobs failed: job 3 (-1.0): {DOMAIN}" in str(caught.value)
+
+
+def _refuse_negative(x):
+    if x < 0:
+        raise JudderError(f"x = {x:g} is not allowed; allowed: x >= 0")
+    return x
+
+
+def test_jobs_failing_on_their_input_are_an_input_error():
+    with pytest.raises(TaskInputErrors) as caught:
+        list(parallel_map(_refuse_negative, JOBS[:6], workers=1))
+    assert isinstance(caught.value, JudderError)     # exit status 2
+    assert str(caught.value) == ("1 of 6 jobs failed: job 3 (-1.0): x = -1 "
+                                 "is not allowed; allowed: x >= 0")
+    assert caught.value.failures[0].input_error
+
+
+def test_one_bug_among_input_errors_makes_the_whole_a_bug():
+    jobs = [-1.0, "text"]
+    with pytest.raises(TaskFailures) as caught:
+        list(parallel_map(_refuse_negative, jobs, workers=1))
+    assert not isinstance(caught.value, JudderError)
+    assert [f.input_error for f in caught.value.failures] == [True, False]
+    assert "job 1 ('text'): TypeError" in str(caught.value)
 
 
 def test_existing_cluster_equals_serial_and_keeps_failures(scheduler):

@@ -108,6 +108,9 @@ def run(args):
                        bench_linearisation=args.bench_linearisation,
                        changes=changes, method=args.method,
                        workers=args.workers, progress=progress)
+    if not result.chart.read:
+        # before any output is written: a chart of no run is none
+        raise JudderError(_unread(result.chart.failed))
     files = write_outputs(args, result, figure={
         "title": "experimental stability chart"
                  + (f" with the {params.model} model's boundaries"
@@ -133,13 +136,23 @@ def run(args):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
-    rows += [f"could not read {r.path}: {r.error}"
-             for r in result.chart.failed]
+    rows += [f"could not read {r.reason}" for r in result.chart.failed]
     rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
                 + written(args.out, args.plot, *boundaries))
     emit(args, data, "\n".join(rows))
-    if not result.chart.read:
-        raise JudderError("no run could be read")
+
+
+#: Unreadable runs named in the error when none could be read.
+_LISTED_FAILURES = 3
+
+
+def _unread(failed):
+    """The error line when no run could be read: each file's reason."""
+    listed = "; ".join(r.reason for r in failed[:_LISTED_FAILURES])
+    more = len(failed) - _LISTED_FAILURES
+    return ("no run could be read: " if len(failed) == 1 else
+            f"none of the {len(failed)} runs could be read: ") + listed \
+        + (f"; and {more} more" if more > 0 else "")
 
 
 def _channels(items):
@@ -148,7 +161,14 @@ def _channels(items):
     from pysim.bench_data.channels import parse_channel_option
     if not items:
         return None
-    channels = dict(parse_channel_option(item) for item in items)
+    channels, given = {}, {}
+    for item in items:
+        role, spec = parse_channel_option(item)
+        if role in channels:
+            raise JudderError(
+                f"--channel {given[role]} and --channel {item} both give "
+                f"{role}; allowed: one channel per role")
+        channels[role], given[role] = spec, item
     if "upstream_speed" not in channels:
         raise JudderError("--channel upstream_speed=NAME is required when "
                           "--channel is given")

@@ -77,6 +77,12 @@ class ChartRun:
     error: str = ""
     speed_kind: str = ""
 
+    @property
+    def reason(self):
+        """Why the run could not be read, with its file named once."""
+        named = self.error.startswith(str(self.path))
+        return self.error if named else f"{self.path}: {self.error}"
+
     def group(self, columns):
         """Values of the group columns, as a tuple of text."""
         return tuple(str(self.settings.get(c, "")) for c in columns)
