@@ -17,10 +17,10 @@ functions check their arguments with the same rule objects
 
 import argparse
 import math
-import sys
 
 import numpy as np
 
+from infra.contract import warn
 from infra.errors import JudderError, check_number
 from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
@@ -47,11 +47,6 @@ MAX_WORKERS = 256
 
 #: Longest simulated time of one run, s.
 MAX_DURATION_S = 3600.0
-
-
-def warn(text):
-    """A warning line on stderr (the command goes on)."""
-    print(f"judder: warning: {text}", file=sys.stderr)
 
 
 def option_value(text, option, unit, low=-math.inf, high=math.inf,

@@ -16,6 +16,7 @@ from ._arguments import (force_option, limit_option, method_option,
                          model_options, workers_option)
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_acquisitions
 from ._values import MIN_GROWTH, Quantity
 from .tongues import tongues
 
@@ -218,8 +219,10 @@ def chart(sources, index=None, channels=None, group_by=None,
     from pysim.bench_data.charts import build_chart, gather_sources
     from pysim.run_analysis import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
+    runs = gather_sources(sources, index)
+    run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
-        gather_sources(sources, index), channels=channels,
+        runs, channels=channels, run_bytes=run_bytes,
         group_by=group_by,
         min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth,
         min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None

@@ -22,6 +22,7 @@ from ._common import resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
+from ._preflight import check_fit
 from ._records import finite_or_none
 from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SEED, Listed, Quantity,
                       WholeNumber)
@@ -169,6 +170,8 @@ def run(args):
     spread = check_number("--threshold-spread", default_spread
                           if args.threshold_spread is None
                           else args.threshold_spread, "1/s", strict=False)
+    check_fit(len(freqs), _local_fits(args.starts, args.uncertainty, spread),
+              "--chart" if args.chart else "--boundary")
     make_parents(args.plot, args.save_params)
     with Progress(None, "fit") as progress:
         report = fit(freqs, measured / PA_PER_BAR, p_max_bar,
@@ -199,6 +202,14 @@ def run(args):
     if not result.success:
         raise JudderError("the fit cannot be trusted: "
                           + "; ".join(result.problems or [result.message]))
+
+
+def _local_fits(starts, uncertainty, spread):
+    """Local fits of a fit: its starts and the bootstrap's refits, at the
+    threshold and, with a spread, either side of it."""
+    from stability.fit._uncertainty import DEFAULT_BOOTSTRAP
+    refits = DEFAULT_BOOTSTRAP if uncertainty == "bootstrap" else 0
+    return (starts + refits) * (3 if spread > 0 else 1)
 
 
 def _bounds(items, params, names):

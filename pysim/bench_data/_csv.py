@@ -13,6 +13,9 @@ from ._common import TIME_NAMES, column_factor, listing, split_header
 
 __all__ = ["read"]
 
+#: Bytes of a CSV file looked at for NUL bytes before it is read whole.
+HEAD_BYTES = 64 * 1024
+
 
 def read(path, wanted):
     """CSV as :func:`pysim.export.write_csv` writes it, and as DAQ software
@@ -92,7 +95,15 @@ def _csv_lines(path):
     """The lines of a CSV file: UTF-8 (with or without BOM), else
     Windows-1252, the encoding European DAQ software writes (``°C``,
     ``µs``)."""
-    data = path.read_bytes()
+    with open(path, "rb") as stream:
+        head = stream.read(HEAD_BYTES)
+        if b"\0" in head:
+            # a binary file is refused from its first block, before it is
+            # read whole
+            raise JudderError(f"{path}: not a text file (NUL bytes in its "
+                              f"first {HEAD_BYTES // 1024} KiB); allowed: "
+                              "CSV text")
+        data = head + stream.read()
     try:
         return decode_text(data, str(path), "CSV").splitlines()
     except JudderError:
