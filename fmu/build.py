@@ -346,7 +346,6 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
     seconds = estimate[1] if long else None
     identifier = model_name.split(".")[-1]
     out_file = Path(out_file)
-    out_file.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="judder-fmu-") as tmp:
         folder = Path(tmp)
         _generate_c(functions, folder)
@@ -385,6 +384,9 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                     fmu.write(folder / source, f"sources/{source}")
                 for source in ("model.c", "model.h", _WRAPPER[version]):
                     fmu.write(C_SOURCES / source, f"sources/{source}")
+        # the folder is made with its first file: a failed build leaves
+        # no empty folder behind
+        out_file.parent.mkdir(parents=True, exist_ok=True)
         atomic_write(out_file, write_zip)
     # the temporary file of atomic_write is private (0600); an FMU is a
     # normal file, readable as the umask allows

@@ -336,7 +336,8 @@ class _Cluster:
         import psutil
         self._children = {p.pid for p in psutil.Process().children(
             recursive=True)}
-        self._scratch = tempfile.mkdtemp(prefix="judder-dask-")
+        _remove_orphan_scratch()
+        self._scratch = tempfile.mkdtemp(prefix=f"{_SCRATCH}{os.getpid()}-")
         with _main_script_hidden():
             self._cluster = LocalCluster(
                 n_workers=workers,
@@ -344,7 +345,10 @@ class _Cluster:
                 dashboard_address=None, silence_logs=logging.CRITICAL,
                 # no dashboard; its HTTP server (health checks) on any
                 # free port
-                scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+                scheduler_kwargs={"dashboard_address": "127.0.0.1:0",
+                                  # its locks too, removed on closing
+                                  # (not $TMPDIR/dask-scratch-space)
+                                  "local_directory": self._scratch},
                 local_directory=self._scratch,
                 env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                      "MKL_NUM_THREADS": "1"})
@@ -418,6 +422,22 @@ def worker_count(asked, jobs, job_bytes=0):
               "each)" if memory <= count else ""]
     return count, (f"--workers {wanted} reduced to {count}: "
                    + ", ".join(b for b in bounds if b))
+
+
+#: Prefix of a local cluster's scratch folder in the temporary folder,
+#: followed by the pid of the process that made it.
+_SCRATCH = "judder-dask-"
+
+
+def _remove_orphan_scratch():
+    """Remove the scratch folders of local clusters whose process is gone
+    (a SIGKILL leaves no chance to remove its own)."""
+    import glob
+    for folder in glob.glob(os.path.join(tempfile.gettempdir(),
+                                         f"{_SCRATCH}*")):
+        pid = os.path.basename(folder)[len(_SCRATCH):].split("-")[0]
+        if pid.isdigit() and not os.path.exists(f"/proc/{pid}"):
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def _reap(before):

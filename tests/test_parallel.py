@@ -145,13 +145,6 @@ def test_workers_and_scheduler_together_are_refused():
             pass
 
 
-def _descendants(pid):
-    try:
-        return psutil.Process(pid).children(recursive=True)
-    except psutil.NoSuchProcess:
-        return []
-
-
 #: Jobs that never end on two local workers, after a line 'ready' once the
 #: cluster runs (while it starts, Ctrl-C is ignored: infra.parallel);
 #: Ctrl-C exits 130.
@@ -169,7 +162,8 @@ _ENDLESS = ("import sys, time\n"
 
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130),
                                             (signal.SIGTERM, 143)])
-def test_a_signal_closes_the_local_cluster(tmp_path, signum, status):
+def test_a_signal_closes_the_local_cluster(tmp_path, signum, status,
+                                          markers):
     # a signal to the command alone, while its two workers run: they must
     # go with it, quietly
     script = tmp_path / "endless.py"
@@ -181,10 +175,9 @@ def test_a_signal_closes_the_local_cluster(tmp_path, signum, status):
         ready, _, _ = select.select([proc.stdout], [], [], 120)
         assert ready and proc.stdout.readline() == "ready\n", \
             "the cluster did not start"
-        time.sleep(0.5)                 # the endless jobs reach the workers
-        workers = [p for p in _descendants(proc.pid)
-                   if "spawn_main" in " ".join(p.cmdline())]
-        assert len(workers) == 2, "no Dask worker processes"
+        markers.wait_for(lambda: len(markers.workers(proc.pid)) == 2,
+                         "two Dask workers")
+        workers = markers.workers(proc.pid)
         os.kill(proc.pid, signum)
         _, err = proc.communicate(timeout=60)
     finally:

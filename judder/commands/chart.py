@@ -9,7 +9,8 @@ import numpy as np
 
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
 from infra.errors import JudderError
-from infra.files import keeps_foreign_files, save_npz, write_text
+from infra.files import (all_or_none, keeps_foreign_files, save_npz,
+                         write_text)
 from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, limit_option, method_option,
@@ -112,13 +113,13 @@ def run(args):
     if not result.chart.read:
         # before any output is written: a chart of no run is none
         raise JudderError(_unread(result.chart.failed))
-    files = write_outputs(args, result, figure={
-        "title": "experimental stability chart"
-                 + (f" with the {params.model} model's boundaries"
-                    if overlay else "")})
-    boundaries = (result.save_boundary(args.boundary, force=args.force)
-                  if args.boundary
-                  and result.chart.read else [])
+    with all_or_none():     # --out, --plot and --boundary, or none
+        files = write_outputs(args, result, figure={
+            "title": "experimental stability chart"
+                     + (f" with the {params.model} model's boundaries"
+                        if overlay else "")})
+        boundaries = (result.save_boundary(args.boundary, force=args.force)
+                      if args.boundary else [])
     data = {**result.as_dict(), **files, "boundary_files": boundaries}
     rows = []
     for group, runs in result.chart.groups().items():

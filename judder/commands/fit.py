@@ -6,7 +6,7 @@ import numpy as np
 
 from drivelines import dumps_toml
 from infra.errors import JudderError, check_number
-from infra.files import write_text
+from infra.files import all_or_none, write_text
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
@@ -185,10 +185,11 @@ def run(args):
                      else below / PA_PER_BAR, threshold_spread=spread,
                      judder_limit_rpm=limit)
     result = report.fit
-    if args.save_params:
-        report.save_params(args.save_params, overwrite=args.force)
-    if args.plot:
-        save_plot(args.plot, report.figure())
+    with all_or_none():
+        if args.save_params:
+            report.save_params(args.save_params, overwrite=args.force)
+        if args.plot:
+            save_plot(args.plot, report.figure())
     rows = report.text()
     rows.append("compared with: " + _compared_with(result)
                 + ("" if report.judder_limit_rpm is None else
