@@ -338,6 +338,13 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         flat = load_flat_model(mo_file, model_name, roots=roots)
         stage(f"reducing {len(flat.residuals)} equations to an ODE")
         ode = to_ode(flat)
+        if version == "2.0" and not any((
+                ode.states, ode.parameters, ode.calculated, ode.outputs,
+                ode.locals, ode.aliases, ode.inputs)):
+            # FMI 2.0's schema needs one ScalarVariable at least
+            raise BuildError(f"{model_name} has no variable; allowed for "
+                             "FMI 2.0: a model with one variable at least "
+                             "(FMI 3.0 has its time: --fmi 3.0)")
         stage("estimating the C code")
         functions = _functions(ode)
     estimate = compile_estimate(functions)

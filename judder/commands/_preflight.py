@@ -290,11 +290,14 @@ def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
     jobs = samples + (2 ** names if vertices else 0)
     per_job = (tongues_seconds(params, freq_hz)
                + map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES)))
-    seconds = (jobs * per_job + refine * names * len(freq_hz)
-               * TONGUE_FREQUENCY_S)
+    refining = refine * names * len(freq_hz) * TONGUE_FREQUENCY_S
+    seconds = jobs * per_job + refining
     return check_time(seconds, f"{jobs} samples x {len(freq_hz)} "
-                      "frequencies", "fewer --samples, uncertain parameters "
-                      "or --freq", _workers(workers, jobs))
+                      f"frequencies, and --refine {refine} x {names} "
+                      f"parameters x {len(freq_hz)} frequencies",
+                      "fewer --samples, "
+                      "uncertain parameters or --freq, or a smaller --refine",
+                      _workers(workers, jobs))
 
 
 def _terminal():

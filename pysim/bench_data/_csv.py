@@ -59,6 +59,20 @@ def read(path, wanted):
         raws
 
 
+def _check_one_separator(path, body):
+    """Refuse a file whose lines are split by different separators (where
+    no line naming a time column was found)."""
+    first = {}
+    for number, line in body:
+        first.setdefault(_delimiter(line), number)
+    if len(first) > 1:
+        (a, m), (b, n) = sorted(first.items(), key=lambda item: item[1])[:2]
+        raise JudderError(
+            f"{path}: mixed field separators: line {m} is separated by "
+            f"{a!r}, line {n} by {b!r}; allowed: one separator throughout "
+            "(',', ';' or tab)")
+
+
 def _csv_header_row(path, rows, body):
     """Index of the row that names the columns: the first with a time
     column and as many fields as the data rows (a DAQ's header block,
@@ -70,6 +84,7 @@ def _csv_header_row(path, rows, body):
                 split_header(cell)[0].lower() in TIME_NAMES
                 for cell in row):
             return index
+    _check_one_separator(path, body)
     names = [split_header(cell)[0] for cell in rows[0]]
     raise JudderError(f"{path}: no time column; the line naming the "
                       "columns must name one 'time [s]' (or 'time' with a "

@@ -74,6 +74,13 @@ def parse_channel_option(text):
         try:
             unit_factor(unit, ROLES[role])
         except JudderError as exc:
+            if ROLES[role] == "speed" and kind is None and ":" in name:
+                # NAME:UNIT:WORD, WORD neither a unit nor a kind
+                raise JudderError(
+                    f"--channel {text!r}: {unit.strip()!r} is neither a "
+                    f"speed unit nor a kind of speed channel; allowed "
+                    f"kinds: {', '.join(SPEED_KINDS)} "
+                    f"(ROLE=NAME:UNIT:KIND)") from None
             raise JudderError(f"--channel {text!r}: {exc}") from None
     return role, ChannelSpec(name.strip(), unit.strip(), kind)
 
