@@ -55,6 +55,14 @@ class ChildMarkers:
     slower)."""
 
     @staticmethod
+    def with_ctrl_c():
+        """``preexec_fn`` of a child that a test sends Ctrl-C: SIGINT as
+        a terminal's process has it. A test run started in the background
+        (``make test &``, nohup, a CI job) has it ignored, and a child
+        inherits that: the tool then keeps it ignored, as it should."""
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+    @staticmethod
     def wait_for(condition, what, timeout=120):
         """Poll ``condition()`` until true: tests wait for a ready marker of
         the child, never a fixed delay (a loaded machine is slower)."""

@@ -148,7 +148,8 @@ def test_ctrl_c_leaves_no_partial_file(tmp_path, markers):
     proc = subprocess.Popen(
         [sys.executable, "-m", "judder", "map", "--freq", "1:250:40000",
          "--pf", "0:1:50", "--out", str(out)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=markers.with_ctrl_c)
     import psutil
     child = psutil.Process(proc.pid)
     # in the map's middle: 3 s of CPU (imports about 1 s, the map 10 s)

@@ -170,7 +170,7 @@ def test_a_signal_closes_the_local_cluster(tmp_path, signum, status,
     script.write_text(_ENDLESS)
     proc = subprocess.Popen([sys.executable, str(script)], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
+                            text=True, preexec_fn=markers.with_ctrl_c)
     try:
         ready, _, _ = select.select([proc.stdout], [], [], 120)
         assert ready and proc.stdout.readline() == "ready\n", \

@@ -43,7 +43,8 @@ def _one_line(stderr):
 @pytest.mark.parametrize("after", [0.0, 0.2])
 def test_signal_while_starting(tmp_path, sig, status, word, after, markers):
     out = tmp_path / "m.npz"
-    proc = _start([*LONG_MAP, "--out", str(out)])
+    proc = _start([*LONG_MAP, "--out", str(out)],
+                  preexec_fn=markers.with_ctrl_c)
     markers.wait_for(lambda: markers.handles_signals(proc.pid),
                      "signal handlers")
     time.sleep(after)
@@ -58,7 +59,8 @@ def test_signal_while_starting(tmp_path, sig, status, word, after, markers):
 def test_ctrl_c_during_a_map(tmp_path, markers):
     import psutil
     out = tmp_path / "m.npz"
-    proc = _start([*LONG_MAP, "--out", str(out)])
+    proc = _start([*LONG_MAP, "--out", str(out)],
+                  preexec_fn=markers.with_ctrl_c)
     # in the map's middle: 3 s of CPU (the imports take about 1 s, the
     # map about 10 s)
     child = psutil.Process(proc.pid)
@@ -79,7 +81,7 @@ def test_ctrl_c_of_the_process_group_with_workers(tmp_path, markers):
     out = tmp_path / "s.csv"
     proc = _start(["sensitivity", "--params", "k12,k24,J2,J4,c12,mu_g", "--freq",
                    "20:220:2000", "--workers", "2", "--out", str(out)],
-                  start_new_session=True)
+                  start_new_session=True, preexec_fn=markers.with_ctrl_c)
     markers.wait_for(lambda: markers.workers_computing(proc.pid),
                      "two workers computing")
     children = psutil.Process(proc.pid).children(recursive=True)

@@ -153,3 +153,17 @@ def test_a_chart_with_48_workers_starts_no_more_than_the_cores(tmp_path):
     assert done.stderr == (f"judder: warning: --workers 48 reduced to "
                            f"{cores}: {cores} cores\n")
     assert "9 runs" in done.stdout
+
+
+def test_an_orbit_grid_is_refused_before_it_is_made(capsys):
+    # 1e10 orbits once ended in a MemoryError after allocating
+    started = time.monotonic()
+    status, out, err = run(["orbit", "--freq", "60:200:100000",
+                            "--pf", "0.05:0.7:100000"], capsys)
+    assert status == 2
+    assert err.strip() == (
+        "judder: error: the work is estimated at 3.33e+03 h (100000 "
+        "frequencies x 100000 amplitudes), above the limit of 24 h; "
+        "allowed: fewer --freq or --pf values, or raise the limit with "
+        "JUDDER_MAX_HOURS=HOURS")
+    assert time.monotonic() - started < 30
