@@ -58,8 +58,8 @@ def test_a_binary_file_named_csv_is_refused_from_its_first_block(capsys,
                            capsys)
     assert status == 2
     assert err.strip() == (f"judder: error: no run could be read: {sparse}: "
-                           "not a text file (NUL bytes in its first 64 KiB);"
-                           " allowed: CSV text")
+                           "not a text file (NUL bytes); allowed: UTF-8 "
+                           "text")
 
 
 def test_the_acquisitions_work_is_estimated_from_their_sizes(capsys,

@@ -113,14 +113,18 @@ def _csv_lines(path):
     with open(path, "rb") as stream:
         head = stream.read(HEAD_BYTES)
         if b"\0" in head:
-            # a binary file is refused from its first block, before it is
-            # read whole
-            raise JudderError(f"{path}: not a text file (NUL bytes in its "
-                              f"first {HEAD_BYTES // 1024} KiB); allowed: "
-                              "CSV text")
+            # a binary file is refused from its first block (with the
+            # words the whole would get), before it is read whole
+            _decoded(head, path)
         data = head + stream.read()
+    return _decoded(data, path).splitlines()
+
+
+def _decoded(data, path):
+    """The text of a CSV file's bytes: UTF-8, else Windows-1252 without
+    NUL bytes, else the UTF-8 reader's error."""
     try:
-        return decode_text(data, str(path), "CSV").splitlines()
+        return decode_text(data, str(path), "CSV")
     except JudderError:
         try:
             text = data.decode("cp1252")
@@ -128,7 +132,7 @@ def _csv_lines(path):
             text = None
         if text is None or "\0" in text:
             raise
-        return text.splitlines()
+        return text
 
 
 def _csv_metadata(lines):
