@@ -269,8 +269,8 @@ class _Cluster:
         """True if ``jobs`` jobs with ``workers`` asked for run here."""
         if self.scheduler is not None:
             return False
-        if self._client is not None:
-            return jobs <= 1
+        if self._client is not None:     # started: its workers are there
+            return min(workers or self.workers or jobs, jobs) <= 1
         return worker_count(workers or self.workers, jobs, job_bytes)[0] <= 1
 
     def client(self, workers, jobs, job_bytes=0):
@@ -278,8 +278,8 @@ class _Cluster:
         :func:`worker_count` allows for these jobs (the reason said on
         stderr when fewer than asked)."""
         if self._client is None:
-            count, reason = worker_count(workers or self.workers, jobs,
-                                         job_bytes)
+            count, reason = (None, "") if self.scheduler is not None else \
+                worker_count(workers or self.workers, jobs, job_bytes)
             if reason:
                 warn(reason)
             self._start(count)
