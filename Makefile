@@ -5,7 +5,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test bench fmu clean browser windows
+.PHONY: test-loaded setup run test bench fmu clean browser windows
 
 setup: $(STAMP)
 
@@ -22,6 +22,28 @@ run: setup
 
 test: setup browser windows
 	$(BIN)/python -m pytest -q
+
+# The tests that signal a child or start Dask workers, ten times in a row
+# with two busy processes beside them (a loaded machine: they wait for
+# ready markers, never a fixed delay); says how many runs failed.
+LOADED_TESTS := tests/test_reliability.py::test_signal_while_starting \
+  tests/test_reliability.py::test_ctrl_c_during_a_map \
+  tests/test_reliability.py::test_ctrl_c_of_the_process_group_with_workers \
+  tests/test_reliability.py::test_a_second_signal_does_not_wait_for_the_clean_up \
+  tests/test_cli.py::test_ctrl_c_leaves_no_partial_file \
+  tests/test_faults.py::test_sigterm_like_ctrl_c \
+  tests/test_faults.py::test_campaign_workers_die_with_their_parent \
+  tests/test_parallel.py tests/test_leftovers.py
+
+test-loaded: setup
+	@yes >/dev/null & a=$$!; yes >/dev/null & b=$$!; \
+	trap 'kill $$a $$b' EXIT; failed=0; \
+	for run in 1 2 3 4 5 6 7 8 9 10; do \
+	  echo "run $$run of 10"; \
+	  $(BIN)/python -m pytest -q -p no:cacheprovider $(LOADED_TESTS) \
+	    || failed=$$((failed + 1)); \
+	done; \
+	echo "$$failed of 10 runs failed"; test $$failed = 0
 
 # Debian's Chromium, in which tests/test_report.py opens the HTML report
 # (about 1 min to install); without it that test skips and says why.

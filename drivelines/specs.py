@@ -7,7 +7,7 @@ import numbers
 from infra.errors import JudderError, ParameterError
 from infra.quantities import parse_quantity
 
-__all__ = ["ParameterSpec", "positive", "nonnegative", "CLUTCH_SPECS",
+__all__ = ["allowed_names", "ParameterSpec", "positive", "nonnegative", "CLUTCH_SPECS",
            "MEAN_PRESSURE_DAMPING", "split_assignment", "parse_overrides", "MIN_MAGNITUDE",
            "MAX_MAGNITUDE"]
 
@@ -62,7 +62,7 @@ def parse_overrides(assignments, specs, model):
             raise ParameterError(
                 f"`assignments` {text!r}: unknown parameter, {name!r} is not a "
                 f"tunable parameter of the {model} model; allowed names: "
-                f"{', '.join(specs)}")
+                f"{allowed_names(specs)}")
         spec = specs[name]
         try:
             number = parse_quantity(value, spec.unit,
@@ -72,6 +72,14 @@ def parse_overrides(assignments, specs, model):
         changes[name] = spec.check(number)
     return changes
 
+
+
+def allowed_names(names):
+    """Parameter names for a message's "allowed", or what to do where a
+    model has none."""
+    return ", ".join(names) or ("none: the model has no tunable parameter "
+                                "(a Modelica class declares one with "
+                                "'parameter Real NAME = VALUE;')")
 
 @dataclass(frozen=True)
 class ParameterSpec:

@@ -340,6 +340,13 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         flat = load_flat_model(mo_file, model_name, roots=roots)
         stage(f"reducing {len(flat.residuals)} equations to an ODE")
         ode = to_ode(flat)
+        if version == "2.0" and not any((
+                ode.states, ode.parameters, ode.calculated, ode.outputs,
+                ode.locals, ode.aliases, ode.inputs)):
+            # FMI 2.0's schema needs one ScalarVariable at least
+            raise BuildError(f"{model_name} has no variable; allowed for "
+                             "FMI 2.0: a model with one variable at least "
+                             "(FMI 3.0 has its time: --fmi 3.0)")
         stage("estimating the C code")
         functions = _functions(ode)
     estimate = compile_estimate(functions)
@@ -348,7 +355,6 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
     seconds = estimate[1] if long else None
     identifier = model_name.split(".")[-1]
     out_file = Path(out_file)
-    out_file.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="judder-fmu-") as tmp:
         folder = Path(tmp)
         _generate_c(functions, folder)
@@ -387,6 +393,9 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                     fmu.write(folder / source, f"sources/{source}")
                 for source in SOURCES[version][1:] + _HEADERS:
                     fmu.write(C_SOURCES / source, f"sources/{source}")
+        # the folder is made with its first file: a failed build leaves
+        # no empty folder behind
+        out_file.parent.mkdir(parents=True, exist_ok=True)
         atomic_write(out_file, write_zip)
     # the temporary file of atomic_write is private (0600); an FMU is a
     # normal file, readable as the umask allows

@@ -25,7 +25,7 @@ import traceback
 from infra.errors import (EXIT_ERROR, EXIT_INTERRUPTED, EXIT_OK,
                           JudderError)
 
-__all__ = ["run_guarded", "signals_held", "EXIT_INTERNAL",
+__all__ = ["run_guarded", "signals_held", "warn", "EXIT_INTERNAL",
            "EXIT_TERMINATED", "join_negative_values", "Terminated"]
 
 #: A bug in the tool: the message says how to report it.
@@ -219,6 +219,11 @@ def _guarded(prog, command):
              f"{_one_line(exc)}; {_REPORT}")
         return EXIT_INTERNAL
     return EXIT_OK
+
+
+def warn(text):
+    """A warning line on stderr (the command goes on)."""
+    _say(f"judder: warning: {text}")
 
 
 def _one_line(exc):

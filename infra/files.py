@@ -2,7 +2,9 @@
 
 Every writer goes through :func:`atomic_write`: the data go to a temporary
 file beside the target, which replaces the target only once complete, with
-the mode the umask gives a new file.
+the mode the umask gives a new file. Inside :func:`all_or_none` the
+files of one command are renamed into place together at its end, none if
+any fails (a full disk after the first).
 
 Every file the tool writes carries :data:`MARK` (a CSV/TOML comment line,
 PNG/SVG/PDF/PS metadata, an NPZ array name, the MF4 header comment), so
@@ -11,6 +13,7 @@ command replaces only with ``--force`` (:func:`check_output`) and the
 Python API only with ``force=True`` (:func:`keeps_foreign_files`).
 """
 
+from contextlib import contextmanager
 import functools
 import json
 import math
@@ -22,7 +25,7 @@ import numpy as np
 
 from .errors import JudderError
 
-__all__ = ["atomic_write", "write_text", "save_figure", "to_json", "MARK",
+__all__ = ["atomic_write", "all_or_none", "write_text", "save_figure", "to_json", "MARK",
            "NPZ_MARK", "written_by_us", "check_output", "save_npz",
            "keeps_foreign_files", "mark_pdf",
            "check_folder_writable", "decode_text"]
@@ -71,7 +74,10 @@ def atomic_write(path, write, overwrite=True):
             os.fsync(stream.fileno())
         # mkstemp creates 0600; a new file gets what the umask allows
         os.chmod(temporary, 0o666 & ~_umask())
-        os.replace(temporary, path)
+        if _BATCHES:
+            _BATCHES[-1].append((temporary, path))
+        else:
+            os.replace(temporary, path)
     except OSError as exc:
         Path(temporary).unlink(missing_ok=True)
         raise JudderError(f"cannot write {path}: {exc.strerror or exc}") \
@@ -79,6 +85,36 @@ def atomic_write(path, write, overwrite=True):
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+#: The files of the open :func:`all_or_none` blocks: (temporary, target).
+_BATCHES = []
+
+
+@contextmanager
+def all_or_none():
+    """Every file :func:`atomic_write` writes inside the block is renamed
+    into place when the block ends, none if it fails: a command's outputs
+    are all written or none (a full disk at its second file removes the
+    first). Inside another block, the outer one decides."""
+    if _BATCHES:
+        yield
+        return
+    batch = []
+    _BATCHES.append(batch)
+    try:
+        yield
+        for temporary, path in batch:
+            try:
+                os.replace(temporary, path)
+            except OSError as exc:
+                raise JudderError(f"cannot write {path}: "
+                                  f"{exc.strerror or exc}") from None
+        batch.clear()
+    finally:
+        _BATCHES.pop()
+        for temporary, _ in batch:
+            Path(temporary).unlink(missing_ok=True)
 
 
 def _umask():

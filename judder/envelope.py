@@ -260,8 +260,11 @@ def _load(path, key, shape):
                 "refined_unit")}
     except (OSError, ValueError, KeyError, EOFError,
             zipfile.BadZipFile) as exc:
-        raise JudderError(f"checkpoint {path}: unreadable ({exc}); delete "
-                          "it to start again") from None
+        # numpy's own words (pickles, allow_pickle) are not the user's
+        raise JudderError(f"checkpoint {path}: not a checkpoint of judder "
+                          f"envelope ({type(exc).__name__} reading it); "
+                          "allowed: a checkpoint of this envelope, or a new "
+                          "path (delete the file to start again)") from None
     if stored != key or arrays["amplitude"].shape[1:] != shape:
         raise JudderError(f"checkpoint {path} belongs to another envelope "
                           "(other ranges, samples, grid or parameters); "

@@ -129,6 +129,13 @@ def read_boundary_csv(text, source="boundary file"):
                               "judder)")
         freq = float(freq_text)
         amp = float(amp_text) * PA_PER_BAR if amp_text else np.nan
+        if amp_text and np.isnan(amp):
+            # censored is written as an empty cell; a NaN is a gap in the
+            # data, not "no judder up to the largest amplitude"
+            raise JudderError(f"{source}, line {number}: p_f_bar is "
+                              f"{amp_text!r}; allowed: a number >= 0 bar, "
+                              "or empty for no judder up to the largest "
+                              "amplitude tried")
         if not np.isfinite(freq) or freq <= 0 or amp < 0 or amp == np.inf:
             raise JudderError(f"{source}, line {number}: {line!r}: allowed: "
                               "frequency > 0 Hz and amplitude >= 0 bar, "

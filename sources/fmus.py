@@ -116,13 +116,18 @@ def _number(text):
     return None if text is None else float(text)
 
 
+#: Characters of a reader's reason kept in a message.
+_REASON = 300
+
+
 @lru_cache(maxsize=8)
 def _described(path, mtime):
     try:
         md = read_model_description(path)
     except Exception as exc:           # fmpy raises zip, XML and schema errors
-        reason = str(exc).splitlines()[0] if str(exc) else \
-            type(exc).__name__
+        # all of it on one line: a validation error's first line is only
+        # "Failed to validate modelDescription.xml:"
+        reason = " ".join(str(exc).split())[:_REASON] or type(exc).__name__
         raise FmuError(f"`path` {path}: not a readable FMU ({reason})") \
             from None
     _require(md.fmiVersion in FMI_VERSIONS,

@@ -38,7 +38,7 @@ from fmu.frontend import (FrontEndError, find_class, load_flat_model,
 from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
-from drivelines.specs import ParameterSpec, parse_overrides
+from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
@@ -188,7 +188,7 @@ def checked_values(specs, starts, overrides, what):
     if unknown:
         raise ParameterError(
             f"{unknown[0]} = {overrides[unknown[0]]!r} is not {what}; "
-            f"allowed: {', '.join(specs)}")
+            f"allowed: {allowed_names(specs)}")
     return {name: specs[name].check(overrides.get(name, start))
             for name, start in starts.items()}
 
@@ -204,7 +204,7 @@ class NamedParameters:
         except KeyError:
             raise ParameterError(
                 f"{name!r} is not a tunable parameter of {self.model}; "
-                f"allowed: {', '.join(self.values)}") from None
+                f"allowed: {allowed_names(self.values)}") from None
 
     def with_overrides(self, assignments):
         """Apply ``NAME=VALUE`` strings, as given to ``--set`` (see
@@ -356,7 +356,7 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     names = [q.name for q in ode.parameters]
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         _require(name in names, f"{role} = {name!r} is not a parameter of "
-                 f"{class_name}; allowed: {', '.join(names)}")
+                 f"{class_name}; allowed: {allowed_names(names)}")
     x = casadi.vertcat(*[s.expression for s in ode.states])
     p = casadi.vertcat(*[q.expression for q in ode.parameters])
     t, pf = ode.time, ode.parameters[names.index(amplitude)].expression

@@ -39,6 +39,13 @@ __all__ = ["constant_system", "max_real_part", "friction_threshold",
            "closed_form_threshold", "ThresholdStudy", "threshold_study"]
 
 
+#: 1/s: a common rotation decaying slower than this (its external
+#: damping over its inertia) is free: below round-off of the eigenvalues,
+#: it is deflated as with no external damping at all (c_i = 1e-300 would
+#: otherwise decide the verdict by the sign of a round-off).
+FREE_RATE_PER_S = 1e-9
+
+
 def constant_system(driveline):
     """The driveline without dither as a python-control state-space model.
 
@@ -57,7 +64,8 @@ def constant_system(driveline):
     B = (system.u / gain if gain != 0 else
          _unit_torque_input(driveline))[:, None]
     A, B, C = system.A0, B, system.v[None, :]
-    if not np.any(driveline.external_damping):
+    if (np.sum(driveline.external_damping) / np.sum(driveline.inertia)
+            < FREE_RATE_PER_S):
         ns = len(driveline.springs)
         rigid = np.concatenate([np.zeros(ns), np.sqrt(driveline.inertia)])
         basis = scipy.linalg.null_space(rigid[None, :])
@@ -119,9 +127,14 @@ def friction_threshold(params, bracket=(-1.0, 1.0)):
         return max_real_part(params.replace(mu_g=mu_g))
 
     low, high = bracket
-    if not (rate(low) > 0 >= rate(high)):
-        raise JudderError(f"no stability threshold for mu_g in [{low:g}, "
-                          f"{high:g}] s/rad; widen the range")
+    at_low, at_high = rate(low), rate(high)
+    if not (at_low > 0 >= at_high):
+        raise JudderError(
+            f"no stability threshold for mu_g in [{low:g}, {high:g}] s/rad: "
+            f"the largest real part is {at_low:+.3g} 1/s at mu_g = {low:g} "
+            f"and {at_high:+.3g} 1/s at {high:g} (unstable above 0); "
+            "allowed: a driveline stable for a large mu_g and unstable for "
+            "a very negative one (--mu-g wider than the threshold)")
     return brentq(rate, low, high, xtol=1e-14, rtol=1e-12)
 
 

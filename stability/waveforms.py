@@ -177,8 +177,9 @@ def from_samples(samples, amplitude=None):
     """
     p = np.asarray(samples, dtype=float)
     if p.ndim != 1 or p.size < 4 or not np.all(np.isfinite(p)):
+        finite = int(np.sum(np.isfinite(p))) if p.ndim == 1 else 0
         raise JudderError("a measured period needs at least 4 finite "
-                          f"samples; got {p.size}")
+                          f"samples; got {p.size}, {finite} of them finite")
     spectrum = np.fft.rfft(p) / p.size
     top = (p.size - 1) // 2          # harmonics below the Nyquist one
     c = spectrum[1:top + 1]

@@ -1,6 +1,9 @@
 """Shared fixtures: the paper's drivelines, and a user's Modelica class
 that is not a driveline."""
 
+import signal
+import time
+
 import pytest
 
 from sources import get_preset
@@ -44,3 +47,78 @@ equation
 end Oscillator;
 """)
     return root
+
+
+class ChildMarkers:
+    """Ready markers of a child process: a test that signals a child
+    waits for one of these, never a fixed delay (a loaded machine is
+    slower)."""
+
+    @staticmethod
+    def with_ctrl_c():
+        """``preexec_fn`` of a child that a test sends Ctrl-C: SIGINT as
+        a terminal's process has it. A test run started in the background
+        (``make test &``, nohup, a CI job) has it ignored, and a child
+        inherits that: the tool then keeps it ignored, as it should."""
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+    @staticmethod
+    def wait_for(condition, what, timeout=120):
+        """Poll ``condition()`` until true: tests wait for a ready marker of
+        the child, never a fixed delay (a loaded machine is slower)."""
+        deadline = time.monotonic() + timeout
+        while not condition():
+            assert time.monotonic() < deadline, \
+                f"no {what} within {timeout} s"
+            time.sleep(0.01)
+
+    @staticmethod
+    def handles_signals(pid):
+        """The child's ready marker for signals: its SIGTERM handler is in
+        place (bit 15 of ``SigCgt`` in /proc/PID/status; Python catches only
+        SIGINT by itself), i.e. the tool's first line has run."""
+        try:
+            with open(f"/proc/{pid}/status") as stream:
+                caught = next(int(line.split()[1], 16) for line in stream
+                              if line.startswith("SigCgt:"))
+        except (OSError, StopIteration):
+            return False
+        return bool(caught >> (signal.SIGTERM - 1) & 1)
+
+    @staticmethod
+    def cpu_seconds(process):
+        """CPU seconds a process (psutil) has used, 0 when it is gone."""
+        import psutil
+        try:
+            times = process.cpu_times()
+        except psutil.Error:
+            return 0.0
+        return times.user + times.system
+
+    @staticmethod
+    def workers(pid):
+        """The Dask worker processes under ``pid`` (not the resource
+        tracker)."""
+        import psutil
+        found = []
+        for child in psutil.Process(pid).children(recursive=True):
+            try:
+                if "spawn_main" in " ".join(child.cmdline()):
+                    found.append(child)
+            except psutil.Error:
+                pass
+        return found
+
+    @staticmethod
+    def workers_computing(pid, count=2, seconds=3.0):
+        """Ready marker of a Dask command: ``count`` workers, each past its
+        start (about 0.6 s of CPU) and its imports, computing jobs."""
+        found = ChildMarkers.workers(pid)
+        return len(found) >= count and all(
+            ChildMarkers.cpu_seconds(w) >= seconds for w in found)
+
+
+@pytest.fixture
+def markers():
+    """:class:`ChildMarkers`."""
+    return ChildMarkers

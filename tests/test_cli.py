@@ -143,13 +143,18 @@ def test_help_explains_units():
     assert "Hz" in text and "bar" in text and "SI" in text
 
 
-def test_ctrl_c_leaves_no_partial_file(tmp_path):
+def test_ctrl_c_leaves_no_partial_file(tmp_path, markers):
     out = tmp_path / "big.npz"
     proc = subprocess.Popen(
         [sys.executable, "-m", "judder", "map", "--freq", "1:250:40000",
          "--pf", "0:1:50", "--out", str(out)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(3.0)
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=markers.with_ctrl_c)
+    import psutil
+    child = psutil.Process(proc.pid)
+    # in the map's middle: 3 s of CPU (imports about 1 s, the map 10 s)
+    markers.wait_for(lambda: markers.cpu_seconds(child) >= 3.0
+                     or proc.poll() is not None, "3 s of the map")
     assert proc.poll() is None, "the map finished before it was interrupted"
     proc.send_signal(signal.SIGINT)
     _, stderr = proc.communicate(timeout=60)

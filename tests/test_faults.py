@@ -28,12 +28,16 @@ def judder(*args, **kw):
                           capture_output=True, text=True, timeout=300, **kw)
 
 
-def test_sigterm_like_ctrl_c(tmp_path):
+def test_sigterm_like_ctrl_c(tmp_path, markers):
     out = tmp_path / "big.npz"
     proc = subprocess.Popen([sys.executable, "-m", "judder", *BIG_MAP,
                              "--out", str(out)], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
-    time.sleep(3.0)
+    import psutil
+    child = psutil.Process(proc.pid)
+    # in the map's middle: 3 s of CPU (imports about 1 s)
+    markers.wait_for(lambda: markers.cpu_seconds(child) >= 3.0
+                     or proc.poll() is not None, "3 s of the map")
     assert proc.poll() is None, "the map finished before SIGTERM"
     proc.send_signal(signal.SIGTERM)
     _, stderr = proc.communicate(timeout=60)
@@ -165,7 +169,7 @@ def test_campaign_refuses_foreign_index(tmp_path):
 
 
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
-def test_campaign_workers_die_with_their_parent(tmp_path, sig):
+def test_campaign_workers_die_with_their_parent(tmp_path, sig, markers):
     proc = subprocess.Popen(
         [sys.executable, "-m", "judder", "campaign", "--out", str(tmp_path),
          "--freq", "60:200:15", "--pf", "0.05:0.3:4", "--duration", "0.3",
@@ -186,10 +190,19 @@ def test_campaign_workers_die_with_their_parent(tmp_path, sig):
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == (143 if sig == signal.SIGTERM else -9)
     assert "Traceback" not in err
-    time.sleep(1.5)
-    assert not [pid for pid in children.split()
-                if os.path.exists(f"/proc/{pid}")
-                and "judder" in open(f"/proc/{pid}/cmdline").read()]
+
+    def left():
+        # a pid may be reused: only a judder process counts
+        alive = []
+        for pid in children.split():
+            try:
+                with open(f"/proc/{pid}/cmdline") as stream:
+                    if "judder" in stream.read():
+                        alive.append(pid)
+            except OSError:
+                pass
+        return alive
+    markers.wait_for(lambda: not left(), "the workers' end", timeout=30)
     if sig == signal.SIGTERM:
         assert not list(tmp_path.glob(".*.part"))
     # SIGKILL cannot be caught: a write cut short may leave its ``.part``

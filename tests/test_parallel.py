@@ -20,7 +20,8 @@ from numpy.testing import assert_array_equal
 from sources import get_preset
 
 from infra.errors import JudderError
-from infra.parallel import TaskFailure, TaskFailures, cluster, parallel_map
+from infra.parallel import (TaskFailure, TaskFailures, TaskInputErrors,
+                            cluster, parallel_map)
 from judder import api
 from stability.uncertainty import Normal, Ranges, Uniform
 
@@ -77,8 +78,33 @@ def test_serial_failures_are_reported_and_the_others_go_on():
     assert done == [0.0, 1.0, math.sqrt(2), 2.0, math.sqrt(5)]
     (failure,) = caught.value.failures
     assert failure == TaskFailure(3, "-1.0", DOMAIN)
-    assert isinstance(caught.value, JudderError)     # exit status 2
+    # a ValueError inside a job is a bug (exit 1), not an input error
+    assert not isinstance(caught.value, JudderError)
     assert f"1 of 6 jobs failed: job 3 (-1.0): {DOMAIN}" in str(caught.value)
+
+
+def _refuse_negative(x):
+    if x < 0:
+        raise JudderError(f"x = {x:g} is not allowed; allowed: x >= 0")
+    return x
+
+
+def test_jobs_failing_on_their_input_are_an_input_error():
+    with pytest.raises(TaskInputErrors) as caught:
+        list(parallel_map(_refuse_negative, JOBS[:6], workers=1))
+    assert isinstance(caught.value, JudderError)     # exit status 2
+    assert str(caught.value) == ("1 of 6 jobs failed: job 3 (-1.0): x = -1 "
+                                 "is not allowed; allowed: x >= 0")
+    assert caught.value.failures[0].input_error
+
+
+def test_one_bug_among_input_errors_makes_the_whole_a_bug():
+    jobs = [-1.0, "text"]
+    with pytest.raises(TaskFailures) as caught:
+        list(parallel_map(_refuse_negative, jobs, workers=1))
+    assert not isinstance(caught.value, JudderError)
+    assert [f.input_error for f in caught.value.failures] == [True, False]
+    assert "job 1 ('text'): TypeError" in str(caught.value)
 
 
 def test_existing_cluster_equals_serial_and_keeps_failures(scheduler):
@@ -120,13 +146,6 @@ def test_workers_and_scheduler_together_are_refused():
             pass
 
 
-def _descendants(pid):
-    try:
-        return psutil.Process(pid).children(recursive=True)
-    except psutil.NoSuchProcess:
-        return []
-
-
 #: Jobs that never end on two local workers, after a line 'ready' once the
 #: cluster runs (while it starts, Ctrl-C is ignored: infra.parallel);
 #: Ctrl-C exits 130.
@@ -144,22 +163,22 @@ _ENDLESS = ("import sys, time\n"
 
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130),
                                             (signal.SIGTERM, 143)])
-def test_a_signal_closes_the_local_cluster(tmp_path, signum, status):
+def test_a_signal_closes_the_local_cluster(tmp_path, signum, status,
+                                          markers):
     # a signal to the command alone, while its two workers run: they must
     # go with it, quietly
     script = tmp_path / "endless.py"
     script.write_text(_ENDLESS)
     proc = subprocess.Popen([sys.executable, str(script)], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
+                            text=True, preexec_fn=markers.with_ctrl_c)
     try:
         ready, _, _ = select.select([proc.stdout], [], [], 120)
         assert ready and proc.stdout.readline() == "ready\n", \
             "the cluster did not start"
-        time.sleep(0.5)                 # the endless jobs reach the workers
-        workers = [p for p in _descendants(proc.pid)
-                   if "spawn_main" in " ".join(p.cmdline())]
-        assert len(workers) == 2, "no Dask worker processes"
+        markers.wait_for(lambda: len(markers.workers(proc.pid)) == 2,
+                         "two Dask workers")
+        workers = markers.workers(proc.pid)
         os.kill(proc.pid, signum)
         _, err = proc.communicate(timeout=60)
     finally:

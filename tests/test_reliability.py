@@ -35,15 +35,19 @@ def _one_line(stderr):
 
 # -- signals -----------------------------------------------------------
 
-# 0.1 s: numpy, scipy and Dask are being imported (the whole import takes
-# about 0.5 s); 0.3 s: still importing on a loaded machine, or parsing.
+# 0: the handlers are in place and numpy, scipy and Dask are being
+# imported (the whole import takes about 0.5 s); 0.2 s later: still
+# importing, or parsing.
 @pytest.mark.parametrize("sig, status, word", [
     (signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
-@pytest.mark.parametrize("delay", [0.1, 0.3])
-def test_signal_while_starting(tmp_path, sig, status, word, delay):
+@pytest.mark.parametrize("after", [0.0, 0.2])
+def test_signal_while_starting(tmp_path, sig, status, word, after, markers):
     out = tmp_path / "m.npz"
-    proc = _start([*LONG_MAP, "--out", str(out)])
-    time.sleep(delay)
+    proc = _start([*LONG_MAP, "--out", str(out)],
+                  preexec_fn=markers.with_ctrl_c)
+    markers.wait_for(lambda: markers.handles_signals(proc.pid),
+                     "signal handlers")
+    time.sleep(after)
     assert proc.poll() is None
     proc.send_signal(sig)
     _, stderr = proc.communicate(timeout=60)
@@ -52,10 +56,16 @@ def test_signal_while_starting(tmp_path, sig, status, word, delay):
     assert os.listdir(tmp_path) == []
 
 
-def test_ctrl_c_during_a_map(tmp_path):
+def test_ctrl_c_during_a_map(tmp_path, markers):
+    import psutil
     out = tmp_path / "m.npz"
-    proc = _start([*LONG_MAP, "--out", str(out)])
-    time.sleep(3.0)
+    proc = _start([*LONG_MAP, "--out", str(out)],
+                  preexec_fn=markers.with_ctrl_c)
+    # in the map's middle: 3 s of CPU (the imports take about 1 s, the
+    # map about 10 s)
+    child = psutil.Process(proc.pid)
+    markers.wait_for(lambda: markers.cpu_seconds(child) >= 3.0
+                     or proc.poll() is not None, "3 s of the map")
     assert proc.poll() is None, "the map finished before Ctrl-C"
     proc.send_signal(signal.SIGINT)
     _, stderr = proc.communicate(timeout=60)
@@ -64,21 +74,18 @@ def test_ctrl_c_during_a_map(tmp_path):
     assert os.listdir(tmp_path) == []      # neither the file nor a .part
 
 
-def test_ctrl_c_of_the_process_group_with_workers(tmp_path):
+def test_ctrl_c_of_the_process_group_with_workers(tmp_path, markers):
     """A terminal's Ctrl-C reaches the Dask workers too: one line, the
     workers gone."""
     import psutil
     out = tmp_path / "s.csv"
     proc = _start(["sensitivity", "--params", "k12,k24,J2,J4,c12,mu_g", "--freq",
                    "20:220:2000", "--workers", "2", "--out", str(out)],
-                  start_new_session=True)
-    deadline = time.monotonic() + 60
-    children = []
-    while time.monotonic() < deadline and len(children) < 2:
-        time.sleep(0.5)
-        children = psutil.Process(proc.pid).children(recursive=True)
-    assert proc.poll() is None and len(children) >= 2
-    time.sleep(5.0)             # the workers are up and computing
+                  start_new_session=True, preexec_fn=markers.with_ctrl_c)
+    markers.wait_for(lambda: markers.workers_computing(proc.pid),
+                     "two workers computing")
+    children = psutil.Process(proc.pid).children(recursive=True)
+    assert proc.poll() is None
     os.killpg(proc.pid, signal.SIGINT)
     _, stderr = proc.communicate(timeout=60)
     assert proc.returncode == 130, stderr
@@ -88,22 +95,21 @@ def test_ctrl_c_of_the_process_group_with_workers(tmp_path):
     assert alive == []
 
 
-def test_a_second_signal_does_not_wait_for_the_clean_up(tmp_path):
+def test_a_second_signal_does_not_wait_for_the_clean_up(tmp_path, markers):
     """Closing two Dask workers takes seconds; a second SIGTERM in them
     ends the command at once, saying a .part file may remain."""
-    import psutil
     proc = _start(["sensitivity", "--params", "k12,k24,J2,J4,c12,mu_g",
                    "--freq", "20:220:2000", "--workers", "2", "--out",
                    str(tmp_path / "s.csv")])
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and len(
-            psutil.Process(proc.pid).children(recursive=True)) < 2:
-        time.sleep(0.5)
-    time.sleep(5.0)
-    proc.send_signal(signal.SIGTERM)
-    time.sleep(0.05)
-    proc.send_signal(signal.SIGTERM)
+    markers.wait_for(lambda: markers.workers_computing(proc.pid),
+                     "two workers computing")
     start = time.monotonic()
+    # SIGTERM again every 50 ms until it ends: two signals before the
+    # first is handled count as one, so the second is the first that
+    # finds the clean-up running, however loaded the machine
+    while proc.poll() is None and time.monotonic() - start < 60:
+        proc.send_signal(signal.SIGTERM)
+        time.sleep(0.05)
     _, stderr = proc.communicate(timeout=60)
     assert time.monotonic() - start < 2.0
     assert proc.returncode == 143, stderr
@@ -249,7 +255,6 @@ def test_the_fmu_child_is_killed_with_its_command(tmp_path):
         children = [c for c in psutil.Process(proc.pid).children()
                     if "sources.fmu_host" in " ".join(c.cmdline())]
     assert children
-    time.sleep(0.5)
     proc.send_signal(signal.SIGTERM)
     _, stderr = proc.communicate(timeout=60)
     assert proc.returncode == 143, stderr

@@ -7,7 +7,7 @@ from pathlib import Path
 import sys
 
 from infra.errors import JudderError
-from infra.files import check_output, save_figure, to_json
+from infra.files import all_or_none, check_output, save_figure, to_json
 
 
 def written(*paths):
@@ -21,11 +21,13 @@ def output_files(**paths):
 
 def write_outputs(args, result, save=None, figure=None):
     """Write --out (``result.save``) and --plot (``result.figure``),
-    atomically; keyword arguments for each; returns their paths."""
-    if args.out:
-        result.save(args.out, force=args.force, **(save or {}))
-    if args.plot:
-        save_plot(args.plot, result.figure(**(figure or {})))
+    atomically, both or neither (:func:`infra.files.all_or_none`);
+    keyword arguments for each; returns their paths."""
+    with all_or_none():
+        if args.out:
+            result.save(args.out, force=args.force, **(save or {}))
+        if args.plot:
+            save_plot(args.plot, result.figure(**(figure or {})))
     return output_files(out=args.out, plot=args.plot)
 
 

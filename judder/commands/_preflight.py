@@ -21,7 +21,6 @@ The memory and disk a request would take are checked here too
 cgroup).
 """
 
-import os
 import sys
 
 import numpy as np
@@ -92,6 +91,32 @@ CHECK_SETTING_S = 0.045
 
 
 CHECK_PARAMETER_S = 0.014
+
+
+#: One point of ``threshold``'s Fig. 19a (the eigenvalues at one mu_g)
+#: and one of its Fig. 19b (a root of the largest real part in mu_g),
+#: CPU seconds: from ``judder threshold`` with 2002 mu_g (0.52 s more
+#: than with 2) and with 402 c_i (1.76 s more).
+THRESHOLD_MU_S = 2.6e-4
+
+
+THRESHOLD_DAMPING_S = 4.4e-3
+
+
+#: One measured point of ``fit`` per local fit (start), and the fixed
+#: cost, CPU seconds: ``judder fit --boundary`` with the example's 26
+#: points and the same repeated 4 times (104 points, 3 starts): 0.29 s per
+#: point fitting mu_g,k24 and 0.23 s fitting mu_g (8.1 and 30.9 s).
+FIT_POINT_START_S = 0.1
+
+
+FIT_FIXED_S = 0.5
+
+
+#: One periodic orbit of ``orbit`` (harmonic balance and its multipliers),
+#: CPU seconds: ``judder orbit`` over 60-200 Hz x 14 amplitudes took 2.35
+#: s more with 282 frequencies than with 141 (1974 orbits more).
+ORBIT_S = 1.2e-3
 
 
 #: States of the calibration set (paper's 4-DOF).
@@ -220,7 +245,7 @@ def check_sensitivity(params, freq_hz, cases, workers):
     return check_time(cases * tongues_seconds(params, freq_hz),
                       f"{cases} cases x {len(freq_hz)} frequencies",
                       "fewer --params, --factors/--values or --freq",
-                      _workers(workers))
+                      _workers(workers, cases))
 
 
 def check_settings_time(settings, parameters):
@@ -231,12 +256,34 @@ def check_settings_time(settings, parameters):
         "fewer --freq x --pf settings, or --params none")
 
 
+def check_threshold(mu_g, damping):
+    """``threshold``: the mu_g of Fig. 19a and the c_i of Fig. 19b."""
+    return check_time(mu_g * THRESHOLD_MU_S + damping * THRESHOLD_DAMPING_S,
+                      f"{mu_g} mu_g x {damping} c_i values",
+                      "fewer --mu-g or --c-ext values")
+
+
+def check_fit(points, fits, option):
+    """``fit``: measured points x local fits (the starts, the bootstrap's
+    refits, the fits at the threshold's spread)."""
+    return check_time(FIT_FIXED_S + points * fits * FIT_POINT_START_S,
+                      f"{points} measured points x {fits} local fits",
+                      f"fewer points in {option}, or fewer --starts")
+
+
+def check_orbit(frequencies, amplitudes):
+    """``orbit``: frequencies x amplitudes, one orbit each."""
+    return check_time(frequencies * amplitudes * ORBIT_S,
+                      f"{frequencies} frequencies x {amplitudes} amplitudes",
+                      "fewer --freq or --pf values")
+
+
 def check_crosscheck(runs, duration, workers):
     """``crosscheck``: FMU runs x simulated seconds."""
     return check_time(runs * duration * FMU_SECOND_S,
                       f"{runs} FMU runs x {duration:g} s simulated",
                       "fewer --freq x --pf points or a shorter --duration",
-                      _workers(workers))
+                      _workers(workers, runs))
 
 
 def check_campaign(runs, duration, rpm_max, workers):
@@ -245,7 +292,7 @@ def check_campaign(runs, duration, rpm_max, workers):
         runs * duration * max(rpm_max, 1000.0) / 1000.0 * CAMPAIGN_SECOND_S,
         f"{runs} runs x {duration:g} s simulated up to {rpm_max:g} rpm",
         "fewer --freq x --pf x --rpm x --temperatures runs or a shorter "
-        "--duration", _workers(workers))
+        "--duration", _workers(workers, runs))
 
 
 def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
@@ -256,11 +303,14 @@ def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
     jobs = samples + (2 ** names if vertices else 0)
     per_job = (tongues_seconds(params, freq_hz)
                + map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES)))
-    seconds = (jobs * per_job + refine * names * len(freq_hz)
-               * TONGUE_FREQUENCY_S)
+    refining = refine * names * len(freq_hz) * TONGUE_FREQUENCY_S
+    seconds = jobs * per_job + refining
     return check_time(seconds, f"{jobs} samples x {len(freq_hz)} "
-                      "frequencies", "fewer --samples, uncertain parameters "
-                      "or --freq", _workers(workers))
+                      f"frequencies, and --refine {refine} x {names} "
+                      f"parameters x {len(freq_hz)} frequencies",
+                      "fewer --samples, "
+                      "uncertain parameters or --freq, or a smaller --refine",
+                      _workers(workers, jobs))
 
 
 def _terminal():
@@ -268,8 +318,11 @@ def _terminal():
     return sys.stderr.isatty()
 
 
-def _workers(workers):
-    return workers or os.cpu_count() or 1
+def _workers(workers, jobs):
+    """The worker processes the jobs will run on
+    (:func:`infra.parallel.worker_count`)."""
+    from infra.parallel import worker_count
+    return worker_count(workers, jobs)[0]
 
 
 #: Bytes ``advise`` holds per frequency of its 0.5 Hz grid (peak resident
@@ -288,6 +341,50 @@ MAX_RUNS = 100_000
 BYTES_PER_RUN_SECOND = 32_000
 
 
+#: Share of the memory available a request may take.
+MEMORY_SHARE = 0.8
+
+
+def check_memory(needed, what, drivers, change, bound="about"):
+    """Refuse work whose memory (bytes) is above :data:`MEMORY_SHARE` of
+    the memory available (:func:`infra.memory.available_memory`), naming
+    ``what`` needs it, what the estimate is made of (``drivers``) and what
+    to change; returns ``needed``."""
+    free = available_memory()
+    if needed > MEMORY_SHARE * free:
+        raise JudderError(
+            f"{what} needs {bound} {needed / 2**30:.3g} GiB ({drivers}), "
+            f"and {free / 2**30:.3g} GiB are available; allowed: {change}")
+    return needed
+
+
+def check_acquisitions(paths, workers):
+    """``chart``: each acquisition's memory, and the time of reading and
+    analysing all of them, from their sizes
+    (:func:`pysim.bench_data.readers.read_cost`), before any is read.
+
+    Returns
+    -------
+    int
+        The largest memory one run takes (bytes), for the worker count.
+    """
+    from pysim.bench_data.readers import MEMORY_PER_BYTE, read_cost
+    costs = [read_cost(path) for path in paths]
+    largest = max(range(len(paths)), key=lambda i: costs[i][0])
+    memory = costs[largest][0]
+    check_memory(memory, f"{paths[largest]}",
+                 f"{memory / MEMORY_PER_BYTE / 2**20:.4g} MB of file x "
+                 f"{MEMORY_PER_BYTE} to read and analyse it",
+                 "a shorter acquisition (split it into engagements, or "
+                 "keep only the channels needed)")
+    total = sum(seconds for _, seconds in costs)
+    size = sum(m for m, _ in costs) / MEMORY_PER_BYTE
+    check_time(total, f"{len(paths)} acquisitions, {size / 2**20:.4g} MB",
+               "fewer or shorter acquisitions",
+               _workers(workers, len(paths)))
+    return memory
+
+
 def check_map_memory(params, freq_hz, p_f_bar):
     """Refuse a map whose Dyson series would not fit in memory.
 
@@ -301,15 +398,10 @@ def check_map_memory(params, freq_hz, p_f_bar):
     steps = int(steps[0])
     needed = 3 * len(p_f_bar) * steps * size * size * 8 \
         + 64 * len(freq_hz) * len(p_f_bar)
-    free = available_memory()
-    if needed > 0.8 * free:
-        raise JudderError(
-            f"--freq x --pf needs at least {needed / 2**30:.3g} GiB "
-            f"({len(p_f_bar)} amplitudes x {steps} sub-intervals at "
-            f"{f:g} Hz), and {free / 2**30:.3g} GiB are available; "
-            "allowed: fewer amplitudes per frequency, or higher "
-            "frequencies")
-    return needed
+    return check_memory(
+        needed, "--freq x --pf", f"{len(p_f_bar)} amplitudes x {steps} "
+        f"sub-intervals at {f:g} Hz", "fewer amplitudes per frequency, or "
+        "higher frequencies", bound="at least")
 
 
 def check_advise_grid(low, high, margin_hz):
@@ -325,14 +417,8 @@ def check_advise_grid(low, high, margin_hz):
             f"--freq-range {text} makes {points} frequencies (0.5 Hz "
             f"apart); allowed: at most {MAX_GRID_VALUES}, i.e. a range of "
             f"at most {widest:g} Hz (--margin-hz {margin_hz:g})")
-    needed = points * ADVISE_BYTES_PER_FREQUENCY
-    free = available_memory()
-    if needed > 0.8 * free:
-        raise JudderError(
-            f"--freq-range {text} needs about {needed / 2**30:.3g} GiB "
-            f"({points} frequencies 0.5 Hz apart), and "
-            f"{free / 2**30:.3g} GiB are available; allowed: a narrower "
-            "range")
+    check_memory(points * ADVISE_BYTES_PER_FREQUENCY, f"--freq-range {text}",
+                 f"{points} frequencies 0.5 Hz apart", "a narrower range")
     return points
 
 

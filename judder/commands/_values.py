@@ -17,10 +17,10 @@ functions check a Python caller's arguments with the same rule objects
 
 import argparse
 import math
-import sys
 
 import numpy as np
 
+from infra.contract import warn
 from infra.errors import JudderError
 from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
@@ -47,11 +47,6 @@ MAX_WORKERS = 256
 
 #: Longest simulated time of one run, s.
 MAX_DURATION_S = 3600.0
-
-
-def warn(text):
-    """A warning line on stderr (the command goes on)."""
-    print(f"judder: warning: {text}", file=sys.stderr)
 
 
 def option_value(text, option, unit, low=-math.inf, high=math.inf,
@@ -325,9 +320,9 @@ def check_plain_pressure(assignment):
         raise JudderError(
             f"--set {assignment.strip()}: p_m = {number:g} Pa (a plain "
             f"number is in Pa, SI) is not plausible for a clutch pressure "
-            f"(below 1 bar); did you mean {value.strip()}bar = "
-            f"{number * PA_PER_BAR:g} Pa? Give the unit (p_m={value.strip()}"
-            f"bar, or p_m={value.strip()}Pa to keep it)")
+            f"(below 1 bar); " + _bar_hint(
+                number, f"Give p_m={value.strip()}bar",
+                f", or p_m={value.strip()}Pa to keep it"))
 
 
 def check_file_pressure(params, path):
@@ -339,9 +334,26 @@ def check_file_pressure(params, path):
     if 0 <= p_m < MIN_PLAIN_P_M_PA:
         raise JudderError(
             f"--param-file {path}: p_m = {p_m:g} Pa (the file is in SI) is "
-            "not plausible for a clutch pressure (below 1 bar); did you mean "
-            f"{p_m:g} bar = {p_m * PA_PER_BAR:g} Pa? Write p_m = "
-            f"{p_m * PA_PER_BAR:g}")
+            "not plausible for a clutch pressure (below 1 bar); "
+            + _bar_hint(p_m, f"Write p_m = {p_m * PA_PER_BAR:g}"))
+
+
+#: Highest mean clutch pressure a number meant in bar is taken for, bar
+#: (a pressure channel's plausible range): beyond, no unit makes it a
+#: clutch pressure.
+MAX_PLAUSIBLE_BAR = 1000.0
+
+
+def _bar_hint(number, fix, keep=""):
+    """What to do with a mean pressure below 1 bar given as Pa: read it
+    as bar (``fix`` says how) where that is plausible, else the range
+    allowed; ``keep`` says how to keep it."""
+    if number <= MAX_PLAUSIBLE_BAR:
+        return (f"did you mean {number:g} bar = {number * PA_PER_BAR:g} "
+                f"Pa? {fix}{keep}")
+    return (f"allowed: {MIN_PLAIN_P_M_PA:g} to "
+            f"{MAX_PLAUSIBLE_BAR * PA_PER_BAR:g} Pa (1 to "
+            f"{MAX_PLAUSIBLE_BAR:g} bar){keep}")
 
 
 #: Most values of one grid axis (a typo like N = 100000000000 would
@@ -424,7 +436,18 @@ def parse_waveform(text):
                 .splitlines() if line.strip()]
         if rows and not _is_float(rows[0]):
             rows = rows[1:]
-        return from_samples(parse_list(",".join(rows), option))
+        samples = parse_list(",".join(rows), option)
+        bad = [i for i, v in enumerate(samples) if not math.isfinite(v)]
+        if bad:
+            raise JudderError(f"--dither-wave period:{rest}: sample "
+                              f"{bad[0] + 1} of {len(samples)} is "
+                              f"{samples[bad[0]]:g}; allowed: finite "
+                              "pressures, at least 4")
+        try:
+            return from_samples(samples)
+        except JudderError as exc:
+            raise JudderError(f"--dither-wave period:{rest}: {exc}") \
+                from None
     raise JudderError(f"{option} is not allowed; allowed: "
                       + ", ".join(WAVEFORMS))
 

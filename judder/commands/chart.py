@@ -9,7 +9,8 @@ import numpy as np
 
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
 from infra.errors import JudderError
-from infra.files import keeps_foreign_files, save_npz, write_text
+from infra.files import (all_or_none, keeps_foreign_files, save_npz,
+                         write_text)
 from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, limit_option, method_option,
@@ -17,6 +18,7 @@ from ._arguments import (force_option, limit_option, method_option,
 from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_acquisitions
 from ._values import MIN_GROWTH, Quantity
 from .tongues import tongues
 
@@ -109,13 +111,16 @@ def run(args):
                        bench_linearisation=args.bench_linearisation,
                        changes=changes, method=args.method,
                        workers=args.workers, progress=progress)
-    files = write_outputs(args, result, figure={
-        "title": "experimental stability chart"
-                 + (f" with the {params.model} model's boundaries"
-                    if overlay else "")})
-    boundaries = (result.save_boundary(args.boundary, force=args.force)
-                  if args.boundary
-                  and result.chart.read else [])
+    if not result.chart.read:
+        # before any output is written: a chart of no run is none
+        raise JudderError(_unread(result.chart.failed))
+    with all_or_none():     # --out, --plot and --boundary, or none
+        files = write_outputs(args, result, figure={
+            "title": "experimental stability chart"
+                     + (f" with the {params.model} model's boundaries"
+                        if overlay else "")})
+        boundaries = (result.save_boundary(args.boundary, force=args.force)
+                      if args.boundary else [])
     data = {**result.as_dict(), **files, "boundary_files": boundaries}
     data["failed"] = [{**failed, "message": in_flags(failed["message"])}
                       for failed in data["failed"]]
@@ -136,13 +141,24 @@ def run(args):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
-    rows += [f"could not read {r.path}: {in_flags(r.error)}"
+    rows += [f"could not read {in_flags(r.reason)}"
              for r in result.chart.failed]
     rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
                 + written(args.out, args.plot, *boundaries))
     emit(args, data, "\n".join(rows))
-    if not result.chart.read:
-        raise JudderError("no run could be read")
+
+
+#: Unreadable runs named in the error when none could be read.
+_LISTED_FAILURES = 3
+
+
+def _unread(failed):
+    """The error line when no run could be read: each file's reason."""
+    listed = "; ".join(r.reason for r in failed[:_LISTED_FAILURES])
+    more = len(failed) - _LISTED_FAILURES
+    return ("no run could be read: " if len(failed) == 1 else
+            f"none of the {len(failed)} runs could be read: ") + listed \
+        + (f"; and {more} more" if more > 0 else "")
 
 
 def _channels(items):
@@ -151,7 +167,14 @@ def _channels(items):
     from pysim.bench_data.channels import parse_channel_option
     if not items:
         return None
-    channels = dict(parse_channel_option(item) for item in items)
+    channels, given = {}, {}
+    for item in items:
+        role, spec = parse_channel_option(item)
+        if role in channels:
+            raise JudderError(
+                f"--channel {given[role]} and --channel {item} both give "
+                f"{role}; allowed: one channel per role")
+        channels[role], given[role] = spec, item
     if "upstream_speed" not in channels:
         raise JudderError("--channel upstream_speed=NAME is required when "
                           "--channel is given")
@@ -201,8 +224,10 @@ def chart(sources, index=None, channels=None, group_by=None,
     from pysim.bench_data.charts import build_chart, gather_sources
     from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
+    runs = gather_sources(sources, index)
+    run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
-        gather_sources(sources, index), channels=channels,
+        runs, channels=channels, run_bytes=run_bytes,
         group_by=group_by,
         min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth,
         min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None

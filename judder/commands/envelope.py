@@ -11,7 +11,8 @@ import time
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import keeps_foreign_files, save_npz, write_text
+from infra.files import (all_or_none, keeps_foreign_files, save_npz,
+                         write_text)
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 from stability.monodromy import DEFAULT_METHOD
@@ -127,13 +128,14 @@ def run(args):
                           parameters=params, changes=changes,
                           method=args.method, workers=args.workers,
                           checkpoint=checkpoint, progress=progress)
-    if args.out:
-        result.save(args.out, force=args.force)
-    if args.csv:
-        result.save_csv(args.csv, force=args.force)
-    if args.plot:
-        save_plot(args.plot, result.figure(
-            title=f"envelope, {model_title(args, params)}"))
+    with all_or_none():
+        if args.out:
+            result.save(args.out, force=args.force)
+        if args.csv:
+            result.save_csv(args.csv, force=args.force)
+        if args.plot:
+            save_plot(args.plot, result.figure(
+                title=f"envelope, {model_title(args, params)}"))
     result.discard_checkpoint()
     e, c = result.envelope, result.envelope.convergence
     lowest = e.broadest

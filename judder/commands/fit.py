@@ -6,7 +6,7 @@ import numpy as np
 
 from sources import dumps_toml
 from infra.errors import JudderError
-from infra.files import keeps_foreign_files, write_text
+from infra.files import all_or_none, keeps_foreign_files, write_text
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
@@ -22,6 +22,7 @@ from ._common import checked_values, resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
+from ._preflight import check_fit
 from ._records import finite_or_none
 from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED,
                       THRESHOLD_SPREAD, Listed, WholeNumber, option_value)
@@ -159,6 +160,10 @@ def run(args):
     bench = parse_bench(args.bench, resolve(params, changes)) \
         if args.bench_linearisation else None
     p_max_bar = default_p_max if args.pf_max is None else args.pf_max
+    spread = default_spread if args.threshold_spread is None \
+        else args.threshold_spread
+    check_fit(len(freqs), _local_fits(args.starts, args.uncertainty, spread),
+              "--chart" if args.chart else "--boundary")
     make_parents(args.plot, args.save_params)
     # the options were checked by their parsers, the files by their
     # readers: the fit itself, in Pa, without the API's checks
@@ -172,15 +177,15 @@ def run(args):
             min_growth=default_growth if args.min_growth is None
             else args.min_growth, bench=bench,
             scatter=_scatter(args.scatter, args.error_model),
-            threshold_spread=default_spread if args.threshold_spread is None
-            else args.threshold_spread,
+            threshold_spread=spread,
             judder_limit_rpm=default_limit if args.limit is None
             else args.limit)
     result = report.fit
-    if args.save_params:
-        report.save_params(args.save_params, force=args.force)
-    if args.plot:
-        save_plot(args.plot, report.figure())
+    with all_or_none():
+        if args.save_params:
+            report.save_params(args.save_params, force=args.force)
+        if args.plot:
+            save_plot(args.plot, report.figure())
     rows = report.text()
     rows.append("compared with: " + _compared_with(result)
                 + ("" if report.judder_limit_rpm is None else
@@ -194,6 +199,14 @@ def run(args):
     if not result.success:
         raise JudderError("the fit cannot be trusted: "
                           + "; ".join(result.problems or [result.message]))
+
+
+def _local_fits(starts, uncertainty, spread):
+    """Local fits of a fit: its starts and the bootstrap's refits, at the
+    threshold and, with a spread, either side of it."""
+    from stability.fit._uncertainty import DEFAULT_BOOTSTRAP
+    refits = DEFAULT_BOOTSTRAP if uncertainty == "bootstrap" else 0
+    return (starts + refits) * (3 if spread > 0 else 1)
 
 
 def _bounds(items, params, names):

@@ -18,6 +18,7 @@ from ..bench import parse_bench
 from ._common import checked_values, resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_orbit
 from ._values import FREQ, LIMIT, MIN_GROWTH, PF, Settings
 
 #: The command's --help text.
@@ -74,8 +75,9 @@ def add_arguments(p):
 def run(args):
     """Periodic orbits of the bench engagement."""
     params, changes = parameters_of(args)
-    make_parents(args.out, args.plot)
     freqs, amplitudes = list(args.freq), list(args.pf)
+    check_orbit(len(freqs), len(amplitudes))
+    make_parents(args.out, args.plot)
     with Progress(len(freqs) if len(freqs) > 1 and len(amplitudes) > 1
                   else None, "orbits") as progress:
         result = orbit(freqs, amplitudes, params, changes,

@@ -14,6 +14,7 @@ from ._arguments import force_option, model_options
 from ._common import resolve
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
+from ._preflight import check_threshold
 from ._values import Grid
 
 #: The command's --help text.
@@ -46,6 +47,7 @@ def run(args):
     mu_g = args.mu_g
     damping = args.c_ext
     params, changes = parameters_of(args)
+    check_threshold(len(mu_g), len(damping))
     make_parents(args.out, args.plot)
     with Progress(len(damping), "threshold") as progress:
         result = threshold(mu_g, damping, params, changes,

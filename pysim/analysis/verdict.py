@@ -309,7 +309,9 @@ def _angle(time, speed):
 
 
 def _moving_average(values, samples):
-    samples = max(int(samples), 1)
+    # at most the signal's length: np.convolve's 'same' would otherwise
+    # return the kernel's length
+    samples = min(max(int(samples), 1), len(values))
     return np.convolve(values, np.ones(samples) / samples, mode="same")
 
 
@@ -767,6 +769,19 @@ def _judder_phase(time, envelope, freq_hz, min_growth, component_hz=None,
     return None
 
 
+def _check_length(time):
+    """Refuse a run shorter than the settling of the 5 Hz high-pass at
+    both ends of its window (no judder can be read in it): a few samples,
+    or a time column in another unit than its header says."""
+    least = 1.0 / _LOWEST_HZ
+    lasts = float(time[-1] - time[0]) if len(time) else 0.0
+    if len(time) < 2 or lasts < least:
+        raise JudderError(
+            f"the run lasts {lasts:.3g} s ({len(time)} samples of the "
+            f"upstream speed); allowed: an engagement of at least "
+            f"{least:g} s (check the time column's unit)")
+
+
 def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                 p_f_bar=None, min_growth=DEFAULT_MIN_GROWTH_PER_S,
                 min_amplitude_rpm=MIN_AMPLITUDE_RPM,
@@ -796,6 +811,7 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     RunAnalysis
     """
     t_speed, w = (np.asarray(a, dtype=float) for a in speed)
+    _check_length(t_speed)
     window = engagement_window((t_speed, w), pressure, downstream)
     estimated = False
     if freq_hz is None or p_f_bar is None:

@@ -13,6 +13,9 @@ from ._common import TIME_NAMES, column_factor, listing, split_header
 
 __all__ = ["read"]
 
+#: Bytes of a CSV file looked at for NUL bytes before it is read whole.
+HEAD_BYTES = 64 * 1024
+
 
 def read(path, wanted):
     """CSV as :func:`pysim.simulation.export.write_csv` writes it, and as DAQ software
@@ -56,6 +59,20 @@ def read(path, wanted):
         raws
 
 
+def _check_one_separator(path, body):
+    """Refuse a file whose lines are split by different separators (where
+    no line naming a time column was found)."""
+    first = {}
+    for number, line in body:
+        first.setdefault(_delimiter(line), number)
+    if len(first) > 1:
+        (a, m), (b, n) = sorted(first.items(), key=lambda item: item[1])[:2]
+        raise JudderError(
+            f"{path}: mixed field separators: line {m} is separated by "
+            f"{a!r}, line {n} by {b!r}; allowed: one separator throughout "
+            "(',', ';' or tab)")
+
+
 def _csv_header_row(path, rows, body):
     """Index of the row that names the columns: the first with a time
     column and as many fields as the data rows (a DAQ's header block,
@@ -67,6 +84,7 @@ def _csv_header_row(path, rows, body):
                 split_header(cell)[0].lower() in TIME_NAMES
                 for cell in row):
             return index
+    _check_one_separator(path, body)
     names = [split_header(cell)[0] for cell in rows[0]]
     raise JudderError(f"{path}: no time column; the line naming the "
                       "columns must name one 'time [s]' (or 'time' with a "
@@ -92,9 +110,21 @@ def _csv_lines(path):
     """The lines of a CSV file: UTF-8 (with or without BOM), else
     Windows-1252, the encoding European DAQ software writes (``°C``,
     ``µs``)."""
-    data = path.read_bytes()
+    with open(path, "rb") as stream:
+        head = stream.read(HEAD_BYTES)
+        if b"\0" in head:
+            # a binary file is refused from its first block (with the
+            # words the whole would get), before it is read whole
+            _decoded(head, path)
+        data = head + stream.read()
+    return _decoded(data, path).splitlines()
+
+
+def _decoded(data, path):
+    """The text of a CSV file's bytes: UTF-8, else Windows-1252 without
+    NUL bytes, else the UTF-8 reader's error."""
     try:
-        return decode_text(data, str(path), "CSV").splitlines()
+        return decode_text(data, str(path), "CSV")
     except JudderError:
         try:
             text = data.decode("cp1252")
@@ -102,7 +132,7 @@ def _csv_lines(path):
             text = None
         if text is None or "\0" in text:
             raise
-        return text.splitlines()
+        return text
 
 
 def _csv_metadata(lines):

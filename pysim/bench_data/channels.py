@@ -74,6 +74,13 @@ def parse_channel_option(text):
         try:
             unit_factor(unit, ROLES[role])
         except JudderError as exc:
+            if ROLES[role] == "speed" and kind is None and ":" in name:
+                # NAME:UNIT:WORD, WORD neither a unit nor a kind
+                raise JudderError(
+                    f"`channels` {text!r}: {unit.strip()!r} is neither a "
+                    f"speed unit nor a kind of speed channel; allowed "
+                    f"kinds: {', '.join(SPEED_KINDS)} "
+                    f"(ROLE=NAME:UNIT:KIND)") from None
             raise JudderError(f"`channels` {text!r}: {exc}") from None
     return role, ChannelSpec(name.strip(), unit.strip(), kind)
 
@@ -131,7 +138,9 @@ def channel_in_si(path, role, spec, names, raw):
         return Channel(time=time, values=values,
                        unit_in_file=str(unit).strip(), name=spec.name)
     kind = _speed_kind(where, spec, kind_of_unit, time, values)
-    if kind != "angle":
+    if kind == "angle":
+        _plausible_angle(where, unit, time, values)
+    else:
         _plausible(where, "speed", time, values)
     return Channel(time=time, values=values, unit_in_file=str(unit).strip(),
                    name=spec.name, kind=kind)
@@ -163,6 +172,32 @@ def _plausible(where, kind, time, values):
             f"{time[first]:.6g} s is not a value a bench records; allowed: "
             f"{low / shown:g} to {high / shown:g} {unit} (check the "
             "channel's unit, or the file)")
+
+
+#: Least share of its path an encoder's angle travels one way: a shaft
+#: turns one way through an engagement (judder modulates its speed by a
+#: small share), a speed or a noisy level read as an angle goes back and
+#: forth (an rpm column given ``rad``: 2 % of its path).
+ONE_WAY_SHARE = 0.5
+
+
+def _plausible_angle(where, unit, time, values):
+    """Refuse an angle channel (rad, SI) that is no shaft's angle: one
+    that goes back and forth (a speed given an angle unit), or whose
+    speed no bench records (:data:`PLAUSIBLE`)."""
+    if len(time) < 2:
+        return
+    steps = np.diff(np.unwrap(values))
+    path = float(np.sum(np.abs(steps)))
+    net = abs(float(np.sum(steps)))
+    if path > 0 and net < ONE_WAY_SHARE * path:
+        raise JudderError(
+            f"{where}: read as an angle in {unit}, it does not turn one "
+            f"way: it travels {path:.3g} rad back and forth for a net "
+            f"{net:.3g} rad ({net / path:.0%}); allowed: an encoder's "
+            f"accumulated angle (if it is a speed, give its speed unit, "
+            f"e.g. rpm)")
+    _plausible(where, "speed", time[1:], steps / np.diff(time))
 
 
 def _finite(where, time, values):

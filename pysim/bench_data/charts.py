@@ -77,6 +77,12 @@ class ChartRun:
     error: str = ""
     speed_kind: str = ""
 
+    @property
+    def reason(self):
+        """Why the run could not be read, with its file named once."""
+        named = self.error.startswith(str(self.path))
+        return self.error if named else f"{self.path}: {self.error}"
+
     def group(self, columns):
         """Values of the group columns, as a tuple of text."""
         return tuple(str(self.settings.get(c, "")) for c in columns)
@@ -359,7 +365,7 @@ class Chart:
 def build_chart(sources, channels=None, group_by=None,
                 min_growth=DEFAULT_MIN_GROWTH_PER_S, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
                 judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, workers=None,
-                callback=None):
+                callback=None, run_bytes=0):
     """Read every run and make the chart.
 
     Parameters
@@ -376,6 +382,9 @@ def build_chart(sources, channels=None, group_by=None,
     workers : int, optional
     callback : callable, optional
         ``callback(done, total)`` after each run.
+    run_bytes : int
+        Memory one run takes to read (bounds the worker processes,
+        :func:`infra.parallel.worker_count`).
 
     Returns
     -------
@@ -391,7 +400,8 @@ def build_chart(sources, channels=None, group_by=None,
     runs = []
     # a failure names the file, not the job's Python repr
     for run in parallel_map(_analyse, jobs, workers,
-                            describe=lambda job: str(job[0].path)):
+                            describe=lambda job: str(job[0].path),
+                            job_bytes=run_bytes):
         runs.append(run)
         if callback is not None:
             callback(len(runs), len(jobs))

@@ -1,0 +1,150 @@
+"""The messages issue 34 found wanting: each names the file, option or
+value and what is allowed, in one line on stderr."""
+
+from pathlib import Path
+import subprocess
+import sys
+import zipfile
+
+import pytest
+
+from judder.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def run(argv, capsys):
+    status = main(argv)
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def test_mixed_separators_are_named(capsys, tmp_path):
+    path = tmp_path / "run.csv"
+    path.write_text("time [s];speed [rpm]\n0,1000\n0.001;1000\n0.002,1001\n")
+    status, out, err = run(["chart", str(path), "--channel",
+                            "upstream_speed=speed", "--workers", "1"], capsys)
+    assert status == 2 and out == ""
+    assert err.strip() == (
+        f"judder: error: no run could be read: {path}: mixed field "
+        "separators: line 1 is separated by ';', line 2 by ','; allowed: "
+        "one separator throughout (',', ';' or tab)")
+
+
+def test_a_word_that_is_no_kind_lists_the_kinds(capsys):
+    status, out, err = run(["chart", "x.csv", "--channel",
+                            "upstream_speed=EngSpd_up:rpm:bogus"], capsys)
+    assert status == 2
+    assert err.strip() == (
+        "judder: error: --channel 'upstream_speed=EngSpd_up:rpm:bogus': "
+        "'bogus' is neither a speed unit nor a kind of speed channel; "
+        "allowed kinds: passage, sampled, angle (ROLE=NAME:UNIT:KIND)")
+
+
+def test_a_long_refinement_names_refine(capsys):
+    status, out, err = run(["envelope", "--ranges",
+                            str(ROOT / "examples" / "ranges.toml"),
+                            "--samples", "2", "--refine", "100000000"],
+                           capsys)
+    assert status == 2
+    assert "--refine 100000000 x 3 parameters x 106 frequencies" in err
+    assert "or a smaller --refine" in err
+
+
+def test_a_users_file_as_checkpoint_is_no_pickle_advice(capsys, tmp_path):
+    mine = tmp_path / "mine.npz"
+    mine.write_bytes(b"my own data\n")
+    status, out, err = run(["envelope", "--ranges",
+                            str(ROOT / "examples" / "ranges.toml"),
+                            "--samples", "2", "--checkpoint", str(mine)],
+                           capsys)
+    assert status == 2
+    assert err.strip() == (
+        f"judder: error: checkpoint {mine}: not a checkpoint of judder "
+        "envelope (ValueError reading it); allowed: a checkpoint of this "
+        "envelope, or a new path (delete the file to start again)")
+    assert "pickle" not in err and mine.read_bytes() == b"my own data\n"
+
+
+@pytest.mark.parametrize("rows, words", [
+    ("p\n1\nnan\n3\n2\n", "sample 2 of 4 is nan; allowed: finite "
+                          "pressures, at least 4"),
+    ("p\n1\n3\n", "a measured period needs at least 4 finite samples; got "
+                  "2, 2 of them finite"),
+])
+def test_a_bad_period_file_is_named(capsys, tmp_path, rows, words):
+    period = tmp_path / "period.csv"
+    period.write_text(rows)
+    status, out, err = run(["floquet", "--freq", "100", "--pf", "0.2",
+                            "--dither-wave", f"period:{period}"], capsys)
+    assert status == 2
+    assert err.strip() == (f"judder: error: --dither-wave period:{period}: "
+                           + words)
+
+
+def test_a_schema_error_of_an_fmu_is_given_whole(capsys, tmp_path):
+    fmu = tmp_path / "v1.fmu"
+    with zipfile.ZipFile(fmu, "w") as archive:
+        archive.writestr("modelDescription.xml", (
+            '<?xml version="1.0" encoding="UTF-8"?>\n<fmiModelDescription '
+            'fmiVersion="1.0" modelName="M" modelIdentifier="M" guid="{1}" '
+            'numberOfContinuousStates="1" numberOfEventIndicators="0" '
+            'bogus="1">\n<ModelVariables/>\n</fmiModelDescription>\n'))
+    status, out, err = run(["eig", "--fmu", str(fmu)], capsys)
+    assert status == 2
+    assert err.startswith(f"judder: error: --fmu {fmu}: not a readable FMU "
+                          "(Failed to validate modelDescription.xml: - "
+                          "ERROR (line 2")
+    assert "attribute 'bogus'" in err
+
+
+def test_a_class_without_parameters_says_so(capsys, tmp_path):
+    (tmp_path / "NoPar.mo").write_text(
+        "model NoPar\n  Real x(start=1, fixed=true);\nequation\n"
+        "  der(x) = -x;\nend NoPar;\n")
+    status, out, err = run(["eig", "--modelica", "NoPar", "--library",
+                            str(tmp_path), "--set", "k=1"], capsys)
+    assert status == 2
+    assert err.strip().endswith(
+        "allowed names: none: the model has no tunable parameter (a "
+        "Modelica class declares one with 'parameter Real NAME = VALUE;')")
+
+
+@pytest.mark.parametrize("value, words", [
+    ("10", "did you mean 10 bar = 1e+06 Pa? Give p_m=10bar, or p_m=10Pa "
+           "to keep it"),
+    ("1e4", "allowed: 100000 to 1e+08 Pa (1 to 1000 bar), or p_m=1e4Pa to "
+            "keep it"),
+])
+def test_a_plain_mean_pressure_suggests_bar_only_where_plausible(
+        capsys, value, words):
+    status, out, err = run(["eig", "--set", f"p_m={value}"], capsys)
+    assert status == 2
+    assert err.strip().endswith(words)
+    assert "1e+09" not in err
+
+
+def test_a_negligible_external_damping_is_as_none(capsys):
+    # c_i = 1e-300 once said "widen the range" where 0 works
+    thresholds = []
+    for c in ("0", "1e-300"):
+        import json
+        status, out, err = run(["threshold", "--c-ext", f"{c}:{c}:1",
+                                "--mu-g=-0.001:0.001:3", "--json"], capsys)
+        assert status == 0, err
+        thresholds.append(json.loads(out)["mu_g_thresholds"][0])
+    assert thresholds[0] == thresholds[1]
+    assert abs(thresholds[0]) < 1e-15     # the closed form's 0
+
+
+def test_an_empty_model_is_refused_for_fmi_2(tmp_path):
+    (tmp_path / "Empty.mo").write_text("model Empty\nend Empty;\n")
+    done = subprocess.run(
+        [sys.executable, "-m", "fmu", "Empty", "--library", str(tmp_path),
+         "--out", str(tmp_path / "out"), "--fmi", "2.0"],
+        capture_output=True, text=True, timeout=300, cwd=ROOT)
+    assert done.returncode == 2
+    assert done.stderr.strip() == (
+        "fmu: error: Empty has no variable; allowed for FMI 2.0: a model "
+        "with one variable at least (FMI 3.0 has its time: --fmi 3.0)")
+    assert not (tmp_path / "out").exists()
