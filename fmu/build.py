@@ -346,7 +346,7 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
             # FMI 2.0's schema needs one ScalarVariable at least
             raise BuildError(f"{model_name} has no variable; allowed for "
                              "FMI 2.0: a model with one variable at least "
-                             "(FMI 3.0 has its time: --fmi 3.0)")
+                             "(FMI 3.0 has its time: build it as FMI 3.0)")
         stage("estimating the C code")
         functions = _functions(ode)
     estimate = compile_estimate(functions)

@@ -77,8 +77,9 @@ class _Signals:
     parent ignores (a job started with ``&`` or ``nohup``) stays ignored.
     """
 
-    def __init__(self, prog):
+    def __init__(self, prog, words=None):
         self.prog = prog
+        self.words = words
         self.unwinding = False
         self.done = False
         self.held = None
@@ -153,7 +154,7 @@ def _stopped(prog, signum):
     return f"{prog}: {word}; no partial output was written"
 
 
-def run_guarded(prog, command, whole_process=False):
+def run_guarded(prog, command, whole_process=False, words=None):
     """Run ``command()`` under the error contract; returns the exit status.
 
     SIGINT and SIGTERM are handled from the first line of ``command`` on:
@@ -172,8 +173,12 @@ def run_guarded(prog, command, whole_process=False):
         shell): the handlers stay until it exits, so that a signal while
         the interpreter shuts down still gives one line. Otherwise (a
         call inside a test) the previous handlers are restored.
+    words : callable, optional
+        Puts a library's message in the words of the command line (the
+        arguments it names as the options carrying them); applied to
+        the warnings said while ``command`` runs.
     """
-    signals = _Signals(prog)
+    signals = _Signals(prog, words)
     signals.install()
     _ACTIVE.append(signals)
     try:
@@ -222,8 +227,10 @@ def _guarded(prog, command):
 
 
 def warn(text):
-    """A warning line on stderr (the command goes on)."""
-    _say(f"judder: warning: {text}")
+    """A warning line on stderr (the command goes on), in the words of
+    the command running (:func:`run_guarded`'s ``words``)."""
+    words = _ACTIVE[-1].words if _ACTIVE else None
+    _say(f"judder: warning: {text if words is None else words(text)}")
 
 
 def _one_line(exc):

@@ -420,7 +420,7 @@ def worker_count(asked, jobs, job_bytes=0):
               f"memory for {max(memory, 0)} ({free / 2**30:.3g} GiB "
               f"available, {(WORKER_BYTES + job_bytes) / 2**20:.0f} MB "
               "each)" if memory <= count else ""]
-    return count, (f"--workers {wanted} reduced to {count}: "
+    return count, (f"`workers` {wanted} reduced to {count}: "
                    + ", ".join(b for b in bounds if b))
 
 

@@ -152,4 +152,11 @@ def main(argv=None):
         except JudderError as exc:
             # the library's messages name its arguments: say the options
             raise JudderError(in_flags(str(exc))) from None
-    return run_guarded("judder", command, whole_process=argv is None)
+    return run_guarded("judder", command, whole_process=argv is None,
+                       words=_in_flags)
+
+
+def _in_flags(message):
+    """A library's message in the options of the command line."""
+    from .commands._flags import in_flags
+    return in_flags(message)

@@ -134,7 +134,7 @@ def friction_threshold(params, bracket=(-1.0, 1.0)):
             f"the largest real part is {at_low:+.3g} 1/s at mu_g = {low:g} "
             f"and {at_high:+.3g} 1/s at {high:g} (unstable above 0); "
             "allowed: a driveline stable for a large mu_g and unstable for "
-            "a very negative one (--mu-g wider than the threshold)")
+            "a very negative one (a `bracket` wider than the threshold)")
     return brentq(rate, low, high, xtol=1e-14, rtol=1e-12)
 
 

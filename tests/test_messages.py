@@ -146,5 +146,5 @@ def test_an_empty_model_is_refused_for_fmi_2(tmp_path):
     assert done.returncode == 2
     assert done.stderr.strip() == (
         "fmu: error: Empty has no variable; allowed for FMI 2.0: a model "
-        "with one variable at least (FMI 3.0 has its time: --fmi 3.0)")
+        "with one variable at least (FMI 3.0 has its time: build it as FMI 3.0)")
     assert not (tmp_path / "out").exists()

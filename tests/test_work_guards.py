@@ -125,11 +125,11 @@ def test_workers_are_cut_to_the_jobs_cores_and_memory(monkeypatch):
     cores = os.cpu_count()
     monkeypatch.setattr(infra.memory, "available_memory", lambda: 64 * 2**30)
     assert worker_count(48, 9) == (
-        min(9, cores), f"--workers 48 reduced to {min(9, cores)}: "
+        min(9, cores), f"`workers` 48 reduced to {min(9, cores)}: "
         + ("9 jobs" if cores >= 9 else f"{cores} cores"))
     assert worker_count(None, 9) == (min(9, cores), "")
     assert worker_count(1, 9) == (1, "")
-    assert worker_count(2, 1) == (1, "--workers 2 reduced to 1: 1 job")
+    assert worker_count(2, 1) == (1, "`workers` 2 reduced to 1: 1 job")
     # 1 GiB: 80 % holds 5 workers of 150 MB, 2 with 200 MB runs
     monkeypatch.setattr(infra.memory, "available_memory", lambda: 2**30)
     count, reason = worker_count(8, 100, job_bytes=200 * 2**20)
