@@ -140,7 +140,8 @@ def add_arguments(p):
                         help="bench data: a chart (judder chart --out)")
     source.add_argument("--boundary", metavar="FILE.csv",
                         help="bench data: a measured boundary "
-                             "(freq_hz,p_f_bar)")
+                             "(freq_hz,p_f_bar[,no_judder_bar,tried_bar], "
+                             "as judder chart --boundary writes it)")
     p.add_argument("--group", metavar="VALUE",
                    help="group of the chart, when it has several")
     p.add_argument("--fit", type=Listed("--fit", str),
@@ -470,8 +471,9 @@ def report(parameters=None, changes=None, description=None,
     """
     from stability.plots import multipliers_figure
 
-    from ..inputs import (read_boundary, read_chart_below, read_chart_boundary,
-                          read_chart_min_growth)
+    from ..inputs import (boundary_p_max, read_boundary_min_growth,
+                          read_boundary_tested, read_chart_below,
+                          read_chart_boundary, read_chart_min_growth)
     values = params(parameters, changes).params
     description = description or values.model
     workers = 1 if workers is None else workers
@@ -489,8 +491,13 @@ def report(parameters=None, changes=None, description=None,
                  read_chart_below(chart, group) / PA_PER_BAR,
                  CHART_THRESHOLD_SPREAD_PER_S)
     elif boundary:
-        bench = (*read_boundary(boundary, "--boundary"), p_max_bar,
-                 DEFAULT_MIN_GROWTH_PER_S, None, 0.0)
+        table = read_boundary_tested(boundary)
+        stated = read_boundary_min_growth(boundary)
+        bench = (table["freq_hz"], table["p_f"],
+                 boundary_p_max(table, None, boundary, pf_option=None),
+                 DEFAULT_MIN_GROWTH_PER_S if stated is None else stated,
+                 np.where(np.isnan(table["p_f"]), np.nan,
+                          table["no_judder"]) / PA_PER_BAR, 0.0)
     for option, given in (("--sensitivity", names),
                           ("--fit", fit_names if bench else ())):
         unknown = [n for n in given if n not in values.specs]
