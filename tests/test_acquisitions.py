@@ -643,3 +643,71 @@ def test_csv_in_windows_1252_reads(tmp_path):
     assert_allclose(acq.channels["pressure"].time, [0.0, 1e-3, 2e-3])
     assert_allclose(acq.channels["upstream_speed"].values,
                     np.array([1000.5, 1001.5, 1002.5]) * TO_SI["rpm"])
+
+
+# --- clocks started apart: aligned on absolute time (issue 31) ------------
+
+def _ramp(time, start=1.84):
+    """A pressure of 3 bar stepping to 8 bar at ``start`` (its own clock)."""
+    return np.where(time < start, 3.0, 8.0)
+
+
+def _ramp_time(channel):
+    """When a read pressure first exceeds 5.5 bar, s."""
+    return channel.time[np.argmax(channel.values > 5.5 * TO_SI["bar"])]
+
+
+def test_tdms_clocks_started_apart_are_aligned(tmp_path, bench):
+    """Pressure recorded by a task started 1.5 s before the speeds' (its
+    wf_start_time), the speeds with date-time stamps: the pressure's step
+    at 1.84 s of its own record is 0.34 s into the speeds' record."""
+    from nptdms import ChannelObject, TdmsWriter
+    t0 = np.datetime64("2026-12-03T07:00:00", "ns")
+    t_up, n_up = bench["EngSpd_up"]
+    t_p = np.arange(3000) * 1e-3
+    stamps = t0 + (t_up * 1e9).astype("timedelta64[ns]")
+    path = tmp_path / "tasks.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject("Speeds", "Time", stamps),
+            ChannelObject("Speeds", "EngSpd_up", n_up,
+                          properties={"unit_string": "rpm"}),
+            ChannelObject("Hydraulics", "PressEVEN", _ramp(t_p),
+                          properties={
+                              "unit_string": "bar", "wf_increment": 1e-3,
+                              "wf_start_offset": 0.0,
+                              "wf_start_time": t0 - np.timedelta64(1500,
+                                                                   "ms")})])
+    roles = {"upstream_speed": ChannelSpec("EngSpd_up"),
+             "pressure": ChannelSpec("PressEVEN")}
+    acq = read_acquisition(path, roles)
+    speed = acq.channels["upstream_speed"]
+    # the speeds' clock: their first stamp is t_up[0] after t0
+    speeds_zero = speed.time[0] - t_up[0]
+    # (npTDMS reads date-time stamps to the microsecond)
+    assert _ramp_time(acq.channels["pressure"]) - speeds_zero == \
+        pytest.approx(0.34, abs=2e-6)
+    assert_allclose(np.diff(speed.time), np.diff(t_up), atol=2e-6)
+
+
+def test_tdms_clocks_that_cannot_be_aligned_are_refused(tmp_path, bench):
+    from nptdms import ChannelObject, TdmsWriter
+    t_up, n_up = bench["EngSpd_up"]
+    path = tmp_path / "mixed.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject("Speeds", "Time", t_up,
+                          properties={"unit_string": "s"}),
+            ChannelObject("Speeds", "EngSpd_up", n_up,
+                          properties={"unit_string": "rpm"}),
+            ChannelObject("Hydraulics", "PressEVEN", np.full(100, 3.0),
+                          properties={
+                              "unit_string": "bar", "wf_increment": 1e-3,
+                              "wf_start_offset": 0.0,
+                              "wf_start_time": np.datetime64(
+                                  "2026-12-03T07:00:00", "ns")})])
+    message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up"),
+                              "pressure": ChannelSpec("PressEVEN")})
+    assert "'PressEVEN'" in message and "'EngSpd_up'" in message
+    assert "one time base" in message
+

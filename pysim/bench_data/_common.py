@@ -10,7 +10,7 @@ from infra.errors import JudderError
 from .units import unit_factor
 
 __all__ = ["TIME_NAMES", "one_line", "listing", "plain", "split_header",
-           "column_factor"]
+           "column_factor", "on_one_clock"]
 
 #: Names of a time channel, column or variable (lower case).
 TIME_NAMES = ("time", "t", "zeit", "timestamp")
@@ -67,3 +67,48 @@ def column_factor(path, column, kind):
         return unit_factor(unit, kind)
     except JudderError as exc:
         raise JudderError(f"{path}: column {name!r}: {exc}") from None
+
+
+def on_one_clock(path, raws, starts, where):
+    """Channels of separately started clocks laid on one time base.
+
+    Parameters
+    ----------
+    path : path
+        The file, for messages.
+    raws : dict
+        Name -> (time s from the channel's own clock start, values, unit).
+    starts : dict
+        Name -> the absolute instant of that clock start
+        (``numpy.datetime64``), or None where the file records none.
+    where : str
+        Where the format records a start, for the message.
+
+    Returns
+    -------
+    dict
+        ``raws`` with each time from the earliest start among them (the
+        same where no channel records a start: the file's channels are
+        then taken to share one clock, as a single-clock recording has
+        them).
+
+    Raises
+    ------
+    JudderError
+        Some channels record a start and others do not: naming both, as
+        they cannot be aligned.
+    """
+    known = {n: t for n, t in starts.items() if t is not None and n in raws}
+    if not known:
+        return raws
+    unknown = [n for n in raws if n not in known]
+    if unknown:
+        raise JudderError(
+            f"{path}: channels {listing(sorted(known))} record when their "
+            f"clock started ({where}) and {listing(unknown)} do not, so "
+            "they cannot be laid on one time base; allowed: channels that "
+            "all record their start, or none")
+    first = min(known.values())
+    return {n: (time + (known[n] - first) / np.timedelta64(1, "s"),
+                values, unit)
+            for n, (time, values, unit) in raws.items()}
