@@ -711,3 +711,73 @@ def test_tdms_clocks_that_cannot_be_aligned_are_refused(tmp_path, bench):
     assert "'PressEVEN'" in message and "'EngSpd_up'" in message
     assert "one time base" in message
 
+
+# --- numbers read as written (issue 31) -----------------------------------
+
+SPEED_PRESSURE = {"upstream_speed": ChannelSpec("EngSpd_up"),
+                  "pressure": ChannelSpec("PressEVEN")}
+
+
+def _csv_read(tmp_path, text, roles=SPEED_PRESSURE):
+    path = tmp_path / "export.csv"
+    path.write_text(text)
+    return path, roles
+
+
+def test_us_thousands_separators_in_a_tab_separated_export(tmp_path):
+    # integer speeds with a thousands comma; the time's and the
+    # pressure's decimal points say the comma is not a decimal one
+    path, roles = _csv_read(
+        tmp_path, "time [s]\tEngSpd_up [rpm]\tPressEVEN [bar]\n"
+        "0.000\t998\t3.05\n0.001\t\"1,000\"\t3.10\n0.002\t1,002\t3.15\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([998, 1000, 1002]) * TO_SI["rpm"], rtol=1e-12)
+
+
+def test_german_thousands_and_decimal_comma(tmp_path):
+    path, roles = _csv_read(
+        tmp_path, "time [s];EngSpd_up [rpm];PressEVEN [bar]\n"
+        "0;1.000,60656;3\n0,001;1.001,5;3,1\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([1000.60656, 1001.5]) * TO_SI["rpm"],
+                    rtol=1e-12)
+    assert_allclose(acq.channels["upstream_speed"].time, [0.0, 0.001])
+
+
+@pytest.mark.parametrize("text, words", [
+    # every separated cell reads both ways: refused, not guessed
+    ("time [ms]\tEngSpd_up [rpm]\tPressEVEN [bar]\n0\t998\t3\n"
+     "1\t1,000\t3\n", ["column 'EngSpd_up'", "'1,000'", "line 3", "1000",
+                       "no cell of the file tells which"]),
+    # columns written with different decimal separators
+    ("time [s];EngSpd_up [rpm];PressEVEN [bar]\n0.001;1000;3,5\n",
+     ["'0.001'", "'3,5'", "column 'time'", "column 'PressEVEN'"]),
+    # a cell no convention reads is quoted as the file has it
+    ("time [s];EngSpd_up [rpm];PressEVEN [bar]\n0;1.00.5;3\n",
+     ["line 2", "'1.00.5' is not a number"]),
+])
+def test_numbers_that_cannot_be_read_as_written_are_refused(tmp_path, text,
+                                                            words):
+    path, roles = _csv_read(tmp_path, text)
+    message = _message(path, roles)
+    assert str(path) in message
+    for word in words:
+        assert word in message
+
+
+def test_csv_date_time_column(tmp_path):
+    path, roles = _csv_read(
+        tmp_path, "Time;EngSpd_up [rpm];PressEVEN [bar]\n"
+        "03.12.2026 07:41:59,998;1000,5;3\n"
+        "03.12.2026 07:42:00,000;1001,5;3\n"
+        "03.12.2026 07:42:00,003;1002,5;3\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 0.002, 0.005],
+                    atol=1e-12)
+    path.write_text("time,EngSpd_up [rpm]\n2026-12-03T07:41:59.5,1000\n"
+                    "2026-12-03T07:42:00.25,1001\n")
+    acq = read_acquisition(path, {"upstream_speed": ChannelSpec(
+        "EngSpd_up")})
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 0.75])

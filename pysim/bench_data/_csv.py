@@ -3,6 +3,7 @@ DAQ software exports them."""
 
 import csv
 import json
+import re
 
 import numpy as np
 
@@ -10,15 +11,18 @@ from infra.errors import JudderError
 from infra.files import decode_text
 
 from ._common import TIME_NAMES, column_factor, listing, split_header
+from ._numbers import column_values, decide
 
 __all__ = ["read"]
 
 
 def read(path, wanted):
     """CSV as :func:`pysim.simulation.export.write_csv` writes it, and as DAQ software
-    exports it: ``,``, ``;`` or tab between fields, a decimal comma with
-    ``;`` or tab, a header block before the column names (``key;value``
-    lines, kept as metadata), a units row under them."""
+    exports it: ``,``, ``;`` or tab between fields, a decimal point or
+    comma and thousands separators as the file's cells show them
+    (:mod:`pysim.bench_data._numbers`), a time column of numbers or of
+    date-times (s from the first), a header block before the column names
+    (``key;value`` lines, kept as metadata), a units row under them."""
     lines = _csv_lines(path)
     metadata = _csv_metadata(lines)
     body = [(number, line) for number, line in enumerate(lines, 1)
@@ -38,20 +42,23 @@ def read(path, wanted):
                    (rows[1][i].strip().strip("[]").strip() or None))
                   for i, (name, unit) in enumerate(header)]
         body, rows = [body[0]] + body[2:], [rows[0]] + rows[2:]
-    if delimiter != ",":
-        rows = [rows[0]] + [[cell.replace(",", ".") for cell in row]
-                            for row in rows[1:]]
     names = [name for name, _ in header]
     time_column = _csv_time_column(path, names)
     _check_row_lengths(path, body, rows, len(header))
-    time = _csv_column(path, body, rows, time_column) * column_factor(
-        path, header[time_column], "time")
-    raws = {}
-    for name in wanted:
-        if name in names and names.index(name) != time_column:
-            column = names.index(name)
-            raws[name] = (time, _csv_column(path, body, rows, column),
-                          header[column][1])
+    columns = [time_column] + [names.index(name) for name in wanted
+                               if name in names
+                               and names.index(name) != time_column]
+    cells = {c: [(number, row[c]) for (number, _), row in
+                 zip(body[1:], rows[1:])] for c in columns}
+    time = _date_times(path, cells[time_column])
+    if time is not None:
+        del cells[time_column]
+    convention = decide(path, {names[c]: cells[c] for c in cells})
+    if time is None:
+        time = column_values(cells[time_column], convention) * \
+            column_factor(path, header[time_column], "time")
+    raws = {names[c]: (time, column_values(cells[c], convention),
+                       header[c][1]) for c in columns[1:]}
     return [n for i, n in enumerate(names) if i != time_column], metadata, \
         raws
 
@@ -142,15 +149,32 @@ def _check_row_lengths(path, body, rows, width):
                               f"the header has {width}")
 
 
-def _csv_column(path, body, rows, column):
-    cells = [row[column].strip() or "nan" for row in rows[1:]]
-    try:
-        return np.array(cells, dtype=float)
-    except ValueError:
-        for (number, _), cell in zip(body[1:], cells):
-            try:
-                float(cell)
-            except ValueError:
-                raise JudderError(f"{path}, line {number}: {cell!r} is not "
-                                  "a number") from None
-        raise
+#: A date-time cell: an ISO date (``2026-12-03T07:41:22.5``), a German
+#: one (``03.12.2026 07:41:22,5``) or a time of day (``07:41:22.5``).
+_DATE_TIME = re.compile(
+    r"(?:(?P<y>\d{4})-(?P<m>\d{2})-(?P<d>\d{2})[T ]"
+    r"|(?P<d2>\d{1,2})\.(?P<m2>\d{1,2})\.(?P<y2>\d{4}) )?"
+    r"(?P<H>\d{1,2}):(?P<M>\d{2}):(?P<S>\d{2})(?:[.,](?P<f>\d{1,9}))?Z?")
+
+
+def _date_times(path, cells):
+    """A time column of date-times as s from its first cell, or None if
+    its first cell is not one (a column of numbers)."""
+    stamps = []
+    for number, cell in cells:
+        match = _DATE_TIME.fullmatch(cell.strip())
+        if match is None:
+            if not stamps:
+                return None
+            raise JudderError(f"{path}, line {number}: time "
+                              f"{cell.strip()!r} is "
+                              "not a date-time as the lines before it")
+        g = match.groupdict()
+        year, month, day = ((g["y"], g["m"], g["d"]) if g["y"] else
+                            (g["y2"], g["m2"], g["d2"]) if g["y2"] else
+                            ("1970", "1", "1"))
+        stamps.append(np.datetime64(
+            f"{year}-{int(month):02d}-{int(day):02d}T{int(g['H']):02d}:"
+            f"{g['M']}:{g['S']}.{(g['f'] or '0'):0<9}", "ns"))
+    stamps = np.array(stamps)
+    return (stamps - stamps[0]) / np.timedelta64(1, "s")

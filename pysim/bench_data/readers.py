@@ -15,13 +15,16 @@ the reader :data:`READERS` holds for the file's suffix:
   them, ``# key: json-value`` metadata lines (what
   :func:`pysim.simulation.export.write_csv` writes) or a DAQ's header block of
   ``key;value`` lines before the names; ``,``, ``;`` or tab between
-  fields, a decimal comma with ``;`` or tab; a BOM
-  (:mod:`pysim.bench_data._csv`);
+  fields; decimal and thousands separators decided from all the cells
+  read, never cell by cell (:mod:`pysim.bench_data._numbers`); a time
+  column of numbers or date-times; a BOM (:mod:`pysim.bench_data._csv`);
 * ``.tdms``: NI TDMS with npTDMS; a waveform channel
   (``wf_increment``, ``wf_start_offset``) has its time track, any other
-  takes the ``time`` channel of its group; units from ``unit_string``;
-  a channel is named ``channel`` or ``group/channel``
-  (:mod:`pysim.bench_data._tdms`);
+  takes the ``time`` channel of its group; channels whose clocks record
+  their start (``wf_start_time``, date-time time channels) are laid on one
+  time base, and a file where some do and others do not is refused;
+  units from ``unit_string``; a channel is named ``channel`` or
+  ``group/channel`` (:mod:`pysim.bench_data._tdms`);
 * ``.mat``: MATLAB with scipy (up to v7) or h5py (v7.3, HDF5); each
   signal is a variable (or a field of a struct, ``struct.field``) with a
   time vector ``NAME_time``, ``t_NAME`` or a shared ``time`` / ``t``;
