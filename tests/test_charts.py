@@ -624,3 +624,25 @@ def test_boundary_files_of_groups_are_named_without_a_trailing_zero(tmp_path):
         tmp_path / "b.csv")
     assert [Path(p).name for p in written] == ["b_1000_40.csv",
                                                "b_1500_hot.csv"]
+
+
+@pytest.mark.parametrize("freq_hz", [103.3, 214.0])
+def test_dither_is_read_from_the_pressure_samples_as_taken(freq_hz):
+    """Issue 31: a pressure sampled at a pick-up's tooth passages (about
+    3.3 samples per dither period at 214 Hz, irregular) over a ramp; the
+    sinusoid fitted to the samples as taken is the one sampled (closed
+    form: no noise, so exactly), where resampling them linearly first
+    read it 7-36 % low."""
+    rng = np.random.default_rng(3)
+    step = 1 / (3.3 * 214.0)
+    time = np.cumsum(step * (0.8 + 0.4 * rng.random(4000)))
+    amplitude, phase = 0.2 * PA_PER_BAR, 0.7
+    pressure = (8 * PA_PER_BAR + 2e4 * (time - 1.0)
+                + amplitude * np.sin(2 * np.pi * freq_hz * time + phase))
+    window = (0.2, time[-1] - 0.1)
+    freq, read = estimate_dither(time, pressure, window)
+    assert freq == pytest.approx(freq_hz, rel=1e-6)   # the search tolerance
+    assert read == pytest.approx(amplitude, rel=1e-6)
+    # the frequency known: the amplitude at it
+    assert estimate_dither(time, pressure, window, freq_hz)[1] == \
+        pytest.approx(amplitude, rel=1e-9)
