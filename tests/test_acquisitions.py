@@ -781,3 +781,100 @@ def test_csv_date_time_column(tmp_path):
     acq = read_acquisition(path, {"upstream_speed": ChannelSpec(
         "EngSpd_up")})
     assert_allclose(acq.channels["upstream_speed"].time, [0, 0.75])
+
+
+# --- what had no way round (issue 31) -------------------------------------
+
+def test_a_time_column_of_another_name_is_named_by_the_time_role(tmp_path):
+    text = ("Zeit  1 - Standardmessrate [ms];EngSpd_up [rpm]\n"
+            "0;1000\n1;1001\n2;1002\n")
+    path = tmp_path / "catman.csv"
+    path.write_text(text)
+    speed = {"upstream_speed": ChannelSpec("EngSpd_up")}
+    assert "--channel time=NAME" in _message(path, speed)
+    role, spec = parse_channel_option("time=Zeit  1 - Standardmessrate")
+    acq = read_acquisition(path, {**speed, role: spec})
+    assert set(acq.channels) == {"upstream_speed"}
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 1e-3, 2e-3])
+    # its unit given overrides the file's
+    acq = read_acquisition(path, {**speed, "time": ChannelSpec(
+        "Zeit  1 - Standardmessrate", "s")})
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 1, 2])
+
+
+def test_tdms_and_mat_time_of_another_name(tmp_path, bench):
+    from nptdms import ChannelObject, TdmsWriter
+    t_up, n_up = bench["EngSpd_up"]
+    path = tmp_path / "run.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject("G", "Clock", t_up * 1e3,
+                          properties={"unit_string": "ms"}),
+            ChannelObject("G", "EngSpd_up", n_up,
+                          properties={"unit_string": "rpm"})])
+    speed = {"upstream_speed": ChannelSpec("EngSpd_up")}
+    assert "--channel time=NAME" in _message(path, speed)
+    acq = read_acquisition(path, {**speed, "time": ChannelSpec("Clock")})
+    assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
+    path = tmp_path / "run.mat"
+    scipy.io.savemat(path, {"Clock": t_up * 1e3, "EngSpd_up": n_up,
+                            "units": {"EngSpd_up": "rpm"}})
+    acq = read_acquisition(path, {**speed,
+                                  "time": ChannelSpec("Clock", "ms")})
+    assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
+
+
+def test_a_pressure_recorded_in_ma_is_read_through_its_scale(tmp_path,
+                                                             bench):
+    t_up, n_up = bench["EngSpd_up"]
+    current = np.linspace(4.0, 20.0, len(t_up))
+    path = tmp_path / "ma.csv"
+    path.write_text("time [s],EngSpd_up [rpm],Ch3 [mA]\n" + "".join(
+        f"{t:.17g},{n:.17g},{c:.17g}\n"
+        for t, n, c in zip(t_up, n_up, current)))
+    role, spec = parse_channel_option("pressure=Ch3:4..20mA=0..25bar")
+    acq = read_acquisition(path, {"upstream_speed": "EngSpd_up",
+                                  role: spec})
+    pressure = acq.channels["pressure"]
+    # closed form: 4 mA is 0 bar, 20 mA 25 bar, linear between
+    assert_allclose(pressure.values, (current - 4) / 16 * 25 * TO_SI["bar"],
+                    rtol=1e-12, atol=1e-6)
+    assert pressure.unit_in_file == "mA"
+    # a scale from another unit than the file's is refused
+    message = _message(path, {"upstream_speed": "EngSpd_up",
+                              "pressure": ChannelSpec("Ch3",
+                                                      "0..10V=0..25bar")})
+    assert "'mA'" in message and "'V'" in message
+    with pytest.raises(JudderError, match="LOW..HIGH UNIT=LOW..HIGH UNIT"):
+        parse_channel_option("pressure=Ch3:4-20mA=0-25bar")
+    with pytest.raises(JudderError, match="pressure unit"):
+        parse_channel_option("pressure=Ch3:4..20mA=0..3000rpm")
+
+
+def test_mdf_refuses_a_time_role(mf4):
+    message = _message(mf4, {"upstream_speed": "EngSpd_up",
+                             "time": ChannelSpec("t")})
+    assert "master channel" in message
+
+
+def test_dspace_struct_arrays(tmp_path, bench):
+    """dSPACE ControlDesk's MAT export: judder_run.X (time bases) and
+    judder_run.Y (a struct array of signals), written with savemat."""
+    (t_up, n_up), (t_p, p) = bench["EngSpd_up"], bench["PressEVEN"]
+    bases = np.zeros((1, 2), dtype=[("Name", "O"), ("Data", "O")])
+    bases[0, 0] = ("Time", t_up)
+    bases[0, 1] = ("Time", t_p)
+    signals = np.zeros((1, 2), dtype=[("Name", "O"), ("Data", "O"),
+                                      ("Unit", "O"), ("XIndex", "O")])
+    signals[0, 0] = ("EngSpd_up", n_up, "rpm", 1)
+    signals[0, 1] = ("PressEVEN", p, "bar", 2)
+    path = tmp_path / "dspace.mat"
+    scipy.io.savemat(path, {"judder_run": {"X": bases, "Y": signals}})
+    acq = read_acquisition(path, {"upstream_speed": "judder_run.EngSpd_up",
+                                  "pressure": "PressEVEN"})
+    assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    n_up * TO_SI["rpm"], rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].time, t_p, rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values, p * TO_SI["bar"],
+                    rtol=1e-12)

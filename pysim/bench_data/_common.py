@@ -10,10 +10,27 @@ from infra.errors import JudderError
 from .units import unit_factor
 
 __all__ = ["TIME_NAMES", "one_line", "listing", "plain", "split_header",
-           "column_factor", "on_one_clock"]
+           "column_factor", "on_one_clock", "is_time_name", "time_unit"]
 
 #: Names of a time channel, column or variable (lower case).
 TIME_NAMES = ("time", "t", "zeit", "timestamp")
+def is_time_name(name, time=None):
+    """Whether a column, channel or variable ``name`` (its name without a
+    ``[unit]``) is the file's time: the one ``time`` names (the ``time``
+    role's :class:`~pysim.bench_data.acquisition.ChannelSpec`), else one
+    of :data:`TIME_NAMES`."""
+    name = split_header(name)[0]
+    if time is not None:
+        return name == time.name
+    return name.lower() in TIME_NAMES
+
+
+def time_unit(time, unit):
+    """The unit of a time column: the ``time`` role's, else the file's
+    ``unit``."""
+    return time.unit if time is not None and time.unit else unit
+
+
 #: Channel names listed in a message, at most.
 LISTED = 40
 

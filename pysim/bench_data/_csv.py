@@ -10,13 +10,14 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import decode_text
 
-from ._common import TIME_NAMES, column_factor, listing, split_header
+from ._common import (column_factor, is_time_name, listing, split_header,
+                      time_unit)
 from ._numbers import column_values, decide
 
 __all__ = ["read"]
 
 
-def read(path, wanted):
+def read(path, wanted, time=None):
     """CSV as :func:`pysim.simulation.export.write_csv` writes it, and as DAQ software
     exports it: ``,``, ``;`` or tab between fields, a decimal point or
     comma and thousands separators as the file's cells show them
@@ -32,7 +33,7 @@ def read(path, wanted):
                           "...)")
     delimiter = _delimiter(body[len(body) // 2][1])
     rows = list(csv.reader([line for _, line in body], delimiter=delimiter))
-    start = _csv_header_row(path, rows, body)
+    start = _csv_header_row(path, rows, body, time)
     metadata.update({row[0].strip(): row[1].strip() for row in rows[:start]
                      if len(row) == 2 and row[0].strip()})
     body, rows = body[start:], rows[start:]
@@ -43,41 +44,45 @@ def read(path, wanted):
                   for i, (name, unit) in enumerate(header)]
         body, rows = [body[0]] + body[2:], [rows[0]] + rows[2:]
     names = [name for name, _ in header]
-    time_column = _csv_time_column(path, names)
+    time_column = _csv_time_column(path, names, time)
     _check_row_lengths(path, body, rows, len(header))
     columns = [time_column] + [names.index(name) for name in wanted
                                if name in names
                                and names.index(name) != time_column]
     cells = {c: [(number, row[c]) for (number, _), row in
                  zip(body[1:], rows[1:])] for c in columns}
-    time = _date_times(path, cells[time_column])
-    if time is not None:
+    stamps = _date_times(path, cells[time_column])
+    if stamps is not None:
         del cells[time_column]
     convention = decide(path, {names[c]: cells[c] for c in cells})
-    if time is None:
-        time = column_values(cells[time_column], convention) * \
-            column_factor(path, header[time_column], "time")
-    raws = {names[c]: (time, column_values(cells[c], convention),
+    if stamps is None:
+        name, unit = header[time_column]
+        stamps = column_values(cells[time_column], convention) * \
+            column_factor(path, (name, time_unit(time, unit)), "time")
+    raws = {names[c]: (stamps, column_values(cells[c], convention),
                        header[c][1]) for c in columns[1:]}
     return [n for i, n in enumerate(names) if i != time_column], metadata, \
         raws
 
 
-def _csv_header_row(path, rows, body):
+def _csv_header_row(path, rows, body, time):
     """Index of the row that names the columns: the first with a time
     column and as many fields as the data rows (a DAQ's header block,
     ``Time;14:03:22`` among its lines, may come before it)."""
     widths = [len(row) for row in rows]
     data_width = max(set(widths), key=widths.count)
     for index, row in enumerate(rows):
-        if len(row) == data_width and any(
-                split_header(cell)[0].lower() in TIME_NAMES
-                for cell in row):
+        if len(row) == data_width and any(is_time_name(cell, time)
+                                          for cell in row):
             return index
     names = [split_header(cell)[0] for cell in rows[0]]
-    raise JudderError(f"{path}: no time column; the line naming the "
-                      "columns must name one 'time [s]' (or 'time' with a "
-                      f"units row under it); columns of line {body[0][0]}: "
+    raise JudderError(f"{path}: no time column "
+                      + (f"{time.name!r}" if time else "")
+                      + "; the line naming the columns must name one "
+                      + ("" if time else "'time [s]' (or 'time' with a "
+                         "units row under it), or give its name with "
+                         "--channel time=NAME[:UNIT]")
+                      + f"; columns of line {body[0][0]}: "
                       f"{listing(names)}")
 
 
@@ -133,9 +138,9 @@ def _delimiter(line):
     return next((d for d in (";", "\t") if d in line), ",")
 
 
-def _csv_time_column(path, names):
+def _csv_time_column(path, names, time):
     for index, name in enumerate(names):
-        if name.lower() in TIME_NAMES:
+        if is_time_name(name, time):
             return index
     raise JudderError(f"{path}: no time column; the first line of data "
                       f"must name one 'time [s]' (columns: "

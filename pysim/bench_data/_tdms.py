@@ -4,8 +4,8 @@ import numpy as np
 
 from infra.errors import JudderError
 
-from ._common import (TIME_NAMES, column_factor, listing, on_one_clock,
-                      plain, split_header)
+from ._common import (column_factor, is_time_name, listing, on_one_clock,
+                      plain, time_unit)
 
 __all__ = ["read"]
 
@@ -14,7 +14,7 @@ __all__ = ["read"]
 _TDMS_EPOCH = np.datetime64("1904-01-01T00:00:00", "ns")
 
 
-def read(path, wanted):
+def read(path, wanted, time=None):
     """NI TDMS: waveform time tracks or a time channel of the group, laid
     on one time base where the channels record when their clocks started
     (``wf_start_time``, a date-time time channel):
@@ -31,7 +31,7 @@ def read(path, wanted):
     for name in wanted:
         found = _tdms_find(path, tdms, name)
         if found is not None:
-            *raws[name], starts[name] = _tdms_signal(path, *found)
+            *raws[name], starts[name] = _tdms_signal(path, *found, time)
     raws = on_one_clock(path, {n: tuple(r) for n, r in raws.items()},
                         starts, "wf_start_time or a date-time time channel")
     return names, plain(dict(tdms.properties)), raws
@@ -50,7 +50,7 @@ def _tdms_find(path, tdms, name):
     return matches[0] if matches else None
 
 
-def _tdms_signal(path, group, channel):
+def _tdms_signal(path, group, channel, time):
     """(time s, values, unit, the clock's start or None)."""
     unit = channel.properties.get("unit_string") or None
     values = channel[:]
@@ -59,25 +59,22 @@ def _tdms_signal(path, group, channel):
             "wf_xunit_string") or "s")
         return (channel.time_track() * factor, values, unit,
                 _instant(channel.properties.get("wf_start_time")))
-    clock = _tdms_time_channel(group)
+    clock = next((c for c in group.channels()
+                  if is_time_name(c.name, time)), None)
     if clock is None or clock is channel:
         raise JudderError(f"{path}: channel '{group.name}/{channel.name}' "
                           "has no time: no wf_increment property and no "
-                          f"'time' channel in group {group.name!r}")
+                          f"{time.name if time else 'time'!r} channel in "
+                          f"group {group.name!r}"
+                          + ("" if time else "; name another with "
+                             "--channel time=NAME[:UNIT]"))
     stamps = clock[:]
     if np.issubdtype(np.asarray(stamps).dtype, np.datetime64):
         # date-time stamps: s from the first, which is the clock's start
         return _seconds(stamps), values, unit, _instant(stamps[0])
-    factor = _tdms_time_factor(path, clock, clock.properties.get(
-        "unit_string") or "s")
+    factor = _tdms_time_factor(path, clock, time_unit(
+        time, clock.properties.get("unit_string")) or "s")
     return stamps * factor, values, unit, None
-
-
-def _tdms_time_channel(group):
-    for channel in group.channels():
-        if split_header(channel.name)[0].lower() in TIME_NAMES:
-            return channel
-    return None
 
 
 def _tdms_time_factor(path, channel, unit):

@@ -49,9 +49,11 @@ from .channels import channel_in_si, checked_specs
 
 __all__ = ["read_acquisition", "READERS", "FORMATS"]
 
-#: File suffix -> reader. ``reader(path, wanted)`` returns the channel
-#: names in the file (list of str), its metadata (dict) and the wanted
-#: names found in it: name -> (time s, values, unit or None).
+#: File suffix -> reader. ``reader(path, wanted, time)`` returns the
+#: channel names in the file (list of str), its metadata (dict) and the
+#: wanted names found in it: name -> (time s, values, unit or None);
+#: ``time`` is the ``time`` role's ChannelSpec (the file's time of another
+#: name), or None.
 READERS = {".mf4": _mdf.read, ".mdf": _mdf.read, ".csv": _csv.read,
            ".tdms": _tdms.read, ".mat": _mat.read}
 #: What the files of each suffix are, for messages.
@@ -69,7 +71,9 @@ def read_acquisition(path, channels):
         :data:`READERS`).
     channels : dict
         Role (``upstream_speed`` required, ``pressure`` and
-        ``downstream_speed`` optional) ->
+        ``downstream_speed`` optional; ``time`` the file's time column,
+        channel or vector where it has another name than those of
+        :data:`pysim.bench_data._common.TIME_NAMES`) ->
         :class:`~pysim.bench_data.acquisition.ChannelSpec` (or a channel
         name).
 
@@ -93,10 +97,12 @@ def read_acquisition(path, channels):
                           f"{suffix or '(no suffix)'!r}; allowed: "
                           f"{', '.join(READERS)}")
     specs = checked_specs(path, channels)
+    time = specs.pop("time", None)
     if not path.is_file():
         raise JudderError(f"{path}: no such file")
     names, metadata, raws = _load(path, suffix,
-                                  [spec.name for spec in specs.values()])
+                                  [spec.name for spec in specs.values()],
+                                  time)
     read = {role: channel_in_si(path, role, spec, names,
                                 raws.get(spec.name))
             for role, spec in specs.items()}
@@ -108,11 +114,11 @@ def read_acquisition(path, channels):
                        metadata=metadata)
 
 
-def _load(path, suffix, wanted):
+def _load(path, suffix, wanted, time):
     """What the reader of ``suffix`` returns; whatever else a corrupt
     file makes its library raise becomes one JudderError."""
     try:
-        return READERS[suffix](path, wanted)
+        return READERS[suffix](path, wanted, time)
     except JudderError:
         raise
     except Exception as exc:   # whatever a corrupt file makes a library do
