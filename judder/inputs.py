@@ -22,7 +22,7 @@ __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary_table", "read_boundary", "read_boundary_tested",
            "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
-           "read_chart_min_growth", "read_chart_limit"]
+           "read_chart_min_growth", "read_chart_limit", "read_chart_runs"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -403,6 +403,33 @@ def read_chart_below(path, group=None, option="--chart"):
     chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
         else group
     return below[groups == chosen] * PA_PER_BAR
+
+
+def read_chart_runs(path, group=None, option="--chart"):
+    """The runs of one group of a chart written by ``judder chart --out``,
+    to draw it again (:func:`pysim.bench_data.plots.runs_figure`).
+
+    Returns
+    -------
+    runs : dict
+        Arrays ``freq_hz``, ``p_f_bar``, ``amplitude_rpm``, ``judder``,
+        ``mechanism`` of the group's runs.
+    boundary : list of (float, float or None, float)
+        Per set point: Hz, the onset (bar; None: no judder) and the largest
+        amplitude tried (bar).
+    """
+    freq, p_f, _ = read_chart_boundary(path, group, option)
+    with np.load(path, allow_pickle=False) as npz:
+        groups = npz["boundary_group"]
+        chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
+            else group
+        tried = npz["boundary_tried_bar"][groups == chosen]
+        keep = npz["group"] == chosen
+        runs = {key: npz[key][keep] for key in (
+            "freq_hz", "p_f_bar", "amplitude_rpm", "judder", "mechanism")}
+    boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
+                 float(top)) for f, p, top in zip(freq, p_f, tried)]
+    return runs, boundary
 
 
 def _damaged(option, path):

@@ -474,3 +474,43 @@ def test_boundary_file_keeps_the_tested_range(tmp_path):
     _, tried = fit("--boundary", str(bare), "--pf-max", "0.6")
     _, assumed = fit("--boundary", str(bare), "--pf-max", "1.5")
     assert abs(assumed["value"] - 0.020) > 2 * abs(tried["value"] - 0.020)
+
+
+def test_fit_figure_says_what_was_measured_and_rounds_as_read():
+    """Issue 31: onsets found on a grid are drawn as the interval between
+    the last amplitude without and the first with judder (not labelled
+    measured onsets), the censoring amplitude as a bench's grid reads it,
+    and a refused fit shows no numbers in its title."""
+    import dataclasses
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    truth = get_preset("paper-4dof-fitted")
+    freqs = np.array([102.0, 104.0, 106.0, 108.0, 109.0, 160.0])
+    exact = model_boundary(truth, freqs, 0.6 * BAR) / BAR
+    grid = 0.05
+    onset = np.ceil(exact / grid) * grid       # NaN stays NaN
+    assert np.isnan(onset[-1]) and np.isfinite(onset[:-1]).all()
+    result = fit_boundary(truth, freqs, onset * BAR, 0.600448 * BAR,
+                          names=("mu_g",), starts=1, uncertainty="jacobian",
+                          curve_points=20, workers=1,
+                          below=(onset - grid) * BAR)
+    fig, ax = plt.subplots()
+    result.plot(ax=ax)
+    labels = ax.get_legend_handles_labels()[1]
+    assert "between the last amplitude without and the first with judder" \
+        in labels
+    assert not any(label.startswith("measured judder onset")
+                   for label in labels)
+    assert "no judder up to 0.6 bar" in labels
+    assert "mu_g =" in ax.get_title()
+    plt.close(fig)
+    refused = dataclasses.replace(result, success=False,
+                                  problems=("mu_g is not determined",))
+    fig, ax = plt.subplots()
+    refused.plot(ax=ax)
+    title = ax.get_title()
+    assert "refused" in title and not any(c.isdigit() for c in
+                                          title.replace("16a", ""))
+    plt.close(fig)

@@ -706,6 +706,14 @@ def report(parameters=None, changes=None, description=None,
             html.escape(str(chart or boundary)))
         step()
         data.update(fit_data)
+        if chart:
+            from pysim.bench_data.plots import runs_figure
+            from ..inputs import read_chart_runs
+            text += figure("Experimental stability chart (Fig. 10)",
+                           runs_figure(*read_chart_runs(chart, group),
+                                       title=Path(chart).name
+                                       + (f", group {group}" if group
+                                          else "")))
         sections.append(text + ("" if fitted is None else figure(
             "Measured and fitted boundaries (Fig. 16a)", fitted.figure())))
     step()
