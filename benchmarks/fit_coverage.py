@@ -64,9 +64,9 @@ def write_example(path, seed=7, noise=0.03, p_max=1.5 * BAR):
     measured = noisy_boundary(get_preset(TRUTH), EXAMPLE_FREQS, p_max,
                               noise, np.random.default_rng(seed),
                               DEFAULT_MIN_GROWTH_PER_S)
-    rows = ["freq_hz,p_f_bar"] + [
+    rows = ["freq_hz,p_f_bar,tried_bar"] + [
         f"{f:g}," + ("" if np.isnan(p) else f"{p / BAR:.4f}")
-        for f, p in zip(EXAMPLE_FREQS, measured)]
+        + f",{p_max / BAR:g}" for f, p in zip(EXAMPLE_FREQS, measured)]
     with open(path, "w", encoding="utf-8") as out:
         out.write("\n".join(rows) + "\n")
 

@@ -19,9 +19,10 @@ from infra.files import decode_text
 from infra.units import PA_PER_BAR
 
 __all__ = ["read_input", "load_parameters", "read_boundary_csv",
-           "read_boundary", "read_boundary_min_growth",
+           "read_boundary_table", "read_boundary", "read_boundary_tested",
+           "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
-           "read_chart_min_growth", "read_chart_limit"]
+           "read_chart_min_growth", "read_chart_limit", "read_chart_runs"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -79,14 +80,24 @@ BOUNDARY_EXTRA_COLUMNS = ("single_period_bar", "double_period_bar",
                           "combination_bar")
 
 
+#: Columns of a boundary CSV that give the range tested at each frequency
+#: (``judder chart --boundary`` writes them), bar, empty where unknown:
+#: the highest amplitude tried without judder (below the onset) and the
+#: largest amplitude tried. A point without judder is censored at its
+#: ``tried_bar``.
+BOUNDARY_TESTED_COLUMNS = ("no_judder_bar", "tried_bar")
+
+
 def read_boundary_csv(text, source="boundary file"):
     """Parse a measured boundary: columns ``freq_hz,p_f_bar``.
 
     ``#`` starts a comment. A header line names the columns (in any
-    order); without one the columns are ``freq_hz,p_f_bar``. The further
-    columns of ``judder tongues --out`` are ignored (so its CSV can be
-    read back); any other column is refused. An empty ``p_f_bar`` means
-    no judder up to the largest amplitude tried.
+    order); without one the columns are ``freq_hz,p_f_bar``. The columns
+    of :data:`BOUNDARY_TESTED_COLUMNS` may follow (see
+    :func:`read_boundary_table`); the further columns of ``judder tongues
+    --out`` are ignored (so its CSV can be read back); any other column is
+    refused. An empty ``p_f_bar`` means no judder up to the largest
+    amplitude tried.
 
     Returns
     -------
@@ -102,7 +113,34 @@ def read_boundary_csv(text, source="boundary file"):
     >>> f.tolist(), p.tolist()
     ([100.0], [30000.0])
     """
-    freqs, amps = [], []
+    table = read_boundary_table(text, source)
+    return table["freq_hz"], table["p_f"]
+
+
+def read_boundary_table(text, source="boundary file"):
+    """Parse a measured boundary with the range tested at each frequency.
+
+    The format of :func:`read_boundary_csv`, with the optional columns
+    ``no_judder_bar`` (the highest amplitude tried without judder, below
+    the onset where there is one) and ``tried_bar`` (the largest amplitude
+    tried), bar, empty where unknown.
+
+    Returns
+    -------
+    dict
+        ``freq_hz`` (Hz), ``p_f``, ``no_judder``, ``tried`` (Pa, NaN where
+        empty or the column is absent) and ``columns`` (the header's
+        names).
+
+    Examples
+    --------
+    >>> t = read_boundary_table("freq_hz,p_f_bar,no_judder_bar,tried_bar\\n"
+    ...                         "100,0.3,0.2,0.6\\n60,,0.6,0.6\\n")
+    >>> (t["no_judder"] / 1e5).tolist(), (t["tried"] / 1e5).tolist()
+    ([0.2, 0.6], [0.6, 0.6])
+    """
+    rows = {name: [] for name in ("freq_hz", "p_f_bar")
+            + BOUNDARY_TESTED_COLUMNS}
     columns = None
     for number, line in enumerate(text.splitlines(), start=1):
         line = line.split("#")[0].strip()
@@ -120,31 +158,54 @@ def read_boundary_csv(text, source="boundary file"):
                               f"{columns['width']}, as the header "
                               "(freq_hz,p_f_bar; p_f_bar empty for no "
                               "judder)")
-        freq_text = cells[columns["freq_hz"]]
-        amp_text = cells[columns["p_f_bar"]]
-        if not _is_number(freq_text) or not (
-                amp_text == "" or _is_number(amp_text)):
+        texts = {name: cells[columns[name]] if name in columns else ""
+                 for name in rows}
+        if not _is_number(texts["freq_hz"]) or not all(
+                texts[name] == "" or _is_number(texts[name])
+                for name in rows if name != "freq_hz"):
             raise JudderError(f"{source}, line {number}: {line!r} is not "
                               "'freq_hz,p_f_bar' (p_f_bar empty for no "
                               "judder)")
-        freq = float(freq_text)
-        amp = float(amp_text) * PA_PER_BAR if amp_text else np.nan
-        if amp_text and np.isnan(amp):
+        freq = float(texts["freq_hz"])
+        amps = {name: float(texts[name]) * PA_PER_BAR if texts[name]
+                else np.nan for name in rows if name != "freq_hz"}
+        gaps = [name for name in amps if texts[name] and np.isnan(amps[name])]
+        if gaps:
             # censored is written as an empty cell; a NaN is a gap in the
             # data, not "no judder up to the largest amplitude"
-            raise JudderError(f"{source}, line {number}: p_f_bar is "
-                              f"{amp_text!r}; allowed: a number >= 0 bar, "
-                              "or empty for no judder up to the largest "
+            raise JudderError(f"{source}, line {number}: {gaps[0]} is "
+                              f"{texts[gaps[0]]!r}; allowed: a number >= 0 "
+                              "bar, or empty for no judder up to the largest "
                               "amplitude tried")
-        if not np.isfinite(freq) or freq <= 0 or amp < 0 or amp == np.inf:
+        if not np.isfinite(freq) or freq <= 0 or any(
+                a < 0 or a == np.inf for a in amps.values()):
             raise JudderError(f"{source}, line {number}: {line!r}: allowed: "
                               "frequency > 0 Hz and amplitude >= 0 bar, "
                               "finite")
-        freqs.append(freq)
-        amps.append(amp)
-    if not freqs:
+        _check_tested(amps, source, number, line)
+        rows["freq_hz"].append(freq)
+        for name, value in amps.items():
+            rows[name].append(value)
+    if not rows["freq_hz"]:
         raise JudderError(f"{source}: no data lines")
-    return np.array(freqs), np.array(amps)
+    return {"freq_hz": np.array(rows["freq_hz"]),
+            "p_f": np.array(rows["p_f_bar"]),
+            "no_judder": np.array(rows["no_judder_bar"]),
+            "tried": np.array(rows["tried_bar"]),
+            "columns": [n for n in columns if n != "width"]}
+
+
+def _check_tested(amps, source, number, line):
+    """A row's tested range is consistent: no judder below the onset, and
+    nothing above the largest amplitude tried."""
+    onset, quiet, tried = (amps["p_f_bar"], amps["no_judder_bar"],
+                           amps["tried_bar"])
+    if quiet >= onset or tried < onset or tried < quiet:
+        raise JudderError(f"{source}, line {number}: {line!r}: allowed: "
+                          "no_judder_bar < p_f_bar <= tried_bar and "
+                          "no_judder_bar <= tried_bar (the highest amplitude "
+                          "without judder lies below the onset, and no "
+                          "amplitude above the largest one tried)")
 
 
 def _boundary_columns(cells, source, number):
@@ -152,7 +213,8 @@ def _boundary_columns(cells, source, number):
     data."""
     if _is_number(cells[0]):
         return None
-    allowed = ("freq_hz", "p_f_bar") + BOUNDARY_EXTRA_COLUMNS
+    allowed = (("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
+               + BOUNDARY_EXTRA_COLUMNS)
     unknown = [c for c in cells if c not in allowed]
     if unknown or len(set(cells)) != len(cells) or not {
             "freq_hz", "p_f_bar"} <= set(cells):
@@ -161,15 +223,54 @@ def _boundary_columns(cells, source, number):
                           + (f" (unknown column {unknown[0]!r})" if unknown
                              else "")
                           + "; allowed: freq_hz and p_f_bar once each, in "
-                          "any order, and the columns of judder tongues "
+                          "any order, optionally "
+                          + " and ".join(BOUNDARY_TESTED_COLUMNS)
+                          + ", and the columns of judder tongues "
                           "--out (" + ", ".join(BOUNDARY_EXTRA_COLUMNS) + ")")
-    return {"freq_hz": cells.index("freq_hz"),
-            "p_f_bar": cells.index("p_f_bar"), "width": len(cells)}
+    return {**{name: cells.index(name) for name in cells
+               if name not in BOUNDARY_EXTRA_COLUMNS}, "width": len(cells)}
 
 
 def read_boundary(path, option="--boundary"):
     """A measured boundary file (see :func:`read_boundary_csv`)."""
     return read_boundary_csv(read_input(path, option), source=str(path))
+
+
+def read_boundary_tested(path, option="--boundary"):
+    """A measured boundary file with its tested range (see
+    :func:`read_boundary_table`)."""
+    return read_boundary_table(read_input(path, option), source=str(path))
+
+
+def boundary_p_max(table, pf_max_bar, path, option="--boundary",
+                   pf_option="--pf-max"):
+    """The largest amplitude tried (bar) that a boundary's censored points
+    mean "no judder up to".
+
+    ``pf_max_bar`` (``--pf-max``) if given; else the largest ``tried_bar``
+    of ``table`` (:func:`read_boundary_table`), as ``judder fit --chart``
+    takes the chart's. A point without judder whose file does not say up
+    to which amplitude it was tried is refused, naming it, rather than
+    assumed tried to some amplitude (the refusal names ``pf_option`` as
+    the way round, unless None); a boundary with an onset at every
+    frequency and no ``tried_bar`` is taken as tried to its highest onset.
+    """
+    if pf_max_bar is not None:
+        return pf_max_bar
+    censored = np.isnan(table["p_f"])
+    unknown = censored & np.isnan(np.fmax(table["tried"],
+                                          table["no_judder"]))
+    if unknown.any():
+        freqs = ", ".join(f"{f:g}" for f in table["freq_hz"][unknown][:5])
+        raise JudderError(
+            f"{option} {path}: {int(unknown.sum())} point(s) without judder "
+            f"({freqs} Hz) do not say up to which amplitude they were "
+            "tried; allowed: a tried_bar column (judder chart --boundary "
+            "writes it)" + ("" if pf_option is None else
+                            f" or {pf_option} BAR, the largest amplitude "
+                            "tried"))
+    return float(np.nanmax(np.concatenate(
+        [table["tried"], table["no_judder"], table["p_f"]]))) / PA_PER_BAR
 
 
 def _boundary_comment(path, option, name, unit, positive):
@@ -310,6 +411,33 @@ def read_chart_below(path, group=None, option="--chart"):
     chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
         else group
     return below[groups == chosen] * PA_PER_BAR
+
+
+def read_chart_runs(path, group=None, option="--chart"):
+    """The runs of one group of a chart written by ``judder chart --out``,
+    to draw it again (:func:`pysim.bench_data.plots.runs_figure`).
+
+    Returns
+    -------
+    runs : dict
+        Arrays ``freq_hz``, ``p_f_bar``, ``amplitude_rpm``, ``judder``,
+        ``mechanism`` of the group's runs.
+    boundary : list of (float, float or None, float)
+        Per set point: Hz, the onset (bar; None: no judder) and the largest
+        amplitude tried (bar).
+    """
+    freq, p_f, _ = read_chart_boundary(path, group, option)
+    with np.load(path, allow_pickle=False) as npz:
+        groups = npz["boundary_group"]
+        chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
+            else group
+        tried = npz["boundary_tried_bar"][groups == chosen]
+        keep = npz["group"] == chosen
+        runs = {key: npz[key][keep] for key in (
+            "freq_hz", "p_f_bar", "amplitude_rpm", "judder", "mechanism")}
+    boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
+                 float(top)) for f, p, top in zip(freq, p_f, tried)]
+    return runs, boundary
 
 
 def _damaged(option, path):

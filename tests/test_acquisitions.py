@@ -643,3 +643,238 @@ def test_csv_in_windows_1252_reads(tmp_path):
     assert_allclose(acq.channels["pressure"].time, [0.0, 1e-3, 2e-3])
     assert_allclose(acq.channels["upstream_speed"].values,
                     np.array([1000.5, 1001.5, 1002.5]) * TO_SI["rpm"])
+
+
+# --- clocks started apart: aligned on absolute time (issue 31) ------------
+
+def _ramp(time, start=1.84):
+    """A pressure of 3 bar stepping to 8 bar at ``start`` (its own clock)."""
+    return np.where(time < start, 3.0, 8.0)
+
+
+def _ramp_time(channel):
+    """When a read pressure first exceeds 5.5 bar, s."""
+    return channel.time[np.argmax(channel.values > 5.5 * TO_SI["bar"])]
+
+
+def test_tdms_clocks_started_apart_are_aligned(tmp_path, bench):
+    """Pressure recorded by a task started 1.5 s before the speeds' (its
+    wf_start_time), the speeds with date-time stamps: the pressure's step
+    at 1.84 s of its own record is 0.34 s into the speeds' record."""
+    from nptdms import ChannelObject, TdmsWriter
+    t0 = np.datetime64("2026-12-03T07:00:00", "ns")
+    t_up, n_up = bench["EngSpd_up"]
+    t_p = np.arange(3000) * 1e-3
+    stamps = t0 + (t_up * 1e9).astype("timedelta64[ns]")
+    path = tmp_path / "tasks.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject("Speeds", "Time", stamps),
+            ChannelObject("Speeds", "EngSpd_up", n_up,
+                          properties={"unit_string": "rpm"}),
+            ChannelObject("Hydraulics", "PressEVEN", _ramp(t_p),
+                          properties={
+                              "unit_string": "bar", "wf_increment": 1e-3,
+                              "wf_start_offset": 0.0,
+                              "wf_start_time": t0 - np.timedelta64(1500,
+                                                                   "ms")})])
+    roles = {"upstream_speed": ChannelSpec("EngSpd_up"),
+             "pressure": ChannelSpec("PressEVEN")}
+    acq = read_acquisition(path, roles)
+    speed = acq.channels["upstream_speed"]
+    # the speeds' clock: their first stamp is t_up[0] after t0
+    speeds_zero = speed.time[0] - t_up[0]
+    # (npTDMS reads date-time stamps to the microsecond)
+    assert _ramp_time(acq.channels["pressure"]) - speeds_zero == \
+        pytest.approx(0.34, abs=2e-6)
+    assert_allclose(np.diff(speed.time), np.diff(t_up), atol=2e-6)
+
+
+def test_tdms_clocks_that_cannot_be_aligned_are_refused(tmp_path, bench):
+    from nptdms import ChannelObject, TdmsWriter
+    t_up, n_up = bench["EngSpd_up"]
+    path = tmp_path / "mixed.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject("Speeds", "Time", t_up,
+                          properties={"unit_string": "s"}),
+            ChannelObject("Speeds", "EngSpd_up", n_up,
+                          properties={"unit_string": "rpm"}),
+            ChannelObject("Hydraulics", "PressEVEN", np.full(100, 3.0),
+                          properties={
+                              "unit_string": "bar", "wf_increment": 1e-3,
+                              "wf_start_offset": 0.0,
+                              "wf_start_time": np.datetime64(
+                                  "2026-12-03T07:00:00", "ns")})])
+    message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up"),
+                              "pressure": ChannelSpec("PressEVEN")})
+    assert "'PressEVEN'" in message and "'EngSpd_up'" in message
+    assert "one time base" in message
+
+
+# --- numbers read as written (issue 31) -----------------------------------
+
+SPEED_PRESSURE = {"upstream_speed": ChannelSpec("EngSpd_up"),
+                  "pressure": ChannelSpec("PressEVEN")}
+
+
+def _csv_read(tmp_path, text, roles=SPEED_PRESSURE):
+    path = tmp_path / "export.csv"
+    path.write_text(text)
+    return path, roles
+
+
+def test_us_thousands_separators_in_a_tab_separated_export(tmp_path):
+    # integer speeds with a thousands comma; the time's and the
+    # pressure's decimal points say the comma is not a decimal one
+    path, roles = _csv_read(
+        tmp_path, "time [s]\tEngSpd_up [rpm]\tPressEVEN [bar]\n"
+        "0.000\t998\t3.05\n0.001\t\"1,000\"\t3.10\n0.002\t1,002\t3.15\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([998, 1000, 1002]) * TO_SI["rpm"], rtol=1e-12)
+
+
+def test_german_thousands_and_decimal_comma(tmp_path):
+    path, roles = _csv_read(
+        tmp_path, "time [s];EngSpd_up [rpm];PressEVEN [bar]\n"
+        "0;1.000,60656;3\n0,001;1.001,5;3,1\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([1000.60656, 1001.5]) * TO_SI["rpm"],
+                    rtol=1e-12)
+    assert_allclose(acq.channels["upstream_speed"].time, [0.0, 0.001])
+
+
+@pytest.mark.parametrize("text, words", [
+    # every separated cell reads both ways: refused, not guessed
+    ("time [ms]\tEngSpd_up [rpm]\tPressEVEN [bar]\n0\t998\t3\n"
+     "1\t1,000\t3\n", ["column 'EngSpd_up'", "'1,000'", "line 3", "1000",
+                       "no cell of the file tells which"]),
+    # columns written with different decimal separators
+    ("time [s];EngSpd_up [rpm];PressEVEN [bar]\n0.001;1000;3,5\n",
+     ["'0.001'", "'3,5'", "column 'time'", "column 'PressEVEN'"]),
+    # a cell no convention reads is quoted as the file has it
+    ("time [s];EngSpd_up [rpm];PressEVEN [bar]\n0;1.00.5;3\n",
+     ["line 2", "'1.00.5' is not a number"]),
+])
+def test_numbers_that_cannot_be_read_as_written_are_refused(tmp_path, text,
+                                                            words):
+    path, roles = _csv_read(tmp_path, text)
+    message = _message(path, roles)
+    assert str(path) in message
+    for word in words:
+        assert word in message
+
+
+def test_csv_date_time_column(tmp_path):
+    path, roles = _csv_read(
+        tmp_path, "Time;EngSpd_up [rpm];PressEVEN [bar]\n"
+        "03.12.2026 07:41:59,998;1000,5;3\n"
+        "03.12.2026 07:42:00,000;1001,5;3\n"
+        "03.12.2026 07:42:00,003;1002,5;3\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 0.002, 0.005],
+                    atol=1e-12)
+    path.write_text("time,EngSpd_up [rpm]\n2026-12-03T07:41:59.5,1000\n"
+                    "2026-12-03T07:42:00.25,1001\n")
+    acq = read_acquisition(path, {"upstream_speed": ChannelSpec(
+        "EngSpd_up")})
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 0.75])
+
+
+# --- what had no way round (issue 31) -------------------------------------
+
+def test_a_time_column_of_another_name_is_named_by_the_time_role(tmp_path):
+    text = ("Zeit  1 - Standardmessrate [ms];EngSpd_up [rpm]\n"
+            "0;1000\n1;1001\n2;1002\n")
+    path = tmp_path / "catman.csv"
+    path.write_text(text)
+    speed = {"upstream_speed": ChannelSpec("EngSpd_up")}
+    assert "--channel time=NAME" in _message(path, speed)
+    role, spec = parse_channel_option("time=Zeit  1 - Standardmessrate")
+    acq = read_acquisition(path, {**speed, role: spec})
+    assert set(acq.channels) == {"upstream_speed"}
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 1e-3, 2e-3])
+    # its unit given overrides the file's
+    acq = read_acquisition(path, {**speed, "time": ChannelSpec(
+        "Zeit  1 - Standardmessrate", "s")})
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 1, 2])
+
+
+def test_tdms_and_mat_time_of_another_name(tmp_path, bench):
+    from nptdms import ChannelObject, TdmsWriter
+    t_up, n_up = bench["EngSpd_up"]
+    path = tmp_path / "run.tdms"
+    with TdmsWriter(str(path)) as writer:
+        writer.write_segment([
+            ChannelObject("G", "Clock", t_up * 1e3,
+                          properties={"unit_string": "ms"}),
+            ChannelObject("G", "EngSpd_up", n_up,
+                          properties={"unit_string": "rpm"})])
+    speed = {"upstream_speed": ChannelSpec("EngSpd_up")}
+    assert "--channel time=NAME" in _message(path, speed)
+    acq = read_acquisition(path, {**speed, "time": ChannelSpec("Clock")})
+    assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
+    path = tmp_path / "run.mat"
+    scipy.io.savemat(path, {"Clock": t_up * 1e3, "EngSpd_up": n_up,
+                            "units": {"EngSpd_up": "rpm"}})
+    acq = read_acquisition(path, {**speed,
+                                  "time": ChannelSpec("Clock", "ms")})
+    assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
+
+
+def test_a_pressure_recorded_in_ma_is_read_through_its_scale(tmp_path,
+                                                             bench):
+    t_up, n_up = bench["EngSpd_up"]
+    current = np.linspace(4.0, 20.0, len(t_up))
+    path = tmp_path / "ma.csv"
+    path.write_text("time [s],EngSpd_up [rpm],Ch3 [mA]\n" + "".join(
+        f"{t:.17g},{n:.17g},{c:.17g}\n"
+        for t, n, c in zip(t_up, n_up, current)))
+    role, spec = parse_channel_option("pressure=Ch3:4..20mA=0..25bar")
+    acq = read_acquisition(path, {"upstream_speed": "EngSpd_up",
+                                  role: spec})
+    pressure = acq.channels["pressure"]
+    # closed form: 4 mA is 0 bar, 20 mA 25 bar, linear between
+    assert_allclose(pressure.values, (current - 4) / 16 * 25 * TO_SI["bar"],
+                    rtol=1e-12, atol=1e-6)
+    assert pressure.unit_in_file == "mA"
+    # a scale from another unit than the file's is refused
+    message = _message(path, {"upstream_speed": "EngSpd_up",
+                              "pressure": ChannelSpec("Ch3",
+                                                      "0..10V=0..25bar")})
+    assert "'mA'" in message and "'V'" in message
+    with pytest.raises(JudderError, match="LOW..HIGH UNIT=LOW..HIGH UNIT"):
+        parse_channel_option("pressure=Ch3:4-20mA=0-25bar")
+    with pytest.raises(JudderError, match="pressure unit"):
+        parse_channel_option("pressure=Ch3:4..20mA=0..3000rpm")
+
+
+def test_mdf_refuses_a_time_role(mf4):
+    message = _message(mf4, {"upstream_speed": "EngSpd_up",
+                             "time": ChannelSpec("t")})
+    assert "master channel" in message
+
+
+def test_dspace_struct_arrays(tmp_path, bench):
+    """dSPACE ControlDesk's MAT export: judder_run.X (time bases) and
+    judder_run.Y (a struct array of signals), written with savemat."""
+    (t_up, n_up), (t_p, p) = bench["EngSpd_up"], bench["PressEVEN"]
+    bases = np.zeros((1, 2), dtype=[("Name", "O"), ("Data", "O")])
+    bases[0, 0] = ("Time", t_up)
+    bases[0, 1] = ("Time", t_p)
+    signals = np.zeros((1, 2), dtype=[("Name", "O"), ("Data", "O"),
+                                      ("Unit", "O"), ("XIndex", "O")])
+    signals[0, 0] = ("EngSpd_up", n_up, "rpm", 1)
+    signals[0, 1] = ("PressEVEN", p, "bar", 2)
+    path = tmp_path / "dspace.mat"
+    scipy.io.savemat(path, {"judder_run": {"X": bases, "Y": signals}})
+    acq = read_acquisition(path, {"upstream_speed": "judder_run.EngSpd_up",
+                                  "pressure": "PressEVEN"})
+    assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    n_up * TO_SI["rpm"], rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].time, t_p, rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values, p * TO_SI["bar"],
+                    rtol=1e-12)

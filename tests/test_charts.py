@@ -263,11 +263,15 @@ def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
     lowest = data["boundary"][1][1]
     assert data["boundary"] == [[60.0, None], [206.0, lowest]]
     assert lowest in (0.2, 0.3)
+    below = {0.2: 0.05, 0.3: 0.2}     # the amplitude run below the onset
     assert boundary.read_text().splitlines() == ["# written by judder",
                                                  "# min_growth_per_s: 1",
                                                  "# judder_limit_rpm: 30",
-                                                 "freq_hz,p_f_bar", "60,",
-                                                 f"206,{lowest:g}"]
+                                                 "freq_hz,p_f_bar,"
+                                                 "no_judder_bar,tried_bar",
+                                                 "60,,0.3,0.3",
+                                                 f"206,{lowest:g},"
+                                                 f"{below[lowest]:g},0.3"]
     assert plot.read_bytes()[:4] == b"\x89PNG"
     with np.load(out) as npz:
         assert npz["judder"].sum() == sum(r["judder"] for r in data["runs"])
@@ -620,3 +624,25 @@ def test_boundary_files_of_groups_are_named_without_a_trailing_zero(tmp_path):
         tmp_path / "b.csv")
     assert [Path(p).name for p in written] == ["b_1000_40.csv",
                                                "b_1500_hot.csv"]
+
+
+@pytest.mark.parametrize("freq_hz", [103.3, 214.0])
+def test_dither_is_read_from_the_pressure_samples_as_taken(freq_hz):
+    """Issue 31: a pressure sampled at a pick-up's tooth passages (about
+    3.3 samples per dither period at 214 Hz, irregular) over a ramp; the
+    sinusoid fitted to the samples as taken is the one sampled (closed
+    form: no noise, so exactly), where resampling them linearly first
+    read it 7-36 % low."""
+    rng = np.random.default_rng(3)
+    step = 1 / (3.3 * 214.0)
+    time = np.cumsum(step * (0.8 + 0.4 * rng.random(4000)))
+    amplitude, phase = 0.2 * PA_PER_BAR, 0.7
+    pressure = (8 * PA_PER_BAR + 2e4 * (time - 1.0)
+                + amplitude * np.sin(2 * np.pi * freq_hz * time + phase))
+    window = (0.2, time[-1] - 0.1)
+    freq, read = estimate_dither(time, pressure, window)
+    assert freq == pytest.approx(freq_hz, rel=1e-6)   # the search tolerance
+    assert read == pytest.approx(amplitude, rel=1e-6)
+    # the frequency known: the amplitude at it
+    assert estimate_dither(time, pressure, window, freq_hz)[1] == \
+        pytest.approx(amplitude, rel=1e-9)

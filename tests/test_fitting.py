@@ -417,3 +417,126 @@ def test_the_fit_reads_the_checked_boundaries_without_their_check():
     assert np.isfinite(amplitude).any(axis=0).all()
     np.testing.assert_array_equal(amplitude, checked.amplitude)
     assert checked.max_multiplier_error < 1e-6
+
+
+def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0):
+    """A chart of runs on a grid of amplitudes at each frequency, each
+    judder where the project's Floquet boundary of ``truth`` (growth 1
+    1/s, forced oscillation at ``limit_rpm``) lies at or below it."""
+    from types import SimpleNamespace
+
+    from infra.units import RAD_S_PER_RPM
+    from pysim.bench_data.charts import Chart, ChartRun
+    onset = model_boundary(truth, freqs, 2 * grid_bar[-1] * BAR,
+                           min_growth=1.0,
+                           forced_limit=limit_rpm * RAD_S_PER_RPM) / BAR
+    runs = []
+    for f, boundary in zip(freqs, onset):
+        for p in grid_bar:
+            judder = bool(p >= boundary)
+            analysis = SimpleNamespace(
+                freq_hz=float(f), p_f_bar=float(p), judder=judder,
+                estimated=False, window_s=(0.0, 3.0), amplitude_rpm=0.0,
+                growth_per_s=None, kind="single-period" if judder
+                else "stable", mechanism=None, oscillation_rpm=0.0,
+                forced_rpm=0.0)
+            runs.append(ChartRun(f"run_{f:g}_{p:g}.mf4", {}, analysis))
+    return Chart(runs=runs, group_by=(), min_growth=1.0,
+                 judder_limit_rpm=limit_rpm), onset
+
+
+def test_boundary_file_keeps_the_tested_range(tmp_path):
+    """Issue 31: a chart tested to 0.6 bar, written as a boundary file by
+    judder chart --boundary, fits as the chart does; a file that does not
+    say how far its points without judder were tried is refused instead
+    of assumed tried to 1.5 bar (which gave mu_g = 0.0160 for 0.020)."""
+    import json
+    import subprocess
+    import sys
+
+    from judder.commands.chart import ChartResult
+    truth = get_preset("paper-4dof-fitted").replace(mu_g=0.020)
+    # a sweep refined about tongue 2, as a test engineer does
+    freqs = np.concatenate([np.arange(60.0, 101.0, 10.0),
+                            np.arange(101.0, 113.0, 1.0),
+                            np.arange(120.0, 201.0, 20.0)])
+    grid = np.round(np.arange(0.05, 0.601, 0.05), 2)
+    # an NVH limit no forced response reaches: the onsets are Floquet's
+    chart, onset = _synthetic_chart(truth, freqs, grid, limit_rpm=1e6)
+    # onsets inside the grid and points without judder up to 0.6 bar
+    assert np.sum(onset <= 0.6) == 6 and np.isnan(onset).sum() > 5
+    result = ChartResult(chart=chart, seconds=0.0)
+    npz, csv = tmp_path / "chart.npz", tmp_path / "boundary.csv"
+    result.save(npz)
+    result.save_boundary(csv)
+    lines = csv.read_text().splitlines()
+    header = lines.index("freq_hz,p_f_bar,no_judder_bar,tried_bar")
+    censored = next(line for line in lines[header + 1:]
+                    if line.split(",")[1] == "")
+    assert censored.split(",")[2:] == ["0.6", "0.6"]
+
+    def fit(*source):
+        proc = subprocess.run(
+            [sys.executable, "-m", "judder", "fit", *source, "--preset",
+             "paper-4dof-fitted", "--fit", "mu_g", "--starts", "1",
+             "--threshold-spread", "0", "--json"],
+            capture_output=True, text=True, timeout=600)
+        return proc, (json.loads(proc.stdout)["fitted"]["mu_g"]
+                      if proc.returncode == 0 else None)
+    _, from_chart = fit("--chart", str(npz))
+    _, from_file = fit("--boundary", str(csv))
+    assert from_file["value"] == pytest.approx(from_chart["value"], rel=1e-9)
+    assert from_file["ci95"] == pytest.approx(from_chart["ci95"], rel=1e-9)
+    low, high = from_file["ci95"]
+    assert low < 0.020 < high and high - low < 0.002
+    # without its tested range the file is refused, naming the way round
+    bare = tmp_path / "bare.csv"
+    bare.write_text("\n".join(",".join(line.split(",")[:2])
+                              for line in lines) + "\n")
+    proc, _ = fit("--boundary", str(bare))
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert "tried_bar" in proc.stderr and "--pf-max" in proc.stderr
+    # given, the range is used; the old assumption of 1.5 bar biases mu_g
+    _, tried = fit("--boundary", str(bare), "--pf-max", "0.6")
+    _, assumed = fit("--boundary", str(bare), "--pf-max", "1.5")
+    assert abs(assumed["value"] - 0.020) > 2 * abs(tried["value"] - 0.020)
+
+
+def test_fit_figure_says_what_was_measured_and_rounds_as_read():
+    """Issue 31: onsets found on a grid are drawn as the interval between
+    the last amplitude without and the first with judder (not labelled
+    measured onsets), the censoring amplitude as a bench's grid reads it,
+    and a refused fit shows no numbers in its title."""
+    import dataclasses
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    truth = get_preset("paper-4dof-fitted")
+    freqs = np.array([102.0, 104.0, 106.0, 108.0, 109.0, 160.0])
+    exact = model_boundary(truth, freqs, 0.6 * BAR) / BAR
+    grid = 0.05
+    onset = np.ceil(exact / grid) * grid       # NaN stays NaN
+    assert np.isnan(onset[-1]) and np.isfinite(onset[:-1]).all()
+    result = fit_boundary(truth, freqs, onset * BAR, 0.600448 * BAR,
+                          names=("mu_g",), starts=1, uncertainty="jacobian",
+                          curve_points=20, workers=1,
+                          below=(onset - grid) * BAR)
+    fig, ax = plt.subplots()
+    result.plot(ax=ax)
+    labels = ax.get_legend_handles_labels()[1]
+    assert "between the last amplitude without and the first with judder" \
+        in labels
+    assert not any(label.startswith("measured judder onset")
+                   for label in labels)
+    assert "no judder up to 0.6 bar" in labels
+    assert "mu_g =" in ax.get_title()
+    plt.close(fig)
+    refused = dataclasses.replace(result, success=False,
+                                  problems=("mu_g is not determined",))
+    fig, ax = plt.subplots()
+    refused.plot(ax=ax)
+    title = ax.get_title()
+    assert "refused" in title and not any(c.isdigit() for c in
+                                          title.replace("16a", ""))
+    plt.close(fig)

@@ -263,3 +263,32 @@ def test_report_shows_no_fit_the_data_cannot_determine():
     assert "No fit is shown" in text and "needs at least 5" in text
     assert data["fit_status"].startswith("no fit: the measured boundary has "
                                          "3 points with judder")
+
+
+def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):
+    """Issue 31: with --chart the bench section shows the chart (Fig.
+    10), whether or not a fit can be shown (here it cannot: one onset
+    for three parameters)."""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests"))
+    from test_fitting import _synthetic_chart
+    from judder.commands.chart import ChartResult
+    from judder.inputs import read_chart_runs
+    from sources import get_preset
+    chart, _ = _synthetic_chart(get_preset("paper-4dof-fitted"),
+                                np.array([100.0, 105.0, 160.0]),
+                                np.array([0.1, 0.2, 0.3]), limit_rpm=1e6)
+    npz = tmp_path / "chart.npz"
+    ChartResult(chart=chart, seconds=0.0).save(npz)
+    runs, boundary = read_chart_runs(npz)
+    assert len(runs["freq_hz"]) == 9 and runs["judder"].sum() == 1
+    assert boundary == [(100.0, None, 0.3), (105.0, 0.3, 0.3),
+                        (160.0, None, 0.3)]
+    out = tmp_path / "report.html"
+    assert main(["report", "--chart", str(npz), "--grid=10:220:30",
+                 "--map-freq=5:250:20", "--map-pf=0:1.5:8",
+                 "--sensitivity", "mu_g", "--workers=1", "--out",
+                 str(out)]) == 0
+    page = out.read_text()
+    assert "Experimental stability chart (Fig. 10)" in page
+    assert "No fit is shown" in page

@@ -482,6 +482,19 @@ def fit_section(bench, names, values, source, fitted, error):
             fitted)
 
 
+def chart_figure(page, chart, group):
+    """The experimental stability chart (Fig. 10) of a chart file
+    (``judder chart --out``) read back, as the fit's section shows it."""
+    from pathlib import Path
+
+    from pysim.bench_data.plots import runs_figure
+    from ..inputs import read_chart_runs
+    title = Path(chart).name + (f", group {group}" if group else "")
+    return page.figure("Experimental stability chart (Fig. 10)",
+                       runs_figure(*read_chart_runs(chart, group),
+                                   title=title))
+
+
 def driveline_section(values, modes):
     """The driveline (an appendix): natural frequencies, damping and the
     table of its parameters."""

@@ -55,10 +55,16 @@ def add_arguments(p):
     p.add_argument("--channel", action="append", default=[],
                    metavar="ROLE=NAME[:UNIT[:KIND]]",
                    help="channel of ROLE (upstream_speed, required; "
-                        "pressure; downstream_speed) in the files, with its "
+                        "pressure; downstream_speed; time, the files' time "
+                        "column when it is not called time, t, Zeit or "
+                        "timestamp, e.g. 'time=Zeit  1 - "
+                        "Standardmessrate:s') in the files, with its "
                         "unit if the file has none (rpm, rad/s, bar, Pa, "
                         "...; an angle unit, rad, deg, rev or counts/N "
-                        "(N a revolution), for an encoder); for a speed, "
+                        "(N a revolution), for an encoder) or a sensor's "
+                        "linear scale LOW..HIGH UNIT=LOW..HIGH UNIT (e.g. "
+                        "pressure=Ch3:4..20mA=0..25bar: 4-20 mA recorded "
+                        "for 0-25 bar); for a speed, "
                         "KIND says what its samples "
                         "are: passage (a pick-up's tooth passages), "
                         "sampled (a DAQ's rate), angle (an encoder), "

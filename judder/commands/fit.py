@@ -12,8 +12,9 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from stability.monodromy import DEFAULT_METHOD
 
 from ..bench import bench_damping, check_bench, parse_bench
-from ..inputs import (read_boundary, read_boundary_limit,
-                      read_boundary_min_growth, read_chart_below,
+from ..inputs import (boundary_p_max, read_boundary_limit,
+                      read_boundary_min_growth, read_boundary_tested,
+                      read_chart_below,
                       read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
 from ._arguments import (force_option, method_option, model_options,
@@ -31,7 +32,8 @@ from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED,
 DESCRIPTION = (
     "Adjust hard-to-know parameters so the model's boundary of judder "
     "growing at --min-growth matches a measured one (CSV: "
-    "freq_hz,p_f_bar; empty p_f_bar = no judder up to --pf-max), or the "
+    "freq_hz,p_f_bar[,no_judder_bar,tried_bar]; empty p_f_bar = no "
+    "judder up to tried_bar or --pf-max), or the "
     "boundary of a chart (judder chart --out). Reports each value with "
     "its standard uncertainty, 95 % interval and unit, their "
     "correlations and the scatter of the onsets; refuses what the data "
@@ -63,7 +65,9 @@ def add_arguments(p):
                         "(default a factor 100 either way of the start)")
     p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest amplitude tried on the bench (and searched "
-                        "in the model), bar (default 1.5, or the chart's)")
+                        "in the model), bar (default: the chart's, or the "
+                        "boundary file's largest tried_bar; needed for a "
+                        "file with points without judder and no tried_bar)")
     p.add_argument("--plot", metavar="FILE.png",
                    help="measured and fitted boundaries (Fig. 16a)")
     p.add_argument("--starts", type=WholeNumber("--starts", 1, 1000),
@@ -140,7 +144,6 @@ def run(args):
     params, changes = parameters_of(args)
     names = _fit_names(args.fit, params)
     bounds = _bounds(args.bounds, params, names)
-    default_p_max = 1.5
     default_growth = DEFAULT_MIN_GROWTH_PER_S
     default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
     if args.chart:
@@ -150,8 +153,10 @@ def run(args):
         default_limit = read_chart_limit(args.chart)
         below = read_chart_below(args.chart, args.group)
     else:
-        freqs, measured = read_boundary(args.boundary)
-        below = None
+        table = read_boundary_tested(args.boundary)
+        freqs, measured = table["freq_hz"], table["p_f"]
+        below = np.where(np.isnan(measured), np.nan, table["no_judder"])
+        default_p_max = boundary_p_max(table, args.pf_max, args.boundary)
         stated = read_boundary_min_growth(args.boundary)
         default_growth = default_growth if stated is None else stated
         default_limit = read_boundary_limit(args.boundary)

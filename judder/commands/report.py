@@ -36,7 +36,8 @@ from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, workers_option)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
-from ._report_sections import (Page, advice_section, driveline_section,
+from ._report_sections import (Page, advice_section, chart_figure,
+                               driveline_section,
                                engagement_section, fit_section, focus_tongue,
                                kinds_section, map_section,
                                sensitivity_section, setting_section,
@@ -113,7 +114,8 @@ def add_arguments(p):
                         help="bench data: a chart (judder chart --out)")
     source.add_argument("--boundary", metavar="FILE.csv",
                         help="bench data: a measured boundary "
-                             "(freq_hz,p_f_bar)")
+                             "(freq_hz,p_f_bar[,no_judder_bar,tried_bar], "
+                             "as judder chart --boundary writes it)")
     p.add_argument("--group", metavar="VALUE",
                    help="group of the chart, when it has several")
     p.add_argument("--fit", type=Listed("--fit", str),
@@ -283,7 +285,7 @@ def report(parameters=None, changes=None, description=None,
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
     # bench data first: a bad file is refused before any work
-    bench = _bench_data(chart, boundary, group, p_max_bar)
+    bench = _bench_data(chart, boundary, group)
     for option, given in (("--sensitivity", names),
                           ("--fit", fit_names if bench else ())):
         unknown = [n for n in given if n not in values.specs]
@@ -389,6 +391,8 @@ def report(parameters=None, changes=None, description=None,
             fitted, error)
         step()
         data.update(fit_data)
+        if chart:
+            text += chart_figure(page, chart, group)
         page.sections.append(text + ("" if fitted is None else page.figure(
             "Measured and fitted boundaries (Fig. 16a)", fitted.figure())))
     step()
@@ -409,12 +413,13 @@ class _Steps:
             self.progress(self.done, self.total)
 
 
-def _bench_data(chart, boundary, group, p_max_bar):
+def _bench_data(chart, boundary, group):
     """The bench data to fit, as :func:`fit_section` takes them: a
     chart's boundary (with its tried points, growth rate, amplitudes
-    below and threshold spread) or a measured boundary CSV; None without
-    either."""
-    from ..inputs import (read_boundary, read_chart_below,
+    below and threshold spread) or a measured boundary CSV (censored at
+    the amplitudes it says were tried); None without either."""
+    from ..inputs import (boundary_p_max, read_boundary_min_growth,
+                          read_boundary_tested, read_chart_below,
                           read_chart_boundary, read_chart_min_growth)
     if chart:
         return (*read_chart_boundary(chart, group),
@@ -422,8 +427,13 @@ def _bench_data(chart, boundary, group, p_max_bar):
                 read_chart_below(chart, group) / PA_PER_BAR,
                 CHART_THRESHOLD_SPREAD_PER_S)
     if boundary:
-        return (*read_boundary(boundary, "--boundary"), p_max_bar,
-                DEFAULT_MIN_GROWTH_PER_S, None, 0.0)
+        table = read_boundary_tested(boundary)
+        stated = read_boundary_min_growth(boundary)
+        return (table["freq_hz"], table["p_f"],
+                boundary_p_max(table, None, boundary, pf_option=None),
+                DEFAULT_MIN_GROWTH_PER_S if stated is None else stated,
+                np.where(np.isnan(table["p_f"]), np.nan,
+                         table["no_judder"]) / PA_PER_BAR, 0.0)
     return None
 
 

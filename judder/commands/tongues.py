@@ -249,13 +249,15 @@ class TonguesResult:
 
     def csv_text(self):
         """Boundaries as CSV: freq_hz, p_f_bar (lowest, empty if none),
-        then the lowest boundary of each kind, bar; a first comment gives
+        then the lowest boundary of each kind and the amplitude searched
+        up to (``tried_bar``: a point without a boundary is stable up to
+        it), bar; a first comment gives
         the growth rate they are the boundaries of (``judder fit
         --boundary`` compares with the model's boundary of that rate)."""
         b = self.boundaries
         lines = [f"# min_growth_per_s: {b.min_growth:g}",
                  "freq_hz,p_f_bar,single_period_bar,double_period_bar,"
-                 "combination_bar"]
+                 "combination_bar,tried_bar"]
 
         def cell(value):
             return "" if not math.isfinite(value) \
@@ -263,7 +265,8 @@ class TonguesResult:
         for f, lowest, row in zip(b.freq_hz, b.stability_boundary,
                                   b.amplitude):
             lines.append(",".join([f"{f:.9g}", cell(lowest)]
-                                  + [cell(v) for v in row]))
+                                  + [cell(v) for v in row]
+                                  + [cell(b.p_max)]))
         return "\n".join(lines) + "\n"
 
     @keeps_foreign_files

@@ -10,8 +10,9 @@ own time base. :func:`analyse_run` does, in order:
    :data:`SLIP_SHARE` of its largest value; without a downstream speed,
    the pressure alone), both smoothed over :data:`SMOOTHING_S`.
 2. **Dither setting** when it is not given: the pressure's spectral peak
-   in the window, refined to the frequency that maximises the windowed
-   Fourier sum (:func:`estimate_dither`); the amplitude is that sum's.
+   in the window, refined to the frequency of the least-squares sinusoid
+   fitted to the pressure samples as taken (:func:`estimate_dither`); the
+   amplitude is that sinusoid's.
 3. **Components** of the upstream speed, resampled uniformly over the
    whole run and high-passed above 5 Hz (the engagement itself is
    slower), by complex demodulation,
@@ -373,12 +374,49 @@ def _fourier_amplitude(time, values, freq):
     return 2 * abs(np.sum(window * values * phasor)) / window.sum()
 
 
-def estimate_dither(time, pressure, window):
+def _sinusoid_fit(time, values, freq):
+    """Least-squares fit of ``a + b tau + c cos(2 pi f t) + d sin(2 pi f
+    t)`` to the samples as taken (``tau`` the time from their middle: the
+    line is the trend the engagement puts under the dither).
+
+    Returns
+    -------
+    amplitude : float
+        ``|c + i d|``, in the unit of ``values``.
+    residual : float
+        Sum of squared residuals.
+    """
+    tau = time - 0.5 * (time[0] + time[-1])
+    phase = 2 * np.pi * freq * time
+    basis = np.column_stack([np.ones_like(tau), tau, np.cos(phase),
+                             np.sin(phase)])
+    coef, *_ = np.linalg.lstsq(basis, values, rcond=None)
+    residual = float(np.sum((basis @ coef - values) ** 2))
+    return float(np.hypot(coef[2], coef[3])), residual
+
+
+def estimate_dither(time, pressure, window, freq_hz=None):
     """Dither frequency (Hz) and amplitude (Pa) from the pressure channel.
 
-    The detrended pressure in ``window`` is resampled uniformly; the
-    frequency is its spectral peak above 5 Hz, refined to the maximum of
-    the windowed Fourier sum within one bin; the amplitude is that sum.
+    The amplitude is that of the least-squares sinusoid (over a line, the
+    engagement's trend) fitted to the pressure samples in ``window`` as
+    they were taken (:func:`_sinusoid_fit`). Resampling them first would
+    not do: a pressure sampled at a pick-up's tooth passages has about
+    3.3 samples per dither period, and linear interpolation between them
+    loses 7 to 36 % of the amplitude (issue 31). The frequency, unless
+    given, is the spectral peak above 5 Hz of the pressure resampled
+    uniformly (only to find the peak), refined within one bin to the
+    frequency whose sinusoid fits best.
+
+    Parameters
+    ----------
+    time, pressure : ndarray
+        The pressure channel, s and Pa.
+    window : (float, float)
+        The engagement window, s.
+    freq_hz : float, optional
+        The dither frequency when it is known: the amplitude is fitted at
+        it.
 
     Raises
     ------
@@ -389,18 +427,20 @@ def estimate_dither(time, pressure, window):
     if np.count_nonzero(keep) < 16:
         raise JudderError("too few pressure samples in the engagement "
                           "window to estimate the dither")
-    t, p = _uniform(time[keep], pressure[keep])
-    p = scipy.signal.detrend(p)
-    freq = np.fft.rfftfreq(len(p), t[1] - t[0])
-    spectrum = np.abs(np.fft.rfft(p * np.hanning(len(p))))
-    band = freq >= _LOWEST_HZ
-    peak = freq[band][np.argmax(spectrum[band])]
-    step = freq[1]
-    best = minimize_scalar(lambda f: -_fourier_amplitude(t, p, f),
-                           bounds=(peak - step, peak + step),
-                           method="bounded",
-                           options={"xatol": 1e-6 * peak})
-    return float(best.x), float(-best.fun)
+    time, pressure = time[keep], pressure[keep]
+    if freq_hz is None:
+        t, p = _uniform(time, pressure)
+        p = scipy.signal.detrend(p)
+        freq = np.fft.rfftfreq(len(p), t[1] - t[0])
+        spectrum = np.abs(np.fft.rfft(p * np.hanning(len(p))))
+        band = freq >= _LOWEST_HZ
+        peak = freq[band][np.argmax(spectrum[band])]
+        step = freq[1]
+        freq_hz = minimize_scalar(
+            lambda f: _sinusoid_fit(time, pressure, f)[1],
+            bounds=(peak - step, peak + step), method="bounded",
+            options={"xatol": 1e-6 * peak}).x
+    return float(freq_hz), _sinusoid_fit(time, pressure, freq_hz)[0]
 
 
 def _bandwidth(freq_hz):
@@ -820,7 +860,7 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                               "no pressure channel to estimate it from")
         f_est, p_est = estimate_dither(np.asarray(pressure[0], dtype=float),
                                        np.asarray(pressure[1], dtype=float),
-                                       window)
+                                       window, freq_hz)
         estimated = True
         freq_hz = f_est if freq_hz is None else freq_hz
         p_f_bar = p_est / PA_PER_BAR if p_f_bar is None else p_f_bar

@@ -3,13 +3,16 @@ DAQ software exports them."""
 
 import csv
 import json
+import re
 
 import numpy as np
 
 from infra.errors import JudderError
 from infra.files import decode_text
 
-from ._common import TIME_NAMES, column_factor, listing, split_header
+from ._common import (column_factor, is_time_name, listing, split_header,
+                      time_unit)
+from ._numbers import column_values, decide
 
 __all__ = ["read"]
 
@@ -17,11 +20,13 @@ __all__ = ["read"]
 HEAD_BYTES = 64 * 1024
 
 
-def read(path, wanted):
+def read(path, wanted, time=None):
     """CSV as :func:`pysim.simulation.export.write_csv` writes it, and as DAQ software
-    exports it: ``,``, ``;`` or tab between fields, a decimal comma with
-    ``;`` or tab, a header block before the column names (``key;value``
-    lines, kept as metadata), a units row under them."""
+    exports it: ``,``, ``;`` or tab between fields, a decimal point or
+    comma and thousands separators as the file's cells show them
+    (:mod:`pysim.bench_data._numbers`), a time column of numbers or of
+    date-times (s from the first), a header block before the column names
+    (``key;value`` lines, kept as metadata), a units row under them."""
     lines = _csv_lines(path)
     metadata = _csv_metadata(lines)
     body = [(number, line) for number, line in enumerate(lines, 1)
@@ -31,7 +36,7 @@ def read(path, wanted):
                           "...)")
     delimiter = _delimiter(body[len(body) // 2][1])
     rows = list(csv.reader([line for _, line in body], delimiter=delimiter))
-    start = _csv_header_row(path, rows, body)
+    start = _csv_header_row(path, rows, body, time)
     metadata.update({row[0].strip(): row[1].strip() for row in rows[:start]
                      if len(row) == 2 and row[0].strip()})
     body, rows = body[start:], rows[start:]
@@ -41,20 +46,24 @@ def read(path, wanted):
                    (rows[1][i].strip().strip("[]").strip() or None))
                   for i, (name, unit) in enumerate(header)]
         body, rows = [body[0]] + body[2:], [rows[0]] + rows[2:]
-    if delimiter != ",":
-        rows = [rows[0]] + [[cell.replace(",", ".") for cell in row]
-                            for row in rows[1:]]
     names = [name for name, _ in header]
-    time_column = _csv_time_column(path, names)
+    time_column = _csv_time_column(path, names, time)
     _check_row_lengths(path, body, rows, len(header))
-    time = _csv_column(path, body, rows, time_column) * column_factor(
-        path, header[time_column], "time")
-    raws = {}
-    for name in wanted:
-        if name in names and names.index(name) != time_column:
-            column = names.index(name)
-            raws[name] = (time, _csv_column(path, body, rows, column),
-                          header[column][1])
+    columns = [time_column] + [names.index(name) for name in wanted
+                               if name in names
+                               and names.index(name) != time_column]
+    cells = {c: [(number, row[c]) for (number, _), row in
+                 zip(body[1:], rows[1:])] for c in columns}
+    stamps = _date_times(path, cells[time_column])
+    if stamps is not None:
+        del cells[time_column]
+    convention = decide(path, {names[c]: cells[c] for c in cells})
+    if stamps is None:
+        name, unit = header[time_column]
+        stamps = column_values(cells[time_column], convention) * \
+            column_factor(path, (name, time_unit(time, unit)), "time")
+    raws = {names[c]: (stamps, column_values(cells[c], convention),
+                       header[c][1]) for c in columns[1:]}
     return [n for i, n in enumerate(names) if i != time_column], metadata, \
         raws
 
@@ -73,22 +82,25 @@ def _check_one_separator(path, body):
             "(',', ';' or tab)")
 
 
-def _csv_header_row(path, rows, body):
+def _csv_header_row(path, rows, body, time):
     """Index of the row that names the columns: the first with a time
     column and as many fields as the data rows (a DAQ's header block,
     ``Time;14:03:22`` among its lines, may come before it)."""
     widths = [len(row) for row in rows]
     data_width = max(set(widths), key=widths.count)
     for index, row in enumerate(rows):
-        if len(row) == data_width and any(
-                split_header(cell)[0].lower() in TIME_NAMES
-                for cell in row):
+        if len(row) == data_width and any(is_time_name(cell, time)
+                                          for cell in row):
             return index
     _check_one_separator(path, body)
     names = [split_header(cell)[0] for cell in rows[0]]
-    raise JudderError(f"{path}: no time column; the line naming the "
-                      "columns must name one 'time [s]' (or 'time' with a "
-                      f"units row under it); columns of line {body[0][0]}: "
+    raise JudderError(f"{path}: no time column "
+                      + (f"{time.name!r}" if time else "")
+                      + "; the line naming the columns must name one "
+                      + ("" if time else "'time [s]' (or 'time' with a "
+                         "units row under it), or give its name with "
+                         "`channels` time=NAME[:UNIT]")
+                      + f"; columns of line {body[0][0]}: "
                       f"{listing(names)}")
 
 
@@ -156,9 +168,9 @@ def _delimiter(line):
     return next((d for d in (";", "\t") if d in line), ",")
 
 
-def _csv_time_column(path, names):
+def _csv_time_column(path, names, time):
     for index, name in enumerate(names):
-        if name.lower() in TIME_NAMES:
+        if is_time_name(name, time):
             return index
     raise JudderError(f"{path}: no time column; the first line of data "
                       f"must name one 'time [s]' (columns: "
@@ -172,15 +184,32 @@ def _check_row_lengths(path, body, rows, width):
                               f"the header has {width}")
 
 
-def _csv_column(path, body, rows, column):
-    cells = [row[column].strip() or "nan" for row in rows[1:]]
-    try:
-        return np.array(cells, dtype=float)
-    except ValueError:
-        for (number, _), cell in zip(body[1:], cells):
-            try:
-                float(cell)
-            except ValueError:
-                raise JudderError(f"{path}, line {number}: {cell!r} is not "
-                                  "a number") from None
-        raise
+#: A date-time cell: an ISO date (``2026-12-03T07:41:22.5``), a German
+#: one (``03.12.2026 07:41:22,5``) or a time of day (``07:41:22.5``).
+_DATE_TIME = re.compile(
+    r"(?:(?P<y>\d{4})-(?P<m>\d{2})-(?P<d>\d{2})[T ]"
+    r"|(?P<d2>\d{1,2})\.(?P<m2>\d{1,2})\.(?P<y2>\d{4}) )?"
+    r"(?P<H>\d{1,2}):(?P<M>\d{2}):(?P<S>\d{2})(?:[.,](?P<f>\d{1,9}))?Z?")
+
+
+def _date_times(path, cells):
+    """A time column of date-times as s from its first cell, or None if
+    its first cell is not one (a column of numbers)."""
+    stamps = []
+    for number, cell in cells:
+        match = _DATE_TIME.fullmatch(cell.strip())
+        if match is None:
+            if not stamps:
+                return None
+            raise JudderError(f"{path}, line {number}: time "
+                              f"{cell.strip()!r} is "
+                              "not a date-time as the lines before it")
+        g = match.groupdict()
+        year, month, day = ((g["y"], g["m"], g["d"]) if g["y"] else
+                            (g["y2"], g["m2"], g["d2"]) if g["y2"] else
+                            ("1970", "1", "1"))
+        stamps.append(np.datetime64(
+            f"{year}-{int(month):02d}-{int(day):02d}T{int(g['H']):02d}:"
+            f"{g['M']}:{g['S']}.{(g['f'] or '0'):0<9}", "ns"))
+    stamps = np.array(stamps)
+    return (stamps - stamps[0]) / np.timedelta64(1, "s")

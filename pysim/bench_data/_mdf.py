@@ -16,8 +16,14 @@ __all__ = ["read"]
 _MDF_MAGIC = (b"MDF     ", b"UnFinMF ")
 
 
-def read(path, wanted):
-    """ASAM MDF: each channel on the time base of its channel group."""
+def read(path, wanted, time=None):
+    """ASAM MDF: each channel on the time base of its channel group (its
+    master channel: a ``time`` role is refused, as MDF names none)."""
+    if time is not None:
+        raise JudderError(f"{path}: --channel time={time.name} is not "
+                          "allowed for an MDF file: each channel group has "
+                          "its master channel as its time; allowed: no "
+                          "time role")
     try:
         from asammdf import MDF
     except ImportError:

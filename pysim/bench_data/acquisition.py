@@ -17,9 +17,12 @@ from .speed_channels import interval_means
 __all__ = ["ChannelSpec", "Channel", "Acquisition", "ROLES",
            "REQUIRED_ROLES"]
 
-#: Roles a channel plays, and the kind of quantity of each.
+#: Roles a channel plays, and the kind of quantity of each; ``time``
+#: names the time column, channel or vector of a file whose time is not
+#: called one of :data:`pysim.bench_data._common.TIME_NAMES` (catman's
+#: ``Zeit  1 - Standardmessrate``), and is no channel of the acquisition.
 ROLES = {"upstream_speed": "speed", "pressure": "pressure",
-         "downstream_speed": "speed"}
+         "downstream_speed": "speed", "time": "time"}
 #: The one role every acquisition must give.
 REQUIRED_ROLES = ("upstream_speed",)
 
@@ -35,7 +38,10 @@ class ChannelSpec:
         MAT: ``variable`` or ``struct.field``).
     unit : str, optional
         Unit of the file's values; overrides the file's unit, and is
-        needed where the file has none.
+        needed where the file has none. Or a linear sensor scale
+        ``LOW..HIGH UNIT=LOW..HIGH UNIT`` (``4..20mA=0..25bar``: a
+        transmitter's current for its pressure range;
+        :func:`pysim.bench_data.units.parse_scale`).
     kind : str, optional
         For a speed: what its samples are, a key of
         :data:`pysim.bench_data.speed_channels.SPEED_KINDS`; default:

@@ -22,7 +22,8 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from ._common import listing
 from .acquisition import REQUIRED_ROLES, ROLES, Channel, ChannelSpec
 from .speed_channels import SPEED_KINDS, detect_speed_kind
-from .units import allowed_units, angle_factor, is_angle_unit, unit_factor
+from .units import (allowed_units, angle_factor, is_angle_unit,
+                    parse_scale, unit_factor)
 
 __all__ = ["parse_channel_option", "checked_specs", "channel_in_si",
            "PLAUSIBLE", "SAME_INSTANT"]
@@ -41,7 +42,10 @@ SAME_INSTANT = 1e-6
 def parse_channel_option(text):
     """``ROLE=NAME``, ``ROLE=NAME:UNIT`` or ``ROLE=NAME:UNIT:KIND`` (the
     ``--channel`` option); KIND, for a speed, is a key of
-    :data:`pysim.bench_data.speed_channels.SPEED_KINDS`.
+    :data:`pysim.bench_data.speed_channels.SPEED_KINDS`. UNIT may be a
+    sensor's linear scale, ``4..20mA=0..25bar``
+    (:func:`pysim.bench_data.units.parse_scale`); ROLE ``time`` names a
+    file's time column of another name.
 
     A name containing ``:`` needs its unit appended.
 
@@ -70,18 +74,20 @@ def parse_channel_option(text):
             raise JudderError(f"`channels` {text!r}: give the unit before "
                               f"the kind (ROLE=NAME:UNIT:{kind})")
         return role, ChannelSpec(rest.strip())
-    if not (ROLES[role] == "speed" and is_angle_unit(unit)):
-        try:
-            unit_factor(unit, ROLES[role])
-        except JudderError as exc:
-            if ROLES[role] == "speed" and kind is None and ":" in name:
-                # NAME:UNIT:WORD, WORD neither a unit nor a kind
-                raise JudderError(
-                    f"`channels` {text!r}: {unit.strip()!r} is neither a "
-                    f"speed unit nor a kind of speed channel; allowed "
-                    f"kinds: {', '.join(SPEED_KINDS)} "
-                    f"(ROLE=NAME:UNIT:KIND)") from None
-            raise JudderError(f"`channels` {text!r}: {exc}") from None
+    try:
+        scale = parse_scale(unit)
+        unit_of_role = unit if scale is None else scale.unit
+        if not (ROLES[role] == "speed" and is_angle_unit(unit_of_role)):
+            unit_factor(unit_of_role, ROLES[role])
+    except JudderError as exc:
+        if ROLES[role] == "speed" and kind is None and ":" in name:
+            # NAME:UNIT:WORD, WORD neither a unit nor a kind
+            raise JudderError(
+                f"`channels` {text!r}: {unit.strip()!r} is neither a "
+                f"speed unit nor a kind of speed channel; allowed "
+                f"kinds: {', '.join(SPEED_KINDS)} "
+                f"(ROLE=NAME:UNIT:KIND)") from None
+        raise JudderError(f"`channels` {text!r}: {exc}") from None
     return role, ChannelSpec(name.strip(), unit.strip(), kind)
 
 
@@ -119,6 +125,12 @@ def channel_in_si(path, role, spec, names, raw):
     time, values, file_unit = raw
     unit = spec.unit if spec.unit is not None and str(spec.unit).strip() \
         else file_unit
+    try:
+        scale = parse_scale(unit) if unit is not None else None
+    except JudderError as exc:
+        raise JudderError(f"{where}: {exc}") from None
+    if scale is not None:
+        time, values, unit = _scaled(where, scale, file_unit, time, values)
     if unit is None or not str(unit).strip():
         raise JudderError(f"{where} has no unit in the file; give it with "
                           f"`channels` {role}={spec.name}:UNIT (allowed: "
@@ -133,17 +145,34 @@ def channel_in_si(path, role, spec, names, raw):
         raise JudderError(f"{where}: {exc}") from None
     time, values = _finite(where, time, values)
     values = values * factor
+    unit_in_file = str(unit if scale is None else scale.raw_unit).strip()
     if ROLES[role] != "speed":
         _plausible(where, ROLES[role], time, values)
         return Channel(time=time, values=values,
-                       unit_in_file=str(unit).strip(), name=spec.name)
+                       unit_in_file=unit_in_file, name=spec.name)
     kind = _speed_kind(where, spec, kind_of_unit, time, values)
     if kind == "angle":
         _plausible_angle(where, unit, time, values)
     else:
         _plausible(where, "speed", time, values)
-    return Channel(time=time, values=values, unit_in_file=str(unit).strip(),
+    return Channel(time=time, values=values, unit_in_file=unit_in_file,
                    name=spec.name, kind=kind)
+
+
+def _scaled(where, scale, file_unit, time, values):
+    """A channel's raw readings through a sensor's linear scale: (time,
+    values in the scale's unit, that unit). A file that gives the raw
+    readings' unit must give the scale's."""
+    if file_unit is not None and str(file_unit).strip() and \
+            str(file_unit).strip() != scale.raw_unit:
+        raise JudderError(f"{where} is in {str(file_unit).strip()!r}, the "
+                          f"scale is for {scale.raw_unit!r}; allowed: a "
+                          f"scale from the file's unit, such as 4..20"
+                          f"{str(file_unit).strip()}=0..25bar")
+    values = np.atleast_1d(np.asarray(values))
+    if values.dtype.kind not in "biuf":
+        return time, values, scale.unit       # _finite refuses it
+    return time, scale(values.astype(float)), scale.unit
 
 
 def _speed_kind(where, spec, kind_of_unit, time, values):

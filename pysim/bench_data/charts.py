@@ -329,12 +329,21 @@ class Chart:
     def boundary_csv(self, group):
         """The boundary as ``judder fit --boundary`` reads it, with the
         growth rate the verdict called judder from (``judder fit``
-        compares with the model's boundary of that growth)."""
+        compares with the model's boundary of that growth) and, per set
+        point, the range tested: the highest amplitude run without judder
+        (below the onset) and the largest amplitude run (so a point
+        without judder is censored where it was, not at an assumed
+        amplitude)."""
+        def cell(value):
+            return "" if value is None else f"{value:.9g}"
         lines = [f"# min_growth_per_s: {self.min_growth:g}",
                  f"# judder_limit_rpm: {self.judder_limit_rpm:g}",
-                 "freq_hz,p_f_bar"] + [
-            f"{f:.9g}," + ("" if p is None else f"{p:.9g}")
-            for f, p, _ in self.boundary(group)]
+                 "freq_hz,p_f_bar,no_judder_bar,tried_bar"] + [
+            # without an onset every run was without judder, up to top
+            ",".join([f"{f:.9g}", cell(p), cell(top if p is None else q),
+                      cell(top)])
+            for (f, p, top), q in zip(self.boundary(group),
+                                      self.quiet_below(group))]
         return "\n".join(lines) + "\n"
 
     def arrays(self):

@@ -11,7 +11,8 @@ import numpy as np
 
 from infra.plotstyle import dither_axes, log_levels
 
-__all__ = ["plot_chart", "chart_figure"]
+__all__ = ["plot_chart", "plot_runs", "chart_figure", "runs_figure",
+           "AMPLITUDE_LABEL"]
 
 
 #: How a group column reads in a panel title.
@@ -55,15 +56,50 @@ def plot_chart(chart, group, ax=None, levels=None):
     -------
     list of matplotlib artists
     """
-    from matplotlib.colors import LogNorm
     if ax is None:
         _, ax = plt.subplots()
     runs = chart.groups()[group]
-    f = np.array([r.analysis.freq_hz for r in runs])
-    p = np.array([r.analysis.p_f_bar for r in runs])
-    amplitude = np.array([max(r.analysis.amplitude_rpm, 1e-3) for r in runs])
-    judder = np.array([r.analysis.judder for r in runs])
-    mechanism = np.array([r.analysis.mechanism or "" for r in runs])
+    arrays = {"freq_hz": [r.analysis.freq_hz for r in runs],
+              "p_f_bar": [r.analysis.p_f_bar for r in runs],
+              "amplitude_rpm": [r.analysis.amplitude_rpm for r in runs],
+              "judder": [r.analysis.judder for r in runs],
+              "mechanism": [r.analysis.mechanism or "" for r in runs]}
+    artists = plot_runs(ax, arrays, chart.boundary(group), levels)
+    ax.set_title(_group_title(chart.group_by, group), fontsize=10)
+    return artists
+
+
+#: The colour bar's words: what the contour shows, the largest envelope
+#: of the speed's oscillation at the dither frequency or the judder
+#: component's (:attr:`pysim.analysis.verdict.RunAnalysis.amplitude_rpm`),
+#: forced or grown.
+AMPLITUDE_LABEL = "oscillation at the dither frequencies [rpm]"
+
+
+def plot_runs(ax, runs, boundary, levels=None):
+    """One panel of a chart from its runs' arrays: amplitude contour, runs
+    by mechanism and the experimental boundary.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    runs : dict
+        Arrays ``freq_hz``, ``p_f_bar``, ``amplitude_rpm``, ``judder``,
+        ``mechanism`` (as :meth:`pysim.bench_data.charts.Chart.arrays`
+        and a chart's NPZ hold them).
+    boundary : list of (float, float or None, float)
+        Per set point: Hz, the onset (bar, None: no judder) and the largest
+        amplitude tried (:meth:`pysim.bench_data.charts.Chart.boundary`).
+    levels : ndarray, optional
+        As :func:`plot_chart`'s.
+    """
+    from matplotlib.colors import LogNorm
+    f = np.asarray(runs["freq_hz"], dtype=float)
+    p = np.asarray(runs["p_f_bar"], dtype=float)
+    amplitude = np.maximum(np.asarray(runs["amplitude_rpm"], dtype=float),
+                           1e-3)
+    judder = np.asarray(runs["judder"], dtype=bool)
+    mechanism = np.asarray(runs["mechanism"], dtype=str)
     artists = []
     own = levels is None
     if own:
@@ -76,8 +112,7 @@ def plot_chart(chart, group, ax=None, levels=None):
                                  cmap="Greys", alpha=0.8)
         if own:
             bar = ax.figure.colorbar(contour, ax=ax, ticks=ticks,
-                                     label="dither-related oscillation "
-                                           "[rpm]")
+                                     label=AMPLITUDE_LABEL)
             bar.ax.set_yticklabels([f"{t:g}" for t in ticks])
         artists.append(contour)
     for name, (marker, colour) in _MECHANISM_MARKERS.items():
@@ -89,7 +124,6 @@ def plot_chart(chart, group, ax=None, levels=None):
     artists.append(ax.scatter(f[~judder], p[~judder], marker="o",
                               facecolors="none", edgecolors="black",
                               zorder=3, clip_on=False, label="no judder"))
-    boundary = chart.boundary(group)
     # the boundary is drawn only between neighbouring frequencies that
     # both have judder: a censored frequency between them breaks it
     lowest = np.array([np.nan if pb is None else pb for _, pb, _ in boundary])
@@ -105,8 +139,18 @@ def plot_chart(chart, group, ax=None, levels=None):
                                   label="no judder up to here"))
     _pad_limits(ax, f, p)
     dither_axes(ax, "dither frequency [Hz]")
-    ax.set_title(_group_title(chart.group_by, group), fontsize=10)
     return artists
+
+
+def runs_figure(runs, boundary, title):
+    """One chart panel as a figure (:func:`plot_runs`), its legend under
+    it: a chart read back from its NPZ file."""
+    fig, ax = plt.subplots(figsize=(8, 5.2), layout="constrained")
+    plot_runs(ax, runs, boundary)
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center",
+               ncols=3, fontsize=8)
+    ax.set_title(title, fontsize=10)
+    return fig
 
 
 def _pad_limits(ax, freq_hz, p_f_bar, share=0.05):
@@ -148,7 +192,7 @@ def chart_figure(chart, title=None):
     from matplotlib.colors import BoundaryNorm
     scale = ScalarMappable(norm=BoundaryNorm(levels, 256), cmap="Greys")
     bar = fig.colorbar(scale, ax=axes, ticks=ticks, shrink=0.9,
-                       label="dither-related oscillation [rpm]")
+                       label=AMPLITUDE_LABEL)
     bar.ax.set_yscale("log")
     bar.ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
     bar.ax.minorticks_off()

@@ -15,13 +15,16 @@ the reader :data:`READERS` holds for the file's suffix:
   them, ``# key: json-value`` metadata lines (what
   :func:`pysim.simulation.export.write_csv` writes) or a DAQ's header block of
   ``key;value`` lines before the names; ``,``, ``;`` or tab between
-  fields, a decimal comma with ``;`` or tab; a BOM
-  (:mod:`pysim.bench_data._csv`);
+  fields; decimal and thousands separators decided from all the cells
+  read, never cell by cell (:mod:`pysim.bench_data._numbers`); a time
+  column of numbers or date-times; a BOM (:mod:`pysim.bench_data._csv`);
 * ``.tdms``: NI TDMS with npTDMS; a waveform channel
   (``wf_increment``, ``wf_start_offset``) has its time track, any other
-  takes the ``time`` channel of its group; units from ``unit_string``;
-  a channel is named ``channel`` or ``group/channel``
-  (:mod:`pysim.bench_data._tdms`);
+  takes the ``time`` channel of its group; channels whose clocks record
+  their start (``wf_start_time``, date-time time channels) are laid on one
+  time base, and a file where some do and others do not is refused;
+  units from ``unit_string``; a channel is named ``channel`` or
+  ``group/channel`` (:mod:`pysim.bench_data._tdms`);
 * ``.mat``: MATLAB with scipy (up to v7) or h5py (v7.3, HDF5); each
   signal is a variable (or a field of a struct, ``struct.field``) with a
   time vector ``NAME_time``, ``t_NAME`` or a shared ``time`` / ``t``;
@@ -46,9 +49,11 @@ from .channels import channel_in_si, checked_specs
 
 __all__ = ["read_acquisition", "read_cost", "READERS", "FORMATS"]
 
-#: File suffix -> reader. ``reader(path, wanted)`` returns the channel
-#: names in the file (list of str), its metadata (dict) and the wanted
-#: names found in it: name -> (time s, values, unit or None).
+#: File suffix -> reader. ``reader(path, wanted, time)`` returns the
+#: channel names in the file (list of str), its metadata (dict) and the
+#: wanted names found in it: name -> (time s, values, unit or None);
+#: ``time`` is the ``time`` role's ChannelSpec (the file's time of another
+#: name), or None.
 READERS = {".mf4": _mdf.read, ".mdf": _mdf.read, ".csv": _csv.read,
            ".tdms": _tdms.read, ".mat": _mat.read}
 #: What the files of each suffix are, for messages.
@@ -84,7 +89,9 @@ def read_acquisition(path, channels):
         :data:`READERS`).
     channels : dict
         Role (``upstream_speed`` required, ``pressure`` and
-        ``downstream_speed`` optional) ->
+        ``downstream_speed`` optional; ``time`` the file's time column,
+        channel or vector where it has another name than those of
+        :data:`pysim.bench_data._common.TIME_NAMES`) ->
         :class:`~pysim.bench_data.acquisition.ChannelSpec` (or a channel
         name).
 
@@ -108,10 +115,12 @@ def read_acquisition(path, channels):
                           f"{suffix or '(no suffix)'!r}; allowed: "
                           f"{', '.join(READERS)}")
     specs = checked_specs(path, channels)
+    time = specs.pop("time", None)
     if not path.is_file():
         raise JudderError(f"{path}: no such file")
     names, metadata, raws = _load(path, suffix,
-                                  [spec.name for spec in specs.values()])
+                                  [spec.name for spec in specs.values()],
+                                  time)
     read = {role: channel_in_si(path, role, spec, names,
                                 raws.get(spec.name))
             for role, spec in specs.items()}
@@ -123,11 +132,11 @@ def read_acquisition(path, channels):
                        metadata=metadata)
 
 
-def _load(path, suffix, wanted):
+def _load(path, suffix, wanted, time):
     """What the reader of ``suffix`` returns; whatever else a corrupt
     file makes its library raise becomes one JudderError."""
     try:
-        return READERS[suffix](path, wanted)
+        return READERS[suffix](path, wanted, time)
     except JudderError:
         raise
     except Exception as exc:   # whatever a corrupt file makes a library do

@@ -27,13 +27,15 @@ Examples
 0.006135923
 """
 
+from dataclasses import dataclass
 import re
 
 from infra.errors import JudderError
 from infra.units import UNITS
 
 __all__ = ["unit_factor", "angle_factor", "is_angle_unit", "allowed_units",
-           "SPEED_UNITS", "PRESSURE_UNITS", "TIME_UNITS", "ANGLE_UNITS"]
+           "parse_scale", "LinearScale", "SPEED_UNITS", "PRESSURE_UNITS",
+           "TIME_UNITS", "ANGLE_UNITS"]
 
 
 def _factors(spellings):
@@ -144,3 +146,57 @@ def angle_factor(unit):
 def is_angle_unit(unit):
     """True if ``unit`` is an angle (an encoder's), not a speed."""
     return angle_factor(unit) is not None
+
+
+_NUMBER = r"[+-]?(?:\d+(?:\.\d+)?|\.\d+)(?:[eE][+-]?\d+)?"
+#: ``LOW..HIGH UNIT=LOW..HIGH UNIT``.
+_SCALE = re.compile(rf"\s*({_NUMBER})\s*\.\.\s*({_NUMBER})\s*([^=\s]+)\s*="
+                    rf"\s*({_NUMBER})\s*\.\.\s*({_NUMBER})\s*(\S+)\s*")
+
+
+@dataclass(frozen=True)
+class LinearScale:
+    """A sensor's linear scale: ``raw`` from ``raw_low`` to ``raw_high`` (in
+    ``raw_unit``, what the DAQ recorded: mA, V) is ``low`` to ``high`` in
+    ``unit`` (the quantity's)."""
+
+    raw_low: float
+    raw_high: float
+    raw_unit: str
+    low: float
+    high: float
+    unit: str
+
+    def __call__(self, raw):
+        """The quantity, in :attr:`unit`, of raw readings."""
+        return self.low + (raw - self.raw_low) * (
+            (self.high - self.low) / (self.raw_high - self.raw_low))
+
+
+def parse_scale(text):
+    """A linear sensor scale ``LOW..HIGH UNIT=LOW..HIGH UNIT``, or None
+    where ``text`` is no scale (a plain unit).
+
+    Examples
+    --------
+    >>> scale = parse_scale("4..20mA=0..25bar")
+    >>> scale.raw_unit, scale.unit, scale(12.0)
+    ('mA', 'bar', 12.5)
+    >>> parse_scale("bar") is None
+    True
+    """
+    if "=" not in str(text):
+        return None
+    match = _SCALE.fullmatch(str(text))
+    if match is None:
+        raise JudderError(f"scale {text!r} is not allowed; allowed: "
+                          "LOW..HIGH UNIT=LOW..HIGH UNIT, such as "
+                          "4..20mA=0..25bar (a transmitter's 4-20 mA for "
+                          "0-25 bar)")
+    raw_low, raw_high, raw_unit, low, high, unit = match.groups()
+    if float(raw_low) == float(raw_high):
+        raise JudderError(f"scale {text!r}: the raw range {raw_low}.."
+                          f"{raw_high} {raw_unit} is empty; allowed: two "
+                          "different raw values")
+    return LinearScale(float(raw_low), float(raw_high), raw_unit,
+                       float(low), float(high), unit)

@@ -21,9 +21,12 @@ def plot_fit(result, ax=None):
     with the start (first attempt) values is drawn dotted, with the fitted
     values solid, both as continuous curves over a fine frequency grid;
     the measured judder onsets are markers (coloured by the kind of
-    tongue each was matched to), and each censored point (no judder up
-    to the largest amplitude tried) is an upward arrow at ``p_max``: no
-    judder up to here.
+    tongue each was matched to; an onset found on a grid of amplitudes is
+    a bar between the last amplitude without and the first with judder,
+    its marker at the middle, which is fitted), and each censored point
+    (no judder up to the largest amplitude tried) is an upward arrow at
+    ``p_max``: no judder up to here. A fit that cannot be trusted
+    (``success`` False) has no values in its title, only its problems.
 
     Parameters
     ----------
@@ -65,43 +68,56 @@ def plot_fit(result, ax=None):
                 label="first attempt (start values)")[0]]
     judder = np.isfinite(result.measured_bar)
     onset = getattr(result, "onset_bar", None)
-    if onset is not None and np.any(judder & (onset != result.measured_bar)):
+    found = np.zeros(len(judder), dtype=bool) if onset is None else \
+        judder & (onset != result.measured_bar)
+    if found.any():
         # the onset was found on a grid: the boundary lies between the
         # amplitude tried below it and the onset
-        found = judder & (onset != result.measured_bar)
         below = 2 * result.measured_bar[found] - onset[found]
         artists.append(ax.vlines(result.freq_hz[found], below, onset[found],
                                  color="0.45", linewidth=2.5, zorder=2,
-                                 label="onset between these amplitudes "
-                                       "(fitted to the middle)"))
+                                 label="between the last amplitude without "
+                                       "and the first with judder"))
     kinds = np.array([k or "" for k in result.kinds]) if len(
         result.kinds) == len(judder) else np.full(len(judder), "")
     for kind in dict.fromkeys(kinds[judder]):
-        chosen = judder & (kinds == kind)
-        color = (KIND_COLORS[KINDS.index(kind)] if kind in KINDS
-                 else "k")
-        label = "measured judder onset" + (f" ({kind})" if kind else "")
-        artists.append(ax.plot(result.freq_hz[chosen],
-                               result.measured_bar[chosen], "o",
-                               color=color, markeredgecolor="k",
-                               label=label)[0])
+        for on_grid in (False, True):
+            chosen = judder & (kinds == kind) & (found == on_grid)
+            if not chosen.any():
+                continue
+            color = (KIND_COLORS[KINDS.index(kind)] if kind in KINDS
+                     else "k")
+            label = ("middle of that interval, fitted" if on_grid
+                     else "measured judder onset") + (
+                         f" ({kind})" if kind else "")
+            artists.append(ax.plot(result.freq_hz[chosen],
+                                   result.measured_bar[chosen], "o",
+                                   color=color, markeredgecolor="k",
+                                   label=label)[0])
     p_max = _p_max_bar(result)
     if np.any(~judder):
+        # the largest amplitude tried as a bench's grid gives it (an
+        # estimated amplitude, 0.600448 bar, reads 0.6)
         artists.append(ax.plot(result.freq_hz[~judder],
                                np.full(np.count_nonzero(~judder), p_max),
                                linestyle="none", marker=r"$\uparrow$",
                                markersize=12, color="k",
-                               label=f"no judder up to {p_max:g} bar")[0])
+                               label=f"no judder up to {p_max:.3g} bar")[0])
     low = min(freq.min(), result.freq_hz.min())
     high = max(freq.max(), result.freq_hz.max())
     pad = 0.015 * (high - low) if high > low else 1.0
     ax.set_xlim(low - pad, high + pad)
     ax.set_ylim(0, 1.12 * p_max)
     dither_axes(ax, "dither frequency [Hz]")
-    # one line per value: three with their intervals overrun one line
-    ax.set_title("fit (Fig. 16a)\n" + "\n".join(
-        _fitted_label(result, i) for i in range(len(result.names))),
-        fontsize=8)
+    # one line per value: three with their intervals overrun one line; a
+    # fit that cannot be trusted shows no numbers to be copied
+    if getattr(result, "success", True):
+        ax.set_title("fit (Fig. 16a)\n" + "\n".join(
+            _fitted_label(result, i) for i in range(len(result.names))),
+            fontsize=8)
+    else:
+        ax.set_title("fit (Fig. 16a) of " + ", ".join(result.names)
+                     + " refused: see the problems below", fontsize=8)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return artists
 

@@ -1,0 +1,178 @@
+"""Numbers of a text export read as written.
+
+A DAQ's export writes ``1000.5``, ``1000,5``, ``1,000.5`` or
+``1.000,5`` for the same number, as its locale has it. Which separator is
+the decimal one is decided once per file from every cell read, never per
+cell: ``1,000`` alone is 1000 (a thousands comma) or 1.0 (a decimal
+comma), and only another cell of the file (``0.001``, ``3,25``) tells
+which. A file whose cells disagree, or that no cell decides while some
+cell depends on it, is refused with the cell as the file has it.
+
+Examples
+--------
+>>> sorted(readings("1,000"))
+['comma', 'point']
+>>> readings("0.001")
+{'point'}
+>>> value("1.000,60656", "comma"), value("1,000", "point")
+(1000.60656, 1000.0)
+"""
+
+import re
+
+import numpy as np
+
+from infra.errors import JudderError
+
+__all__ = ["CONVENTIONS", "readings", "value", "decide", "column_values"]
+
+#: Decimal separator -> (its name in messages, the thousands separator).
+CONVENTIONS = {"point": ("a decimal point (thousands ',')", ","),
+               "comma": ("a decimal comma (thousands '.')", ".")}
+#: Cells that are numbers whatever the separators: empty, nan, inf.
+_NEUTRAL = re.compile(r"|[+-]?(nan|inf|infinity)", re.IGNORECASE)
+
+
+def _pattern(decimal, thousands):
+    d, t = re.escape(decimal), re.escape(thousands)
+    return re.compile(
+        rf"[+-]?(?:(?:\d+|[1-9]\d{{0,2}}(?:{t}\d{{3}})+)(?:{d}\d*)?"
+        rf"|{d}\d+)(?:[eE][+-]?\d+)?")
+
+
+_PATTERNS = {"point": _pattern(".", ","), "comma": _pattern(",", ".")}
+
+
+def readings(cell):
+    """The conventions (keys of :data:`CONVENTIONS`) under which a cell is
+    a number; both for a cell without separators (``12``, ``nan``, empty),
+    none for a cell that is no number."""
+    cell = cell.strip()
+    if _NEUTRAL.fullmatch(cell):
+        return set(CONVENTIONS)
+    return {name for name, pattern in _PATTERNS.items()
+            if pattern.fullmatch(cell)}
+
+
+def value(cell, convention):
+    """A cell's number under a convention (NaN for an empty cell)."""
+    cell = cell.strip()
+    if not cell:
+        return np.nan
+    thousands = CONVENTIONS[convention][1]
+    cell = cell.replace(thousands, "")
+    return float(cell.replace(",", ".") if convention == "comma" else cell)
+
+
+def _separated(cell):
+    """A cell whose reading depends on the convention."""
+    return len(readings(cell)) == 2 and ("," in cell or "." in cell)
+
+
+#: A cell with a point that reads under the comma convention too
+#: (``1.000``: a thousands point).
+_GROUPED_POINT = re.compile(r"[+-]?[1-9]\d{0,2}(?:\.\d{3})+(?:[eE][+-]?\d+)?")
+
+
+def _plain_column(cells):
+    """What a column without commas whose every cell Python reads shows,
+    at the cost of one pass (most exports): ``(conventions, (line,
+    cell) deciding or None, (line, cell) depending on it or None)``; None
+    for a column that needs the cell-by-cell reading."""
+    if any("," in cell or "_" in cell for _, cell in cells):
+        return None
+    try:
+        np.array([cell.strip() or "nan" for _, cell in cells], dtype=float)
+    except ValueError:
+        return None
+    grouped = None
+    for number, cell in cells:
+        if "." in cell:
+            if not _GROUPED_POINT.fullmatch(cell.strip()):
+                return {"point"}, (number, cell.strip()), None
+            grouped = grouped or (number, cell.strip())
+    return set(CONVENTIONS), None, grouped
+
+
+def _column_reading(name, cells, path):
+    """:func:`_plain_column`'s answer, cell by cell where needed."""
+    plain = _plain_column(cells)
+    if plain is not None:
+        return plain
+    allowed, deciding, depending = set(CONVENTIONS), None, None
+    for number, cell in cells:
+        found = readings(cell)
+        if not found:
+            raise JudderError(f"{path}, line {number}: column {name!r}: "
+                              f"{cell.strip()!r} is not a number")
+        if len(found) == 1 and deciding is None:
+            deciding = (number, cell.strip())
+        elif depending is None and _separated(cell):
+            depending = (number, cell.strip())
+        allowed &= found
+        if not allowed:
+            raise JudderError(
+                f"{path}: column {name!r} has {deciding[1]!r} (line "
+                f"{deciding[0]}) and {cell.strip()!r} (line {number}), "
+                "written with different decimal separators; allowed: one "
+                "decimal separator in the whole file")
+    return allowed, deciding, depending
+
+
+def decide(path, columns):
+    """The one convention every cell read of a file reads under.
+
+    Parameters
+    ----------
+    path : path
+        The file, for messages.
+    columns : dict
+        Column name -> list of (line number, cell as written).
+
+    Returns
+    -------
+    str
+        A key of :data:`CONVENTIONS`.
+
+    Raises
+    ------
+    JudderError
+        A cell that is no number (naming its line and column), cells that
+        read only under different conventions, or a cell that reads under
+        both while no cell of the file decides.
+    """
+    only, depending = {}, None
+    for name, cells in columns.items():
+        allowed, decided, depends = _column_reading(name, cells, path)
+        if len(allowed) == 1:
+            only.setdefault(next(iter(allowed)), (name, *decided))
+        elif depending is None and depends is not None:
+            depending = (name, *depends)
+    if len(only) == 2:
+        (a, (name_a, line_a, cell_a)), (b, (name_b, line_b, cell_b)) = \
+            only.items()
+        raise JudderError(
+            f"{path}: column {name_a!r} has {cell_a!r} (line {line_a}), "
+            f"written with {CONVENTIONS[a][0]}, and column {name_b!r} has "
+            f"{cell_b!r} (line {line_b}), written with {CONVENTIONS[b][0]}; "
+            "allowed: one decimal separator in the whole file")
+    if only:
+        return next(iter(only))
+    if depending is not None:
+        name, number, cell = depending
+        raise JudderError(
+            f"{path}: column {name!r} has {cell!r} (line {number}), "
+            f"{value(cell, 'point'):g} with a thousands separator or "
+            f"{value(cell, 'comma'):g} with a decimal one, and no cell of "
+            "the file tells which; allowed: a file with at least one cell "
+            "that only one reading fits (such as 0.5 or 0,5)")
+    return "point"
+
+
+def column_values(cells, convention):
+    """The numbers of a column's cells under the file's convention."""
+    texts = [cell.strip() or "nan" for _, cell in cells]
+    if convention == "point" and not any("," in t for t in texts):
+        return np.array(texts, dtype=float)
+    return np.array([value(cell, convention) for _, cell in cells],
+                    dtype=float)
