@@ -206,8 +206,9 @@ def test_the_command_writes_npz_csv_plot_and_json(tmp_path):
                         arrays["broadest_bar"])
         assert_allclose(arrays["broadest_bar"], data["broadest_p_f_bar"])
     lines = table.read_text().splitlines()
-    assert lines[0] == "# written by judder"     # the overwrite rule's mark
-    assert lines[1].startswith("freq_hz,nominal_p_f_bar,broadest_p_f_bar")
+    assert lines[0].startswith("freq_hz,nominal_p_f_bar,broadest_p_f_bar")
+    # the overwrite rule's mark, last (the header first, for a spreadsheet)
+    assert lines[-1].startswith("# written by judder ")
     assert len(lines) == 4
     assert plot.read_bytes()[:4] == b"\x89PNG"
     assert not (tmp_path / "e.npz.checkpoint.npz").exists()

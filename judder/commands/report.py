@@ -34,6 +34,7 @@ from infra.errors import JudderError
 from infra.files import (MARK, atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.numbers import format_interval, format_uncertain
+from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import (CHART_THRESHOLD_SPREAD_PER_S,
                                            JUDDER, SLOW_GROWTH)
@@ -719,13 +720,16 @@ def report(parameters=None, changes=None, description=None,
 
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime(
         "%Y-%m-%d %H:%M UTC")
+    provenance = current()
     page = (
         "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
-        f"<meta name=\"generator\" content=\"{MARK}\">"
+        f"<meta name=\"generator\" content=\"{MARK} "
+        f"{html.escape(provenance.words())}\">"
         f"<title>judder report: {html.escape(description)}</title>"
         f"<style>{_CSS}</style></head><body>"
         f"<h1>Clutch judder from dither: {html.escape(description)}</h1>"
-        f'<p class="small">judder report, {stamp}. Dither frequency in Hz, '
+        f'<p class="small">judder report, {stamp}, '
+        f"{html.escape(provenance.words())}. Dither frequency in Hz, "
         "amplitude in bar, parameters in SI units. Figures and equations "
         "as numbered in \"Parametric excitation as a cause of clutch "
         "judder: theoretical study and experimental validation\".</p>"

@@ -321,14 +321,15 @@ class Chart:
         return rows
 
     def boundary_csv(self, group):
-        """The boundary as ``judder fit --boundary`` reads it, with the
+        """The boundary as ``judder fit --boundary`` reads it, the header
+        first (as a spreadsheet expects), then in comments at the end the
         growth rate the verdict called judder from (``judder fit``
         compares with the model's boundary of that growth)."""
-        lines = [f"# min_growth_per_s: {self.min_growth:g}",
-                 f"# judder_limit_rpm: {self.judder_limit_rpm:g}",
-                 "freq_hz,p_f_bar"] + [
+        lines = ["freq_hz,p_f_bar"] + [
             f"{f:.9g}," + ("" if p is None else f"{p:.9g}")
-            for f, p, _ in self.boundary(group)]
+            for f, p, _ in self.boundary(group)] + [
+            f"# min_growth_per_s: {self.min_growth:g}",
+            f"# judder_limit_rpm: {self.judder_limit_rpm:g}"]
         return "\n".join(lines) + "\n"
 
     def arrays(self):
