@@ -301,7 +301,8 @@ def _fit_section(bench, names, values, method, workers, source):
              format_interval(lo, hi, s))
             for n, s0, v, s, lo, hi in zip(r.names, r.start, r.values, r.std,
                                            r.ci_low, r.ci_high)]
-    text = (head + _table(("parameter", "start", "fitted", "95 % interval"),
+    text = (head + _table(("parameter", "start", "fitted ± 1 sigma",
+                           "95 % interval"),
                           rows)
             + "".join(f"<p>{html.escape(line)}</p>"
                       for line in lines[len(r.names):])
