@@ -54,7 +54,7 @@ from .params import params
 from .sensitivity import sensitivity
 from .simulate import simulate
 from .threshold import threshold
-from .tongues import tongues
+from .tongues import tongue_record, tongues
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -530,7 +530,8 @@ def report(parameters=None, changes=None, description=None,
     step()
 
     # tongues, and the map they are drawn over
-    found_tongues = tongues(grid_freq, p_max_bar, values, method=method)
+    found_tongues = tongues(grid_freq, p_max_bar, values, method=method,
+                            judder_growth=min_growth)
     stability = dataclasses.replace(
         stability_map(map_freq, map_pf, values, method=method,
                       min_growth=min_growth),
@@ -541,8 +542,11 @@ def report(parameters=None, changes=None, description=None,
          "tip_freq_hz": t.tip_freq_hz, "tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
         for t in found_tongues.tongues]
     tip_rows = [(t["number"] or "-", t["kind"], t["resonance"] or "-",
-                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}")
-                for t in data["tongues"]]
+                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}",
+                 "-" if t["judder_tip_p_f_bar"] is None else
+                 f"{t['judder_tip_p_f_bar']:.4f}")
+                for t in (tongue_record(t, found_tongues.judder_tongues)
+                          for t in found_tongues.tongues)]
 
     # the configured dither
     verdict = point = None
@@ -590,9 +594,13 @@ def report(parameters=None, changes=None, description=None,
                  "numbers (Fig. 14)",
                  stability.figure(title=f"stability map, {description}",
                                   stacked=True)))
-        + "<p>Tongue tips (lowest amplitude that judders, refined between "
-          "grid points); numbers as in Fig. 14:</p>"
-        + _table(("#", "kind", "resonance", "tip f [Hz]", "tip p_f [bar]"),
+        + "<p>Tongue tips, numbers as in Fig. 14: where each tongue becomes "
+          "unstable (|lambda| = 1; its tip, refined between grid points) "
+          f"and the lowest amplitude where it judders (grows at "
+          f"{min_growth:g} 1/s or faster; - : not up to {p_max_bar:g} "
+          "bar):</p>"
+        + _table(("#", "kind", "resonance", "tip f [Hz]",
+                  "unstable from p_f [bar]", "judders from p_f [bar]"),
                  tip_rows))
     # Fig. 15 by kind, at points just inside each kind's lowest tongue
     inside = []
