@@ -627,7 +627,9 @@ def report(parameters=None, changes=None, description=None,
             + f"<p>{html.escape(_window_text(advice))}</p>"
             + "<p>Design parameters ranked by how much of the way out of "
               "the window a relative change takes the judder-relevant "
-              "tongues (share per unit change of ln value): "
+              "tongues (the share of that way a change of the value by a "
+              "factor e = 2.72 moves the tongue that needs most; 1 = all "
+              "the way): "
             + html.escape(", ".join(f"{n} {share:.2f}"
                           for n, share, _ in advice.ranking))
             + ".</p>"
