@@ -22,6 +22,7 @@ dashboard.
 from concurrent.futures import CancelledError
 from contextlib import contextmanager
 from dataclasses import dataclass
+import functools
 import logging
 import math
 import os
@@ -35,6 +36,7 @@ from threadpoolctl import threadpool_limits
 
 from .errors import JudderError
 from .lifecycle import die_with_parent
+from .provenance import current, recorded
 
 __all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures"]
 
@@ -476,8 +478,11 @@ def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
         if state.serial(workers, len(jobs)):
             results = _serial(function, jobs, outcome)
         else:
-            results = _distributed(state.client(workers), function, jobs,
-                                   ordered, outcome)
+            # a worker process writes files with the command's
+            # provenance, as this process would
+            results = _distributed(state.client(workers), functools.partial(
+                _with_provenance, current(), function), jobs, ordered,
+                outcome)
         for item in results:
             if not isinstance(item, TaskFailure) or failures == "yield":
                 yield item
@@ -486,6 +491,11 @@ def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
             state.close()
     if failed and failures == "raise":
         raise TaskFailures(failed, len(jobs))
+
+
+def _with_provenance(provenance, function, job):
+    with recorded(provenance):
+        return function(job)
 
 
 def _serial(function, jobs, outcome):

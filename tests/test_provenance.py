@@ -125,3 +125,20 @@ def test_figures_carry_the_version_and_digest(tmp_path, capsys, suffix):
     data = _json(capsys, ["threshold", "--mu-g", "-0.001:0.001:5",
                           "--c-ext", "0:1:2", "--plot", str(plot)])
     assert data["provenance"]["input_sha256"].encode() in plot.read_bytes()
+
+
+def test_campaign_runs_written_by_workers_carry_the_digest(tmp_path,
+                                                           capsys):
+    # the runs are written in worker processes (--workers 2): they carry
+    # the command's provenance as the parent's outputs do
+    pytest.importorskip("fmpy")
+    folder = tmp_path / "campaign"
+    data = _json(capsys, ["campaign", "--freq", "100:110:2", "--pf",
+                          "0.1:0.1:1", "--duration", "0.5", "--format",
+                          "csv", "--out", str(folder), "--workers", "2"])
+    digest = data["provenance"]["input_sha256"]
+    runs = sorted(folder.glob("T*.csv"))
+    assert len(runs) == 2
+    for run in runs:
+        assert run.read_text().splitlines()[-1] == (
+            f"# written by judder {tool_version()}, inputs sha256:{digest}")
