@@ -19,7 +19,7 @@ from ..kinds import KINDS
 from .boundaries import plot_boundaries
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
-           "kind_handles"]
+           "kind_handles", "drawn_kinds"]
 
 
 def _edges(centres):
