@@ -6,8 +6,10 @@ the mode the umask gives a new file. Inside :func:`all_or_none` the
 files of one command are renamed into place together at its end, none if
 any fails (a full disk after the first).
 
-Every file the tool writes carries :data:`MARK` (a CSV/TOML comment line,
-PNG/SVG/PDF/PS metadata, an NPZ array name, the MF4 header comment), so
+Every file the tool writes carries :data:`MARK` (a CSV's last line, a
+TOML's first comment line, PNG/SVG/PDF/PS metadata, an NPZ array name,
+the MF4 header comment) with the version and the input digest
+(:mod:`infra.provenance`), so
 :func:`written_by_us` can tell it from a file of the user's, which a
 command replaces only with ``--force`` (:func:`check_output`) and the
 Python API only with ``force=True`` (:func:`keeps_foreign_files`).
@@ -24,10 +26,11 @@ from pathlib import Path
 import numpy as np
 
 from .errors import JudderError
+from .provenance import current
 
 __all__ = ["atomic_write", "all_or_none", "write_text", "save_figure", "to_json", "MARK",
            "NPZ_MARK", "written_by_us", "check_output", "save_npz",
-           "keeps_foreign_files", "mark_pdf",
+           "keeps_foreign_files", "mark_pdf", "mark_line",
            "check_folder_writable", "decode_text"]
 
 #: Text every file written by the tool carries.
@@ -150,7 +153,8 @@ def mark_pdf(data):
     without a classic trailer gets the mark as a comment at its end.
     """
     import re
-    fallback = data + f"%{MARK}\n".encode()
+    mark = mark_line().removeprefix("# ")
+    fallback = data + f"%{mark}\n".encode()
     end = data.rfind(b"startxref")
     at = data.rfind(b"trailer", 0, end)
     found = re.match(rb"startxref\s+(\d+)", data[end:]) if end >= 0 else None
@@ -175,7 +179,7 @@ def mark_pdf(data):
         number, generation = int(size.group(1)), 0
     offset = len(data) + 1
     update = (b"\n%d %d obj\n<<%s\n/Creator (%s)>>\nendobj\n"
-              % (number, generation, fields.strip(), MARK.encode()))
+              % (number, generation, fields.strip(), mark.encode()))
     xref = offset - 1 + len(update)
     update += (b"xref\n%d 1\n%010d %05d n \ntrailer\n<</Size %d /Root %s "
                b"/Info %d %d R%s /Prev %s>>\nstartxref\n%d\n%%%%EOF\n"
@@ -270,27 +274,43 @@ def check_output(path, option, suffixes=None, force=False):
                           "it)")
 
 
+def mark_line():
+    """``# written by judder 0.1.0, inputs sha256:...``: the mark with the
+    provenance of the command running."""
+    return f"# {MARK} {current().words().removeprefix('judder ')}"
+
+
 def write_text(path, text, overwrite=True):
-    """Write ``text`` (UTF-8) atomically; a CSV or TOML file starts with
-    the comment ``# written by judder``."""
-    if Path(path).suffix.lower() in (".csv", ".toml"):
-        text = f"# {MARK}\n{text}"
+    """Write ``text`` (UTF-8) atomically. A CSV file ends with the line
+    :func:`mark_line` (its first line stays the header a spreadsheet
+    expects; the mark must be the last line, as ``written_by_us`` reads a
+    file's end), a TOML file starts with it."""
+    suffix = Path(path).suffix.lower()
+    if suffix == ".csv":
+        text = f"{text}{mark_line()}\n"
+    elif suffix == ".toml":
+        text = f"{mark_line()}\n{text}"
     atomic_write(path, lambda stream: stream.write(text.encode()), overwrite)
 
 
 def save_npz(path, arrays):
     """Write arrays as a compressed NPZ file, atomically, with the
-    :data:`NPZ_MARK` array."""
-    marked = {**arrays, NPZ_MARK: np.array(True)}
+    :data:`NPZ_MARK` array and the provenance (``judder_version``,
+    ``input_sha256``; empty outside a command)."""
+    provenance = current()
+    marked = {**arrays, NPZ_MARK: np.array(True),
+              "judder_version": np.array(provenance.version),
+              "input_sha256": np.array(provenance.input_sha256 or "")}
     atomic_write(path, lambda stream: np.savez_compressed(stream, **marked))
 
 
 def save_figure(path, figure, dpi=150):
     """Save a matplotlib figure; the format follows the file's suffix
-    (PNG, SVG, PDF, PS and EPS carry :data:`MARK` in their metadata)."""
+    (PNG, SVG, PDF, PS and EPS carry :data:`MARK` and the provenance in
+    their metadata)."""
     suffix = Path(path).suffix.lstrip(".").lower() or "png"
     key = _FIGURE_METADATA.get(suffix)
-    metadata = {key: MARK} if key else None
+    metadata = {key: mark_line().removeprefix("# ")} if key else None
     atomic_write(path, lambda stream: figure.savefig(
         stream, format=suffix, dpi=dpi, metadata=metadata))
 

@@ -24,6 +24,7 @@ dashboard.
 from concurrent.futures import CancelledError
 from contextlib import contextmanager
 from dataclasses import dataclass
+import functools
 import logging
 import math
 import os
@@ -38,6 +39,7 @@ from threadpoolctl import threadpool_limits
 from .contract import warn
 from .errors import JudderError
 from .lifecycle import die_with_parent
+from .provenance import current, recorded
 
 __all__ = ["parallel_map", "cluster", "TaskFailure", "TaskFailures",
            "TaskInputErrors"]
@@ -578,9 +580,12 @@ def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
         if state.serial(workers, len(jobs), job_bytes):
             results = _serial(function, jobs, outcome)
         else:
-            results = _distributed(state.client(workers, len(jobs),
-                                                job_bytes), function, jobs,
-                                   ordered, outcome)
+            # a worker process writes files with the command's
+            # provenance, as this process would
+            results = _distributed(
+                state.client(workers, len(jobs), job_bytes),
+                functools.partial(_with_provenance, current(), function),
+                jobs, ordered, outcome)
         for item in results:
             if not isinstance(item, TaskFailure) or failures == "yield":
                 yield item
@@ -589,6 +594,11 @@ def parallel_map(function, jobs, workers=None, ordered=True, describe=None,
             state.close()
     if failed and failures == "raise":
         raise _failures(failed, len(jobs))
+
+
+def _with_provenance(provenance, function, job):
+    with recorded(provenance):
+        return function(job)
 
 
 def _serial(function, jobs, outcome):

@@ -32,15 +32,6 @@ EPILOG = ("Long work (map, floquet, tongues, sensitivity, crosscheck, "
           "another limit.")
 
 
-def _version():
-    """The installed package's version (``pyproject.toml``)."""
-    from importlib.metadata import PackageNotFoundError, version
-    try:
-        return version("judder")
-    except PackageNotFoundError:
-        return "(not installed: run make setup)"
-
-
 class _VersionAction(argparse.Action):
     """``--version``: the package metadata is read only when asked."""
 
@@ -48,7 +39,8 @@ class _VersionAction(argparse.Action):
         super().__init__(option_strings, dest, nargs=0, **kwargs)
 
     def __call__(self, parser, namespace, values, option_string=None):
-        print(f"judder {_version()}")
+        from infra.provenance import tool_version
+        print(f"judder {tool_version()}")
         parser.exit()
 
 
@@ -139,7 +131,8 @@ def main(argv=None):
             from infra.errors import JudderError
             from .commands._flags import in_flags
             from .commands._model import check_plausible
-            from .commands._output import check_outputs
+            from infra.provenance import recorded
+            from .commands._output import check_outputs, provenance_of
         try:
             check_outputs(args)
             check_plausible(args)
@@ -147,7 +140,8 @@ def main(argv=None):
             # contend
             with threadpool_limits(limits=1), cluster(
                     getattr(args, "workers", None),
-                    getattr(args, "scheduler", None)):
+                    getattr(args, "scheduler", None)), recorded(
+                        provenance_of(args)):
                 args.handler(args)
         except JudderError as exc:
             # the library's messages name its arguments: say the options

@@ -172,12 +172,16 @@ def test_tongues_json_and_csv(tmp_path):
     assert numbers[2]["kind"] == "single-period"
     assert abs(numbers[5]["tip_offset_percent"]) < 0.5
     assert data["max_boundary_multiplier_error"] < 1e-6
-    mark, growth, header, first = out.read_text().splitlines()[:4]
-    assert mark == "# written by judder"
+    lines = out.read_text().splitlines()
+    header, first, growth, mark = lines[0], lines[1], lines[-2], lines[-1]
+    provenance = data["provenance"]
+    assert mark == (f"# written by judder {provenance['judder_version']}, "
+                    f"inputs sha256:{provenance['input_sha256']}")
     # the growth rate these are the boundaries of (fit --boundary reads it)
     assert growth == "# min_growth_per_s: 0"
     assert header.startswith("freq_hz,p_f_bar,single_period_bar")
     assert first.startswith("10,")
+    assert len(lines) == 106 + 3
 
 
 def test_compare_puts_two_sets_side_by_side(tmp_path):

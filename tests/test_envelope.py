@@ -206,8 +206,22 @@ def test_the_command_writes_npz_csv_plot_and_json(tmp_path):
                         arrays["broadest_bar"])
         assert_allclose(arrays["broadest_bar"], data["broadest_p_f_bar"])
     lines = table.read_text().splitlines()
-    assert lines[0] == "# written by judder"     # the overwrite rule's mark
-    assert lines[1].startswith("freq_hz,nominal_p_f_bar,broadest_p_f_bar")
+    assert lines[0].startswith("freq_hz,nominal_p_f_bar,broadest_p_f_bar")
+    # the overwrite rule's mark, last (the header first, for a spreadsheet)
+    assert lines[-1].startswith("# written by judder ")
     assert len(lines) == 4
     assert plot.read_bytes()[:4] == b"\x89PNG"
     assert not (tmp_path / "e.npz.checkpoint.npz").exists()
+
+
+def test_envelope_edges_close_on_the_top_of_the_axes():
+    # each stretch of finite edge joins the top at its neighbouring
+    # frequencies (where the edge rose above p_max), so the drawn region
+    # is closed and holds the shading (issue 33: it was open at the top)
+    from stability.plots.envelope import closed_edge
+    nan = np.nan
+    f, p = closed_edge(np.arange(6.0), [nan, 0.5, 0.4, nan, nan, 0.3], 1.0)
+    assert_allclose(f, [0, 1, 2, 3, nan, 4, 5, 5])
+    assert_allclose(p, [1, 0.5, 0.4, 1, nan, 1, 0.3, 1])
+    f, p = closed_edge(np.arange(3.0), [nan, nan, nan], 1.0)
+    assert f.size == 0 and p.size == 0

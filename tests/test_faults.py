@@ -17,6 +17,7 @@ import pytest
 from sources import get_preset
 from infra.errors import JudderError
 from infra.files import MARK, save_npz, write_text, written_by_us
+from infra.provenance import Provenance, recorded, tool_version
 from judder.cli import main
 from pysim.simulation.campaigns import Campaign, run_campaign
 
@@ -111,7 +112,13 @@ def test_figures_carry_the_mark(tmp_path, suffix, capsys):
 
 def test_marks_of_text_and_npz(tmp_path):
     write_text(tmp_path / "a.csv", "x\n1\n")
-    assert (tmp_path / "a.csv").read_text().startswith(f"# {MARK}\n")
+    # outside a command: the version alone, after the rows
+    assert (tmp_path / "a.csv").read_text() == (
+        f"x\n1\n# {MARK} {tool_version()}\n")
+    with recorded(Provenance("0.1.0", "ab" * 32)):
+        write_text(tmp_path / "a.toml", "x = 1\n")
+    assert (tmp_path / "a.toml").read_text() == (
+        f"# {MARK} 0.1.0, inputs sha256:{'ab' * 32}\nx = 1\n")
     save_npz(tmp_path / "a.npz", {"x": np.arange(3)})
     assert written_by_us(tmp_path / "a.npz")
     (tmp_path / "b.csv").write_text("x\n1\n")

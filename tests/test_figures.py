@@ -86,6 +86,27 @@ def test_fig14_map_with_exact_boundaries(rc, tmp_path):
     _check(fig, "fig14", tmp_path)
 
 
+def test_map_legend_lists_only_the_kinds_drawn(rc):
+    # 90-115 Hz up to 0.5 bar holds tongue 2 alone (single-period): no
+    # double-period or combination patch or boundary in the legend
+    # (issue 33); with tongue 4 (2 f2 = 205.8 Hz) the double-period too
+    import matplotlib.pyplot as plt
+
+    def legend(freq):
+        result = api.stability_map(freq, np.linspace(0, 0.5, 20),
+                                   exact=True)
+        fig = result.figure()
+        texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        plt.close(fig)
+        return texts
+    alone = legend(np.linspace(90, 115, 40))
+    assert "single-period" in alone
+    assert not any(k in text for text in alone
+                   for k in ("double-period", "combination"))
+    both = legend(np.r_[np.linspace(90, 115, 40), np.linspace(200, 212, 30)])
+    assert "double-period" in both and "combination" not in both
+
+
 def test_tongues_without_map(rc, paper4, tmp_path):
     from stability.tongues import find_tongues, tongue_boundaries
     b = tongue_boundaries(paper4, np.linspace(10, 220, 80), 1.5 * BAR)

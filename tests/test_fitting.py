@@ -335,6 +335,8 @@ def test_fit_text_has_the_digits_the_interval_supports():
     digits = 1 - int(np.floor(np.log10(std)))
     assert f"± {round(std, digits):.{max(digits, 0)}f}" in k24
     assert "N m/rad" in k24 and "s/rad" in lines[0]
+    # which is which: the +- is one standard uncertainty, the interval 95 %
+    assert "N m/rad (1 sigma), 95 % interval [" in k24
     r = result.correlation[0, 1]
     assert lines[2] == f"correlation of the fitted values: mu_g-k24 {r:+.2f}"
     assert abs(r) < 1

@@ -12,7 +12,8 @@ import pytest
 from sources import get_preset
 from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
 from pysim.analysis.signals import (amplitude_spectrum, dither_envelope,
-                           free_response_growth, stroboscopic_growth)
+                           free_response_growth, per_period,
+                           stroboscopic_growth)
 
 pytest.importorskip("rumoca")
 pytest.importorskip("fmpy")
@@ -28,6 +29,18 @@ def test_spectrum_of_a_sine():
     spectrum = amplitude_spectrum(t, y)
     assert spectrum.peak_freq_hz == pytest.approx(50, abs=0.5)
     assert spectrum.peak_amplitude == pytest.approx(3.0, rel=2e-3)
+
+
+def test_per_period_leaves_out_a_last_period_of_one_sample():
+    # 1 s at 1 kHz of 50 Hz: 50 whole periods of 20 samples, and the last
+    # sample (t = 1 s, at the crest) alone in a 51st: its "mean" 11 was
+    # the spike at the end of every engagement figure
+    t = np.arange(1001) * 1e-3
+    centre, low, high, mean = per_period(t, 10 + np.cos(2 * np.pi * 50 * t),
+                                         1 / 50)
+    assert len(centre) == 50
+    np.testing.assert_allclose(mean, 10, atol=1e-12)
+    np.testing.assert_allclose(high, 11, atol=1e-12)
 
 
 def test_stroboscopic_growth_of_forced_plus_growing():
@@ -154,8 +167,42 @@ def test_simulate_cli_json_and_outputs(tmp_path):
     assert plot.read_bytes()[:4] == b"\x89PNG"
 
 
+def test_simulate_full_engagement_to_lock_up(tmp_path):
+    # TestBenchLockUp (test_fmu.py checks the class): outside the tongues
+    # (60 Hz) the gearbox side comes up from rest and the clutch locks up
+    # at 3.23 s, as the library documents, and stays locked; inside tongue
+    # 2 (102.9 Hz, 0.3 bar) the slip swings through zero, every lock-up
+    # breaks away, and the slipping engagement has forced judder
+    from pysim.bench_data._csv import read
+    out = tmp_path / "run.csv"
+    proc = _judder("simulate", "--engagement", "full", "--freq", "60,102.9",
+                   "--pf", "0.3", "--duration", "3.5", "--out", str(out),
+                   "--json")
+    assert proc.returncode == 0, proc.stderr
+    outside, inside = json.loads(proc.stdout)["runs"]
+    assert 3.2 < outside["lock_up_time_s"] < 3.25
+    assert outside["lockups"] == 0
+    assert abs(outside["final_slip_rad_s"]) < 1e-9
+    assert outside["judder"] is False and outside["floquet_kind"] == "stable"
+    # the motor's 1000 rpm less what the gearbox side gained in the ramp
+    assert 0.9 * np.pi * 1000 / 30 < outside["slip_at_ramp_end_rad_s"] \
+        < np.pi * 1000 / 30
+    assert inside["lock_up_time_s"] is None and inside["lockups"] > 300
+    assert inside["judder"] and inside["mechanism"] == "forced"
+    # the run's CSV (the first run) read back as an acquisition: slipping
+    # until the lock-up time reported, then stuck
+    _, metadata, raws = read(out, ["slip", "even.lockups"])
+    assert metadata["freq_hz"] == 60
+    time, slip, _ = raws["slip"]
+    stuck = raws["even.lockups"][1] > 0.5
+    assert time[stuck][0] == pytest.approx(outside["lock_up_time_s"])
+    assert np.all(slip[time < outside["lock_up_time_s"] - 0.01] > 0.1)
+
+
 @pytest.mark.parametrize("args, words", [
     (["simulate", "--freq", "-5", "--pf", "0.1"], ["--freq", ">= 0.001"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--engagement", "full",
+      "--model", "3dof"], ["4-DOF"]),
     (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "w_motor=x"],
      ["--bench"]),
     (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "w_moter=1"],

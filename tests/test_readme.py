@@ -198,16 +198,18 @@ def test_params_lists_the_allowed_range_of_every_parameter(capsys):
 
 
 # --json of every README command, against the recording made before the
-# command layer was restructured (issue 22): wall-clock times (``seconds``)
-# and the scratch folder's and the checkout's paths left out, numbers to
+# command layer was restructured (issue 22): wall-clock times (``seconds``),
+# the version and input digest (``provenance``, which change with every
+# release and every default; tested in test_provenance.py) and the scratch
+# folder's and the checkout's paths left out, numbers to
 # 1e-9 relative (the same kernels in the same order). JUDDER_RECORD_JSON=1
 # records it again after a deliberate change of an output (say why in the
 # commit).
 
 GOLDEN = ROOT / "tests" / "golden" / "readme_json.json"
 RECORD = os.environ.get("JUDDER_RECORD_JSON") == "1"
-#: Keys whose values are wall-clock times.
-TIMES = {"seconds", "elapsed_s"}
+#: Keys whose values are wall-clock times, and the provenance.
+TIMES = {"seconds", "elapsed_s", "provenance"}
 RTOL = 1e-9
 
 
@@ -217,9 +219,9 @@ def _judder_commands():
 
 
 def _normalised(value, folder):
-    """``value`` without wall-clock times, with the scratch folder as
-    ``<work>`` and the checkout as ``<root>`` (the FMUs are built under
-    it)."""
+    """``value`` without wall-clock times and provenance, with the scratch
+    folder as ``<work>`` and the checkout as ``<root>`` (the FMUs are
+    built under it)."""
     if isinstance(value, dict):
         return {k: _normalised(v, folder) for k, v in value.items()
                 if k not in TIMES}

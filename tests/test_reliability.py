@@ -605,7 +605,7 @@ def _check_pdf_update(data):
     entry = re.match(rb"xref\n(\d+) 1\n(\d{10}) (\d{5}) n \n", data[start:])
     number, offset = int(entry.group(1)), int(entry.group(2))
     assert data[offset:].startswith(b"%d 0 obj" % number)
-    assert b"/Creator (written by judder)>>" in data[offset:start]
+    assert b"/Creator (written by judder " in data[offset:start]
     trailer = data[start:]
     assert b"/Info %d 0 R" % number in trailer
     previous = int(re.search(rb"/Prev (\d+)", trailer).group(1))

@@ -17,6 +17,7 @@ from infra.errors import JudderError
 from matplotlib.image import imread
 
 from judder.cli import main
+from judder.inputs import load_parameters
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -73,9 +74,19 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     # tongue 2's tip, refined between grid points: 105.776 Hz, 0.1084 bar
     # (`judder tongues` on 500 frequencies; twice the 0.0542 bar of
     # mu_g = 0.022, as the tip scales with 1/mu_g)
-    row = re.search(r"2 single-period f2 ([\d.]+) ([\d.]+)", text)
+    row = re.search(r"2 single-period f2 ([\d.]+) ([\d.]+) ([\d.]+)", text)
     assert float(row.group(1)) == pytest.approx(105.776, abs=0.01)
     assert float(row.group(2)) == pytest.approx(0.1084, abs=1e-4)
+    # and where it judders (1 1/s), higher: the judder tip of `judder
+    # tongues` on the report's grid
+    assert "where each tongue becomes unstable (|lambda| = 1" in text
+    from judder.api import tongues
+    late = tongues(np.linspace(10, 220, 60), 1.5, load_parameters(
+        param_file=EXAMPLES / "driveline.toml"), {"mu_g": 0.011})
+    judder_tip = next(t for t in late.judder_tongues if t.number == 2)
+    assert float(row.group(3)) == pytest.approx(
+        judder_tip.tip_p_f / 1e5, abs=1e-4)
+    assert float(row.group(3)) > float(row.group(2))
     # halving and doubling mu_g moves the tip by 100 % (tip ~ 1/mu_g),
     # more than k24 does: mu_g is ranked first
     ranking = re.search(r"tongue vanishes (\w+) ([\d.]+) [\d.]+ no (\w+)",

@@ -8,6 +8,14 @@ import sys
 
 from infra.errors import JudderError
 from infra.files import all_or_none, check_output, save_figure, to_json
+from infra.provenance import Provenance, current, input_digest, tool_version
+
+#: Options that do not change a result: how it is shown, where it is
+#: written (``out`` also of a folder, a checkpoint resumed or not), how
+#: the work is spread; the outputs' own options are added.
+NOT_INPUTS = {"command", "handler", "outputs", "output_check", "amplitude",
+              "version", "json", "force", "workers", "scheduler", "out",
+              "checkpoint"}
 
 
 def written(*paths):
@@ -70,8 +78,21 @@ def check_outputs(args):
         args.output_check(args, seen)
 
 
+def provenance_of(args):
+    """The tool's version and the digest of a command's inputs
+    (:func:`infra.provenance.input_digest`): its options but those of
+    :data:`NOT_INPUTS` and its outputs."""
+    skip = NOT_INPUTS | {attribute for attribute, _, _ in args.outputs}
+    options = {name: value for name, value in vars(args).items()
+               if name not in skip}
+    return Provenance(tool_version(), input_digest(args.command, options))
+
+
 def emit(args, data, text):
-    """Print ``data`` as JSON with --json, else ``text``."""
+    """Print ``data`` as JSON with --json (with ``provenance``: the
+    version and the input digest), else ``text``."""
+    if args.json and isinstance(data, dict):
+        data = {**data, "provenance": current().as_dict()}
     print(to_json(data) if args.json else text)
 
 

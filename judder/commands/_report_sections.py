@@ -20,6 +20,7 @@ import numpy as np
 from infra.criteria import ENGAGEMENT_DURATION_S
 from infra.files import MARK
 from infra.numbers import format_interval, format_uncertain, readable_number
+from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
@@ -81,14 +82,15 @@ class Page:
         stamp = datetime.datetime.now(datetime.timezone.utc).strftime(
             "%Y-%m-%d %H:%M UTC")
         description = html.escape(self.description)
+        provenance = html.escape(current().words())
         return (
             "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<meta name=\"generator\" content=\"{MARK}\">"
+            f"<meta name=\"generator\" content=\"{MARK} {provenance}\">"
             f"<title>judder report: {description}</title>"
             f"<style>{_CSS}</style></head><body>"
             f"<h1>Clutch judder from dither: {description}</h1>"
-            f'<p class="small">judder report, {stamp}. Dither frequency in '
-            "Hz, amplitude in bar, parameters in SI units. Figures and "
+            f'<p class="small">judder report, {stamp}, {provenance}. '
+            "Dither frequency in Hz, amplitude in bar, parameters in SI units. Figures and "
             "equations as numbered in \"Parametric excitation as a cause of "
             "clutch judder: theoretical study and experimental "
             "validation\".</p>"
@@ -233,11 +235,14 @@ def setting_section(page, point, freq_hz, p_f_bar):
                                          f"bar, {page.description}")))
 
 
-def map_section(page, stability, tongue_records, min_growth):
+def map_section(page, stability, tongue_records, min_growth, p_max_bar):
     """The stability map with the exact tongues (Fig. 14) and the table of
-    their tips (``tongue_records``: the report's ``tongues`` data)."""
+    their tips (``tongue_records``: the report's ``tongues`` data): where
+    each becomes unstable and where it judders (up to ``p_max_bar``)."""
     tip_rows = [(t["number"] or "-", t["kind"], t["resonance"] or "-",
-                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}")
+                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}",
+                 "-" if t["judder_tip_p_f_bar"] is None else
+                 f"{t['judder_tip_p_f_bar']:.4f}")
                 for t in tongue_records]
     return (_keep(
         "<h2>Where it judders: the stability map</h2>"
@@ -250,9 +255,13 @@ def map_section(page, stability, tongue_records, min_growth):
                       stability.figure(
                           title=f"stability map, {page.description}",
                           stacked=True)))
-        + "<p>Tongue tips (lowest amplitude that judders, refined between "
-          "grid points); numbers as in Fig. 14:</p>"
-        + _table(("#", "kind", "resonance", "tip f [Hz]", "tip p_f [bar]"),
+        + "<p>Tongue tips, numbers as in Fig. 14: where each tongue becomes "
+          "unstable (|lambda| = 1; its tip, refined between grid points) "
+          f"and the lowest amplitude where it judders (grows at "
+          f"{min_growth:g} 1/s or faster; - : not up to {p_max_bar:g} "
+          "bar):</p>"
+        + _table(("#", "kind", "resonance", "tip f [Hz]",
+                  "unstable from p_f [bar]", "judders from p_f [bar]"),
                  tip_rows))
 
 
@@ -279,7 +288,9 @@ def advice_section(page, advice):
         + f"<p>{html.escape(_window_text(advice))}</p>"
         + "<p>Design parameters ranked by how much of the way out of "
           "the window a relative change takes the judder-relevant "
-          "tongues (share per unit change of ln value): "
+          "tongues (the share of that way a change of the value by a "
+          "factor e = 2.72 moves the tongue that needs most; 1 = all "
+          "the way): "
         + html.escape(", ".join(f"{n} {share:.2f}"
                       for n, share, _ in advice.ranking))
         + ".</p>"
@@ -468,8 +479,8 @@ def fit_section(bench, names, values, source, fitted, error):
              format_interval(lo, hi, s))
             for n, s0, v, s, lo, hi in zip(r.names, r.start, r.values, r.std,
                                            r.ci_low, r.ci_high)]
-    text = (head + _table(("parameter", "start", "fitted", "95 % interval"),
-                          rows)
+    text = (head + _table(("parameter", "start", "fitted ± 1 sigma",
+                           "95 % interval"), rows)
             + "".join(f"<p>{html.escape(line)}</p>"
                       for line in lines[len(r.names):])
             + "".join(f"<p>problem: {html.escape(p)}</p>" for p in problems))

@@ -458,9 +458,9 @@ class FitReport:
                 rows.append(f"{n:>8} = {v:.6g} {unit}: not determined by "
                             "the measured boundary (see the problems)")
             else:
-                rows.append(f"{n:>8} = {format_uncertain(v, s, unit)}, 95 % "
-                            f"interval {format_interval(lo, hi, s)}  (start "
-                            f"{s0:.6g})")
+                rows.append(f"{n:>8} = {format_uncertain(v, s, unit)} (1 "
+                            f"sigma), 95 % interval "
+                            f"{format_interval(lo, hi, s)}  (start {s0:.6g})")
         pairs = [(a, b, r.correlation[i, j])
                  for i, a in enumerate(r.names)
                  for j, b in enumerate(r.names) if j > i]

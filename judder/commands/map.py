@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import keeps_foreign_files, save_npz
+from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR
 from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
@@ -29,7 +29,7 @@ DESCRIPTION = (
     "grows at --min-growth (1 1/s) or faster, the rest of the unstable "
     "region shaded grey. Ctrl-C stops it without writing a partial "
     "file.")
-OUTPUTS = (("out", "--out", ("npz",)), ("plot", "--plot", None))
+OUTPUTS = (("out", "--out", ("npz", "csv")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
 
@@ -51,8 +51,10 @@ def add_arguments(p):
     p.add_argument("--pf", type=Grid("--pf", "bar"),
                    default=DEFAULT_MAP_PF, metavar="START:STOP:N",
                    help=f"dither amplitudes, bar (default {DEFAULT_MAP_PF})")
-    p.add_argument("--out", metavar="FILE.npz",
-                   help="save the map arrays (NPZ, see README)")
+    p.add_argument("--out", metavar="FILE.npz|FILE.csv",
+                   help="save the map: NPZ arrays with the exact boundaries "
+                        "(see README), or CSV, one row per grid point with "
+                        "the header on the first line, for a spreadsheet")
     p.add_argument("--plot", metavar="FILE.png",
                    help="save a plot of the map (PNG, SVG or PDF), with the "
                         "exact tongue boundaries and numbers")
@@ -70,8 +72,9 @@ def run(args):
     amplitudes = args.pf
     params, changes = parameters_of(args)
     waveform = parse_waveform(args.dither_wave)
-    # the exact boundaries are drawn on --plot and stored in --out
-    exact = args.plot is not None or args.out is not None
+    # the exact boundaries are drawn on --plot and stored in --out (NPZ)
+    exact = args.plot is not None or (
+        args.out is not None and not str(args.out).lower().endswith(".csv"))
     check_map_grid(params.replace(**changes), freqs, amplitudes,
                     "--freq x --pf", args.method, exact)
     make_parents(args.out, args.plot)
@@ -203,10 +206,7 @@ class MapResult:
     def judder_relevant_points(self):
         """Points growing faster than ``min_growth`` (all unstable ones if
         it is None)."""
-        from stability.decisions.relevance import is_judder_relevant
-        return int(np.count_nonzero(
-            (self.map.kind > 0)
-            & is_judder_relevant(self.map.growth_rate, self.min_growth or 0)))
+        return int(np.count_nonzero(self._judder()))
 
     def as_dict(self):
         m = self.map
@@ -221,9 +221,43 @@ class MapResult:
                 "max_leading_abs": float(m.leading_abs.max()),
                 "natural_frequencies_hz": m.natural_frequencies_hz}
 
+    def csv_text(self, meta=None):
+        """The map as a long table, one row per grid point: ``freq_hz``,
+        ``p_f_bar``, ``leading_abs`` (|lambda|), ``growth_rate_per_s``
+        (ln|lambda|/T), ``kind`` (its name), ``judder`` (1: unstable and
+        growing at ``min_growth`` or faster; 0 else), ``leading_re``,
+        ``leading_im``; after the rows, ``# key: value`` comments (the
+        model, the method, the rate, the natural frequencies, the
+        parameter values in SI units and ``meta``)."""
+        m = self.map
+        bar = m.p_f / PA_PER_BAR
+        judder = self._judder()
+        lines = ["freq_hz,p_f_bar,leading_abs,growth_rate_per_s,kind,"
+                 "judder,leading_re,leading_im"]
+        for i, freq in enumerate(m.freq_hz):
+            for j, amplitude in enumerate(bar):
+                z = m.leading[i, j]
+                lines.append(
+                    f"{freq:.9g},{amplitude:.9g},{abs(z):.12g},"
+                    f"{m.growth_rate[i, j]:.9g},{KINDS[m.kind[i, j]]},"
+                    f"{int(judder[i, j])},{z.real:.12g},{z.imag:.12g}")
+        info = {"model": self.params.model, "method": m.method,
+                "min_growth_per_s": float(self.min_growth or 0.0),
+                "natural_frequencies_hz": list(m.natural_frequencies_hz),
+                **(meta or {}), "parameters": self.params.as_dict()}
+        lines += [f"# {key}: {json.dumps(value)}"
+                  for key, value in info.items()]
+        return "\n".join(lines) + "\n"
+
+    def _judder(self):
+        from stability.decisions.relevance import is_judder_relevant
+        return (self.map.kind > 0) & is_judder_relevant(
+            self.map.growth_rate, self.min_growth or 0)
+
     @keeps_foreign_files
     def save(self, path, meta=None):
-        """Save the map as NPZ.
+        """Save the map as CSV (:meth:`csv_text`) by a ``.csv`` suffix,
+        else as NPZ.
 
         Arrays: ``freq_hz`` (nf,), ``p_f_pa`` and ``p_f_bar`` (np,),
         ``leading_re``/``leading_im``/``leading_abs``/``growth_rate_per_s``
@@ -238,6 +272,9 @@ class MapResult:
         ``tongue_tip_p_f_bar``; ``parameters`` holds a JSON string of the
         model, the parameter values (SI), the method and ``meta``.
         """
+        if str(path).lower().endswith(".csv"):
+            write_text(path, self.csv_text(meta))
+            return
         m = self.map
         info = {"model": self.params.model,
                 "parameters": self.params.as_dict(), "method": m.method,

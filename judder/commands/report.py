@@ -54,7 +54,7 @@ from .params import params
 from .sensitivity import sensitivity
 from .simulate import simulate
 from .threshold import threshold
-from .tongues import tongues
+from .tongues import tongue_record, tongues
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -316,16 +316,19 @@ def report(parameters=None, changes=None, description=None,
     step()
 
     # tongues, and the map they are drawn over
-    found = tongues(grid_freq, p_max_bar, values, method=method)
+    found = tongues(grid_freq, p_max_bar, values, method=method,
+                    judder_growth=min_growth)
     stability = dataclasses.replace(
         stability_map(map_freq, map_pf, values, method=method,
                       min_growth=min_growth),
         boundaries=found.boundaries, tongues=found.tongues)
     step()
     data["tongues"] = [
-        {"number": t.number, "kind": t.kind, "resonance": t.resonance,
-         "tip_freq_hz": t.tip_freq_hz, "tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
-        for t in found.tongues]
+        {key: record[key] for key in ("number", "kind", "resonance",
+                                      "tip_freq_hz", "tip_p_f_bar",
+                                      "judder_tip_p_f_bar")}
+        for record in (tongue_record(t, found.judder_tongues)
+                       for t in found.tongues)]
 
     # the configured dither, and what to do (advise)
     point = verdict = None
@@ -347,7 +350,7 @@ def report(parameters=None, changes=None, description=None,
     if point is not None:
         page.sections.append(setting_section(page, point, freq_hz, p_f_bar))
     page.sections.append(map_section(page, stability, data["tongues"],
-                                     min_growth))
+                                     min_growth, p_max_bar))
     page.sections.append(kinds_section(page, _inside_each_kind(
         found.tongues, values, p_max_bar, method)))
     if advice is not None:

@@ -41,9 +41,15 @@ DESCRIPTION = (
     "(built by the project's compiler) from its start values, a steady "
     "slip, with the dither, and the Floquet verdict of its "
     "linearisation; --fmu is refused (its Jacobian is all the FMU path "
-    "reads).")
+    "reads). With --engagement full: an engagement that ends, the gearbox "
+    "side from rest until the EVEN clutch locks up (TestBenchLockUp), "
+    "with the lock-up time and the judder verdict while it slips.")
 OUTPUTS = (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
+
+#: Engagements of the bench: the class of the library each runs (None:
+#: the driveline's own bench, :attr:`drivelines.DrivelineModel.bench_class`).
+ENGAGEMENTS = {"steady": None, "full": "Judder.Examples.TestBenchLockUp"}
 
 
 def add_arguments(p):
@@ -74,6 +80,14 @@ def add_arguments(p):
                         "mean torque: 1 keeps the slip steady), N_c_load, "
                         "d_control; repeatable (not with --modelica: set "
                         "the class's parameters with --set)")
+    p.add_argument("--engagement", choices=tuple(ENGAGEMENTS),
+                   default="steady",
+                   help="steady: the bench at a steady slip (default; "
+                        "TestBenchEngagement); full: the gearbox side from "
+                        "rest, the pressure ramped in 0.05 s, until the "
+                        "EVEN clutch locks up (TestBenchLockUp, its "
+                        "straight-line friction law Eq. 5); the verdict is "
+                        "that of the slipping part")
     p.add_argument("--out", metavar="run.csv|run.mf4",
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
@@ -93,7 +107,7 @@ def run(args):
     compare = args.compare
     make_parents(args.out, args.plot)
     result = simulate(freqs if len(freqs) > 1 else freqs[0], args.pf,
-                      duration=args.duration,
+                      duration=args.duration, engagement=args.engagement,
                       compare=compare, bench=bench, parameters=params,
                       changes=changes, method=args.method,
                       min_growth=args.min_growth,
@@ -101,7 +115,9 @@ def run(args):
     files = write_outputs(
         args, result,
         figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
-                "8)" if params.source_kind.is_chain else
+                "8)" if params.source_kind.is_chain and args.engagement
+                == "steady" else "full engagement of the EVEN clutch to "
+                "lock-up" if params.source_kind.is_chain else
                 "time-domain run with dither")
                 + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
                   f"parameters of {model_title(args, params)}"})
@@ -112,8 +128,13 @@ def run(args):
 
 def _engagement_line(s):
     from pysim.simulation.engagement import judder_words
+    from pysim.simulation.engagement import lock_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
-            f"{s['p_f_bar']:g} bar; upstream speed peak "
+            f"{s['p_f_bar']:g} bar; "
+            + ("" if "lock_up_time_s" not in s else
+               f"slip {s['slip_at_ramp_end_rad_s']:.4g} rad/s at the ramp's "
+               f"end, {lock_words(s)}; while slipping: ")
+            + f"upstream speed peak "
             f"{s['speed_peak_amplitude_rpm']:.3g} rpm at "
             f"{s['speed_peak_freq_hz']:.2f} Hz"
             + (" (the dither frequency)"
@@ -138,7 +159,7 @@ def _engagement_line(s):
 def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
              parameters=None, changes=None, method=DEFAULT_METHOD,
              min_growth=DEFAULT_MIN_GROWTH_PER_S,
-             judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM):
+             judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, engagement="steady"):
     """``judder simulate``: an engagement on the driveline's bench model
     (Fig. 7, 8), run through its FMU, with the Floquet verdict of each
     dither setting for the bench's linearisation (the damping its motor
@@ -170,33 +191,57 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     judder_limit_rpm : float
         NVH limit of the dither-related oscillation of the upstream
         speed, rpm: larger is judder, forced or parametric.
+    engagement : {'steady', 'full'}
+        ``'full'``: the engagement that ends in lock-up
+        (``TestBenchLockUp``: the gearbox side from rest, the EVEN clutch
+        with the straight-line law of Eq. 5, so the linearisation takes
+        the driveline's own ``mu0`` and ``mu_g``); each summary adds
+        ``lock_up_time_s`` (None: it slips at the end), ``lockups``,
+        ``slip_at_ramp_end_rad_s`` and ``duration_s``, and its verdict
+        and spectra are those of the run before the lock-up.
 
     Returns
     -------
     SimulationResult
     """
     from drivelines.registry import SIGNALS
-    from pysim.simulation.engagement import engagement_summary
+    from pysim.simulation.engagement import (LOCK_VARIABLES,
+                                             engagement_summary, lock_up,
+                                             until)
     from pysim.simulation.runs import parameter_default, run_fmu
 
     from ..timedomain import class_fmu, run_values
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_f_bar=p_f_bar, min_growth=min_growth,
                             judder_limit_rpm=judder_limit_rpm)
+    if engagement not in ENGAGEMENTS:
+        raise JudderError(f"`engagement` {engagement!r} is not allowed; "
+                          f"allowed: {', '.join(ENGAGEMENTS)}")
     bench = dict(bench or {})
+    full = engagement == "full"
+    if full and not values.source_kind.is_chain:
+        bench_fmu(values)       # refuses a class or FMU, naming the bench
     if values.source_kind.is_chain:
         bench = check_bench(values, bench)
         model_class, fmu = bench_fmu(values)
+        if full:
+            from pysim.simulation.fmus import ensure_fmu
+            model_class = ENGAGEMENTS["full"]
+            fmu = ensure_fmu(model_class)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))
         run_params, extra = values, bench
         # the bench's linearisation: its motor control damps body 1, and
         # its friction curve has its own value and slope at the slip
-        friction, linear_slip = operating_friction(values, fmu, bench)
+        # (the full engagement's clutch has the straight line of Eq. 5:
+        # the driveline's own mu0 and mu_g, at every slip)
+        friction, linear_slip = ((({}, None)) if full else
+                                 operating_friction(values, fmu, bench))
         driveline = build_driveline(values.replace(
             **{name: values[name] + value for name, value in
                added_damping(values, fmu, bench).items()}, **friction))
-        orbit_model = engagement_model(values, bench, fmu)[0]
+        orbit_model = None if full else engagement_model(values, bench,
+                                                         fmu)[0]
     else:
         fmu = class_fmu(values, "simulate")
         if bench:
@@ -222,15 +267,20 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                          p_f_bar * PA_PER_BAR))
     interval = min(1e-3, 1.0 / (20 * max(f for _, f, _ in settings)))
     runs = [(label, run_fmu(fmu, freq, p_f, params=run_params, extra=extra,
-                            duration=duration, output_interval=interval))
+                            duration=duration, output_interval=interval,
+                            variables=LOCK_VARIABLES if full else ()))
             for label, freq, p_f in settings]
-    summaries = []
+    summaries, slipping = [], []
     for label, run in runs:
+        lock = lock_up(run) if full else None
+        slipping.append(until(run, lock))
         linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
                                 method=method)
         summaries.append({"label": label,
-                          **engagement_summary(run, ramp_end, min_growth,
-                                               judder_limit_rpm),
+                          **engagement_summary(slipping[-1], ramp_end,
+                                               min_growth, judder_limit_rpm),
+                          **(_lock_fields(run, lock, ramp_end) if full
+                             else {}),
                           "floquet_kind": linear.kind,
                           "floquet_exponent_per_s": linear.growth_rate,
                           **linear_validity(driveline, run, linear_slip),
@@ -238,7 +288,23 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                                           judder_limit_rpm)})
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
                             model_class=model_class, start=ramp_end,
-                            signals=dict(SIGNALS))
+                            # (the lock counters are counts: unit 1)
+                            signals={**SIGNALS, **dict.fromkeys(
+                                LOCK_VARIABLES if full else (), "1")},
+                            slipping=slipping if full else None)
+
+
+def _lock_fields(run, lock, ramp_end):
+    """How a full engagement ends: its lock-up time (s, None: none), the
+    lock-ups that broke away, the slip at the ramp's end (rad/s), the
+    run's length and its last slip."""
+    at_ramp_end = int(np.searchsorted(run.time, ramp_end))
+    return {"lock_up_time_s": lock,
+            "lockups": int(round(run["even.lockups"][-1]))
+            - (lock is not None),
+            "slip_at_ramp_end_rad_s": float(run["slip"][at_ramp_end]),
+            "duration_s": float(run.time[-1]),
+            "final_slip_rad_s": float(run["slip"][-1])}
 
 
 def _orbit_fields(model, run, min_growth, judder_limit_rpm):
@@ -278,6 +344,9 @@ class SimulationResult:
     model_class : str
     start : float
         End of the pressure ramp, s.
+    slipping : list of Run, optional
+        Of a full engagement, each run before its lock-up (what its
+        verdict and spectra read).
     """
 
     runs: list
@@ -286,6 +355,7 @@ class SimulationResult:
     model_class: str
     start: float
     signals: dict = field(default_factory=dict)
+    slipping: list = None
 
     def as_dict(self):
         return {"model": self.model_class.rsplit(".", 1)[-1],
@@ -306,10 +376,13 @@ class SimulationResult:
         ``start`` (:func:`pysim.simulation.engagement.display_spectra`), as
         ``--plot`` draws them."""
         from pysim.simulation.engagement import display_spectra
-        return [display_spectra(run, self.start) for _, run in self.runs]
+        runs = self.slipping or [run for _, run in self.runs]
+        return [display_spectra(run, self.start) for run in runs]
 
     def figure(self, title=None):
         from pysim.simulation.engagement import verdict_line
         from pysim.simulation.plots import run_figure
         return run_figure(self.runs, self.spectra(), title=title,
-                          verdicts=[verdict_line(s) for s in self.summaries])
+                          verdicts=[verdict_line(s) for s in self.summaries],
+                          lock_ups=[s.get("lock_up_time_s")
+                                    for s in self.summaries])

@@ -251,12 +251,11 @@ class TonguesResult:
         """Boundaries as CSV: freq_hz, p_f_bar (lowest, empty if none),
         then the lowest boundary of each kind and the amplitude searched
         up to (``tried_bar``: a point without a boundary is stable up to
-        it), bar; a first comment gives
-        the growth rate they are the boundaries of (``judder fit
-        --boundary`` compares with the model's boundary of that rate)."""
+        it), bar; a comment after the rows gives the growth rate they are
+        the boundaries of (``judder fit --boundary`` compares with the
+        model's boundary of that rate)."""
         b = self.boundaries
-        lines = [f"# min_growth_per_s: {b.min_growth:g}",
-                 "freq_hz,p_f_bar,single_period_bar,double_period_bar,"
+        lines = ["freq_hz,p_f_bar,single_period_bar,double_period_bar,"
                  "combination_bar,tried_bar"]
 
         def cell(value):
@@ -267,6 +266,7 @@ class TonguesResult:
             lines.append(",".join([f"{f:.9g}", cell(lowest)]
                                   + [cell(v) for v in row]
                                   + [cell(b.p_max)]))
+        lines.append(f"# min_growth_per_s: {b.min_growth:g}")
         return "\n".join(lines) + "\n"
 
     @keeps_foreign_files

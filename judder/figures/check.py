@@ -5,7 +5,7 @@ import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
 from infra.plotstyle import LABEL_GID, dither_axes, settle_labels
-from stability.plots import kind_handles, plot_map
+from stability.plots import drawn_kinds, kind_handles, plot_map
 
 __all__ = ["check_figure", "VERDICT_MARKERS"]
 
@@ -41,7 +41,8 @@ def check_figure(records, background=None, min_growth=None, title=None):
     if background is not None:
         plot_map(background, ax=ax, min_growth=min_growth, legend=False)
         # the map's black line: where the grid's |lambda| reaches 1
-        handles = kind_handles(min_growth=min_growth) + [
+        handles = kind_handles(drawn_kinds(background),
+                               min_growth=min_growth) + [
             Line2D([], [], color="k", linewidth=0.8,
                    label=r"unstable from here ($|\lambda| = 1$)")]
     seen = {}

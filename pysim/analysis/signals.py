@@ -209,13 +209,22 @@ def per_period(time, values, period):
     -------
     centre, low, high, mean : ndarray, shape (m,)
         One entry per period that holds samples: the mean of its time
-        stamps (s), and the minimum, maximum and mean of its values.
+        stamps (s), and the minimum, maximum and mean of its values. The
+        last period, where the run ends, is left out when it holds fewer
+        than half the samples of the others: its mean would be that of a
+        part of the swing (a run ending at a whole number of periods has
+        one sample there, at the dither's crest or trough).
     """
-    index = np.floor((time - time[0]) / period).astype(int)
+    # (a sample on a period's start belongs to it, whatever the rounding)
+    index = np.floor((time - time[0]) / period + 1e-9).astype(int)
     count = index[-1] + 1
     edges = np.searchsorted(index, np.arange(count + 1))
     keep = np.diff(edges) > 0
     starts = edges[:-1][keep]
+    sizes = np.diff(np.append(starts, len(values)))
+    if len(sizes) > 1 and sizes[-1] < 0.5 * np.median(sizes[:-1]):
+        time, values, starts = (time[:starts[-1]], values[:starts[-1]],
+                                starts[:-1])
     low = np.minimum.reduceat(values, starts)
     high = np.maximum.reduceat(values, starts)
     mean = np.add.reduceat(values, starts) / np.diff(

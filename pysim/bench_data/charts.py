@@ -327,7 +327,8 @@ class Chart:
         return rows
 
     def boundary_csv(self, group):
-        """The boundary as ``judder fit --boundary`` reads it, with the
+        """The boundary as ``judder fit --boundary`` reads it, the header
+        first (as a spreadsheet expects), then in comments at the end the
         growth rate the verdict called judder from (``judder fit``
         compares with the model's boundary of that growth) and, per set
         point, the range tested: the highest amplitude run without judder
@@ -336,14 +337,14 @@ class Chart:
         amplitude)."""
         def cell(value):
             return "" if value is None else f"{value:.9g}"
-        lines = [f"# min_growth_per_s: {self.min_growth:g}",
-                 f"# judder_limit_rpm: {self.judder_limit_rpm:g}",
-                 "freq_hz,p_f_bar,no_judder_bar,tried_bar"] + [
+        lines = ["freq_hz,p_f_bar,no_judder_bar,tried_bar"] + [
             # without an onset every run was without judder, up to top
             ",".join([f"{f:.9g}", cell(p), cell(top if p is None else q),
                       cell(top)])
             for (f, p, top), q in zip(self.boundary(group),
-                                      self.quiet_below(group))]
+                                      self.quiet_below(group))] + [
+            f"# min_growth_per_s: {self.min_growth:g}",
+            f"# judder_limit_rpm: {self.judder_limit_rpm:g}"]
         return "\n".join(lines) + "\n"
 
     def arrays(self):

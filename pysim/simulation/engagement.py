@@ -9,6 +9,8 @@ the speed grows (whichever the kind: at ``f``, ``f/2`` or a combination
 frequency), and which kind it is.
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
@@ -18,7 +20,35 @@ from ..analysis.verdict import analyse_run
 from ..analysis.signals import amplitude_spectrum
 
 __all__ = ["engagement_summary", "verdict_line", "judder_words",
-           "display_spectra"]
+           "display_spectra", "LOCK_VARIABLES", "lock_up", "until"]
+
+#: Variables of a locking clutch (``Components.LockingWetClutch``) a full
+#: engagement records: how often it stuck, and broke away, by events.
+LOCK_VARIABLES = ("even.lockups", "even.breakaways")
+
+
+def lock_up(run):
+    """When a full engagement (``TestBenchLockUp``) locks up: the first
+    sample from which its EVEN clutch stays stuck to the end of the run
+    (``even.lockups - even.breakaways`` is 1), s; None if it slips at the
+    end (inside a tongue the slip swings through zero and every lock-up
+    breaks away at once)."""
+    stuck = run["even.lockups"] - run["even.breakaways"] > 0.5
+    if not stuck[-1]:
+        return None
+    slipping = np.flatnonzero(~stuck)
+    return float(run.time[slipping[-1] + 1 if slipping.size else 0])
+
+
+def until(run, end):
+    """``run`` before ``end`` (s; the whole run for None): the slipping
+    part of an engagement that locks up at ``end``."""
+    if end is None:
+        return run
+    keep = run.time < end
+    return replace(run, time=run.time[keep],
+                   signals={name: values[keep]
+                            for name, values in run.signals.items()})
 
 
 def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
@@ -101,10 +131,12 @@ def verdict_line(summary):
 
     ``summary`` is a dict of :func:`engagement_summary` with
     ``floquet_kind`` and ``floquet_exponent_per_s`` (and the ``orbit_*``
-    fields of ``judder simulate``) added.
+    fields of ``judder simulate``, and for a full engagement its
+    ``lock_up_time_s``, ``lockups`` and ``duration_s``) added.
     """
-    if summary["judder"] is None:
-        return ""                  # a run without dither: its label says so
+    if summary["judder"] is None:  # a run without dither: its label says so
+        return ("" if "lock_up_time_s" not in summary else
+                lock_words(summary))
     if not summary["judder"]:
         run = f"no judder, {summary['oscillation_rpm']:.3g} rpm"
     else:
@@ -115,7 +147,11 @@ def verdict_line(summary):
                   f" ({summary['judder_kind']}"
                   + ("" if growth is None else f", {growth:+.2f} 1/s")
                   + ")"))
-    lines = [f"run: {run} (limit {summary['judder_limit_rpm']:.3g} rpm)"]
+    lines = [f"run: {run} (limit {summary['judder_limit_rpm']:.3g} rpm)"
+             + ("" if "lock_up_time_s" not in summary else
+                " while slipping")]
+    if "lock_up_time_s" in summary:
+        lines.append(lock_words(summary))
     exponent = summary.get("floquet_exponent_per_s")
     if exponent is not None:
         lines.append(f"Floquet: {summary['floquet_kind']}, "
@@ -129,6 +165,16 @@ def verdict_line(summary):
                      f"curve linear over \u00b1"
                      f"{summary['friction_linear_range_rad_s']:.1f} rad/s")
     return "\n".join(lines)
+
+
+def lock_words(summary):
+    """How a full engagement ends: ``lock-up at 3.23 s`` or ``no lock-up
+    in 2 s (41 lock-ups broke away)``."""
+    if summary["lock_up_time_s"] is not None:
+        return f"lock-up at {summary['lock_up_time_s']:.3g} s"
+    return (f"no lock-up in {summary['duration_s']:.3g} s"
+            + (f" ({summary['lockups']} lock-ups broke away)"
+               if summary["lockups"] else ""))
 
 
 def judder_words(summary):

@@ -11,26 +11,29 @@ import json
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import MARK, atomic_write
+from infra.files import atomic_write, mark_line
 
 __all__ = ["write_run", "write_csv", "write_mdf"]
 
 
 def write_csv(path, time, signals, units, metadata):
-    """CSV: ``# written by judder``, ``# key: value`` metadata lines, a
-    header ``name [unit]``; an empty cell where a channel has no sample
-    (NaN: e.g. a pick-up before its shaft turns one tooth)."""
+    """CSV: a header ``name [unit]`` on the first line (as a spreadsheet
+    expects), the samples, then ``# key: value`` metadata lines and the
+    mark (:func:`infra.files.mark_line`); an empty cell where a channel
+    has no sample (NaN: e.g. a pick-up before its shaft turns one
+    tooth)."""
     buffer = io.StringIO()
-    buffer.write(f"# {MARK}\n# an empty cell is no sample of that channel at "
-                 "that time\n")
-    for key, value in metadata.items():
-        buffer.write(f"# {key}: {json.dumps(value)}\n")
     names = list(signals)
     buffer.write(",".join(["time [s]"] + [f"{n} [{units[n]}]"
                                           for n in names]) + "\n")
     for i, t in enumerate(time):
         buffer.write(",".join([f"{t:.9g}"] + [_cell(signals[n][i])
                                               for n in names]) + "\n")
+    buffer.write("# an empty cell is no sample of that channel at that "
+                 "time\n")
+    for key, value in metadata.items():
+        buffer.write(f"# {key}: {json.dumps(value)}\n")
+    buffer.write(mark_line() + "\n")
     atomic_write(path, lambda stream: stream.write(buffer.getvalue().encode()))
 
 
@@ -63,7 +66,7 @@ def write_mdf(path, channels, metadata):
     for signals in groups.values():
         mdf.append(signals, comment=json.dumps(metadata))
     mdf.header.comment = json.dumps(metadata)
-    mdf.header.author = MARK
+    mdf.header.author = mark_line().removeprefix("# ")
 
     def write(stream):
         buffer = io.BytesIO()

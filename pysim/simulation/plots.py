@@ -10,7 +10,7 @@ long run's time history is banded per dither period for display
 import matplotlib.pyplot as plt
 import numpy as np
 
-from infra.plotstyle import BLUE, VERMILLION
+from infra.plotstyle import BLUE, VERMILLION, figure_title
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from ..analysis.signals import per_period
@@ -29,11 +29,13 @@ def _dither_text(run):
             f"f = {run.freq_hz:g} Hz, $p_f$ = {p_f:g} bar")
 
 
-def plot_run(run, ax=None, title=None, legend=True, verdict=None):
+def plot_run(run, ax=None, title=None, legend=True, verdict=None,
+             lock_up=None):
     """Speeds upstream and downstream (rpm) and pressure (bar) vs time
     (Fig. 1, Fig. 7); the legend goes below the axes, off the traces;
     ``verdict``, a line of text (the judder verdict and growth), under
-    the title."""
+    the title; ``lock_up``, s: the time the clutch locks up, a vertical
+    line."""
     if ax is None:
         _, ax = plt.subplots()
     right = ax.twinx()
@@ -56,6 +58,9 @@ def plot_run(run, ax=None, title=None, legend=True, verdict=None):
         else:
             artists.append(axis.plot(run.time, values, ls=style,
                                      color=color, lw=0.8, label=label)[0])
+    if lock_up is not None:
+        artists.append(ax.axvline(lock_up, ls=":", color="0.2", lw=1.0,
+                                  label=f"lock-up, {lock_up:.3g} s"))
     ax.set_xlabel("time [s]")
     ax.set_ylabel("speed [rpm]")
     right.set_ylabel("actuation pressure [bar]")
@@ -80,7 +85,8 @@ BANDED_PERIODS = 150
 def plot_spectrum(run, spectra, ax=None, f_max=None):
     """Amplitude spectra (Fig. 8): the upstream speed in rpm on the left
     axis, the pressure in bar on its own right axis, both linear; the
-    dither frequency marked only when the run has dither.
+    dither frequency and the pressure only when the run has dither
+    (without, the pressure's spectrum is numerical noise, 1e-9 bar).
 
     Parameters
     ----------
@@ -101,22 +107,22 @@ def plot_spectrum(run, spectra, ax=None, f_max=None):
     speed, pressure = spectra
     artists = [ax.plot(speed.freq_hz, speed.amplitude, color=BLUE,
                        lw=0.9, label="upstream speed [rpm] (left axis)")[0]]
-    right = ax.twinx()
-    artists.append(right.plot(pressure.freq_hz, pressure.amplitude,
-                              color="0.45", ls="--", lw=0.8,
-                              label="pressure [bar] (right axis)")[0])
+    f_max = f_max or min(speed.freq_hz[-1], 3 * run.freq_hz)
+    band = speed.freq_hz <= f_max
     if run.p_f > 0:
+        right = ax.twinx()
+        artists.append(right.plot(pressure.freq_hz, pressure.amplitude,
+                                  color="0.45", ls="--", lw=0.8,
+                                  label="pressure [bar] (right axis)")[0])
         artists.append(ax.axvline(run.freq_hz, color="k", ls=":", lw=0.8,
                                   label=f"dither frequency {run.freq_hz:g} "
                                         "Hz"))
-    f_max = f_max or min(speed.freq_hz[-1], 3 * run.freq_hz)
+        right.set_ylim(0, 1.08 * max(pressure.amplitude[band].max(), 1e-9))
+        right.set_ylabel("pressure amplitude [bar]")
     ax.set_xlim(0, f_max)
-    band = speed.freq_hz <= f_max
     ax.set_ylim(0, 1.08 * max(speed.amplitude[band].max(), 1e-9))
-    right.set_ylim(0, 1.08 * max(pressure.amplitude[band].max(), 1e-9))
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("speed amplitude [rpm]")
-    right.set_ylabel("pressure amplitude [bar]")
     ax.legend(handles=artists, loc="upper center", fontsize=7,
               bbox_to_anchor=(0.5, -0.2), ncols=3, borderaxespad=0.0)
     return artists
@@ -164,7 +170,7 @@ def plot_spectra_overlay(runs, speed_spectra, ax=None, f_max=None):
     return artists
 
 
-def run_figure(runs, spectra, title=None, verdicts=None):
+def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
     """Time histories (top) and spectra (middle), one column per run,
     every spectrum over the same frequencies; with more than one run with
     dither, their speed spectra overlaid (bottom).
@@ -172,7 +178,8 @@ def run_figure(runs, spectra, title=None, verdicts=None):
     ``runs`` are ``(label, run)`` pairs, ``spectra`` their ``(speed,
     pressure)`` spectra (:func:`pysim.simulation.engagement.display_spectra`),
     ``verdicts`` one line of text per run, printed over its time
-    histories."""
+    histories, ``lock_ups`` per run the time its clutch locks up (s, or
+    None)."""
     dithered = [(label, run) for label, run in runs if run.p_f > 0]
     dithered_speeds = [speed for (_, run), (speed, _) in zip(runs, spectra)
                        if run.p_f > 0]
@@ -186,12 +193,13 @@ def run_figure(runs, spectra, title=None, verdicts=None):
     grid = fig.add_gridspec(rows, len(runs))
     for column, (label, run) in enumerate(runs):
         plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label,
-                 verdict=None if verdicts is None else verdicts[column])
+                 verdict=None if verdicts is None else verdicts[column],
+                 lock_up=None if lock_ups is None else lock_ups[column])
         plot_spectrum(run, spectra[column],
                       ax=fig.add_subplot(grid[1, column]), f_max=f_max)
     if overlay:
         plot_spectra_overlay(dithered, dithered_speeds,
                              ax=fig.add_subplot(grid[2, :]), f_max=f_max)
     if title:
-        fig.suptitle(title, fontsize=11)
+        figure_title(fig, title)
     return fig

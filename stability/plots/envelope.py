@@ -9,17 +9,49 @@ from matplotlib.patheffects import withStroke
 from infra.plotstyle import DARK_BLUE, dither_axes
 from infra.units import PA_PER_BAR
 
-__all__ = ["plot_envelope", "envelope_figure", "PROBABILITY_LEVELS"]
+__all__ = ["plot_envelope", "envelope_figure", "closed_edge",
+           "PROBABILITY_LEVELS"]
 
 
 #: Bands of the probability of instability the shading draws.
 PROBABILITY_LEVELS = (0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0)
 
 
+def closed_edge(freq_hz, edge, top):
+    """The outline of the region above ``edge`` (NaN: none up to ``top``):
+    each stretch of finite values joined at both ends to ``top`` at the
+    neighbouring frequency (where the edge has risen above it), the
+    stretches apart by NaN; so the outline closes on the axes' top, not
+    in mid-air.
+
+    Returns
+    -------
+    freq, p : ndarray
+        The outline's points.
+    """
+    freq_hz, edge = np.asarray(freq_hz, float), np.asarray(edge, float)
+    finite = np.isfinite(edge)
+    points = []
+    starts = np.flatnonzero(finite & ~np.r_[False, finite[:-1]])
+    ends = np.flatnonzero(finite & ~np.r_[finite[1:], False])
+    for first, last in zip(starts, ends):
+        left, right = max(first - 1, 0), min(last + 1, len(edge) - 1)
+        points += ([(freq_hz[left], top)]
+                   + list(zip(freq_hz[first:last + 1], edge[first:last + 1]))
+                   + [(freq_hz[right], top), (np.nan, np.nan)])
+    if not points:
+        return np.array([]), np.array([])
+    freq, p = np.array(points[:-1]).T
+    return freq, p
+
+
 def plot_envelope(envelope, ax=None):
     """Probability shading in bands (:data:`PROBABILITY_LEVELS`),
     broadest edge (black, solid), 50 % line (black dashed on white) and
-    nominal boundary (blue, dotted), p_f in bar; the legend below.
+    nominal boundary (blue, dotted), p_f in bar, each closed on the top
+    of the axes (:func:`closed_edge`); the legend below. The shading
+    covers only cells whose corners all have a sample unstable, so it
+    lies within the broadest region, as that region holds every sample's.
 
     Parameters
     ----------
@@ -35,24 +67,30 @@ def plot_envelope(envelope, ax=None):
         _, ax = plt.subplots()
     e = envelope
     f, bar = e.freq_hz, e.p_f / PA_PER_BAR
+    top = e.p_max / PA_PER_BAR
     artists = []
     probability = e.probability
     if np.isfinite(probability).any() and min(probability.shape) > 1:
-        # bands of probability (not grid cells), from 1 % unstable up
-        artists.append(ax.contourf(f, bar, probability.T,
+        # bands of probability (not grid cells), from 1 % unstable up; a
+        # point no sample finds unstable is left out, not interpolated to
+        # (the shading would spread half a cell beyond every sample)
+        artists.append(ax.contourf(f, bar, np.where(probability > 0,
+                                                    probability, np.nan).T,
                                    levels=PROBABILITY_LEVELS,
                                    cmap="Oranges", extend="neither"))
         # dashed black on a white halo: readable over every band
-        artists += ax.plot(f, e.quantile_boundary(0.5) / PA_PER_BAR,
+        artists += ax.plot(*closed_edge(f, e.quantile_boundary(0.5)
+                                        / PA_PER_BAR, top),
                            color="k", linestyle=(0, (5, 2.5)), linewidth=1.4,
                            path_effects=[withStroke(linewidth=3.2,
                                                     foreground="w")],
                            label="50 % of the samples unstable")
-    artists += ax.plot(f, e.broadest / PA_PER_BAR, color="k", linewidth=1.8,
+    artists += ax.plot(*closed_edge(f, e.broadest / PA_PER_BAR, top),
+                       color="k", linewidth=1.8,
                        label="broadest region (samples, refined)")
-    artists += ax.plot(f, e.nominal_boundary / PA_PER_BAR, color=DARK_BLUE,
-                       linestyle=(0, (1, 1.2)), linewidth=1.8,
-                       label="nominal parameters")
+    artists += ax.plot(*closed_edge(f, e.nominal_boundary / PA_PER_BAR, top),
+                       color=DARK_BLUE, linestyle=(0, (1, 1.2)),
+                       linewidth=1.8, label="nominal parameters")
     ax.set_xlim(f.min(), f.max())
     ax.set_ylim(0, e.p_max / PA_PER_BAR)
     dither_axes(ax, "dither frequency [Hz]")

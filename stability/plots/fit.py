@@ -123,8 +123,8 @@ def plot_fit(result, ax=None):
 
 
 def _fitted_label(result, i):
-    """``name = value ± std unit, 95 %: [low, high]`` with the interval's
-    digits, or why there is no value."""
+    """``name = value ± std unit (1 sigma), 95 %: [low, high]`` with the
+    interval's digits, or why there is no value."""
     name = result.names[i]
     specs = getattr(result.params, "specs", {})
     unit = specs[name].unit if name in specs else ""
@@ -135,7 +135,7 @@ def _fitted_label(result, i):
     value = format_uncertain(result.values[i], result.std[i], unit)
     interval = format_interval(result.ci_low[i], result.ci_high[i],
                                result.std[i])
-    return f"{name} = {value}, 95 %: {interval}"
+    return f"{name} = {value} (1 sigma), 95 %: {interval}"
 
 
 def _wrapped(problems, width=130):

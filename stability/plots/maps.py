@@ -19,7 +19,7 @@ from ..kinds import KINDS
 from .boundaries import plot_boundaries
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
-           "kind_handles"]
+           "kind_handles", "drawn_kinds"]
 
 
 def _edges(centres):
@@ -129,9 +129,20 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
                                         m.freq_hz.min(), m.freq_hz.max())
     dither_axes(ax)
     if legend:
-        artists.append(kind_legend(ax, lines=boundaries is not None,
+        artists.append(kind_legend(ax, kinds=drawn_kinds(m, boundaries),
+                                   lines=boundaries is not None,
                                    min_growth=min_growth))
     return artists
+
+
+def drawn_kinds(stability_map, boundaries=None):
+    """The kinds (codes 1-3) a map draws: those of its unstable points
+    and of the exact boundaries it has; the legend lists only these."""
+    drawn = {int(k) for k in np.unique(stability_map.kind) if k > 0}
+    if boundaries is not None:
+        found = np.isfinite(boundaries.amplitude).any(axis=0)
+        drawn |= {column + 1 for column in np.flatnonzero(found)}
+    return tuple(sorted(drawn))
 
 
 def _resonance_marks(ax, resonances, low, high):
