@@ -9,6 +9,8 @@ time-domain and Floquet views of one model against each other.
 
 Beneath this layer: :mod:`stability` (Floquet kernels and their plots),
 :mod:`pysim` (FMU runs and bench data), :mod:`fmu` (the Modelica-to-FMU
-compiler), :mod:`drivelines` (the registry of models and parameter sets)
-and :mod:`infra` (errors, atomic files, units, the parallel executor).
+compiler), :mod:`sources` (the parameter sets of the presets, Modelica
+classes and FMUs, and their linearisation), :mod:`drivelines` (the
+registry of models) and :mod:`infra` (errors, atomic files, units, the
+parallel executor).
 """

@@ -56,3 +56,35 @@ def test_the_fmu_path_tells_a_roll_off(library, tmp_path, tau, dependent):
     model = linearize_fmu(path, {"tau": tau, "f_dither": 37.7})
     assert model.frequency_dependent is dependent
     assert_allclose(model.B[1, 1], _modulation(tau, 37.7), rtol=1e-9)
+
+
+def test_a_study_reads_the_model_at_its_own_dither_frequency(library):
+    # check at 3.2 Hz linearises the roll-off there, whatever f_dither the
+    # class or the user's --set held; a map over frequencies has no one
+    # linearisation and is refused, naming the parameter
+    from infra.errors import JudderError
+    from judder.commands.check import check
+    from judder.commands.map import stability_map
+    from sources.modelica import ModelicaParameters
+    params = ModelicaParameters("RollLib.Rolloff", str(library),
+                                {"tau": 0.05})
+    assert params["f_dither"] == 10.0
+    checked = check([3.2], [2e-5], params, sensitivity=("tau",))
+    given = check([3.2], [2e-5], params.replace(f_dither=3.2),
+                  sensitivity=("tau",))
+    point, reference = checked.checks[0].floquet, given.checks[0].floquet
+    assert checked.params["f_dither"] == 3.2
+    assert point.growth_rate == pytest.approx(reference.growth_rate,
+                                              rel=1e-12)
+    # held at the class's 10 Hz the valve's roll-off is 2.7 times stronger
+    # (closed form above): another growth rate
+    held = linearize("RollLib.Rolloff", str(library),
+                     {"tau": 0.05, "f_dither": 10.0})
+    moved = params.replace(f_dither=3.2).linear_model()
+    assert held.B[1, 1] / moved.B[1, 1] == pytest.approx(
+        _modulation(0.05, 10.0) / _modulation(0.05, 3.2), rel=1e-12)
+    with pytest.raises(JudderError, match="f_dither"):
+        stability_map([3.0, 3.4], [0.0, 2e-5], params)
+    # a model without the roll-off is studied over many frequencies
+    flat = ModelicaParameters("RollLib.Rolloff", str(library), {"tau": 0.0})
+    assert stability_map([3.0, 3.4], [0.0, 2e-5], flat).map.freq_hz.size == 2

@@ -5,6 +5,8 @@ the checks of parameter names.
 
 import time
 
+import numpy as np
+
 from drivelines import DEFAULT_MODEL
 from sources import default_preset, get_preset
 from infra.errors import JudderError
@@ -37,9 +39,46 @@ def check_arguments(**arguments):
 
 def checked_values(parameters, changes, **arguments):
     """The parameter set an API function works on (:func:`resolve`), once
-    :func:`check_arguments` allowed ``arguments``."""
+    :func:`check_arguments` allowed ``arguments``; with ``freq_hz``, held
+    where the study reads it (:func:`at_dither_frequency`)."""
     check_arguments(**arguments)
-    return resolve(parameters, changes)
+    values = resolve(parameters, changes)
+    if arguments.get("freq_hz") is not None:
+        values = at_dither_frequency(values, arguments["freq_hz"])
+    return values
+
+
+def at_dither_frequency(values, freq_hz):
+    """``values`` linearised at the dither frequencies ``freq_hz`` (Hz) a
+    study reads them at.
+
+    A Modelica class or an FMU whose Jacobian depends on its dither
+    frequency parameter beyond the cosine (a valve's roll-off written
+    with ``f_dither``: :attr:`sources.modelica.LinearPeriodicModel.
+    frequency_dependent`) holds at that parameter's value only: at one
+    frequency the parameter is set to it; over several, no single
+    linearisation holds, and the study is refused. Any other model is
+    returned as it is.
+
+    Raises
+    ------
+    JudderError
+        Over several frequencies of a frequency-dependent model, naming
+        the parameter.
+    """
+    frequency = getattr(values, "frequency", None)
+    if frequency is None or not values.linear_model().frequency_dependent:
+        return values
+    freqs = np.unique(np.atleast_1d(np.asarray(freq_hz, dtype=float)))
+    if len(freqs) == 1:
+        return values.replace(**{frequency: float(freqs[0])})
+    raise JudderError(
+        f"`freq_hz` {freqs[0]:g} to {freqs[-1]:g} Hz: the Jacobian of "
+        f"{values.model} depends on its dither frequency {frequency} beyond "
+        "the dither's cosine, so one linearisation holds at one frequency "
+        "only; allowed: one frequency at a time (the model is linearised "
+        f"there), or a model whose {frequency} enters as the cosine's "
+        "frequency alone")
 
 
 def resolve(parameters, changes):

@@ -18,6 +18,8 @@ FLAGS = {
     # pysim.bench_data: the chart's sources, channels and groups
     "paths": "SOURCE", "index": "--index", "channels": "--channel",
     "group_by": "--group-by",
+    # judder.commands._common.at_dither_frequency
+    "freq_hz": "--freq",
     # stability.threshold.friction_threshold
     "bracket": "--mu-g",
     # infra: the cluster and the overwrite rule

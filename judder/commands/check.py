@@ -177,6 +177,13 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         sensitivity = structural_names(values, DEFAULT_CHECK_PARAMETERS,
                                         ("mu_g",))
     check_names(values, sensitivity, "--params")
+    if getattr(values, "frequency", None) and \
+            values.linear_model().frequency_dependent:
+        from infra.contract import warn
+        warn(f"{values.model} is linearised at {freq_hz[0]:g} Hz (its "
+             f"Jacobian depends on {values.frequency}): the Hz margin is "
+             "searched on that linearisation, not on one at each "
+             "neighbouring frequency")
     started = time.perf_counter()
     checks = check_settings(values, freq_hz, p_f_bar * PA_PER_BAR, min_growth,
                             p_max_bar * PA_PER_BAR, tuple(sensitivity),

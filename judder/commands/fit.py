@@ -19,7 +19,7 @@ from ..inputs import (boundary_p_max, read_boundary_limit,
                       read_chart_min_growth)
 from ._arguments import (force_option, method_option, model_options,
                          workers_option)
-from ._common import checked_values, resolve, timed
+from ._common import at_dither_frequency, checked_values, resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
@@ -376,6 +376,7 @@ def _fitted(start, freq_hz, measured, p_max, below, names=None,
     :func:`stability.fit.fit_boundary` takes them."""
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.fit import DEFAULT_FIT, fit_boundary
+    start = at_dither_frequency(start, freq_hz)
     result, seconds = timed(
         fit_boundary, start, freq_hz, measured, p_max,
         names=names or DEFAULT_FIT, callback=progress, below=below,
