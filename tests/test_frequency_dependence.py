@@ -65,6 +65,7 @@ def test_a_study_reads_the_model_at_its_own_dither_frequency(library):
     from infra.errors import JudderError
     from judder.commands.check import check
     from judder.commands.map import stability_map
+    from judder.commands.sensitivity import sensitivity
     from sources.modelica import ModelicaParameters
     params = ModelicaParameters("RollLib.Rolloff", str(library),
                                 {"tau": 0.05})
@@ -84,7 +85,28 @@ def test_a_study_reads_the_model_at_its_own_dither_frequency(library):
     assert held.B[1, 1] / moved.B[1, 1] == pytest.approx(
         _modulation(0.05, 10.0) / _modulation(0.05, 3.2), rel=1e-12)
     with pytest.raises(JudderError, match="f_dither"):
-        stability_map([3.0, 3.4], [0.0, 2e-5], params)
+        sensitivity(("tau",), [3.0, 3.4], parameters=params)
+
+
+def test_a_map_of_a_frequency_dependent_model_follows_its_frequency(library):
+    # the issue's acceptance: the same map as a loop of --set f_dither
+    from judder.commands.map import stability_map
+    from sources.modelica import ModelicaParameters
+    params = ModelicaParameters("RollLib.Rolloff", str(library),
+                                {"tau": 0.05})
+    freqs, amplitudes = np.linspace(2.6, 3.8, 7), [0.0, 1e-5, 3e-5, 6e-5]
+    followed = stability_map(freqs, amplitudes, params, exact=True)
+    for i, f in enumerate(freqs):
+        column = stability_map([f], amplitudes, params.replace(f_dither=f))
+        assert_allclose(followed.map.leading[i], column.map.leading[0],
+                        rtol=1e-12, atol=0)
+    # held at one linearisation the map would differ: the roll-off at
+    # 2.6 Hz is not that at 3.8 Hz
+    held = stability_map(freqs, amplitudes, ModelicaParameters(
+        "RollLib.Rolloff", str(library), {"tau": 0.0}))
+    assert np.abs(held.map.leading - followed.map.leading).max() > 1e-3
+    # the exact boundaries too, column by column
+    assert followed.boundaries.amplitude.shape == (7, 3)
     # a model without the roll-off is studied over many frequencies
     flat = ModelicaParameters("RollLib.Rolloff", str(library), {"tau": 0.0})
     assert stability_map([3.0, 3.4], [0.0, 2e-5], flat).map.freq_hz.size == 2

@@ -37,48 +37,73 @@ def check_arguments(**arguments):
             RULES[name].check(value, name)
 
 
-def checked_values(parameters, changes, **arguments):
+def checked_values(parameters, changes, followed=False, **arguments):
     """The parameter set an API function works on (:func:`resolve`), once
     :func:`check_arguments` allowed ``arguments``; with ``freq_hz``, held
-    where the study reads it (:func:`at_dither_frequency`)."""
+    where the study reads it (:func:`at_dither_frequency`; ``followed``:
+    the study linearises it at each frequency itself)."""
     check_arguments(**arguments)
     values = resolve(parameters, changes)
     if arguments.get("freq_hz") is not None:
-        values = at_dither_frequency(values, arguments["freq_hz"])
+        values = at_dither_frequency(values, arguments["freq_hz"], followed)
     return values
 
 
-def at_dither_frequency(values, freq_hz):
+def frequency_dependent(values):
+    """Whether the Jacobian of ``values``' model depends on its dither
+    frequency parameter beyond the cosine (a valve's roll-off written
+    with ``f_dither``: :attr:`sources.modelica.LinearPeriodicModel.
+    frequency_dependent`); False for the registry's chains."""
+    return bool(getattr(values, "frequency", None)) and \
+        values.linear_model().frequency_dependent
+
+
+def at_dither_frequency(values, freq_hz, followed=False):
     """``values`` linearised at the dither frequencies ``freq_hz`` (Hz) a
     study reads them at.
 
-    A Modelica class or an FMU whose Jacobian depends on its dither
-    frequency parameter beyond the cosine (a valve's roll-off written
-    with ``f_dither``: :attr:`sources.modelica.LinearPeriodicModel.
-    frequency_dependent`) holds at that parameter's value only: at one
-    frequency the parameter is set to it; over several, no single
-    linearisation holds, and the study is refused. Any other model is
-    returned as it is.
+    A frequency-dependent model (:func:`frequency_dependent`) holds at its
+    frequency parameter's value only: at one frequency the parameter is
+    set to it; over several, a study that linearises the model at each
+    (``followed``, :func:`per_frequency`) gets ``values`` as they are,
+    any other is refused. Any other model is returned as it is.
 
     Raises
     ------
     JudderError
-        Over several frequencies of a frequency-dependent model, naming
-        the parameter.
+        Over several frequencies of a frequency-dependent model that the
+        study does not follow, naming the parameter.
     """
-    frequency = getattr(values, "frequency", None)
-    if frequency is None or not values.linear_model().frequency_dependent:
+    if not frequency_dependent(values):
         return values
     freqs = np.unique(np.atleast_1d(np.asarray(freq_hz, dtype=float)))
     if len(freqs) == 1:
-        return values.replace(**{frequency: float(freqs[0])})
+        return values.replace(**{values.frequency: float(freqs[0])})
+    if followed:
+        return values
     raise JudderError(
         f"`freq_hz` {freqs[0]:g} to {freqs[-1]:g} Hz: the Jacobian of "
-        f"{values.model} depends on its dither frequency {frequency} beyond "
-        "the dither's cosine, so one linearisation holds at one frequency "
-        "only; allowed: one frequency at a time (the model is linearised "
-        f"there), or a model whose {frequency} enters as the cosine's "
-        "frequency alone")
+        f"{values.model} depends on its dither frequency {values.frequency} "
+        "beyond the dither's cosine, so one linearisation holds at one "
+        "frequency only; allowed: one frequency at a time (the model is "
+        "linearised there), a map (linearised at each frequency), or a "
+        f"model whose {values.frequency} enters as the cosine's frequency "
+        "alone")
+
+
+def per_frequency(values, waveform, freq_hz, study, progress=None):
+    """``study(driveline, [f])`` at each frequency ``f`` of ``freq_hz``,
+    the model linearised there (its frequency parameter set to ``f``):
+    what a loop of ``--set f_dither=f`` gives, in one call."""
+    freqs = [float(f) for f in np.atleast_1d(freq_hz)]
+    parts = []
+    for done, f in enumerate(freqs, start=1):
+        driveline = dithered(values.replace(**{values.frequency: f}),
+                             waveform)
+        parts.append(study(driveline, [f]))
+        if progress is not None:
+            progress(done, len(freqs))
+    return parts
 
 
 def resolve(parameters, changes):

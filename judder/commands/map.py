@@ -1,5 +1,6 @@
 """``judder map``: stability map over frequency x amplitude."""
 
+import dataclasses
 from dataclasses import dataclass
 import json
 import time
@@ -15,7 +16,8 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, waveform_option)
-from ._common import checked_values, dithered, timed
+from ._common import (checked_values, dithered, frequency_dependent,
+                      per_frequency, timed)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_map, check_map_memory
@@ -165,25 +167,49 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         (not judder, :mod:`stability.decisions.relevance`) and the JSON
         counts the faster ones.
     """
-    values = checked_values(parameters, changes, freq_hz=freq_hz,
-                            p_f_bar=p_f_bar)
+    values = checked_values(parameters, changes, followed=True,
+                            freq_hz=freq_hz, p_f_bar=p_f_bar)
     driveline = dithered(values, waveform)
-    result, seconds = timed(
-        map_kernel, driveline, freq_hz,
-        np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, method=method,
-        callback=progress)
+    amplitudes = np.asarray(p_f_bar, dtype=float) * PA_PER_BAR
+    followed = frequency_dependent(values) and np.unique(freq_hz).size > 1
+    if followed:
+        # the Jacobian depends on the dither frequency: each column of
+        # the map linearised at its own frequency
+        parts, seconds = timed(
+            per_frequency, values, waveform, freq_hz,
+            lambda at, f: map_kernel(at, f, amplitudes, method=method),
+            progress)
+        result = _stacked(parts, ("freq_hz", "leading", "kind"))
+    else:
+        result, seconds = timed(map_kernel, driveline, freq_hz, amplitudes,
+                                method=method, callback=progress)
     boundaries = found = exact_seconds = None
     p_top = float(np.max(p_f_bar)) * PA_PER_BAR
     if exact and len(result.freq_hz) > 1 and p_top > 0:
         from stability.tongues import find_tongues, tongue_boundaries
         started = time.perf_counter()
-        boundaries = tongue_boundaries(driveline, result.freq_hz, p_top,
-                                       method)
+        if followed:
+            boundaries = _stacked(per_frequency(
+                values, waveform, result.freq_hz,
+                lambda at, f: tongue_boundaries(at, f, p_top, method)),
+                ("freq_hz", "amplitude", "multiplier_error"))
+        else:
+            boundaries = tongue_boundaries(driveline, result.freq_hz, p_top,
+                                           method)
         found = find_tongues(driveline, boundaries)
         exact_seconds = time.perf_counter() - started
     return MapResult(params=values, map=result, seconds=seconds,
                      boundaries=boundaries, tongues=found,
                      min_growth=min_growth, boundaries_seconds=exact_seconds)
+
+
+def _stacked(parts, fields):
+    """One result of the per-frequency ``parts`` (of one frequency each):
+    their ``fields`` joined along the frequency axis, the rest the
+    first's."""
+    return dataclasses.replace(parts[0], **{
+        name: np.concatenate([getattr(part, name) for part in parts])
+        for name in fields})
 
 
 @dataclass(frozen=True)
