@@ -58,7 +58,7 @@ def frequency_dependent(values):
         values.linear_model().frequency_dependent
 
 
-def at_dither_frequency(values, freq_hz, followed=False):
+def at_dither_frequency(values, freq_hz, followed=False, argument="freq_hz"):
     """``values`` linearised at the dither frequencies ``freq_hz`` (Hz) a
     study reads them at.
 
@@ -66,7 +66,8 @@ def at_dither_frequency(values, freq_hz, followed=False):
     frequency parameter's value only: at one frequency the parameter is
     set to it; over several, a study that linearises the model at each
     (``followed``, :func:`per_frequency`) gets ``values`` as they are,
-    any other is refused. Any other model is returned as it is.
+    any other is refused (naming ``argument``, the caller's name of the
+    frequencies). Any other model is returned as it is.
 
     Raises
     ------
@@ -82,7 +83,7 @@ def at_dither_frequency(values, freq_hz, followed=False):
     if followed:
         return values
     raise JudderError(
-        f"`freq_hz` {freqs[0]:g} to {freqs[-1]:g} Hz: the Jacobian of "
+        f"`{argument}` {freqs[0]:g} to {freqs[-1]:g} Hz: the Jacobian of "
         f"{values.model} depends on its dither frequency {values.frequency} "
         "beyond the dither's cosine, so one linearisation holds at one "
         "frequency only; allowed: one frequency at a time (the model is "

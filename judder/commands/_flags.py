@@ -19,7 +19,7 @@ FLAGS = {
     "paths": "SOURCE", "index": "--index", "channels": "--channel",
     "group_by": "--group-by",
     # judder.commands._common.at_dither_frequency
-    "freq_hz": "--freq",
+    "freq_hz": "--freq", "freq_range": "--freq-range",
     # stability.threshold.friction_threshold
     "bracket": "--mu-g",
     # infra: the cluster and the overwrite rule

@@ -15,7 +15,8 @@ from infra.units import PA_PER_BAR
 from stability.decisions.advice import DEFAULT_BOUNDS
 
 from ._arguments import force_option, min_growth_option, model_options
-from ._common import check_names, checked_values, structural_names
+from ._common import (at_dither_frequency, check_names, checked_values,
+                      structural_names)
 from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
@@ -208,6 +209,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     values = checked_values(parameters, changes, p_max_bar=p_max_bar,
                             margin_bar=margin_bar, margin_hz=margin_hz,
                             min_growth=min_growth)
+    values = at_dither_frequency(values, freq_range, argument="freq_range")
     sets = [values, *extra_sets]
     models = {p.model for p in sets}
     if len(models) > 1:
