@@ -35,8 +35,11 @@
 :mod:`infra.plotstyle`
     The look every plot shares (imports matplotlib; only plotting modules
     import it).
+:mod:`infra.provenance`
+    Where a result came from: the tool's version and a digest of its
+    inputs, carried by every output.
 
 This package imports no other package of the project: ``fmu``,
-``drivelines``, ``stability``, ``pysim`` and the ``judder`` application
+``sources``, ``drivelines``, ``stability``, ``pysim`` and the ``judder`` application
 all stand on it.
 """

@@ -13,7 +13,7 @@ from infra.provenance import Provenance, current, input_digest, tool_version
 #: Options that do not change a result: how it is shown, where it is
 #: written (``out`` also of a folder, a checkpoint resumed or not), how
 #: the work is spread; the outputs' own options are added.
-NOT_INPUTS = {"command", "handler", "outputs", "output_check", "amplitude",
+NOT_INPUTS = {"handler", "outputs", "output_check", "amplitude",
               "version", "json", "force", "workers", "scheduler", "out",
               "checkpoint"}
 
@@ -85,7 +85,9 @@ def provenance_of(args):
     skip = NOT_INPUTS | {attribute for attribute, _, _ in args.outputs}
     options = {name: value for name, value in vars(args).items()
                if name not in skip}
-    return Provenance(tool_version(), input_digest(args.command, options))
+    # the command's name is an input like its options
+    return Provenance(tool_version(),
+                      input_digest(options.pop("command"), options))
 
 
 def emit(args, data, text):

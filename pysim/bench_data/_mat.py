@@ -99,7 +99,7 @@ def _mat_signal(path, top, scope, time):
         raise JudderError(f"{path}: variable {name!r} has no time vector; "
                           f"give one as {key}_time, t_{key}, "
                           + (time.name if time is not None else
-                             "time or t, or name it with --channel "
+                             "time or t, or name it with `channels` "
                              "time=NAME[:UNIT]"))
     units = [node["units"] for node in nodes
              if isinstance(node.get("units"), dict)]

@@ -20,7 +20,7 @@ def read(path, wanted, time=None):
     """ASAM MDF: each channel on the time base of its channel group (its
     master channel: a ``time`` role is refused, as MDF names none)."""
     if time is not None:
-        raise JudderError(f"{path}: --channel time={time.name} is not "
+        raise JudderError(f"{path}: `channels` time={time.name} is not "
                           "allowed for an MDF file: each channel group has "
                           "its master channel as its time; allowed: no "
                           "time role")

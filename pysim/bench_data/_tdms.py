@@ -67,7 +67,7 @@ def _tdms_signal(path, group, channel, time):
                           f"{time.name if time else 'time'!r} channel in "
                           f"group {group.name!r}"
                           + ("" if time else "; name another with "
-                             "--channel time=NAME[:UNIT]"))
+                             "`channels` time=NAME[:UNIT]"))
     stamps = clock[:]
     if np.issubdtype(np.asarray(stamps).dtype, np.datetime64):
         # date-time stamps: s from the first, which is the clock's start
