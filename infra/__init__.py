@@ -40,6 +40,6 @@
     inputs, carried by every output.
 
 This package imports no other package of the project: ``fmu``,
-``sources``, ``drivelines``, ``stability``, ``pysim`` and the ``judder`` application
-all stand on it.
+``sources``, ``drivelines``, ``stability``, ``pysim`` and the ``judder``
+application all stand on it.
 """
