@@ -791,7 +791,7 @@ def test_a_time_column_of_another_name_is_named_by_the_time_role(tmp_path):
     path = tmp_path / "catman.csv"
     path.write_text(text)
     speed = {"upstream_speed": ChannelSpec("EngSpd_up")}
-    assert "--channel time=NAME" in _message(path, speed)
+    assert "`channels` time=NAME" in _message(path, speed)
     role, spec = parse_channel_option("time=Zeit  1 - Standardmessrate")
     acq = read_acquisition(path, {**speed, role: spec})
     assert set(acq.channels) == {"upstream_speed"}
@@ -813,7 +813,7 @@ def test_tdms_and_mat_time_of_another_name(tmp_path, bench):
             ChannelObject("G", "EngSpd_up", n_up,
                           properties={"unit_string": "rpm"})])
     speed = {"upstream_speed": ChannelSpec("EngSpd_up")}
-    assert "--channel time=NAME" in _message(path, speed)
+    assert "`channels` time=NAME" in _message(path, speed)
     acq = read_acquisition(path, {**speed, "time": ChannelSpec("Clock")})
     assert_allclose(acq.channels["upstream_speed"].time, t_up, rtol=1e-12)
     path = tmp_path / "run.mat"

@@ -157,7 +157,7 @@ def test_orbit_command_gives_the_chart_and_a_branch(tmp_path):
     assert [r["mechanism"] for r in rows] == [None, "parametric",
                                               "parametric"]
     assert rows[2]["double_period"]["stable"]
-    assert branch.read_text().splitlines()[1].startswith("freq_hz,p_f_bar")
+    assert branch.read_text().splitlines()[0].startswith("freq_hz,p_f_bar")
     proc = subprocess.run(
         [sys.executable, "-m", "judder", "orbit", "--freq", "103", "--pf",
          "0.3", "--limit", "-5"], capture_output=True, text=True,

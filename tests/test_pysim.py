@@ -191,10 +191,10 @@ def test_simulate_full_engagement_to_lock_up(tmp_path):
     assert inside["judder"] and inside["mechanism"] == "forced"
     # the run's CSV (the first run) read back as an acquisition: slipping
     # until the lock-up time reported, then stuck
-    _, metadata, raws = read(out, ["slip", "even.lockups"])
+    _, metadata, raws = read(out, ["slip", "clutch.lockups"])
     assert metadata["freq_hz"] == 60
     time, slip, _ = raws["slip"]
-    stuck = raws["even.lockups"][1] > 0.5
+    stuck = raws["clutch.lockups"][1] > 0.5
     assert time[stuck][0] == pytest.approx(outside["lock_up_time_s"])
     assert np.all(slip[time < outside["lock_up_time_s"] - 0.01] > 0.1)
 

@@ -54,8 +54,14 @@ def frequency_dependent(values):
     frequency parameter beyond the cosine (a valve's roll-off written
     with ``f_dither``: :attr:`sources.modelica.LinearPeriodicModel.
     frequency_dependent`); False for the registry's chains."""
-    return bool(getattr(values, "frequency", None)) and \
-        values.linear_model().frequency_dependent
+    if not getattr(values, "frequency", None):
+        return False
+    try:
+        return values.linear_model().frequency_dependent
+    except JudderError:
+        # a model that cannot be linearised is refused by the study, in
+        # its order (the names it needs first)
+        return False
 
 
 def at_dither_frequency(values, freq_hz, followed=False, argument="freq_hz"):

@@ -300,7 +300,7 @@ def _lock_fields(run, lock, ramp_end):
     run's length and its last slip."""
     at_ramp_end = int(np.searchsorted(run.time, ramp_end))
     return {"lock_up_time_s": lock,
-            "lockups": int(round(run["even.lockups"][-1]))
+            "lockups": int(round(run["clutch.lockups"][-1]))
             - (lock is not None),
             "slip_at_ramp_end_rad_s": float(run["slip"][at_ramp_end]),
             "duration_s": float(run.time[-1]),

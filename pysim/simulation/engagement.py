@@ -24,16 +24,16 @@ __all__ = ["engagement_summary", "verdict_line", "judder_words",
 
 #: Variables of a locking clutch (``Components.LockingWetClutch``) a full
 #: engagement records: how often it stuck, and broke away, by events.
-LOCK_VARIABLES = ("even.lockups", "even.breakaways")
+LOCK_VARIABLES = ("clutch.lockups", "clutch.breakaways")
 
 
 def lock_up(run):
     """When a full engagement (``TestBenchLockUp``) locks up: the first
     sample from which its EVEN clutch stays stuck to the end of the run
-    (``even.lockups - even.breakaways`` is 1), s; None if it slips at the
+    (``clutch.lockups - clutch.breakaways`` is 1), s; None if it slips at the
     end (inside a tongue the slip swings through zero and every lock-up
     breaks away at once)."""
-    stuck = run["even.lockups"] - run["even.breakaways"] > 0.5
+    stuck = run["clutch.lockups"] - run["clutch.breakaways"] > 0.5
     if not stuck[-1]:
         return None
     slipping = np.flatnonzero(~stuck)
