@@ -24,7 +24,8 @@ from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
-from ._words import growth_words, margin_words
+from ._words import (growth_words, margin_words, nonlinear_words,
+                     orbit_words)
 
 _CSS = """
 @page{size:A4;margin:14mm 13mm}
@@ -417,18 +418,9 @@ def engagement_section(page, run, paper):
         f"driveline with the damping of the bench's speed control, "
         f"so not section 1's) {first['floquet_exponent_per_s']:+.2f} 1/s"
         + ("" if first.get("orbit_kind") is None else
-           f"; the periodic orbit it settles on: "
-           f"{first['orbit_settled_rpm']:.3g} rpm, "
-           f"{first['orbit_kind']} "
-           f"({first['orbit_growth_per_s']:+.2f} 1/s), "
-           + (f"judder ({first['orbit_mechanism']})"
-              if first["orbit_mechanism"] else "no judder"))
+           "; the periodic orbit it settles on: " + orbit_words(first))
         + ("" if first.get("linearisation_holds") is not False else
-           f". The dither's forced slip swing "
-           f"({first['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
-           f"the friction curve's linear range "
-           f"({first['friction_linear_range_rad_s']:.2g} rad/s): the run "
-           "is nonlinear and need not follow the Floquet verdict")
+           ". Nonlinear: " + nonlinear_words(first))
         + ".</p>"
         + page.figure("Engagement with the configured dither and without "
                       "(Fig. 7, 8)",

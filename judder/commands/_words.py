@@ -1,5 +1,6 @@
-"""A check's verdict in words, as ``check`` prints it and the report
-writes it: the growth against an engagement, and both margins."""
+"""Results in words, as the commands print them and the report writes
+them: a check's growth against an engagement and both margins, and an
+engagement's periodic orbit and nonlinearity."""
 
 
 def _named(tongue):
@@ -61,3 +62,29 @@ def margin_words(record):
                      f"{record['crossing_hz']:.2f} Hz"
                      + _named(record["margin_hz_tongue"]))
     return amplitude, frequency
+
+
+def orbit_words(summary):
+    """The periodic orbit an engagement settles on, in words (an
+    engagement summary of :func:`judder.simulate`): its size, kind,
+    growth and whether it judders; '' without one."""
+    if summary.get("orbit_kind") is None:
+        return ""
+    return (f"{summary['orbit_settled_rpm']:.3g} rpm, "
+            f"{summary['orbit_kind']} "
+            f"({summary['orbit_growth_per_s']:+.2f} 1/s), "
+            + (f"judder ({summary['orbit_mechanism']})"
+               if summary["orbit_mechanism"] else "no judder"))
+
+
+def nonlinear_words(summary):
+    """Why an engagement need not follow the Floquet verdict (the
+    dither's forced slip swing beyond the friction curve's linear range),
+    in words; '' where the linearisation holds."""
+    if summary.get("linearisation_holds") is not False:
+        return ""
+    return (f"the dither's forced slip swing "
+            f"(+-{summary['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
+            f"the friction curve's linear range "
+            f"(+-{summary['friction_linear_range_rad_s']:.2g} rad/s), so the "
+            "run need not follow the Floquet verdict")

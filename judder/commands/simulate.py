@@ -24,6 +24,7 @@ from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
 from ._values import (DURATION, FREQ, FREQ_RANGE_HZ, LIMIT, MIN_GROWTH, PF,
                       OrNone, QuantityList)
+from ._words import nonlinear_words, orbit_words
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -144,16 +145,9 @@ def _engagement_line(s):
             + f"; Floquet at this point: {s['floquet_kind']} "
               f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
             + ("" if s.get("orbit_kind") is None else
-               f"; periodic orbit: {s['orbit_settled_rpm']:.3g} rpm, "
-               f"{s['orbit_kind']} ({s['orbit_growth_per_s']:+.2f} 1/s), "
-               + (f"judder ({s['orbit_mechanism']})"
-                  if s["orbit_mechanism"] else "no judder"))
+               "; periodic orbit: " + orbit_words(s))
             + ("" if s.get("linearisation_holds") is not False else
-               f"; nonlinear: the dither's forced slip swing "
-               f"(+-{s['forced_slip_amplitude_rad_s']:.2g} rad/s) exceeds "
-               f"the friction curve's linear range "
-               f"(+-{s['friction_linear_range_rad_s']:.2g} rad/s), so the "
-               "run need not follow the Floquet verdict"))
+               "; nonlinear: " + nonlinear_words(s)))
 
 
 def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
