@@ -20,11 +20,12 @@ $(STAMP): requirements.lock pyproject.toml
 run: setup
 	$(BIN)/judder map --preset paper-4dof --out out/map-4dof.npz --plot out/map-4dof.png
 
-# The suite on two processes (pytest-xdist): 8 min instead of 12 on
-# this 2-core machine; the signal and Dask tests wait for ready markers,
-# so they hold beside the other worker too.
+# The suite on two processes (pytest-xdist), each test file whole on one
+# of them (its module fixtures, and the README's commands in their
+# order); the signal and Dask tests wait for ready markers, so they hold
+# beside the other process too.
 test: setup browser windows
-	$(BIN)/python -m pytest -q -n 2
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile
 
 # The tests that signal a child or start Dask workers, ten times in a row
 # with two busy processes beside them (a loaded machine: they wait for

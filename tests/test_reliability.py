@@ -192,9 +192,18 @@ def _sabotaged(tmp_path, kind):
     return target
 
 
-def _fmu_folders():
-    import tempfile
-    return set(os.listdir(tempfile.gettempdir()))
+def _scratch(tmp_path):
+    """A temporary folder of the child's own (``TMPDIR``), so that what it
+    leaves behind is told apart from the folders of the tests beside it,
+    and the environment that gives it."""
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    return scratch, {**os.environ, "TMPDIR": str(scratch)}
+
+
+def _left_in(scratch, prefixes=("judder-fmu-", "tmp")):
+    """The FMU folders left in ``scratch``."""
+    return [p.name for p in scratch.iterdir() if p.name.startswith(prefixes)]
 
 
 @pytest.mark.parametrize("kind, command, words", [
@@ -209,35 +218,33 @@ def _fmu_folders():
 ])
 def test_a_crashing_fmu_is_one_line(tmp_path, kind, command, words):
     fmu = _sabotaged(tmp_path, kind)
-    before = _fmu_folders()
+    scratch, env = _scratch(tmp_path)
     done = subprocess.run([sys.executable, "-m", "judder", *command,
                            "--fmu", str(fmu)], capture_output=True,
-                          text=True, timeout=120)
+                          text=True, timeout=120, env=env)
     assert done.returncode == 2, done.stderr
     line = _one_line(done.stderr)
     assert line.startswith(f"judder: error: --fmu {fmu}: "), line
     for word in words:
         assert word in line, line
-    assert not {n for n in _fmu_folders() - before
-                if n.startswith(("judder-fmu-", "tmp"))}
+    assert not _left_in(scratch)
 
 
 def test_a_hanging_fmu_is_stopped(tmp_path):
     fmu = _sabotaged(tmp_path, "hangdd")
-    before = _fmu_folders()
+    scratch, env = _scratch(tmp_path)
     start = time.monotonic()
     done = subprocess.run([sys.executable, "-m", "judder", "check", "--freq",
                            "105", "--pf", "0.2", "--fmu", str(fmu)],
                           capture_output=True, text=True, timeout=120,
-                          env={**os.environ, "JUDDER_FMU_TIMEOUT": "3"})
+                          env={**env, "JUDDER_FMU_TIMEOUT": "3"})
     assert time.monotonic() - start < 30
     assert done.returncode == 2, done.stderr
     line = _one_line(done.stderr)
     assert "no answer within 3 s" in line, line
     assert "fmi2GetDirectionalDerivative at t = 0 s" in line, line
     assert "JUDDER_FMU_TIMEOUT" in line
-    assert not {n for n in _fmu_folders() - before
-                if n.startswith(("judder-fmu-", "tmp"))}
+    assert not _left_in(scratch)
 
 
 def test_the_fmu_child_is_killed_with_its_command(tmp_path):
@@ -245,9 +252,9 @@ def test_the_fmu_child_is_killed_with_its_command(tmp_path):
     the child and the extracted folder go with it."""
     import psutil
     fmu = _sabotaged(tmp_path, "hangdd")
-    before = _fmu_folders()
+    scratch, env = _scratch(tmp_path)
     proc = _start(["check", "--freq", "105", "--pf", "0.2", "--fmu",
-                   str(fmu)])
+                   str(fmu)], env=env)
     deadline = time.monotonic() + 60
     children = []
     while time.monotonic() < deadline and not children:
@@ -261,8 +268,7 @@ def test_the_fmu_child_is_killed_with_its_command(tmp_path):
     assert "terminated" in _one_line(stderr)
     gone, alive = psutil.wait_procs(children, timeout=10)
     assert alive == []
-    assert not {n for n in _fmu_folders() - before
-                if n.startswith("judder-fmu-")}
+    assert not _left_in(scratch, ("judder-fmu-",))
 
 
 # -- a scheduler that is not one ---------------------------------------
