@@ -24,6 +24,7 @@ from stability.plots import (boundary_curve, multipliers_figure,
 matplotlib.use("Agg")
 
 GOLDEN = Path(__file__).parent / "golden"
+EXAMPLES = Path(__file__).parents[1] / "examples"
 TOLERANCE = 1.0
 BAR = 1e5
 
@@ -288,3 +289,24 @@ def test_no_figure_text_is_clipped_or_collides(rc, paper4, small_map):
         if problems:
             found[name] = problems
     assert not found, found
+
+
+def test_advice_legend_lists_only_the_kinds_its_map_draws(rc):
+    # the example driveline advised over 90-120 Hz up to 0.5 bar: its wide
+    # view (45-180 Hz up to 1 bar) holds tongues 1 and 2 (single-period)
+    # only; tongue 4 (211.6 Hz) lies outside it and tongues 5, 6 above it
+    # (1.13 and 1.12 bar, `judder tongues`): no double-period or
+    # combination patch or boundary in the legend (issue 33)
+    import matplotlib.pyplot as plt
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    advice = api.advise(example, freq_range=(90, 120), p_max_bar=0.5,
+                        background=True)
+    assert advice.advice.success
+    fig = advice.figure()
+    texts = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    plt.close(fig)
+    assert "single-period" in texts
+    assert "single-period boundary ($|\\lambda| = 1$)" in texts
+    assert not any(kind in text for text in texts
+                   for kind in ("double-period", "combination"))
