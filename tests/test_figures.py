@@ -310,3 +310,33 @@ def test_advice_legend_lists_only_the_kinds_its_map_draws(rc):
     assert "single-period boundary ($|\\lambda| = 1$)" in texts
     assert not any(kind in text for text in texts
                    for kind in ("double-period", "combination"))
+
+
+def test_tongue_numbers_that_touch_are_set_apart(rc):
+    # BenchLib.Driveline6DOF with J4=0.2 (README, step 6): tongue 13's
+    # number ended 0.9 px past where 14's began, under the 1 px overlap
+    # allowed, and the two read "1314" (issue 33); here the second number
+    # starts 0.5 px before the first ends
+    import matplotlib.pyplot as plt
+    from infra.plotstyle import LABEL_GAP_PT, LABEL_GID, settle_labels
+    fig, ax = plt.subplots(figsize=(6, 3), dpi=150)
+    ax.set_xlim(0, 100)
+    ax.set_ylim(0, 1)
+
+    def number(text, x):
+        return ax.annotate(text, (x, 0.5), textcoords="offset points",
+                           xytext=(4, 1), fontsize=8, fontweight="bold",
+                           gid=LABEL_GID)
+    first = number("13", 50)
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    box = first.get_window_extent(renderer)
+    hz_per_px = 100 / ax.get_window_extent(renderer).width
+    second = number("14", 50 + (box.width - 0.5) * hz_per_px)
+    fig.draw_without_rendering()
+    assert second.get_window_extent(renderer).x0 < box.x1
+    settle_labels(fig)
+    one, two = (t.get_window_extent(renderer) for t in (first, second))
+    gap = max(two.x0 - one.x1, two.y0 - one.y1)
+    plt.close(fig)
+    assert gap >= LABEL_GAP_PT * 150 / 72 - 1e-9
