@@ -306,3 +306,19 @@ def test_a_library_file_that_is_not_utf8_is_named(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "Bin.mo: not UTF-8 text (byte 0xff at offset 22)" in err
     assert "Traceback" not in err and "internal error" not in err
+
+
+@pytest.mark.parametrize("command", ["simulate", "crosscheck"])
+def test_a_time_domain_command_refuses_fmu_before_reading_it(
+        capsys, tmp_path, command):
+    # the reason, not "no such file" of a file it would never read; and
+    # its --help offers no FMU (issue 33: it listed --fmu, then refused it)
+    err = _refused(capsys, command, "--fmu", str(tmp_path / "none.fmu"),
+                   "--freq", "100", "--pf", "0.1")
+    assert f"{command} --fmu" in err and "time domain" in err
+    assert "no such file" not in err
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    help_text = capsys.readouterr().out
+    assert "--fmu FILE.fmu" not in help_text and "FMU instead" not in help_text
+    assert "parameter of the class that is" in " ".join(help_text.split())
