@@ -274,6 +274,12 @@ def test_report_shows_no_fit_the_data_cannot_determine():
     assert "No fit is shown" in text and "needs at least 5" in text
     assert data["fit_status"].startswith("no fit: the measured boundary has "
                                          "3 points with judder")
+    # in the report's words: its `fit_names` (--fit on the command line),
+    # a known scatter through judder fit (issue 33)
+    from judder.commands._flags import in_flags
+    assert "fit fewer parameters (`fit_names`)" in data["fit_status"]
+    assert "(`scatter` of judder fit)" in data["fit_status"]
+    assert "fit fewer parameters (--fit)" in in_flags(data["fit_status"])
 
 
 def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):

@@ -18,6 +18,7 @@ import re
 import numpy as np
 
 from infra.criteria import ENGAGEMENT_DURATION_S
+from infra.errors import in_options
 from infra.files import MARK
 from infra.numbers import format_interval, format_uncertain, readable_number
 from infra.provenance import current
@@ -454,8 +455,12 @@ def fit_section(bench, names, values, source, fitted, error):
                  f"boundary of judder growing at {min_growth:g} 1/s or "
                  "faster.</p>")
     if fitted is None:
+        # in the report's own arguments: it fits `fit_names`, and a known
+        # scatter is given to judder fit
+        error = in_options(str(error), {"names": "`fit_names`",
+                                        "scatter": "`scatter` of judder fit"})
         status = f"no fit: {error}"
-        return (head + f"<p><b>No fit is shown</b>: {html.escape(str(error))}"
+        return (head + f"<p><b>No fit is shown</b>: {html.escape(error)}"
                 ".</p>", {"fit": None, "fit_determined": False,
                           "fit_status": status, "fit_problems": [str(error)]},
                 None)
