@@ -73,8 +73,10 @@ def own_driveline_options(parser, fmu=True):
                        help="folder holding your own top-level package "
                             "(the Judder library is always available)")
     # a command that cannot take an FMU still reads --fmu, to refuse it
-    # with its reason before reading the file (`refused_fmu`), but does
-    # not offer it in its --help
+    # with its reason before reading the file (`refused_fmu`, with the
+    # command's name), but does not offer it in its --help
+    if not fmu:
+        parser.set_defaults(fmu_refused_by=parser.prog.rsplit(" ", 1)[-1])
     group.add_argument(
         "--fmu", metavar="FILE.fmu", dest="fmu" if fmu else "refused_fmu",
         help="an FMI 2.0 or 3.0 Model Exchange FMU: its state Jacobian "

@@ -54,7 +54,7 @@ def own_driveline(args, path=None, option="--param-file"):
     refused = getattr(args, "refused_fmu", None)
     if refused is not None:     # a command that runs the time domain
         from ..timedomain import fmu_refusal
-        raise fmu_refusal(args.command, refused)
+        raise fmu_refusal(args.fmu_refused_by, refused)
     fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
     for flag, given, allowed in (
             ("--fmu", fmu, "a .fmu file"),
