@@ -340,3 +340,33 @@ def test_tongue_numbers_that_touch_are_set_apart(rc):
     gap = max(two.x0 - one.x1, two.y0 - one.y1)
     plt.close(fig)
     assert gap >= LABEL_GAP_PT * 150 / 72 - 1e-9
+
+
+def test_fig19_says_how_far_off_the_scale_the_driveline_lies(rc):
+    # the paper's mu_g = 0.017 s/rad is 17 times the axes' end (1e-3):
+    # each panel's arrow points along its own mu_g axis (right on the
+    # left panel, up on the right one) and says so (issue 33: the left
+    # one pointed up into the corner, "(above)")
+    import matplotlib.pyplot as plt
+    fig = api.threshold(np.linspace(-1e-3, 1e-3, 21),
+                        np.linspace(0, 2, 11)).figure()
+    left, right = fig.axes[:2]
+    notes = {ax: [t for t in ax.texts if "this driveline" in t.get_text()]
+             for ax in (left, right)}
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for ax, (note,) in notes.items():
+        assert "off the scale" in note.get_text()
+        assert "17 times the axis' end" in note.get_text()
+        arrow = note.arrow_patch.get_window_extent(renderer)
+        # where it points, in pixels: its y is a fraction of the axes
+        tip_y = ax.transAxes.transform((0, note.xy[1]))[1]
+        if ax is left:       # mu_g runs along x: the arrow points right
+            tip_x = ax.transAxes.transform(note.xy)[0]
+            assert arrow.x1 == pytest.approx(tip_x, abs=6)   # shrunk 2 pt
+            assert arrow.x1 - arrow.x0 > 20 and arrow.height < 5
+        else:                # along y: it points up, to the top
+            assert arrow.y1 == pytest.approx(tip_y, abs=6)
+            assert tip_y > ax.transAxes.transform((0, 0.95))[1]
+            assert arrow.y1 - arrow.y0 > 10
+    plt.close(fig)
