@@ -96,6 +96,9 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     # judder advise ranks design parameters (mu_g is not one): the report
     # says why the two rankings differ
     assert "puts mu_g first, judder advise puts" in text
+    # the ranking's tip is the unstable one, said so (issue 33)
+    assert ("tongue 2's tip (the tongue nearest the configured dither): "
+            "the tip where it becomes unstable (|lambda| = 1)") in text
     assert "they answer different questions" in text
     # without dither: mu_g* = -1.25e-4 c_i with every c_i = 0.1
     assert "for mu_g below -1.25e-05 s/rad" in text

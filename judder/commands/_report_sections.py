@@ -368,7 +368,10 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
         f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
         f"the largest relative move of tongue {focus}'s tip"
         + (" (the tongue nearest the configured dither)"
-           if near_setting else "") + ":</p>"
+           if near_setting else "")
+        + ": the tip where it becomes unstable (|lambda| = 1), as the "
+        "figure's boundaries are; where it judders lies higher (the tip "
+        "table's last column).</p>"
         + _table(("parameter", "tip p_f moves up to [%]",
                   "tip f moves up to [%]", "tongue vanishes"),
                  [(e["parameter"], f"{e['p_f_percent']:.1f}",
