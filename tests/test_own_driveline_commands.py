@@ -213,6 +213,8 @@ def test_simulate_runs_the_class_fmu_crosscheck_runs():
     # without dither the class stays at its steady slip, w_slip = 2 rad/s
     assert steady.summaries[0]["final_slip_rad_s"] == pytest.approx(
         2.0, abs=1e-6)
+    # and a run at --pf 0 is called what it is (it was "with dither")
+    assert steady.summaries[0]["label"] == "without dither"
     run = api.simulate(102.9, 0.3, parameters=ModelicaParameters(FOUR))
     first = run.summaries[0]
     # the Floquet verdict is Eq. (6) of the paper (the preset's)

@@ -255,7 +255,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           f"engagement (its pressure ramp ends at "
                           f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
-    settings = ([("with dither", freqs[0], p_f_bar * PA_PER_BAR)]
+    settings = ([("with dither" if p_f_bar > 0 else "without dither",
+                  freqs[0], p_f_bar * PA_PER_BAR)]
                 if len(freqs) == 1 else
                 [(f"dither at {f:g} Hz", f, p_f_bar * PA_PER_BAR)
                  for f in freqs])
