@@ -99,14 +99,20 @@ def figure_title(fig, title, fontsize=11):
 #: and the margin notes of ``judder check``.
 LABEL_GID = "judder-label"
 
+#: Points of white space :func:`settle_labels` keeps between two labels,
+#: half a space at 8 pt: numbers that only touch read as one ("1314").
+LABEL_GAP_PT = 1.5
+
 
 def settle_labels(fig):
     """Lay the figure out, then move each tongue number or margin note
-    (texts with ``gid`` :data:`LABEL_GID`) up until it overlaps none placed
-    before it in its axes: nearby tips and settings keep readable labels.
-    Figure builders call it last, once the axes have their final size."""
+    (texts with ``gid`` :data:`LABEL_GID`) up until it lies at least
+    :data:`LABEL_GAP_PT` clear of every one placed before it in its axes:
+    nearby tips and settings keep readable labels. Figure builders call it
+    last, once the axes have their final size."""
     fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
+    gap = LABEL_GAP_PT * fig.dpi / 72.0
     for ax in fig.axes:
         notes = sorted((t for t in ax.texts if t.get_gid() == LABEL_GID),
                        key=lambda t: t.xy[0])
@@ -114,14 +120,16 @@ def settle_labels(fig):
         for note in notes:
             for _ in range(20):
                 box = note.get_window_extent(renderer)
-                if not any(_overlap(box, other) for other in placed):
+                if not any(_overlap(box, other, -gap)
+                           for other in placed):
                     break
                 dx, dy = note.xyann
                 note.xyann = (dx, dy + box.height * 72.0 / fig.dpi + 2)
             placed.append(note.get_window_extent(renderer))
 
 
-def _overlap(one, other, slack=1.0):
-    """Two boxes (pixels) share more than ``slack`` in both directions."""
+def _overlap(one, other, slack):
+    """Two boxes (pixels) share more than ``slack`` in both directions (a
+    negative ``slack``: come closer than ``-slack`` in both)."""
     return (min(one.x1, other.x1) - max(one.x0, other.x0) > slack
             and min(one.y1, other.y1) - max(one.y0, other.y0) > slack)

@@ -14,7 +14,17 @@ is no time-domain model of it here, and these functions refuse it.
 from infra.errors import JudderError
 from pysim.simulation.fmus import ensure_fmu
 
-__all__ = ["class_fmu", "run_values"]
+__all__ = ["class_fmu", "fmu_refusal", "run_values"]
+
+
+def fmu_refusal(command, path):
+    """The error for ``command --fmu path``: a command that runs the
+    driveline in the time domain has no model of a third-party FMU."""
+    return JudderError(
+        f"{command} --fmu {path} is not possible: {command} runs the "
+        "driveline in the time domain, and the FMU path reads only the "
+        "FMU's Jacobian at its start values; allowed: --modelica CLASS "
+        "(its FMU is built and run) or a preset")
 
 
 def class_fmu(params, command):
@@ -35,11 +45,7 @@ def class_fmu(params, command):
     if params.source_kind.is_chain:
         return ensure_fmu(params.driveline.modelica_class)
     if not params.source_kind.runs_in_time_domain:
-        raise JudderError(
-            f"{command} --fmu {params.path} is not possible: {command} runs "
-            "the driveline in the time domain, and the FMU path reads only "
-            "the FMU's Jacobian at its start values; allowed: --modelica "
-            "CLASS (its FMU is built and run) or a preset")
+        raise fmu_refusal(command, params.path)
     if (params.amplitude, params.frequency) != ("p_f", "f_dither"):
         raise JudderError(f"{command} runs the FMU with the dither in p_f "
                           "and f_dither; allowed: --dither-amplitude p_f "

@@ -645,3 +645,29 @@ def test_dither_is_read_from_the_pressure_samples_as_taken(freq_hz):
     # the frequency known: the amplitude at it
     assert estimate_dither(time, pressure, window, freq_hz)[1] == \
         pytest.approx(amplitude, rel=1e-9)
+
+
+def test_chart_names_every_boundary_file_it_writes(tmp_path, capsys):
+    # the example runs in two groups of oil temperature: --boundary b.csv
+    # writes b_65-70.csv and b_90.csv, and says so (issue 33: the files of
+    # the groups appeared unannounced)
+    import shutil
+    from judder.cli import main
+    bench = tmp_path / "bench"
+    shutil.copytree(Path(__file__).parents[1] / "examples" / "bench", bench)
+    index = bench / "runs.csv"
+    lines = index.read_text().splitlines()
+    index.write_text("\n".join(lines[:1] + [
+        line.replace("65-70", "90") if line.startswith("run0") and
+        line.split(",")[1] == "212" else line for line in lines[1:]]) + "\n")
+    assert main(["chart", "--index", str(index), "--channel",
+                 "upstream_speed=EngSpd_up", "--channel",
+                 "pressure=PressEVEN:bar", "--channel",
+                 "downstream_speed=OutSpd", "--group-by", "oil_temperature",
+                 "--boundary", str(tmp_path / "b.csv"), "--workers",
+                 "1"]) == 0
+    out = capsys.readouterr().out
+    for name in ("b_65-70.csv", "b_90.csv"):
+        assert (tmp_path / name).exists()
+        assert f"wrote {tmp_path / name}" in out
+    assert not (tmp_path / "b.csv").exists()

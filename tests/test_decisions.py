@@ -258,6 +258,44 @@ def test_tongues_give_where_each_tongue_becomes_unstable_and_judder():
             f"{two['judder_tip_freq_hz']:.3f} Hz") in text
 
 
+def test_tongues_check_floquet_and_sensitivity_agree_between_thresholds():
+    """Acceptance of issue 33: a setting between tongue 2's two tips (at
+    its tip frequency, above where it becomes unstable and below where it
+    judders) is SLOW GROWTH to check and floquet and inside the tongue
+    whose unstable tip tongues and sensitivity give; above the judder tip
+    both say JUDDER, below the unstable tip STABLE. check's tongue tip is
+    the judder tip of tongues, named so in both JSONs."""
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    freqs = np.linspace(10, 220, 211)
+    tips = api.tongues(freqs, parameters=example).as_dict()
+    two = next(t for t in tips["tongues"] if t["number"] == 2)
+    unstable, judder = two["tip_p_f_bar"], two["judder_tip_p_f_bar"]
+    assert unstable < judder           # 0.0542 and 0.2327 bar
+    f = two["tip_freq_hz"]
+    settings = [0.5 * unstable, 0.5 * (unstable + judder), 1.2 * judder]
+    records = api.check([f] * 3, settings, example,
+                        sensitivity=()).records()
+    assert [r["verdict"] for r in records] == \
+        ["STABLE", "SLOW GROWTH", "JUDDER"]
+    assert [api.floquet(f, p, example).verdict() for p in settings] == \
+        ["STABLE", "SLOW GROWTH", "JUDDER"]
+    between = records[1]
+    assert 0 < between["growth_rate_per_s"] < DEFAULT_MIN_GROWTH_PER_S
+    # check's two boundaries at the tip frequency are the tips of tongues
+    assert between["unstable_boundary_p_f_bar"] == pytest.approx(unstable,
+                                                                 rel=2e-3)
+    assert between["boundary_p_f_bar"] == pytest.approx(judder, rel=2e-3)
+    assert between["tongue"]["judder_tip_p_f_bar"] == pytest.approx(
+        judder, rel=1e-6)
+    assert "tip_p_f_bar" not in between["tongue"]
+    # sensitivity's nominal tips are the unstable ones of tongues
+    sens = api.sensitivity(["c12"], freqs, 1.5, values=[10.0],
+                           parameters=example, workers=1).as_dict()
+    nominal = next(t for t in sens["nominal_tongues"] if t["number"] == 2)
+    assert nominal["tip_p_f_bar"] == pytest.approx(unstable, rel=1e-9)
+
+
 def test_advise_reproduces_the_paper_and_clears_the_window():
     """Acceptance: section 4.3/5 ranking, and a design whose recomputed map
     has no judder-relevant point in 60-200 Hz x 0-0.7 bar (k24 may triple:

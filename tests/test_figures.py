@@ -24,6 +24,7 @@ from stability.plots import (boundary_curve, multipliers_figure,
 matplotlib.use("Agg")
 
 GOLDEN = Path(__file__).parent / "golden"
+EXAMPLES = Path(__file__).parents[1] / "examples"
 TOLERANCE = 1.0
 BAR = 1e5
 
@@ -288,3 +289,84 @@ def test_no_figure_text_is_clipped_or_collides(rc, paper4, small_map):
         if problems:
             found[name] = problems
     assert not found, found
+
+
+def test_advice_legend_lists_only_the_kinds_its_map_draws(rc):
+    # the example driveline advised over 90-120 Hz up to 0.5 bar: its wide
+    # view (45-180 Hz up to 1 bar) holds tongues 1 and 2 (single-period)
+    # only; tongue 4 (211.6 Hz) lies outside it and tongues 5, 6 above it
+    # (1.13 and 1.12 bar, `judder tongues`): no double-period or
+    # combination patch or boundary in the legend (issue 33)
+    import matplotlib.pyplot as plt
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    advice = api.advise(example, freq_range=(90, 120), p_max_bar=0.5,
+                        background=True)
+    assert advice.advice.success
+    fig = advice.figure()
+    texts = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    plt.close(fig)
+    assert "single-period" in texts
+    assert "single-period boundary ($|\\lambda| = 1$)" in texts
+    assert not any(kind in text for text in texts
+                   for kind in ("double-period", "combination"))
+
+
+def test_tongue_numbers_that_touch_are_set_apart(rc):
+    # BenchLib.Driveline6DOF with J4=0.2 (README, step 6): tongue 13's
+    # number ended 0.9 px past where 14's began, under the 1 px overlap
+    # allowed, and the two read "1314" (issue 33); here the second number
+    # starts 0.5 px before the first ends
+    import matplotlib.pyplot as plt
+    from infra.plotstyle import LABEL_GAP_PT, LABEL_GID, settle_labels
+    fig, ax = plt.subplots(figsize=(6, 3), dpi=150)
+    ax.set_xlim(0, 100)
+    ax.set_ylim(0, 1)
+
+    def number(text, x):
+        return ax.annotate(text, (x, 0.5), textcoords="offset points",
+                           xytext=(4, 1), fontsize=8, fontweight="bold",
+                           gid=LABEL_GID)
+    first = number("13", 50)
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    box = first.get_window_extent(renderer)
+    hz_per_px = 100 / ax.get_window_extent(renderer).width
+    second = number("14", 50 + (box.width - 0.5) * hz_per_px)
+    fig.draw_without_rendering()
+    assert second.get_window_extent(renderer).x0 < box.x1
+    settle_labels(fig)
+    one, two = (t.get_window_extent(renderer) for t in (first, second))
+    gap = max(two.x0 - one.x1, two.y0 - one.y1)
+    plt.close(fig)
+    assert gap >= LABEL_GAP_PT * 150 / 72 - 1e-9
+
+
+def test_fig19_says_how_far_off_the_scale_the_driveline_lies(rc):
+    # the paper's mu_g = 0.017 s/rad is 17 times the axes' end (1e-3):
+    # each panel's arrow points along its own mu_g axis (right on the
+    # left panel, up on the right one) and says so (issue 33: the left
+    # one pointed up into the corner, "(above)")
+    import matplotlib.pyplot as plt
+    fig = api.threshold(np.linspace(-1e-3, 1e-3, 21),
+                        np.linspace(0, 2, 11)).figure()
+    left, right = fig.axes[:2]
+    notes = {ax: [t for t in ax.texts if "this driveline" in t.get_text()]
+             for ax in (left, right)}
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for ax, (note,) in notes.items():
+        assert "off the scale" in note.get_text()
+        assert "17 times the axis' end" in note.get_text()
+        arrow = note.arrow_patch.get_window_extent(renderer)
+        # where it points, in pixels: its y is a fraction of the axes
+        tip_y = ax.transAxes.transform((0, note.xy[1]))[1]
+        if ax is left:       # mu_g runs along x: the arrow points right
+            tip_x = ax.transAxes.transform(note.xy)[0]
+            assert arrow.x1 == pytest.approx(tip_x, abs=6)   # shrunk 2 pt
+            assert arrow.x1 - arrow.x0 > 20 and arrow.height < 5
+        else:                # along y: it points up, to the top
+            assert arrow.y1 == pytest.approx(tip_y, abs=6)
+            assert tip_y > ax.transAxes.transform((0, 0.95))[1]
+            assert arrow.y1 - arrow.y0 > 10
+    plt.close(fig)

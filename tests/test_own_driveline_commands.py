@@ -213,6 +213,8 @@ def test_simulate_runs_the_class_fmu_crosscheck_runs():
     # without dither the class stays at its steady slip, w_slip = 2 rad/s
     assert steady.summaries[0]["final_slip_rad_s"] == pytest.approx(
         2.0, abs=1e-6)
+    # and a run at --pf 0 is called what it is (it was "with dither")
+    assert steady.summaries[0]["label"] == "without dither"
     run = api.simulate(102.9, 0.3, parameters=ModelicaParameters(FOUR))
     first = run.summaries[0]
     # the Floquet verdict is Eq. (6) of the paper (the preset's)
@@ -306,3 +308,19 @@ def test_a_library_file_that_is_not_utf8_is_named(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "Bin.mo: not UTF-8 text (byte 0xff at offset 22)" in err
     assert "Traceback" not in err and "internal error" not in err
+
+
+@pytest.mark.parametrize("command", ["simulate", "crosscheck"])
+def test_a_time_domain_command_refuses_fmu_before_reading_it(
+        capsys, tmp_path, command):
+    # the reason, not "no such file" of a file it would never read; and
+    # its --help offers no FMU (issue 33: it listed --fmu, then refused it)
+    err = _refused(capsys, command, "--fmu", str(tmp_path / "none.fmu"),
+                   "--freq", "100", "--pf", "0.1")
+    assert f"{command} --fmu" in err and "time domain" in err
+    assert "no such file" not in err
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    help_text = capsys.readouterr().out
+    assert "--fmu FILE.fmu" not in help_text and "FMU instead" not in help_text
+    assert "parameter of the class that is" in " ".join(help_text.split())

@@ -3,6 +3,7 @@ bench emulator."""
 
 import csv
 import json
+from pathlib import Path
 import subprocess
 import sys
 
@@ -239,3 +240,23 @@ def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
     assert "absolute zero" in status["85-90"]["message"]
     with open(tmp_path / "index.csv", newline="") as stream:
         assert len(list(csv.DictReader(stream))) == 2
+
+
+def test_simulate_names_whose_linearisation_its_floquet_line_is():
+    # README: at 105 Hz, 0.2 bar the example driveline grows at 0.563 1/s
+    # (judder check); the bench's linearisation, with its speed control's
+    # damping and its friction curve at the slip, at +0.17 1/s: the line
+    # says which it gives (issue 33: "Floquet at this point")
+    from judder import api
+    from judder.commands.simulate import _engagement_line
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=Path(__file__).parents[1]
+                              / "examples" / "driveline.toml")
+    run = api.simulate(105, 0.2, parameters=example, duration=1.0)
+    summary = run.summaries[0]
+    assert summary["floquet_exponent_per_s"] == pytest.approx(0.17,
+                                                              abs=0.005)
+    check = api.check([105], [0.2], example, sensitivity=()).records()[0]
+    assert check["growth_rate_per_s"] == pytest.approx(0.563, abs=5e-4)
+    assert ("; Floquet of the bench's linearisation (not judder check's): "
+            "single-period (+0.17 1/s)") in _engagement_line(summary)

@@ -96,6 +96,9 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     # judder advise ranks design parameters (mu_g is not one): the report
     # says why the two rankings differ
     assert "puts mu_g first, judder advise puts" in text
+    # the ranking's tip is the unstable one, said so (issue 33)
+    assert ("tongue 2's tip (the tongue nearest the configured dither): "
+            "the tip where it becomes unstable (|lambda| = 1)") in text
     assert "they answer different questions" in text
     # without dither: mu_g* = -1.25e-4 c_i with every c_i = 0.1
     assert "for mu_g below -1.25e-05 s/rad" in text
@@ -274,6 +277,12 @@ def test_report_shows_no_fit_the_data_cannot_determine():
     assert "No fit is shown" in text and "needs at least 5" in text
     assert data["fit_status"].startswith("no fit: the measured boundary has "
                                          "3 points with judder")
+    # in the report's words: its `fit_names` (--fit on the command line),
+    # a known scatter through judder fit (issue 33)
+    from judder.commands._flags import in_flags
+    assert "fit fewer parameters (`fit_names`)" in data["fit_status"]
+    assert "(`scatter` of judder fit)" in data["fit_status"]
+    assert "fit fewer parameters (--fit)" in in_flags(data["fit_status"])
 
 
 def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):

@@ -56,13 +56,15 @@ def model_options(parser, modelica=True, fmu=True):
 
 
 def own_driveline_options(parser, fmu=True):
+    own = "a Modelica class or an FMU" if fmu else "a Modelica class"
+    holder = "class or FMU" if fmu else "class"
     group = parser.add_argument_group(
-        "your own driveline", "Analyse a Modelica class or an FMU instead "
-        "of a preset: it is linearised about its start values (a steady "
-        "slip) and its rigid-body angles removed; --set NAME=VALUE then "
-        "sets its parameters by their names (SI), --param-file reads a "
-        "file of `judder params --modelica CLASS --save` (or --fmu). "
-        "Replaces --model and --preset.")
+        "your own driveline", f"Analyse {own} instead of a preset: it is "
+        "linearised about its start values (a steady slip) and its "
+        "rigid-body angles removed; --set NAME=VALUE then sets its "
+        "parameters by their names (SI), --param-file reads a file of "
+        "`judder params --modelica CLASS --save`"
+        + (" (or --fmu)" if fmu else "") + ". Replaces --model and --preset.")
     group.add_argument("--modelica", metavar="CLASS",
                        help="full class name, e.g. "
                             "Judder.Examples.Driveline5DOFGeared, compiled "
@@ -71,21 +73,24 @@ def own_driveline_options(parser, fmu=True):
                        help="folder holding your own top-level package "
                             "(the Judder library is always available)")
     # a command that cannot take an FMU still reads --fmu, to refuse it
-    # with its reason, but does not offer it in its --help
+    # with its reason before reading the file (`refused_fmu`, with the
+    # command's name), but does not offer it in its --help
+    if not fmu:
+        parser.set_defaults(fmu_refused_by=parser.prog.rsplit(" ", 1)[-1])
     group.add_argument(
-        "--fmu", metavar="FILE.fmu",
+        "--fmu", metavar="FILE.fmu", dest="fmu" if fmu else "refused_fmu",
         help="an FMI 2.0 or 3.0 Model Exchange FMU: its state Jacobian "
              "(directional derivatives, else central differences) is "
              "read over one dither "
              "period at its start values; replaces --modelica "
              "(docs/fmu-path.md)" if fmu else argparse.SUPPRESS)
     group.add_argument("--dither-amplitude", default="p_f", metavar="NAME",
-                       help="parameter of the class or FMU that is the "
-                            "dither amplitude, Pa (default p_f)")
+                       help=f"parameter of the {holder} that is "
+                            "the dither amplitude, Pa (default p_f)")
     group.add_argument("--dither-frequency", default="f_dither",
                        metavar="NAME",
-                       help="parameter of the class or FMU that is the "
-                            "dither frequency, Hz (default f_dither)")
+                       help=f"parameter of the {holder} that is "
+                            "the dither frequency, Hz (default f_dither)")
 
 
 def waveform_option(parser):

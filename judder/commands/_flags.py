@@ -12,6 +12,8 @@ from infra.errors import in_options
 FLAGS = {
     # stability.fit.fit_boundary
     "names": "--fit", "bounds": "--bounds", "scatter": "--scatter",
+    # judder.commands.report.report
+    "fit_names": "--fit",
     # sources: Parameters.with_overrides, FmuParameters, ModelicaParameters
     "assignments": "--set", "path": "--fmu", "library": "--library",
     "amplitude": "--dither-amplitude", "frequency": "--dither-frequency",

@@ -51,6 +51,10 @@ def own_driveline(args, path=None, option="--param-file"):
     """The parameter set of ``--fmu FILE.fmu`` (docs/fmu-path.md) or
     ``--modelica CLASS [--library DIR]`` (docs/onemodel.md), with the
     values of the file ``path`` if given; None if neither is given."""
+    refused = getattr(args, "refused_fmu", None)
+    if refused is not None:     # a command that runs the time domain
+        from ..timedomain import fmu_refusal
+        raise fmu_refusal(args.fmu_refused_by, refused)
     fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
     for flag, given, allowed in (
             ("--fmu", fmu, "a .fmu file"),

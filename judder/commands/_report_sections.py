@@ -18,6 +18,7 @@ import re
 import numpy as np
 
 from infra.criteria import ENGAGEMENT_DURATION_S
+from infra.errors import in_options
 from infra.files import MARK
 from infra.numbers import format_interval, format_uncertain, readable_number
 from infra.provenance import current
@@ -368,7 +369,10 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
         f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
         f"the largest relative move of tongue {focus}'s tip"
         + (" (the tongue nearest the configured dither)"
-           if near_setting else "") + ":</p>"
+           if near_setting else "")
+        + ": the tip where it becomes unstable (|lambda| = 1), as the "
+        "figure's boundaries are; where it judders lies higher (the tip "
+        "table's last column).</p>"
         + _table(("parameter", "tip p_f moves up to [%]",
                   "tip f moves up to [%]", "tongue vanishes"),
                  [(e["parameter"], f"{e['p_f_percent']:.1f}",
@@ -446,8 +450,12 @@ def fit_section(bench, names, values, source, fitted, error):
                  f"boundary of judder growing at {min_growth:g} 1/s or "
                  "faster.</p>")
     if fitted is None:
+        # in the report's own arguments: it fits `fit_names`, and a known
+        # scatter is given to judder fit
+        error = in_options(str(error), {"names": "`fit_names`",
+                                        "scatter": "`scatter` of judder fit"})
         status = f"no fit: {error}"
-        return (head + f"<p><b>No fit is shown</b>: {html.escape(str(error))}"
+        return (head + f"<p><b>No fit is shown</b>: {html.escape(error)}"
                 ".</p>", {"fit": None, "fit_determined": False,
                           "fit_status": status, "fit_problems": [str(error)]},
                 None)

@@ -280,7 +280,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
 def _wide_view(given, advised, operating):
     """What the figure shows beyond the operating range: the advised
     design's map from half the lowest to 1.5 times the highest frequency
-    and up to twice the operating amplitude, with the stability
+    and up to twice the valve's highest amplitude, with the stability
     boundaries (|lambda| = 1) of both designs and the advised one's
     tongues."""
     from stability.maps import stability_map as map_kernel

@@ -92,7 +92,9 @@ def add_arguments(p):
                    help="per-run arrays and boundaries (NPZ)")
     p.add_argument("--boundary", metavar="FILE.csv",
                    help="experimental boundary (freq_hz,p_f_bar; empty = "
-                        "no judder), one file per group if several")
+                        "no judder); with several groups one file each, "
+                        "named by the group (b.csv: b_1000.csv, "
+                        "b_1500.csv, ...), each named on its 'wrote' line")
     p.add_argument("--plot", metavar="FILE.png",
                    help="the chart, one panel per group")
     workers_option(p)

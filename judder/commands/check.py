@@ -216,10 +216,13 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
     unstable = point.kind != KINDS[0]
 
     def tongue(t):
-        return None if t is None else {"number": t.number, "kind": t.kind,
-                                       "resonance": t.resonance,
-                                       "tip_freq_hz": t.tip_freq_hz,
-                                       "tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
+        # the tongue of judder (growth min_growth): its tip is where it
+        # judders, named as `judder tongues` names it (``tip_*`` there is
+        # where a tongue becomes unstable)
+        return None if t is None else {
+            "number": t.number, "kind": t.kind, "resonance": t.resonance,
+            "judder_tip_freq_hz": t.tip_freq_hz,
+            "judder_tip_p_f_bar": t.tip_p_f / PA_PER_BAR}
     sensitivity = sorted(
         ({"parameter": name,
           "margin_bar_per_unit_log": finite_or_none(bar / PA_PER_BAR),

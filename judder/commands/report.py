@@ -34,6 +34,7 @@ from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, workers_option)
+from ._flags import in_flags
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
 from ._report_sections import (Page, advice_section, chart_figure,
@@ -178,7 +179,7 @@ def run(args):
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
                f"{verdict['verdict']}" if verdict else "")
-            + (f"\nbench data: {result.data['fit_status']}"
+            + (f"\nbench data: {in_flags(result.data['fit_status'])}"
                if "fit_status" in result.data else "")
             + written(args.out, args.pdf))
     emit(args, {**result.as_dict(),

@@ -123,11 +123,15 @@ def run(args):
                 + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
                   f"parameters of {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
-         "\n".join(_engagement_line(s) for s in result.summaries)
+         "\n".join(_engagement_line(s, params.source_kind.is_chain)
+                   for s in result.summaries)
          + written(args.out, args.plot))
 
 
-def _engagement_line(s):
+def _engagement_line(s, bench=True):
+    """One run's line; ``bench``: it ran on the bench model, whose
+    linearisation (its speed control's damping, its friction curve at the
+    slip) is not the driveline's that ``judder check`` judges."""
     from pysim.simulation.engagement import judder_words
     from pysim.simulation.engagement import lock_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
@@ -142,7 +146,10 @@ def _engagement_line(s):
                if s["peak_at_dither_frequency"] else "")
             + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
             + ("" if s["judder"] is None else "; " + judder_words(s))
-            + f"; Floquet at this point: {s['floquet_kind']} "
+            + ("; Floquet of the bench's linearisation (not judder "
+               "check's): " if bench else
+               "; Floquet of the class's linearisation: ")
+            + f"{s['floquet_kind']} "
               f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
             + ("" if s.get("orbit_kind") is None else
                "; periodic orbit: " + orbit_words(s))
@@ -249,7 +256,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           f"engagement (its pressure ramp ends at "
                           f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
-    settings = ([("with dither", freqs[0], p_f_bar * PA_PER_BAR)]
+    settings = ([("with dither" if p_f_bar > 0 else "without dither",
+                  freqs[0], p_f_bar * PA_PER_BAR)]
                 if len(freqs) == 1 else
                 [(f"dither at {f:g} Hz", f, p_f_bar * PA_PER_BAR)
                  for f in freqs])

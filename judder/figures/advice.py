@@ -7,7 +7,8 @@ from matplotlib.patches import Rectangle
 
 from infra.plotstyle import figure_title, settle_labels
 from infra.units import PA_PER_BAR
-from stability.plots import kind_handles, plot_boundaries, plot_map
+from stability.plots import (drawn_kinds, kind_handles, plot_boundaries,
+                             plot_map)
 
 __all__ = ["advice_figure"]
 
@@ -74,7 +75,9 @@ def _advised_map(advice, ax):
                                fill=False, edgecolor="#2ca02c",
                                linewidth=1.6, zorder=5))
         ax.set_xlim(view["map"].freq_hz[0], view["map"].freq_hz[-1])
-        handles = kind_handles(lines=True, min_growth=advice.min_growth)
+        # only the kinds the advised design's map draws
+        handles = kind_handles(drawn_kinds(view["map"], view["boundaries"]),
+                               lines=True, min_growth=advice.min_growth)
         handles += [Line2D([], [], label="given design's boundaries",
                            **GIVEN_STYLE),
                     Rectangle((0, 0), 1, 1, fill=False, edgecolor="#2ca02c",

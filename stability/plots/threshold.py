@@ -70,15 +70,23 @@ def _mark_own(left, right, own, limits):
         artists.append(left.axvline(mu_own, color="k", linestyle=":",
                                     label=label))
         return artists
+    # off the scale: the right panel's mu_g axis is vertical, the left
+    # panel's horizontal; each arrow points along its own axis, the label
+    # saying how far beyond its end the value lies
     up = mu_own > high
-    for ax, x in ((right, c_own), (left, high if up else low)):
-        y = 0.97 if up else 0.03
-        artists.append(ax.annotate(
-            label + (" (above)" if up else " (below)"),
-            xy=(x, y), xycoords=("data", "axes fraction"),
-            xytext=(-8 if ax is left else 8, -22 if up else 22),
-            textcoords="offset points", fontsize=8,
-            ha="right" if ax is left else "left",
-            va="top" if up else "bottom",
-            arrowprops={"arrowstyle": "->", "color": "k"}))
+    edge = high if up else low
+    times = f"{mu_own / edge:.3g} times the axis' end" if edge else ""
+    label += f", off the scale ({times})" if times else ", off the scale"
+    artists.append(right.annotate(
+        label, xy=(c_own, 0.97 if up else 0.03),
+        xycoords=("data", "axes fraction"), xytext=(8, -22 if up else 22),
+        textcoords="offset points", fontsize=8, ha="left",
+        va="top" if up else "bottom",
+        arrowprops={"arrowstyle": "->", "color": "k"}))
+    artists.append(left.annotate(
+        label.replace(": ", ":\n", 1).replace(" (", "\n("),  # off the curve
+        xy=(0.99 if up else 0.01, 0.4), xycoords="axes fraction",
+        xytext=(-40 if up else 40, 0), textcoords="offset points",
+        fontsize=8, ha="right" if up else "left", va="center",
+        arrowprops={"arrowstyle": "->", "color": "k"}))
     return artists
