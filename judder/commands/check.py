@@ -15,7 +15,8 @@ from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
 from ._arguments import force_option, min_growth_option, model_options
-from ._common import check_names, checked_values, structural_names
+from ._common import (check_names, checked_values, frequency_dependent,
+                      structural_names)
 from ._words import growth_words, margin_words
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -177,8 +178,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         sensitivity = structural_names(values, DEFAULT_CHECK_PARAMETERS,
                                         ("mu_g",))
     check_names(values, sensitivity, "--params")
-    if getattr(values, "frequency", None) and \
-            values.linear_model().frequency_dependent:
+    if frequency_dependent(values):
         from infra.contract import warn
         warn(f"{values.model} is linearised at {freq_hz[0]:g} Hz (its "
              f"Jacobian depends on {values.frequency}): the Hz margin is "

@@ -171,36 +171,58 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
                             freq_hz=freq_hz, p_f_bar=p_f_bar)
     driveline = dithered(values, waveform)
     amplitudes = np.asarray(p_f_bar, dtype=float) * PA_PER_BAR
-    followed = frequency_dependent(values) and np.unique(freq_hz).size > 1
-    if followed:
+    p_top = float(np.max(p_f_bar)) * PA_PER_BAR
+    exact = exact and np.size(freq_hz) > 1 and p_top > 0
+    boundaries = found = exact_seconds = None
+    if frequency_dependent(values) and np.unique(freq_hz).size > 1:
         # the Jacobian depends on the dither frequency: each column of
-        # the map linearised at its own frequency
-        parts, seconds = timed(
-            per_frequency, values, waveform, freq_hz,
-            lambda at, f: map_kernel(at, f, amplitudes, method=method),
-            progress)
-        result = _stacked(parts, ("freq_hz", "leading", "kind"))
+        # the map, and of its boundaries, on the model linearised at its
+        # own frequency (once for both)
+        result, seconds, boundaries, exact_seconds = _followed(
+            values, waveform, freq_hz, amplitudes, p_top if exact else None,
+            method, progress)
     else:
         result, seconds = timed(map_kernel, driveline, freq_hz, amplitudes,
                                 method=method, callback=progress)
-    boundaries = found = exact_seconds = None
-    p_top = float(np.max(p_f_bar)) * PA_PER_BAR
-    if exact and len(result.freq_hz) > 1 and p_top > 0:
-        from stability.tongues import find_tongues, tongue_boundaries
-        started = time.perf_counter()
-        if followed:
-            boundaries = _stacked(per_frequency(
-                values, waveform, result.freq_hz,
-                lambda at, f: tongue_boundaries(at, f, p_top, method)),
-                ("freq_hz", "amplitude", "multiplier_error"))
-        else:
-            boundaries = tongue_boundaries(driveline, result.freq_hz, p_top,
-                                           method)
+        if exact:
+            from stability.tongues import tongue_boundaries
+            boundaries, exact_seconds = timed(
+                tongue_boundaries, driveline, result.freq_hz, p_top, method)
+    if boundaries is not None:
+        from stability.tongues import find_tongues
         found = find_tongues(driveline, boundaries)
-        exact_seconds = time.perf_counter() - started
     return MapResult(params=values, map=result, seconds=seconds,
                      boundaries=boundaries, tongues=found,
                      min_growth=min_growth, boundaries_seconds=exact_seconds)
+
+
+def _followed(values, waveform, freq_hz, amplitudes, p_top, method,
+              progress):
+    """The map of a frequency-dependent model (and its exact boundaries up
+    to ``p_top``, unless None), column by column on the model linearised
+    at each frequency (:func:`per_frequency`): the map, its seconds, the
+    boundaries and theirs."""
+    seconds = {"map": 0.0, "exact": 0.0}
+
+    def column(driveline, f):
+        leading, spent = timed(map_kernel, driveline, f, amplitudes,
+                               method=method)
+        seconds["map"] += spent
+        if p_top is None:
+            return leading, None
+        from stability.tongues import tongue_boundaries
+        edges, spent = timed(tongue_boundaries, driveline, f, p_top, method)
+        seconds["exact"] += spent
+        return leading, edges
+
+    maps, edges = zip(*per_frequency(values, waveform, freq_hz, column,
+                                     progress))
+    result = _stacked(maps, ("freq_hz", "leading", "kind"))
+    if p_top is None:
+        return result, seconds["map"], None, None
+    return (result, seconds["map"],
+            _stacked(edges, ("freq_hz", "amplitude", "multiplier_error")),
+            seconds["exact"])
 
 
 def _stacked(parts, fields):
