@@ -375,26 +375,26 @@ def _newton(transfer, om, nu, p, p_max, harmonics):
     """
     nu, p = nu.copy(), p.copy()
     done = np.zeros(len(p), dtype=bool)
-    active = np.arange(len(p))
+    # the seeds still iterated: their indices and values
+    active, pa, na, oa = np.arange(len(p)), p, nu, om
     with np.errstate(all="ignore"):
         for _ in range(_NEWTON_ITERATIONS):
-            pa, na, oa = p[active], nu[active], om[active]
             F, Fp, Fn = _determinant(transfer, oa, pa, na, harmonics)
             det = Fp.real * Fn.imag - Fn.real * Fp.imag
             dp = -(F.real * Fn.imag - Fn.real * F.imag) / det
             dn = -(Fp.real * F.imag - F.real * Fp.imag) / det
+            step_p, step_n, size = np.abs(dp), np.abs(dn), np.abs(pa)
             # damp steps that would leave the physical range
-            limit = np.maximum(np.abs(dp) / (0.5 * np.abs(pa)),
-                               np.abs(dn) / (0.1 * oa))
+            limit = np.maximum(step_p / (0.5 * size), step_n / (0.1 * oa))
             scale = np.where(limit > 1, 1 / limit, 1.0)
-            p[active] = pa + scale * dp
-            nu[active] = na + scale * dn
-            converged = ((np.abs(dp) <= _NEWTON_TOLERANCE * np.abs(pa))
-                         & (np.abs(dn) <= _NEWTON_TOLERANCE * oa))
+            pa, na = pa + scale * dp, na + scale * dn
+            p[active], nu[active] = pa, na
+            converged = ((step_p <= _NEWTON_TOLERANCE * size)
+                         & (step_n <= _NEWTON_TOLERANCE * oa))
             done[active] = converged
-            # drop converged seeds and those that left for good
-            lost = ~np.isfinite(p[active]) | (np.abs(p[active]) > 4 * p_max)
-            active = active[~converged & ~lost]
+            # drop converged seeds and those that left for good (NaN too)
+            keep = ~converged & (np.abs(pa) <= 4 * p_max)
+            active, pa, na, oa = active[keep], pa[keep], na[keep], oa[keep]
             if len(active) == 0:
                 break
     return p, nu, done
