@@ -115,12 +115,6 @@ class ModalTransfer:
         s = np.asarray(s, dtype=complex)[..., None, None, None]
         return (self.residues / (s - self.poles[:, None, None])).sum(axis=-3)
 
-    def derivative(self, s):
-        """``dG/ds`` at ``s``, shape ``s.shape + (r, r)``."""
-        s = np.asarray(s, dtype=complex)[..., None, None, None]
-        return -(self.residues
-                 / (s - self.poles[:, None, None]) ** 2).sum(axis=-3)
-
     def oscillating_poles(self):
         """Poles with positive imaginary part (the vibration modes), by
         increasing frequency."""
@@ -309,31 +303,43 @@ def _determinant(transfer, omega, p, nu, harmonics):
     (``s_k = i(nu + k omega)``), which is nonzero on the axis and cancels
     the poles of ``G`` there, so the function Newton sees is smooth near
     a lightly damped mode. All arguments have shape (e,).
+
+    Newton calls this thousands of times in a fit, for a few dozen points
+    each, so numpy's cost per call rules: the arrays run over (pole,
+    harmonic, point), the points last and contiguous; ``G`` and
+    ``dG/ds`` share the terms ``1 / (s_k - lambda_i)``; and the three
+    recurrences run as one on the rows ``(D, dD/dp, dD/dnu)``.
     """
     k = np.arange(-harmonics, harmonics + 1)
-    s = 1j * (k[None, :] * omega[:, None] + nu[:, None])
-    g = transfer(s)[..., 0, 0]                     # rank one: scalar G
-    dg = 1j * transfer.derivative(s)[..., 0, 0]
-    a = g[:, 1:] * g[:, :-1]
-    da = dg[:, 1:] * g[:, :-1] + g[:, 1:] * dg[:, :-1]
+    s = 1j * (k[:, None] * omega + nu)             # (2h + 1, e)
+    poles = transfer.poles[:, None, None]
+    near_s = s - poles                             # (m, 2h + 1, e)
+    inverse = 1 / near_s
+    residues = transfer.residues[:, 0, 0]          # rank one: scalar G
+    flat = inverse.reshape(len(residues), -1)
+    g = (residues @ flat).reshape(s.shape)
+    dg = (-1j * residues @ (flat * flat)).reshape(s.shape)   # dG/dnu
+    a = g[1:] * g[:-1]
+    da = dg[1:] * g[:-1] + g[1:] * dg[:-1]
     q = 0.25 * p * p
-    D_prev = D = np.ones(len(p), dtype=complex)
-    Dp_prev = Dp = Dn_prev = Dn = np.zeros(len(p), dtype=complex)
-    for col in range(a.shape[1]):
-        ak, dak = a[:, col], da[:, col]
-        new = D - q * ak * D_prev
-        new_p = Dp - 0.5 * p * ak * D_prev - q * ak * Dp_prev
-        new_n = Dn - q * (dak * D_prev + ak * Dn_prev)
-        D_prev, D = D, new
-        Dp_prev, Dp = Dp, new_p
-        Dn_prev, Dn = Dn, new_n
+    # per step, the coefficient of D_{k-2} and its derivatives in p, nu
+    c = q * a
+    dc = np.empty((len(a), 2, len(p)), dtype=complex)
+    np.multiply(0.5 * p, a, out=dc[:, 0])
+    np.multiply(q, da, out=dc[:, 1])
+    prev = np.zeros((3, len(p)), dtype=complex)
+    prev[0] = 1.0
+    cur = prev.copy()
+    for ck, dck in zip(c, dc):
+        new = cur - ck * prev
+        new[1:] -= dck * prev[0]
+        prev, cur = cur, new
+    D, Dp, Dn = cur
     # remove the poles of G near the axis (light damping makes F steep):
     # Phi = prod (s - lambda) / (s - mu), mu = lambda moved left by |lambda|
-    poles = transfer.poles
-    far = poles - np.abs(poles)
-    near_s, far_s = s[..., None] - poles, s[..., None] - far
-    phi = np.prod((near_s / far_s).reshape(len(p), -1), axis=1)
-    dlog = 1j * (1 / near_s - 1 / far_s).reshape(len(p), -1).sum(axis=1)
+    far_s = s - (poles - np.abs(poles))
+    phi = np.multiply.reduce((near_s / far_s).reshape(-1, len(p)))
+    dlog = 1j * np.add.reduce((inverse - 1 / far_s).reshape(-1, len(p)))
     return D * phi, Dp * phi, (Dn + D * dlog) * phi
 
 
@@ -369,26 +375,26 @@ def _newton(transfer, om, nu, p, p_max, harmonics):
     """
     nu, p = nu.copy(), p.copy()
     done = np.zeros(len(p), dtype=bool)
-    active = np.arange(len(p))
+    # the seeds still iterated: their indices and values
+    active, pa, na, oa = np.arange(len(p)), p, nu, om
     with np.errstate(all="ignore"):
         for _ in range(_NEWTON_ITERATIONS):
-            pa, na, oa = p[active], nu[active], om[active]
             F, Fp, Fn = _determinant(transfer, oa, pa, na, harmonics)
             det = Fp.real * Fn.imag - Fn.real * Fp.imag
             dp = -(F.real * Fn.imag - Fn.real * F.imag) / det
             dn = -(Fp.real * F.imag - F.real * Fp.imag) / det
+            step_p, step_n, size = np.abs(dp), np.abs(dn), np.abs(pa)
             # damp steps that would leave the physical range
-            limit = np.maximum(np.abs(dp) / (0.5 * np.abs(pa)),
-                               np.abs(dn) / (0.1 * oa))
+            limit = np.maximum(step_p / (0.5 * size), step_n / (0.1 * oa))
             scale = np.where(limit > 1, 1 / limit, 1.0)
-            p[active] = pa + scale * dp
-            nu[active] = na + scale * dn
-            converged = ((np.abs(dp) <= _NEWTON_TOLERANCE * np.abs(pa))
-                         & (np.abs(dn) <= _NEWTON_TOLERANCE * oa))
+            pa, na = pa + scale * dp, na + scale * dn
+            p[active], nu[active] = pa, na
+            converged = ((step_p <= _NEWTON_TOLERANCE * size)
+                         & (step_n <= _NEWTON_TOLERANCE * oa))
             done[active] = converged
-            # drop converged seeds and those that left for good
-            lost = ~np.isfinite(p[active]) | (np.abs(p[active]) > 4 * p_max)
-            active = active[~converged & ~lost]
+            # drop converged seeds and those that left for good (NaN too)
+            keep = ~converged & (np.abs(pa) <= 4 * p_max)
+            active, pa, na, oa = active[keep], pa[keep], na[keep], oa[keep]
             if len(active) == 0:
                 break
     return p, nu, done
