@@ -221,10 +221,13 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
              "allowed: a dither amplitude parameter that can be > 0")
     step = largest / 2
     times = np.arange(SAMPLES) / (SAMPLES * f0)
-    sampled = _sampled(d.path, Path(d.path).stat().st_mtime_ns,
-                       tuple((n, v) for n, v in values.items()
-                             if n != amplitude), amplitude, step,
-                       tuple(times))
+    # the period's samples, and t = 0 with the frequency parameter at
+    # OTHER_FREQUENCY times its value (for _frequency_dependent)
+    other = {**values, frequency: f0 * OTHER_FREQUENCY}
+    sampled, at_other = _sampled(
+        d.path, Path(d.path).stat().st_mtime_ns, amplitude, step,
+        ((_without(values, amplitude), tuple(times)),
+         (_without(other, amplitude), (0.0,))))
     A, Ja, J2a = sampled["jacobians"]
     zero = _ZERO if d.directional else _ZERO_DIFFERENCES
     _steady_slip(d, A[0], sampled["rate"], sampled["moved"],
@@ -248,21 +251,19 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
              f"{frequency}*time); allowed: the paper's cosine dither")
     return linear_periodic_model(
         name, d.state_names, A0, B0, values, amplitude, frequency,
-        SourceKind.FMU, _frequency_dependent(d, values, amplitude,
-                                             frequency, step, A0, B0, zero))
+        SourceKind.FMU, _frequency_dependent(at_other, step, A0, B0, zero))
 
 
-def _frequency_dependent(d, values, amplitude, frequency, step, A0, B0,
-                         zero):
+def _without(values, name):
+    """``values`` without ``name``, as a hashable tuple of pairs."""
+    return tuple((n, v) for n, v in values.items() if n != name)
+
+
+def _frequency_dependent(at_other, step, A0, B0, zero):
     """Whether ``A0`` or ``B0`` change with the frequency parameter beyond
-    the dither's cosine: the Jacobian read again at t = 0 with the
-    frequency at :data:`OTHER_FREQUENCY` times its value."""
-    other = dict(values)
-    other[frequency] = values[frequency] * OTHER_FREQUENCY
-    A, Ja, _ = _sampled(d.path, Path(d.path).stat().st_mtime_ns,
-                        tuple((n, v) for n, v in other.items()
-                              if n != amplitude), amplitude, step,
-                        (0.0,))["jacobians"]
+    the dither's cosine: ``at_other`` is the Jacobian read again at t = 0
+    with the frequency at :data:`OTHER_FREQUENCY` times its value."""
+    A, Ja, _ = at_other["jacobians"]
     scale = max(np.abs(A0).max(), 1.0)
     return bool(np.abs(A[0] - A0).max() > zero * scale
                 or np.abs((Ja[0] - A[0]) / step - B0).max()
@@ -270,23 +271,26 @@ def _frequency_dependent(d, values, amplitude, frequency, step, A0, B0,
 
 
 @lru_cache(maxsize=8)
-def _sampled(path, mtime, values, amplitude, step, times):
-    """The Jacobians of :func:`sources.fmu_host.sample` (read-only),
-    read once per FMU version and parameter set (a command asks for the
-    same linearisation for its estimates and its work). The FMU's binary
+def _sampled(path, mtime, amplitude, step, requests):
+    """The Jacobians of :func:`sources.fmu_host.sample` (read-only) for
+    each ``(values, times)`` of ``requests``, read in one child process,
+    once per FMU version and parameter set (a command asks for the same
+    linearisation for its estimates and its work). The FMU's binary
     runs in a child process: a crash, a hang or a NaN of it becomes an
     :class:`FmuError` naming the call."""
     d = _described(path, mtime)
-    sampled = sample_isolated(SampleJob(
+    sampled = sample_isolated([SampleJob(
         path=d.path, folder="", guid=d.guid,
         model_identifier=d.model_identifier, fmi_version=d.fmi_version,
         directional=d.directional, states=d.states,
         derivatives=d.derivatives, references=d.references,
         values=dict(values), amplitude=amplitude,
-        amplitudes=(0.0, step, 2 * step), times=times), FmuError)
-    for array in sampled.values():
-        array.setflags(write=False)
-    return sampled
+        amplitudes=(0.0, step, 2 * step), times=times)
+        for values, times in requests], FmuError)
+    for arrays in sampled:
+        for array in arrays.values():
+            array.setflags(write=False)
+    return tuple(sampled)
 
 
 def _steady_slip(d, A0, rate, moved, along, zero):

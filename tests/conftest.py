@@ -122,3 +122,19 @@ class ChildMarkers:
 def markers():
     """:class:`ChildMarkers`."""
     return ChildMarkers
+
+
+@pytest.fixture
+def judder_here(capsys):
+    """``judder ARGS`` in this process: ``(status, stdout, stderr)``.
+
+    For tests of what a command computes, which need not pay an
+    interpreter's start-up and imports (about 1.5 s each); tests of the
+    process itself (signals, exit on a crash) start one."""
+    from judder.cli import main
+
+    def run(*args):
+        status = main([str(arg) for arg in args])
+        out, err = capsys.readouterr()
+        return status, out, err
+    return run

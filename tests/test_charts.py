@@ -247,16 +247,15 @@ def test_chart_agrees_with_the_floquet_tongue(campaign):
     assert floquet(bench, 206.0, lowest * PA_PER_BAR).kind == "double-period"
 
 
-def test_chart_command_writes_boundary_for_fit(campaign, tmp_path):
+def test_chart_command_writes_boundary_for_fit(campaign, tmp_path,
+                                               judder_here):
     boundary, plot, out = (tmp_path / "b.csv", tmp_path / "c.png",
                            tmp_path / "c.npz")
-    proc = subprocess.run(
-        [sys.executable, "-m", "judder", "chart", str(campaign), "--json",
-         "--boundary", str(boundary), "--plot", str(plot), "--out",
-         str(out), "--preset", "paper-4dof", "--set", "c1=2000.1"],
-        capture_output=True, text=True, timeout=300)
-    assert proc.returncode == 0, proc.stderr
-    data = json.loads(proc.stdout)
+    status, stdout, stderr = judder_here(
+        "chart", campaign, "--json", "--boundary", boundary, "--plot", plot,
+        "--out", out, "--preset", "paper-4dof", "--set", "c1=2000.1")
+    assert status == 0, stderr
+    data = json.loads(stdout)
     assert len(data["runs"]) == 6
     assert {"file", "freq_hz", "p_f_bar", "amplitude_rpm", "growth_per_s",
             "judder"} <= set(data["runs"][0])
@@ -341,31 +340,28 @@ def test_unknown_plot_format_is_refused_before_any_work(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path):
+def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path, judder_here):
     from judder.inputs import read_chart_boundary
     out = tmp_path / "c.npz"
-    made = subprocess.run([sys.executable, "-m", "judder", "chart",
-                           str(campaign), "--out", str(out), "--json"],
-                          capture_output=True, text=True, timeout=300)
-    boundary = json.loads(made.stdout)["boundary"]
+    _, made, _ = judder_here("chart", campaign, "--out", out, "--json")
+    boundary = json.loads(made)["boundary"]
     freq, p_f, tried = read_chart_boundary(out)
     assert freq.tolist() == [f for f, _ in boundary]
     assert np.allclose(p_f / PA_PER_BAR, [np.nan if p is None else p
                                           for _, p in boundary],
                        equal_nan=True)
     assert tried == pytest.approx(0.3)
-    fit = [sys.executable, "-m", "judder", "fit", "--chart", str(out),
-           "--fit", "mu_g", "--set", "c1=2000.1", "--json"]
+    fit = ["fit", "--chart", out, "--fit", "mu_g", "--set", "c1=2000.1",
+           "--json"]
     # one onset cannot give mu_g and the scatter of the onsets: refused
-    proc = subprocess.run(fit, capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    status, _, stderr = judder_here(*fit)
+    assert status == 2 and "Traceback" not in stderr
     assert "1 point with judder: fitting 1 parameter (mu_g) needs at " \
-        "least 3" in proc.stderr
+        "least 3" in stderr
     # with the bench's scatter known, one onset is enough for one value
-    proc = subprocess.run(fit + ["--scatter", "3%"], capture_output=True,
-                          text=True, timeout=600)
-    assert "Traceback" not in proc.stderr
-    data = json.loads(proc.stdout)
+    status, stdout, stderr = judder_here(*fit, "--scatter", "3%")
+    assert status == 0, stderr
+    data = json.loads(stdout)
     assert data["freq_hz"] == freq.tolist()
     assert data["scatter"] == 0.03 and data["scatter_given"]
     with pytest.raises(JudderError, match="missing.npz: cannot read it"):

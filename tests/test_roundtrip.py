@@ -10,8 +10,6 @@ above the model boundary of judder growing at 1/s (the chart's
 --min-growth) of the bench's linearisation (c1 + d_control)."""
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -76,7 +74,8 @@ def test_chart_boundary_is_the_model_tongue_at_min_growth(chart,
             assert a.kind == "double-period"
 
 
-def test_fit_to_the_chart_brackets_the_truth(chart, truth, boundary_bar):
+def test_fit_to_the_chart_brackets_the_truth(chart, truth, boundary_bar,
+                                             judder_here):
     # The chart says the onset lies between the run below and the run
     # above. `judder fit --chart` (which takes the chart's min-growth)
     # fits to the middle of the two, and finds the truth. Fitted to the
@@ -85,13 +84,11 @@ def test_fit_to_the_chart_brackets_the_truth(chart, truth, boundary_bar):
     # min-growth; compared with the driveline's stability boundary (the
     # fit before issue 18) it does not.
     _, npz = chart
-    proc = subprocess.run(
-        [sys.executable, "-m", "judder", "fit", "--chart", str(npz),
-         "--fit", "mu_g", "--set", "mu_g=0.02", "--bench-linearisation",
-         "--starts", "1", "--workers", "1", "--json"],
-        capture_output=True, text=True, timeout=300)
-    assert proc.returncode == 0, proc.stderr
-    data = json.loads(proc.stdout)
+    status, stdout, stderr = judder_here(
+        "fit", "--chart", npz, "--fit", "mu_g", "--set", "mu_g=0.02",
+        "--bench-linearisation", "--starts", "1", "--workers", "1", "--json")
+    assert status == 0, stderr
+    data = json.loads(stdout)
     assert data["min_growth_per_s"] == MIN_GROWTH
     assert data["added"] == {"c1": D_CONTROL}
     middle = data["fitted"]["mu_g"]
@@ -159,27 +156,23 @@ def test_the_api_checks_the_numbers_where_they_enter(truth, options, words):
                 **{"p_max_bar": 1.0, **options})
 
 
-def test_bench_option_needs_the_bench_linearisation(tmp_path):
+def test_bench_option_needs_the_bench_linearisation(tmp_path, judder_here):
     boundary = tmp_path / "b.csv"
     boundary.write_text("freq_hz,p_f_bar\n205,0.3\n206,0.2\n")
-    proc = subprocess.run([sys.executable, "-m", "judder", "fit",
-                           "--boundary", str(boundary), "--fit", "mu_g",
-                           "--bench", "d_control=1000"],
-                          capture_output=True, text=True, timeout=60)
-    assert proc.returncode == 2 and "--bench-linearisation" in proc.stderr
-    assert "Traceback" not in proc.stderr
+    status, _, stderr = judder_here("fit", "--boundary", boundary, "--fit",
+                                    "mu_g", "--bench", "d_control=1000")
+    assert status == 2 and "--bench-linearisation" in stderr
+    assert "Traceback" not in stderr
 
 
-def test_fit_to_a_bench_off_its_operating_slip_is_refused():
+def test_fit_to_a_bench_off_its_operating_slip_is_refused(judder_here):
     # at 1500 rpm the bench's linearisation has the friction curve's slope
     # at another slip, not the mu_g a fit would adjust: refused with the
     # way out, not compared silently
-    proc = subprocess.run(
-        [sys.executable, "-m", "judder", "fit", "--boundary",
-         "examples/measured_boundary.csv", "--fit", "mu_g",
-         "--bench-linearisation", "--bench", "w_motor=1500rpm"],
-        capture_output=True, text=True, timeout=120,
-        cwd=Path(__file__).resolve().parents[1])
-    assert proc.returncode == 2 and "Traceback" not in proc.stderr
-    assert "is not its friction curve's w_op" in proc.stderr
-    assert "--bench w_op" in proc.stderr
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    status, _, stderr = judder_here(
+        "fit", "--boundary", examples / "measured_boundary.csv", "--fit",
+        "mu_g", "--bench-linearisation", "--bench", "w_motor=1500rpm")
+    assert status == 2 and "Traceback" not in stderr
+    assert "is not its friction curve's w_op" in stderr
+    assert "--bench w_op" in stderr
