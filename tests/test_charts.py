@@ -671,3 +671,56 @@ def test_chart_names_every_boundary_file_it_writes(tmp_path, capsys):
         assert (tmp_path / name).exists()
         assert f"wrote {tmp_path / name}" in out
     assert not (tmp_path / "b.csv").exists()
+
+
+@pytest.mark.parametrize("decimal", [".", ","])
+def test_chart_reads_an_integer_export_with_the_decimal_given(tmp_path,
+                                                              capsys,
+                                                              decimal):
+    """Issue 31: a DAQ export of integers with thousands separators (a
+    date-time clock, speeds in rpm, pressure in mbar; tab-separated with '1,000' or
+    ';'-separated with '1.000') is refused without --decimal, not read
+    with the separator as a decimal one (which made every run judder at
+    113-630 rpm), and with it charts the run as its clean file does."""
+    from judder.cli import main
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    clean = np.genfromtxt(examples / "run01.csv", delimiter=",",
+                          skip_header=1)
+    thousands, field = {".": (",", "\t"), ",": (".", ";")}[decimal]
+
+    def cell(value):
+        return "" if np.isnan(value) else \
+            f"{round(value):,d}".replace(",", thousands)
+    # the time as the DAQ's clock (a date-time with the locale's decimal
+    # separator), so no cell of the file tells the separator
+    clock = {".": "2026-12-03T07:41:", ",": "03.12.2026 07:41:"}[decimal]
+    rows = [field.join([clock + f"{10 + t:09.6f}".replace(".", decimal)]
+                       + [cell(v) for v in (up, out, p * 1e3)])
+            for t, up, out, p in clean]
+    export = tmp_path / "run01.csv"
+    export.write_text(field.join(["Time", "EngSpd_up [rpm]",
+                                  "OutSpd [rpm]", "PressEVEN [mbar]"])
+                      + "\n" + "\n".join(rows) + "\n")
+    channels = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+                "pressure=PressEVEN", "--channel", "downstream_speed=OutSpd"]
+    index = tmp_path / "runs.csv"
+    index.write_text("file,freq_hz,p_f_bar\nrun01.csv,210,0.4\n")
+    args = ["chart", "--index", str(index), *channels, "--json",
+            "--workers", "1"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "--decimal" in err and "no cell of the file tells which" in err
+    assert main(args + ["--decimal", decimal]) == 0
+    read = json.loads(capsys.readouterr().out)["runs"][0]
+    # the clean file, as shipped
+    index.write_text(f"file,freq_hz,p_f_bar\n{examples / 'run01.csv'},210,"
+                     "0.4\n")
+    assert main(args[:3] + [channels[0], channels[1], "--channel",
+                            "pressure=PressEVEN:bar", *channels[4:],
+                            "--json", "--workers", "1"]) == 0
+    clean_run = json.loads(capsys.readouterr().out)["runs"][0]
+    assert read["judder"] == clean_run["judder"]
+    assert read["mechanism"] == clean_run["mechanism"]
+    # integer rpm: the amplitudes within the rounding's half rpm
+    assert read["amplitude_rpm"] == pytest.approx(
+        clean_run["amplitude_rpm"], abs=1.0)

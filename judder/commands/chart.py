@@ -70,6 +70,13 @@ def add_arguments(p):
                         "sampled (a DAQ's rate), angle (an encoder), "
                         "default told from the data; repeatable. Without "
                         "any, the names judder campaign writes")
+    p.add_argument("--decimal", choices=(".", ","), default=None,
+                   help="decimal separator of CSV acquisitions, '.' or "
+                        "',' (the thousands separator follows: ',' or "
+                        "'.', or a space or apostrophe), for files whose "
+                        "cells cannot tell it (integer speeds with "
+                        "1,000); a cell written otherwise is refused "
+                        "(default: decided per file from its cells)")
     p.add_argument("--group-by", action="append", metavar="COLUMN",
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")
@@ -111,7 +118,7 @@ def run(args):
     make_parents(args.out, args.plot, args.boundary)
     with Progress(None, "runs") as progress:
         result = chart(args.sources, index=args.index, channels=channels,
-                       group_by=args.group_by,
+                       group_by=args.group_by, decimal=args.decimal,
                        min_growth=args.min_growth,
                        min_amplitude_rpm=args.min_amplitude,
                        judder_limit_rpm=args.limit,
@@ -189,7 +196,7 @@ def _channels(items):
     return channels
 
 
-def chart(sources, index=None, channels=None, group_by=None,
+def chart(sources, index=None, channels=None, group_by=None, decimal=None,
           min_growth=None, min_amplitude_rpm=None,
           judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, model=False,
           parameters=None, changes=None, method=DEFAULT_METHOD,
@@ -211,6 +218,9 @@ def chart(sources, index=None, channels=None, group_by=None,
     group_by : sequence of str, optional
         Columns making the panels (default: oil temperature and engine
         speed where they vary).
+    decimal : {'.', ','}, optional
+        Decimal separator of CSV acquisitions (default: decided per file
+        from its cells).
     min_growth : float, optional
         Growth rate (1/s) from which a run counts as judder (default
         :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
@@ -236,7 +246,7 @@ def chart(sources, index=None, channels=None, group_by=None,
     run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
         runs, channels=channels, run_bytes=run_bytes,
-        group_by=group_by,
+        group_by=group_by, decimal=decimal,
         min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth,
         min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None
                            else min_amplitude_rpm),

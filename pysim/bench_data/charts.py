@@ -179,9 +179,9 @@ def gather_sources(paths, index=None):
 
 
 def _analyse(job):
-    source, channels, min_growth, min_amplitude, limit = job
+    source, channels, min_growth, min_amplitude, limit, decimal = job
     try:
-        acquisition = read_acquisition(source.path, channels)
+        acquisition = read_acquisition(source.path, channels, decimal)
         settings = {**{_METADATA_KEYS[k]: v
                        for k, v in acquisition.metadata.items()
                        if k in _METADATA_KEYS}, **source.settings}
@@ -375,7 +375,7 @@ class Chart:
 def build_chart(sources, channels=None, group_by=None,
                 min_growth=DEFAULT_MIN_GROWTH_PER_S, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
                 judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, workers=None,
-                callback=None, run_bytes=0):
+                callback=None, run_bytes=0, decimal=None):
     """Read every run and make the chart.
 
     Parameters
@@ -395,6 +395,10 @@ def build_chart(sources, channels=None, group_by=None,
     run_bytes : int
         Memory one run takes to read (bounds the worker processes,
         :func:`infra.parallel.worker_count`).
+    decimal : {'.', ','}, optional
+        Decimal separator of the text (CSV) acquisitions
+        (:func:`pysim.bench_data.readers.read_acquisition`); default
+        decided per file from its cells.
 
     Returns
     -------
@@ -405,8 +409,8 @@ def build_chart(sources, channels=None, group_by=None,
     if "upstream_speed" not in channels:
         raise JudderError("`channels` upstream_speed=NAME is required (the "
                           "speed upstream of the clutch)")
-    jobs = [(s, channels, min_growth, min_amplitude_rpm, judder_limit_rpm)
-            for s in sources]
+    jobs = [(s, channels, min_growth, min_amplitude_rpm, judder_limit_rpm,
+             decimal) for s in sources]
     runs = []
     # a failure names the file, not the job's Python repr
     for run in parallel_map(_analyse, jobs, workers,
