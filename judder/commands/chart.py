@@ -7,10 +7,12 @@ import time
 
 import numpy as np
 
+from infra.contract import warn
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
 from infra.errors import JudderError
 from infra.files import (all_or_none, keeps_foreign_files, save_npz,
                          write_text)
+from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, limit_option, method_option,
@@ -129,6 +131,8 @@ def run(args):
     if not result.chart.read:
         # before any output is written: a chart of no run is none
         raise JudderError(_unread(result.chart.failed))
+    for text in (t for run in result.chart.read for t in run.warnings):
+        warn(text)
     with all_or_none():     # --out, --plot and --boundary, or none
         files = write_outputs(args, result, figure={
             "title": "experimental stability chart"
@@ -156,11 +160,26 @@ def run(args):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
+        rows += [_estimate_line(run) for run in runs
+                 if run.analysis.dither is not None]
     rows += [f"could not read {in_flags(r.reason)}"
              for r in result.chart.failed]
     rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
                 + written(args.out, args.plot, *boundaries))
     emit(args, data, "\n".join(rows))
+
+
+def _estimate_line(run):
+    """A run's dither as estimated from its pressure, with the standard
+    uncertainties."""
+    fit = run.analysis.dither
+    freq = (f"{fit.freq_hz:.4g} ± {fit.freq_std_hz:.2g} Hz"
+            if fit.freq_std_hz else f"{fit.freq_hz:.4g} Hz (given)")
+    return (f"  {run.path.name}: dither estimated {freq}, "
+            f"{fit.amplitude / PA_PER_BAR:.3g} ± "
+            f"{fit.amplitude_std / PA_PER_BAR:.2g} bar, phase "
+            f"{fit.phase_rad:.3f} ± {fit.phase_std_rad:.2g} rad at "
+            f"{fit.reference_s:.4g} s (standard uncertainties)")
 
 
 #: Unreadable runs named in the error when none could be read.
@@ -288,6 +307,7 @@ class ChartResult:
                 for group in self.chart.groups()}
 
     def as_dict(self):
+        from pysim.analysis.verdict import dither_estimate_dict
         chart = self.chart
         runs = []
         for run in chart.read:
@@ -296,6 +316,7 @@ class ChartResult:
                 c: run.settings.get(c) for c in chart.group_by},
                 "freq_hz": a.freq_hz, "p_f_bar": a.p_f_bar,
                 "dither_estimated": a.estimated,
+                "dither_estimate": dither_estimate_dict(a.dither),
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s, "judder": a.judder,

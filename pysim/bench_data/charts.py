@@ -68,7 +68,10 @@ class ChartRun:
     ``analysis`` is a :class:`pysim.analysis.verdict.RunAnalysis`, or None
     when the run could not be read (``error`` says why); ``speed_kind``
     what the upstream speed's samples were
-    (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`).
+    (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`); ``warnings``
+    what the run was read with but cannot support, in words naming the
+    file and the channel (a dither estimated from a pressure sampled too
+    sparsely).
     """
 
     path: Path
@@ -76,6 +79,7 @@ class ChartRun:
     analysis: object
     error: str = ""
     speed_kind: str = ""
+    warnings: tuple = ()
 
     @property
     def reason(self):
@@ -205,8 +209,13 @@ def _analyse(job):
                                min_growth=min_growth,
                                min_amplitude_rpm=min_amplitude,
                                judder_limit_rpm=limit)
+        warnings = () if analysis.dither is None else tuple(
+            f"{source.path}: pressure channel {ch['pressure'].name!r}: "
+            f"dither estimated from it: {text}"
+            for text in analysis.dither.warnings)
         return ChartRun(source.path, settings, analysis,
-                        speed_kind=ch["upstream_speed"].kind)
+                        speed_kind=ch["upstream_speed"].kind,
+                        warnings=warnings)
     except JudderError as exc:
         return ChartRun(source.path, source.settings, None, str(exc))
 
