@@ -174,8 +174,12 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None):
     covariance = _covariance(jacobian, variance)
     amplitude = float(np.hypot(c, d))
     # first-order propagation to A = |c + i d| and phi = atan2(-d, c)
-    grad_amplitude = np.array([c, d]) / amplitude
-    grad_phase = np.array([d, -c]) / amplitude ** 2
+    # (a zero amplitude, no dither at all, has no phase: its direction is
+    # taken along c)
+    scale = amplitude if amplitude > 0 else 1.0
+    grad_amplitude = np.array([c, d]) / scale if amplitude > 0 else \
+        np.array([1.0, 0.0])
+    grad_phase = np.array([d, -c]) / scale ** 2
     cd = covariance[2:4, 2:4]
     span = float(time[-1] - time[0])
     periods = span * freq_hz
@@ -240,7 +244,10 @@ def _warnings(fit, alias):
             f"{fit.periods:.3g} periods at {fit.freq_hz:.4g} Hz in the "
             f"window, fewer than {MIN_PERIODS:g}: too few to read the "
             "frequency and the amplitude")
-    if fit.relative_amplitude_std > MAX_RELATIVE_UNCERTAINTY:
+    if fit.amplitude == 0:
+        warnings.append(f"no oscillation at {fit.freq_hz:.4g} Hz in the "
+                        "samples (amplitude 0)")
+    elif fit.relative_amplitude_std > MAX_RELATIVE_UNCERTAINTY:
         warnings.append(
             f"the amplitude is uncertain by {fit.relative_amplitude_std:.0%}"
             f" (standard uncertainty), more than "
