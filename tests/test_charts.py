@@ -817,6 +817,11 @@ def test_dither_warnings_for_few_periods_and_a_noisy_amplitude():
         len(time)), (0, 1), 103.0)
     assert noisy.relative_amplitude_std > 0.1
     assert [w for w in noisy.warnings if "uncertain by" in w]
+    # a pressure without any oscillation: amplitude 0, said in words
+    still = estimate_dither(time, np.zeros(len(time)), (0, 1), 103.0)
+    assert still.amplitude == 0 and still.amplitude_std == 0
+    assert still.warnings == ("no oscillation at 103 Hz in the samples "
+                              "(amplitude 0)",)
 
 
 def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
