@@ -73,6 +73,7 @@ def add_arguments(p):
                         "default told from the data; repeatable. Without "
                         "any, the names judder campaign writes")
     p.add_argument("--decimal", choices=(".", ","), default=None,
+                   metavar=".|,",
                    help="decimal separator of CSV acquisitions, '.' or "
                         "',' (the thousands separator follows: ',' or "
                         "'.', or a space or apostrophe), for files whose "
