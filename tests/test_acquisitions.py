@@ -878,3 +878,58 @@ def test_dspace_struct_arrays(tmp_path, bench):
     assert_allclose(acq.channels["pressure"].time, t_p, rtol=1e-12)
     assert_allclose(acq.channels["pressure"].values, p * TO_SI["bar"],
                     rtol=1e-12)
+
+
+# --- the decimal separator given (issue 31: --decimal) ---------------------
+
+US_INTEGERS = ("time [ms]\tEngSpd_up [rpm]\tPressEVEN [mbar]\n"
+               "0\t998\t3,050\n1\t\"1,000\"\t3,100\n2\t1,002\t3,150\n")
+GERMAN_INTEGERS = ("time [ms];EngSpd_up [rpm];PressEVEN [mbar]\n"
+                   "0;998;3.050\n1;1.000;3.100\n2;1 002;3.150\n")
+
+
+@pytest.mark.parametrize("text, decimal", [(US_INTEGERS, "."),
+                                           (GERMAN_INTEGERS, ",")])
+def test_a_given_decimal_separator_reads_what_the_cells_cannot_decide(
+        tmp_path, text, decimal):
+    # every separated cell is an integer with a thousands separator:
+    # 1000 or 1.0 alike, so the cells alone are refused ...
+    path, roles = _csv_read(tmp_path, text)
+    message = _message(path, roles)
+    assert "no cell of the file tells which" in message
+    assert "`decimal`" in message
+    # ... and read as written once the decimal separator is given
+    acq = read_acquisition(path, roles, decimal=decimal)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([998, 1000, 1002]) * TO_SI["rpm"], rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values,
+                    np.array([3.05, 3.1, 3.15]) * TO_SI["bar"], rtol=1e-12)
+    assert_allclose(acq.channels["upstream_speed"].time, [0, 1e-3, 2e-3])
+
+
+@pytest.mark.parametrize("text, decimal, line, column, cell", [
+    # a decimal point where a decimal comma was given
+    ("time [s];EngSpd_up [rpm];PressEVEN [bar]\n0;1000;3,5\n0,001;1000;0.5\n",
+     ",", 3, "PressEVEN", "'0.5'"),
+    # a decimal comma where a decimal point was given
+    ("time [s]\tEngSpd_up [rpm]\tPressEVEN [bar]\n0\t1000.5\t3\n"
+     "0.001\t1000,25\t3\n", ".", 3, "EngSpd_up", "'1000,25'"),
+    # a German thousands point in a file of decimal points
+    ("time [s]\tEngSpd_up [rpm]\tPressEVEN [bar]\n0.001\t1.000,5\t3\n",
+     ".", 2, "EngSpd_up", "'1.000,5'"),
+])
+def test_a_cell_contradicting_the_given_decimal_separator_is_refused(
+        tmp_path, text, decimal, line, column, cell):
+    path, roles = _csv_read(tmp_path, text)
+    with pytest.raises(JudderError) as info:
+        read_acquisition(path, roles, decimal=decimal)
+    message = str(info.value)
+    for word in (str(path), f"line {line}", f"column {column!r}", cell,
+                 f"`decimal` {decimal!r}"):
+        assert word in message
+
+
+def test_an_unknown_decimal_separator_is_refused(tmp_path):
+    path, roles = _csv_read(tmp_path, US_INTEGERS)
+    with pytest.raises(JudderError, match="`decimal` ';': allowed"):
+        read_acquisition(path, roles, decimal=";")

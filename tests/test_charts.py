@@ -192,9 +192,9 @@ def test_dither_setting_is_estimated_from_the_pressure():
     speed, pressure, downstream = _engagement(lambda t: 0 * t, 103.3, 0.2)
     window = engagement_window(speed, pressure, downstream)
     assert window[0] == pytest.approx(0.15, abs=0.01)
-    freq, amplitude = estimate_dither(*pressure, window)
-    assert freq == pytest.approx(103.3, abs=0.01)
-    assert amplitude == pytest.approx(0.2 * PA_PER_BAR, rel=0.01)
+    fit = estimate_dither(*pressure, window)
+    assert fit.freq_hz == pytest.approx(103.3, abs=0.01)
+    assert fit.amplitude == pytest.approx(0.2 * PA_PER_BAR, rel=0.01)
     reading = analyse_run(speed, pressure, downstream)
     assert reading.estimated
     assert reading.freq_hz == pytest.approx(103.3, abs=0.01)
@@ -305,6 +305,12 @@ def test_chart_from_foreign_files_with_an_index(tmp_path):
     # the amplitude was not in the index: estimated from the pressure
     assert run["dither_estimated"]
     assert run["p_f_bar"] == pytest.approx(0.2, rel=0.02)
+    # with its standard uncertainty; the frequency was given
+    estimate = run["dither_estimate"]
+    assert estimate["p_f_bar"] == run["p_f_bar"]
+    assert 0 < estimate["p_f_std_bar"] < 0.01 * run["p_f_bar"]
+    assert estimate["freq_hz"] == 103.0 and estimate["freq_std_hz"] == 0
+    assert estimate["warnings"] == []
 
 
 @pytest.mark.parametrize("args, words", [
@@ -635,11 +641,11 @@ def test_dither_is_read_from_the_pressure_samples_as_taken(freq_hz):
     pressure = (8 * PA_PER_BAR + 2e4 * (time - 1.0)
                 + amplitude * np.sin(2 * np.pi * freq_hz * time + phase))
     window = (0.2, time[-1] - 0.1)
-    freq, read = estimate_dither(time, pressure, window)
-    assert freq == pytest.approx(freq_hz, rel=1e-6)   # the search tolerance
-    assert read == pytest.approx(amplitude, rel=1e-6)
+    fit = estimate_dither(time, pressure, window)
+    assert fit.freq_hz == pytest.approx(freq_hz, rel=1e-6)   # the search tolerance
+    assert fit.amplitude == pytest.approx(amplitude, rel=1e-6)
     # the frequency known: the amplitude at it
-    assert estimate_dither(time, pressure, window, freq_hz)[1] == \
+    assert estimate_dither(time, pressure, window, freq_hz).amplitude == \
         pytest.approx(amplitude, rel=1e-9)
 
 
@@ -667,3 +673,182 @@ def test_chart_names_every_boundary_file_it_writes(tmp_path, capsys):
         assert (tmp_path / name).exists()
         assert f"wrote {tmp_path / name}" in out
     assert not (tmp_path / "b.csv").exists()
+
+
+@pytest.mark.parametrize("decimal", [".", ","])
+def test_chart_reads_an_integer_export_with_the_decimal_given(tmp_path,
+                                                              capsys,
+                                                              decimal):
+    """Issue 31: a DAQ export of integers with thousands separators (a
+    date-time clock, speeds in rpm, pressure in mbar; tab-separated with '1,000' or
+    ';'-separated with '1.000') is refused without --decimal, not read
+    with the separator as a decimal one (which made every run judder at
+    113-630 rpm), and with it charts the run as its clean file does."""
+    from judder.cli import main
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    clean = np.genfromtxt(examples / "run01.csv", delimiter=",",
+                          skip_header=1)
+    thousands, field = {".": (",", "\t"), ",": (".", ";")}[decimal]
+
+    def cell(value):
+        return "" if np.isnan(value) else \
+            f"{round(value):,d}".replace(",", thousands)
+    # the time as the DAQ's clock (a date-time with the locale's decimal
+    # separator), so no cell of the file tells the separator
+    clock = {".": "2026-12-03T07:41:", ",": "03.12.2026 07:41:"}[decimal]
+    rows = [field.join([clock + f"{10 + t:09.6f}".replace(".", decimal)]
+                       + [cell(v) for v in (up, out, p * 1e3)])
+            for t, up, out, p in clean]
+    export = tmp_path / "run01.csv"
+    export.write_text(field.join(["Time", "EngSpd_up [rpm]",
+                                  "OutSpd [rpm]", "PressEVEN [mbar]"])
+                      + "\n" + "\n".join(rows) + "\n")
+    channels = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+                "pressure=PressEVEN", "--channel", "downstream_speed=OutSpd"]
+    index = tmp_path / "runs.csv"
+    index.write_text("file,freq_hz,p_f_bar\nrun01.csv,210,0.4\n")
+    args = ["chart", "--index", str(index), *channels, "--json",
+            "--workers", "1"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "--decimal" in err and "no cell of the file tells which" in err
+    assert main(args + ["--decimal", decimal]) == 0
+    read = json.loads(capsys.readouterr().out)["runs"][0]
+    # the clean file, as shipped
+    index.write_text(f"file,freq_hz,p_f_bar\n{examples / 'run01.csv'},210,"
+                     "0.4\n")
+    assert main(args[:3] + [channels[0], channels[1], "--channel",
+                            "pressure=PressEVEN:bar", *channels[4:],
+                            "--json", "--workers", "1"]) == 0
+    clean_run = json.loads(capsys.readouterr().out)["runs"][0]
+    assert read["judder"] == clean_run["judder"]
+    assert read["mechanism"] == clean_run["mechanism"]
+    # integer rpm: the amplitudes within the rounding's half rpm
+    assert read["amplitude_rpm"] == pytest.approx(
+        clean_run["amplitude_rpm"], abs=1.0)
+
+
+def _tooth_passages(rng, samples_per_period, freq_hz, seconds):
+    """Irregular sample times as a pick-up's tooth passages give them:
+    ``samples_per_period`` on average, each interval +-20 %."""
+    step = 1 / (samples_per_period * freq_hz)
+    count = int(seconds / step)
+    return np.cumsum(step * (0.8 + 0.4 * rng.random(count)))
+
+
+def test_dither_uncertainties_match_the_scatter_of_the_estimates():
+    """The standard uncertainties of the least-squares sinusoid
+    (Gauss-Newton covariance with the residual variance, the frequency
+    fitted with the others) against the scatter of the estimates over 200
+    noise draws: a sinusoid of known amplitude and phase over a ramp plus
+    Gaussian noise of known sigma, at tooth passages (about 3.3 samples
+    per period at 214 Hz). Closed form: u(A) = sigma sqrt(2/n) for white
+    noise."""
+    freq_hz, amplitude, phase, sigma = 214.0, 0.2 * PA_PER_BAR, 0.7, 5e3
+    rng = np.random.default_rng(31)
+    time = _tooth_passages(rng, 3.3, freq_hz, 1.2)
+    window = (0.1, time[-1] - 0.1)
+    inside = (time >= window[0]) & (time <= window[1])
+    reference = 0.5 * (time[inside][0] + time[inside][-1])
+    clean = (8 * PA_PER_BAR + 2e4 * (time - 1.0) + amplitude * np.cos(
+        2 * np.pi * freq_hz * (time - reference) + phase))
+    fits = [estimate_dither(time, clean + sigma * rng.standard_normal(
+        len(time)), window) for _ in range(200)]
+    read = {name: np.array([getattr(f, name) for f in fits])
+            for name in ("freq_hz", "freq_std_hz", "amplitude",
+                         "amplitude_std", "phase_rad", "phase_std_rad")}
+    assert all(f.reference_s == reference and not f.warnings for f in fits)
+    # the closed form of the amplitude's uncertainty
+    assert np.median(read["amplitude_std"]) == pytest.approx(
+        sigma * np.sqrt(2 / np.count_nonzero(inside)), rel=0.05)
+    truth = {"freq_hz": freq_hz, "amplitude": amplitude, "phase_rad": phase}
+    for name, true in truth.items():
+        std = read[name.replace("_hz", "").replace("_rad", "") + (
+            "_std_hz" if name == "freq_hz" else
+            "_std_rad" if name == "phase_rad" else "_std")]
+        z = (read[name] - true) / std
+        # within 3 uncertainties: 0.27 % of draws beyond, 0.54 of 200, so
+        # more than 4 has a chance of 3e-4; uncertainties 30 % too small
+        # would put 4.3 of 200 beyond
+        assert np.count_nonzero(np.abs(z) > 3) <= 4, name
+        # the uncertainty reported is the scatter seen (the scatter of
+        # 200 draws is itself known to 5 %)
+        assert np.mean(std) == pytest.approx(np.std(read[name]), rel=0.2), \
+            name
+
+
+@pytest.mark.parametrize("samples_per_period, given, warned", [
+    (1.5, False, True), (1.5, True, True), (10, False, False),
+    (10, True, False)])
+def test_dither_from_too_sparse_a_pressure_is_warned_of(samples_per_period,
+                                                        given, warned):
+    """Fewer than 2 samples per period cannot tell the dither frequency
+    from its alias: the estimate says so, whether the frequency was found
+    (it finds the alias) or given."""
+    freq_hz = 214.0
+    rng = np.random.default_rng(5)
+    time = _tooth_passages(rng, samples_per_period, freq_hz, 1.2)
+    pressure = 8 * PA_PER_BAR + 0.2 * PA_PER_BAR * np.cos(
+        2 * np.pi * freq_hz * time) + 1e3 * rng.standard_normal(len(time))
+    fit = estimate_dither(time, pressure, (0.1, 1.1),
+                          freq_hz if given else None)
+    aliased = [w for w in fit.warnings if "cannot be told from its alias"
+               in w]
+    assert bool(aliased) == warned, fit.warnings
+    if warned:
+        assert "alias" in aliased[0] and "Hz" in aliased[0]
+
+
+def test_dither_warnings_for_few_periods_and_a_noisy_amplitude():
+    rng = np.random.default_rng(8)
+    time = _tooth_passages(rng, 10, 103.0, 0.07)
+    pressure = 0.2 * PA_PER_BAR * np.cos(2 * np.pi * 103.0 * time)
+    few = estimate_dither(time, pressure + 10 * rng.standard_normal(
+        len(time)), (0, 1), 103.0)
+    assert few.periods == pytest.approx(7, rel=0.05)
+    assert [w for w in few.warnings if "fewer than 10" in w]
+    time = _tooth_passages(rng, 10, 103.0, 1.0)
+    noisy = estimate_dither(time, 0.02 * PA_PER_BAR * np.cos(
+        2 * np.pi * 103.0 * time) + 0.2 * PA_PER_BAR * rng.standard_normal(
+        len(time)), (0, 1), 103.0)
+    assert noisy.relative_amplitude_std > 0.1
+    assert [w for w in noisy.warnings if "uncertain by" in w]
+    # a pressure without any oscillation: amplitude 0, said in words
+    still = estimate_dither(time, np.zeros(len(time)), (0, 1), 103.0)
+    assert still.amplitude == 0 and still.amplitude_std == 0
+    assert still.warnings == ("no oscillation at 103 Hz in the samples "
+                              "(amplitude 0)",)
+
+
+def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
+                                                                 capsys):
+    """The example run at 210 Hz with its pressure kept at 1.5 samples per
+    period (every other row of a 315 samples/s recording emptied): the
+    dither estimated from it is printed with its uncertainty, and the
+    command warns, naming the file and the channel, that its frequency
+    cannot be told from its alias."""
+    from judder.cli import main
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    lines = (examples / "run01.csv").read_text().splitlines()
+    kept, rows = -1.0, [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        if float(cells[0]) >= kept + 1 / 315:
+            kept = float(cells[0])
+        else:
+            cells[3] = "nan"
+        rows.append(",".join(cells))
+    (tmp_path / "run01.csv").write_text("\n".join(rows) + "\n")
+    (tmp_path / "runs.csv").write_text("file\nrun01.csv\n")
+    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
+                 "--channel", "upstream_speed=EngSpd_up", "--channel",
+                 "pressure=PressEVEN:bar", "--channel",
+                 "downstream_speed=OutSpd", "--workers", "1"]) == 0
+    captured = capsys.readouterr()
+    warning = next(line for line in captured.err.splitlines()
+                   if line.startswith("judder: warning:"))
+    for word in (str(tmp_path / "run01.csv"), "pressure channel "
+                 "'PressEVEN'", "cannot be told from its alias"):
+        assert word in warning
+    assert "run01.csv: dither estimated" in captured.out
+    assert " ± " in captured.out

@@ -19,7 +19,7 @@ FLAGS = {
     "amplitude": "--dither-amplitude", "frequency": "--dither-frequency",
     # pysim.bench_data: the chart's sources, channels and groups
     "paths": "SOURCE", "index": "--index", "channels": "--channel",
-    "group_by": "--group-by",
+    "group_by": "--group-by", "decimal": "--decimal",
     # judder.commands._common.at_dither_frequency
     "freq_hz": "--freq", "freq_range": "--freq-range",
     # stability.threshold.friction_threshold

@@ -7,10 +7,12 @@ import time
 
 import numpy as np
 
+from infra.contract import warn
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
 from infra.errors import JudderError
 from infra.files import (all_or_none, keeps_foreign_files, save_npz,
                          write_text)
+from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, limit_option, method_option,
@@ -70,6 +72,14 @@ def add_arguments(p):
                         "sampled (a DAQ's rate), angle (an encoder), "
                         "default told from the data; repeatable. Without "
                         "any, the names judder campaign writes")
+    p.add_argument("--decimal", choices=(".", ","), default=None,
+                   metavar=".|,",
+                   help="decimal separator of CSV acquisitions, '.' or "
+                        "',' (the thousands separator follows: ',' or "
+                        "'.', or a space or apostrophe), for files whose "
+                        "cells cannot tell it (integer speeds with "
+                        "1,000); a cell written otherwise is refused "
+                        "(default: decided per file from its cells)")
     p.add_argument("--group-by", action="append", metavar="COLUMN",
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")
@@ -111,7 +121,7 @@ def run(args):
     make_parents(args.out, args.plot, args.boundary)
     with Progress(None, "runs") as progress:
         result = chart(args.sources, index=args.index, channels=channels,
-                       group_by=args.group_by,
+                       group_by=args.group_by, decimal=args.decimal,
                        min_growth=args.min_growth,
                        min_amplitude_rpm=args.min_amplitude,
                        judder_limit_rpm=args.limit,
@@ -122,6 +132,8 @@ def run(args):
     if not result.chart.read:
         # before any output is written: a chart of no run is none
         raise JudderError(_unread(result.chart.failed))
+    for text in (t for run in result.chart.read for t in run.warnings):
+        warn(text)
     with all_or_none():     # --out, --plot and --boundary, or none
         files = write_outputs(args, result, figure={
             "title": "experimental stability chart"
@@ -149,11 +161,26 @@ def run(args):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
+        rows += [_estimate_line(run) for run in runs
+                 if run.analysis.dither is not None]
     rows += [f"could not read {in_flags(r.reason)}"
              for r in result.chart.failed]
     rows.append(f"{len(result.chart.runs)} runs in {result.seconds:.1f} s"
                 + written(args.out, args.plot, *boundaries))
     emit(args, data, "\n".join(rows))
+
+
+def _estimate_line(run):
+    """A run's dither as estimated from its pressure, with the standard
+    uncertainties."""
+    fit = run.analysis.dither
+    freq = (f"{fit.freq_hz:.4g} ± {fit.freq_std_hz:.2g} Hz"
+            if fit.freq_std_hz else f"{fit.freq_hz:.4g} Hz (given)")
+    return (f"  {run.path.name}: dither estimated {freq}, "
+            f"{fit.amplitude / PA_PER_BAR:.3g} ± "
+            f"{fit.amplitude_std / PA_PER_BAR:.2g} bar, phase "
+            f"{fit.phase_rad:.3f} ± {fit.phase_std_rad:.2g} rad at "
+            f"{fit.reference_s:.4g} s (standard uncertainties)")
 
 
 #: Unreadable runs named in the error when none could be read.
@@ -189,7 +216,7 @@ def _channels(items):
     return channels
 
 
-def chart(sources, index=None, channels=None, group_by=None,
+def chart(sources, index=None, channels=None, group_by=None, decimal=None,
           min_growth=None, min_amplitude_rpm=None,
           judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, model=False,
           parameters=None, changes=None, method=DEFAULT_METHOD,
@@ -211,6 +238,9 @@ def chart(sources, index=None, channels=None, group_by=None,
     group_by : sequence of str, optional
         Columns making the panels (default: oil temperature and engine
         speed where they vary).
+    decimal : {'.', ','}, optional
+        Decimal separator of CSV acquisitions (default: decided per file
+        from its cells).
     min_growth : float, optional
         Growth rate (1/s) from which a run counts as judder (default
         :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
@@ -236,7 +266,7 @@ def chart(sources, index=None, channels=None, group_by=None,
     run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
         runs, channels=channels, run_bytes=run_bytes,
-        group_by=group_by,
+        group_by=group_by, decimal=decimal,
         min_growth=DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth,
         min_amplitude_rpm=(MIN_AMPLITUDE_RPM if min_amplitude_rpm is None
                            else min_amplitude_rpm),
@@ -278,6 +308,7 @@ class ChartResult:
                 for group in self.chart.groups()}
 
     def as_dict(self):
+        from pysim.analysis.verdict import dither_estimate_dict
         chart = self.chart
         runs = []
         for run in chart.read:
@@ -286,6 +317,7 @@ class ChartResult:
                 c: run.settings.get(c) for c in chart.group_by},
                 "freq_hz": a.freq_hz, "p_f_bar": a.p_f_bar,
                 "dither_estimated": a.estimated,
+                "dither_estimate": dither_estimate_dict(a.dither),
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s, "judder": a.judder,

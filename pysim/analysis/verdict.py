@@ -12,7 +12,9 @@ own time base. :func:`analyse_run` does, in order:
 2. **Dither setting** when it is not given: the pressure's spectral peak
    in the window, refined to the frequency of the least-squares sinusoid
    fitted to the pressure samples as taken (:func:`estimate_dither`); the
-   amplitude is that sinusoid's.
+   amplitude is that sinusoid's. Frequency, amplitude and phase come with
+   their standard uncertainties, and with warnings where the sampling
+   cannot support them (:mod:`pysim.analysis.dither`).
 3. **Components** of the upstream speed, resampled uniformly over the
    whole run and high-passed above 5 Hz (the engagement itself is
    slower), by complex demodulation,
@@ -119,7 +121,10 @@ from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
+from .dither import fit_sinusoid
+
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
+           "dither_estimate_dict",
            "engagement_window", "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
            "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
@@ -251,6 +256,10 @@ class RunAnalysis:
         Why the run judders (None without judder).
     judder_limit_rpm : float
         The NVH limit the oscillation was compared with, rpm.
+    dither : pysim.analysis.dither.SinusoidFit or None
+        The sinusoid fitted to the pressure where the dither setting was
+        estimated (amplitude in Pa, with standard uncertainties and the
+        sampling's warnings), else None.
     """
 
     window_s: tuple
@@ -268,6 +277,7 @@ class RunAnalysis:
     forced_rpm: float
     mechanism: object
     judder_limit_rpm: float
+    dither: object = None
 
     def as_dict(self):
         """JSON fields (Hz, bar, rpm, 1/s)."""
@@ -283,7 +293,23 @@ class RunAnalysis:
                 "forced_rpm": self.forced_rpm,
                 "mechanism": self.mechanism,
                 "judder_limit_rpm": self.judder_limit_rpm,
-                "components": [c.__dict__ for c in self.components]}
+                "components": [c.__dict__ for c in self.components],
+                "dither_estimate": dither_estimate_dict(self.dither)}
+
+
+def dither_estimate_dict(fit):
+    """JSON fields of an estimated dither (Hz, bar, rad, s), None for
+    none: the values with their standard uncertainties (``*_std_*``),
+    the time the phase refers to, the sampling and its warnings."""
+    if fit is None:
+        return None
+    return {"freq_hz": fit.freq_hz, "freq_std_hz": fit.freq_std_hz,
+            "p_f_bar": fit.amplitude / PA_PER_BAR,
+            "p_f_std_bar": fit.amplitude_std / PA_PER_BAR,
+            "phase_rad": fit.phase_rad, "phase_std_rad": fit.phase_std_rad,
+            "phase_time_s": fit.reference_s,
+            "samples_per_period": fit.samples_per_period,
+            "periods": fit.periods, "warnings": list(fit.warnings)}
 
 
 def _uniform(time, values, rate=None):
@@ -374,39 +400,20 @@ def _fourier_amplitude(time, values, freq):
     return 2 * abs(np.sum(window * values * phasor)) / window.sum()
 
 
-def _sinusoid_fit(time, values, freq):
-    """Least-squares fit of ``a + b tau + c cos(2 pi f t) + d sin(2 pi f
-    t)`` to the samples as taken (``tau`` the time from their middle: the
-    line is the trend the engagement puts under the dither).
-
-    Returns
-    -------
-    amplitude : float
-        ``|c + i d|``, in the unit of ``values``.
-    residual : float
-        Sum of squared residuals.
-    """
-    tau = time - 0.5 * (time[0] + time[-1])
-    phase = 2 * np.pi * freq * time
-    basis = np.column_stack([np.ones_like(tau), tau, np.cos(phase),
-                             np.sin(phase)])
-    coef, *_ = np.linalg.lstsq(basis, values, rcond=None)
-    residual = float(np.sum((basis @ coef - values) ** 2))
-    return float(np.hypot(coef[2], coef[3])), residual
-
-
 def estimate_dither(time, pressure, window, freq_hz=None):
-    """Dither frequency (Hz) and amplitude (Pa) from the pressure channel.
+    """Dither frequency, amplitude and phase, with their standard
+    uncertainties, from the pressure channel.
 
-    The amplitude is that of the least-squares sinusoid (over a line, the
-    engagement's trend) fitted to the pressure samples in ``window`` as
-    they were taken (:func:`_sinusoid_fit`). Resampling them first would
-    not do: a pressure sampled at a pick-up's tooth passages has about
-    3.3 samples per dither period, and linear interpolation between them
-    loses 7 to 36 % of the amplitude (issue 31). The frequency, unless
-    given, is the spectral peak above 5 Hz of the pressure resampled
-    uniformly (only to find the peak), refined within one bin to the
-    frequency whose sinusoid fits best.
+    The least-squares sinusoid (over a line, the engagement's trend) is
+    fitted to the pressure samples in ``window`` as they were taken
+    (:func:`pysim.analysis.dither.fit_sinusoid`). Resampling them first
+    would not do: a pressure sampled at a pick-up's tooth passages has
+    about 3.3 samples per dither period, and linear interpolation between
+    them loses 7 to 36 % of the amplitude (issue 31). The frequency,
+    unless given, is the spectral peak above 5 Hz of the pressure
+    resampled uniformly (only to find the peak), refined within one bin
+    to the frequency whose sinusoid fits best (then fitted with the
+    others, with its uncertainty).
 
     Parameters
     ----------
@@ -418,6 +425,12 @@ def estimate_dither(time, pressure, window, freq_hz=None):
         The dither frequency when it is known: the amplitude is fitted at
         it.
 
+    Returns
+    -------
+    pysim.analysis.dither.SinusoidFit
+        Amplitude in Pa; ``warnings`` where the sampling cannot support
+        the estimate.
+
     Raises
     ------
     JudderError
@@ -428,19 +441,16 @@ def estimate_dither(time, pressure, window, freq_hz=None):
         raise JudderError("too few pressure samples in the engagement "
                           "window to estimate the dither")
     time, pressure = time[keep], pressure[keep]
-    if freq_hz is None:
-        t, p = _uniform(time, pressure)
-        p = scipy.signal.detrend(p)
-        freq = np.fft.rfftfreq(len(p), t[1] - t[0])
-        spectrum = np.abs(np.fft.rfft(p * np.hanning(len(p))))
-        band = freq >= _LOWEST_HZ
-        peak = freq[band][np.argmax(spectrum[band])]
-        step = freq[1]
-        freq_hz = minimize_scalar(
-            lambda f: _sinusoid_fit(time, pressure, f)[1],
-            bounds=(peak - step, peak + step), method="bounded",
-            options={"xatol": 1e-6 * peak}).x
-    return float(freq_hz), _sinusoid_fit(time, pressure, freq_hz)[0]
+    if freq_hz is not None:
+        return fit_sinusoid(time, pressure, freq_hz)
+    t, p = _uniform(time, pressure)
+    p = scipy.signal.detrend(p)
+    freq = np.fft.rfftfreq(len(p), t[1] - t[0])
+    spectrum = np.abs(np.fft.rfft(p * np.hanning(len(p))))
+    band = freq >= _LOWEST_HZ
+    peak = freq[band][np.argmax(spectrum[band])]
+    return fit_sinusoid(time, pressure, peak,
+                        bracket_hz=(peak - freq[1], peak + freq[1]))
 
 
 def _bandwidth(freq_hz):
@@ -853,17 +863,17 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     t_speed, w = (np.asarray(a, dtype=float) for a in speed)
     _check_length(t_speed)
     window = engagement_window((t_speed, w), pressure, downstream)
-    estimated = False
+    dither = None
     if freq_hz is None or p_f_bar is None:
         if pressure is None:
             raise JudderError("the dither setting is not given and there is "
                               "no pressure channel to estimate it from")
-        f_est, p_est = estimate_dither(np.asarray(pressure[0], dtype=float),
-                                       np.asarray(pressure[1], dtype=float),
-                                       window, freq_hz)
-        estimated = True
-        freq_hz = f_est if freq_hz is None else freq_hz
-        p_f_bar = p_est / PA_PER_BAR if p_f_bar is None else p_f_bar
+        dither = estimate_dither(np.asarray(pressure[0], dtype=float),
+                                 np.asarray(pressure[1], dtype=float),
+                                 window, freq_hz)
+        freq_hz = dither.freq_hz if freq_hz is None else freq_hz
+        p_f_bar = (dither.amplitude / PA_PER_BAR if p_f_bar is None
+                   else p_f_bar)
     angle = _angle(t_speed, w)
     t = np.arange(t_speed[0], t_speed[-1], np.median(np.diff(t_speed)))
     y = angle(t, 1) * RPM_PER_RAD_S
@@ -958,14 +968,15 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                 if c.kind in (kind, "single-period")),
                key=lambda c: c.amplitude_rpm)
     return RunAnalysis(window_s=window, freq_hz=float(freq_hz),
-                       p_f_bar=float(p_f_bar), estimated=estimated,
+                       p_f_bar=float(p_f_bar), estimated=dither is not None,
                        components=components, judder=mechanism is not None,
                        kind=kind, growth_per_s=growth, growth_phase_s=phase,
                        nonperiodic_rpm=float(rms.max()),
                        amplitude_rpm=lead.amplitude_rpm,
                        oscillation_rpm=oscillation, forced_rpm=forced_rpm,
                        mechanism=mechanism,
-                       judder_limit_rpm=float(judder_limit_rpm))
+                       judder_limit_rpm=float(judder_limit_rpm),
+                       dither=dither)
 
 
 def _sustained(time, envelope):

@@ -20,10 +20,11 @@ __all__ = ["read"]
 HEAD_BYTES = 64 * 1024
 
 
-def read(path, wanted, time=None):
+def read(path, wanted, time=None, decimal=None):
     """CSV as :func:`pysim.simulation.export.write_csv` writes it, and as DAQ software
     exports it: ``,``, ``;`` or tab between fields, a decimal point or
-    comma and thousands separators as the file's cells show them
+    comma and thousands separators as the file's cells show them, or as
+    ``decimal`` (``'.'`` or ``','``) says where given
     (:mod:`pysim.bench_data._numbers`), a time column of numbers or of
     date-times (s from the first), a header block before the column names
     (``key;value`` lines, kept as metadata), a units row under them."""
@@ -57,7 +58,7 @@ def read(path, wanted, time=None):
     stamps = _date_times(path, cells[time_column])
     if stamps is not None:
         del cells[time_column]
-    convention = decide(path, {names[c]: cells[c] for c in cells})
+    convention = decide(path, {names[c]: cells[c] for c in cells}, decimal)
     if stamps is None:
         name, unit = header[time_column]
         stamps = column_values(cells[time_column], convention) * \

@@ -1,12 +1,17 @@
 """Numbers of a text export read as written.
 
-A DAQ's export writes ``1000.5``, ``1000,5``, ``1,000.5`` or
-``1.000,5`` for the same number, as its locale has it. Which separator is
-the decimal one is decided once per file from every cell read, never per
-cell: ``1,000`` alone is 1000 (a thousands comma) or 1.0 (a decimal
-comma), and only another cell of the file (``0.001``, ``3,25``) tells
-which. A file whose cells disagree, or that no cell decides while some
-cell depends on it, is refused with the cell as the file has it.
+A DAQ's export writes ``1000.5``, ``1000,5``, ``1,000.5``,
+``1.000,5``, ``1 000,5`` or ``1'000.5`` for the same number, as its
+locale has it. Which separator is the decimal one is decided once per
+file from every cell read, never per cell: ``1,000`` alone is 1000 (a
+thousands comma) or 1.0 (a decimal comma), and only another cell of the
+file (``0.001``, ``3,25``) tells which. A file whose cells disagree, or
+that no cell decides while some cell depends on it, is refused with the
+cell as the file has it. Where the cells cannot decide, the caller says
+which separator is the decimal one (``decimal``, :data:`DECIMALS`); every
+cell is then checked against it. The thousands separator follows from
+the decimal one: ``,`` for a decimal point, ``.`` for a decimal comma,
+and a space or an apostrophe for either (one kind within a cell).
 
 Examples
 --------
@@ -16,6 +21,8 @@ Examples
 {'point'}
 >>> value("1.000,60656", "comma"), value("1,000", "point")
 (1000.60656, 1000.0)
+>>> value("1 000,5", "comma"), value("1'000.5", "point")
+(1000.5, 1000.5)
 """
 
 import re
@@ -24,23 +31,34 @@ import numpy as np
 
 from infra.errors import JudderError
 
-__all__ = ["CONVENTIONS", "readings", "value", "decide", "column_values"]
+__all__ = ["CONVENTIONS", "DECIMALS", "readings", "value", "decide",
+           "column_values"]
 
-#: Decimal separator -> (its name in messages, the thousands separator).
-CONVENTIONS = {"point": ("a decimal point (thousands ',')", ","),
-               "comma": ("a decimal comma (thousands '.')", ".")}
+#: Thousands separators either convention takes besides its own: a
+#: space (also the no-break ones) and an apostrophe (Swiss exports).
+_THOUSANDS_EITHER = " \u00a0\u202f'"
+#: Decimal separator -> (its name in messages, its thousands separators).
+CONVENTIONS = {
+    "point": ("a decimal point (thousands ',', space or apostrophe)",
+              "," + _THOUSANDS_EITHER),
+    "comma": ("a decimal comma (thousands '.', space or apostrophe)",
+              "." + _THOUSANDS_EITHER)}
+#: The decimal separator as a caller gives it -> its convention.
+DECIMALS = {".": "point", ",": "comma"}
 #: Cells that are numbers whatever the separators: empty, nan, inf.
 _NEUTRAL = re.compile(r"|[+-]?(nan|inf|infinity)", re.IGNORECASE)
 
 
 def _pattern(decimal, thousands):
+    # one kind of thousands separator within a cell (the backreference)
     d, t = re.escape(decimal), re.escape(thousands)
     return re.compile(
-        rf"[+-]?(?:(?:\d+|[1-9]\d{{0,2}}(?:{t}\d{{3}})+)(?:{d}\d*)?"
-        rf"|{d}\d+)(?:[eE][+-]?\d+)?")
+        rf"[+-]?(?:(?:\d+|[1-9]\d{{0,2}}(?P<t>[{t}])\d{{3}}(?:(?P=t)\d{{3}})*)"
+        rf"(?:{d}\d*)?|{d}\d+)(?:[eE][+-]?\d+)?")
 
 
-_PATTERNS = {"point": _pattern(".", ","), "comma": _pattern(",", ".")}
+_PATTERNS = {"point": _pattern(".", CONVENTIONS["point"][1]),
+             "comma": _pattern(",", CONVENTIONS["comma"][1])}
 
 
 def readings(cell):
@@ -59,8 +77,8 @@ def value(cell, convention):
     cell = cell.strip()
     if not cell:
         return np.nan
-    thousands = CONVENTIONS[convention][1]
-    cell = cell.replace(thousands, "")
+    for thousands in CONVENTIONS[convention][1]:
+        cell = cell.replace(thousands, "")
     return float(cell.replace(",", ".") if convention == "comma" else cell)
 
 
@@ -119,7 +137,7 @@ def _column_reading(name, cells, path):
     return allowed, deciding, depending
 
 
-def decide(path, columns):
+def decide(path, columns, decimal=None):
     """The one convention every cell read of a file reads under.
 
     Parameters
@@ -128,6 +146,10 @@ def decide(path, columns):
         The file, for messages.
     columns : dict
         Column name -> list of (line number, cell as written).
+    decimal : {'.', ','}, optional
+        The file's decimal separator when the caller knows it (a key of
+        :data:`DECIMALS`): every cell is checked against it instead of
+        deciding from the cells.
 
     Returns
     -------
@@ -138,9 +160,12 @@ def decide(path, columns):
     ------
     JudderError
         A cell that is no number (naming its line and column), cells that
-        read only under different conventions, or a cell that reads under
-        both while no cell of the file decides.
+        read only under different conventions, a cell that reads under
+        both while no cell of the file decides, or a cell that does not
+        read under the given ``decimal``.
     """
+    if decimal is not None:
+        return _given(path, columns, decimal)
     only, depending = {}, None
     for name, cells in columns.items():
         allowed, decided, depends = _column_reading(name, cells, path)
@@ -165,8 +190,36 @@ def decide(path, columns):
             f"{value(cell, 'point'):g} with a thousands separator or "
             f"{value(cell, 'comma'):g} with a decimal one, and no cell of "
             "the file tells which; allowed: a file with at least one cell "
-            "that only one reading fits (such as 0.5 or 0,5)")
+            "that only one reading fits (such as 0.5 or 0,5), or its "
+            "decimal separator given as `decimal` '.' or ','")
     return "point"
+
+
+def _given(path, columns, decimal):
+    """The convention of a given decimal separator, once every cell reads
+    under it (one pass where Python reads the column as it is)."""
+    if decimal not in DECIMALS:
+        raise JudderError(f"`decimal` {decimal!r}: allowed '.' (a decimal "
+                          "point) or ',' (a decimal comma)")
+    convention = DECIMALS[decimal]
+    for name, cells in columns.items():
+        if convention == "point":
+            plain = _plain_column(cells)
+            if plain is not None and convention in plain[0]:
+                continue
+        for number, cell in cells:
+            found = readings(cell)
+            if convention not in found:
+                kind = ("is not a number" if not found else
+                        f"is not a number written with "
+                        f"{CONVENTIONS[convention][0]}")
+                raise JudderError(
+                    f"{path}, line {number}: column {name!r}: "
+                    f"{cell.strip()!r} {kind}, as `decimal` {decimal!r} "
+                    "says the file is written; allowed: every cell with "
+                    "that decimal separator (or leave `decimal` out to "
+                    "decide it from the cells)")
+    return convention
 
 
 def column_values(cells, convention):

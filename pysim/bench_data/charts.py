@@ -68,7 +68,10 @@ class ChartRun:
     ``analysis`` is a :class:`pysim.analysis.verdict.RunAnalysis`, or None
     when the run could not be read (``error`` says why); ``speed_kind``
     what the upstream speed's samples were
-    (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`).
+    (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`); ``warnings``
+    what the run was read with but cannot support, in words naming the
+    file and the channel (a dither estimated from a pressure sampled too
+    sparsely).
     """
 
     path: Path
@@ -76,6 +79,7 @@ class ChartRun:
     analysis: object
     error: str = ""
     speed_kind: str = ""
+    warnings: tuple = ()
 
     @property
     def reason(self):
@@ -179,9 +183,9 @@ def gather_sources(paths, index=None):
 
 
 def _analyse(job):
-    source, channels, min_growth, min_amplitude, limit = job
+    source, channels, min_growth, min_amplitude, limit, decimal = job
     try:
-        acquisition = read_acquisition(source.path, channels)
+        acquisition = read_acquisition(source.path, channels, decimal)
         settings = {**{_METADATA_KEYS[k]: v
                        for k, v in acquisition.metadata.items()
                        if k in _METADATA_KEYS}, **source.settings}
@@ -205,8 +209,13 @@ def _analyse(job):
                                min_growth=min_growth,
                                min_amplitude_rpm=min_amplitude,
                                judder_limit_rpm=limit)
+        warnings = () if analysis.dither is None else tuple(
+            f"{source.path}: pressure channel {ch['pressure'].name!r}: "
+            f"dither estimated from it: {text}"
+            for text in analysis.dither.warnings)
         return ChartRun(source.path, settings, analysis,
-                        speed_kind=ch["upstream_speed"].kind)
+                        speed_kind=ch["upstream_speed"].kind,
+                        warnings=warnings)
     except JudderError as exc:
         return ChartRun(source.path, source.settings, None, str(exc))
 
@@ -375,7 +384,7 @@ class Chart:
 def build_chart(sources, channels=None, group_by=None,
                 min_growth=DEFAULT_MIN_GROWTH_PER_S, min_amplitude_rpm=MIN_AMPLITUDE_RPM,
                 judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, workers=None,
-                callback=None, run_bytes=0):
+                callback=None, run_bytes=0, decimal=None):
     """Read every run and make the chart.
 
     Parameters
@@ -395,6 +404,10 @@ def build_chart(sources, channels=None, group_by=None,
     run_bytes : int
         Memory one run takes to read (bounds the worker processes,
         :func:`infra.parallel.worker_count`).
+    decimal : {'.', ','}, optional
+        Decimal separator of the text (CSV) acquisitions
+        (:func:`pysim.bench_data.readers.read_acquisition`); default
+        decided per file from its cells.
 
     Returns
     -------
@@ -405,8 +418,8 @@ def build_chart(sources, channels=None, group_by=None,
     if "upstream_speed" not in channels:
         raise JudderError("`channels` upstream_speed=NAME is required (the "
                           "speed upstream of the clutch)")
-    jobs = [(s, channels, min_growth, min_amplitude_rpm, judder_limit_rpm)
-            for s in sources]
+    jobs = [(s, channels, min_growth, min_amplitude_rpm, judder_limit_rpm,
+             decimal) for s in sources]
     runs = []
     # a failure names the file, not the job's Python repr
     for run in parallel_map(_analyse, jobs, workers,

@@ -16,7 +16,8 @@ the reader :data:`READERS` holds for the file's suffix:
   :func:`pysim.simulation.export.write_csv` writes) or a DAQ's header block of
   ``key;value`` lines before the names; ``,``, ``;`` or tab between
   fields; decimal and thousands separators decided from all the cells
-  read, never cell by cell (:mod:`pysim.bench_data._numbers`); a time
+  read, never cell by cell, or given by the caller (``decimal``)
+  (:mod:`pysim.bench_data._numbers`); a time
   column of numbers or date-times; a BOM (:mod:`pysim.bench_data._csv`);
 * ``.tdms``: NI TDMS with npTDMS; a waveform channel
   (``wf_increment``, ``wf_start_offset``) has its time track, any other
@@ -38,6 +39,7 @@ message naming the file, what is wrong and what is allowed; a corrupt
 file does too.
 """
 
+from functools import partial
 from pathlib import Path
 
 from infra.errors import JudderError
@@ -47,7 +49,8 @@ from ._common import one_line
 from .acquisition import REQUIRED_ROLES, Acquisition
 from .channels import channel_in_si, checked_specs
 
-__all__ = ["read_acquisition", "read_cost", "READERS", "FORMATS"]
+__all__ = ["read_acquisition", "read_cost", "READERS", "FORMATS",
+           "TEXT_SUFFIXES"]
 
 #: File suffix -> reader. ``reader(path, wanted, time)`` returns the
 #: channel names in the file (list of str), its metadata (dict) and the
@@ -56,6 +59,9 @@ __all__ = ["read_acquisition", "read_cost", "READERS", "FORMATS"]
 #: name), or None.
 READERS = {".mf4": _mdf.read, ".mdf": _mdf.read, ".csv": _csv.read,
            ".tdms": _tdms.read, ".mat": _mat.read}
+#: Suffixes of text formats whose reader takes the decimal separator
+#: (``reader(path, wanted, time, decimal=)``).
+TEXT_SUFFIXES = (".csv",)
 #: What the files of each suffix are, for messages.
 FORMATS = {".mf4": "ASAM MDF4", ".mdf": "ASAM MDF", ".csv": "CSV",
            ".tdms": "NI TDMS", ".mat": "MATLAB MAT"}
@@ -79,7 +85,7 @@ def read_cost(path):
     return size * MEMORY_PER_BYTE, size * SECONDS_PER_BYTE
 
 
-def read_acquisition(path, channels):
+def read_acquisition(path, channels, decimal=None):
     """Read the channels of a bench acquisition file, in SI units.
 
     Parameters
@@ -94,6 +100,11 @@ def read_acquisition(path, channels):
         :data:`pysim.bench_data._common.TIME_NAMES`) ->
         :class:`~pysim.bench_data.acquisition.ChannelSpec` (or a channel
         name).
+    decimal : {'.', ','}, optional
+        The decimal separator of a text file (CSV) whose cells cannot
+        tell it (integers with ``1,000``); the thousands separator
+        follows (:mod:`pysim.bench_data._numbers`). Default: decided from
+        the file's cells. Binary formats store numbers and ignore it.
 
     Returns
     -------
@@ -106,7 +117,8 @@ def read_acquisition(path, channels):
     ------
     JudderError
         Unknown format, unreadable file, a channel that is not in the
-        file, a unit that is missing, unknown or of the wrong kind.
+        file, a unit that is missing, unknown or of the wrong kind, a
+        number that is not written as ``decimal`` says.
     """
     path = Path(path)
     suffix = path.suffix.lower()
@@ -120,7 +132,7 @@ def read_acquisition(path, channels):
         raise JudderError(f"{path}: no such file")
     names, metadata, raws = _load(path, suffix,
                                   [spec.name for spec in specs.values()],
-                                  time)
+                                  time, decimal)
     read = {role: channel_in_si(path, role, spec, names,
                                 raws.get(spec.name))
             for role, spec in specs.items()}
@@ -132,11 +144,14 @@ def read_acquisition(path, channels):
                        metadata=metadata)
 
 
-def _load(path, suffix, wanted, time):
+def _load(path, suffix, wanted, time, decimal):
     """What the reader of ``suffix`` returns; whatever else a corrupt
     file makes its library raise becomes one JudderError."""
+    reader = READERS[suffix]
+    if suffix in TEXT_SUFFIXES:
+        reader = partial(reader, decimal=decimal)
     try:
-        return READERS[suffix](path, wanted, time)
+        return reader(path, wanted, time)
     except JudderError:
         raise
     except Exception as exc:   # whatever a corrupt file makes a library do
