@@ -176,7 +176,8 @@ def _window_text(advice):
 
 def _design_text(advice):
     """The smallest design change of ``judder advise`` in one sentence
-    (factors within 1 % of 1 left out)."""
+    (factors within 1 % of 1 left out), and the small changes the search
+    found and dropped as unnecessary."""
     a = advice.advice
     if a is None:
         return "not searched."
@@ -188,9 +189,13 @@ def _design_text(advice):
                for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]
     if not changes:
         return "none needed: the window is already clear."
+    dropped = [f"{n} x{f:.3f}" for n, f in a.dropped.items()
+               if abs(f - 1) > 5e-4]
     return (", ".join(changes) + " clears the window; the map recomputed "
             f"with it has {advice.judder_points} judder points of "
-            f"{advice.verification.kind.size}.")
+            f"{advice.verification.kind.size}"
+            + (f" ({', '.join(dropped)} dropped as unnecessary: the window "
+               "stays clear without them)" if dropped else "") + ".")
 
 
 def summary_section(verdict, advice, advice_error, min_growth):
