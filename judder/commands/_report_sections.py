@@ -50,8 +50,7 @@ tr,.keep{break-inside:avoid;page-break-inside:avoid}
 .safe{border-color:#070;background:#efe}
 .none{border-color:#555;background:#f4f4f4}
 .small{font-size:0.85em;color:#444}
-@media print{body{margin:0;max-width:none;font-size:10pt}
-img{max-height:235mm;width:auto}}
+@media print{body{margin:0;padding:0;max-width:none;font-size:10pt}}
 """
 
 
@@ -99,14 +98,46 @@ class Page:
             + _number_sections("".join(self.sections)) + "</body></html>")
 
 
-def _png(fig, dpi=100):
-    """A figure as a base64 PNG ``<img>``; closes the figure."""
+#: Width of the report's figures, inches: the text width of the printed
+#: A4 page (210 mm less the 13 mm margins of ``@page``: 184 mm, 7.24 in),
+#: a little less. Each figure is drawn at this width and printed at it,
+#: so its text prints at the size it is set in (7 pt and more).
+FIGURE_WIDTH_IN = 7.2
+#: Tallest figure, inches (203 mm): it, its caption, a heading and a
+#: paragraph fit on one printed page (269 mm of text height).
+FIGURE_MAX_HEIGHT_IN = 8.0
+#: Lowest height of a figure drawn narrower than it was made, as a share
+#: of its width: a wide row of panels keeps room for its titles, labels
+#: and legends when it is narrowed to the page.
+_MIN_ASPECT = 0.55
+
+
+def printed_size(width_in, height_in):
+    """The size (inches) a figure made at ``width_in x height_in`` is
+    drawn and printed at in the report: the page's text width
+    (:data:`FIGURE_WIDTH_IN`) at most, the height shrunk with the width
+    but not below :data:`_MIN_ASPECT` of the width (nor above the
+    figure's own height), and :data:`FIGURE_MAX_HEIGHT_IN` at most."""
+    width = min(width_in, FIGURE_WIDTH_IN)
+    height = max(height_in * width / width_in,
+                 min(height_in, _MIN_ASPECT * width))
+    return width, min(height, FIGURE_MAX_HEIGHT_IN)
+
+
+def _png(fig, dpi=150):
+    """A figure as a base64 PNG ``<img>``, redrawn (its layout is
+    constrained) at :func:`printed_size` and shown at that size in
+    inches, on screen and on paper; closes the figure."""
     import matplotlib.pyplot as plt
+    from infra.plotstyle import redraw_at
+    width, height = printed_size(*fig.get_size_inches())
+    redraw_at(fig, width, height)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi)
     plt.close(fig)
     data = base64.b64encode(buffer.getvalue()).decode("ascii")
-    return f'<img alt="" src="data:image/png;base64,{data}">'
+    return (f'<img alt="" style="width:{width:.3f}in" '
+            f'src="data:image/png;base64,{data}">')
 
 
 def _table(header, rows):
@@ -303,7 +334,8 @@ def advice_section(page, advice):
         + ".</p>"
         + page.figure("Safe dither amplitude per frequency, and the map of "
                       "the advised design (judder advise)",
-                      advice.figure(title=page.description)))
+                      advice.figure(title=page.description,
+                                    stacked=True)))
 
 
 def tip_ranking(tip_shifts, tongue_number):
@@ -371,8 +403,10 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
     configured dither."""
     return (_keep(
         "<h2>What moves the tongues: sensitivity</h2>"
-        f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
-        f"the largest relative move of tongue {focus}'s tip"
+        "<p>Each parameter halved and doubled (Fig. 17, 18):</p>"
+        + page.figure("Sensitivity of the stability boundary (Fig. 17, 18)",
+                      sens.figure(title=f"sensitivity, {page.description}")))
+        + f"<p>Ranking by the largest relative move of tongue {focus}'s tip"
         + (" (the tongue nearest the configured dither)"
            if near_setting else "")
         + ": the tip where it becomes unstable (|lambda| = 1), as the "
@@ -384,8 +418,6 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
                    f"{e['freq_percent']:.2f}",
                    "yes" if e["vanishes"] else "no") for e in ranking])
         + _rankings_differ(ranking, advice))
-        + page.figure("Sensitivity of the stability boundary (Fig. 17, 18)",
-                      sens.figure(title=f"sensitivity, {page.description}")))
 
 
 def threshold_section(page, values, study):

@@ -487,6 +487,6 @@ class AdviceResult:
              for f, p in zip(self.freq_hz, self.safe_p_f)
              if low <= f <= high]))
 
-    def figure(self, title=None):
+    def figure(self, title=None, stacked=False):
         from ..figures.advice import advice_figure
-        return advice_figure(self, title=title)
+        return advice_figure(self, title=title, stacked=stacked)

@@ -17,7 +17,7 @@ GIVEN_STYLE = {"color": "#7f7f7f", "linestyle": (0, (4, 2)),
                "linewidth": 1.0}
 
 
-def advice_figure(advice, title=None):
+def advice_figure(advice, title=None, stacked=False):
     """Safe amplitude per frequency (left) and the map of the advised
     design (right, if any): over the operating range, or, when the result
     holds its wide view (``advise(background=True)``), from half the
@@ -27,12 +27,17 @@ def advice_figure(advice, title=None):
     Parameters
     ----------
     advice : judder.commands.advise.AdviceResult
+    stacked : bool
+        The map below the safe amplitude rather than beside it (a page's
+        width, as in the report).
     """
     if advice.verification is None:
         fig, left = plt.subplots(figsize=(7, 5), layout="constrained")
     else:
-        fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.4),
-                                          layout="constrained")
+        fig, (left, right) = plt.subplots(
+            *((2, 1) if stacked else (1, 2)),
+            figsize=(7.2, 7.6) if stacked else (14, 5.4),
+            layout="constrained")
     op = advice.operating
     top = op.p_max / PA_PER_BAR
     inside = ((advice.freq_hz >= op.freq_hz[0])
