@@ -4,6 +4,7 @@ map of the advised one, wide enough to show where its tongues went."""
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
+from matplotlib.transforms import offset_copy
 
 from infra.plotstyle import figure_title, settle_labels
 from infra.units import PA_PER_BAR
@@ -52,7 +53,10 @@ def advice_figure(advice, title=None, stacked=False):
     left.set_xlabel("dither frequency [Hz]")
     left.set_ylabel("safe dither amplitude $p_f$ [bar]")
     left.set_title("safe dither windows, given design", fontsize=10)
-    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13),
+    # below the tick labels and the axis label, whatever the axes' height
+    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                bbox_transform=offset_copy(left.transAxes, fig=fig, y=-36,
+                                           units="points"),
                 ncols=2, frameon=False, borderaxespad=0.0)
     if advice.verification is not None:
         _advised_map(advice, right)
