@@ -37,6 +37,8 @@ PROBE = ("<script>window.addEventListener('load',()=>{document.body."
 #: The smallest text (pt, as set) of each figure the module's report
 #: embedded, in order (filled by the ``report`` fixture).
 DRAWN = []
+#: Texts of those figures that leave them or overlap another.
+CLASHES = []
 
 
 def _smallest_text_pt(fig):
@@ -47,15 +49,23 @@ def _smallest_text_pt(fig):
                if t.get_visible() and t.get_text().strip())
 
 
-def _recording_figures(monkeypatch, drawn):
+def _recording_figures(monkeypatch, drawn, clashes=None):
     """Let the report embed its figures as it does, and append each one's
-    smallest text (pt) to ``drawn``."""
+    smallest text (pt) to ``drawn`` and its clipped or colliding texts
+    (``test_figures``' check) to ``clashes``."""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests"))
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from test_figures import _text_problems
     from judder.commands import _report_sections as sections
     embed = sections._png
 
     def recording(fig, *args, **kwargs):
         img = embed(fig, *args, **kwargs)      # draws it
         drawn.append(_smallest_text_pt(fig))
+        if clashes is not None:
+            FigureCanvasAgg(fig)              # closed: a canvas again
+            clashes.extend(_text_problems(fig))
         return img
     monkeypatch.setattr(sections, "_png", recording)
 
@@ -67,8 +77,9 @@ def report(tmp_path_factory):
     folder = tmp_path_factory.mktemp("report")
     out = folder / "report.html"
     DRAWN.clear()
+    CLASHES.clear()
     with pytest.MonkeyPatch.context() as patch:
-        _recording_figures(patch, DRAWN)
+        _recording_figures(patch, DRAWN, CLASHES)
         status = _run_report(folder, out)
     assert status == 0
     return out
@@ -137,6 +148,8 @@ def test_report_figures_print_readable_text(report):
     printed, so its smallest text (7 pt) prints at 7 pt."""
     page = report.read_text()
     _assert_printed_text_readable(page, DRAWN)
+    # drawn at the page's width, no text leaves its figure or collides
+    assert CLASHES == [], "\n".join(CLASHES)
     figures = _embedded_figures(page)
     assert len(figures) == 7
     for drawn_in, given_in in figures:
@@ -431,9 +444,9 @@ def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):
     assert boundary == [(100.0, None, 0.3), (105.0, 0.3, 0.3),
                         (160.0, None, 0.3)]
     out = tmp_path / "report.html"
-    drawn = []
+    drawn, clashes = [], []
     with pytest.MonkeyPatch.context() as patch:
-        _recording_figures(patch, drawn)
+        _recording_figures(patch, drawn, clashes)
         assert main(["report", "--chart", str(npz), "--grid=10:220:30",
                      "--map-freq=5:250:20", "--map-pf=0:1.5:8",
                      "--sensitivity", "mu_g", "--workers=1", "--out",
@@ -443,3 +456,4 @@ def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):
     assert "No fit is shown" in page
     # the chart (drawn by the bench-data module) prints readable too
     _assert_printed_text_readable(page, drawn)
+    assert clashes == [], "\n".join(clashes)

@@ -437,7 +437,7 @@ def threshold_section(page, values, study):
         + ").</p>"
         + page.figure("Largest real part against mu_g and the threshold "
                       "against the external damping (Fig. 19)",
-                      study.figure()))
+                      study.figure(stacked=True)))
 
 
 def engagement_section(page, run, paper):

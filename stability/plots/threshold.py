@@ -41,7 +41,9 @@ def plot_threshold(study, axes=None, own=None):
                            markevery=max(1, len(c) // 10),
                            label="rigid-chain closed form")[0]]
     right.text(c.mean(), (low + mu.min()) / 2, "A: unstable", ha="center")
-    right.text(c.mean(), (high + mu.max()) / 2,
+    # a third of the way up region B: clear of the off-scale note that
+    # heads the axes (_mark_own)
+    right.text(c.mean(), mu.max() + (high - mu.max()) / 3,
                "B: stable without dither", ha="center")
     right.set_xlabel("external damping $c_i$ [N m s/rad]")
     right.set_ylabel(r"$\mu_g$ [s/rad]")
