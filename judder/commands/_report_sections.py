@@ -548,7 +548,9 @@ def driveline_section(values, modes):
     table of its parameters."""
     rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
             for name, spec in values.specs.items()]
-    return _keep(
+    # the table flows on (its rows are never split): a whole-section keep
+    # left most of a page empty before this appendix
+    return (_keep(
         "<h2>The driveline and its parameters</h2>"
         "<p>Natural frequencies (Eq. 15): "
         + ", ".join(f"{f:.3f} Hz" for f in modes["natural_frequencies_hz"])
@@ -557,5 +559,5 @@ def driveline_section(values, modes):
            f"{modes['damping_factor_12_percent']:.2f} %")
         + "; damped modes without dither: " + ", ".join(
             f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
-            for m in modes["damped_modes"]) + ".</p>"
+            for m in modes["damped_modes"]) + ".</p>")
         + _table(("parameter", "value", "unit", "meaning"), rows))

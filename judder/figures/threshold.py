@@ -24,7 +24,7 @@ def threshold_figure(result, title=None, stacked=False):
         in the report: the off-scale notes keep their room).
     """
     fig, axes = plt.subplots(*((2, 1) if stacked else (1, 2)),
-                             figsize=(7.2, 7.4) if stacked else (11, 4.4),
+                             figsize=(7.2, 5.8) if stacked else (11, 4.4),
                              layout="constrained")
     plot_threshold(result.study, axes=axes, own=result.own)
     figure_title(fig, f"Fig. 19 without dither, "
