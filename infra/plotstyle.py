@@ -94,18 +94,23 @@ def figure_title(fig, title, fontsize=11):
                         fontsize=fontsize)
 
 
-def _wrapped(text, room_pt, fontsize):
-    """``text`` (its line breaks undone) wrapped onto lines of about
-    ``room_pt`` points at ``fontsize``."""
+def _wrapped(text, room_pt, fontsize, keep_lines=False):
+    """``text`` wrapped onto lines of about ``room_pt`` points at
+    ``fontsize``: its line breaks undone, or with ``keep_lines`` each of
+    its lines wrapped on its own."""
     # DejaVu Sans averages about 0.55 em a character
     width = max(20, int(room_pt / (0.58 * fontsize)))
+    if keep_lines:
+        return "\n".join(textwrap.fill(line, width) if line else line
+                         for line in text.split("\n"))
     return textwrap.fill(" ".join(text.split("\n")), width)
 
 
 def redraw_at(fig, width_in, height_in):
     """Give a figure made at another size (its layout constrained) the
-    size ``width_in x height_in`` inches: its title and its panels'
-    titles wrapped again to the new widths, its labels settled again
+    size ``width_in x height_in`` inches: its title (made by
+    :func:`figure_title`) wrapped again to the new width, each line of its
+    panels' titles to theirs, its labels settled again
     (:func:`settle_labels`), as its builder would have made them at that
     size."""
     fig.set_size_inches(width_in, height_in)
@@ -121,7 +126,7 @@ def redraw_at(fig, width_in, height_in):
             if text.get_text():
                 text.set_text(_wrapped(text.get_text(),
                                        0.9 * share * width_in * 72,
-                                       text.get_fontsize()))
+                                       text.get_fontsize(), keep_lines=True))
     settle_labels(fig)
 
 

@@ -463,10 +463,13 @@ def engagement_section(page, run, paper):
         + ("" if first.get("linearisation_holds") is not False else
            ". Nonlinear: " + nonlinear_words(first))
         + ".</p>"
-        + page.figure("Engagement with the configured dither and without "
-                      "(Fig. 7, 8)",
-                      run.figure(title=f"time-domain run, "
-                                 f"{page.description}")))
+        # one figure per run: side by side they were 13 in wide, printed
+        # at half size
+        + "".join(page.figure(
+            f"Engagement {label} (Fig. {7 if index == 0 else 8})",
+            run.figure(title=f"time-domain run {label}, "
+                       f"{page.description}", only=index))
+            for index, (label, _) in enumerate(run.runs)))
 
 
 def fit_section(bench, names, values, source, fitted, error):
