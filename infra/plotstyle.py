@@ -90,9 +90,44 @@ def dither_axes(ax, frequency=FREQUENCY_LABEL, amplitude=AMPLITUDE_LABEL):
 def figure_title(fig, title, fontsize=11):
     """``fig.suptitle(title)``, wrapped onto lines that fit the figure's
     width (a long model description is not clipped)."""
+    return fig.suptitle(_wrapped(title, fig.get_figwidth() * 72, fontsize),
+                        fontsize=fontsize)
+
+
+def _wrapped(text, room_pt, fontsize, keep_lines=False):
+    """``text`` wrapped onto lines of about ``room_pt`` points at
+    ``fontsize``: its line breaks undone, or with ``keep_lines`` each of
+    its lines wrapped on its own."""
     # DejaVu Sans averages about 0.55 em a character
-    width = max(20, int(fig.get_figwidth() * 72 / (0.58 * fontsize)))
-    return fig.suptitle(textwrap.fill(title, width), fontsize=fontsize)
+    width = max(20, int(room_pt / (0.58 * fontsize)))
+    if keep_lines:
+        return "\n".join(textwrap.fill(line, width) if line else line
+                         for line in text.split("\n"))
+    return textwrap.fill(" ".join(text.split("\n")), width)
+
+
+def redraw_at(fig, width_in, height_in):
+    """Give a figure made at another size (its layout constrained) the
+    size ``width_in x height_in`` inches: its title (made by
+    :func:`figure_title`) wrapped again to the new width, each line of its
+    panels' titles to theirs, its labels settled again
+    (:func:`settle_labels`), as its builder would have made them at that
+    size."""
+    fig.set_size_inches(width_in, height_in)
+    title = fig._suptitle
+    if title is not None and title.get_text():
+        title.set_text(_wrapped(title.get_text(), width_in * 72,
+                                title.get_fontsize()))
+    for ax in fig.axes:
+        spec = ax.get_subplotspec()
+        share = 1.0 if spec is None else (
+            len(spec.colspan) / spec.get_gridspec().ncols)
+        for text in (ax.title, ax._left_title, ax._right_title):
+            if text.get_text():
+                text.set_text(_wrapped(text.get_text(),
+                                       0.9 * share * width_in * 72,
+                                       text.get_fontsize(), keep_lines=True))
+    settle_labels(fig)
 
 
 #: ``gid`` of the texts :func:`settle_labels` keeps apart: tongue numbers

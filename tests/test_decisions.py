@@ -20,7 +20,8 @@ from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from judder import api
 from stability import build_driveline, floquet, natural_frequencies
-from stability.decisions.advice import OperatingRange, _clear
+from stability.decisions.advice import (PRUNE_BELOW, OperatingRange,
+                                        _clear, window_boundary)
 from stability.decisions.margins import search_grid, setting_margin
 from stability.decisions.relevance import is_judder_relevant
 from stability.hill import combination_boundaries, modal_transfer
@@ -354,6 +355,52 @@ def test_advise_within_bounds_or_says_there_is_none():
                     0.98 * region.lowest_p_f).growth_rate
     assert 0 < above < 1.0 and below < 0
     assert "still unstable (|lambda| > 1) but not judder" in result.summary()
+
+
+def test_advise_lists_only_the_changes_the_design_needs():
+    """The README's example: the search ends with k12 x1.001 and k24
+    x0.975 beside the changes that matter; both are dropped, as the
+    window stays clear without them, and the design the advice lists
+    still clears it."""
+    from judder.inputs import load_parameters
+    example = load_parameters(param_file=EXAMPLES / "driveline.toml")
+    result = api.advise(example)
+    advice = result.advice
+    assert advice.success
+    factors = dict(zip(advice.names, advice.factors))
+    # what was dropped was small, and is back at its nominal value
+    assert set(advice.dropped) >= {"k12", "k24"}
+    for name, factor in advice.dropped.items():
+        assert 0 < abs(factor - 1) < PRUNE_BELOW
+        assert factors[name] == 1.0
+    # every change still listed is at least 3 %
+    listed = {n: f for n, f in factors.items() if f != 1.0}
+    assert listed and all(abs(f - 1) >= PRUNE_BELOW for f in listed.values())
+    text = result.summary()
+    assert "dropped as unnecessary" in text
+    design_line = next(line for line in text.splitlines()
+                       if line.startswith("design: "))
+    assert "k12" not in design_line and "k24" not in design_line
+    # the listed design clears the window: its exact judder boundary lies
+    # above 0.7 + 0.1 bar over 55-205 Hz, and its recomputed map has no
+    # point growing at 1 1/s or faster
+    advised = result.advised_params()
+    operating = OperatingRange()
+    freqs = np.linspace(55, 205, 301)
+    boundary = window_boundary([advised], freqs, DEFAULT_MIN_GROWTH_PER_S,
+                               1.6 * BAR)
+    assert boundary.min() >= 0.8 * BAR
+    assert result.judder_points == 0
+    growth = result.verification.growth_rate
+    assert np.nanmax(growth) < DEFAULT_MIN_GROWTH_PER_S
+    assert _clear([example], advice.names, np.log(advice.factors),
+                  operating, DEFAULT_MIN_GROWTH_PER_S, 1.6 * BAR)
+    # and it needs what is left: without its smallest change it does not
+    smallest = min(listed, key=lambda n: abs(np.log(listed[n])))
+    without = np.log([1.0 if n == smallest else f
+                      for n, f in factors.items()])
+    assert not _clear([example], advice.names, without, operating,
+                      DEFAULT_MIN_GROWTH_PER_S, 1.6 * BAR)
 
 
 @pytest.mark.parametrize("bound, words", [

@@ -370,3 +370,49 @@ def test_fig19_says_how_far_off_the_scale_the_driveline_lies(rc):
             assert tip_y > ax.transAxes.transform((0, 0.95))[1]
             assert arrow.y1 - arrow.y0 > 10
     plt.close(fig)
+
+
+def test_a_boundary_is_drawn_only_where_it_separates_stable_from_unstable():
+    """Issue 33 (the geared 5-DOF map: tongues 9 and 10 drawn through
+    tongue 3): a single-period tongue |f - 100| / 10 bar and a
+    combination tongue 0.15 + |f - 95| / 2 bar overlap; each line stops
+    where it enters the other tongue, at the crossings of the two V's
+    (closed form), and is drawn everywhere else."""
+    import matplotlib.pyplot as plt
+    from stability.plots import plot_boundaries
+    from stability.tongues import Boundaries
+    freqs = np.linspace(80, 120, 401)
+    single = np.abs(freqs - 100) / 10
+    combination = 0.15 + np.abs(freqs - 95) / 2
+    amplitude = np.full((len(freqs), 3), np.nan)
+    amplitude[:, 0] = single * BAR
+    amplitude[:, 2] = np.where(combination < 1.5, combination, np.nan) * BAR
+    boundaries = Boundaries(freq_hz=freqs, p_max=1.5 * BAR,
+                            amplitude=amplitude,
+                            multiplier_error=np.zeros_like(amplitude),
+                            natural_frequencies_hz=np.array([50.0]))
+    fig, ax = plt.subplots()
+    solid, dotted = plot_boundaries(boundaries, ax=ax, numbers=False)
+    for line, own, other in ((solid, single, combination),
+                             (dotted, combination, single)):
+        x, y = line.get_xdata(), line.get_ydata()
+        drawn = np.isfinite(y)
+        low = np.interp(x, freqs, other)
+        # nothing drawn inside the other tongue, everything outside it
+        assert np.all(y[drawn] <= low[drawn] + 1.5 / 1000 + 1e-12)
+        on_curve = np.isfinite(x) & (np.abs(np.interp(x, freqs, own) - y)
+                                     < 1e-9)
+        assert np.all(drawn[on_curve & (y < low - 0.01)])
+        assert not np.any(drawn[on_curve & (y > low + 0.01)])
+    # the combination tongue's right flank enters the single-period one
+    # at 0.15 + (f - 95) / 2 = (100 - f) / 10: f = 95.583 Hz, 0.4417 bar;
+    # its left flank at 0.15 + (95 - f) / 2 = (100 - f) / 10: f = 94.125
+    # Hz, 0.5875 bar; the dotted line ends there
+    x, y = dotted.get_xdata(), dotted.get_ydata()
+    right = np.isfinite(y) & (x > 95)
+    assert y[right].max() == pytest.approx(0.4417, abs=2e-3)
+    assert x[right][np.argmax(y[right])] == pytest.approx(95.583, abs=0.02)
+    left = np.isfinite(y) & (x < 95)
+    assert y[left].max() == pytest.approx(0.5875, abs=2e-3)
+    assert x[left][np.argmax(y[left])] == pytest.approx(94.125, abs=0.02)
+    plt.close(fig)

@@ -7,6 +7,7 @@ be done is refused in one line, from the command line and from Python.
 """
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -194,8 +195,20 @@ def test_report_of_a_class_is_the_presets(tmp_path, capsys):
     grids = ("--freq", "105", "--pf", "0.2", "--sensitivity", "k24,c12",
              "--grid=90:120:30", "--map-freq=90:120:8", "--map-pf=0:0.6:4",
              "--workers=1")
-    ours = _json(capsys, "report", "--modelica", FOUR, *grids,
-                 "--engagement", "--out", str(tmp_path / "class.html"))
+    import sys
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_report import (_assert_printed_text_readable,
+                             _recording_figures)
+    drawn, clashes = [], []
+    with pytest.MonkeyPatch.context() as patch:
+        _recording_figures(patch, drawn, clashes)
+        ours = _json(capsys, "report", "--modelica", FOUR, *grids,
+                     "--engagement", "--out", str(tmp_path / "class.html"))
+    # the engagement figures too print their text at 7 pt or more, with
+    # none clipped or colliding (issue 33: 13 in wide, printed at half)
+    _assert_printed_text_readable((tmp_path / "class.html").read_text(),
+                                  drawn)
+    assert clashes == [], "\n".join(clashes)
     preset = _json(capsys, "report", "--preset", "paper-4dof", *grids,
                    "--out", str(tmp_path / "preset.html"))
     _same_numbers(ours["tongues"], preset["tongues"], 1e-8)

@@ -34,24 +34,127 @@ PROBE = ("<script>window.addEventListener('load',()=>{document.body."
          "+':'+i.naturalWidth+'x'+i.naturalHeight).join(' '));});</script>")
 
 
+#: The smallest text (pt, as set) of each figure the module's report
+#: embedded, in order (filled by the ``report`` fixture).
+DRAWN = []
+#: Texts of those figures that leave them or overlap another.
+CLASHES = []
+
+
+def _smallest_text_pt(fig):
+    """The smallest font size (pt) of the visible, non-empty texts of a
+    drawn figure: tick labels, titles, legends, tongue numbers."""
+    from matplotlib.text import Text
+    return min(t.get_fontsize() for t in fig.findobj(Text)
+               if t.get_visible() and t.get_text().strip())
+
+
+def _recording_figures(monkeypatch, drawn, clashes=None):
+    """Let the report embed its figures as it does, and append each one's
+    smallest text (pt) to ``drawn`` and its clipped or colliding texts
+    (``test_figures``' check) to ``clashes``."""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests"))
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from test_figures import _text_problems
+    from judder.commands import _report_sections as sections
+    embed = sections._png
+
+    def recording(fig, *args, **kwargs):
+        img = embed(fig, *args, **kwargs)      # draws it
+        drawn.append(_smallest_text_pt(fig))
+        if clashes is not None:
+            FigureCanvasAgg(fig)              # closed: a canvas again
+            clashes.extend(_text_problems(fig))
+        return img
+    monkeypatch.setattr(sections, "_png", recording)
+
+
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     """A report of the example driveline with a dither setting and the
     example boundary, on small grids."""
     folder = tmp_path_factory.mktemp("report")
     out = folder / "report.html"
-    status = main(["report", "--param-file",
-                   str(EXAMPLES / "driveline.toml"), "--freq", "105",
-                   "--pf", "0.2", "--boundary",
-                   str(EXAMPLES / "measured_boundary.csv"), "--fit", "mu_g",
-                   "--sensitivity", "k24,mu_g", "--grid=10:220:60",
-                   "--map-freq=5:250:40", "--map-pf=0:1.5:16",
-                   "--workers=1", "--set", "mu_g=0.011", "--out",
-                   str(out)]
-                  + (["--pdf", str(folder / "report.pdf")] if CHROMIUM
-                     else []))
+    DRAWN.clear()
+    CLASHES.clear()
+    with pytest.MonkeyPatch.context() as patch:
+        _recording_figures(patch, DRAWN, CLASHES)
+        status = _run_report(folder, out)
     assert status == 0
     return out
+
+
+def _run_report(folder, out):
+    return main(["report", "--param-file",
+                 str(EXAMPLES / "driveline.toml"), "--freq", "105",
+                 "--pf", "0.2", "--boundary",
+                 str(EXAMPLES / "measured_boundary.csv"), "--fit", "mu_g",
+                 "--sensitivity", "k24,mu_g", "--grid=10:220:60",
+                 "--map-freq=5:250:40", "--map-pf=0:1.5:16",
+                 "--workers=1", "--set", "mu_g=0.011", "--out",
+                 str(out)]
+                + (["--pdf", str(folder / "report.pdf")] if CHROMIUM
+                 else []))
+
+
+#: Smallest text a printed figure may have, pt.
+READABLE_PT = 7.0
+
+
+def _embedded_figures(page):
+    """Each embedded PNG of a report: (its width in inches as drawn: pixels
+    over the dots per inch of its pHYs chunk, the width its ``<img>``
+    is given in inches, None if none)."""
+    import base64
+    import struct
+    out = []
+    for attributes, data in re.findall(
+            r'<img([^>]*?)src="data:image/png;base64,([^"]+)"', page):
+        png = base64.b64decode(data)
+        width_px = struct.unpack(">I", png[16:20])[0]
+        per_metre = struct.unpack(">I", png[png.index(b"pHYs") + 4:
+                                            png.index(b"pHYs") + 8])[0]
+        given = re.search(r'style="[^"]*width:\s*([\d.]+)in', attributes)
+        out.append((width_px / (per_metre * 0.0254),
+                    float(given.group(1)) if given else None))
+    return out
+
+
+def _text_width_in(page):
+    """Text width of the printed page, inches: A4 less the left and right
+    margins of the report's ``@page`` rule."""
+    margins = re.search(r"@page\{size:A4;margin:([\d.]+)mm ([\d.]+)mm\}",
+                        page)
+    return (210.0 - 2 * float(margins.group(2))) / 25.4
+
+
+def _assert_printed_text_readable(page, drawn):
+    """Every figure's smallest text, at the scale it is printed (its
+    given width, or the text width if narrower, over the width it was
+    drawn at), is at least :data:`READABLE_PT`."""
+    figures = _embedded_figures(page)
+    assert len(figures) == len(drawn) > 0
+    text_width = _text_width_in(page)
+    for (drawn_in, given_in), smallest in zip(figures, drawn):
+        printed_in = min(given_in or drawn_in, text_width)
+        printed_pt = smallest * printed_in / drawn_in
+        assert printed_pt >= READABLE_PT, (drawn_in, printed_in, smallest)
+
+
+def test_report_figures_print_readable_text(report):
+    """Issue 33: the report printed legends and ticks at 3.6-5.6 pt (a
+    14 in figure on 184 mm); each figure is now drawn at the width it is
+    printed, so its smallest text (7 pt) prints at 7 pt."""
+    page = report.read_text()
+    _assert_printed_text_readable(page, DRAWN)
+    # drawn at the page's width, no text leaves its figure or collides
+    assert CLASHES == [], "\n".join(CLASHES)
+    figures = _embedded_figures(page)
+    assert len(figures) == 7
+    for drawn_in, given_in in figures:
+        assert drawn_in == pytest.approx(given_in, abs=0.01)
+        assert drawn_in <= _text_width_in(page)
 
 
 def _text(html):
@@ -253,6 +356,42 @@ def test_report_prints_to_pdf(report):
     for width, height in boxes:
         assert float(width) == pytest.approx(595.3, abs=1.0)
         assert float(height) == pytest.approx(841.9, abs=1.0)
+    # the figures as Chromium printed them: each at the width it was
+    # drawn, so its smallest text prints at its own size (>= 7 pt)
+    printed = _printed_image_widths_in(pdf)
+    figures = _embedded_figures(report.read_text())
+    assert len(printed) == len(figures) == len(DRAWN)
+    for printed_in, (drawn_in, _), smallest in zip(printed, figures, DRAWN):
+        assert printed_in == pytest.approx(drawn_in, abs=0.02)
+        assert smallest * printed_in / drawn_in >= READABLE_PT
+
+
+def _printed_image_widths_in(pdf):
+    """Width (inches) of each image a Chromium PDF draws, in page order:
+    the unit square of each ``Do`` through the transformation matrices
+    (``q``, ``Q``, ``cm``) of its page's content stream."""
+    import zlib
+    streams = {int(n): body for n, body in re.findall(
+        rb"(\d+) 0 obj\s*<<.*?>>\s*stream\r?\n(.*?)endstream", pdf, re.S)}
+    widths = []
+    for ref in re.findall(rb"/Type\s*/Page\b[^s].*?/Contents\s+(\d+) 0 R",
+                          pdf, re.S):
+        matrix, saved = np.eye(3), []
+        for line in zlib.decompress(streams[int(ref)]).decode(
+                "latin-1").split("\n"):
+            words = line.split()
+            if line == "q":
+                saved.append(matrix)
+            elif line == "Q":
+                matrix = saved.pop()
+            elif words[-1:] == ["cm"] and len(words) == 7:
+                a, b, c, d, e, f = map(float, words[:6])
+                matrix = np.array([[a, b, 0], [c, d, 0], [e, f, 1]]) @ matrix
+            elif words[-1:] == ["Do"]:
+                left = np.array([0, 0, 1]) @ matrix
+                right = np.array([1, 0, 1]) @ matrix
+                widths.append(abs(right[0] - left[0]) / 72.0)
+    return widths
 
 
 def test_report_shows_no_fit_the_data_cannot_determine():
@@ -305,10 +444,16 @@ def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):
     assert boundary == [(100.0, None, 0.3), (105.0, 0.3, 0.3),
                         (160.0, None, 0.3)]
     out = tmp_path / "report.html"
-    assert main(["report", "--chart", str(npz), "--grid=10:220:30",
-                 "--map-freq=5:250:20", "--map-pf=0:1.5:8",
-                 "--sensitivity", "mu_g", "--workers=1", "--out",
-                 str(out)]) == 0
+    drawn, clashes = [], []
+    with pytest.MonkeyPatch.context() as patch:
+        _recording_figures(patch, drawn, clashes)
+        assert main(["report", "--chart", str(npz), "--grid=10:220:30",
+                     "--map-freq=5:250:20", "--map-pf=0:1.5:8",
+                     "--sensitivity", "mu_g", "--workers=1", "--out",
+                     str(out)]) == 0
     page = out.read_text()
     assert "Experimental stability chart (Fig. 10)" in page
     assert "No fit is shown" in page
+    # the chart (drawn by the bench-data module) prints readable too
+    _assert_printed_text_readable(page, drawn)
+    assert clashes == [], "\n".join(clashes)

@@ -50,8 +50,7 @@ tr,.keep{break-inside:avoid;page-break-inside:avoid}
 .safe{border-color:#070;background:#efe}
 .none{border-color:#555;background:#f4f4f4}
 .small{font-size:0.85em;color:#444}
-@media print{body{margin:0;max-width:none;font-size:10pt}
-img{max-height:235mm;width:auto}}
+@media print{body{margin:0;padding:0;max-width:none;font-size:10pt}}
 """
 
 
@@ -99,14 +98,46 @@ class Page:
             + _number_sections("".join(self.sections)) + "</body></html>")
 
 
-def _png(fig, dpi=100):
-    """A figure as a base64 PNG ``<img>``; closes the figure."""
+#: Width of the report's figures, inches: the text width of the printed
+#: A4 page (210 mm less the 13 mm margins of ``@page``: 184 mm, 7.24 in),
+#: a little less. Each figure is drawn at this width and printed at it,
+#: so its text prints at the size it is set in (7 pt and more).
+FIGURE_WIDTH_IN = 7.2
+#: Tallest figure, inches (203 mm): it, its caption, a heading and a
+#: paragraph fit on one printed page (269 mm of text height).
+FIGURE_MAX_HEIGHT_IN = 8.0
+#: Lowest height of a figure drawn narrower than it was made, as a share
+#: of its width: a wide row of panels keeps room for its titles, labels
+#: and legends when it is narrowed to the page.
+_MIN_ASPECT = 0.55
+
+
+def printed_size(width_in, height_in):
+    """The size (inches) a figure made at ``width_in x height_in`` is
+    drawn and printed at in the report: the page's text width
+    (:data:`FIGURE_WIDTH_IN`) at most, the height shrunk with the width
+    but not below :data:`_MIN_ASPECT` of the width (nor above the
+    figure's own height), and :data:`FIGURE_MAX_HEIGHT_IN` at most."""
+    width = min(width_in, FIGURE_WIDTH_IN)
+    height = max(height_in * width / width_in,
+                 min(height_in, _MIN_ASPECT * width))
+    return width, min(height, FIGURE_MAX_HEIGHT_IN)
+
+
+def _png(fig, dpi=150):
+    """A figure as a base64 PNG ``<img>``, redrawn (its layout is
+    constrained) at :func:`printed_size` and shown at that size in
+    inches, on screen and on paper; closes the figure."""
     import matplotlib.pyplot as plt
+    from infra.plotstyle import redraw_at
+    width, height = printed_size(*fig.get_size_inches())
+    redraw_at(fig, width, height)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi)
     plt.close(fig)
     data = base64.b64encode(buffer.getvalue()).decode("ascii")
-    return f'<img alt="" src="data:image/png;base64,{data}">'
+    return (f'<img alt="" style="width:{width:.3f}in" '
+            f'src="data:image/png;base64,{data}">')
 
 
 def _table(header, rows):
@@ -176,7 +207,8 @@ def _window_text(advice):
 
 def _design_text(advice):
     """The smallest design change of ``judder advise`` in one sentence
-    (factors within 1 % of 1 left out)."""
+    (factors within 1 % of 1 left out), and the small changes the search
+    found and dropped as unnecessary."""
     a = advice.advice
     if a is None:
         return "not searched."
@@ -188,9 +220,13 @@ def _design_text(advice):
                for n, f in zip(a.names, a.factors) if abs(f - 1) > 0.01]
     if not changes:
         return "none needed: the window is already clear."
+    dropped = [f"{n} x{f:.3f}" for n, f in a.dropped.items()
+               if abs(f - 1) > 5e-4]
     return (", ".join(changes) + " clears the window; the map recomputed "
             f"with it has {advice.judder_points} judder points of "
-            f"{advice.verification.kind.size}.")
+            f"{advice.verification.kind.size}"
+            + (f" ({', '.join(dropped)} dropped as unnecessary: the window "
+               "stays clear without them)" if dropped else "") + ".")
 
 
 def summary_section(verdict, advice, advice_error, min_growth):
@@ -298,7 +334,8 @@ def advice_section(page, advice):
         + ".</p>"
         + page.figure("Safe dither amplitude per frequency, and the map of "
                       "the advised design (judder advise)",
-                      advice.figure(title=page.description)))
+                      advice.figure(title=page.description,
+                                    stacked=True)))
 
 
 def tip_ranking(tip_shifts, tongue_number):
@@ -366,8 +403,10 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
     configured dither."""
     return (_keep(
         "<h2>What moves the tongues: sensitivity</h2>"
-        f"<p>Each parameter halved and doubled (Fig. 17, 18). Ranking by "
-        f"the largest relative move of tongue {focus}'s tip"
+        "<p>Each parameter halved and doubled (Fig. 17, 18):</p>"
+        + page.figure("Sensitivity of the stability boundary (Fig. 17, 18)",
+                      sens.figure(title=f"sensitivity, {page.description}")))
+        + f"<p>Ranking by the largest relative move of tongue {focus}'s tip"
         + (" (the tongue nearest the configured dither)"
            if near_setting else "")
         + ": the tip where it becomes unstable (|lambda| = 1), as the "
@@ -379,8 +418,6 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
                    f"{e['freq_percent']:.2f}",
                    "yes" if e["vanishes"] else "no") for e in ranking])
         + _rankings_differ(ranking, advice))
-        + page.figure("Sensitivity of the stability boundary (Fig. 17, 18)",
-                      sens.figure(title=f"sensitivity, {page.description}")))
 
 
 def threshold_section(page, values, study):
@@ -400,7 +437,7 @@ def threshold_section(page, values, study):
         + ").</p>"
         + page.figure("Largest real part against mu_g and the threshold "
                       "against the external damping (Fig. 19)",
-                      study.figure()))
+                      study.figure(stacked=True)))
 
 
 def engagement_section(page, run, paper):
@@ -426,10 +463,13 @@ def engagement_section(page, run, paper):
         + ("" if first.get("linearisation_holds") is not False else
            ". Nonlinear: " + nonlinear_words(first))
         + ".</p>"
-        + page.figure("Engagement with the configured dither and without "
-                      "(Fig. 7, 8)",
-                      run.figure(title=f"time-domain run, "
-                                 f"{page.description}")))
+        # one figure per run: side by side they were 13 in wide, printed
+        # at half size
+        + "".join(page.figure(
+            f"Engagement {label} (Fig. {7 if index == 0 else 8})",
+            run.figure(title=f"time-domain run {label}, "
+                       f"{page.description}", only=index))
+            for index, (label, _) in enumerate(run.runs)))
 
 
 def fit_section(bench, names, values, source, fitted, error):
@@ -511,7 +551,9 @@ def driveline_section(values, modes):
     table of its parameters."""
     rows = [(name, f"{values[name]:.6g}", spec.unit, spec.description)
             for name, spec in values.specs.items()]
-    return _keep(
+    # the table flows on (its rows are never split): a whole-section keep
+    # left most of a page empty before this appendix
+    return (_keep(
         "<h2>The driveline and its parameters</h2>"
         "<p>Natural frequencies (Eq. 15): "
         + ", ".join(f"{f:.3f} Hz" for f in modes["natural_frequencies_hz"])
@@ -520,5 +562,5 @@ def driveline_section(values, modes):
            f"{modes['damping_factor_12_percent']:.2f} %")
         + "; damped modes without dither: " + ", ".join(
             f"{m['frequency_hz']:.3f} Hz ({100 * m['damping_ratio']:.2f} %)"
-            for m in modes["damped_modes"]) + ".</p>"
+            for m in modes["damped_modes"]) + ".</p>")
         + _table(("parameter", "value", "unit", "meaning"), rows))

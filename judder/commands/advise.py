@@ -12,7 +12,7 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
-from stability.decisions.advice import DEFAULT_BOUNDS
+from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
 
 from ._arguments import force_option, min_growth_option, model_options
 from ._common import (at_dither_frequency, check_names, checked_values,
@@ -382,6 +382,8 @@ class AdviceResult:
                 "factors": dict(zip(a.names, a.factors.tolist())),
                 "bounds": {n: list(b) for n, b in
                            zip(a.names, a.bounds.tolist())},
+                "dropped_as_unnecessary": dict(a.dropped),
+                "drop_below_relative_change": PRUNE_BELOW,
                 "units": {n: self.params.specs[n].unit for n in a.names},
                 "unstable_regions": (None if self.unstable is None else [
                     {"freq_hz": list(r.freq_hz),
@@ -437,12 +439,19 @@ class AdviceResult:
         advised = self.advised_params()
         changed = [(n, f) for n, f in zip(a.names, a.factors)
                    if abs(f - 1) > 5e-4]
-        kept = [n for n, f in zip(a.names, a.factors) if abs(f - 1) <= 5e-4]
+        # a drop of a change too small to print (x1.000) is no news
+        dropped = {n: f for n, f in a.dropped.items() if abs(f - 1) > 5e-4}
+        kept = [n for n, f in zip(a.names, a.factors)
+                if abs(f - 1) <= 5e-4 and n not in dropped]
         lines = ["design: " + ", ".join(
             f"{n} {readable_number(self.params[n])} -> "
             f"{readable_number(advised[n])} "
             f"{self.params.specs[n].unit} (x{f:.3f})" for n, f in changed)
             + (f"; unchanged: {', '.join(kept)}" if kept else ""),
+            *([f"  dropped as unnecessary (under {PRUNE_BELOW:.0%}, the "
+               "window stays clear without them): " + ", ".join(
+                   f"{n} x{f:.3f}" for n, f in dropped.items())]
+              if dropped else []),
             f"  weighted change {a.weighted_change:.3f}; {bounds}; "
             f"recomputed map: {self.judder_points} judder points "
             f"(>= {self.min_growth:g} 1/s) of {self.verification.kind.size}"
@@ -478,6 +487,6 @@ class AdviceResult:
              for f, p in zip(self.freq_hz, self.safe_p_f)
              if low <= f <= high]))
 
-    def figure(self, title=None):
+    def figure(self, title=None, stacked=False):
         from ..figures.advice import advice_figure
-        return advice_figure(self, title=title)
+        return advice_figure(self, title=title, stacked=stacked)

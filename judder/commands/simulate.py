@@ -381,10 +381,17 @@ class SimulationResult:
         runs = self.slipping or [run for _, run in self.runs]
         return [display_spectra(run, self.start) for run in runs]
 
-    def figure(self, title=None):
+    def figure(self, title=None, only=None):
+        """The runs' time histories and spectra, one column each; with
+        ``only`` (an index of ``runs``) that run's column alone (6.5 in
+        wide: a page's width, as in the report)."""
         from pysim.simulation.engagement import verdict_line
         from pysim.simulation.plots import run_figure
-        return run_figure(self.runs, self.spectra(), title=title,
-                          verdicts=[verdict_line(s) for s in self.summaries],
-                          lock_ups=[s.get("lock_up_time_s")
-                                    for s in self.summaries])
+        shown = range(len(self.runs)) if only is None else [only]
+        spectra = self.spectra()
+        return run_figure([self.runs[i] for i in shown],
+                          [spectra[i] for i in shown], title=title,
+                          verdicts=[verdict_line(self.summaries[i])
+                                    for i in shown],
+                          lock_ups=[self.summaries[i].get("lock_up_time_s")
+                                    for i in shown])

@@ -148,6 +148,6 @@ class ThresholdResult:
             zip(s.external_damping, s.thresholds, s.closed_form)]
         write_text(path, "\n".join(lines) + "\n")
 
-    def figure(self, title=None):
+    def figure(self, title=None, stacked=False):
         from ..figures.threshold import threshold_figure
-        return threshold_figure(self, title=title)
+        return threshold_figure(self, title=title, stacked=stacked)

@@ -4,6 +4,7 @@ map of the advised one, wide enough to show where its tongues went."""
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
+from matplotlib.transforms import offset_copy
 
 from infra.plotstyle import figure_title, settle_labels
 from infra.units import PA_PER_BAR
@@ -17,7 +18,7 @@ GIVEN_STYLE = {"color": "#7f7f7f", "linestyle": (0, (4, 2)),
                "linewidth": 1.0}
 
 
-def advice_figure(advice, title=None):
+def advice_figure(advice, title=None, stacked=False):
     """Safe amplitude per frequency (left) and the map of the advised
     design (right, if any): over the operating range, or, when the result
     holds its wide view (``advise(background=True)``), from half the
@@ -27,12 +28,17 @@ def advice_figure(advice, title=None):
     Parameters
     ----------
     advice : judder.commands.advise.AdviceResult
+    stacked : bool
+        The map below the safe amplitude rather than beside it (a page's
+        width, as in the report).
     """
     if advice.verification is None:
         fig, left = plt.subplots(figsize=(7, 5), layout="constrained")
     else:
-        fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.4),
-                                          layout="constrained")
+        fig, (left, right) = plt.subplots(
+            *((2, 1) if stacked else (1, 2)),
+            figsize=(7.2, 7.6) if stacked else (14, 5.4),
+            layout="constrained")
     op = advice.operating
     top = op.p_max / PA_PER_BAR
     inside = ((advice.freq_hz >= op.freq_hz[0])
@@ -47,7 +53,10 @@ def advice_figure(advice, title=None):
     left.set_xlabel("dither frequency [Hz]")
     left.set_ylabel("safe dither amplitude $p_f$ [bar]")
     left.set_title("safe dither windows, given design", fontsize=10)
-    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13),
+    # below the tick labels and the axis label, whatever the axes' height
+    left.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                bbox_transform=offset_copy(left.transAxes, fig=fig, y=-36,
+                                           units="points"),
                 ncols=2, frameon=False, borderaxespad=0.0)
     if advice.verification is not None:
         _advised_map(advice, right)

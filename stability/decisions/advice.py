@@ -53,7 +53,7 @@ from .relevance import is_judder_relevant
 __all__ = ["OperatingRange", "window_boundary", "safe_windows", "SafeWindow",
            "ranking", "Advice", "advise_design", "verify_design",
            "unstable_regions", "UnstableRegion", "DEFAULT_DESIGN_PARAMETERS",
-           "DEFAULT_BOUNDS", "check_bounds"]
+           "DEFAULT_BOUNDS", "check_bounds", "PRUNE_BELOW"]
 
 #: Design parameters the advice may change by default (section 4.3).
 DEFAULT_DESIGN_PARAMETERS = ("J2", "J4", "k12", "k24", "c12")
@@ -64,6 +64,10 @@ _STEP = 0.02
 #: 18), over which the tongue shifts it reports were computed; a change
 #: beyond it is a new component rather than a revision of the given one.
 DEFAULT_BOUNDS = (0.5, 2.0)
+#: Relative change below which an advised change is dropped when the
+#: window stays clear without it: 3 %, below the tolerance of a stiffness
+#: or an inertia as built, so not a change a design review could act on.
+PRUNE_BELOW = 0.03
 #: Frequency points of the boundary grid per design evaluation.
 _GRID_POINTS = 600
 
@@ -340,6 +344,10 @@ class Advice:
         Tongues in the way at each iteration (their numbers).
     bounds : ndarray, shape (n, 2)
         Lowest and highest factor each parameter was allowed.
+    dropped : dict
+        ``{name: factor}``: changes below :data:`PRUNE_BELOW` the search
+        found and that were dropped (the parameter is back at nominal),
+        as the window stays clear without them.
     """
 
     names: tuple
@@ -350,6 +358,7 @@ class Advice:
     iterations: int
     history: list = field(default_factory=list)
     bounds: np.ndarray = None
+    dropped: dict = field(default_factory=dict)
 
 
 def _clear(param_sets, names, x, operating, min_growth, p_search):
@@ -488,8 +497,12 @@ def advise_design(param_sets, names, weights, operating, min_growth,
         x = np.clip(x + step, limit[:, 0], limit[:, 1])
         if callback is not None:
             callback(iterations, max_iterations)
+    dropped = {}
     if success:
-        x = _shrink(param_sets, names, x, operating, min_growth, p_search)
+        shrunk = _shrink(param_sets, names, x, operating, min_growth,
+                         p_search)
+        x, dropped = _prune(param_sets, names, x, shrunk, operating,
+                            min_growth, p_search)
     elif message.startswith("no design found within"):
         message = (f"no design inside the bounds ({bounds_words(names, bounds)}) "
                    f"found in {max_iterations} iterations; tongues "
@@ -497,7 +510,7 @@ def advise_design(param_sets, names, weights, operating, min_growth,
     return Advice(names=names, factors=np.exp(x),
                   weighted_change=float(np.linalg.norm(weights * x)),
                   success=success, message=message, iterations=iterations,
-                  history=history, bounds=bounds)
+                  history=history, bounds=bounds, dropped=dropped)
 
 
 def _shrink(param_sets, names, x, operating, min_growth, p_search,
@@ -520,6 +533,48 @@ def _shrink(param_sets, names, x, operating, min_growth, p_search,
             low, high = (low, mid) if clear(trial) else (mid, high)
         x[i] *= high
     return x
+
+
+def _prune(param_sets, names, found, shrunk, operating, min_growth,
+           p_search, below=PRUNE_BELOW):
+    """Drop the small changes of a clear design that it does not need.
+
+    The shrunk design (:func:`_shrink`) sits on the edge of clearing the
+    window in every parameter, so no change of it can be dropped alone;
+    the drop is tried on the design the search found instead (clear, with
+    room to spare), and the shrink then repeated without the dropped
+    parameters. Each change with ``|factor - 1| < below`` in the shrunk
+    design is reset to nominal, the smallest first, and the reset is kept
+    when the design still clears the window (:func:`_clear`, the criterion
+    of the search).
+
+    Parameters
+    ----------
+    found, shrunk : ndarray, shape (n,)
+        Log-changes of the design the search found, and of it shrunk.
+
+    Returns
+    -------
+    x : ndarray
+        The log-changes, the dropped ones zero (``shrunk`` if none is
+        dropped).
+    dropped : dict
+        ``{name: factor}`` of the changes dropped, as in ``shrunk``.
+    """
+    kept = found.copy()
+    dropped = {}
+    for i in np.argsort(np.abs(shrunk)):
+        if shrunk[i] == 0 or abs(np.expm1(shrunk[i])) >= below:
+            continue
+        trial = kept.copy()
+        trial[i] = 0.0
+        if _clear(param_sets, names, trial, operating, min_growth, p_search):
+            dropped[names[i]] = float(np.exp(shrunk[i]))
+            kept = trial
+    if not dropped:
+        return shrunk, dropped
+    return _shrink(param_sets, names, kept, operating, min_growth,
+                   p_search), dropped
 
 
 def verify_design(params, operating, min_growth, freq_points=141,

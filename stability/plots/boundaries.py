@@ -1,7 +1,12 @@
 """Tongue boundaries as lines (Fig. 14, Fig. 16): the exact tips inserted
 between the grid points, each tongue closed up to ``p_max``, the tips
-numbered as in Fig. 14.
+numbered as in Fig. 14. A boundary is drawn where it separates stable
+from unstable: where it runs inside another kind's tongue (the dither is
+unstable on both sides of it there) it is left out, as the shading of
+the map is.
 """
+
+import functools
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -12,7 +17,13 @@ from infra.units import PA_PER_BAR
 
 from ..kinds import KINDS
 
-__all__ = ["boundary_curve", "plot_boundaries", "number_tips"]
+__all__ = ["boundary_curve", "boundary_at", "plot_boundaries",
+           "number_tips"]
+
+#: Steps a boundary is cut into, per axis length, to find where it enters
+#: another kind's tongue (1/2000 of the frequency range, 1/1000 of the
+#: amplitude range: well under a line's width).
+_STEPS = (2000, 1000)
 
 
 def boundary_curve(freq_hz, amplitude_bar, tips=(), p_max_bar=None):
@@ -34,14 +45,7 @@ def boundary_curve(freq_hz, amplitude_bar, tips=(), p_max_bar=None):
     x, y : ndarray
         NaN separates the tongues.
     """
-    f = np.asarray(freq_hz, dtype=float)
-    a = np.asarray(amplitude_bar, dtype=float)
-    tips = [(tf, tp) for tf, tp in tips if f[0] <= tf <= f[-1]]
-    if tips:
-        f = np.concatenate([f, [tf for tf, _ in tips]])
-        a = np.concatenate([a, [tp for _, tp in tips]])
-        order = np.argsort(f, kind="stable")
-        f, a = f[order], a[order]
+    f, a = _with_tips(freq_hz, amplitude_bar, tips)
     if p_max_bar is None:
         return f, a
     xs, ys = [], []
@@ -65,6 +69,73 @@ def boundary_curve(freq_hz, amplitude_bar, tips=(), p_max_bar=None):
         np.array(ys[1:] if ys and np.isnan(ys[0]) else ys)
 
 
+def _with_tips(freq_hz, amplitude_bar, tips):
+    """The grid's boundary with the exact tips inside its range inserted,
+    in order of frequency."""
+    f = np.asarray(freq_hz, dtype=float)
+    a = np.asarray(amplitude_bar, dtype=float)
+    tips = [(tf, tp) for tf, tp in tips if f[0] <= tf <= f[-1]]
+    if tips:
+        f = np.concatenate([f, [tf for tf, _ in tips]])
+        a = np.concatenate([a, [tp for _, tp in tips]])
+        order = np.argsort(f, kind="stable")
+        f, a = f[order], a[order]
+    return f, a
+
+
+def boundary_at(freq_hz, boundaries, column, tips):
+    """One kind's lowest boundary (bar) at ``freq_hz``, as
+    :func:`plot_boundaries` draws it: straight between the grid points and
+    the inserted tips, NaN where a tongue is absent (its curve closes
+    vertically up to ``p_max`` at its last grid point)."""
+    f, a = _with_tips(boundaries.freq_hz,
+                      boundaries.amplitude[:, column] / PA_PER_BAR, tips)
+    i = np.clip(np.searchsorted(f, freq_hz, side="right") - 1, 0,
+                len(f) - 2)
+    share = (freq_hz - f[i]) / np.where(f[i + 1] > f[i], f[i + 1] - f[i], 1)
+    value = a[i] + np.clip(share, 0, 1) * (a[i + 1] - a[i])
+    return np.where((freq_hz >= f[0]) & (freq_hz <= f[-1]), value, np.nan)
+
+
+def separating_part(x, y, others, span):
+    """The part of a boundary curve that separates stable from unstable.
+
+    Parameters
+    ----------
+    x, y : ndarray
+        The curve (Hz, bar; NaN separates its pieces), as
+        :func:`boundary_curve` gives it.
+    others : sequence of callable
+        ``low(freq_hz) -> bar``: the lowest boundary of each other kind
+        (NaN where it has no tongue); above it that kind is unstable.
+    span : (float, float)
+        Frequency and amplitude ranges drawn (Hz, bar): the curve is cut
+        into steps of :data:`_STEPS` of them.
+
+    Returns
+    -------
+    x, y : ndarray
+        The curve cut finely, NaN where it lies inside another kind's
+        tongue (strictly above its lowest boundary).
+    """
+    xs, ys = [x[:1]], [y[:1]]
+    for x0, y0, x1, y1 in zip(x[:-1], y[:-1], x[1:], y[1:]):
+        steps = 1
+        if np.isfinite([x0, y0, x1, y1]).all():
+            steps = int(max(abs(x1 - x0) * _STEPS[0] / span[0],
+                            abs(y1 - y0) * _STEPS[1] / span[1], 1))
+        t = np.arange(1, steps + 1) / steps
+        xs.append(x0 + t * (x1 - x0) if steps > 1 else [x1])
+        ys.append(y0 + t * (y1 - y0) if steps > 1 else [y1])
+    fx, fy = np.concatenate(xs), np.concatenate(ys)
+    inside = np.zeros(fx.shape, dtype=bool)
+    tolerance = span[1] / _STEPS[1]
+    with np.errstate(invalid="ignore"):
+        for low in others:
+            inside |= fy > low(fx) + tolerance
+    return fx, np.where(inside, np.nan, fy)
+
+
 def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
                     numbers=True):
     """Boundary of each kind of tongue as lines (Fig. 16), p_f in bar.
@@ -72,7 +143,9 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
     Each kind has its line style (:data:`KIND_LINESTYLES`) and, unless
     ``style`` sets ``color``, its colour; the tips of ``tongues`` are
     inserted into the curves (they are refined between grid points), and
-    each tongue is closed up to ``p_max``.
+    each tongue is closed up to ``p_max``. A boundary is drawn only where
+    it separates stable from unstable (:func:`separating_part`): inside
+    another kind's tongue crossing it changes nothing.
 
     Parameters
     ----------
@@ -96,16 +169,22 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
     artists = []
     p_max_bar = boundaries.p_max / PA_PER_BAR
     first = True
+    tips = {column: [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
+                     for t in tongues if t.kind == KINDS[kind]]
+            for column, kind in enumerate((1, 2, 3))}
+    span = (np.ptp(boundaries.freq_hz) or 1.0, p_max_bar)
     for column, kind in enumerate((1, 2, 3)):
         props = {"color": KIND_COLORS[kind], "linewidth": 1.2,
                  "linestyle": KIND_LINESTYLES[kind], **(style or {})}
-        tips = [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR) for t in tongues
-                if t.kind == KINDS[kind]]
         x, y = boundary_curve(boundaries.freq_hz,
                               boundaries.amplitude[:, column] / PA_PER_BAR,
-                              tips, p_max_bar)
+                              tips[column], p_max_bar)
         if not np.isfinite(y).any():
             continue
+        x, y = separating_part(x, y, [
+            functools.partial(boundary_at, boundaries=boundaries,
+                              column=other, tips=tips[other])
+            for other in range(3) if other != column], span)
         line, = ax.plot(x, y, **props, label=label if first else None)
         first = False
         artists.append(line)

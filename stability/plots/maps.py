@@ -16,7 +16,7 @@ from infra.units import PA_PER_BAR
 
 from ..decisions.relevance import is_judder_relevant
 from ..kinds import KINDS
-from .boundaries import plot_boundaries
+from .boundaries import boundary_at, plot_boundaries
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
            "kind_handles", "drawn_kinds"]
@@ -164,25 +164,6 @@ def _resonance_marks(ax, resonances, low, high):
 FILL_PIXELS = (1200, 600)
 
 
-def _boundary_at(freq_hz, boundaries, column, tips):
-    """One kind's lowest boundary (bar) at ``freq_hz``, as
-    :func:`plot_boundaries` draws it: straight between the grid points and
-    the inserted tips, NaN where a tongue is absent (its curve closes
-    vertically up to ``p_max`` at its last grid point)."""
-    f = boundaries.freq_hz
-    a = boundaries.amplitude[:, column] / PA_PER_BAR
-    if tips:
-        f = np.concatenate([f, [tf for tf, _ in tips]])
-        a = np.concatenate([a, [tp for _, tp in tips]])
-        order = np.argsort(f, kind="stable")
-        f, a = f[order], a[order]
-    i = np.clip(np.searchsorted(f, freq_hz, side="right") - 1, 0,
-                len(f) - 2)
-    share = (freq_hz - f[i]) / np.where(f[i + 1] > f[i], f[i + 1] - f[i], 1)
-    value = a[i] + np.clip(share, 0, 1) * (a[i + 1] - a[i])
-    return np.where((freq_hz >= f[0]) & (freq_hz <= f[-1]), value, np.nan)
-
-
 def _fine_grid(m, boundaries, tongues):
     """Pixels of an image of the map clipped to the exact boundaries.
 
@@ -204,7 +185,7 @@ def _fine_grid(m, boundaries, tongues):
     freq = np.linspace(f_edges[0], f_edges[-1], FILL_PIXELS[0])
     amp = np.linspace(max(p_edges[0], 0.0), p_top, FILL_PIXELS[1])
     low = np.array([
-        _boundary_at(freq, boundaries, column,
+        boundary_at(freq, boundaries, column,
                      [(t.tip_freq_hz, t.tip_p_f / PA_PER_BAR)
                       for t in tongues if t.kind == KINDS[kind]])
         for column, kind in enumerate((1, 2, 3))])

@@ -41,8 +41,11 @@ def plot_threshold(study, axes=None, own=None):
                            markevery=max(1, len(c) // 10),
                            label="rigid-chain closed form")[0]]
     right.text(c.mean(), (low + mu.min()) / 2, "A: unstable", ha="center")
-    right.text(c.mean(), (high + mu.max()) / 2,
-               "B: stable without dither", ha="center")
+    # just above the threshold, clear of the off-scale note that heads the
+    # axes (_mark_own) at any panel height
+    right.annotate("B: stable without dither", (c.mean(), mu.max()),
+                   xytext=(0, 10), textcoords="offset points", ha="center",
+                   va="bottom")
     right.set_xlabel("external damping $c_i$ [N m s/rad]")
     right.set_ylabel(r"$\mu_g$ [s/rad]")
     right.set_ylim(low, high)
