@@ -306,6 +306,12 @@ class ModelicaParameters(NamedParameters):
                                               self.library).states
                 if s.unit == "rad/s"]
 
+    def check_mode(self, freq_hz, p_f):
+        """Refuse a dither setting (Hz, Pa) at which a hybrid class leaves
+        the mode it is linearised in (:func:`check_mode`)."""
+        check_mode(self.class_name, self.library, self.values,
+                   self.frequency, self.amplitude, freq_hz, p_f)
+
     def linear_model(self):
         """:func:`linearize` of the class at these values, once per class
         and values (the studies of one command share it)."""
@@ -388,8 +394,9 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     names = [q.name for q in ode.parameters]
     mode = ()
     if flat_class(class_name, library).discretes:
-        ode, mode = _operating_mode(class_name, library, values, names,
-                                    frequency)
+        ode, current = operating_mode(class_name, library,
+                                      tuple(values.items()), frequency)
+        mode = describe_mode(flat_class(class_name, library), current)
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         _require(name in names, f"{role} = {name!r} is not a parameter of "
                  f"{class_name}; allowed: {allowed_names(names)}")
@@ -455,8 +462,11 @@ _EVENT_ITERATIONS = 20
 _MODE_SAMPLES = 64
 
 
-def _operating_mode(class_name, library, values, names, frequency):
-    """The ODE in the mode of the operating point and that mode described.
+@lru_cache(maxsize=16)
+def operating_mode(class_name, library, values, frequency):
+    """The ODE in the mode of the operating point and that mode's values
+    (of :attr:`fmu.frontend.FlatModel.discretes`), cached; ``values`` the
+    parameters as ``(name, value)`` pairs (:func:`linearize`'s).
 
     The discrete variables start at their start values with
     ``initial()`` true, as at the initialisation; their equations are
@@ -469,23 +479,22 @@ def _operating_mode(class_name, library, values, names, frequency):
     a normal force that drops to zero changes it, and is refused.
     """
     flat = flat_class(class_name, library)
-    vector = np.array([values[n] for n in names])
+    values = dict(values)
+    vector = np.array(list(values.values()))
     current = previous = tuple(d.start for d in flat.discretes)
     initial = 1.0
     for _ in range(_EVENT_ITERATIONS):
         ode = compile_class(class_name, library, (current, previous, initial))
-        x0 = np.asarray(casadi.Function("start", [casadi.vertcat(
-            *[q.expression for q in ode.parameters])], [casadi.vertcat(
-                *[s.start for s in ode.states])])(vector)).ravel()
-        now = tuple(np.asarray(mode_values(ode)(0.0, x0, vector)).ravel())
+        now = tuple(np.asarray(mode_values(ode)(
+            0.0, _start(ode, vector), vector)).ravel())
         if now != current:
             current = now
         elif previous != current or initial:
             previous, initial = current, 0.0
         else:
-            _mode_holds(class_name, ode, flat, current, x0, vector,
+            _mode_holds(class_name, ode, flat, current, vector,
                         values[frequency])
-            return ode, describe_mode(flat, current)
+            return ode, current
     raise ModelicaError(
         f"{class_name}: the Integer and Boolean variables do not settle in "
         f"{_EVENT_ITERATIONS} event iterations at the operating point (the "
@@ -493,11 +502,34 @@ def _operating_mode(class_name, library, values, names, frequency):
         "slipping)")
 
 
-def _mode_holds(class_name, ode, flat, mode, x0, vector, f0):
+def _start(ode, vector):
+    """The start values of the states of ``ode`` at the parameters
+    ``vector``."""
+    return np.asarray(casadi.Function("start", [casadi.vertcat(
+        *[q.expression for q in ode.parameters])], [casadi.vertcat(
+            *[s.start for s in ode.states])])(vector)).ravel()
+
+
+def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
+               p_f):
+    """Refuse a dither setting (``freq_hz``, ``p_f``) at which a hybrid
+    class leaves the mode it is linearised in within a dither period
+    (see :func:`operating_mode`); nothing for a class without Integer
+    and Boolean variables."""
+    if not flat_class(class_name, library).discretes:
+        return
+    ode, current = operating_mode(class_name, library, tuple(values.items()),
+                                  frequency)
+    setting = {**values, frequency: freq_hz, amplitude: p_f}
+    _mode_holds(class_name, ode, flat_class(class_name, library), current,
+                np.array(list(setting.values())), freq_hz)
+
+
+def _mode_holds(class_name, ode, flat, mode, vector, f0):
     """Refuse a mode that changes within a dither period: the equations
-    in the mode are integrated over one period from ``x0`` and the
-    discrete variables' equations evaluated at :data:`_MODE_SAMPLES`
-    times."""
+    in the mode are integrated over one period from the start values
+    (parameters ``vector``, dither frequency ``f0``) and the discrete
+    variables' equations evaluated at :data:`_MODE_SAMPLES` times."""
     ode_function = casadi.Function("ode", [ode.time, casadi.vertcat(
         *[s.expression for s in ode.states]), casadi.vertcat(
             *[q.expression for q in ode.parameters])], [ode.derivatives])
@@ -506,7 +538,8 @@ def _mode_holds(class_name, ode, flat, mode, x0, vector, f0):
     times = np.arange(1, _MODE_SAMPLES + 1) * period / _MODE_SAMPLES
     path = solve_ivp(
         lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
-        (0.0, period), x0, t_eval=times, rtol=1e-9, atol=1e-12)
+        (0.0, period), _start(ode, vector), t_eval=times, rtol=1e-9,
+        atol=1e-12)
     for time, state in zip(path.t, path.y.T):
         now = np.asarray(values(time, state, vector)).ravel()
         for k in np.flatnonzero(now != np.asarray(mode)):

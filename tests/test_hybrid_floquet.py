@@ -12,8 +12,11 @@ friction in forward sliding, ``numpy.interp`` of the table), linearised
 by central differences and integrated by scipy.
 """
 
+import json
 import os
 from pathlib import Path
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -43,6 +46,8 @@ def _reference_rhs(values):
     factor = v["N_c"] * v["R_m"] * v["S"]
     slip0 = v["w_in"] - v["w_out"]
     torque = np.interp(slip0, table[:, 0], table[:, 1]) * factor * v["p_m"]
+    engine = torque + (v["c1"] + v["c2"] + v["c4"]) * v["w_in"]
+    load = torque - v["c3"] * v["w_out"]
 
     def rhs(t, x, p_f):
         phi1, w1, phi2, w2, phi4, w4, phi3, w3 = x
@@ -50,21 +55,25 @@ def _reference_rhs(values):
         t24 = v["k24"] * (phi2 - phi4) + v["c24"] * (w2 - w4)
         p = v["p_m"] + p_f * np.cos(2 * np.pi * v["f_dither"] * t)
         clutch = np.interp(w4 - w3, table[:, 0], table[:, 1]) * factor * p
-        return np.array([w1, (torque - t12) / v["J1"], w2,
-                         (t12 - t24) / v["J2"], w4, (t24 - clutch) / v["J4"],
-                         w3, (clutch - torque) / v["J3"]])
-    return rhs
+        return np.array([w1, (engine - t12 - v["c1"] * w1) / v["J1"], w2,
+                         (t12 - t24 - v["c2"] * w2) / v["J2"], w4,
+                         (t24 - clutch - v["c4"] * w4) / v["J4"], w3,
+                         (clutch - load - v["c3"] * w3) / v["J3"]])
+    return rhs, engine
 
 
 def _reference_multipliers(values, freq_hz, p_f):
     """Multipliers of the hand-written driveline: Jacobian A0 and its
     p_f part B by central differences at the start values, monodromy of
     (A0 + p_f cos B) by scipy's DOP853."""
-    rhs = _reference_rhs(values)
+    rhs, engine = _reference_rhs(values)
     v = values
-    torque_over = (v["T_e"] / v["k12"], v["T_e"] / v["k24"])
-    x0 = np.array([0, v["w_in"], -torque_over[0], v["w_in"],
-                   -sum(torque_over), v["w_in"], 0, v["w_out"]])
+    # spring deflections of a steady slip: each body's torques balance
+    deflections = ((engine - v["c1"] * v["w_in"]) / v["k12"],
+                   (engine - (v["c1"] + v["c2"]) * v["w_in"]) / v["k24"])
+    x0 = np.array([0, v["w_in"], -deflections[0], v["w_in"],
+                   -sum(deflections), v["w_in"], 0, v["w_out"]])
+    assert np.abs(rhs(0.0, x0, 0.0)[1::2]).max() < 1e-9   # steady
 
     def jacobian(p_f_value):
         step = 1e-5 * np.maximum(np.abs(x0), 1.0)
@@ -119,11 +128,6 @@ def test_clutch_with_msl_modes_is_linearised_slipping_forward(
         "clutch.free": "false", "clutch.locked": "false",
         "clutch.mode": "1 (clutch.Forward)"}
     values = {**params.values, "f_dither": freq_hz}
-    values["T_e"] = (np.interp(values["w_in"] - values["w_out"],
-                               [50, 150], [values["mu_pos[2,2]"],
-                                           values["mu_pos[3,2]"]])
-                     * values["N_c"] * values["R_m"] * values["S"]
-                     * values["p_m"])
     got = floquet(build_driveline(params), freq_hz, p_f, form="full")
     want = _reference_multipliers(values, freq_hz, p_f)
     assert _distance(got.multipliers, want) < 1e-6
@@ -149,3 +153,25 @@ def test_a_point_whose_mode_changes_within_a_dither_period_is_refused(
                                        "w_out": 104.66975511965977,
                                        "p_f": 3e5})
 
+
+def test_check_says_the_mode_it_used(tmp_path):
+    """`judder check --modelica` names the mode in its text and JSON."""
+    env = {**os.environ, "MODELICAPATH": str(MSL)}
+    command = [sys.executable, "-m", "judder", "check", "--modelica", CLASS,
+               "--library", str(MODELS), "--freq", "102.9", "--pf", "0.3"]
+    done = subprocess.run(command + ["--json"], capture_output=True,
+                          text=True, cwd=ROOT, env=env)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)["mode"]["clutch.mode"] == \
+        "1 (clutch.Forward)"
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT,
+                          env=env)
+    assert done.returncode == 0, done.stderr
+    assert "linearised in the mode clutch.mode = 1 (clutch.Forward), " \
+        "clutch.startForward = false" in done.stdout
+    # a setting whose dither frees the clutch is refused, not analysed
+    done = subprocess.run(command[:-1] + ["12"], capture_output=True,
+                          text=True, cwd=ROOT, env=env)
+    assert done.returncode == 2
+    assert "clutch.free" in done.stderr and "changes from false to true" \
+        in done.stderr and "Traceback" not in done.stderr
