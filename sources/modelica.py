@@ -40,7 +40,7 @@ from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
-from .modes import describe_mode, fixed_mode, mode_values
+from .modes import describe_mode, fixed_mode, mode_values, uses_initial
 from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
@@ -117,7 +117,10 @@ def compile_class(class_name, library=None, mode=None):
     """
     flat = flat_class(class_name, library)
     if not flat.discretes:
-        return to_ode(flat)
+        # initial() is false after the initialisation, where the
+        # linearisation is
+        return to_ode(fixed_mode(flat, (), (), 0.0) if uses_initial(flat)
+                      else flat)
     if mode is None:
         starts = tuple(d.start for d in flat.discretes)
         mode = (starts, starts, 1.0)
@@ -566,8 +569,12 @@ def _held_relations(class_name, ode, x, p, x0, vector, times):
     if not ode.relations:
         return ode.derivatives
     symbols = casadi.vertcat(*[r.expression for r in ode.relations])
-    relations = casadi.Function("relations", [ode.time, x, p], [
-        casadi.vertcat(*[r.minimum for r in ode.relations])])
+    values = casadi.vertcat(*[r.minimum for r in ode.relations])
+    for _ in ode.relations:   # relations inside relations (ElastoBacklash)
+        if not casadi.depends_on(values, symbols):
+            break
+        values = casadi.substitute(values, symbols, values)
+    relations = casadi.Function("relations", [ode.time, x, p], [values])
     held = np.asarray(relations(0.0, x0, vector)).ravel()
     derivatives = casadi.substitute(ode.derivatives, symbols,
                                     casadi.DM(held))

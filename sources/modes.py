@@ -17,7 +17,8 @@ import casadi
 
 from fmu.frontend import Variable
 
-__all__ = ["fixed_mode", "mode_values", "describe_mode", "MODE_PREFIX"]
+__all__ = ["fixed_mode", "mode_values", "describe_mode", "uses_initial",
+           "MODE_PREFIX"]
 
 #: Name of the variable holding the k-th discrete variable's equation.
 MODE_PREFIX = "judder_mode"
@@ -64,7 +65,8 @@ def fixed_mode(flat, current, previous, initial):
         residuals.append(check - casadi.substitute(
             casadi.SX(discrete.value), symbols, numbers))
         places.append(discrete.where)
-    used = {s.name() for r in residuals for s in casadi.symvar(r)}
+    used = {s.name() for r in residuals + list(flat.initial_residuals)
+            for s in casadi.symvar(casadi.SX(r))}
     relations = [r for r in flat.relations if r.symbol.name() in used]
     whens = flat.whens
     if len(relations) != len(flat.relations) and whens:
@@ -72,6 +74,13 @@ def fixed_mode(flat, current, previous, initial):
     return dataclasses.replace(flat, variables=variables, residuals=residuals,
                                places=places, relations=relations,
                                discretes=[], initial=None)
+
+
+def uses_initial(flat):
+    """Whether the equations of ``flat`` use ``initial()`` (MSL's
+    ``ElastoBacklash``), which :func:`fixed_mode` makes a number."""
+    return flat.initial is not None and any(
+        casadi.depends_on(casadi.SX(r), flat.initial) for r in flat.residuals)
 
 
 def mode_values(ode):
