@@ -12,7 +12,6 @@ friction in forward sliding, ``numpy.interp`` of the table), linearised
 by central differences and integrated by scipy.
 """
 
-import json
 import os
 from pathlib import Path
 import subprocess
@@ -155,27 +154,30 @@ def test_a_point_whose_mode_changes_within_a_dither_period_is_refused(
                                        "p_f": 3e5})
 
 
-def test_check_says_the_mode_it_used(tmp_path):
-    """`judder check --modelica` names the mode in its text and JSON."""
-    env = {**os.environ, "MODELICAPATH": str(MSL)}
+def test_check_and_floquet_say_the_mode_they_used(msl_path):
+    """`judder check --modelica` names the mode in its text and JSON,
+    `floquet` in its JSON; both refuse a setting that leaves it."""
+    from judder.commands.check import check
+    from judder.commands.floquet import floquet
+    from sources.modelica import ModelicaError, ModelicaParameters
     command = [sys.executable, "-m", "judder", "check", "--modelica", CLASS,
                "--library", str(MODELS), "--freq", "102.9", "--pf", "0.3"]
-    done = subprocess.run(command + ["--json"], capture_output=True,
-                          text=True, cwd=ROOT, env=env)
-    assert done.returncode == 0, done.stderr
-    assert json.loads(done.stdout)["mode"]["clutch.mode"] == \
-        "1 (clutch.Forward)"
     done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT,
-                          env=env)
+                          env={**os.environ, "MODELICAPATH": str(MSL)})
     assert done.returncode == 0, done.stderr
     assert "linearised in the mode clutch.mode = 1 (clutch.Forward), " \
         "clutch.startForward = false" in done.stdout
+    params = ModelicaParameters(CLASS, str(MODELS))
+    assert check([102.9], [0.3], params).as_dict()["mode"]["clutch.mode"] \
+        == "1 (clutch.Forward)"
+    assert floquet(102.9, 0.3, params).as_dict()["mode"]["clutch.free"] == \
+        "false"
     # a setting whose dither frees the clutch is refused, not analysed
-    done = subprocess.run(command[:-1] + ["12"], capture_output=True,
-                          text=True, cwd=ROOT, env=env)
-    assert done.returncode == 2
-    assert "clutch.free" in done.stderr and "changes from false to true" \
-        in done.stderr and "Traceback" not in done.stderr
+    for study in (lambda: check([102.9], [12.0], params),
+                  lambda: floquet(102.9, 12.0, params)):
+        with pytest.raises(ModelicaError, match=r"clutch\.free \(\S+\) "
+                           "changes from false to true"):
+            study()
 
 
 def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):
