@@ -535,7 +535,8 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0):
     variables' equations evaluated at :data:`_MODE_SAMPLES` times."""
     ode_function = casadi.Function("ode", [ode.time, casadi.vertcat(
         *[s.expression for s in ode.states]), casadi.vertcat(
-            *[q.expression for q in ode.parameters])], [ode.derivatives])
+            *[q.expression for q in ode.parameters])],
+        [_live(ode, ode.derivatives)])
     values = mode_values(ode)
     period = 1.0 / f0
     times = np.arange(1, _MODE_SAMPLES + 1) * period / _MODE_SAMPLES
@@ -557,6 +558,21 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0):
                 "force above zero)")
 
 
+def _live(ode, expression):
+    """``expression`` with each relation symbol of ``ode`` replaced by the
+    relation itself (those inside relations too, as in ElastoBacklash):
+    a formula in ``t, x, p`` evaluated as it goes, not held."""
+    if not ode.relations:
+        return expression
+    symbols = casadi.vertcat(*[r.expression for r in ode.relations])
+    values = casadi.vertcat(*[r.minimum for r in ode.relations])
+    for _ in ode.relations:
+        if not casadi.depends_on(values, symbols):
+            break
+        values = casadi.substitute(values, symbols, values)
+    return casadi.substitute(expression, symbols, values)
+
+
 def _held_relations(class_name, ode, x, p, x0, vector, times):
     """``der(x)`` with each relation that triggers events (``time <
     startTime`` of MSL's ``Step``, ``if w > 0``) held at its value at the
@@ -569,12 +585,8 @@ def _held_relations(class_name, ode, x, p, x0, vector, times):
     if not ode.relations:
         return ode.derivatives
     symbols = casadi.vertcat(*[r.expression for r in ode.relations])
-    values = casadi.vertcat(*[r.minimum for r in ode.relations])
-    for _ in ode.relations:   # relations inside relations (ElastoBacklash)
-        if not casadi.depends_on(values, symbols):
-            break
-        values = casadi.substitute(values, symbols, values)
-    relations = casadi.Function("relations", [ode.time, x, p], [values])
+    relations = casadi.Function("relations", [ode.time, x, p], [
+        _live(ode, casadi.vertcat(*[r.minimum for r in ode.relations]))])
     held = np.asarray(relations(0.0, x0, vector)).ravel()
     derivatives = casadi.substitute(ode.derivatives, symbols,
                                     casadi.DM(held))

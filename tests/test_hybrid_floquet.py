@@ -199,3 +199,21 @@ def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):
             r"the relation at \S*ElastoBacklash2?\.mo:\d+ changes at t = ")):
         linearize("Modelica.Mechanics.Rotational.Examples.Backlash",
                   amplitude="elastoBacklash.c", frequency="inertia1.J")
+
+
+def test_a_step_is_held_in_the_mode(msl_path):
+    """An MSL Blocks.Sources.Step on the engine torque (a relation of
+    time, held) beside the clutch's modes: with the step at 10 s the
+    class linearises in the same mode to ModeClutchDriveline's Jacobian;
+    with the step within the dither period the relation is refused."""
+    from sources.modelica import ModelicaError, linearize
+    stepped = linearize("MslDrivelines.SteppedModeClutchDriveline",
+                        str(MODELS))
+    plain = linearize(CLASS, str(MODELS))
+    assert stepped.mode == plain.mode
+    assert np.array_equal(stepped.A0, plain.A0)
+    assert np.array_equal(stepped.B, plain.B)
+    with pytest.raises(ModelicaError, match=r"relation at \S*Sources\.mo:\d+ "
+                       r"changes at t = 0\.005\d* s"):
+        linearize("MslDrivelines.SteppedModeClutchDriveline", str(MODELS),
+                  {"t_step": 0.005})
