@@ -395,14 +395,16 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     ode = compile_class(class_name, library)
     values = _parameter_values(ode, dict(values or {}), class_name, library)
     names = [q.name for q in ode.parameters]
-    mode = ()
-    if flat_class(class_name, library).discretes:
-        ode, current = operating_mode(class_name, library,
-                                      tuple(values.items()), frequency)
-        mode = describe_mode(flat_class(class_name, library), current)
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         _require(name in names, f"{role} = {name!r} is not a parameter of "
                  f"{class_name}; allowed: {allowed_names(names)}")
+    mode = ()
+    if flat_class(class_name, library).discretes:
+        _require(values[frequency] > 0, f"{frequency} = "
+                 f"{values[frequency]!r} Hz is not allowed; allowed: > 0")
+        ode, current = operating_mode(class_name, library,
+                                      tuple(values.items()), frequency)
+        mode = describe_mode(flat_class(class_name, library), current)
     x = casadi.vertcat(*[s.expression for s in ode.states])
     p = casadi.vertcat(*[q.expression for q in ode.parameters])
     t, pf = ode.time, ode.parameters[names.index(amplitude)].expression

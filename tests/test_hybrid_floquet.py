@@ -152,6 +152,10 @@ def test_a_point_whose_mode_changes_within_a_dither_period_is_refused(
         linearize(CLASS, str(MODELS), {"mu_pos[2,1]": 0.01,
                                        "w_out": 104.66975511965977,
                                        "p_f": 3e5})
+    # the dither's names are checked before the mode is looked for
+    with pytest.raises(ModelicaError, match=r"frequency = 'f' is not a "
+                       "parameter of MslDrivelines.ModeClutchDriveline"):
+        linearize(CLASS, str(MODELS), frequency="f")
 
 
 def test_check_and_floquet_say_the_mode_they_used(msl_path):
