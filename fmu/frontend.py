@@ -22,8 +22,8 @@ from .classes import (blank, class_source, class_spans, find_class,
 from .errors import FrontEndError
 from .limits import check_flat_arrays
 
-__all__ = ["Variable", "FlatModel", "Discrete", "load_flat_model", "class_source",
-           "find_class", "modelica_path", "FrontEndError"]
+__all__ = ["Variable", "FlatModel", "Discrete", "load_flat_model",
+           "class_source", "find_class", "modelica_path", "FrontEndError"]
 
 
 @dataclass

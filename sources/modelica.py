@@ -17,6 +17,13 @@ depend on time, and its ``p_f`` part must be the cosine of the dither
 frequency parameter times one matrix; otherwise :class:`ModelicaError`
 says what differs.
 
+A class with Integer and Boolean variables (a clutch on MSL's
+``Rotational.Interfaces.PartialFriction``: stuck, forward and backward
+sliding) is linearised in the mode of its operating point, found by an
+event iteration at the start values (:func:`operating_mode`,
+:mod:`sources.modes`); a dither setting that leaves that mode within a
+period is refused (:func:`check_mode`).
+
 The rigid-body directions of the result are removed in :mod:`stability`
 (:mod:`stability.reduction`), once per model.
 
@@ -40,7 +47,8 @@ from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
-from .modes import describe_mode, fixed_mode, mode_values, uses_initial
+from .modes import (describe_mode, fixed_mode, mode_values,
+                    uses_initial)
 from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
@@ -546,6 +554,10 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0):
         lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
         (0.0, period), _start(ode, vector), t_eval=times, rtol=1e-9,
         atol=1e-12)
+    _require(path.success, f"{class_name}: the equations in the mode "
+             f"{describe_mode(flat, mode)} could not be integrated over a "
+             f"dither period of {period:.4g} s ({path.message}); allowed: "
+             "an operating point whose mode can be checked")
     for time, state in zip(path.t, path.y.T):
         now = np.asarray(values(time, state, vector)).ravel()
         for k in np.flatnonzero(now != np.asarray(mode)):
