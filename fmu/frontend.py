@@ -22,8 +22,8 @@ from .classes import (blank, class_source, class_spans, find_class,
 from .errors import FrontEndError
 from .limits import check_flat_arrays
 
-__all__ = ["Variable", "FlatModel", "load_flat_model", "class_source",
-           "find_class", "modelica_path", "FrontEndError"]
+__all__ = ["Variable", "FlatModel", "Discrete", "load_flat_model",
+           "class_source", "find_class", "modelica_path", "FrontEndError"]
 
 
 @dataclass
@@ -97,6 +97,12 @@ class FlatModel:
     experiment : dict
         ``StopTime`` and ``Interval`` of the experiment annotation.
     description : str
+    discretes : list of Discrete
+        Integer and Boolean variables with their equations (read with
+        ``hybrid=True`` only; the FMU back end does not compile them).
+    initial : casadi.SX or None
+        The symbol of ``initial()`` in :attr:`discretes`' values (1 at
+        initialisation, else 0).
     """
 
     name: str
@@ -110,6 +116,8 @@ class FlatModel:
     whens: list = field(default_factory=list)
     experiment: dict = field(default_factory=dict)
     description: str = ""
+    discretes: list = field(default_factory=list)
+    initial: object = None
 
     def by_role(self, role):
         """Variables of one role, in declaration order."""
@@ -129,6 +137,27 @@ class Relation:
     value: object
     indicator: object
     where: str = ""
+
+
+@dataclass
+class Discrete:
+    """An Integer or Boolean variable and its equation ``symbol = value``.
+
+    ``value`` is a formula in the continuous variables, the parameters,
+    the other discrete variables, ``previous`` (the symbol of
+    ``pre(symbol)``) and the other ones' ``pre``, and
+    :attr:`FlatModel.initial`; the relations in it are their values
+    (``Relation.value``), not held symbols. MSL's ``PartialFriction``:
+    ``free = fn <= 0``, ``mode = if free then Free else ...``.
+    """
+
+    name: str
+    symbol: object
+    previous: object
+    value: object
+    start: float
+    where: str = ""
+    boolean: bool = False
 
 
 @dataclass
@@ -230,6 +259,11 @@ class _Expressions:
         self.relation_of = {}
         self.relations = {}   # position -> Relation
         self.pre_is_state = False   # pre(x) allowed (reinit values)
+        #: variable index -> symbol of pre(x), for discrete variables
+        #: (set by load_flat_model with ``hybrid``; else pre is refused)
+        self.previous = {}
+        self.initial = None   # symbol of initial(), with ``hybrid``
+        self._conditions = storage.get("conditions") or []
         # nodes with a variable number of operands take them, in node
         # order, from the flat operand list
         self._offsets = {}
@@ -328,6 +362,13 @@ class _Expressions:
                 return self._derivatives[position]
             if role == "pre_state" and self.pre_is_state:
                 return self._symbols[position]
+            if role == "pre_discrete_value" and position in self.previous:
+                return self.previous[position]
+            if role == "discrete_value" and self.previous:
+                return self._symbols[position]
+            if role == "condition" and self.initial is not None and \
+                    self._conditions[position].get("node") == "initial":
+                return self.initial
             if role.startswith("function_"):
                 return self._function_variable(role, position)
             if role not in _ROLES:
@@ -335,6 +376,12 @@ class _Expressions:
                                     "references (pre, edge, change) are not "
                                     "supported by the FMU back end")
             return self._symbols[position]
+        if kind == "binary" and index in self.relation_of and \
+                body["operator"] in ("equal", "not_equal") and self.previous:
+            # Integer comparisons of the mode logic (pre(mode) == Stuck):
+            # they change at events only, and generate none
+            return _BINARY[body["operator"]](self(body["lhs"]),
+                                             self(body["rhs"]))
         if kind == "binary" and index in self.relation_of:
             return self._relation(index, body)
         if kind == "binary" and body["operator"] in _RELATIONS and \
@@ -485,23 +532,24 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots, use_cache=True):
+def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
     """rumoca's flat model of ``model_name``, from the cache
     (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
     import rumoca
     from . import cache
     if not use_cache:
         return _flatten_with_rumoca(path, model_name, roots,
-                                    use_cache=False)
+                                    use_cache=False, hybrid=hybrid)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
-        flat = _flatten_with_rumoca(path, model_name, roots)
+        flat = _flatten_with_rumoca(path, model_name, roots, hybrid=hybrid)
         cache.store(key, flat)
     return flat
 
 
-def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
+def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
+                         hybrid=False):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
@@ -509,7 +557,7 @@ def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
     from .precheck import refuse_unsupported
     from .rumoca_child import flatten_isolated
     check_source_arrays(path, check_source_text(path))
-    refuse_unsupported(path, model_name, roots)
+    refuse_unsupported(path, model_name, roots, hybrid)
     try:
         return flatten_isolated(path, model_name, roots)
     except FrontEndError as exc:
@@ -587,10 +635,15 @@ def _first_span(item):
     return None
 
 
-def _check_supported(storage, model_name, where):
-    """Refuse, with the place in the source, what cannot be compiled."""
+def _check_supported(storage, model_name, where, hybrid=False):
+    """Refuse, with the place in the source, what cannot be compiled
+    (with ``hybrid``, Integer and Boolean variables defined by equations
+    are read)."""
     for raw in storage["variables"]:
         place = where({"span": raw.get("declaration", {}).get("span")})
+        if hybrid and raw["role"] == "discrete_value" and not \
+                storage["value_types"][raw["value_type"]].get("dimensions"):
+            continue
         if raw["role"] not in _ROLES:
             kind = "Integer, Boolean and discrete variables are" \
                 if "discrete" in raw["role"] else \
@@ -610,6 +663,8 @@ def _check_supported(storage, model_name, where):
                                 "not supported by the FMU back end")
     for key, construct in _REFUSED.items():
         items = storage.get(key) or []
+        if hybrid and key == "discrete_value_owners":
+            continue
         if items:
             place = where(items[0]) if isinstance(items[0], dict) else \
                 model_name
@@ -617,7 +672,7 @@ def _check_supported(storage, model_name, where):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=(), cache=True):
+def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -630,6 +685,11 @@ def load_flat_model(path, model_name, roots=(), cache=True):
         Library folders the model uses.
     cache : bool
         Read and keep rumoca's flat model in :mod:`fmu.cache`.
+    hybrid : bool
+        Also read Integer and Boolean variables defined by equations,
+        with ``pre()`` and ``initial()`` (MSL's ``PartialFriction``), into
+        :attr:`FlatModel.discretes`, for a linearisation in one mode
+        (:mod:`sources.modelica`); the FMU back end does not compile them.
 
     Raises
     ------
@@ -638,10 +698,10 @@ def load_flat_model(path, model_name, roots=(), cache=True):
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent], cache)
+    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid)
     storage = flat["storage"]
     where = _Locator(flat)
-    _check_supported(storage, model_name, where)
+    _check_supported(storage, model_name, where, hybrid)
     check_flat_arrays(storage, where)
     time = casadi.SX.sym("time")
     symbols, derivatives, variables = [], {}, []
@@ -652,6 +712,12 @@ def load_flat_model(path, model_name, roots=(), cache=True):
         if raw["role"] == "state":
             derivatives[index] = casadi.SX.sym(f"der({raw['name']})")
     convert = _Expressions(storage, symbols, derivatives, time)
+    if hybrid:
+        convert.initial = casadi.SX.sym("initial()")
+        convert.previous = {
+            index: casadi.SX.sym(f"pre({raw['name']})")
+            for index, raw in enumerate(storage["variables"])
+            if raw["role"] == "discrete_value"}
     types = _declared_types(roots or [path.parent], path)
     files = {entry[0]: entry[2] for entry in
              flat.get("source_map", {}).get("files", [])}
@@ -668,7 +734,7 @@ def load_flat_model(path, model_name, roots=(), cache=True):
             elements, values = np.array([elements], dtype=object), \
                 {k: np.array([v], dtype=object) for k, v in values.items()}
         quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
-        role = raw["role"]
+        role = "discrete" if raw["role"] == "discrete_value" else raw["role"]
         if role == "parameter" and \
                 storage["value_types"][raw["value_type"]].get("scalar") \
                 != "real":
@@ -710,6 +776,8 @@ def load_flat_model(path, model_name, roots=(), cache=True):
                 v.symbol - v.start)
             places["initialization_equation_operations"].append(v.where)
     whens = _whens(storage, convert, where, variables)
+    discretes = _discretes(storage, convert, where, variables) \
+        if hybrid else []
     return FlatModel(
         name=model_name, variables=variables,
         residuals=sections["continuous_equation_operations"],
@@ -717,8 +785,64 @@ def load_flat_model(path, model_name, roots=(), cache=True):
         places=places["continuous_equation_operations"],
         initial_places=places["initialization_equation_operations"],
         relations=[convert.relations[k] for k in sorted(convert.relations)],
-        whens=whens,
+        whens=whens, discretes=discretes, initial=convert.initial,
         time=time, experiment=_experiment(path, model_name))
+
+
+def _discretes(storage, convert, where, variables):
+    """The equations of the Integer and Boolean variables, one each,
+    their relations as values (:class:`Discrete`); refuses a discrete
+    variable assigned in a when-clause."""
+    by_name = {v.name: v for v in variables}
+    relations = {r.symbol.name(): r.value for r in convert.relations.values()}
+    held = dict(convert.relations)   # those of the continuous equations
+    bound = [(v.symbol, v.binding if v.binding is not None else v.start)
+             for v in variables if v.role in ("constant", "parameter")
+             and not isinstance(v.binding if v.binding is not None
+                                else v.start, (type(None), np.ndarray))]
+    constants = (casadi.vertcat(casadi.SX(0, 1), *[s for s, _ in bound]),
+                 casadi.vertcat(casadi.SX(0, 1), *[b for _, b in bound]))
+    found = []
+    for owner in storage.get("discrete_value_owners") or []:
+        convert.where = where(owner)
+        branches = owner.get("branches") or []
+        if len(owner.get("targets") or []) != 1 or len(branches) != 1 or \
+                branches[0].get("activation") != "always" or \
+                len(branches[0].get("values") or []) != 1:
+            raise FrontEndError(f"{convert.where}: Integer or Boolean "
+                                "variables assigned in when-clauses are not "
+                                "supported (equations that hold at all "
+                                "times, as MSL's PartialFriction has, are)")
+        index = owner["targets"][0]
+        variable = by_name[storage["variables"][index]["name"]]
+        value = convert(branches[0]["values"][0]["value"])
+        relations.update({r.symbol.name(): r.value
+                          for r in convert.relations.values()})
+        used = [s for s in casadi.symvar(casadi.SX(value))
+                if s.name() in relations]
+        if used:
+            value = casadi.substitute(
+                value, casadi.vertcat(*used),
+                casadi.vertcat(*[relations[s.name()] for s in used]))
+        start = casadi.SX(variable.start if variable.start is not None
+                          else 0.0)
+        for _ in range(len(variables)):   # constants bound to constants
+            if not casadi.symvar(start):
+                break
+            start = casadi.substitute(start, *constants)
+        if casadi.symvar(start):
+            raise FrontEndError(f"{variable.where}: {variable.name}: a start "
+                                "value that is not a constant expression is "
+                                "not supported (Integer and Boolean "
+                                "variables)")
+        found.append(Discrete(
+            name=variable.name, symbol=variable.symbol,
+            previous=convert.previous[index], value=value,
+            start=float(casadi.evalf(start)), where=convert.where,
+            boolean=storage["value_types"][storage["variables"][index][
+                "value_type"]].get("scalar") == "boolean"))
+    convert.relations = held
+    return found
 
 
 def _whens(storage, convert, where, variables):

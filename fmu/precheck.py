@@ -50,6 +50,11 @@ _DISCRETE = {"Integer": "an Integer variable", "Boolean": "a Boolean variable",
 _PREFIXES = ("final", "inner", "outer", "replaceable", "redeclare", "flow",
              "stream", "discrete", "parameter", "constant", "input", "output",
              "each")
+#: Endings of the findings the front end reads with ``hybrid``.
+_HYBRID = tuple(f"({what})" for what in (*list(_DISCRETE.values())[:2],
+                                          "a discrete variable")) + (
+    "outside a when-clause's reinit is not supported",
+    "initialisation) is not supported")
 _SECTION = re.compile(r"\b(?:initial\s+)?(?:equation|algorithm)\b")
 _DECLARATION = re.compile(
     r"^\s*((?:(?:" + "|".join(_PREFIXES) + r")\s+)*)"
@@ -320,9 +325,13 @@ def _describe(finding):
         (f", in {chain}" if chain else "")
 
 
-def refuse_unsupported(path, model_name, roots):
+def refuse_unsupported(path, model_name, roots, hybrid=False):
     """Refuse ``model_name`` if the classes it instantiates hold a
     construct the back end does not compile, before rumoca flattens it.
+
+    With ``hybrid`` (the linearisation in one mode, :mod:`sources.modelica`)
+    Integer, Boolean and discrete variables, ``pre()`` and ``initial()``
+    pass: the front end reads their equations.
 
     Raises
     ------
@@ -332,7 +341,8 @@ def refuse_unsupported(path, model_name, roots):
         them is an MSL class listed there.
     """
     walker = _Walker(roots)
-    findings = walker.findings(model_name)
+    findings = [f for f in walker.findings(model_name)
+                if not (hybrid and f.what.endswith(_HYBRID))]
     if not findings:
         return
     first = findings[0]

@@ -17,6 +17,13 @@ depend on time, and its ``p_f`` part must be the cosine of the dither
 frequency parameter times one matrix; otherwise :class:`ModelicaError`
 says what differs.
 
+A class with Integer and Boolean variables (a clutch on MSL's
+``Rotational.Interfaces.PartialFriction``: stuck, forward and backward
+sliding) is linearised in the mode of its operating point, found by an
+event iteration at the start values (:func:`operating_mode`,
+:mod:`sources.modes`); a dither setting that leaves that mode within a
+period is refused (:func:`check_mode`).
+
 The rigid-body directions of the result are removed in :mod:`stability`
 (:mod:`stability.reduction`), once per model.
 
@@ -24,6 +31,7 @@ Nothing here knows a driveline's name: a class of ``modelica/Judder`` or
 of the user's own package, with parameters set by their Modelica names.
 """
 
+import dataclasses
 from dataclasses import dataclass
 from typing import ClassVar
 from functools import lru_cache
@@ -35,9 +43,12 @@ import numpy as np
 from fmu.backend import to_ode
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
+from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
+from .modes import (describe_mode, fixed_mode, mode_values,
+                    uses_initial)
 from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
@@ -72,8 +83,22 @@ def _source(class_name, roots):
 
 
 @lru_cache(maxsize=16)
-def compile_class(class_name, library=None):
-    """The compiled ODE of a Modelica class (cached per class and library).
+def flat_class(class_name, library=None):
+    """The flat model of a Modelica class with its Integer and Boolean
+    variables (:func:`fmu.frontend.load_flat_model` with ``hybrid``),
+    cached per class and library; see :func:`compile_class`."""
+    roots = modelica_path(([Path(library)] if library is not None else [])
+                          + [LIBRARY])
+    if library is not None and not Path(library).is_dir():
+        raise ModelicaError(f"library = {library!r} is not a folder")
+    return load_flat_model(_source(class_name, roots), class_name,
+                           roots=[str(r) for r in roots], hybrid=True)
+
+
+@lru_cache(maxsize=64)
+def compile_class(class_name, library=None, mode=None):
+    """The compiled ODE of a Modelica class (cached per class, library and
+    mode).
 
     Parameters
     ----------
@@ -85,17 +110,29 @@ def compile_class(class_name, library=None):
         Modelica Standard Library, say) follow it on the path, so a
         user's model can use ``Judder.Components`` and
         ``Modelica.Mechanics.Rotational``.
+    mode : tuple or None
+        For a class with Integer and Boolean variables (MSL's
+        ``PartialFriction``): ``(current, previous, initial)``, their
+        values, those of their ``pre()`` and that of ``initial()``, fixed
+        in the equations (:func:`sources.modes.fixed_mode`); None for
+        their start values at the initialisation.
 
     Returns
     -------
     fmu.backend.OdeModel
+        With a local ``judder_mode<k>`` per discrete variable: the value
+        its equation gives in the mode (:func:`sources.modes.mode_values`).
     """
-    roots = modelica_path(([Path(library)] if library is not None else [])
-                          + [LIBRARY])
-    if library is not None and not Path(library).is_dir():
-        raise ModelicaError(f"library = {library!r} is not a folder")
-    return to_ode(load_flat_model(_source(class_name, roots), class_name,
-                                  roots=[str(r) for r in roots]))
+    flat = flat_class(class_name, library)
+    if not flat.discretes:
+        # initial() is false after the initialisation, where the
+        # linearisation is
+        return to_ode(fixed_mode(flat, (), (), 0.0) if uses_initial(flat)
+                      else flat)
+    if mode is None:
+        starts = tuple(d.start for d in flat.discretes)
+        mode = (starts, starts, 1.0)
+    return to_ode(fixed_mode(flat, *mode))
 
 
 @dataclass(frozen=True, eq=False)
@@ -127,6 +164,11 @@ class LinearPeriodicModel:
         Names of the dither amplitude and frequency parameters.
     source_kind : sources.kinds.SourceKind
         ``MODELICA`` or ``FMU``: where the Jacobian was read.
+    mode : tuple of (str, str)
+        The Integer and Boolean variables of a hybrid class (MSL's
+        ``PartialFriction``) and their values in the mode it is
+        linearised in (``("clutch.mode", "1 (clutch.Forward)")``); empty
+        for a class without.
     frequency_dependent : bool
         ``A0`` or ``B`` change with the frequency parameter beyond the
         dither's cosine (a valve's roll-off written with ``f_dither``):
@@ -144,6 +186,7 @@ class LinearPeriodicModel:
     frequency: str
     source_kind: SourceKind
     frequency_dependent: bool = False
+    mode: tuple = ()
 
 
 @lru_cache(maxsize=16)
@@ -274,6 +317,12 @@ class ModelicaParameters(NamedParameters):
                                               self.library).states
                 if s.unit == "rad/s"]
 
+    def check_mode(self, freq_hz, p_f):
+        """Refuse a dither setting (Hz, Pa) at which a hybrid class leaves
+        the mode it is linearised in (:func:`check_mode`)."""
+        check_mode(self.class_name, self.library, self.values,
+                   self.frequency, self.amplitude, freq_hz, p_f)
+
     def linear_model(self):
         """:func:`linearize` of the class at these values, once per class
         and values (the studies of one command share it)."""
@@ -357,6 +406,13 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     for role, name in (("amplitude", amplitude), ("frequency", frequency)):
         _require(name in names, f"{role} = {name!r} is not a parameter of "
                  f"{class_name}; allowed: {allowed_names(names)}")
+    mode = ()
+    if flat_class(class_name, library).discretes:
+        _require(values[frequency] > 0, f"{frequency} = "
+                 f"{values[frequency]!r} Hz is not allowed; allowed: > 0")
+        ode, current = operating_mode(class_name, library,
+                                      tuple(values.items()), frequency)
+        mode = describe_mode(flat_class(class_name, library), current)
     x = casadi.vertcat(*[s.expression for s in ode.states])
     p = casadi.vertcat(*[q.expression for q in ode.parameters])
     t, pf = ode.time, ode.parameters[names.index(amplitude)].expression
@@ -406,10 +462,129 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
         np.abs(evaluate(0.0, other_mean)[0] - A0).max() > _ZERO * scale
         or np.abs(evaluate(0.0, other)[1] - B0).max()
         > _ZERO * max(np.abs(B0).max(), 1e-300))
-    return linear_periodic_model(class_name,
-                                 tuple(s.name for s in ode.states), A0, B0,
-                                 values, amplitude, frequency,
-                                 SourceKind.MODELICA, frequency_dependent)
+    model = linear_periodic_model(class_name,
+                                  tuple(s.name for s in ode.states), A0, B0,
+                                  values, amplitude, frequency,
+                                  SourceKind.MODELICA, frequency_dependent)
+    return dataclasses.replace(model, mode=mode)
+
+
+#: Event iterations allowed to find the mode of the operating point.
+_EVENT_ITERATIONS = 20
+#: Samples per dither period at which the mode is checked.
+_MODE_SAMPLES = 64
+
+
+@lru_cache(maxsize=16)
+def operating_mode(class_name, library, values, frequency):
+    """The ODE in the mode of the operating point and that mode's values
+    (of :attr:`fmu.frontend.FlatModel.discretes`), cached; ``values`` the
+    parameters as ``(name, value)`` pairs (:func:`linearize`'s).
+
+    The discrete variables start at their start values with
+    ``initial()`` true, as at the initialisation; their equations are
+    evaluated at the start values of the states (time 0, the parameters
+    ``values``) and iterated, as an event iteration: until they give the
+    values they were fixed at, then with ``pre()`` equal to those values
+    and ``initial()`` false, until nothing changes. The mode must then
+    hold over one dither period of the equations in that mode integrated
+    from the start values (dither included): a slip that reaches zero or
+    a normal force that drops to zero changes it, and is refused.
+    """
+    flat = flat_class(class_name, library)
+    values = dict(values)
+    vector = np.array(list(values.values()))
+    current = previous = tuple(d.start for d in flat.discretes)
+    initial = 1.0
+    for _ in range(_EVENT_ITERATIONS):
+        ode = compile_class(class_name, library, (current, previous, initial))
+        now = tuple(np.asarray(mode_values(ode)(
+            0.0, _start(ode, vector), vector)).ravel())
+        if now != current:
+            current = now
+        elif previous != current or initial:
+            previous, initial = current, 0.0
+        else:
+            _mode_holds(class_name, ode, flat, current, vector,
+                        values[frequency])
+            return ode, current
+    raise ModelicaError(
+        f"{class_name}: the Integer and Boolean variables do not settle in "
+        f"{_EVENT_ITERATIONS} event iterations at the operating point (the "
+        "start values); allowed: an operating point in one mode (a clutch "
+        "slipping)")
+
+
+def _start(ode, vector):
+    """The start values of the states of ``ode`` at the parameters
+    ``vector``."""
+    return np.asarray(casadi.Function("start", [casadi.vertcat(
+        *[q.expression for q in ode.parameters])], [casadi.vertcat(
+            *[s.start for s in ode.states])])(vector)).ravel()
+
+
+def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
+               p_f):
+    """Refuse a dither setting (``freq_hz``, ``p_f``) at which a hybrid
+    class leaves the mode it is linearised in within a dither period
+    (see :func:`operating_mode`); nothing for a class without Integer
+    and Boolean variables."""
+    if not flat_class(class_name, library).discretes:
+        return
+    ode, current = operating_mode(class_name, library, tuple(values.items()),
+                                  frequency)
+    setting = {**values, frequency: freq_hz, amplitude: p_f}
+    _mode_holds(class_name, ode, flat_class(class_name, library), current,
+                np.array(list(setting.values())), freq_hz)
+
+
+def _mode_holds(class_name, ode, flat, mode, vector, f0):
+    """Refuse a mode that changes within a dither period: the equations
+    in the mode are integrated over one period from the start values
+    (parameters ``vector``, dither frequency ``f0``) and the discrete
+    variables' equations evaluated at :data:`_MODE_SAMPLES` times."""
+    ode_function = casadi.Function("ode", [ode.time, casadi.vertcat(
+        *[s.expression for s in ode.states]), casadi.vertcat(
+            *[q.expression for q in ode.parameters])],
+        [_live(ode, ode.derivatives)])
+    values = mode_values(ode)
+    period = 1.0 / f0
+    times = np.arange(1, _MODE_SAMPLES + 1) * period / _MODE_SAMPLES
+    path = solve_ivp(
+        lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
+        (0.0, period), _start(ode, vector), t_eval=times, rtol=1e-9,
+        atol=1e-12)
+    _require(path.success, f"{class_name}: the equations in the mode "
+             f"{describe_mode(flat, mode)} could not be integrated over a "
+             f"dither period of {period:.4g} s ({path.message}); allowed: "
+             "an operating point whose mode can be checked")
+    for time, state in zip(path.t, path.y.T):
+        now = np.asarray(values(time, state, vector)).ravel()
+        for k in np.flatnonzero(now != np.asarray(mode)):
+            raise ModelicaError(
+                f"{class_name}: {flat.discretes[k].name} "
+                f"({flat.discretes[k].where}) changes from "
+                f"{describe_mode(flat, mode)[k][1]} to "
+                f"{describe_mode(flat, tuple(now))[k][1]} at t = {time:.4g} s "
+                "within a dither period of the operating point (the start "
+                "values, dither included); allowed: an operating point that "
+                "stays in one mode (a slip that keeps its sign, a normal "
+                "force above zero)")
+
+
+def _live(ode, expression):
+    """``expression`` with each relation symbol of ``ode`` replaced by the
+    relation itself (those inside relations too, as in ElastoBacklash):
+    a formula in ``t, x, p`` evaluated as it goes, not held."""
+    if not ode.relations:
+        return expression
+    symbols = casadi.vertcat(*[r.expression for r in ode.relations])
+    values = casadi.vertcat(*[r.minimum for r in ode.relations])
+    for _ in ode.relations:
+        if not casadi.depends_on(values, symbols):
+            break
+        values = casadi.substitute(values, symbols, values)
+    return casadi.substitute(expression, symbols, values)
 
 
 def _held_relations(class_name, ode, x, p, x0, vector, times):
@@ -425,7 +600,7 @@ def _held_relations(class_name, ode, x, p, x0, vector, times):
         return ode.derivatives
     symbols = casadi.vertcat(*[r.expression for r in ode.relations])
     relations = casadi.Function("relations", [ode.time, x, p], [
-        casadi.vertcat(*[r.minimum for r in ode.relations])])
+        _live(ode, casadi.vertcat(*[r.minimum for r in ode.relations]))])
     held = np.asarray(relations(0.0, x0, vector)).ravel()
     derivatives = casadi.substitute(ode.derivatives, symbols,
                                     casadi.DM(held))

@@ -49,6 +49,39 @@ def checked_values(parameters, changes, followed=False, **arguments):
     return values
 
 
+def check_modes(values, freq_hz, p_f):
+    """Refuse the dither settings (Hz, Pa; pairs) at which a hybrid
+    Modelica class (a clutch with MSL's friction modes) leaves the mode
+    it is linearised in within a dither period
+    (:meth:`sources.modelica.ModelicaParameters.check_mode`); nothing for
+    other models."""
+    check = getattr(values, "check_mode", None)
+    if check is not None:
+        for f, p in zip(np.atleast_1d(freq_hz), np.atleast_1d(p_f)):
+            check(float(f), float(p))
+
+
+def linearised_mode(values):
+    """``{name: value}`` of the Integer and Boolean variables of a hybrid
+    Modelica class in the mode it is linearised in
+    (:attr:`sources.modelica.LinearPeriodicModel.mode`); empty for other
+    models."""
+    if not getattr(values, "check_mode", None):
+        return {}
+    return dict(values.linear_model().mode)
+
+
+def mode_words(mode):
+    """``linearised in the mode clutch.mode = 1 (clutch.Forward), ...``
+    (Integer variables first), or ``""`` without a mode."""
+    if not mode:
+        return ""
+    ordered = sorted(mode.items(), key=lambda item: item[1] in
+                     ("true", "false"))
+    return "linearised in the mode " + ", ".join(
+        f"{name} = {value}" for name, value in ordered)
+
+
 def frequency_dependent(values):
     """Whether the Jacobian of ``values``' model depends on its dither
     frequency parameter beyond the cosine (a valve's roll-off written

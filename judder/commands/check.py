@@ -15,7 +15,8 @@ from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
 from ._arguments import force_option, min_growth_option, model_options
-from ._common import (check_names, checked_values, frequency_dependent,
+from ._common import (check_modes, check_names, checked_values,
+                      frequency_dependent, linearised_mode, mode_words,
                       structural_names)
 from ._words import growth_words, margin_words
 from ._model import model_title, parameters_of
@@ -178,6 +179,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         sensitivity = structural_names(values, DEFAULT_CHECK_PARAMETERS,
                                         ("mu_g",))
     check_names(values, sensitivity, "--params")
+    check_modes(values, freq_hz, p_f_bar * PA_PER_BAR)
     if frequency_dependent(values):
         from infra.contract import warn
         warn(f"{values.model} is linearised at {freq_hz[0]:g} Hz (its "
@@ -317,15 +319,19 @@ class CheckResult:
                 for c in self.checks]
 
     def as_dict(self):
+        mode = linearised_mode(self.params)
         return {"model": self.params.model,
+                **({"mode": mode} if mode else {}),
                 "min_growth_per_s": self.min_growth,
                 "engagement_s": self.engagement_s,
                 "p_max_bar": self.p_max / PA_PER_BAR,
                 "seconds": self.seconds, "settings": self.records()}
 
     def summary(self):
-        return "\n".join(setting_summary(r, self.engagement_s)
-                         for r in self.records())
+        words = mode_words(linearised_mode(self.params))
+        return "\n".join(([words] if words else [])
+                         + [setting_summary(r, self.engagement_s)
+                            for r in self.records()])
 
     @keeps_foreign_files
     def save(self, path):

@@ -9,7 +9,8 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, waveform_option)
-from ._common import checked_values, dithered
+from ._common import (check_modes, checked_values, dithered,
+                      linearised_mode, mode_words)
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, output_files, save_plot, written
 from ._preflight import check_floquet
@@ -55,7 +56,9 @@ def run(args):
                   f"{model_title(args, params)}"))
     result = point.result
     lam = result.leading
-    text = (f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
+    words = mode_words(linearised_mode(point.params))
+    text = ((words + "\n" if words else "")
+            + f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
             f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
             f"(|lambda| = {result.leading_abs:.6f}), growth rate "
             f"{result.growth_rate:.4g} 1/s\nall multipliers (|lambda|): "
@@ -90,6 +93,7 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_f_bar=p_f_bar, min_growth=min_growth)
+    check_modes(values, freq_hz, p_f_bar * PA_PER_BAR)
     result = floquet_kernel(dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)
     return FloquetPoint(params=values, method=method, result=result,
@@ -141,7 +145,9 @@ class FloquetPoint:
 
     def as_dict(self):
         r = self.result
-        return {"model": self.params.model, "freq_hz": r.freq_hz,
+        mode = linearised_mode(self.params)
+        return {"model": self.params.model,
+                **({"mode": mode} if mode else {}), "freq_hz": r.freq_hz,
                 "p_f_bar": self.p_f_bar, "p_f_pa": r.p_f,
                 "period_s": r.period, "method": self.method,
                 "multipliers": [complex_record(z) for z in r.multipliers],

@@ -1,0 +1,223 @@
+"""Floquet of a hybrid Modelica class in the mode of its operating point.
+
+``MslDrivelines.ModeClutchDriveline`` (tests/msl_models) is the 4-DOF
+driveline of Fig. 13 around ``FrictionModeClutch``: MSL's own
+``Rotational.Interfaces.PartialFriction`` (Booleans ``free``,
+``startForward``, ``startBackward``, ``locked``, the Integer ``mode``
+with ``pre()`` and ``initial()``) with MSL Clutch's torque equations and
+its ``mu_pos`` table interpolated in Modelica. The linearisation must
+find it slipping forward, say so, and give the multipliers of an
+independent model: the same driveline written here by hand (Coulomb
+friction in forward sliding, ``numpy.interp`` of the table), linearised
+by central differences and integrated by scipy.
+"""
+
+import os
+from pathlib import Path
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+ROOT = Path(__file__).resolve().parents[1]
+MODELS = ROOT / "tests" / "msl_models"
+MSL = next((folder for folder in [ROOT.parent / "shared" / "msl"] + [
+    Path(p) for p in os.environ.get("MODELICAPATH", "").split(os.pathsep)
+    if p] if (folder / "Modelica" / "package.mo").is_file()), None)
+pytestmark = pytest.mark.skipif(
+    MSL is None, reason="the Modelica Standard Library 4.x is not in "
+    "../shared/msl nor on MODELICAPATH")
+CLASS = "MslDrivelines.ModeClutchDriveline"
+#: A falling friction characteristic in the segment of the slip (judder
+#: prone: negative slip damping at the mean pressure).
+FALLING = {"mu_pos[2,2]": 0.13, "mu_pos[3,2]": 0.03}
+
+
+def _reference_rhs(values):
+    """der([phi1, w1, phi2, w2, phi4, w4, phi3, w3]) of the driveline by
+    hand: the clutch slipping forward (w4 > w3) transmits mu(w4 - w3)
+    N_c R_m S p(t) from body 4 to body 3, p = p_m + p_f cos(2 pi f t)."""
+    v = values
+    table = np.array([[0, 0.09], [50, v["mu_pos[2,2]"]],
+                      [150, v["mu_pos[3,2]"]], [300, 0.115]])
+    factor = v["N_c"] * v["R_m"] * v["S"]
+    slip0 = v["w_in"] - v["w_out"]
+    torque = np.interp(slip0, table[:, 0], table[:, 1]) * factor * v["p_m"]
+    engine = torque + (v["c1"] + v["c2"] + v["c4"]) * v["w_in"]
+    load = torque - v["c3"] * v["w_out"]
+
+    def rhs(t, x, p_f):
+        phi1, w1, phi2, w2, phi4, w4, phi3, w3 = x
+        t12 = v["k12"] * (phi1 - phi2) + v["c12"] * (w1 - w2)
+        t24 = v["k24"] * (phi2 - phi4) + v["c24"] * (w2 - w4)
+        p = v["p_m"] + p_f * np.cos(2 * np.pi * v["f_dither"] * t)
+        clutch = np.interp(w4 - w3, table[:, 0], table[:, 1]) * factor * p
+        return np.array([w1, (engine - t12 - v["c1"] * w1) / v["J1"], w2,
+                         (t12 - t24 - v["c2"] * w2) / v["J2"], w4,
+                         (t24 - clutch - v["c4"] * w4) / v["J4"], w3,
+                         (clutch - load - v["c3"] * w3) / v["J3"]])
+    return rhs, engine
+
+
+def _reference_multipliers(values, freq_hz, p_f):
+    """Multipliers of the hand-written driveline: Jacobian A0 and its
+    p_f part B by central differences at the start values, monodromy of
+    (A0 + p_f cos B) by scipy's DOP853."""
+    rhs, engine = _reference_rhs(values)
+    v = values
+    # spring deflections of a steady slip: each body's torques balance
+    deflections = ((engine - v["c1"] * v["w_in"]) / v["k12"],
+                   (engine - (v["c1"] + v["c2"]) * v["w_in"]) / v["k24"])
+    x0 = np.array([0, v["w_in"], -deflections[0], v["w_in"],
+                   -sum(deflections), v["w_in"], 0, v["w_out"]])
+    assert np.abs(rhs(0.0, x0, 0.0)[1::2]).max() < 1e-9   # steady
+
+    def jacobian(p_f_value):
+        step = 1e-5 * np.maximum(np.abs(x0), 1.0)
+        columns = [(rhs(0.0, x0 + step[k] * e, p_f_value)
+                    - rhs(0.0, x0 - step[k] * e, p_f_value)) / (2 * step[k])
+                   for k, e in enumerate(np.eye(len(x0)))]
+        return np.array(columns).T
+    A0 = jacobian(0.0)
+    B = (jacobian(1e4) - A0) / 1e4
+    omega = 2 * np.pi * freq_hz
+
+    def flow(t, y):
+        X = y.reshape(8, 8)
+        return ((A0 + p_f * np.cos(omega * t) * B) @ X).ravel()
+    end = solve_ivp(flow, (0, 1 / freq_hz), np.eye(8).ravel(),
+                    method="DOP853", rtol=1e-12, atol=1e-14).y[:, -1]
+    return np.linalg.eigvals(end.reshape(8, 8))
+
+
+def _distance(a, b):
+    """Largest distance between two sets of multipliers, each of ``a``
+    paired with the nearest one of ``b`` not yet taken."""
+    left, worst = list(b), 0.0
+    for z in sorted(a, key=abs, reverse=True):
+        k = int(np.argmin([abs(z - w) for w in left]))
+        worst = max(worst, abs(z - left.pop(k)))
+    return worst
+
+
+@pytest.fixture
+def msl_path(monkeypatch):
+    monkeypatch.setenv("MODELICAPATH", str(MSL))
+
+
+@pytest.mark.parametrize("changes, freq_hz, p_f, dither_effect", [
+    ({}, 102.9, 0.3e5, 1e-6), (FALLING, 102.9, 0.3e5, 2e-5),
+    (FALLING, 60.0, 0.8e5, 2e-5)])
+def test_clutch_with_msl_modes_is_linearised_slipping_forward(
+        msl_path, changes, freq_hz, p_f, dither_effect):
+    """Mode Forward (startForward, startBackward, free, locked false);
+    the 8 multipliers (the rigid-body ones at 1 included) equal the
+    hand-written driveline's to 1e-6, where the dither moves them by
+    more than ``dither_effect`` (the rising table's slope modulates
+    little, the falling one's a lot)."""
+    from sources.modelica import ModelicaParameters
+    from stability.multipliers import floquet
+    from stability.source import build_driveline
+    params = ModelicaParameters(CLASS, str(MODELS)).replace(**changes)
+    model = params.linear_model()
+    assert dict(model.mode) == {
+        "clutch.startForward": "false", "clutch.startBackward": "false",
+        "clutch.free": "false", "clutch.locked": "false",
+        "clutch.mode": "1 (clutch.Forward)"}
+    values = {**params.values, "f_dither": freq_hz}
+    got = floquet(build_driveline(params), freq_hz, p_f, form="full")
+    want = _reference_multipliers(values, freq_hz, p_f)
+    assert _distance(got.multipliers, want) < 1e-6
+    assert _distance(want, _reference_multipliers(values, freq_hz, 0.0)) \
+        > dither_effect
+
+
+def test_a_point_whose_mode_changes_within_a_dither_period_is_refused(
+        msl_path):
+    """A dither deeper than the mean pressure frees the clutch (fn <= 0);
+    a slip of 0.05 rad/s that a strong dither swings through zero leaves
+    forward sliding: both refused, naming the variable, its file:line,
+    the two values and the time."""
+    from sources.modelica import ModelicaError, linearize
+    with pytest.raises(ModelicaError, match=(
+            r"clutch\.free \(\S*FrictionModeClutch\.mo:23\) changes from "
+            r"false to true at t = 0\.00\d+ s within a dither period")):
+        linearize(CLASS, str(MODELS), {"p_f": 1.2e6})
+    with pytest.raises(ModelicaError, match=(
+            r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
+            r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = ")):
+        linearize(CLASS, str(MODELS), {"mu_pos[2,1]": 0.01,
+                                       "w_out": 104.66975511965977,
+                                       "p_f": 3e5})
+    # the dither's names are checked before the mode is looked for
+    with pytest.raises(ModelicaError, match=r"frequency = 'f' is not a "
+                       "parameter of MslDrivelines.ModeClutchDriveline"):
+        linearize(CLASS, str(MODELS), frequency="f")
+
+
+def test_check_and_floquet_say_the_mode_they_used(msl_path):
+    """`judder check --modelica` names the mode in its text and JSON,
+    `floquet` in its JSON; both refuse a setting that leaves it."""
+    from judder.commands.check import check
+    from judder.commands.floquet import floquet
+    from sources.modelica import ModelicaError, ModelicaParameters
+    command = [sys.executable, "-m", "judder", "check", "--modelica", CLASS,
+               "--library", str(MODELS), "--freq", "102.9", "--pf", "0.3"]
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT,
+                          env={**os.environ, "MODELICAPATH": str(MSL)})
+    assert done.returncode == 0, done.stderr
+    assert "linearised in the mode clutch.mode = 1 (clutch.Forward), " \
+        "clutch.startForward = false" in done.stdout
+    params = ModelicaParameters(CLASS, str(MODELS))
+    assert check([102.9], [0.3], params).as_dict()["mode"]["clutch.mode"] \
+        == "1 (clutch.Forward)"
+    assert floquet(102.9, 0.3, params).as_dict()["mode"]["clutch.free"] == \
+        "false"
+    # a setting whose dither frees the clutch is refused, not analysed
+    for study in (lambda: check([102.9], [12.0], params),
+                  lambda: floquet(102.9, 12.0, params)):
+        with pytest.raises(ModelicaError, match=r"clutch\.free \(\S+\) "
+                           "changes from false to true"):
+            study()
+
+
+def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):
+    """On the linearisation path MSL's Clutch is refused before
+    flattening at its external table object (rumoca 0.10.2 miscounts
+    the parameter read from it, docs/compiler.md), within seconds;
+    Backlash's ElastoBacklash (initial(), relations inside relations)
+    compiles and its contact relation, which changes within the period,
+    is refused in words."""
+    from infra.errors import JudderError
+    from sources.modelica import ModelicaError, linearize
+    started = time.monotonic()
+    with pytest.raises(JudderError, match=(
+            r"Clutch\.mo:29: tableID: an external object \(Modelica\.Blocks"
+            r"\.Types\.ExternalCombiTable1D\) is not supported, in clutch1 ")):
+        linearize("Modelica.Mechanics.Rotational.Examples.CoupledClutches")
+    assert time.monotonic() - started < 30
+    with pytest.raises(ModelicaError, match=(
+            r"the relation at \S*ElastoBacklash2?\.mo:\d+ changes at t = ")):
+        linearize("Modelica.Mechanics.Rotational.Examples.Backlash",
+                  amplitude="elastoBacklash.c", frequency="inertia1.J")
+
+
+def test_a_step_is_held_in_the_mode(msl_path):
+    """An MSL Blocks.Sources.Step on the engine torque (a relation of
+    time, held) beside the clutch's modes: with the step at 10 s the
+    class linearises in the same mode to ModeClutchDriveline's Jacobian;
+    with the step within the dither period the relation is refused."""
+    from sources.modelica import ModelicaError, linearize
+    stepped = linearize("MslDrivelines.SteppedModeClutchDriveline",
+                        str(MODELS))
+    plain = linearize(CLASS, str(MODELS))
+    assert stepped.mode == plain.mode
+    assert np.array_equal(stepped.A0, plain.A0)
+    assert np.array_equal(stepped.B, plain.B)
+    with pytest.raises(ModelicaError, match=r"relation at \S*Sources\.mo:\d+ "
+                       r"changes at t = 0\.005\d* s"):
+        linearize("MslDrivelines.SteppedModeClutchDriveline", str(MODELS),
+                  {"t_step": 0.005})
