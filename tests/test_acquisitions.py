@@ -746,6 +746,22 @@ def test_german_thousands_and_decimal_comma(tmp_path):
     assert_allclose(acq.channels["upstream_speed"].time, [0.0, 0.001])
 
 
+def test_a_first_row_of_space_grouped_numbers_is_data(tmp_path):
+    # every cell of the first data row is a number with a thousands
+    # space, which float() does not read: it is data, not a units row
+    path, roles = _csv_read(
+        tmp_path, "time [ms];EngSpd_up [rpm];PressEVEN [mbar]\n"
+        "1 000;1 000;3 050\n1 001;1 001;3 100\n1 002;1 002;3 150\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].time,
+                    [1.0, 1.001, 1.002], rtol=1e-12)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([1000, 1001, 1002]) * TO_SI["rpm"], rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values,
+                    np.array([3.05, 3.1, 3.15]) * TO_SI["bar"], rtol=1e-12)
+    assert acq.channels["pressure"].unit_in_file == "mbar"
+
+
 @pytest.mark.parametrize("text, words", [
     # every separated cell reads both ways: refused, not guessed
     ("time [ms]\tEngSpd_up [rpm]\tPressEVEN [bar]\n0\t998\t3\n"

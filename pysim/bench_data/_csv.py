@@ -12,7 +12,7 @@ from infra.files import decode_text
 
 from ._common import (column_factor, is_time_name, listing, split_header,
                       time_unit)
-from ._numbers import column_values, decide
+from ._numbers import column_values, decide, is_number
 
 __all__ = ["read"]
 
@@ -106,17 +106,14 @@ def _csv_header_row(path, rows, body, time):
 
 
 def _is_units_row(row, width):
-    """A row under the names that holds units, not numbers."""
+    """A row under the names that holds units, not numbers: a row with a
+    cell that reads as a number under either decimal separator
+    (:func:`pysim.bench_data._numbers.is_number`: ``1 000``, ``1.000,5``,
+    ``1'000.5`` too) is data."""
     cells = [cell.strip() for cell in row]
     if len(cells) != width or not any(cells):
         return False
-    for cell in cells:
-        try:
-            float(cell.replace(",", "."))
-            return False
-        except ValueError:
-            pass
-    return True
+    return not any(is_number(cell) for cell in cells)
 
 
 def _csv_lines(path):

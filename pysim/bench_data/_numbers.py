@@ -31,8 +31,8 @@ import numpy as np
 
 from infra.errors import JudderError
 
-__all__ = ["CONVENTIONS", "DECIMALS", "readings", "value", "decide",
-           "column_values"]
+__all__ = ["CONVENTIONS", "DECIMALS", "readings", "is_number", "value",
+           "decide", "column_values"]
 
 #: Thousands separators either convention takes besides its own: a
 #: space (also the no-break ones) and an apostrophe (Swiss exports).
@@ -70,6 +70,12 @@ def readings(cell):
         return set(CONVENTIONS)
     return {name for name, pattern in _PATTERNS.items()
             if pattern.fullmatch(cell)}
+
+
+def is_number(cell):
+    """Whether a cell, not empty, reads as a number under either
+    convention (``1 000``, ``1.000,5``, ``0.5``, ``nan``)."""
+    return bool(cell.strip()) and bool(readings(cell))
 
 
 def value(cell, convention):
@@ -226,6 +232,9 @@ def column_values(cells, convention):
     """The numbers of a column's cells under the file's convention."""
     texts = [cell.strip() or "nan" for _, cell in cells]
     if convention == "point" and not any("," in t for t in texts):
-        return np.array(texts, dtype=float)
+        try:
+            return np.array(texts, dtype=float)
+        except ValueError:      # a thousands space or apostrophe
+            pass
     return np.array([value(cell, convention) for _, cell in cells],
                     dtype=float)
