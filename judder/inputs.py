@@ -88,7 +88,7 @@ BOUNDARY_EXTRA_COLUMNS = ("single_period_bar", "double_period_bar",
 BOUNDARY_TESTED_COLUMNS = ("no_judder_bar", "tried_bar")
 
 
-def read_boundary_csv(text, source="boundary file"):
+def read_boundary_csv(text, source="boundary file", decimal=None):
     """Parse a measured boundary: columns ``freq_hz,p_f_bar``.
 
     ``#`` starts a comment. A header line names the columns (in any
@@ -97,7 +97,8 @@ def read_boundary_csv(text, source="boundary file"):
     :func:`read_boundary_table`); the further columns of ``judder tongues
     --out`` are ignored (so its CSV can be read back); any other column is
     refused. An empty ``p_f_bar`` means no judder up to the largest
-    amplitude tried.
+    amplitude tried. Fields and numbers (and ``decimal``) are read as
+    :func:`read_boundary_table` reads them.
 
     Returns
     -------
@@ -113,17 +114,23 @@ def read_boundary_csv(text, source="boundary file"):
     >>> f.tolist(), p.tolist()
     ([100.0], [30000.0])
     """
-    table = read_boundary_table(text, source)
+    table = read_boundary_table(text, source, decimal)
     return table["freq_hz"], table["p_f"]
 
 
-def read_boundary_table(text, source="boundary file"):
+def read_boundary_table(text, source="boundary file", decimal=None):
     """Parse a measured boundary with the range tested at each frequency.
 
     The format of :func:`read_boundary_csv`, with the optional columns
     ``no_judder_bar`` (the highest amplitude tried without judder, below
     the onset where there is one) and ``tried_bar`` (the largest amplitude
-    tried), bar, empty where unknown.
+    tried), bar, empty where unknown. Fields are separated by ``,``, or
+    by ``;`` or tab where the first line has one; numbers are read as
+    written, as a bench export's are
+    (:func:`pysim.bench_data.tables.numbers`): the decimal and thousands
+    separators decided from every cell read (``0,3`` in a
+    ``;``-separated file is 0.3), or given as ``decimal`` (``'.'`` or
+    ``','``), and a file no cell decides is refused naming a cell.
 
     Returns
     -------
@@ -138,37 +145,45 @@ def read_boundary_table(text, source="boundary file"):
     ...                         "100,0.3,0.2,0.6\\n60,,0.6,0.6\\n")
     >>> (t["no_judder"] / 1e5).tolist(), (t["tried"] / 1e5).tolist()
     ([0.2, 0.6], [0.6, 0.6])
+    >>> t = read_boundary_table("freq_hz;p_f_bar;no_judder_bar;tried_bar\\n"
+    ...                         "105;0,3;0,2;0,6\\n")
+    >>> (t["p_f"] / 1e5).tolist()
+    [0.3]
     """
-    rows = {name: [] for name in ("freq_hz", "p_f_bar")
-            + BOUNDARY_TESTED_COLUMNS}
-    columns = None
-    for number, line in enumerate(text.splitlines(), start=1):
-        line = line.split("#")[0].strip()
-        if not line:
-            continue
-        cells = [c.strip() for c in line.split(",")]
-        if columns is None:
-            columns = _boundary_columns(cells, source, number)
-            if columns is not None:
-                continue
-            columns = {"freq_hz": 0, "p_f_bar": 1, "width": 2}
+    from pysim.bench_data.tables import numbers, split_rows
+    names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
+    lines = [(number, line.split("#")[0].strip())
+             for number, line in enumerate(text.splitlines(), start=1)]
+    lines = [(number, line) for number, line in lines if line]
+    rows = split_rows(lines)
+    columns = None if not rows else _boundary_columns(rows[0][1], source,
+                                                      rows[0][0])
+    if columns is None:
+        columns = {"freq_hz": 0, "p_f_bar": 1, "width": 2}
+    else:
+        rows = rows[1:]
+    if not rows:
+        raise JudderError(f"{source}: no data lines")
+    written = dict(lines)
+    for number, cells in rows:
         if len(cells) != columns["width"]:
-            raise JudderError(f"{source}, line {number}: {line!r} has "
-                              f"{len(cells)} cells; allowed: "
-                              f"{columns['width']}, as the header "
+            raise JudderError(f"{source}, line {number}: "
+                              f"{written[number]!r} has {len(cells)} cells; "
+                              f"allowed: {columns['width']}, as the header "
                               "(freq_hz,p_f_bar; p_f_bar empty for no "
                               "judder)")
+    read = [name for name in names if name in columns]
+    values = numbers(source, {name: [(number, cells[columns[name]])
+                                     for number, cells in rows]
+                              for name in read}, decimal)
+    table = {name: [] for name in names}
+    for index, (number, cells) in enumerate(rows):
+        line = written[number]
         texts = {name: cells[columns[name]] if name in columns else ""
-                 for name in rows}
-        if not _is_number(texts["freq_hz"]) or not all(
-                texts[name] == "" or _is_number(texts[name])
-                for name in rows if name != "freq_hz"):
-            raise JudderError(f"{source}, line {number}: {line!r} is not "
-                              "'freq_hz,p_f_bar' (p_f_bar empty for no "
-                              "judder)")
-        freq = float(texts["freq_hz"])
-        amps = {name: float(texts[name]) * PA_PER_BAR if texts[name]
-                else np.nan for name in rows if name != "freq_hz"}
+                 for name in names}
+        freq = float(values["freq_hz"][index])
+        amps = {name: float(values[name][index]) * PA_PER_BAR
+                if texts[name] else np.nan for name in names[1:]}
         gaps = [name for name in amps if texts[name] and np.isnan(amps[name])]
         if gaps:
             # censored is written as an empty cell; a NaN is a gap in the
@@ -183,15 +198,13 @@ def read_boundary_table(text, source="boundary file"):
                               "frequency > 0 Hz and amplitude >= 0 bar, "
                               "finite")
         _check_tested(amps, source, number, line)
-        rows["freq_hz"].append(freq)
+        table["freq_hz"].append(freq)
         for name, value in amps.items():
-            rows[name].append(value)
-    if not rows["freq_hz"]:
-        raise JudderError(f"{source}: no data lines")
-    return {"freq_hz": np.array(rows["freq_hz"]),
-            "p_f": np.array(rows["p_f_bar"]),
-            "no_judder": np.array(rows["no_judder_bar"]),
-            "tried": np.array(rows["tried_bar"]),
+            table[name].append(value)
+    return {"freq_hz": np.array(table["freq_hz"]),
+            "p_f": np.array(table["p_f_bar"]),
+            "no_judder": np.array(table["no_judder_bar"]),
+            "tried": np.array(table["tried_bar"]),
             "columns": [n for n in columns if n != "width"]}
 
 
@@ -211,7 +224,8 @@ def _check_tested(amps, source, number, line):
 def _boundary_columns(cells, source, number):
     """Column indices of a boundary header line, or None if the line is
     data."""
-    if _is_number(cells[0]):
+    from pysim.bench_data.tables import is_number
+    if is_number(cells[0]):
         return None
     allowed = (("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
                + BOUNDARY_EXTRA_COLUMNS)
@@ -231,15 +245,18 @@ def _boundary_columns(cells, source, number):
                if name not in BOUNDARY_EXTRA_COLUMNS}, "width": len(cells)}
 
 
-def read_boundary(path, option="--boundary"):
+def read_boundary(path, option="--boundary", decimal=None):
     """A measured boundary file (see :func:`read_boundary_csv`)."""
-    return read_boundary_csv(read_input(path, option), source=str(path))
+    return read_boundary_csv(read_input(path, option), source=str(path),
+                             decimal=decimal)
 
 
-def read_boundary_tested(path, option="--boundary"):
+def read_boundary_tested(path, option="--boundary", decimal=None):
     """A measured boundary file with its tested range (see
-    :func:`read_boundary_table`)."""
-    return read_boundary_table(read_input(path, option), source=str(path))
+    :func:`read_boundary_table`; ``decimal``, its decimal separator where
+    its cells cannot tell it)."""
+    return read_boundary_table(read_input(path, option), source=str(path),
+                               decimal=decimal)
 
 
 def boundary_p_max(table, pf_max_bar, path, option="--boundary",

@@ -705,8 +705,11 @@ def test_chart_reads_an_integer_export_with_the_decimal_given(tmp_path,
                       + "\n" + "\n".join(rows) + "\n")
     channels = ["--channel", "upstream_speed=EngSpd_up", "--channel",
                 "pressure=PressEVEN", "--channel", "downstream_speed=OutSpd"]
+    # the index saved in the export's locale: --decimal reads both
     index = tmp_path / "runs.csv"
-    index.write_text("file,freq_hz,p_f_bar\nrun01.csv,210,0.4\n")
+    index.write_text(field.join(["file", "freq_hz", "p_f_bar"]) + "\n"
+                     + field.join(["run01.csv", "210", f"0{decimal}4"])
+                     + "\n")
     args = ["chart", "--index", str(index), *channels, "--json",
             "--workers", "1"]
     assert main(args) == 2
@@ -726,6 +729,74 @@ def test_chart_reads_an_integer_export_with_the_decimal_given(tmp_path,
     # integer rpm: the amplitudes within the rounding's half rpm
     assert read["amplitude_rpm"] == pytest.approx(
         clean_run["amplitude_rpm"], abs=1.0)
+
+
+# --- the index CSV read as the acquisitions are (issue 31) -------------
+
+GERMAN_INDEX = "file;freq_hz;p_f_bar;oil_temperature\nrun01.csv;210;0,4;65\n"
+#: engine_rpm 1,500 is 1500 or 1.5 alike: no cell decides.
+AMBIGUOUS_INDEX = "file\tfreq_hz\tengine_rpm\nrun01.csv\t210\t1,500\n"
+
+
+def test_a_german_index_reads_as_written(tmp_path):
+    from pysim.bench_data.charts import sources_from_index
+    index = tmp_path / "runs.csv"
+    index.write_text(GERMAN_INDEX)
+    for decimal in (None, ","):
+        (source,) = sources_from_index(index, decimal)
+        assert source.path == tmp_path / "run01.csv"
+        assert source.settings == {"freq_hz": 210.0, "p_f_bar": 0.4,
+                                   "oil_temperature": "65"}
+    with pytest.raises(JudderError) as info:
+        sources_from_index(index, ".")
+    for word in (str(index), "line 2", "column 'p_f_bar'", "'0,4'"):
+        assert word in str(info.value)
+
+
+def test_an_ambiguous_index_is_refused_naming_the_cell(tmp_path):
+    from pysim.bench_data.charts import sources_from_index
+    index = tmp_path / "runs.csv"
+    index.write_text(AMBIGUOUS_INDEX)
+    with pytest.raises(JudderError) as info:
+        sources_from_index(index)
+    for word in (str(index), "line 2", "column 'engine_rpm'", "'1,500'",
+                 "no cell of the file tells which"):
+        assert word in str(info.value)
+    (source,) = sources_from_index(index, ".")
+    assert source.settings["engine_rpm"] == 1500.0
+    (source,) = sources_from_index(index, ",")
+    assert source.settings["engine_rpm"] == 1.5
+
+
+def test_chart_reads_an_index_as_written_or_with_the_decimal_given(
+        tmp_path, capsys):
+    """An index beside the example run (written with decimal points):
+    tab-separated with engine_rpm 1,500 it is refused naming --index and
+    --decimal, and read with --decimal '.' (which the run's own CSV
+    holds to); saved by a German spreadsheet (';', decimal commas) it
+    reads as written."""
+    from judder.cli import main
+    run01 = str(Path(__file__).parents[1] / "examples" / "bench"
+                / "run01.csv")
+    index = tmp_path / "runs.csv"
+    index.write_text(AMBIGUOUS_INDEX.replace("run01.csv", run01))
+    args = ["chart", "--index", str(index), "--channel",
+            "upstream_speed=EngSpd_up", "--channel", "pressure=PressEVEN:bar",
+            "--channel", "downstream_speed=OutSpd", "--json", "--workers",
+            "1"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    for word in (f"--index {index}", "'1,500'", "--decimal '.' or ','"):
+        assert word in err
+    assert main(args + ["--decimal", ".", "--group-by", "engine_rpm"]) == 0
+    run = json.loads(capsys.readouterr().out)["runs"][0]
+    assert (run["freq_hz"], run["engine_rpm"]) == (210.0, 1500.0)
+    index.write_text(GERMAN_INDEX.replace("run01.csv", run01))
+    assert main(args + ["--group-by", "oil_temperature"]) == 0
+    run = json.loads(capsys.readouterr().out)["runs"][0]
+    assert (run["freq_hz"], run["p_f_bar"], run["oil_temperature"]) == \
+        (210.0, 0.4, "65")
+    assert not run["dither_estimated"]
 
 
 def _tooth_passages(rng, samples_per_period, freq_hz, seconds):

@@ -257,6 +257,46 @@ def test_fit_from_tongues_csv(tmp_path):
     assert "an older fit" not in saved.read_text()
 
 
+def test_fit_from_a_german_boundary_file(tmp_path):
+    """The tongues CSV of test_fit_from_tongues_csv as a German
+    spreadsheet saves it (';' between fields, decimal commas), fitted
+    with --decimal ',': the same values."""
+    boundary = tmp_path / "measured.csv"
+    judder("tongues", "--preset", "paper-4dof-fitted", "--freq", "70:140:8",
+           "--out", str(boundary))
+    german = tmp_path / "gemessen.csv"
+    german.write_text("".join(
+        line if line.startswith("#") else
+        line.replace(",", ";").replace(".", ",")
+        for line in boundary.read_text().splitlines(keepends=True)))
+    assert "0,754003501;" in german.read_text()
+    data = judder_json("fit", "--boundary", str(german), "--decimal", ",",
+                       "--fit", "mu_g,k24", "--set", "c12=10")
+    assert data["fitted"]["mu_g"]["value"] == pytest.approx(0.022, rel=1e-4)
+    assert data["fitted"]["k24"]["value"] == pytest.approx(34858.1, rel=1e-4)
+
+
+@pytest.mark.parametrize("command", [["fit"], ["report", "--out",
+                                               "report.html"]])
+def test_an_ambiguous_boundary_file_is_refused_with_the_way_round(
+        tmp_path, command):
+    boundary = tmp_path / "b.csv"
+    boundary.write_text("freq_hz;p_f_bar;tried_bar\n105;1,250;1,500\n"
+                        "60;;1,500\n")
+    command = [c.replace("report.html", str(tmp_path / "r.html"))
+               for c in command]
+    proc = judder(*command, "--boundary", str(boundary), check=False)
+    assert proc.returncode == 2, proc.stderr
+    for word in (str(boundary), "column 'p_f_bar'", "'1,250'", "line 2",
+                 "--decimal '.' or ','"):
+        assert word in proc.stderr
+    assert "`" not in proc.stderr and "Traceback" not in proc.stderr
+    proc = judder(*command, "--chart", str(tmp_path / "c.npz"),
+                  "--decimal", ",", check=False)
+    assert proc.returncode == 2
+    assert "--decimal is for a --boundary file" in proc.stderr
+
+
 @pytest.mark.parametrize("args, words", [
     (["tongues", "--pf-max", "0"], ["--pf-max", "> 0 bar"]),
     (["sensitivity", "--params", "k99"], ["k99", "unknown"]),

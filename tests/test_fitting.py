@@ -5,7 +5,7 @@ import pytest
 
 from sources import get_preset
 from infra.errors import JudderError
-from judder.inputs import read_boundary_csv
+from judder.inputs import read_boundary_csv, read_boundary_table
 from stability.fit import fit_boundary, model_boundary
 
 BAR = 1e5
@@ -72,6 +72,47 @@ def test_bad_boundary_csv(text, words):
         read_boundary_csv(text, source="b.csv")
     for word in words:
         assert word in str(info.value)
+
+
+# --- boundary files of any locale (issue 31) ---------------------------
+
+GERMAN_BOUNDARY = ("freq_hz;p_f_bar;no_judder_bar;tried_bar\n"
+                   "105;0,3;0,2;0,6\n60;;0,6;0,6\n")
+#: Every separated cell 1.25 or 1250 bar alike: no cell decides.
+AMBIGUOUS_BOUNDARY = ("freq_hz;p_f_bar;no_judder_bar;tried_bar\n"
+                      "105;1,250;1,000;1,500\n")
+
+
+@pytest.mark.parametrize("decimal", [None, ","])
+def test_a_german_boundary_file_reads_as_written(decimal):
+    table = read_boundary_table(GERMAN_BOUNDARY, "b.csv", decimal)
+    assert table["freq_hz"].tolist() == [105.0, 60.0]
+    np.testing.assert_allclose(table["p_f"], [0.3 * BAR, np.nan])
+    np.testing.assert_allclose(table["no_judder"], [0.2 * BAR, 0.6 * BAR])
+    np.testing.assert_allclose(table["tried"], [0.6 * BAR, 0.6 * BAR])
+
+
+def test_a_boundary_cell_against_the_given_decimal_is_refused():
+    with pytest.raises(JudderError) as info:
+        read_boundary_table(GERMAN_BOUNDARY, "b.csv", ".")
+    for word in ("b.csv", "line 2", "column 'p_f_bar'", "'0,3'",
+                 "`decimal` '.'"):
+        assert word in str(info.value)
+
+
+def test_an_ambiguous_boundary_file_is_refused_naming_the_cell():
+    with pytest.raises(JudderError) as info:
+        read_boundary_table(AMBIGUOUS_BOUNDARY, "b.csv")
+    for word in ("b.csv", "column 'p_f_bar'", "'1,250'", "line 2",
+                 "1250 with a thousands separator", "1.25 with a decimal",
+                 "no cell of the file tells which", "`decimal`"):
+        assert word in str(info.value)
+    table = read_boundary_table(AMBIGUOUS_BOUNDARY, "b.csv", ",")
+    np.testing.assert_allclose([table["p_f"][0], table["no_judder"][0],
+                                table["tried"][0]],
+                               [1.25 * BAR, 1.0 * BAR, 1.5 * BAR])
+    table = read_boundary_table(AMBIGUOUS_BOUNDARY, "b.csv", ".")
+    np.testing.assert_allclose(table["p_f"], [1250 * BAR])
 
 
 def test_a_boundary_without_judder_cannot_be_fitted():

@@ -136,6 +136,19 @@ def limit_option(parser):
                              f"{DEFAULT_JUDDER_LIMIT_RPM:g})")
 
 
+def decimal_option(parser, files):
+    """``--decimal``: the decimal separator of the CSV ``files`` (in
+    words), for those whose cells cannot tell it."""
+    parser.add_argument("--decimal", choices=(".", ","), default=None,
+                        metavar=".|,",
+                        help=f"decimal separator of {files}, '.' or ',' "
+                             "(the thousands separator follows: ',' or "
+                             "'.', or a space or apostrophe), for files "
+                             "whose cells cannot tell it (integers with "
+                             "1,000); a cell written otherwise is refused "
+                             "(default: decided per file from its cells)")
+
+
 def force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="allow replacing output files judder did not "

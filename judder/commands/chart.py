@@ -15,8 +15,8 @@ from infra.files import (all_or_none, keeps_foreign_files, save_npz,
 from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, limit_option, method_option,
-                         model_options, workers_option)
+from ._arguments import (decimal_option, force_option, limit_option,
+                         method_option, model_options, workers_option)
 from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -72,14 +72,7 @@ def add_arguments(p):
                         "sampled (a DAQ's rate), angle (an encoder), "
                         "default told from the data; repeatable. Without "
                         "any, the names judder campaign writes")
-    p.add_argument("--decimal", choices=(".", ","), default=None,
-                   metavar=".|,",
-                   help="decimal separator of CSV acquisitions, '.' or "
-                        "',' (the thousands separator follows: ',' or "
-                        "'.', or a space or apostrophe), for files whose "
-                        "cells cannot tell it (integer speeds with "
-                        "1,000); a cell written otherwise is refused "
-                        "(default: decided per file from its cells)")
+    decimal_option(p, "the CSV acquisitions and the --index file")
     p.add_argument("--group-by", action="append", metavar="COLUMN",
                    help="panel per value of COLUMN; repeatable (default: "
                         "oil_temperature and engine_rpm where they vary)")
@@ -239,8 +232,8 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
         Columns making the panels (default: oil temperature and engine
         speed where they vary).
     decimal : {'.', ','}, optional
-        Decimal separator of CSV acquisitions (default: decided per file
-        from its cells).
+        Decimal separator of CSV acquisitions and of ``index`` (default:
+        decided per file from its cells).
     min_growth : float, optional
         Growth rate (1/s) from which a run counts as judder (default
         :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
@@ -262,7 +255,7 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     from pysim.bench_data.charts import build_chart, gather_sources
     from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
-    runs = gather_sources(sources, index)
+    runs = gather_sources(sources, index, decimal)
     run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
         runs, channels=channels, run_bytes=run_bytes,

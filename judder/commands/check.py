@@ -14,7 +14,8 @@ from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
-from ._arguments import force_option, min_growth_option, model_options
+from ._arguments import (decimal_option, force_option, min_growth_option,
+                         model_options)
 from ._common import (check_modes, check_names, checked_values,
                       frequency_dependent, linearised_mode, mode_words,
                       structural_names)
@@ -54,6 +55,7 @@ def add_arguments(p):
     p.add_argument("--table", metavar="FILE.csv",
                    help="a dither table instead: columns freq_hz,p_f_bar, "
                         "one setting a row (e.g. a controller's table)")
+    decimal_option(p, "the --table file")
     min_growth_option(p)
     p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest boundary amplitude searched, bar (default "
@@ -104,7 +106,7 @@ def _settings(args, parameters):
     if args.table:
         if args.freq or args.pf:
             raise JudderError("--table and --freq/--pf: allowed: one of them")
-        freqs, p_f = read_boundary(args.table, "--table")
+        freqs, p_f = read_boundary(args.table, "--table", args.decimal)
         if not len(freqs) or not all(math.isfinite(p) for p in p_f):
             raise JudderError(f"--table {args.table}: every row needs "
                               "freq_hz and p_f_bar; allowed: no empty cells")
@@ -119,6 +121,9 @@ def _settings(args, parameters):
                     f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
                     f"not allowed; allowed: {low:g} to {high:g} Hz")
         return list(freqs), amplitudes
+    if args.decimal:
+        raise JudderError("--decimal is for a --table file; allowed: no "
+                          "--decimal with --freq and --pf")
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
     freqs, amplitudes = args.freq, args.pf

@@ -17,8 +17,8 @@ from ..inputs import (boundary_p_max, read_boundary_limit,
                       read_chart_below,
                       read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
-from ._arguments import (force_option, method_option, model_options,
-                         workers_option)
+from ._arguments import (decimal_option, force_option, method_option,
+                         model_options, workers_option)
 from ._common import at_dither_frequency, checked_values, resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
@@ -56,6 +56,7 @@ def add_arguments(p):
     p.add_argument("--group", metavar="VALUE",
                    help="group of the chart to fit, when it has several "
                         "(e.g. 65-70)")
+    decimal_option(p, "the --boundary file")
     p.add_argument("--fit", type=Listed("--fit", str),
                    default="c12,mu_g,k24", metavar="NAMES",
                    help="parameters to fit (default c12,mu_g,k24)")
@@ -146,6 +147,9 @@ def run(args):
     bounds = _bounds(args.bounds, params, names)
     default_growth = DEFAULT_MIN_GROWTH_PER_S
     default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
+    if args.chart and args.decimal:
+        raise JudderError("--decimal is for a --boundary file (CSV); "
+                          "allowed: no --decimal with --chart (an NPZ)")
     if args.chart:
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
@@ -153,7 +157,7 @@ def run(args):
         default_limit = read_chart_limit(args.chart)
         below = read_chart_below(args.chart, args.group)
     else:
-        table = read_boundary_tested(args.boundary)
+        table = read_boundary_tested(args.boundary, decimal=args.decimal)
         freqs, measured = table["freq_hz"], table["p_f"]
         below = np.where(np.isnan(measured), np.nan, table["no_judder"])
         default_p_max = boundary_p_max(table, args.pf_max, args.boundary)

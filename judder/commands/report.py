@@ -32,8 +32,8 @@ from infra.files import (atomic_write, keeps_foreign_files, mark_pdf,
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
-from ._arguments import (force_option, method_option, min_growth_option,
-                         model_options, workers_option)
+from ._arguments import (decimal_option, force_option, method_option,
+                         min_growth_option, model_options, workers_option)
 from ._flags import in_flags
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
@@ -119,6 +119,7 @@ def add_arguments(p):
                              "as judder chart --boundary writes it)")
     p.add_argument("--group", metavar="VALUE",
                    help="group of the chart, when it has several")
+    decimal_option(p, "the --boundary file")
     p.add_argument("--fit", type=Listed("--fit", str),
                    default="c12,mu_g,k24", metavar="NAMES",
                    help="parameters fitted to the bench data (default "
@@ -164,7 +165,7 @@ def run(args):
         result = report(
             params, changes, description=model_title(args, params),
             freq_hz=args.freq, p_f_bar=args.pf, chart=args.chart,
-            boundary=args.boundary, group=args.group,
+            boundary=args.boundary, group=args.group, decimal=args.decimal,
             fit_names=args.fit, sensitivity_names=args.sensitivity,
             grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
             p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
@@ -222,7 +223,7 @@ class ReportResult:
 
 def report(parameters=None, changes=None, description=None,
            freq_hz=None, p_f_bar=None, chart=None, boundary=None,
-           group=None, fit_names=("c12", "mu_g", "k24"),
+           group=None, decimal=None, fit_names=("c12", "mu_g", "k24"),
            sensitivity_names=None, grid_freq=None, map_freq=None,
            map_pf=None, p_max_bar=1.5, method="dyson", workers=None,
            engagement=False, min_growth=DEFAULT_MIN_GROWTH_PER_S,
@@ -246,6 +247,10 @@ def report(parameters=None, changes=None, description=None,
         A measured boundary CSV instead of ``chart``.
     group : str, optional
         The chart's group, when it has several.
+    decimal : {'.', ','}, optional
+        The decimal separator of ``boundary``, where its cells cannot
+        tell it (:func:`judder.inputs.read_boundary_table`); refused with
+        ``chart``.
     fit_names : sequence of str
         Parameters fitted to the bench data.
     sensitivity_names : sequence of str, optional
@@ -286,7 +291,7 @@ def report(parameters=None, changes=None, description=None,
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
     # bench data first: a bad file is refused before any work
-    bench = _bench_data(chart, boundary, group)
+    bench = _bench_data(chart, boundary, group, decimal)
     for option, given in (("--sensitivity", names),
                           ("--fit", fit_names if bench else ())):
         unknown = [n for n in given if n not in values.specs]
@@ -417,7 +422,7 @@ class _Steps:
             self.progress(self.done, self.total)
 
 
-def _bench_data(chart, boundary, group):
+def _bench_data(chart, boundary, group, decimal):
     """The bench data to fit, as :func:`fit_section` takes them: a
     chart's boundary (with its tried points, growth rate, amplitudes
     below and threshold spread) or a measured boundary CSV (censored at
@@ -425,13 +430,16 @@ def _bench_data(chart, boundary, group):
     from ..inputs import (boundary_p_max, read_boundary_min_growth,
                           read_boundary_tested, read_chart_below,
                           read_chart_boundary, read_chart_min_growth)
+    if chart and decimal:
+        raise JudderError("--decimal is for a --boundary file (CSV); "
+                          "allowed: no --decimal with --chart (an NPZ)")
     if chart:
         return (*read_chart_boundary(chart, group),
                 read_chart_min_growth(chart),
                 read_chart_below(chart, group) / PA_PER_BAR,
                 CHART_THRESHOLD_SPREAD_PER_S)
     if boundary:
-        table = read_boundary_tested(boundary)
+        table = read_boundary_tested(boundary, decimal=decimal)
         stated = read_boundary_min_growth(boundary)
         return (table["freq_hz"], table["p_f"],
                 boundary_p_max(table, None, boundary, pf_option=None),

@@ -29,7 +29,9 @@ from infra.parallel import parallel_map
 
 from ..analysis.verdict import MIN_AMPLITUDE_RPM, analyse_run
 from .acquisition import ChannelSpec
+from ._csv import _csv_lines
 from .readers import read_acquisition
+from .tables import numbers, split_rows
 
 __all__ = ["RunSource", "ChartRun", "Chart", "DEFAULT_CHANNELS",
            "GROUP_COLUMNS", "sources_from_campaign", "sources_from_index",
@@ -92,29 +94,38 @@ class ChartRun:
         return tuple(str(self.settings.get(c, "")) for c in columns)
 
 
-def _read_csv(path, option):
+def _read_csv(path, option, decimal=None):
+    """The rows of an index CSV as ``{column: value}``: the columns of
+    :data:`_NUMBER_COLUMNS` as numbers read as the file writes them (NaN
+    where empty; :mod:`pysim.bench_data.tables`, ``decimal`` the file's
+    decimal separator where given), the others as text. Fields are
+    separated by ``,``, or by ``;`` or tab where the header has one."""
     try:
-        with open(path, newline="", encoding="utf-8") as stream:
-            return list(csv.DictReader(stream))
-    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        lines = [(number, line) for number, line in
+                 enumerate(_csv_lines(path), 1) if line.strip()]
+        rows = split_rows(lines)
+    except (OSError, csv.Error) as exc:
         raise JudderError(f"{option} {path}: cannot read it as CSV "
                           f"({exc})") from None
+    if not rows:
+        return []
+    header, body = rows[0][1], rows[1:]
+    # short rows read as empty cells, extra cells are not read
+    cells = [(number, row + [""] * (len(header) - len(row)))
+             for number, row in body]
+    read = numbers(f"{option} {path}", {
+        name: [(number, row[header.index(name)]) for number, row in cells]
+        for name in _NUMBER_COLUMNS if name in header}, decimal)
+    return [{**dict(zip(header, row)),
+             **{name: float(values[index]) for name, values in read.items()}}
+            for index, (_, row) in enumerate(cells)]
 
 
-def _settings(row, source):
-    settings = {}
-    for key, value in row.items():
-        if key is None or key == "file" or value in (None, ""):
-            continue
-        if key in _NUMBER_COLUMNS:
-            try:
-                settings[key] = float(value)
-            except ValueError:
-                raise JudderError(f"{source}: {key} = {value!r} is not a "
-                                  "number") from None
-        else:
-            settings[key] = value
-    return settings
+def _settings(row):
+    """A row's settings: its cells but ``file``, without the empty ones."""
+    return {key: value for key, value in row.items()
+            if key != "file" and value != ""
+            and not (isinstance(value, float) and np.isnan(value))}
 
 
 def sources_from_campaign(folder):
@@ -136,8 +147,7 @@ def sources_from_campaign(folder):
             continue
         settings = _settings({k: row[k] for k in
                               ("freq_hz", "p_f_bar", "engine_rpm",
-                               "oil_temperature") if k in row},
-                             folder / "index.csv")
+                               "oil_temperature") if k in row})
         sources.append(RunSource(folder / chosen, settings))
     if not sources:
         raise JudderError(f"campaign {folder}: index.csv lists no run that "
@@ -145,15 +155,17 @@ def sources_from_campaign(folder):
     return sources
 
 
-def sources_from_index(index):
-    """Runs listed in an index CSV with a ``file`` column."""
+def sources_from_index(index, decimal=None):
+    """Runs listed in an index CSV with a ``file`` column (its numbers
+    read as written, or with the decimal separator ``decimal``, as
+    :func:`_read_csv` reads them)."""
     index = Path(index)
-    rows = _read_csv(index, "`index`")
+    rows = _read_csv(index, "`index`", decimal)
     if not rows or "file" not in rows[0]:
         raise JudderError(f"`index` {index}: needs a 'file' column (and "
                           "optionally freq_hz, p_f_bar, oil_temperature, "
                           "engine_rpm)")
-    return [RunSource(index.parent / row["file"], _settings(row, index))
+    return [RunSource(index.parent / row["file"], _settings(row))
             for row in rows]
 
 
@@ -162,8 +174,9 @@ def sources_from_files(paths):
     return [RunSource(Path(p), {}) for p in paths]
 
 
-def gather_sources(paths, index=None):
-    """Runs of campaign folders, acquisition files and an index CSV."""
+def gather_sources(paths, index=None, decimal=None):
+    """Runs of campaign folders, acquisition files and an index CSV (read
+    with ``decimal``, :func:`sources_from_index`)."""
     sources = []
     files = []
     for path in map(Path, paths):
@@ -175,7 +188,7 @@ def gather_sources(paths, index=None):
             raise JudderError(f"`paths` {path}: no such file or folder")
     sources += sources_from_files(files)
     if index is not None:
-        sources += sources_from_index(index)
+        sources += sources_from_index(index, decimal)
     if not sources:
         raise JudderError("give at least one SOURCE (campaign folder or "
                           "acquisition file) or `index`")
