@@ -437,8 +437,13 @@ def read_chart_runs(path, group=None, option="--chart"):
     Returns
     -------
     runs : dict
-        Arrays ``freq_hz``, ``p_f_bar``, ``amplitude_rpm``, ``judder``,
-        ``mechanism`` of the group's runs.
+        Arrays ``source_file``, ``freq_hz``, ``p_f_bar``,
+        ``amplitude_rpm``, ``judder``, ``mechanism`` of the group's runs,
+        ``p_f_std_bar``, the standard uncertainty of an amplitude
+        estimated from the pressure (NaN where it was given, and for a
+        chart written before it was stored), and ``dither_warnings``,
+        what the pressure's sampling could not support ('' where
+        nothing, or not stored).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar; None: no judder) and the largest
         amplitude tried (bar).
@@ -451,7 +456,13 @@ def read_chart_runs(path, group=None, option="--chart"):
         tried = npz["boundary_tried_bar"][groups == chosen]
         keep = npz["group"] == chosen
         runs = {key: npz[key][keep] for key in (
-            "freq_hz", "p_f_bar", "amplitude_rpm", "judder", "mechanism")}
+            "source_file", "freq_hz", "p_f_bar", "amplitude_rpm", "judder",
+            "mechanism")}
+        stored = "dither_p_f_std_bar" in npz.files
+        runs["p_f_std_bar"] = (npz["dither_p_f_std_bar"][keep] if stored
+                               else np.full(int(keep.sum()), np.nan))
+        runs["dither_warnings"] = (npz["dither_warnings"][keep] if stored
+                                   else np.full(int(keep.sum()), ""))
     boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
                  float(top)) for f, p, top in zip(freq, p_f, tried)]
     return runs, boundary

@@ -923,3 +923,49 @@ def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
         assert word in warning
     assert "run01.csv: dither estimated" in captured.out
     assert " ± " in captured.out
+    # the JSON's warnings are the printed ones: the file and the pressure
+    # channel named; the uncertainties are kept in the chart's NPZ
+    out = tmp_path / "chart.npz"
+    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
+                 "--channel", "upstream_speed=EngSpd_up", "--channel",
+                 "pressure=PressEVEN:bar", "--channel",
+                 "downstream_speed=OutSpd", "--workers", "1", "--json",
+                 "--out", str(out)]) == 0
+    captured = capsys.readouterr()
+    estimate = json.loads(captured.out)["runs"][0]["dither_estimate"]
+    printed = [line.removeprefix("judder: warning: ")
+               for line in captured.err.splitlines()
+               if line.startswith("judder: warning:")]
+    assert estimate["warnings"] == printed and printed
+    assert all("pressure channel 'PressEVEN'" in w for w in printed)
+    with np.load(out) as npz:
+        for name, key in (("dither_p_f_std_bar", "p_f_std_bar"),
+                          ("dither_freq_std_hz", "freq_std_hz"),
+                          ("dither_phase_rad", "phase_rad"),
+                          ("dither_phase_std_rad", "phase_std_rad"),
+                          ("dither_phase_time_s", "phase_time_s")):
+            assert npz[name].tolist() == [estimate[key]], name
+        assert "cannot be told from its alias" in npz["dither_warnings"][0]
+        arrays = {k: npz[k] for k in npz.files}
+    assert 0 < estimate["p_f_std_bar"] < estimate["p_f_bar"]
+    _report_lists_the_estimated_amplitude(out, arrays, estimate)
+
+
+def _report_lists_the_estimated_amplitude(out, arrays, estimate):
+    """The report's bench section lists the run with its amplitude and
+    standard uncertainty; a chart written before they were stored reads,
+    without the list."""
+    from infra.numbers import format_uncertain
+    from judder.commands._report_sections import _estimated_dithers
+    from judder.inputs import read_chart_runs
+    runs, _ = read_chart_runs(out)
+    html = _estimated_dithers(runs)
+    assert "run01.csv" in html and "1 of the 1 runs" in html
+    assert format_uncertain(estimate["p_f_bar"], estimate["p_f_std_bar"],
+                            "bar") in html
+    assert "cannot be told from its alias" in html
+    np.savez(out, **{k: v for k, v in arrays.items()
+                     if not k.startswith("dither_") or k == "dither_estimated"})
+    runs, _ = read_chart_runs(out)
+    assert np.isnan(runs["p_f_std_bar"]).all()
+    assert _estimated_dithers(runs) == ""

@@ -541,9 +541,46 @@ def chart_figure(page, chart, group):
     from pysim.bench_data.plots import runs_figure
     from ..inputs import read_chart_runs
     title = Path(chart).name + (f", group {group}" if group else "")
+    runs, boundary = read_chart_runs(chart, group)
     return page.figure("Experimental stability chart (Fig. 10)",
-                       runs_figure(*read_chart_runs(chart, group),
-                                   title=title))
+                       runs_figure(runs, boundary, title=title)) \
+        + _estimated_dithers(runs)
+
+
+#: Runs the report lists with a dither amplitude estimated from the
+#: pressure: the least certain ones.
+ESTIMATED_RUNS_LISTED = 10
+
+
+def _estimated_dithers(runs):
+    """The runs (:func:`judder.inputs.read_chart_runs`) whose dither
+    amplitude was estimated from the pressure, with its standard
+    uncertainty and what the sampling could not support, the least
+    certain first; "" where none was."""
+    from pathlib import Path
+    std = np.asarray(runs["p_f_std_bar"], dtype=float)
+    estimated = np.flatnonzero(np.isfinite(std))
+    if not len(estimated):
+        return ""
+    relative = std[estimated] / np.maximum(runs["p_f_bar"][estimated], 1e-300)
+    order = estimated[np.argsort(-relative)][:ESTIMATED_RUNS_LISTED]
+    rows = [(Path(str(runs["source_file"][i])).name,
+             f"{runs['freq_hz'][i]:.4g}",
+             format_uncertain(float(runs["p_f_bar"][i]), float(std[i]),
+                              "bar"),
+             "judder" if runs["judder"][i] else "no judder",
+             str(runs["dither_warnings"][i]) or "-")
+            for i in order]
+    return (f"<p>The dither amplitude of {len(estimated)} of the "
+            f"{len(std)} runs was estimated from the pressure (a "
+            "least-squares sinusoid), with standard uncertainties of "
+            f"{100 * relative.min():.2g} to {100 * relative.max():.2g} % "
+            "of the amplitude"
+            + (f"; the {len(order)} least certain" if len(order) < len(
+                estimated) else "") + ":</p>"
+            + _table(("run", "dither frequency (Hz)",
+                      "amplitude ± 1 sigma", "verdict",
+                      "what the sampling cannot support"), rows))
 
 
 def driveline_section(values, modes):

@@ -306,11 +306,16 @@ class ChartResult:
         runs = []
         for run in chart.read:
             a = run.analysis
+            estimate = dither_estimate_dict(a.dither)
+            if estimate is not None:
+                # the warnings as the command prints them: the file and
+                # the pressure channel named
+                estimate["warnings"] = list(run.warnings)
             runs.append({"file": str(run.path), **{
                 c: run.settings.get(c) for c in chart.group_by},
                 "freq_hz": a.freq_hz, "p_f_bar": a.p_f_bar,
                 "dither_estimated": a.estimated,
-                "dither_estimate": dither_estimate_dict(a.dither),
+                "dither_estimate": estimate,
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s, "judder": a.judder,

@@ -26,6 +26,7 @@ import numpy as np
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.parallel import parallel_map
+from infra.units import PA_PER_BAR
 
 from ..analysis.verdict import MIN_AMPLITUDE_RPM, analyse_run
 from .acquisition import ChannelSpec
@@ -35,7 +36,8 @@ from .tables import numbers, split_rows
 
 __all__ = ["RunSource", "ChartRun", "Chart", "DEFAULT_CHANNELS",
            "GROUP_COLUMNS", "sources_from_campaign", "sources_from_index",
-           "sources_from_files", "gather_sources", "build_chart"]
+           "sources_from_files", "gather_sources", "build_chart",
+           "DITHER_ARRAYS"]
 
 #: Channel names of the files ``judder campaign`` writes.
 DEFAULT_CHANNELS = {"upstream_speed": ChannelSpec("n_upstream"),
@@ -391,7 +393,32 @@ class Chart:
                                          for r in runs]),
             "forced_rpm": np.array([r.analysis.forced_rpm for r in runs]),
             "dither_estimated": np.array([r.analysis.estimated
-                                          for r in runs])}
+                                          for r in runs]),
+            **_dither_arrays([r.analysis.dither for r in runs])}
+
+
+#: NPZ arrays of an estimated dither (NaN where the setting was given):
+#: array name -> (attribute of the fit, its value in the array's unit).
+DITHER_ARRAYS = {"dither_freq_std_hz": ("freq_std_hz", 1.0),
+                 "dither_p_f_std_bar": ("amplitude_std", PA_PER_BAR),
+                 "dither_phase_rad": ("phase_rad", 1.0),
+                 "dither_phase_std_rad": ("phase_std_rad", 1.0),
+                 "dither_phase_time_s": ("reference_s", 1.0)}
+
+
+def _dither_arrays(fits):
+    """The standard uncertainties (and the phase) of the runs' dither
+    estimates (:class:`pysim.analysis.dither.SinusoidFit`, None where the
+    setting was given), as :data:`DITHER_ARRAYS`, and ``dither_warnings``:
+    what the sampling cannot support, in words joined by ``'; '`` (empty
+    where nothing, or the setting was given)."""
+    return {**{name: np.array([np.nan if fit is None else
+                               getattr(fit, attribute) / unit
+                               for fit in fits], dtype=float)
+               for name, (attribute, unit) in DITHER_ARRAYS.items()},
+            "dither_warnings": np.array(
+                ["" if fit is None else "; ".join(fit.warnings)
+                 for fit in fits], dtype=str)}
 
 
 def build_chart(sources, channels=None, group_by=None,
