@@ -242,9 +242,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
     p_search = max(1.5e5, 2 * operating.required_p_f)
     started = time.perf_counter()
-    # 0.5 Hz steps, widened by the margin so that tongues just outside count
-    grid = np.linspace(low - margin_hz, high + margin_hz,
-                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+    # the grid on which the search decides that a design clears the window
+    grid = kernel.window_grid(operating)
 
     def windows_of(param_sets):
         boundary = kernel.window_boundary(param_sets, grid, min_growth,

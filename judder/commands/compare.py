@@ -154,7 +154,7 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.decisions.advice import (OperatingRange, safe_windows,
-                                            window_boundary)
+                                            window_boundary, window_grid)
     from .check import check
     from .eig import eig
     from .map import stability_map
@@ -168,8 +168,7 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     operating = OperatingRange(
         freq_hz=(low, high), p_max=valve_max_bar * PA_PER_BAR,
         margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
-    grid = np.linspace(low - margin_hz, high + margin_hz,
-                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+    grid = window_grid(operating)
     started = time.perf_counter()
     sides = []
     for index, params in enumerate((first, second)):
