@@ -1,6 +1,6 @@
 """Option groups the commands share (model selection, waveform, workers,
-method, ``--force``, ``--min-growth``, ``--limit``), with their help
-texts.
+method, ``--force``, ``--min-growth``, ``--limit``, the safe windows'
+operating range and margins), with their help texts.
 
 Choices of models, presets and monodromy engines come from their
 registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
@@ -13,7 +13,8 @@ from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
                             ENGAGEMENT_DURATION_S)
 from stability.monodromy import DEFAULT_METHOD, METHODS
 
-from ._values import LIMIT, MIN_GROWTH, PF_MAX, WORKERS
+from ._values import (FREQ_RANGE_HZ, LIMIT, MARGIN_BAR, MARGIN_HZ,
+                      MIN_GROWTH, PF_MAX, VALVE_MAX, WORKERS, Interval)
 
 MIN_GROWTH_HELP = (
     "judder-relevant growth rate, 1/s: an instability growing slower "
@@ -107,6 +108,50 @@ def waveform_option(parser):
 def pf_max_option(parser, meaning):
     parser.add_argument("--pf-max", type=PF_MAX, default=1.5, metavar="BAR",
                         help=f"{meaning}, bar (default 1.5)")
+
+
+#: The argparse ``type=`` of the valve's highest amplitude, by option.
+_VALVE_TYPES = {"--pf-max": PF_MAX, "--valve-max": VALVE_MAX}
+
+
+def window_options(parser, valve, subject="", freq_note="", valve_note="",
+                   margin_words=("below every tongue",
+                                 "from every tongue edge")):
+    """The operating range and margins of the safe dither windows
+    (``judder advise``, ``judder compare``): --freq-range, the valve's
+    highest amplitude, --margin-bar and --margin-hz.
+
+    Parameters
+    ----------
+    valve : str
+        The option of the valve's highest amplitude, ``--pf-max`` or
+        ``--valve-max`` (where --pf-max means the maps' top).
+    subject : str
+        Words after "dither operating frequencies" (e.g. " of the safe
+        windows").
+    freq_note, valve_note : str
+        Words after the default of --freq-range and of ``valve``.
+    margin_words : (str, str)
+        What the amplitude and the frequency margin are of.
+    """
+    parser.add_argument("--freq-range", type=Interval("--freq-range", "Hz",
+                                                      *FREQ_RANGE_HZ),
+                        default="60:200", metavar="LOW:HIGH",
+                        help=f"dither operating frequencies{subject}, Hz "
+                             f"(default %(default)s{freq_note})")
+    parser.add_argument(valve, type=_VALVE_TYPES[valve], default=0.7,
+                        metavar="BAR",
+                        help="the valve's highest dither amplitude, the top "
+                             "of the operating range, bar (default "
+                             f"%(default)g{valve_note})")
+    parser.add_argument("--margin-bar", type=MARGIN_BAR, default=0.1,
+                        metavar="BAR",
+                        help=f"amplitude margin {margin_words[0]}, bar "
+                             "(default %(default)g)")
+    parser.add_argument("--margin-hz", type=MARGIN_HZ, default=5.0,
+                        metavar="HZ",
+                        help=f"frequency margin {margin_words[1]}, Hz "
+                             "(default %(default)g)")
 
 
 def workers_option(parser, default="all cores"):

@@ -14,15 +14,15 @@ from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
 
-from ._arguments import force_option, min_growth_option, model_options
+from ._arguments import (force_option, min_growth_option, model_options,
+                         window_options)
 from ._common import (at_dither_frequency, check_names, checked_values,
                       structural_names)
 from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
 from ._records import rows_to_csv
-from ._values import (FREQ_RANGE_HZ, MARGIN_BAR, MARGIN_HZ, PF_MAX, Interval,
-                      Listed, Quantity)
+from ._values import Listed
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -42,22 +42,7 @@ OUTPUTS = (("out", "--out", ("csv",)), ("plot", "--plot", None))
 
 def add_arguments(p):
     """The options of ``judder advise``."""
-    p.add_argument("--freq-range", type=Interval("--freq-range", "Hz",
-                                                 *FREQ_RANGE_HZ),
-                   default="60:200", metavar="LOW:HIGH",
-                   help="dither operating frequencies, Hz (default "
-                        "%(default)s, the paper's valve)")
-    p.add_argument("--pf-max", type=PF_MAX, default=0.7, metavar="BAR",
-                   help="the valve's highest dither amplitude, the top of "
-                        "the operating range, bar (default %(default)g)")
-    p.add_argument("--margin-bar", type=MARGIN_BAR,
-                   default=0.1, metavar="BAR",
-                   help="amplitude margin below every tongue, bar (default "
-                        "%(default)g)")
-    p.add_argument("--margin-hz", type=MARGIN_HZ,
-                   default=5.0, metavar="HZ",
-                   help="frequency margin from every tongue edge, Hz "
-                        "(default %(default)g)")
+    window_options(p, "--pf-max", freq_note=", the paper's valve")
     min_growth_option(p)
     p.add_argument("--params", type=Listed("--params", str),
                    default=None, metavar="NAMES",
@@ -242,9 +227,8 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
     p_search = max(1.5e5, 2 * operating.required_p_f)
     started = time.perf_counter()
-    # 0.5 Hz steps, widened by the margin so that tongues just outside count
-    grid = np.linspace(low - margin_hz, high + margin_hz,
-                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+    # the grid on which the search decides that a design clears the window
+    grid = kernel.window_grid(operating)
 
     def windows_of(param_sets):
         boundary = kernel.window_boundary(param_sets, grid, min_growth,

@@ -8,11 +8,10 @@ import numpy as np
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
-from ._arguments import force_option, min_growth_option
+from ._arguments import force_option, min_growth_option, window_options
 from ._common import check_arguments
 from ._output import Progress, emit, make_parents, save_plot, written
-from ._values import (FREQ_RANGE_HZ, MARGIN_BAR, MARGIN_HZ, PF_MAX,
-                      VALVE_MAX, Grid, Interval, Quantity, Settings)
+from ._values import PF_MAX, Grid, Settings
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -50,24 +49,10 @@ def add_arguments(p):
     p.add_argument("--pf-max", type=PF_MAX, default=1.5, metavar="BAR",
                    help="largest amplitude of the tongues and maps, bar "
                         "(default %(default)g)")
-    p.add_argument("--freq-range", type=Interval("--freq-range", "Hz",
-                                                 *FREQ_RANGE_HZ),
-                   default="60:200", metavar="LOW:HIGH",
-                   help="dither operating frequencies of the safe windows, "
-                        "Hz (default %(default)s, as judder advise)")
-    p.add_argument("--valve-max", type=VALVE_MAX,
-                   default=0.7, metavar="BAR",
-                   help="the valve's highest dither amplitude, the top of "
-                        "the operating range, bar (default %(default)g, as "
-                        "judder advise --pf-max)")
-    p.add_argument("--margin-bar", type=MARGIN_BAR,
-                   default=0.1, metavar="BAR",
-                   help="amplitude margin of the safe windows, bar "
-                        "(default %(default)g)")
-    p.add_argument("--margin-hz", type=MARGIN_HZ,
-                   default=5.0, metavar="HZ",
-                   help="frequency margin of the safe windows, Hz (default "
-                        "%(default)g)")
+    window_options(p, "--valve-max", subject=" of the safe windows",
+                   freq_note=", as judder advise",
+                   valve_note=", as judder advise --pf-max",
+                   margin_words=("of the safe windows",) * 2)
     min_growth_option(p)
     p.add_argument("--plot", metavar="FILE.png",
                    help="both maps on one figure")
@@ -154,7 +139,7 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.decisions.advice import (OperatingRange, safe_windows,
-                                            window_boundary)
+                                            window_boundary, window_grid)
     from .check import check
     from .eig import eig
     from .map import stability_map
@@ -168,8 +153,7 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     operating = OperatingRange(
         freq_hz=(low, high), p_max=valve_max_bar * PA_PER_BAR,
         margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
-    grid = np.linspace(low - margin_hz, high + margin_hz,
-                       int(round(2 * (high - low + 2 * margin_hz))) + 1)
+    grid = window_grid(operating)
     started = time.perf_counter()
     sides = []
     for index, params in enumerate((first, second)):
