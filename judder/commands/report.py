@@ -345,7 +345,9 @@ def report(parameters=None, changes=None, description=None,
     step()
     advice, advice_error = None, None
     try:
-        advice = advise(values, min_growth=min_growth)
+        # the wide view: where the advised design's tongues went, beyond
+        # the operating range, as judder advise --plot draws it
+        advice = advise(values, min_growth=min_growth, background=True)
     except JudderError as error:        # e.g. no design parameter
         advice_error = str(error)
     step()
