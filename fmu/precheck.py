@@ -32,7 +32,7 @@ import re
 from .errors import FrontEndError
 from .classes import blank, class_spans, find_class
 
-__all__ = ["refuse_unsupported", "REPLACEMENTS"]
+__all__ = ["refuse_unsupported", "refuse_undeclared", "REPLACEMENTS"]
 
 #: The project library's replacements of MSL classes it refuses.
 REPLACEMENTS = {
@@ -291,6 +291,45 @@ class _Walker:
                     for f in self.findings(full)]
         return []
 
+    def declares(self, name, parts):
+        """Whether class ``name`` (or a class it extends) declares the
+        component ``parts`` (``("clutch", "p_f")`` for ``clutch.p_f``):
+        False only when every class on the way was read and none has it,
+        None when that is not known from the source (a class not found,
+        a replaceable or conditional component, a redeclaration)."""
+        found = self.source.long(name)
+        if found is None:
+            return None
+        body = found[4]
+        cut = _SECTION.search(body)
+        head = body[:cut.start()] if cut else body
+        if not re.search(rf"(?<![\w.]){re.escape(parts[0])}\b", head):
+            unknown = False
+            for extends in re.finditer(r"\bextends\s+([\w.]+)([^;]*)",
+                                       head):
+                full = self.resolve(extends.group(1), name)
+                if full is None or (len(parts) > 1
+                                    and "redeclare" in extends.group(2)):
+                    unknown = True
+                    continue
+                inherited = self.declares(full, parts)
+                if inherited:
+                    return True
+                unknown = unknown or inherited is None
+            return None if unknown else False
+        if len(parts) == 1:
+            return True
+        for _, statement in _statements(head):
+            match = _DECLARATION.match(statement)
+            if match and match.group(4) == parts[0]:
+                if "replaceable" in match.group(1).split() or \
+                        _conditional(statement[match.end():]):
+                    return None
+                full, base, _ = self.kind(match.group(2), name)
+                return None if full is None or base is not None else \
+                    self.declares(full, parts[1:])
+        return None
+
     def _equations(self, sections, path, text, begin):
         outside = _WHEN.sub(lambda m: " " * len(m.group(0)), sections)
         hits = [(found.start(), what) for operator, what in
@@ -357,3 +396,29 @@ def refuse_unsupported(path, model_name, roots, hybrid=False):
                     + (f" and {len(others) - 4} more" if len(others) > 4
                        else ""))
     raise FrontEndError(message + " (found before flattening)")
+
+
+def refuse_undeclared(model_name, roots, names):
+    """Refuse, before rumoca flattens, a parameter name that
+    ``model_name`` certainly does not declare: ``names`` maps each
+    argument to a Modelica name (``{"amplitude": "p_f"}``, or
+    ``clutch.p_f``), looked up in the class, the classes it extends and
+    the types of its components (see :meth:`_Walker.declares`; a name the
+    source alone does not settle passes, for the flat model to check).
+
+    Raises
+    ------
+    FrontEndError
+        ``FILE:LINE: `argument` 'name' is not declared in CLASS ...``,
+        the place being the class's definition.
+    """
+    walker = _Walker(roots)
+    for argument, name in names.items():
+        if walker.declares(model_name, tuple(name.split("."))) is False:
+            path, text, _, begin, _ = walker.source.long(model_name)
+            raise FrontEndError(
+                f"{_place(path, text, begin)}: `{argument}` {name!r} is not "
+                f"declared in {model_name} (read with the classes it "
+                "extends and its components' types, before flattening); "
+                f"allowed: a parameter of {model_name} by its Modelica "
+                "name")

@@ -43,6 +43,7 @@ import numpy as np
 from fmu.backend import to_ode
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
+from fmu.precheck import refuse_undeclared, refuse_unsupported
 from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
@@ -54,6 +55,7 @@ from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
            "linearize", "linear_periodic_model", "NamedParameters",
+           "check_dither_declared",
            "check_no_acceleration"]
 
 #: The project's Modelica library (package ``Judder``).
@@ -82,17 +84,42 @@ def _source(class_name, roots):
             "<library>/<Package>/.../<Class>.mo or in a package.mo") from None
 
 
+def _roots(library):
+    """The library folders of a class: ``library``, the project's and
+    those of ``MODELICAPATH``."""
+    if library is not None and not Path(library).is_dir():
+        raise ModelicaError(f"library = {library!r} is not a folder")
+    return modelica_path(([Path(library)] if library is not None else [])
+                         + [LIBRARY])
+
+
 @lru_cache(maxsize=16)
 def flat_class(class_name, library=None):
     """The flat model of a Modelica class with its Integer and Boolean
     variables (:func:`fmu.frontend.load_flat_model` with ``hybrid``),
     cached per class and library; see :func:`compile_class`."""
-    roots = modelica_path(([Path(library)] if library is not None else [])
-                          + [LIBRARY])
-    if library is not None and not Path(library).is_dir():
-        raise ModelicaError(f"library = {library!r} is not a folder")
+    roots = _roots(library)
     return load_flat_model(_source(class_name, roots), class_name,
                            roots=[str(r) for r in roots], hybrid=True)
+
+
+@lru_cache(maxsize=16)
+def check_dither_declared(class_name, library=None, amplitude="p_f",
+                          frequency="f_dither"):
+    """Refuse, from the source and before the class is flattened (10-30
+    s for an MSL example), what the linearisation in one mode does not
+    compile (:func:`fmu.precheck.refuse_unsupported` with ``hybrid``: an
+    external table object), then a dither amplitude or frequency name
+    the class certainly does not declare
+    (:func:`fmu.precheck.refuse_undeclared`): MSL's ``Backlash`` or
+    ``ElastoGap`` examples compile in one mode but have no dither, and
+    without it there is nothing to linearise."""
+    roots = _roots(library)
+    folders = [str(r) for r in roots]
+    refuse_unsupported(_source(class_name, roots), class_name, folders,
+                       hybrid=True)
+    refuse_undeclared(class_name, folders,
+                      {"amplitude": amplitude, "frequency": frequency})
 
 
 @lru_cache(maxsize=64)
@@ -400,6 +427,7 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     >>> m.A0.shape, m.B.shape
     ((8, 8), (8, 8))
     """
+    check_dither_declared(class_name, library, amplitude, frequency)
     ode = compile_class(class_name, library)
     values = _parameter_values(ode, dict(values or {}), class_name, library)
     names = [q.name for q in ode.parameters]
