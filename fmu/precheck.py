@@ -24,6 +24,7 @@ nor are replaceable components and classes, which a modifier may
 redeclare.
 """
 
+import dataclasses
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -80,6 +81,9 @@ class _Finding:
     place: str
     what: str
     chain: tuple   # (component, class name, place) from the model down
+    #: the class that holds it, then those that extend that one, down to
+    #: the last component's type (or the model)
+    classes: tuple = ()
 
 
 class _Source:
@@ -254,7 +258,7 @@ class _Walker:
             result += self._statement(statement, name, where)
         if cut:
             result += self._equations(body[cut.start():], path, text,
-                                      begin + cut.start())
+                                      begin + cut.start(), name)
         self.done[name] = result
         return result
 
@@ -262,7 +266,8 @@ class _Walker:
         extends = _EXTENDS.match(statement)
         if extends:
             full = self.resolve(extends.group(1), scope)
-            return self.findings(full) if full else []
+            return [dataclasses.replace(f, classes=f.classes + (scope,))
+                    for f in self.findings(full)] if full else []
         found = _DECLARATION.match(statement)
         if not found or re.match(r"\s*(?:import|annotation)\b", statement):
             return []
@@ -274,21 +279,21 @@ class _Walker:
         full, base, external = self.kind(type_name, scope)
         if external:
             return [_Finding(where, f"{component}: an external object "
-                             f"({full}) is not supported", ())]
+                             f"({full}) is not supported", (), (scope,))]
         if "parameter" in prefixes or "constant" in prefixes:
             return []
         if "discrete" in prefixes or base in _DISCRETE:
             what = _DISCRETE.get(base, "a discrete variable")
             return [_Finding(where, f"{component}: Integer, Boolean and "
                              f"discrete variables are not supported ({what})",
-                             ())]
+                             (), (scope,))]
         if base == "Real" and (dims or more):
             return [_Finding(where, f"{component}: arrays of variables are "
-                             "not supported", ())]
+                             "not supported", (), (scope,))]
         if base is None and full is not None:
-            return [_Finding(f.place, f.what,
-                             ((component, full, where),) + f.chain)
-                    for f in self.findings(full)]
+            return [dataclasses.replace(
+                f, chain=((component, full, where),) + f.chain)
+                for f in self.findings(full)]
         return []
 
     def declares(self, name, parts):
@@ -330,7 +335,7 @@ class _Walker:
                     self.declares(full, parts[1:])
         return None
 
-    def _equations(self, sections, path, text, begin):
+    def _equations(self, sections, path, text, begin, scope):
         outside = _WHEN.sub(lambda m: " " * len(m.group(0)), sections)
         hits = [(found.start(), what) for operator, what in
                 _OPERATORS.items()
@@ -338,7 +343,7 @@ class _Walker:
         hits += [(found.start(), "pre() outside a when-clause's reinit is not "
                   "supported")
                  for found in re.finditer(r"\bpre\s*\(", outside)]
-        return [_Finding(_place(path, text, begin + at), what, ())
+        return [_Finding(_place(path, text, begin + at), what, (), (scope,))
                 for at, what in sorted(hits)]
 
 
@@ -386,8 +391,12 @@ def refuse_unsupported(path, model_name, roots, hybrid=False):
         return
     first = findings[0]
     message = f"{_describe(first)}, in model {model_name} ({path})"
-    replaced = [REPLACEMENTS[name] for _, name, _ in first.chain
-                if name in REPLACEMENTS]
+    # the MSL class to replace: a component's type on the way from the
+    # model, else the class holding the construct or one extending it
+    # (a model of one's own that extends MSL's Clutch), else the model
+    replaced = [REPLACEMENTS[name] for name in
+                [name for _, name, _ in first.chain] + list(first.classes)
+                + [model_name] if name in REPLACEMENTS]
     if replaced:
         message += f"; use {replaced[0]}"
     others = sorted({f.place for f in findings[1:]} - {first.place})

@@ -675,3 +675,39 @@ def test_msl_examples_without_a_dither_are_refused_before_flattening(
     assert status == 2, err
     assert f"{line}: {option} {missing!r} is not declared in {cls}" in err, \
         err
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+@pytest.mark.parametrize("model", ["Modelica.Mechanics.Rotational."
+                                   "Components.Clutch", "My.OwnClutch",
+                                   "My.Rig"])
+def test_msl_clutch_refused_at_its_table_names_the_replacement(tmp_path,
+                                                               model):
+    """For `--modelica` (Booleans and pre() pass) MSL's Clutch is refused
+    at its table object (Clutch.mo:29) and pointed to the project's
+    clutches: given itself, through a class of one's own that extends it
+    and through a component of that class."""
+    from fmu.precheck import refuse_unsupported
+    (tmp_path / "My").mkdir()
+    (tmp_path / "My" / "package.mo").write_text(
+        "package My\n"
+        "  model OwnClutch\n"
+        "    extends Modelica.Mechanics.Rotational.Components.Clutch;\n"
+        "  end OwnClutch;\n"
+        "  model Rig\n"
+        "    OwnClutch clutch;\n"
+        "  end Rig;\n"
+        "end My;\n")
+    roots = [tmp_path, _msl()]
+    path = (_msl() / "Modelica" / "Mechanics" / "Rotational" / "Components"
+            / "Clutch.mo") if model.startswith("Modelica") else \
+        tmp_path / "My" / "package.mo"
+    started = time.monotonic()
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(path, model, roots, hybrid=True)
+    assert time.monotonic() - started < 10
+    message = str(refused.value)
+    assert re.match(r"\S*Clutch\.mo:29: tableID: an external object", message)
+    assert "; use Judder.Components.LockingWetClutch (locks and breaks away " \
+        "by events) or Judder.Components.SlippingClutch" in message, message
