@@ -33,7 +33,8 @@ def run(args):
     zeta = result.damping_factor_12
     words = mode_words(linearised_mode(result.params))
     lines = [f"model {result.params.model}"
-             + (f", {words} (the class's own dither setting held it)"
+             + (f", {words} (held over a period at the class's own "
+                "dither setting)"
                 if words else ""),
              "undamped natural frequencies (Eq. 15): "
              + ", ".join(f"{f:.3f} Hz" for f in result.natural_frequencies_hz),
