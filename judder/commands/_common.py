@@ -68,8 +68,8 @@ def check_modes_up_to(values, freq_hz, p_max_bar):
     map, tongue boundaries): what leaves a friction clutch's mode, a slip
     through zero or a normal force to zero, is the excursion from the
     operating point, which grows with the amplitude."""
-    check_modes(values, freq_hz, np.full(np.size(freq_hz),
-                                         float(np.max(p_max_bar)) * PA_PER_BAR))
+    p_max = float(np.max(p_max_bar)) * PA_PER_BAR
+    check_modes(values, freq_hz, np.full(np.size(freq_hz), p_max))
 
 
 def linearised_mode(values):
