@@ -24,6 +24,7 @@ nor are replaceable components and classes, which a modifier may
 redeclare.
 """
 
+import dataclasses
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -32,7 +33,7 @@ import re
 from .errors import FrontEndError
 from .classes import blank, class_spans, find_class
 
-__all__ = ["refuse_unsupported", "REPLACEMENTS"]
+__all__ = ["refuse_unsupported", "refuse_undeclared", "REPLACEMENTS"]
 
 #: The project library's replacements of MSL classes it refuses.
 REPLACEMENTS = {
@@ -80,6 +81,9 @@ class _Finding:
     place: str
     what: str
     chain: tuple   # (component, class name, place) from the model down
+    #: the class that holds it, then those that extend that one, down to
+    #: the last component's type (or the model)
+    classes: tuple = ()
 
 
 class _Source:
@@ -254,7 +258,7 @@ class _Walker:
             result += self._statement(statement, name, where)
         if cut:
             result += self._equations(body[cut.start():], path, text,
-                                      begin + cut.start())
+                                      begin + cut.start(), name)
         self.done[name] = result
         return result
 
@@ -262,7 +266,8 @@ class _Walker:
         extends = _EXTENDS.match(statement)
         if extends:
             full = self.resolve(extends.group(1), scope)
-            return self.findings(full) if full else []
+            return [dataclasses.replace(f, classes=f.classes + (scope,))
+                    for f in self.findings(full)] if full else []
         found = _DECLARATION.match(statement)
         if not found or re.match(r"\s*(?:import|annotation)\b", statement):
             return []
@@ -274,24 +279,63 @@ class _Walker:
         full, base, external = self.kind(type_name, scope)
         if external:
             return [_Finding(where, f"{component}: an external object "
-                             f"({full}) is not supported", ())]
+                             f"({full}) is not supported", (), (scope,))]
         if "parameter" in prefixes or "constant" in prefixes:
             return []
         if "discrete" in prefixes or base in _DISCRETE:
             what = _DISCRETE.get(base, "a discrete variable")
             return [_Finding(where, f"{component}: Integer, Boolean and "
                              f"discrete variables are not supported ({what})",
-                             ())]
+                             (), (scope,))]
         if base == "Real" and (dims or more):
             return [_Finding(where, f"{component}: arrays of variables are "
-                             "not supported", ())]
+                             "not supported", (), (scope,))]
         if base is None and full is not None:
-            return [_Finding(f.place, f.what,
-                             ((component, full, where),) + f.chain)
-                    for f in self.findings(full)]
+            return [dataclasses.replace(
+                f, chain=((component, full, where),) + f.chain)
+                for f in self.findings(full)]
         return []
 
-    def _equations(self, sections, path, text, begin):
+    def declares(self, name, parts):
+        """Whether class ``name`` (or a class it extends) declares the
+        component ``parts`` (``("clutch", "p_f")`` for ``clutch.p_f``):
+        False only when every class on the way was read and none has it,
+        None when that is not known from the source (a class not found,
+        a replaceable or conditional component, a redeclaration)."""
+        found = self.source.long(name)
+        if found is None:
+            return None
+        body = found[4]
+        cut = _SECTION.search(body)
+        head = body[:cut.start()] if cut else body
+        if not re.search(rf"(?<![\w.]){re.escape(parts[0])}\b", head):
+            unknown = False
+            for extends in re.finditer(r"\bextends\s+([\w.]+)([^;]*)",
+                                       head):
+                full = self.resolve(extends.group(1), name)
+                if full is None or (len(parts) > 1
+                                    and "redeclare" in extends.group(2)):
+                    unknown = True
+                    continue
+                inherited = self.declares(full, parts)
+                if inherited:
+                    return True
+                unknown = unknown or inherited is None
+            return None if unknown else False
+        if len(parts) == 1:
+            return True
+        for _, statement in _statements(head):
+            match = _DECLARATION.match(statement)
+            if match and match.group(4) == parts[0]:
+                if "replaceable" in match.group(1).split() or \
+                        _conditional(statement[match.end():]):
+                    return None
+                full, base, _ = self.kind(match.group(2), name)
+                return None if full is None or base is not None else \
+                    self.declares(full, parts[1:])
+        return None
+
+    def _equations(self, sections, path, text, begin, scope):
         outside = _WHEN.sub(lambda m: " " * len(m.group(0)), sections)
         hits = [(found.start(), what) for operator, what in
                 _OPERATORS.items()
@@ -299,7 +343,7 @@ class _Walker:
         hits += [(found.start(), "pre() outside a when-clause's reinit is not "
                   "supported")
                  for found in re.finditer(r"\bpre\s*\(", outside)]
-        return [_Finding(_place(path, text, begin + at), what, ())
+        return [_Finding(_place(path, text, begin + at), what, (), (scope,))
                 for at, what in sorted(hits)]
 
 
@@ -347,8 +391,12 @@ def refuse_unsupported(path, model_name, roots, hybrid=False):
         return
     first = findings[0]
     message = f"{_describe(first)}, in model {model_name} ({path})"
-    replaced = [REPLACEMENTS[name] for _, name, _ in first.chain
-                if name in REPLACEMENTS]
+    # the MSL class to replace: a component's type on the way from the
+    # model, else the class holding the construct or one extending it
+    # (a model of one's own that extends MSL's Clutch), else the model
+    replaced = [REPLACEMENTS[name] for name in
+                [name for _, name, _ in first.chain] + list(first.classes)
+                + [model_name] if name in REPLACEMENTS]
     if replaced:
         message += f"; use {replaced[0]}"
     others = sorted({f.place for f in findings[1:]} - {first.place})
@@ -357,3 +405,29 @@ def refuse_unsupported(path, model_name, roots, hybrid=False):
                     + (f" and {len(others) - 4} more" if len(others) > 4
                        else ""))
     raise FrontEndError(message + " (found before flattening)")
+
+
+def refuse_undeclared(model_name, roots, names):
+    """Refuse, before rumoca flattens, a parameter name that
+    ``model_name`` certainly does not declare: ``names`` maps each
+    argument to a Modelica name (``{"amplitude": "p_f"}``, or
+    ``clutch.p_f``), looked up in the class, the classes it extends and
+    the types of its components (see :meth:`_Walker.declares`; a name the
+    source alone does not settle passes, for the flat model to check).
+
+    Raises
+    ------
+    FrontEndError
+        ``FILE:LINE: `argument` 'name' is not declared in CLASS ...``,
+        the place being the class's definition.
+    """
+    walker = _Walker(roots)
+    for argument, name in names.items():
+        if walker.declares(model_name, tuple(name.split("."))) is False:
+            path, text, _, begin, _ = walker.source.long(model_name)
+            raise FrontEndError(
+                f"{_place(path, text, begin)}: `{argument}` {name!r} is not "
+                f"declared in {model_name} (read with the classes it "
+                "extends and its components' types, before flattening); "
+                f"allowed: a parameter of {model_name} by its Modelica "
+                "name")

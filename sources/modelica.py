@@ -43,17 +43,19 @@ import numpy as np
 from fmu.backend import to_ode
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
+from fmu.precheck import refuse_undeclared, refuse_unsupported
 from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
-from .modes import (describe_mode, fixed_mode, mode_values,
-                    uses_initial)
+from .modes import (describe_mode, fixed_mode, mode_indicators,
+                    mode_values, uses_initial)
 from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
            "ModelicaParameters", "compile_class", "parameter_specs",
            "linearize", "linear_periodic_model", "NamedParameters",
+           "check_dither_declared",
            "check_no_acceleration"]
 
 #: The project's Modelica library (package ``Judder``).
@@ -82,17 +84,42 @@ def _source(class_name, roots):
             "<library>/<Package>/.../<Class>.mo or in a package.mo") from None
 
 
+def _roots(library):
+    """The library folders of a class: ``library``, the project's and
+    those of ``MODELICAPATH``."""
+    if library is not None and not Path(library).is_dir():
+        raise ModelicaError(f"library = {library!r} is not a folder")
+    return modelica_path(([Path(library)] if library is not None else [])
+                         + [LIBRARY])
+
+
 @lru_cache(maxsize=16)
 def flat_class(class_name, library=None):
     """The flat model of a Modelica class with its Integer and Boolean
     variables (:func:`fmu.frontend.load_flat_model` with ``hybrid``),
     cached per class and library; see :func:`compile_class`."""
-    roots = modelica_path(([Path(library)] if library is not None else [])
-                          + [LIBRARY])
-    if library is not None and not Path(library).is_dir():
-        raise ModelicaError(f"library = {library!r} is not a folder")
+    roots = _roots(library)
     return load_flat_model(_source(class_name, roots), class_name,
                            roots=[str(r) for r in roots], hybrid=True)
+
+
+@lru_cache(maxsize=16)
+def check_dither_declared(class_name, library=None, amplitude="p_f",
+                          frequency="f_dither"):
+    """Refuse, from the source and before the class is flattened (10-30
+    s for an MSL example), what the linearisation in one mode does not
+    compile (:func:`fmu.precheck.refuse_unsupported` with ``hybrid``: an
+    external table object), then a dither amplitude or frequency name
+    the class certainly does not declare
+    (:func:`fmu.precheck.refuse_undeclared`): MSL's ``Backlash`` or
+    ``ElastoGap`` examples compile in one mode but have no dither, and
+    without it there is nothing to linearise."""
+    roots = _roots(library)
+    folders = [str(r) for r in roots]
+    refuse_unsupported(_source(class_name, roots), class_name, folders,
+                       hybrid=True)
+    refuse_undeclared(class_name, folders,
+                      {"amplitude": amplitude, "frequency": frequency})
 
 
 @lru_cache(maxsize=64)
@@ -400,6 +427,7 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     >>> m.A0.shape, m.B.shape
     ((8, 8), (8, 8))
     """
+    check_dither_declared(class_name, library, amplitude, frequency)
     ode = compile_class(class_name, library)
     values = _parameter_values(ode, dict(values or {}), class_name, library)
     names = [q.name for q in ode.parameters]
@@ -471,7 +499,8 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
 
 #: Event iterations allowed to find the mode of the operating point.
 _EVENT_ITERATIONS = 20
-#: Samples per dither period at which the mode is checked.
+#: Samples per dither period at which the mode is checked, besides just
+#: after each zero crossing of its relations.
 _MODE_SAMPLES = 64
 
 
@@ -541,24 +570,34 @@ def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
 def _mode_holds(class_name, ode, flat, mode, vector, f0):
     """Refuse a mode that changes within a dither period: the equations
     in the mode are integrated over one period from the start values
-    (parameters ``vector``, dither frequency ``f0``) and the discrete
-    variables' equations evaluated at :data:`_MODE_SAMPLES` times."""
+    (parameters ``vector``, dither frequency ``f0``) with the zero
+    crossings of the relations in the discrete variables' equations as
+    the integrator's events (:func:`sources.modes.mode_indicators`), and
+    those equations are evaluated just after each crossing and at
+    :data:`_MODE_SAMPLES` times."""
     ode_function = casadi.Function("ode", [ode.time, casadi.vertcat(
         *[s.expression for s in ode.states]), casadi.vertcat(
             *[q.expression for q in ode.parameters])],
         [_live(ode, ode.derivatives)])
     values = mode_values(ode)
+    indicators = mode_indicators(ode)
     period = 1.0 / f0
-    times = np.arange(1, _MODE_SAMPLES + 1) * period / _MODE_SAMPLES
+    events = [lambda t, x, k=k: float(indicators(t, x, vector)[k])
+              for k in range(indicators.size1_out(0))]
     path = solve_ivp(
         lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
-        (0.0, period), _start(ode, vector), t_eval=times, rtol=1e-9,
-        atol=1e-12)
+        (0.0, period), _start(ode, vector), events=events or None,
+        dense_output=True, rtol=1e-9, atol=1e-12)
     _require(path.success, f"{class_name}: the equations in the mode "
              f"{describe_mode(flat, mode)} could not be integrated over a "
              f"dither period of {period:.4g} s ({path.message}); allowed: "
              "an operating point whose mode can be checked")
-    for time, state in zip(path.t, path.y.T):
+    after = 1e-9 * period   # just past a crossing, on its other side
+    times = np.sort(np.concatenate(
+        [np.arange(1, _MODE_SAMPLES + 1) * period / _MODE_SAMPLES]
+        + [np.minimum(found + after, period)
+           for found in (path.t_events or [])]))
+    for time, state in zip(times, path.sol(times).T):
         now = np.asarray(values(time, state, vector)).ravel()
         for k in np.flatnonzero(now != np.asarray(mode)):
             raise ModelicaError(

@@ -17,8 +17,8 @@ import casadi
 
 from fmu.frontend import Variable
 
-__all__ = ["fixed_mode", "mode_values", "describe_mode", "uses_initial",
-           "MODE_PREFIX"]
+__all__ = ["fixed_mode", "mode_values", "mode_indicators", "describe_mode",
+           "uses_initial", "MODE_PREFIX"]
 
 #: Name of the variable holding the k-th discrete variable's equation.
 MODE_PREFIX = "judder_mode"
@@ -83,19 +83,53 @@ def uses_initial(flat):
         casadi.depends_on(casadi.SX(r), flat.initial) for r in flat.residuals)
 
 
-def mode_values(ode):
-    """``values(t, x, p)``: the discrete variables' equations in the mode
-    of ``ode`` (:func:`fixed_mode` compiled), one per variable; ``p`` the
-    tunable parameters (the relations in them are values, not held)."""
+def _mode_formulas(ode):
+    """The discrete variables' equations in the mode of ``ode``, in
+    ``t, x, p``, one per variable."""
     formulas = {q.name: q.expression for q in ode.locals}
     formulas.update({q.name: formulas.get(name, q.expression)
                      for q, name in ode.aliases})
     count = sum(name.startswith(MODE_PREFIX) for name in formulas)
+    return [casadi.SX(formulas[f"{MODE_PREFIX}{k}"]) for k in range(count)]
+
+
+def _arguments(ode):
     x = casadi.vertcat(casadi.SX(0, 1), *[s.expression for s in ode.states])
     p = casadi.vertcat(casadi.SX(0, 1), *[q.expression for q in
                                           ode.parameters])
-    return casadi.Function("mode", [ode.time, x, p], [_column(
-        [formulas[f"{MODE_PREFIX}{k}"] for k in range(count)])])
+    return [ode.time, x, p]
+
+
+def mode_values(ode):
+    """``values(t, x, p)``: the discrete variables' equations in the mode
+    of ``ode`` (:func:`fixed_mode` compiled), one per variable; ``p`` the
+    tunable parameters (the relations in them are values, not held)."""
+    return casadi.Function("mode", _arguments(ode),
+                           [_column(_mode_formulas(ode))])
+
+
+#: CasADi's relational operations, whose sign of ``lhs - rhs`` decides them.
+_RELATIONS = (casadi.OP_LT, casadi.OP_LE, casadi.OP_EQ, casadi.OP_NE)
+
+
+def mode_indicators(ode):
+    """``indicators(t, x, p)``: ``lhs - rhs`` of each relation in the
+    discrete variables' equations (:func:`mode_values`), whose zero
+    crossings are the only places the mode's values can change (the
+    event indicators of the relations, for an integrator's events)."""
+    found, seen = {}, set()
+    stack = [f[i] for f in _mode_formulas(ode) for i in range(f.numel())]
+    while stack:
+        node = stack.pop()
+        key = node.element_hash()
+        if key in seen or node.is_leaf():
+            continue
+        seen.add(key)
+        if node.op() in _RELATIONS:
+            found[key] = node.dep(0) - node.dep(1)
+        stack += [node.dep(i) for i in range(node.n_dep())]
+    return casadi.Function("indicators", _arguments(ode),
+                           [_column(list(found.values()))])
 
 
 def describe_mode(flat, values):

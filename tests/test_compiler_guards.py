@@ -14,6 +14,7 @@ from pathlib import Path
 import re
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 import zipfile
 
@@ -431,7 +432,6 @@ def test_a_long_compile_is_announced_on_a_terminal_only():
 
 
 def test_a_long_build_says_its_step_on_a_terminal_only():
-    import time
     from fmu.build import Stages
     terminal, pipe = _Terminal(True), _Terminal(False)
     with Stages("M", delay=0, stream=terminal) as stage:
@@ -614,3 +614,100 @@ def test_a_boolean_is_refused_from_the_source_with_its_components(tmp_path):
     for name in ("Optional", "Swappable"):
         refuse_unsupported(tmp_path / "Lib" / "Parts" / f"{name}.mo",
                            f"Lib.Parts.{name}", [tmp_path])
+
+
+def test_a_name_the_class_does_not_declare_is_refused_from_the_source(
+        tmp_path):
+    """`Lib.Rig` declares `z` and, through `Counter`, `counter.x`; it has
+    no `p_f` nor `counter.y`: refused at Rig.mo:2 without rumoca. Below
+    a conditional (`optional.counter`) or a replaceable component
+    (`Swappable.counter`) the source does not settle the name: it passes
+    for the flat model to check."""
+    from fmu.precheck import refuse_undeclared
+    for name, text in _LIB.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    refuse_undeclared("Lib.Rig", [tmp_path], {
+        "amplitude": "z", "frequency": "counter.x",
+        "other": "optional.counter.q"})
+    refuse_undeclared("Lib.Parts.Swappable", [tmp_path],
+                      {"amplitude": "counter.q"})
+    for name in ("p_f", "counter.y"):
+        with pytest.raises(FrontEndError, match=(
+                rf"\S*Rig\.mo:2: `amplitude` '{re.escape(name)}' is not "
+                r"declared in Lib\.Rig \(read with the classes it extends")):
+            refuse_undeclared("Lib.Rig", [tmp_path], {"amplitude": name})
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+@pytest.mark.parametrize("name, line, dither", [
+    ("Rotational.Examples.Backlash", "Rotational/Examples/Backlash.mo:2",
+     ()),
+    ("Translational.Examples.PreLoad", "Translational/Examples/PreLoad.mo:2",
+     ()),
+    ("Translational.Examples.ElastoGap",
+     "Translational/Examples/ElastoGap.mo:2",
+     ("--dither-amplitude", "elastoGap1.c", "--dither-frequency",
+      "mass1.mm")),
+    ("Blocks.Examples.SlewRateLimiter", "Blocks/package.mo:397", ())])
+def test_msl_examples_without_a_dither_are_refused_before_flattening(
+        judder_here, monkeypatch, name, line, dither):
+    """MSL examples the linearisation in one mode compiles (their
+    Booleans, initial() and relations are read) but which have no dither
+    parameter: `judder check --modelica` refuses them from the source,
+    at the class's file:line, never reaching rumoca (12-30 s)."""
+    import fmu.frontend
+    cls = ("Modelica.Blocks.Examples.SlewRateLimiter" if "Blocks" in name
+           else f"Modelica.Mechanics.{name}")
+    monkeypatch.setenv("MODELICAPATH", str(_msl()))
+
+    def flatten(*args, **kwargs):
+        raise AssertionError("rumoca flattened the class")
+    monkeypatch.setattr(fmu.frontend, "_flatten", flatten)
+    started = time.monotonic()
+    status, _, err = judder_here(
+        "check", "--modelica", cls, "--library", _msl(), "--freq", 100,
+        "--pf", 0.3, *dither)
+    assert time.monotonic() - started < 10
+    missing = dither[-1] if dither else "p_f"
+    option = "--dither-frequency" if dither else "--dither-amplitude"
+    assert status == 2, err
+    assert f"{line}: {option} {missing!r} is not declared in {cls}" in err, \
+        err
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+@pytest.mark.parametrize("model", ["Modelica.Mechanics.Rotational."
+                                   "Components.Clutch", "My.OwnClutch",
+                                   "My.Rig"])
+def test_msl_clutch_refused_at_its_table_names_the_replacement(tmp_path,
+                                                               model):
+    """For `--modelica` (Booleans and pre() pass) MSL's Clutch is refused
+    at its table object (Clutch.mo:29) and pointed to the project's
+    clutches: given itself, through a class of one's own that extends it
+    and through a component of that class."""
+    from fmu.precheck import refuse_unsupported
+    (tmp_path / "My").mkdir()
+    (tmp_path / "My" / "package.mo").write_text(
+        "package My\n"
+        "  model OwnClutch\n"
+        "    extends Modelica.Mechanics.Rotational.Components.Clutch;\n"
+        "  end OwnClutch;\n"
+        "  model Rig\n"
+        "    OwnClutch clutch;\n"
+        "  end Rig;\n"
+        "end My;\n")
+    roots = [tmp_path, _msl()]
+    path = (_msl() / "Modelica" / "Mechanics" / "Rotational" / "Components"
+            / "Clutch.mo") if model.startswith("Modelica") else \
+        tmp_path / "My" / "package.mo"
+    started = time.monotonic()
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(path, model, roots, hybrid=True)
+    assert time.monotonic() - started < 10
+    message = str(refused.value)
+    assert re.match(r"\S*Clutch\.mo:29: tableID: an external object", message)
+    assert "; use Judder.Components.LockingWetClutch (locks and breaks away " \
+        "by events) or Judder.Components.SlippingClutch" in message, message

@@ -13,6 +13,7 @@ by central differences and integrated by scipy.
 """
 
 import os
+import re
 from pathlib import Path
 import subprocess
 import sys
@@ -221,3 +222,57 @@ def test_a_step_is_held_in_the_mode(msl_path):
                        r"changes at t = 0\.005\d* s"):
         linearize("MslDrivelines.SteppedModeClutchDriveline", str(MODELS),
                   {"t_step": 0.005})
+
+
+def test_studies_over_amplitudes_check_their_own_largest_amplitude(
+        msl_path, judder_here):
+    """`tongues` searched up to 12 bar (deeper than the mean pressure of
+    10 bar) is refused where the dither frees the clutch, though the
+    class's own p_f keeps it slipping; `map` says the amplitude it
+    checked each frequency at, in text and JSON; `eig` says the mode."""
+    import json
+    from sources.modelica import ModelicaParameters
+    own = ModelicaParameters(CLASS, str(MODELS))
+    assert own["p_f"] < own["p_m"] < 12e5
+    model = ("--modelica", CLASS, "--library", MODELS)
+    status, _, err = judder_here("tongues", *model, "--freq", "100:110:3",
+                                 "--pf-max", 12)
+    assert status == 2
+    assert re.search(r"clutch\.free \(\S*FrictionModeClutch\.mo:23\) "
+                     "changes from false to true", err), err
+    status, out, err = judder_here("map", *model, "--freq", "100:110:2",
+                                   "--pf", "0.1:0.3:2")
+    assert status == 0, err
+    assert "clutch.mode = 1 (clutch.Forward)" in out
+    assert "held at each frequency's largest amplitude, 0.3 bar" in out
+    status, out, err = judder_here("map", *model, "--freq", "100:110:2",
+                                   "--pf", "0.1:0.3:2", "--json")
+    assert json.loads(out)["mode_checked_at_p_f_bar"] == 0.3
+    status, out, err = judder_here("eig", *model, "--json")
+    assert json.loads(out)["mode"]["clutch.mode"] == "1 (clutch.Forward)"
+
+
+def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
+                                                           monkeypatch):
+    """A slip of 0.05 rad/s that the dither swings through zero for a
+    moment only (just above the amplitude where it first reaches zero,
+    0.7257 bar) is refused at the relation's zero crossing, an event of
+    the integrator; 64 samples of the period, without the events, miss
+    it. 1 % below that amplitude the mode holds."""
+    import casadi
+    import sources.modelica as modelica
+    params = modelica.ModelicaParameters(CLASS, str(MODELS)).replace(**{
+        "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
+    grazing = 0.72600e5
+    params.check_mode(params["f_dither"], 0.99 * grazing)
+    with pytest.raises(modelica.ModelicaError, match=(
+            r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
+            r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = 0\.008")):
+        params.check_mode(params["f_dither"], grazing)
+
+    def no_events(ode):
+        return casadi.Function("none", [casadi.SX.sym("t"), casadi.SX.sym(
+            "x", len(ode.states)), casadi.SX.sym("p", len(ode.parameters))],
+            [casadi.SX(0, 1)])
+    monkeypatch.setattr(modelica, "mode_indicators", no_events)
+    params.check_mode(params["f_dither"], grazing)

@@ -10,6 +10,7 @@ import numpy as np
 from drivelines import DEFAULT_MODEL
 from sources import default_preset, get_preset
 from infra.errors import JudderError
+from infra.units import PA_PER_BAR
 from stability.source import build_driveline
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
@@ -61,6 +62,16 @@ def check_modes(values, freq_hz, p_f):
             check(float(f), float(p))
 
 
+def check_modes_up_to(values, freq_hz, p_max_bar):
+    """:func:`check_modes` at each frequency of ``freq_hz`` with the
+    largest amplitude ``p_max_bar`` (bar) of a study over amplitudes (a
+    map, tongue boundaries): what leaves a friction clutch's mode, a slip
+    through zero or a normal force to zero, is the excursion from the
+    operating point, which grows with the amplitude."""
+    p_max = float(np.max(p_max_bar)) * PA_PER_BAR
+    check_modes(values, freq_hz, np.full(np.size(freq_hz), p_max))
+
+
 def linearised_mode(values):
     """``{name: value}`` of the Integer and Boolean variables of a hybrid
     Modelica class in the mode it is linearised in
@@ -71,15 +82,21 @@ def linearised_mode(values):
     return dict(values.linear_model().mode)
 
 
-def mode_words(mode):
+def mode_words(mode, checked_at_bar=None):
     """``linearised in the mode clutch.mode = 1 (clutch.Forward), ...``
-    (Integer variables first), or ``""`` without a mode."""
+    (Integer variables first), or ``""`` without a mode; with
+    ``checked_at_bar``, the amplitude (bar) at which each frequency of a
+    study over amplitudes was checked (:func:`check_modes_up_to`)."""
     if not mode:
         return ""
     ordered = sorted(mode.items(), key=lambda item: item[1] in
                      ("true", "false"))
     return "linearised in the mode " + ", ".join(
-        f"{name} = {value}" for name, value in ordered)
+        f"{name} = {value}" for name, value in ordered) + (
+        "" if checked_at_bar is None else
+        f"; held at each frequency's largest amplitude, {checked_at_bar:g} "
+        "bar (what leaves it, a slip through zero or a normal force to "
+        "zero, grows with the amplitude)")
 
 
 def frequency_dependent(values):

@@ -15,8 +15,10 @@ from ..inputs import load_parameters, read_input
 from ._values import check_file_pressure, check_plain_pressure, check_pressures
 
 
-def parameters_of(args):
-    """Base parameter set and explicit changes of a command's options.
+def parameters_of(args, dithered=True):
+    """Base parameter set and explicit changes of a command's options
+    (``dithered``: the command linearises the dither, see
+    :func:`own_driveline`).
 
     Returns
     -------
@@ -25,7 +27,8 @@ def parameters_of(args):
     changes : dict
         The --set values, validated (SI).
     """
-    params = (own_driveline(args, args.param_file, "--param-file")
+    params = (own_driveline(args, args.param_file, "--param-file",
+                            dithered)
               or load_parameters(preset=args.preset, model=args.model,
                                  param_file=args.param_file))
     changed = params.with_overrides(args.set)
@@ -47,10 +50,13 @@ def parameter_file(args, path, option):
         read_input(path, option), source=str(path))
 
 
-def own_driveline(args, path=None, option="--param-file"):
+def own_driveline(args, path=None, option="--param-file", dithered=True):
     """The parameter set of ``--fmu FILE.fmu`` (docs/fmu-path.md) or
     ``--modelica CLASS [--library DIR]`` (docs/onemodel.md), with the
-    values of the file ``path`` if given; None if neither is given."""
+    values of the file ``path`` if given; None if neither is given.
+    With ``dithered`` (every command but ``params``) a class that
+    certainly lacks the dither's parameters is refused from its source,
+    before the flatten."""
     refused = getattr(args, "refused_fmu", None)
     if refused is not None:     # a command that runs the time domain
         from ..timedomain import fmu_refusal
@@ -79,6 +85,9 @@ def own_driveline(args, path=None, option="--param-file"):
                               f"--{name.replace('_', '-')}; give one")
     names = {"amplitude": args.dither_amplitude,
              "frequency": args.dither_frequency}
+    if modelica and dithered:
+        from sources.modelica import check_dither_declared
+        check_dither_declared(modelica, args.library, **names)
     base = (FmuParameters(fmu, **names) if fmu else
             ModelicaParameters(modelica, args.library, **names))
     if path is None:

@@ -8,7 +8,7 @@ from stability import modal
 from stability.source import build_driveline
 
 from ._arguments import model_options
-from ._common import resolve
+from ._common import linearised_mode, mode_words, resolve
 from ._model import parameters_of
 from ._output import emit
 
@@ -31,7 +31,11 @@ def run(args):
     """Natural frequencies and the clutch-damper damping factor."""
     result = eig(*parameters_of(args))
     zeta = result.damping_factor_12
-    lines = [f"model {result.params.model}",
+    words = mode_words(linearised_mode(result.params))
+    lines = [f"model {result.params.model}"
+             + (f", {words} (held over a period at the class's own "
+                "dither setting)"
+                if words else ""),
              "undamped natural frequencies (Eq. 15): "
              + ", ".join(f"{f:.3f} Hz" for f in result.natural_frequencies_hz),
              "clutch-damper damping factor (Eq. 16): "
@@ -96,7 +100,9 @@ class EigResult:
     damping_ratio: np.ndarray
 
     def as_dict(self):
+        mode = linearised_mode(self.params)
         return {"model": self.params.model,
+                **({"mode": mode} if mode else {}),
                 "natural_frequencies_hz": self.natural_frequencies_hz,
                 "closed_form_frequencies_hz": self.closed_form_frequencies_hz,
                 "damping_factor_12": self.damping_factor_12,

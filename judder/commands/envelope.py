@@ -20,7 +20,8 @@ from stability.monodromy import DEFAULT_METHOD
 from ..envelope import checkpoint_path
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, pf_max_option, workers_option)
-from ._common import BACKGROUND_AMPLITUDES, checked_values
+from ._common import (BACKGROUND_AMPLITUDES, check_modes_up_to,
+                      checked_values)
 from ._model import model_title, parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
@@ -206,6 +207,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     from ..envelope import read_ranges, run_envelope
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_max_bar=p_max_bar, min_growth=min_growth)
+    check_modes_up_to(values, freq_hz, p_max_bar)
     if not isinstance(ranges, Ranges):
         ranges = read_ranges(ranges, values)
     growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth

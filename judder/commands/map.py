@@ -16,7 +16,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, waveform_option)
-from ._common import (check_modes, checked_values, dithered,
+from ._common import (check_modes_up_to, checked_values, dithered,
                       frequency_dependent, linearised_mode, mode_words,
                       per_frequency, timed)
 from ._model import model_title, parameters_of
@@ -95,7 +95,8 @@ def run(args):
                                           "set": args.set,
                                           "dither_wave": args.dither_wave}},
                            figure={"title": title})
-    words = mode_words(linearised_mode(result.params))
+    words = mode_words(linearised_mode(result.params),
+                       float(np.max(amplitudes)))
     text = ((words + "\n" if words else "") + count_words(result) + "\n"
             + time_words(
         result, time.perf_counter() - started)
@@ -172,9 +173,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     """
     values = checked_values(parameters, changes, followed=True,
                             freq_hz=freq_hz, p_f_bar=p_f_bar)
-    # a hybrid class: each frequency at the largest amplitude
-    check_modes(values, freq_hz, np.full(np.size(freq_hz),
-                                         np.max(p_f_bar) * PA_PER_BAR))
+    check_modes_up_to(values, freq_hz, p_f_bar)
     driveline = dithered(values, waveform)
     amplitudes = np.asarray(p_f_bar, dtype=float) * PA_PER_BAR
     p_top = float(np.max(p_f_bar)) * PA_PER_BAR
@@ -267,7 +266,8 @@ class MapResult:
         bar = m.p_f / PA_PER_BAR
         mode = linearised_mode(self.params)
         return {"model": self.params.model,
-                **({"mode": mode} if mode else {}), "method": m.method,
+                **({"mode": mode, "mode_checked_at_p_f_bar":
+                    float(bar.max())} if mode else {}), "method": m.method,
                 "points": int(m.kind.size), "seconds": self.seconds,
                 "freq_hz": [m.freq_hz[0], m.freq_hz[-1], len(m.freq_hz)],
                 "p_f_bar": [bar[0], bar[-1], len(bar)],

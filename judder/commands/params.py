@@ -29,7 +29,7 @@ def add_arguments(p):
 
 def run(args):
     """Show (and optionally save) the parameter set."""
-    result = params(*parameters_of(args))
+    result = params(*parameters_of(args, dithered=False))
     if args.save:
         make_parents(args.save)
         result.save(args.save, overwrite=args.force)

@@ -9,7 +9,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          pf_max_option, workers_option)
-from ._common import checked_values, timed
+from ._common import check_modes_up_to, checked_values, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_sensitivity, check_work
@@ -145,6 +145,7 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
                                        tip_shifts)
     nominal = checked_values(parameters, changes, freq_hz=freq_hz,
                              p_max_bar=p_max_bar)
+    check_modes_up_to(nominal, freq_hz, p_max_bar)
     for name in names:
         if name not in nominal.specs:
             raise JudderError(f"--params: unknown parameter {name!r} for the "

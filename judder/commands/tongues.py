@@ -13,7 +13,9 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, pf_max_option, waveform_option)
-from ._common import BACKGROUND_AMPLITUDES, checked_values, dithered
+from ._common import (BACKGROUND_AMPLITUDES, check_modes_up_to,
+                      checked_values, dithered, linearised_mode,
+                      mode_words)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_tongues
@@ -76,6 +78,9 @@ def run(args):
         "title": f"tongue boundaries over the map, "
                  f"{model_title(args, params)}"})}
     rows = tip_table(data)
+    words = mode_words(linearised_mode(result.params), args.pf_max)
+    if words:
+        rows.insert(0, words)
     missing = _missing_tongues(result, freqs, args.pf_max)
     if missing:
         rows.append(missing)
@@ -168,6 +173,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     from stability.tongues import find_tongues, tongue_boundaries
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_max_bar=p_max_bar)
+    check_modes_up_to(values, freq_hz, p_max_bar)
     judder_growth = (DEFAULT_MIN_GROWTH_PER_S if judder_growth is None
                      else float(MIN_GROWTH.check(judder_growth,
                                                  "judder_growth")))
@@ -237,7 +243,11 @@ class TonguesResult:
 
     def as_dict(self):
         b = self.boundaries
-        return {"model": self.params.model, "method": b.method,
+        mode = linearised_mode(self.params)
+        return {"model": self.params.model,
+                **({"mode": mode, "mode_checked_at_p_f_bar":
+                    b.p_max / PA_PER_BAR} if mode else {}),
+                "method": b.method,
                 "min_growth_per_s": b.min_growth, "seconds": self.seconds,
                 "freq_hz": [b.freq_hz[0], b.freq_hz[-1], len(b.freq_hz)],
                 "p_max_bar": b.p_max / PA_PER_BAR,
