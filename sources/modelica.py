@@ -375,6 +375,14 @@ def _require(condition, message):
         raise ModelicaError(message)
 
 
+def _require_dither(names, class_name, amplitude, frequency):
+    """The dither's amplitude and frequency are among the parameters
+    ``names`` of the class."""
+    for role, name in (("amplitude", amplitude), ("frequency", frequency)):
+        _require(name in names, f"{role} = {name!r} is not a parameter of "
+                 f"{class_name}; allowed: {allowed_names(names)}")
+
+
 def _undamped_omega2(A0, names):
     """``M^-1 K`` from the rows ``der(w)`` and the columns ``phi`` with
     ``der(phi) = w``; empty if the states are not such pairs."""
@@ -431,9 +439,7 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     ode = compile_class(class_name, library)
     values = _parameter_values(ode, dict(values or {}), class_name, library)
     names = [q.name for q in ode.parameters]
-    for role, name in (("amplitude", amplitude), ("frequency", frequency)):
-        _require(name in names, f"{role} = {name!r} is not a parameter of "
-                 f"{class_name}; allowed: {allowed_names(names)}")
+    _require_dither(names, class_name, amplitude, frequency)
     mode = ()
     if flat_class(class_name, library).discretes:
         _require(values[frequency] > 0, f"{frequency} = "
@@ -560,6 +566,7 @@ def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
     and Boolean variables."""
     if not flat_class(class_name, library).discretes:
         return
+    _require_dither(list(values), class_name, amplitude, frequency)
     ode, current = operating_mode(class_name, library, tuple(values.items()),
                                   frequency)
     setting = {**values, frequency: freq_hz, amplitude: p_f}

@@ -276,3 +276,17 @@ def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
             [casadi.SX(0, 1)])
     monkeypatch.setattr(modelica, "mode_indicators", no_events)
     params.check_mode(params["f_dither"], grazing)
+
+
+def test_a_mode_check_without_the_dither_parameter_is_refused_in_words(
+        msl_path):
+    """A library caller's dither frequency that the class does not have:
+    the mode check names it and the parameters allowed (it ended in a
+    KeyError of the parameter values)."""
+    import sources.modelica as modelica
+    params = modelica.ModelicaParameters(CLASS, str(MODELS),
+                                         frequency="f_valve")
+    with pytest.raises(modelica.ModelicaError, match=(
+            r"frequency = 'f_valve' is not a parameter of "
+            r"MslDrivelines\.ModeClutchDriveline; allowed: .*f_dither")):
+        params.check_mode(100.0, 0.3e5)
