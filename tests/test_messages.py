@@ -102,12 +102,18 @@ def test_a_class_without_parameters_says_so(capsys, tmp_path):
     (tmp_path / "NoPar.mo").write_text(
         "model NoPar\n  Real x(start=1, fixed=true);\nequation\n"
         "  der(x) = -x;\nend NoPar;\n")
-    status, out, err = run(["eig", "--modelica", "NoPar", "--library",
+    status, out, err = run(["params", "--modelica", "NoPar", "--library",
                             str(tmp_path), "--set", "k=1"], capsys)
     assert status == 2
     assert err.strip().endswith(
         "allowed names: none: the model has no tunable parameter (a "
         "Modelica class declares one with 'parameter Real NAME = VALUE;')")
+    # a study needs the dither's amplitude: refused from the source first
+    status, out, err = run(["eig", "--modelica", "NoPar", "--library",
+                            str(tmp_path), "--set", "k=1"], capsys)
+    assert status == 2
+    assert "NoPar.mo:1: --dither-amplitude 'p_f' is not declared in " \
+        "NoPar" in err
 
 
 @pytest.mark.parametrize("value, words", [
