@@ -571,13 +571,18 @@ def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
                                   frequency)
     setting = {**values, frequency: freq_hz, amplitude: p_f}
     _mode_holds(class_name, ode, flat_class(class_name, library), current,
-                np.array(list(setting.values())), freq_hz)
+                np.array(list(setting.values())), freq_hz,
+                f"the dither setting {frequency} = {freq_hz:g} Hz, "
+                f"{amplitude} = {p_f:g} Pa")
 
 
-def _mode_holds(class_name, ode, flat, mode, vector, f0):
+def _mode_holds(class_name, ode, flat, mode, vector, f0,
+                setting="the operating point (the start values, dither "
+                        "included)"):
     """Refuse a mode that changes within a dither period: the equations
     in the mode are integrated over one period from the start values
-    (parameters ``vector``, dither frequency ``f0``) with the zero
+    (parameters ``vector``, dither frequency ``f0``; ``setting`` names
+    them in the message) with the zero
     crossings of the relations in the discrete variables' equations as
     the integrator's events (:func:`sources.modes.mode_indicators`), and
     those equations are evaluated just after each crossing and at
@@ -612,8 +617,8 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0):
                 f"({flat.discretes[k].where}) changes from "
                 f"{describe_mode(flat, mode)[k][1]} to "
                 f"{describe_mode(flat, tuple(now))[k][1]} at t = {time:.4g} s "
-                "within a dither period of the operating point (the start "
-                "values, dither included); allowed: an operating point that "
+                f"within a dither period of {setting}; allowed: an "
+                "operating point that "
                 "stays in one mode (a slip that keeps its sign, a normal "
                 "force above zero)")
 

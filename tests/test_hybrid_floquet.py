@@ -290,3 +290,32 @@ def test_a_mode_check_without_the_dither_parameter_is_refused_in_words(
             r"frequency = 'f_valve' is not a parameter of "
             r"MslDrivelines\.ModeClutchDriveline; allowed: .*f_dither")):
         params.check_mode(100.0, 0.3e5)
+
+
+def test_check_refuses_margins_searched_beyond_the_mode(msl_path,
+                                                       judder_here):
+    """`check` searches its margins up to `p_max_bar` on the linearisation
+    in one mode: where the dither leaves that mode below it (the grazing
+    slip leaves Forward from 0.7257 bar), the check is refused naming the
+    amplitude and the way out, instead of vouching "stable up to 1.5
+    bar"; below the grazing amplitude it answers."""
+    from judder.commands.check import check
+    from infra.errors import JudderError
+    from sources.modelica import ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS)).replace(**{
+        "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
+    f = params["f_dither"]
+    with pytest.raises(JudderError, match=(
+            rf"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
+            rf"t = \S+ s within a dither period of the dither setting "
+            rf"f_dither = {f:g} Hz, p_f = 150000 Pa: the margins are searched "
+            r"up to `p_max_bar` = 1\.5 bar on the linearisation in one mode; "
+            r"allowed: a smaller `p_max_bar`")):
+        check([f], [0.3], params)
+    assert check([f], [0.3], params, p_max_bar=0.7).as_dict()[
+        "mode"]["clutch.mode"] == "1 (clutch.Forward)"
+    status, _, err = judder_here(
+        "check", "--modelica", CLASS, "--library", MODELS, "--set",
+        "mu_pos[2,1]=0.01", "--set", "w_out=104.66975511965977", "--freq",
+        f"{f:g}", "--pf", "0.3")
+    assert status == 2 and "allowed: a smaller --pf-max" in err

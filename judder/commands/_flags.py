@@ -22,6 +22,7 @@ FLAGS = {
     "group_by": "--group-by", "decimal": "--decimal",
     # judder.commands._common.at_dither_frequency
     "freq_hz": "--freq", "freq_range": "--freq-range",
+    "p_max_bar": "--pf-max",
     # stability.threshold.friction_threshold
     "bracket": "--mu-g",
     # infra: the cluster and the overwrite rule

@@ -16,9 +16,9 @@ from stability.source import build_driveline
 
 from ._arguments import (decimal_option, force_option, min_growth_option,
                          model_options)
-from ._common import (check_modes, check_names, checked_values,
-                      frequency_dependent, linearised_mode, mode_words,
-                      structural_names)
+from ._common import (check_modes, check_modes_up_to, check_names,
+                      checked_values, frequency_dependent, linearised_mode,
+                      mode_words, structural_names)
 from ._words import growth_words, margin_words
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -185,6 +185,17 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
                                         ("mu_g",))
     check_names(values, sensitivity, "--params")
     check_modes(values, freq_hz, p_f_bar * PA_PER_BAR)
+    from sources.modelica import ModelicaError
+    try:
+        # the margins are searched up to p_max_bar, on this linearisation
+        check_modes_up_to(values, freq_hz, p_max_bar)
+    except ModelicaError as error:
+        left = str(error).split("; allowed:")[0]
+        raise JudderError(
+            f"{left}: the margins are searched up to `p_max_bar` = "
+            f"{p_max_bar:g} bar on the linearisation in one mode; allowed: "
+            "a smaller `p_max_bar`, below the amplitude where the mode is "
+            "left") from None
     if frequency_dependent(values):
         from infra.contract import warn
         warn(f"{values.model} is linearised at {freq_hz[0]:g} Hz (its "
