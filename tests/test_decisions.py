@@ -527,3 +527,17 @@ def test_check_far_inside_a_tongue_answers():
     assert 0 <= record["crossing_tolerance_hz"] < 3e-3 * record["crossing_hz"]
     exact = api.check([105.0], [0.2], sensitivity=()).records()[0]
     assert exact["crossing_tolerance_hz"] == 0.0
+
+
+def test_advice_for_a_design_already_clear_says_none_is_needed(
+        example_advice):
+    """The advised design given back to advise: no change is needed, and
+    the text says so (it printed "design: ; unchanged: ...")."""
+    advice = next(iter(example_advice.values()))
+    again = api.advise(advice.advised_params())
+    assert again.advice.success
+    assert all(abs(f - 1) <= 5e-4 for f in again.advice.factors)
+    design = next(line for line in again.summary().splitlines()
+                  if line.startswith("design:"))
+    assert design.startswith(
+        "design: none needed: the window is already clear; unchanged: ")

@@ -427,11 +427,13 @@ class AdviceResult:
         dropped = {n: f for n, f in a.dropped.items() if abs(f - 1) > 5e-4}
         kept = [n for n, f in zip(a.names, a.factors)
                 if abs(f - 1) <= 5e-4 and n not in dropped]
-        lines = ["design: " + ", ".join(
+        design = ", ".join(
             f"{n} {readable_number(self.params[n])} -> "
             f"{readable_number(advised[n])} "
             f"{self.params.specs[n].unit} (x{f:.3f})" for n, f in changed)
-            + (f"; unchanged: {', '.join(kept)}" if kept else ""),
+        lines = [("design: " + design if changed else
+                  "design: none needed: the window is already clear")
+                 + (f"; unchanged: {', '.join(kept)}" if kept else ""),
             *([f"  dropped as unnecessary (under {PRUNE_BELOW:.0%}, the "
                "window stays clear without them): " + ", ".join(
                    f"{n} x{f:.3f}" for n, f in dropped.items())]
