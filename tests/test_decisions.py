@@ -441,7 +441,8 @@ def test_advise_lists_only_the_changes_the_design_needs(example_advice):
 
 @pytest.mark.parametrize("bound, words", [
     ("J4=2:3", "0 < LOW <= 1 <= HIGH"), ("J4", "NAME=LOW:HIGH"),
-    ("J4=0.8:x", "NAME=LOW:HIGH"), ("mu_g=0.5:2", "not a design parameter")])
+    ("J4=0.8:x", "NAME=LOW:HIGH"), ("mu_g=0.5:2", "not a design parameter"),
+    ("J4=1:1", "held at its nominal value is one left out of --params")])
 def test_advise_refuses_bad_bounds(bound, words):
     proc = _judder("advise", "--bounds", bound, "--no-design")
     assert proc.returncode == 2

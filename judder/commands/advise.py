@@ -87,11 +87,15 @@ def _bound(text):
     name, sep, span = text.partition("=")
     low, colon, high = span.partition(":")
     allowed = ("allowed: NAME=LOW:HIGH, factors of the nominal value with "
-               "0 < LOW <= 1 <= HIGH, e.g. J4=0.8:1.25")
+               "0 < LOW <= 1 <= HIGH and LOW < HIGH, e.g. J4=0.8:1.25")
     try:
         low, high = float(low), float(high)
     except ValueError:
         low = high = math.nan
+    if low == high == 1:
+        raise argparse.ArgumentTypeError(
+            f"--bounds {text} is not allowed: a parameter held at its "
+            "nominal value is one left out of --params; allowed: LOW < HIGH")
     if not (sep and colon and name.strip() and math.isfinite(low)
             and math.isfinite(high) and 0 < low <= 1 <= high
             and low < high):
