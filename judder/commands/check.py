@@ -185,17 +185,19 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
                                         ("mu_g",))
     check_names(values, sensitivity, "--params")
     check_modes(values, freq_hz, p_f_bar * PA_PER_BAR)
-    from sources.modelica import ModelicaError
-    try:
-        # the margins are searched up to p_max_bar, on this linearisation
-        check_modes_up_to(values, freq_hz, p_max_bar)
-    except ModelicaError as error:
-        left = str(error).split("; allowed:")[0]
-        raise JudderError(
-            f"{left}: the margins are searched up to `p_max_bar` = "
-            f"{p_max_bar:g} bar on the linearisation in one mode; allowed: "
-            "a smaller `p_max_bar`, below the amplitude where the mode is "
-            "left") from None
+    if getattr(values, "check_mode", None) is not None:
+        # a Modelica class: the margins are searched up to p_max_bar, on
+        # the linearisation in its mode (presets need not import casadi)
+        from sources.modelica import ModelicaError
+        try:
+            check_modes_up_to(values, freq_hz, p_max_bar)
+        except ModelicaError as error:
+            left = str(error).split("; allowed:")[0]
+            raise JudderError(
+                f"{left}: the margins are searched up to `p_max_bar` = "
+                f"{p_max_bar:g} bar on the linearisation in one mode; "
+                "allowed: a smaller `p_max_bar`, below the amplitude where "
+                "the mode is left") from None
     if frequency_dependent(values):
         from infra.contract import warn
         warn(f"{values.model} is linearised at {freq_hz[0]:g} Hz (its "
