@@ -414,6 +414,8 @@ def test_advise_lists_only_the_changes_the_design_needs(example_advice):
     assert listed and all(abs(f - 1) >= PRUNE_BELOW for f in listed.values())
     text = result.summary()
     assert "dropped as unnecessary" in text
+    # one item dropped: 'without it', not 'without them'
+    assert ("without it)" in text) == (len(advice.dropped) == 1)
     design_line = next(line for line in text.splitlines()
                        if line.startswith("design: "))
     assert "k12" not in design_line

@@ -226,7 +226,8 @@ def _design_text(advice):
             f"with it has {advice.judder_points} judder points of "
             f"{advice.verification.kind.size}"
             + (f" ({', '.join(dropped)} dropped as unnecessary: the window "
-               "stays clear without them)" if dropped else "") + ".")
+               "stays clear without " + ("it" if len(dropped) == 1 else "them")
+               + ")" if dropped else "") + ".")
 
 
 def summary_section(verdict, advice, advice_error, min_growth):

@@ -439,7 +439,8 @@ class AdviceResult:
                   "design: none needed: the window is already clear")
                  + (f"; unchanged: {', '.join(kept)}" if kept else ""),
             *([f"  dropped as unnecessary (under {PRUNE_BELOW:.0%}, the "
-               "window stays clear without them): " + ", ".join(
+               "window stays clear without "
+               + ("it" if len(dropped) == 1 else "them") + "): " + ", ".join(
                    f"{n} x{f:.3f}" for n, f in dropped.items())]
               if dropped else []),
             f"  weighted change {a.weighted_change:.3f}; {bounds}; "
