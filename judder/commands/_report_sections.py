@@ -321,7 +321,9 @@ def kinds_section(page, inside):
 
 def advice_section(page, advice):
     """The safe dither windows and the design parameters' ranking of
-    ``judder advise``, with its figure."""
+    ``judder advise``, with its figure (the text kept together, the
+    figure, a page's width and 193 mm high, free to go overleaf: kept
+    with the text it left two thirds of a page empty)."""
     return _keep(
         "<h2>Safe dither windows and the design change</h2>"
         + f"<p>{html.escape(_window_text(advice))}</p>"
@@ -332,11 +334,10 @@ def advice_section(page, advice):
           "the way): "
         + html.escape(", ".join(f"{n} {share:.2f}"
                       for n, share, _ in advice.ranking))
-        + ".</p>"
-        + page.figure("Safe dither amplitude per frequency, and the map of "
-                      "the advised design (judder advise)",
-                      advice.figure(title=page.description,
-                                    stacked=True)))
+        + ".</p>") + page.figure(
+            "Safe dither amplitude per frequency, and the map of the "
+            "advised design (judder advise)",
+            advice.figure(title=page.description, stacked=True))
 
 
 def tip_ranking(tip_shifts, tongue_number):
