@@ -438,12 +438,17 @@ def read_chart_runs(path, group=None, option="--chart"):
     -------
     runs : dict
         Arrays ``source_file``, ``freq_hz``, ``p_f_bar``,
-        ``amplitude_rpm``, ``judder``, ``mechanism`` of the group's runs,
-        ``p_f_std_bar``, the standard uncertainty of an amplitude
-        estimated from the pressure (NaN where it was given, and for a
-        chart written before it was stored), and ``dither_warnings``,
-        what the pressure's sampling could not support ('' where
-        nothing, or not stored).
+        ``amplitude_rpm``, ``judder``, ``mechanism`` of the group's runs;
+        ``freq_given`` and ``p_f_given``, whether the run's ``freq_hz``
+        and ``p_f_bar`` were given (else estimated from the pressure);
+        the pressure's estimate (:func:`_dither_estimates`):
+        ``freq_std_hz``, the standard uncertainty of a frequency
+        estimated, ``dither_p_f_bar`` and ``p_f_std_bar``, the pressure's
+        amplitude and its standard uncertainty (NaN where nothing was
+        estimated, and for a chart written before they were stored), and
+        ``dither_warnings``, what the pressure's sampling could not
+        support and the given values it contradicts ('' where nothing,
+        or not stored).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar; None: no judder) and the largest
         amplitude tried (bar).
@@ -458,14 +463,38 @@ def read_chart_runs(path, group=None, option="--chart"):
         runs = {key: npz[key][keep] for key in (
             "source_file", "freq_hz", "p_f_bar", "amplitude_rpm", "judder",
             "mechanism")}
-        stored = "dither_p_f_std_bar" in npz.files
-        runs["p_f_std_bar"] = (npz["dither_p_f_std_bar"][keep] if stored
-                               else np.full(int(keep.sum()), np.nan))
-        runs["dither_warnings"] = (npz["dither_warnings"][keep] if stored
-                                   else np.full(int(keep.sum()), ""))
+        runs.update(_dither_estimates(
+            {key: npz[key][keep] for key in npz.files if key.startswith(
+                "dither_") or key in ("freq_given", "p_f_given")},
+            runs["p_f_bar"]))
     boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
                  float(top)) for f, p, top in zip(freq, p_f, tried)]
     return runs, boundary
+
+
+def _dither_estimates(stored, p_f_bar):
+    """The pressure's dither estimates of a chart's runs from its
+    ``stored`` arrays (``dither_*``, ``freq_given``, ``p_f_given``), as
+    :func:`read_chart_runs` returns them.
+
+    A chart written before ``freq_given`` and ``p_f_given`` were stored
+    says a setting was estimated by a finite amplitude uncertainty, and a
+    frequency given by an uncertainty of 0 (NaN now); one written before
+    the uncertainties were stored has none (NaN, and every value given).
+    """
+    count = len(p_f_bar)
+    std = stored.get("dither_p_f_std_bar", np.full(count, np.nan))
+    freq_std = stored.get("dither_freq_std_hz", np.full(count, np.nan))
+    freq_std = np.where(freq_std == 0, np.nan, freq_std)
+    estimated = np.isfinite(std)
+    p_f_given = stored.get("p_f_given", ~estimated)
+    return {"freq_given": stored.get("freq_given", ~np.isfinite(freq_std)),
+            "p_f_given": p_f_given, "freq_std_hz": freq_std,
+            "dither_p_f_bar": stored.get("dither_p_f_bar", np.where(
+                estimated & ~p_f_given, p_f_bar, np.nan)),
+            "p_f_std_bar": std,
+            "dither_warnings": stored.get("dither_warnings",
+                                          np.full(count, ""))}
 
 
 def _damaged(option, path):

@@ -165,14 +165,17 @@ def run(args):
 
 def _estimate_line(run):
     """A run's dither as estimated from its pressure, with the standard
-    uncertainties."""
-    fit = run.analysis.dither
-    freq = (f"{fit.freq_hz:.4g} ± {fit.freq_std_hz:.2g} Hz"
-            if fit.freq_std_hz else f"{fit.freq_hz:.4g} Hz (given)")
-    return (f"  {run.path.name}: dither estimated {freq}, "
-            f"{fit.amplitude / PA_PER_BAR:.3g} ± "
-            f"{fit.amplitude_std / PA_PER_BAR:.2g} bar, phase "
-            f"{fit.phase_rad:.3f} ± {fit.phase_std_rad:.2g} rad at "
+    uncertainties, and the values that were given instead."""
+    fit, given = run.analysis.dither, run.analysis.given
+    freq = (f"{fit.freq_hz:.4g} Hz (given)" if "freq_hz" in given else
+            f"{fit.freq_hz:.4g} ± {fit.freq_std_hz:.2g} Hz")
+    amplitude = (f"{fit.amplitude / PA_PER_BAR:.3g} ± "
+                 f"{fit.amplitude_std / PA_PER_BAR:.2g} bar")
+    if "p_f_bar" in given:
+        amplitude = (f"{run.analysis.p_f_bar:.4g} bar (given; the "
+                     f"pressure's {amplitude})")
+    return (f"  {run.path.name}: dither estimated {freq}, {amplitude}, "
+            f"phase {fit.phase_rad:.3f} ± {fit.phase_std_rad:.2g} rad at "
             f"{fit.reference_s:.4g} s (standard uncertainties)")
 
 
@@ -306,7 +309,7 @@ class ChartResult:
         runs = []
         for run in chart.read:
             a = run.analysis
-            estimate = dither_estimate_dict(a.dither)
+            estimate = dither_estimate_dict(a.dither, a.given)
             if estimate is not None:
                 # the warnings as the command prints them: the file and
                 # the pressure channel named
