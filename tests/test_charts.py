@@ -1113,3 +1113,34 @@ def test_chart_warns_of_the_frequencies_a_thinned_pressure_hides(tmp_path,
                   "cannot be told from its aliases", "freq_hz column"):
         assert words in warning, words
 
+
+def test_decimal_is_refused_where_no_csv_is_read(tmp_path, capsys):
+    """--decimal names the separator of CSV files: chart of an MF4 alone,
+    or of a campaign folder whose runs are MF4s, and report without a
+    --boundary file read none, and refuse it as fit --chart does."""
+    from judder.cli import main
+    _write_run_mf4(tmp_path / "run.mf4", *_engagement(lambda t: 0 * t))
+    campaign = tmp_path / "campaign"
+    campaign.mkdir()
+    _write_run_mf4(campaign / "run.mf4", *_engagement(lambda t: 0 * t))
+    (campaign / "index.csv").write_text(
+        "status,files,freq_hz,p_f_bar\nok,run.csv run.mf4,100,0.2\n")
+    channels = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+                "pressure=PressEVEN"]
+    for sources in ([str(tmp_path / "run.mf4")], [str(campaign)]):
+        assert main(["chart", *sources, *channels, "--decimal", ","]) == 2
+        err = capsys.readouterr().err
+        assert err.strip() == (
+            "judder: error: --decimal is for CSV acquisitions and a --index "
+            "file; allowed: no --decimal where every acquisition is binary "
+            "(MF4, TDMS, MAT) and no --index is given")
+    # the same MF4 without --decimal is read
+    assert main(["chart", str(tmp_path / "run.mf4"), *channels,
+                 "--workers", "1"]) == 0
+    assert "1 runs" in capsys.readouterr().out
+    assert main(["report", "--decimal", ",", "--out",
+                 str(tmp_path / "r.html")]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "judder: error: --decimal is for a --boundary file (CSV); allowed: "
+        "no --decimal without a --boundary file")
+    assert not (tmp_path / "r.html").exists()

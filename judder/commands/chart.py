@@ -16,7 +16,8 @@ from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (decimal_option, force_option, limit_option,
-                         method_option, model_options, workers_option)
+                         method_option, model_options, refuse_decimal,
+                         workers_option)
 from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -256,9 +257,15 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from pysim.bench_data.charts import build_chart, gather_sources
+    from pysim.bench_data.readers import TEXT_SUFFIXES
     from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
     runs = gather_sources(sources, index, decimal)
+    if index is None and not any(run.path.suffix.lower() in TEXT_SUFFIXES
+                                 for run in runs):
+        refuse_decimal(decimal, "CSV acquisitions and a --index file",
+                       "where every acquisition is binary (MF4, TDMS, "
+                       "MAT) and no --index is given")
     run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
         runs, channels=channels, run_bytes=run_bytes,

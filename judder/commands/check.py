@@ -15,7 +15,7 @@ from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
 from ._arguments import (decimal_option, force_option, min_growth_option,
-                         model_options)
+                         model_options, refuse_decimal)
 from ._common import (check_modes, check_modes_up_to, check_names,
                       checked_values, frequency_dependent, linearised_mode,
                       mode_words, structural_names)
@@ -121,9 +121,7 @@ def _settings(args, parameters):
                     f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
                     f"not allowed; allowed: {low:g} to {high:g} Hz")
         return list(freqs), amplitudes
-    if args.decimal:
-        raise JudderError("--decimal is for a --table file; allowed: no "
-                          "--decimal with --freq and --pf")
+    refuse_decimal(args.decimal, "a --table file", "with --freq and --pf")
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
     freqs, amplitudes = args.freq, args.pf
