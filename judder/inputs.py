@@ -86,6 +86,12 @@ BOUNDARY_EXTRA_COLUMNS = ("single_period_bar", "double_period_bar",
 #: largest amplitude tried. A point without judder is censored at its
 #: ``tried_bar``.
 BOUNDARY_TESTED_COLUMNS = ("no_judder_bar", "tried_bar")
+#: Numbers a boundary file states in comments, ``# NAME: VALUE``
+#: (``judder chart --boundary`` writes them): the growth rate (1/s) and
+#: the NVH limit (rpm) its onsets were called judder from.
+BOUNDARY_STATED = ("min_growth_per_s", "judder_limit_rpm")
+_STATED = re.compile(rf"#\s*({'|'.join(BOUNDARY_STATED)})\s*[:=]\s*"
+                     r"([^\s#]+)")
 
 
 def read_boundary_csv(text, source="boundary file", decimal=None):
@@ -132,12 +138,17 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     ``;``-separated file is 0.3), or given as ``decimal`` (``'.'`` or
     ``','``), and a file no cell decides is refused naming a cell.
 
+    The numbers of :data:`BOUNDARY_STATED` comments are read with the
+    cells: ``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5.
+
     Returns
     -------
     dict
         ``freq_hz`` (Hz), ``p_f``, ``no_judder``, ``tried`` (Pa, NaN where
-        empty or the column is absent) and ``columns`` (the header's
-        names).
+        empty or the column is absent), ``columns`` (the header's
+        names), ``lines`` (the line number of each row) and ``stated``
+        (name -> (line number, value as written, value) of the
+        :data:`BOUNDARY_STATED` comments, the first of each name).
 
     Examples
     --------
@@ -152,6 +163,11 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     """
     from pysim.bench_data.tables import numbers, split_rows
     names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
+    stated = {}
+    for number, line in enumerate(text.splitlines(), start=1):
+        match = _STATED.match(line.strip())
+        if match:
+            stated.setdefault(match.group(1), (number, match.group(2)))
     lines = [(number, line.split("#")[0].strip())
              for number, line in enumerate(text.splitlines(), start=1)]
     lines = [(number, line) for number, line in lines if line]
@@ -173,9 +189,11 @@ def read_boundary_table(text, source="boundary file", decimal=None):
                               "(freq_hz,p_f_bar; p_f_bar empty for no "
                               "judder)")
     read = [name for name in names if name in columns]
-    values = numbers(source, {name: [(number, cells[columns[name]])
-                                     for number, cells in rows]
-                              for name in read}, decimal)
+    values = numbers(source, {**{name: [(number, cells[columns[name]])
+                                        for number, cells in rows]
+                                 for name in read},
+                              **{name: [cell] for name, cell in
+                                 stated.items()}}, decimal)
     table = {name: [] for name in names}
     for index, (number, cells) in enumerate(rows):
         line = written[number]
@@ -205,7 +223,10 @@ def read_boundary_table(text, source="boundary file", decimal=None):
             "p_f": np.array(table["p_f_bar"]),
             "no_judder": np.array(table["no_judder_bar"]),
             "tried": np.array(table["tried_bar"]),
-            "columns": [n for n in columns if n != "width"]}
+            "columns": [n for n in columns if n != "width"],
+            "lines": [number for number, _ in rows],
+            "stated": {name: (number, text, float(values[name][0]))
+                       for name, (number, text) in stated.items()}}
 
 
 def _check_tested(amps, source, number, line):
@@ -290,28 +311,27 @@ def boundary_p_max(table, pf_max_bar, path, option="--boundary",
         [table["tried"], table["no_judder"], table["p_f"]]))) / PA_PER_BAR
 
 
-def _boundary_comment(path, option, name, unit, positive):
+def _boundary_comment(path, option, name, unit, positive, decimal=None):
     """The number of a boundary file's comment ``# NAME: VALUE`` (finite,
-    >= 0, or > 0 with ``positive``), or None where the file has none."""
-    pattern = re.compile(rf"#\s*{name}\s*[:=]\s*([^\s#]+)")
-    for line in read_input(path, option).splitlines():
-        match = pattern.match(line.strip())
-        if match:
-            text = match.group(1)
-            value = float(text) if _is_number(text) else math.nan
-            if not (math.isfinite(value)
-                    and (value > 0 if positive else value >= 0)):
-                raise JudderError(f"{option} {path}: {name} = {text} is "
-                                  "not allowed; allowed: a finite number "
-                                  f"{'>' if positive else '>='} 0 ({unit})")
-            return value
-    return None
+    >= 0, or > 0 with ``positive``), or None where the file has none; read
+    with the file's cells (:func:`read_boundary_tested`, ``decimal`` its
+    decimal separator where given)."""
+    stated = read_boundary_tested(path, option, decimal)["stated"]
+    if name not in stated:
+        return None
+    number, text, value = stated[name]
+    if not (math.isfinite(value) and (value > 0 if positive else value >= 0)):
+        raise JudderError(f"{option} {path}, line {number}: {name} = {text} "
+                          "is not allowed; allowed: a finite number "
+                          f"{'>' if positive else '>='} 0 ({unit})")
+    return value
 
 
-def read_boundary_min_growth(path, option="--boundary"):
+def read_boundary_min_growth(path, option="--boundary", decimal=None):
     r"""The growth rate (1/s) a boundary file says its onsets were called
     judder from (a comment ``# min_growth_per_s: 1``, which ``judder chart
-    --boundary`` writes), or None.
+    --boundary`` writes), or None; read as the file's cells are read
+    (``decimal``, :func:`read_boundary_table`).
 
     Examples
     --------
@@ -319,18 +339,22 @@ def read_boundary_min_growth(path, option="--boundary"):
     >>> folder = tempfile.mkdtemp()
     >>> path = os.path.join(folder, "b.csv")
     >>> with open(path, "w") as f:
-    ...     _ = f.write("# min_growth_per_s: 0.5\nfreq_hz,p_f_bar\n")
+    ...     _ = f.write("# min_growth_per_s: 0,5\nfreq_hz;p_f_bar\n"
+    ...                 "105;0,3\n")
     >>> read_boundary_min_growth(path)
     0.5
     """
-    return _boundary_comment(path, option, "min_growth_per_s", "1/s", False)
+    return _boundary_comment(path, option, "min_growth_per_s", "1/s", False,
+                             decimal)
 
 
-def read_boundary_limit(path, option="--boundary"):
+def read_boundary_limit(path, option="--boundary", decimal=None):
     """The NVH limit (rpm) a boundary file says its onsets were called
     judder from (a comment ``# judder_limit_rpm: 30``, which ``judder
-    chart --boundary`` writes), or None (onsets of an instability alone)."""
-    return _boundary_comment(path, option, "judder_limit_rpm", "rpm", True)
+    chart --boundary`` writes), or None (onsets of an instability alone);
+    read as the file's cells are read (``decimal``)."""
+    return _boundary_comment(path, option, "judder_limit_rpm", "rpm", True,
+                             decimal)
 
 
 def _chart_scalar(path, key, option, positive):
@@ -510,11 +534,3 @@ def read_chart_min_growth(path, option="--chart"):
     judder (``judder chart --min-growth``); 0 for a chart without it."""
     value = _chart_scalar(path, "min_growth_per_s", option, False)
     return 0.0 if value is None else value
-
-
-def _is_number(text):
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True

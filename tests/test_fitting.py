@@ -582,3 +582,28 @@ def test_fit_figure_says_what_was_measured_and_rounds_as_read():
     assert "refused" in title and not any(c.isdigit() for c in
                                           title.replace("16a", ""))
     plt.close(fig)
+
+
+@pytest.mark.parametrize("decimal", [None, ","])
+def test_the_comments_of_a_german_boundary_file_read_as_its_cells(
+        tmp_path, decimal):
+    """``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5
+    (float() refused it); the same comment with a decimal point in that
+    file is refused as two decimal separators, naming both cells."""
+    from judder.inputs import read_boundary_limit, read_boundary_min_growth
+    path = tmp_path / "b.csv"
+    path.write_text("# min_growth_per_s: 0,5\n# judder_limit_rpm: 30,5\n"
+                    + GERMAN_BOUNDARY)
+    assert read_boundary_min_growth(path, decimal=decimal) == 0.5
+    assert read_boundary_limit(path, decimal=decimal) == 30.5
+    path.write_text("# min_growth_per_s: 0.5\n" + GERMAN_BOUNDARY)
+    with pytest.raises(JudderError) as info:
+        read_boundary_min_growth(path)
+    for word in (str(path), "column 'min_growth_per_s' has '0.5' (line 1)",
+                 "'0,3' (line 3)", "one decimal separator in the whole "
+                 "file"):
+        assert word in str(info.value)
+    path.write_text("# judder_limit_rpm: 0,0\n" + GERMAN_BOUNDARY)
+    with pytest.raises(JudderError, match="line 1: judder_limit_rpm = 0,0 "
+                       "is not allowed; allowed: a finite number > 0"):
+        read_boundary_limit(path)

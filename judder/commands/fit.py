@@ -160,9 +160,11 @@ def run(args):
         freqs, measured = table["freq_hz"], table["p_f"]
         below = np.where(np.isnan(measured), np.nan, table["no_judder"])
         default_p_max = boundary_p_max(table, args.pf_max, args.boundary)
-        stated = read_boundary_min_growth(args.boundary)
+        stated = read_boundary_min_growth(args.boundary,
+                                          decimal=args.decimal)
         default_growth = default_growth if stated is None else stated
-        default_limit = read_boundary_limit(args.boundary)
+        default_limit = read_boundary_limit(args.boundary,
+                                            decimal=args.decimal)
     if args.bench and not args.bench_linearisation:
         raise JudderError("--bench is for --bench-linearisation; give both")
     bench = parse_bench(args.bench, resolve(params, changes)) \

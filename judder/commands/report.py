@@ -444,7 +444,7 @@ def _bench_data(chart, boundary, group, decimal):
                 CHART_THRESHOLD_SPREAD_PER_S)
     if boundary:
         table = read_boundary_tested(boundary, decimal=decimal)
-        stated = read_boundary_min_growth(boundary)
+        stated = read_boundary_min_growth(boundary, decimal=decimal)
         return (table["freq_hz"], table["p_f"],
                 boundary_p_max(table, None, boundary, pf_option=None),
                 DEFAULT_MIN_GROWTH_PER_S if stated is None else stated,
