@@ -202,6 +202,9 @@ def read_boundary_table(text, source="boundary file", decimal=None):
         freq = float(values["freq_hz"][index])
         amps = {name: float(values[name][index]) * PA_PER_BAR
                 if texts[name] else np.nan for name in names[1:]}
+        if not texts["freq_hz"]:
+            raise JudderError(f"{source}, line {number}: column 'freq_hz' "
+                              "is empty; allowed: a frequency > 0 Hz")
         gaps = [name for name in amps if texts[name] and np.isnan(amps[name])]
         if gaps:
             # censored is written as an empty cell; a NaN is a gap in the

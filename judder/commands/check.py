@@ -102,14 +102,18 @@ def _settings(args, parameters):
     time of ``parameters`` sensitivity parameters per setting is estimated
     before the settings are made (a grid x grid of 1e10 would fill the
     memory first)."""
-    from ..inputs import read_boundary
+    from ..inputs import read_boundary_tested
     if args.table:
         if args.freq or args.pf:
             raise JudderError("--table and --freq/--pf: allowed: one of them")
-        freqs, p_f = read_boundary(args.table, "--table", args.decimal)
-        if not len(freqs) or not all(math.isfinite(p) for p in p_f):
-            raise JudderError(f"--table {args.table}: every row needs "
-                              "freq_hz and p_f_bar; allowed: no empty cells")
+        table = read_boundary_tested(args.table, "--table", args.decimal)
+        freqs, p_f, lines = table["freq_hz"], table["p_f"], table["lines"]
+        empty = [line for line, p in zip(lines, p_f) if not math.isfinite(p)]
+        if empty:
+            raise JudderError(f"--table {args.table}, line {empty[0]}: "
+                              "column 'p_f_bar' is empty; allowed: every "
+                              "row with freq_hz and p_f_bar (the settings "
+                              "to check)")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
         check_settings_time(len(freqs), parameters)
