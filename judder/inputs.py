@@ -168,19 +168,20 @@ def read_boundary_table(text, source="boundary file", decimal=None):
         match = _STATED.match(line.strip())
         if match:
             stated.setdefault(match.group(1), (number, match.group(2)))
-    lines = [(number, line.split("#")[0].strip())
+    # not stripped: Excel's "sep=" line may declare a tab
+    lines = [(number, line.split("#")[0])
              for number, line in enumerate(text.splitlines(), start=1)]
-    lines = [(number, line) for number, line in lines if line]
-    rows = split_rows(lines)
-    columns = None if not rows else _boundary_columns(rows[0][1], source,
-                                                      rows[0][0])
+    lines = [(number, line) for number, line in lines if line.strip()]
+    rows = split_rows(lines, source)
+    written = {number: line.strip() for number, line in lines}
+    columns = None if not rows else _boundary_columns(
+        rows[0][1], source, rows[0][0], written[rows[0][0]])
     if columns is None:
         columns = {"freq_hz": 0, "p_f_bar": 1, "width": 2}
     else:
         rows = rows[1:]
     if not rows:
         raise JudderError(f"{source}: no data lines")
-    written = dict(lines)
     for number, cells in rows:
         if len(cells) != columns["width"]:
             raise JudderError(f"{source}, line {number}: "
@@ -245,9 +246,9 @@ def _check_tested(amps, source, number, line):
                           "amplitude above the largest one tried)")
 
 
-def _boundary_columns(cells, source, number):
-    """Column indices of a boundary header line, or None if the line is
-    data."""
+def _boundary_columns(cells, source, number, line):
+    """Column indices of a boundary header line (its ``cells``, the
+    ``line`` as written), or None if the line is data."""
     from pysim.bench_data.tables import is_number
     if is_number(cells[0]):
         return None
@@ -256,8 +257,8 @@ def _boundary_columns(cells, source, number):
     unknown = [c for c in cells if c not in allowed]
     if unknown or len(set(cells)) != len(cells) or not {
             "freq_hz", "p_f_bar"} <= set(cells):
-        raise JudderError(f"{source}, line {number}: header {','.join(cells)!r}"
-                          f" is not allowed"
+        raise JudderError(f"{source}, line {number}: header {line!r} is not "
+                          "allowed"
                           + (f" (unknown column {unknown[0]!r})" if unknown
                              else "")
                           + "; allowed: freq_hz and p_f_bar once each, in "

@@ -1144,3 +1144,16 @@ def test_decimal_is_refused_where_no_csv_is_read(tmp_path, capsys):
         "judder: error: --decimal is for a --boundary file (CSV); allowed: "
         "no --decimal without a --boundary file")
     assert not (tmp_path / "r.html").exists()
+
+
+def test_an_index_with_excel_s_separator_line_reads(tmp_path):
+    """An index saved by a German Excel (``sep=;`` first, decimal
+    commas): its runs and settings, not a refusal for want of a 'file'
+    column."""
+    from pysim.bench_data.charts import sources_from_index
+    (tmp_path / "runs.csv").write_text(
+        "sep=;\nfile;freq_hz;p_f_bar\nrun01.csv;210;0,4\nrun02.csv;;0,6\n")
+    sources = sources_from_index(tmp_path / "runs.csv")
+    assert [(s.path.name, s.settings) for s in sources] == [
+        ("run01.csv", {"freq_hz": 210.0, "p_f_bar": 0.4}),
+        ("run02.csv", {"p_f_bar": 0.6})]

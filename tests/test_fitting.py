@@ -607,3 +607,20 @@ def test_the_comments_of_a_german_boundary_file_read_as_its_cells(
     with pytest.raises(JudderError, match="line 1: judder_limit_rpm = 0,0 "
                        "is not allowed; allowed: a finite number > 0"):
         read_boundary_limit(path)
+
+
+def test_an_excel_boundary_file_with_its_separator_line(tmp_path):
+    """Excel's ``sep=;`` first line declares the separator (it was read
+    as a header and refused); a header refused is quoted as the file
+    writes it, with its ';'."""
+    table = read_boundary_table("sep=;\n" + GERMAN_BOUNDARY, "b.csv")
+    np.testing.assert_allclose(table["p_f"], [0.3 * BAR, np.nan])
+    assert table["lines"] == [3, 4]
+    table = read_boundary_table("sep=\t\nfreq_hz\tp_f_bar\n105\t0,3\n",
+                                "b.csv")
+    np.testing.assert_allclose(table["p_f"], [0.3 * BAR])
+    with pytest.raises(JudderError) as info:
+        read_boundary_table("freq_hz;p_f;tried_bar\n105;0,3;0,6\n", "b.csv")
+    assert str(info.value).startswith(
+        "b.csv, line 1: header 'freq_hz;p_f;tried_bar' is not allowed "
+        "(unknown column 'p_f')")

@@ -105,7 +105,7 @@ def _read_csv(path, option, decimal=None):
     try:
         lines = [(number, line) for number, line in
                  enumerate(_csv_lines(path), 1) if line.strip()]
-        rows = split_rows(lines)
+        rows = split_rows(lines, f"{option} {path}")
     except (OSError, csv.Error) as exc:
         raise JudderError(f"{option} {path}: cannot read it as CSV "
                           f"({exc})") from None
