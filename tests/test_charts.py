@@ -392,7 +392,8 @@ def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
                         nonperiodic_rpm=0.0, amplitude_rpm=0.0,
                         oscillation_rpm=0.0, forced_rpm=0.0,
                         mechanism="parametric" if judder else None,
-                        judder_limit_rpm=30.0))
+                        judder_limit_rpm=30.0,
+                        given=() if estimated else ("freq_hz", "p_f_bar")))
 
 
 def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():
