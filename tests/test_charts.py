@@ -894,6 +894,27 @@ def test_dither_warnings_for_few_periods_and_a_noisy_amplitude():
                               "(amplitude 0)",)
 
 
+#: The channels of the example runs (examples/bench), read by one worker.
+EXAMPLE_CHANNELS = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+                    "pressure=PressEVEN:bar", "--channel",
+                    "downstream_speed=OutSpd", "--workers", "1"]
+
+
+def _example_with_pressure_on(folder, keep):
+    """The example run at 210 Hz (run01.csv) with its pressure emptied on
+    the rows ``keep(times)`` (a mask over the rows' times) leaves out,
+    and an index that gives no dither setting; the index's path."""
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    header, *lines = (examples / "run01.csv").read_text().splitlines()
+    rows = [line.split(",") for line in lines]
+    for cells, kept in zip(rows, keep([float(r[0]) for r in rows])):
+        cells[3] = cells[3] if kept else "nan"
+    (folder / "run01.csv").write_text(
+        "\n".join([header] + [",".join(cells) for cells in rows]) + "\n")
+    (folder / "runs.csv").write_text("file\nrun01.csv\n")
+    return folder / "runs.csv"
+
+
 def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
                                                                  capsys):
     """The example run at 210 Hz with its pressure kept at 1.5 samples per
@@ -902,22 +923,15 @@ def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
     command warns, naming the file and the channel, that its frequency
     cannot be told from its alias."""
     from judder.cli import main
-    examples = Path(__file__).parents[1] / "examples" / "bench"
-    lines = (examples / "run01.csv").read_text().splitlines()
-    kept, rows = -1.0, [lines[0]]
-    for line in lines[1:]:
-        cells = line.split(",")
-        if float(cells[0]) >= kept + 1 / 315:
-            kept = float(cells[0])
-        else:
-            cells[3] = "nan"
-        rows.append(",".join(cells))
-    (tmp_path / "run01.csv").write_text("\n".join(rows) + "\n")
-    (tmp_path / "runs.csv").write_text("file\nrun01.csv\n")
-    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
-                 "--channel", "upstream_speed=EngSpd_up", "--channel",
-                 "pressure=PressEVEN:bar", "--channel",
-                 "downstream_speed=OutSpd", "--workers", "1"]) == 0
+
+    def every_315th_of_a_second(times):
+        kept, mask = -1.0, []
+        for time in times:
+            mask.append(time >= kept + 1 / 315)
+            kept = time if mask[-1] else kept
+        return mask
+    index = _example_with_pressure_on(tmp_path, every_315th_of_a_second)
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
     captured = capsys.readouterr()
     warning = next(line for line in captured.err.splitlines()
                    if line.startswith("judder: warning:"))
@@ -929,11 +943,8 @@ def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
     # the JSON's warnings are the printed ones: the file and the pressure
     # channel named; the uncertainties are kept in the chart's NPZ
     out = tmp_path / "chart.npz"
-    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
-                 "--channel", "upstream_speed=EngSpd_up", "--channel",
-                 "pressure=PressEVEN:bar", "--channel",
-                 "downstream_speed=OutSpd", "--workers", "1", "--json",
-                 "--out", str(out)]) == 0
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--json", "--out", str(out)]) == 0
     captured = capsys.readouterr()
     estimate = json.loads(captured.out)["runs"][0]["dither_estimate"]
     printed = [line.removeprefix("judder: warning: ")
@@ -1093,17 +1104,9 @@ def test_chart_warns_of_the_frequencies_a_thinned_pressure_hides(tmp_path,
     row (136 samples/s): charted at the alias 62.59 Hz, with a warning
     that names 210 Hz among the aliases it cannot tell apart."""
     from judder.cli import main
-    examples = Path(__file__).parents[1] / "examples" / "bench"
-    lines = (examples / "run01.csv").read_text().splitlines()
-    rows = [lines[0]] + [
-        ",".join(cells[:3] + [cells[3] if index % 5 == 0 else "nan"])
-        for index, cells in enumerate(line.split(",") for line in lines[1:])]
-    (tmp_path / "run01.csv").write_text("\n".join(rows) + "\n")
-    (tmp_path / "runs.csv").write_text("file\nrun01.csv\n")
-    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
-                 "--channel", "upstream_speed=EngSpd_up", "--channel",
-                 "pressure=PressEVEN:bar", "--channel",
-                 "downstream_speed=OutSpd", "--workers", "1"]) == 0
+    index = _example_with_pressure_on(
+        tmp_path, lambda times: np.arange(len(times)) % 5 == 0)
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
     captured = capsys.readouterr()
     assert "run01.csv: dither estimated 62.59 ± 0.0042 Hz" in captured.out
     (warning,) = [line for line in captured.err.splitlines()
