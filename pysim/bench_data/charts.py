@@ -75,7 +75,7 @@ class ChartRun:
     (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`); ``warnings``
     what the run was read with but cannot support, in words naming the
     file and the channel (a dither estimated from a pressure sampled too
-    sparsely).
+    sparsely, or a dither amplitude given that the pressure contradicts).
     """
 
     path: Path
