@@ -86,6 +86,12 @@ BOUNDARY_EXTRA_COLUMNS = ("single_period_bar", "double_period_bar",
 #: largest amplitude tried. A point without judder is censored at its
 #: ``tried_bar``.
 BOUNDARY_TESTED_COLUMNS = ("no_judder_bar", "tried_bar")
+#: Numbers a boundary file states in comments, ``# NAME: VALUE``
+#: (``judder chart --boundary`` writes them): the growth rate (1/s) and
+#: the NVH limit (rpm) its onsets were called judder from.
+BOUNDARY_STATED = ("min_growth_per_s", "judder_limit_rpm")
+_STATED = re.compile(rf"#\s*({'|'.join(BOUNDARY_STATED)})\s*[:=]\s*"
+                     r"([^\s#]+)")
 
 
 def read_boundary_csv(text, source="boundary file", decimal=None):
@@ -132,12 +138,17 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     ``;``-separated file is 0.3), or given as ``decimal`` (``'.'`` or
     ``','``), and a file no cell decides is refused naming a cell.
 
+    The numbers of :data:`BOUNDARY_STATED` comments are read with the
+    cells: ``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5.
+
     Returns
     -------
     dict
         ``freq_hz`` (Hz), ``p_f``, ``no_judder``, ``tried`` (Pa, NaN where
-        empty or the column is absent) and ``columns`` (the header's
-        names).
+        empty or the column is absent), ``columns`` (the header's
+        names), ``lines`` (the line number of each row) and ``stated``
+        (name -> (line number, value as written, value) of the
+        :data:`BOUNDARY_STATED` comments, the first of each name).
 
     Examples
     --------
@@ -152,19 +163,25 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     """
     from pysim.bench_data.tables import numbers, split_rows
     names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
-    lines = [(number, line.split("#")[0].strip())
+    stated = {}
+    for number, line in enumerate(text.splitlines(), start=1):
+        match = _STATED.match(line.strip())
+        if match:
+            stated.setdefault(match.group(1), (number, match.group(2)))
+    # not stripped: Excel's "sep=" line may declare a tab
+    lines = [(number, line.split("#")[0])
              for number, line in enumerate(text.splitlines(), start=1)]
-    lines = [(number, line) for number, line in lines if line]
-    rows = split_rows(lines)
-    columns = None if not rows else _boundary_columns(rows[0][1], source,
-                                                      rows[0][0])
+    lines = [(number, line) for number, line in lines if line.strip()]
+    rows = split_rows(lines, source)
+    written = {number: line.strip() for number, line in lines}
+    columns = None if not rows else _boundary_columns(
+        rows[0][1], source, rows[0][0], written[rows[0][0]])
     if columns is None:
         columns = {"freq_hz": 0, "p_f_bar": 1, "width": 2}
     else:
         rows = rows[1:]
     if not rows:
         raise JudderError(f"{source}: no data lines")
-    written = dict(lines)
     for number, cells in rows:
         if len(cells) != columns["width"]:
             raise JudderError(f"{source}, line {number}: "
@@ -173,9 +190,11 @@ def read_boundary_table(text, source="boundary file", decimal=None):
                               "(freq_hz,p_f_bar; p_f_bar empty for no "
                               "judder)")
     read = [name for name in names if name in columns]
-    values = numbers(source, {name: [(number, cells[columns[name]])
-                                     for number, cells in rows]
-                              for name in read}, decimal)
+    values = numbers(source, {**{name: [(number, cells[columns[name]])
+                                        for number, cells in rows]
+                                 for name in read},
+                              **{name: [cell] for name, cell in
+                                 stated.items()}}, decimal)
     table = {name: [] for name in names}
     for index, (number, cells) in enumerate(rows):
         line = written[number]
@@ -184,6 +203,9 @@ def read_boundary_table(text, source="boundary file", decimal=None):
         freq = float(values["freq_hz"][index])
         amps = {name: float(values[name][index]) * PA_PER_BAR
                 if texts[name] else np.nan for name in names[1:]}
+        if not texts["freq_hz"]:
+            raise JudderError(f"{source}, line {number}: column 'freq_hz' "
+                              "is empty; allowed: a frequency > 0 Hz")
         gaps = [name for name in amps if texts[name] and np.isnan(amps[name])]
         if gaps:
             # censored is written as an empty cell; a NaN is a gap in the
@@ -205,7 +227,10 @@ def read_boundary_table(text, source="boundary file", decimal=None):
             "p_f": np.array(table["p_f_bar"]),
             "no_judder": np.array(table["no_judder_bar"]),
             "tried": np.array(table["tried_bar"]),
-            "columns": [n for n in columns if n != "width"]}
+            "columns": [n for n in columns if n != "width"],
+            "lines": [number for number, _ in rows],
+            "stated": {name: (number, text, float(values[name][0]))
+                       for name, (number, text) in stated.items()}}
 
 
 def _check_tested(amps, source, number, line):
@@ -221,9 +246,9 @@ def _check_tested(amps, source, number, line):
                           "amplitude above the largest one tried)")
 
 
-def _boundary_columns(cells, source, number):
-    """Column indices of a boundary header line, or None if the line is
-    data."""
+def _boundary_columns(cells, source, number, line):
+    """Column indices of a boundary header line (its ``cells``, the
+    ``line`` as written), or None if the line is data."""
     from pysim.bench_data.tables import is_number
     if is_number(cells[0]):
         return None
@@ -232,8 +257,8 @@ def _boundary_columns(cells, source, number):
     unknown = [c for c in cells if c not in allowed]
     if unknown or len(set(cells)) != len(cells) or not {
             "freq_hz", "p_f_bar"} <= set(cells):
-        raise JudderError(f"{source}, line {number}: header {','.join(cells)!r}"
-                          f" is not allowed"
+        raise JudderError(f"{source}, line {number}: header {line!r} is not "
+                          "allowed"
                           + (f" (unknown column {unknown[0]!r})" if unknown
                              else "")
                           + "; allowed: freq_hz and p_f_bar once each, in "
@@ -290,28 +315,27 @@ def boundary_p_max(table, pf_max_bar, path, option="--boundary",
         [table["tried"], table["no_judder"], table["p_f"]]))) / PA_PER_BAR
 
 
-def _boundary_comment(path, option, name, unit, positive):
+def _boundary_comment(path, option, name, unit, positive, decimal=None):
     """The number of a boundary file's comment ``# NAME: VALUE`` (finite,
-    >= 0, or > 0 with ``positive``), or None where the file has none."""
-    pattern = re.compile(rf"#\s*{name}\s*[:=]\s*([^\s#]+)")
-    for line in read_input(path, option).splitlines():
-        match = pattern.match(line.strip())
-        if match:
-            text = match.group(1)
-            value = float(text) if _is_number(text) else math.nan
-            if not (math.isfinite(value)
-                    and (value > 0 if positive else value >= 0)):
-                raise JudderError(f"{option} {path}: {name} = {text} is "
-                                  "not allowed; allowed: a finite number "
-                                  f"{'>' if positive else '>='} 0 ({unit})")
-            return value
-    return None
+    >= 0, or > 0 with ``positive``), or None where the file has none; read
+    with the file's cells (:func:`read_boundary_tested`, ``decimal`` its
+    decimal separator where given)."""
+    stated = read_boundary_tested(path, option, decimal)["stated"]
+    if name not in stated:
+        return None
+    number, text, value = stated[name]
+    if not (math.isfinite(value) and (value > 0 if positive else value >= 0)):
+        raise JudderError(f"{option} {path}, line {number}: {name} = {text} "
+                          "is not allowed; allowed: a finite number "
+                          f"{'>' if positive else '>='} 0 ({unit})")
+    return value
 
 
-def read_boundary_min_growth(path, option="--boundary"):
+def read_boundary_min_growth(path, option="--boundary", decimal=None):
     r"""The growth rate (1/s) a boundary file says its onsets were called
     judder from (a comment ``# min_growth_per_s: 1``, which ``judder chart
-    --boundary`` writes), or None.
+    --boundary`` writes), or None; read as the file's cells are read
+    (``decimal``, :func:`read_boundary_table`).
 
     Examples
     --------
@@ -319,18 +343,22 @@ def read_boundary_min_growth(path, option="--boundary"):
     >>> folder = tempfile.mkdtemp()
     >>> path = os.path.join(folder, "b.csv")
     >>> with open(path, "w") as f:
-    ...     _ = f.write("# min_growth_per_s: 0.5\nfreq_hz,p_f_bar\n")
+    ...     _ = f.write("# min_growth_per_s: 0,5\nfreq_hz;p_f_bar\n"
+    ...                 "105;0,3\n")
     >>> read_boundary_min_growth(path)
     0.5
     """
-    return _boundary_comment(path, option, "min_growth_per_s", "1/s", False)
+    return _boundary_comment(path, option, "min_growth_per_s", "1/s", False,
+                             decimal)
 
 
-def read_boundary_limit(path, option="--boundary"):
+def read_boundary_limit(path, option="--boundary", decimal=None):
     """The NVH limit (rpm) a boundary file says its onsets were called
     judder from (a comment ``# judder_limit_rpm: 30``, which ``judder
-    chart --boundary`` writes), or None (onsets of an instability alone)."""
-    return _boundary_comment(path, option, "judder_limit_rpm", "rpm", True)
+    chart --boundary`` writes), or None (onsets of an instability alone);
+    read as the file's cells are read (``decimal``)."""
+    return _boundary_comment(path, option, "judder_limit_rpm", "rpm", True,
+                             decimal)
 
 
 def _chart_scalar(path, key, option, positive):
@@ -438,12 +466,17 @@ def read_chart_runs(path, group=None, option="--chart"):
     -------
     runs : dict
         Arrays ``source_file``, ``freq_hz``, ``p_f_bar``,
-        ``amplitude_rpm``, ``judder``, ``mechanism`` of the group's runs,
-        ``p_f_std_bar``, the standard uncertainty of an amplitude
-        estimated from the pressure (NaN where it was given, and for a
-        chart written before it was stored), and ``dither_warnings``,
-        what the pressure's sampling could not support ('' where
-        nothing, or not stored).
+        ``amplitude_rpm``, ``judder``, ``mechanism`` of the group's runs;
+        ``freq_given`` and ``p_f_given``, whether the run's ``freq_hz``
+        and ``p_f_bar`` were given (else estimated from the pressure);
+        the pressure's estimate (:func:`_dither_estimates`):
+        ``freq_std_hz``, the standard uncertainty of a frequency
+        estimated, ``dither_p_f_bar`` and ``p_f_std_bar``, the pressure's
+        amplitude and its standard uncertainty (NaN where nothing was
+        estimated, and for a chart written before they were stored), and
+        ``dither_warnings``, what the pressure's sampling could not
+        support and the given values it contradicts ('' where nothing,
+        or not stored).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar; None: no judder) and the largest
         amplitude tried (bar).
@@ -458,14 +491,38 @@ def read_chart_runs(path, group=None, option="--chart"):
         runs = {key: npz[key][keep] for key in (
             "source_file", "freq_hz", "p_f_bar", "amplitude_rpm", "judder",
             "mechanism")}
-        stored = "dither_p_f_std_bar" in npz.files
-        runs["p_f_std_bar"] = (npz["dither_p_f_std_bar"][keep] if stored
-                               else np.full(int(keep.sum()), np.nan))
-        runs["dither_warnings"] = (npz["dither_warnings"][keep] if stored
-                                   else np.full(int(keep.sum()), ""))
+        runs.update(_dither_estimates(
+            {key: npz[key][keep] for key in npz.files if key.startswith(
+                "dither_") or key in ("freq_given", "p_f_given")},
+            runs["p_f_bar"]))
     boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
                  float(top)) for f, p, top in zip(freq, p_f, tried)]
     return runs, boundary
+
+
+def _dither_estimates(stored, p_f_bar):
+    """The pressure's dither estimates of a chart's runs from its
+    ``stored`` arrays (``dither_*``, ``freq_given``, ``p_f_given``), as
+    :func:`read_chart_runs` returns them.
+
+    A chart written before ``freq_given`` and ``p_f_given`` were stored
+    says a setting was estimated by a finite amplitude uncertainty, and a
+    frequency given by an uncertainty of 0 (NaN now); one written before
+    the uncertainties were stored has none (NaN, and every value given).
+    """
+    count = len(p_f_bar)
+    std = stored.get("dither_p_f_std_bar", np.full(count, np.nan))
+    freq_std = stored.get("dither_freq_std_hz", np.full(count, np.nan))
+    freq_std = np.where(freq_std == 0, np.nan, freq_std)
+    estimated = np.isfinite(std)
+    p_f_given = stored.get("p_f_given", ~estimated)
+    return {"freq_given": stored.get("freq_given", ~np.isfinite(freq_std)),
+            "p_f_given": p_f_given, "freq_std_hz": freq_std,
+            "dither_p_f_bar": stored.get("dither_p_f_bar", np.where(
+                estimated & ~p_f_given, p_f_bar, np.nan)),
+            "p_f_std_bar": std,
+            "dither_warnings": stored.get("dither_warnings",
+                                          np.full(count, ""))}
 
 
 def _damaged(option, path):
@@ -481,11 +538,3 @@ def read_chart_min_growth(path, option="--chart"):
     judder (``judder chart --min-growth``); 0 for a chart without it."""
     value = _chart_scalar(path, "min_growth_per_s", option, False)
     return 0.0 if value is None else value
-
-
-def _is_number(text):
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True

@@ -949,3 +949,23 @@ def test_an_unknown_decimal_separator_is_refused(tmp_path):
     path, roles = _csv_read(tmp_path, US_INTEGERS)
     with pytest.raises(JudderError, match="`decimal` ';': allowed"):
         read_acquisition(path, roles, decimal=";")
+
+
+def test_excel_separator_line_declares_the_separator(tmp_path):
+    """Excel writes ``sep=;`` first in a CSV export: the separator read,
+    not a row of metadata; one the tool does not read is refused naming
+    the file and the line."""
+    path, roles = _csv_read(
+        tmp_path, "sep=;\ntime [s];EngSpd_up [rpm];PressEVEN [bar]\n"
+        "0;1.000,5;3\n0,001;1.001,5;3,1\n")
+    acq = read_acquisition(path, roles)
+    assert_allclose(acq.channels["upstream_speed"].values,
+                    np.array([1000.5, 1001.5]) * TO_SI["rpm"], rtol=1e-12)
+    assert_allclose(acq.channels["pressure"].values,
+                    np.array([3.0, 3.1]) * TO_SI["bar"], rtol=1e-12)
+    assert acq.metadata == {}
+    path, roles = _csv_read(tmp_path, "sep=|\ntime [s]|EngSpd_up [rpm]\n"
+                            "0|1000\n")
+    assert _message(path, roles) == (
+        f"{path}, line 1: 'sep=|' declares the field separator '|'; "
+        "allowed: ',', ';' or tab")

@@ -3,6 +3,7 @@ whose growth is known in closed form), and charts of emulated campaigns
 against the Floquet tongues (section 3.2, Fig. 10)."""
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -309,7 +310,8 @@ def test_chart_from_foreign_files_with_an_index(tmp_path):
     estimate = run["dither_estimate"]
     assert estimate["p_f_bar"] == run["p_f_bar"]
     assert 0 < estimate["p_f_std_bar"] < 0.01 * run["p_f_bar"]
-    assert estimate["freq_hz"] == 103.0 and estimate["freq_std_hz"] == 0
+    assert estimate["freq_hz"] == 103.0 and estimate["freq_std_hz"] is None
+    assert estimate["given"] == ["freq_hz"]
     assert estimate["warnings"] == []
 
 
@@ -390,7 +392,8 @@ def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
                         nonperiodic_rpm=0.0, amplitude_rpm=0.0,
                         oscillation_rpm=0.0, forced_rpm=0.0,
                         mechanism="parametric" if judder else None,
-                        judder_limit_rpm=30.0))
+                        judder_limit_rpm=30.0,
+                        given=() if estimated else ("freq_hz", "p_f_bar")))
 
 
 def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():
@@ -891,6 +894,27 @@ def test_dither_warnings_for_few_periods_and_a_noisy_amplitude():
                               "(amplitude 0)",)
 
 
+#: The channels of the example runs (examples/bench), read by one worker.
+EXAMPLE_CHANNELS = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+                    "pressure=PressEVEN:bar", "--channel",
+                    "downstream_speed=OutSpd", "--workers", "1"]
+
+
+def _example_with_pressure_on(folder, keep):
+    """The example run at 210 Hz (run01.csv) with its pressure emptied on
+    the rows ``keep(times)`` (a mask over the rows' times) leaves out,
+    and an index that gives no dither setting; the index's path."""
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    header, *lines = (examples / "run01.csv").read_text().splitlines()
+    rows = [line.split(",") for line in lines]
+    for cells, kept in zip(rows, keep([float(r[0]) for r in rows])):
+        cells[3] = cells[3] if kept else "nan"
+    (folder / "run01.csv").write_text(
+        "\n".join([header] + [",".join(cells) for cells in rows]) + "\n")
+    (folder / "runs.csv").write_text("file\nrun01.csv\n")
+    return folder / "runs.csv"
+
+
 def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
                                                                  capsys):
     """The example run at 210 Hz with its pressure kept at 1.5 samples per
@@ -899,22 +923,15 @@ def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
     command warns, naming the file and the channel, that its frequency
     cannot be told from its alias."""
     from judder.cli import main
-    examples = Path(__file__).parents[1] / "examples" / "bench"
-    lines = (examples / "run01.csv").read_text().splitlines()
-    kept, rows = -1.0, [lines[0]]
-    for line in lines[1:]:
-        cells = line.split(",")
-        if float(cells[0]) >= kept + 1 / 315:
-            kept = float(cells[0])
-        else:
-            cells[3] = "nan"
-        rows.append(",".join(cells))
-    (tmp_path / "run01.csv").write_text("\n".join(rows) + "\n")
-    (tmp_path / "runs.csv").write_text("file\nrun01.csv\n")
-    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
-                 "--channel", "upstream_speed=EngSpd_up", "--channel",
-                 "pressure=PressEVEN:bar", "--channel",
-                 "downstream_speed=OutSpd", "--workers", "1"]) == 0
+
+    def every_315th_of_a_second(times):
+        kept, mask = -1.0, []
+        for time in times:
+            mask.append(time >= kept + 1 / 315)
+            kept = time if mask[-1] else kept
+        return mask
+    index = _example_with_pressure_on(tmp_path, every_315th_of_a_second)
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
     captured = capsys.readouterr()
     warning = next(line for line in captured.err.splitlines()
                    if line.startswith("judder: warning:"))
@@ -926,11 +943,8 @@ def test_chart_warns_of_a_dither_read_from_too_sparse_a_pressure(tmp_path,
     # the JSON's warnings are the printed ones: the file and the pressure
     # channel named; the uncertainties are kept in the chart's NPZ
     out = tmp_path / "chart.npz"
-    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
-                 "--channel", "upstream_speed=EngSpd_up", "--channel",
-                 "pressure=PressEVEN:bar", "--channel",
-                 "downstream_speed=OutSpd", "--workers", "1", "--json",
-                 "--out", str(out)]) == 0
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--json", "--out", str(out)]) == 0
     captured = capsys.readouterr()
     estimate = json.loads(captured.out)["runs"][0]["dither_estimate"]
     printed = [line.removeprefix("judder: warning: ")
@@ -969,3 +983,181 @@ def _report_lists_the_estimated_amplitude(out, arrays, estimate):
     runs, _ = read_chart_runs(out)
     assert np.isnan(runs["p_f_std_bar"]).all()
     assert _estimated_dithers(runs) == ""
+
+
+def _write_run_mf4(path, speed, pressure, downstream):
+    """An acquisition as a user's MF4 (asammdf): rpm and bar."""
+    from asammdf import MDF, Signal
+    mdf = MDF(version="4.10")
+    mdf.append([Signal(speed[1] / RPM, speed[0], name="EngSpd_up",
+                       unit="rpm")])
+    mdf.append([Signal(pressure[1] / PA_PER_BAR, pressure[0],
+                       name="PressEVEN", unit="bar"),
+                Signal(downstream[1] / RPM, downstream[0], name="OutSpd",
+                       unit="rpm")])
+    mdf.save(path, overwrite=True)
+
+
+def test_a_given_dither_value_is_told_from_the_estimated_one(tmp_path,
+                                                             capsys):
+    """An index that gives the amplitude and not the frequency (or the
+    frequency alone): the JSON says which value was given and which
+    estimated; an amplitude of 0.3 bar given for a pressure whose dither
+    is 0.2 bar (50 %, hundreds of standard uncertainties) is warned of
+    naming the file and the channel, a right one is not; the NPZ keeps
+    NaN as the uncertainty of a frequency given, and the report lists each
+    value as given or estimated, the frequency with its uncertainty."""
+    from infra.numbers import format_uncertain
+    from judder.cli import main
+    from judder.commands._report_sections import _estimated_dithers
+    from judder.inputs import read_chart_runs
+    channels = _engagement(lambda t: 0 * t, 103.0, 0.2)
+    for name in ("wrong", "right", "freq"):
+        _write_run_mf4(tmp_path / f"{name}.mf4", *channels)
+    (tmp_path / "runs.csv").write_text(
+        "file,freq_hz,p_f_bar\nwrong.mf4,,0.3\nright.mf4,,0.2\n"
+        "freq.mf4,103,\n")
+    out = tmp_path / "chart.npz"
+    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
+                 "--channel", "upstream_speed=EngSpd_up", "--channel",
+                 "pressure=PressEVEN", "--channel", "downstream_speed=OutSpd",
+                 "--workers", "1", "--json", "--out", str(out)]) == 0
+    captured = capsys.readouterr()
+    wrong, right, freq = json.loads(captured.out)["runs"]
+    assert [wrong["p_f_bar"], right["p_f_bar"]] == [0.3, 0.2]
+    for run in (wrong, right):
+        assert run["dither_estimate"]["given"] == ["p_f_bar"]
+        assert run["dither_estimate"]["estimated"] == ["freq_hz"]
+        assert run["dither_estimate"]["p_f_bar"] == pytest.approx(0.2,
+                                                                  rel=0.02)
+        assert run["freq_hz"] == pytest.approx(103.0, abs=0.01)
+        assert 0 < run["dither_estimate"]["freq_std_hz"] < 0.01
+    warning = f"{tmp_path / 'wrong.mf4'}: pressure channel 'PressEVEN': " \
+        "dither estimated from it: the amplitude given, 0.3 bar, and the " \
+        "pressure's, 0.2"
+    assert len(wrong["dither_estimate"]["warnings"]) == 1
+    assert wrong["dither_estimate"]["warnings"][0].startswith(warning)
+    assert "differ by 33%" in wrong["dither_estimate"]["warnings"][0]
+    assert right["dither_estimate"]["warnings"] == []
+    assert [line for line in captured.err.splitlines()
+            if line.startswith("judder: warning:")] == [
+        "judder: warning: " + wrong["dither_estimate"]["warnings"][0]]
+    # the frequency given: not estimated, its uncertainty null (NaN)
+    assert freq["dither_estimate"]["given"] == ["freq_hz"]
+    assert freq["dither_estimate"]["freq_std_hz"] is None
+    assert freq["p_f_bar"] == pytest.approx(0.2, rel=0.02)
+    with np.load(out) as npz:
+        assert npz["freq_given"].tolist() == [False, False, True]
+        assert npz["p_f_given"].tolist() == [True, True, False]
+        assert np.isnan(npz["dither_freq_std_hz"][2])
+        np.testing.assert_allclose(npz["dither_p_f_bar"], 0.2, rtol=0.02)
+        arrays = {k: npz[k] for k in npz.files}
+    runs, _ = read_chart_runs(out)
+    html = _estimated_dithers(runs)
+    estimate = wrong["dither_estimate"]
+    for text in ("3 of the 3 runs", "the amplitude of 2 of them was given",
+                 "the frequency of 1 of them was given",
+                 "0.3 bar (given; the pressure&#x27;s " + format_uncertain(
+                     estimate["p_f_bar"], estimate["p_f_std_bar"], "bar"),
+                 format_uncertain(wrong["freq_hz"], estimate["freq_std_hz"]),
+                 "103 (given)", "differ by 33%"):
+        assert text in html, text
+    # a chart written before: a frequency given stored as uncertain by 0
+    old = {k: v for k, v in arrays.items() if k not in (
+        "freq_given", "p_f_given", "dither_p_f_bar")}
+    old["dither_freq_std_hz"] = np.nan_to_num(old["dither_freq_std_hz"])
+    np.savez(out, **old)
+    runs, _ = read_chart_runs(out)
+    assert runs["freq_given"].tolist() == [False, False, True]
+    assert "103 (given)" in _estimated_dithers(runs)
+
+
+@pytest.mark.parametrize("jitter", [0.0, 0.02])
+def test_a_dither_read_at_its_alias_names_the_plausible_frequencies(jitter):
+    """A 210 Hz dither sampled at 136.3 samples/s (uniform, or +-2 %
+    tooth-passage jitter) is found at its alias 2 x 136.3 - 210 = 62.6
+    Hz; the warning names every alias |62.6 + k 136.3| within 5-250 Hz
+    (73.7, 198.9 and 210 Hz), says the estimate cannot tell them apart,
+    and asks for the frequency."""
+    rng = np.random.default_rng(3)
+    rate, freq_hz = 136.3, 210.0
+    time = np.cumsum(np.full(int(1.5 * rate), 1 / rate) * (
+        1 + jitter * (2 * rng.random(int(1.5 * rate)) - 1)))
+    pressure = 8 * PA_PER_BAR + 0.3 * PA_PER_BAR * np.cos(
+        2 * np.pi * freq_hz * time) + 1e3 * rng.standard_normal(len(time))
+    fit = estimate_dither(time, pressure, (0.1, 1.4))
+    assert fit.freq_hz == pytest.approx(2 * rate - freq_hz, abs=0.1)
+    (warning,) = [w for w in fit.warnings if "alias" in w]
+    listed = [float(f) for f in re.findall(
+        r"[\d.]+", warning[:warning.index("fit the samples")])]
+    np.testing.assert_allclose(listed, [rate - fit.freq_hz,
+                                        rate + fit.freq_hz, freq_hz],
+                               atol=0.2)
+    for words in ("as the one found at 62.", "cannot be told from its "
+                  "aliases", "5-250 Hz", "freq_hz"):
+        assert words in warning
+
+
+def test_chart_warns_of_the_frequencies_a_thinned_pressure_hides(tmp_path,
+                                                                 capsys):
+    """The example run at 210 Hz with its pressure kept on every fifth
+    row (136 samples/s): charted at the alias 62.59 Hz, with a warning
+    that names 210 Hz among the aliases it cannot tell apart."""
+    from judder.cli import main
+    index = _example_with_pressure_on(
+        tmp_path, lambda times: np.arange(len(times)) % 5 == 0)
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
+    captured = capsys.readouterr()
+    assert "run01.csv: dither estimated 62.59 ± 0.0042 Hz" in captured.out
+    (warning,) = [line for line in captured.err.splitlines()
+                  if line.startswith("judder: warning:")]
+    for words in (str(tmp_path / "run01.csv"), "pressure channel "
+                  "'PressEVEN'", "the sinusoids at 73.7, 198.9 and 210 Hz",
+                  "found at 62.59 Hz", "136.3 samples/s",
+                  "cannot be told from its aliases", "freq_hz column"):
+        assert words in warning, words
+
+
+def test_decimal_is_refused_where_no_csv_is_read(tmp_path, capsys):
+    """--decimal names the separator of CSV files: chart of an MF4 alone,
+    or of a campaign folder whose runs are MF4s, and report without a
+    --boundary file read none, and refuse it as fit --chart does."""
+    from judder.cli import main
+    _write_run_mf4(tmp_path / "run.mf4", *_engagement(lambda t: 0 * t))
+    campaign = tmp_path / "campaign"
+    campaign.mkdir()
+    _write_run_mf4(campaign / "run.mf4", *_engagement(lambda t: 0 * t))
+    (campaign / "index.csv").write_text(
+        "status,files,freq_hz,p_f_bar\nok,run.csv run.mf4,100,0.2\n")
+    channels = ["--channel", "upstream_speed=EngSpd_up", "--channel",
+                "pressure=PressEVEN"]
+    for sources in ([str(tmp_path / "run.mf4")], [str(campaign)]):
+        assert main(["chart", *sources, *channels, "--decimal", ","]) == 2
+        err = capsys.readouterr().err
+        assert err.strip() == (
+            "judder: error: --decimal is for CSV acquisitions and a --index "
+            "file; allowed: no --decimal where every acquisition is binary "
+            "(MF4, TDMS, MAT) and no --index is given")
+    # the same MF4 without --decimal is read
+    assert main(["chart", str(tmp_path / "run.mf4"), *channels,
+                 "--workers", "1"]) == 0
+    assert "1 runs" in capsys.readouterr().out
+    assert main(["report", "--decimal", ",", "--out",
+                 str(tmp_path / "r.html")]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "judder: error: --decimal is for a --boundary file (CSV); allowed: "
+        "no --decimal without a --boundary file")
+    assert not (tmp_path / "r.html").exists()
+
+
+def test_an_index_with_excel_s_separator_line_reads(tmp_path):
+    """An index saved by a German Excel (``sep=;`` first, decimal
+    commas): its runs and settings, not a refusal for want of a 'file'
+    column."""
+    from pysim.bench_data.charts import sources_from_index
+    (tmp_path / "runs.csv").write_text(
+        "sep=;\nfile;freq_hz;p_f_bar\nrun01.csv;210;0,4\nrun02.csv;;0,6\n")
+    sources = sources_from_index(tmp_path / "runs.csv")
+    assert [(s.path.name, s.settings) for s in sources] == [
+        ("run01.csv", {"freq_hz": 210.0, "p_f_bar": 0.4}),
+        ("run02.csv", {"p_f_bar": 0.6})]

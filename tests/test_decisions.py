@@ -476,6 +476,24 @@ def test_check_command_line(tmp_path):
     assert proc.stderr.count("\n") == 1
 
 
+@pytest.mark.parametrize("text, words", [
+    # a German table with a comment line: the line as the file numbers it
+    ("freq_hz;p_f_bar\n60;0,2\n# second setting\n102,9;\n",
+     "--table {path}, line 4: column 'p_f_bar' is empty; allowed: every "
+     "row with freq_hz and p_f_bar (the settings to check)"),
+    ("freq_hz,p_f_bar\n60,0.2\n,0.3\n",
+     "{path}, line 3: column 'freq_hz' is empty; allowed: a frequency > 0 "
+     "Hz")])
+def test_check_names_the_line_and_column_of_an_empty_cell(tmp_path, capsys,
+                                                          text, words):
+    from judder.cli import main
+    table = tmp_path / "dither.csv"
+    table.write_text(text)
+    assert main(["check", "--table", str(table), "--params", "none"]) == 2
+    assert capsys.readouterr().err.strip() == \
+        "judder: error: " + words.format(path=table)
+
+
 @pytest.mark.parametrize("kwargs, word", [
     ({"min_growth": float("nan")}, "min_growth"),
     ({"sensitivity": ["J9"]}, "J9"),

@@ -482,7 +482,7 @@ def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0):
                 estimated=False, window_s=(0.0, 3.0), amplitude_rpm=0.0,
                 growth_per_s=None, kind="single-period" if judder
                 else "stable", mechanism=None, oscillation_rpm=0.0,
-                forced_rpm=0.0, dither=None)
+                forced_rpm=0.0, dither=None, given=("freq_hz", "p_f_bar"))
             runs.append(ChartRun(f"run_{f:g}_{p:g}.mf4", {}, analysis))
     return Chart(runs=runs, group_by=(), min_growth=1.0,
                  judder_limit_rpm=limit_rpm), onset
@@ -582,3 +582,45 @@ def test_fit_figure_says_what_was_measured_and_rounds_as_read():
     assert "refused" in title and not any(c.isdigit() for c in
                                           title.replace("16a", ""))
     plt.close(fig)
+
+
+@pytest.mark.parametrize("decimal", [None, ","])
+def test_the_comments_of_a_german_boundary_file_read_as_its_cells(
+        tmp_path, decimal):
+    """``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5
+    (float() refused it); the same comment with a decimal point in that
+    file is refused as two decimal separators, naming both cells."""
+    from judder.inputs import read_boundary_limit, read_boundary_min_growth
+    path = tmp_path / "b.csv"
+    path.write_text("# min_growth_per_s: 0,5\n# judder_limit_rpm: 30,5\n"
+                    + GERMAN_BOUNDARY)
+    assert read_boundary_min_growth(path, decimal=decimal) == 0.5
+    assert read_boundary_limit(path, decimal=decimal) == 30.5
+    path.write_text("# min_growth_per_s: 0.5\n" + GERMAN_BOUNDARY)
+    with pytest.raises(JudderError) as info:
+        read_boundary_min_growth(path)
+    for word in (str(path), "column 'min_growth_per_s' has '0.5' (line 1)",
+                 "'0,3' (line 3)", "one decimal separator in the whole "
+                 "file"):
+        assert word in str(info.value)
+    path.write_text("# judder_limit_rpm: 0,0\n" + GERMAN_BOUNDARY)
+    with pytest.raises(JudderError, match="line 1: judder_limit_rpm = 0,0 "
+                       "is not allowed; allowed: a finite number > 0"):
+        read_boundary_limit(path)
+
+
+def test_an_excel_boundary_file_with_its_separator_line(tmp_path):
+    """Excel's ``sep=;`` first line declares the separator (it was read
+    as a header and refused); a header refused is quoted as the file
+    writes it, with its ';'."""
+    table = read_boundary_table("sep=;\n" + GERMAN_BOUNDARY, "b.csv")
+    np.testing.assert_allclose(table["p_f"], [0.3 * BAR, np.nan])
+    assert table["lines"] == [3, 4]
+    table = read_boundary_table("sep=\t\nfreq_hz\tp_f_bar\n105\t0,3\n",
+                                "b.csv")
+    np.testing.assert_allclose(table["p_f"], [0.3 * BAR])
+    with pytest.raises(JudderError) as info:
+        read_boundary_table("freq_hz;p_f;tried_bar\n105;0,3;0,6\n", "b.csv")
+    assert str(info.value).startswith(
+        "b.csv, line 1: header 'freq_hz;p_f;tried_bar' is not allowed "
+        "(unknown column 'p_f')")

@@ -549,40 +549,58 @@ def chart_figure(page, chart, group):
         + _estimated_dithers(runs)
 
 
-#: Runs the report lists with a dither amplitude estimated from the
-#: pressure: the least certain ones.
+#: Runs the report lists with a dither estimated from the pressure: the
+#: least certain ones.
 ESTIMATED_RUNS_LISTED = 10
 
 
 def _estimated_dithers(runs):
     """The runs (:func:`judder.inputs.read_chart_runs`) whose dither
-    amplitude was estimated from the pressure, with its standard
-    uncertainty and what the sampling could not support, the least
-    certain first; "" where none was."""
+    frequency or amplitude was estimated from the pressure, the least
+    certain amplitude first: the frequency and the amplitude each as
+    estimated, with its standard uncertainty, or as given (an amplitude
+    given beside the pressure's estimate of it), and what the sampling
+    could not support or the estimate contradicts; "" where none was."""
     from pathlib import Path
     std = np.asarray(runs["p_f_std_bar"], dtype=float)
-    estimated = np.flatnonzero(np.isfinite(std))
+    estimated = np.flatnonzero(np.isfinite(std) & ~(
+        runs["freq_given"] & runs["p_f_given"]))
     if not len(estimated):
         return ""
-    relative = std[estimated] / np.maximum(runs["p_f_bar"][estimated], 1e-300)
+    pressure = np.asarray(runs["dither_p_f_bar"], dtype=float)
+    relative = std[estimated] / np.maximum(pressure[estimated], 1e-300)
     order = estimated[np.argsort(-relative)][:ESTIMATED_RUNS_LISTED]
-    rows = [(Path(str(runs["source_file"][i])).name,
-             f"{runs['freq_hz'][i]:.4g}",
-             format_uncertain(float(runs["p_f_bar"][i]), float(std[i]),
-                              "bar"),
-             "judder" if runs["judder"][i] else "no judder",
+
+    def frequency(i):
+        return (f"{runs['freq_hz'][i]:.4g} (given)" if runs["freq_given"][i]
+                else format_uncertain(float(runs["freq_hz"][i]),
+                                      float(runs["freq_std_hz"][i])))
+
+    def amplitude(i):
+        read = format_uncertain(float(pressure[i]), float(std[i]), "bar")
+        return (f"{runs['p_f_bar'][i]:.4g} bar (given; the pressure's "
+                f"{read})" if runs["p_f_given"][i] else read)
+    rows = [(Path(str(runs["source_file"][i])).name, frequency(i),
+             amplitude(i), "judder" if runs["judder"][i] else "no judder",
              str(runs["dither_warnings"][i]) or "-")
             for i in order]
-    return (f"<p>The dither amplitude of {len(estimated)} of the "
-            f"{len(std)} runs was estimated from the pressure (a "
-            "least-squares sinusoid), with standard uncertainties of "
-            f"{100 * relative.min():.2g} to {100 * relative.max():.2g} % "
-            "of the amplitude"
+    given = {name: int(np.count_nonzero(runs[key][estimated]))
+             for name, key in (("frequency", "freq_given"),
+                               ("amplitude", "p_f_given"))}
+    return (f"<p>The dither of {len(estimated)} of the {len(std)} runs was "
+            "estimated from the pressure (a least-squares sinusoid)"
+            + "".join(f"; the {name} of {count} of them was given"
+                      for name, count in given.items() if count)
+            + ". The pressure's amplitudes are uncertain by "
+            + (f"{100 * relative.min():.2g} to " if len(estimated) > 1
+               else "") + f"{100 * relative.max():.2g} % (standard "
+            "uncertainty)"
             + (f"; the {len(order)} least certain" if len(order) < len(
                 estimated) else "") + ":</p>"
-            + _table(("run", "dither frequency (Hz)",
+            + _table(("run", "dither frequency ± 1 sigma (Hz)",
                       "amplitude ± 1 sigma", "verdict",
-                      "what the sampling cannot support"), rows))
+                      "what the sampling cannot support, or contradicts"),
+                     rows))
 
 
 def driveline_section(values, modes):

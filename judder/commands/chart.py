@@ -16,7 +16,8 @@ from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (decimal_option, force_option, limit_option,
-                         method_option, model_options, workers_option)
+                         method_option, model_options, refuse_decimal,
+                         workers_option)
 from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -165,14 +166,17 @@ def run(args):
 
 def _estimate_line(run):
     """A run's dither as estimated from its pressure, with the standard
-    uncertainties."""
-    fit = run.analysis.dither
-    freq = (f"{fit.freq_hz:.4g} ± {fit.freq_std_hz:.2g} Hz"
-            if fit.freq_std_hz else f"{fit.freq_hz:.4g} Hz (given)")
-    return (f"  {run.path.name}: dither estimated {freq}, "
-            f"{fit.amplitude / PA_PER_BAR:.3g} ± "
-            f"{fit.amplitude_std / PA_PER_BAR:.2g} bar, phase "
-            f"{fit.phase_rad:.3f} ± {fit.phase_std_rad:.2g} rad at "
+    uncertainties, and the values that were given instead."""
+    fit, given = run.analysis.dither, run.analysis.given
+    freq = (f"{fit.freq_hz:.4g} Hz (given)" if "freq_hz" in given else
+            f"{fit.freq_hz:.4g} ± {fit.freq_std_hz:.2g} Hz")
+    amplitude = (f"{fit.amplitude / PA_PER_BAR:.3g} ± "
+                 f"{fit.amplitude_std / PA_PER_BAR:.2g} bar")
+    if "p_f_bar" in given:
+        amplitude = (f"{run.analysis.p_f_bar:.4g} bar (given; the "
+                     f"pressure's {amplitude})")
+    return (f"  {run.path.name}: dither estimated {freq}, {amplitude}, "
+            f"phase {fit.phase_rad:.3f} ± {fit.phase_std_rad:.2g} rad at "
             f"{fit.reference_s:.4g} s (standard uncertainties)")
 
 
@@ -253,9 +257,15 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from pysim.bench_data.charts import build_chart, gather_sources
+    from pysim.bench_data.readers import TEXT_SUFFIXES
     from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
     runs = gather_sources(sources, index, decimal)
+    if index is None and not any(run.path.suffix.lower() in TEXT_SUFFIXES
+                                 for run in runs):
+        refuse_decimal(decimal, "CSV acquisitions and a --index file",
+                       "where every acquisition is binary (MF4, TDMS, "
+                       "MAT) and no --index is given")
     run_bytes = check_acquisitions([run.path for run in runs], workers)
     result = build_chart(
         runs, channels=channels, run_bytes=run_bytes,
@@ -306,7 +316,7 @@ class ChartResult:
         runs = []
         for run in chart.read:
             a = run.analysis
-            estimate = dither_estimate_dict(a.dither)
+            estimate = dither_estimate_dict(a.dither, a.given)
             if estimate is not None:
                 # the warnings as the command prints them: the file and
                 # the pressure channel named

@@ -15,7 +15,7 @@ from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
 from ._arguments import (decimal_option, force_option, min_growth_option,
-                         model_options)
+                         model_options, refuse_decimal)
 from ._common import (check_modes, check_modes_up_to, check_names,
                       checked_values, frequency_dependent, linearised_mode,
                       mode_words, structural_names)
@@ -102,14 +102,18 @@ def _settings(args, parameters):
     time of ``parameters`` sensitivity parameters per setting is estimated
     before the settings are made (a grid x grid of 1e10 would fill the
     memory first)."""
-    from ..inputs import read_boundary
+    from ..inputs import read_boundary_tested
     if args.table:
         if args.freq or args.pf:
             raise JudderError("--table and --freq/--pf: allowed: one of them")
-        freqs, p_f = read_boundary(args.table, "--table", args.decimal)
-        if not len(freqs) or not all(math.isfinite(p) for p in p_f):
-            raise JudderError(f"--table {args.table}: every row needs "
-                              "freq_hz and p_f_bar; allowed: no empty cells")
+        table = read_boundary_tested(args.table, "--table", args.decimal)
+        freqs, p_f, lines = table["freq_hz"], table["p_f"], table["lines"]
+        empty = [line for line, p in zip(lines, p_f) if not math.isfinite(p)]
+        if empty:
+            raise JudderError(f"--table {args.table}, line {empty[0]}: "
+                              "column 'p_f_bar' is empty; allowed: every "
+                              "row with freq_hz and p_f_bar (the settings "
+                              "to check)")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
         check_settings_time(len(freqs), parameters)
@@ -121,9 +125,7 @@ def _settings(args, parameters):
                     f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
                     f"not allowed; allowed: {low:g} to {high:g} Hz")
         return list(freqs), amplitudes
-    if args.decimal:
-        raise JudderError("--decimal is for a --table file; allowed: no "
-                          "--decimal with --freq and --pf")
+    refuse_decimal(args.decimal, "a --table file", "with --freq and --pf")
     if not (args.freq and args.pf):
         raise JudderError("--freq and --pf are required (or --table)")
     freqs, amplitudes = args.freq, args.pf

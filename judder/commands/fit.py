@@ -18,7 +18,7 @@ from ..inputs import (boundary_p_max, read_boundary_limit,
                       read_chart_boundary, read_chart_limit,
                       read_chart_min_growth)
 from ._arguments import (decimal_option, force_option, method_option,
-                         model_options, workers_option)
+                         model_options, refuse_decimal, workers_option)
 from ._common import at_dither_frequency, checked_values, resolve, timed
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
@@ -147,10 +147,9 @@ def run(args):
     bounds = _bounds(args.bounds, params, names)
     default_growth = DEFAULT_MIN_GROWTH_PER_S
     default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
-    if args.chart and args.decimal:
-        raise JudderError("--decimal is for a --boundary file (CSV); "
-                          "allowed: no --decimal with --chart (an NPZ)")
     if args.chart:
+        refuse_decimal(args.decimal, "a --boundary file (CSV)",
+                       "with --chart (an NPZ)")
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
         default_growth = read_chart_min_growth(args.chart)
@@ -161,9 +160,11 @@ def run(args):
         freqs, measured = table["freq_hz"], table["p_f"]
         below = np.where(np.isnan(measured), np.nan, table["no_judder"])
         default_p_max = boundary_p_max(table, args.pf_max, args.boundary)
-        stated = read_boundary_min_growth(args.boundary)
+        stated = read_boundary_min_growth(args.boundary,
+                                          decimal=args.decimal)
         default_growth = default_growth if stated is None else stated
-        default_limit = read_boundary_limit(args.boundary)
+        default_limit = read_boundary_limit(args.boundary,
+                                            decimal=args.decimal)
     if args.bench and not args.bench_linearisation:
         raise JudderError("--bench is for --bench-linearisation; give both")
     bench = parse_bench(args.bench, resolve(params, changes)) \

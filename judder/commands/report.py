@@ -33,7 +33,8 @@ from infra.units import PA_PER_BAR
 from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
 from ._arguments import (decimal_option, force_option, method_option,
-                         min_growth_option, model_options, workers_option)
+                         min_growth_option, model_options, refuse_decimal,
+                         workers_option)
 from ._flags import in_flags
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
@@ -432,9 +433,10 @@ def _bench_data(chart, boundary, group, decimal):
     from ..inputs import (boundary_p_max, read_boundary_min_growth,
                           read_boundary_tested, read_chart_below,
                           read_chart_boundary, read_chart_min_growth)
-    if chart and decimal:
-        raise JudderError("--decimal is for a --boundary file (CSV); "
-                          "allowed: no --decimal with --chart (an NPZ)")
+    if not boundary:
+        refuse_decimal(decimal, "a --boundary file (CSV)",
+                       "with --chart (an NPZ)" if chart else
+                       "without a --boundary file")
     if chart:
         return (*read_chart_boundary(chart, group),
                 read_chart_min_growth(chart),
@@ -442,7 +444,7 @@ def _bench_data(chart, boundary, group, decimal):
                 CHART_THRESHOLD_SPREAD_PER_S)
     if boundary:
         table = read_boundary_tested(boundary, decimal=decimal)
-        stated = read_boundary_min_growth(boundary)
+        stated = read_boundary_min_growth(boundary, decimal=decimal)
         return (table["freq_hz"], table["p_f"],
                 boundary_p_max(table, None, boundary, pf_option=None),
                 DEFAULT_MIN_GROWTH_PER_S if stated is None else stated,

@@ -22,10 +22,15 @@ uncertainties of ``A`` and :math:`\varphi` follow from it to first order
 :math:`u(A) \approx \sigma \sqrt{2/n}`).
 
 Sampling that cannot support the estimate is named in :attr:`SinusoidFit.
-warnings`: fewer than :data:`MIN_SAMPLES_PER_PERIOD` samples per period
-(the frequency cannot be told from its alias), an alias that fits as well
-as the frequency found, fewer than :data:`MIN_PERIODS` periods, or an
-amplitude uncertain by more than :data:`MAX_RELATIVE_UNCERTAINTY`.
+warnings`: aliases within the plausible dither frequencies
+(:data:`DITHER_RANGE_HZ`) that fit as well as the frequency found,
+``|f + k f_s|`` for the samples' mean rate ``f_s`` (all of them fit as
+well where the samples are uniform and ``f_s`` is below twice the range's
+top; irregular samples may tell some apart), fewer than
+:data:`MIN_SAMPLES_PER_PERIOD` samples per period at a frequency given,
+fewer than :data:`MIN_PERIODS` periods, or an amplitude uncertain by more
+than :data:`MAX_RELATIVE_UNCERTAINTY`. A value given for the dither that
+the pressure's estimate contradicts is named by :func:`disagreement`.
 
 Kernels only: arrays in, result objects out.
 """
@@ -35,8 +40,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-__all__ = ["SinusoidFit", "fit_sinusoid", "MIN_SAMPLES_PER_PERIOD", "MIN_PERIODS",
-           "MAX_RELATIVE_UNCERTAINTY", "ALIAS_SHARE"]
+__all__ = ["SinusoidFit", "fit_sinusoid", "disagreement",
+           "MIN_SAMPLES_PER_PERIOD", "MIN_PERIODS", "MAX_RELATIVE_UNCERTAINTY",
+           "ALIAS_SHARE", "DITHER_RANGE_HZ", "DISAGREEMENT_STDS",
+           "DISAGREEMENT_SHARE"]
 
 #: Fewer samples per dither period than this cannot tell the frequency
 #: from its alias (the Nyquist limit of a uniform sampling).
@@ -53,6 +60,20 @@ MAX_RELATIVE_UNCERTAINTY = 0.10
 #: all but exactly; a trend that is no line, or a dither that is no pure
 #: sinusoid, makes a likelihood ratio of the two meaningless).
 ALIAS_SHARE = 0.5
+#: The dither frequencies a bench may run, Hz: from the verdict's 5 Hz
+#: high-pass (below it is the engagement itself) to 250 Hz, above the
+#: paper's valve range (60-200 Hz) and tongue 4 at twice f2 (about 206
+#: Hz), as far as the report's stability map reaches. An alias of the
+#: frequency found within it is a frequency the bench may have run.
+DITHER_RANGE_HZ = (5.0, 250.0)
+#: A value given for the dither contradicts the pressure's estimate when
+#: they differ by more than this many standard uncertainties of the
+#: estimate ...
+DISAGREEMENT_STDS = 3.0
+#: ... and by more than this share of the value given (a sinusoid over a
+#: line reads a pressure that is no pure sinusoid a few % off: not a
+#: wrong setting).
+DISAGREEMENT_SHARE = 0.05
 
 
 @dataclass(frozen=True)
@@ -62,8 +83,8 @@ class SinusoidFit:
     Attributes
     ----------
     freq_hz, freq_std_hz : float
-        Frequency and its standard uncertainty, Hz (0 when the frequency
-        was given).
+        Frequency and its standard uncertainty, Hz (NaN when the frequency
+        was given: it was not estimated).
     amplitude, amplitude_std : float
         Amplitude ``A`` and its standard uncertainty, in the unit of the
         values.
@@ -127,7 +148,8 @@ def _covariance(jacobian, variance):
     return variance * inverse / np.outer(scale, scale)
 
 
-def fit_sinusoid(time, values, freq_hz, bracket_hz=None):
+def fit_sinusoid(time, values, freq_hz, bracket_hz=None,
+                 dither_range_hz=DITHER_RANGE_HZ):
     r"""Least-squares sinusoid over a line, fitted to samples as taken.
 
     Parameters
@@ -143,6 +165,9 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None):
         Refine the frequency within this interval (the minimum of the sum
         of squares over it); the frequency is then a fitted value with its
         uncertainty.
+    dither_range_hz : (float, float)
+        The frequencies the dither may have, Hz: aliases of the frequency
+        found within them are tried (:data:`DITHER_RANGE_HZ`).
 
     Returns
     -------
@@ -185,7 +210,8 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None):
     periods = span * freq_hz
     fit = SinusoidFit(
         freq_hz=float(freq_hz),
-        freq_std_hz=float(np.sqrt(covariance[4, 4])) if fitted == 5 else 0.0,
+        freq_std_hz=(float(np.sqrt(covariance[4, 4])) if fitted == 5
+                     else float("nan")),
         amplitude=amplitude,
         amplitude_std=float(np.sqrt(grad_amplitude @ cd @ grad_amplitude)),
         phase_rad=float(np.arctan2(-d, c)),
@@ -193,52 +219,81 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None):
         reference_s=float(reference), residual_std=float(np.sqrt(variance)),
         samples_per_period=(len(time) - 1) / periods, periods=periods,
         warnings=())
-    alias = _alias(tau, values, fit, rss) if bracket_hz is not None \
-        else None
-    return SinusoidFit(**{**fit.__dict__,
-                          "warnings": _warnings(fit, alias)})
+    aliases = (_aliases(tau, values, fit, rss, dither_range_hz)
+               if bracket_hz is not None else None)
+    return SinusoidFit(**{**fit.__dict__, "warnings": _warnings(
+        fit, aliases, _candidates(fit, dither_range_hz), dither_range_hz)})
 
 
-def _alias(tau, values, fit, rss):
-    """The alias of the frequency found about the samples' mean rate, if
-    it fits as well (:data:`ALIAS_SHARE`), else None.
+def _candidates(fit, dither_range_hz):
+    """The aliases of the frequency fitted about the samples' mean rate
+    ``f_s`` within ``dither_range_hz``: ``|f + k f_s|`` for every whole
+    ``k`` but 0 (``f + k f_s`` and ``k f_s - f``), ascending."""
+    rate = fit.samples_per_period * fit.freq_hz
+    low, high = dither_range_hz
+    reach = int(np.ceil((high + fit.freq_hz) / rate))
+    found = {float(abs(fit.freq_hz + k * rate))
+             for k in range(-reach, reach + 1) if k}
+    return sorted(f for f in found if low <= f <= high
+                  and abs(f - fit.freq_hz) > 1e-9 * fit.freq_hz)
+
+
+def _aliases(tau, values, fit, rss, dither_range_hz):
+    """The aliases of :func:`_candidates` that fit as well as the
+    frequency found (:data:`ALIAS_SHARE`), each where it fits best.
 
     The mean rate of irregular samples is known only to about one
-    frequency bin ``1/span``, so the alias is the best fit within two
-    bins of ``rate - f``, on a grid of a quarter bin.
+    frequency bin ``1/span``, so each alias is the best fit within two
+    bins of its nominal frequency, on a grid of a quarter bin; one
+    within three bins of the frequency found is that frequency.
     """
     span = tau[-1] - tau[0]
-    rate = fit.samples_per_period * fit.freq_hz
-    nominal = abs(rate - fit.freq_hz)
-    if abs(nominal - fit.freq_hz) < 3.0 / span:
-        return None
-    candidates = nominal + np.arange(-8, 9) / (4 * span)
-    sums = [_linear(tau, values, f)[2] for f in candidates[candidates > 0]]
-    best = int(np.argmin(sums))
     line = np.column_stack([np.ones_like(tau), tau])
     about_line = float(np.sum((values - line @ np.linalg.lstsq(
         line, values, rcond=None)[0]) ** 2))
-    if about_line - sums[best] > ALIAS_SHARE * (about_line - rss):
-        return float(candidates[candidates > 0][best])
-    return None
+    found = []
+    for nominal in _candidates(fit, dither_range_hz):
+        if abs(nominal - fit.freq_hz) < 3.0 / span:
+            continue
+        grid = nominal + np.arange(-8, 9) / (4 * span)
+        grid = grid[grid > 0]
+        sums = [_linear(tau, values, f)[2] for f in grid]
+        best = int(np.argmin(sums))
+        if about_line - sums[best] > ALIAS_SHARE * (about_line - rss):
+            found.append(float(grid[best]))
+    return found
 
 
-def _warnings(fit, alias):
-    """What the sampling cannot support, in words."""
+def _listing(freqs):
+    """``62.59, 73.41 and 209.4 Hz``."""
+    texts = [f"{f:.4g}" for f in freqs]
+    return (", ".join(texts[:-1]) + " and " if len(texts) > 1 else "") \
+        + texts[-1] + " Hz"
+
+
+def _warnings(fit, aliases, candidates, dither_range_hz):
+    """What the sampling cannot support, in words: ``aliases`` those of
+    ``candidates`` (:func:`_candidates`) that fit as well as the frequency
+    found (None where the frequency was given)."""
     warnings = []
-    if fit.samples_per_period < MIN_SAMPLES_PER_PERIOD:
+    rate = fit.samples_per_period * fit.freq_hz
+    if aliases:
+        warnings.append(
+            f"the sinusoids at {_listing(aliases)} fit the samples as well "
+            f"as the one found at {fit.freq_hz:.4g} Hz: at the samples' "
+            f"mean rate of {rate:.4g} samples/s they are its aliases (|f + k x "
+            f"{rate:.4g} Hz|) within the plausible dither frequencies "
+            f"{dither_range_hz[0]:g}-{dither_range_hz[1]:g} Hz, and the "
+            "frequency cannot be told from its aliases; give the dither "
+            "frequency (a freq_hz column in the index)")
+    elif fit.samples_per_period < MIN_SAMPLES_PER_PERIOD:
         warnings.append(
             f"{fit.samples_per_period:.2g} samples per period at "
             f"{fit.freq_hz:.4g} Hz, fewer than "
             f"{MIN_SAMPLES_PER_PERIOD:g}: the frequency cannot be told from "
-            f"its alias at {abs(fit.samples_per_period - 1) * fit.freq_hz:.4g}"
-            " Hz, and the amplitude read may be that of another component")
-    elif alias is not None:
-        warnings.append(
-            f"the sinusoid at {alias:.4g} Hz (the alias of {fit.freq_hz:.4g} "
-            f"Hz at {fit.samples_per_period:.2g} samples per period) fits "
-            "the samples as well: the frequency cannot be told from its "
-            "alias")
+            + (f"its aliases at {_listing(candidates)}" if candidates else
+               "its aliases")
+            + ", and the amplitude read may be that of another component")
     if fit.periods < MIN_PERIODS:
         warnings.append(
             f"{fit.periods:.3g} periods at {fit.freq_hz:.4g} Hz in the "
@@ -254,3 +309,39 @@ def _warnings(fit, alias):
             f"{MAX_RELATIVE_UNCERTAINTY:.0%}: the dither is not read well "
             "from these samples")
     return tuple(warnings)
+
+
+def disagreement(quantity, given, estimate, std, unit):
+    """Words when a value given for the dither and the pressure's estimate
+    of it differ by more than :data:`DISAGREEMENT_STDS` standard
+    uncertainties of the estimate and by more than
+    :data:`DISAGREEMENT_SHARE` of the value given; else None.
+
+    Parameters
+    ----------
+    quantity : str
+        What the value is, in words (``'amplitude'``).
+    given, estimate, std : float
+        The value given, the estimate and its standard uncertainty, in
+        ``unit``.
+    unit : str
+
+    Example
+    -------
+    >>> words = disagreement("amplitude", 0.6, 0.517, 0.0029, "bar")
+    >>> words[words.index("differ"):words.index(":")]
+    'differ by 14% (28.6 standard uncertainties)'
+    >>> disagreement("amplitude", 0.6, 0.59, 0.0029, "bar") is None
+    True
+    """
+    difference = abs(given - estimate)
+    stds = difference / std if std > 0 else float("inf")
+    if not (difference > DISAGREEMENT_SHARE * abs(given)
+            and stds > DISAGREEMENT_STDS):
+        return None
+    return (f"the {quantity} given, {given:.4g} {unit}, and the "
+            f"pressure's, {estimate:.3g} ± {std:.2g} {unit} (standard "
+            f"uncertainty), differ by {difference / abs(given):.0%} "
+            f"({stds:.3g} standard uncertainties): the run is read at the "
+            f"{quantity} given; check that value, and the pressure channel "
+            "and its unit")

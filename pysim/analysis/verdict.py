@@ -14,7 +14,10 @@ own time base. :func:`analyse_run` does, in order:
    fitted to the pressure samples as taken (:func:`estimate_dither`); the
    amplitude is that sinusoid's. Frequency, amplitude and phase come with
    their standard uncertainties, and with warnings where the sampling
-   cannot support them (:mod:`pysim.analysis.dither`).
+   cannot support them (:mod:`pysim.analysis.dither`). Where one value of
+   the setting is given and the other estimated, the run is read at the
+   value given, and a given amplitude the pressure's estimate contradicts
+   is warned of (:func:`pysim.analysis.dither.disagreement`).
 3. **Components** of the upstream speed, resampled uniformly over the
    whole run and high-passed above 5 Hz (the engagement itself is
    slower), by complex demodulation,
@@ -110,6 +113,7 @@ forces a resonance that saturates the friction curve, and the verdicts
 follow that nonlinear motion, not the exponent.
 """
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -121,10 +125,10 @@ from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
-from .dither import fit_sinusoid
+from .dither import disagreement, fit_sinusoid
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
-           "dither_estimate_dict",
+           "dither_estimate_dict", "SETTING",
            "engagement_window", "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
            "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
@@ -259,7 +263,10 @@ class RunAnalysis:
     dither : pysim.analysis.dither.SinusoidFit or None
         The sinusoid fitted to the pressure where the dither setting was
         estimated (amplitude in Pa, with standard uncertainties and the
-        sampling's warnings), else None.
+        sampling's warnings, and a given value it contradicts), else None.
+    given : tuple of str
+        The values of the dither setting that were given, of
+        ``('freq_hz', 'p_f_bar')``; the others were estimated.
     """
 
     window_s: tuple
@@ -278,6 +285,7 @@ class RunAnalysis:
     mechanism: object
     judder_limit_rpm: float
     dither: object = None
+    given: tuple = ("freq_hz", "p_f_bar")
 
     def as_dict(self):
         """JSON fields (Hz, bar, rpm, 1/s)."""
@@ -294,16 +302,25 @@ class RunAnalysis:
                 "mechanism": self.mechanism,
                 "judder_limit_rpm": self.judder_limit_rpm,
                 "components": [c.__dict__ for c in self.components],
-                "dither_estimate": dither_estimate_dict(self.dither)}
+                "dither_estimate": dither_estimate_dict(self.dither,
+                                                        self.given)}
 
 
-def dither_estimate_dict(fit):
+#: The values of a dither setting, given or estimated.
+SETTING = ("freq_hz", "p_f_bar")
+
+
+def dither_estimate_dict(fit, given=()):
     """JSON fields of an estimated dither (Hz, bar, rad, s), None for
-    none: the values with their standard uncertainties (``*_std_*``),
-    the time the phase refers to, the sampling and its warnings."""
+    none: which values of the setting were ``given`` and which
+    ``estimated`` (of :data:`SETTING`), the pressure's values with their
+    standard uncertainties (``*_std_*``; the frequency's NaN where it was
+    given), the time the phase refers to, the sampling and its warnings."""
     if fit is None:
         return None
-    return {"freq_hz": fit.freq_hz, "freq_std_hz": fit.freq_std_hz,
+    return {"given": [name for name in SETTING if name in given],
+            "estimated": [name for name in SETTING if name not in given],
+            "freq_hz": fit.freq_hz, "freq_std_hz": fit.freq_std_hz,
             "p_f_bar": fit.amplitude / PA_PER_BAR,
             "p_f_std_bar": fit.amplitude_std / PA_PER_BAR,
             "phase_rad": fit.phase_rad, "phase_std_rad": fit.phase_std_rad,
@@ -864,6 +881,8 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     _check_length(t_speed)
     window = engagement_window((t_speed, w), pressure, downstream)
     dither = None
+    given = tuple(name for name, value in zip(SETTING, (freq_hz, p_f_bar))
+                  if value is not None)
     if freq_hz is None or p_f_bar is None:
         if pressure is None:
             raise JudderError("the dither setting is not given and there is "
@@ -872,8 +891,15 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                                  np.asarray(pressure[1], dtype=float),
                                  window, freq_hz)
         freq_hz = dither.freq_hz if freq_hz is None else freq_hz
-        p_f_bar = (dither.amplitude / PA_PER_BAR if p_f_bar is None
-                   else p_f_bar)
+        if p_f_bar is None:
+            p_f_bar = dither.amplitude / PA_PER_BAR
+        else:
+            contradicted = disagreement(
+                "amplitude", p_f_bar, dither.amplitude / PA_PER_BAR,
+                dither.amplitude_std / PA_PER_BAR, "bar")
+            if contradicted:
+                dither = dataclasses.replace(
+                    dither, warnings=dither.warnings + (contradicted,))
     angle = _angle(t_speed, w)
     t = np.arange(t_speed[0], t_speed[-1], np.median(np.diff(t_speed)))
     y = angle(t, 1) * RPM_PER_RAD_S
@@ -976,7 +1002,7 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                        oscillation_rpm=oscillation, forced_rpm=forced_rpm,
                        mechanism=mechanism,
                        judder_limit_rpm=float(judder_limit_rpm),
-                       dither=dither)
+                       dither=dither, given=given)
 
 
 def _sustained(time, envelope):

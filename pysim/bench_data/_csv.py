@@ -14,10 +14,16 @@ from ._common import (column_factor, is_time_name, listing, split_header,
                       time_unit)
 from ._numbers import column_values, decide, is_number
 
-__all__ = ["read"]
+__all__ = ["read", "declared_separator", "SEPARATORS"]
 
 #: Bytes of a CSV file looked at for NUL bytes before it is read whole.
 HEAD_BYTES = 64 * 1024
+#: The field separators read.
+SEPARATORS = (",", ";", "\t")
+#: The line Excel writes first in a CSV export to declare its field
+#: separator: ``sep=;`` (quoted by some writers, and padded with the
+#: separator to the width of the rows when a spreadsheet saves it again).
+_SEPARATOR_LINE = re.compile(r'"?sep=(.)"?(?:\1|[ \r\n])*', re.IGNORECASE)
 
 
 def read(path, wanted, time=None, decimal=None):
@@ -32,10 +38,12 @@ def read(path, wanted, time=None, decimal=None):
     metadata = _csv_metadata(lines)
     body = [(number, line) for number, line in enumerate(lines, 1)
             if line.strip() and not line.lstrip().startswith("#")]
+    declared = declared_separator(path, *body[0]) if body else None
+    body = body[1:] if declared else body
     if not body:
         raise JudderError(f"{path}: no header line (time [s], name [unit], "
                           "...)")
-    delimiter = _delimiter(body[len(body) // 2][1])
+    delimiter = declared or _delimiter(body[len(body) // 2][1])
     rows = list(csv.reader([line for _, line in body], delimiter=delimiter))
     start = _csv_header_row(path, rows, body, time)
     metadata.update({row[0].strip(): row[1].strip() for row in rows[:start]
@@ -158,6 +166,33 @@ def _csv_metadata(lines):
         except ValueError:
             metadata[key.strip()] = value.strip()
     return metadata
+
+
+def declared_separator(path, number, line):
+    """The field separator a line declares as Excel writes it first in a
+    CSV export (``sep=;``), or None for any other line.
+
+    Raises
+    ------
+    JudderError
+        A declared separator other than those of :data:`SEPARATORS`,
+        naming the file and the line.
+
+    Examples
+    --------
+    >>> declared_separator("a.csv", 1, "sep=;"), declared_separator(
+    ...     "a.csv", 1, '"sep=;";;'), declared_separator(
+    ...     "a.csv", 1, "freq_hz;p_f_bar")
+    (';', ';', None)
+    """
+    match = _SEPARATOR_LINE.fullmatch(line.lstrip(" "))
+    if match is None:
+        return None
+    if match.group(1) not in SEPARATORS:
+        raise JudderError(f"{path}, line {number}: {line.strip()!r} "
+                          f"declares the field separator {match.group(1)!r}; "
+                          "allowed: ',', ';' or tab")
+    return match.group(1)
 
 
 def _delimiter(line):

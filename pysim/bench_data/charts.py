@@ -28,7 +28,7 @@ from infra.errors import JudderError
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
-from ..analysis.verdict import MIN_AMPLITUDE_RPM, analyse_run
+from ..analysis.verdict import MIN_AMPLITUDE_RPM, SETTING, analyse_run
 from .acquisition import ChannelSpec
 from ._csv import _csv_lines
 from .readers import read_acquisition
@@ -75,7 +75,7 @@ class ChartRun:
     (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`); ``warnings``
     what the run was read with but cannot support, in words naming the
     file and the channel (a dither estimated from a pressure sampled too
-    sparsely).
+    sparsely, or a dither amplitude given that the pressure contradicts).
     """
 
     path: Path
@@ -105,7 +105,7 @@ def _read_csv(path, option, decimal=None):
     try:
         lines = [(number, line) for number, line in
                  enumerate(_csv_lines(path), 1) if line.strip()]
-        rows = split_rows(lines)
+        rows = split_rows(lines, f"{option} {path}")
     except (OSError, csv.Error) as exc:
         raise JudderError(f"{option} {path}: cannot read it as CSV "
                           f"({exc})") from None
@@ -394,12 +394,22 @@ class Chart:
             "forced_rpm": np.array([r.analysis.forced_rpm for r in runs]),
             "dither_estimated": np.array([r.analysis.estimated
                                           for r in runs]),
+            # which values of the setting were given (the others were
+            # estimated from the pressure)
+            "freq_given": np.array([SETTING[0] in r.analysis.given
+                                    for r in runs], dtype=bool),
+            "p_f_given": np.array([SETTING[1] in r.analysis.given
+                                   for r in runs], dtype=bool),
             **_dither_arrays([r.analysis.dither for r in runs])}
 
 
-#: NPZ arrays of an estimated dither (NaN where the setting was given):
-#: array name -> (attribute of the fit, its value in the array's unit).
+#: NPZ arrays of the pressure's estimate of the dither (NaN where the
+#: setting was given, and the frequency's uncertainty where the frequency
+#: was given): array name -> (attribute of the fit, its value in the
+#: array's unit). ``dither_p_f_bar`` is the pressure's amplitude, which
+#: is the run's ``p_f_bar`` unless that was given.
 DITHER_ARRAYS = {"dither_freq_std_hz": ("freq_std_hz", 1.0),
+                 "dither_p_f_bar": ("amplitude", PA_PER_BAR),
                  "dither_p_f_std_bar": ("amplitude_std", PA_PER_BAR),
                  "dither_phase_rad": ("phase_rad", 1.0),
                  "dither_phase_std_rad": ("phase_std_rad", 1.0),
