@@ -537,24 +537,26 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
+def _flatten(path, model_name, roots, use_cache=True, hybrid=False,
+             fmu=False):
     """rumoca's flat model of ``model_name``, from the cache
     (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
     import rumoca
     from . import cache
     if not use_cache:
         return _flatten_with_rumoca(path, model_name, roots,
-                                    use_cache=False, hybrid=hybrid)
+                                    use_cache=False, hybrid=hybrid, fmu=fmu)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
-        flat = _flatten_with_rumoca(path, model_name, roots, hybrid=hybrid)
+        flat = _flatten_with_rumoca(path, model_name, roots, hybrid=hybrid,
+                                    fmu=fmu)
         cache.store(key, flat)
     return flat
 
 
 def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
-                         hybrid=False):
+                         hybrid=False, fmu=False):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
@@ -562,7 +564,7 @@ def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
     from .precheck import refuse_unsupported
     from .rumoca_child import flatten_isolated
     check_source_arrays(path, check_source_text(path))
-    refuse_unsupported(path, model_name, roots, hybrid)
+    refuse_unsupported(path, model_name, roots, hybrid, fmu)
     try:
         return flatten_isolated(path, model_name, roots)
     except FrontEndError as exc:
@@ -679,7 +681,8 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
+def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
+                    fmu=False):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -698,6 +701,11 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         :attr:`FlatModel.discretes`: for a linearisation in one mode
         (:mod:`sources.modelica`) and for the FMU's event iteration
         (:mod:`fmu.backend`).
+    fmu : bool
+        For an FMU: the source check refuses ``initial()`` outside the
+        equations of Integer and Boolean variables (see
+        :func:`fmu.precheck.refuse_unsupported`), which the linearisation
+        in one mode reads.
 
     Raises
     ------
@@ -706,7 +714,8 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid)
+    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid,
+                    fmu)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where, hybrid)

@@ -377,30 +377,30 @@ def test_msl_clutch_is_refused_within_seconds_naming_its_construct():
 
 
 @pytest.mark.parametrize("example, place, words", [
+    ("Backlash", "ElastoBacklash.mo:30", "initial() outside the equations "
+     "of Integer and Boolean variables"),
     ("LossyGearDemo1", "LossyGear.mo:29",
      "interpolation_result: arrays of variables"),
     ("OneWayClutch", "OneWayClutch.mo:34", "tableID: an external object"),
-    ("Backlash", None, None), ("First", None, None),
-    ("CompareBrakingTorque", None, None)])
+    ("First", None, None), ("CompareBrakingTorque", None, None)])
 def test_rotational_examples_are_read_before_flattening(example, place,
                                                          words):
-    """The FMU path's source check (Integer and Boolean variables,
-    pre() and initial() pass: the back end compiles MSL's friction mode
-    logic) refuses the friction examples at their table object's line and
-    the lossy gear at its array of variables; it lets through the
-    examples that build and Backlash, whose initial() in a continuous
-    equation (ElastoBacklash.mo:30) the back end refuses after
-    flattening."""
+    """The FMU path's source check (Integer and Boolean variables, pre()
+    and initial() in their equations pass: the back end compiles MSL's
+    friction mode logic) refuses the friction examples at their table
+    object's line, the lossy gear at its array of variables and Backlash
+    at its if-equation on initial(); it lets the examples that build
+    through."""
     from fmu.errors import FrontEndError
     from fmu.precheck import refuse_unsupported
     name = f"Modelica.Mechanics.Rotational.Examples.{example}"
     roots = [MSL, LIBRARY]
     source, _ = find_class(name, roots)
     if place is None:
-        refuse_unsupported(source, name, roots, hybrid=True)
+        refuse_unsupported(source, name, roots, hybrid=True, fmu=True)
         return
     with pytest.raises(FrontEndError) as refused:
-        refuse_unsupported(source, name, roots, hybrid=True)
+        refuse_unsupported(source, name, roots, hybrid=True, fmu=True)
     assert f"{place}: {words}" in str(refused.value)
 
 
