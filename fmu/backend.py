@@ -542,8 +542,8 @@ def _held_discretes(model):
     ``initial()``, which the continuous equations read as held values;
     refuses ``initial()`` in a continuous equation (an equation that
     differs at the initialisation: MSL's ``ElastoBacklash``)."""
-    for residual, where in zip(model.residuals, model.places or
-                               [model.name] * len(model.residuals)):
+    places = model.places or [model.name] * len(model.residuals)
+    for residual, where in zip(model.residuals, places):
         if model.initial is not None and \
                 casadi.depends_on(casadi.SX(residual), model.initial):
             raise BackEndError(

@@ -97,11 +97,8 @@ int model_start(Model *m) {
      * initialisation reached */
     memcpy(m->p + P_PREVIOUS, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     m->iterations = 0;
-    for (k = 0; k < MODEL_MAX_EVENT_ITERATIONS; k++) {
-        model_event(m, &again);
-        if (!again) return m->iterations >= MODEL_MAX_EVENT_ITERATIONS;
-    }
-    return 1;
+    do model_event(m, &again); while (again);   /* bounded by model_event */
+    return m->iterations >= MODEL_MAX_EVENT_ITERATIONS;
 }
 
 void model_indicators(Model *m, double *z) {
