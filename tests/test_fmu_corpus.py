@@ -35,7 +35,7 @@ LIBRARY = ROOT / "modelica"
 BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
          "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
          "TableClutchRig", "TableMatrix", "BouncingBall", "Relation",
-         "LockUp", "LockingClutchRig", "BooleanMode"]
+         "LockUp", "LockingClutchRig", "BooleanMode", "Chattering"]
 #: Models it must refuse: (model, words of the message, line in the file).
 REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
@@ -402,6 +402,24 @@ def test_boolean_mode_and_counter_follow_modelica_event_semantics(
         assert abs(t[switch[0]] - np.log(2)) < 1e-9
     assert_allclose(result["stops"], np.where(result["on"] == 1, 0, 1),
                     rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
+def test_an_event_iteration_that_never_settles_is_an_error(fmus, kind):
+    """Chattering: `b = not pre(b)` changes at every iteration; after 100
+    the initialisation ends with an error status and says why, where an
+    unbounded iteration would hang the importer (fmpy loops while the FMU
+    asks for another)."""
+    from fmpy.fmi1 import FMICallException
+    messages = []
+
+    def log(environment, instance, status, category, message):
+        messages.append(message.decode())
+    with pytest.raises(FMICallException, match="ExitInitializationMode"):
+        _run(fmus, "Chattering", "2.0", kind, logger=log, stop_time=1.0)
+    assert messages == ["the event iteration at t = 0 did not converge in "
+                        "100 iterations (the discrete variables or relations "
+                        "keep changing)"]
 
 
 def _lock_up(t):
