@@ -523,9 +523,10 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
         whens.append((clause.relation, [(name, formula(value))
                                         for name, value in clause.reinits]))
     values = _discrete_equations(model.discretes)
-    discretes = [Quantity(d.name, "", f"Boolean variable ({d.where}), 1 "
-                          "for true" if d.boolean else
-                          f"Integer variable ({d.where})", d.symbol,
+    described = {v.name: v.description for v in model.variables}
+    discretes = [Quantity(d.name, "", " ".join(filter(None, (
+                     described.get(d.name), "(Boolean, 1 for true)"
+                     if d.boolean else "(Integer)"))), d.symbol,
                           start=d.start, minimum=formula(value))
                  for d, value in zip(model.discretes, values)]
     previous = [Quantity(f"pre({d.name})", "", f"pre() of {d.name}",
