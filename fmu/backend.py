@@ -33,6 +33,7 @@ The result is an :class:`OdeModel`: ``der(x) = f(t, x, p)`` and the
 outputs ``y = h(t, x, p)`` as CasADi functions, ready for code generation.
 """
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import casadi
@@ -114,6 +115,17 @@ class OdeModel:
         in ``t, x, p``, one per distinct formula.
     aliases : list of (Quantity, str)
         Variables whose formula is that of a local, with its name.
+    discretes : list of Quantity
+        Integer and Boolean variables (MSL's ``PartialFriction``), held
+        between events, whose values follow the relations' in ``p``;
+        ``minimum`` is the equation's right-hand side in ``t, x, p``
+        (the other discrete variables it names at the same instant
+        substituted, the relations in it evaluated, ``pre()`` and the
+        variables held in the continuous solution read from ``p``).
+    previous : list of Quantity
+        ``pre()`` of each discrete variable, then ``initial()`` (1 while
+        the FMU initialises) if the discrete equations use it; in ``p``
+        after :attr:`discretes`.
     experiment : dict
     eliminated : dict
         Variables removed by aliasing and index reduction, as formulas.
@@ -133,11 +145,19 @@ class OdeModel:
     whens: list = field(default_factory=list)
     locals: list = field(default_factory=list)
     aliases: list = field(default_factory=list)
+    discretes: list = field(default_factory=list)
+    previous: list = field(default_factory=list)
+
+    def held(self):
+        """Everything in ``p``: the tunable parameters, the inputs, the
+        relations' values, the discrete variables and their ``pre()``
+        (with ``initial()``)."""
+        return self.parameters + self.inputs + self.relations + \
+            self.discretes + self.previous
 
     def _symbols(self):
         x = _column(*[s.expression for s in self.states])
-        p = _column(*[q.expression for q in self.parameters + self.inputs
-                      + self.relations])
+        p = _column(*[q.expression for q in self.held()])
         return x, p
 
     def jacobian(self):
@@ -159,8 +179,9 @@ class OdeModel:
     def event_functions(self):
         """CasADi functions of the events: ``indicators(t, x, p) -> z``
         (each relation's ``lhs - rhs``), ``relations(t, x, p) -> r`` (the
-        relations' values, 1 or 0) and ``reinit(t, x, p, fired) -> x``
-        (the states after the when-clauses flagged in ``fired``)."""
+        relations' values, 1 or 0), ``reinit(t, x, p, fired) -> x``
+        (the states after the when-clauses flagged in ``fired``) and
+        ``discretes(t, x, p) -> d`` (the discrete variables' equations)."""
         x, p = self._symbols()
         fired = casadi.SX.sym("fired", len(self.whens))
         after = [s.expression for s in self.states]
@@ -174,7 +195,9 @@ class OdeModel:
                 casadi.Function("relations", [self.time, x, p], [_column(
                     *[q.minimum for q in self.relations])]),
                 casadi.Function("reinit", [self.time, x, p, fired],
-                                [_column(*after)]))
+                                [_column(*after)]),
+                casadi.Function("discretes", [self.time, x, p], [_column(
+                    *[q.minimum for q in self.discretes])]))
 
     def functions(self, with_locals=False):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
@@ -192,16 +215,14 @@ class OdeModel:
                 casadi.Function("start", [p], [x0], ["p"], ["x0"]))
 
     def parameter_vector(self, **values):
-        """Default parameter (then input, relation) values, some changed
-        by name."""
-        names = [q.name for q in self.parameters + self.inputs
-                 + self.relations]
+        """Default parameter (then input, relation, discrete) values, some
+        changed by name."""
+        names = [q.name for q in self.held()]
         unknown = sorted(set(values) - set(names))
         if unknown:
             raise KeyError(f"unknown parameter {unknown[0]!r}; tunable: "
                            f"{', '.join(names)}")
-        return np.array([values.get(q.name, q.start) for q in
-                         self.parameters + self.inputs + self.relations],
+        return np.array([values.get(q.name, q.start) for q in self.held()],
                         dtype=float)
 
 
@@ -347,10 +368,12 @@ def _to_ode(model):
         system.remove(index)
     parameter_names = {q.name for q in tunable} | {q.name for q in inputs}
 
+    held = _held_discretes(model)
     _eliminate_aliases(system, states, unknown_vars, parameter_names,
                        model.time)
     _reduce_index(system, states, {q.name for q in tunable} | {"time"}
-                  | {r.symbol.name() for r in model.relations},
+                  | {r.symbol.name() for r in model.relations}
+                  | {q.name() for q in held},
                   model.time, unknown_vars)
     derivatives = _solve_sorted(system, states, unknown_vars)
 
@@ -368,8 +391,9 @@ def _to_ode(model):
                         for v, start in zip(order, starts)]
     _check_at_start(system, model, order, starts, tunable, inputs,
                     derivatives)
-    relations, whens = _events(model, order, derivatives, system.eliminated,
-                               parameter_symbols, parameter_values)
+    relations, whens, discretes, previous = _events(
+        model, order, derivatives, system.eliminated, parameter_symbols,
+        parameter_values)
     outputs = []
     for v in model.variables:
         if v.causality != "output":
@@ -379,13 +403,16 @@ def _to_ode(model):
     derivative_column = _column(*[derivatives[v.name] for v in order])
     locals_, aliases = _locals(model, order, derivative_column, outputs,
                                system.eliminated)
+    locals_ += [dataclasses.replace(q, minimum=None, start=None)
+                for q in discretes]   # their held values, in the results
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
         derivatives=derivative_column,
         parameters=tunable, calculated=calculated, outputs=outputs,
         experiment=model.experiment, eliminated=system.eliminated,
         inputs=inputs, relations=relations, whens=whens,
-        locals=locals_, aliases=aliases)
+        locals=locals_, aliases=aliases, discretes=discretes,
+        previous=previous)
 
 
 def _check_at_start(system, model, order, starts, tunable, inputs,
@@ -472,7 +499,10 @@ def _locals(model, order, derivatives, outputs, eliminated):
 
 def _events(model, order, derivatives, eliminated, parameter_symbols,
             parameter_values):
-    """Relations and when-clauses as formulas in ``t, x, p``."""
+    """Relations, when-clauses, discrete variables and their ``pre()``
+    (:attr:`OdeModel.discretes`, :attr:`OdeModel.previous`) as formulas
+    in ``t, x, p``. The relations only the discrete equations use
+    follow the others: held like them, their indicators are events."""
     def formula(expression):
         expression = casadi.substitute(expression, parameter_symbols,
                                        parameter_values)
@@ -480,7 +510,8 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
     relations = [Quantity(r.symbol.name(), "", f"relation at {r.where}",
                           r.symbol, start=0.0, minimum=formula(r.value),
                           maximum=formula(r.indicator))
-                 for r in model.relations]
+                 for r in model.relations + (model.discrete_relations
+                                             if model.discretes else [])]
     kept = {v.name for v in order}
     whens = []
     for clause in model.whens:
@@ -491,7 +522,65 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
                                    "model (index reduction removed it)")
         whens.append((clause.relation, [(name, formula(value))
                                         for name, value in clause.reinits]))
-    return relations, whens
+    values = _discrete_equations(model.discretes)
+    described = {v.name: v.description for v in model.variables}
+    discretes = [Quantity(d.name, "", " ".join(filter(None, (
+                     described.get(d.name), "(Boolean, 1 for true)"
+                     if d.boolean else "(Integer)"))), d.symbol,
+                          start=d.start, minimum=formula(value))
+                 for d, value in zip(model.discretes, values)]
+    previous = [Quantity(f"pre({d.name})", "", f"pre() of {d.name}",
+                         d.previous, start=d.start) for d in model.discretes]
+    if any(casadi.depends_on(casadi.SX(q.minimum), model.initial)
+           for q in discretes):
+        previous.append(Quantity("initial()", "", "1 while initialising",
+                                 model.initial, start=0.0))
+    return relations, whens, discretes, previous
+
+
+def _held_discretes(model):
+    """The symbols of the discrete variables, their ``pre()`` and
+    ``initial()``, which the continuous equations read as held values;
+    refuses ``initial()`` in a continuous equation (an equation that
+    differs at the initialisation: MSL's ``ElastoBacklash``)."""
+    places = model.places or [model.name] * len(model.residuals)
+    for residual, where in zip(model.residuals, places):
+        if model.initial is not None and \
+                casadi.depends_on(casadi.SX(residual), model.initial):
+            raise BackEndError(
+                f"{where}: initial() in a continuous equation (one that "
+                "differs at the initialisation) is not supported by the "
+                "FMU back end; allowed: initial() in the equations of "
+                "Integer and Boolean variables")
+    return [s for d in model.discretes for s in (d.symbol, d.previous)]
+
+
+def _discrete_equations(discretes):
+    """The right-hand sides of the discrete variables' equations with the
+    other discrete variables they name (at the same instant, not through
+    ``pre()`` or a continuous variable) replaced by their own right-hand
+    sides: one evaluation of all of them is their evaluation in order
+    (``locked`` after ``startForward``). rumoca refuses a cycle of such
+    references ("participates in a current-value dependency cycle");
+    one left is refused here, naming its equations."""
+    names = {d.symbol.name(): k for k, d in enumerate(discretes)}
+    values = [casadi.SX(d.value) for d in discretes]
+    for _ in range(len(discretes) + 1):
+        column = _column(*values)
+        used = [v for v in casadi.symvar(column) if v.name() in names]
+        if not used:
+            return values
+        column = casadi.substitute(column, _column(*used), _column(
+            *[values[names[v.name()]] for v in used]))
+        values = [column[k] for k in range(len(discretes))]
+    cycle = [d for d, v in zip(discretes, values) if casadi.depends_on(
+        v, _column(*[d.symbol for d in discretes]))]
+    raise BackEndError(
+        "; ".join(f"{d.where}: {d.name}" for d in cycle) + ": these "
+        "Integer and Boolean variables are defined by each other at the "
+        "same instant (a loop of discrete equations), which the FMU back "
+        "end does not solve; allowed: equations that name the others "
+        "through pre() or continuous variables")
 
 
 def _input_start(variable):

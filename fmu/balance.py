@@ -85,21 +85,14 @@ def explain_unbalanced(message, model_name, roots, load_flat_model):
     if not found:
         return ""
     difference = int(found.group(1)) - int(found.group(2))
-    discrete = re.search(r"discrete_value=(\d+)", message)
-    if discrete and int(discrete.group(1)):
-        # rumoca miscounts the mixed Boolean/Integer mode logic of MSL's
-        # Clutch, Brake and OneWayClutch (its probe fails too)
-        return (f"; {discrete.group(1)} of the unknowns are Integer or "
-                "Boolean variables (such as the pre(mode) logic of MSL's "
-                "Clutch, Brake and OneWayClutch), which the FMU back end "
-                "does not compile")
     if difference == 0:
         return ""
     with tempfile.TemporaryDirectory(prefix="judder-balance-") as tmp:
         probe = Path(tmp) / f"{_PROBE}.mo"
         probe.write_text(_probe_source(model_name, difference))
         try:
-            flat = load_flat_model(probe, _PROBE, [*roots, tmp], cache=False)
+            flat = load_flat_model(probe, _PROBE, [*roots, tmp], cache=False,
+                                   hybrid=True, fmu=True)
         except JudderError as exc:    # the front end's FrontEndError
             # rumoca's count may be wrong where the back end would refuse
             # the model anyway (MSL's Clutch: Boolean modes with pre())

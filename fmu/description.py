@@ -40,6 +40,8 @@ class Layout:
         self.vr_inputs = self.vr_locals + len(ode.locals)
         self.vr_indicators = self.vr_inputs + len(ode.inputs)
         self.relations = ode.relations
+        #: locals that change at events only (Integer, Boolean variables)
+        self.discrete = {q.name for q in ode.discretes}
 
     def units(self):
         names = {q.unit for group in (self.states, self.parameters,
@@ -51,6 +53,12 @@ class Layout:
             if q.unit:
                 names.add(_derivative_unit(q.unit))
         return sorted(names)
+
+
+def _variability(layout, name):
+    """A local's: ``discrete`` for an Integer or Boolean variable (held
+    between events), else ``continuous``."""
+    return "discrete" if name in layout.discrete else "continuous"
 
 
 def _derivative_unit(unit):
@@ -310,7 +318,8 @@ def _fmi2(ode, layout, identifier, guid, tolerance, tool, about):
                          **_bounds(q))
         elif kind == "local":
             head = _attr(**common, causality="local",
-                         variability="continuous", initial="calculated")
+                         variability=_variability(layout, name),
+                         initial="calculated")
             real = _attr(**_typed(q))
         else:
             head = _attr(**common, causality="output",
@@ -406,8 +415,8 @@ def _fmi3(ode, layout, identifier, guid, tolerance, tool, about):
                           start=_number(q.start), **_bounds(q))
         elif kind == "local":
             attrs = _attr(**common, causality="local",
-                          variability="continuous", initial="calculated",
-                          **_typed(q))
+                          variability=_variability(layout, name),
+                          initial="calculated", **_typed(q))
         else:
             attrs = _attr(**common, causality="output",
                           variability="continuous", initial="calculated",

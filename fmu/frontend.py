@@ -99,7 +99,11 @@ class FlatModel:
     description : str
     discretes : list of Discrete
         Integer and Boolean variables with their equations (read with
-        ``hybrid=True`` only; the FMU back end does not compile them).
+        ``hybrid=True`` only).
+    discrete_relations : list of Relation
+        The relations of :attr:`discretes`' equations that the continuous
+        equations do not hold (their values are in the discrete equations;
+        the FMU back end makes their indicators events).
     initial : casadi.SX or None
         The symbol of ``initial()`` in :attr:`discretes`' values (1 at
         initialisation, else 0).
@@ -117,6 +121,7 @@ class FlatModel:
     experiment: dict = field(default_factory=dict)
     description: str = ""
     discretes: list = field(default_factory=list)
+    discrete_relations: list = field(default_factory=list)
     initial: object = None
 
     def by_role(self, role):
@@ -532,24 +537,26 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
+def _flatten(path, model_name, roots, use_cache=True, hybrid=False,
+             fmu=False):
     """rumoca's flat model of ``model_name``, from the cache
     (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
     import rumoca
     from . import cache
     if not use_cache:
         return _flatten_with_rumoca(path, model_name, roots,
-                                    use_cache=False, hybrid=hybrid)
+                                    use_cache=False, hybrid=hybrid, fmu=fmu)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
-        flat = _flatten_with_rumoca(path, model_name, roots, hybrid=hybrid)
+        flat = _flatten_with_rumoca(path, model_name, roots, hybrid=hybrid,
+                                    fmu=fmu)
         cache.store(key, flat)
     return flat
 
 
 def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
-                         hybrid=False):
+                         hybrid=False, fmu=False):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
@@ -557,7 +564,7 @@ def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
     from .precheck import refuse_unsupported
     from .rumoca_child import flatten_isolated
     check_source_arrays(path, check_source_text(path))
-    refuse_unsupported(path, model_name, roots, hybrid)
+    refuse_unsupported(path, model_name, roots, hybrid, fmu)
     try:
         return flatten_isolated(path, model_name, roots)
     except FrontEndError as exc:
@@ -645,7 +652,9 @@ def _check_supported(storage, model_name, where, hybrid=False):
                 storage["value_types"][raw["value_type"]].get("dimensions"):
             continue
         if raw["role"] not in _ROLES:
-            kind = "Integer, Boolean and discrete variables are" \
+            kind = "arrays of Integer and Boolean variables are" if hybrid \
+                and raw["role"] == "discrete_value" else \
+                "Integer, Boolean and discrete variables are" \
                 if "discrete" in raw["role"] else \
                 f"variables of role {raw['role']!r} are"
             raise FrontEndError(f"{place}: {raw['name']}: {kind} not "
@@ -672,7 +681,8 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
+def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
+                    fmu=False):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -688,8 +698,14 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     hybrid : bool
         Also read Integer and Boolean variables defined by equations,
         with ``pre()`` and ``initial()`` (MSL's ``PartialFriction``), into
-        :attr:`FlatModel.discretes`, for a linearisation in one mode
-        (:mod:`sources.modelica`); the FMU back end does not compile them.
+        :attr:`FlatModel.discretes`: for a linearisation in one mode
+        (:mod:`sources.modelica`) and for the FMU's event iteration
+        (:mod:`fmu.backend`).
+    fmu : bool
+        For an FMU: the source check refuses ``initial()`` outside the
+        equations of Integer and Boolean variables (see
+        :func:`fmu.precheck.refuse_unsupported`), which the linearisation
+        in one mode reads.
 
     Raises
     ------
@@ -698,7 +714,8 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid)
+    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid,
+                    fmu)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where, hybrid)
@@ -776,8 +793,8 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
                 v.symbol - v.start)
             places["initialization_equation_operations"].append(v.where)
     whens = _whens(storage, convert, where, variables)
-    discretes = _discretes(storage, convert, where, variables) \
-        if hybrid else []
+    discretes, discrete_relations = _discretes(
+        storage, convert, where, variables) if hybrid else ([], [])
     return FlatModel(
         name=model_name, variables=variables,
         residuals=sections["continuous_equation_operations"],
@@ -786,13 +803,14 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         initial_places=places["initialization_equation_operations"],
         relations=[convert.relations[k] for k in sorted(convert.relations)],
         whens=whens, discretes=discretes, initial=convert.initial,
+        discrete_relations=discrete_relations,
         time=time, experiment=_experiment(path, model_name))
 
 
 def _discretes(storage, convert, where, variables):
     """The equations of the Integer and Boolean variables, one each,
-    their relations as values (:class:`Discrete`); refuses a discrete
-    variable assigned in a when-clause."""
+    their relations as values (:class:`Discrete`), and the relations only
+    they use; refuses a discrete variable assigned in a when-clause."""
     by_name = {v.name: v for v in variables}
     relations = {r.symbol.name(): r.value for r in convert.relations.values()}
     held = dict(convert.relations)   # those of the continuous equations
@@ -841,8 +859,9 @@ def _discretes(storage, convert, where, variables):
             start=float(casadi.evalf(start)), where=convert.where,
             boolean=storage["value_types"][storage["variables"][index][
                 "value_type"]].get("scalar") == "boolean"))
+    extra = [r for k, r in sorted(convert.relations.items()) if k not in held]
     convert.relations = held
-    return found
+    return found, extra
 
 
 def _whens(storage, convert, where, variables):

@@ -35,14 +35,16 @@ LIBRARY = ROOT / "modelica"
 BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
          "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
          "TableClutchRig", "TableMatrix", "BouncingBall", "Relation",
-         "LockUp", "LockingClutchRig"]
+         "LockUp", "LockingClutchRig", "BooleanMode", "Chattering"]
 #: Models it must refuse: (model, words of the message, line in the file).
 REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
     ("WhenSample", "clocked equations are not supported", 5),
     ("WhenAnd", "when-conditions other than one relation", 8),
     ("NonlinearInitial", "not linear in the states they determine (x)", 4),
-    ("DiscreteCounter", "n: Integer, Boolean and discrete variables are not "
+    ("DiscreteCounter", "Integer or Boolean variables assigned in "
+     "when-clauses are not supported", 7),
+    ("BooleanArray", "on: arrays of Integer and Boolean variables are not "
      "supported", 2),
     ("Overdetermined", "the initialisation is overdetermined", 4),
     ("ArrayVariable", "arrays of variables are not supported", 3),
@@ -375,6 +377,49 @@ def test_relation_switches_at_its_event(fmus, version, kind):
     t = result["time"]
     assert_allclose(result["x"], np.where(t < 0.5, 1 - t, 0.5 - 2 * (t - 0.5)),
                     atol=1e-9)
+
+
+@pytest.mark.parametrize("version, kind", KINDS[:2])
+def test_boolean_mode_and_counter_follow_modelica_event_semantics(
+        fmus, version, kind):
+    """BooleanMode: `on = initial() or x > 0.5` drives der(x) = -x, then
+    0: x = max(exp(-t), 0.5), `on` false from t = ln 2 (ME: at the event
+    row, 1e-9 s; CS: in its communication step). The counter `stops =
+    if pre(on) and not on then pre(stops) + 1 else pre(stops)` counts
+    that stop once: the event iteration evaluates it again with pre()
+    moved on, where a second increment would show an iteration that does
+    not hold pre() to the values before it."""
+    result = _run(fmus, "BooleanMode", version, kind,
+                  output=["x", "on", "stops"], stop_time=2.0,
+                  output_interval=1e-3)
+    t = result["time"]
+    assert_allclose(result["x"], np.maximum(np.exp(-t), 0.5), rtol=0,
+                    atol=1e-8)
+    switch = np.flatnonzero(np.diff(result["on"]) != 0)
+    assert len(switch) == 1 and result["on"][0] == 1
+    assert t[switch[0]] - 1e-9 < np.log(2) <= t[switch[0] + 1] + 1e-9
+    if kind == "ModelExchange":
+        assert abs(t[switch[0]] - np.log(2)) < 1e-9
+    assert_allclose(result["stops"], np.where(result["on"] == 1, 0, 1),
+                    rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
+def test_an_event_iteration_that_never_settles_is_an_error(fmus, kind):
+    """Chattering: `b = not pre(b)` changes at every iteration; after 100
+    the initialisation ends with an error status and says why, where an
+    unbounded iteration would hang the importer (fmpy loops while the FMU
+    asks for another)."""
+    from fmpy.fmi1 import FMICallException
+    messages = []
+
+    def log(environment, instance, status, category, message):
+        messages.append(message.decode())
+    with pytest.raises(FMICallException, match="ExitInitializationMode"):
+        _run(fmus, "Chattering", "2.0", kind, logger=log, stop_time=1.0)
+    assert messages == ["the event iteration at t = 0 did not converge in "
+                        "100 iterations (the discrete variables or relations "
+                        "keep changing)"]
 
 
 def _lock_up(t):

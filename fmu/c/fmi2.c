@@ -79,8 +79,8 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
 fmi2Status fmi2EnterInitializationMode(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
-    model_start(&CORE(c)->model); /* states follow the parameters set */
-    return fmi2OK;
+    /* states and discrete variables follow the parameters set */
+    return STATUS(instance_start(CORE(c)));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c) { (void)c; return fmi2OK; }
@@ -139,14 +139,14 @@ fmi2Status fmi2EnterEventMode(fmi2Component c) { (void)c; return fmi2OK; }
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
     int again, changed;
-    instance_event(CORE(c), &again, &changed);
+    int failed = instance_event(CORE(c), &again, &changed);
     info->newDiscreteStatesNeeded = again ? fmi2True : fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
     info->valuesOfContinuousStatesChanged = changed ? fmi2True : fmi2False;
     info->nextEventTimeDefined = fmi2False;
     info->nextEventTime = 0;
-    return fmi2OK;
+    return STATUS(failed);
 }
 
 fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) { (void)c; return fmi2OK; }

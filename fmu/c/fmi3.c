@@ -101,8 +101,8 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
-    model_start(&CORE(c)->model); /* states follow the parameters set */
-    return fmi3OK;
+    /* states and discrete variables follow the parameters set */
+    return STATUS(instance_start(CORE(c)));
 }
 
 fmi3Status fmi3EnterEventMode(fmi3Instance c) { (void)c; return fmi3OK; }
@@ -238,11 +238,11 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *update,
         fmi3Boolean *terminate, fmi3Boolean *nominals, fmi3Boolean *values,
         fmi3Boolean *timeDefined, fmi3Float64 *nextTime) {
     int again, changed;
-    instance_event(CORE(c), &again, &changed);
+    int failed = instance_event(CORE(c), &again, &changed);
     *update = again ? fmi3True : fmi3False; *terminate = fmi3False;
     *nominals = fmi3False; *values = changed ? fmi3True : fmi3False;
     *timeDefined = fmi3False; *nextTime = 0;
-    return fmi3OK;
+    return STATUS(failed);
 }
 
 /* Model Exchange */

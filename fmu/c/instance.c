@@ -153,9 +153,24 @@ int instance_directional(Instance *c, const unsigned z[], size_t nz,
     return 0;
 }
 
-void instance_event(Instance *c, int *again, int *states_changed) {
+static void log_iterations(Instance *c) {
+    instance_log(c, 1, "the event iteration at t = %g did not converge in "
+                 "%d iterations (the discrete variables or relations keep "
+                 "changing)", c->model.time, MODEL_MAX_EVENT_ITERATIONS);
+}
+
+int instance_start(Instance *c) {
+    if (model_start(&c->model) == 0) return 0;
+    log_iterations(c);
+    return 1;
+}
+
+int instance_event(Instance *c, int *again, int *states_changed) {
     *again = 0;
     *states_changed = model_event(&c->model, again);
+    if (c->model.iterations < MODEL_MAX_EVENT_ITERATIONS) return 0;
+    log_iterations(c);
+    return 1;
 }
 
 int instance_set_states(Instance *c, const double x[], size_t nx) {
@@ -205,6 +220,9 @@ int instance_do_step(Instance *c, double t, double h) {
     case 2:
         instance_log(c, 1, "the derivatives are not finite in the step from "
                      "t = %g (check the parameters)", c->model.time);
+        return 1;
+    case 3:
+        log_iterations(c);
         return 1;
     default:
         instance_log(c, 1, "the integrator failed at t = %g (step size too "

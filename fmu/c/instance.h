@@ -50,8 +50,13 @@ int instance_deserialize(Instance *c, const char *bytes, size_t size,
 int instance_directional(Instance *c, const unsigned z[], size_t nz,
                          const unsigned v[], size_t nv, const double seed[],
                          double result[], int adjoint);
-/* Event iteration (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) */
-void instance_event(Instance *c, int *again, int *states_changed);
+/* Initialisation done (fmi2ExitInitializationMode,
+ * fmi3ExitInitializationMode): states and discrete variables at the
+ * start */
+int instance_start(Instance *c);
+/* Event iteration (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates);
+ * 1 (logged) if it has not converged within MODEL_MAX_EVENT_ITERATIONS */
+int instance_event(Instance *c, int *again, int *states_changed);
 /* Model Exchange */
 int instance_set_states(Instance *c, const double x[], size_t nx);
 int instance_get_states(Instance *c, double x[], size_t nx);

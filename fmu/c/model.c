@@ -21,7 +21,7 @@ int model_init(Model *m) {
     static const WorkSizes functions[] = {
         MODEL_ODE_WORK, MODEL_OUTPUTS_WORK, MODEL_START_WORK,
         MODEL_CALCULATED_WORK, MODEL_INDICATORS_WORK, MODEL_RELATIONS_WORK,
-        MODEL_REINIT_WORK, MODEL_JACOBIAN_WORK};
+        MODEL_REINIT_WORK, MODEL_DISCRETES_WORK, MODEL_JACOBIAN_WORK};
     casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
     size_t k;
     memset(m, 0, sizeof(*m));
@@ -49,14 +49,6 @@ void model_free(Model *m) {
     m->arg = NULL; m->res = NULL; m->iw = NULL; m->w = NULL;
 }
 
-void model_start(Model *m) {
-    m->arg[0] = m->p;
-    m->res[0] = m->x;
-    MODEL_START(m->arg, m->res, m->iw, m->w, 0);
-    model_hold_relations(m);
-    m->stale = 1;
-}
-
 static void relations_at(Model *m, double t, const double *x, double *r) {
     m->arg[0] = &t; m->arg[1] = x; m->arg[2] = m->p;
     m->res[0] = r;
@@ -64,8 +56,49 @@ static void relations_at(Model *m, double t, const double *x, double *r) {
 }
 
 void model_hold_relations(Model *m) {
-    relations_at(m, m->time, m->x, m->p + MODEL_NP + MODEL_NU);
+    relations_at(m, m->time, m->x, m->p + P_RELATIONS);
     m->stale = 1;
+}
+
+/* The discrete variables' equations at the present t, x and the values
+ * held in p; 1 if a value changed (the new ones are held) */
+static int update_discretes(Model *m) {
+    double d[MODEL_ND + 1];
+    int k, changed = 0;
+    if (MODEL_ND == 0) return 0;
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = d;
+    MODEL_DISCRETES(m->arg, m->res, m->iw, m->w, 0);
+    for (k = 0; k < MODEL_ND; k++) {
+        if (d[k] != m->p[P_DISCRETES + k]) changed = 1;
+        m->p[P_DISCRETES + k] = d[k];
+    }
+    m->stale = 1;
+    return changed;
+}
+
+int model_start(Model *m) {
+    int k, again = 1;
+    m->arg[0] = m->p;
+    m->res[0] = m->x;
+    MODEL_START(m->arg, m->res, m->iw, m->w, 0);
+    model_hold_relations(m);
+    m->stale = 1;
+    if (MODEL_ND == 0) return 0;
+    /* the initialisation: pre() at the start values, initial() true */
+    memcpy(m->p + P_DISCRETES, parameter_defaults + P_DISCRETES,
+           sizeof(double) * 2 * MODEL_ND);
+    if (MODEL_NI) m->p[P_INITIAL] = 1;
+    for (k = 0; k < MODEL_MAX_EVENT_ITERATIONS && again; k++)
+        again = update_discretes(m);
+    if (MODEL_NI) m->p[P_INITIAL] = 0;
+    if (again) return 1;
+    /* then the event iteration at the start time, from the values the
+     * initialisation reached */
+    memcpy(m->p + P_PREVIOUS, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
+    m->iterations = 0;
+    do model_event(m, &again); while (again);   /* bounded by model_event */
+    return m->iterations >= MODEL_MAX_EVENT_ITERATIONS;
 }
 
 void model_indicators(Model *m, double *z) {
@@ -76,7 +109,7 @@ void model_indicators(Model *m, double *z) {
 
 int model_event(Model *m, int *again) {
     double r[MODEL_NR + 1], fired[MODEL_NW + 1], x[MODEL_NX + 1];
-    double *held = m->p + MODEL_NP + MODEL_NU;
+    double *held = m->p + P_RELATIONS;
     int k, any = 0;
     relations_at(m, m->time, m->x, r);
     for (k = 0; k < MODEL_NW; k++) {
@@ -91,10 +124,21 @@ int model_event(Model *m, int *again) {
         MODEL_REINIT(m->arg, m->res, m->iw, m->w, 0);
         memcpy(m->x, x, sizeof(double) * MODEL_NX);
     }
+    *again = update_discretes(m);
+    if (!*again && MODEL_ND > 0 &&
+        memcmp(m->p + P_PREVIOUS, m->p + P_DISCRETES,
+               sizeof(double) * MODEL_ND) != 0) {
+        /* the discrete equations hold with these pre(): the next
+         * iteration starts from the values reached */
+        memcpy(m->p + P_PREVIOUS, m->p + P_DISCRETES,
+               sizeof(double) * MODEL_ND);
+        *again = 1;
+    }
     relations_at(m, m->time, m->x, r);
-    *again = 0;
     for (k = 0; k < MODEL_NR; k++) if (r[k] != held[k]) *again = 1;
     m->stale = 1;
+    if (!*again) m->iterations = 0;
+    else if (++m->iterations >= MODEL_MAX_EVENT_ITERATIONS) *again = 0;
     return any;
 }
 
@@ -295,7 +339,7 @@ static int relations_changed(Model *m, double t, const double *x) {
     if (MODEL_NR == 0) return 0;
     relations_at(m, t, x, r);
     for (k = 0; k < MODEL_NR; k++)
-        if (r[k] != m->p[MODEL_NP + MODEL_NU + k]) return 1;
+        if (r[k] != m->p[P_RELATIONS + k]) return 1;
     return 0;
 }
 
@@ -342,10 +386,12 @@ int model_integrate(Model *m, double t_end) {
             t = (high == t_end - t) ? t_end : t + high;
             memcpy(m->x, xn, sizeof(double) * n);
             m->time = t;
-            for (iteration = 0; iteration < 100; iteration++) {
+            for (iteration = 0; iteration < MODEL_MAX_EVENT_ITERATIONS;
+                 iteration++) {
                 model_event(m, &again);
                 if (!again) break;
             }
+            if (m->iterations >= MODEL_MAX_EVENT_ITERATIONS) return 3;
             derivatives(m, t, m->x, k1);
             m->steps++;
             m->events++;

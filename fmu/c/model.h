@@ -23,9 +23,17 @@
 #define VR_INPUTS (VR_OUTPUTS + MODEL_NY)
 #define VR_INDICATORS (VR_INPUTS + MODEL_NU)
 #define VR_END (VR_INDICATORS + MODEL_NR)
-/* p holds the parameters, the inputs and the values of the relations
- * that generate events (held between events) */
-#define MODEL_NPAR (MODEL_NP + MODEL_NU + MODEL_NR)
+/* p holds the parameters, the inputs and, held between events, the
+ * values of the relations that generate events, the discrete (Integer
+ * and Boolean) variables, their pre() and initial() (MODEL_NI = 1 if the
+ * discrete equations use it) */
+#define P_RELATIONS (MODEL_NP + MODEL_NU)
+#define P_DISCRETES (P_RELATIONS + MODEL_NR)
+#define P_PREVIOUS (P_DISCRETES + MODEL_ND)
+#define P_INITIAL (P_PREVIOUS + MODEL_ND)
+#define MODEL_NPAR (P_INITIAL + MODEL_NI)
+/* Event iterations allowed at one instant */
+#define MODEL_MAX_EVENT_ITERATIONS 100
 
 typedef struct {
     double time;
@@ -35,6 +43,7 @@ typedef struct {
     double y[MODEL_NY + 1];
     double calculated[MODEL_NC + 1];
     int stale;                 /* xdot, y, calculated need evaluating */
+    int iterations;            /* event iterations at this instant so far */
     double relative_tolerance; /* co-simulation integrator */
     long steps, rejected, events; /* co-simulation statistics */
     /* CasADi work arrays */
@@ -46,7 +55,10 @@ typedef struct {
 
 int model_init(Model *m);            /* defaults; 0 on success */
 void model_free(Model *m);
-void model_start(Model *m);          /* x = x0(p) */
+/* x = x0(p); the discrete variables from their start values: their
+ * equations with initial() true and pre() at the start values, then the
+ * event iteration; returns 1 if it did not converge */
+int model_start(Model *m);
 void model_evaluate(Model *m);       /* xdot, y, calculated from t, x, p */
 int model_get(Model *m, unsigned vr, double *value);
 /* 0 on success, 1 if vr cannot be set, 2 if value is outside the
@@ -58,9 +70,13 @@ int model_finite(Model *m);
 /* Event indicators z (MODEL_NR of them) at the present t, x */
 void model_indicators(Model *m, double *z);
 /* Event iteration at the present t, x: fire the when-clauses whose
- * relation became true (reinit), then hold the new relation values.
- * Returns 1 if the states changed; *again is set if the relations
- * changed once more after the reinit (another iteration is needed). */
+ * relation became true (reinit), hold the new relation values, then
+ * evaluate the discrete variables' equations; once they no longer
+ * change, pre() takes their values. Returns 1 if the states changed;
+ * *again is set if the relations changed once more after the reinit or
+ * a discrete variable or its pre() changed (another iteration is
+ * needed), unless MODEL_MAX_EVENT_ITERATIONS have been made at this
+ * instant: then m->iterations is that number (not converged). */
 int model_event(Model *m, int *again);
 /* Relation values at the present t, x, without firing (initialisation) */
 void model_hold_relations(Model *m);
@@ -81,7 +97,8 @@ void model_serialize(const Model *m, char *bytes);
 int model_deserialize(Model *m, const char *bytes, size_t size); /* 0: ok */
 /* Advance from m->time to t_end with Dormand-Prince 5(4) under
  * relative_tolerance; returns 0 on success, 1 if the step size became
- * too small, 2 if the derivatives are not finite. Relations that change
+ * too small, 2 if the derivatives are not finite, 3 if an event
+ * iteration did not converge. Relations that change
  * inside a step are located (bisection on the step size) and handled
  * as events there. */
 int model_integrate(Model *m, double t_end);

@@ -1,7 +1,9 @@
-model DiscreteCounter "An Integer variable"
-  Integer n;
+model DiscreteCounter "An Integer counted in a when-clause"
+  Integer n(start = 0, fixed = true);
   Real x(start = 1, fixed = true);
 equation
-  n = 1;
-  der(x) = -n*x;
+  der(x) = -x;
+  when x < 0.5 then
+    n = pre(n) + 1;
+  end when;
 end DiscreteCounter;
