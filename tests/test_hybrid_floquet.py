@@ -63,10 +63,9 @@ def _reference_rhs(values):
     return rhs, engine
 
 
-def _reference_multipliers(values, freq_hz, p_f):
-    """Multipliers of the hand-written driveline: Jacobian A0 and its
-    p_f part B by central differences at the start values, monodromy of
-    (A0 + p_f cos B) by scipy's DOP853."""
+def _reference_jacobians(values):
+    """Jacobian A0 of the hand-written driveline and its p_f part B, by
+    central differences at the start values (a steady slip)."""
     rhs, engine = _reference_rhs(values)
     v = values
     # spring deflections of a steady slip: each body's torques balance
@@ -83,7 +82,13 @@ def _reference_multipliers(values, freq_hz, p_f):
                    for k, e in enumerate(np.eye(len(x0)))]
         return np.array(columns).T
     A0 = jacobian(0.0)
-    B = (jacobian(1e4) - A0) / 1e4
+    return A0, (jacobian(1e4) - A0) / 1e4
+
+
+def _reference_multipliers(values, freq_hz, p_f):
+    """Multipliers of the hand-written driveline: monodromy of (A0 + p_f
+    cos B) (:func:`_reference_jacobians`) by scipy's DOP853."""
+    A0, B = _reference_jacobians(values)
     omega = 2 * np.pi * freq_hz
 
     def flow(t, y):
@@ -319,3 +324,65 @@ def test_check_refuses_margins_searched_beyond_the_mode(msl_path,
         "mu_pos[2,1]=0.01", "--set", "w_out=104.66975511965977", "--freq",
         f"{f:g}", "--pf", "0.3")
     assert status == 2 and "allowed: a smaller --pf-max" in err
+
+
+def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
+        msl_path, judder_here, tmp_path):
+    """`judder report` of ModeClutchDriveline (no tongue up to 1.5 bar):
+    the mode it is linearised in, in the HTML and the JSON, as `map`
+    words it; a sentence instead of an empty tip table, with the map's
+    largest growth rate, that of the hand-written driveline without
+    dither (the slowest decay of its Jacobian, the angles' zero
+    eigenvalues left out); no ranking of 'tongue None' and no empty
+    sensitivity figure; the map's panels say they are stable, without a
+    colour bar over nothing."""
+    import html
+    import json
+    from judder.commands import _report_sections as sections
+    from sources.modelica import ModelicaParameters
+    drawn = []
+    embed = sections._png
+
+    def keep(fig, *args, **kwargs):
+        drawn.append([t.get_text() for ax in fig.axes for t in ax.texts]
+                     + [len(fig.axes)])
+        return embed(fig, *args, **kwargs)
+    out = tmp_path / "report.html"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(sections, "_png", keep)
+        status, printed, err = judder_here(
+            "report", "--modelica", CLASS, "--library", MODELS,
+            "--grid=10:220:40", "--map-freq=5:250:30", "--map-pf=0:1.5:7",
+            "--sensitivity", "c12", "--out", out, "--json")
+    assert status == 0, err
+    data = json.loads(printed)
+    assert data["mode"]["clutch.mode"] == "1 (clutch.Forward)"
+    assert data["mode_checked_at_p_f_bar"] == 1.5
+    assert data["tongues"] == []
+    page = html.unescape(out.read_text())
+    assert "is linearised in the mode clutch.mode = 1 (clutch.Forward), " \
+        "clutch.startForward = false" in page
+    assert "held at each frequency's largest amplitude, 1.5 bar" in page
+    A0, _ = _reference_jacobians(ModelicaParameters(CLASS, str(MODELS))
+                                 .values)
+    rates = np.linalg.eigvals(A0).real
+    slowest = rates[np.abs(rates) > 1e-9].max()
+    assert f"No tongue reaches 1.5 bar between 10 and 220 Hz: no stability " \
+        f"boundary, so no tip to tabulate. The largest growth rate on the " \
+        f"map is {slowest:.3g} 1/s (every point decays)." in page
+    assert "<th>unstable from p_f [bar]</th>" not in page
+    assert "None" not in page
+    assert "c12 halved and doubled (Fig. 17, 18): no tongue of the " \
+        "nominal driveline reaches 1.5 bar between 10 and 220 Hz, so there " \
+        "is no tongue tip to rank. Nor does any tongue reach it" in page
+    assert "No judder-relevant tongue is in the window" in page
+    # the map and the advice figure; no sensitivity figure
+    assert data["figures"][0].startswith("Stability map")
+    assert not any(title.startswith("Sensitivity")
+                   for title in data["figures"])
+    *notes, axes = drawn[0]
+    assert axes == 2                      # no colour bar
+    assert notes == ["stable at every point: every multiplier inside the "
+                     "unit circle\n(no tongue reaches 1.5 bar)",
+                     "no unstable point: the leading multiplier's growth "
+                     f"rate is\n{slowest:.3g} 1/s (decays)"]

@@ -34,6 +34,7 @@ from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
 from ._arguments import (decimal_option, force_option, method_option,
                          min_growth_option, model_options, workers_option)
+from ._common import linearised_mode, mode_words
 from ._flags import in_flags
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
@@ -313,6 +314,11 @@ def report(parameters=None, changes=None, description=None,
     map_pf = np.linspace(0, p_max_bar, 121) if map_pf is None else map_pf
     page = Page(description or values.model)
     data = {"model": values.model, "description": page.description}
+    mode = linearised_mode(values)
+    if mode:
+        # as judder map says it: the studies over amplitudes hold the mode
+        # at each frequency's largest amplitude
+        data.update(mode=mode, mode_checked_at_p_f_bar=float(p_max_bar))
     step = _Steps(7 + bool(bench), progress)
 
     # the driveline (its table closes the report, as an appendix)
@@ -357,8 +363,9 @@ def report(parameters=None, changes=None, description=None,
                                          min_growth))
     if point is not None:
         page.sections.append(setting_section(page, point, freq_hz, p_f_bar))
-    page.sections.append(map_section(page, stability, data["tongues"],
-                                     min_growth, p_max_bar))
+    page.sections.append(map_section(
+        page, stability, data["tongues"], min_growth, p_max_bar,
+        (grid_freq.min(), grid_freq.max()), mode_words(mode, p_max_bar)))
     page.sections.append(kinds_section(page, _inside_each_kind(
         found.tongues, values, p_max_bar, method)))
     if advice is not None:
