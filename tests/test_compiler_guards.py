@@ -677,6 +677,59 @@ def test_msl_examples_without_a_dither_are_refused_before_flattening(
         err
 
 
+_USE_BRAKE = ("; use Judder.Components.LockingWetClutch with its flange_b "
+              "connected to a Judder.Components.Fixed (a brake is a clutch "
+              "with one flange held in the housing")
+_USE_CLUTCH = ("use Judder.Components.LockingWetClutch (locks and breaks "
+               "away by events) or Judder.Components.SlippingClutch")
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+@pytest.mark.parametrize("model, hybrid, words", [
+    ("Rotational.Components.Brake", False, _USE_BRAKE),
+    ("Rotational.Components.Brake", True, _USE_BRAKE),
+    ("Rotational.Examples.Friction", False,
+     f"; for Clutch: {_USE_CLUTCH} (always slipping); for Brake: "
+     + _USE_BRAKE[2:]),
+    ("Rotational.Examples.OneWayClutch", True, "; the Judder library has "
+     "no replacement: it has no one-way clutch (freewheel)"),
+    ("Rotational.Components.LossyGear", False, "; the Judder library has no "
+     "replacement with losses: its Judder.Components.IdealGear is lossless"),
+    ("Rotational.Examples.Backlash", False, "; for ElastoBacklash, "
+     "ElastoBacklash2: the Judder library has no replacement: it has no "
+     "backlash element"),
+    ("Translational.Examples.Brake", False, "; the Judder library has no "
+     "replacement: it models rotational drivelines only")])
+def test_msl_refusals_name_the_replacement_or_say_there_is_none(
+        model, hybrid, words):
+    """A refused MSL friction, gear or backlash component names what the
+    Judder library has instead: a brake is its locking clutch with one
+    flange fixed; for a one-way clutch, a lossy gear and backlash it says
+    there is none; a model holding a clutch and a brake names both (the
+    brake's was the clutch's wording, the others named nothing)."""
+    from fmu.precheck import refuse_unsupported
+    from fmu.classes import find_class
+    name = f"Modelica.Mechanics.{model}"
+    source, _ = find_class(name, [_msl()])
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(source, name, [_msl()], hybrid=hybrid)
+    message = str(refused.value)
+    assert words in message, message
+
+
+def test_every_replacement_named_is_in_the_judder_library():
+    """Each Judder class a refusal names exists in modelica/Judder."""
+    from fmu.precheck import REPLACEMENTS
+    named = set(re.findall(r"Judder\.Components\.(\w+)",
+                           " ".join(REPLACEMENTS.values())))
+    assert named >= {"LockingWetClutch", "SlippingClutch", "Fixed",
+                     "IdealGear", "Damper"}
+    folder = ROOT / "modelica" / "Judder" / "Components"
+    for name in named:
+        assert f"model {name} " in (folder / f"{name}.mo").read_text()
+
+
 @pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
                     "4.x is not in ../shared/msl nor on MODELICAPATH")
 @pytest.mark.parametrize("model", ["Modelica.Mechanics.Rotational."
