@@ -44,6 +44,7 @@ from fmu.backend import to_ode
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
 from fmu.precheck import refuse_undeclared, refuse_unsupported
+from fmu.tunable import refuse_bound
 from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
@@ -113,13 +114,16 @@ def check_dither_declared(class_name, library=None, amplitude="p_f",
     the class certainly does not declare
     (:func:`fmu.precheck.refuse_undeclared`): MSL's ``Backlash`` or
     ``ElastoGap`` examples compile in one mode but have no dither, and
-    without it there is nothing to linearise."""
+    without it there is nothing to linearise; then one the class binds
+    to its own parameters, calculated rather than tunable
+    (:func:`fmu.tunable.refuse_bound`: ``sine.f`` of MSL's ``First``)."""
     roots = _roots(library)
     folders = [str(r) for r in roots]
     refuse_unsupported(_source(class_name, roots), class_name, folders,
                        hybrid=True)
-    refuse_undeclared(class_name, folders,
-                      {"amplitude": amplitude, "frequency": frequency})
+    names = {"amplitude": amplitude, "frequency": frequency}
+    refuse_undeclared(class_name, folders, names)
+    refuse_bound(class_name, folders, names)
 
 
 @lru_cache(maxsize=64)
