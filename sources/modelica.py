@@ -713,18 +713,38 @@ def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
         frequency_dependent=frequency_dependent)
 
 
+def _derivative_state(row):
+    """Index of the state whose value ``der(x_i)`` is, from row ``i`` of
+    the Jacobian (``der(phi) = w``: one entry, 1), or None."""
+    size = np.abs(row).max()
+    entries = np.flatnonzero(np.abs(row) > 1e-12 * size) if size else []
+    if len(entries) == 1 and np.isclose(row[entries[0]], 1.0, rtol=1e-9,
+                                        atol=0):
+        return int(entries[0])
+    return None
+
+
 def check_no_acceleration(name, state_names, A0, rate, error):
     """``A0 der(x) = 0`` at the start: no acceleration builds up along the
-    slip, else ``error`` naming the state that accelerates."""
+    slip, else ``error`` naming what changes: the acceleration
+    ``der(w)`` of a speed ``w`` that is the derivative of an angle state
+    (the row of the angle), else the derivative of the state whose
+    derivative changes most."""
     scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
     drift = A0 @ rate
-    worst = int(np.argmax(np.abs(drift)))
-    if np.abs(drift).max() > 1e-8 * scale:
-        raise error(
-            f"{name}: the start values are not a steady slip "
-            f"(d/dt der({state_names[worst]}) = {drift[worst]:.3g}); "
-            "allowed: start speeds and spring deflections in equilibrium "
-            "without dither")
+    moving = np.flatnonzero(np.abs(drift) > 1e-8 * scale)
+    if not len(moving):
+        return
+    speeds = {i: _derivative_state(A0[i]) for i in moving}
+    named = [i for i in moving if speeds[i] is not None]
+    worst = max(named or moving, key=lambda i: abs(drift[i]))
+    what = (f"der({state_names[speeds[worst]]}) = {drift[worst]:.3g} at "
+            "the start, not 0" if speeds[worst] is not None else
+            f"der({state_names[worst]}) changes at {drift[worst]:.3g} per "
+            "second")
+    raise error(f"{name}: the start values are not a steady slip ({what}); "
+                "allowed: start speeds and spring deflections in "
+                "equilibrium without dither")
 
 
 def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):

@@ -386,3 +386,36 @@ def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
                      "unit circle\n(no tongue reaches 1.5 bar)",
                      "no unstable point: the leading multiplier's growth "
                      f"rate is\n{slowest:.3g} 1/s (decays)"]
+
+
+def test_a_start_that_is_not_a_steady_slip_names_the_acceleration(
+        msl_path):
+    """w_in = 200 rad/s puts the slip in the table's third segment while
+    the class's T_c extrapolates the second: body 4 starts with the
+    acceleration (T_c - mu(200) N_c R_m S p_m) / J4, named as the
+    derivative of its speed (it was 'd/dt der(inertia4.w)', the
+    derivative of a derivative). A state whose derivative is no state (a
+    speed without its angle) is named by how fast its derivative
+    changes."""
+    from sources.modelica import (ModelicaError, ModelicaParameters,
+                                  check_no_acceleration, linearize)
+    v = ModelicaParameters(CLASS, str(MODELS)).values
+    slip = 200.0 - v["w_out"]
+    T_c = (v["mu_pos[2,2]"] + (v["mu_pos[3,2]"] - v["mu_pos[2,2]"])
+           * (slip - v["mu_pos[2,1]"]) / (v["mu_pos[3,1]"] - v["mu_pos[2,1]"])
+           ) * v["N_c"] * v["R_m"] * v["S"] * v["p_m"]
+    mu = np.interp(slip, [v[f"mu_pos[{k},1]"] for k in range(1, 5)],
+                   [v[f"mu_pos[{k},2]"] for k in range(1, 5)])
+    accel = (T_c - mu * v["N_c"] * v["R_m"] * v["S"] * v["p_m"]) / v["J4"]
+    with pytest.raises(ModelicaError, match=(
+            r"the start values are not a steady slip \(der\(inertia4\.w\) = "
+            rf"{accel:.3g} at the start, not 0\)")):
+        linearize(CLASS, str(MODELS), {"w_in": 200.0})
+    # an oscillator [phi, w] started at phi = 0 with speed 2: der(w) is 0
+    # at the start but changes at -k 2 = -8 per second
+    A0 = np.array([[0.0, 1.0], [-4.0, -0.5]])
+    with pytest.raises(ModelicaError, match=(
+            r"\(der\(w\) changes at -8 per second\)")):
+        check_no_acceleration("m", ["phi", "w"], A0, np.array([2.0, 0.0]),
+                              ModelicaError)
+    check_no_acceleration("m", ["phi", "w"], A0, np.zeros(2), ModelicaError)
