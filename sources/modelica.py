@@ -350,9 +350,12 @@ class ModelicaParameters(NamedParameters):
 
     def check_mode(self, freq_hz, p_f):
         """Refuse a dither setting (Hz, Pa) at which a hybrid class leaves
-        the mode it is linearised in (:func:`check_mode`)."""
-        check_mode(self.class_name, self.library, self.values,
-                   self.frequency, self.amplitude, freq_hz, p_f)
+        the mode it is linearised in (:func:`check_mode`), once per
+        values and setting (the report's tongues and sensitivity check
+        the same ones)."""
+        _checked_mode(self.class_name, self.library,
+                      tuple(self.values.items()), self.frequency,
+                      self.amplitude, freq_hz, p_f)
 
     def linear_model(self):
         """:func:`linearize` of the class at these values, once per class
@@ -562,6 +565,15 @@ def _start(ode, vector):
             *[s.start for s in ode.states])])(vector)).ravel()
 
 
+@lru_cache(maxsize=8192)
+def _checked_mode(class_name, library, values, frequency, amplitude,
+                  freq_hz, p_f):
+    """:func:`check_mode` with ``values`` as ``(name, value)`` pairs,
+    remembered when it passes."""
+    check_mode(class_name, library, dict(values), frequency, amplitude,
+               freq_hz, p_f)
+
+
 def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
                p_f):
     """Refuse a dither setting (``freq_hz``, ``p_f``) at which a hybrid
@@ -596,10 +608,10 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0,
             *[q.expression for q in ode.parameters])],
         [_live(ode, ode.derivatives)])
     values = mode_values(ode)
-    indicators = mode_indicators(ode)
+    indicators = _last_call(mode_indicators(ode), vector)
     period = 1.0 / f0
-    events = [lambda t, x, k=k: float(indicators(t, x, vector)[k])
-              for k in range(indicators.size1_out(0))]
+    events = [lambda t, x, k=k: float(indicators(t, x)[k])
+              for k in range(indicators.size)]
     path = solve_ivp(
         lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
         (0.0, period), _start(ode, vector), events=events or None,
@@ -625,6 +637,24 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0,
                 "operating point that "
                 "stays in one mode (a slip that keeps its sign, a normal "
                 "force above zero)")
+
+
+class _last_call:
+    """``function(t, x, p)`` of a CasADi function at the fixed ``p``,
+    kept for the last ``(t, x)``: scipy calls each event function at the
+    same point in turn, and one call gives them all."""
+
+    def __init__(self, function, p):
+        self.function, self.p = function, p
+        self.size = function.size1_out(0)
+        self.point, self.value = None, None
+
+    def __call__(self, t, x):
+        point = (t, x.tobytes())
+        if point != self.point:
+            self.point = point
+            self.value = np.asarray(self.function(t, x, self.p)).ravel()
+        return self.value
 
 
 def _live(ode, expression):

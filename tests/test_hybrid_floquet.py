@@ -419,3 +419,75 @@ def test_a_start_that_is_not_a_steady_slip_names_the_acceleration(
         check_no_acceleration("m", ["phi", "w"], A0, np.array([2.0, 0.0]),
                               ModelicaError)
     check_no_acceleration("m", ["phi", "w"], A0, np.zeros(2), ModelicaError)
+
+
+def test_sensitivity_checks_the_mode_at_each_changed_set(msl_path):
+    """The slip of 0.05 rad/s holds Forward up to 0.7 bar at f_dither
+    (it grazes zero from 0.7257 bar), and so it does with J1 halved or
+    doubled; with k24 halved the dither swings it through zero below 0.7
+    bar. The sensitivity study is refused naming that change, where it
+    checked the nominal set only and compared tongues the changed set
+    does not have."""
+    from judder.commands.sensitivity import sensitivity
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS)).replace(**{
+        "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
+    f = params["f_dither"]
+    assert sensitivity(["J1"], [f], 0.7, parameters=params).cases == 3
+    with pytest.raises(ModelicaError, match=(
+            rf"^with k24 = {params['k24'] / 2:g}: {CLASS}: clutch\.mode "
+            r"\(\S*PartialFriction\.mo:69\) changes from 1 \(clutch\.Forward\) "
+            r"to 0 \(clutch\.Stuck\) at t = \S+ s within a dither period of "
+            rf"the dither setting f_dither = {f:g} Hz, p_f = 70000 Pa")):
+        sensitivity(["J1", "k24"], [f], 0.7, parameters=params)
+
+
+def test_a_changed_set_in_another_mode_is_refused():
+    """A study's changed set linearised in another mode than the nominal
+    one is refused naming the variable and both values (the mode is read
+    from the linearisation; the checks of the dither pass here)."""
+    from dataclasses import dataclass, replace
+    from judder.commands._common import check_modes_of_changes
+    from sources.modelica import ModelicaError
+
+    @dataclass(frozen=True)
+    class Values:
+        model = "Rig"
+        mode: tuple = (("clutch.mode", "1 (clutch.Forward)"),
+                       ("clutch.free", "false"))
+
+        def check_mode(self, freq_hz, p_f):
+            pass
+
+        def replace(self, **change):
+            return self if "J1" in change else replace(self, mode=(
+                ("clutch.mode", "-1 (clutch.Backward)"),
+                ("clutch.free", "false")))
+
+        def linear_model(self):
+            return self
+    check_modes_of_changes(Values(), [{"J1": 2.0}], [100.0], 1.0)
+    with pytest.raises(ModelicaError, match=(
+            r"^with w_out = 300: Rig is linearised in another mode: "
+            r"clutch\.mode = -1 \(clutch\.Backward\) \(nominal 1 "
+            r"\(clutch\.Forward\)\), so its boundaries do not compare")):
+        check_modes_of_changes(Values(), [{"J1": 2.0}, {"w_out": 300.0}],
+                               [100.0], 1.0)
+
+
+def test_envelope_of_a_class_with_modes_is_refused_saying_why(
+        msl_path, judder_here, tmp_path):
+    """The envelope would need the mode checked at each of its parameter
+    sets and frequencies; it checked the nominal set only. Refused,
+    naming the mode and what to use instead."""
+    ranges = tmp_path / "ranges.toml"
+    ranges.write_text("[parameters]\nJ4 = [0.1, 0.14]\n")
+    status, _, err = judder_here(
+        "envelope", "--modelica", CLASS, "--library", MODELS, "--ranges",
+        ranges, "--freq", "95:110:4")
+    assert status == 2
+    assert f"{CLASS} is linearised in the mode clutch.mode = 1 " \
+        "(clutch.Forward)" in err
+    assert "checked at the nominal parameters only" in err
+    assert "allowed: judder sensitivity, which checks the mode at each " \
+        "parameter set it uses" in err
