@@ -491,3 +491,30 @@ def test_envelope_of_a_class_with_modes_is_refused_saying_why(
     assert "checked at the nominal parameters only" in err
     assert "allowed: judder sensitivity, which checks the mode at each " \
         "parameter set it uses" in err
+
+
+def test_report_says_why_its_sensitivity_is_missing(msl_path, judder_here,
+                                                    tmp_path):
+    """A report whose sensitivity study is refused (k24 halved leaves the
+    slip's mode below 0.7 bar at 101.9 Hz) keeps its other sections and
+    says in this one why it is missing, in the HTML and the JSON."""
+    import html
+    import json
+    out = tmp_path / "report.html"
+    status, printed, err = judder_here(
+        "report", "--modelica", CLASS, "--library", MODELS, "--set",
+        "mu_pos[2,1]=0.01", "--set", "w_out=104.66975511965977",
+        "--grid=101.9:103.9:3", "--map-freq=101.9:103.9:3",
+        "--map-pf=0:0.7:5", "--sensitivity", "J1,k24", "--out", out,
+        "--json")
+    assert status == 0, err
+    data = json.loads(printed)
+    assert "sensitivity_ranking" not in data
+    assert data["sensitivity_error"].startswith(
+        f"with k24 = 16442.5: {CLASS}: clutch.mode ")
+    page = html.unescape(out.read_text())
+    assert re.search(r"What moves the tongues: sensitivity</h2><p><b>Not "
+                     r"computed</b>: with k24 = 16442\.5: .* changes from 1 "
+                     r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = ",
+                     page)
+    assert "The driveline and its parameters" in page

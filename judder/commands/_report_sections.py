@@ -25,6 +25,7 @@ from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
+from ._flags import in_flags
 from ._words import (growth_words, margin_words, nonlinear_words,
                      orbit_words)
 
@@ -462,6 +463,15 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
                    f"{e['freq_percent']:.2f}",
                    "yes" if e["vanishes"] else "no") for e in ranking])
         + _rankings_differ(ranking, advice))
+
+
+def sensitivity_refused(error):
+    """The sensitivity section when the study was refused (``error``, its
+    message: a changed parameter set that leaves the mode of a hybrid
+    class)."""
+    return _keep("<h2>What moves the tongues: sensitivity</h2>"
+                 "<p><b>Not computed</b>: "
+                 f"{html.escape(in_flags(error))}.</p>")
 
 
 def _no_focus_section(page, sens):

@@ -42,7 +42,8 @@ from ._report_sections import (Page, advice_section, chart_figure,
                                driveline_section,
                                engagement_section, fit_section, focus_tongue,
                                kinds_section, map_section,
-                               sensitivity_section, setting_section,
+                               sensitivity_refused, sensitivity_section,
+                               setting_section,
                                summary_section, threshold_section,
                                tip_ranking)
 from ._values import FREQ, PF, Grid, Listed
@@ -371,14 +372,22 @@ def report(parameters=None, changes=None, description=None,
     if advice is not None:
         page.sections.append(advice_section(page, advice))
 
-    sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
-                       method=method, workers=workers)
+    try:
+        sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
+                           method=method, workers=workers)
+    except JudderError as error:
+        # a changed set that leaves a hybrid class's mode: the other
+        # sections stand, this one says why it is missing
+        sens = None
+        data["sensitivity_error"] = str(error)
+        page.sections.append(sensitivity_refused(str(error)))
     step()
-    focus = focus_tongue(found.tongues, freq_hz)
-    ranking = tip_ranking(sens.tip_shifts, focus)
-    data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
-    page.sections.append(sensitivity_section(page, sens, focus, ranking,
-                                             freq_hz is not None, advice))
+    if sens is not None:
+        focus = focus_tongue(found.tongues, freq_hz)
+        ranking = tip_ranking(sens.tip_shifts, focus)
+        data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
+        page.sections.append(sensitivity_section(
+            page, sens, focus, ranking, freq_hz is not None, advice))
 
     # without dither (Fig. 19): a study of the paper's chains
     if paper:
