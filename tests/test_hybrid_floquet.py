@@ -335,7 +335,8 @@ def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
     dither (the slowest decay of its Jacobian, the angles' zero
     eigenvalues left out); no ranking of 'tongue None' and no empty
     sensitivity figure; the map's panels say they are stable, without a
-    colour bar over nothing."""
+    colour bar over nothing, and the legends of the map and of the
+    advised design's map list only what they draw."""
     import html
     import json
     from judder.commands import _report_sections as sections
@@ -344,8 +345,11 @@ def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
     embed = sections._png
 
     def keep(fig, *args, **kwargs):
-        drawn.append([t.get_text() for ax in fig.axes for t in ax.texts]
-                     + [len(fig.axes)])
+        drawn.append({
+            "notes": [t.get_text() for ax in fig.axes for t in ax.texts],
+            "axes": len(fig.axes),
+            "legends": [[t.get_text() for t in ax.get_legend().get_texts()]
+                        for ax in fig.axes if ax.get_legend()]})
         return embed(fig, *args, **kwargs)
     out = tmp_path / "report.html"
     with pytest.MonkeyPatch.context() as patch:
@@ -380,12 +384,15 @@ def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
     assert data["figures"][0].startswith("Stability map")
     assert not any(title.startswith("Sensitivity")
                    for title in data["figures"])
-    *notes, axes = drawn[0]
-    assert axes == 2                      # no colour bar
-    assert notes == ["stable at every point: every multiplier inside the "
-                     "unit circle\n(no tongue reaches 1.5 bar)",
-                     "no unstable point: the leading multiplier's growth "
-                     f"rate is\n{slowest:.3g} 1/s (decays)"]
+    assert drawn[0]["axes"] == 2                      # no colour bar
+    assert drawn[0]["notes"] == [
+        "stable at every point: every multiplier inside the unit circle\n"
+        "(no tongue reaches 1.5 bar)", "no unstable point: the leading "
+        f"multiplier's growth rate is\n{slowest:.3g} 1/s (decays)"]
+    # the legends list only what is drawn: no slow growth, no judder
+    # line, no boundaries of the given design
+    assert drawn[0]["legends"] == [["stable"]]
+    assert drawn[1]["legends"][-1] == ["stable", "operating range"]
 
 
 def test_a_start_that_is_not_a_steady_slip_names_the_acceleration(

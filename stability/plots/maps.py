@@ -19,7 +19,7 @@ from ..kinds import KINDS
 from .boundaries import boundary_at, plot_boundaries
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
-           "kind_handles", "drawn_kinds"]
+           "kind_handles", "drawn_kinds", "draws_instability"]
 
 
 def _edges(centres):
@@ -129,9 +129,13 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
                                         m.freq_hz.min(), m.freq_hz.max())
     dither_axes(ax)
     if legend:
-        artists.append(kind_legend(ax, kinds=drawn_kinds(m, boundaries),
-                                   lines=boundaries is not None,
-                                   min_growth=min_growth))
+        # the grey of slow growth and the judder line only where
+        # something is unstable: else the legend lists what is not there
+        artists.append(kind_legend(
+            ax, kinds=drawn_kinds(m, boundaries),
+            lines=boundaries is not None,
+            min_growth=min_growth if draws_instability(m, boundaries)
+            else None))
     return artists
 
 
@@ -243,7 +247,7 @@ def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
         _, ax = plt.subplots()
     m = stability_map
     rate = np.where(m.kind > 0, m.growth_rate, np.nan)
-    if not _anything_unstable(m, boundaries):
+    if not draws_instability(m, boundaries):
         # nothing to colour: a colour bar around 0 and an empty panel
         # would say nothing; the note says how stable it is
         dither_axes(ax)
@@ -269,9 +273,10 @@ def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
     return [mesh, bar]
 
 
-def _anything_unstable(m, boundaries):
-    """Whether the map has an unstable point or an exact boundary below
-    its top (a tongue)."""
+def draws_instability(m, boundaries=None):
+    """Whether a map draws an instability: an unstable point, or an
+    exact boundary below its top (a tongue); legends list the shading of
+    slow growth and the judder line only then."""
     return bool((m.kind > 0).any()) or (
         boundaries is not None and bool(np.isfinite(
             boundaries.amplitude).any()))
@@ -313,12 +318,9 @@ def map_figure(stability_map, title=None, tongues=None, boundaries=None,
     fig, (left, right) = plt.subplots(
         *((2, 1) if stacked else (1, 2)),
         figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
-    unstable = _anything_unstable(stability_map, boundaries)
-    # the shading of slow growth and the judder line are drawn only where
-    # something is unstable: else the legend listed what is not there
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
-             min_growth=min_growth if unstable else None)
-    if not unstable:
+             min_growth=min_growth)
+    if not draws_instability(stability_map, boundaries):
         _set_extent(left, stability_map, boundaries)
         _note(left, "stable at every point: every multiplier inside the "
               "unit circle\n(no tongue reaches "
