@@ -35,14 +35,41 @@ from .classes import blank, class_spans, find_class
 
 __all__ = ["refuse_unsupported", "refuse_undeclared", "REPLACEMENTS"]
 
-#: The project library's replacements of MSL classes it refuses.
+#: What to use instead of the MSL classes the compiler refuses: the
+#: project library's replacement where it has one, else a plain "none".
+_ROTATIONAL = "Modelica.Mechanics.Rotational.Components."
+_TRANSLATIONAL = "Modelica.Mechanics.Translational.Components."
 REPLACEMENTS = {
-    "Modelica.Mechanics.Rotational.Components.Clutch":
-        "Judder.Components.LockingWetClutch (locks and breaks away by "
+    _ROTATIONAL + "Clutch":
+        "use Judder.Components.LockingWetClutch (locks and breaks away by "
         "events) or Judder.Components.SlippingClutch (always slipping)",
-    "Modelica.Mechanics.Rotational.Components.Brake":
-        "Judder.Components.LockingWetClutch with flange_b on a "
-        "Rotational.Components.Fixed",
+    _ROTATIONAL + "Brake":
+        "use Judder.Components.LockingWetClutch with its "
+        "flange_b connected to a Judder.Components.Fixed (a brake is a "
+        "clutch with one flange held in the housing; it is actuated by "
+        "its pressure p, not by a normalised force)",
+    _ROTATIONAL + "OneWayClutch":
+        "the Judder library has no replacement: it has no one-way clutch "
+        "(freewheel)",
+    _ROTATIONAL + "LossyGear":
+        "the Judder library has no replacement with losses: its "
+        "Judder.Components.IdealGear is lossless (no mesh or bearing "
+        "friction)",
+    _ROTATIONAL + "ElastoBacklash":
+        "the Judder library has no replacement: it has no backlash element",
+    _ROTATIONAL + "ElastoBacklash2":
+        "the Judder library has no replacement: it has no backlash element",
+    _ROTATIONAL + "BearingFriction":
+        "the Judder library has no replacement: it has no Coulomb bearing "
+        "friction (Judder.Components.Damper is a viscous loss)",
+    _TRANSLATIONAL + "Brake":
+        "the Judder library has no replacement: it models rotational "
+        "drivelines only (for a rotational brake, "
+        "Judder.Components.LockingWetClutch with one flange on a "
+        "Judder.Components.Fixed)",
+    _TRANSLATIONAL + "ElastoGap":
+        "the Judder library has no replacement: it models rotational "
+        "drivelines only, and has no gap or backlash element",
 }
 _BUILTIN = {"Real", "Integer", "Boolean", "String"}
 _DISCRETE = {"Integer": "an Integer variable", "Boolean": "a Boolean variable",
@@ -414,6 +441,35 @@ def _describe(finding):
         (f", in {chain}" if chain else "")
 
 
+def _replaced(finding, model_name):
+    """The MSL class of :data:`REPLACEMENTS` a finding is in: a
+    component's type on the way from the model, else the class holding
+    the construct or one extending it (a model of one's own that extends
+    MSL's Clutch), else the model; None if none is listed."""
+    return next((name for name in [name for _, name, _ in finding.chain]
+                 + list(finding.classes) + [model_name]
+                 if name in REPLACEMENTS), None)
+
+
+def _replacement_words(findings, model_name):
+    """``; use ...`` for the MSL class the first finding is in, and ``for
+    Clutch: ...; for Brake: ...`` when the findings are in several (MSL's
+    Examples.Friction holds a clutch and a brake; classes with the same
+    words share them); "" for none listed."""
+    classes = {}
+    for finding in findings:
+        name = _replaced(finding, model_name)
+        if name is not None:
+            classes.setdefault(REPLACEMENTS[name], []).append(
+                name.rsplit(".", 1)[-1])
+    one = [words for words, names in classes.items()
+           if len(classes) == 1 and len(set(names)) == 1]
+    if one:
+        return f"; {one[0]}"
+    return "".join(f"; for {', '.join(dict.fromkeys(names))}: {words}"
+                   for words, names in classes.items())
+
+
 def refuse_unsupported(path, model_name, roots, hybrid=False, fmu=False):
     """Refuse ``model_name`` if the classes it instantiates hold a
     construct the back end does not compile, before rumoca flattens it.
@@ -439,15 +495,8 @@ def refuse_unsupported(path, model_name, roots, hybrid=False, fmu=False):
     if not findings:
         return
     first = findings[0]
-    message = f"{_describe(first)}, in model {model_name} ({path})"
-    # the MSL class to replace: a component's type on the way from the
-    # model, else the class holding the construct or one extending it
-    # (a model of one's own that extends MSL's Clutch), else the model
-    replaced = [REPLACEMENTS[name] for name in
-                [name for _, name, _ in first.chain] + list(first.classes)
-                + [model_name] if name in REPLACEMENTS]
-    if replaced:
-        message += f"; use {replaced[0]}"
+    message = f"{_describe(first)}, in model {model_name} ({path})" + \
+        _replacement_words(findings, model_name)
     others = sorted({f.place for f in findings[1:]} - {first.place})
     if others:
         message += (f"; also at {', '.join(others[:4])}"

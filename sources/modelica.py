@@ -44,6 +44,7 @@ from fmu.backend import to_ode
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
 from fmu.precheck import refuse_undeclared, refuse_unsupported
+from fmu.tunable import refuse_bound
 from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
@@ -113,13 +114,16 @@ def check_dither_declared(class_name, library=None, amplitude="p_f",
     the class certainly does not declare
     (:func:`fmu.precheck.refuse_undeclared`): MSL's ``Backlash`` or
     ``ElastoGap`` examples compile in one mode but have no dither, and
-    without it there is nothing to linearise."""
+    without it there is nothing to linearise; then one the class binds
+    to its own parameters, calculated rather than tunable
+    (:func:`fmu.tunable.refuse_bound`: ``sine.f`` of MSL's ``First``)."""
     roots = _roots(library)
     folders = [str(r) for r in roots]
     refuse_unsupported(_source(class_name, roots), class_name, folders,
                        hybrid=True)
-    refuse_undeclared(class_name, folders,
-                      {"amplitude": amplitude, "frequency": frequency})
+    names = {"amplitude": amplitude, "frequency": frequency}
+    refuse_undeclared(class_name, folders, names)
+    refuse_bound(class_name, folders, names)
 
 
 @lru_cache(maxsize=64)
@@ -346,9 +350,12 @@ class ModelicaParameters(NamedParameters):
 
     def check_mode(self, freq_hz, p_f):
         """Refuse a dither setting (Hz, Pa) at which a hybrid class leaves
-        the mode it is linearised in (:func:`check_mode`)."""
-        check_mode(self.class_name, self.library, self.values,
-                   self.frequency, self.amplitude, freq_hz, p_f)
+        the mode it is linearised in (:func:`check_mode`), once per
+        values and setting (the report's tongues and sensitivity check
+        the same ones)."""
+        _checked_mode(self.class_name, self.library,
+                      tuple(self.values.items()), self.frequency,
+                      self.amplitude, freq_hz, p_f)
 
     def linear_model(self):
         """:func:`linearize` of the class at these values, once per class
@@ -558,6 +565,15 @@ def _start(ode, vector):
             *[s.start for s in ode.states])])(vector)).ravel()
 
 
+@lru_cache(maxsize=8192)
+def _checked_mode(class_name, library, values, frequency, amplitude,
+                  freq_hz, p_f):
+    """:func:`check_mode` with ``values`` as ``(name, value)`` pairs,
+    remembered when it passes."""
+    check_mode(class_name, library, dict(values), frequency, amplitude,
+               freq_hz, p_f)
+
+
 def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
                p_f):
     """Refuse a dither setting (``freq_hz``, ``p_f``) at which a hybrid
@@ -592,10 +608,10 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0,
             *[q.expression for q in ode.parameters])],
         [_live(ode, ode.derivatives)])
     values = mode_values(ode)
-    indicators = mode_indicators(ode)
+    indicators = _last_call(mode_indicators(ode), vector)
     period = 1.0 / f0
-    events = [lambda t, x, k=k: float(indicators(t, x, vector)[k])
-              for k in range(indicators.size1_out(0))]
+    events = [lambda t, x, k=k: float(indicators(t, x)[k])
+              for k in range(indicators.size)]
     path = solve_ivp(
         lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
         (0.0, period), _start(ode, vector), events=events or None,
@@ -621,6 +637,24 @@ def _mode_holds(class_name, ode, flat, mode, vector, f0,
                 "operating point that "
                 "stays in one mode (a slip that keeps its sign, a normal "
                 "force above zero)")
+
+
+class _last_call:
+    """``function(t, x, p)`` of a CasADi function at the fixed ``p``,
+    kept for the last ``(t, x)``: scipy calls each event function at the
+    same point in turn, and one call gives them all."""
+
+    def __init__(self, function, p):
+        self.function, self.p = function, p
+        self.size = function.size1_out(0)
+        self.point, self.value = None, None
+
+    def __call__(self, t, x):
+        point = (t, x.tobytes())
+        if point != self.point:
+            self.point = point
+            self.value = np.asarray(self.function(t, x, self.p)).ravel()
+        return self.value
 
 
 def _live(ode, expression):
@@ -709,18 +743,38 @@ def linear_periodic_model(name, state_names, A0, B0, values, amplitude,
         frequency_dependent=frequency_dependent)
 
 
+def _derivative_state(row):
+    """Index of the state whose value ``der(x_i)`` is, from row ``i`` of
+    the Jacobian (``der(phi) = w``: one entry, 1), or None."""
+    size = np.abs(row).max()
+    entries = np.flatnonzero(np.abs(row) > 1e-12 * size) if size else []
+    if len(entries) == 1 and np.isclose(row[entries[0]], 1.0, rtol=1e-9,
+                                        atol=0):
+        return int(entries[0])
+    return None
+
+
 def check_no_acceleration(name, state_names, A0, rate, error):
     """``A0 der(x) = 0`` at the start: no acceleration builds up along the
-    slip, else ``error`` naming the state that accelerates."""
+    slip, else ``error`` naming what changes: the acceleration
+    ``der(w)`` of a speed ``w`` that is the derivative of an angle state
+    (the row of the angle), else the derivative of the state whose
+    derivative changes most."""
     scale = np.abs(A0).max() * max(np.abs(rate).max(), 1.0)
     drift = A0 @ rate
-    worst = int(np.argmax(np.abs(drift)))
-    if np.abs(drift).max() > 1e-8 * scale:
-        raise error(
-            f"{name}: the start values are not a steady slip "
-            f"(d/dt der({state_names[worst]}) = {drift[worst]:.3g}); "
-            "allowed: start speeds and spring deflections in equilibrium "
-            "without dither")
+    moving = np.flatnonzero(np.abs(drift) > 1e-8 * scale)
+    if not len(moving):
+        return
+    speeds = {i: _derivative_state(A0[i]) for i in moving}
+    named = [i for i in moving if speeds[i] is not None]
+    worst = max(named or moving, key=lambda i: abs(drift[i]))
+    what = (f"der({state_names[speeds[worst]]}) = {drift[worst]:.3g} at "
+            "the start, not 0" if speeds[worst] is not None else
+            f"der({state_names[worst]}) changes at {drift[worst]:.3g} per "
+            "second")
+    raise error(f"{name}: the start values are not a steady slip ({what}); "
+                "allowed: start speeds and spring deflections in "
+                "equilibrium without dither")
 
 
 def _steady_slip(class_name, ode, jac, x, A0, rate, vector, x0, t, p):

@@ -679,6 +679,128 @@ def test_msl_examples_without_a_dither_are_refused_before_flattening(
 
 @pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
                     "4.x is not in ../shared/msl nor on MODELICAPATH")
+@pytest.mark.parametrize("amplitude, frequency, option, name, bound", [
+    ("amplitude", "sine.f", "--dither-frequency", "sine.f", "f"),
+    ("sine.amplitude", "f", "--dither-amplitude", "sine.amplitude",
+     "amplitude")])
+def test_a_dither_name_the_class_binds_is_refused_before_flattening(
+        judder_here, monkeypatch, amplitude, frequency, option, name, bound):
+    """`judder eig --modelica Rotational.Examples.First --dither-frequency
+    sine.f`: First declares `Sine sine(amplitude=amplitude, f=f)`, so
+    sine.f is calculated from f, not tunable; refused from the source at
+    the modification's line, naming the parameter to give, without
+    rumoca's flatten (it was refused after it: 17 s of CPU cold)."""
+    import fmu.frontend
+    monkeypatch.setenv("MODELICAPATH", str(_msl()))
+
+    def flatten(*args, **kwargs):
+        raise AssertionError("rumoca flattened the class")
+    monkeypatch.setattr(fmu.frontend, "_flatten", flatten)
+    cls = "Modelica.Mechanics.Rotational.Examples.First"
+    started = time.monotonic()
+    status, _, err = judder_here(
+        "eig", "--modelica", cls, "--library", _msl(), "--dither-amplitude",
+        amplitude, "--dither-frequency", frequency)
+    assert time.monotonic() - started < 10
+    assert status == 2, err
+    assert (f"Rotational/Examples/First.mo:34: {option} {name!r} is bound to "
+            f"{bound} in {cls}, so it is calculated from {bound} and not a "
+            f"tunable parameter (read before flattening); allowed: a tunable "
+            f"parameter, here {bound!r}") in err, err
+
+
+def test_bindings_to_the_class_parameters_are_read_from_the_source(
+        tmp_path):
+    """A parameter bound to an expression of the class's own parameters
+    (declared so, or by a component's modification, with `final`) is
+    refused; one bound to a number, a name of a class extended or a
+    component without a modification passes to the flat model."""
+    from fmu.tunable import refuse_bound
+    _model(tmp_path, "Rig", """
+model Rig
+  model Part
+    parameter Real k = 1;
+    parameter Real d = 2;
+  end Part;
+  parameter Real a = 1 "a number";
+  parameter Real b = 2*a + sin(a) "calculated";
+  parameter Real c = Modelica.Constants.pi;
+  Part p(k = 3, final d = b/2);
+  Part q;
+  Real x(start = a);
+equation
+  der(x) = -x;
+end Rig;
+""")
+    roots = [tmp_path / "Rig"]
+    for passes in ("a", "c", "p.k", "q.k", "q.d", "x", "p.k.z"):
+        refuse_bound("Rig", roots, {"frequency": passes})
+    with pytest.raises(FrontEndError, match=(
+            r"Rig\.mo:8: `amplitude` 'b' is bound to 2\*a \+ sin\(a\) in "
+            r"Rig, so it is calculated from a and not a tunable parameter "
+            r"\(read before flattening\); allowed: a tunable parameter$")):
+        refuse_bound("Rig", roots, {"amplitude": "b"})
+    with pytest.raises(FrontEndError, match=(
+            r"Rig\.mo:10: `frequency` 'p\.d' is bound to b/2 in Rig, so it "
+            r"is calculated from b ")):
+        refuse_bound("Rig", roots, {"amplitude": "a", "frequency": "p.d"})
+
+
+_USE_BRAKE = ("; use Judder.Components.LockingWetClutch with its flange_b "
+              "connected to a Judder.Components.Fixed (a brake is a clutch "
+              "with one flange held in the housing")
+_USE_CLUTCH = ("use Judder.Components.LockingWetClutch (locks and breaks "
+               "away by events) or Judder.Components.SlippingClutch")
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
+@pytest.mark.parametrize("model, hybrid, words", [
+    ("Rotational.Components.Brake", False, _USE_BRAKE),
+    ("Rotational.Components.Brake", True, _USE_BRAKE),
+    ("Rotational.Examples.Friction", False,
+     f"; for Clutch: {_USE_CLUTCH} (always slipping); for Brake: "
+     + _USE_BRAKE[2:]),
+    ("Rotational.Examples.OneWayClutch", True, "; the Judder library has "
+     "no replacement: it has no one-way clutch (freewheel)"),
+    ("Rotational.Components.LossyGear", False, "; the Judder library has no "
+     "replacement with losses: its Judder.Components.IdealGear is lossless"),
+    ("Rotational.Examples.Backlash", False, "; for ElastoBacklash, "
+     "ElastoBacklash2: the Judder library has no replacement: it has no "
+     "backlash element"),
+    ("Translational.Examples.Brake", False, "; the Judder library has no "
+     "replacement: it models rotational drivelines only")])
+def test_msl_refusals_name_the_replacement_or_say_there_is_none(
+        model, hybrid, words):
+    """A refused MSL friction, gear or backlash component names what the
+    Judder library has instead: a brake is its locking clutch with one
+    flange fixed; for a one-way clutch, a lossy gear and backlash it says
+    there is none; a model holding a clutch and a brake names both (the
+    brake's was the clutch's wording, the others named nothing)."""
+    from fmu.precheck import refuse_unsupported
+    from fmu.classes import find_class
+    name = f"Modelica.Mechanics.{model}"
+    source, _ = find_class(name, [_msl()])
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(source, name, [_msl()], hybrid=hybrid)
+    message = str(refused.value)
+    assert words in message, message
+
+
+def test_every_replacement_named_is_in_the_judder_library():
+    """Each Judder class a refusal names exists in modelica/Judder."""
+    from fmu.precheck import REPLACEMENTS
+    named = set(re.findall(r"Judder\.Components\.(\w+)",
+                           " ".join(REPLACEMENTS.values())))
+    assert named >= {"LockingWetClutch", "SlippingClutch", "Fixed",
+                     "IdealGear", "Damper"}
+    folder = ROOT / "modelica" / "Judder" / "Components"
+    for name in named:
+        assert f"model {name} " in (folder / f"{name}.mo").read_text()
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "4.x is not in ../shared/msl nor on MODELICAPATH")
 @pytest.mark.parametrize("model", ["Modelica.Mechanics.Rotational."
                                    "Components.Clutch", "My.OwnClutch",
                                    "My.Rig"])

@@ -63,10 +63,9 @@ def _reference_rhs(values):
     return rhs, engine
 
 
-def _reference_multipliers(values, freq_hz, p_f):
-    """Multipliers of the hand-written driveline: Jacobian A0 and its
-    p_f part B by central differences at the start values, monodromy of
-    (A0 + p_f cos B) by scipy's DOP853."""
+def _reference_jacobians(values):
+    """Jacobian A0 of the hand-written driveline and its p_f part B, by
+    central differences at the start values (a steady slip)."""
     rhs, engine = _reference_rhs(values)
     v = values
     # spring deflections of a steady slip: each body's torques balance
@@ -83,7 +82,13 @@ def _reference_multipliers(values, freq_hz, p_f):
                    for k, e in enumerate(np.eye(len(x0)))]
         return np.array(columns).T
     A0 = jacobian(0.0)
-    B = (jacobian(1e4) - A0) / 1e4
+    return A0, (jacobian(1e4) - A0) / 1e4
+
+
+def _reference_multipliers(values, freq_hz, p_f):
+    """Multipliers of the hand-written driveline: monodromy of (A0 + p_f
+    cos B) (:func:`_reference_jacobians`) by scipy's DOP853."""
+    A0, B = _reference_jacobians(values)
     omega = 2 * np.pi * freq_hz
 
     def flow(t, y):
@@ -319,3 +324,204 @@ def test_check_refuses_margins_searched_beyond_the_mode(msl_path,
         "mu_pos[2,1]=0.01", "--set", "w_out=104.66975511965977", "--freq",
         f"{f:g}", "--pf", "0.3")
     assert status == 2 and "allowed: a smaller --pf-max" in err
+
+
+def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
+        msl_path, judder_here, tmp_path):
+    """`judder report` of ModeClutchDriveline (no tongue up to 1.5 bar):
+    the mode it is linearised in, in the HTML and the JSON, as `map`
+    words it; a sentence instead of an empty tip table, with the map's
+    largest growth rate, that of the hand-written driveline without
+    dither (the slowest decay of its Jacobian, the angles' zero
+    eigenvalues left out); no ranking of 'tongue None' and no empty
+    sensitivity figure; the map's panels say they are stable, without a
+    colour bar over nothing, and the legends of the map and of the
+    advised design's map list only what they draw."""
+    import html
+    import json
+    from judder.commands import _report_sections as sections
+    from sources.modelica import ModelicaParameters
+    drawn = []
+    embed = sections._png
+
+    def keep(fig, *args, **kwargs):
+        drawn.append({
+            "notes": [t.get_text() for ax in fig.axes for t in ax.texts],
+            "axes": len(fig.axes),
+            "legends": [[t.get_text() for t in ax.get_legend().get_texts()]
+                        for ax in fig.axes if ax.get_legend()]})
+        return embed(fig, *args, **kwargs)
+    out = tmp_path / "report.html"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(sections, "_png", keep)
+        status, printed, err = judder_here(
+            "report", "--modelica", CLASS, "--library", MODELS,
+            "--grid=10:220:40", "--map-freq=5:250:30", "--map-pf=0:1.5:7",
+            "--sensitivity", "c12", "--out", out, "--json")
+    assert status == 0, err
+    data = json.loads(printed)
+    assert data["mode"]["clutch.mode"] == "1 (clutch.Forward)"
+    assert data["mode_checked_at_p_f_bar"] == 1.5
+    assert data["tongues"] == []
+    page = html.unescape(out.read_text())
+    assert "is linearised in the mode clutch.mode = 1 (clutch.Forward), " \
+        "clutch.startForward = false" in page
+    assert "held at each frequency's largest amplitude, 1.5 bar" in page
+    A0, _ = _reference_jacobians(ModelicaParameters(CLASS, str(MODELS))
+                                 .values)
+    rates = np.linalg.eigvals(A0).real
+    slowest = rates[np.abs(rates) > 1e-9].max()
+    assert f"No tongue reaches 1.5 bar between 10 and 220 Hz: no stability " \
+        f"boundary, so no tip to tabulate. The largest growth rate on the " \
+        f"map is {slowest:.3g} 1/s (every point decays)." in page
+    assert "<th>unstable from p_f [bar]</th>" not in page
+    assert "None" not in page
+    assert "c12 halved and doubled (Fig. 17, 18): no tongue of the " \
+        "nominal driveline reaches 1.5 bar between 10 and 220 Hz, so there " \
+        "is no tongue tip to rank. Nor does any tongue reach it" in page
+    assert "No judder-relevant tongue is in the window" in page
+    # the map and the advice figure; no sensitivity figure
+    assert data["figures"][0].startswith("Stability map")
+    assert not any(title.startswith("Sensitivity")
+                   for title in data["figures"])
+    assert drawn[0]["axes"] == 2                      # no colour bar
+    assert drawn[0]["notes"] == [
+        "stable at every point: every multiplier inside the unit circle\n"
+        "(no tongue reaches 1.5 bar)", "no unstable point: the leading "
+        f"multiplier's growth rate is\n{slowest:.3g} 1/s (decays)"]
+    # the legends list only what is drawn: no slow growth, no judder
+    # line, no boundaries of the given design
+    assert drawn[0]["legends"] == [["stable"]]
+    assert drawn[1]["legends"][-1] == ["stable", "operating range"]
+
+
+def test_a_start_that_is_not_a_steady_slip_names_the_acceleration(
+        msl_path):
+    """w_in = 200 rad/s puts the slip in the table's third segment while
+    the class's T_c extrapolates the second: body 4 starts with the
+    acceleration (T_c - mu(200) N_c R_m S p_m) / J4, named as the
+    derivative of its speed (it was 'd/dt der(inertia4.w)', the
+    derivative of a derivative). A state whose derivative is no state (a
+    speed without its angle) is named by how fast its derivative
+    changes."""
+    from sources.modelica import (ModelicaError, ModelicaParameters,
+                                  check_no_acceleration, linearize)
+    v = ModelicaParameters(CLASS, str(MODELS)).values
+    slip = 200.0 - v["w_out"]
+    T_c = (v["mu_pos[2,2]"] + (v["mu_pos[3,2]"] - v["mu_pos[2,2]"])
+           * (slip - v["mu_pos[2,1]"]) / (v["mu_pos[3,1]"] - v["mu_pos[2,1]"])
+           ) * v["N_c"] * v["R_m"] * v["S"] * v["p_m"]
+    mu = np.interp(slip, [v[f"mu_pos[{k},1]"] for k in range(1, 5)],
+                   [v[f"mu_pos[{k},2]"] for k in range(1, 5)])
+    accel = (T_c - mu * v["N_c"] * v["R_m"] * v["S"] * v["p_m"]) / v["J4"]
+    with pytest.raises(ModelicaError, match=(
+            r"the start values are not a steady slip \(der\(inertia4\.w\) = "
+            rf"{accel:.3g} at the start, not 0\)")):
+        linearize(CLASS, str(MODELS), {"w_in": 200.0})
+    # an oscillator [phi, w] started at phi = 0 with speed 2: der(w) is 0
+    # at the start but changes at -k 2 = -8 per second
+    A0 = np.array([[0.0, 1.0], [-4.0, -0.5]])
+    with pytest.raises(ModelicaError, match=(
+            r"\(der\(w\) changes at -8 per second\)")):
+        check_no_acceleration("m", ["phi", "w"], A0, np.array([2.0, 0.0]),
+                              ModelicaError)
+    check_no_acceleration("m", ["phi", "w"], A0, np.zeros(2), ModelicaError)
+
+
+def test_sensitivity_checks_the_mode_at_each_changed_set(msl_path):
+    """The slip of 0.05 rad/s holds Forward up to 0.7 bar at f_dither
+    (it grazes zero from 0.7257 bar), and so it does with J1 halved or
+    doubled; with k24 halved the dither swings it through zero below 0.7
+    bar. The sensitivity study is refused naming that change, where it
+    checked the nominal set only and compared tongues the changed set
+    does not have."""
+    from judder.commands.sensitivity import sensitivity
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS)).replace(**{
+        "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
+    f = params["f_dither"]
+    assert sensitivity(["J1"], [f], 0.7, parameters=params).cases == 3
+    with pytest.raises(ModelicaError, match=(
+            rf"^with k24 = {params['k24'] / 2:g}: {CLASS}: clutch\.mode "
+            r"\(\S*PartialFriction\.mo:69\) changes from 1 \(clutch\.Forward\) "
+            r"to 0 \(clutch\.Stuck\) at t = \S+ s within a dither period of "
+            rf"the dither setting f_dither = {f:g} Hz, p_f = 70000 Pa")):
+        sensitivity(["J1", "k24"], [f], 0.7, parameters=params)
+
+
+def test_a_changed_set_in_another_mode_is_refused():
+    """A study's changed set linearised in another mode than the nominal
+    one is refused naming the variable and both values (the mode is read
+    from the linearisation; the checks of the dither pass here)."""
+    from dataclasses import dataclass, replace
+    from judder.commands._common import check_modes_of_changes
+    from sources.modelica import ModelicaError
+
+    @dataclass(frozen=True)
+    class Values:
+        model = "Rig"
+        mode: tuple = (("clutch.mode", "1 (clutch.Forward)"),
+                       ("clutch.free", "false"))
+
+        def check_mode(self, freq_hz, p_f):
+            pass
+
+        def replace(self, **change):
+            return self if "J1" in change else replace(self, mode=(
+                ("clutch.mode", "-1 (clutch.Backward)"),
+                ("clutch.free", "false")))
+
+        def linear_model(self):
+            return self
+    check_modes_of_changes(Values(), [{"J1": 2.0}], [100.0], 1.0)
+    with pytest.raises(ModelicaError, match=(
+            r"^with w_out = 300: Rig is linearised in another mode: "
+            r"clutch\.mode = -1 \(clutch\.Backward\) \(nominal 1 "
+            r"\(clutch\.Forward\)\), so its boundaries do not compare")):
+        check_modes_of_changes(Values(), [{"J1": 2.0}, {"w_out": 300.0}],
+                               [100.0], 1.0)
+
+
+def test_envelope_of_a_class_with_modes_is_refused_saying_why(
+        msl_path, judder_here, tmp_path):
+    """The envelope would need the mode checked at each of its parameter
+    sets and frequencies; it checked the nominal set only. Refused,
+    naming the mode and what to use instead."""
+    ranges = tmp_path / "ranges.toml"
+    ranges.write_text("[parameters]\nJ4 = [0.1, 0.14]\n")
+    status, _, err = judder_here(
+        "envelope", "--modelica", CLASS, "--library", MODELS, "--ranges",
+        ranges, "--freq", "95:110:4")
+    assert status == 2
+    assert f"{CLASS} is linearised in the mode clutch.mode = 1 " \
+        "(clutch.Forward)" in err
+    assert "checked at the nominal parameters only" in err
+    assert "allowed: judder sensitivity, which checks the mode at each " \
+        "parameter set it uses" in err
+
+
+def test_report_says_why_its_sensitivity_is_missing(msl_path, judder_here,
+                                                    tmp_path):
+    """A report whose sensitivity study is refused (k24 halved leaves the
+    slip's mode below 0.7 bar at 101.9 Hz) keeps its other sections and
+    says in this one why it is missing, in the HTML and the JSON."""
+    import html
+    import json
+    out = tmp_path / "report.html"
+    status, printed, err = judder_here(
+        "report", "--modelica", CLASS, "--library", MODELS, "--set",
+        "mu_pos[2,1]=0.01", "--set", "w_out=104.66975511965977",
+        "--grid=101.9:103.9:3", "--map-freq=101.9:103.9:3",
+        "--map-pf=0:0.7:5", "--sensitivity", "J1,k24", "--out", out,
+        "--json")
+    assert status == 0, err
+    data = json.loads(printed)
+    assert "sensitivity_ranking" not in data
+    assert data["sensitivity_error"].startswith(
+        f"with k24 = 16442.5: {CLASS}: clutch.mode ")
+    page = html.unescape(out.read_text())
+    assert re.search(r"What moves the tongues: sensitivity</h2><p><b>Not "
+                     r"computed</b>: with k24 = 16442\.5: .* changes from 1 "
+                     r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = ",
+                     page)
+    assert "The driveline and its parameters" in page

@@ -72,6 +72,43 @@ def check_modes_up_to(values, freq_hz, p_max_bar):
     check_modes(values, freq_hz, np.full(np.size(freq_hz), p_max))
 
 
+def check_modes_of_changes(values, changes, freq_hz, p_max_bar):
+    """:func:`check_modes_up_to` at each parameter set a study uses
+    beside ``values`` (``changes``: one ``{name: value}`` a set), each
+    linearised in the mode ``values`` is: a study comparing its sets
+    (sensitivity's tip shifts) compares them in one mode. Nothing for
+    other models.
+
+    Raises
+    ------
+    JudderError
+        Naming the change: a set in another mode, or one whose mode the
+        dither leaves (:class:`sources.modelica.ModelicaError`'s words).
+    """
+    if getattr(values, "check_mode", None) is None:
+        return
+    from sources.modelica import ModelicaError
+    nominal = linearised_mode(values)
+    for change in changes:
+        words = ", ".join(f"{name} = {value:g}"
+                          for name, value in change.items())
+        changed = values.replace(**change)
+        try:
+            mode = linearised_mode(changed)
+            if mode != nominal:
+                raise ModelicaError(
+                    f"{values.model} is linearised in another mode: "
+                    + ", ".join(f"{name} = {value} (nominal "
+                                f"{nominal.get(name)})"
+                                for name, value in mode.items()
+                                if nominal.get(name) != value)
+                    + ", so its boundaries do not compare with the "
+                    "nominal ones; allowed: changes that keep the mode")
+            check_modes_up_to(changed, freq_hz, p_max_bar)
+        except ModelicaError as error:
+            raise ModelicaError(f"with {words}: {error}") from None
+
+
 def linearised_mode(values):
     """``{name: value}`` of the Integer and Boolean variables of a hybrid
     Modelica class in the mode it is linearised in

@@ -9,7 +9,7 @@ their titles in order. Nothing here computes a study, except
 """
 
 import base64
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import datetime
 import html
 import io
@@ -25,6 +25,7 @@ from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
+from ._flags import in_flags
 from ._words import (growth_words, margin_words, nonlinear_words,
                      orbit_words)
 
@@ -274,18 +275,20 @@ def setting_section(page, point, freq_hz, p_f_bar):
                                          f"bar, {page.description}")))
 
 
-def map_section(page, stability, tongue_records, min_growth, p_max_bar):
+def map_section(page, stability, tongue_records, min_growth, p_max_bar,
+                searched_hz, mode=""):
     """The stability map with the exact tongues (Fig. 14) and the table of
     their tips (``tongue_records``: the report's ``tongues`` data): where
-    each becomes unstable and where it judders (up to ``p_max_bar``)."""
-    tip_rows = [(t["number"] or "-", t["kind"], t["resonance"] or "-",
-                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}",
-                 "-" if t["judder_tip_p_f_bar"] is None else
-                 f"{t['judder_tip_p_f_bar']:.4f}")
-                for t in tongue_records]
+    each becomes unstable and where it judders (up to ``p_max_bar``); a
+    sentence instead of the table where no tongue reaches ``p_max_bar``
+    over the frequencies searched (``searched_hz``: lowest, highest).
+    ``mode``: the words of :func:`judder.commands._common.mode_words` for
+    a hybrid Modelica class, whose linearisation holds in one mode."""
     return (_keep(
         "<h2>Where it judders: the stability map</h2>"
-        f'<p class="small">Judder-relevant: growing faster than '
+        + (f"<p>{html.escape(stability.params.model)} is "
+           f"{html.escape(mode)}.</p>" if mode else "")
+        + f'<p class="small">Judder-relevant: growing faster than '
         f"{min_growth:g} 1/s (judder check --min-growth {min_growth:g}); "
         "slower growth is shaded grey; the lines are the exact stability "
         "boundaries (Fig. 14).</p>"
@@ -294,11 +297,33 @@ def map_section(page, stability, tongue_records, min_growth, p_max_bar):
                       stability.figure(
                           title=f"stability map, {page.description}",
                           stacked=True)))
-        + "<p>Tongue tips, numbers as in Fig. 14: where each tongue becomes "
-          "unstable (|lambda| = 1; its tip, refined between grid points) "
-          f"and the lowest amplitude where it judders (grows at "
-          f"{min_growth:g} 1/s or faster; - : not up to {p_max_bar:g} "
-          "bar):</p>"
+        + _tip_table(stability, tongue_records, min_growth, p_max_bar,
+                     searched_hz))
+
+
+def _tip_table(stability, tongue_records, min_growth, p_max_bar,
+               searched_hz):
+    """The table of the tongue tips, or the sentence saying that none
+    reaches ``p_max_bar`` (with the map's largest growth rate)."""
+    if not tongue_records:
+        growth = float(np.max(stability.map.growth_rate))
+        return (f"<p>No tongue reaches {p_max_bar:g} bar between "
+                f"{searched_hz[0]:g} and {searched_hz[1]:g} Hz: no "
+                "stability boundary, so no tip to tabulate. The largest "
+                f"growth rate on the map is {growth:.3g} 1/s"
+                + (" (every point decays)." if growth < 0 else ".")
+                + "</p>")
+    tip_rows = [(t["number"] or "-", t["kind"], t["resonance"] or "-",
+                 f"{t['tip_freq_hz']:.2f}", f"{t['tip_p_f_bar']:.4f}",
+                 "-" if t["judder_tip_p_f_bar"] is None else
+                 f"{t['judder_tip_p_f_bar']:.4f}")
+                for t in tongue_records]
+    return (
+        "<p>Tongue tips, numbers as in Fig. 14: where each tongue becomes "
+        "unstable (|lambda| = 1; its tip, refined between grid points) "
+        f"and the lowest amplitude where it judders (grows at "
+        f"{min_growth:g} 1/s or faster; - : not up to {p_max_bar:g} "
+        "bar):</p>"
         + _table(("#", "kind", "resonance", "tip f [Hz]",
                   "unstable from p_f [bar]", "judders from p_f [bar]"),
                  tip_rows))
@@ -327,17 +352,20 @@ def advice_section(page, advice):
     return _keep(
         "<h2>Safe dither windows and the design change</h2>"
         + f"<p>{html.escape(_window_text(advice))}</p>"
-        + "<p>Design parameters ranked by how much of the way out of "
-          "the window a relative change takes the judder-relevant "
-          "tongues (the share of that way a change of the value by a "
-          "factor e = 2.72 moves the tongue that needs most; 1 = all "
-          "the way): "
-        + html.escape(", ".join(f"{n} {share:.2f}"
-                      for n, share, _ in advice.ranking))
-        + ".</p>") + page.figure(
-            "Safe dither amplitude per frequency, and the map of the "
-            "advised design (judder advise)",
-            advice.figure(title=page.description, stacked=True))
+        + ("<p>Design parameters ranked by how much of the way out of "
+           "the window a relative change takes the judder-relevant "
+           "tongues (the share of that way a change of the value by a "
+           "factor e = 2.72 moves the tongue that needs most; 1 = all "
+           "the way): "
+           + html.escape(", ".join(f"{n} {share:.2f}"
+                         for n, share, _ in advice.ranking))
+           + ".</p>" if advice.ranking else
+           "<p>No judder-relevant tongue is in the window, so no design "
+           "parameter is ranked: there is nothing to move out of it.</p>")
+    ) + page.figure(
+        "Safe dither amplitude per frequency, and the map of the advised "
+        "design (judder advise)",
+        advice.figure(title=page.description, stacked=True))
 
 
 def tip_ranking(tip_shifts, tongue_number):
@@ -397,12 +425,30 @@ def _rankings_differ(ranking, advice):
         "stiffnesses set (Eq. 15).</p>")
 
 
+def _tongues_of_cases(cases):
+    """``k12 x0.5 (tip 0.81 bar at 102.3 Hz), ...``: the lowest tip of
+    each case of a sensitivity study that has a tongue."""
+    found = []
+    for case in cases:
+        if case.tongues:
+            tip = min(case.tongues, key=lambda t: t.tip_p_f)
+            found.append(f"{case.parameter} x{case.factor:.3g} (tip "
+                         f"{tip.tip_p_f / PA_PER_BAR:.3g} bar at "
+                         f"{tip.tip_freq_hz:.1f} Hz)")
+    return ", ".join(found)
+
+
 def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
     """The sensitivity study (Fig. 17, 18): the ranking of the
     parameters by how far they move tongue ``focus``'s tip
     (:func:`tip_ranking`), why it may differ from ``judder advise``'s, and
     the figure. ``near_setting``: the focus is the tongue nearest the
-    configured dither."""
+    configured dither. Without a focus (no numbered tongue of the
+    nominal driveline up to the amplitudes searched) a sentence says so
+    and which variations bring a tongue below them; the figure is left
+    out when no case has a tongue."""
+    if focus is None:
+        return _no_focus_section(page, sens)
     return (_keep(
         "<h2>What moves the tongues: sensitivity</h2>"
         "<p>Each parameter halved and doubled (Fig. 17, 18):</p>"
@@ -420,6 +466,46 @@ def sensitivity_section(page, sens, focus, ranking, near_setting, advice):
                    f"{e['freq_percent']:.2f}",
                    "yes" if e["vanishes"] else "no") for e in ranking])
         + _rankings_differ(ranking, advice))
+
+
+def sensitivity_refused(error):
+    """The sensitivity section when the study was refused (``error``, its
+    message: a changed parameter set that leaves the mode of a hybrid
+    class)."""
+    return _keep("<h2>What moves the tongues: sensitivity</h2>"
+                 "<p><b>Not computed</b>: "
+                 f"{html.escape(in_flags(error))}.</p>")
+
+
+def _no_focus_section(page, sens):
+    """The sensitivity section when the nominal driveline has no
+    numbered tongue up to the amplitudes searched: nothing to rank."""
+    study = sens.study
+    top = study.nominal.boundaries.p_max / PA_PER_BAR
+    freqs = study.nominal.boundaries.freq_hz
+    where = f"{top:g} bar between {freqs.min():g} and {freqs.max():g} Hz"
+    names = ", ".join(dict.fromkeys(c.parameter for c in study.cases))
+    varied = _tongues_of_cases(study.cases)
+    nominal = ("no tongue of the nominal driveline reaches " + where
+               if not study.nominal.tongues else
+               "no tongue of the nominal driveline that reaches " + where
+               + " grows from a resonance of Fig. 14's numbering")
+    head = ("<h2>What moves the tongues: sensitivity</h2>"
+            f"<p>Each of {html.escape(names)} halved and doubled (Fig. 17, "
+            f"18): {nominal}, so there is no tongue tip to rank.")
+    if not varied and not study.nominal.tongues:
+        return _keep(head + " Nor does any tongue reach it with these "
+                     "variations: there is no boundary to draw.</p>")
+    # the panels of the parameters whose variations have a tongue
+    shown = {c.parameter for c in study.cases if c.tongues} or {
+        c.parameter for c in study.cases}
+    drawn = replace(sens, study=replace(
+        study, cases=[c for c in study.cases if c.parameter in shown]))
+    return _keep(
+        head + (f" With the variations, tongues reach it at {varied}."
+                if varied else "") + "</p>"
+        + page.figure("Sensitivity of the stability boundary (Fig. 17, 18)",
+                      drawn.figure(title=f"sensitivity, {page.description}")))
 
 
 def threshold_section(page, values, study):

@@ -20,8 +20,8 @@ from stability.monodromy import DEFAULT_METHOD
 from ..envelope import checkpoint_path
 from ._arguments import (force_option, method_option, min_growth_option,
                          model_options, pf_max_option, workers_option)
-from ._common import (BACKGROUND_AMPLITUDES, check_modes_up_to,
-                      checked_values)
+from ._common import (BACKGROUND_AMPLITUDES, checked_values,
+                      linearised_mode, mode_words)
 from ._model import model_title, parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
@@ -207,7 +207,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     from ..envelope import read_ranges, run_envelope
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_max_bar=p_max_bar, min_growth=min_growth)
-    check_modes_up_to(values, freq_hz, p_max_bar)
+    _refuse_modes(values)
     if not isinstance(ranges, Ranges):
         ranges = read_ranges(ranges, values)
     growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
@@ -221,6 +221,26 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
                           failures=failures, resumed=resumed,
                           seconds=time.perf_counter() - started,
                           checkpoint=checkpoint)
+
+
+def _refuse_modes(values):
+    """Refuse a hybrid Modelica class (:func:`linearised_mode`): its
+    linearisation holds in one mode, which would have to be checked at
+    each of the envelope's parameter sets (its samples, the corners of
+    the ranges, the refinement's) and each frequency (about 0.05 s a
+    check: 256 samples over 100 frequencies take 20 minutes), and was
+    checked at the nominal set only."""
+    mode = linearised_mode(values)
+    if mode:
+        raise JudderError(
+            f"{values.model} is {mode_words(mode)}, checked at the "
+            "nominal parameters only: each of the envelope's parameter "
+            "sets (its samples, the corners of the ranges and those the "
+            "refinement searches) would need it checked at every "
+            "frequency, about 0.05 s a check, so the envelope is not run "
+            "on a class with modes; allowed: judder sensitivity, which "
+            "checks the mode at each parameter set it uses, or a class "
+            "without Integer and Boolean modes")
 
 
 def _bar_or_none(values):

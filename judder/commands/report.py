@@ -35,6 +35,7 @@ from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 from ._arguments import (decimal_option, force_option, method_option,
                          min_growth_option, model_options, refuse_decimal,
                          workers_option)
+from ._common import linearised_mode, mode_words
 from ._flags import in_flags
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written
@@ -42,7 +43,8 @@ from ._report_sections import (Page, advice_section, chart_figure,
                                driveline_section,
                                engagement_section, fit_section, focus_tongue,
                                kinds_section, map_section,
-                               sensitivity_section, setting_section,
+                               sensitivity_refused, sensitivity_section,
+                               setting_section,
                                summary_section, threshold_section,
                                tip_ranking)
 from ._values import FREQ, PF, Grid, Listed
@@ -314,6 +316,11 @@ def report(parameters=None, changes=None, description=None,
     map_pf = np.linspace(0, p_max_bar, 121) if map_pf is None else map_pf
     page = Page(description or values.model)
     data = {"model": values.model, "description": page.description}
+    mode = linearised_mode(values)
+    if mode:
+        # as judder map says it: the studies over amplitudes hold the mode
+        # at each frequency's largest amplitude
+        data.update(mode=mode, mode_checked_at_p_f_bar=float(p_max_bar))
     step = _Steps(7 + bool(bench), progress)
 
     # the driveline (its table closes the report, as an appendix)
@@ -358,21 +365,30 @@ def report(parameters=None, changes=None, description=None,
                                          min_growth))
     if point is not None:
         page.sections.append(setting_section(page, point, freq_hz, p_f_bar))
-    page.sections.append(map_section(page, stability, data["tongues"],
-                                     min_growth, p_max_bar))
+    page.sections.append(map_section(
+        page, stability, data["tongues"], min_growth, p_max_bar,
+        (grid_freq.min(), grid_freq.max()), mode_words(mode, p_max_bar)))
     page.sections.append(kinds_section(page, _inside_each_kind(
         found.tongues, values, p_max_bar, method)))
     if advice is not None:
         page.sections.append(advice_section(page, advice))
 
-    sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
-                       method=method, workers=workers)
+    try:
+        sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
+                           method=method, workers=workers)
+    except JudderError as error:
+        # a changed set that leaves a hybrid class's mode: the other
+        # sections stand, this one says why it is missing
+        sens = None
+        data["sensitivity_error"] = str(error)
+        page.sections.append(sensitivity_refused(str(error)))
     step()
-    focus = focus_tongue(found.tongues, freq_hz)
-    ranking = tip_ranking(sens.tip_shifts, focus)
-    data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
-    page.sections.append(sensitivity_section(page, sens, focus, ranking,
-                                             freq_hz is not None, advice))
+    if sens is not None:
+        focus = focus_tongue(found.tongues, freq_hz)
+        ranking = tip_ranking(sens.tip_shifts, focus)
+        data["sensitivity_ranking"] = {"tongue": focus, "ranking": ranking}
+        page.sections.append(sensitivity_section(
+            page, sens, focus, ranking, freq_hz is not None, advice))
 
     # without dither (Fig. 19): a study of the paper's chains
     if paper:

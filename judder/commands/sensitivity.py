@@ -9,7 +9,8 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          pf_max_option, workers_option)
-from ._common import check_modes_up_to, checked_values, timed
+from ._common import (check_modes_of_changes, check_modes_up_to,
+                      checked_values, timed)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_sensitivity, check_work
@@ -151,6 +152,14 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
             raise JudderError(f"--params: unknown parameter {name!r} for the "
                               f"{nominal.model} model; allowed names: "
                               f"{', '.join(nominal.specs)}")
+    # each changed set in the nominal mode, held up to p_max_bar, as the
+    # nominal one (the study's own values: the factors of the nominal
+    # values, or the values given)
+    check_modes_of_changes(nominal, [
+        {name: float(value)} for name in names for value in (
+            values if values is not None else
+            [nominal[name] * factor for factor in factors])],
+        freq_hz, p_max_bar)
     study, seconds = timed(
         sensitivity_study, nominal, names, freq_hz, p_max_bar * PA_PER_BAR,
         factors=factors, values=values, method=method, workers=workers,

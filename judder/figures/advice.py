@@ -3,13 +3,14 @@ map of the advised one, wide enough to show where its tongues went."""
 
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
+import numpy as np
 from matplotlib.patches import Rectangle
 from matplotlib.transforms import offset_copy
 
 from infra.plotstyle import figure_title, settle_labels
 from infra.units import PA_PER_BAR
-from stability.plots import (drawn_kinds, kind_handles, plot_boundaries,
-                             plot_map)
+from stability.plots import (drawn_kinds, draws_instability, kind_handles,
+                             plot_boundaries, plot_map)
 
 __all__ = ["advice_figure"]
 
@@ -84,13 +85,18 @@ def _advised_map(advice, ax):
                                fill=False, edgecolor="#2ca02c",
                                linewidth=1.6, zorder=5))
         ax.set_xlim(view["map"].freq_hz[0], view["map"].freq_hz[-1])
-        # only the kinds the advised design's map draws
+        # only the kinds the advised design's map draws, and its slow
+        # growth and the given design's boundaries where there are any
+        unstable = draws_instability(view["map"], view["boundaries"])
         handles = kind_handles(drawn_kinds(view["map"], view["boundaries"]),
-                               lines=True, min_growth=advice.min_growth)
-        handles += [Line2D([], [], label="given design's boundaries",
-                           **GIVEN_STYLE),
-                    Rectangle((0, 0), 1, 1, fill=False, edgecolor="#2ca02c",
-                              linewidth=1.6, label="operating range")]
+                               lines=True, min_growth=advice.min_growth
+                               if unstable else None)
+        if np.isfinite(view["given_boundaries"].amplitude).any():
+            handles.append(Line2D([], [], label="given design's boundaries",
+                                  **GIVEN_STYLE))
+        handles.append(Rectangle((0, 0), 1, 1, fill=False,
+                                 edgecolor="#2ca02c", linewidth=1.6,
+                                 label="operating range"))
         ax.legend(handles=handles, fontsize=7, loc="upper left",
                   bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     # above the tongue numbers that head the axes

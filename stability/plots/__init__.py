@@ -20,15 +20,16 @@ call ``plt.show()``. Importing this package imports matplotlib;
 from .boundaries import boundary_curve, number_tips, plot_boundaries
 from .envelope import envelope_figure, plot_envelope
 from .fit import plot_fit
-from .maps import (drawn_kinds, kind_handles, kind_legend, map_figure,
-                   plot_growth_rate, plot_map)
+from .maps import (drawn_kinds, draws_instability, kind_handles,
+                   kind_legend, map_figure, plot_growth_rate, plot_map)
 from .multipliers import multipliers_figure, plot_multipliers
 from .sensitivity import sensitivity_figure
 from .threshold import plot_threshold
 from .tongues import tongues_figure
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
-           "kind_handles", "drawn_kinds", "boundary_curve", "plot_boundaries",
+           "kind_handles", "drawn_kinds", "draws_instability",
+           "boundary_curve", "plot_boundaries",
            "number_tips", "tongues_figure", "sensitivity_figure",
            "plot_threshold", "plot_fit", "plot_multipliers",
            "multipliers_figure", "plot_envelope", "envelope_figure"]

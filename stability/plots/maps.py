@@ -19,7 +19,7 @@ from ..kinds import KINDS
 from .boundaries import boundary_at, plot_boundaries
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
-           "kind_handles", "drawn_kinds"]
+           "kind_handles", "drawn_kinds", "draws_instability"]
 
 
 def _edges(centres):
@@ -129,9 +129,13 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
                                         m.freq_hz.min(), m.freq_hz.max())
     dither_axes(ax)
     if legend:
-        artists.append(kind_legend(ax, kinds=drawn_kinds(m, boundaries),
-                                   lines=boundaries is not None,
-                                   min_growth=min_growth))
+        # the grey of slow growth and the judder line only where
+        # something is unstable: else the legend lists what is not there
+        artists.append(kind_legend(
+            ax, kinds=drawn_kinds(m, boundaries),
+            lines=boundaries is not None,
+            min_growth=min_growth if draws_instability(m, boundaries)
+            else None))
     return artists
 
 
@@ -243,6 +247,14 @@ def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
         _, ax = plt.subplots()
     m = stability_map
     rate = np.where(m.kind > 0, m.growth_rate, np.nan)
+    if not draws_instability(m, boundaries):
+        # nothing to colour: a colour bar around 0 and an empty panel
+        # would say nothing; the note says how stable it is
+        dither_axes(ax)
+        _set_extent(ax, m, boundaries)
+        return [_note(ax, "no unstable point: the leading multiplier's "
+                      "growth rate is\n" + _growth_span(m.growth_rate)
+                      + " 1/s (decays)")]
     if boundaries is not None and boundaries.min_growth == 0 \
             and len(m.freq_hz) > 1 and len(m.p_f) > 1:
         extent, index, inside, _ = _fine_grid(m, boundaries, tongues)
@@ -261,6 +273,43 @@ def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
     return [mesh, bar]
 
 
+def draws_instability(m, boundaries=None):
+    """Whether a map draws an instability: an unstable point, or an
+    exact boundary below its top (a tongue); legends list the shading of
+    slow growth and the judder line only then."""
+    return bool((m.kind > 0).any()) or (
+        boundaries is not None and bool(np.isfinite(
+            boundaries.amplitude).any()))
+
+
+def _top_bar(m, boundaries):
+    """The largest amplitude of the map or its boundaries, bar."""
+    top = float(np.max(m.p_f)) / PA_PER_BAR
+    return top if boundaries is None else max(
+        top, boundaries.p_max / PA_PER_BAR)
+
+
+def _set_extent(ax, m, boundaries):
+    """The axes over the map's frequencies and 0 to its top amplitude."""
+    edges = _edges(m.freq_hz)
+    ax.set_xlim(edges[0], edges[-1])
+    ax.set_ylim(0, _top_bar(m, boundaries) or 1.0)
+
+
+def _growth_span(rate):
+    """``-0.0625`` or ``-0.4 to -0.0625``: the range of the finite growth
+    rates (1/s), to 3 digits."""
+    low, high = np.nanmin(rate), np.nanmax(rate)
+    return f"{high:.3g}" if f"{low:.3g}" == f"{high:.3g}" else \
+        f"{low:.3g} to {high:.3g}"
+
+
+def _note(ax, text):
+    """``text`` in the middle of an axes that has nothing else to show."""
+    return ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center",
+                   va="center", fontsize=9, color="#333333", wrap=True)
+
+
 def map_figure(stability_map, title=None, tongues=None, boundaries=None,
                min_growth=None, stacked=False):
     """Figure with the kinds (left, with the exact boundaries and tongue
@@ -271,6 +320,11 @@ def map_figure(stability_map, title=None, tongues=None, boundaries=None,
         figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
              min_growth=min_growth)
+    if not draws_instability(stability_map, boundaries):
+        _set_extent(left, stability_map, boundaries)
+        _note(left, "stable at every point: every multiplier inside the "
+              "unit circle\n(no tongue reaches "
+              f"{_top_bar(stability_map, boundaries):g} bar)")
     plot_growth_rate(stability_map, ax=right, boundaries=boundaries,
                      tongues=tongues or ())
     if boundaries is not None:

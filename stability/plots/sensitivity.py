@@ -24,12 +24,14 @@ def sensitivity_figure(study, title=None, params=None):
 
     Each curve is the lowest boundary with the tongue tips inserted and
     the tongues closed up to ``p_max``; the cases differ in colour
-    (cividis) and line style. ``params`` (the nominal set) gives the
-    units, and adds the damping factor zeta_12 of each case (Eq. 16,
-    ``damper_zeta``) to the labels of c12.
+    (cividis) and line style, two panels a row. ``params`` (the nominal
+    set) gives the units, and adds the damping factor zeta_12 of each
+    case (Eq. 16, ``damper_zeta``) to the labels of c12.
     """
     names = list(dict.fromkeys(c.parameter for c in study.cases))
-    columns = min(2 if len(names) in (2, 4, 8) else 3, len(names))
+    # two columns at most: each panel's legend stands on its right, and
+    # three columns narrowed to a page left the panels a sliver wide
+    columns = min(2, len(names))
     rows = -(-len(names) // columns)
     fig = plt.figure(figsize=(5.2 * columns, 3.3 * rows + 0.8),
                      layout="constrained")
