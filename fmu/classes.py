@@ -13,7 +13,7 @@ import re
 from .errors import FrontEndError
 
 __all__ = ["blank", "class_source", "class_spans", "find_class",
-           "modelica_path"]
+           "library_folders", "modelica_path"]
 
 
 def class_source(library, name):
@@ -37,6 +37,17 @@ def class_source(library, name):
                 return candidate
     raise FrontEndError(f"{name}: no file {library.joinpath(*parts)}.mo, "
                         f"nor a package file holding it, in {library}")
+
+
+def library_folders(library):
+    """The user's library folders as a list of paths: ``library`` is None
+    (none), one folder (a ``str`` or path) or a sequence of them (the
+    command line's repeated ``--library``), searched in that order."""
+    if library is None:
+        return []
+    if isinstance(library, (str, os.PathLike)):
+        return [Path(library)]
+    return [Path(folder) for folder in library]
 
 
 def modelica_path(libraries=()):

@@ -41,6 +41,7 @@ import casadi
 import numpy as np
 
 from fmu.backend import to_ode
+from fmu.classes import library_folders
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
 from fmu.precheck import refuse_undeclared, refuse_unsupported
@@ -86,12 +87,15 @@ def _source(class_name, roots):
 
 
 def _roots(library):
-    """The library folders of a class: ``library``, the project's and
+    """The library folders of a class: ``library`` (one folder or
+    several, :func:`fmu.classes.library_folders`), the project's and
     those of ``MODELICAPATH``."""
-    if library is not None and not Path(library).is_dir():
-        raise ModelicaError(f"library = {library!r} is not a folder")
-    return modelica_path(([Path(library)] if library is not None else [])
-                         + [LIBRARY])
+    folders = library_folders(library)
+    for folder in folders:
+        if not folder.is_dir():
+            raise ModelicaError(f"library = {str(folder)!r} is not a "
+                                "folder")
+    return modelica_path(folders + [LIBRARY])
 
 
 @lru_cache(maxsize=16)
@@ -135,8 +139,9 @@ def compile_class(class_name, library=None, mode=None):
     ----------
     class_name : str
         Full name, e.g. ``Judder.Examples.Driveline4DOF``.
-    library : str or None
-        Folder holding the user's top-level package; the project's library
+    library : str, tuple of str or None
+        Folder (or folders, searched in order) holding the user's
+        top-level packages; the project's library
         (:data:`LIBRARY`) and the folders of ``MODELICAPATH`` (the
         Modelica Standard Library, say) follow it on the path, so a
         user's model can use ``Judder.Components`` and
@@ -305,7 +310,8 @@ class ModelicaParameters(NamedParameters):
     Attributes
     ----------
     class_name : str
-    library : str or None
+    library : str, tuple of str or None
+        As :func:`compile_class` takes it.
     values : dict
         Every tunable parameter, SI.
     amplitude, frequency : str
@@ -417,8 +423,8 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
     ----------
     class_name : str
         Full Modelica class name.
-    library : str or None
-        Folder of the user's package (see :func:`compile_class`).
+    library : str, tuple of str or None
+        Folder(s) of the user's packages (see :func:`compile_class`).
     values : dict, optional
         Parameters by Modelica name (SI); the others keep their defaults.
     amplitude, frequency : str

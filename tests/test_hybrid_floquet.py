@@ -190,6 +190,27 @@ def test_check_and_floquet_say_the_mode_they_used(msl_path):
             study()
 
 
+def test_every_library_given_is_searched_in_order():
+    """`--library` is repeatable as `python -m fmu`'s: the test models and
+    the MSL given as two folders (no MODELICAPATH) find the class and the
+    MSL classes it uses; a later folder is not dropped for the first (it
+    was: the last --library alone was searched, the class not found).
+    A folder that does not exist is named."""
+    env = {k: v for k, v in os.environ.items() if k != "MODELICAPATH"}
+    command = [sys.executable, "-m", "judder", "eig", "--modelica", CLASS,
+               "--library", str(MODELS), "--library", str(MSL)]
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT,
+                          env=env)
+    assert done.returncode == 0, done.stderr
+    assert "linearised in the mode clutch.mode = 1 (clutch.Forward)" in \
+        done.stdout
+    missing = ROOT / "tests" / "no such library"
+    done = subprocess.run(command[:-1] + [str(missing)], capture_output=True,
+                          text=True, cwd=ROOT, env=env)
+    assert done.returncode == 2
+    assert f"library = '{missing}' is not a folder" in done.stderr
+
+
 def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):
     """On the linearisation path MSL's Clutch is refused before
     flattening at its external table object (rumoca 0.10.2 miscounts

@@ -71,9 +71,11 @@ def own_driveline_options(parser, fmu=True):
                        help="full class name, e.g. "
                             "Judder.Examples.Driveline5DOFGeared, compiled "
                             "by the project's compiler")
-    group.add_argument("--library", metavar="DIR",
-                       help="folder holding your own top-level package "
-                            "(the Judder library is always available)")
+    group.add_argument("--library", metavar="DIR", action="append",
+                       help="folder holding your own top-level package; "
+                            "repeatable, searched in the order given, "
+                            "before MODELICAPATH (the Judder library is "
+                            "always available)")
     # a command that cannot take an FMU still reads --fmu, to refuse it
     # with its reason before reading the file (`refused_fmu`, with the
     # command's name), but does not offer it in its --help

@@ -85,11 +85,14 @@ def own_driveline(args, path=None, option="--param-file", dithered=True):
                               f"--{name.replace('_', '-')}; give one")
     names = {"amplitude": args.dither_amplitude,
              "frequency": args.dither_frequency}
+    # every --library, in order (a tuple: the compiled class is cached
+    # per class and library)
+    library = tuple(args.library) if args.library else None
     if modelica and dithered:
         from sources.modelica import check_dither_declared
-        check_dither_declared(modelica, args.library, **names)
+        check_dither_declared(modelica, library, **names)
     base = (FmuParameters(fmu, **names) if fmu else
-            ModelicaParameters(modelica, args.library, **names))
+            ModelicaParameters(modelica, library, **names))
     if path is None:
         return base
     return base.replace(**_file_values(path, option, base.model,

@@ -8,6 +8,7 @@ Modelica library or the compiler.
 
 from pathlib import Path
 
+from fmu.classes import library_folders
 from infra.errors import JudderError
 
 __all__ = ["ensure_fmu", "FMU_DIR", "LIBRARY"]
@@ -19,8 +20,8 @@ FMU_DIR = ROOT / "build" / "fmu"
 
 def _newest_source(library=None):
     sources = list(LIBRARY.rglob("*.mo")) + list(LIBRARY.rglob("package.order"))
-    if library is not None:
-        sources += list(Path(library).rglob("*.mo"))
+    for folder in library_folders(library):
+        sources += list(folder.rglob("*.mo"))
     sources += list((ROOT / "fmu").rglob("*.py")) + list(
         (ROOT / "fmu" / "c").glob("*.[ch]"))
     return max(p.stat().st_mtime for p in sources)
@@ -36,16 +37,17 @@ def ensure_fmu(model_class, version="2.0", folder=None, library=None):
     version : {'2.0', '3.0'}
     folder : path, optional
         Where FMUs live (default ``build/fmu`` of the repository).
-    library : path, optional
-        A user's package folder searched before the project's library
-        (FMUs of its classes go to ``<folder>/user``).
+    library : path or sequence of paths, optional
+        A user's package folder (or folders, in order) searched before
+        the project's library (FMUs of its classes go to
+        ``<folder>/user``).
     """
     from fmu.build import build_fmu
     from fmu.frontend import FrontEndError
     folder = Path(folder or FMU_DIR) / ("user" if library else "")
     suffix = "" if version == "2.0" else "_fmi3"
     target = folder / f"{model_class.rsplit('.', 1)[-1]}{suffix}.fmu"
-    roots = ([Path(library)] if library else []) + [LIBRARY]
+    roots = library_folders(library) + [LIBRARY]
     source = next((root.joinpath(*model_class.split(".")).with_suffix(".mo")
                    for root in roots if root.joinpath(
                        *model_class.split(".")).with_suffix(".mo").exists()),
