@@ -998,6 +998,36 @@ def _write_run_mf4(path, speed, pressure, downstream):
     mdf.save(path, overwrite=True)
 
 
+def test_a_given_frequency_the_pressure_contradicts_is_warned_of(tmp_path,
+                                                                capsys):
+    """An index that gives the frequency and not the amplitude: the
+    pressure's own frequency (fitted free, 103 Hz) is compared with the one
+    given; 90 Hz (13 %, thousands of standard uncertainties off) is warned
+    of naming the file and the channel, 103 Hz is not. (The amplitude is
+    then fitted at the frequency given, as before: the warning is what
+    tells the engineer the index is wrong.)"""
+    from judder.cli import main
+    channels = _engagement(lambda t: 0 * t, 103.0, 0.2)
+    for name in ("wrong", "right"):
+        _write_run_mf4(tmp_path / f"{name}.mf4", *channels)
+    (tmp_path / "runs.csv").write_text(
+        "file,freq_hz,p_f_bar\nwrong.mf4,90,\nright.mf4,103,\n")
+    assert main(["chart", "--index", str(tmp_path / "runs.csv"),
+                 "--channel", "upstream_speed=EngSpd_up", "--channel",
+                 "pressure=PressEVEN", "--channel", "downstream_speed=OutSpd",
+                 "--workers", "1", "--json"]) == 0
+    wrong, right = json.loads(capsys.readouterr().out)["runs"]
+    assert right["dither_estimate"]["warnings"] == []
+    words = [w for w in wrong["dither_estimate"]["warnings"]
+             if "the frequency given" in w]
+    assert len(words) == 1
+    assert words[0].startswith(
+        f"{tmp_path / 'wrong.mf4'}: pressure channel 'PressEVEN': dither "
+        "estimated from it: the frequency given, 90 Hz, and the pressure's, "
+        "103 ")
+    assert "differ by 14%" in words[0]
+
+
 def test_a_given_dither_value_is_told_from_the_estimated_one(tmp_path,
                                                              capsys):
     """An index that gives the amplitude and not the frequency (or the

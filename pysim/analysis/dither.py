@@ -339,9 +339,10 @@ def disagreement(quantity, given, estimate, std, unit):
     if not (difference > DISAGREEMENT_SHARE * abs(given)
             and stds > DISAGREEMENT_STDS):
         return None
+    how_many = f"{stds:.3g}" if stds < 1000 else "more than 1000"
     return (f"the {quantity} given, {given:.4g} {unit}, and the "
             f"pressure's, {estimate:.3g} ± {std:.2g} {unit} (standard "
             f"uncertainty), differ by {difference / abs(given):.0%} "
-            f"({stds:.3g} standard uncertainties): the run is read at the "
+            f"({how_many} standard uncertainties): the run is read at the "
             f"{quantity} given; check that value, and the pressure channel "
             "and its unit")

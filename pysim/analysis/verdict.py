@@ -470,6 +470,20 @@ def estimate_dither(time, pressure, window, freq_hz=None):
                         bracket_hz=(peak - freq[1], peak + freq[1]))
 
 
+def _given_frequency_contradicted(pressure, window, freq_hz):
+    """Words where the pressure's own frequency (:func:`estimate_dither`
+    with the frequency free) contradicts the one given
+    (:func:`pysim.analysis.dither.disagreement`); None where they agree,
+    or where the sampling cannot tell the frequency from its aliases (the
+    estimate's own warnings)."""
+    own = estimate_dither(np.asarray(pressure[0], dtype=float),
+                          np.asarray(pressure[1], dtype=float), window)
+    if own.warnings:
+        return None
+    return disagreement("frequency", freq_hz, own.freq_hz, own.freq_std_hz,
+                        "Hz")
+
+
 def _bandwidth(freq_hz):
     return np.minimum(_BANDWIDTH_SHARE * freq_hz, _MAX_BANDWIDTH_HZ)
 
@@ -890,16 +904,18 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
         dither = estimate_dither(np.asarray(pressure[0], dtype=float),
                                  np.asarray(pressure[1], dtype=float),
                                  window, freq_hz)
-        freq_hz = dither.freq_hz if freq_hz is None else freq_hz
         if p_f_bar is None:
             p_f_bar = dither.amplitude / PA_PER_BAR
+            contradicted = None if freq_hz is None else \
+                _given_frequency_contradicted(pressure, window, freq_hz)
         else:
             contradicted = disagreement(
                 "amplitude", p_f_bar, dither.amplitude / PA_PER_BAR,
                 dither.amplitude_std / PA_PER_BAR, "bar")
-            if contradicted:
-                dither = dataclasses.replace(
-                    dither, warnings=dither.warnings + (contradicted,))
+        freq_hz = dither.freq_hz if freq_hz is None else freq_hz
+        if contradicted:
+            dither = dataclasses.replace(
+                dither, warnings=dither.warnings + (contradicted,))
     angle = _angle(t_speed, w)
     t = np.arange(t_speed[0], t_speed[-1], np.median(np.diff(t_speed)))
     y = angle(t, 1) * RPM_PER_RAD_S
