@@ -887,6 +887,12 @@ def _whens(storage, convert, where, variables):
         relation = node["relation"]
         expression = storage["relations"][relation]["relation"]["expression"]
         convert(expression)   # records the relation
+        if relation not in convert.relations:
+            raise FrontEndError(f"{convert.where}: when-conditions on "
+                                "Integer or Boolean variables (n == 2) are "
+                                "not supported by the FMU back end; "
+                                "allowed: one relation of Real variables "
+                                "(h < 0)")
         convert.pre_is_state = True
         try:
             value = convert(body["value"])
