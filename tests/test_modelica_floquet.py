@@ -295,7 +295,12 @@ def test_cli_modelica_keeps_the_json_fields():
     (["--modelica", "Judder.Examples.Driveline4DOF", "--set", "k99=1"],
      "'k99' is not a tunable parameter"),
     (["--modelica", "Judder.Examples.Driveline4DOF", "--preset",
-      "paper-4dof"], "replaces --preset")])
+      "paper-4dof"], "replaces --preset"),
+    # given without a class, they were ignored and the preset's map drawn
+    (["--library", "examples/modelica"], "--library is for a --modelica "
+     "class; allowed: no --library with a preset"),
+    (["--dither-frequency", "f"], "--dither-frequency is for a --modelica "
+     "class or an --fmu")])
 def test_cli_modelica_refuses_in_one_line(args, message):
     proc = _cli("floquet", "--freq", "100", "--pf", "0.1", *args)
     assert proc.returncode == 2
