@@ -540,31 +540,34 @@ def package_version(model_name, roots):
 def _flatten(path, model_name, roots, use_cache=True, hybrid=False,
              fmu=False):
     """rumoca's flat model of ``model_name``, from the cache
-    (:mod:`fmu.cache`) while no source under ``roots`` has changed."""
+    (:mod:`fmu.cache`) while no source under ``roots`` has changed.
+
+    The source checks run before the cache is read: the flat model
+    stored does not depend on ``hybrid`` and ``fmu``, the refusals do (a
+    class flattened for ``--modelica``, which reads ``initial()`` of
+    Reals in one mode, is refused for an FMU all the same)."""
     import rumoca
     from . import cache
+    from .limits import check_source_arrays
+    from .precheck import refuse_unsupported
+    check_source_arrays(path, check_source_text(path))
+    refuse_unsupported(path, model_name, roots, hybrid, fmu)
     if not use_cache:
         return _flatten_with_rumoca(path, model_name, roots,
-                                    use_cache=False, hybrid=hybrid, fmu=fmu)
+                                    use_cache=False)
     key = cache.cache_key(path, model_name, roots, rumoca.version())
     flat = cache.load(key)
     if flat is None:
-        flat = _flatten_with_rumoca(path, model_name, roots, hybrid=hybrid,
-                                    fmu=fmu)
+        flat = _flatten_with_rumoca(path, model_name, roots)
         cache.store(key, flat)
     return flat
 
 
-def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
-                         hybrid=False, fmu=False):
+def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
     becomes a :class:`FrontEndError`, never the end of this process."""
-    from .limits import check_source_arrays
-    from .precheck import refuse_unsupported
     from .rumoca_child import flatten_isolated
-    check_source_arrays(path, check_source_text(path))
-    refuse_unsupported(path, model_name, roots, hybrid, fmu)
     try:
         return flatten_isolated(path, model_name, roots)
     except FrontEndError as exc:
@@ -887,6 +890,12 @@ def _whens(storage, convert, where, variables):
         relation = node["relation"]
         expression = storage["relations"][relation]["relation"]["expression"]
         convert(expression)   # records the relation
+        if relation not in convert.relations:
+            raise FrontEndError(f"{convert.where}: when-conditions on "
+                                "Integer or Boolean variables (n == 2) are "
+                                "not supported by the FMU back end; "
+                                "allowed: one relation of Real variables "
+                                "(h < 0)")
         convert.pre_is_state = True
         try:
             value = convert(body["value"])

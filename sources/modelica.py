@@ -87,14 +87,18 @@ def _source(class_name, roots):
 
 
 def _roots(library):
-    """The library folders of a class: ``library`` (one folder or
-    several, :func:`fmu.classes.library_folders`), the project's and
+    """The library roots of a class: ``library`` (one folder or
+    several, :func:`fmu.classes.library_folders`; a root may be a ``.mo``
+    file holding a whole package, as for :mod:`fmu`), the project's and
     those of ``MODELICAPATH``."""
     folders = library_folders(library)
     for folder in folders:
-        if not folder.is_dir():
-            raise ModelicaError(f"library = {str(folder)!r} is not a "
-                                "folder")
+        if not (folder.is_dir() or folder.suffix == ".mo"
+                and folder.is_file()):
+            raise ModelicaError(f"`library` {str(folder)!r} is neither a "
+                                "folder nor a .mo file; allowed: a folder "
+                                "holding Modelica packages, or one .mo file "
+                                "holding a whole package")
     return modelica_path(folders + [LIBRARY])
 
 

@@ -771,6 +771,24 @@ def test_an_ambiguous_index_is_refused_naming_the_cell(tmp_path):
     assert source.settings["engine_rpm"] == 1.5
 
 
+@pytest.mark.parametrize("row, words", [
+    # a negative frequency stopped the chart with an internal error (the
+    # run's band-pass filter); an empty file was read as the folder '.'
+    ("run01.csv;-210;0,4", "line 3: column 'freq_hz' = -210 is not "
+     "allowed; allowed: a dither frequency > 0 Hz"),
+    ("run01.csv;0;0,4", "column 'freq_hz' = 0 is not allowed"),
+    ("run01.csv;210;-0,4", "line 3: column 'p_f_bar' = -0.4 is not "
+     "allowed; allowed: a dither amplitude >= 0 bar"),
+    (";210;0,4", "line 3: column 'file' is empty")])
+def test_an_index_row_no_bench_runs_is_refused(tmp_path, row, words):
+    from pysim.bench_data.charts import sources_from_index
+    index = tmp_path / "runs.csv"
+    index.write_text(f"sep=;\nfile;freq_hz;p_f_bar\n{row}\n")
+    with pytest.raises(JudderError) as info:
+        sources_from_index(index)
+    assert str(index) in str(info.value) and words in str(info.value)
+
+
 def test_chart_reads_an_index_as_written_or_with_the_decimal_given(
         tmp_path, capsys):
     """An index beside the example run (written with decimal points):

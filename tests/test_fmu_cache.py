@@ -58,3 +58,26 @@ def test_cache_off(counted, monkeypatch):
     _decay(CORPUS)
     _decay(CORPUS)
     assert counted == ["Decay", "Decay"]
+
+
+def test_a_cached_flat_model_is_still_checked_for_an_fmu(counted, tmp_path):
+    # initial() in a Real equation is read in one mode (--modelica) but
+    # not compiled into an FMU; flattened and cached for the first, the
+    # class was refused for the second only by the back end, without the
+    # source check's place in the model and MSL replacement (MSL's
+    # ElastoBacklash: 'initial() in a continuous equation')
+    source = tmp_path / "InitialReal.mo"
+    source.write_text("model InitialReal\n"
+                      "  Real x(start = 1, fixed = true);\n"
+                      "equation\n"
+                      "  der(x) = if initial() then 0 else -x;\n"
+                      "end InitialReal;\n")
+    frontend.load_flat_model(source, "InitialReal", [tmp_path], hybrid=True)
+    assert counted == ["InitialReal"]
+    with pytest.raises(frontend.FrontEndError,
+                       match=r"InitialReal.mo:4: initial\(\) outside the "
+                             r"equations of Integer and Boolean variables.*"
+                             r"\(found before flattening\)"):
+        frontend.load_flat_model(source, "InitialReal", [tmp_path],
+                                 hybrid=True, fmu=True)
+    assert counted == ["InitialReal"]

@@ -41,6 +41,8 @@ REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
     ("WhenSample", "clocked equations are not supported", 5),
     ("WhenAnd", "when-conditions other than one relation", 8),
+    ("WhenOnInteger", "when-conditions on Integer or Boolean variables "
+     "(n == 2) are not supported", 8),
     ("NonlinearInitial", "not linear in the states they determine (x)", 4),
     ("DiscreteCounter", "Integer or Boolean variables assigned in "
      "when-clauses are not supported", 7),

@@ -208,7 +208,8 @@ def test_every_library_given_is_searched_in_order():
     done = subprocess.run(command[:-1] + [str(missing)], capture_output=True,
                           text=True, cwd=ROOT, env=env)
     assert done.returncode == 2
-    assert f"library = '{missing}' is not a folder" in done.stderr
+    assert f"--library '{missing}' is neither a folder nor a .mo file" \
+        in done.stderr
 
 
 def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):

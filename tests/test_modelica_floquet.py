@@ -248,6 +248,27 @@ def test_user_library_and_bad_names(tmp_path):
         linearize("MyLib.Nothing", library=library)
 
 
+def test_a_library_of_one_file(tmp_path):
+    # --library MyLib.mo, one file holding the whole package, as python
+    # -m fmu takes it: it was refused ("is not a folder")
+    folder = _user_model(
+        tmp_path, "(1 + p_f*cos(2*3.141592653589793*f_dither*time))")
+    package = tmp_path / "MyLib"
+    single = tmp_path / "MyLib.mo"
+    single.write_text(
+        'package MyLib "A user library"\n'
+        + (package / "Oscillator.mo").read_text().replace(
+            "within MyLib;\n", "") + "end MyLib;\n")
+    linear = linearize("MyLib.Oscillator", library=str(single),
+                       values={"p_f": 0.5})
+    assert_allclose(linear.A0, [[0, 1], [-100, -1]])
+    assert_allclose(linear.B, [[0, 0], [0, -1]])
+    with pytest.raises(ModelicaError, match=r"`library` '.*MyLib/package"
+                       r"\.order' is neither a folder nor a \.mo file"):
+        linearize("MyLib.Oscillator",
+                  library=(folder, str(package / "package.order")))
+
+
 def _cli(*args):
     import subprocess
     import sys
@@ -274,7 +295,12 @@ def test_cli_modelica_keeps_the_json_fields():
     (["--modelica", "Judder.Examples.Driveline4DOF", "--set", "k99=1"],
      "'k99' is not a tunable parameter"),
     (["--modelica", "Judder.Examples.Driveline4DOF", "--preset",
-      "paper-4dof"], "replaces --preset")])
+      "paper-4dof"], "replaces --preset"),
+    # given without a class, they were ignored and the preset's map drawn
+    (["--library", "examples/modelica"], "--library is for a --modelica "
+     "class; allowed: no --library with a preset"),
+    (["--dither-frequency", "f"], "--dither-frequency is for a --modelica "
+     "class or an --fmu")])
 def test_cli_modelica_refuses_in_one_line(args, message):
     proc = _cli("floquet", "--freq", "100", "--pf", "0.1", *args)
     assert proc.returncode == 2

@@ -72,7 +72,8 @@ def own_driveline_options(parser, fmu=True):
                             "Judder.Examples.Driveline5DOFGeared, compiled "
                             "by the project's compiler")
     group.add_argument("--library", metavar="DIR", action="append",
-                       help="folder holding your own top-level package; "
+                       help="folder holding your own top-level package, "
+                            "or one .mo file holding a whole package; "
                             "repeatable, searched in the order given, "
                             "before MODELICAPATH (the Judder library is "
                             "always available)")

@@ -78,6 +78,20 @@ def own_driveline(args, path=None, option="--param-file", dithered=True):
         flag, given = "--modelica", modelica
         replaced = ("model", "preset")
     else:
+        # options of a class or an FMU given without one were ignored
+        for flag, given, owner in (
+                ("--library", getattr(args, "library", None),
+                 "a --modelica class"),
+                ("--dither-amplitude",
+                 getattr(args, "dither_amplitude", "p_f") != "p_f",
+                 "a --modelica class or an --fmu"),
+                ("--dither-frequency",
+                 getattr(args, "dither_frequency", "f_dither")
+                 != "f_dither", "a --modelica class or an --fmu")):
+            if given:
+                raise JudderError(f"{flag} is for {owner}; allowed: no "
+                                  f"{flag} with a preset or a parameter "
+                                  "file")
         return None
     for name in replaced:
         if getattr(args, name, None) is not None:

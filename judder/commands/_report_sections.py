@@ -583,7 +583,9 @@ def fit_section(bench, names, values, source, fitted, error):
         error = in_options(str(error), {"names": "`fit_names`",
                                         "scatter": "`scatter` of judder fit"})
         status = f"no fit: {error}"
-        return (head + f"<p><b>No fit is shown</b>: {html.escape(error)}"
+        # the page, as the sensitivity section's, in the options typed
+        return (head + "<p><b>No fit is shown</b>: "
+                f"{html.escape(in_flags(error))}"
                 ".</p>", {"fit": None, "fit_determined": False,
                           "fit_status": status, "fit_problems": [str(error)]},
                 None)

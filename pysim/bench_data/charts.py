@@ -97,7 +97,7 @@ class ChartRun:
 
 
 def _read_csv(path, option, decimal=None):
-    """The rows of an index CSV as ``{column: value}``: the columns of
+    """The rows of an index CSV as ``(line, {column: value})``: the columns of
     :data:`_NUMBER_COLUMNS` as numbers read as the file writes them (NaN
     where empty; :mod:`pysim.bench_data.tables`, ``decimal`` the file's
     decimal separator where given), the others as text. Fields are
@@ -118,9 +118,10 @@ def _read_csv(path, option, decimal=None):
     read = numbers(f"{option} {path}", {
         name: [(number, row[header.index(name)]) for number, row in cells]
         for name in _NUMBER_COLUMNS if name in header}, decimal)
-    return [{**dict(zip(header, row)),
-             **{name: float(values[index]) for name, values in read.items()}}
-            for index, (_, row) in enumerate(cells)]
+    return [(number, {**dict(zip(header, row)),
+                      **{name: float(values[index])
+                         for name, values in read.items()}})
+            for index, (number, row) in enumerate(cells)]
 
 
 def _settings(row):
@@ -139,7 +140,7 @@ def sources_from_campaign(folder):
     folder = Path(folder)
     rows = _read_csv(folder / "index.csv", "campaign")
     sources = []
-    for row in rows:
+    for _, row in rows:
         if row.get("status") != "ok":
             continue
         files = row.get("files", "").split()
@@ -163,12 +164,35 @@ def sources_from_index(index, decimal=None):
     :func:`_read_csv` reads them)."""
     index = Path(index)
     rows = _read_csv(index, "`index`", decimal)
-    if not rows or "file" not in rows[0]:
+    if not rows or "file" not in rows[0][1]:
         raise JudderError(f"`index` {index}: needs a 'file' column (and "
                           "optionally freq_hz, p_f_bar, oil_temperature, "
                           "engine_rpm)")
+    for number, row in rows:
+        _check_index_row(row, f"`index` {index}, line {number}")
     return [RunSource(index.parent / row["file"], _settings(row))
-            for row in rows]
+            for _, row in rows]
+
+
+#: Index columns of a dither setting -> (lowest allowed, its words).
+_SETTING_RANGES = {"freq_hz": (0.0, "a dither frequency > 0 Hz"),
+                   "p_f_bar": (None, "a dither amplitude >= 0 bar")}
+
+
+def _check_index_row(row, where):
+    """Refuse an index row without a file, or with a dither setting no
+    bench runs (a negative frequency stopped the chart's filters)."""
+    if not row["file"].strip():
+        raise JudderError(f"{where}: column 'file' is empty; allowed: the "
+                          "acquisition's file, relative to the index")
+    for name, (above, allowed) in _SETTING_RANGES.items():
+        value = row.get(name, float("nan"))
+        if np.isnan(value):
+            continue
+        if not np.isfinite(value) or value < 0 or \
+                (above is not None and value <= above):
+            raise JudderError(f"{where}: column {name!r} = {value:g} is "
+                              f"not allowed; allowed: {allowed}")
 
 
 def sources_from_files(paths):
