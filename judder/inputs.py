@@ -181,7 +181,9 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     else:
         rows = rows[1:]
     if not rows:
-        raise JudderError(f"{source}: no data lines")
+        raise JudderError(f"{source}: no data lines; allowed: a header "
+                          "freq_hz,p_f_bar[,no_judder_bar,tried_bar] and "
+                          "one line per frequency tested")
     for number, cells in rows:
         if len(cells) != columns["width"]:
             raise JudderError(f"{source}, line {number}: "

@@ -348,7 +348,7 @@ def _bar_hint(number, fix, keep=""):
     """What to do with a mean pressure below 1 bar given as Pa: read it
     as bar (``fix`` says how) where that is plausible, else the range
     allowed; ``keep`` says how to keep it."""
-    if number <= MAX_PLAUSIBLE_BAR:
+    if 0 < number <= MAX_PLAUSIBLE_BAR:
         return (f"did you mean {number:g} bar = {number * PA_PER_BAR:g} "
                 f"Pa? {fix}{keep}")
     return (f"allowed: {MIN_PLAIN_P_M_PA:g} to "

@@ -147,7 +147,8 @@ def run(args):
         mechanisms = ", ".join(
             f"{n} {m}" for m in ("forced", "parametric", "both")
             if (n := sum(r.analysis.mechanism == m for r in runs)))
-        rows.append(f"{label}: {len(runs)} runs, {judder} with judder"
+        rows.append(f"{label}: {len(runs)} run{'s' * (len(runs) != 1)}, "
+                    f"{judder} with judder"
                     + (f" ({mechanisms})" if mechanisms else "")
                     + (f" ({estimated} with the dither estimated from the "
                        "pressure)" if estimated else ""))
