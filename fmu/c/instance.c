@@ -1,4 +1,5 @@
 /* The FMI calls common to FMI 2.0 and 3.0 (see instance.h). */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -159,6 +160,15 @@ static void log_iterations(Instance *c) {
                  "changing)", c->model.time, MODEL_MAX_EVENT_ITERATIONS);
 }
 
+static void log_chattering(Instance *c) {
+    instance_log(c, 1, "the model chatters at t = %.9g: more than %d "
+                 "events within %g s (a relation switches back as soon as "
+                 "it has switched, a Zeno model); allowed: a model whose "
+                 "events are apart (a hysteresis or a stuck mode)",
+                 c->model.time, MODEL_ZENO_EVENTS,
+                 MODEL_ZENO_SPAN * (fabs(c->model.time) + 1.0));
+}
+
 int instance_start(Instance *c) {
     if (model_start(&c->model) == 0) return 0;
     log_iterations(c);
@@ -168,6 +178,10 @@ int instance_start(Instance *c) {
 int instance_event(Instance *c, int *again, int *states_changed) {
     *again = 0;
     *states_changed = model_event(&c->model, again);
+    if (model_chattering(&c->model)) {
+        log_chattering(c);
+        return 1;
+    }
     if (c->model.iterations < MODEL_MAX_EVENT_ITERATIONS) return 0;
     log_iterations(c);
     return 1;
@@ -223,6 +237,9 @@ int instance_do_step(Instance *c, double t, double h) {
         return 1;
     case 3:
         log_iterations(c);
+        return 1;
+    case 4:
+        log_chattering(c);
         return 1;
     default:
         instance_log(c, 1, "the integrator failed at t = %g (step size too "

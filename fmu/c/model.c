@@ -111,6 +111,14 @@ int model_event(Model *m, int *again) {
     double r[MODEL_NR + 1], fired[MODEL_NW + 1], x[MODEL_NX + 1];
     double *held = m->p + P_RELATIONS;
     int k, any = 0;
+    if (m->iterations == 0) {   /* a new instant: one more of its burst */
+        if (m->time - m->burst_start >
+                MODEL_ZENO_SPAN * (fabs(m->time) + 1.0)) {
+            m->burst_start = m->time;
+            m->burst_events = 0;
+        }
+        m->burst_events++;
+    }
     relations_at(m, m->time, m->x, r);
     for (k = 0; k < MODEL_NW; k++) {
         fired[k] = r[when_relation[k]] > 0.5 && held[when_relation[k]] < 0.5;
@@ -140,6 +148,10 @@ int model_event(Model *m, int *again) {
     if (!*again) m->iterations = 0;
     else if (++m->iterations >= MODEL_MAX_EVENT_ITERATIONS) *again = 0;
     return any;
+}
+
+int model_chattering(const Model *m) {
+    return m->burst_events > MODEL_ZENO_EVENTS;
 }
 
 static void derivatives(Model *m, double t, const double *x, double *xdot) {
@@ -392,6 +404,7 @@ int model_integrate(Model *m, double t_end) {
                 if (!again) break;
             }
             if (m->iterations >= MODEL_MAX_EVENT_ITERATIONS) return 3;
+            if (model_chattering(m)) return 4;
             derivatives(m, t, m->x, k1);
             m->steps++;
             m->events++;

@@ -34,6 +34,12 @@
 #define MODEL_NPAR (P_INITIAL + MODEL_NI)
 /* Event iterations allowed at one instant */
 #define MODEL_MAX_EVENT_ITERATIONS 100
+/* A model chatters (Zeno) when more than MODEL_ZENO_EVENTS events come
+ * within MODEL_ZENO_SPAN * (|t| + 1) seconds: a relation that switches
+ * back at once (a relay on its own output) would otherwise hold the
+ * importer for ever, each event a step of the event location's size */
+#define MODEL_ZENO_EVENTS 1000
+#define MODEL_ZENO_SPAN 1e-9
 
 typedef struct {
     double time;
@@ -46,6 +52,8 @@ typedef struct {
     int iterations;            /* event iterations at this instant so far */
     double relative_tolerance; /* co-simulation integrator */
     long steps, rejected, events; /* co-simulation statistics */
+    double burst_start;        /* time of the first event of a burst */
+    long burst_events;         /* events since (see MODEL_ZENO_EVENTS) */
     /* CasADi work arrays */
     const double **arg;
     double **res;
@@ -78,6 +86,9 @@ void model_indicators(Model *m, double *z);
  * needed), unless MODEL_MAX_EVENT_ITERATIONS have been made at this
  * instant: then m->iterations is that number (not converged). */
 int model_event(Model *m, int *again);
+/* 1 if more than MODEL_ZENO_EVENTS instants with an event came within
+ * MODEL_ZENO_SPAN * (|t| + 1) s of one another (counted by model_event) */
+int model_chattering(const Model *m);
 /* Relation values at the present t, x, without firing (initialisation) */
 void model_hold_relations(Model *m);
 const char *model_state_name(int i);   /* Modelica name of state i */
