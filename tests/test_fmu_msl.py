@@ -4,9 +4,10 @@ The MSL is read from ``../shared/msl`` beside the repository, or from the
 first folder of ``MODELICAPATH`` that holds it; without one the tests
 skip and say so. Models: MSL's own ``Rotational.Examples.First`` and
 ``Translational.Examples.ElastoGap`` and ``PreLoad`` (references written
-from their equations), and the ``MslDrivelines`` package of ``tests/msl_models`` (MSL parts around the
-Judder library's wet clutch), each compared with its closed form or with
-the same driveline in the Judder library.
+from their equations), and the ``MslDrivelines`` package of
+``tests/msl_models`` (MSL parts around the Judder library's wet clutch),
+each compared with its closed form or with the same driveline in the
+Judder library.
 """
 
 import json
