@@ -2,10 +2,12 @@
 
 The MSL is read from ``../shared/msl`` beside the repository, or from the
 first folder of ``MODELICAPATH`` that holds it; without one the tests
-skip and say so. Models: MSL's own ``Rotational.Examples.First`` and the
-``MslDrivelines`` package of ``tests/msl_models`` (MSL parts around the
-Judder library's wet clutch), each compared with its closed form or with
-the same driveline in the Judder library.
+skip and say so. Models: MSL's own ``Rotational.Examples.First`` and
+``Translational.Examples.ElastoGap`` and ``PreLoad`` (references written
+from their equations), and the ``MslDrivelines`` package of
+``tests/msl_models`` (MSL parts around the Judder library's wet clutch),
+each compared with its closed form or with the same driveline in the
+Judder library.
 """
 
 import json
@@ -22,6 +24,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from fmu.build import build_fmu
 from fmu.frontend import find_class
@@ -448,3 +451,188 @@ def test_modelica_linearises_a_class_with_a_step(monkeypatch):
                        r"changes at t = 0\.005\d* s within a dither period"):
         linearize("MslDrivelines.SteppedEngine", str(MODELS),
                   {"t_step": 0.005})
+
+
+def _elasto_gap(compression, speed, c, d):
+    """MSL's ``Translational.Components.ElastoGap`` (n = 1, f_ref = c
+    s_ref): its force ``f`` (= flange_b.f) at ``compression`` = s_rel -
+    s_rel0 and ``speed`` = v_rel, and the slopes df/dcompression,
+    df/dspeed. In contact (compression < 0) the spring force f_c = c
+    compression and the damper force d speed clipped to [f_c, -f_c], so
+    the contact only pushes and its force is continuous; else 0."""
+    if not compression < 0:
+        return 0.0, 0.0, 0.0
+    spring = c * compression
+    if d * speed < spring:
+        return 2 * spring, 2 * c, 0.0
+    if d * speed > -spring:
+        return 0.0, 0.0, 0.0
+    return spring + d * speed, c, d
+
+
+def _switches(t, flags):
+    """The output times where a 0/1 signal changes (the row after)."""
+    return t[np.flatnonzero(np.diff(flags) != 0) + 1]
+
+
+@pytest.mark.parametrize("kind", [
+    pytest.param("ModelExchange", marks=pytest.mark.xfail(
+        strict=False, reason=(
+        "compiler bug: the build depends on the process's hash seed; with "
+        "PYTHONHASHSEED=4, 5 or 6 der(mass2.v) depends on mass1.s in the "
+        "FMU and Model Exchange misses elastoGap1's contact at 4.309 s "
+        "(mass2.s -1.2816 m at 5 s, not -0.7079); seeds 1-3 and CS are "
+        "right"))),
+    "CoSimulation"])
+def test_translational_elasto_gap_matches_its_contact_law(build, kind):
+    """Translational.Examples.ElastoGap, its equations read from MSL 4.x:
+    mass1 between two SpringDampers (c = 10, d = 1.5, s_rel0 = 1) from
+    the walls at -2 and 2, so m a = -2 c s - 2 d v, a damped oscillator
+    in closed form; mass2 between two ElastoGaps (s_rel0 = 1.5) from the
+    same walls, in contact with the left one for s < -0.5 and with the
+    right one for s > 0.5, free between: m a = -f(s + 0.5, v) + f(0.5 -
+    s, -v) with the gap law of `_elasto_gap`, integrated by scipy
+    (DOP853, 1e-13; 1e-10 moves it by 2.3e-9 m/s, the force being
+    continuous across its kinks). Measured, FMI 2 (FMI 3 gave the same
+    numbers): mass2 within 2.8e-9 m and 8.8e-9 m/s of the reference in
+    Model Exchange (fmpy's CVode 1e-10), 3.3e-8 m and 7.9e-8 m/s in
+    Co-Simulation (1 ms); mass1 within 4.8e-9 m of its closed form. Each
+    contact changes 3 times (left at 0.8752, 1.8962, 4.3091 s; right at
+    0.5834, 2.4041, 3.4251 s), ME within 1e-7 s of the reference's
+    times (seen 9.2e-10 s), CS in the step that holds them. Bounds on
+    the states: about 10 times what was seen."""
+    name = "Modelica.Mechanics.Translational.Examples.ElastoGap"
+    c, d, stop = 10.0, 1.5, 5.0
+
+    def rhs(t, y):
+        s, v = y
+        return [v, -_elasto_gap(s + 0.5, v, c, d)[0]
+                + _elasto_gap(0.5 - s, -v, c, d)[0]]
+
+    def edge(offset):
+        event = lambda t, y: y[0] - offset
+        return event
+    reference = solve_ivp(rhs, (0, stop), [2.0, 0.0], method="DOP853",
+                          rtol=1e-13, atol=1e-13, dense_output=True,
+                          events=[edge(-0.5), edge(0.5)])
+    left, right = reference.t_events
+    assert len(left) == len(right) == 3
+    names = ["mass1.s", "mass2.s", "mass2.v", "elastoGap1.contact",
+             "elastoGap2.contact"]
+    t, got = _simulate(build(name), names, stop, fmi_type=kind)
+    y = reference.sol(t)
+    assert_allclose(got["mass2.s"], y[0], rtol=0, atol=3e-8 if kind ==
+                    "ModelExchange" else 3e-7, err_msg=kind)
+    assert_allclose(got["mass2.v"], y[1], rtol=0, atol=1e-7 if kind ==
+                    "ModelExchange" else 1e-6, err_msg=kind)
+    omega = np.sqrt(2 * c - d ** 2)
+    free = np.exp(-d * t) * (2 * np.cos(omega * t)
+                             + 2 * d / omega * np.sin(omega * t))
+    assert_allclose(got["mass1.s"], free, rtol=0, atol=5e-8)
+    for flag, expected in (("elastoGap1.contact", left),
+                           ("elastoGap2.contact", right)):
+        seen = _switches(t, got[flag])
+        assert len(seen) == 3, (kind, flag, seen)
+        if kind == "ModelExchange":
+            assert_allclose(seen, expected, rtol=0, atol=1e-7)
+        else:
+            assert np.all((seen - 1e-3 < expected) & (expected <= seen))
+
+
+_PRELOAD_WALL = -0.0955          # fixedLe.s0
+# PreLoad's four ElastoGaps: s_rel as rows on (spool.s, springPlateA.s,
+# springPlateB.s) plus a constant (its rods' and bodies' lengths), and
+# its s_rel0
+_PRELOAD_GAPS = {
+    "outerContactA": ([0, 1, 0], -0.001 - _PRELOAD_WALL, 0.0015),
+    "outerContactB": ([0, 0, -1], _PRELOAD_WALL + 0.0305 - 0.001, 0.0015),
+    "innerContactA": ([-1, 1, 0], 0.007 + 0.001 + 0.095 + 0.00575, 0.001),
+    "innerContactB": ([1, 0, -1], -0.095 + 0.00575 + 0.007 + 0.001, 0.001)}
+
+
+def _preload_reference(stop):
+    """PreLoad's equations of motion by virtual work: each compliant
+    element with s_rel = g q + s0 pushes the bodies q = (spool, plate A,
+    plate B) by -f g; the spring (c = 20e3, s_rel = plate B - plate A -
+    0.002, s_rel0 = 0.025), the damper `friction` (2500) from the wall to
+    the spool, the sine force (150 N, 0.01 Hz) on the spool, the four
+    ElastoGaps (c = 1e6, d = 250). Integrated by scipy's Radau (1e-9,
+    atol 1e-11) with the Jacobian of the gap law (the contacts are stiff:
+    eigenvalues down to -2.5e4 1/s)."""
+    rows = np.array([g for g, _, _ in _PRELOAD_GAPS.values()], float)
+    shift = np.array([o - s0 for _, o, s0 in _PRELOAD_GAPS.values()])
+    spring_row, spring_shift = np.array([0.0, -1.0, 1.0]), -0.002 - 0.025
+    mass = np.array([0.150, 0.01, 0.01])
+
+    def gaps(y):
+        laws = [_elasto_gap(compression, speed, 1000e3, 250.0)
+                for compression, speed in zip(rows @ y[:3] + shift,
+                                              rows @ y[3:])]
+        return np.array(laws).T
+
+    def rhs(t, y):
+        force = -rows.T @ gaps(y)[0] - spring_row * 20e3 * (
+            spring_row @ y[:3] + spring_shift)
+        force[0] += 150 * np.sin(2 * np.pi * 0.01 * t) - 2500 * y[3]
+        return np.concatenate([y[3:], force / mass])
+
+    def jacobian(t, y):
+        _, by_compression, by_speed = gaps(y)
+        stiffness = -(rows.T * by_compression) @ rows - 20e3 * np.outer(
+            spring_row, spring_row)
+        damping = -(rows.T * by_speed) @ rows
+        damping[0, 0] -= 2500
+        return np.block([[np.zeros((3, 3)), np.eye(3)],
+                         [stiffness / mass[:, None], damping / mass[:, None]]])
+    start = [0.01475, -0.093, -0.06925, 0.0, 0.0, 0.0]
+    solution = solve_ivp(rhs, (0, stop), start, method="Radau", rtol=1e-9,
+                         atol=1e-11, jac=jacobian, dense_output=True)
+    assert solution.status == 0
+    return solution.sol, rows, shift
+
+
+def test_translational_preload_matches_its_equations_of_motion(build):
+    """Translational.Examples.PreLoad, its equations read from MSL 4.x
+    (`_preload_reference`): the spool is held between the preloaded
+    spring plates until the sine force lifts one plate off its outer
+    stop, and follows the spring beyond. Measured, FMI 2 (FMI 3 gave the
+    same numbers), results every 1 ms (with 10 ms CVode reaches its step
+    limit within an interval during the plates' first impacts): the bodies
+    within 1.2e-10 m and the spool within 4.1e-9 m/s of the reference in
+    Model Exchange (CVode 1e-10), 1.5e-12 m and 6.2e-11 m/s in
+    Co-Simulation; the reference moves by less (Radau at 1e-9 agrees
+    with CS to 1.5e-12 m). Bounds 10 times the ME errors. Each contact
+    flag equals the reference's sign of compression away from its
+    changes (after the start: two per contact, at 3.144 and 46.989 s or
+    53.144 and 96.989 s), ME's changes within 1e-7 s of the reference's
+    root of the compression (seen 1.1e-8 s)."""
+    name = "Modelica.Mechanics.Translational.Examples.PreLoad"
+    stop = 100.0
+    reference, rows, shift = _preload_reference(stop)
+    bodies = ["spool.s", "springPlateA.s", "springPlateB.s"]
+    names = bodies + ["spool.v"] + [f"{gap}.contact"
+                                    for gap in _PRELOAD_GAPS]
+    path = build(name)
+    for kind in ("ModelExchange", "CoSimulation"):
+        t, got = _simulate(path, names, stop, fmi_type=kind)
+        y = reference(t)
+        for k, body in enumerate(bodies):
+            assert_allclose(got[body], y[k], rtol=0, atol=1.2e-9,
+                            err_msg=f"{body} {kind}")
+        assert_allclose(got["spool.v"], y[3], rtol=0, atol=4e-8,
+                        err_msg=kind)
+        compression = rows @ y[:3] + shift[:, None]
+        for k, gap in enumerate(_PRELOAD_GAPS):
+            flag = got[f"{gap}.contact"]
+            seen = _switches(t, flag)[1:]    # the first at the start
+            assert len(seen) == 2, (kind, gap, seen)
+            away = np.min(np.abs(t[:, None] - seen[None, :]), axis=1) > 2e-3
+            away &= t > 2e-3
+            assert_array_equal(flag[away] == 1, compression[k][away] < 0,
+                               err_msg=f"{gap} {kind}")
+            if kind == "ModelExchange":
+                for when in seen:
+                    crossing = brentq(lambda s: rows[k] @ reference(s)[:3]
+                                      + shift[k], when - 1e-3, when + 1e-3,
+                                      xtol=1e-13)
+                    assert abs(when - crossing) < 1e-7, (gap, when)
