@@ -870,7 +870,10 @@ def _expose_constraint(system, states, known, time, unknowns):
         if index in users or not names & set(defined) or \
                 not names <= plain | set(defined):
             continue
-        needed, pending = set(), list(names & set(defined))
+        # sorted: in a set's order (the hash seed's) the variable
+        # eliminated first, and so the formulas, differed from build to
+        # build (ElastoGap's contact indicator held mass1.s - mass1.s)
+        needed, pending = set(), sorted(names & set(defined))
         touched = names & set(states)
         while pending:   # the defined variables this constraint rests on
             name = pending.pop()
@@ -882,7 +885,7 @@ def _expose_constraint(system, states, known, time, unknowns):
                 pending += [n for n in used if n in defined]
         if not touched:
             continue   # among parameters only: not a constraint on states
-        for name in needed:
+        for name in sorted(needed):
             index = defined[name]
             residual = system.residuals[index]
             if {s.name() for s in casadi.symvar(residual)} - plain \
