@@ -22,6 +22,14 @@ Conditional components (``... if useHeatPort``) are not followed:
 whether they exist is known only after the parameters are evaluated;
 nor are replaceable components and classes, which a modifier may
 redeclare.
+
+The dither's parameter names are read there too:
+:func:`refuse_undeclared` refuses a name the class does not declare,
+:func:`refuse_bound` one it binds to its own parameters (a calculated
+parameter, not a tunable input: MSL's ``Rotational.Examples.First``
+declares ``Sine sine(amplitude=amplitude, f=f)``, so ``sine.f`` is
+declared but calculated, and only the flat model told so, after a
+flatten of 20 to 40 s).
 """
 
 import dataclasses
@@ -33,7 +41,8 @@ import re
 from .errors import FrontEndError
 from .classes import blank, class_spans, find_class
 
-__all__ = ["refuse_unsupported", "refuse_undeclared", "REPLACEMENTS"]
+__all__ = ["refuse_unsupported", "refuse_undeclared", "refuse_bound",
+           "REPLACEMENTS"]
 
 #: What to use instead of the MSL classes the compiler refuses: the
 #: project library's replacement where it has one, else a plain "none".
@@ -174,19 +183,31 @@ def _place(path, text, offset):
     return f"{path}:{text[:offset].count(chr(10)) + 1}"
 
 
-def _statements(body):
+def _statements(body, separator=";"):
     """``(offset, text)`` of the statements of a clean class body (split
-    at ``;`` outside brackets)."""
+    at ``;`` outside brackets), or of the parts of a text ending in
+    another ``separator`` (a modification's arguments, at ``,``)."""
     depth, start = 0, 0
-    for found in re.finditer(r"[;()\[\]{}]", body):
+    for found in re.finditer(r"[;,()\[\]{}]", body):
         char, i = found.group(0), found.start()
         if char in "([{":
             depth += 1
         elif char in ")]}":
             depth -= 1
-        elif depth == 0:
+        elif depth == 0 and char == separator:
             yield start, body[start:i]
             start = i + 1
+
+
+def _after_brackets(text, opening):
+    """Offset just after the bracket group ``(...)`` opening at
+    ``text[opening]``; None if it does not close."""
+    depth = 0
+    for i in range(opening, len(text)):
+        depth += {"(": 1, ")": -1}.get(text[i], 0)
+        if depth == 0:
+            return i + 1
+    return None
 
 
 def _imports(statements):
@@ -425,12 +446,8 @@ def _conditional(rest):
     useSupport``)."""
     rest = rest.lstrip()
     if rest.startswith("("):
-        depth = 0
-        for i, char in enumerate(rest):
-            depth += {"(": 1, ")": -1}.get(char, 0)
-            if depth == 0:
-                rest = rest[i + 1:].lstrip()
-                break
+        closed = _after_brackets(rest, 0)
+        rest = rest[closed:].lstrip() if closed else rest
     return re.match(r"if\b", rest) is not None
 
 
@@ -503,6 +520,103 @@ def refuse_unsupported(path, model_name, roots, hybrid=False, fmu=False):
                     + (f" and {len(others) - 4} more" if len(others) > 4
                        else ""))
     raise FrontEndError(message + " (found before flattening)")
+
+
+#: A name in an expression: not a field (``a.b``'s ``b``), nor a function
+#: called (``sin(``).
+_NAME = re.compile(r"(?<![\w.])([A-Za-z_]\w*)(?![\w.]|\s*\()")
+
+
+def _arguments(modification):
+    """``(offset, name, expression)`` of the ``name = expression``
+    arguments of a modification's text (without its outer brackets),
+    split at commas outside brackets; prefixes (``final``, ``each``)
+    dropped."""
+    found = []
+    for offset, part in _statements(modification + ",", ","):
+        match = re.match(r"\s*(?:(?:final|each)\s+)*(\w+)\s*=(?!=)(.*)",
+                         part, re.S)
+        if match:
+            found.append((offset + match.start(1), match.group(1),
+                          match.group(2).strip()))
+    return found
+
+
+def _binding(statement, after, parts):
+    """``(offset, expression)`` in ``statement`` of the binding of
+    ``parts`` (a name of one or two parts) whose declaration ends at
+    ``after``: the declaration's own ``= expression`` for one part, the
+    component's modification argument for two; None without one."""
+    rest = statement[after:]
+    modification = ""
+    opened = re.match(r"\s*\(", rest)
+    if opened:
+        rest_at = _after_brackets(rest, opened.end() - 1)
+        if rest_at is None:
+            return None
+        modification = rest[opened.end():rest_at - 1]
+    else:
+        rest_at = 0
+    if len(parts) == 1:
+        bound = re.match(r"\s*=(?!=)\s*(.*?)\s*(?:\bif\b|$)",
+                         rest[rest_at:], re.S)
+        return None if bound is None else (
+            after + rest_at + bound.start(1), bound.group(1))
+    for offset, name, expression in _arguments(modification):
+        if name == parts[1]:
+            return after + opened.end() + offset, expression
+    return None
+
+
+def refuse_bound(model_name, roots, names):
+    """Refuse, before flattening, a name of ``names`` (``{argument:
+    Modelica name}``, as :func:`fmu.precheck.refuse_undeclared` takes
+    them) that ``model_name`` binds to an expression of its own
+    parameters: a parameter it declares so (``parameter Real T_c =
+    mu*p_m``), or one its modification of a component binds so (``sine.f``
+    of ``Sine sine(f=f)``). Names of more than two parts, and bindings
+    in classes extended or deeper, pass to the flat model's check.
+
+    Raises
+    ------
+    FrontEndError
+        ``FILE:LINE: `argument` 'sine.f' is bound to f in CLASS, so it
+        is calculated ...; allowed: a tunable parameter (f)``.
+    """
+    found = _Source([str(r) for r in roots]).long(model_name)
+    if found is None:
+        return
+    path, text, _, begin, body = found
+    cut = _SECTION.search(body)
+    head = body[:cut.start()] if cut else body
+    declared = [(offset, statement, _DECLARATION.match(statement))
+                for offset, statement in _statements(head)]
+    own = {match.group(4) for _, _, match in declared
+           if match and "parameter" in match.group(1).split()}
+    for argument, name in names.items():
+        parts = name.split(".")
+        if len(parts) > 2:
+            continue
+        for offset, statement, match in declared:
+            if not match or match.group(4) != parts[0]:
+                continue
+            bound = _binding(statement, match.end(), parts)
+            if bound is None:
+                break
+            at, expression = bound
+            uses = [n for n in dict.fromkeys(_NAME.findall(expression))
+                    if n in own]
+            if uses:
+                single = expression == uses[0]
+                raise FrontEndError(
+                    f"{_place(path, text, begin + offset + at)}: "
+                    f"`{argument}` {name!r} is bound to "
+                    f"{' '.join(expression.split())} in {model_name}, so "
+                    f"it is calculated from {', '.join(uses)} and not a "
+                    "tunable parameter (read before flattening); allowed: "
+                    "a tunable parameter"
+                    + (f", here {uses[0]!r}" if single else ""))
+            break
 
 
 def refuse_undeclared(model_name, roots, names):

@@ -44,8 +44,7 @@ from fmu.backend import to_ode
 from fmu.classes import library_folders
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
-from fmu.precheck import refuse_undeclared, refuse_unsupported
-from fmu.tunable import refuse_bound
+from fmu.precheck import refuse_bound, refuse_undeclared, refuse_unsupported
 from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
@@ -124,7 +123,7 @@ def check_dither_declared(class_name, library=None, amplitude="p_f",
     ``ElastoGap`` examples compile in one mode but have no dither, and
     without it there is nothing to linearise; then one the class binds
     to its own parameters, calculated rather than tunable
-    (:func:`fmu.tunable.refuse_bound`: ``sine.f`` of MSL's ``First``)."""
+    (:func:`fmu.precheck.refuse_bound`: ``sine.f`` of MSL's ``First``)."""
     roots = _roots(library)
     folders = [str(r) for r in roots]
     refuse_unsupported(_source(class_name, roots), class_name, folders,

@@ -715,7 +715,7 @@ def test_bindings_to_the_class_parameters_are_read_from_the_source(
     (declared so, or by a component's modification, with `final`) is
     refused; one bound to a number, a name of a class extended or a
     component without a modification passes to the flat model."""
-    from fmu.tunable import refuse_bound
+    from fmu.precheck import refuse_bound
     _model(tmp_path, "Rig", """
 model Rig
   model Part
