@@ -140,6 +140,13 @@ def read_boundary_table(text, source="boundary file", decimal=None):
 
     The numbers of :data:`BOUNDARY_STATED` comments are read with the
     cells: ``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5.
+    A stated number that the file's separators read with a thousands
+    separator and the other decimal separator reads too (``1.000`` in a
+    file of decimal commas: 1000 or 1) is refused, naming its line and
+    the number as written: a threshold is one number a program wrote,
+    often with a decimal point into a file whose cells a spreadsheet
+    wrote with decimal commas, and a factor 1000 in it is no guess to
+    make silently.
 
     Returns
     -------
@@ -197,6 +204,8 @@ def read_boundary_table(text, source="boundary file", decimal=None):
                                  for name in read},
                               **{name: [cell] for name, cell in
                                  stated.items()}}, decimal)
+    for name, (number, text) in stated.items():
+        _check_stated(source, number, name, text, float(values[name][0]))
     table = {name: [] for name in names}
     for index, (number, cells) in enumerate(rows):
         line = written[number]
@@ -233,6 +242,27 @@ def read_boundary_table(text, source="boundary file", decimal=None):
             "lines": [number for number, _ in rows],
             "stated": {name: (number, text, float(values[name][0]))
                        for name, (number, text) in stated.items()}}
+
+
+def _check_stated(source, number, name, text, read):
+    """Refuse a stated number (``text``, read as ``read`` with the file's
+    separators) that reads with a thousands separator under the file's
+    convention and as another number under the other one."""
+    from pysim.bench_data._numbers import CONVENTIONS, readings, value
+    if len(readings(text)) < 2:
+        return
+    both = {name: value(text, name) for name in CONVENTIONS}
+    if len(set(both.values())) < 2:
+        return      # 12, 1 000: the same number either way
+    files = next(c for c, v in both.items() if v == read)
+    other = next(c for c in both if c != files)
+    raise JudderError(
+        f"{source}, line {number}: {name} {text!r} is {both[files]:g} as "
+        f"the file's cells are written, with {CONVENTIONS[files][0]}, but "
+        f"{both[other]:g} with {CONVENTIONS[other][0]}; allowed: the "
+        "number without a thousands "
+        "separator (such as 1000, or 1 written with the file's decimal "
+        "separator)")
 
 
 def _check_tested(amps, source, number, line):
