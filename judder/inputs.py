@@ -22,7 +22,8 @@ __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary_table", "read_boundary", "read_boundary_tested",
            "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
-           "read_chart_min_growth", "read_chart_limit", "read_chart_runs"]
+           "read_chart_min_growth", "read_chart_limit", "read_chart_runs",
+           "empty_cell"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -215,8 +216,7 @@ def read_boundary_table(text, source="boundary file", decimal=None):
         amps = {name: float(values[name][index]) * PA_PER_BAR
                 if texts[name] else np.nan for name in names[1:]}
         if not texts["freq_hz"]:
-            raise JudderError(f"{source}, line {number}: column 'freq_hz' "
-                              "is empty; allowed: a frequency > 0 Hz")
+            raise empty_cell(source, number, "freq_hz", "a frequency > 0 Hz")
         gaps = [name for name in amps if texts[name] and np.isnan(amps[name])]
         if gaps:
             # censored is written as an empty cell; a NaN is a gap in the
@@ -242,6 +242,14 @@ def read_boundary_table(text, source="boundary file", decimal=None):
             "lines": [number for number, _ in rows],
             "stated": {name: (number, text, float(values[name][0]))
                        for name, (number, text) in stated.items()}}
+
+
+def empty_cell(source, number, column, allowed):
+    """The error of an empty cell of a table the user gives, worded the
+    same wherever it is found: the file (``source``, with the option that
+    gave it where it has one), the line, the column, what is allowed."""
+    return JudderError(f"{source}, line {number}: column {column!r} is "
+                       f"empty; allowed: {allowed}")
 
 
 def _check_stated(source, number, name, text, read):
