@@ -793,6 +793,36 @@ def test_an_index_row_no_bench_runs_is_refused(tmp_path, row, words):
     assert str(index) in str(info.value) and words in str(info.value)
 
 
+def test_a_file_listed_twice_is_refused_naming_both_places(tmp_path,
+                                                           capsys):
+    """Review of issue 31: the same acquisition on two lines of an index
+    counted as two runs (two points of the contour, two votes at its set
+    point); it is refused, naming both lines, whether written alike or
+    as ./run01.csv, and so is a file given as SOURCE and in the index."""
+    from judder.cli import main
+    from pysim.bench_data.charts import gather_sources
+    index = tmp_path / "runs.csv"
+    index.write_text("file,freq_hz,p_f_bar\nrun01.csv,210,0.4\n"
+                     "run02.csv,210,0.6\n# again\n./run01.csv,210,0.8\n")
+    with pytest.raises(JudderError) as info:
+        gather_sources([], index)
+    assert str(info.value) == (
+        f"`index` {index}, line 2 and `index` {index}, line 5 both list "
+        f"{tmp_path / 'run01.csv'}; allowed: each acquisition once (one run "
+        "per file)")
+    index.write_text("file,freq_hz\nrun01.csv,210\n")
+    (tmp_path / "run01.csv").write_text("time,n\n0,1\n")
+    with pytest.raises(JudderError, match=re.escape(
+            f"`paths` {tmp_path / 'run01.csv'} and `index` {index}, line 2 "
+            "both list")):
+        gather_sources([tmp_path / "run01.csv"], index)
+    assert main(["chart", str(tmp_path / "run01.csv"), "--index",
+                 str(index)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"judder: error: SOURCE {tmp_path / 'run01.csv'} "
+                          f"and --index {index}, line 2 both list")
+
+
 def test_chart_reads_an_index_as_written_or_with_the_decimal_given(
         tmp_path, capsys):
     """An index beside the example run (written with decimal points):
