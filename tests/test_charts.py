@@ -1180,6 +1180,28 @@ def test_a_dither_read_at_its_alias_names_the_plausible_frequencies(jitter):
         assert words in warning
 
 
+@pytest.mark.parametrize("rate, found, alias", [
+    (1000.0, 471.4, 528.6), (700.0, 228.6, 471.4)])
+def test_an_alias_above_250_hz_is_named(rate, found, alias):
+    """Review of issue 31: the plausible dither frequencies were 5-250 Hz
+    whatever the data, so a 471.4 Hz dither sampled uniformly at 1000
+    samples/s (found at 471.4 Hz, its alias 528.6 Hz) or at 700 samples/s
+    (found at its alias 228.6 Hz) was estimated with no warning at all.
+    The range now reaches three times the frequency found, and names the
+    alias and the range it searched."""
+    rng = np.random.default_rng(3)
+    time = np.arange(0, 1.5, 1 / rate)
+    pressure = 8 * PA_PER_BAR + 0.3 * PA_PER_BAR * np.cos(
+        2 * np.pi * 471.4 * time) + 1e3 * rng.standard_normal(len(time))
+    fit = estimate_dither(time, pressure, (0.1, 1.4))
+    assert fit.freq_hz == pytest.approx(found, abs=0.01)
+    (warning,) = fit.warnings
+    assert warning.startswith(f"the sinusoids at {alias:g} Hz fit the "
+                              f"samples as well as the one found at "
+                              f"{found:g} Hz")
+    assert f"plausible dither frequencies 5-{3 * found:.4g} Hz" in warning
+
+
 def test_chart_warns_of_the_frequencies_a_thinned_pressure_hides(tmp_path,
                                                                  capsys):
     """The example run at 210 Hz with its pressure kept on every fifth
