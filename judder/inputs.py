@@ -449,11 +449,33 @@ def read_chart_boundary(path, group=None, option="--chart"):
     tried_bar : float
         The largest amplitude tried, bar.
     """
+    groups, freq, p_bar, tried, aliased = _boundary_arrays(path, option)
+    names = list(dict.fromkeys(groups.tolist()))
+    if not names:
+        raise JudderError(
+            f"{option} {path}: the chart has no boundary: " + (
+                f"each of its {len(aliased)} run(s) has a dither frequency "
+                "estimated that may be an alias (on no boundary); allowed: "
+                "a chart with runs whose frequency is given (freq_hz in "
+                "the index)" if len(aliased) and aliased.all() else
+                "no run could be read into it"))
+    chosen = _chosen_group(path, group, names)
+    keep = groups == chosen
+    return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
+            float(tried[keep].max()))
+
+
+def _boundary_arrays(path, option):
+    """A chart's boundary arrays (group, Hz, bar with NaN where censored,
+    largest tried, bar) and its runs' ``dither_aliased`` (none where not
+    stored), or the error naming what is wrong with the file."""
     try:
         with np.load(path, allow_pickle=False) as npz:
             groups = npz["boundary_group"]
             freq, p_bar = npz["boundary_freq_hz"], npz["boundary_p_f_bar"]
             tried = npz["boundary_tried_bar"]
+            aliased = npz["dither_aliased"] if "dither_aliased" in \
+                npz.files else np.zeros(0, dtype=bool)
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
@@ -462,10 +484,12 @@ def read_chart_boundary(path, group=None, option="--chart"):
     except (ValueError, KeyError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
                           "chart --out (an NPZ file)") from None
-    names = list(dict.fromkeys(groups.tolist()))
-    if not names:
-        raise JudderError(f"{option} {path}: the chart has no boundary (no "
-                          "run could be read into it)")
+    return groups, freq, p_bar, tried, aliased
+
+
+def _chosen_group(path, group, names):
+    """The group of a chart to read (``names``, its groups): ``group``, or
+    its one group."""
     if group is None and len(names) > 1:
         raise JudderError(f"{option} {path} has {len(names)} groups; give "
                           f"--group, one of {', '.join(names)}")
@@ -477,9 +501,7 @@ def read_chart_boundary(path, group=None, option="--chart"):
                               "no --group")
         raise JudderError(f"--group {group!r} is not in {path}; allowed: "
                           f"{', '.join(names)}")
-    keep = groups == chosen
-    return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
-            float(tried[keep].max()))
+    return chosen
 
 
 def read_chart_below(path, group=None, option="--chart"):
@@ -516,17 +538,18 @@ def read_chart_runs(path, group=None, option="--chart"):
         estimated, and for a chart written before they were stored), and
         ``dither_warnings``, what the pressure's sampling could not
         support and the given values it contradicts ('' where nothing,
-        or not stored).
+        or not stored), and ``dither_aliased``, a frequency estimated that
+        may be an alias (on no boundary; False where not stored).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar; None: no judder) and the largest
         amplitude tried (bar).
     """
-    freq, p_f, _ = read_chart_boundary(path, group, option)
+    groups, freq, p_bar, tried, _ = _boundary_arrays(path, option)
     with np.load(path, allow_pickle=False) as npz:
-        groups = npz["boundary_group"]
-        chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
-            else group
-        tried = npz["boundary_tried_bar"][groups == chosen]
+        # a group whose every run may be at an alias has no boundary
+        names = list(dict.fromkeys(groups.tolist()
+                                   + npz["group"].tolist()))
+        chosen = _chosen_group(path, group, names)
         keep = npz["group"] == chosen
         runs = {key: npz[key][keep] for key in (
             "source_file", "freq_hz", "p_f_bar", "amplitude_rpm", "judder",
@@ -535,8 +558,9 @@ def read_chart_runs(path, group=None, option="--chart"):
             {key: npz[key][keep] for key in npz.files if key.startswith(
                 "dither_") or key in ("freq_given", "p_f_given")},
             runs["p_f_bar"]))
-    boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
-                 float(top)) for f, p, top in zip(freq, p_f, tried)]
+    on = groups == chosen
+    boundary = [(float(f), None if np.isnan(p) else float(p), float(top))
+                for f, p, top in zip(freq[on], p_bar[on], tried[on])]
     return runs, boundary
 
 
@@ -562,7 +586,9 @@ def _dither_estimates(stored, p_f_bar):
                 estimated & ~p_f_given, p_f_bar, np.nan)),
             "p_f_std_bar": std,
             "dither_warnings": stored.get("dither_warnings",
-                                          np.full(count, ""))}
+                                          np.full(count, "")),
+            "dither_aliased": stored.get("dither_aliased",
+                                         np.zeros(count, dtype=bool))}
 
 
 def _damaged(option, path):

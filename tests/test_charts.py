@@ -1180,6 +1180,88 @@ def test_a_dither_read_at_its_alias_names_the_plausible_frequencies(jitter):
         assert words in warning
 
 
+def test_every_run_record_carries_the_verdict_as_the_tool_words_it(
+        tmp_path, capsys):
+    """Review of issue 31: a chart's run JSON said ``judder: true`` with
+    no ``verdict``, while check, floquet and the report carry one; every
+    run record now has it, JUDDER in the word check uses for judder and
+    NO JUDDER otherwise (a run cannot tell check's SLOW GROWTH from
+    STABLE)."""
+    from judder.cli import main
+    from pysim.analysis.verdict import RUN_VERDICTS, run_verdict
+    from stability.decisions.relevance import JUDDER, VERDICTS
+    assert RUN_VERDICTS == (JUDDER, "NO JUDDER")
+    assert RUN_VERDICTS[1] not in VERDICTS
+    assert [run_verdict(j) for j in (True, False, None)] == \
+        ["JUDDER", "NO JUDDER", None]
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    assert main(["chart", "--index", str(examples / "runs.csv"),
+                 *EXAMPLE_CHANNELS, "--json"]) == 0
+    runs = json.loads(capsys.readouterr().out)["runs"]
+    assert [r["verdict"] for r in runs] == \
+        ["NO JUDDER", "NO JUDDER", "JUDDER"] * 3
+    assert all(r["verdict"] == run_verdict(r["judder"]) for r in runs)
+
+
+def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
+        tmp_path, capsys):
+    """Review of issue 31: the example runs, run01's pressure kept on
+    every fifth row and its setting not given (found at the alias 62.59
+    Hz of its 210 Hz): it was drawn like the others, its amplitude
+    contoured from 62.6 to 214 Hz, and it made a boundary point "no
+    judder up to 0.345 bar" at 62.59 Hz. It is now drawn apart, its
+    legend saying so, out of the contour and of the boundary (text, JSON,
+    NPZ and the figure drawn again from it), with a line saying why."""
+    import matplotlib.pyplot as plt
+
+    from judder.cli import main
+    from judder.inputs import read_chart_runs
+    from pysim.bench_data.plots import ALIASED_LABEL, runs_figure
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    for source in examples.glob("run0*.csv"):
+        (tmp_path / source.name).write_text(source.read_text())
+    index = _example_with_pressure_on(
+        tmp_path, lambda times: np.arange(len(times)) % 5 == 0)
+    index.write_text((examples / "runs.csv").read_text().replace(
+        "run01.csv,210,0.4", "run01.csv,,"))
+    out, plot = tmp_path / "chart.npz", tmp_path / "chart.png"
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--out", str(out), "--plot", str(plot), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["boundary"] == [[210.0, 0.8], [212.0, 0.8], [214.0, 0.8]]
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
+    assert ("  run01.csv: on no boundary and in no contour: its dither "
+            "frequency, estimated at 62.59 Hz, may be an alias (see its "
+            "warning); give freq_hz in the index") in \
+        capsys.readouterr().out.splitlines()
+    runs, boundary = read_chart_runs(out)
+    assert runs["dither_aliased"].tolist() == [True] + [False] * 8
+    assert [f for f, _, _ in boundary] == [210.0, 212.0, 214.0]
+    fig = runs_figure(runs, boundary, "chart")
+    ax = fig.axes[0]
+    (contour,) = [c for c in ax.collections if hasattr(c, "levels")]
+    drawn = np.concatenate([path.vertices for path in contour.get_paths()
+                            if len(path.vertices)])
+    assert drawn[:, 0].min() >= 210.0 - 1e-9
+    (apart,) = [c for c in ax.collections
+                if c.get_label() == ALIASED_LABEL]
+    np.testing.assert_allclose(apart.get_offsets(), [[62.59, 0.345]],
+                               atol=0.01)
+    assert ALIASED_LABEL in [t.get_text() for t in fig.legends[0].texts]
+    plt.close(fig)
+    # a chart of that run alone has no boundary to fit, and says why
+    index.write_text("file\nrun01.csv\n")
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["fit", "--chart", str(out), "--fit", "mu_g"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        f"judder: error: --chart {out}: the chart has no boundary: each of "
+        "its 1 run(s) has a dither frequency estimated that may be an "
+        "alias (on no boundary); allowed: a chart with runs whose "
+        "frequency is given (freq_hz in the index)")
+
+
 @pytest.mark.parametrize("rate, found, alias", [
     (1000.0, 471.4, 528.6), (700.0, 228.6, 471.4)])
 def test_an_alias_above_250_hz_is_named(rate, found, alias):

@@ -114,6 +114,9 @@ class SinusoidFit:
         Why the sampling cannot support the estimate, in words (empty when
         it can); they speak of "the samples" and leave the channel to be
         named by the caller.
+    aliases : tuple of float
+        The aliases that fit the samples as well as ``freq_hz``, Hz (empty
+        where the frequency was given: it was not sought).
     """
 
     freq_hz: float
@@ -127,6 +130,15 @@ class SinusoidFit:
     samples_per_period: float
     periods: float
     warnings: tuple
+    aliases: tuple = ()
+
+    @property
+    def aliased(self):
+        """The frequency cannot be told from its aliases: some fit as
+        well, or there are fewer than :data:`MIN_SAMPLES_PER_PERIOD`
+        samples per period."""
+        return bool(self.aliases) or \
+            self.samples_per_period < MIN_SAMPLES_PER_PERIOD
 
     @property
     def relative_amplitude_std(self):
@@ -249,8 +261,10 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None,
     dither_range_hz = plausible_range(fit.freq_hz, dither_range_hz)
     aliases = (_aliases(tau, values, fit, rss, dither_range_hz)
                if bracket_hz is not None else None)
-    return SinusoidFit(**{**fit.__dict__, "warnings": _warnings(
-        fit, aliases, _candidates(fit, dither_range_hz), dither_range_hz)})
+    return SinusoidFit(**{**fit.__dict__, "aliases": tuple(aliases or ()),
+                          "warnings": _warnings(
+                              fit, aliases, _candidates(fit, dither_range_hz),
+                              dither_range_hz)})
 
 
 def _candidates(fit, dither_range_hz):

@@ -335,7 +335,11 @@ class Chart:
         spectral resolution of the run, ``1/T`` over its engagement window
         ``T``: estimates closer than half of it to each other, or to a
         given frequency, are one set point, at the given frequency or
-        their median.
+        their median. A run whose frequency was estimated where the
+        sampling cannot tell it from its aliases
+        (:attr:`pysim.analysis.verdict.RunAnalysis.frequency_aliased`) is
+        at no set point, so on no boundary: which frequency it was run at
+        is not known (:meth:`aliased` lists them).
 
         Returns
         -------
@@ -343,7 +347,8 @@ class Chart:
             Per set point (Hz, ascending): its frequency, the spread of
             its runs' frequencies (Hz), and its runs.
         """
-        runs = sorted(self.groups().get(group, []),
+        runs = sorted((r for r in self.groups().get(group, [])
+                       if not r.analysis.frequency_aliased),
                       key=lambda r: r.analysis.freq_hz)
         clusters = []
         for run in runs:
@@ -365,6 +370,13 @@ class Chart:
             centre = given[0] if given else float(np.median(freqs))
             out.append((float(centre), float(np.ptp(freqs)), cluster))
         return out
+
+    def aliased(self, group):
+        """The runs of one group left out of its set points and its
+        boundary: their frequency, estimated from the pressure, may be an
+        alias of the one run (:meth:`set_points`)."""
+        return [r for r in self.groups().get(group, [])
+                if r.analysis.frequency_aliased]
 
     def boundary(self, group):
         """Experimental stability boundary of one group.
@@ -446,6 +458,9 @@ class Chart:
             # estimated from the pressure)
             "freq_given": np.array([SETTING[0] in r.analysis.given
                                     for r in runs], dtype=bool),
+            # a frequency estimated that may be an alias: on no boundary
+            "dither_aliased": np.array([r.analysis.frequency_aliased
+                                        for r in runs], dtype=bool),
             "p_f_given": np.array([SETTING[1] in r.analysis.given
                                    for r in runs], dtype=bool),
             **_dither_arrays([r.analysis.dither for r in runs])}
