@@ -1229,6 +1229,10 @@ def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
                  "--out", str(out), "--plot", str(plot), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["boundary"] == [[210.0, 0.8], [212.0, 0.8], [214.0, 0.8]]
+    estimate = data["runs"][0]["dither_estimate"]
+    assert estimate["frequency_aliased"]
+    np.testing.assert_allclose(estimate["aliases_hz"], [73.7, 198.9, 210],
+                               atol=0.2)
     assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
     assert ("  run01.csv: on no boundary and in no contour: its dither "
             "frequency, estimated at 62.59 Hz, may be an alias (see its "

@@ -346,7 +346,10 @@ def dither_estimate_dict(fit, given=()):
     none: which values of the setting were ``given`` and which
     ``estimated`` (of :data:`SETTING`), the pressure's values with their
     standard uncertainties (``*_std_*``; the frequency's NaN where it was
-    given), the time the phase refers to, the sampling and its warnings."""
+    given), the time the phase refers to, the sampling and its warnings,
+    the aliases that fit as well (Hz) and ``frequency_aliased``: the
+    frequency was estimated and may be an alias, so the run is on no
+    boundary (:meth:`pysim.bench_data.charts.Chart.set_points`)."""
     if fit is None:
         return None
     return {"given": [name for name in SETTING if name in given],
@@ -357,7 +360,9 @@ def dither_estimate_dict(fit, given=()):
             "phase_rad": fit.phase_rad, "phase_std_rad": fit.phase_std_rad,
             "phase_time_s": fit.reference_s,
             "samples_per_period": fit.samples_per_period,
-            "periods": fit.periods, "warnings": list(fit.warnings)}
+            "periods": fit.periods, "warnings": list(fit.warnings),
+            "aliases_hz": list(fit.aliases),
+            "frequency_aliased": SETTING[0] not in given and fit.aliased}
 
 
 def _uniform(time, values, rate=None):
