@@ -22,7 +22,8 @@ __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary_table", "read_boundary", "read_boundary_tested",
            "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
-           "read_chart_min_growth", "read_chart_limit", "read_chart_runs"]
+           "read_chart_min_growth", "read_chart_limit", "read_chart_runs",
+           "empty_cell"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -140,6 +141,13 @@ def read_boundary_table(text, source="boundary file", decimal=None):
 
     The numbers of :data:`BOUNDARY_STATED` comments are read with the
     cells: ``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5.
+    A stated number that the file's separators read with a thousands
+    separator and the other decimal separator reads too (``1.000`` in a
+    file of decimal commas: 1000 or 1) is refused, naming its line and
+    the number as written: a threshold is one number a program wrote,
+    often with a decimal point into a file whose cells a spreadsheet
+    wrote with decimal commas, and a factor 1000 in it is no guess to
+    make silently.
 
     Returns
     -------
@@ -197,6 +205,8 @@ def read_boundary_table(text, source="boundary file", decimal=None):
                                  for name in read},
                               **{name: [cell] for name, cell in
                                  stated.items()}}, decimal)
+    for name, (number, text) in stated.items():
+        _check_stated(source, number, name, text, float(values[name][0]))
     table = {name: [] for name in names}
     for index, (number, cells) in enumerate(rows):
         line = written[number]
@@ -206,8 +216,7 @@ def read_boundary_table(text, source="boundary file", decimal=None):
         amps = {name: float(values[name][index]) * PA_PER_BAR
                 if texts[name] else np.nan for name in names[1:]}
         if not texts["freq_hz"]:
-            raise JudderError(f"{source}, line {number}: column 'freq_hz' "
-                              "is empty; allowed: a frequency > 0 Hz")
+            raise empty_cell(source, number, "freq_hz", "a frequency > 0 Hz")
         gaps = [name for name in amps if texts[name] and np.isnan(amps[name])]
         if gaps:
             # censored is written as an empty cell; a NaN is a gap in the
@@ -233,6 +242,35 @@ def read_boundary_table(text, source="boundary file", decimal=None):
             "lines": [number for number, _ in rows],
             "stated": {name: (number, text, float(values[name][0]))
                        for name, (number, text) in stated.items()}}
+
+
+def empty_cell(source, number, column, allowed):
+    """The error of an empty cell of a table the user gives, worded the
+    same wherever it is found: the file (``source``, with the option that
+    gave it where it has one), the line, the column, what is allowed."""
+    return JudderError(f"{source}, line {number}: column {column!r} is "
+                       f"empty; allowed: {allowed}")
+
+
+def _check_stated(source, number, name, text, read):
+    """Refuse a stated number (``text``, read as ``read`` with the file's
+    separators) that reads with a thousands separator under the file's
+    convention and as another number under the other one."""
+    from pysim.bench_data._numbers import CONVENTIONS, readings, value
+    if len(readings(text)) < 2:
+        return
+    both = {name: value(text, name) for name in CONVENTIONS}
+    if len(set(both.values())) < 2:
+        return      # 12, 1 000: the same number either way
+    files = next(c for c, v in both.items() if v == read)
+    other = next(c for c in both if c != files)
+    raise JudderError(
+        f"{source}, line {number}: {name} {text!r} is {both[files]:g} as "
+        f"the file's cells are written, with {CONVENTIONS[files][0]}, but "
+        f"{both[other]:g} with {CONVENTIONS[other][0]}; allowed: the "
+        "number without a thousands "
+        "separator (such as 1000, or 1 written with the file's decimal "
+        "separator)")
 
 
 def _check_tested(amps, source, number, line):
@@ -411,11 +449,33 @@ def read_chart_boundary(path, group=None, option="--chart"):
     tried_bar : float
         The largest amplitude tried, bar.
     """
+    groups, freq, p_bar, tried, aliased = _boundary_arrays(path, option)
+    names = list(dict.fromkeys(groups.tolist()))
+    if not names:
+        raise JudderError(
+            f"{option} {path}: the chart has no boundary: " + (
+                f"each of its {len(aliased)} run(s) has a dither frequency "
+                "estimated that may be an alias (on no boundary); allowed: "
+                "a chart with runs whose frequency is given (freq_hz in "
+                "the index)" if len(aliased) and aliased.all() else
+                "no run could be read into it"))
+    chosen = _chosen_group(path, group, names)
+    keep = groups == chosen
+    return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
+            float(tried[keep].max()))
+
+
+def _boundary_arrays(path, option):
+    """A chart's boundary arrays (group, Hz, bar with NaN where censored,
+    largest tried, bar) and its runs' ``dither_aliased`` (none where not
+    stored), or the error naming what is wrong with the file."""
     try:
         with np.load(path, allow_pickle=False) as npz:
             groups = npz["boundary_group"]
             freq, p_bar = npz["boundary_freq_hz"], npz["boundary_p_f_bar"]
             tried = npz["boundary_tried_bar"]
+            aliased = npz["dither_aliased"] if "dither_aliased" in \
+                npz.files else np.zeros(0, dtype=bool)
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror or exc})") from None
@@ -424,10 +484,12 @@ def read_chart_boundary(path, group=None, option="--chart"):
     except (ValueError, KeyError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
                           "chart --out (an NPZ file)") from None
-    names = list(dict.fromkeys(groups.tolist()))
-    if not names:
-        raise JudderError(f"{option} {path}: the chart has no boundary (no "
-                          "run could be read into it)")
+    return groups, freq, p_bar, tried, aliased
+
+
+def _chosen_group(path, group, names):
+    """The group of a chart to read (``names``, its groups): ``group``, or
+    its one group."""
     if group is None and len(names) > 1:
         raise JudderError(f"{option} {path} has {len(names)} groups; give "
                           f"--group, one of {', '.join(names)}")
@@ -439,9 +501,7 @@ def read_chart_boundary(path, group=None, option="--chart"):
                               "no --group")
         raise JudderError(f"--group {group!r} is not in {path}; allowed: "
                           f"{', '.join(names)}")
-    keep = groups == chosen
-    return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
-            float(tried[keep].max()))
+    return chosen
 
 
 def read_chart_below(path, group=None, option="--chart"):
@@ -478,17 +538,18 @@ def read_chart_runs(path, group=None, option="--chart"):
         estimated, and for a chart written before they were stored), and
         ``dither_warnings``, what the pressure's sampling could not
         support and the given values it contradicts ('' where nothing,
-        or not stored).
+        or not stored), and ``dither_aliased``, a frequency estimated that
+        may be an alias (on no boundary; False where not stored).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar; None: no judder) and the largest
         amplitude tried (bar).
     """
-    freq, p_f, _ = read_chart_boundary(path, group, option)
+    groups, freq, p_bar, tried, _ = _boundary_arrays(path, option)
     with np.load(path, allow_pickle=False) as npz:
-        groups = npz["boundary_group"]
-        chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
-            else group
-        tried = npz["boundary_tried_bar"][groups == chosen]
+        # a group whose every run may be at an alias has no boundary
+        names = list(dict.fromkeys(groups.tolist()
+                                   + npz["group"].tolist()))
+        chosen = _chosen_group(path, group, names)
         keep = npz["group"] == chosen
         runs = {key: npz[key][keep] for key in (
             "source_file", "freq_hz", "p_f_bar", "amplitude_rpm", "judder",
@@ -497,8 +558,9 @@ def read_chart_runs(path, group=None, option="--chart"):
             {key: npz[key][keep] for key in npz.files if key.startswith(
                 "dither_") or key in ("freq_given", "p_f_given")},
             runs["p_f_bar"]))
-    boundary = [(float(f), None if np.isnan(p) else float(p / PA_PER_BAR),
-                 float(top)) for f, p, top in zip(freq, p_f, tried)]
+    on = groups == chosen
+    boundary = [(float(f), None if np.isnan(p) else float(p), float(top))
+                for f, p, top in zip(freq[on], p_bar[on], tried[on])]
     return runs, boundary
 
 
@@ -524,7 +586,9 @@ def _dither_estimates(stored, p_f_bar):
                 estimated & ~p_f_given, p_f_bar, np.nan)),
             "p_f_std_bar": std,
             "dither_warnings": stored.get("dither_warnings",
-                                          np.full(count, ""))}
+                                          np.full(count, "")),
+            "dither_aliased": stored.get("dither_aliased",
+                                         np.zeros(count, dtype=bool))}
 
 
 def _damaged(option, path):

@@ -793,6 +793,36 @@ def test_an_index_row_no_bench_runs_is_refused(tmp_path, row, words):
     assert str(index) in str(info.value) and words in str(info.value)
 
 
+def test_a_file_listed_twice_is_refused_naming_both_places(tmp_path,
+                                                           capsys):
+    """Review of issue 31: the same acquisition on two lines of an index
+    counted as two runs (two points of the contour, two votes at its set
+    point); it is refused, naming both lines, whether written alike or
+    as ./run01.csv, and so is a file given as SOURCE and in the index."""
+    from judder.cli import main
+    from pysim.bench_data.charts import gather_sources
+    index = tmp_path / "runs.csv"
+    index.write_text("file,freq_hz,p_f_bar\nrun01.csv,210,0.4\n"
+                     "run02.csv,210,0.6\n# again\n./run01.csv,210,0.8\n")
+    with pytest.raises(JudderError) as info:
+        gather_sources([], index)
+    assert str(info.value) == (
+        f"`index` {index}, line 2 and `index` {index}, line 5 both list "
+        f"{tmp_path / 'run01.csv'}; allowed: each acquisition once (one run "
+        "per file)")
+    index.write_text("file,freq_hz\nrun01.csv,210\n")
+    (tmp_path / "run01.csv").write_text("time,n\n0,1\n")
+    with pytest.raises(JudderError, match=re.escape(
+            f"`paths` {tmp_path / 'run01.csv'} and `index` {index}, line 2 "
+            "both list")):
+        gather_sources([tmp_path / "run01.csv"], index)
+    assert main(["chart", str(tmp_path / "run01.csv"), "--index",
+                 str(index)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"judder: error: SOURCE {tmp_path / 'run01.csv'} "
+                          f"and --index {index}, line 2 both list")
+
+
 def test_chart_reads_an_index_as_written_or_with_the_decimal_given(
         tmp_path, capsys):
     """An index beside the example run (written with decimal points):
@@ -1148,6 +1178,114 @@ def test_a_dither_read_at_its_alias_names_the_plausible_frequencies(jitter):
     for words in ("as the one found at 62.", "cannot be told from its "
                   "aliases", "5-250 Hz", "freq_hz"):
         assert words in warning
+
+
+def test_every_run_record_carries_the_verdict_as_the_tool_words_it(
+        tmp_path, capsys):
+    """Review of issue 31: a chart's run JSON said ``judder: true`` with
+    no ``verdict``, while check, floquet and the report carry one; every
+    run record now has it, JUDDER in the word check uses for judder and
+    NO JUDDER otherwise (a run cannot tell check's SLOW GROWTH from
+    STABLE)."""
+    from judder.cli import main
+    from pysim.analysis.verdict import RUN_VERDICTS, run_verdict
+    from stability.decisions.relevance import JUDDER, VERDICTS
+    assert RUN_VERDICTS == (JUDDER, "NO JUDDER")
+    assert RUN_VERDICTS[1] not in VERDICTS
+    assert [run_verdict(j) for j in (True, False, None)] == \
+        ["JUDDER", "NO JUDDER", None]
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    assert main(["chart", "--index", str(examples / "runs.csv"),
+                 *EXAMPLE_CHANNELS, "--json"]) == 0
+    runs = json.loads(capsys.readouterr().out)["runs"]
+    assert [r["verdict"] for r in runs] == \
+        ["NO JUDDER", "NO JUDDER", "JUDDER"] * 3
+    assert all(r["verdict"] == run_verdict(r["judder"]) for r in runs)
+
+
+def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
+        tmp_path, capsys):
+    """Review of issue 31: the example runs, run01's pressure kept on
+    every fifth row and its setting not given (found at the alias 62.59
+    Hz of its 210 Hz): it was drawn like the others, its amplitude
+    contoured from 62.6 to 214 Hz, and it made a boundary point "no
+    judder up to 0.345 bar" at 62.59 Hz. It is now drawn apart, its
+    legend saying so, out of the contour and of the boundary (text, JSON,
+    NPZ and the figure drawn again from it), with a line saying why."""
+    import matplotlib.pyplot as plt
+
+    from judder.cli import main
+    from judder.inputs import read_chart_runs
+    from pysim.bench_data.plots import ALIASED_LABEL, runs_figure
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    for source in examples.glob("run0*.csv"):
+        (tmp_path / source.name).write_text(source.read_text())
+    index = _example_with_pressure_on(
+        tmp_path, lambda times: np.arange(len(times)) % 5 == 0)
+    index.write_text((examples / "runs.csv").read_text().replace(
+        "run01.csv,210,0.4", "run01.csv,,"))
+    out, plot = tmp_path / "chart.npz", tmp_path / "chart.png"
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--out", str(out), "--plot", str(plot), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["boundary"] == [[210.0, 0.8], [212.0, 0.8], [214.0, 0.8]]
+    estimate = data["runs"][0]["dither_estimate"]
+    assert estimate["frequency_aliased"]
+    np.testing.assert_allclose(estimate["aliases_hz"], [73.7, 198.9, 210],
+                               atol=0.2)
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
+    assert ("  run01.csv: on no boundary and in no contour: its dither "
+            "frequency, estimated at 62.59 Hz, may be an alias (see its "
+            "warning); give freq_hz in the index") in \
+        capsys.readouterr().out.splitlines()
+    runs, boundary = read_chart_runs(out)
+    assert runs["dither_aliased"].tolist() == [True] + [False] * 8
+    assert [f for f, _, _ in boundary] == [210.0, 212.0, 214.0]
+    fig = runs_figure(runs, boundary, "chart")
+    ax = fig.axes[0]
+    (contour,) = [c for c in ax.collections if hasattr(c, "levels")]
+    drawn = np.concatenate([path.vertices for path in contour.get_paths()
+                            if len(path.vertices)])
+    assert drawn[:, 0].min() >= 210.0 - 1e-9
+    (apart,) = [c for c in ax.collections
+                if c.get_label() == ALIASED_LABEL]
+    np.testing.assert_allclose(apart.get_offsets(), [[62.59, 0.345]],
+                               atol=0.01)
+    assert ALIASED_LABEL in [t.get_text() for t in fig.legends[0].texts]
+    plt.close(fig)
+    # a chart of that run alone has no boundary to fit, and says why
+    index.write_text("file\nrun01.csv\n")
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["fit", "--chart", str(out), "--fit", "mu_g"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        f"judder: error: --chart {out}: the chart has no boundary: each of "
+        "its 1 run(s) has a dither frequency estimated that may be an "
+        "alias (on no boundary); allowed: a chart with runs whose "
+        "frequency is given (freq_hz in the index)")
+
+
+@pytest.mark.parametrize("rate, found, alias", [
+    (1000.0, 471.4, 528.6), (700.0, 228.6, 471.4)])
+def test_an_alias_above_250_hz_is_named(rate, found, alias):
+    """Review of issue 31: the plausible dither frequencies were 5-250 Hz
+    whatever the data, so a 471.4 Hz dither sampled uniformly at 1000
+    samples/s (found at 471.4 Hz, its alias 528.6 Hz) or at 700 samples/s
+    (found at its alias 228.6 Hz) was estimated with no warning at all.
+    The range now reaches three times the frequency found, and names the
+    alias and the range it searched."""
+    rng = np.random.default_rng(3)
+    time = np.arange(0, 1.5, 1 / rate)
+    pressure = 8 * PA_PER_BAR + 0.3 * PA_PER_BAR * np.cos(
+        2 * np.pi * 471.4 * time) + 1e3 * rng.standard_normal(len(time))
+    fit = estimate_dither(time, pressure, (0.1, 1.4))
+    assert fit.freq_hz == pytest.approx(found, abs=0.01)
+    (warning,) = fit.warnings
+    assert warning.startswith(f"the sinusoids at {alias:g} Hz fit the "
+                              f"samples as well as the one found at "
+                              f"{found:g} Hz")
+    assert f"plausible dither frequencies 5-{3 * found:.4g} Hz" in warning
 
 
 def test_chart_warns_of_the_frequencies_a_thinned_pressure_hides(tmp_path,

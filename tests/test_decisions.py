@@ -479,13 +479,21 @@ def test_check_command_line(tmp_path):
 @pytest.mark.parametrize("text, words", [
     # a German table with a comment line: the line as the file numbers it
     ("freq_hz;p_f_bar\n60;0,2\n# second setting\n102,9;\n",
-     "--table {path}, line 4: column 'p_f_bar' is empty; allowed: every "
-     "row with freq_hz and p_f_bar (the settings to check)"),
+     "--table {path}, line 4: column 'p_f_bar' is empty; allowed: a "
+     "dither amplitude >= 0 bar (every row is a setting to check)"),
     ("freq_hz,p_f_bar\n60,0.2\n,0.3\n",
-     "{path}, line 3: column 'freq_hz' is empty; allowed: a frequency > 0 "
-     "Hz")])
+     "--table {path}, line 3: column 'freq_hz' is empty; allowed: a "
+     "frequency > 0 Hz"),
+    ("freq_hz,p_f_bar\n# a comment\n60,0.2\n1e9,0.3\n",
+     "--table {path}, line 4: column 'freq_hz' = 1e+09 Hz is not allowed; "
+     "allowed: 0.001 to 100000 Hz")])
 def test_check_names_the_line_and_column_of_an_empty_cell(tmp_path, capsys,
                                                           text, words):
+    """Review of issue 31: an empty cell of --table is worded one way
+    whichever column it is in and wherever it is found (the frequency's
+    said neither the option nor the same "allowed"), and a frequency out
+    of range names its line as the file numbers it (it said "row 3" for
+    the fourth line of a file with a comment)."""
     from judder.cli import main
     table = tmp_path / "dither.csv"
     table.write_text(text)

@@ -482,7 +482,8 @@ def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0):
                 estimated=False, window_s=(0.0, 3.0), amplitude_rpm=0.0,
                 growth_per_s=None, kind="single-period" if judder
                 else "stable", mechanism=None, oscillation_rpm=0.0,
-                forced_rpm=0.0, dither=None, given=("freq_hz", "p_f_bar"))
+                forced_rpm=0.0, dither=None, given=("freq_hz", "p_f_bar"),
+                frequency_aliased=False)
             runs.append(ChartRun(f"run_{f:g}_{p:g}.mf4", {}, analysis))
     return Chart(runs=runs, group_by=(), min_growth=1.0,
                  judder_limit_rpm=limit_rpm), onset
@@ -607,6 +608,60 @@ def test_the_comments_of_a_german_boundary_file_read_as_its_cells(
     with pytest.raises(JudderError, match="line 1: judder_limit_rpm = 0,0 "
                        "is not allowed; allowed: a finite number > 0"):
         read_boundary_limit(path)
+
+
+@pytest.mark.parametrize("comment, boundary, readings", [
+    ("1.000", GERMAN_BOUNDARY, ("is 1000 as the file's cells are written, "
+                                "with a decimal comma", "but 1 with a "
+                                "decimal point")),
+    ("1,000", "freq_hz,p_f_bar,no_judder_bar,tried_bar\n"
+              "105,0.3,0.2,0.6\n60,,0.6,0.6\n",
+     ("is 1000 as the file's cells are written, with a decimal point",
+      "but 1 with a decimal comma"))])
+def test_a_stated_threshold_with_a_thousands_separator_is_refused(
+        tmp_path, comment, boundary, readings):
+    """Review of issue 31: ``# min_growth_per_s: 1.000`` in a file of
+    decimal commas was read as 1000 1/s (the thousands point the cells'
+    convention allows): a threshold is one number, mostly written with a
+    decimal point by a program, so a reading that differs by a factor
+    1000 between the two conventions is refused, naming the line and the
+    number as written; 0,5 there still reads as 0.5."""
+    from judder.inputs import read_boundary_min_growth
+    path = tmp_path / "b.csv"
+    path.write_text(boundary + f"# min_growth_per_s: {comment}\n")
+    with pytest.raises(JudderError) as info:
+        read_boundary_min_growth(path)
+    message = str(info.value)
+    assert message.startswith(f"{path}, line 4: min_growth_per_s "
+                              f"{comment!r} ")
+    for words in (*readings, "allowed: the number without a thousands "
+                  "separator"):
+        assert words in message
+
+
+def test_a_fit_refused_names_the_threshold_it_compared_with(tmp_path,
+                                                            capsys):
+    """Review of issue 31: a boundary file stating a threshold no model
+    boundary reaches (1000 1/s) made the fit refuse with "none of mu_g
+    moves the measured boundary" and no word of the threshold; the
+    refusal now names it, its value and the line it came from, or the
+    option that gave it."""
+    from judder.cli import main
+    path = tmp_path / "b.csv"
+    path.write_text("freq_hz,p_f_bar,tried_bar\n100,0.3,0.6\n120,0.42,0.6\n"
+                    "140,,0.6\n160,0.5,0.6\n# min_growth_per_s: 1000\n")
+    command = ["fit", "--boundary", str(path), "--fit", "mu_g",
+               "--starts", "1"]
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+    assert err.strip().endswith(
+        "(compared with the model's boundary of judder growing at "
+        f"min_growth_per_s = 1000 1/s, from {path}, line 6: "
+        "min_growth_per_s 1000)")
+    assert main(command + ["--min-growth", "500"]) == 2
+    assert capsys.readouterr().err.strip().endswith(
+        "min_growth_per_s = 500 1/s, from --min-growth 500)")
 
 
 def test_an_excel_boundary_file_with_its_separator_line(tmp_path):

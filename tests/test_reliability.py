@@ -409,7 +409,7 @@ BOUNDARY_CASES = [
      ["--freq 1e9", "<= 100000 Hz"]),
     (["check", "--freq", "105,1e9", "--pf", "0.2"], 2, ["--freq 1e9"]),
     (["check", "--table", "{d}/table_1e9.csv"], 2,
-     ["freq_hz 1e+09 Hz (row 3)", "0.001 to 100000 Hz"]),
+     ["line 3: column 'freq_hz' = 1e+09 Hz", "0.001 to 100000 Hz"]),
     (["advise", "--no-design", "--freq-range=60:1e9"], 2,
      ["--freq-range 1e9", "<= 100000 Hz"]),
     (["advise", "--no-design", "--freq-range", "120:90"], 2,

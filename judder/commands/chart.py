@@ -156,6 +156,11 @@ def run(args):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
+        rows += [f"  {run.path.name}: on no boundary and in no contour: "
+                 f"its dither frequency, estimated at "
+                 f"{run.analysis.freq_hz:.4g} Hz, may be an alias (see its "
+                 "warning); give freq_hz in the index"
+                 for run in result.chart.aliased(group)]
         rows += [_estimate_line(run) for run in runs
                  if run.analysis.dither is not None]
     rows += [f"could not read {in_flags(r.reason)}"
@@ -330,6 +335,7 @@ class ChartResult:
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s, "judder": a.judder,
+                "verdict": a.verdict,
                 "kind": a.kind, "mechanism": a.mechanism,
                 "oscillation_rpm": a.oscillation_rpm,
                 "forced_rpm": a.forced_rpm})

@@ -102,27 +102,29 @@ def _settings(args, parameters):
     time of ``parameters`` sensitivity parameters per setting is estimated
     before the settings are made (a grid x grid of 1e10 would fill the
     memory first)."""
-    from ..inputs import read_boundary_tested
+    from ..inputs import empty_cell, read_boundary_table, read_input
     if args.table:
         if args.freq or args.pf:
             raise JudderError("--table and --freq/--pf: allowed: one of them")
-        table = read_boundary_tested(args.table, "--table", args.decimal)
+        # every message of the table names it as the option gave it
+        source = f"--table {args.table}"
+        table = read_boundary_table(read_input(args.table, "--table"),
+                                    source, args.decimal)
         freqs, p_f, lines = table["freq_hz"], table["p_f"], table["lines"]
         empty = [line for line, p in zip(lines, p_f) if not math.isfinite(p)]
         if empty:
-            raise JudderError(f"--table {args.table}, line {empty[0]}: "
-                              "column 'p_f_bar' is empty; allowed: every "
-                              "row with freq_hz and p_f_bar (the settings "
-                              "to check)")
+            raise empty_cell(source, empty[0], "p_f_bar", "a dither "
+                             "amplitude >= 0 bar (every row is a setting "
+                             "to check)")
         amplitudes = [p / PA_PER_BAR for p in p_f]
-        check_amplitudes(amplitudes, f"--table {args.table}: p_f_bar")
+        check_amplitudes(amplitudes, f"{source}: p_f_bar")
         check_settings_time(len(freqs), parameters)
-        check_work(f"--table {args.table}", len(freqs), "settings")
+        check_work(source, len(freqs), "settings")
         low, high = FREQ_RANGE_HZ
-        for row, f in enumerate(freqs, start=2):
+        for line, f in zip(lines, freqs):
             if not low <= f <= high:
                 raise JudderError(
-                    f"--table {args.table}: freq_hz {f:g} Hz (row {row}) is "
+                    f"{source}, line {line}: column 'freq_hz' = {f:g} Hz is "
                     f"not allowed; allowed: {low:g} to {high:g} Hz")
         return list(freqs), amplitudes
     refuse_decimal(args.decimal, "a --table file", "with --freq and --pf")

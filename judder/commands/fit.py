@@ -1,5 +1,6 @@
 """``judder fit``: fit parameters to a measured boundary (section 4.2)."""
 
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -147,12 +148,16 @@ def run(args):
     bounds = _bounds(args.bounds, params, names)
     default_growth = DEFAULT_MIN_GROWTH_PER_S
     default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
+    # where the growth threshold comes from, for a refusal that depends on
+    # it (--min-growth, the chart's, the boundary file's comment, default)
+    threshold = "the default of --min-growth"
     if args.chart:
         refuse_decimal(args.decimal, "a --boundary file (CSV)",
                        "with --chart (an NPZ)")
         freqs, measured, default_p_max = read_chart_boundary(args.chart,
                                                              args.group)
         default_growth = read_chart_min_growth(args.chart)
+        threshold = f"the chart's min_growth_per_s ({args.chart})"
         default_limit = read_chart_limit(args.chart)
         below = read_chart_below(args.chart, args.group)
     else:
@@ -163,6 +168,10 @@ def run(args):
         stated = read_boundary_min_growth(args.boundary,
                                           decimal=args.decimal)
         default_growth = default_growth if stated is None else stated
+        if stated is not None:
+            line, text, _ = table["stated"]["min_growth_per_s"]
+            threshold = (f"{args.boundary}, line {line}: min_growth_per_s "
+                         f"{text}")
         default_limit = read_boundary_limit(args.boundary,
                                             decimal=args.decimal)
     if args.bench and not args.bench_linearisation:
@@ -174,18 +183,21 @@ def run(args):
         else args.threshold_spread
     check_fit(len(freqs), _local_fits(args.starts, args.uncertainty, spread),
               "--chart" if args.chart else "--boundary")
+    min_growth = default_growth if args.min_growth is None \
+        else args.min_growth
+    compared = _threshold_words(min_growth, f"--min-growth {min_growth:g}"
+                                if args.min_growth is not None else threshold)
     make_parents(args.plot, args.save_params)
     # the options were checked by their parsers, the files by their
     # readers: the fit itself, in Pa, without the API's checks
-    with Progress(None, "fit") as progress:
+    with Progress(None, "fit") as progress, _naming(compared):
         report = _fitted(
             params.replace(**changes), freqs, measured,
             p_max_bar * PA_PER_BAR, below, names=names, bounds=bounds,
             method=args.method, starts=args.starts,
             uncertainty=args.uncertainty, error_model=args.error_model,
             seed=args.seed, workers=args.workers, progress=progress,
-            min_growth=default_growth if args.min_growth is None
-            else args.min_growth, bench=bench,
+            min_growth=min_growth, bench=bench,
             scatter=_scatter(args.scatter, args.error_model),
             threshold_spread=spread,
             judder_limit_rpm=default_limit if args.limit is None
@@ -208,7 +220,27 @@ def run(args):
          "\n".join(rows) + written(args.save_params, args.plot))
     if not result.success:
         raise JudderError("the fit cannot be trusted: "
-                          + "; ".join(result.problems or [result.message]))
+                          + "; ".join(result.problems or [result.message])
+                          + f" ({compared})")
+
+
+def _threshold_words(min_growth, source):
+    """The model boundary a fit compares with, its growth threshold and
+    where that came from, in words: what a refusal of the fit depends
+    on."""
+    what = " (the stability boundary)" if min_growth == 0 else ""
+    return (f"compared with the model's boundary of judder growing at "
+            f"min_growth_per_s = {min_growth:g} 1/s{what}, from {source}")
+
+
+@contextmanager
+def _naming(compared):
+    """A refusal of the fit itself, with the threshold it depends on
+    named (``compared``, :func:`_threshold_words`)."""
+    try:
+        yield
+    except JudderError as error:
+        raise JudderError(f"{error} ({compared})") from None
 
 
 def _local_fits(starts, uncertainty, spread):

@@ -169,7 +169,9 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
 
 def orbit_row(found, doubled, limit_rpm, min_growth):
     """One orbit as a JSON row (Hz, bar, rpm, 1/s, N m), with the
-    verdict of :mod:`stability.orbit_chart`."""
+    verdict of :mod:`stability.orbit_chart` (``verdict`` in the words of
+    :data:`pysim.analysis.verdict.RUN_VERDICTS`)."""
+    from pysim.analysis.verdict import run_verdict
     forced = found.dither_amplitude * RPM_PER_RAD_S
     half = (abs(doubled.upstream_harmonics[0]) * RPM_PER_RAD_S
             if doubled is not None else 0.0)
@@ -197,6 +199,7 @@ def orbit_row(found, doubled, limit_rpm, min_growth):
                 "growth_per_s": doubled.growth_rate,
                 "stable": doubled.stable},
             "settled_rpm": settled, "judder": bool(judder),
+            "verdict": run_verdict(bool(judder)),
             "mechanism": mechanism, "judder_limit_rpm": limit_rpm}
 
 
@@ -331,6 +334,7 @@ class OrbitResult:
         return self.chart
 
     def _chart_rows(self):
+        from pysim.analysis.verdict import run_verdict
         c = self.chart
         return [{"freq_hz": f, "p_f_bar": p / PA_PER_BAR,
                  "amplitude_at_dither_rpm":
@@ -338,6 +342,7 @@ class OrbitResult:
                  "settled_rpm": c.settled_amplitude[i, j] * RPM_PER_RAD_S,
                  "kind": c.kind[i, j], "growth_per_s": c.growth_rate[i, j],
                  "judder": bool(c.judder[i, j]),
+                 "verdict": run_verdict(bool(c.judder[i, j])),
                  "mechanism": MECHANISMS[c.mechanism[i, j]],
                  "drift_torque_nm": c.drift_torque[i, j]}
                 for i, f in enumerate(c.freq_hz)

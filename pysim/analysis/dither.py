@@ -23,7 +23,9 @@ uncertainties of ``A`` and :math:`\varphi` follow from it to first order
 
 Sampling that cannot support the estimate is named in :attr:`SinusoidFit.
 warnings`: aliases within the plausible dither frequencies
-(:data:`DITHER_RANGE_HZ`) that fit as well as the frequency found,
+(:data:`DITHER_RANGE_HZ`, reaching up to :data:`ALIAS_REACH` times the
+frequency found where that is higher, :func:`plausible_range`) that fit
+as well as the frequency found,
 ``|f + k f_s|`` for the samples' mean rate ``f_s`` (all of them fit as
 well where the samples are uniform and ``f_s`` is below twice the range's
 top; irregular samples may tell some apart), fewer than
@@ -42,8 +44,8 @@ from scipy.optimize import minimize_scalar
 
 __all__ = ["SinusoidFit", "fit_sinusoid", "disagreement",
            "MIN_SAMPLES_PER_PERIOD", "MIN_PERIODS", "MAX_RELATIVE_UNCERTAINTY",
-           "ALIAS_SHARE", "DITHER_RANGE_HZ", "DISAGREEMENT_STDS",
-           "DISAGREEMENT_SHARE"]
+           "ALIAS_SHARE", "DITHER_RANGE_HZ", "ALIAS_REACH",
+           "plausible_range", "DISAGREEMENT_STDS", "DISAGREEMENT_SHARE"]
 
 #: Fewer samples per dither period than this cannot tell the frequency
 #: from its alias (the Nyquist limit of a uniform sampling).
@@ -66,6 +68,16 @@ ALIAS_SHARE = 0.5
 #: Hz), as far as the report's stability map reaches. An alias of the
 #: frequency found within it is a frequency the bench may have run.
 DITHER_RANGE_HZ = (5.0, 250.0)
+#: The plausible frequencies reach at least this many times the frequency
+#: found (:func:`plausible_range`): with :data:`DITHER_RANGE_HZ` alone a
+#: 471.4 Hz dither at 1000 samples/s (its alias 528.6 Hz) or at 700
+#: samples/s (found at its alias 228.6 Hz) had no alias named. Uniform
+#: samples at ``f_s`` put the first alias above ``f`` at ``f_s - f``,
+#: within ``3 f`` exactly when there are fewer than 4 samples per period:
+#: a sampling set for the pick-up or a CAN bus, not for the dither (a DAQ
+#: set for it takes more, behind an anti-alias filter, and an alias ten
+#: times the dither is none a valve runs).
+ALIAS_REACH = 3.0
 #: A value given for the dither contradicts the pressure's estimate when
 #: they differ by more than this many standard uncertainties of the
 #: estimate ...
@@ -102,6 +114,9 @@ class SinusoidFit:
         Why the sampling cannot support the estimate, in words (empty when
         it can); they speak of "the samples" and leave the channel to be
         named by the caller.
+    aliases : tuple of float
+        The aliases that fit the samples as well as ``freq_hz``, Hz (empty
+        where the frequency was given: it was not sought).
     """
 
     freq_hz: float
@@ -115,6 +130,15 @@ class SinusoidFit:
     samples_per_period: float
     periods: float
     warnings: tuple
+    aliases: tuple = ()
+
+    @property
+    def aliased(self):
+        """The frequency cannot be told from its aliases: some fit as
+        well, or there are fewer than :data:`MIN_SAMPLES_PER_PERIOD`
+        samples per period."""
+        return bool(self.aliases) or \
+            self.samples_per_period < MIN_SAMPLES_PER_PERIOD
 
     @property
     def relative_amplitude_std(self):
@@ -148,6 +172,20 @@ def _covariance(jacobian, variance):
     return variance * inverse / np.outer(scale, scale)
 
 
+def plausible_range(freq_hz, dither_range_hz=DITHER_RANGE_HZ):
+    """The dither frequencies an alias of ``freq_hz`` (Hz, the frequency
+    found) may be, Hz: ``dither_range_hz`` reaching up to
+    :data:`ALIAS_REACH` times ``freq_hz`` where that is higher.
+
+    Example
+    -------
+    >>> plausible_range(80.0), plausible_range(471.4)
+    ((5.0, 250.0), (5.0, 1414.2))
+    """
+    low, high = dither_range_hz
+    return low, max(high, round(ALIAS_REACH * freq_hz, 6))
+
+
 def fit_sinusoid(time, values, freq_hz, bracket_hz=None,
                  dither_range_hz=DITHER_RANGE_HZ):
     r"""Least-squares sinusoid over a line, fitted to samples as taken.
@@ -167,7 +205,8 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None,
         uncertainty.
     dither_range_hz : (float, float)
         The frequencies the dither may have, Hz: aliases of the frequency
-        found within them are tried (:data:`DITHER_RANGE_HZ`).
+        found within them, reaching up to :data:`ALIAS_REACH` times it
+        (:func:`plausible_range`), are tried (:data:`DITHER_RANGE_HZ`).
 
     Returns
     -------
@@ -219,10 +258,13 @@ def fit_sinusoid(time, values, freq_hz, bracket_hz=None,
         reference_s=float(reference), residual_std=float(np.sqrt(variance)),
         samples_per_period=(len(time) - 1) / periods, periods=periods,
         warnings=())
+    dither_range_hz = plausible_range(fit.freq_hz, dither_range_hz)
     aliases = (_aliases(tau, values, fit, rss, dither_range_hz)
                if bracket_hz is not None else None)
-    return SinusoidFit(**{**fit.__dict__, "warnings": _warnings(
-        fit, aliases, _candidates(fit, dither_range_hz), dither_range_hz)})
+    return SinusoidFit(**{**fit.__dict__, "aliases": tuple(aliases or ()),
+                          "warnings": _warnings(
+                              fit, aliases, _candidates(fit, dither_range_hz),
+                              dither_range_hz)})
 
 
 def _candidates(fit, dither_range_hz):
@@ -283,7 +325,7 @@ def _warnings(fit, aliases, candidates, dither_range_hz):
             f"as the one found at {fit.freq_hz:.4g} Hz: at the samples' "
             f"mean rate of {rate:.4g} samples/s they are its aliases (|f + k x "
             f"{rate:.4g} Hz|) within the plausible dither frequencies "
-            f"{dither_range_hz[0]:g}-{dither_range_hz[1]:g} Hz, and the "
+            f"{dither_range_hz[0]:g}-{dither_range_hz[1]:.4g} Hz, and the "
             "frequency cannot be told from its aliases; give the dither "
             "frequency (a freq_hz column in the index)")
     elif fit.samples_per_period < MIN_SAMPLES_PER_PERIOD:

@@ -128,7 +128,7 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 from .dither import disagreement, fit_sinusoid
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
-           "dither_estimate_dict", "SETTING",
+           "dither_estimate_dict", "SETTING", "RUN_VERDICTS", "run_verdict",
            "engagement_window", "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
            "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
@@ -216,6 +216,22 @@ class Component:
     sustained_rpm: float
 
 
+#: The verdict of a run (a bench's, a simulated engagement's, a periodic
+#: orbit's), as every output writes it: ``JUDDER``, the word ``judder
+#: check`` gives a setting whose judder grows at ``min_growth`` or faster
+#: (:data:`stability.decisions.relevance.JUDDER`), here also where the
+#: dither-related oscillation exceeds the NVH limit (as ``judder fit
+#: --limit`` compares); else ``NO JUDDER``: a run cannot tell check's
+#: SLOW GROWTH (an instability slower than judder) from STABLE.
+RUN_VERDICTS = ("JUDDER", "NO JUDDER")
+
+
+def run_verdict(judder):
+    """A run's verdict word (:data:`RUN_VERDICTS`) from whether it
+    judders; None where it was not read (None)."""
+    return None if judder is None else RUN_VERDICTS[0 if judder else 1]
+
+
 @dataclass(frozen=True)
 class RunAnalysis:
     """The reading of one engagement run.
@@ -287,11 +303,26 @@ class RunAnalysis:
     dither: object = None
     given: tuple = ("freq_hz", "p_f_bar")
 
+    @property
+    def verdict(self):
+        """The run's verdict word (:data:`RUN_VERDICTS`)."""
+        return run_verdict(self.judder)
+
+    @property
+    def frequency_aliased(self):
+        """The dither frequency was estimated from the pressure, and the
+        sampling cannot tell it from its aliases
+        (:attr:`pysim.analysis.dither.SinusoidFit.aliased`): the run may
+        belong at another frequency."""
+        return (SETTING[0] not in self.given and self.dither is not None
+                and self.dither.aliased)
+
     def as_dict(self):
         """JSON fields (Hz, bar, rpm, 1/s)."""
         return {"window_s": list(self.window_s), "freq_hz": self.freq_hz,
                 "p_f_bar": self.p_f_bar,
                 "dither_estimated": self.estimated, "judder": self.judder,
+                "verdict": self.verdict,
                 "kind": self.kind, "growth_per_s": self.growth_per_s,
                 "growth_phase_s": None if self.growth_phase_s is None
                 else list(self.growth_phase_s),
@@ -315,7 +346,10 @@ def dither_estimate_dict(fit, given=()):
     none: which values of the setting were ``given`` and which
     ``estimated`` (of :data:`SETTING`), the pressure's values with their
     standard uncertainties (``*_std_*``; the frequency's NaN where it was
-    given), the time the phase refers to, the sampling and its warnings."""
+    given), the time the phase refers to, the sampling and its warnings,
+    the aliases that fit as well (Hz) and ``frequency_aliased``: the
+    frequency was estimated and may be an alias, so the run is on no
+    boundary (:meth:`pysim.bench_data.charts.Chart.set_points`)."""
     if fit is None:
         return None
     return {"given": [name for name in SETTING if name in given],
@@ -326,7 +360,9 @@ def dither_estimate_dict(fit, given=()):
             "phase_rad": fit.phase_rad, "phase_std_rad": fit.phase_std_rad,
             "phase_time_s": fit.reference_s,
             "samples_per_period": fit.samples_per_period,
-            "periods": fit.periods, "warnings": list(fit.warnings)}
+            "periods": fit.periods, "warnings": list(fit.warnings),
+            "aliases_hz": list(fit.aliases),
+            "frequency_aliased": SETTING[0] not in given and fit.aliased}
 
 
 def _uniform(time, values, rate=None):

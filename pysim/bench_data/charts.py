@@ -19,6 +19,7 @@ Where runs come from:
 
 from dataclasses import dataclass
 import csv
+import os
 from pathlib import Path
 
 import numpy as np
@@ -59,10 +60,13 @@ class RunSource:
 
     ``settings`` may hold ``freq_hz`` (Hz), ``p_f_bar`` (bar) and group
     columns; what it lacks comes from the file's metadata or is estimated.
+    ``origin`` says where the run was listed, for messages (an index's
+    line, a source given).
     """
 
     path: Path
     settings: dict
+    origin: str = ""
 
 
 @dataclass(frozen=True)
@@ -140,7 +144,7 @@ def sources_from_campaign(folder):
     folder = Path(folder)
     rows = _read_csv(folder / "index.csv", "campaign")
     sources = []
-    for _, row in rows:
+    for number, row in rows:
         if row.get("status") != "ok":
             continue
         files = row.get("files", "").split()
@@ -151,7 +155,9 @@ def sources_from_campaign(folder):
         settings = _settings({k: row[k] for k in
                               ("freq_hz", "p_f_bar", "engine_rpm",
                                "oil_temperature") if k in row})
-        sources.append(RunSource(folder / chosen, settings))
+        sources.append(RunSource(folder / chosen, settings,
+                                 f"campaign {folder / 'index.csv'}, line "
+                                 f"{number}"))
     if not sources:
         raise JudderError(f"campaign {folder}: index.csv lists no run that "
                           "succeeded")
@@ -170,8 +176,9 @@ def sources_from_index(index, decimal=None):
                           "engine_rpm)")
     for number, row in rows:
         _check_index_row(row, f"`index` {index}, line {number}")
-    return [RunSource(index.parent / row["file"], _settings(row))
-            for _, row in rows]
+    return [RunSource(index.parent / row["file"], _settings(row),
+                      f"`index` {index}, line {number}")
+            for number, row in rows]
 
 
 #: Index columns of a dither setting -> (lowest allowed, its words).
@@ -197,7 +204,7 @@ def _check_index_row(row, where):
 
 def sources_from_files(paths):
     """Runs from acquisition files alone."""
-    return [RunSource(Path(p), {}) for p in paths]
+    return [RunSource(Path(p), {}, f"`paths` {p}") for p in paths]
 
 
 def gather_sources(paths, index=None, decimal=None):
@@ -218,7 +225,24 @@ def gather_sources(paths, index=None, decimal=None):
     if not sources:
         raise JudderError("give at least one SOURCE (campaign folder or "
                           "acquisition file) or `index`")
+    _refuse_repeated(sources)
     return sources
+
+
+def _refuse_repeated(sources):
+    """Refuse an acquisition listed twice (two lines of an index, or an
+    index and a source given), naming both places: it would count as two
+    runs, two votes at its set point and two points of its contour, and
+    which of its two settings is meant is no guess to make."""
+    seen = {}
+    for source in sources:
+        key = os.path.normcase(os.path.realpath(source.path))
+        if key in seen:
+            raise JudderError(
+                f"{seen[key].origin} and {source.origin} both list "
+                f"{source.path}; allowed: each acquisition once (one run "
+                "per file)")
+        seen[key] = source
 
 
 def _analyse(job):
@@ -311,7 +335,11 @@ class Chart:
         spectral resolution of the run, ``1/T`` over its engagement window
         ``T``: estimates closer than half of it to each other, or to a
         given frequency, are one set point, at the given frequency or
-        their median.
+        their median. A run whose frequency was estimated where the
+        sampling cannot tell it from its aliases
+        (:attr:`pysim.analysis.verdict.RunAnalysis.frequency_aliased`) is
+        at no set point, so on no boundary: which frequency it was run at
+        is not known (:meth:`aliased` lists them).
 
         Returns
         -------
@@ -319,7 +347,8 @@ class Chart:
             Per set point (Hz, ascending): its frequency, the spread of
             its runs' frequencies (Hz), and its runs.
         """
-        runs = sorted(self.groups().get(group, []),
+        runs = sorted((r for r in self.groups().get(group, [])
+                       if not r.analysis.frequency_aliased),
                       key=lambda r: r.analysis.freq_hz)
         clusters = []
         for run in runs:
@@ -341,6 +370,13 @@ class Chart:
             centre = given[0] if given else float(np.median(freqs))
             out.append((float(centre), float(np.ptp(freqs)), cluster))
         return out
+
+    def aliased(self, group):
+        """The runs of one group left out of its set points and its
+        boundary: their frequency, estimated from the pressure, may be an
+        alias of the one run (:meth:`set_points`)."""
+        return [r for r in self.groups().get(group, [])
+                if r.analysis.frequency_aliased]
 
     def boundary(self, group):
         """Experimental stability boundary of one group.
@@ -422,6 +458,9 @@ class Chart:
             # estimated from the pressure)
             "freq_given": np.array([SETTING[0] in r.analysis.given
                                     for r in runs], dtype=bool),
+            # a frequency estimated that may be an alias: on no boundary
+            "dither_aliased": np.array([r.analysis.frequency_aliased
+                                        for r in runs], dtype=bool),
             "p_f_given": np.array([SETTING[1] in r.analysis.given
                                    for r in runs], dtype=bool),
             **_dither_arrays([r.analysis.dither for r in runs])}

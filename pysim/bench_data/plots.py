@@ -12,7 +12,7 @@ import numpy as np
 from infra.plotstyle import dither_axes, log_levels
 
 __all__ = ["plot_chart", "plot_runs", "chart_figure", "runs_figure",
-           "AMPLITUDE_LABEL"]
+           "AMPLITUDE_LABEL", "ALIASED_LABEL"]
 
 
 #: How a group column reads in a panel title.
@@ -63,7 +63,9 @@ def plot_chart(chart, group, ax=None, levels=None):
               "p_f_bar": [r.analysis.p_f_bar for r in runs],
               "amplitude_rpm": [r.analysis.amplitude_rpm for r in runs],
               "judder": [r.analysis.judder for r in runs],
-              "mechanism": [r.analysis.mechanism or "" for r in runs]}
+              "mechanism": [r.analysis.mechanism or "" for r in runs],
+              "dither_aliased": [r.analysis.frequency_aliased
+                                 for r in runs]}
     artists = plot_runs(ax, arrays, chart.boundary(group), levels)
     ax.set_title(_group_title(chart.group_by, group), fontsize=10)
     return artists
@@ -76,17 +78,29 @@ def plot_chart(chart, group, ax=None, levels=None):
 AMPLITUDE_LABEL = "oscillation at the dither frequencies [rpm]"
 
 
+#: The legend of a run whose dither frequency, estimated from the
+#: pressure, may be an alias (drawn at the frequency found).
+ALIASED_LABEL = ("frequency estimated, may be an alias:\n"
+                 "not contoured, not on the boundary")
+
+
 def plot_runs(ax, runs, boundary, levels=None):
     """One panel of a chart from its runs' arrays: amplitude contour, runs
     by mechanism and the experimental boundary.
+
+    A run whose frequency was estimated and may be an alias is drawn
+    apart (:data:`ALIASED_LABEL`), out of the contour, as it is out of the
+    boundary (:meth:`pysim.bench_data.charts.Chart.set_points`): where
+    it belongs is not known.
 
     Parameters
     ----------
     ax : matplotlib.axes.Axes
     runs : dict
         Arrays ``freq_hz``, ``p_f_bar``, ``amplitude_rpm``, ``judder``,
-        ``mechanism`` (as :meth:`pysim.bench_data.charts.Chart.arrays`
-        and a chart's NPZ hold them).
+        ``mechanism`` and, optionally, ``dither_aliased`` (as
+        :meth:`pysim.bench_data.charts.Chart.arrays` and a chart's NPZ
+        hold them).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar, None: no judder) and the largest
         amplitude tried (:meth:`pysim.bench_data.charts.Chart.boundary`).
@@ -100,13 +114,17 @@ def plot_runs(ax, runs, boundary, levels=None):
                            1e-3)
     judder = np.asarray(runs["judder"], dtype=bool)
     mechanism = np.asarray(runs["mechanism"], dtype=str)
+    aliased = np.asarray(runs.get("dither_aliased", np.zeros(len(f))),
+                         dtype=bool)
+    placed = ~aliased
     artists = []
     own = levels is None
     if own:
         levels, ticks = log_levels(amplitude.min(), amplitude.max())
-    if len(np.unique(f)) >= 3 and len(np.unique(p)) >= 3:
-        contour = ax.tricontourf(f, p, np.clip(amplitude, levels[0],
-                                               levels[-1]),
+    if len(np.unique(f[placed])) >= 3 and len(np.unique(p[placed])) >= 3:
+        contour = ax.tricontourf(f[placed], p[placed],
+                                 np.clip(amplitude[placed], levels[0],
+                                         levels[-1]),
                                  levels=levels, norm=LogNorm(levels[0],
                                                              levels[-1]),
                                  cmap="Greys", alpha=0.8)
@@ -116,14 +134,19 @@ def plot_runs(ax, runs, boundary, levels=None):
             bar.ax.set_yticklabels([f"{t:g}" for t in ticks])
         artists.append(contour)
     for name, (marker, colour) in _MECHANISM_MARKERS.items():
-        these = judder & (mechanism == name)
+        these = placed & judder & (mechanism == name)
         if these.any():
             artists.append(ax.scatter(f[these], p[these], marker=marker,
                                       color=colour, zorder=3, clip_on=False,
                                       label=f"judder, {name}"))
-    artists.append(ax.scatter(f[~judder], p[~judder], marker="o",
+    quiet = placed & ~judder
+    artists.append(ax.scatter(f[quiet], p[quiet], marker="o",
                               facecolors="none", edgecolors="black",
                               zorder=3, clip_on=False, label="no judder"))
+    if aliased.any():
+        artists.append(ax.scatter(f[aliased], p[aliased], marker="X", s=70,
+                                  color="#e377c2", zorder=3, clip_on=False,
+                                  label=ALIASED_LABEL))
     # the boundary is drawn only between neighbouring frequencies that
     # both have judder: a censored frequency between them breaks it
     lowest = np.array([np.nan if pb is None else pb for _, pb, _ in boundary])
@@ -174,7 +197,8 @@ def chart_figure(chart, title=None):
                                                      4.2 * rows + 0.8),
                              layout="constrained", squeeze=False,
                              sharex=True, sharey=True)
-    amplitudes = [r.analysis.amplitude_rpm for r in chart.read] or [1.0]
+    amplitudes = [r.analysis.amplitude_rpm for r in chart.read
+                  if not r.analysis.frequency_aliased] or [1.0]
     levels, ticks = log_levels(min(amplitudes), max(amplitudes))
     panels = {}
     for group, ax in zip(groups, axes.flat):

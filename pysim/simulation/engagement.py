@@ -111,6 +111,7 @@ def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
             "peak_at_dither_frequency":
                 bool(abs(speed.peak_freq_hz - run.freq_hz) <= 2 * resolution),
             "judder": None if reading is None else reading.judder,
+            "verdict": None if reading is None else reading.verdict,
             "judder_kind": None if reading is None else reading.kind,
             "judder_growth_per_s": None if reading is None
             else reading.growth_per_s,
