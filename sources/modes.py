@@ -17,7 +17,8 @@ import casadi
 
 from fmu.frontend import Variable
 
-__all__ = ["fixed_mode", "mode_values", "mode_indicators", "describe_mode",
+__all__ = ["fixed_mode", "mode_values", "mode_relations", "mode_indicators",
+           "describe_mode",
            "uses_initial", "MODE_PREFIX"]
 
 #: Name of the variable holding the k-th discrete variable's equation.
@@ -112,24 +113,33 @@ def mode_values(ode):
 _RELATIONS = (casadi.OP_LT, casadi.OP_LE, casadi.OP_EQ, casadi.OP_NE)
 
 
+def mode_relations(ode):
+    """The relations in the discrete variables' equations
+    (:func:`mode_values`), each once: ``(k, relation)``, ``k`` the first
+    discrete variable whose equation holds it and ``relation`` its CasADi
+    node (``dep(0)``, ``dep(1)`` its two sides, in ``t, x, p``)."""
+    found, seen = [], set()
+    for k, formula in enumerate(_mode_formulas(ode)):
+        stack = [formula[i] for i in range(formula.numel())]
+        while stack:
+            node = stack.pop()
+            key = node.element_hash()
+            if key in seen or node.is_leaf():
+                continue
+            seen.add(key)
+            if node.op() in _RELATIONS:
+                found.append((k, node))
+            stack += [node.dep(i) for i in range(node.n_dep())]
+    return found
+
+
 def mode_indicators(ode):
     """``indicators(t, x, p)``: ``lhs - rhs`` of each relation in the
-    discrete variables' equations (:func:`mode_values`), whose zero
+    discrete variables' equations (:func:`mode_relations`), whose zero
     crossings are the only places the mode's values can change (the
     event indicators of the relations, for an integrator's events)."""
-    found, seen = {}, set()
-    stack = [f[i] for f in _mode_formulas(ode) for i in range(f.numel())]
-    while stack:
-        node = stack.pop()
-        key = node.element_hash()
-        if key in seen or node.is_leaf():
-            continue
-        seen.add(key)
-        if node.op() in _RELATIONS:
-            found[key] = node.dep(0) - node.dep(1)
-        stack += [node.dep(i) for i in range(node.n_dep())]
-    return casadi.Function("indicators", _arguments(ode),
-                           [_column(list(found.values()))])
+    return casadi.Function("indicators", _arguments(ode), [_column(
+        [node.dep(0) - node.dep(1) for _, node in mode_relations(ode)])])
 
 
 def describe_mode(flat, values):

@@ -287,6 +287,7 @@ def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
     the integrator; 64 samples of the period, without the events, miss
     it. 1 % below that amplitude the mode holds."""
     import casadi
+    import sources.mode_check as mode_check
     import sources.modelica as modelica
     params = modelica.ModelicaParameters(CLASS, str(MODELS)).replace(**{
         "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
@@ -301,7 +302,7 @@ def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
         return casadi.Function("none", [casadi.SX.sym("t"), casadi.SX.sym(
             "x", len(ode.states)), casadi.SX.sym("p", len(ode.parameters))],
             [casadi.SX(0, 1)])
-    monkeypatch.setattr(modelica, "mode_indicators", no_events)
+    monkeypatch.setattr(mode_check, "mode_indicators", no_events)
     params.check_mode(params["f_dither"], grazing)
 
 
@@ -547,3 +548,36 @@ def test_report_says_why_its_sensitivity_is_missing(msl_path, judder_here,
                      r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = ",
                      page)
     assert "The driveline and its parameters" in page
+
+
+#: The slip of 0.05 rad/s that the dither swings through zero from
+#: 0.7257 bar at f_dither (test_a_slip_that_grazes_zero_is_caught_...).
+GRAZING = {"mu_pos[2,1]": 0.01, "w_out": 104.66975511965977}
+
+
+def test_settings_checked_together_name_the_first_that_fails(msl_path):
+    """Many dither settings checked in one call (integrated together, in
+    batches of settings sorted by frequency) give the verdict of each
+    checked alone: the first setting in the order given that leaves the
+    mode is named, with the time it leaves it to 4 digits; settings that
+    hold pass together as alone."""
+    import sources.modelica as modelica
+    params = modelica.ModelicaParameters(CLASS, str(MODELS)).replace(
+        **GRAZING)
+    freqs = np.linspace(150.0, 60.0, 40)   # not in the batches' order
+    alone = []
+    for f in freqs:
+        try:
+            modelica.check_mode(params.class_name, params.library,
+                                params.values, "f_dither", "p_f", f, 0.7e5)
+        except modelica.ModelicaError as error:
+            alone.append(str(error))
+    assert 0 < len(alone) < len(freqs)    # some hold, some leave the mode
+    modelica._PASSED.clear()
+    with pytest.raises(modelica.ModelicaError) as together:
+        params.check_mode(freqs, np.full(len(freqs), 0.7e5))
+    assert str(together.value) == alone[0]
+    holding = [f for f in freqs if f"{f:g} Hz" not in " ".join(alone)]
+    modelica._PASSED.clear()
+    params.check_mode(holding, 0.7e5)
+
