@@ -581,3 +581,55 @@ def test_settings_checked_together_name_the_first_that_fails(msl_path):
     modelica._PASSED.clear()
     params.check_mode(holding, 0.7e5)
 
+
+def test_simulate_and_crosscheck_check_the_mode_at_their_settings(
+        msl_path):
+    """`simulate` and `crosscheck` answer with the Floquet verdict of the
+    linearisation in one mode at each setting they run: the grazing slip
+    at 1 bar leaves Forward (its own p_f of 0.3 bar keeps it), and both
+    are refused naming that setting, where simulate ended in the FMU's
+    'fmi2DoStep failed' and crosscheck ran every point."""
+    from judder.commands.crosscheck import crosscheck
+    from judder.commands.simulate import simulate
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters("MslDrivelines.ModeClutchBench",
+                                str(MODELS)).replace(**GRAZING)
+    f = params["f_dither"]
+    leaves = (r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
+              r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = \S+ s "
+              rf"within a dither period of the dither setting f_dither = "
+              rf"{f:g} Hz, p_f = 100000 Pa")
+    with pytest.raises(ModelicaError, match=leaves):
+        simulate(f, 1.0, parameters=params, duration=0.2)
+    with pytest.raises(ModelicaError, match=leaves):
+        crosscheck([f], [0.3, 1.0], parameters=params, duration=0.2,
+                   workers=1)
+
+
+def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
+        msl_path, monkeypatch):
+    """The fitted set's boundaries are compared at each measured
+    frequency up to `p_max_bar`: a fitted set whose slip the dither
+    swings through zero below it is refused, naming the frequency and
+    the amplitude (the fit itself is stood in for: the class has no
+    tongue to fit)."""
+    import stability.fit
+    from judder.commands.fit import fit
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS))
+    fitted = params.replace(**GRAZING)
+
+    class Fitted:
+        params = fitted
+
+    monkeypatch.setattr(stability.fit, "fit_boundary",
+                        lambda *args, **kwargs: Fitted())
+    f = params["f_dither"]
+    with pytest.raises(ModelicaError, match=(
+            r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
+            rf"t = \S+ s within a dither period of the dither setting "
+            rf"f_dither = {f:g} Hz, p_f = 150000 Pa")):
+        fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], parameters=params)
+    fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.3,
+        parameters=params)
+
