@@ -49,7 +49,8 @@ from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
 from .mode_check import first_changes
-from .modes import describe_mode, fixed_mode, mode_values, uses_initial
+from .modes import (describe_mode, fixed_mode, mode_values,
+                    on_switching_surface, uses_initial)
 from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
@@ -551,6 +552,7 @@ def operating_mode(class_name, library, values, frequency):
         elif previous != current or initial:
             previous, initial = current, 0.0
         else:
+            _off_switching_surfaces(class_name, ode, flat, vector)
             _modes_hold(class_name, ode, flat, current, vector[None, :],
                         np.array([values[frequency]]))
             return ode, current
@@ -559,6 +561,34 @@ def operating_mode(class_name, library, values, frequency):
         f"{_EVENT_ITERATIONS} event iterations at the operating point (the "
         "start values); allowed: an operating point in one mode (a clutch "
         "slipping)")
+
+
+#: Characters of a relation written in a message (CasADi's text of a
+#: long one is cut).
+_RELATION_TEXT = 80
+
+
+def _off_switching_surfaces(class_name, ode, flat, vector):
+    """Refuse an operating point on a switching surface: a relation of
+    the discrete variables' equations whose two sides are equal at the
+    start values (a relay ``w > 0`` at ``w = 0``) and on whose two sides
+    the mode differs (:func:`sources.modes.on_switching_surface`): the
+    mode found there depends on whether the relation is strict, not on
+    the states."""
+    for k, text, value, below, above in on_switching_surface(ode, vector):
+        if len(text) > _RELATION_TEXT:
+            text = text[:_RELATION_TEXT - 3] + "..."
+        discrete = flat.discretes[k]
+        raise ModelicaError(
+            f"{class_name}: the operating point (the start values) is on "
+            f"the switching surface of the relation {text} in the "
+            f"discrete equations ({discrete.name}, {discrete.where}): both "
+            f"its sides are {value:g}, and {discrete.name} is "
+            f"{describe_mode(flat, below)[k][1]} on one side, "
+            f"{describe_mode(flat, above)[k][1]} on the other, so the mode "
+            "is ambiguous and a linearisation holds on one side only; "
+            "allowed: start values off the surface (a slip or an angle "
+            "not at the switching value)")
 
 
 def _start(ode, vector):

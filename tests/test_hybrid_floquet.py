@@ -633,3 +633,30 @@ def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
     fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.3,
         parameters=params)
 
+
+def test_an_operating_point_on_a_switching_surface_is_refused(msl_path):
+    """A relay `past = phi > phi_switch` started at rest exactly on
+    phi_switch: the mode (past false, stiffness k) held over the period,
+    and the linearisation answered on one side of the relay; it is
+    refused naming the relation, its file:line and its sides' value. Off
+    the surface the relay's side is linearised (stiffness 2k). The MSL
+    clutch started without slip is named at the relation of its slip,
+    where it was refused as a mode change at t = 1e-11 s."""
+    from sources.modelica import ModelicaError, ModelicaParameters, linearize
+    relay = "MslDrivelines.RelaySurface"
+    with pytest.raises(ModelicaError, match=(
+            r"on the switching surface of the relation \(phi_switch<phi\) "
+            r"in the discrete equations \(past, \S*RelaySurface\.mo:16\): "
+            r"both its sides are 0, and past is true on one side, false on "
+            r"the other")):
+        linearize(relay, str(MODELS))
+    past = linearize(relay, str(MODELS), {"phi_switch": -0.1})
+    assert dict(past.mode) == {"past": "true"}
+    assert past.A0[1, 0] == -2 * 1000 / 0.1
+    w_in = ModelicaParameters(CLASS, str(MODELS))["w_in"]
+    with pytest.raises(ModelicaError, match=(
+            r"relation \(0<\(inertia4\.w-inertia3\.w\)\) in the discrete "
+            r"equations \(clutch\.mode, \S*PartialFriction\.mo:69\): both "
+            r"its sides are 0, and clutch\.mode is 1 \(clutch\.Forward\) on "
+            r"one side, 0 \(clutch\.Stuck\) on the other")):
+        linearize(CLASS, str(MODELS), {"w_out": w_in})
