@@ -660,3 +660,20 @@ def test_an_operating_point_on_a_switching_surface_is_refused(msl_path):
             r"its sides are 0, and clutch\.mode is 1 \(clutch\.Forward\) on "
             r"one side, 0 \(clutch\.Stuck\) on the other")):
         linearize(CLASS, str(MODELS), {"w_out": w_in})
+
+
+def test_advise_checks_the_mode_where_it_decides_its_windows(msl_path):
+    """`advise` decides its safe windows on a frequency grid up to the
+    amplitude it searches (1.6 bar here): the grazing slip leaves Forward
+    there and the advice is refused, naming the first setting (it
+    answered from the Forward linearisation, checked at the class's own
+    p_f and f_dither only). The nominal class holds there."""
+    from judder.commands.advise import advise
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS))
+    with pytest.raises(ModelicaError, match=(
+            r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
+            r"t = \S+ s within a dither period of the dither setting "
+            r"f_dither = 55 Hz, p_f = 160000 Pa")):
+        advise(params.replace(**GRAZING), design=False)
+    assert advise(params, design=False).sets == 1
