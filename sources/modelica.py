@@ -685,6 +685,35 @@ def _live(ode, expression):
     return casadi.substitute(expression, symbols, values)
 
 
+def _off_held_surfaces(class_name, ode, x, p, x0, vector):
+    """Refuse an operating point on the switching surface of a relation
+    that triggers events (``if w > 0`` in an equation): its indicator
+    ``lhs - rhs`` is zero at the start values and depends on the states,
+    so the value held, and with it the branch linearised, is decided by
+    the relation's strictness, not by the states."""
+    indicators = casadi.vertcat(*[r.maximum for r in ode.relations])
+    values = np.asarray(casadi.Function("indicators", [ode.time, x, p], [
+        _live(ode, indicators)])(0.0, x0, vector)).ravel()
+    for k in np.flatnonzero(values == 0.0):
+        relation = ode.relations[k]
+        node = casadi.SX(relation.minimum)
+        if casadi.depends_on(casadi.SX(relation.maximum), x) and \
+                node.n_dep() == 2:
+            text = str(node)
+            if len(text) > _RELATION_TEXT:
+                text = text[:_RELATION_TEXT - 3] + "..."
+            side = float(casadi.Function("side", [ode.time, x, p], [
+                _live(ode, node.dep(0))])(0.0, x0, vector))
+            raise ModelicaError(
+                f"{class_name}: the operating point (the start values) is "
+                f"on the switching surface of the {relation.description}, "
+                f"{text}: both its sides are {side:g}, so the value held, "
+                "and the branch of the equations linearised, is decided "
+                "by the relation's strictness, not by the states, and "
+                "holds on one side only; allowed: start values off the "
+                "surface (a slip or an angle not at the switching value)")
+
+
 def _held_relations(class_name, ode, x, p, x0, vector, times):
     """``der(x)`` with each relation that triggers events (``time <
     startTime`` of MSL's ``Step``, ``if w > 0``) held at its value at the
@@ -700,6 +729,7 @@ def _held_relations(class_name, ode, x, p, x0, vector, times):
     relations = casadi.Function("relations", [ode.time, x, p], [
         _live(ode, casadi.vertcat(*[r.minimum for r in ode.relations]))])
     held = np.asarray(relations(0.0, x0, vector)).ravel()
+    _off_held_surfaces(class_name, ode, x, p, x0, vector)
     derivatives = casadi.substitute(ode.derivatives, symbols,
                                     casadi.DM(held))
     rate = np.asarray(casadi.Function("rate", [ode.time, x, p], [

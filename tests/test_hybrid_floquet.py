@@ -608,8 +608,8 @@ def test_simulate_and_crosscheck_check_the_mode_at_their_settings(
 
 def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
         msl_path, monkeypatch):
-    """The fitted set's boundaries are compared at each measured
-    frequency up to `p_max_bar`: a fitted set whose slip the dither
+    """The fitted set's boundaries are searched at each measured
+    frequency up to twice `p_max_bar`: a fitted set whose slip the dither
     swings through zero below it is refused, naming the frequency and
     the amplitude (the fit itself is stood in for: the class has no
     tongue to fit)."""
@@ -628,8 +628,9 @@ def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
     with pytest.raises(ModelicaError, match=(
             r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
             rf"t = \S+ s within a dither period of the dither setting "
-            rf"f_dither = {f:g} Hz, p_f = 150000 Pa")):
-        fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], parameters=params)
+            rf"f_dither = {f:g} Hz, p_f = 80000 Pa")):
+        fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.4,
+            parameters=params)
     fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.3,
         parameters=params)
 
@@ -639,7 +640,9 @@ def test_an_operating_point_on_a_switching_surface_is_refused(msl_path):
     phi_switch: the mode (past false, stiffness k) held over the period,
     and the linearisation answered on one side of the relay; it is
     refused naming the relation, its file:line and its sides' value. Off
-    the surface the relay's side is linearised (stiffness 2k). The MSL
+    the surface the relay's side is linearised (stiffness 2k). So for
+    the relay written in the torque equation, a relation held between
+    events (RelayTorque). The MSL
     clutch started without slip is named at the relation of its slip,
     where it was refused as a mode change at t = 1e-11 s."""
     from sources.modelica import ModelicaError, ModelicaParameters, linearize
@@ -653,6 +656,15 @@ def test_an_operating_point_on_a_switching_surface_is_refused(msl_path):
     past = linearize(relay, str(MODELS), {"phi_switch": -0.1})
     assert dict(past.mode) == {"past": "true"}
     assert past.A0[1, 0] == -2 * 1000 / 0.1
+    # the relay written in the torque (a relation held between events)
+    with pytest.raises(ModelicaError, match=(
+            r"on the switching surface of the relation at "
+            r"\S*RelayTorque\.mo:16, \(phi_switch<phi\): both its sides are "
+            r"0")):
+        linearize("MslDrivelines.RelayTorque", str(MODELS))
+    held = linearize("MslDrivelines.RelayTorque", str(MODELS),
+                     {"phi_switch": -0.1})
+    assert held.A0[1, 0] == -2 * 1000 / 0.1
     w_in = ModelicaParameters(CLASS, str(MODELS))["w_in"]
     with pytest.raises(ModelicaError, match=(
             r"relation \(0<\(inertia4\.w-inertia3\.w\)\) in the discrete "
