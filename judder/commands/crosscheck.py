@@ -124,7 +124,8 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     # the Floquet side is a linearisation in one mode: each setting of the
     # grid compared must hold it over a dither period
     grid = np.meshgrid(np.atleast_1d(freq_hz),
-                       np.asarray(p_f_bar, dtype=float) * PA_PER_BAR)
+                       np.asarray(p_f_bar, dtype=float) * PA_PER_BAR,
+                       indexing="ij")   # in the order the points run
     check_modes(values, grid[0].ravel(), grid[1].ravel())
     check, seconds = timed(
         crosscheck_study, values, freq_hz,
