@@ -45,12 +45,12 @@ from fmu.classes import library_folders
 from fmu.frontend import (FrontEndError, find_class, load_flat_model,
                           modelica_path)
 from fmu.precheck import refuse_bound, refuse_undeclared, refuse_unsupported
-from scipy.integrate import solve_ivp
 from infra.errors import JudderError, ParameterError
 
 from .kinds import SourceKind
-from .modes import (describe_mode, fixed_mode, mode_indicators,
-                    mode_values, uses_initial)
+from .mode_check import first_changes
+from .modes import (describe_mode, fixed_mode, mode_values,
+                    on_switching_surface, uses_initial)
 from drivelines.specs import ParameterSpec, allowed_names, parse_overrides
 
 __all__ = ["LIBRARY", "ModelicaError", "LinearPeriodicModel",
@@ -358,13 +358,12 @@ class ModelicaParameters(NamedParameters):
                 if s.unit == "rad/s"]
 
     def check_mode(self, freq_hz, p_f):
-        """Refuse a dither setting (Hz, Pa) at which a hybrid class leaves
-        the mode it is linearised in (:func:`check_mode`), once per
-        values and setting (the report's tongues and sensitivity check
-        the same ones)."""
-        _checked_mode(self.class_name, self.library,
-                      tuple(self.values.items()), self.frequency,
-                      self.amplitude, freq_hz, p_f)
+        """Refuse dither settings (Hz, Pa; scalars or sequences of one
+        length) at which a hybrid class leaves the mode it is linearised
+        in (:func:`check_mode`), once per values and setting (the
+        report's tongues and sensitivity check the same ones)."""
+        check_mode(self.class_name, self.library, self.values,
+                   self.frequency, self.amplitude, freq_hz, p_f)
 
     def linear_model(self):
         """:func:`linearize` of the class at these values, once per class
@@ -521,9 +520,6 @@ def linearize(class_name, library=None, values=None, amplitude="p_f",
 
 #: Event iterations allowed to find the mode of the operating point.
 _EVENT_ITERATIONS = 20
-#: Samples per dither period at which the mode is checked, besides just
-#: after each zero crossing of its relations.
-_MODE_SAMPLES = 64
 
 
 @lru_cache(maxsize=16)
@@ -556,14 +552,43 @@ def operating_mode(class_name, library, values, frequency):
         elif previous != current or initial:
             previous, initial = current, 0.0
         else:
-            _mode_holds(class_name, ode, flat, current, vector,
-                        values[frequency])
+            _off_switching_surfaces(class_name, ode, flat, vector)
+            _modes_hold(class_name, ode, flat, current, vector[None, :],
+                        np.array([values[frequency]]))
             return ode, current
     raise ModelicaError(
         f"{class_name}: the Integer and Boolean variables do not settle in "
         f"{_EVENT_ITERATIONS} event iterations at the operating point (the "
         "start values); allowed: an operating point in one mode (a clutch "
         "slipping)")
+
+
+#: Characters of a relation written in a message (CasADi's text of a
+#: long one is cut).
+_RELATION_TEXT = 80
+
+
+def _off_switching_surfaces(class_name, ode, flat, vector):
+    """Refuse an operating point on a switching surface: a relation of
+    the discrete variables' equations whose two sides are equal at the
+    start values (a relay ``w > 0`` at ``w = 0``) and on whose two sides
+    the mode differs (:func:`sources.modes.on_switching_surface`): the
+    mode found there depends on whether the relation is strict, not on
+    the states."""
+    for k, text, value, below, above in on_switching_surface(ode, vector):
+        if len(text) > _RELATION_TEXT:
+            text = text[:_RELATION_TEXT - 3] + "..."
+        discrete = flat.discretes[k]
+        raise ModelicaError(
+            f"{class_name}: the operating point (the start values) is on "
+            f"the switching surface of the relation {text} in the "
+            f"discrete equations ({discrete.name}, {discrete.where}): both "
+            f"its sides are {value:g}, and {discrete.name} is "
+            f"{describe_mode(flat, below)[k][1]} on one side, "
+            f"{describe_mode(flat, above)[k][1]} on the other, so the mode "
+            "is ambiguous and a linearisation holds on one side only; "
+            "allowed: start values off the surface (a slip or an angle "
+            "not at the switching value)")
 
 
 def _start(ode, vector):
@@ -574,96 +599,75 @@ def _start(ode, vector):
             *[s.start for s in ode.states])])(vector)).ravel()
 
 
-@lru_cache(maxsize=8192)
-def _checked_mode(class_name, library, values, frequency, amplitude,
-                  freq_hz, p_f):
-    """:func:`check_mode` with ``values`` as ``(name, value)`` pairs,
-    remembered when it passes."""
-    check_mode(class_name, library, dict(values), frequency, amplitude,
-               freq_hz, p_f)
+#: Dither settings whose mode check passed, by class, library, values,
+#: dither names and setting (the report's tongues and sensitivity check
+#: the same ones); emptied when it holds :data:`_REMEMBERED` of them.
+_PASSED = set()
+_REMEMBERED = 65536
 
 
 def check_mode(class_name, library, values, frequency, amplitude, freq_hz,
                p_f):
-    """Refuse a dither setting (``freq_hz``, ``p_f``) at which a hybrid
-    class leaves the mode it is linearised in within a dither period
-    (see :func:`operating_mode`); nothing for a class without Integer
-    and Boolean variables."""
+    """Refuse dither settings (``freq_hz``, ``p_f``: Hz and Pa, scalars or
+    sequences of one length) at which a hybrid class leaves the mode it
+    is linearised in within a dither period (see
+    :func:`operating_mode`); nothing for a class without Integer and
+    Boolean variables. A setting that passed is remembered; the others
+    are checked together (:func:`sources.mode_check.first_changes`), the
+    first one in the order given that fails is named."""
     if not flat_class(class_name, library).discretes:
         return
     _require_dither(list(values), class_name, amplitude, frequency)
+    key = (class_name, library, tuple(values.items()), frequency, amplitude)
+    settings = [(float(f), float(p)) for f, p in np.broadcast(
+        np.atleast_1d(freq_hz), np.atleast_1d(p_f))]
+    settings = list(dict.fromkeys(
+        setting for setting in settings if key + setting not in _PASSED))
+    if not settings:
+        return
     ode, current = operating_mode(class_name, library, tuple(values.items()),
                                   frequency)
-    setting = {**values, frequency: freq_hz, amplitude: p_f}
-    _mode_holds(class_name, ode, flat_class(class_name, library), current,
-                np.array(list(setting.values())), freq_hz,
-                f"the dither setting {frequency} = {freq_hz:g} Hz, "
-                f"{amplitude} = {p_f:g} Pa")
+    vectors = np.array([list({**values, frequency: f,
+                              amplitude: p}.values()) for f, p in settings])
+    _modes_hold(class_name, ode, flat_class(class_name, library), current,
+                vectors, np.array([f for f, _ in settings]), [
+                    f"the dither setting {frequency} = {f:g} Hz, "
+                    f"{amplitude} = {p:g} Pa" for f, p in settings])
+    if len(_PASSED) > _REMEMBERED:
+        _PASSED.clear()
+    _PASSED.update(key + setting for setting in settings)
 
 
-def _mode_holds(class_name, ode, flat, mode, vector, f0,
-                setting="the operating point (the start values, dither "
-                        "included)"):
-    """Refuse a mode that changes within a dither period: the equations
-    in the mode are integrated over one period from the start values
-    (parameters ``vector``, dither frequency ``f0``; ``setting`` names
-    them in the message) with the zero
-    crossings of the relations in the discrete variables' equations as
-    the integrator's events (:func:`sources.modes.mode_indicators`), and
-    those equations are evaluated just after each crossing and at
-    :data:`_MODE_SAMPLES` times."""
-    ode_function = casadi.Function("ode", [ode.time, casadi.vertcat(
-        *[s.expression for s in ode.states]), casadi.vertcat(
-            *[q.expression for q in ode.parameters])],
-        [_live(ode, ode.derivatives)])
-    values = mode_values(ode)
-    indicators = _last_call(mode_indicators(ode), vector)
-    period = 1.0 / f0
-    events = [lambda t, x, k=k: float(indicators(t, x)[k])
-              for k in range(indicators.size)]
-    path = solve_ivp(
-        lambda t, x: np.asarray(ode_function(t, x, vector)).ravel(),
-        (0.0, period), _start(ode, vector), events=events or None,
-        dense_output=True, rtol=1e-9, atol=1e-12)
-    _require(path.success, f"{class_name}: the equations in the mode "
+def _modes_hold(class_name, ode, flat, mode, vectors, frequencies,
+                settings=("the operating point (the start values, dither "
+                          "included)",)):
+    """Refuse a mode that changes within a dither period at one of the
+    settings (parameter ``vectors``, dither ``frequencies``; ``settings``
+    names them in the message): the equations in the mode are integrated
+    over one period from the start values and the discrete variables'
+    equations evaluated at :data:`sources.mode_check.SAMPLES` times and
+    just past each zero crossing of their relations
+    (:func:`sources.mode_check.first_changes`)."""
+    change = first_changes(ode, _live(ode, ode.derivatives), mode, vectors,
+                           frequencies)
+    if change is None:
+        return
+    member, time, now, failure = change
+    period = 1.0 / frequencies[member]
+    _require(not failure, f"{class_name}: the equations in the mode "
              f"{describe_mode(flat, mode)} could not be integrated over a "
-             f"dither period of {period:.4g} s ({path.message}); allowed: "
+             f"dither period of {period:.4g} s ({failure}); allowed: "
              "an operating point whose mode can be checked")
-    after = 1e-9 * period   # just past a crossing, on its other side
-    times = np.sort(np.concatenate(
-        [np.arange(1, _MODE_SAMPLES + 1) * period / _MODE_SAMPLES]
-        + [np.minimum(found + after, period)
-           for found in (path.t_events or [])]))
-    for time, state in zip(times, path.sol(times).T):
-        now = np.asarray(values(time, state, vector)).ravel()
-        for k in np.flatnonzero(now != np.asarray(mode)):
-            raise ModelicaError(
-                f"{class_name}: {flat.discretes[k].name} "
-                f"({flat.discretes[k].where}) changes from "
-                f"{describe_mode(flat, mode)[k][1]} to "
-                f"{describe_mode(flat, tuple(now))[k][1]} at t = {time:.4g} s "
-                f"within a dither period of {setting}; allowed: an "
-                "operating point that "
-                "stays in one mode (a slip that keeps its sign, a normal "
-                "force above zero)")
-
-
-class _last_call:
-    """``function(t, x, p)`` of a CasADi function at the fixed ``p``,
-    kept for the last ``(t, x)``: scipy calls each event function at the
-    same point in turn, and one call gives them all."""
-
-    def __init__(self, function, p):
-        self.function, self.p = function, p
-        self.size = function.size1_out(0)
-        self.point, self.value = None, None
-
-    def __call__(self, t, x):
-        point = (t, x.tobytes())
-        if point != self.point:
-            self.point = point
-            self.value = np.asarray(self.function(t, x, self.p)).ravel()
-        return self.value
+    k = int(np.flatnonzero(np.asarray(now) != np.asarray(mode))[0])
+    raise ModelicaError(
+        f"{class_name}: {flat.discretes[k].name} "
+        f"({flat.discretes[k].where}) changes from "
+        f"{describe_mode(flat, mode)[k][1]} to "
+        f"{describe_mode(flat, tuple(now))[k][1]} at t = {time:.4g} s "
+        f"within a dither period of {settings[member]}; allowed: an "
+        "operating point that "
+        "stays in one mode (a slip that keeps its sign, a normal "
+        "force above zero)")
 
 
 def _live(ode, expression):
@@ -681,6 +685,35 @@ def _live(ode, expression):
     return casadi.substitute(expression, symbols, values)
 
 
+def _off_held_surfaces(class_name, ode, x, p, x0, vector):
+    """Refuse an operating point on the switching surface of a relation
+    that triggers events (``if w > 0`` in an equation): its indicator
+    ``lhs - rhs`` is zero at the start values and depends on the states,
+    so the value held, and with it the branch linearised, is decided by
+    the relation's strictness, not by the states."""
+    indicators = casadi.vertcat(*[r.maximum for r in ode.relations])
+    values = np.asarray(casadi.Function("indicators", [ode.time, x, p], [
+        _live(ode, indicators)])(0.0, x0, vector)).ravel()
+    for k in np.flatnonzero(values == 0.0):
+        relation = ode.relations[k]
+        node = casadi.SX(relation.minimum)
+        if casadi.depends_on(casadi.SX(relation.maximum), x) and \
+                node.n_dep() == 2:
+            text = str(node)
+            if len(text) > _RELATION_TEXT:
+                text = text[:_RELATION_TEXT - 3] + "..."
+            side = float(casadi.Function("side", [ode.time, x, p], [
+                _live(ode, node.dep(0))])(0.0, x0, vector))
+            raise ModelicaError(
+                f"{class_name}: the operating point (the start values) is "
+                f"on the switching surface of the {relation.description}, "
+                f"{text}: both its sides are {side:g}, so the value held, "
+                "and the branch of the equations linearised, is decided "
+                "by the relation's strictness, not by the states, and "
+                "holds on one side only; allowed: start values off the "
+                "surface (a slip or an angle not at the switching value)")
+
+
 def _held_relations(class_name, ode, x, p, x0, vector, times):
     """``der(x)`` with each relation that triggers events (``time <
     startTime`` of MSL's ``Step``, ``if w > 0``) held at its value at the
@@ -696,6 +729,7 @@ def _held_relations(class_name, ode, x, p, x0, vector, times):
     relations = casadi.Function("relations", [ode.time, x, p], [
         _live(ode, casadi.vertcat(*[r.minimum for r in ode.relations]))])
     held = np.asarray(relations(0.0, x0, vector)).ravel()
+    _off_held_surfaces(class_name, ode, x, p, x0, vector)
     derivatives = casadi.substitute(ode.derivatives, symbols,
                                     casadi.DM(held))
     rate = np.asarray(casadi.Function("rate", [ode.time, x, p], [

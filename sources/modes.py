@@ -14,10 +14,12 @@ an operating point and to check that it holds
 import dataclasses
 
 import casadi
+import numpy as np
 
 from fmu.frontend import Variable
 
-__all__ = ["fixed_mode", "mode_values", "mode_indicators", "describe_mode",
+__all__ = ["fixed_mode", "mode_values", "mode_relations", "mode_indicators",
+           "on_switching_surface", "describe_mode",
            "uses_initial", "MODE_PREFIX"]
 
 #: Name of the variable holding the k-th discrete variable's equation.
@@ -112,24 +114,80 @@ def mode_values(ode):
 _RELATIONS = (casadi.OP_LT, casadi.OP_LE, casadi.OP_EQ, casadi.OP_NE)
 
 
+def mode_relations(ode):
+    """The relations in the discrete variables' equations
+    (:func:`mode_values`), each once: ``(k, relation)``, ``k`` the first
+    discrete variable whose equation holds it and ``relation`` its CasADi
+    node (``dep(0)``, ``dep(1)`` its two sides, in ``t, x, p``)."""
+    found, seen = [], set()
+    for k, formula in enumerate(_mode_formulas(ode)):
+        stack = [formula[i] for i in range(formula.numel())]
+        while stack:
+            node = stack.pop()
+            key = node.element_hash()
+            if key in seen or node.is_leaf():
+                continue
+            seen.add(key)
+            if node.op() in _RELATIONS:
+                found.append((k, node))
+            stack += [node.dep(i) for i in range(node.n_dep())]
+    return found
+
+
 def mode_indicators(ode):
     """``indicators(t, x, p)``: ``lhs - rhs`` of each relation in the
-    discrete variables' equations (:func:`mode_values`), whose zero
+    discrete variables' equations (:func:`mode_relations`), whose zero
     crossings are the only places the mode's values can change (the
     event indicators of the relations, for an integrator's events)."""
-    found, seen = {}, set()
-    stack = [f[i] for f in _mode_formulas(ode) for i in range(f.numel())]
-    while stack:
-        node = stack.pop()
-        key = node.element_hash()
-        if key in seen or node.is_leaf():
+    return casadi.Function("indicators", _arguments(ode), [_column(
+        [node.dep(0) - node.dep(1) for _, node in mode_relations(ode)])])
+
+
+#: Value of ``lhs - rhs`` (relative to the sides, at least 1) at which
+#: the mode is read on either side of a switching surface.
+SIDE_STEP = 1e-9
+
+
+def on_switching_surface(ode, p):
+    """The relations of the discrete variables' equations
+    (:func:`mode_relations`) whose two sides are equal at the start
+    values of the states (time 0, parameters ``p``) and that decide the
+    mode there: the discrete variables' equations give other values a
+    step :data:`SIDE_STEP` to either side of the surface (the states
+    moved along the gradient of ``lhs - rhs``).
+
+    Returns
+    -------
+    list of (int, str, float, tuple, tuple)
+        ``k`` the first discrete variable whose values differ on the two
+        sides, the relation as CasADi writes it, its sides' common value,
+        and the mode's values below and above the surface. A relation of
+        time alone (a ramp's start) is left out: time only goes forward.
+    """
+    t, x, _ = arguments = _arguments(ode)
+    start = casadi.Function("start", arguments[2:], [_column(
+        [s.start for s in ode.states])])
+    x0 = np.asarray(start(p)).ravel()
+    values = mode_values(ode)
+    found = []
+    for _, node in mode_relations(ode):
+        indicator = node.dep(0) - node.dep(1)
+        if not casadi.depends_on(indicator, x):
             continue
-        seen.add(key)
-        if node.op() in _RELATIONS:
-            found[key] = node.dep(0) - node.dep(1)
-        stack += [node.dep(i) for i in range(node.n_dep())]
-    return casadi.Function("indicators", _arguments(ode),
-                           [_column(list(found.values()))])
+        sides = casadi.Function("sides", arguments, [
+            node.dep(0), node.dep(1), casadi.gradient(indicator, x)])
+        lhs, rhs, slope = (np.asarray(v).ravel()
+                           for v in sides(0.0, x0, p))
+        if lhs[0] != rhs[0] or not slope.any():
+            continue
+        step = SIDE_STEP * max(1.0, abs(lhs[0])) * slope / (slope @ slope)
+        below, above = (tuple(np.asarray(values(0.0, x0 + sign * step,
+                                                p)).ravel())
+                        for sign in (-1.0, 1.0))
+        if below != above:
+            k = int(np.flatnonzero(np.array(below) != np.array(above))[0])
+            found.append((k, str(node), float(lhs[0]), below, above))
+    return found
 
 
 def describe_mode(flat, values):

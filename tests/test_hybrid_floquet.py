@@ -287,6 +287,7 @@ def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
     the integrator; 64 samples of the period, without the events, miss
     it. 1 % below that amplitude the mode holds."""
     import casadi
+    import sources.mode_check as mode_check
     import sources.modelica as modelica
     params = modelica.ModelicaParameters(CLASS, str(MODELS)).replace(**{
         "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
@@ -301,7 +302,7 @@ def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
         return casadi.Function("none", [casadi.SX.sym("t"), casadi.SX.sym(
             "x", len(ode.states)), casadi.SX.sym("p", len(ode.parameters))],
             [casadi.SX(0, 1)])
-    monkeypatch.setattr(modelica, "mode_indicators", no_events)
+    monkeypatch.setattr(mode_check, "mode_indicators", no_events)
     params.check_mode(params["f_dither"], grazing)
 
 
@@ -547,3 +548,144 @@ def test_report_says_why_its_sensitivity_is_missing(msl_path, judder_here,
                      r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = ",
                      page)
     assert "The driveline and its parameters" in page
+
+
+#: The slip of 0.05 rad/s that the dither swings through zero from
+#: 0.7257 bar at f_dither (test_a_slip_that_grazes_zero_is_caught_...).
+GRAZING = {"mu_pos[2,1]": 0.01, "w_out": 104.66975511965977}
+
+
+def test_settings_checked_together_name_the_first_that_fails(msl_path):
+    """Many dither settings checked in one call (integrated together, in
+    batches of settings sorted by frequency) give the verdict of each
+    checked alone: the first setting in the order given that leaves the
+    mode is named, with the time it leaves it to 4 digits; settings that
+    hold pass together as alone."""
+    import sources.modelica as modelica
+    params = modelica.ModelicaParameters(CLASS, str(MODELS)).replace(
+        **GRAZING)
+    freqs = np.linspace(150.0, 60.0, 40)   # not in the batches' order
+    alone = []
+    for f in freqs:
+        try:
+            modelica.check_mode(params.class_name, params.library,
+                                params.values, "f_dither", "p_f", f, 0.7e5)
+        except modelica.ModelicaError as error:
+            alone.append(str(error))
+    assert 0 < len(alone) < len(freqs)    # some hold, some leave the mode
+    modelica._PASSED.clear()
+    with pytest.raises(modelica.ModelicaError) as together:
+        params.check_mode(freqs, np.full(len(freqs), 0.7e5))
+    assert str(together.value) == alone[0]
+    holding = [f for f in freqs if f"{f:g} Hz" not in " ".join(alone)]
+    modelica._PASSED.clear()
+    params.check_mode(holding, 0.7e5)
+
+
+def test_simulate_and_crosscheck_check_the_mode_at_their_settings(
+        msl_path):
+    """`simulate` and `crosscheck` answer with the Floquet verdict of the
+    linearisation in one mode at each setting they run: the grazing slip
+    at 1 bar leaves Forward (its own p_f of 0.3 bar keeps it), and both
+    are refused naming that setting, where simulate ended in the FMU's
+    'fmi2DoStep failed' and crosscheck ran every point."""
+    from judder.commands.crosscheck import crosscheck
+    from judder.commands.simulate import simulate
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters("MslDrivelines.ModeClutchBench",
+                                str(MODELS)).replace(**GRAZING)
+    f = params["f_dither"]
+    leaves = (r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
+              r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = \S+ s "
+              rf"within a dither period of the dither setting f_dither = "
+              rf"{f:g} Hz, p_f = 100000 Pa")
+    with pytest.raises(ModelicaError, match=leaves):
+        simulate(f, 1.0, parameters=params, duration=0.2)
+    with pytest.raises(ModelicaError, match=leaves):
+        crosscheck([f], [0.3, 1.0], parameters=params, duration=0.2,
+                   workers=1)
+
+
+def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
+        msl_path, monkeypatch):
+    """The fitted set's boundaries are searched at each measured
+    frequency up to twice `p_max_bar`: a fitted set whose slip the dither
+    swings through zero below it is refused, naming the frequency and
+    the amplitude (the fit itself is stood in for: the class has no
+    tongue to fit)."""
+    import stability.fit
+    from judder.commands.fit import fit
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS))
+    fitted = params.replace(**GRAZING)
+
+    class Fitted:
+        params = fitted
+
+    monkeypatch.setattr(stability.fit, "fit_boundary",
+                        lambda *args, **kwargs: Fitted())
+    f = params["f_dither"]
+    with pytest.raises(ModelicaError, match=(
+            r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
+            rf"t = \S+ s within a dither period of the dither setting "
+            rf"f_dither = {f:g} Hz, p_f = 80000 Pa")):
+        fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.4,
+            parameters=params)
+    fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.3,
+        parameters=params)
+
+
+def test_an_operating_point_on_a_switching_surface_is_refused(msl_path):
+    """A relay `past = phi > phi_switch` started at rest exactly on
+    phi_switch: the mode (past false, stiffness k) held over the period,
+    and the linearisation answered on one side of the relay; it is
+    refused naming the relation, its file:line and its sides' value. Off
+    the surface the relay's side is linearised (stiffness 2k). So for
+    the relay written in the torque equation, a relation held between
+    events (RelayTorque). The MSL
+    clutch started without slip is named at the relation of its slip,
+    where it was refused as a mode change at t = 1e-11 s."""
+    from sources.modelica import ModelicaError, ModelicaParameters, linearize
+    relay = "MslDrivelines.RelaySurface"
+    with pytest.raises(ModelicaError, match=(
+            r"on the switching surface of the relation \(phi_switch<phi\) "
+            r"in the discrete equations \(past, \S*RelaySurface\.mo:16\): "
+            r"both its sides are 0, and past is true on one side, false on "
+            r"the other")):
+        linearize(relay, str(MODELS))
+    past = linearize(relay, str(MODELS), {"phi_switch": -0.1})
+    assert dict(past.mode) == {"past": "true"}
+    assert past.A0[1, 0] == -2 * 1000 / 0.1
+    # the relay written in the torque (a relation held between events)
+    with pytest.raises(ModelicaError, match=(
+            r"on the switching surface of the relation at "
+            r"\S*RelayTorque\.mo:16, \(phi_switch<phi\): both its sides are "
+            r"0")):
+        linearize("MslDrivelines.RelayTorque", str(MODELS))
+    held = linearize("MslDrivelines.RelayTorque", str(MODELS),
+                     {"phi_switch": -0.1})
+    assert held.A0[1, 0] == -2 * 1000 / 0.1
+    w_in = ModelicaParameters(CLASS, str(MODELS))["w_in"]
+    with pytest.raises(ModelicaError, match=(
+            r"relation \(0<\(inertia4\.w-inertia3\.w\)\) in the discrete "
+            r"equations \(clutch\.mode, \S*PartialFriction\.mo:69\): both "
+            r"its sides are 0, and clutch\.mode is 1 \(clutch\.Forward\) on "
+            r"one side, 0 \(clutch\.Stuck\) on the other")):
+        linearize(CLASS, str(MODELS), {"w_out": w_in})
+
+
+def test_advise_checks_the_mode_where_it_decides_its_windows(msl_path):
+    """`advise` decides its safe windows on a frequency grid up to the
+    amplitude it searches (1.6 bar here): the grazing slip leaves Forward
+    there and the advice is refused, naming the first setting (it
+    answered from the Forward linearisation, checked at the class's own
+    p_f and f_dither only). The nominal class holds there."""
+    from judder.commands.advise import advise
+    from sources.modelica import ModelicaError, ModelicaParameters
+    params = ModelicaParameters(CLASS, str(MODELS))
+    with pytest.raises(ModelicaError, match=(
+            r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
+            r"t = \S+ s within a dither period of the dither setting "
+            r"f_dither = 55 Hz, p_f = 160000 Pa")):
+        advise(params.replace(**GRAZING), design=False)
+    assert advise(params, design=False).sets == 1

@@ -296,7 +296,7 @@ def test_what_cannot_be_done_is_refused_in_one_line(capsys, tmp_path,
     assert not (tmp_path / "r.html").exists()
 
 
-def test_the_python_api_refuses_alike(four_fmu):
+def test_the_python_api_refuses_alike(four_fmu, tmp_path):
     fmu = FmuParameters(four_fmu)
     with pytest.raises(JudderError, match="crosscheck --fmu .* time domain"):
         api.crosscheck([100.0], [0.1], parameters=fmu)
@@ -306,6 +306,13 @@ def test_the_python_api_refuses_alike(four_fmu):
         api.fit([100.0], [0.2], names=["mu_g"], parameters=fmu, bench={})
     with pytest.raises(JudderError, match="Fig. 19"):
         api.threshold([0.0], [0.1], parameters=ModelicaParameters(FOUR))
+    # the campaign emulates the registry's bench (it ended in an
+    # AttributeError, 'driveline', from inside the runs)
+    with pytest.raises(JudderError, match=f"{FOUR} .* no bench engagement "
+                       "model"):
+        api.campaign(tmp_path / "campaign", [100.0], [0.1],
+                     parameters=ModelicaParameters(FOUR))
+    assert not (tmp_path / "campaign").exists()
 
 
 def test_a_library_file_that_is_not_utf8_is_named(tmp_path, capsys):

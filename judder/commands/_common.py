@@ -58,8 +58,7 @@ def check_modes(values, freq_hz, p_f):
     other models."""
     check = getattr(values, "check_mode", None)
     if check is not None:
-        for f, p in zip(np.atleast_1d(freq_hz), np.atleast_1d(p_f)):
-            check(float(f), float(p))
+        check(np.atleast_1d(freq_hz), np.atleast_1d(p_f))
 
 
 def check_modes_up_to(values, freq_hz, p_max_bar):

@@ -16,8 +16,8 @@ from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
 
 from ._arguments import (force_option, min_growth_option, model_options,
                          window_options)
-from ._common import (at_dither_frequency, check_names, checked_values,
-                      structural_names)
+from ._common import (at_dither_frequency, check_modes_up_to, check_names,
+                      checked_values, structural_names)
 from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_advise_grid
@@ -235,6 +235,10 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     grid = kernel.window_grid(operating)
 
     def windows_of(param_sets):
+        # each set is linearised in one mode: held on the grid up to the
+        # amplitude searched (a hybrid class; nothing for others)
+        for p in param_sets:
+            check_modes_up_to(p, grid, p_search / PA_PER_BAR)
         boundary = kernel.window_boundary(param_sets, grid, min_growth,
                                           p_search)
         return kernel.safe_windows(grid, boundary, operating)
@@ -277,6 +281,8 @@ def _wide_view(given, advised, operating):
     low, high = operating.freq_hz
     freqs = np.linspace(max(0.5 * low, 1.0), 1.5 * high, 160)
     p_top = max(2 * operating.p_max, 1.2 * operating.required_p_f)
+    for p in (advised, given):
+        check_modes_up_to(p, freqs, p_top / PA_PER_BAR)
     driveline = build_driveline(advised)
     view = map_kernel(driveline, freqs, np.linspace(0, p_top, 50))
     mine = tongue_boundaries(driveline, freqs, p_top, check=False)

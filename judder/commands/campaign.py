@@ -8,6 +8,7 @@ from pathlib import Path
 from infra.errors import JudderError
 from infra.files import check_folder_writable
 
+from ..bench import bench_fmu
 from ._arguments import model_options, workers_option
 from ._common import checked_values, timed
 from ._model import parameters_of
@@ -148,6 +149,8 @@ def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),
     from pysim.simulation.campaigns import Campaign, run_campaign
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_f_bar=p_f_bar)
+    if not values.source_kind.is_chain:
+        bench_fmu(values)       # refuses a class or FMU, naming the bench
     plan = Campaign(freq_hz=tuple(freq_hz), p_f_bar=tuple(p_f_bar),
                     engine_rpm=tuple(engine_rpm),
                     temperatures=tuple(temperatures), duration=duration,

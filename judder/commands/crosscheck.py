@@ -11,7 +11,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._arguments import (force_option, method_option, model_options,
                          workers_option)
-from ._common import checked_values, timed
+from ._common import check_modes, checked_values, timed
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_crosscheck, check_work
@@ -121,6 +121,12 @@ def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
     from ..crosscheck import crosscheck_study
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_f_bar=p_f_bar)
+    # the Floquet side is a linearisation in one mode: each setting of the
+    # grid compared must hold it over a dither period
+    grid = np.meshgrid(np.atleast_1d(freq_hz),
+                       np.asarray(p_f_bar, dtype=float) * PA_PER_BAR,
+                       indexing="ij")   # in the order the points run
+    check_modes(values, grid[0].ravel(), grid[1].ravel())
     check, seconds = timed(
         crosscheck_study, values, freq_hz,
         np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, duration=duration,

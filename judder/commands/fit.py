@@ -20,7 +20,8 @@ from ..inputs import (boundary_p_max, read_boundary_limit,
                       read_chart_min_growth)
 from ._arguments import (decimal_option, force_option, method_option,
                          model_options, refuse_decimal, workers_option)
-from ._common import at_dither_frequency, checked_values, resolve, timed
+from ._common import (at_dither_frequency, check_modes_up_to,
+                      checked_values, resolve, timed)
 from ._model import parameters_of
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
@@ -413,6 +414,7 @@ def _fitted(start, freq_hz, measured, p_max, below, names=None,
     :func:`stability.fit.fit_boundary` takes them."""
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.fit import DEFAULT_FIT, fit_boundary
+    from stability.fit._common import SEARCH_FACTOR
     start = at_dither_frequency(start, freq_hz)
     result, seconds = timed(
         fit_boundary, start, freq_hz, measured, p_max,
@@ -422,6 +424,10 @@ def _fitted(start, freq_hz, measured, p_max, below, names=None,
         added=None if bench is None else bench_damping(start, bench),
         forced_limit=None if judder_limit_rpm is None
         else judder_limit_rpm * RAD_S_PER_RPM, **options)
+    # the fitted set's boundaries are searched at each measured frequency
+    # up to SEARCH_FACTOR p_max on its linearisation in one mode
+    check_modes_up_to(result.params, freq_hz,
+                      SEARCH_FACTOR * p_max / PA_PER_BAR)
     return FitReport(fit=result, seconds=seconds,
                      method=options.get("method", DEFAULT_METHOD),
                      judder_limit_rpm=judder_limit_rpm)

@@ -19,7 +19,7 @@ from ..bench import (added_damping, bench_fmu, check_bench, engagement_model,
                      refuse_bench_of_class)
 from ._arguments import (force_option, limit_option, method_option,
                          min_growth_option, model_options)
-from ._common import checked_values, resolve
+from ._common import check_modes, checked_values, resolve
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, write_outputs, written
 from ._values import (DURATION, FREQ, FREQ_RANGE_HZ, LIMIT, MIN_GROWTH, PF,
@@ -267,6 +267,9 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                         if compare == "none" else
                         (f"dither at {float(compare):g} Hz", float(compare),
                          p_f_bar * PA_PER_BAR))
+    # each run's Floquet verdict is the linearisation's, in one mode
+    check_modes(values, [f for _, f, _ in settings],
+                [p for _, _, p in settings])
     interval = min(1e-3, 1.0 / (20 * max(f for _, f, _ in settings)))
     runs = [(label, run_fmu(fmu, freq, p_f, params=run_params, extra=extra,
                             duration=duration, output_interval=interval,
