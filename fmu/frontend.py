@@ -105,8 +105,8 @@ class FlatModel:
         equations do not hold (their values are in the discrete equations;
         the FMU back end makes their indicators events).
     initial : casadi.SX or None
-        The symbol of ``initial()`` in :attr:`discretes`' values (1 at
-        initialisation, else 0).
+        The symbol of ``initial()`` in :attr:`discretes`' values and in
+        the residuals (1 at initialisation, else 0).
     """
 
     name: str
@@ -537,21 +537,20 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots, use_cache=True, hybrid=False,
-             fmu=False):
+def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
     """rumoca's flat model of ``model_name``, from the cache
     (:mod:`fmu.cache`) while no source under ``roots`` has changed.
 
     The source checks run before the cache is read: the flat model
-    stored does not depend on ``hybrid`` and ``fmu``, the refusals do (a
-    class flattened for ``--modelica``, which reads ``initial()`` of
-    Reals in one mode, is refused for an FMU all the same)."""
+    stored does not depend on ``hybrid``, the refusals do (a class
+    flattened with its Integer variables read is refused all the same
+    where they are not)."""
     import rumoca
     from . import cache
     from .limits import check_source_arrays
     from .precheck import refuse_unsupported
     check_source_arrays(path, check_source_text(path))
-    refuse_unsupported(path, model_name, roots, hybrid, fmu)
+    refuse_unsupported(path, model_name, roots, hybrid)
     if not use_cache:
         return _flatten_with_rumoca(path, model_name, roots,
                                     use_cache=False)
@@ -684,8 +683,7 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
-                    fmu=False):
+def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -701,14 +699,10 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
     hybrid : bool
         Also read Integer and Boolean variables defined by equations,
         with ``pre()`` and ``initial()`` (MSL's ``PartialFriction``), into
-        :attr:`FlatModel.discretes`: for a linearisation in one mode
+        :attr:`FlatModel.discretes`, and ``initial()`` in the continuous
+        equations (MSL's ``ElastoBacklash``): for a linearisation in one mode
         (:mod:`sources.modelica`) and for the FMU's event iteration
         (:mod:`fmu.backend`).
-    fmu : bool
-        For an FMU: the source check refuses ``initial()`` outside the
-        equations of Integer and Boolean variables (see
-        :func:`fmu.precheck.refuse_unsupported`), which the linearisation
-        in one mode reads.
 
     Raises
     ------
@@ -717,8 +711,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid,
-                    fmu)
+    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where, hybrid)
@@ -886,7 +879,8 @@ def _whens(storage, convert, where, variables):
         if set(node) != {"relation"} or action["guard"] != action["trigger"]:
             raise FrontEndError(f"{convert.where}: when-conditions other "
                                 "than one relation (h < 0) are not "
-                                "supported by the FMU back end")
+                                "supported by the FMU back end; allowed: "
+                                "one relation of Real variables (h < 0)")
         relation = node["relation"]
         expression = storage["relations"][relation]["relation"]["expression"]
         convert(expression)   # records the relation

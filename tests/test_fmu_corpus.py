@@ -36,7 +36,7 @@ BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
          "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
          "TableClutchRig", "TableMatrix", "BouncingBall", "Relation",
          "LockUp", "LockingClutchRig", "BooleanMode", "Chattering",
-         "ZenoRelay"]
+         "ZenoRelay", "InitialBranch"]
 #: Models it must refuse: (model, words of the message, line in the file).
 REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
@@ -44,6 +44,8 @@ REFUSED = [
     ("WhenAnd", "when-conditions other than one relation", 8),
     ("WhenOnInteger", "when-conditions on Integer or Boolean variables "
      "(n == 2) are not supported", 8),
+    ("WhenInitial", "initial() in a when-condition is not supported; "
+     "allowed: initial() in equations", 5),
     ("NonlinearInitial", "not linear in the states they determine (x)", 4),
     ("DiscreteCounter", "Integer or Boolean variables assigned in "
      "when-clauses are not supported", 7),
@@ -62,7 +64,7 @@ KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
 #: calls are shared in instance.c, fmi3.c and fmi2.c adapt them to their
 #: API).
 FMI3 = ["Decay", "AlgebraicOnly", "FirstOrderInput", "InitialEquation",
-        "TableClutchRig", "BouncingBall"]
+        "TableClutchRig", "BouncingBall", "InitialBranch"]
 
 
 @pytest.fixture(scope="module")
@@ -405,6 +407,63 @@ def test_boolean_mode_and_counter_follow_modelica_event_semantics(
         assert abs(t[switch[0]] - np.log(2)) < 1e-9
     assert_allclose(result["stops"], np.where(result["on"] == 1, 0, 1),
                     rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_initial_branch_holds_at_the_initialisation_only(fmus, version,
+                                                          kind):
+    """InitialBranch: `if initial() then y = 2 x; else y = x; end if;`
+    with the initial equation y = 4 and der(x) = 1 - x. The
+    initialisation solves its own branch, x(0) = 2 (the other would give
+    4), and shows y = 4 in initialisation mode; once the mode is left
+    initial() is false and y = x = 2, then x = y = 1 + exp(-t)."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Model, FMU2Slave
+    from fmpy.fmi3 import FMU3Model, FMU3Slave
+    path = str(fmus[("InitialBranch", version)])
+    description = read_model_description(path)
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    exchange = kind == "ModelExchange"
+    model = {("2.0", True): FMU2Model, ("2.0", False): FMU2Slave,
+             ("3.0", True): FMU3Model, ("3.0", False): FMU3Slave}[
+                 (version, exchange)]
+    interface = description.modelExchange if exchange else \
+        description.coSimulation
+    fmu = model(guid=description.guid, unzipDirectory=extract(path),
+                modelIdentifier=interface.modelIdentifier,
+                instanceName="initial")
+    fmu.instantiate()
+    if version == "2.0":
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+    else:
+        fmu.enterInitializationMode(startTime=0.0)
+    get = _getter(fmu, version)
+    seen = [get([refs["x"], refs["y"]])]
+    fmu.exitInitializationMode()
+    seen.append(get([refs["x"], refs["y"]]))
+    fmu.terminate()
+    fmu.freeInstance()
+    assert seen == [[2.0, 4.0], [2.0, 2.0]]
+    result = _run(fmus, "InitialBranch", version, kind, output=["x", "y"],
+                  stop_time=2.0, output_interval=0.01)
+    expected = 1 + np.exp(-result["time"])
+    assert_allclose(result["x"], expected, rtol=0, atol=1e-8)
+    assert_allclose(result["y"], expected, rtol=0, atol=1e-8)
+
+
+def test_the_linearisation_takes_the_branch_after_the_initialisation():
+    """`--modelica` (sources.modelica.compile_class) reads InitialBranch
+    with initial() false, where its operating point and Jacobian are: y
+    = x, not 2 x, at any state."""
+    from sources.modelica import compile_class
+    ode = compile_class("InitialBranch", str(CORPUS))
+    assert not ode.held()    # initial() is a number, not held
+    derivatives, outputs, _ = ode.functions(with_locals=True)
+    names = [q.name for q in ode.outputs + ode.locals]
+    for state in (0.5, 3.0):
+        assert float(outputs(0.0, state, [])[names.index("y")]) == state
+        assert float(derivatives(0.0, state, [])) == 1 - state
 
 
 @pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])

@@ -77,24 +77,31 @@ static int update_discretes(Model *m) {
     return changed;
 }
 
-int model_start(Model *m) {
-    int k, again = 1;
+int model_initialize(Model *m) {
+    int k, again = 0;
     m->arg[0] = m->p;
     m->res[0] = m->x;
     MODEL_START(m->arg, m->res, m->iw, m->w, 0);
+    if (MODEL_NI) m->p[P_INITIAL] = 1;
     model_hold_relations(m);
-    m->stale = 1;
     if (MODEL_ND == 0) return 0;
-    /* the initialisation: pre() at the start values, initial() true */
+    /* pre() at the start values */
     memcpy(m->p + P_DISCRETES, parameter_defaults + P_DISCRETES,
            sizeof(double) * 2 * MODEL_ND);
-    if (MODEL_NI) m->p[P_INITIAL] = 1;
+    again = 1;
     for (k = 0; k < MODEL_MAX_EVENT_ITERATIONS && again; k++)
         again = update_discretes(m);
+    return again;
+}
+
+int model_start(Model *m) {
+    int again = model_initialize(m);
     if (MODEL_NI) m->p[P_INITIAL] = 0;
+    m->stale = 1;
     if (again) return 1;
-    /* then the event iteration at the start time, from the values the
-     * initialisation reached */
+    if (MODEL_ND == 0 && MODEL_NI == 0) return 0;
+    /* then the event iteration at the start time, initial() false, from
+     * the values the initialisation reached */
     memcpy(m->p + P_PREVIOUS, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     m->iterations = 0;
     do model_event(m, &again); while (again);   /* bounded by model_event */
