@@ -806,7 +806,18 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
 def _discretes(storage, convert, where, variables):
     """The equations of the Integer and Boolean variables, one each,
     their relations as values (:class:`Discrete`), and the relations only
-    they use; refuses a discrete variable assigned in a when-clause."""
+    they use.
+
+    A variable assigned in a when-clause (``when c1 then n = v1;
+    elsewhen c2 then n = v2; end when;``) has the equation ``n = if
+    fires1 then v1 else if fires2 then v2 else pre(n)``, where ``fires``
+    is ``not initial() and c and not pre(c)``: the clause acts where its
+    condition becomes true, not during the initialisation (the
+    Modelica specification writes a when-equation as ``v = if edge(b)
+    then expr else pre(v)`` with ``b`` the condition, and its clauses act
+    at the initialisation only through ``initial()``). Each condition
+    ``c`` is a Boolean of its own (:class:`_WhenConditions`), whose
+    ``pre()`` the event iteration holds like the others'."""
     by_name = {v.name: v for v in variables}
     relations = {r.symbol.name(): r.value for r in convert.relations.values()}
     held = dict(convert.relations)   # those of the continuous equations
@@ -816,28 +827,33 @@ def _discretes(storage, convert, where, variables):
                                 else v.start, (type(None), np.ndarray))]
     constants = (casadi.vertcat(casadi.SX(0, 1), *[s for s, _ in bound]),
                  casadi.vertcat(casadi.SX(0, 1), *[b for _, b in bound]))
-    found = []
+    found, conditions = [], _WhenConditions(storage, convert, where)
     for owner in storage.get("discrete_value_owners") or []:
         convert.where = where(owner)
         branches = owner.get("branches") or []
-        if len(owner.get("targets") or []) != 1 or len(branches) != 1 or \
-                branches[0].get("activation") != "always" or \
-                len(branches[0].get("values") or []) != 1:
-            raise FrontEndError(f"{convert.where}: Integer or Boolean "
-                                "variables assigned in when-clauses are not "
-                                "supported (equations that hold at all "
-                                "times, as MSL's PartialFriction has, are)")
+        if len(owner.get("targets") or []) != 1 or not branches or \
+                any(len(b.get("values") or []) != 1 for b in branches) or (
+                    any(b.get("activation") == "always" for b in branches)
+                    and len(branches) != 1):
+            raise FrontEndError(f"{convert.where}: this equation of Integer "
+                                "or Boolean variables is not supported; "
+                                "allowed: one variable defined by an "
+                                "equation that holds at all times (as MSL's "
+                                "PartialFriction has) or assigned in the "
+                                "branches of one when-clause")
         index = owner["targets"][0]
         variable = by_name[storage["variables"][index]["name"]]
-        value = convert(branches[0]["values"][0]["value"])
+        if branches[0].get("activation") == "always":
+            value = convert(branches[0]["values"][0]["value"])
+        else:
+            value = convert.previous[index]
+            for branch in reversed(branches):
+                fires = conditions.fires(branch["activation"], where(branch))
+                value = casadi.if_else(fires, convert(
+                    branch["values"][0]["value"]), value)
         relations.update({r.symbol.name(): r.value
                           for r in convert.relations.values()})
-        used = [s for s in casadi.symvar(casadi.SX(value))
-                if s.name() in relations]
-        if used:
-            value = casadi.substitute(
-                value, casadi.vertcat(*used),
-                casadi.vertcat(*[relations[s.name()] for s in used]))
+        value = _with_values(value, relations)
         start = casadi.SX(variable.start if variable.start is not None
                           else 0.0)
         for _ in range(len(variables)):   # constants bound to constants
@@ -855,9 +871,81 @@ def _discretes(storage, convert, where, variables):
             start=float(casadi.evalf(start)), where=convert.where,
             boolean=storage["value_types"][storage["variables"][index][
                 "value_type"]].get("scalar") == "boolean"))
+    for condition in conditions.found:
+        condition.value = _with_values(condition.value, relations)
+    found += conditions.found
     extra = [r for k, r in sorted(convert.relations.items()) if k not in held]
     convert.relations = held
     return found, extra
+
+
+class _WhenConditions:
+    """The conditions of the when-clauses that assign Integer and Boolean
+    variables, each a Boolean :class:`Discrete` of its own (named
+    ``'when k'``, a quoted name no Modelica variable of the model has),
+    built from rumoca's condition tree: relations, Boolean expressions
+    (``edge(b)``, ``b``), ``and``, ``or`` and ``not`` of these."""
+
+    def __init__(self, storage, convert, where):
+        self._storage, self._convert, self._where = storage, convert, where
+        self._by_trigger = {}
+        self.found = []
+
+    def fires(self, activation, place):
+        """``not initial() and c and not pre(c)`` of the clause whose
+        activation is ``activation`` (rumoca's ``{"when": {"trigger",
+        "guard"}}``)."""
+        when = activation.get("when") if isinstance(activation, dict) \
+            else None
+        if when is None or when.get("trigger") != when.get("guard"):
+            raise FrontEndError(f"{place}: this activation of an Integer or "
+                                f"Boolean variable ({activation}) is not "
+                                "supported; allowed: always, or when-clauses "
+                                "(when, elsewhen)")
+        trigger = when["trigger"]
+        if trigger not in self._by_trigger:
+            name = f"'when {len(self.found) + 1}'"
+            self.found.append(Discrete(
+                name=name, symbol=casadi.SX.sym(name),
+                previous=casadi.SX.sym(f"pre({name})"),
+                value=self._condition(trigger, place), start=0.0,
+                where=place, boolean=True))
+            self._by_trigger[trigger] = self.found[-1]
+        condition = self._by_trigger[trigger]
+        return casadi.logic_and(casadi.logic_not(self._convert.initial),
+                                casadi.logic_and(condition.symbol,
+                                                 casadi.logic_not(
+                                                     condition.previous)))
+
+    def _condition(self, index, place):
+        node = self._storage["conditions"][index]["node"]
+        kind, body = next(iter(node.items()))
+        if kind == "relation":
+            return self._convert(self._storage["relations"][body][
+                "relation"]["expression"])
+        if kind == "discrete":
+            return self._convert(body)
+        if kind == "not":
+            return casadi.logic_not(self._condition(body, place))
+        if kind in ("and", "or"):
+            return _BINARY[kind](self._condition(body["lhs"], place),
+                                 self._condition(body["rhs"], place))
+        raise FrontEndError(f"{place}: this when-condition ({kind}) is not "
+                            "supported for Integer and Boolean variables; "
+                            "allowed: relations and Boolean expressions "
+                            "joined by and, or, not")
+
+
+def _with_values(expression, relations):
+    """``expression`` with the relations' symbols it holds replaced by the
+    relations themselves (``relations``: symbol name -> value)."""
+    used = [s for s in casadi.symvar(casadi.SX(expression))
+            if s.name() in relations]
+    if not used:
+        return expression
+    return casadi.substitute(expression, casadi.vertcat(*used),
+                             casadi.vertcat(*[relations[s.name()]
+                                              for s in used]))
 
 
 def _whens(storage, convert, where, variables):

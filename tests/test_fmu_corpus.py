@@ -36,7 +36,7 @@ BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
          "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
          "TableClutchRig", "TableMatrix", "BouncingBall", "Relation",
          "LockUp", "LockingClutchRig", "BooleanMode", "Chattering",
-         "ZenoRelay", "InitialBranch"]
+         "ZenoRelay", "InitialBranch", "WhenCount", "DiscreteCounter"]
 #: Models it must refuse: (model, words of the message, line in the file).
 REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
@@ -47,8 +47,6 @@ REFUSED = [
     ("WhenInitial", "initial() in a when-condition is not supported; "
      "allowed: initial() in equations", 5),
     ("NonlinearInitial", "not linear in the states they determine (x)", 4),
-    ("DiscreteCounter", "Integer or Boolean variables assigned in "
-     "when-clauses are not supported", 7),
     ("BooleanArray", "on: arrays of Integer and Boolean variables are not "
      "supported", 2),
     ("Overdetermined", "the initialisation is overdetermined", 4),
@@ -64,7 +62,7 @@ KINDS = [("2.0", "ModelExchange"), ("2.0", "CoSimulation"),
 #: calls are shared in instance.c, fmi3.c and fmi2.c adapt them to their
 #: API).
 FMI3 = ["Decay", "AlgebraicOnly", "FirstOrderInput", "InitialEquation",
-        "TableClutchRig", "BouncingBall", "InitialBranch"]
+        "TableClutchRig", "BouncingBall", "InitialBranch", "WhenCount"]
 
 
 @pytest.fixture(scope="module")
@@ -417,27 +415,7 @@ def test_initial_branch_holds_at_the_initialisation_only(fmus, version,
     initialisation solves its own branch, x(0) = 2 (the other would give
     4), and shows y = 4 in initialisation mode; once the mode is left
     initial() is false and y = x = 2, then x = y = 1 + exp(-t)."""
-    from fmpy import extract, read_model_description
-    from fmpy.fmi2 import FMU2Model, FMU2Slave
-    from fmpy.fmi3 import FMU3Model, FMU3Slave
-    path = str(fmus[("InitialBranch", version)])
-    description = read_model_description(path)
-    refs = {v.name: v.valueReference for v in description.modelVariables}
-    exchange = kind == "ModelExchange"
-    model = {("2.0", True): FMU2Model, ("2.0", False): FMU2Slave,
-             ("3.0", True): FMU3Model, ("3.0", False): FMU3Slave}[
-                 (version, exchange)]
-    interface = description.modelExchange if exchange else \
-        description.coSimulation
-    fmu = model(guid=description.guid, unzipDirectory=extract(path),
-                modelIdentifier=interface.modelIdentifier,
-                instanceName="initial")
-    fmu.instantiate()
-    if version == "2.0":
-        fmu.setupExperiment(startTime=0.0)
-        fmu.enterInitializationMode()
-    else:
-        fmu.enterInitializationMode(startTime=0.0)
+    fmu, refs = _initialising(fmus, "InitialBranch", version, kind)
     get = _getter(fmu, version)
     seen = [get([refs["x"], refs["y"]])]
     fmu.exitInitializationMode()
@@ -464,6 +442,91 @@ def test_the_linearisation_takes_the_branch_after_the_initialisation():
     for state in (0.5, 3.0):
         assert float(outputs(0.0, state, [])[names.index("y")]) == state
         assert float(derivatives(0.0, state, [])) == 1 - state
+
+
+#: WhenCount's events on x = sin(t): where x rises above 0.5 (a), falls
+#: below 0.5 (b), falls below -0.5 (c) and rises above -0.5 (d), to 14 s.
+_WHEN_EVENTS = {"a": np.pi / 6 + 2 * np.pi * np.arange(3),
+                "b": 5 * np.pi / 6 + 2 * np.pi * np.arange(2),
+                "c": 7 * np.pi / 6 + 2 * np.pi * np.arange(2),
+                "d": 11 * np.pi / 6 + 2 * np.pi * np.arange(2)}
+
+
+def _when_count_closed_form(t):
+    """WhenCount's discrete variables at the times ``t`` (after the events
+    at them) from `_WHEN_EVENTS`: the counters count their events, high
+    is on between a rise above 0.5 and the fall after it, latched from
+    the first rise, level 1 from each rise above 0.5 and -1 from each
+    fall below -0.5."""
+    def count(key):
+        return np.sum(t[:, None] >= _WHEN_EVENTS[key][None, :], axis=1)
+    rising, falling = count("a"), count("b")
+    last_up = np.array([max([e for e in _WHEN_EVENTS["a"] if e <= s],
+                            default=-1.0) for s in t])
+    last_down = np.array([max([e for e in _WHEN_EVENTS["c"] if e <= s],
+                              default=-1.0) for s in t])
+    return {"high": (rising > falling).astype(float),
+            "rises": rising, "returns": count("d"),
+            "changes": rising + falling,
+            "latched": (rising > 0).astype(float),
+            "level": np.select([last_up > last_down, last_down > last_up],
+                               [1.0, -1.0], 0.0)}
+
+
+@pytest.mark.parametrize("version, kind", KINDS)
+def test_when_clauses_edge_and_change_count_as_their_closed_forms(
+        fmus, version, kind):
+    """WhenCount on x = sin(t), to 14 s: `when x > 0.5 then rises =
+    pre(rises) + 1` counts the rises above 0.5 (3), `when x > -0.5`
+    those above -0.5 after the start (2: x(0) = 0 is above it already,
+    and a when-clause does not act at the initialisation), `changes =
+    if change(high) ...` both crossings of 0.5 (5), `latched = pre(latched)
+    or edge(high)` is set at the first rise, and `when high then level =
+    1; elsewhen x < -0.5 then level = -1` follows the last of the two.
+    Each value equals the closed form (`_when_count_closed_form`) on
+    every row away from the events, and changes at the events: within
+    2e-8 s in Model Exchange (fmpy's CVode 1e-10; seen 7.1e-9 s, its
+    error in x there; it lands on x = 0.5 exactly at the first rise,
+    where the strict relation is taken on the side its indicator moves
+    to), in the step that holds them in Co-Simulation (steps of
+    0.01 s)."""
+    names = ["high", "rises", "returns", "changes", "latched", "level"]
+    result = _run(fmus, "WhenCount", version, kind, output=names,
+                  stop_time=14.0, output_interval=0.01)
+    t = result["time"]
+    events = np.sort(np.concatenate(list(_WHEN_EVENTS.values())))
+    away = np.min(np.abs(t[:, None] - events[None, :]), axis=1) > 0.011
+    expected = _when_count_closed_form(t)
+    for name in names:
+        assert_allclose(result[name][away], expected[name][away], rtol=0,
+                        atol=0, err_msg=name)
+        seen = t[np.flatnonzero(np.diff(result[name]) != 0) + 1]
+        wanted = t[np.flatnonzero(np.diff(expected[name]) != 0) + 1]
+        assert len(seen) == len(wanted), (name, seen, wanted)
+        exact = np.array([events[np.argmin(np.abs(events - s))]
+                          for s in seen])
+        if kind == "ModelExchange":
+            assert_allclose(seen, exact, rtol=0, atol=2e-8, err_msg=name)
+        else:
+            assert np.all((seen - 0.01 - 1e-9 < exact) & (exact <= seen)), \
+                (name, seen, exact)
+    assert list(result["rises"][-1:]) == [3]
+    assert list(result["returns"][-1:]) == [2]
+
+
+@pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
+def test_a_counter_in_a_when_clause_counts_once(fmus, kind):
+    """DiscreteCounter: `when x < 0.5 then n = pre(n) + 1` on x = exp(-t)
+    fires once, at ln 2 (ME within 1e-9 s, CS in its 0.01 s step)."""
+    result = _run(fmus, "DiscreteCounter", "2.0", kind, output=["n"],
+                  stop_time=2.0, output_interval=0.01)
+    t = result["time"]
+    seen = t[np.flatnonzero(np.diff(result["n"]) != 0) + 1]
+    assert len(seen) == 1 and result["n"][0] == 0 and result["n"][-1] == 1
+    if kind == "ModelExchange":
+        assert abs(seen[0] - np.log(2)) < 1e-9
+    else:
+        assert seen[0] - 0.01 < np.log(2) <= seen[0]
 
 
 @pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
@@ -610,25 +673,37 @@ def test_fmpy_rebuilds_the_binary_from_the_sources(fmus, version, tmp_path):
     assert_allclose(result["x"], np.exp(-2 * result["time"]), rtol=1e-7)
 
 
-def _instance(fmus, name, version):
-    """An FMU in continuous-time mode at t = 0 (Model Exchange), with the
-    value references of its variables."""
+def _initialising(fmus, name, version, kind="ModelExchange"):
+    """An FMU in initialisation mode at t = 0, with the value references
+    of its variables."""
     from fmpy import extract, read_model_description
-    from fmpy.fmi2 import FMU2Model
-    from fmpy.fmi3 import FMU3Model
+    from fmpy.fmi2 import FMU2Model, FMU2Slave
+    from fmpy.fmi3 import FMU3Model, FMU3Slave
     path = str(fmus[(name, version)])
     description = read_model_description(path)
     refs = {v.name: v.valueReference for v in description.modelVariables}
-    kind = FMU2Model if version == "2.0" else FMU3Model
-    fmu = kind(guid=description.guid, unzipDirectory=extract(path),
-               modelIdentifier=description.modelExchange.modelIdentifier,
-               instanceName="jacobian")
+    exchange = kind == "ModelExchange"
+    model = {("2.0", True): FMU2Model, ("2.0", False): FMU2Slave,
+             ("3.0", True): FMU3Model, ("3.0", False): FMU3Slave}[
+                 (version, exchange)]
+    interface = description.modelExchange if exchange else \
+        description.coSimulation
+    fmu = model(guid=description.guid, unzipDirectory=extract(path),
+                modelIdentifier=interface.modelIdentifier,
+                instanceName=name)
     fmu.instantiate()
     if version == "2.0":
         fmu.setupExperiment(startTime=0.0)
         fmu.enterInitializationMode()
     else:
         fmu.enterInitializationMode(startTime=0.0)
+    return fmu, refs
+
+
+def _instance(fmus, name, version):
+    """An FMU in continuous-time mode at t = 0 (Model Exchange), with the
+    value references of its variables."""
+    fmu, refs = _initialising(fmus, name, version)
     fmu.exitInitializationMode()
     if version == "2.0":
         fmu.enterContinuousTimeMode()

@@ -32,6 +32,10 @@
 #define P_PREVIOUS (P_DISCRETES + MODEL_ND)
 #define P_INITIAL (P_PREVIOUS + MODEL_ND)
 #define MODEL_NPAR (P_INITIAL + MODEL_NI)
+/* How far (times |t| + 1 seconds) an event looks ahead for the side a
+ * relation whose indicator is exactly zero goes to (model.c,
+ * moment_after) */
+#define MODEL_LOOK_AHEAD 1e-9
 /* Event iterations allowed at one instant */
 #define MODEL_MAX_EVENT_ITERATIONS 100
 /* A model chatters (Zeno) when more than MODEL_ZENO_EVENTS events come
@@ -50,6 +54,7 @@ typedef struct {
     double calculated[MODEL_NC + 1];
     int stale;                 /* xdot, y, calculated need evaluating */
     int iterations;            /* event iterations at this instant so far */
+    int running;               /* started: events look ahead (model.c) */
     double relative_tolerance; /* co-simulation integrator */
     long steps, rejected, events; /* co-simulation statistics */
     double burst_start;        /* time of the first event of a burst */
