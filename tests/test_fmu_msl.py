@@ -646,23 +646,25 @@ def test_rotational_backlash_matches_its_backlash_laws(build, kind):
     closed form is the corpus's InitialBranch; here both branches agree
     at 90 degrees). Measured, FMI 2 and 3 the same, results every 1 ms
     over the experiment's 1 s (about 10 impacts of each backlash):
-    Model Exchange (fmpy's CVode, 1e-10) within 1.2e-8 rad and 6.8e-7
-    rad/s (ElastoBacklash), 5.1e-8 rad and 2.9e-6 rad/s (ElastoBacklash2)
+    Model Exchange (fmpy's CVode, 1e-10) within 6.0e-9 rad and 3.3e-7
+    rad/s (ElastoBacklash), 5.4e-8 rad and 3.0e-6 rad/s (ElastoBacklash2)
     of the reference; Co-Simulation (the FMU's Dormand-Prince, 1e-10)
-    3.9e-7 rad and 2.0e-5 rad/s, 8.7e-10 rad and 4.9e-8 rad/s. These are
+    3.9e-7 rad and 2.0e-5 rad/s, 8.7e-10 rad and 5.0e-8 rad/s. These are
     the integrators' errors, not the laws': the reference moves by 8e-10
-    rad/s from 1e-12 to 1e-13, and Co-Simulation at 1e-12 comes within
-    1.4e-9 rad and 7.2e-8 rad/s (ElastoBacklash, whose kinks inside
-    noEvent() are not located) and 2.8e-12 rad and 1.6e-10 rad/s
-    (ElastoBacklash2). Bounds: 4 times these. ElastoBacklash2's torque
-    changes between zero and contact 21 times, Model Exchange's within
-    1e-8 s of the reference's events (seen 6.5e-9 s, growing with the
-    phase error), Co-Simulation's in the step that holds them; the
-    SpringDamper's inertia within 1e-7 rad of its closed form (seen
-    1.0e-8 rad)."""
+    rad/s from 1e-12 to 1e-13, and at 1e-12 Model Exchange comes within
+    1.5e-9 rad and 8.5e-8 rad/s (before events read a relation whose
+    indicator is exactly zero on the side it moves to, CVode lost a
+    contact there and ended 0.56 rad off), Co-Simulation within 1.4e-9
+    rad and 7.1e-8 rad/s (ElastoBacklash, whose kinks inside noEvent()
+    are not located) and 9.9e-12 rad and 5.6e-10 rad/s
+    (ElastoBacklash2). Bounds: 4 times the errors at 1e-10. ElastoBacklash2's torque changes between zero and
+    contact 21 times, Model Exchange's within 3e-8 s of the reference's
+    events (seen 6.8e-9 s, growing with the phase error), Co-Simulation's
+    in the step that holds them; the SpringDamper's inertia within 1e-7
+    rad of its closed form (seen 1.1e-8 rad)."""
     name = "Modelica.Mechanics.Rotational.Examples.Backlash"
-    bounds = {("ModelExchange", 1): (5e-8, 2.8e-6),
-              ("ModelExchange", 2): (2e-7, 1.2e-5),
+    bounds = {("ModelExchange", 1): (2.4e-8, 1.4e-6),
+              ("ModelExchange", 2): (2.2e-7, 1.2e-5),
               ("CoSimulation", 1): (1.6e-6, 8e-5),
               ("CoSimulation", 2): (3.5e-9, 2e-7)}
     names = [f"inertia{k}.{v}" for k in (1, 2, 3) for v in ("phi", "w")] + \
@@ -685,7 +687,7 @@ def test_rotational_backlash_matches_its_backlash_laws(build, kind):
         seen = _switches(t, got["elastoBacklash2.tau"] == 0)
         assert len(seen) == len(switches) == 21, (version, seen)
         if kind == "ModelExchange":
-            assert_allclose(seen, switches, rtol=0, atol=1e-8)
+            assert_allclose(seen, switches, rtol=0, atol=3e-8)
         else:
             assert np.all((seen - 1e-3 < switches) & (switches <= seen))
 
