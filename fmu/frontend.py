@@ -908,7 +908,8 @@ class _WhenConditions:
             self.found.append(Discrete(
                 name=name, symbol=casadi.SX.sym(name),
                 previous=casadi.SX.sym(f"pre({name})"),
-                value=self._condition(trigger, place), start=0.0,
+                value=_condition(self._storage, self._convert, trigger,
+                                 place), start=0.0,
                 where=place, boolean=True))
             self._by_trigger[trigger] = self.found[-1]
         condition = self._by_trigger[trigger]
@@ -917,23 +918,25 @@ class _WhenConditions:
                                                  casadi.logic_not(
                                                      condition.previous)))
 
-    def _condition(self, index, place):
-        node = self._storage["conditions"][index]["node"]
-        kind, body = next(iter(node.items()))
-        if kind == "relation":
-            return self._convert(self._storage["relations"][body][
-                "relation"]["expression"])
-        if kind == "discrete":
-            return self._convert(body)
-        if kind == "not":
-            return casadi.logic_not(self._condition(body, place))
-        if kind in ("and", "or"):
-            return _BINARY[kind](self._condition(body["lhs"], place),
-                                 self._condition(body["rhs"], place))
-        raise FrontEndError(f"{place}: this when-condition ({kind}) is not "
-                            "supported for Integer and Boolean variables; "
-                            "allowed: relations and Boolean expressions "
-                            "joined by and, or, not")
+
+def _condition(storage, convert, index, place):
+    """The value of when-condition ``index`` of rumoca's condition tree:
+    relations (their held symbols), Boolean expressions (``edge(b)``,
+    ``b``, ``n == 2``), and ``and``, ``or``, ``not`` of these."""
+    node = storage["conditions"][index]["node"]
+    kind, body = next(iter(node.items()))
+    if kind == "relation":
+        return convert(storage["relations"][body]["relation"]["expression"])
+    if kind == "discrete":
+        return convert(body)
+    if kind == "not":
+        return casadi.logic_not(_condition(storage, convert, body, place))
+    if kind in ("and", "or"):
+        return _BINARY[kind](_condition(storage, convert, body["lhs"], place),
+                             _condition(storage, convert, body["rhs"], place))
+    raise FrontEndError(f"{place}: this when-condition ({kind}) is not "
+                        "supported; allowed: relations and Boolean "
+                        "expressions joined by and, or, not")
 
 
 def _with_values(expression, relations):
@@ -946,6 +949,29 @@ def _with_values(expression, relations):
     return casadi.substitute(expression, casadi.vertcat(*used),
                              casadi.vertcat(*[relations[s.name()]
                                               for s in used]))
+
+
+def _when_relation(storage, convert, trigger, place):
+    """The position in ``convert.relations`` of the relation that fires a
+    reinit's when-clause: the condition's own when it is one relation of
+    Real variables; else (``h < 0 and v < 0``, ``n == 2``) a relation of
+    its own whose value is the condition, the relations in it at their
+    values, and whose indicator is 1: it changes only where the relations
+    and discrete variables in it do, at their events."""
+    node = storage["conditions"][trigger]["node"]
+    if set(node) == {"relation"}:
+        expression = storage["relations"][node["relation"]]["relation"][
+            "expression"]
+        convert(expression)   # records the relation
+        if node["relation"] in convert.relations:
+            return node["relation"]
+    value = _with_values(_condition(storage, convert, trigger, place), {
+        r.symbol.name(): r.value for r in convert.relations.values()})
+    position = len(storage.get("relations") or []) + trigger
+    convert.relations[position] = Relation(
+        symbol=casadi.SX.sym(f"relation{position + 1}"), value=value,
+        indicator=casadi.SX(1), where=place)
+    return position
 
 
 def _whens(storage, convert, where, variables):
@@ -962,22 +988,16 @@ def _whens(storage, convert, where, variables):
         if kind != "reinitialize":
             raise FrontEndError(f"{convert.where}: {kind} in a when-clause "
                                 "is not supported by the FMU back end")
-        node = conditions[action["trigger"]].get("node", {}) \
-            if action["trigger"] < len(conditions) else {}
-        if set(node) != {"relation"} or action["guard"] != action["trigger"]:
-            raise FrontEndError(f"{convert.where}: when-conditions other "
-                                "than one relation (h < 0) are not "
-                                "supported by the FMU back end; allowed: "
-                                "one relation of Real variables (h < 0)")
-        relation = node["relation"]
-        expression = storage["relations"][relation]["relation"]["expression"]
-        convert(expression)   # records the relation
-        if relation not in convert.relations:
-            raise FrontEndError(f"{convert.where}: when-conditions on "
-                                "Integer or Boolean variables (n == 2) are "
-                                "not supported by the FMU back end; "
-                                "allowed: one relation of Real variables "
-                                "(h < 0)")
+        if action["guard"] != action["trigger"] or \
+                action["trigger"] >= len(conditions):
+            raise FrontEndError(f"{convert.where}: this when-clause (its "
+                                "guard differs from its condition in "
+                                "rumoca's flat model) is not supported by "
+                                "the FMU back end; allowed: when-clauses "
+                                "with reinit on relations and Boolean "
+                                "expressions")
+        relation = _when_relation(storage, convert, action["trigger"],
+                                  convert.where)
         convert.pre_is_state = True
         try:
             value = convert(body["value"])

@@ -71,6 +71,11 @@ def fixed_mode(flat, current, previous, initial):
     whens = flat.whens
     if len(relations) != len(flat.relations) and whens:
         relations = flat.relations   # when-clauses index them
+    # a when-clause's condition on discrete variables (n == 2) is a
+    # relation of its own in them
+    relations = [dataclasses.replace(
+        r, value=casadi.substitute(casadi.SX(r.value), symbols, numbers))
+        for r in relations]
     return dataclasses.replace(flat, variables=variables, residuals=residuals,
                                places=places, relations=relations,
                                discretes=[], initial=None)

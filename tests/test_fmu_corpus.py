@@ -36,14 +36,12 @@ BUILT = ["Decay", "ZeroStart", "Oscillator", "AlgebraicOnly",
          "FirstOrderInput", "InitialEquation", "SteadyStart", "MyLib.Decay",
          "TableClutchRig", "TableMatrix", "BouncingBall", "Relation",
          "LockUp", "LockingClutchRig", "BooleanMode", "Chattering",
-         "ZenoRelay", "InitialBranch", "WhenCount", "DiscreteCounter"]
+         "ZenoRelay", "InitialBranch", "WhenCount", "DiscreteCounter",
+         "WhenAnd", "WhenOnInteger"]
 #: Models it must refuse: (model, words of the message, line in the file).
 REFUSED = [
     ("NonlinearLoop", "algebraic loop nonlinear in its unknowns (z)", 5),
     ("WhenSample", "clocked equations are not supported", 5),
-    ("WhenAnd", "when-conditions other than one relation", 8),
-    ("WhenOnInteger", "when-conditions on Integer or Boolean variables "
-     "(n == 2) are not supported", 8),
     ("WhenInitial", "initial() in a when-condition is not supported; "
      "allowed: initial() in equations", 5),
     ("NonlinearInitial", "not linear in the states they determine (x)", 4),
@@ -512,6 +510,42 @@ def test_when_clauses_edge_and_change_count_as_their_closed_forms(
                 (name, seen, exact)
     assert list(result["rises"][-1:]) == [3]
     assert list(result["returns"][-1:]) == [2]
+
+
+def test_the_linearisation_fixes_a_when_condition_on_an_integer():
+    """`--modelica` fixes WhenOnInteger's n in its mode (0 at the start):
+    the relation of `when n == 2` becomes the number 0, no formula left
+    in an unknown n (which would have ended in an internal error)."""
+    from sources.modelica import compile_class
+    ode = compile_class("WhenOnInteger", str(CORPUS))
+    assert [str(q.minimum) for q in ode.relations] == ["0"]
+
+
+@pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
+def test_reinit_on_a_combined_or_discrete_condition(fmus, kind):
+    """WhenAnd: `when h < 0 and v < 0 then reinit(v, -0.8 pre(v))` is the
+    bouncing ball (closed form to 1e-8 m; its condition a relation of
+    its own, changing at the events of h < 0 and v < 0). WhenOnInteger:
+    `n = if x > 1 then 2 else 0; when n == 2 then reinit(x, 0)` on der(x)
+    = 1 resets x at t = 1, 2, 3 within the event iteration (n is 2 only
+    there): x = t - floor(t) (ME: resets within 1e-9 s; CS: in the step
+    that holds them)."""
+    result = _run(fmus, "WhenAnd", "2.0", kind, output=["h", "v"],
+                  stop_time=3.0, output_interval=0.01)
+    assert_allclose(result["h"], _bouncing_ball(result["time"]), atol=1e-8)
+    result = _run(fmus, "WhenOnInteger", "2.0", kind, output=["x", "n"],
+                  stop_time=3.5, output_interval=0.01)
+    t = result["time"]
+    resets = t[np.flatnonzero(np.diff(result["x"]) < 0) + 1]
+    assert len(resets) == 3 and np.all(result["n"] == 0)
+    if kind == "ModelExchange":
+        assert_allclose(resets, [1, 2, 3], rtol=0, atol=1e-9)
+    else:
+        assert np.all((resets - 0.01 - 1e-9 < [1, 2, 3])
+                      & ([1, 2, 3] <= resets + 1e-9))
+    away = np.min(np.abs(t[:, None] - np.array([1, 2, 3])), axis=1) > 0.011
+    assert_allclose(result["x"][away], (t - np.floor(t))[away], rtol=0,
+                    atol=1e-8)
 
 
 @pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
