@@ -387,6 +387,14 @@ def _to_ode(model):
         starts = _initial_states(initial, order, starts, derivatives,
                                  system.eliminated, model,
                                  model.initial_places or [""] * len(initial))
+    if model.initial is not None and model.initial_value is not None:
+        # a number after the initialisation
+        after = casadi.SX(model.initial_value)
+        derivatives = {name: casadi.substitute(formula, model.initial, after)
+                       for name, formula in derivatives.items()}
+        system.eliminated = {
+            name: casadi.substitute(formula, model.initial, after)
+            for name, formula in system.eliminated.items()}
     state_quantities = [_quantity(v, v.symbol, start=start)
                         for v, start in zip(order, starts)]
     _check_at_start(system, model, order, starts, tunable, inputs,
@@ -531,7 +539,7 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
                  for d, value in zip(model.discretes, values)]
     previous = [Quantity(f"pre({d.name})", "", f"pre() of {d.name}",
                          d.previous, start=d.start) for d in model.discretes]
-    if _uses_initial(model):
+    if _uses_initial(model) and model.initial_value is None:
         previous.append(Quantity("initial()", "", "1 while initialising",
                                  model.initial, start=0.0))
     return relations, whens, discretes, previous

@@ -107,6 +107,10 @@ class FlatModel:
     initial : casadi.SX or None
         The symbol of ``initial()`` in :attr:`discretes`' values and in
         the residuals (1 at initialisation, else 0).
+    initial_value : float or None
+        None: ``initial()`` is held in the FMU (1 while it initialises);
+        a number: its value once the initial equations are solved (with
+        it 1), for the ODE of one mode (:func:`sources.modes.fixed_mode`).
     """
 
     name: str
@@ -123,6 +127,7 @@ class FlatModel:
     discretes: list = field(default_factory=list)
     discrete_relations: list = field(default_factory=list)
     initial: object = None
+    initial_value: float = None
 
     def by_role(self, role):
         """Variables of one role, in declaration order."""

@@ -431,10 +431,13 @@ def test_initial_branch_holds_at_the_initialisation_only(fmus, version,
 def test_the_linearisation_takes_the_branch_after_the_initialisation():
     """`--modelica` (sources.modelica.compile_class) reads InitialBranch
     with initial() false, where its operating point and Jacobian are: y
-    = x, not 2 x, at any state."""
+    = x, not 2 x, at any state; its start solves the initial equation y
+    = 4 with initial() true, as the FMU does: x(0) = 2 (with the run's
+    branch it was 4)."""
     from sources.modelica import compile_class
     ode = compile_class("InitialBranch", str(CORPUS))
     assert not ode.held()    # initial() is a number, not held
+    assert float(ode.states[0].start) == 2.0
     derivatives, outputs, _ = ode.functions(with_locals=True)
     names = [q.name for q in ode.outputs + ode.locals]
     for state in (0.5, 3.0):
