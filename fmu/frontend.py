@@ -929,7 +929,8 @@ def _condition(storage, convert, index, place):
     relations (their held symbols), Boolean expressions (``edge(b)``,
     ``b``, ``n == 2``), and ``and``, ``or``, ``not`` of these."""
     node = storage["conditions"][index]["node"]
-    kind, body = next(iter(node.items()))
+    kind, body = next(iter(node.items())) if isinstance(node, dict) else \
+        (node, None)     # "initial"
     if kind == "relation":
         return convert(storage["relations"][body]["relation"]["expression"])
     if kind == "discrete":
@@ -964,7 +965,7 @@ def _when_relation(storage, convert, trigger, place):
     values, and whose indicator is 1: it changes only where the relations
     and discrete variables in it do, at their events."""
     node = storage["conditions"][trigger]["node"]
-    if set(node) == {"relation"}:
+    if isinstance(node, dict) and set(node) == {"relation"}:
         expression = storage["relations"][node["relation"]]["relation"][
             "expression"]
         convert(expression)   # records the relation

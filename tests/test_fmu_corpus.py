@@ -515,6 +515,23 @@ def test_when_clauses_edge_and_change_count_as_their_closed_forms(
     assert list(result["returns"][-1:]) == [2]
 
 
+def test_a_when_condition_the_source_check_misses_is_refused_in_words(
+        monkeypatch):
+    """WhenInitial's `when initial() then reinit(...)` without the source
+    check (as for a construct it cannot read): the front end refuses the
+    flat model's condition by name and says what is allowed (rumoca
+    writes it as the word "initial", which was a traceback)."""
+    import fmu.precheck
+    from fmu.frontend import FrontEndError, load_flat_model
+    monkeypatch.setattr(fmu.precheck, "refuse_unsupported",
+                        lambda *args: None)
+    with pytest.raises(FrontEndError, match=(
+            r"WhenInitial\.mo:\d+: this when-condition \(initial\) is not "
+            r"supported; allowed: relations and Boolean expressions")):
+        load_flat_model(class_source(CORPUS, "WhenInitial"), "WhenInitial",
+                        [CORPUS], cache=False, hybrid=True)
+
+
 def test_the_linearisation_fixes_a_when_condition_on_an_integer():
     """`--modelica` fixes WhenOnInteger's n in its mode (0 at the start):
     the relation of `when n == 2` becomes the number 0, no formula left
