@@ -385,8 +385,16 @@ def _to_ode(model):
                                         parameter_values))
     if initial:
         starts = _initial_states(initial, order, starts, derivatives,
-                                 system.eliminated, model.time,
+                                 system.eliminated, model,
                                  model.initial_places or [""] * len(initial))
+    if model.initial is not None and model.initial_value is not None:
+        # a number after the initialisation
+        after = casadi.SX(model.initial_value)
+        derivatives = {name: casadi.substitute(formula, model.initial, after)
+                       for name, formula in derivatives.items()}
+        system.eliminated = {
+            name: casadi.substitute(formula, model.initial, after)
+            for name, formula in system.eliminated.items()}
     state_quantities = [_quantity(v, v.symbol, start=start)
                         for v, start in zip(order, starts)]
     _check_at_start(system, model, order, starts, tunable, inputs,
@@ -531,8 +539,7 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
                  for d, value in zip(model.discretes, values)]
     previous = [Quantity(f"pre({d.name})", "", f"pre() of {d.name}",
                          d.previous, start=d.start) for d in model.discretes]
-    if any(casadi.depends_on(casadi.SX(q.minimum), model.initial)
-           for q in discretes):
+    if _uses_initial(model) and model.initial_value is None:
         previous.append(Quantity("initial()", "", "1 while initialising",
                                  model.initial, start=0.0))
     return relations, whens, discretes, previous
@@ -540,19 +547,19 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
 
 def _held_discretes(model):
     """The symbols of the discrete variables, their ``pre()`` and
-    ``initial()``, which the continuous equations read as held values;
-    refuses ``initial()`` in a continuous equation (an equation that
-    differs at the initialisation: MSL's ``ElastoBacklash``)."""
-    places = model.places or [model.name] * len(model.residuals)
-    for residual, where in zip(model.residuals, places):
-        if model.initial is not None and \
-                casadi.depends_on(casadi.SX(residual), model.initial):
-            raise BackEndError(
-                f"{where}: initial() in a continuous equation (one that "
-                "differs at the initialisation) is not supported by the "
-                "FMU back end; allowed: initial() in the equations of "
-                "Integer and Boolean variables")
-    return [s for d in model.discretes for s in (d.symbol, d.previous)]
+    ``initial()``, which the continuous equations read as held values
+    (``initial()`` in them: an equation that differs at the
+    initialisation, MSL's ``ElastoBacklash``)."""
+    held = [s for d in model.discretes for s in (d.symbol, d.previous)]
+    return held + [model.initial] if _uses_initial(model) else held
+
+
+def _uses_initial(model):
+    """Whether the continuous or the discrete equations of ``model`` read
+    ``initial()``."""
+    return model.initial is not None and any(
+        casadi.depends_on(casadi.SX(e), model.initial)
+        for e in model.residuals + [d.value for d in model.discretes])
 
 
 def _discrete_equations(discretes):
@@ -610,12 +617,13 @@ def _in_states(expression, order, derivatives, eliminated):
         _column(*[derivatives[v.name] for v in order]))
 
 
-def _initial_states(initial, order, starts, derivatives, eliminated, time,
+def _initial_states(initial, order, starts, derivatives, eliminated, model,
                     places):
     """Start values of the states from the ``initial equation`` section.
 
     The initial equations, with der(x) and the algebraic variables
-    replaced by their formulas in ``x`` and ``p``, are matched to the
+    replaced by their formulas in ``x`` and ``p`` (``initial()`` true in
+    them: the equations of the initialisation), are matched to the
     states whose start is not ``fixed``; the matched states are solved
     from them (the equations must be linear in them), the other states
     keep their start values.
@@ -627,8 +635,11 @@ def _initial_states(initial, order, starts, derivatives, eliminated, time,
     """
     residuals = [_in_states(r, order, derivatives, eliminated)
                  for r in initial]
+    if model.initial is not None:
+        residuals = [casadi.substitute(r, model.initial, casadi.SX(1))
+                     for r in residuals]
     for place, residual in zip(places, residuals):
-        if casadi.depends_on(residual, time):
+        if casadi.depends_on(residual, model.time):
             raise BackEndError(f"{place}: initial equations that depend on "
                                "time are not supported by the FMU back end")
     free = [i for i, v in enumerate(order) if not v.fixed]

@@ -92,7 +92,7 @@ def explain_unbalanced(message, model_name, roots, load_flat_model):
         probe.write_text(_probe_source(model_name, difference))
         try:
             flat = load_flat_model(probe, _PROBE, [*roots, tmp], cache=False,
-                                   hybrid=True, fmu=True)
+                                   hybrid=True)
         except JudderError as exc:    # the front end's FrontEndError
             # rumoca's count may be wrong where the back end would refuse
             # the model anyway (MSL's Clutch: Boolean modes with pre())

@@ -340,8 +340,7 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
     started = time.perf_counter()
     with Stages(model_name) as stage:
         stage("flattening (rumoca)")
-        flat = load_flat_model(mo_file, model_name, roots=roots, hybrid=True,
-                               fmu=True)
+        flat = load_flat_model(mo_file, model_name, roots=roots, hybrid=True)
         stage(f"reducing {len(flat.residuals)} equations to an ODE")
         ode = to_ode(flat)
         if version == "2.0" and not any((

@@ -105,8 +105,12 @@ class FlatModel:
         equations do not hold (their values are in the discrete equations;
         the FMU back end makes their indicators events).
     initial : casadi.SX or None
-        The symbol of ``initial()`` in :attr:`discretes`' values (1 at
-        initialisation, else 0).
+        The symbol of ``initial()`` in :attr:`discretes`' values and in
+        the residuals (1 at initialisation, else 0).
+    initial_value : float or None
+        None: ``initial()`` is held in the FMU (1 while it initialises);
+        a number: its value once the initial equations are solved (with
+        it 1), for the ODE of one mode (:func:`sources.modes.fixed_mode`).
     """
 
     name: str
@@ -123,6 +127,7 @@ class FlatModel:
     discretes: list = field(default_factory=list)
     discrete_relations: list = field(default_factory=list)
     initial: object = None
+    initial_value: float = None
 
     def by_role(self, role):
         """Variables of one role, in declaration order."""
@@ -537,21 +542,20 @@ def package_version(model_name, roots):
     return ""
 
 
-def _flatten(path, model_name, roots, use_cache=True, hybrid=False,
-             fmu=False):
+def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
     """rumoca's flat model of ``model_name``, from the cache
     (:mod:`fmu.cache`) while no source under ``roots`` has changed.
 
     The source checks run before the cache is read: the flat model
-    stored does not depend on ``hybrid`` and ``fmu``, the refusals do (a
-    class flattened for ``--modelica``, which reads ``initial()`` of
-    Reals in one mode, is refused for an FMU all the same)."""
+    stored does not depend on ``hybrid``, the refusals do (a class
+    flattened with its Integer variables read is refused all the same
+    where they are not)."""
     import rumoca
     from . import cache
     from .limits import check_source_arrays
     from .precheck import refuse_unsupported
     check_source_arrays(path, check_source_text(path))
-    refuse_unsupported(path, model_name, roots, hybrid, fmu)
+    refuse_unsupported(path, model_name, roots, hybrid)
     if not use_cache:
         return _flatten_with_rumoca(path, model_name, roots,
                                     use_cache=False)
@@ -684,8 +688,7 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 f"by the FMU back end (model {model_name})")
 
 
-def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
-                    fmu=False):
+def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     """Flatten ``model_name`` from ``path`` with rumoca; return a FlatModel.
 
     Parameters
@@ -701,14 +704,10 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
     hybrid : bool
         Also read Integer and Boolean variables defined by equations,
         with ``pre()`` and ``initial()`` (MSL's ``PartialFriction``), into
-        :attr:`FlatModel.discretes`: for a linearisation in one mode
+        :attr:`FlatModel.discretes`, and ``initial()`` in the continuous
+        equations (MSL's ``ElastoBacklash``): for a linearisation in one mode
         (:mod:`sources.modelica`) and for the FMU's event iteration
         (:mod:`fmu.backend`).
-    fmu : bool
-        For an FMU: the source check refuses ``initial()`` outside the
-        equations of Integer and Boolean variables (see
-        :func:`fmu.precheck.refuse_unsupported`), which the linearisation
-        in one mode reads.
 
     Raises
     ------
@@ -717,8 +716,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid,
-                    fmu)
+    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where, hybrid)
@@ -813,7 +811,18 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False,
 def _discretes(storage, convert, where, variables):
     """The equations of the Integer and Boolean variables, one each,
     their relations as values (:class:`Discrete`), and the relations only
-    they use; refuses a discrete variable assigned in a when-clause."""
+    they use.
+
+    A variable assigned in a when-clause (``when c1 then n = v1;
+    elsewhen c2 then n = v2; end when;``) has the equation ``n = if
+    fires1 then v1 else if fires2 then v2 else pre(n)``, where ``fires``
+    is ``not initial() and c and not pre(c)``: the clause acts where its
+    condition becomes true, not during the initialisation (the
+    Modelica specification writes a when-equation as ``v = if edge(b)
+    then expr else pre(v)`` with ``b`` the condition, and its clauses act
+    at the initialisation only through ``initial()``). Each condition
+    ``c`` is a Boolean of its own (:class:`_WhenConditions`), whose
+    ``pre()`` the event iteration holds like the others'."""
     by_name = {v.name: v for v in variables}
     relations = {r.symbol.name(): r.value for r in convert.relations.values()}
     held = dict(convert.relations)   # those of the continuous equations
@@ -823,28 +832,33 @@ def _discretes(storage, convert, where, variables):
                                 else v.start, (type(None), np.ndarray))]
     constants = (casadi.vertcat(casadi.SX(0, 1), *[s for s, _ in bound]),
                  casadi.vertcat(casadi.SX(0, 1), *[b for _, b in bound]))
-    found = []
+    found, conditions = [], _WhenConditions(storage, convert, where)
     for owner in storage.get("discrete_value_owners") or []:
         convert.where = where(owner)
         branches = owner.get("branches") or []
-        if len(owner.get("targets") or []) != 1 or len(branches) != 1 or \
-                branches[0].get("activation") != "always" or \
-                len(branches[0].get("values") or []) != 1:
-            raise FrontEndError(f"{convert.where}: Integer or Boolean "
-                                "variables assigned in when-clauses are not "
-                                "supported (equations that hold at all "
-                                "times, as MSL's PartialFriction has, are)")
+        if len(owner.get("targets") or []) != 1 or not branches or \
+                any(len(b.get("values") or []) != 1 for b in branches) or (
+                    any(b.get("activation") == "always" for b in branches)
+                    and len(branches) != 1):
+            raise FrontEndError(f"{convert.where}: this equation of Integer "
+                                "or Boolean variables is not supported; "
+                                "allowed: one variable defined by an "
+                                "equation that holds at all times (as MSL's "
+                                "PartialFriction has) or assigned in the "
+                                "branches of one when-clause")
         index = owner["targets"][0]
         variable = by_name[storage["variables"][index]["name"]]
-        value = convert(branches[0]["values"][0]["value"])
+        if branches[0].get("activation") == "always":
+            value = convert(branches[0]["values"][0]["value"])
+        else:
+            value = convert.previous[index]
+            for branch in reversed(branches):
+                fires = conditions.fires(branch["activation"], where(branch))
+                value = casadi.if_else(fires, convert(
+                    branch["values"][0]["value"]), value)
         relations.update({r.symbol.name(): r.value
                           for r in convert.relations.values()})
-        used = [s for s in casadi.symvar(casadi.SX(value))
-                if s.name() in relations]
-        if used:
-            value = casadi.substitute(
-                value, casadi.vertcat(*used),
-                casadi.vertcat(*[relations[s.name()] for s in used]))
+        value = _with_values(value, relations)
         start = casadi.SX(variable.start if variable.start is not None
                           else 0.0)
         for _ in range(len(variables)):   # constants bound to constants
@@ -862,9 +876,108 @@ def _discretes(storage, convert, where, variables):
             start=float(casadi.evalf(start)), where=convert.where,
             boolean=storage["value_types"][storage["variables"][index][
                 "value_type"]].get("scalar") == "boolean"))
+    for condition in conditions.found:
+        condition.value = _with_values(condition.value, relations)
+    found += conditions.found
     extra = [r for k, r in sorted(convert.relations.items()) if k not in held]
     convert.relations = held
     return found, extra
+
+
+class _WhenConditions:
+    """The conditions of the when-clauses that assign Integer and Boolean
+    variables, each a Boolean :class:`Discrete` of its own (named
+    ``'when k'``, a quoted name no Modelica variable of the model has),
+    built from rumoca's condition tree: relations, Boolean expressions
+    (``edge(b)``, ``b``), ``and``, ``or`` and ``not`` of these."""
+
+    def __init__(self, storage, convert, where):
+        self._storage, self._convert, self._where = storage, convert, where
+        self._by_trigger = {}
+        self.found = []
+
+    def fires(self, activation, place):
+        """``not initial() and c and not pre(c)`` of the clause whose
+        activation is ``activation`` (rumoca's ``{"when": {"trigger",
+        "guard"}}``)."""
+        when = activation.get("when") if isinstance(activation, dict) \
+            else None
+        if when is None or when.get("trigger") != when.get("guard"):
+            raise FrontEndError(f"{place}: this activation of an Integer or "
+                                f"Boolean variable ({activation}) is not "
+                                "supported; allowed: always, or when-clauses "
+                                "(when, elsewhen)")
+        trigger = when["trigger"]
+        if trigger not in self._by_trigger:
+            name = f"'when {len(self.found) + 1}'"
+            self.found.append(Discrete(
+                name=name, symbol=casadi.SX.sym(name),
+                previous=casadi.SX.sym(f"pre({name})"),
+                value=_condition(self._storage, self._convert, trigger,
+                                 place), start=0.0,
+                where=place, boolean=True))
+            self._by_trigger[trigger] = self.found[-1]
+        condition = self._by_trigger[trigger]
+        return casadi.logic_and(casadi.logic_not(self._convert.initial),
+                                casadi.logic_and(condition.symbol,
+                                                 casadi.logic_not(
+                                                     condition.previous)))
+
+
+def _condition(storage, convert, index, place):
+    """The value of when-condition ``index`` of rumoca's condition tree:
+    relations (their held symbols), Boolean expressions (``edge(b)``,
+    ``b``, ``n == 2``), and ``and``, ``or``, ``not`` of these."""
+    node = storage["conditions"][index]["node"]
+    kind, body = next(iter(node.items())) if isinstance(node, dict) else \
+        (node, None)     # "initial"
+    if kind == "relation":
+        return convert(storage["relations"][body]["relation"]["expression"])
+    if kind == "discrete":
+        return convert(body)
+    if kind == "not":
+        return casadi.logic_not(_condition(storage, convert, body, place))
+    if kind in ("and", "or"):
+        return _BINARY[kind](_condition(storage, convert, body["lhs"], place),
+                             _condition(storage, convert, body["rhs"], place))
+    raise FrontEndError(f"{place}: this when-condition ({kind}) is not "
+                        "supported; allowed: relations and Boolean "
+                        "expressions joined by and, or, not")
+
+
+def _with_values(expression, relations):
+    """``expression`` with the relations' symbols it holds replaced by the
+    relations themselves (``relations``: symbol name -> value)."""
+    used = [s for s in casadi.symvar(casadi.SX(expression))
+            if s.name() in relations]
+    if not used:
+        return expression
+    return casadi.substitute(expression, casadi.vertcat(*used),
+                             casadi.vertcat(*[relations[s.name()]
+                                              for s in used]))
+
+
+def _when_relation(storage, convert, trigger, place):
+    """The position in ``convert.relations`` of the relation that fires a
+    reinit's when-clause: the condition's own when it is one relation of
+    Real variables; else (``h < 0 and v < 0``, ``n == 2``) a relation of
+    its own whose value is the condition, the relations in it at their
+    values, and whose indicator is 1: it changes only where the relations
+    and discrete variables in it do, at their events."""
+    node = storage["conditions"][trigger]["node"]
+    if isinstance(node, dict) and set(node) == {"relation"}:
+        expression = storage["relations"][node["relation"]]["relation"][
+            "expression"]
+        convert(expression)   # records the relation
+        if node["relation"] in convert.relations:
+            return node["relation"]
+    value = _with_values(_condition(storage, convert, trigger, place), {
+        r.symbol.name(): r.value for r in convert.relations.values()})
+    position = len(storage.get("relations") or []) + trigger
+    convert.relations[position] = Relation(
+        symbol=casadi.SX.sym(f"relation{position + 1}"), value=value,
+        indicator=casadi.SX(1), where=place)
+    return position
 
 
 def _whens(storage, convert, where, variables):
@@ -881,21 +994,16 @@ def _whens(storage, convert, where, variables):
         if kind != "reinitialize":
             raise FrontEndError(f"{convert.where}: {kind} in a when-clause "
                                 "is not supported by the FMU back end")
-        node = conditions[action["trigger"]].get("node", {}) \
-            if action["trigger"] < len(conditions) else {}
-        if set(node) != {"relation"} or action["guard"] != action["trigger"]:
-            raise FrontEndError(f"{convert.where}: when-conditions other "
-                                "than one relation (h < 0) are not "
-                                "supported by the FMU back end")
-        relation = node["relation"]
-        expression = storage["relations"][relation]["relation"]["expression"]
-        convert(expression)   # records the relation
-        if relation not in convert.relations:
-            raise FrontEndError(f"{convert.where}: when-conditions on "
-                                "Integer or Boolean variables (n == 2) are "
-                                "not supported by the FMU back end; "
-                                "allowed: one relation of Real variables "
-                                "(h < 0)")
+        if action["guard"] != action["trigger"] or \
+                action["trigger"] >= len(conditions):
+            raise FrontEndError(f"{convert.where}: this when-clause (its "
+                                "guard differs from its condition in "
+                                "rumoca's flat model) is not supported by "
+                                "the FMU back end; allowed: when-clauses "
+                                "with reinit on relations and Boolean "
+                                "expressions")
+        relation = _when_relation(storage, convert, action["trigger"],
+                                  convert.where)
         convert.pre_is_state = True
         try:
             value = convert(body["value"])

@@ -91,7 +91,8 @@ _PREFIXES = ("final", "inner", "outer", "replaceable", "redeclare", "flow",
 _HYBRID = tuple(f"({what})" for what in (*list(_DISCRETE.values())[:2],
                                           "a discrete variable")) + (
     "outside a when-clause's reinit is not supported",
-    "initialisation) is not supported")
+    "initialisation) is not supported", "edge() is not supported",
+    "change() is not supported")
 _SECTION = re.compile(r"\b(?:initial\s+)?(?:equation|algorithm)\b")
 _DECLARATION = re.compile(
     r"^\s*((?:(?:" + "|".join(_PREFIXES) + r")\s+)*)"
@@ -103,16 +104,16 @@ _EXTENDS = re.compile(r"^\s*extends\s+([\w.]+)")
 _SHORT = r"\b(?:type|connector|model|block|record|class)\s+{}\s*=\s*" \
     r"((?:(?:input|output|flow|stream|discrete)\s+)*)([\w.]+)"
 _WHEN = re.compile(r"\bwhen\b(.*?)\bend\s+when\s*;", re.S)
+#: The condition of a when-clause (``end when`` blanked first).
+_WHEN_CONDITION = re.compile(r"\b(?:else)?when\b(.*?)\bthen\b", re.S)
+_INITIAL_WHEN = "initial() in a when-condition is not supported; " \
+    "allowed: initial() in equations (if initial() then ... else ... end " \
+    "if)"
 _OPERATORS = {"edge": "edge() is not supported",
               "change": "change() is not supported",
               "sample": "sample(): clocked equations are not supported",
               "initial": "initial() (equations that differ at the "
                          "initialisation) is not supported"}
-#: initial() in an equation that is not an Integer or Boolean variable's:
-#: read in one mode (``hybrid``), not compiled into an FMU (``fmu``).
-_CONTINUOUS_INITIAL = "initial() outside the equations of Integer and " \
-    "Boolean variables (an equation or when-clause that differs at the " \
-    "initialisation) is not supported in an FMU"
 
 
 @dataclass(frozen=True)
@@ -236,7 +237,6 @@ class _Walker:
         self.source = _Source(roots)
         self.done = {}
         self.imports = {}
-        self.discretes = {}
 
     def _scope_imports(self, scope):
         """The imports of class ``scope`` (see :func:`_imports`), read
@@ -316,36 +316,6 @@ class _Walker:
         self.done[name] = result
         return result
 
-    def discrete_names(self, name):
-        """The Integer, Boolean and ``discrete`` variables that class
-        ``name`` and the classes it extends declare."""
-        if name in self.discretes:
-            return self.discretes[name]
-        self.discretes[name] = set()   # a class that extends itself
-        found = self.source.long(name)
-        if found is None:
-            return set()
-        body = found[4]
-        cut = _SECTION.search(body)
-        names = set()
-        for _, statement in _statements(body[:cut.start()] if cut else body):
-            extends = _EXTENDS.match(statement)
-            if extends:
-                full = self.resolve(extends.group(1), name)
-                names |= self.discrete_names(full) if full else set()
-                continue
-            match = _DECLARATION.match(statement)
-            if match is None:
-                continue
-            prefixes = match.group(1).split()
-            if "parameter" in prefixes or "constant" in prefixes:
-                continue
-            base = self.kind(match.group(2), name)[1]
-            if "discrete" in prefixes or base in _DISCRETE:
-                names.add(match.group(4))
-        self.discretes[name] = names
-        return names
-
     def _statement(self, statement, scope, where):
         extends = _EXTENDS.match(statement)
         if extends:
@@ -421,18 +391,15 @@ class _Walker:
 
     def _equations(self, sections, path, text, begin, scope):
         outside = _WHEN.sub(lambda m: " " * len(m.group(0)), sections)
-        hits = [(found.start(), what) for operator, what in
-                _OPERATORS.items()
-                for found in re.finditer(rf"\b{operator}\s*\(", sections)]
-        # initial() outside the equations of Integer and Boolean variables
-        discretes = self.discrete_names(scope)
-        for at, statement in _statements(sections):
-            statement = _SECTION.sub(lambda m: " " * len(m.group(0)),
-                                     statement)
-            defined = re.match(r"\s*(\w+)\s*=(?!=)", statement)
-            if defined is None or defined.group(1) not in discretes:
-                hits += [(at + found.start(), _CONTINUOUS_INITIAL) for found
-                         in re.finditer(r"\binitial\s*\(", statement)]
+        ends = re.sub(r"\bend\s+when\b", lambda m: " " * len(m.group(0)),
+                      sections)
+        hits = [(condition.start(1) + found.start(), _INITIAL_WHEN)
+                for condition in _WHEN_CONDITION.finditer(ends)
+                for found in re.finditer(r"\binitial\s*\(",
+                                         condition.group(1))]
+        hits += [(found.start(), what) for operator, what in
+                 _OPERATORS.items()
+                 for found in re.finditer(rf"\b{operator}\s*\(", sections)]
         hits += [(found.start(), "pre() outside a when-clause's reinit is not "
                   "supported")
                  for found in re.finditer(r"\bpre\s*\(", outside)]
@@ -487,16 +454,14 @@ def _replacement_words(findings, model_name):
                    for words, names in classes.items())
 
 
-def refuse_unsupported(path, model_name, roots, hybrid=False, fmu=False):
+def refuse_unsupported(path, model_name, roots, hybrid=False):
     """Refuse ``model_name`` if the classes it instantiates hold a
     construct the back end does not compile, before rumoca flattens it.
 
     With ``hybrid`` Integer, Boolean and discrete variables, ``pre()`` and
-    ``initial()`` pass: the front end reads their equations. With ``fmu``
-    as well (an FMU, :mod:`fmu.build`, not the linearisation in one mode
-    of :mod:`sources.modelica`) ``initial()`` passes in the equations of
-    Integer and Boolean variables only (MSL's ``ElastoBacklash`` has it
-    in an if-equation of Reals).
+    ``initial()`` pass: the front end reads their equations, and
+    ``initial()`` in the others too (MSL's ``ElastoBacklash`` has it in an
+    if-equation of Reals).
 
     Raises
     ------
@@ -507,8 +472,7 @@ def refuse_unsupported(path, model_name, roots, hybrid=False, fmu=False):
     """
     walker = _Walker(roots)
     findings = [f for f in walker.findings(model_name)
-                if not (hybrid and f.what.endswith(_HYBRID))
-                and not (hybrid and not fmu and f.what == _CONTINUOUS_INITIAL)]
+                if not (hybrid and f.what.endswith(_HYBRID))]
     if not findings:
         return
     first = findings[0]

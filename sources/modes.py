@@ -41,7 +41,9 @@ def fixed_mode(flat, current, previous, initial):
         Values of :attr:`~fmu.frontend.FlatModel.discretes` and of their
         ``pre()`` (Booleans as 1 and 0).
     initial : float
-        The value of ``initial()``.
+        The value of ``initial()`` in the equations of the mode; the
+        initial equations are solved with it true (as an FMU does:
+        :attr:`~fmu.frontend.FlatModel.initial_value`).
 
     Returns
     -------
@@ -52,8 +54,8 @@ def fixed_mode(flat, current, previous, initial):
         equations no longer use are dropped.
     """
     symbols = _column([d.symbol for d in flat.discretes]
-                      + [d.previous for d in flat.discretes] + [flat.initial])
-    numbers = _column([casadi.SX(v) for v in (*current, *previous, initial)])
+                      + [d.previous for d in flat.discretes])
+    numbers = _column([casadi.SX(v) for v in (*current, *previous)])
     residuals = [casadi.substitute(casadi.SX(r), symbols, numbers)
                  for r in flat.residuals]
     variables = [v for v in flat.variables if v.role != "discrete"]
@@ -73,14 +75,20 @@ def fixed_mode(flat, current, previous, initial):
     whens = flat.whens
     if len(relations) != len(flat.relations) and whens:
         relations = flat.relations   # when-clauses index them
+    # a when-clause's condition on discrete variables (n == 2) is a
+    # relation of its own in them
+    relations = [dataclasses.replace(
+        r, value=casadi.substitute(casadi.SX(r.value), symbols, numbers))
+        for r in relations]
     return dataclasses.replace(flat, variables=variables, residuals=residuals,
                                places=places, relations=relations,
-                               discretes=[], initial=None)
+                               discretes=[], initial_value=float(initial))
 
 
 def uses_initial(flat):
     """Whether the equations of ``flat`` use ``initial()`` (MSL's
-    ``ElastoBacklash``), which :func:`fixed_mode` makes a number."""
+    ``ElastoBacklash``), which :func:`fixed_mode` makes a number after the
+    initialisation."""
     return flat.initial is not None and any(
         casadi.depends_on(casadi.SX(r), flat.initial) for r in flat.residuals)
 

@@ -60,12 +60,12 @@ def test_cache_off(counted, monkeypatch):
     assert counted == ["Decay", "Decay"]
 
 
-def test_a_cached_flat_model_is_still_checked_for_an_fmu(counted, tmp_path):
-    # initial() in a Real equation is read in one mode (--modelica) but
-    # not compiled into an FMU; flattened and cached for the first, the
-    # class was refused for the second only by the back end, without the
-    # source check's place in the model and MSL replacement (MSL's
-    # ElastoBacklash: 'initial() in a continuous equation')
+def test_a_cached_flat_model_is_still_checked_from_the_source(counted,
+                                                             tmp_path):
+    # initial() is read with the Integer and Boolean variables
+    # (``hybrid``) and refused without them; flattened and cached for the
+    # first, the class is refused for the second by the source check, at
+    # its place in the model, before the cache is read
     source = tmp_path / "InitialReal.mo"
     source.write_text("model InitialReal\n"
                       "  Real x(start = 1, fixed = true);\n"
@@ -75,9 +75,8 @@ def test_a_cached_flat_model_is_still_checked_for_an_fmu(counted, tmp_path):
     frontend.load_flat_model(source, "InitialReal", [tmp_path], hybrid=True)
     assert counted == ["InitialReal"]
     with pytest.raises(frontend.FrontEndError,
-                       match=r"InitialReal.mo:4: initial\(\) outside the "
-                             r"equations of Integer and Boolean variables.*"
-                             r"\(found before flattening\)"):
-        frontend.load_flat_model(source, "InitialReal", [tmp_path],
-                                 hybrid=True, fmu=True)
+                       match=r"InitialReal.mo:4: initial\(\) \(equations "
+                             r"that differ at the initialisation\) is not "
+                             r"supported.*\(found before flattening\)"):
+        frontend.load_flat_model(source, "InitialReal", [tmp_path])
     assert counted == ["InitialReal"]

@@ -76,7 +76,11 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
     return fmi2OK;
 }
 
-fmi2Status fmi2EnterInitializationMode(fmi2Component c) { (void)c; return fmi2OK; }
+fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
+    /* values with initial() true until the mode is left */
+    instance_initialize(CORE(c));
+    return fmi2OK;
+}
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     /* states and discrete variables follow the parameters set */

@@ -97,6 +97,8 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
     (void)stopTimeDefined; (void)stopTime;
     instance_setup(CORE(c), ((Fmi3 *)c)->cosimulation && toleranceDefined,
                    tolerance, startTime);
+    /* values with initial() true until the mode is left */
+    instance_initialize(CORE(c));
     return fmi3OK;
 }
 

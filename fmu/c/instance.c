@@ -169,6 +169,10 @@ static void log_chattering(Instance *c) {
                  MODEL_ZENO_SPAN * (fabs(c->model.time) + 1.0));
 }
 
+void instance_initialize(Instance *c) {
+    model_initialize(&c->model);
+}
+
 int instance_start(Instance *c) {
     if (model_start(&c->model) == 0) return 0;
     log_iterations(c);

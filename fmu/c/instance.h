@@ -50,6 +50,11 @@ int instance_deserialize(Instance *c, const char *bytes, size_t size,
 int instance_directional(Instance *c, const unsigned z[], size_t nz,
                          const unsigned v[], size_t nv, const double seed[],
                          double result[], int adjoint);
+/* Initialisation mode entered (fmi2EnterInitializationMode,
+ * fmi3EnterInitializationMode): states, relations and discrete variables
+ * of the initialisation, initial() true; whether its event iteration
+ * converged is said when the mode is left (instance_start) */
+void instance_initialize(Instance *c);
 /* Initialisation done (fmi2ExitInitializationMode,
  * fmi3ExitInitializationMode): states and discrete variables at the
  * start */

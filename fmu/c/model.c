@@ -55,6 +55,40 @@ static void relations_at(Model *m, double t, const double *x, double *r) {
     MODEL_RELATIONS(m->arg, m->res, m->iw, m->w, 0);
 }
 
+static void derivatives(Model *m, double t, const double *x, double *xdot);
+
+/* After the start, a moment after the present t along the derivatives
+ * (*t, x) when an event indicator is exactly zero at t (z): Model
+ * Exchange's integrator can locate a crossing exactly on it, where x >
+ * 0.5 is still false and the crossing would be lost; 0 (and nothing
+ * set) when none is */
+static int moment_after(Model *m, double *z, double *t, double *x) {
+    double xdot[MODEL_NX + 1];
+    int k, touching = 0;
+    if (!m->running || MODEL_NR == 0) return 0;
+    model_indicators(m, z);
+    for (k = 0; k < MODEL_NR; k++) touching |= z[k] == 0;
+    if (!touching) return 0;
+    *t = m->time + MODEL_LOOK_AHEAD * (fabs(m->time) + 1.0);
+    derivatives(m, m->time, m->x, xdot);
+    for (k = 0; k < MODEL_NX; k++)
+        x[k] = m->x[k] + (*t - m->time) * xdot[k];
+    return 1;
+}
+
+/* The relations at the present t, x, each as it is just after t: one
+ * whose indicator is exactly zero takes its value a moment later
+ * (moment_after), on the side its indicator moves to; one whose
+ * indicator stays zero keeps its value */
+static void relations_after(Model *m, double *r) {
+    double z[MODEL_NR + 1], ahead[MODEL_NR + 1], x[MODEL_NX + 1], t;
+    int k;
+    relations_at(m, m->time, m->x, r);
+    if (!moment_after(m, z, &t, x)) return;
+    relations_at(m, t, x, ahead);
+    for (k = 0; k < MODEL_NR; k++) if (z[k] == 0) r[k] = ahead[k];
+}
+
 void model_hold_relations(Model *m) {
     relations_at(m, m->time, m->x, m->p + P_RELATIONS);
     m->stale = 1;
@@ -63,10 +97,16 @@ void model_hold_relations(Model *m) {
 /* The discrete variables' equations at the present t, x and the values
  * held in p; 1 if a value changed (the new ones are held) */
 static int update_discretes(Model *m) {
-    double d[MODEL_ND + 1];
+    double d[MODEL_ND + 1], z[MODEL_NR + 1], x[MODEL_NX + 1], t;
     int k, changed = 0;
     if (MODEL_ND == 0) return 0;
-    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    /* their relations as relations_after takes them */
+    if (moment_after(m, z, &t, x)) {
+        m->arg[0] = &t; m->arg[1] = x;
+    } else {
+        m->arg[0] = &m->time; m->arg[1] = m->x;
+    }
+    m->arg[2] = m->p;
     m->res[0] = d;
     MODEL_DISCRETES(m->arg, m->res, m->iw, m->w, 0);
     for (k = 0; k < MODEL_ND; k++) {
@@ -77,27 +117,36 @@ static int update_discretes(Model *m) {
     return changed;
 }
 
-int model_start(Model *m) {
-    int k, again = 1;
+int model_initialize(Model *m) {
+    int k, again = 0;
+    m->running = 0;
     m->arg[0] = m->p;
     m->res[0] = m->x;
     MODEL_START(m->arg, m->res, m->iw, m->w, 0);
+    if (MODEL_NI) m->p[P_INITIAL] = 1;
     model_hold_relations(m);
-    m->stale = 1;
     if (MODEL_ND == 0) return 0;
-    /* the initialisation: pre() at the start values, initial() true */
+    /* pre() at the start values */
     memcpy(m->p + P_DISCRETES, parameter_defaults + P_DISCRETES,
            sizeof(double) * 2 * MODEL_ND);
-    if (MODEL_NI) m->p[P_INITIAL] = 1;
+    again = 1;
     for (k = 0; k < MODEL_MAX_EVENT_ITERATIONS && again; k++)
         again = update_discretes(m);
+    return again;
+}
+
+int model_start(Model *m) {
+    int again = model_initialize(m);
     if (MODEL_NI) m->p[P_INITIAL] = 0;
+    m->stale = 1;
     if (again) return 1;
-    /* then the event iteration at the start time, from the values the
-     * initialisation reached */
+    if (MODEL_ND == 0 && MODEL_NI == 0) return 0;
+    /* then the event iteration at the start time, initial() false, from
+     * the values the initialisation reached */
     memcpy(m->p + P_PREVIOUS, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     m->iterations = 0;
     do model_event(m, &again); while (again);   /* bounded by model_event */
+    m->running = 1;
     return m->iterations >= MODEL_MAX_EVENT_ITERATIONS;
 }
 
@@ -119,7 +168,7 @@ int model_event(Model *m, int *again) {
         }
         m->burst_events++;
     }
-    relations_at(m, m->time, m->x, r);
+    relations_after(m, r);
     for (k = 0; k < MODEL_NW; k++) {
         fired[k] = r[when_relation[k]] > 0.5 && held[when_relation[k]] < 0.5;
         any |= fired[k] > 0.5;
@@ -142,7 +191,7 @@ int model_event(Model *m, int *again) {
                sizeof(double) * MODEL_ND);
         *again = 1;
     }
-    relations_at(m, m->time, m->x, r);
+    relations_after(m, r);
     for (k = 0; k < MODEL_NR; k++) if (r[k] != held[k]) *again = 1;
     m->stale = 1;
     if (!*again) m->iterations = 0;

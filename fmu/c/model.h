@@ -26,12 +26,16 @@
 /* p holds the parameters, the inputs and, held between events, the
  * values of the relations that generate events, the discrete (Integer
  * and Boolean) variables, their pre() and initial() (MODEL_NI = 1 if the
- * discrete equations use it) */
+ * equations use it) */
 #define P_RELATIONS (MODEL_NP + MODEL_NU)
 #define P_DISCRETES (P_RELATIONS + MODEL_NR)
 #define P_PREVIOUS (P_DISCRETES + MODEL_ND)
 #define P_INITIAL (P_PREVIOUS + MODEL_ND)
 #define MODEL_NPAR (P_INITIAL + MODEL_NI)
+/* How far (times |t| + 1 seconds) an event looks ahead for the side a
+ * relation whose indicator is exactly zero goes to (model.c,
+ * moment_after) */
+#define MODEL_LOOK_AHEAD 1e-9
 /* Event iterations allowed at one instant */
 #define MODEL_MAX_EVENT_ITERATIONS 100
 /* A model chatters (Zeno) when more than MODEL_ZENO_EVENTS events come
@@ -50,6 +54,7 @@ typedef struct {
     double calculated[MODEL_NC + 1];
     int stale;                 /* xdot, y, calculated need evaluating */
     int iterations;            /* event iterations at this instant so far */
+    int running;               /* started: events look ahead (model.c) */
     double relative_tolerance; /* co-simulation integrator */
     long steps, rejected, events; /* co-simulation statistics */
     double burst_start;        /* time of the first event of a burst */
@@ -63,9 +68,12 @@ typedef struct {
 
 int model_init(Model *m);            /* defaults; 0 on success */
 void model_free(Model *m);
-/* x = x0(p); the discrete variables from their start values: their
- * equations with initial() true and pre() at the start values, then the
- * event iteration; returns 1 if it did not converge */
+/* The initialisation, left with initial() true: x = x0(p), the
+ * relations at x, the discrete variables' equations with pre() at the
+ * start values until they hold; returns 1 if they do not */
+int model_initialize(Model *m);
+/* model_initialize, then initial() false and the event iteration at the
+ * start time; returns 1 if either did not converge */
 int model_start(Model *m);
 void model_evaluate(Model *m);       /* xdot, y, calculated from t, x, p */
 int model_get(Model *m, unsigned vr, double *value);
