@@ -14,8 +14,10 @@ from one of:
     which misses the boundary by the step's own variance ``w^2 / 12``
     (:func:`stability.fit._common.grid_variance`): where ``s^2`` comes
     out smaller (onsets in one step share a middle, and their residuals
-    shrink together), that variance replaces it, as known (normal
-    quantile); a given scatter has it added.
+    shrink together), that variance replaces it (with the same Student's
+    ``t``: the scatter of the onsets may be larger still, and an interval
+    is never narrower than the residuals' estimate makes it); a given
+    scatter has it added.
 ``'profile'``
     Profile likelihood: each parameter is stepped away from its fitted
     value, the others refitted, until the sum of squares has grown by
@@ -210,16 +212,16 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
         if s2 < grid:
             # the middles of a grid's steps miss the boundary by at least
             # the grid's own variance: residuals below it came out small
-            # together (onsets in one step share a middle), not precise
+            # together (onsets in one step share a middle), not precise;
+            # Student's t stays (the onsets' scatter adds to the grid's)
             info.append(
                 f"the residuals' scatter "
                 f"({scale_unit * math.sqrt(s2):.2g}{unit}) is smaller than "
                 "the amplitude grid alone puts in the onsets "
                 f"({scale_unit * math.sqrt(grid):.2g}{unit}: a step's "
                 "width over the square root of 12): the intervals use "
-                "the grid's, with the normal quantile")
+                "the grid's")
             s2 = grid
-            q = float(stats.norm.ppf(0.5 + CONFIDENCE / 2))
     else:
         # the bench's known scatter and the grid's, with normal
         # quantiles, and a check that the residuals are not far larger
