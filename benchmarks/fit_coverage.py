@@ -6,7 +6,10 @@ scaled by a factor drawn from U(0.85, 1.15). Its lowest model boundary
 (of judder growing at ``--min-growth``, default ``judder check``'s 1 1/s,
 as the chart's verdict sees it) at the frequencies of ``--grid`` is
 perturbed by ``--noise`` (3 %) multiplicative Gaussian noise; a point
-above ``p_max`` (1.5 bar) is censored, as on the bench. Each boundary is
+above ``p_max`` (1.5 bar) is censored, as on the bench. With ``--step``
+the onsets are found on a grid of amplitudes, as a chart finds them: each
+noisy onset rounded up to the grid, with the amplitude tried below it
+(:func:`on_grid`). Each boundary is
 fitted from the preset's values with the defaults of ``judder fit``
 (:func:`stability.fit.fit_boundary`). A boundary with too few onsets
 for the parameters is refused by the fit, and counted apart. The script
@@ -19,6 +22,7 @@ binomial standard deviation)::
     .venv/bin/python benchmarks/fit_coverage.py              # 20 boundaries
     .venv/bin/python benchmarks/fit_coverage.py --names c12,mu_g,k24
     .venv/bin/python benchmarks/fit_coverage.py --grid uniform --min-growth 0
+    .venv/bin/python benchmarks/fit_coverage.py --step 0.1
 
 ``--write-example FILE`` writes ``examples/measured_boundary.csv``.
 """
@@ -46,6 +50,16 @@ def noisy_boundary(truth, freq_hz, p_max, noise, rng, min_growth):
     clean = model_boundary(truth, freq_hz, p_max, min_growth=min_growth)
     noisy = clean * (1 + noise * rng.standard_normal(len(freq_hz)))
     return np.where(noisy > p_max, np.nan, noisy)
+
+
+def on_grid(measured, step, p_max):
+    """Onsets found on a grid of amplitudes ``step, 2 step, ...`` up to
+    ``p_max`` (Pa): the lowest amplitude of the grid at or above each
+    onset, and the one below it (NaN: censored, also where the grid's
+    onset lies above ``p_max``)."""
+    onset = np.ceil(measured / step - 1e-9) * step
+    onset = np.where(onset > p_max * (1 + 1e-9), np.nan, onset)
+    return onset, onset - step
 
 
 #: Frequencies of examples/measured_boundary.csv, Hz: every 10 Hz over
@@ -86,6 +100,9 @@ def main(argv=None):
     parser.add_argument("--points", type=int, default=15)
     parser.add_argument("--noise", type=float, default=0.03)
     parser.add_argument("--pf-max", type=float, default=1.5, help="bar")
+    parser.add_argument("--step", type=float, default=0.0,
+                        help="bar: onsets found on a grid of amplitudes of "
+                        "this step (default 0: as measured)")
     parser.add_argument("--names", default="mu_g,k24")
     parser.add_argument("--min-growth", type=float, default=None,
                         help="1/s (default: fit_boundary's)")
@@ -121,10 +138,13 @@ def main(argv=None):
             1 - SPREAD, 1 + SPREAD) for n in names})
         measured = noisy_boundary(truth, freq, p_max, args.noise, rng,
                                   min_growth)
+        below = None
+        if args.step:
+            measured, below = on_grid(measured, args.step * BAR, p_max)
         began = time.perf_counter()
         try:
             result = fit_boundary(preset, freq, measured, p_max,
-                                  names=names, seed=seed,
+                                  names=names, seed=seed, below=below,
                                   workers=args.workers, curve_points=0,
                                   **options)
         except JudderError as error:
@@ -152,7 +172,8 @@ def main(argv=None):
         "name": "fit-coverage-95", "truth": args.truth,
         "boundaries": args.boundaries, "grid": args.grid,
         "points": len(freq),
-        "noise": args.noise, "names": names, "min_growth": min_growth,
+        "noise": args.noise, "step_bar": args.step, "names": names,
+        "min_growth": min_growth,
         "coverage": {n: f"{inside[n]}/{len(seconds)}" for n in names},
         "refused_boundaries": refused,
         "unsuccessful_boundaries": unsuccessful,

@@ -26,10 +26,17 @@ the command an engineer runs::
 
 The script prints a line per boundary on stderr and one JSON object:
 coverage of the 95 % intervals per parameter, the mean of (estimated
-scatter / true noise)^2 (1 for an unbiased estimate) and the times::
+scatter / true noise)^2 (1 for an unbiased estimate), how the estimates
+lie in chi-square's distribution of their degrees of freedom (the onsets
+less 2: how many fell below its 1 % and 5 % quantiles, and the
+Kolmogorov-Smirnov p-value of their quantiles against a uniform one) and
+the times. ``--known-noise`` gives each fit its true noise
+(``--scatter``), which takes the scatter's estimate out of the
+intervals::
 
     .venv/bin/python benchmarks/holdout_fit.py                  # seeds 0-19
     .venv/bin/python benchmarks/holdout_fit.py --first-seed 20 --boundaries 40
+    .venv/bin/python benchmarks/holdout_fit.py --known-noise
 
 Exact 95 % intervals hold the truth in at least 19 of 20 boundaries with
 a probability of only 0.74 (binomial), so the script exits with 1 only
@@ -45,6 +52,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy import stats
 from scipy.integrate import solve_ivp
 
 #: Appendix A, SI: inertias kg m^2, stiffnesses N m/rad, damping N m s/rad,
@@ -150,13 +158,15 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--boundaries", type=int, default=20)
     parser.add_argument("--first-seed", type=int, default=0)
+    parser.add_argument("--known-noise", action="store_true",
+                        help="give each fit its true noise (--scatter)")
     parser.add_argument("--judder", default=str(
         Path(sys.executable).with_name("judder")),
         help="the judder command (default: the one beside this Python)")
     args = parser.parse_args(argv)
     names = ("mu_g", "k24")
     inside = {n: 0 for n in names}
-    ratios, seconds, refused = [], [], []
+    ratios, quantiles, seconds, refused = [], [], [], []
     with tempfile.TemporaryDirectory() as folder:
         for seed in range(args.first_seed,
                           args.first_seed + args.boundaries):
@@ -167,7 +177,9 @@ def main(argv=None):
             done = subprocess.run(
                 [args.judder, "fit", "--boundary", str(path), "--set",
                  f"c12={truth['c12']!r}", "--fit", ",".join(names),
-                 "--json"], capture_output=True, text=True)
+                 "--json"] + (["--scatter", f"{100 * noise:.6g}%"]
+                              if args.known_noise else []),
+                capture_output=True, text=True)
             if done.returncode != 0:
                 refused.append(seed)
                 print(f"boundary {seed}: refused: {done.stderr.strip()}",
@@ -175,7 +187,11 @@ def main(argv=None):
                 continue
             seconds.append(time.perf_counter() - began)
             result = json.loads(done.stdout)
-            ratios.append((result["scatter"] / noise) ** 2)
+            if not args.known_noise:
+                ratios.append((result["scatter"] / noise) ** 2)
+                dof = sum(m is not None for m in result["measured_bar"]) \
+                    - len(names)
+                quantiles.append(stats.chi2.cdf(ratios[-1] * dof, dof))
             cells = []
             for name in names:
                 fitted = result["fitted"][name]
@@ -194,8 +210,13 @@ def main(argv=None):
         "first_seed": args.first_seed,
         "coverage": {n: f"{inside[n]}/{fitted}" for n in names},
         "refused_boundaries": refused,
+        "known_noise": args.known_noise,
         "mean_scatter_ratio_squared": round(float(np.mean(ratios)), 3)
         if ratios else None,
+        "scatter_below_chi2_1pct": int(np.sum(np.array(quantiles) < 0.01)),
+        "scatter_below_chi2_5pct": int(np.sum(np.array(quantiles) < 0.05)),
+        "scatter_chi2_ks_p": round(float(stats.kstest(
+            quantiles, "uniform").pvalue), 3) if quantiles else None,
         "seconds_median": round(float(np.median(seconds)), 2)
         if seconds else None}))
     return 0 if fitted and all(inside[n] >= 0.9 * fitted

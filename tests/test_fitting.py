@@ -414,6 +414,61 @@ def test_onsets_on_a_grid_are_fitted_to_the_middle_of_their_step():
     assert biased.values[0] < 0.021
 
 
+def test_onsets_sharing_grid_steps_keep_the_grid_in_the_intervals():
+    """Issue 31: onsets found on a 0.1 bar grid about tongue 2's tip
+    share steps, so the residuals of the steps' middles come out small
+    together. Six noise-free onsets: the scatter estimated from them is
+    3.1 % where the grid alone puts 7 % (a step's width over the square
+    root of 12, relative to each middle) in every middle; with that
+    estimate Student's intervals held neither mu_g nor k24 (3.1 and 2.9
+    standard uncertainties off). The intervals use the grid's variance."""
+    truth = get_preset("paper-4dof-fitted")
+    freqs = np.array([100.0, 102.0, 104.0, 106.0, 108.0, 110.0])
+    grid = 0.1
+    onset = np.ceil(model_boundary(truth, freqs, 1.5 * BAR) / BAR / grid) \
+        * grid
+    np.testing.assert_allclose(onset, [0.9, 0.6, 0.4, 0.3, 0.5, 0.8])
+    middle = onset - grid / 2
+    result = fit_boundary(truth.replace(mu_g=1.1 * truth["mu_g"],
+                                        k24=1.01 * truth["k24"]),
+                          freqs, onset * BAR, 1.5 * BAR,
+                          names=("mu_g", "k24"), below=(onset - grid) * BAR,
+                          starts=1, curve_points=0, workers=1)
+    assert result.success
+    # the scatter reported is the residuals' estimate, the grid's in a note
+    assert result.scatter == pytest.approx(0.031, abs=0.001)
+    grid_share = np.sqrt(np.mean((grid / middle) ** 2) / 12)
+    assert grid_share == pytest.approx(0.070, abs=0.001)
+    for name, low, high, value in zip(result.names, result.ci_low,
+                                      result.ci_high, result.values):
+        assert low <= truth[name] <= high, name
+        # the grid's 7 % for the residuals' 3.1 %: 2.3 times as wide
+        assert (high - low) / value < 0.17, name
+    assert any("(7%: a step's width over the square root of 12)" in note
+               for note in result.notes)
+
+
+def test_a_given_scatter_is_added_to_the_grid():
+    """With the bench's scatter given, the middle of a grid step misses
+    the boundary by the scatter and the step together: their variances
+    add, so doubling the scatter widens the Jacobian's intervals by
+    sqrt((4 s^2 + g) / (s^2 + g)), not 2."""
+    truth = get_preset("paper-4dof-fitted")
+    freqs = np.array([100.0, 102.0, 104.0, 106.0, 108.0, 110.0])
+    onset = np.array([0.9, 0.6, 0.4, 0.3, 0.5, 0.8])
+    fits = [fit_boundary(truth, freqs, onset * BAR, 1.5 * BAR,
+                         names=("mu_g",), below=(onset - 0.1) * BAR,
+                         scatter=scatter, uncertainty="jacobian", starts=1,
+                         curve_points=0, workers=1)
+            for scatter in (0.03, 0.06)]
+    assert [f.scatter for f in fits] == [0.03, 0.06]
+    assert fits[0].values[0] == pytest.approx(fits[1].values[0], rel=1e-9)
+    grid = np.mean((0.1 / (onset - 0.05)) ** 2) / 12
+    assert fits[1].std[0] / fits[0].std[0] == pytest.approx(
+        np.sqrt((0.06 ** 2 + grid) / (0.03 ** 2 + grid)), rel=1e-6)
+    assert any("the amplitude grid adds 7%" in note for note in fits[0].notes)
+
+
 def test_the_growth_threshold_spread_moves_the_damping_and_widens():
     # a damping shifts every Floquet exponent alike: a lower threshold
     # calls for more damping to put the boundary where it was measured

@@ -137,7 +137,10 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         it (:func:`judder.inputs.read_chart_below`). The boundary lies
         between it and the onset, not at the onset: the fit compares with
         the interval's midpoint (a grid step of 0.2 bar otherwise puts
-        every onset 0.1 bar high on average and biases the fit).
+        every onset 0.1 bar high on average and biases the fit), and the
+        intervals count the variance the grid puts in the midpoints
+        (:func:`stability.fit._common.grid_variance`): added to a given
+        ``scatter``, and the least the estimated one is taken as.
     threshold_spread : float
         1/s, >= 0: how far the growth rate the onsets were called judder
         at may lie from ``min_growth`` (a chart's verdict reads the growth
@@ -224,7 +227,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
                            else scatter / PA_PER_BAR),
                        threshold_spread=float(threshold_spread),
                        forced_limit=None if forced_limit is None
-                       else float(forced_limit))
+                       else float(forced_limit)).with_grid(onsets)
     extra = extra_starts(starts, names, low, high)
     if workers is None:
         workers = (os.cpu_count() or 1) if uncertainty == "bootstrap" else 1
@@ -432,7 +435,7 @@ def _fit(problem, given, extra, uncertainty, n_bootstrap, seed, workers,
         start_origins=tuple(r["origin"] for r in runs),
         start_costs=costs, min_growth=problem.min_growth,
         added=problem.added, covariance=found.covariance,
-        scatter=float(np.sqrt(max(found.s2, 0.0))),
+        scatter=float(found.scatter),
         scatter_given=problem.scatter is not None,
         threshold_spread=problem.threshold_spread, threshold_shifts=shifts,
         forced_limit=problem.forced_limit)

@@ -9,7 +9,15 @@ from one of:
 ``'jacobian'``
     ``cov = s^2 (J^T J)^{-1}`` from a central-difference Jacobian at the
     solution, ``s^2`` the residual variance with ``n - k`` degrees of
-    freedom, intervals ``value +- t std`` (Student's ``t``).
+    freedom, intervals ``value +- t std`` (Student's ``t``). Onsets found
+    on a grid of amplitudes are compared at the middle of their step,
+    which misses the boundary by the step's own variance ``w^2 / 12``
+    (:func:`stability.fit._common.grid_variance`): where ``s^2`` comes
+    out smaller (onsets in one step share a middle, and their residuals
+    shrink together), that variance replaces it (with the same Student's
+    ``t``: the scatter of the onsets may be larger still, and an interval
+    is never narrower than the residuals' estimate makes it); a given
+    scatter has it added.
 ``'profile'``
     Profile likelihood: each parameter is stepped away from its fitted
     value, the others refitted, until the sum of squares has grown by
@@ -118,8 +126,11 @@ class Intervals:
     ``values``, ``std``, ``ci_low``, ``ci_high``, ``low``, ``high`` are
     SI, shape (k,); ``amplitude`` the model boundaries of each kind at
     the minimum (Pa, shape (n, 3), None if they cannot be computed);
-    ``residual`` the weighted residuals there; ``s2`` the residual
-    variance and ``q`` Student's t of the interval level; ``used`` the
+    ``residual`` the weighted residuals there; ``scatter`` the onsets'
+    scatter, given or estimated from the residuals; ``s2`` the variance
+    the intervals use (``scatter^2``, plus the amplitude grid's
+    :func:`stability.fit._common.grid_variance` if given, at least that
+    if estimated) and ``q`` the quantile of the interval level; ``used`` the
     method (``'jacobian'``, ``'profile'``, ``'jacobian+profile'``,
     ``'bootstrap'``); ``null_names`` the parameters of the Jacobian's null
     space; ``open_sides`` ``[(index, sign)]`` profiles that reached a
@@ -139,6 +150,7 @@ class Intervals:
     high: np.ndarray
     amplitude: object
     residual: np.ndarray
+    scatter: float
     s2: float
     q: float
     used: str
@@ -190,21 +202,46 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
     # made the intervals of 60 noisy boundaries too narrow)
     dof = max(int(np.sum(~problem.censored)) - k, 1)
     notes, info = [], []
+    grid = problem.grid_variance
+    unit = "%" if problem.relative else " bar"
+    scale_unit = 100.0 if problem.relative else 1.0
     if problem.scatter is None:
         s2 = 2 * cost / dof
+        scatter = math.sqrt(max(s2, 0.0))
         q = float(stats.t.ppf(0.5 + CONFIDENCE / 2, dof))
+        if s2 < grid:
+            # the middles of a grid's steps miss the boundary by at least
+            # the grid's own variance: residuals below it came out small
+            # together (onsets in one step share a middle), not precise;
+            # Student's t stays (the onsets' scatter adds to the grid's)
+            info.append(
+                f"the residuals' scatter "
+                f"({scale_unit * math.sqrt(s2):.2g}{unit}) is smaller than "
+                "the amplitude grid alone puts in the onsets "
+                f"({scale_unit * math.sqrt(grid):.2g}{unit}: a step's "
+                "width over the square root of 12): the intervals use "
+                "the grid's")
+            s2 = grid
     else:
-        # the bench's known scatter: normal quantiles, and a check that
-        # the residuals are not far larger than it
-        s2 = problem.scatter ** 2
+        # the bench's known scatter and the grid's, with normal
+        # quantiles, and a check that the residuals are not far larger
+        scatter = problem.scatter
+        s2 = scatter ** 2 + grid
         q = float(stats.norm.ppf(0.5 + CONFIDENCE / 2))
-        ratio = math.sqrt(2 * cost / dof) / problem.scatter
+        ratio = math.sqrt(2 * cost / dof / s2)
         if 2 * cost / s2 > stats.chi2.ppf(0.999, dof):
             notes.append(
                 f"the residuals are {ratio:.2g} times the given scatter "
-                "(chi-square test, 0.1 % level): the model does not "
+                + ("and the amplitude grid's " if grid else "")
+                + "(chi-square test, 0.1 % level): the model does not "
                 "follow the measured boundary, or the scatter is larger "
                 "than given")
+        elif grid:
+            info.append(
+                "the amplitude grid adds "
+                f"{scale_unit * math.sqrt(grid):.2g}{unit} (a step's width "
+                "over the square root of 12) to the given scatter in the "
+                "intervals")
     exact = math.sqrt(s2) < _EXACT * (1.0 if problem.relative
                                       else problem.p_max / PA_PER_BAR)
 
@@ -355,7 +392,8 @@ def intervals(problem, runs, best, given, uncertainty, n_bootstrap, seed,
             std = np.maximum(std, (ci_high - ci_low) / (2 * q))
     return Intervals(values=values, std=std, ci_low=ci_low, ci_high=ci_high,
                      low=low, high=high, amplitude=amplitude,
-                     residual=residual, s2=s2, q=q, used=used,
+                     residual=residual, scatter=scatter, s2=s2, q=q,
+                     used=used,
                      null_names=null_names, open_sides=open_sides,
                      boot_failed=boot_failed, alternatives=alternatives,
                      same=same, minima=minima, notes=notes, info=info,
