@@ -46,6 +46,16 @@ from .frontend import FrontEndError
 
 __all__ = ["OdeModel", "Quantity", "to_ode"]
 
+#: Hysteresis of an event indicator (:func:`_with_hysteresis`) in units of
+#: its first-order rounding: a slip of two speeds near 105 rad/s gets
+#: 4.7e-12 rad/s (the Judder clutch, locked in Model Exchange, keeps it as
+#: its slip), a gap of plates 0.1 m from the origin 4e-15 m.
+HYSTERESIS_ROUNDINGS = 100
+#: The least hysteresis, where the rounding is zero (an indicator of
+#: parameters, a state at zero): a root then still lies where the
+#: relation has changed.
+HYSTERESIS_FLOOR = 1e-300
+
 
 class BackEndError(FrontEndError):
     """The flat model cannot be turned into an ODE; says which equations."""
@@ -99,8 +109,9 @@ class OdeModel:
     relations : list of Quantity
         Relations that generate events, whose values (held between
         events) follow the inputs in ``p``; ``expression`` is the symbol,
-        ``minimum`` the relation and ``maximum`` the event indicator
-        ``lhs - rhs``, both formulas in ``t, x, p``.
+        ``minimum`` the relation and ``maximum`` ``lhs - rhs``, positive
+        where it holds (``rhs - lhs`` for ``<``), both formulas in ``t,
+        x, p``.
     whens : list of (int, list of (str, casadi.SX))
         When-clauses: the relation that triggers each (index in
         ``relations``) and its reinit (state name, value in ``t, x, p``,
@@ -121,7 +132,8 @@ class OdeModel:
         ``minimum`` is the equation's right-hand side in ``t, x, p``
         (the other discrete variables it names at the same instant
         substituted, the relations in it evaluated, ``pre()`` and the
-        variables held in the continuous solution read from ``p``).
+        variables held in the continuous solution read from ``p``);
+        ``maximum`` is 1 for a Boolean, None for an Integer.
     previous : list of Quantity
         ``pre()`` of each discrete variable, then ``initial()`` (1 while
         the FMU initialises) if the discrete equations use it; in ``p``
@@ -178,7 +190,8 @@ class OdeModel:
 
     def event_functions(self):
         """CasADi functions of the events: ``indicators(t, x, p) -> z``
-        (each relation's ``lhs - rhs``), ``relations(t, x, p) -> r`` (the
+        (each relation's indicator with its hysteresis,
+        :func:`_with_hysteresis`), ``relations(t, x, p) -> r`` (the
         relations' values, 1 or 0), ``reinit(t, x, p, fired) -> x``
         (the states after the when-clauses flagged in ``fired``) and
         ``discretes(t, x, p) -> d`` (the discrete variables' equations)."""
@@ -190,8 +203,8 @@ class OdeModel:
             for name, value in reinits:
                 i = names.index(name)
                 after[i] = casadi.if_else(fired[k] > 0.5, value, after[i])
-        return (casadi.Function("indicators", [self.time, x, p], [_column(
-                    *[q.maximum for q in self.relations])]),
+        return (casadi.Function("indicators", [self.time, x, p], [
+                    _with_hysteresis(self.relations, self.time, x)]),
                 casadi.Function("relations", [self.time, x, p], [_column(
                     *[q.minimum for q in self.relations])]),
                 casadi.Function("reinit", [self.time, x, p, fired],
@@ -411,7 +424,8 @@ def _to_ode(model):
     derivative_column = _column(*[derivatives[v.name] for v in order])
     locals_, aliases = _locals(model, order, derivative_column, outputs,
                                system.eliminated)
-    locals_ += [dataclasses.replace(q, minimum=None, start=None)
+    locals_ += [dataclasses.replace(q, minimum=None, start=None,
+                                    maximum=None)
                 for q in discretes]   # their held values, in the results
     return OdeModel(
         name=model.name, time=model.time, states=state_quantities,
@@ -535,7 +549,8 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
     discretes = [Quantity(d.name, "", " ".join(filter(None, (
                      described.get(d.name), "(Boolean, 1 for true)"
                      if d.boolean else "(Integer)"))), d.symbol,
-                          start=d.start, minimum=formula(value))
+                          start=d.start, minimum=formula(value),
+                          maximum=1.0 if d.boolean else None)
                  for d, value in zip(model.discretes, values)]
     previous = [Quantity(f"pre({d.name})", "", f"pre() of {d.name}",
                          d.previous, start=d.start) for d in model.discretes]
@@ -599,6 +614,37 @@ def _input_start(variable):
                            f"{variable.name} depends on other variables; "
                            "give a number")
     return _value(variable.start)
+
+
+def _with_hysteresis(relations, time, x):
+    """The event indicators of ``relations`` (:attr:`OdeModel.relations`)
+    in ``t, x, p``, each shifted by its hysteresis ``h`` away from the
+    value held since the last event: ``d - h`` while the relation is
+    false, ``d + h`` while it holds (``d`` positive where it holds).
+
+    ``h`` is :data:`HYSTERESIS_ROUNDINGS` times the rounding of ``d``
+    to first order in that of its states and time, ``eps (sum_i |dd/dx_i|
+    |x_i| + |dd/dt| |t|)``, and at least :data:`HYSTERESIS_FLOOR`: in the
+    unit of the relation and the scale of its variables, so the state
+    at a located root makes the relation change. Without it fmpy's CVode
+    located roots exactly on an indicator's zero, where a strict
+    relation is still false, and did not report the crossing again: a
+    slip that is the difference of two speeds near 105 rad/s moves in
+    steps of 1.4e-14 rad/s and rose from exactly zero after a
+    break-away, and MSL's friction ``mode`` stayed ``Stuck`` while the
+    clutch slid at 1.9 rad/s (docs/compiler.md)."""
+    indicators = []
+    for relation in relations:
+        difference = casadi.SX(relation.maximum)
+        rounding = casadi.dot(casadi.fabs(casadi.jacobian(difference, x)).T,
+                              casadi.fabs(x)) + casadi.fabs(
+            casadi.jacobian(difference, time)) * casadi.fabs(time)
+        hysteresis = casadi.fmax(
+            HYSTERESIS_ROUNDINGS * np.finfo(float).eps * rounding,
+            HYSTERESIS_FLOOR)
+        indicators.append(difference + hysteresis *
+                          (2 * relation.expression - 1))
+    return _column(*indicators)
 
 
 def _in_states(expression, order, derivatives, eliminated):

@@ -131,6 +131,9 @@ def _config(ode, guid, tolerance):
         f"#define MODEL_NI {len(ode.previous) - len(ode.discretes)}",
         "#define MODEL_WHEN_RELATION {" + ", ".join(
             [str(r) for r, _ in ode.whens] + ["0"]) + "}",
+        "#define MODEL_DISCRETE_BOOLEAN {" + ", ".join(
+            ["1" if q.maximum == 1.0 else "0" for q in ode.discretes]
+            + ["0"]) + "}",
         f"#define MODEL_DEFAULT_TOLERANCE {tolerance!r}",
         f"#define MODEL_PARAMETER_DEFAULTS {_c_array(defaults)}",
         "#define MODEL_STATE_NAMES {" + ", ".join(

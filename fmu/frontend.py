@@ -140,7 +140,9 @@ class Relation:
 
     ``symbol`` stands for its value (1 or 0) in the equations, held
     between events; ``value`` is the relation itself and ``indicator``
-    ``lhs - rhs``, whose sign changes where the relation does.
+    ``lhs - rhs`` for ``>`` and ``>=``, ``rhs - lhs`` for ``<`` and
+    ``<=``: positive where the relation holds (the FMU back end adds a
+    hysteresis to it, :meth:`fmu.backend.OdeModel.event_functions`).
     """
 
     symbol: object
@@ -340,8 +342,9 @@ class _Expressions:
             lhs, rhs = self(body["lhs"]), self(body["rhs"])
             self.relations[position] = Relation(
                 symbol=casadi.SX.sym(f"relation{position + 1}"),
-                value=_BINARY[op](lhs, rhs), indicator=lhs - rhs,
-                where=self.where)
+                value=_BINARY[op](lhs, rhs),
+                indicator=lhs - rhs if op in ("greater", "greater_equal")
+                else rhs - lhs, where=self.where)
         return self.relations[position].symbol
 
     def _is_time_event(self, body):

@@ -13,6 +13,7 @@ static const double parameter_defaults[MODEL_NPAR + 1] =
 static const double parameter_min[MODEL_NPAR + 1] = MODEL_PARAMETER_MIN;
 static const double parameter_max[MODEL_NPAR + 1] = MODEL_PARAMETER_MAX;
 static const int when_relation[MODEL_NW + 1] = MODEL_WHEN_RELATION;
+static const int discrete_boolean[MODEL_ND + 1] = MODEL_DISCRETE_BOOLEAN;
 
 typedef int (*WorkSizes)(casadi_int *, casadi_int *, casadi_int *, casadi_int *);
 
@@ -55,40 +56,6 @@ static void relations_at(Model *m, double t, const double *x, double *r) {
     MODEL_RELATIONS(m->arg, m->res, m->iw, m->w, 0);
 }
 
-static void derivatives(Model *m, double t, const double *x, double *xdot);
-
-/* After the start, a moment after the present t along the derivatives
- * (*t, x) when an event indicator is exactly zero at t (z): Model
- * Exchange's integrator can locate a crossing exactly on it, where x >
- * 0.5 is still false and the crossing would be lost; 0 (and nothing
- * set) when none is */
-static int moment_after(Model *m, double *z, double *t, double *x) {
-    double xdot[MODEL_NX + 1];
-    int k, touching = 0;
-    if (!m->running || MODEL_NR == 0) return 0;
-    model_indicators(m, z);
-    for (k = 0; k < MODEL_NR; k++) touching |= z[k] == 0;
-    if (!touching) return 0;
-    *t = m->time + MODEL_LOOK_AHEAD * (fabs(m->time) + 1.0);
-    derivatives(m, m->time, m->x, xdot);
-    for (k = 0; k < MODEL_NX; k++)
-        x[k] = m->x[k] + (*t - m->time) * xdot[k];
-    return 1;
-}
-
-/* The relations at the present t, x, each as it is just after t: one
- * whose indicator is exactly zero takes its value a moment later
- * (moment_after), on the side its indicator moves to; one whose
- * indicator stays zero keeps its value */
-static void relations_after(Model *m, double *r) {
-    double z[MODEL_NR + 1], ahead[MODEL_NR + 1], x[MODEL_NX + 1], t;
-    int k;
-    relations_at(m, m->time, m->x, r);
-    if (!moment_after(m, z, &t, x)) return;
-    relations_at(m, t, x, ahead);
-    for (k = 0; k < MODEL_NR; k++) if (z[k] == 0) r[k] = ahead[k];
-}
-
 void model_hold_relations(Model *m) {
     relations_at(m, m->time, m->x, m->p + P_RELATIONS);
     m->stale = 1;
@@ -97,16 +64,10 @@ void model_hold_relations(Model *m) {
 /* The discrete variables' equations at the present t, x and the values
  * held in p; 1 if a value changed (the new ones are held) */
 static int update_discretes(Model *m) {
-    double d[MODEL_ND + 1], z[MODEL_NR + 1], x[MODEL_NX + 1], t;
+    double d[MODEL_ND + 1];
     int k, changed = 0;
     if (MODEL_ND == 0) return 0;
-    /* their relations as relations_after takes them */
-    if (moment_after(m, z, &t, x)) {
-        m->arg[0] = &t; m->arg[1] = x;
-    } else {
-        m->arg[0] = &m->time; m->arg[1] = m->x;
-    }
-    m->arg[2] = m->p;
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
     m->res[0] = d;
     MODEL_DISCRETES(m->arg, m->res, m->iw, m->w, 0);
     for (k = 0; k < MODEL_ND; k++) {
@@ -117,9 +78,63 @@ static int update_discretes(Model *m) {
     return changed;
 }
 
+/* Rounds of the relations and the discrete equations at the present t,
+ * x and pre(), at most `rounds`; 1 if they reach values that one more
+ * round leaves unchanged */
+static int settle(Model *m, int rounds) {
+    double r[MODEL_NR + 1];
+    int k, j, changed = 1;
+    for (j = 0; j < rounds && changed; j++) {
+        relations_at(m, m->time, m->x, m->p + P_RELATIONS);
+        changed = update_discretes(m);
+        relations_at(m, m->time, m->x, r);
+        for (k = 0; k < MODEL_NR; k++)
+            if (r[k] != m->p[P_RELATIONS + k]) changed = 1;
+    }
+    return !changed;
+}
+
+static int bits_set(unsigned long v) {
+    int n = 0;
+    for (; v; v >>= 1) n += (int)(v & 1);
+    return n;
+}
+
+/* The discrete equations and the continuous ones they depend on as one
+ * mixed system, where the rounds cycle: MSL's friction at a slip through
+ * zero alternates startForward and startBackward, the sliding direction
+ * each assumes making the other's relation true, and never tries the
+ * stuck state that holds. Its solution is sought from the discrete
+ * values reached with each combination of Booleans flipped, fewest
+ * flips first (as a search over the Booleans of a mixed system); 1 if
+ * one settles (its values held), 0 if none does (the values restored) */
+static int search_mixed(Model *m) {
+    double reached[MODEL_ND + 1], relations[MODEL_NR + 1];
+    int position[MODEL_ND + 1];
+    int nb = 0, k, flips;
+    unsigned long seed;
+    for (k = 0; k < MODEL_ND; k++) if (discrete_boolean[k]) position[nb++] = k;
+    if (nb == 0 || nb > MODEL_SEARCH_BOOLEANS) return 0;
+    memcpy(reached, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
+    memcpy(relations, m->p + P_RELATIONS, sizeof(double) * MODEL_NR);
+    for (flips = 1; flips <= nb; flips++)
+        for (seed = 1; seed < (1UL << nb); seed++) {
+            if (bits_set(seed) != flips) continue;
+            memcpy(m->p + P_DISCRETES, reached, sizeof(double) * MODEL_ND);
+            for (k = 0; k < nb; k++)
+                if (seed >> k & 1)
+                    m->p[P_DISCRETES + position[k]] =
+                        1.0 - reached[position[k]];
+            if (settle(m, MODEL_SEARCH_ROUNDS)) return 1;
+        }
+    memcpy(m->p + P_DISCRETES, reached, sizeof(double) * MODEL_ND);
+    memcpy(m->p + P_RELATIONS, relations, sizeof(double) * MODEL_NR);
+    m->stale = 1;
+    return 0;
+}
+
 int model_initialize(Model *m) {
     int k, again = 0;
-    m->running = 0;
     m->arg[0] = m->p;
     m->res[0] = m->x;
     MODEL_START(m->arg, m->res, m->iw, m->w, 0);
@@ -146,7 +161,6 @@ int model_start(Model *m) {
     memcpy(m->p + P_PREVIOUS, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     m->iterations = 0;
     do model_event(m, &again); while (again);   /* bounded by model_event */
-    m->running = 1;
     return m->iterations >= MODEL_MAX_EVENT_ITERATIONS;
 }
 
@@ -168,7 +182,7 @@ int model_event(Model *m, int *again) {
         }
         m->burst_events++;
     }
-    relations_after(m, r);
+    relations_at(m, m->time, m->x, r);
     for (k = 0; k < MODEL_NW; k++) {
         fired[k] = r[when_relation[k]] > 0.5 && held[when_relation[k]] < 0.5;
         any |= fired[k] > 0.5;
@@ -182,6 +196,8 @@ int model_event(Model *m, int *again) {
         memcpy(m->x, x, sizeof(double) * MODEL_NX);
     }
     *again = update_discretes(m);
+    if (*again && m->iterations >= MODEL_SEARCH_AFTER && search_mixed(m))
+        *again = 0;
     if (!*again && MODEL_ND > 0 &&
         memcmp(m->p + P_PREVIOUS, m->p + P_DISCRETES,
                sizeof(double) * MODEL_ND) != 0) {
@@ -191,7 +207,7 @@ int model_event(Model *m, int *again) {
                sizeof(double) * MODEL_ND);
         *again = 1;
     }
-    relations_after(m, r);
+    relations_at(m, m->time, m->x, r);
     for (k = 0; k < MODEL_NR; k++) if (r[k] != held[k]) *again = 1;
     m->stale = 1;
     if (!*again) m->iterations = 0;

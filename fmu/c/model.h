@@ -32,12 +32,15 @@
 #define P_PREVIOUS (P_DISCRETES + MODEL_ND)
 #define P_INITIAL (P_PREVIOUS + MODEL_ND)
 #define MODEL_NPAR (P_INITIAL + MODEL_NI)
-/* How far (times |t| + 1 seconds) an event looks ahead for the side a
- * relation whose indicator is exactly zero goes to (model.c,
- * moment_after) */
-#define MODEL_LOOK_AHEAD 1e-9
 /* Event iterations allowed at one instant */
 #define MODEL_MAX_EVENT_ITERATIONS 100
+/* Rounds at one instant after which a round that changes the discrete
+ * values starts the search of the mixed system (model.c, search_mixed):
+ * the Booleans it flips (at most MODEL_SEARCH_BOOLEANS of them), the
+ * rounds it gives each start to settle */
+#define MODEL_SEARCH_AFTER 10
+#define MODEL_SEARCH_BOOLEANS 12
+#define MODEL_SEARCH_ROUNDS 20
 /* A model chatters (Zeno) when more than MODEL_ZENO_EVENTS events come
  * within MODEL_ZENO_SPAN * (|t| + 1) seconds: a relation that switches
  * back at once (a relay on its own output) would otherwise hold the
@@ -54,7 +57,6 @@ typedef struct {
     double calculated[MODEL_NC + 1];
     int stale;                 /* xdot, y, calculated need evaluating */
     int iterations;            /* event iterations at this instant so far */
-    int running;               /* started: events look ahead (model.c) */
     double relative_tolerance; /* co-simulation integrator */
     long steps, rejected, events; /* co-simulation statistics */
     double burst_start;        /* time of the first event of a burst */
