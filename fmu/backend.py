@@ -110,8 +110,9 @@ class OdeModel:
         Relations that generate events, whose values (held between
         events) follow the inputs in ``p``; ``expression`` is the symbol,
         ``minimum`` the relation and ``maximum`` ``lhs - rhs``, positive
-        where it holds (``rhs - lhs`` for ``<``), both formulas in ``t,
-        x, p``.
+        where it holds (``rhs - lhs`` for ``<``; the constant 1 for a
+        combined when-condition, whose events are those of its parts),
+        both formulas in ``t, x, p``.
     whens : list of (int, list of (str, casadi.SX))
         When-clauses: the relation that triggers each (index in
         ``relations``) and its reinit (state name, value in ``t, x, p``,

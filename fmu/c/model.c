@@ -105,9 +105,12 @@ static int bits_set(unsigned long v) {
  * zero alternates startForward and startBackward, the sliding direction
  * each assumes making the other's relation true, and never tries the
  * stuck state that holds. Its solution is sought from the discrete
- * values reached with each combination of Booleans flipped, fewest
- * flips first (as a search over the Booleans of a mixed system); 1 if
- * one settles (its values held), 0 if none does (the values restored) */
+ * values reached, then from them with each combination of Booleans
+ * flipped, fewest flips first (as a search over the Booleans of a mixed
+ * system); 1 if one settles (its discrete values held), 0 if none does
+ * (they are restored). The relations held are restored either way, so
+ * that the event iteration sees those that changed (and fires their
+ * when-clauses) in its next round */
 static int search_mixed(Model *m) {
     double reached[MODEL_ND + 1], relations[MODEL_NR + 1];
     int position[MODEL_ND + 1];
@@ -117,15 +120,20 @@ static int search_mixed(Model *m) {
     if (nb == 0 || nb > MODEL_SEARCH_BOOLEANS) return 0;
     memcpy(reached, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     memcpy(relations, m->p + P_RELATIONS, sizeof(double) * MODEL_NR);
-    for (flips = 1; flips <= nb; flips++)
-        for (seed = 1; seed < (1UL << nb); seed++) {
+    for (flips = 0; flips <= nb; flips++)
+        for (seed = 0; seed < (1UL << nb); seed++) {
             if (bits_set(seed) != flips) continue;
             memcpy(m->p + P_DISCRETES, reached, sizeof(double) * MODEL_ND);
             for (k = 0; k < nb; k++)
                 if (seed >> k & 1)
                     m->p[P_DISCRETES + position[k]] =
                         1.0 - reached[position[k]];
-            if (settle(m, MODEL_SEARCH_ROUNDS)) return 1;
+            if (settle(m, MODEL_SEARCH_ROUNDS)) {
+                memcpy(m->p + P_RELATIONS, relations,
+                       sizeof(double) * MODEL_NR);
+                m->stale = 1;
+                return 1;
+            }
         }
     memcpy(m->p + P_DISCRETES, reached, sizeof(double) * MODEL_ND);
     memcpy(m->p + P_RELATIONS, relations, sizeof(double) * MODEL_NR);
@@ -175,6 +183,7 @@ int model_event(Model *m, int *again) {
     double *held = m->p + P_RELATIONS;
     int k, any = 0;
     if (m->iterations == 0) {   /* a new instant: one more of its burst */
+        m->searched = 0;
         if (m->time - m->burst_start >
                 MODEL_ZENO_SPAN * (fabs(m->time) + 1.0)) {
             m->burst_start = m->time;
@@ -196,8 +205,10 @@ int model_event(Model *m, int *again) {
         memcpy(m->x, x, sizeof(double) * MODEL_NX);
     }
     *again = update_discretes(m);
-    if (*again && m->iterations >= MODEL_SEARCH_AFTER && search_mixed(m))
-        *again = 0;
+    if (*again && m->iterations >= MODEL_SEARCH_AFTER && !m->searched) {
+        m->searched = 1;   /* once an instant: a failed search is final */
+        if (search_mixed(m)) *again = 0;
+    }
     if (!*again && MODEL_ND > 0 &&
         memcmp(m->p + P_PREVIOUS, m->p + P_DISCRETES,
                sizeof(double) * MODEL_ND) != 0) {

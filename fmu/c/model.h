@@ -35,9 +35,9 @@
 /* Event iterations allowed at one instant */
 #define MODEL_MAX_EVENT_ITERATIONS 100
 /* Rounds at one instant after which a round that changes the discrete
- * values starts the search of the mixed system (model.c, search_mixed):
- * the Booleans it flips (at most MODEL_SEARCH_BOOLEANS of them), the
- * rounds it gives each start to settle */
+ * values starts the search of the mixed system, once an instant (model.c,
+ * search_mixed): the Booleans it flips (a model with more is not
+ * searched), the rounds it gives each start to settle */
 #define MODEL_SEARCH_AFTER 10
 #define MODEL_SEARCH_BOOLEANS 12
 #define MODEL_SEARCH_ROUNDS 20
@@ -57,6 +57,7 @@ typedef struct {
     double calculated[MODEL_NC + 1];
     int stale;                 /* xdot, y, calculated need evaluating */
     int iterations;            /* event iterations at this instant so far */
+    int searched;              /* the mixed system searched at this instant */
     double relative_tolerance; /* co-simulation integrator */
     long steps, rejected, events; /* co-simulation statistics */
     double burst_start;        /* time of the first event of a burst */
