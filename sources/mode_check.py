@@ -19,7 +19,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from .modes import mode_indicators, mode_values
+from .modes import arguments, mode_indicators, mode_values
 
 __all__ = ["SAMPLES", "BATCH", "first_changes"]
 
@@ -37,13 +37,6 @@ RTOL, ATOL = 1e-9, 1e-12
 AFTER = 1e-9
 
 
-def _arguments(ode):
-    x = casadi.vertcat(casadi.SX(0, 1), *[s.expression for s in ode.states])
-    p = casadi.vertcat(casadi.SX(0, 1), *[q.expression for q in
-                                          ode.parameters])
-    return [ode.time, x, p]
-
-
 class _Batch:
     """Settings (columns of ``P``, frequencies ``f``) of one integration:
     the state ``y`` holds their states one after the other."""
@@ -51,12 +44,12 @@ class _Batch:
     def __init__(self, ode, derivatives, P, f):
         self.P, self.f, self.size = P, f, len(f)
         self.states = len(ode.states)
-        arguments = _arguments(ode)
-        self.rhs = casadi.Function("ode", arguments,
+        symbols = arguments(ode)
+        self.rhs = casadi.Function("ode", symbols,
                                    [derivatives]).map(self.size)
         self.values = mode_values(ode)
         self.indicators = mode_indicators(ode)
-        self.start = casadi.Function("start", arguments[2:], [
+        self.start = casadi.Function("start", symbols[2:], [
             casadi.vertcat(casadi.SX(0, 1),
                            *[s.start for s in ode.states])]).map(self.size)
 

@@ -18,8 +18,8 @@ import numpy as np
 
 from fmu.frontend import Variable
 
-__all__ = ["fixed_mode", "mode_values", "mode_relations", "mode_indicators",
-           "on_switching_surface", "describe_mode",
+__all__ = ["fixed_mode", "arguments", "mode_values", "mode_relations",
+           "mode_indicators", "on_switching_surface", "describe_mode",
            "uses_initial", "MODE_PREFIX"]
 
 #: Name of the variable holding the k-th discrete variable's equation.
@@ -103,7 +103,9 @@ def _mode_formulas(ode):
     return [casadi.SX(formulas[f"{MODE_PREFIX}{k}"]) for k in range(count)]
 
 
-def _arguments(ode):
+def arguments(ode):
+    """The symbols ``[t, x, p]`` of the compiled functions of ``ode``: time,
+    its states and its tunable parameters, as columns."""
     x = casadi.vertcat(casadi.SX(0, 1), *[s.expression for s in ode.states])
     p = casadi.vertcat(casadi.SX(0, 1), *[q.expression for q in
                                           ode.parameters])
@@ -114,7 +116,7 @@ def mode_values(ode):
     """``values(t, x, p)``: the discrete variables' equations in the mode
     of ``ode`` (:func:`fixed_mode` compiled), one per variable; ``p`` the
     tunable parameters (the relations in them are values, not held)."""
-    return casadi.Function("mode", _arguments(ode),
+    return casadi.Function("mode", arguments(ode),
                            [_column(_mode_formulas(ode))])
 
 
@@ -147,7 +149,7 @@ def mode_indicators(ode):
     discrete variables' equations (:func:`mode_relations`), whose zero
     crossings are the only places the mode's values can change (the
     event indicators of the relations, for an integrator's events)."""
-    return casadi.Function("indicators", _arguments(ode), [_column(
+    return casadi.Function("indicators", arguments(ode), [_column(
         [node.dep(0) - node.dep(1) for _, node in mode_relations(ode)])])
 
 
@@ -172,8 +174,8 @@ def on_switching_surface(ode, p):
         and the mode's values below and above the surface. A relation of
         time alone (a ramp's start) is left out: time only goes forward.
     """
-    t, x, _ = arguments = _arguments(ode)
-    start = casadi.Function("start", arguments[2:], [_column(
+    t, x, _ = symbols = arguments(ode)
+    start = casadi.Function("start", symbols[2:], [_column(
         [s.start for s in ode.states])])
     x0 = np.asarray(start(p)).ravel()
     values = mode_values(ode)
@@ -182,7 +184,7 @@ def on_switching_surface(ode, p):
         indicator = node.dep(0) - node.dep(1)
         if not casadi.depends_on(indicator, x):
             continue
-        sides = casadi.Function("sides", arguments, [
+        sides = casadi.Function("sides", symbols, [
             node.dep(0), node.dep(1), casadi.gradient(indicator, x)])
         lhs, rhs, slope = (np.asarray(v).ravel()
                            for v in sides(0.0, x0, p))
