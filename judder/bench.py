@@ -307,12 +307,43 @@ def engagement_model(values, bench=None, fmu=None):
     def bench_value(name):
         return float(bench.get(name, parameter_default(fmu, name)))
     friction, _ = operating_friction(values, fmu, bench)
-    damped = values.replace(**{name: values[name] + added for name, added
-                               in added_damping(values, fmu,
-                                                bench).items()})
+    added = added_damping(values, fmu, bench)
+    damped = values.replace(**{name: values[name] + value
+                               for name, value in added.items()})
+    driveline = build_driveline(damped)
     model = EngagementModel.from_driveline(
-        build_driveline(damped), delta_mu=bench_value("delta_mu"),
+        driveline, delta_mu=bench_value("delta_mu"),
         w_op=bench_value("w_op"),
         slip=bench_value("w_motor") - bench_value("w_gearbox"),
         w_small=float(parameter_default(fmu, "clutch.w_small")))
+    gain = sum(added.values())
+    drive = (0, gain, float(parameter_default(fmu, "motor.tau_max")),
+             *drive_torque(model, gain, bench_value("w_motor")))
+    model = EngagementModel.from_driveline(
+        driveline, delta_mu=model.delta_mu, w_op=model.w_op,
+        slip=model.slip, w_small=model.w_small, drive=drive)
     return model, build_driveline(damped.replace(**friction))
+
+
+def drive_torque(model, gain, w_ref):
+    """The bench motor's torque at the steady slip, N m, and the damping
+    to ground of the bodies it turns, N m s/rad: the clutch's
+    steady torque plus the external damping of the bodies the motor
+    turns (``Judder.Sources.SpeedDrive`` with no feed-forward torque
+    holds them at ``w_ref - T/gain``), ``T = (tau_s + c w_ref) / (1 +
+    c/gain)`` with ``c`` their external damping without the control's
+    ``gain``."""
+    stiffness = np.abs(model.stiffness) > 0
+    group = {0}
+    while True:
+        grown = group | {j for i in group for j in np.flatnonzero(
+            stiffness[i])}
+        if grown == group:
+            break
+        group = grown
+    ones = np.zeros(len(model.clutch))
+    ones[sorted(group)] = 1.0
+    external = float(ones @ model.damping @ ones) - gain
+    torque = ((model.steady_torque() + external * w_ref)
+              / (1.0 + external / gain))
+    return torque, external + gain

@@ -97,6 +97,22 @@ class EngagementModel:
         ``m``: share of the mean load that follows the curve.
     w_small : float
         Slip over which the friction torque changes sign, rad/s.
+    drive : int
+        Body driven by a speed-controlled motor whose torque is limited
+        (-1: none). Its proportional gain is in ``damping`` already; the
+        limit is the nonlinearity :meth:`drive_excess`.
+    drive_gain : float
+        The controller's gain, N m s/rad.
+    drive_limit : float
+        Largest torque the motor delivers, N m (either sign).
+    drive_torque : float
+        The motor's torque at the steady slip, N m.
+    drive_damping : float
+        Damping to ground of the bodies the drive turns, its gain
+        included, N m s/rad: their mean speed, which the clutch's
+        upstream disc shares, settles where the motor's mean torque
+        balances the clutch's and this damping's (the balance's mean
+        unknown).
     """
 
     mass: np.ndarray
@@ -113,15 +129,24 @@ class EngagementModel:
     p_m: float
     mean_pressure_damping: float = 0.0
     w_small: float = 0.01
+    drive: int = -1
+    drive_gain: float = 0.0
+    drive_limit: float = np.inf
+    drive_torque: float = 0.0
+    drive_damping: float = 0.0
 
     @classmethod
     def from_driveline(cls, driveline, delta_mu, w_op, slip=None,
-                       w_small=0.01):
+                       w_small=0.01, drive=None):
         """The engagement of a :class:`stability.model.Driveline` whose
         ``mu0`` and ``mu_g`` are the curve's at ``w_op``, with its
         structural damping as the linear part (the bench's additions
         already in its parameters), at the slip ``slip`` (default
-        ``w_op``)."""
+        ``w_op``). ``drive``: ``(body, gain, limit, steady torque,
+        damping)`` of a torque-limited speed control, whose gain is in the
+        driveline's damping already (None: no limit)."""
+        body, gain, limit, torque, damping = drive or (-1, 0.0, np.inf,
+                                                       0.0, 0.0)
         return cls(mass=driveline.mass_matrix(),
                    stiffness=driveline.stiffness_matrix(),
                    damping=driveline.structural_damping(),
@@ -133,7 +158,33 @@ class EngagementModel:
                    slip=w_op if slip is None else float(slip),
                    p_m=driveline.p_m,
                    mean_pressure_damping=driveline.mean_pressure_damping,
-                   w_small=w_small)
+                   w_small=w_small, drive=int(body), drive_gain=float(gain),
+                   drive_limit=float(limit), drive_torque=float(torque),
+                   drive_damping=float(damping))
+
+    @property
+    def limited_drive(self):
+        """The drive's torque limit enters the motion."""
+        return self.drive >= 0 and np.isfinite(self.drive_limit)
+
+    def channels(self):
+        """``B``, shape (n, c): the directions along which the
+        nonlinear forces act and whose speeds they depend on: the slip
+        (``e``) and, with a limited drive, the drive's body."""
+        columns = [self.clutch.astype(float)]
+        if self.limited_drive:
+            columns.append(np.eye(len(self.clutch))[self.drive])
+        return np.column_stack(columns)
+
+    def drive_excess(self, u):
+        """The motor torque beyond its linear control, N m, and its
+        derivative in the drive's speed deviation ``u`` (rad/s): the
+        torque ``clip(T_s - g u, -L, L)`` of ``Judder.Sources.SpeedDrive``
+        less the ``T_s - g u`` the linear part holds."""
+        linear = self.drive_torque - self.drive_gain * u
+        limited = np.clip(linear, -self.drive_limit, self.drive_limit)
+        return (limited - linear,
+                np.where(limited != linear, self.drive_gain, 0.0))
 
     def friction(self, w):
         """``mu(w)`` and ``d mu/d w`` of the curve."""
@@ -159,12 +210,12 @@ class EngagementModel:
         return float(self.torque(np.array(self.slip), 0.0, 0.0, 0.0)[0])
 
     def dynamic_inverse(self, omega_k):
-        """``(K - W^2 M + i W C)^-1 e`` for each ``W`` of ``omega_k``,
-        shape (len, n)."""
-        e = self.clutch.astype(complex)
+        """``(K - W^2 M + i W C)^-1 B`` for each ``W`` of ``omega_k``
+        (``B``: :meth:`channels`), shape (len, n, c)."""
+        channels = self.channels().astype(complex)
         return np.array([np.linalg.solve(
-            self.stiffness - w ** 2 * self.mass + 1j * w * self.damping, e)
-            for w in omega_k])
+            self.stiffness - w ** 2 * self.mass + 1j * w * self.damping,
+            channels) for w in omega_k])
 
 
 @dataclass(frozen=True)
@@ -205,6 +256,16 @@ class Orbit:
     message : str
     residual : float
         Final residual of the balance, rad/s.
+    channel_harmonics : ndarray, complex, shape (h, c)
+        The harmonics of every channel's speed (the slip's are
+        ``slip_harmonics``; the limited drive's body next).
+    drive_saturated : bool
+        The drive reaches its torque limit somewhere on the orbit.
+    mean_shift : float
+        Mean shift of the driven bodies' speed, and so of the slip,
+        rad/s (0 without a limited drive): where the limit cuts the
+        motor's torque, its control lowers their speed until the mean
+        torque is the steady one again.
     """
 
     freq_hz: float
@@ -222,6 +283,9 @@ class Orbit:
     success: bool
     message: str
     residual: float
+    channel_harmonics: np.ndarray = None
+    drive_saturated: bool = False
+    mean_shift: float = 0.0
 
     @property
     def stable(self):
@@ -241,7 +305,16 @@ class Orbit:
 
 
 class _Balance:
-    """The condensed harmonic balance of one dither frequency."""
+    """The condensed harmonic balance of one dither frequency.
+
+    The unknowns are the harmonics ``Y`` (shape (h, c)) of the speeds
+    along the model's channels (:meth:`EngagementModel.channels`: the
+    slip, and the limited drive's body), laid out as ``[Re Y, Im Y]``
+    with each channel's ``h`` harmonics together. The forces along the
+    channels are ``q_0 = -tau(w_s + y_0, t)`` (the clutch) and ``q_1 =``
+    :meth:`EngagementModel.drive_excess` ``(y_1)``, and the balance is
+    ``Y_k = G(k nu) Q_k`` with ``G(W) = i W B^T (K - W^2 M + i W C)^-1 B``.
+    """
 
     def __init__(self, model, freq_hz, harmonics, period_multiple):
         self.model = model
@@ -249,41 +322,112 @@ class _Balance:
         self.base = self.omega / period_multiple
         self.period_multiple = period_multiple
         self.h = harmonics * period_multiple
+        self.channels = model.channels()
+        self.c = self.channels.shape[1]
         k = np.arange(1, self.h + 1)
-        samples = max(8 * self.h, 64)
+        samples = max(8 * self.h, 64) * (4 if model.limited_drive else 1)
         self.t = np.arange(samples) * (2 * np.pi / self.base) / samples
         phase = np.outer(k, self.base * self.t)
         self.cos, self.sin = np.cos(phase), np.sin(phase)
         self.analysis = np.exp(-1j * phase) * 2.0 / samples
+        self.basis = np.hstack([self.cos.T, -self.sin.T])
         inverse = model.dynamic_inverse(k * self.base)
-        # H(k nu) for the slip speed and the upstream speed
-        self.slip_gain = 1j * k * self.base * (inverse @ model.clutch)
-        self.upstream_gain = 1j * k * self.base * inverse[:, model.upstream]
+        frequency = 1j * k * self.base
+        self.gain = frequency[:, None, None] * np.einsum(
+            "nc,knd->kcd", self.channels, inverse)
+        self.upstream_gain = frequency[:, None] * inverse[:, model.upstream]
         self.steady = model.steady_torque()
 
-    def slip(self, harmonics):
-        return harmonics.real @ self.cos - harmonics.imag @ self.sin
+    @property
+    def size(self):
+        """Number of real unknowns: the harmonics, and with a limited
+        drive the mean shift of the speed of the bodies it turns."""
+        return 2 * self.h * self.c + (self.c > 1)
+
+    def harmonics(self, x):
+        """``Y``, shape (h, c), of the unknowns ``x``."""
+        half = self.h * self.c
+        return (x[:half] + 1j * x[half:2 * half]).reshape(self.c, self.h).T
+
+    def mean_shift(self, x):
+        """Mean shift of the driven bodies' speed (and of the slip),
+        rad/s."""
+        return float(x[-1]) if self.c > 1 else 0.0
+
+    def unknowns(self, Y, mean_shift=0.0):
+        """``x`` of the harmonics ``Y`` (shape (h, c)) and the mean
+        shift."""
+        flat = Y.T.ravel()
+        return np.concatenate([flat.real, flat.imag]
+                              + ([[mean_shift]] if self.c > 1 else []))
+
+    def speeds(self, x):
+        """The channels' speed deviations over the period, shape
+        (c, samples)."""
+        Y = self.harmonics(x)
+        return Y.real.T @ self.cos - Y.imag.T @ self.sin + \
+            self.mean_shift(x)
+
+    def forces(self, y, p_f):
+        """The channels' forces and their derivatives in the channels'
+        speeds (shape (c, samples) each), and the clutch torque."""
+        model = self.model
+        tau, dtau = model.torque(model.slip + y[0], self.t, self.omega, p_f)
+        q, dq = [-tau], [-dtau]
+        if self.c > 1:
+            excess, d_excess = model.drive_excess(y[1])
+            q.append(excess)
+            dq.append(d_excess)
+        return np.array(q), np.array(dq), tau
 
     def residual(self, x, p_f):
-        """Residual (real, 2h), its Jacobian in ``x`` and in ``p_f``."""
-        U = x[:self.h] + 1j * x[self.h:]
-        w = self.model.slip + self.slip(U)
-        tau, dtau = self.model.torque(w, self.t, self.omega, p_f)
-        F = self.analysis @ tau
-        R = U + self.slip_gain * F
-        # d F_k / d (Re U_l, Im U_l)
-        dF = self.analysis @ (dtau[:, None] * np.hstack([self.cos.T,
-                                                         -self.sin.T]))
-        J = np.hstack([np.eye(self.h), 1j * np.eye(self.h)]) + \
-            self.slip_gain[:, None] * dF
-        mu, _ = self.model.friction(w)
-        dtau_dp = (self.model.clutch_factor
-                   * np.tanh(w / self.model.w_small) * mu
-                   * np.cos(self.omega * self.t))
-        Rp = self.slip_gain * (self.analysis @ dtau_dp)
-        return (np.concatenate([R.real, R.imag]),
-                np.vstack([J.real, J.imag]),
-                np.concatenate([Rp.real, Rp.imag]))
+        """Residual (real), its Jacobian in ``x`` and in ``p_f``."""
+        h, c = self.h, self.c
+        Y = self.harmonics(x)
+        y = self.speeds(x)
+        q, dq, _ = self.forces(y, p_f)
+        Q = (self.analysis @ q.T)                     # (h, c)
+        R = Y - np.einsum("kij,kj->ki", self.gain, Q)
+        J = np.zeros((h * c, self.size), dtype=complex)
+        eye = np.eye(h)
+        for j in range(c):
+            # d Q_j / d (Re Y_j, Im Y_j), shape (h, 2h)
+            dQ = self.analysis @ (dq[j][:, None] * self.basis)
+            for i in range(c):
+                block = -self.gain[:, i, j][:, None] * dQ
+                if i == j:
+                    block[:, :h] += eye
+                    block[:, h:] += 1j * eye
+                J[i * h:(i + 1) * h, j * h:(j + 1) * h] = block[:, :h]
+                J[i * h:(i + 1) * h,
+                  (c + j) * h:(c + j + 1) * h] = block[:, h:]
+        model = self.model
+        mu, _ = model.friction(model.slip + y[0])
+        dq_dp = -(model.clutch_factor * np.tanh((model.slip + y[0])
+                                                / model.w_small)
+                  * mu * np.cos(self.omega * self.t))
+        Rp = -self.gain[:, :, 0] * (self.analysis @ dq_dp)[:, None]
+        R, Rp = R.T.ravel(), Rp.T.ravel()
+        R, J, Rp = (np.concatenate([R.real, R.imag]),
+                    np.vstack([J.real, J.imag]),
+                    np.concatenate([Rp.real, Rp.imag]))
+        if c == 1:
+            return R, J, Rp
+        # the mean: the driven bodies' torques balance on average
+        # (:attr:`EngagementModel.drive_damping`), scaled to rad/s
+        damping = model.drive_damping
+        shifted = -np.einsum("kij,kj->ki", self.gain,
+                             self.analysis @ dq.T).T.ravel()
+        J[:, -1] = np.concatenate([shifted.real, shifted.imag])
+        mean = (q.mean(axis=1).sum() + self.steady) / damping - x[-1]
+        row = np.zeros(self.size)
+        for j in range(c):
+            weights = (dq[j][:, None] * self.basis).mean(axis=0) / damping
+            row[j * h:(j + 1) * h] = weights[:h]
+            row[(c + j) * h:(c + j + 1) * h] = weights[h:]
+        row[-1] = dq.mean(axis=1).sum() / damping - 1.0
+        return (np.append(R, mean), np.vstack([J, row]),
+                np.append(Rp, dq_dp.mean() / damping))
 
     def newton(self, x, p_f):
         scale = max(np.abs(x).max(), 1.0)
@@ -306,20 +450,21 @@ class _Balance:
 
     def orbit(self, x, p_f, success, residual, message=""):
         model = self.model
-        U = x[:self.h] + 1j * x[self.h:]
-        w = model.slip + self.slip(U)
-        tau, _ = model.torque(w, self.t, self.omega, p_f)
-        F = self.analysis @ tau
-        upstream = -self.upstream_gain * F
+        Y = self.harmonics(x)
+        y = self.speeds(x)
+        q, _, tau = self.forces(y, p_f)
+        Q = self.analysis @ q.T
+        upstream = np.einsum("kj,kj->k", self.upstream_gain, Q)
         speed = upstream.real @ self.cos - upstream.imag @ self.sin
         at_dither = upstream[self.period_multiple - 1]
-        multipliers = self.multipliers(U, p_f)
+        multipliers = self.multipliers(Y, self.mean_shift(x), p_f)
         period = 2 * np.pi / self.base
         lead = multipliers[0] if len(multipliers) else 1.0
         growth = float(np.log(max(abs(lead), 1e-300)) / period)
+        w = model.slip + y[0]
         return Orbit(freq_hz=self.omega / (2 * np.pi), p_f=float(p_f),
                      period_multiple=self.period_multiple,
-                     slip_harmonics=U, upstream_harmonics=upstream,
+                     slip_harmonics=Y[:, 0], upstream_harmonics=upstream,
                      upstream_amplitude=float(0.5 * np.ptp(speed)),
                      dither_amplitude=float(abs(at_dither)),
                      slip_range=(float(w.min()), float(w.max())),
@@ -328,32 +473,44 @@ class _Balance:
                      kind=KINDS[int(classify(lead))], success=bool(success),
                      message=message or ("converged" if success else
                                          "the balance did not converge"),
-                     residual=float(residual))
+                     residual=float(residual), channel_harmonics=Y,
+                     mean_shift=self.mean_shift(x),
+                     drive_saturated=bool(
+                         self.c > 1 and np.any(self.forces(y, p_f)[1][1]
+                                               != 0)))
 
-    def multipliers(self, U, p_f):
+    def multipliers(self, Y, mean_shift, p_f):
         """Floquet multipliers of the variational equation about the
         orbit over its period (fourth-order Magnus, rigid-body directions
         removed)."""
         model = self.model
         n = len(model.clutch)
         period = 2 * np.pi / self.base
-        steps = _MONODROMY_STEPS * self.period_multiple
+        steps = _MONODROMY_STEPS * self.period_multiple * (
+            4 if model.limited_drive else 1)
         h = period / steps
         gauss = 0.5 + np.array([-1, 1]) * np.sqrt(3) / 6
         times = (np.arange(steps)[:, None] + gauss[None, :]) * h
         k = np.arange(1, self.h + 1)
         phase = np.multiply.outer(times, k * self.base)
-        u = (np.cos(phase) @ U.real - np.sin(phase) @ U.imag)
-        _, slope = model.torque(model.slip + u, times, self.omega, p_f)
+        y = np.stack([np.cos(phase) @ Y[:, j].real
+                      - np.sin(phase) @ Y[:, j].imag
+                      for j in range(self.c)]) + mean_shift
+        _, slope = model.torque(model.slip + y[0], times, self.omega, p_f)
+        slopes = [-slope]
+        if self.c > 1:
+            slopes.append(model.drive_excess(y[1])[1])
         minv = np.linalg.inv(model.mass)
-        e = model.clutch
         base = np.zeros((2 * n, 2 * n))
         base[:n, n:] = np.eye(n)
         base[n:, :n] = -minv @ model.stiffness
         base[n:, n:] = -minv @ model.damping
-        coupling = np.zeros((2 * n, 2 * n))
-        coupling[n:, n:] = -minv @ np.outer(e, e)
-        A = base + slope[..., None, None] * coupling
+        A = np.broadcast_to(base, times.shape + base.shape).copy()
+        for j, channel_slope in enumerate(slopes):
+            coupling = np.zeros((2 * n, 2 * n))
+            b = self.channels[:, j]
+            coupling[n:, n:] = minv @ np.outer(b, b)
+            A += channel_slope[..., None, None] * coupling
         A1, A2 = A[:, 0], A[:, 1]
         magnus = 0.5 * h * (A1 + A2) + (np.sqrt(3) / 12) * h ** 2 * (
             A2 @ A1 - A1 @ A2)
@@ -421,7 +578,7 @@ def periodic_orbit(model, freq_hz, p_f, harmonics=DEFAULT_HARMONICS,
         ``success`` False when the balance did not converge.
     """
     balance = _Balance(model, freq_hz, harmonics, period_multiple)
-    x = np.zeros(2 * balance.h)
+    x = np.zeros(balance.size)
     if start is not None:
         x = _seed(balance, start)
     x, residual, success = balance.newton(x, p_f)
@@ -436,15 +593,20 @@ def periodic_orbit(model, freq_hz, p_f, harmonics=DEFAULT_HARMONICS,
 
 def _seed(balance, orbit):
     """Newton's start for ``balance`` from another orbit's harmonics."""
-    U = np.zeros(balance.h, dtype=complex)
+    Y = np.zeros((balance.h, balance.c), dtype=complex)
+    known = orbit.channel_harmonics
+    if known is None or known.shape[1] != balance.c:
+        known = np.zeros((len(orbit.slip_harmonics), balance.c),
+                         dtype=complex)
+        known[:, 0] = orbit.slip_harmonics
     if orbit.period_multiple == balance.period_multiple:
-        count = min(len(orbit.slip_harmonics), balance.h)
-        U[:count] = orbit.slip_harmonics[:count]
+        count = min(len(known), balance.h)
+        Y[:count] = known[:count]
     else:
         # a T-orbit's harmonic k is the 2T orbit's 2k
-        even = orbit.slip_harmonics[:balance.h // 2]
-        U[1::2][:len(even)] = even
-    return np.concatenate([U.real, U.imag])
+        even = known[:balance.h // 2]
+        Y[1::2][:len(even)] = even
+    return balance.unknowns(Y, orbit.mean_shift)
 
 
 def double_period_orbit(model, orbit, harmonics=DEFAULT_HARMONICS,
@@ -461,7 +623,7 @@ def double_period_orbit(model, orbit, harmonics=DEFAULT_HARMONICS,
         for phase in (0.0, 0.5 * np.pi):
             x = base.copy()
             x[0] += amplitude * np.cos(phase)
-            x[balance.h] += amplitude * np.sin(phase)
+            x[balance.size // 2] += amplitude * np.sin(phase)
             x, residual, success = balance.newton(x, orbit.p_f)
             if not success:
                 continue
@@ -518,7 +680,7 @@ def continue_orbit(model, freq_hz, p_f_values, harmonics=DEFAULT_HARMONICS,
     """
     balance = _Balance(model, freq_hz, harmonics, 1)
     targets = [float(p) for p in p_f_values]
-    x = np.zeros(2 * balance.h) if start is None else _seed(balance, start)
+    x = np.zeros(balance.size) if start is None else _seed(balance, start)
     x, residual, success = balance.newton(x, targets[0])
     orbits = [balance.orbit(x, targets[0], success, residual)]
     if not success:
@@ -564,7 +726,7 @@ def continue_orbit(model, freq_hz, p_f_values, harmonics=DEFAULT_HARMONICS,
 def _amplitude_scale(balance, x, p_f):
     """Slip-speed scale of the harmonics, rad/s (the linear forced
     response at ``p_f``, at least 1)."""
-    linear = abs(balance.slip_gain[balance.period_multiple - 1]) * \
+    linear = abs(balance.gain[balance.period_multiple - 1, 0, 0]) * \
         balance.model.clutch_factor * balance.model.mu0 * p_f
     return max(float(linear), np.abs(x).max(), 1.0)
 
