@@ -25,7 +25,14 @@ from infra.units import UNITS
 __all__ = ["BenchParameter", "bench_fmu", "bench_parameters", "parse_bench",
            "check_bench", "refuse_bench_of_class", "bench_damping",
            "added_damping", "operating_friction", "linear_validity",
-           "engagement_model"]
+           "engagement_model", "DRIVELINES", "bench_linearisation",
+           "driveline_view", "driveline_words"]
+
+#: The drivelines a Floquet view can be of: the paper's chain (Eq. 6,
+#: free, as Fig. 14) or the registry driveline on its test bench (the
+#: chain with the bench motor's speed control and its friction curve at
+#: the bench's slip: what ``simulate``, ``orbit`` and ``chart`` see).
+DRIVELINES = ("chain", "bench")
 
 #: Parameters of the bench class that are the dither's, set by
 #: ``--freq`` and ``--pf``, not by ``--bench``.
@@ -306,7 +313,6 @@ def engagement_model(values, bench=None, fmu=None):
 
     def bench_value(name):
         return float(bench.get(name, parameter_default(fmu, name)))
-    friction, _ = operating_friction(values, fmu, bench)
     added = added_damping(values, fmu, bench)
     damped = values.replace(**{name: values[name] + value
                                for name, value in added.items()})
@@ -322,7 +328,43 @@ def engagement_model(values, bench=None, fmu=None):
     model = EngagementModel.from_driveline(
         driveline, delta_mu=model.delta_mu, w_op=model.w_op,
         slip=model.slip, w_small=model.w_small, drive=drive)
-    return model, build_driveline(damped.replace(**friction))
+    return model, build_driveline(bench_linearisation(values, bench, fmu))
+
+
+def bench_linearisation(values, bench=None, fmu=None):
+    """The parameter set of the bench's linearisation at its steady slip:
+    the driveline with the damping its motor's speed control adds to body
+    1 (:func:`added_damping`) and the EVEN clutch's friction curve's value
+    and slope at the slip (:func:`operating_friction`) as ``mu0`` and
+    ``mu_g``. The Floquet view of the bench, whose orbit is
+    :func:`engagement_model`."""
+    bench = dict(bench or {})
+    fmu = fmu or bench_fmu(values)[1]
+    friction, _ = operating_friction(values, fmu, bench)
+    return values.replace(**{name: values[name] + value for name, value
+                             in added_damping(values, fmu, bench).items()},
+                          **friction)
+
+
+def driveline_view(values, driveline="chain"):
+    """``values`` as the driveline a Floquet view is of
+    (:data:`DRIVELINES`): ``'chain'`` as given, ``'bench'`` its bench's
+    linearisation (:func:`bench_linearisation`)."""
+    if driveline not in DRIVELINES:
+        raise JudderError(f"`driveline` {driveline!r} is not allowed; "
+                          f"allowed: {', '.join(DRIVELINES)}")
+    return values if driveline == "chain" else bench_linearisation(values)
+
+
+def driveline_words(values, driveline="chain"):
+    """Which driveline a view is of, in words."""
+    if driveline == "bench":
+        return (f"the {values.model} driveline on its test bench (motor "
+                "speed control on body 1, friction curve's value and "
+                "slope at the bench's slip)")
+    if values.source_kind.is_chain:
+        return f"the {values.model} chain alone (Eq. 6, free, as Fig. 14)"
+    return f"{values.model}"
 
 
 def drive_torque(model, gain, w_ref):

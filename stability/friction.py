@@ -181,6 +181,17 @@ def forced_slip_amplitude(driveline, freq_hz, p_f):
     return float(abs(1j * omega * (driveline.clutch_vector() @ theta)))
 
 
+def forced_upstream_amplitude(driveline, freq_hz, p_f):
+    """Amplitude of the upstream disc's forced speed at the dither
+    frequency, rad/s: :func:`forced_slip_amplitude`'s response read at
+    the clutch's engine-side body (the speed the bench records), the
+    linear harmonic response of Eq. (6) driven by the column ``D`` of
+    Eq. (9)."""
+    theta = _forced_angles(driveline, freq_hz)[0] * p_f
+    omega = 2 * np.pi * freq_hz
+    return float(abs(1j * omega * theta[driveline.clutch[0]]))
+
+
 def _forced_angles(driveline, freq_hz):
     """Complex angle amplitudes per Pa of ``p_f`` forced by the dither,
     shape (len, n): ``(K - omega^2 M + i omega C_0) Theta = -mu0 N_c R_m S

@@ -30,7 +30,62 @@ from infra.criteria import MECHANISMS
 
 from .orbit import DEFAULT_HARMONICS, continue_orbit, double_period_orbit
 
-__all__ = ["OrbitChart", "orbit_chart"]
+__all__ = ["OrbitChart", "orbit_chart", "OrbitVerdict", "orbit_verdict"]
+
+
+@dataclass(frozen=True)
+class OrbitVerdict:
+    """What the bench sees at one setting, from its orbits.
+
+    Attributes
+    ----------
+    forced : float
+        The T-orbit's upstream speed at ``f``, rad/s.
+    half : float
+        The 2T orbit's at ``f/2``, rad/s (0 without one).
+    settled : float
+        The larger of the settled orbit's components at ``f`` and ``f/2``
+        (the 2T orbit where one exists), rad/s.
+    growth_rate : float
+        Of the T-orbit, 1/s.
+    quasi_periodic : bool
+        The T-orbit is unstable through a complex pair: no periodic orbit
+        settles and ``settled`` is the unstable T-orbit's.
+    judder : bool
+    mechanism : int
+        Index into :data:`infra.criteria.MECHANISMS`.
+    """
+
+    forced: float
+    half: float
+    settled: float
+    growth_rate: float
+    quasi_periodic: bool
+    judder: bool
+    mechanism: int
+
+
+def orbit_verdict(orbit, doubled, limit, min_growth):
+    """The verdict of one setting from its T-orbit ``orbit`` and the 2T
+    orbit ``doubled`` grown out of it (None), as a bench engineer reads
+    an engagement (module docstring): judder where the settled
+    oscillation exceeds ``limit`` (rad/s) or the T-orbit grows at
+    ``min_growth`` (1/s) or faster."""
+    forced = orbit.dither_amplitude
+    half = 0.0 if doubled is None else abs(doubled.upstream_harmonics[0])
+    settled = forced if doubled is None else max(
+        half, abs(doubled.upstream_harmonics[1]))
+    is_forced = forced > limit
+    parametric = orbit.growth_rate >= min_growth or half > limit or (
+        settled > limit and not is_forced)
+    judder = settled > limit or parametric
+    mechanism = 3 if parametric and is_forced else 2 if parametric else \
+        1 if is_forced else 0
+    return OrbitVerdict(forced=float(forced), half=float(half),
+                        settled=float(settled),
+                        growth_rate=float(orbit.growth_rate),
+                        quasi_periodic=orbit.kind == "combination",
+                        judder=bool(judder), mechanism=int(mechanism))
 
 @dataclass(frozen=True)
 class OrbitChart:
@@ -130,6 +185,8 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
     drift = np.full(shape, np.nan)
     amplitudes = np.concatenate([[0.0], p_f]) if p_f[0] > 0 else p_f
     offset = len(amplitudes) - len(p_f)
+    judder = np.zeros(shape, dtype=bool)
+    mechanism = np.zeros(shape, dtype=np.int8)
     for i, f in enumerate(freq_hz):
         branch = continue_orbit(model, f, amplitudes, harmonics=harmonics)
         on_grid = [o for k, o in enumerate(branch.orbits)
@@ -137,29 +194,20 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
         for j, orbit in enumerate(on_grid[offset:]):
             if not orbit.success:
                 continue
-            forced[i, j] = orbit.dither_amplitude
-            settled[i, j] = orbit.dither_amplitude
+            doubled = (double_period_orbit(model, orbit, harmonics=harmonics)
+                       if orbit.kind == "double-period" else None)
+            verdict = orbit_verdict(orbit, doubled, limit, min_growth)
+            forced[i, j] = verdict.forced
+            half[i, j] = verdict.half
+            settled[i, j] = verdict.settled
             growth[i, j] = orbit.growth_rate
             kind[i, j] = orbit.kind
             drift[i, j] = orbit.drift_torque
-            if orbit.kind == "double-period":
-                doubled = double_period_orbit(model, orbit,
-                                              harmonics=harmonics)
-                if doubled is not None:
-                    half[i, j] = abs(doubled.upstream_harmonics[0])
-                    settled[i, j] = max(half[i, j],
-                                        abs(doubled.upstream_harmonics[1]))
+            judder[i, j] = verdict.judder
+            mechanism[i, j] = verdict.mechanism
         if callback is not None:
             callback(i + 1, len(freq_hz))
     quasi = kind == "combination"
-    is_forced = forced > limit
-    above = np.nan_to_num(settled) > limit
-    parametric = (growth >= min_growth) | (half > limit) | \
-        (above & ~is_forced)
-    judder = above | parametric
-    mechanism = np.where(parametric & is_forced, 3,
-                         np.where(parametric, 2,
-                                  np.where(is_forced, 1, 0))).astype(np.int8)
     return OrbitChart(freq_hz=freq_hz, p_f=p_f, forced_amplitude=forced,
                       half_amplitude=half, settled_amplitude=settled,
                       growth_rate=growth, kind=kind.astype(str),

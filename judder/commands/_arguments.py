@@ -174,6 +174,20 @@ def min_growth_option(parser, extra=""):
                         help=MIN_GROWTH_HELP + extra)
 
 
+def driveline_option(parser):
+    """``--driveline``: the driveline a Floquet view is of
+    (:data:`judder.bench.DRIVELINES`)."""
+    parser.add_argument("--driveline", choices=("chain", "bench"),
+                        default="chain",
+                        help="chain: the preset's driveline alone (Eq. 6, "
+                             "free, the paper's Fig. 14; default); bench: "
+                             "the same driveline on its test bench, as "
+                             "simulate, orbit and chart run it (the motor's "
+                             "speed control damps body 1, the friction "
+                             "curve's value and slope at the bench's slip; "
+                             "its first resonance is 16.5 Hz, not 18.9)")
+
+
 def limit_option(parser):
     parser.add_argument("--limit", type=LIMIT,
                         default=DEFAULT_JUDDER_LIMIT_RPM, metavar="RPM",

@@ -14,7 +14,8 @@ from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
-from ._arguments import (decimal_option, force_option, min_growth_option,
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         limit_option, min_growth_option,
                          model_options, refuse_decimal)
 from ._common import (check_modes, check_modes_up_to, check_names,
                       checked_values, frequency_dependent, linearised_mode,
@@ -57,6 +58,8 @@ def add_arguments(p):
                         "one setting a row (e.g. a controller's table)")
     decimal_option(p, "the --table file")
     min_growth_option(p)
+    limit_option(p)
+    driveline_option(p)
     p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest boundary amplitude searched, bar (default "
                         "the larger of 1.5 and twice the largest setting)")
@@ -91,7 +94,8 @@ def run(args):
         result = check(freqs, amplitudes, params, changes,
                        min_growth=args.min_growth, p_max_bar=args.pf_max,
                        sensitivity=names, background=bool(args.plot),
-                       progress=progress)
+                       progress=progress, driveline=args.driveline,
+                       judder_limit_rpm=args.limit)
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + written(args.out, args.plot))
@@ -141,7 +145,7 @@ def _settings(args, parameters):
 
 def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
           p_max_bar=None, sensitivity=None, background=False,
-          progress=None):
+          progress=None, driveline="chain", judder_limit_rpm=None):
     """``judder check``: is each dither setting safe, and by how much.
 
     Parameters
@@ -162,10 +166,23 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         and JudderError if none).
     background : bool
         Also compute the map ``figure()`` marks the settings on.
+    driveline : {'chain', 'bench'}
+        The driveline judged (:data:`judder.bench.DRIVELINES`): the
+        preset's chain, or the same on its test bench (what ``simulate``
+        runs).
+    judder_limit_rpm : float, optional
+        NVH limit of the upstream speed's oscillation, rpm (default
+        :data:`infra.criteria.DEFAULT_JUDDER_LIMIT_RPM`): a settled
+        oscillation above it is judder, forced or parametric.
 
     Returns
     -------
     CheckResult
+        Each setting's verdict is the bench engineer's: JUDDER where the
+        settled oscillation at the dither-related frequencies reaches the
+        limit (the bench's periodic orbit; for the chain its linear
+        harmonic response) or the response grows at ``min_growth`` or
+        faster, with its mechanism.
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, ENGAGEMENT_DURATION_S
     from stability.decisions.margins import check_settings
@@ -174,9 +191,15 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     if freq_hz.shape != p_f_bar.shape or freq_hz.ndim != 1 or not len(freq_hz):
         raise JudderError(f"freq and p_f have {freq_hz.size} and "
                           f"{p_f_bar.size} values; allowed: as many of each")
-    values = checked_values(parameters, changes, freq_hz=freq_hz,
-                            p_f_bar=p_f_bar, min_growth=min_growth,
-                            p_max_bar=p_max_bar)
+    from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
+    from ..bench import driveline_view
+    judder_limit_rpm = (DEFAULT_JUDDER_LIMIT_RPM if judder_limit_rpm is None
+                        else judder_limit_rpm)
+    given = checked_values(parameters, changes, freq_hz=freq_hz,
+                           p_f_bar=p_f_bar, min_growth=min_growth,
+                           p_max_bar=p_max_bar,
+                           judder_limit_rpm=judder_limit_rpm)
+    values = driveline_view(given, driveline)
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     if p_max_bar is None:
         p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
@@ -212,10 +235,16 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     checks = check_settings(values, freq_hz, p_f_bar * PA_PER_BAR, min_growth,
                             p_max_bar * PA_PER_BAR, tuple(sensitivity),
                             callback=progress)
+    responses = settled_responses(given, values, driveline, freq_hz,
+                                  p_f_bar * PA_PER_BAR, judder_limit_rpm,
+                                  min_growth,
+                                  [c.floquet.growth_rate for c in checks])
     seconds = time.perf_counter() - started
     result = CheckResult(params=values, checks=checks, min_growth=min_growth,
                          engagement_s=ENGAGEMENT_DURATION_S,
-                         p_max=p_max_bar * PA_PER_BAR, seconds=seconds)
+                         p_max=p_max_bar * PA_PER_BAR, seconds=seconds,
+                         responses=responses, driveline=driveline,
+                         judder_limit_rpm=judder_limit_rpm)
     if background:
         low, high = freq_hz.min(), freq_hz.max()
         grid = np.linspace(max(low - 0.5 * (high - low) - 20, 1.0),
@@ -227,17 +256,84 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     return result
 
 
-def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
+#: Where a setting's settled amplitude comes from, by driveline.
+AMPLITUDE_SOURCES = {
+    "bench": "the bench's periodic orbit (harmonic balance of its "
+             "friction curve and motor torque limit; the 2T orbit past "
+             "period doubling)",
+    "chain": "the chain's linear harmonic response at the dither "
+             "frequency (Eq. 6 driven by the column D of Eq. 9)"}
+
+
+def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
+                      min_growth, growth_rates):
+    """The settled oscillation at each setting (Hz, Pa) and the verdict it
+    gives (:func:`stability.orbit_chart.orbit_verdict`): for the bench,
+    its periodic orbit; for a chain, its linear forced response with the
+    linearisation's growth (``growth_rates``, 1/s). Returns one dict per
+    setting."""
+    from infra.criteria import MECHANISMS
+    from infra.units import RAD_S_PER_RPM, RPM_PER_RAD_S
+    from stability.friction import forced_upstream_amplitude
+    from stability.orbit import double_period_orbit, periodic_orbit
+    from stability.orbit_chart import orbit_verdict
+    limit = limit_rpm * RAD_S_PER_RPM
+    rows = []
+    if driveline == "bench":
+        from ..bench import engagement_model
+        model = engagement_model(given)[0]
+    else:
+        system = build_driveline(values)
+    for f, p, rate in zip(freq_hz, p_f, growth_rates):
+        if driveline == "bench":
+            orbit = periodic_orbit(model, f, p)
+            doubled = (double_period_orbit(model, orbit)
+                       if orbit.success and orbit.kind == "double-period"
+                       else None)
+            verdict = orbit_verdict(orbit, doubled, limit, min_growth)
+            forced, settled, growth = (verdict.forced, verdict.settled,
+                                       verdict.growth_rate)
+            judder, mechanism = verdict.judder, verdict.mechanism
+            converged, quasi = orbit.success, verdict.quasi_periodic
+        else:
+            forced = settled = forced_upstream_amplitude(system, f, p)
+            growth = rate
+            parametric, is_forced = growth >= min_growth, forced > limit
+            judder = parametric or is_forced
+            mechanism = 3 if parametric and is_forced else 2 if parametric \
+                else 1 if is_forced else 0
+            converged, quasi = True, False
+        rows.append({
+            "forced_amplitude_rpm": forced * RPM_PER_RAD_S,
+            "settled_amplitude_rpm": settled * RPM_PER_RAD_S,
+            "amplitude_from": AMPLITUDE_SOURCES[driveline],
+            "response_growth_per_s": growth,
+            "quasi_periodic": bool(quasi), "converged": bool(converged),
+            "judder": bool(judder) and bool(converged),
+            "mechanism": MECHANISMS[mechanism] if judder else None,
+            "judder_limit_rpm": limit_rpm})
+    return rows
+
+
+def setting_record(check, min_growth, engagement_s, p_max, search_hz=None,
+                   response=None):
     """One :class:`stability.decisions.margins.SettingCheck` as JSON fields.
 
     ``verdict`` is one of :data:`stability.decisions.relevance.VERDICTS`;
     ``search_hz`` the (low, high) frequencies the Hz margin was searched
     over (``frequency_search_hz``).
     """
-    from stability.decisions.relevance import verdict
+    from stability.decisions.relevance import JUDDER, verdict
     m, point = check.margin, check.floquet
     rate = point.growth_rate
     unstable = point.kind != KINDS[0]
+    word = verdict(unstable, rate, min_growth)
+    if response is not None:
+        # the settled oscillation decides with the growth (the bench's
+        # orbit is the motion, so its growth replaces the steady slip's)
+        word = JUDDER if response["judder"] else verdict(
+            response["response_growth_per_s"] > 0,
+            response["response_growth_per_s"], min_growth)
 
     def tongue(t):
         # the tongue of judder (growth min_growth): its tip is where it
@@ -256,7 +352,8 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None):
         key=lambda r: -abs(r["margin_hz_per_unit_log"] or 0.0)
         - abs(r["margin_bar_per_unit_log"] or 0.0) * 1e-6)
     return {"freq_hz": m.freq_hz, "p_f_bar": m.p_f / PA_PER_BAR,
-            "verdict": verdict(unstable, rate, min_growth),
+            "verdict": word,
+            **(response or {}),
             "kind": point.kind,
             "inside_stability_tongue": bool(unstable),
             "judder_relevant": bool(check.judder),
@@ -297,6 +394,20 @@ def sensitivity_words(record, count=3):
         "margin per +10 %: " + ", ".join(parts)
 
 
+def response_words(record):
+    """The settled oscillation and the mechanism, in words."""
+    words = (f"settled oscillation {record['settled_amplitude_rpm']:.3g} "
+             f"rpm (limit {record['judder_limit_rpm']:g} rpm"
+             + (", from the unstable T-orbit: the motion is "
+                "quasi-periodic" if record["quasi_periodic"] else "")
+             + ")")
+    if not record["converged"]:
+        words += " (the orbit did not converge: no verdict from it)"
+    if record["mechanism"]:
+        words += f", {record['mechanism']}"
+    return words
+
+
 def setting_summary(record, engagement_s=1.0):
     """One line: verdict, growth against an engagement, both margins, the
     parameters that move the margin most."""
@@ -306,8 +417,10 @@ def setting_summary(record, engagement_s=1.0):
         tongue = record["tongue"]
         head += (f" ({record['kind']})" if tongue is None else
                  f" in tongue {tongue['number'] or '?'} ({record['kind']})")
-    parts = [head, growth_words(record, engagement_s),
-             *margin_words(record)]
+    parts = [head]
+    if "settled_amplitude_rpm" in record:
+        parts.append(response_words(record))
+    parts += [growth_words(record, engagement_s), *margin_words(record)]
     sensitive = sensitivity_words(record)
     if sensitive:
         parts.append(sensitive)
@@ -330,19 +443,27 @@ class CheckResult:
     p_max: float
     seconds: float
     background: object = None
+    responses: list = None
+    driveline: str = "chain"
+    judder_limit_rpm: float = None
 
     def records(self):
         from stability.decisions.margins import search_grid
         grid = search_grid([c.margin.freq_hz for c in self.checks]) \
             if self.checks else None
         search = None if grid is None else (grid[0], grid[-1])
+        responses = self.responses or [None] * len(self.checks)
         return [setting_record(c, self.min_growth, self.engagement_s,
-                               self.p_max, search)
-                for c in self.checks]
+                               self.p_max, search, response)
+                for c, response in zip(self.checks, responses)]
 
     def as_dict(self):
         mode = linearised_mode(self.params)
+        from ..bench import driveline_words
         return {"model": self.params.model,
+                "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
                 **({"mode": mode} if mode else {}),
                 "min_growth_per_s": self.min_growth,
                 "engagement_s": self.engagement_s,
@@ -350,8 +471,10 @@ class CheckResult:
                 "seconds": self.seconds, "settings": self.records()}
 
     def summary(self):
+        from ..bench import driveline_words
         words = mode_words(linearised_mode(self.params))
-        return "\n".join(([words] if words else [])
+        return "\n".join([f"driveline: {driveline_words(self.params, self.driveline)}"]
+                         + ([words] if words else [])
                          + [setting_summary(r, self.engagement_s)
                             for r in self.records()])
 

@@ -7,7 +7,7 @@ import numpy as np
 from stability import modal
 from stability.source import build_driveline
 
-from ._arguments import model_options
+from ._arguments import driveline_option, model_options
 from ._common import linearised_mode, mode_words, resolve
 from ._model import parameters_of
 from ._output import emit
@@ -25,11 +25,12 @@ OUTPUTS = ()
 def add_arguments(p):
     """The options of ``judder eig``."""
     model_options(p)
+    driveline_option(p)
 
 
 def run(args):
     """Natural frequencies and the clutch-damper damping factor."""
-    result = eig(*parameters_of(args))
+    result = eig(*parameters_of(args), driveline=args.driveline)
     zeta = result.damping_factor_12
     words = mode_words(linearised_mode(result.params))
     lines = [f"model {result.params.model}"
@@ -41,14 +42,16 @@ def run(args):
              "clutch-damper damping factor (Eq. 16): "
              + ("not defined (a formula of the paper's chains)"
                 if zeta is None else f"{100 * zeta:.2f} %"),
-             "damped modes without dither, rigid-body angles removed: "
+             ("damped modes of the bench (its speed control damps body "
+              "1) without dither: " if args.driveline == "bench" else
+              "damped modes without dither, rigid-body angles removed: ")
              + ", ".join(f"{f:.3f} Hz ({100 * r:.2f} %)" for f, r in
                          zip(result.damped_frequencies_hz,
                              result.damping_ratio))]
     emit(args, result.as_dict(), "\n".join(lines))
 
 
-def eig(parameters=None, changes=None):
+def eig(parameters=None, changes=None, driveline="chain"):
     """``judder eig``: natural frequencies (Eq. 14-15) and the
     clutch-damper damping factor (Eq. 16), and the damped modes without
     dither.
@@ -59,6 +62,10 @@ def eig(parameters=None, changes=None):
     (Eq. 15) and the clutch-damper factor (Eq. 16) belong to the paper's
     chains, so they are None there.
 
+    ``driveline='bench'``: of the driveline on its test bench
+    (:func:`judder.bench.driveline_view`), whose first damped mode is its
+    resonance (16.5 Hz for the paper's set, 18.9 Hz on the free chain).
+
     Returns
     -------
     EigResult
@@ -68,7 +75,8 @@ def eig(parameters=None, changes=None):
     >>> eig().natural_frequencies_hz.round(3)
     array([ 18.939, 102.884])
     """
-    values = resolve(parameters, changes)
+    from ..bench import driveline_view
+    values = driveline_view(resolve(parameters, changes), driveline)
     driveline = build_driveline(values)
     damped_hz, ratio = modal.damped_modes(driveline)
     paper = values.source_kind.is_chain

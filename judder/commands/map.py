@@ -14,7 +14,8 @@ from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, min_growth_option,
+from ..bench import driveline_view
+from ._arguments import (driveline_option, force_option, method_option, min_growth_option,
                          model_options, waveform_option)
 from ._common import (check_modes_up_to, checked_values, dithered,
                       frequency_dependent, linearised_mode, mode_words,
@@ -64,6 +65,7 @@ def add_arguments(p):
     min_growth_option(p, "; the plot shades slower ones grey")
     method_option(p)
     model_options(p)
+    driveline_option(p)
     waveform_option(p)
     force_option(p)
 
@@ -86,10 +88,13 @@ def run(args):
             freqs, amplitudes, params, changes, method=args.method,
             progress=progress,
             min_growth=args.min_growth,
-            exact=exact, waveform=waveform)
+            exact=exact, waveform=waveform, driveline=args.driveline)
     paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
+    if args.driveline == "bench":
+        paper = None
     title = (f"stability map{f' ({paper})' if paper else ''}, "
-             f"{model_title(args, params)}")
+             f"{model_title(args, params)}"
+             + (" on its test bench" if args.driveline == "bench" else ""))
     files = write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set,
@@ -143,7 +148,7 @@ def check_map_grid(values, freqs, amplitudes, options, method, tongues):
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
                   method=DEFAULT_METHOD, progress=None, min_growth=None,
-                  exact=False, waveform=None):
+                  exact=False, waveform=None, driveline="chain"):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -173,6 +178,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     """
     values = checked_values(parameters, changes, followed=True,
                             freq_hz=freq_hz, p_f_bar=p_f_bar)
+    values, view = driveline_view(values, driveline), driveline
     check_modes_up_to(values, freq_hz, p_f_bar)
     driveline = dithered(values, waveform)
     amplitudes = np.asarray(p_f_bar, dtype=float) * PA_PER_BAR
@@ -198,7 +204,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         found = find_tongues(driveline, boundaries)
     return MapResult(params=values, map=result, seconds=seconds,
                      boundaries=boundaries, tongues=found,
-                     min_growth=min_growth, boundaries_seconds=exact_seconds)
+                     min_growth=min_growth, boundaries_seconds=exact_seconds,
+                     driveline=view)
 
 
 def _followed(values, waveform, freq_hz, amplitudes, p_top, method,
@@ -255,6 +262,7 @@ class MapResult:
     tongues: list = None
     min_growth: object = None
     boundaries_seconds: object = None
+    driveline: str = "chain"
 
     def judder_relevant_points(self):
         """Points growing faster than ``min_growth`` (all unstable ones if
@@ -265,7 +273,10 @@ class MapResult:
         m = self.map
         bar = m.p_f / PA_PER_BAR
         mode = linearised_mode(self.params)
-        return {"model": self.params.model,
+        from ..bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
                 **({"mode": mode, "mode_checked_at_p_f_bar":
                     float(bar.max())} if mode else {}), "method": m.method,
                 "points": int(m.kind.size), "seconds": self.seconds,

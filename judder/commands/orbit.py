@@ -172,17 +172,14 @@ def orbit_row(found, doubled, limit_rpm, min_growth):
     verdict of :mod:`stability.orbit_chart` (``verdict`` in the words of
     :data:`pysim.analysis.verdict.RUN_VERDICTS`)."""
     from pysim.analysis.verdict import run_verdict
-    forced = found.dither_amplitude * RPM_PER_RAD_S
-    half = (abs(doubled.upstream_harmonics[0]) * RPM_PER_RAD_S
-            if doubled is not None else 0.0)
-    settled = max(forced if doubled is None else abs(
-        doubled.upstream_harmonics[1]) * RPM_PER_RAD_S, half)
-    parametric = found.growth_rate >= min_growth or half > limit_rpm or (
-        settled > limit_rpm and forced <= limit_rpm)
-    is_forced = forced > limit_rpm
-    judder = settled > limit_rpm or parametric
-    mechanism = (None if not judder else "both" if parametric and is_forced
-                 else "parametric" if parametric else "forced")
+    from stability.orbit_chart import orbit_verdict
+    verdict = orbit_verdict(found, doubled, limit_rpm * RAD_S_PER_RPM,
+                            min_growth)
+    forced = verdict.forced * RPM_PER_RAD_S
+    half = verdict.half * RPM_PER_RAD_S
+    settled = verdict.settled * RPM_PER_RAD_S
+    judder = verdict.judder
+    mechanism = None if not judder else MECHANISMS[verdict.mechanism]
     lead = found.multipliers[0] if len(found.multipliers) else 1.0
     return {"freq_hz": found.freq_hz, "p_f_bar": found.p_f / PA_PER_BAR,
             "success": found.success, "message": found.message,

@@ -11,7 +11,8 @@ from infra.units import PA_PER_BAR
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, min_growth_option,
+from ..bench import driveline_view
+from ._arguments import (driveline_option, force_option, method_option, min_growth_option,
                          model_options, pf_max_option, waveform_option)
 from ._common import (BACKGROUND_AMPLITUDES, check_modes_up_to,
                       checked_values, dithered, linearised_mode,
@@ -55,6 +56,7 @@ def add_arguments(p):
                    help="boundaries drawn over the map (Fig. 16)")
     method_option(p)
     model_options(p)
+    driveline_option(p)
     waveform_option(p)
     force_option(p)
 
@@ -73,10 +75,12 @@ def run(args):
                          background=args.plot is not None,
                          progress=progress,
                          judder_growth=args.min_growth,
-                         solver=args.solver)
+                         solver=args.solver, driveline=args.driveline)
     data = {**result.as_dict(), **write_outputs(args, result, figure={
         "title": f"tongue boundaries over the map, "
-                 f"{model_title(args, params)}"})}
+                 f"{model_title(args, params)}"
+                 + (" on its test bench" if args.driveline == "bench"
+                    else "")})}
     rows = tip_table(data)
     words = mode_words(linearised_mode(result.params), args.pf_max)
     if words:
@@ -139,7 +143,7 @@ def _missing_tongues(result, freqs, p_max_bar):
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
             min_growth=0.0, solver="hill", waveform=None,
-            judder_growth=None):
+            judder_growth=None, driveline="chain"):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -173,6 +177,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     from stability.tongues import find_tongues, tongue_boundaries
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_max_bar=p_max_bar)
+    values, view = driveline_view(values, driveline), driveline
     check_modes_up_to(values, freq_hz, p_max_bar)
     judder_growth = (DEFAULT_MIN_GROWTH_PER_S if judder_growth is None
                      else float(MIN_GROWTH.check(judder_growth,
@@ -196,7 +201,8 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
                         method=method) if background else None)
     return TonguesResult(params=values, boundaries=boundaries,
                          tongues=found, seconds=seconds, background=under,
-                         judder_tongues=judder, judder_growth=judder_growth)
+                         judder_tongues=judder, judder_growth=judder_growth,
+                         driveline=view)
 
 
 def tongue_record(tongue, judder=None):
@@ -240,11 +246,15 @@ class TonguesResult:
     background: object = None
     judder_tongues: list = None
     judder_growth: float = None
+    driveline: str = "chain"
 
     def as_dict(self):
         b = self.boundaries
         mode = linearised_mode(self.params)
-        return {"model": self.params.model,
+        from ..bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
                 **({"mode": mode, "mode_checked_at_p_f_bar":
                     b.p_max / PA_PER_BAR} if mode else {}),
                 "method": b.method,
