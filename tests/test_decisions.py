@@ -175,18 +175,25 @@ def test_check_reports_verdict_margins_and_the_strongest_parameters():
 
 def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
     from stability.decisions.relevance import VERDICTS
+    # the growth's words apart from the forced response's: a limit no
+    # forced oscillation here reaches (the chain's resonance forces 102.9
+    # Hz, 0.05 bar to judder at the default 30 rpm, below)
     result = api.check([102.9, 60.0, 102.9], [0.3, 0.3, 0.05],
-                       sensitivity=["J4", "k24"])
+                       sensitivity=["J4", "k24"], judder_limit_rpm=1000)
     records = result.records()
     judder, stable, slow = records
     assert [r["verdict"] for r in (judder, slow, stable)] == list(VERDICTS)
+    forced = api.check([102.9], [0.05], sensitivity=()).records()[0]
+    assert forced["settled_amplitude_rpm"] > 30
+    assert (forced["verdict"], forced["mechanism"]) == ("JUDDER", "forced")
     # 102.9 Hz, 0.05 bar: inside tongue 2 (|lambda| > 1) but growing at
     # 0.0947 1/s, slower than the judder-relevant 1 1/s
     assert slow["inside_stability_tongue"] and not slow["judder_relevant"]
     assert slow["tongue"]["number"] == 2
     assert judder["inside_stability_tongue"] and judder["judder_relevant"]
     assert not stable["inside_stability_tongue"] and stable["tongue"] is None
-    lines = result.summary().splitlines()
+    driveline, *lines = result.summary().splitlines()
+    assert "chain" in driveline
     for record, line in zip(records, lines):
         assert line.split(": ")[1].startswith(record["verdict"])
     # the text line shows the parameters that move the margin most, in
@@ -470,7 +477,9 @@ def test_check_command_line(tmp_path):
     assert text.splitlines()[-1].startswith("# written by judder ")
     summary = _judder("check", "--freq", "102.9", "--pf", "0.3", "--params",
                       "none")
-    assert summary.stdout.count("\n") == 1 and "JUDDER" in summary.stdout
+    # the driveline judged, then one line a setting
+    assert summary.stdout.count("\n") == 2 and "JUDDER" in summary.stdout
+    assert "chain" in summary.stdout.splitlines()[0]
     proc = _judder("check", "--freq", "60", "--pf", "-1")
     assert proc.returncode == 2 and "--pf -1" in proc.stderr
     assert proc.stderr.count("\n") == 1

@@ -271,7 +271,8 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     gives (:func:`stability.orbit_chart.orbit_verdict`): for the bench,
     its periodic orbit; for a chain, its linear forced response with the
     linearisation's growth (``growth_rates``, 1/s). Returns one dict per
-    setting."""
+    setting; None for a Modelica class or an FMU (its verdict is the
+    growth's)."""
     from infra.criteria import MECHANISMS
     from infra.units import RAD_S_PER_RPM, RPM_PER_RAD_S
     from stability.friction import forced_upstream_amplitude
@@ -279,6 +280,8 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     from stability.orbit_chart import orbit_verdict
     limit = limit_rpm * RAD_S_PER_RPM
     rows = []
+    if not given.source_kind.is_chain:
+        return None     # a class's or an FMU's forced response: not here
     if driveline == "bench":
         from ..bench import engagement_model
         model = engagement_model(given)[0]
