@@ -1,0 +1,152 @@
+"""Issue 43: constructs of ordinary Modelica models (and of the MSL) the
+compiler refused or crashed on, each now compiled and checked against
+the closed form of a small model: units outside a short list, one-row
+matrix literals, min/max/sum/product of arrays, assert in equations, and
+reductions ``sum(expr for k in 2:n)``.
+
+Every model here is written by the test into its own folder (rumoca
+reads every file of a library folder).
+"""
+
+import os
+from pathlib import Path
+import subprocess
+import sys
+import zipfile
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+pytest.importorskip("rumoca")
+fmpy = pytest.importorskip("fmpy")
+
+from fmu.build import build_fmu  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True)
+def _no_cache(monkeypatch):
+    monkeypatch.setenv("JUDDER_FMU_CACHE", "off")
+
+
+def _model(tmp_path, name, text):
+    folder = tmp_path / name
+    folder.mkdir()
+    path = folder / f"{name}.mo"
+    path.write_text(text)
+    return path
+
+
+def _cli(*args):
+    """``python -m fmu ...``: (exit status, stdout, stderr lines)."""
+    env = {**os.environ, "JUDDER_FMU_CACHE": "off"}
+    done = subprocess.run([sys.executable, "-m", "fmu", *args],
+                          capture_output=True, text=True, cwd=ROOT, env=env,
+                          timeout=300)
+    return done.returncode, done.stdout, [
+        line for line in done.stderr.splitlines() if line.strip()]
+
+
+def _simulate(fmu, stop, names, fmi_type="ModelExchange"):
+    return fmpy.simulate_fmu(str(fmu), stop_time=stop, output=names,
+                             relative_tolerance=1e-10, fmi_type=fmi_type)
+
+
+# -- 1. units: any unit string of the Modelica grammar -------------------
+
+_UNITS_MODEL = """model Units
+  parameter Real U(unit="V") = 2 "a voltage";
+  parameter Real R(unit="kOhm") = 4 "a time constant, in kOhm";
+  parameter Real T0(unit="degC") = 20 "start temperature";
+  parameter Real J(unit="kg.m2") = 3;
+  parameter Real v(unit="mm/min") = 5;
+  parameter Real n(unit="bogo") = 7 "a unit no one defines";
+  Real T(unit="degC", start=T0, fixed=true);
+equation
+  der(T) = -(T - U)/R;
+end Units;
+"""
+
+# (unit as written, BaseUnit exponents, factor, offset): the SI
+# definitions (BIPM SI brochure, Table 4; degC: T/K = t/degC + 273.15;
+# the derivative of a Celsius temperature is a difference, no offset)
+_UNIT_DEFINITIONS = [
+    ("V", {"kg": 1, "m": 2, "s": -3, "A": -1}, 1.0, 0.0),
+    ("kOhm", {"kg": 1, "m": 2, "s": -3, "A": -2}, 1e3, 0.0),
+    ("degC", {"K": 1}, 1.0, 273.15),
+    ("degC/s", {"K": 1, "s": -1}, 1.0, 0.0),
+    ("kg.m2", {"kg": 1, "m": 2}, 1.0, 0.0),
+    ("mm/min", {"m": 1, "s": -1}, 1e-3 / 60.0, 0.0),
+]
+
+
+def test_units_outside_the_table_are_defined_and_the_fmu_runs(tmp_path):
+    # was: "fmu: internal error: ValueError: unit 'V': unknown factor 'V'"
+    path = _model(tmp_path, "Units", _UNITS_MODEL)
+    status, out, err = _cli("Units", "--library", str(path.parent),
+                            "--fmi", "2.0", "--out", str(tmp_path))
+    assert status == 0, err
+    # an unknown unit is kept as written, with one warning naming it
+    warnings = [line for line in err if line.startswith("fmu: warning: ")]
+    assert len(warnings) == 1 and "'bogo'" in warnings[0], err
+    fmu = tmp_path / "Units.fmu"
+    md = fmpy.read_model_description(str(fmu))   # validates the units
+    units = {u.name: u for u in md.unitDefinitions}
+    for name, exponents, factor, offset in _UNIT_DEFINITIONS:
+        base = units[name].baseUnit
+        got = {k: getattr(base, k) for k in
+               ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
+               if getattr(base, k)}
+        assert got == exponents, name
+        assert base.factor == pytest.approx(factor, rel=1e-15), name
+        assert base.offset == pytest.approx(offset, abs=1e-12), name
+    assert units["bogo"].baseUnit is None
+    declared = {v.name: v.unit for v in md.modelVariables}
+    assert declared["U"] == "V" and declared["T"] == "degC"
+    assert declared["n"] == "bogo"
+    # dT/dt = -(T - U)/R: T = U + (T0 - U) exp(-t/R)
+    result = _simulate(fmu, 2.0, ["T"])
+    t = result["time"]
+    assert_allclose(result["T"], 2 + 18 * np.exp(-t / 4), rtol=1e-7)
+
+
+def _msl():
+    for folder in [os.environ.get("MODELICAPATH", ""), "/work/shared/msl"]:
+        for root in filter(None, folder.split(os.pathsep)):
+            if (Path(root) / "Modelica").is_dir():
+                return Path(root)
+    return None
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "is not installed")
+def test_every_unit_string_of_the_msl_is_read():
+    # MSL 4.x writes its units in the grammar of the Modelica
+    # specification (section 19.1): each has SI base units and a factor
+    import re
+    from fmu.units import UnknownUnit, base_unit
+    found = set()
+    for source in (_msl() / "Modelica").rglob("*.mo"):
+        found |= set(re.findall(r'\bunit\s*=\s*"([^"]*)"',
+                                source.read_text(errors="replace")))
+    assert len(found) > 200
+    unread = set()
+    for unit in sorted(found - {""}):
+        try:
+            base_unit(unit)
+        except UnknownUnit:
+            unread.add(unit)
+    # the logarithmic and psychoacoustic units have no SI factor: they
+    # are kept as written (a Unit without BaseUnit)
+    assert unread == {"dB", "phon", "sone"}
+    # closed forms of a few (SI brochure; 1 degF = 5/9 K, 0 degF =
+    # 459.67*5/9 K; 1 rpm = 2 pi/60 rad/s)
+    assert base_unit("degF").factor == pytest.approx(5 / 9, rel=1e-15)
+    assert base_unit("degF").offset == pytest.approx(459.67 * 5 / 9,
+                                                     rel=1e-14)
+    assert base_unit("rev/min").factor == pytest.approx(2 * np.pi / 60,
+                                                        rel=1e-15)
+    assert base_unit("W/(m2.K)").exponents == {"kg": 1, "s": -3, "K": -1}
