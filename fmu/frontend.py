@@ -208,11 +208,13 @@ _BUILTIN = {
     "min": casadi.fmin, "max": casadi.fmax, "sign": casadi.sign,
 }
 #: Builtins on arrays (parameter tables): matrix and vector constructors,
-#: sum and size, evaluated when the model is read.
+#: sum and size, evaluated when the model is read. ``[a, b; c, d]`` is
+#: ``promoted_cat1`` of rows that are each ``promoted_cat2`` of their
+#: elements, and a one-row ``[a, b]`` is ``promoted_cat2`` alone: both
+#: make a matrix (Modelica specification 10.6.1-10.6.2).
 _ARRAY_BUILTIN = {
-    "promoted_cat1": lambda *rows: _stack(rows),
-    "promoted_cat2": lambda *items: np.concatenate(
-        [np.atleast_1d(np.asarray(i, dtype=object)) for i in items]),
+    "promoted_cat1": lambda *rows: _promoted_cat(rows, 0),
+    "promoted_cat2": lambda *items: _promoted_cat(items, 1),
     "sum": lambda a: _sum(a),
     "size": lambda a, k: casadi.SX(float(np.shape(a)[_integer(k) - 1])),
 }
@@ -224,6 +226,22 @@ def _stack(rows):
     if all(r.ndim == 1 for r in rows):
         return np.stack(rows)
     return np.concatenate([np.atleast_2d(r) for r in rows])
+
+
+def _promoted_cat(items, axis):
+    """``cat(axis + 1, ...)`` of ``[...]``, each operand promoted to a
+    matrix first: a scalar to 1 x 1, a vector to a column."""
+    matrices = []
+    for item in items:
+        item = np.asarray(item, dtype=object)
+        matrices.append(item.reshape(1, 1) if item.ndim == 0 else
+                        item.reshape(-1, 1) if item.ndim == 1 else item)
+    try:
+        return np.concatenate(matrices, axis=axis)
+    except ValueError:
+        shapes = " and ".join(str(m.shape) for m in matrices)
+        raise FrontEndError(f"a matrix of parts of shapes {shapes} (rows "
+                            "of different lengths)") from None
 
 
 def _sum(array):
@@ -1074,6 +1092,8 @@ def _element(value, position, where):
     if value.ndim == 0:
         return value[()]
     try:
+        if value.ndim != len(position):
+            raise IndexError
         return value[position]
     except IndexError:
         raise FrontEndError(f"{where}: the array value has shape "

@@ -150,3 +150,40 @@ def test_every_unit_string_of_the_msl_is_read():
     assert base_unit("rev/min").factor == pytest.approx(2 * np.pi / 60,
                                                         rel=1e-15)
     assert base_unit("W/(m2.K)").exponents == {"kg": 1, "s": -3, "K": -1}
+
+
+# -- 2. matrix literals: [a, b] is a 1 x 2 matrix -------------------------
+
+_MATRIX_MODEL = """model Matrices
+  parameter Real t[1, 2] = [0, 0.5] "one row, as MSL's mu_pos";
+  parameter Real u[:, 2] = [0, 0.25] "one row, size from the value";
+  parameter Real q[2, 2] = [0, 0.5; 1, 0.7];
+  parameter Real w[2, 1] = [1; 2] "one column";
+  parameter Real z[2, 2] = [{1, 2}, {3, 4}] "vectors are columns";
+  Real x(start=1, fixed=true);
+equation
+  der(x) = -(t[1, 2] + u[1, 2] + q[2, 1] + w[2, 1]/10 + z[1, 2]/10)*x;
+end Matrices;
+"""
+
+# Modelica specification 10.6.1-10.6.2: [a, b; c, d] concatenates rows
+# (cat(1, ...)) of columns (cat(2, ...)), each operand promoted to a
+# matrix, a vector to a column: [{1, 2}, {3, 4}] = [1, 3; 2, 4]
+_MATRIX_ELEMENTS = {"t[1,1]": 0, "t[1,2]": 0.5, "u[1,1]": 0, "u[1,2]": 0.25,
+                    "q[1,1]": 0, "q[1,2]": 0.5, "q[2,1]": 1, "q[2,2]": 0.7,
+                    "w[1,1]": 1, "w[2,1]": 2, "z[1,1]": 1, "z[1,2]": 3,
+                    "z[2,1]": 2, "z[2,2]": 4}
+
+
+def test_one_row_and_other_matrix_literals_build(tmp_path):
+    # was: "the array value has shape (2,), not that of the declaration"
+    path = _model(tmp_path, "Matrices", _MATRIX_MODEL)
+    fmu = build_fmu(path, "Matrices", tmp_path / "Matrices.fmu").path
+    md = fmpy.read_model_description(str(fmu))
+    starts = {v.name: float(v.start) for v in md.modelVariables
+              if v.name in _MATRIX_ELEMENTS}
+    assert starts == _MATRIX_ELEMENTS
+    # k = 0.5 + 0.25 + 1 + 0.2 + 0.3 = 2.25: x = exp(-2.25 t)
+    result = _simulate(fmu, 1.0, ["x"])
+    assert_allclose(result["x"], np.exp(-2.25 * result["time"]), rtol=1e-7)
+
