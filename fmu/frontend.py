@@ -205,7 +205,9 @@ _BUILTIN = {
     "asin": casadi.asin, "acos": casadi.acos, "atan": casadi.atan,
     "atan2": casadi.atan2, "exp": casadi.exp, "log": casadi.log,
     "log10": casadi.log10, "sqrt": casadi.sqrt, "abs": casadi.fabs,
-    "min": casadi.fmin, "max": casadi.fmax, "sign": casadi.sign,
+    "min": lambda *a: _extremum(casadi.fmin, "min", a),
+    "max": lambda *a: _extremum(casadi.fmax, "max", a),
+    "sign": casadi.sign,
 }
 #: Builtins on arrays (parameter tables): matrix and vector constructors,
 #: sum and size, evaluated when the model is read. ``[a, b; c, d]`` is
@@ -216,6 +218,7 @@ _ARRAY_BUILTIN = {
     "promoted_cat1": lambda *rows: _promoted_cat(rows, 0),
     "promoted_cat2": lambda *items: _promoted_cat(items, 1),
     "sum": lambda a: _sum(a),
+    "product": lambda a: _product(a),
     "size": lambda a, k: casadi.SX(float(np.shape(a)[_integer(k) - 1])),
 }
 
@@ -250,6 +253,30 @@ def _sum(array):
     for item in items:
         total = total + item
     return total
+
+
+def _product(array):
+    total = casadi.SX(1)
+    for item in np.asarray(array, dtype=object).ravel():
+        total = total * item
+    return total
+
+
+def _extremum(pick, name, args):
+    """``min(a, b)``, ``max(a, b)`` of two scalars, or the least or
+    greatest element of one array (``max({a, 2})``)."""
+    if len(args) == 2:
+        return pick(*args)
+    items = list(np.asarray(args[0], dtype=object).ravel()) \
+        if len(args) == 1 else []
+    if not items:
+        raise FrontEndError(f"{name}() of {len(args)} arguments or of an "
+                            "empty array; allowed: two scalars or one "
+                            "array")
+    found = casadi.SX(items[0])
+    for item in items[1:]:
+        found = pick(found, item)
+    return found
 
 
 def _integer(value):

@@ -187,3 +187,40 @@ def test_one_row_and_other_matrix_literals_build(tmp_path):
     result = _simulate(fmu, 1.0, ["x"])
     assert_allclose(result["x"], np.exp(-2.25 * result["time"]), rtol=1e-7)
 
+
+
+# -- 3. min, max, sum, product of arrays ---------------------------------
+
+_REDUCTIONS_MODEL = """model Reductions
+  parameter Real a = 1;
+  parameter Real c[3] = {1, 2, 3};
+  parameter Real m[2, 2] = [1, 5; -2, 4];
+  Real x(start=1, fixed=true);
+  Real y(start=0, fixed=true);
+  Real z(start=0, fixed=true);
+  Real w(start=0, fixed=true);
+equation
+  der(x) = -(max({a, 2}) + min(c) + sum(c)/6 + product(c)/6 + max(m)/5
+             + min(m)/2 - 3)*x;
+  der(y) = min({x, 10});
+  der(z) = product({x, x});
+  der(w) = sum({x, 1}) + max(x, 0) - min(x, 0) - x;
+end Reductions;
+"""
+
+
+def test_min_max_sum_product_of_arrays(tmp_path):
+    # was: "internal error: NotImplementedError: ... 'fmax' ...
+    # (np.array(SX))"
+    path = _model(tmp_path, "Reductions", _REDUCTIONS_MODEL)
+    fmu = build_fmu(path, "Reductions", tmp_path / "Reductions.fmu").path
+    result = _simulate(fmu, 1.0, ["x", "y", "z", "w"])
+    t = result["time"]
+    # k = 2 + 1 + 1 + 1 + 1 - 1 - 3 = 2: x = exp(-2t) (below 10)
+    x = np.exp(-2 * t)
+    assert_allclose(result["x"], x, rtol=1e-7)
+    # the integrals start at 0: CVode at 1e-10 leaves about 2e-9 on them
+    assert_allclose(result["y"], (1 - x) / 2, rtol=1e-7, atol=1e-8)
+    assert_allclose(result["z"], (1 - x ** 2) / 4, rtol=1e-7, atol=1e-8)
+    # der(w) = (x + 1) + x - 0 - x = x + 1
+    assert_allclose(result["w"], (1 - x) / 2 + t, rtol=1e-7, atol=1e-8)
