@@ -321,6 +321,10 @@ class _Expressions:
         self.previous = {}
         self.initial = None   # symbol of initial(), with ``hybrid``
         self._conditions = storage.get("conditions") or []
+        self._domains = storage.get("domains") or []
+        #: (domain, ordinal) -> value of the iterator of a reduction or
+        #: array comprehension being converted
+        self._binders = {}
         # nodes with a variable number of operands take them, in node
         # order, from the flat operand list
         self._offsets = {}
@@ -378,6 +382,10 @@ class _Expressions:
     def _relation(self, index, body):
         """The symbol of an event-generating relation, recorded once."""
         position = self.relation_of[index]
+        if self._binders:
+            raise FrontEndError(f"{self.where}: a relation that generates "
+                                "events inside a for-expression is not "
+                                "supported; allowed: noEvent(...) around it")
         if position not in self.relations:
             op = body["operator"]
             if op not in _RELATIONS:
@@ -429,6 +437,8 @@ class _Expressions:
                 return self.initial
             if role.startswith("function_"):
                 return self._function_variable(role, position)
+            if role == "binder":
+                return self._binder(position)
             if role not in _ROLES:
                 raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
                                     "references (pre, edge, change) are not "
@@ -500,8 +510,57 @@ class _Expressions:
             return _conditional(args)
         if kind == "call":
             return self._call(index, body)
+        if kind == "comprehension":
+            return self._comprehension(body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
+
+    def _binder(self, reference):
+        key = (reference["domain"], reference["ordinal"])
+        if key not in self._binders:
+            raise FrontEndError(f"{self.where}: the iterator of a for-"
+                                "expression is used outside it")
+        return casadi.SX(float(self._binders[key]))
+
+    def _comprehension(self, body):
+        """``{expr for k in a:b}`` (and the operand of ``sum(expr for k in
+        a:b)``, ``product``, ``min``, ``max``): the vector of ``expr`` at
+        each value of the iterator, its range constant (rumoca evaluates
+        it). The body is converted once per value, in a cache of its
+        own, as an inlined function's is."""
+        domain = self._domains[body["domain"]]["domain"]
+        binders = domain.get("binders") or []
+        ranges = []
+        for binder in binders:
+            lower, upper, step = (binder.get(k) for k in
+                                  ("lower", "upper", "step"))
+            if not all(isinstance(v, (int, float)) and v == int(v)
+                       for v in (lower, upper, step)) or not step:
+                raise FrontEndError(
+                    f"{self.where}: the range of {binder.get('display_name')}"
+                    f" ({binder}) is not supported; allowed: a range a:b or "
+                    "a:step:b of integers known when the model is read")
+            ranges.append(range(int(lower), int(upper) + (1 if step > 0
+                                                          else -1),
+                                int(step)))
+        if len(binders) != 1:
+            raise FrontEndError(f"{self.where}: a for-expression with "
+                                f"{len(binders)} iterators is not supported;"
+                                " allowed: one iterator (sum(a[k] for k in "
+                                "1:n))")
+        items = []
+        saved, self._cache = self._cache, {}
+        try:
+            for value in ranges[0]:
+                self._binders[(body["domain"], 0)] = value
+                self._cache = {}
+                items.append(self(body["body"]))
+        finally:
+            self._binders.pop((body["domain"], 0), None)
+            self._cache = saved
+        if any(isinstance(i, np.ndarray) for i in items):
+            return np.stack([np.asarray(i, dtype=object) for i in items])
+        return np.array(items, dtype=object)
 
     def _function_variable(self, role, reference):
         """A parameter, output or local of the function being inlined."""
@@ -729,11 +788,23 @@ def _check_supported(storage, model_name, where, hybrid=False):
         items = storage.get(key) or []
         if hybrid and key == "discrete_value_owners":
             continue
+        if key == "domains":   # those of for-expressions are compiled
+            items = [d for k, d in enumerate(items)
+                     if k not in _comprehension_domains(storage)]
         if items:
             place = where(items[0]) if isinstance(items[0], dict) else \
                 model_name
             raise FrontEndError(f"{place}: {construct} are not supported "
                                 f"by the FMU back end (model {model_name})")
+
+
+def _comprehension_domains(storage):
+    """The domains (iterator ranges) of for-expressions, ``sum(a[k] for k
+    in 2:n)`` and ``{k*a[k] for k in 1:n}``, as rumoca writes them in
+    bindings and function bodies (it unrolls those of equations)."""
+    return {next(iter(node.values()))["domain"]
+            for node in storage["expressions"]["nodes"]
+            if "comprehension" in node}
 
 
 def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):

@@ -224,3 +224,53 @@ def test_min_max_sum_product_of_arrays(tmp_path):
     assert_allclose(result["z"], (1 - x ** 2) / 4, rtol=1e-7, atol=1e-8)
     # der(w) = (x + 1) + x - 0 - x = x + 1
     assert_allclose(result["w"], (1 - x) / 2 + t, rtol=1e-7, atol=1e-8)
+
+
+# -- 5. reductions sum(expr for k in a:b) in bindings and functions -------
+
+_FOR_MODEL = """model ForExpressions
+  function tailSum "sum of the elements after the first"
+    input Real v[:];
+    output Real y;
+  algorithm
+    y := sum(v[k] for k in 2:size(v, 1));
+  end tailSum;
+  parameter Integer n = 3;
+  parameter Real c[n] = {1, 2, 3};
+  parameter Real s = sum(c[k] for k in 2:n);
+  parameter Real p = product(c[k] + 1 for k in 1:n);
+  parameter Real m = max(c[k] for k in 1:n);
+  parameter Real e = sum(c[k] for k in n:-2:1) "every other, from the end";
+  parameter Real d[n] = {k*c[k] for k in 1:n};
+  parameter Real t = tailSum(c);
+  output Real ys = s;
+  output Real yp = p;
+  output Real ym = m;
+  output Real ye = e;
+  output Real yd = d[3];
+  output Real yt = t;
+  Real x(start=1, fixed=true);
+  Real y(start=0, fixed=true);
+equation
+  der(x) = -s/5*x;
+  der(y) = sum(c[k]*x for k in 1:n);
+end ForExpressions;
+"""
+
+
+def test_for_expressions_in_bindings_and_functions(tmp_path):
+    # was: "for-equations and array equations are not supported"
+    path = _model(tmp_path, "ForExpressions", _FOR_MODEL)
+    fmu = build_fmu(path, "ForExpressions",
+                    tmp_path / "ForExpressions.fmu").path
+    result = _simulate(fmu, 1.0, ["x", "y", "ys", "yp", "ym", "ye", "yd",
+                                  "yt"])
+    # c = {1, 2, 3}: s = 2 + 3, p = 2*3*4, m = 3, e = c[3] + c[1],
+    # d[3] = 3*3, tailSum(c) = 2 + 3
+    for name, value in [("ys", 5), ("yp", 24), ("ym", 3), ("ye", 4),
+                        ("yd", 9), ("yt", 5)]:
+        assert_allclose(result[name], value, rtol=1e-15, err_msg=name)
+    # der(x) = -x: x = exp(-t); der(y) = 6 x: y = 6 (1 - exp(-t))
+    x = np.exp(-result["time"])
+    assert_allclose(result["x"], x, rtol=1e-7)
+    assert_allclose(result["y"], 6 * (1 - x), rtol=1e-7, atol=1e-8)
