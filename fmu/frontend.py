@@ -22,7 +22,7 @@ from .classes import (blank, class_source, class_spans, find_class,
 from .errors import FrontEndError
 from .limits import check_flat_arrays
 
-__all__ = ["Variable", "FlatModel", "Discrete", "load_flat_model",
+__all__ = ["Variable", "FlatModel", "Discrete", "Assertion", "load_flat_model",
            "class_source", "find_class", "modelica_path", "FrontEndError"]
 
 
@@ -111,6 +111,8 @@ class FlatModel:
         None: ``initial()`` is held in the FMU (1 while it initialises);
         a number: its value once the initial equations are solved (with
         it 1), for the ODE of one mode (:func:`sources.modes.fixed_mode`).
+    assertions : list of Assertion
+        The ``assert(...)`` of the equations.
     """
 
     name: str
@@ -128,6 +130,7 @@ class FlatModel:
     discrete_relations: list = field(default_factory=list)
     initial: object = None
     initial_value: float = None
+    assertions: list = field(default_factory=list)
 
     def by_role(self, role):
         """Variables of one role, in declaration order."""
@@ -183,6 +186,24 @@ class When:
 
     relation: int
     reinits: list
+    where: str = ""
+
+
+@dataclass
+class Assertion:
+    """``assert(condition, message, level)`` of an equation section.
+
+    ``violated`` is 1 where the condition fails: the relations in it at
+    their values (each relation of an ``AssertionLevel.error`` assert is
+    also an event, so that the failure is found where it happens).
+    ``message`` is the message with ``%g`` for each ``String(v)`` in it,
+    whose values are ``values`` (``%%`` is a percent sign).
+    """
+
+    violated: object
+    message: str
+    values: list
+    error: bool = True
     where: str = ""
 
 
@@ -912,6 +933,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
             sections["initialization_equation_operations"].append(
                 v.symbol - v.start)
             places["initialization_equation_operations"].append(v.where)
+    assertions = _assertions(storage, convert, where)
     whens = _whens(storage, convert, where, variables)
     discretes, discrete_relations = _discretes(
         storage, convert, where, variables) if hybrid else ([], [])
@@ -923,7 +945,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         initial_places=places["initialization_equation_operations"],
         relations=[convert.relations[k] for k in sorted(convert.relations)],
         whens=whens, discretes=discretes, initial=convert.initial,
-        discrete_relations=discrete_relations,
+        discrete_relations=discrete_relations, assertions=assertions,
         time=time, experiment=_experiment(path, model_name))
 
 
@@ -1099,6 +1121,60 @@ def _when_relation(storage, convert, trigger, place):
     return position
 
 
+#: rumoca's event actions of ``assert``: ``assert`` (level error, its
+#: guard the condition's negation) and ``warning`` (its condition in
+#: ``noEvent``, guard and trigger always).
+_ASSERT_KINDS = ("assert", "warning")
+
+
+def _assertions(storage, convert, where):
+    """The ``assert(...)`` of the equations (:class:`Assertion`)."""
+    conditions = storage.get("conditions") or []
+    found = []
+    for action in storage.get("event_actions") or []:
+        kind, body = next(iter(action["kind"].items()))
+        if kind not in _ASSERT_KINDS:
+            continue
+        convert.where = where(action)
+        always = [k for k, c in enumerate(conditions)
+                  if c.get("node") == "always"]
+        if action["trigger"] not in always or (
+                kind == "warning" and action["guard"] not in always):
+            raise FrontEndError(f"{convert.where}: assert in a when-clause "
+                                "is not supported by the FMU back end; "
+                                "allowed: assert(...) in equations")
+        if kind == "assert":
+            violated = _condition(storage, convert, action["guard"],
+                                  convert.where)
+        else:
+            violated = casadi.logic_not(convert(body["condition"]))
+        violated = _with_values(violated, {
+            r.symbol.name(): r.value for r in convert.relations.values()})
+        message, values = _message(storage, convert, body["message"])
+        found.append(Assertion(violated=violated, message=message,
+                               values=values, error=kind == "assert",
+                               where=convert.where))
+    return found
+
+
+def _message(storage, convert, index):
+    """An assert's message as ``(text with %g for each String(v),
+    [v, ...])``: string literals, ``+`` and ``String(v)``."""
+    kind, body = next(iter(storage["expressions"]["nodes"][index].items()))
+    if kind == "literal" and "string" in body:
+        return body["string"].replace("%", "%%"), []
+    if kind == "binary" and body["operator"] == "add":
+        left, first = _message(storage, convert, body["lhs"])
+        right, second = _message(storage, convert, body["rhs"])
+        return left + right, first + second
+    if kind == "string_conversion":
+        value = convert(body["value"])
+        if isinstance(value, np.ndarray):
+            return "{...}", []
+        return "%g", [value]
+    return "(message)", []
+
+
 def _whens(storage, convert, where, variables):
     """``when`` clauses with ``reinit`` (rumoca's event actions).
 
@@ -1110,6 +1186,8 @@ def _whens(storage, convert, where, variables):
     for action in storage.get("event_actions") or []:
         convert.where = where(action)
         kind, body = next(iter(action["kind"].items()))
+        if kind in _ASSERT_KINDS:
+            continue   # _assertions
         if kind != "reinitialize":
             raise FrontEndError(f"{convert.where}: {kind} in a when-clause "
                                 "is not supported by the FMU back end")

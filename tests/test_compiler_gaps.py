@@ -274,3 +274,79 @@ def test_for_expressions_in_bindings_and_functions(tmp_path):
     x = np.exp(-result["time"])
     assert_allclose(result["x"], x, rtol=1e-7)
     assert_allclose(result["y"], 6 * (1 - x), rtol=1e-7, atol=1e-8)
+
+
+# -- 4. assert(...) in equations: an error status with its message -------
+
+_ASSERT_MODEL = """model Asserts
+  parameter Real limit = 1.5;
+  Real x(start=1, fixed=true);
+  Real y(start=1, fixed=true);
+equation
+  der(x) = 1;
+  der(y) = -y;
+  assert(y > 0, "y must stay positive");
+  assert(x < 1.2, "x above 1.2", AssertionLevel.warning);
+  assert(x < limit, "x = " + String(x) + " is too large");
+end Asserts;
+"""
+
+
+def _run_logged(fmu, fmi_type, stop, **kw):
+    """fmpy's run: (the exception, if any; the (status, category, text)
+    logged)."""
+    said = []
+
+    def logger(*args):
+        status, category, text = args[-3:]   # FMI 2 has the name before
+        said.append((status, category.decode(), text.decode()))
+    try:
+        fmpy.simulate_fmu(str(fmu), stop_time=stop, fmi_type=fmi_type,
+                          output=["x"], logger=logger, **kw)
+    except Exception as exc:   # fmpy's FMICallException
+        return exc, said
+    return None, said
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_a_failing_assert_stops_the_run_with_its_message(tmp_path, version,
+                                                         fmi_type):
+    # was: "assert in a when-clause is not supported" (there is no
+    # when-clause)
+    path = _model(tmp_path, "Asserts", _ASSERT_MODEL)
+    fmu = build_fmu(path, "Asserts", tmp_path / "Asserts.fmu",
+                    version=version).path
+    error, said = _run_logged(fmu, fmi_type, 1.0)
+    assert error is not None and "status 3" in str(error)   # fmiError
+    errors = [text for status, category, text in said if status == 3]
+    warnings = [text for status, category, text in said if status == 1]
+    # x = 1 + t reaches the limit 1.5 at t = 0.5 (located as an event in
+    # Model Exchange, by the step's own event location in Co-Simulation)
+    assert len(errors) == 1, said
+    import re
+    found = re.fullmatch(r"assert failed at t = (\S+): Asserts\.mo:10: "
+                         r"x = (\S+) is too large", errors[0])
+    assert found, errors
+    assert float(found.group(1)) == pytest.approx(0.5, abs=1e-9)
+    assert float(found.group(2)) == pytest.approx(1.5, abs=1e-9)
+    # the warning (x above 1.2 from t = 0.2) is said once and the run goes
+    # on: at a completed integrator step, an event or a communication
+    # point after t = 0.2
+    assert len(warnings) == 1, said
+    found = re.fullmatch(r"assert warning at t = (\S+): Asserts\.mo:9: "
+                         r"x above 1\.2", warnings[0])
+    assert found, warnings
+    assert 0.2 <= float(found.group(1)) <= 0.5
+
+
+def test_asserts_that_hold_leave_the_run_as_it_was(tmp_path):
+    path = _model(tmp_path, "Asserts", _ASSERT_MODEL.replace(
+        "parameter Real limit = 1.5", "parameter Real limit = 10").replace(
+        "x < 1.2", "x < 5"))
+    fmu = build_fmu(path, "Asserts", tmp_path / "Asserts.fmu").path
+    error, said = _run_logged(fmu, "ModelExchange", 2.0)
+    assert error is None and not [s for s in said if s[0] != 0], said
+    result = _simulate(fmu, 2.0, ["x", "y"])
+    assert_allclose(result["x"], 1 + result["time"], rtol=1e-9)
+    assert_allclose(result["y"], np.exp(-result["time"]), rtol=1e-7)
