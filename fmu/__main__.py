@@ -6,11 +6,13 @@ import math
 import re
 import sys
 from pathlib import Path
+import warnings
 
 from infra.errors import EXIT_ERROR, EXIT_OK, JudderError
 
 from .build import DEFAULT_TOLERANCE, build_fmu
 from .frontend import FrontEndError, find_class, modelica_path
+from .units import UnitWarning
 
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 #: Package whose examples are built by default.
@@ -93,32 +95,50 @@ def _build(argv):
         return EXIT_ERROR
     versions = ("2.0", "3.0") if args.fmi == "both" else (args.fmi,)
     try:
-        for name in names:
-            source, _ = find_class(name, roots)
-            for version in versions:
-                suffix = "" if version == "2.0" else "_fmi3"
-                target = Path(args.out) / f"{name.split('.')[-1]}{suffix}.fmu"
-                result = build_fmu(source, name, target, version=version,
-                                   roots=[r.parent if r.is_file() else r
-                                          for r in roots],
-                                   tolerance=args.tolerance,
-                                   windows=args.windows,
-                                   author=args.author)
-                report = {"model": name, "fmi": version,
-                          "path": str(result.path),
-                          "states": result.states,
-                          "parameters": result.parameters,
-                          "outputs": result.outputs,
-                          "seconds": round(result.seconds, 3),
-                          "size_bytes": result.size_bytes}
-                print(json.dumps(report) if args.json else
-                      f"{result.path}: FMI {version}, {result.states} states,"
-                      f" {result.parameters} parameters, {result.outputs} "
-                      f"outputs, built in {result.seconds:.2f} s, "
-                      f"{result.size_bytes / 1024:.1f} KiB")
+        with warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always", UnitWarning)
+            _build_all(args, names, versions, roots, said)
     except FrontEndError as exc:
         raise JudderError(str(exc)) from None
     return EXIT_OK
+
+
+def _build_all(args, names, versions, roots, said):
+    """Build each class in each FMI version; report each FMU, and each
+    warning of the build (``said``) once, as ``fmu: warning: ...``."""
+    told = set()
+    for name in names:
+        source, _ = find_class(name, roots)
+        for version in versions:
+            suffix = "" if version == "2.0" else "_fmi3"
+            target = Path(args.out) / f"{name.split('.')[-1]}{suffix}.fmu"
+            result = build_fmu(source, name, target, version=version,
+                               roots=[r.parent if r.is_file() else r
+                                      for r in roots],
+                               tolerance=args.tolerance,
+                               windows=args.windows,
+                               author=args.author)
+            report = {"model": name, "fmi": version,
+                      "path": str(result.path),
+                      "states": result.states,
+                      "parameters": result.parameters,
+                      "outputs": result.outputs,
+                      "seconds": round(result.seconds, 3),
+                      "size_bytes": result.size_bytes}
+            print(json.dumps(report) if args.json else
+                  f"{result.path}: FMI {version}, {result.states} states,"
+                  f" {result.parameters} parameters, {result.outputs} "
+                  f"outputs, built in {result.seconds:.2f} s, "
+                  f"{result.size_bytes / 1024:.1f} KiB")
+        for warning in said:
+            text = str(warning.message)
+            if not issubclass(warning.category, UnitWarning):
+                warnings.showwarning(warning.message, warning.category,
+                                     warning.filename, warning.lineno)
+            elif text not in told:
+                told.add(text)
+                print(f"fmu: warning: {text}", file=sys.stderr)
+        said.clear()
 
 
 if __name__ == "__main__":

@@ -139,6 +139,9 @@ class OdeModel:
         ``pre()`` of each discrete variable, then ``initial()`` (1 while
         the FMU initialises) if the discrete equations use it; in ``p``
         after :attr:`discretes`.
+    assertions : list of fmu.frontend.Assertion
+        The model's ``assert(...)``, ``violated`` and ``values`` as
+        formulas in ``t, x, p``.
     experiment : dict
     eliminated : dict
         Variables removed by aliasing and index reduction, as formulas.
@@ -160,6 +163,7 @@ class OdeModel:
     aliases: list = field(default_factory=list)
     discretes: list = field(default_factory=list)
     previous: list = field(default_factory=list)
+    assertions: list = field(default_factory=list)
 
     def held(self):
         """Everything in ``p``: the tunable parameters, the inputs, the
@@ -212,6 +216,15 @@ class OdeModel:
                                 [_column(*after)]),
                 casadi.Function("discretes", [self.time, x, p], [_column(
                     *[q.minimum for q in self.discretes])]))
+
+    def assert_function(self):
+        """CasADi function ``asserts(t, x, p) -> a``: 1 for each assert
+        violated (:attr:`assertions`, in order), then the values of
+        their messages, one assert's after the other's."""
+        x, p = self._symbols()
+        return casadi.Function("asserts", [self.time, x, p], [_column(
+            *[a.violated for a in self.assertions],
+            *[v for a in self.assertions for v in a.values])])
 
     def functions(self, with_locals=False):
         """CasADi functions ``ode(t, x, p) -> der(x)``, ``outputs(t, x, p)
@@ -422,6 +435,14 @@ def _to_ode(model):
             continue
         formula = v.symbol if v.name in states else system.eliminated[v.name]
         outputs.append(_quantity(v, formula))
+    assertions = [dataclasses.replace(
+        a, violated=_in_states(casadi.substitute(
+            casadi.SX(a.violated), parameter_symbols, parameter_values),
+            order, derivatives, system.eliminated),
+        values=[_in_states(casadi.substitute(
+            casadi.SX(v), parameter_symbols, parameter_values), order,
+            derivatives, system.eliminated) for v in a.values])
+        for a in model.assertions]
     derivative_column = _column(*[derivatives[v.name] for v in order])
     locals_, aliases = _locals(model, order, derivative_column, outputs,
                                system.eliminated)
@@ -435,7 +456,7 @@ def _to_ode(model):
         experiment=model.experiment, eliminated=system.eliminated,
         inputs=inputs, relations=relations, whens=whens,
         locals=locals_, aliases=aliases, discretes=discretes,
-        previous=previous)
+        previous=previous, assertions=assertions)
 
 
 def _check_at_start(system, model, order, starts, tunable, inputs,

@@ -131,6 +131,16 @@ def _config(ode, guid, tolerance):
         f"#define MODEL_NI {len(ode.previous) - len(ode.discretes)}",
         "#define MODEL_WHEN_RELATION {" + ", ".join(
             [str(r) for r, _ in ode.whens] + ["0"]) + "}",
+        f"#define MODEL_NA {len(ode.assertions)}",
+        "#define MODEL_ASSERT_SIZE "
+        f"{len(ode.assertions) + sum(len(a.values) for a in ode.assertions)}",
+        "#define MODEL_ASSERT_ERROR {" + ", ".join(
+            ["1" if a.error else "0" for a in ode.assertions] + ["0"]) + "}",
+        "#define MODEL_ASSERT_MESSAGES {" + ", ".join(
+            [json.dumps(_assert_text(a)) for a in ode.assertions]
+            + ['""']) + "}",
+        "#define MODEL_ASSERTS judder_asserts",
+        "#define MODEL_ASSERTS_WORK judder_asserts_work",
         "#define MODEL_DISCRETE_BOOLEAN {" + ", ".join(
             ["1" if q.maximum == 1.0 else "0" for q in ode.discretes]
             + ["0"]) + "}",
@@ -165,6 +175,16 @@ def _config(ode, guid, tolerance):
         "#endif", ""])
 
 
+def _assert_text(assertion):
+    """An assert's message for the C core: ``FILE:LINE: message``, the
+    file without its folder, printable ASCII (C string literals)."""
+    place = Path(assertion.where.rsplit(":", 1)[0]).name + ":" + \
+        assertion.where.rsplit(":", 1)[-1] if ":" in assertion.where \
+        else assertion.where
+    text = f"{place.replace('%', '%%')}: {assertion.message}"
+    return "".join(c if " " <= c <= "~" else "?" for c in text)
+
+
 def _functions(ode):
     """The CasADi functions whose C code the FMU holds."""
     ode_f, outputs_f, start_f = ode.functions(with_locals=True)
@@ -178,7 +198,8 @@ def _functions(ode):
         casadi.Function("judder_start", start_f.sx_in(),
                         start_f.call(start_f.sx_in())),
         casadi.Function("judder_calculated", [p], [calculated])]
-    for function in ode.event_functions() + (ode.jacobian()[0],):
+    for function in ode.event_functions() + (ode.jacobian()[0],
+                                             ode.assert_function()):
         functions.append(casadi.Function(
             f"judder_{function.name()}", function.sx_in(),
             function.call(function.sx_in())))

@@ -12,9 +12,10 @@ their start values are set through parameters.
 
 from datetime import datetime, timezone
 import re
+import warnings
 from xml.sax.saxutils import quoteattr
 
-from .units import DISPLAY_UNITS, base_exponents
+from .units import DISPLAY_UNITS, UnitWarning, UnknownUnit, base_unit
 
 __all__ = ["Layout", "model_description", "build_description", "SOURCES"]
 
@@ -106,18 +107,44 @@ def _unit_definitions(layout, extra=()):
         return []   # an empty UnitDefinitions element is invalid
     lines = ["  <UnitDefinitions>"]
     for unit in units:
-        exponents, factor = base_exponents(unit)
-        base = _attr(**{k: v for k, v in exponents.items()},
-                     factor=None if factor == 1.0 else _number(factor))
+        try:
+            found = base_unit(unit)
+        except UnknownUnit as exc:
+            # kept as written: a Unit without BaseUnit is valid FMI
+            warnings.warn(UnitWarning(
+                f"{exc}; kept as written in the FMU, without its SI base "
+                f"units (variable {_first_with(layout, unit)}); allowed: "
+                "the units of the Modelica specification (SI units with "
+                "prefixes, N.m, rad/s2, degC, ...)"), stacklevel=2)
+            lines.append(f"    <Unit name={quoteattr(unit)}/>")
+            continue
+        base = "<BaseUnit" + _attr(
+            **found.exponents,
+            factor=None if found.factor == 1.0 else _number(found.factor),
+            offset=None if not found.offset else _number(found.offset)) \
+            + "/>"
         shown = "".join(
             "<DisplayUnit" + _attr(name=name, factor=_number(
                 DISPLAY_UNITS[name][1]), offset=None if not DISPLAY_UNITS[
                     name][2] else _number(DISPLAY_UNITS[name][2])) + "/>"
             for name in sorted(displays.get(unit, ())))
-        lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit{base}/>"
-                     f"{shown}</Unit>")
+        lines.append(f"    <Unit name={quoteattr(unit)}>{base}{shown}</Unit>")
     lines.append("  </UnitDefinitions>")
     return lines
+
+
+def _first_with(layout, unit):
+    """The name of the first variable declared with ``unit``."""
+    for group in (layout.states, layout.parameters, layout.calculated,
+                  layout.outputs, layout.locals, layout.inputs,
+                  [q for q, _ in layout.aliases]):
+        for q in group:
+            if q.unit == unit:
+                return q.name
+    for q in layout.states:
+        if q.unit and _derivative_unit(q.unit) == unit:
+            return f"der({q.name})"
+    return "?"
 
 
 def _experiment(ode, tolerance):

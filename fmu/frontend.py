@@ -22,7 +22,7 @@ from .classes import (blank, class_source, class_spans, find_class,
 from .errors import FrontEndError
 from .limits import check_flat_arrays
 
-__all__ = ["Variable", "FlatModel", "Discrete", "load_flat_model",
+__all__ = ["Variable", "FlatModel", "Discrete", "Assertion", "load_flat_model",
            "class_source", "find_class", "modelica_path", "FrontEndError"]
 
 
@@ -111,6 +111,8 @@ class FlatModel:
         None: ``initial()`` is held in the FMU (1 while it initialises);
         a number: its value once the initial equations are solved (with
         it 1), for the ODE of one mode (:func:`sources.modes.fixed_mode`).
+    assertions : list of Assertion
+        The ``assert(...)`` of the equations.
     """
 
     name: str
@@ -128,6 +130,7 @@ class FlatModel:
     discrete_relations: list = field(default_factory=list)
     initial: object = None
     initial_value: float = None
+    assertions: list = field(default_factory=list)
 
     def by_role(self, role):
         """Variables of one role, in declaration order."""
@@ -186,6 +189,24 @@ class When:
     where: str = ""
 
 
+@dataclass
+class Assertion:
+    """``assert(condition, message, level)`` of an equation section.
+
+    ``violated`` is 1 where the condition fails: the relations in it at
+    their values (each relation of an ``AssertionLevel.error`` assert is
+    also an event, so that the failure is found where it happens).
+    ``message`` is the message with ``%g`` for each ``String(v)`` in it,
+    whose values are ``values`` (``%%`` is a percent sign).
+    """
+
+    violated: object
+    message: str
+    values: list
+    error: bool = True
+    where: str = ""
+
+
 _RELATIONS = ("less", "less_equal", "greater", "greater_equal")
 _BINARY = {
     "add": lambda a, b: a + b, "subtract": lambda a, b: a - b,
@@ -205,15 +226,20 @@ _BUILTIN = {
     "asin": casadi.asin, "acos": casadi.acos, "atan": casadi.atan,
     "atan2": casadi.atan2, "exp": casadi.exp, "log": casadi.log,
     "log10": casadi.log10, "sqrt": casadi.sqrt, "abs": casadi.fabs,
-    "min": casadi.fmin, "max": casadi.fmax, "sign": casadi.sign,
+    "min": lambda *a: _extremum(casadi.fmin, "min", a),
+    "max": lambda *a: _extremum(casadi.fmax, "max", a),
+    "sign": casadi.sign,
 }
 #: Builtins on arrays (parameter tables): matrix and vector constructors,
-#: sum and size, evaluated when the model is read.
+#: sum and size, evaluated when the model is read. ``[a, b; c, d]`` is
+#: ``promoted_cat1`` of rows that are each ``promoted_cat2`` of their
+#: elements, and a one-row ``[a, b]`` is ``promoted_cat2`` alone: both
+#: make a matrix (Modelica specification 10.6.1-10.6.2).
 _ARRAY_BUILTIN = {
-    "promoted_cat1": lambda *rows: _stack(rows),
-    "promoted_cat2": lambda *items: np.concatenate(
-        [np.atleast_1d(np.asarray(i, dtype=object)) for i in items]),
+    "promoted_cat1": lambda *rows: _promoted_cat(rows, 0),
+    "promoted_cat2": lambda *items: _promoted_cat(items, 1),
     "sum": lambda a: _sum(a),
+    "product": lambda a: _product(a),
     "size": lambda a, k: casadi.SX(float(np.shape(a)[_integer(k) - 1])),
 }
 
@@ -226,12 +252,52 @@ def _stack(rows):
     return np.concatenate([np.atleast_2d(r) for r in rows])
 
 
+def _promoted_cat(items, axis):
+    """``cat(axis + 1, ...)`` of ``[...]``, each operand promoted to a
+    matrix first: a scalar to 1 x 1, a vector to a column."""
+    matrices = []
+    for item in items:
+        item = np.asarray(item, dtype=object)
+        matrices.append(item.reshape(1, 1) if item.ndim == 0 else
+                        item.reshape(-1, 1) if item.ndim == 1 else item)
+    try:
+        return np.concatenate(matrices, axis=axis)
+    except ValueError:
+        shapes = " and ".join(str(m.shape) for m in matrices)
+        raise FrontEndError(f"a matrix of parts of shapes {shapes} (rows "
+                            "of different lengths)") from None
+
+
 def _sum(array):
     items = list(np.asarray(array, dtype=object).ravel())
     total = casadi.SX(0)
     for item in items:
         total = total + item
     return total
+
+
+def _product(array):
+    total = casadi.SX(1)
+    for item in np.asarray(array, dtype=object).ravel():
+        total = total * item
+    return total
+
+
+def _extremum(pick, name, args):
+    """``min(a, b)``, ``max(a, b)`` of two scalars, or the least or
+    greatest element of one array (``max({a, 2})``)."""
+    if len(args) == 2:
+        return pick(*args)
+    items = list(np.asarray(args[0], dtype=object).ravel()) \
+        if len(args) == 1 else []
+    if not items:
+        raise FrontEndError(f"{name}() of {len(args)} arguments or of an "
+                            "empty array; allowed: two scalars or one "
+                            "array")
+    found = casadi.SX(items[0])
+    for item in items[1:]:
+        found = pick(found, item)
+    return found
 
 
 def _integer(value):
@@ -276,6 +342,10 @@ class _Expressions:
         self.previous = {}
         self.initial = None   # symbol of initial(), with ``hybrid``
         self._conditions = storage.get("conditions") or []
+        self._domains = storage.get("domains") or []
+        #: (domain, ordinal) -> value of the iterator of a reduction or
+        #: array comprehension being converted
+        self._binders = {}
         # nodes with a variable number of operands take them, in node
         # order, from the flat operand list
         self._offsets = {}
@@ -333,6 +403,10 @@ class _Expressions:
     def _relation(self, index, body):
         """The symbol of an event-generating relation, recorded once."""
         position = self.relation_of[index]
+        if self._binders:
+            raise FrontEndError(f"{self.where}: a relation that generates "
+                                "events inside a for-expression is not "
+                                "supported; allowed: noEvent(...) around it")
         if position not in self.relations:
             op = body["operator"]
             if op not in _RELATIONS:
@@ -384,6 +458,8 @@ class _Expressions:
                 return self.initial
             if role.startswith("function_"):
                 return self._function_variable(role, position)
+            if role == "binder":
+                return self._binder(position)
             if role not in _ROLES:
                 raise FrontEndError(f"{self.where}: {role.replace('_', ' ')} "
                                     "references (pre, edge, change) are not "
@@ -455,8 +531,57 @@ class _Expressions:
             return _conditional(args)
         if kind == "call":
             return self._call(index, body)
+        if kind == "comprehension":
+            return self._comprehension(body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
+
+    def _binder(self, reference):
+        key = (reference["domain"], reference["ordinal"])
+        if key not in self._binders:
+            raise FrontEndError(f"{self.where}: the iterator of a for-"
+                                "expression is used outside it")
+        return casadi.SX(float(self._binders[key]))
+
+    def _comprehension(self, body):
+        """``{expr for k in a:b}`` (and the operand of ``sum(expr for k in
+        a:b)``, ``product``, ``min``, ``max``): the vector of ``expr`` at
+        each value of the iterator, its range constant (rumoca evaluates
+        it). The body is converted once per value, in a cache of its
+        own, as an inlined function's is."""
+        domain = self._domains[body["domain"]]["domain"]
+        binders = domain.get("binders") or []
+        ranges = []
+        for binder in binders:
+            lower, upper, step = (binder.get(k) for k in
+                                  ("lower", "upper", "step"))
+            if not all(isinstance(v, (int, float)) and v == int(v)
+                       for v in (lower, upper, step)) or not step:
+                raise FrontEndError(
+                    f"{self.where}: the range of {binder.get('display_name')}"
+                    f" ({binder}) is not supported; allowed: a range a:b or "
+                    "a:step:b of integers known when the model is read")
+            ranges.append(range(int(lower), int(upper) + (1 if step > 0
+                                                          else -1),
+                                int(step)))
+        if len(binders) != 1:
+            raise FrontEndError(f"{self.where}: a for-expression with "
+                                f"{len(binders)} iterators is not supported;"
+                                " allowed: one iterator (sum(a[k] for k in "
+                                "1:n))")
+        items = []
+        saved, self._cache = self._cache, {}
+        try:
+            for value in ranges[0]:
+                self._binders[(body["domain"], 0)] = value
+                self._cache = {}
+                items.append(self(body["body"]))
+        finally:
+            self._binders.pop((body["domain"], 0), None)
+            self._cache = saved
+        if any(isinstance(i, np.ndarray) for i in items):
+            return np.stack([np.asarray(i, dtype=object) for i in items])
+        return np.array(items, dtype=object)
 
     def _function_variable(self, role, reference):
         """A parameter, output or local of the function being inlined."""
@@ -684,11 +809,23 @@ def _check_supported(storage, model_name, where, hybrid=False):
         items = storage.get(key) or []
         if hybrid and key == "discrete_value_owners":
             continue
+        if key == "domains":   # those of for-expressions are compiled
+            items = [d for k, d in enumerate(items)
+                     if k not in _comprehension_domains(storage)]
         if items:
             place = where(items[0]) if isinstance(items[0], dict) else \
                 model_name
             raise FrontEndError(f"{place}: {construct} are not supported "
                                 f"by the FMU back end (model {model_name})")
+
+
+def _comprehension_domains(storage):
+    """The domains (iterator ranges) of for-expressions, ``sum(a[k] for k
+    in 2:n)`` and ``{k*a[k] for k in 1:n}``, as rumoca writes them in
+    bindings and function bodies (it unrolls those of equations)."""
+    return {next(iter(node.values()))["domain"]
+            for node in storage["expressions"]["nodes"]
+            if "comprehension" in node}
 
 
 def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
@@ -796,6 +933,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
             sections["initialization_equation_operations"].append(
                 v.symbol - v.start)
             places["initialization_equation_operations"].append(v.where)
+    assertions = _assertions(storage, convert, where)
     whens = _whens(storage, convert, where, variables)
     discretes, discrete_relations = _discretes(
         storage, convert, where, variables) if hybrid else ([], [])
@@ -807,7 +945,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         initial_places=places["initialization_equation_operations"],
         relations=[convert.relations[k] for k in sorted(convert.relations)],
         whens=whens, discretes=discretes, initial=convert.initial,
-        discrete_relations=discrete_relations,
+        discrete_relations=discrete_relations, assertions=assertions,
         time=time, experiment=_experiment(path, model_name))
 
 
@@ -983,6 +1121,60 @@ def _when_relation(storage, convert, trigger, place):
     return position
 
 
+#: rumoca's event actions of ``assert``: ``assert`` (level error, its
+#: guard the condition's negation) and ``warning`` (its condition in
+#: ``noEvent``, guard and trigger always).
+_ASSERT_KINDS = ("assert", "warning")
+
+
+def _assertions(storage, convert, where):
+    """The ``assert(...)`` of the equations (:class:`Assertion`)."""
+    conditions = storage.get("conditions") or []
+    found = []
+    for action in storage.get("event_actions") or []:
+        kind, body = next(iter(action["kind"].items()))
+        if kind not in _ASSERT_KINDS:
+            continue
+        convert.where = where(action)
+        always = [k for k, c in enumerate(conditions)
+                  if c.get("node") == "always"]
+        if action["trigger"] not in always or (
+                kind == "warning" and action["guard"] not in always):
+            raise FrontEndError(f"{convert.where}: assert in a when-clause "
+                                "is not supported by the FMU back end; "
+                                "allowed: assert(...) in equations")
+        if kind == "assert":
+            violated = _condition(storage, convert, action["guard"],
+                                  convert.where)
+        else:
+            violated = casadi.logic_not(convert(body["condition"]))
+        violated = _with_values(violated, {
+            r.symbol.name(): r.value for r in convert.relations.values()})
+        message, values = _message(storage, convert, body["message"])
+        found.append(Assertion(violated=violated, message=message,
+                               values=values, error=kind == "assert",
+                               where=convert.where))
+    return found
+
+
+def _message(storage, convert, index):
+    """An assert's message as ``(text with %g for each String(v),
+    [v, ...])``: string literals, ``+`` and ``String(v)``."""
+    kind, body = next(iter(storage["expressions"]["nodes"][index].items()))
+    if kind == "literal" and "string" in body:
+        return body["string"].replace("%", "%%"), []
+    if kind == "binary" and body["operator"] == "add":
+        left, first = _message(storage, convert, body["lhs"])
+        right, second = _message(storage, convert, body["rhs"])
+        return left + right, first + second
+    if kind == "string_conversion":
+        value = convert(body["value"])
+        if isinstance(value, np.ndarray):
+            return "{...}", []
+        return "%g", [value]
+    return "(message)", []
+
+
 def _whens(storage, convert, where, variables):
     """``when`` clauses with ``reinit`` (rumoca's event actions).
 
@@ -994,6 +1186,8 @@ def _whens(storage, convert, where, variables):
     for action in storage.get("event_actions") or []:
         convert.where = where(action)
         kind, body = next(iter(action["kind"].items()))
+        if kind in _ASSERT_KINDS:
+            continue   # _assertions
         if kind != "reinitialize":
             raise FrontEndError(f"{convert.where}: {kind} in a when-clause "
                                 "is not supported by the FMU back end")
@@ -1074,6 +1268,8 @@ def _element(value, position, where):
     if value.ndim == 0:
         return value[()]
     try:
+        if value.ndim != len(position):
+            raise IndexError
         return value[position]
     except IndexError:
         raise FrontEndError(f"{where}: the array value has shape "

@@ -24,8 +24,9 @@ static void fmi2_log(Instance *core, int error, const char *text) {
     Fmi2 *c = (Fmi2 *)core;
     if (!c->callbacks.logger) return;
     c->callbacks.logger(c->callbacks.componentEnvironment, core->name,
-                        error ? fmi2Error : fmi2OK,
-                        error ? "logStatusError" : "logAll", "%s", text);
+                        error == 1 ? fmi2Error : error ? fmi2Warning : fmi2OK,
+                        error == 1 ? "logStatusError" : error ?
+                        "logStatusWarning" : "logAll", "%s", text);
 }
 
 const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
@@ -158,10 +159,10 @@ fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) { (void)c; return fmi2OK
 fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet,
                                        fmi2Boolean *enterEventMode,
                                        fmi2Boolean *terminate) {
-    (void)c; (void)noSet;
+    (void)noSet;
     *enterEventMode = fmi2False;
     *terminate = fmi2False;
-    return fmi2OK;
+    return STATUS(instance_check(CORE(c)));   /* the model's asserts */
 }
 
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time) {

@@ -20,8 +20,10 @@ typedef struct {
 static void fmi3_log(Instance *core, int error, const char *text) {
     Fmi3 *c = (Fmi3 *)core;
     if (!c->log) return;
-    c->log(c->environment, error ? fmi3Error : fmi3OK,
-           error ? "logStatusError" : "logAll", text);
+    c->log(c->environment,
+           error == 1 ? fmi3Error : error ? fmi3Warning : fmi3OK,
+           error == 1 ? "logStatusError" : error ? "logStatusWarning" :
+           "logAll", text);
 }
 
 const char *fmi3GetVersion(void) { return fmi3Version; }
@@ -252,9 +254,9 @@ fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) { (void)c; return fmi3OK;
 
 fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet,
         fmi3Boolean *enterEventMode, fmi3Boolean *terminate) {
-    (void)c; (void)noSet;
+    (void)noSet;
     *enterEventMode = fmi3False; *terminate = fmi3False;
-    return fmi3OK;
+    return STATUS(instance_check(CORE(c)));   /* the model's asserts */
 }
 
 fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time) {

@@ -169,12 +169,23 @@ static void log_chattering(Instance *c) {
                  MODEL_ZENO_SPAN * (fabs(c->model.time) + 1.0));
 }
 
+int instance_check(Instance *c) {
+    char text[400];
+    int error = 0;
+    while (model_assertion(&c->model, text, sizeof(text), &error)) {
+        instance_log(c, error ? 1 : 2, "assert %s at t = %.9g: %s",
+                     error ? "failed" : "warning", c->model.time, text);
+        if (error) return 1;
+    }
+    return 0;
+}
+
 void instance_initialize(Instance *c) {
     model_initialize(&c->model);
 }
 
 int instance_start(Instance *c) {
-    if (model_start(&c->model) == 0) return 0;
+    if (model_start(&c->model) == 0) return instance_check(c);
     log_iterations(c);
     return 1;
 }
@@ -186,7 +197,8 @@ int instance_event(Instance *c, int *again, int *states_changed) {
         log_chattering(c);
         return 1;
     }
-    if (c->model.iterations < MODEL_MAX_EVENT_ITERATIONS) return 0;
+    if (c->model.iterations < MODEL_MAX_EVENT_ITERATIONS)
+        return *again ? 0 : instance_check(c);
     log_iterations(c);
     return 1;
 }
@@ -234,7 +246,9 @@ int instance_do_step(Instance *c, double t, double h) {
     c->model.time = t;
     switch (model_integrate(&c->model, t + h)) {
     case 0:
-        return 0;
+        return instance_check(c);   /* warnings at communication points */
+    case 5:
+        return instance_check(c);   /* the failed assert, with its time */
     case 2:
         instance_log(c, 1, "the derivatives are not finite in the step from "
                      "t = %g (check the parameters)", c->model.time);

@@ -12,7 +12,8 @@
 #include "model.h"
 
 typedef struct Instance Instance;
-/* The adapter's logger: error = 0 for information, 1 for an error. */
+/* The adapter's logger: error = 0 for information, 1 for an error, 2
+ * for a warning (an assert of level warning). */
 typedef void (*InstanceLogger)(Instance *c, int error, const char *text);
 
 struct Instance {
@@ -62,6 +63,10 @@ int instance_start(Instance *c);
 /* Event iteration (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates);
  * 1 (logged) if it has not converged within MODEL_MAX_EVENT_ITERATIONS */
 int instance_event(Instance *c, int *again, int *states_changed);
+/* The model's assert(...) at the present time and states: each warning
+ * violated logged (once until it holds again); 1 (logged, with the time)
+ * if an assert of level error is violated */
+int instance_check(Instance *c);
 /* Model Exchange */
 int instance_set_states(Instance *c, const double x[], size_t nx);
 int instance_get_states(Instance *c, double x[], size_t nx);

@@ -14,6 +14,9 @@ static const double parameter_min[MODEL_NPAR + 1] = MODEL_PARAMETER_MIN;
 static const double parameter_max[MODEL_NPAR + 1] = MODEL_PARAMETER_MAX;
 static const int when_relation[MODEL_NW + 1] = MODEL_WHEN_RELATION;
 static const int discrete_boolean[MODEL_ND + 1] = MODEL_DISCRETE_BOOLEAN;
+static const int assert_error[MODEL_NA + 1] = MODEL_ASSERT_ERROR;
+static const char *const assert_messages[MODEL_NA + 1] =
+    MODEL_ASSERT_MESSAGES;
 
 typedef int (*WorkSizes)(casadi_int *, casadi_int *, casadi_int *, casadi_int *);
 
@@ -22,7 +25,8 @@ int model_init(Model *m) {
     static const WorkSizes functions[] = {
         MODEL_ODE_WORK, MODEL_OUTPUTS_WORK, MODEL_START_WORK,
         MODEL_CALCULATED_WORK, MODEL_INDICATORS_WORK, MODEL_RELATIONS_WORK,
-        MODEL_REINIT_WORK, MODEL_DISCRETES_WORK, MODEL_JACOBIAN_WORK};
+        MODEL_REINIT_WORK, MODEL_DISCRETES_WORK, MODEL_JACOBIAN_WORK,
+        MODEL_ASSERTS_WORK};
     casadi_int sz_arg = 0, sz_res = 0, sz_iw = 0, sz_w = 0, a, r, i, w;
     size_t k;
     memset(m, 0, sizeof(*m));
@@ -224,6 +228,65 @@ int model_event(Model *m, int *again) {
     if (!*again) m->iterations = 0;
     else if (++m->iterations >= MODEL_MAX_EVENT_ITERATIONS) *again = 0;
     return any;
+}
+
+/* a[k] 1 if assert k is violated, then the values of the messages */
+static double *asserts_at(Model *m, double *a) {
+    m->arg[0] = &m->time; m->arg[1] = m->x; m->arg[2] = m->p;
+    m->res[0] = a;
+    MODEL_ASSERTS(m->arg, m->res, m->iw, m->w, 0);
+    return a;
+}
+
+int model_assert_failed(Model *m) {
+    double a[MODEL_ASSERT_SIZE + 1];
+    int k;
+    if (MODEL_NA == 0) return 0;
+    asserts_at(m, a);
+    for (k = 0; k < MODEL_NA; k++)
+        if (assert_error[k] && a[k] > 0.5) return 1;
+    return 0;
+}
+
+int model_assertion(Model *m, char *text, size_t size, int *error) {
+    double a[MODEL_ASSERT_SIZE + 1];
+    const double *value = a + MODEL_NA;
+    int k, found = -1;
+    if (MODEL_NA == 0 || size == 0) return 0;
+    asserts_at(m, a);
+    for (k = 0; k < MODEL_NA; k++) {
+        const char *c;
+        size_t used = 0;
+        if (a[k] <= 0.5) { m->warned[k] = 0; }
+        else if (found < 0 && (assert_error[k] || !m->warned[k])) {
+            found = k;
+            /* the message, %g replaced by its values in turn */
+            for (c = assert_messages[k]; *c && used + 1 < size; c++) {
+                if (c[0] == '%' && c[1] == 'g') {
+                    used += (size_t)snprintf(text + used, size - used, "%g",
+                                             *value++);
+                    if (used >= size) used = size - 1;
+                    c++;
+                } else if (c[0] == '%' && c[1] == '%') {
+                    text[used++] = '%';
+                    c++;
+                } else {
+                    text[used++] = *c;
+                }
+            }
+            text[used] = 0;
+            *error = assert_error[k];
+            if (!assert_error[k]) m->warned[k] = 1;
+            continue;
+        }
+        /* past the values of a message not written */
+        for (c = assert_messages[k]; *c; c++) {
+            if (c[0] != '%' || !c[1]) continue;
+            if (c[1] == 'g') value++;
+            c++;
+        }
+    }
+    return found >= 0;
 }
 
 int model_chattering(const Model *m) {
@@ -481,6 +544,7 @@ int model_integrate(Model *m, double t_end) {
             }
             if (m->iterations >= MODEL_MAX_EVENT_ITERATIONS) return 3;
             if (model_chattering(m)) return 4;
+            if (model_assert_failed(m)) return 5;
             derivatives(m, t, m->x, k1);
             m->steps++;
             m->events++;
@@ -491,6 +555,11 @@ int model_integrate(Model *m, double t_end) {
             memcpy(m->x, xn, sizeof(double) * n);
             memcpy(k1, k7, sizeof(double) * n);
             m->steps++;
+            if (MODEL_NA) {
+                m->time = t;
+                m->stale = 1;
+                if (model_assert_failed(m)) return 5;
+            }
         } else {
             m->rejected++;
         }

@@ -62,6 +62,7 @@ typedef struct {
     long steps, rejected, events; /* co-simulation statistics */
     double burst_start;        /* time of the first event of a burst */
     long burst_events;         /* events since (see MODEL_ZENO_EVENTS) */
+    int warned[MODEL_NA + 1];  /* a warning assert said, not yet holding */
     /* CasADi work arrays */
     const double **arg;
     double **res;
@@ -100,6 +101,13 @@ int model_event(Model *m, int *again);
 /* 1 if more than MODEL_ZENO_EVENTS instants with an event came within
  * MODEL_ZENO_SPAN * (|t| + 1) s of one another (counted by model_event) */
 int model_chattering(const Model *m);
+/* The model's assert(...) at the present t, x: 0 if none is violated
+ * that is still to be said, else 1 with "FILE:LINE: message" in text
+ * and *error 1 for an error, 0 for a warning (said once: not again
+ * until its condition has held) */
+int model_assertion(Model *m, char *text, size_t size, int *error);
+/* 1 if an assert of level error is violated at the present t, x */
+int model_assert_failed(Model *m);
 /* Relation values at the present t, x, without firing (initialisation) */
 void model_hold_relations(Model *m);
 const char *model_state_name(int i);   /* Modelica name of state i */
@@ -120,7 +128,8 @@ int model_deserialize(Model *m, const char *bytes, size_t size); /* 0: ok */
 /* Advance from m->time to t_end with Dormand-Prince 5(4) under
  * relative_tolerance; returns 0 on success, 1 if the step size became
  * too small, 2 if the derivatives are not finite, 3 if an event
- * iteration did not converge. Relations that change
+ * iteration did not converge, 4 if the model chatters, 5 if an assert
+ * of level error failed after a step or an event (m->time is there). Relations that change
  * inside a step are located (bisection on the step size) and handled
  * as events there. */
 int model_integrate(Model *m, double t_end);

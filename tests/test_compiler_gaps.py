@@ -1,0 +1,352 @@
+"""Issue 43: constructs of ordinary Modelica models (and of the MSL) the
+compiler refused or crashed on, each now compiled and checked against
+the closed form of a small model: units outside a short list, one-row
+matrix literals, min/max/sum/product of arrays, assert in equations, and
+reductions ``sum(expr for k in 2:n)``.
+
+Every model here is written by the test into its own folder (rumoca
+reads every file of a library folder).
+"""
+
+import os
+from pathlib import Path
+import subprocess
+import sys
+import zipfile
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+pytest.importorskip("rumoca")
+fmpy = pytest.importorskip("fmpy")
+
+from fmu.build import build_fmu  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True)
+def _no_cache(monkeypatch):
+    monkeypatch.setenv("JUDDER_FMU_CACHE", "off")
+
+
+def _model(tmp_path, name, text):
+    folder = tmp_path / name
+    folder.mkdir()
+    path = folder / f"{name}.mo"
+    path.write_text(text)
+    return path
+
+
+def _cli(*args):
+    """``python -m fmu ...``: (exit status, stdout, stderr lines)."""
+    env = {**os.environ, "JUDDER_FMU_CACHE": "off"}
+    done = subprocess.run([sys.executable, "-m", "fmu", *args],
+                          capture_output=True, text=True, cwd=ROOT, env=env,
+                          timeout=300)
+    return done.returncode, done.stdout, [
+        line for line in done.stderr.splitlines() if line.strip()]
+
+
+def _simulate(fmu, stop, names, fmi_type="ModelExchange"):
+    return fmpy.simulate_fmu(str(fmu), stop_time=stop, output=names,
+                             relative_tolerance=1e-10, fmi_type=fmi_type)
+
+
+# -- 1. units: any unit string of the Modelica grammar -------------------
+
+_UNITS_MODEL = """model Units
+  parameter Real U(unit="V") = 2 "a voltage";
+  parameter Real R(unit="kOhm") = 4 "a time constant, in kOhm";
+  parameter Real T0(unit="degC") = 20 "start temperature";
+  parameter Real J(unit="kg.m2") = 3;
+  parameter Real v(unit="mm/min") = 5;
+  parameter Real n(unit="bogo") = 7 "a unit no one defines";
+  Real T(unit="degC", start=T0, fixed=true);
+equation
+  der(T) = -(T - U)/R;
+end Units;
+"""
+
+# (unit as written, BaseUnit exponents, factor, offset): the SI
+# definitions (BIPM SI brochure, Table 4; degC: T/K = t/degC + 273.15;
+# the derivative of a Celsius temperature is a difference, no offset)
+_UNIT_DEFINITIONS = [
+    ("V", {"kg": 1, "m": 2, "s": -3, "A": -1}, 1.0, 0.0),
+    ("kOhm", {"kg": 1, "m": 2, "s": -3, "A": -2}, 1e3, 0.0),
+    ("degC", {"K": 1}, 1.0, 273.15),
+    ("degC/s", {"K": 1, "s": -1}, 1.0, 0.0),
+    ("kg.m2", {"kg": 1, "m": 2}, 1.0, 0.0),
+    ("mm/min", {"m": 1, "s": -1}, 1e-3 / 60.0, 0.0),
+]
+
+
+def test_units_outside_the_table_are_defined_and_the_fmu_runs(tmp_path):
+    # was: "fmu: internal error: ValueError: unit 'V': unknown factor 'V'"
+    path = _model(tmp_path, "Units", _UNITS_MODEL)
+    status, out, err = _cli("Units", "--library", str(path.parent),
+                            "--fmi", "2.0", "--out", str(tmp_path))
+    assert status == 0, err
+    # an unknown unit is kept as written, with one warning naming it
+    warnings = [line for line in err if line.startswith("fmu: warning: ")]
+    assert len(warnings) == 1 and "'bogo'" in warnings[0], err
+    fmu = tmp_path / "Units.fmu"
+    md = fmpy.read_model_description(str(fmu))   # validates the units
+    units = {u.name: u for u in md.unitDefinitions}
+    for name, exponents, factor, offset in _UNIT_DEFINITIONS:
+        base = units[name].baseUnit
+        got = {k: getattr(base, k) for k in
+               ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
+               if getattr(base, k)}
+        assert got == exponents, name
+        assert base.factor == pytest.approx(factor, rel=1e-15), name
+        assert base.offset == pytest.approx(offset, abs=1e-12), name
+    assert units["bogo"].baseUnit is None
+    declared = {v.name: v.unit for v in md.modelVariables}
+    assert declared["U"] == "V" and declared["T"] == "degC"
+    assert declared["n"] == "bogo"
+    # dT/dt = -(T - U)/R: T = U + (T0 - U) exp(-t/R)
+    result = _simulate(fmu, 2.0, ["T"])
+    t = result["time"]
+    assert_allclose(result["T"], 2 + 18 * np.exp(-t / 4), rtol=1e-7)
+
+
+def _msl():
+    for folder in [os.environ.get("MODELICAPATH", ""), "/work/shared/msl"]:
+        for root in filter(None, folder.split(os.pathsep)):
+            if (Path(root) / "Modelica").is_dir():
+                return Path(root)
+    return None
+
+
+@pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
+                    "is not installed")
+def test_every_unit_string_of_the_msl_is_read():
+    # MSL 4.x writes its units in the grammar of the Modelica
+    # specification (section 19.1): each has SI base units and a factor
+    import re
+    from fmu.units import UnknownUnit, base_unit
+    found = set()
+    for source in (_msl() / "Modelica").rglob("*.mo"):
+        found |= set(re.findall(r'\bunit\s*=\s*"([^"]*)"',
+                                source.read_text(errors="replace")))
+    assert len(found) > 200
+    unread = set()
+    for unit in sorted(found - {""}):
+        try:
+            base_unit(unit)
+        except UnknownUnit:
+            unread.add(unit)
+    # the logarithmic and psychoacoustic units have no SI factor: they
+    # are kept as written (a Unit without BaseUnit)
+    assert unread == {"dB", "phon", "sone"}
+    # closed forms of a few (SI brochure; 1 degF = 5/9 K, 0 degF =
+    # 459.67*5/9 K; 1 rpm = 2 pi/60 rad/s)
+    assert base_unit("degF").factor == pytest.approx(5 / 9, rel=1e-15)
+    assert base_unit("degF").offset == pytest.approx(459.67 * 5 / 9,
+                                                     rel=1e-14)
+    assert base_unit("rev/min").factor == pytest.approx(2 * np.pi / 60,
+                                                        rel=1e-15)
+    assert base_unit("W/(m2.K)").exponents == {"kg": 1, "s": -3, "K": -1}
+
+
+# -- 2. matrix literals: [a, b] is a 1 x 2 matrix -------------------------
+
+_MATRIX_MODEL = """model Matrices
+  parameter Real t[1, 2] = [0, 0.5] "one row, as MSL's mu_pos";
+  parameter Real u[:, 2] = [0, 0.25] "one row, size from the value";
+  parameter Real q[2, 2] = [0, 0.5; 1, 0.7];
+  parameter Real w[2, 1] = [1; 2] "one column";
+  parameter Real z[2, 2] = [{1, 2}, {3, 4}] "vectors are columns";
+  Real x(start=1, fixed=true);
+equation
+  der(x) = -(t[1, 2] + u[1, 2] + q[2, 1] + w[2, 1]/10 + z[1, 2]/10)*x;
+end Matrices;
+"""
+
+# Modelica specification 10.6.1-10.6.2: [a, b; c, d] concatenates rows
+# (cat(1, ...)) of columns (cat(2, ...)), each operand promoted to a
+# matrix, a vector to a column: [{1, 2}, {3, 4}] = [1, 3; 2, 4]
+_MATRIX_ELEMENTS = {"t[1,1]": 0, "t[1,2]": 0.5, "u[1,1]": 0, "u[1,2]": 0.25,
+                    "q[1,1]": 0, "q[1,2]": 0.5, "q[2,1]": 1, "q[2,2]": 0.7,
+                    "w[1,1]": 1, "w[2,1]": 2, "z[1,1]": 1, "z[1,2]": 3,
+                    "z[2,1]": 2, "z[2,2]": 4}
+
+
+def test_one_row_and_other_matrix_literals_build(tmp_path):
+    # was: "the array value has shape (2,), not that of the declaration"
+    path = _model(tmp_path, "Matrices", _MATRIX_MODEL)
+    fmu = build_fmu(path, "Matrices", tmp_path / "Matrices.fmu").path
+    md = fmpy.read_model_description(str(fmu))
+    starts = {v.name: float(v.start) for v in md.modelVariables
+              if v.name in _MATRIX_ELEMENTS}
+    assert starts == _MATRIX_ELEMENTS
+    # k = 0.5 + 0.25 + 1 + 0.2 + 0.3 = 2.25: x = exp(-2.25 t)
+    result = _simulate(fmu, 1.0, ["x"])
+    assert_allclose(result["x"], np.exp(-2.25 * result["time"]), rtol=1e-7)
+
+
+
+# -- 3. min, max, sum, product of arrays ---------------------------------
+
+_REDUCTIONS_MODEL = """model Reductions
+  parameter Real a = 1;
+  parameter Real c[3] = {1, 2, 3};
+  parameter Real m[2, 2] = [1, 5; -2, 4];
+  Real x(start=1, fixed=true);
+  Real y(start=0, fixed=true);
+  Real z(start=0, fixed=true);
+  Real w(start=0, fixed=true);
+equation
+  der(x) = -(max({a, 2}) + min(c) + sum(c)/6 + product(c)/6 + max(m)/5
+             + min(m)/2 - 3)*x;
+  der(y) = min({x, 10});
+  der(z) = product({x, x});
+  der(w) = sum({x, 1}) + max(x, 0) - min(x, 0) - x;
+end Reductions;
+"""
+
+
+def test_min_max_sum_product_of_arrays(tmp_path):
+    # was: "internal error: NotImplementedError: ... 'fmax' ...
+    # (np.array(SX))"
+    path = _model(tmp_path, "Reductions", _REDUCTIONS_MODEL)
+    fmu = build_fmu(path, "Reductions", tmp_path / "Reductions.fmu").path
+    result = _simulate(fmu, 1.0, ["x", "y", "z", "w"])
+    t = result["time"]
+    # k = 2 + 1 + 1 + 1 + 1 - 1 - 3 = 2: x = exp(-2t) (below 10)
+    x = np.exp(-2 * t)
+    assert_allclose(result["x"], x, rtol=1e-7)
+    # the integrals start at 0: CVode at 1e-10 leaves about 2e-9 on them
+    assert_allclose(result["y"], (1 - x) / 2, rtol=1e-7, atol=1e-8)
+    assert_allclose(result["z"], (1 - x ** 2) / 4, rtol=1e-7, atol=1e-8)
+    # der(w) = (x + 1) + x - 0 - x = x + 1
+    assert_allclose(result["w"], (1 - x) / 2 + t, rtol=1e-7, atol=1e-8)
+
+
+# -- 5. reductions sum(expr for k in a:b) in bindings and functions -------
+
+_FOR_MODEL = """model ForExpressions
+  function tailSum "sum of the elements after the first"
+    input Real v[:];
+    output Real y;
+  algorithm
+    y := sum(v[k] for k in 2:size(v, 1));
+  end tailSum;
+  parameter Integer n = 3;
+  parameter Real c[n] = {1, 2, 3};
+  parameter Real s = sum(c[k] for k in 2:n);
+  parameter Real p = product(c[k] + 1 for k in 1:n);
+  parameter Real m = max(c[k] for k in 1:n);
+  parameter Real e = sum(c[k] for k in n:-2:1) "every other, from the end";
+  parameter Real d[n] = {k*c[k] for k in 1:n};
+  parameter Real t = tailSum(c);
+  output Real ys = s;
+  output Real yp = p;
+  output Real ym = m;
+  output Real ye = e;
+  output Real yd = d[3];
+  output Real yt = t;
+  Real x(start=1, fixed=true);
+  Real y(start=0, fixed=true);
+equation
+  der(x) = -s/5*x;
+  der(y) = sum(c[k]*x for k in 1:n);
+end ForExpressions;
+"""
+
+
+def test_for_expressions_in_bindings_and_functions(tmp_path):
+    # was: "for-equations and array equations are not supported"
+    path = _model(tmp_path, "ForExpressions", _FOR_MODEL)
+    fmu = build_fmu(path, "ForExpressions",
+                    tmp_path / "ForExpressions.fmu").path
+    result = _simulate(fmu, 1.0, ["x", "y", "ys", "yp", "ym", "ye", "yd",
+                                  "yt"])
+    # c = {1, 2, 3}: s = 2 + 3, p = 2*3*4, m = 3, e = c[3] + c[1],
+    # d[3] = 3*3, tailSum(c) = 2 + 3
+    for name, value in [("ys", 5), ("yp", 24), ("ym", 3), ("ye", 4),
+                        ("yd", 9), ("yt", 5)]:
+        assert_allclose(result[name], value, rtol=1e-15, err_msg=name)
+    # der(x) = -x: x = exp(-t); der(y) = 6 x: y = 6 (1 - exp(-t))
+    x = np.exp(-result["time"])
+    assert_allclose(result["x"], x, rtol=1e-7)
+    assert_allclose(result["y"], 6 * (1 - x), rtol=1e-7, atol=1e-8)
+
+
+# -- 4. assert(...) in equations: an error status with its message -------
+
+_ASSERT_MODEL = """model Asserts
+  parameter Real limit = 1.5;
+  Real x(start=1, fixed=true);
+  Real y(start=1, fixed=true);
+equation
+  der(x) = 1;
+  der(y) = -y;
+  assert(y > 0, "y must stay positive");
+  assert(x < 1.2, "x above 1.2", AssertionLevel.warning);
+  assert(x < limit, "x = " + String(x) + " is too large");
+end Asserts;
+"""
+
+
+def _run_logged(fmu, fmi_type, stop, **kw):
+    """fmpy's run: (the exception, if any; the (status, category, text)
+    logged)."""
+    said = []
+
+    def logger(*args):
+        status, category, text = args[-3:]   # FMI 2 has the name before
+        said.append((status, category.decode(), text.decode()))
+    try:
+        fmpy.simulate_fmu(str(fmu), stop_time=stop, fmi_type=fmi_type,
+                          output=["x"], logger=logger, **kw)
+    except Exception as exc:   # fmpy's FMICallException
+        return exc, said
+    return None, said
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_a_failing_assert_stops_the_run_with_its_message(tmp_path, version,
+                                                         fmi_type):
+    # was: "assert in a when-clause is not supported" (there is no
+    # when-clause)
+    path = _model(tmp_path, "Asserts", _ASSERT_MODEL)
+    fmu = build_fmu(path, "Asserts", tmp_path / "Asserts.fmu",
+                    version=version).path
+    error, said = _run_logged(fmu, fmi_type, 1.0)
+    assert error is not None and "status 3" in str(error)   # fmiError
+    errors = [text for status, category, text in said if status == 3]
+    warnings = [text for status, category, text in said if status == 1]
+    # x = 1 + t reaches the limit 1.5 at t = 0.5 (located as an event in
+    # Model Exchange, by the step's own event location in Co-Simulation)
+    assert len(errors) == 1, said
+    import re
+    found = re.fullmatch(r"assert failed at t = (\S+): Asserts\.mo:10: "
+                         r"x = (\S+) is too large", errors[0])
+    assert found, errors
+    assert float(found.group(1)) == pytest.approx(0.5, abs=1e-9)
+    assert float(found.group(2)) == pytest.approx(1.5, abs=1e-9)
+    # the warning (x above 1.2 from t = 0.2) is said once and the run goes
+    # on: at a completed integrator step, an event or a communication
+    # point after t = 0.2
+    assert len(warnings) == 1, said
+    found = re.fullmatch(r"assert warning at t = (\S+): Asserts\.mo:9: "
+                         r"x above 1\.2", warnings[0])
+    assert found, warnings
+    assert 0.2 <= float(found.group(1)) <= 0.5
+
+
+def test_asserts_that_hold_leave_the_run_as_it_was(tmp_path):
+    path = _model(tmp_path, "Asserts", _ASSERT_MODEL.replace(
+        "parameter Real limit = 1.5", "parameter Real limit = 10").replace(
+        "x < 1.2", "x < 5"))
+    fmu = build_fmu(path, "Asserts", tmp_path / "Asserts.fmu").path
+    error, said = _run_logged(fmu, "ModelExchange", 2.0)
+    assert error is None and not [s for s in said if s[0] != 0], said
+    result = _simulate(fmu, 2.0, ["x", "y"])
+    assert_allclose(result["x"], 1 + result["time"], rtol=1e-9)
+    assert_allclose(result["y"], np.exp(-result["time"]), rtol=1e-7)
