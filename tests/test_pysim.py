@@ -214,9 +214,9 @@ def test_simulate_full_engagement_to_lock_up(tmp_path):
 
 def test_simulate_full_linear_law_names_its_law():
     # --engagement full-linear-law: TestBenchLockUp, the straight line of
-    # Eq. 5 over the whole slip. Inside tongue 2 its dither torque (mu_g
-    # slip N_c R_m S p_f, 16-19 times the curve's at 100 rad/s) makes the
-    # slip swing through zero: every lock-up breaks away (668 in 3.5 s)
+    # Eq. 5 over the whole slip. Inside tongue 2 its dither torque ((mu0 +
+    # mu_g slip) N_c R_m S p_f, 14-17 times the curve's at 85-105 rad/s)
+    # makes the slip swing through zero: every lock-up breaks away
     # and the slipping engagement judders at 1094 rpm; the text and JSON
     # say which law ran
     proc = _judder("simulate", "--engagement", "full-linear-law", "--freq",

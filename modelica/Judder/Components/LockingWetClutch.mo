@@ -22,8 +22,10 @@ switched by events (Interfaces.PartialLockingClutch):</p>
 </pre>
 <p>While slipping, the torque is that of WetClutch away from zero slip
 (there tanh(slip/w_small) is +-1). The straight line holds over the
-whole slip: at a slip of 100 rad/s its dither torque mu_g slip N_c R_m S
-p_f is some 17 times that of the bench's bounded curve
+whole slip: its dither torque (mu0 + mu_g slip) N_c R_m S p_f is 17
+times that of the bench's bounded curve at the operating slip w_op, 14
+times at 105 rad/s and up to 19 times (at 50 rad/s) over the slip an
+engagement sweeps
 (LockingCurveWetClutch, the same modes with the held-slip bench's
 law).</p>
 </html>"));

@@ -14,8 +14,9 @@ clutch transmits the torque the load takes. Inside tongue 2 (the default
 torque needed to stay stuck exceeds mu0 N_c R_m S p, so the clutch
 breaks away in the same event and no lock holds. The mode is
 clutch.lockups - clutch.breakaways (1 stuck, 0 slipping). The
-straight line holds over the whole slip, so at high slip its dither
-torque is 16-19 times that of the held-slip bench's curve;
+straight line holds over the whole slip, so its dither torque is 9-19
+times that of the held-slip bench's curve over the slip the engagement
+sweeps (17 at w_op);
 TestBenchCurveLockUp is the engagement with that curve.</p>
 </html>"));
 end TestBenchLockUp;
