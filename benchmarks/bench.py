@@ -227,7 +227,10 @@ def bench_engagement():
 
 
 #: The bench engagement with the EVEN clutch locking by events, and the
-#: same engagement with the smooth clutch.
+#: same engagement with the smooth clutch: the pair with the straight line
+#: of Eq. 5 (``judder simulate --engagement full-linear-law``), kept for
+#: its timings' history; ``--engagement full`` runs the held-slip bench's
+#: curve (TestBenchCurveLockUp), which has no smooth twin here.
 LOCKING_BENCH_CLASS = "Judder.Examples.TestBenchLockUp"
 SMOOTH_BENCH_CLASS = "Judder.Examples.TestBenchFullEngagement"
 

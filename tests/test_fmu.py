@@ -30,7 +30,7 @@ from fmu.frontend import FrontEndError  # noqa: E402
 LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement",
             "TestBenchFullEngagement", "TestBenchLockUp",
-            "Driveline4DOFInputs"]
+            "TestBenchCurveLockUp", "Driveline4DOFInputs"]
 W_IN = 1000 * 2 * np.pi / 60
 
 
@@ -197,7 +197,8 @@ def _engagement(fmus, name, kind, setting, stop_time):
     """A bench engagement, on the 1 ms grid only (fmpy adds event rows);
     the locking clutch's mode counters with it."""
     options = {"relative_tolerance": 1e-8} if kind == "ModelExchange" else {}
-    extra = ["clutch.lockups", "clutch.breakaways"] if "LockUp" in name else []
+    extra = (["clutch.lockups", "clutch.breakaways", "clutch.p_mean",
+              "clutch.tau0_max"] if "LockUp" in name else ["clutch.p_mean"])
     result = simulate_fmu(str(fmus[(name, "2.0")]), fmi_type=kind,
                           stop_time=stop_time, output_interval=1e-3,
                           start_values=setting, output=BENCH_OUTPUTS + extra,
@@ -257,6 +258,92 @@ def test_locking_clutch_breaks_away_at_once_inside_tongue_2(fmus, kind):
     assert_allclose(lockups, locking["clutch.breakaways"], atol=0)
     assert np.abs(locking["slip"] - smooth["slip"]).max() \
         < 1e-4 * np.abs(smooth["slip"]).max()
+
+
+#: The bench's EVEN clutch (Data.ClutchData, TestBenchEngagement): N_c R_m S
+#: (m^3), and the friction curve's mu0, mu_g (s/rad), delta_mu, w_op (rad/s).
+NRS = 8 * 0.075 * 0.01
+CURVE = {"mu0": 0.09, "mu_g": 0.017, "delta_mu": 0.04,
+         "w_op": 84.71975511965977}
+
+
+def _curve_torque(slip, p, p_mean):
+    """The held-slip bench's friction law in closed form (CurveWetClutch,
+    mean_pressure_damping m = 0): sign(slip) N_c R_m S (mu(|slip|) (p -
+    p_mean) + mu0 p_mean), mu(w) = mu0 + delta_mu tanh(mu_g (w - w_op) /
+    delta_mu); with m = 1, or where p = p_mean, mu(|slip|) N_c R_m S p."""
+    mu = CURVE["mu0"] + CURVE["delta_mu"] * np.tanh(
+        CURVE["mu_g"] * (np.abs(slip) - CURVE["w_op"]) / CURVE["delta_mu"])
+    return np.sign(slip) * NRS * (mu * (p - p_mean) + CURVE["mu0"] * p_mean)
+
+
+@pytest.mark.parametrize("setting", [OUTSIDE_TONGUES, TONGUE_2])
+def test_full_engagement_has_the_held_slip_bench_friction_law(fmus,
+                                                              setting):
+    # issue 41: judder simulate --engagement full (TestBenchCurveLockUp)
+    # and the held-slip bench (TestBenchEngagement) run one friction law.
+    # The engagement sweeps the slip from 103 rad/s to lock-up; at every
+    # slipping sample its torque is the curve's closed form at that slip
+    # and pressure, to 1e-9 of the largest torque (the same expression in
+    # double precision); stuck, it is within the capacity, the law's
+    # torque at zero slip
+    full = _engagement(fmus, "TestBenchCurveLockUp", "CoSimulation",
+                       setting, 4.0)
+    locked = full["clutch.lockups"] - full["clutch.breakaways"]
+    slipping = locked < 0.5
+    law = _curve_torque(full["slip"], full["actuation_pressure"],
+                        full["clutch.p_mean"])
+    scale = np.abs(full["clutch_torque"]).max()
+    assert_allclose(full["clutch_torque"][slipping], law[slipping], rtol=0,
+                    atol=1e-9 * scale)
+    swept = full["slip"][slipping & (full["time"] > 0.15)]
+    assert swept.max() > 100 and np.abs(swept).min() < 1.0
+    mu_stuck = CURVE["mu0"] - CURVE["delta_mu"]      # tanh(36) = 1 - 1e-31
+    capacity = NRS * (mu_stuck * (full["actuation_pressure"]
+                                  - full["clutch.p_mean"])
+                      + CURVE["mu0"] * full["clutch.p_mean"])
+    assert_allclose(full["clutch.tau0_max"], capacity, rtol=1e-12)
+    assert np.all(np.abs(full["clutch_torque"][~slipping])
+                  <= capacity[~slipping] * (1 + 1e-12))
+    assert full["clutch.lockups"][-1] >= 1 and locked[-1] == 1
+    # the held-slip bench at three slips (w_gearbox = w_motor - slip),
+    # the operating slip and both sides of the curve: the same closed
+    # form at every sample, its direction tanh(slip/w_small) = 1
+    for slip in (20.0, CURVE["w_op"], 100.0):
+        held = _engagement(fmus, "TestBenchEngagement", "CoSimulation",
+                           {**setting, "w_gearbox": W_IN - slip}, 1.0)
+        after_ramp = held["slip"][held["time"] > 0.6]
+        assert abs(after_ramp.mean() - slip) < 2 and after_ramp.min() > 1
+        assert_allclose(held["clutch_torque"],
+                        _curve_torque(held["slip"],
+                                      held["actuation_pressure"],
+                                      held["clutch.p_mean"]),
+                        rtol=0, atol=1e-9 * scale)
+
+
+def test_held_slip_bench_and_full_engagement_agree_where_they_meet(fmus):
+    # the held-slip bench given the engagement's start (gearbox side at
+    # rest, 0.05 s ramp, REV torque 0.006/0.00816 of the EVEN mean torque:
+    # S_load = 0.006 m^2) is the full engagement with CurveWetClutch's
+    # smooth direction: until the lock-up the two FMUs give the same
+    # torque at the same slip and pressure (the slips differ by the
+    # integrators' 1e-6 rad/s; the torques by 1e-6 of their 540 N m),
+    # outside the tongues as in test_locking_clutch_engagement_ends_in_lock_up
+    load_share = 0.006 / (8 * 0.01 * 1e6 / (10 * 0.98e6))
+    start = {**OUTSIDE_TONGUES, "w_gearbox": 0.0, "t_ramp": 0.05,
+             "load_share": load_share}
+    held = _engagement(fmus, "TestBenchEngagement", "CoSimulation", start,
+                       3.0)
+    full = _engagement(fmus, "TestBenchCurveLockUp", "CoSimulation",
+                       OUTSIDE_TONGUES, 3.0)
+    assert full["clutch.lockups"][-1] == 0     # still slipping at 3 s
+    slipping = full["slip"] > 0.2
+    assert slipping.sum() > 2800
+    assert np.abs(held["slip"] - full["slip"])[slipping].max() < 1e-5
+    assert_allclose(held["actuation_pressure"], full["actuation_pressure"],
+                    rtol=1e-12)
+    assert np.abs(held["clutch_torque"] - full["clutch_torque"])[
+        slipping].max() < 1e-6 * 540
 
 
 def test_tunable_parameters_have_units_and_descriptions(fmus):

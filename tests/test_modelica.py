@@ -38,12 +38,15 @@ EXAMPLES = ["Driveline4DOF", "Driveline3DOF", "TestBenchEngagement"]
 # keeps the bodies' 8, 6 and 8 states (tests/test_fmu_backend.py).
 STATES = {"Driveline4DOF": 8 + 7 + 3, "Driveline3DOF": 6 + 5 + 3,
           "TestBenchEngagement": 8 + 8 + 3 + 1,
-          "TestBenchLockUp": 8 + 8 + 3 + 1 + 4}
-# TestBenchEngagement with its EVEN clutch redeclared as LockingWetClutch:
-# rumoca also keeps the clutch's relative speed (under der() in the stuck
-# branch) and its three mode states
-MODE_STATES = {"TestBenchLockUp": {"clutch.w_rel", "clutch.lockups",
-                                   "clutch.breakaways", "clutch.sense"}}
+          "TestBenchLockUp": 8 + 8 + 3 + 1 + 4,
+          "TestBenchCurveLockUp": 8 + 8 + 3 + 1 + 4}
+# the bench with its EVEN clutch redeclared as LockingWetClutch (straight
+# line) or LockingCurveWetClutch (the bench's curve): rumoca also keeps
+# the clutch's relative speed (under der() in the stuck branch) and the
+# three mode states of Interfaces.PartialLockingClutch
+MODE_STATES = dict.fromkeys(
+    ["TestBenchLockUp", "TestBenchCurveLockUp"],
+    {"clutch.w_rel", "clutch.lockups", "clutch.breakaways", "clutch.sense"})
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +59,8 @@ def _load(session, name):
                         model=f"Judder.Examples.{name}")
 
 
-@pytest.mark.parametrize("name", EXAMPLES + ["TestBenchLockUp"])
+@pytest.mark.parametrize("name", EXAMPLES + ["TestBenchLockUp",
+                                             "TestBenchCurveLockUp"])
 def test_example_is_valid_and_balanced(session, name):
     path = PACKAGE / "Examples" / f"{name}.mo"
     assert rumoca.validate(str(path), model=f"Judder.Examples.{name}") == []
@@ -275,7 +279,7 @@ def test_every_pressure_clutch_extends_one_partial_and_one_icon():
     # and the input, and only Icons.Clutch draws the plates
     clutches = [p for p in sorted((PACKAGE / "Components").glob("*.mo"))
                 if "Clutch" in p.stem]
-    assert len(clutches) == 6
+    assert len(clutches) == 7
     partial = PACKAGE / "Interfaces" / "PartialPressureClutch.mo"
     icon = PACKAGE / "Icons" / "Clutch.mo"
     for path in clutches:
@@ -289,6 +293,30 @@ def test_every_pressure_clutch_extends_one_partial_and_one_icon():
             path.name
         assert (re.search(r"parameter Real N_c\b", code) is not None) == (
             path in (partial, PACKAGE / "Data" / "ClutchData.mo")), path.name
+
+
+#: each friction law and the locking modes, written once: the partial
+#: that holds the equation, by a fragment of it that no other file has
+WRITTEN_ONCE = {
+    "mu_g*slip*(p - (1 - mean_pressure_damping)*p_mean)": "PartialWetClutch",
+    "delta_mu*tanh(mu_g*(noEvent(abs(slip)) - w_op)/delta_mu)":
+        "PartialCurveWetClutch",
+    "reinit(lockups, pre(lockups) + 1)": "PartialLockingClutch",
+    "reinit(breakaways, pre(breakaways) + 1)": "PartialLockingClutch"}
+
+
+@pytest.mark.parametrize("fragment, owner", WRITTEN_ONCE.items())
+def test_friction_laws_and_locking_modes_are_written_once(fragment, owner):
+    # the locking clutches combine a law and the modes by extending both
+    # partials (as MSL's Clutch extends PartialFriction): no equation of
+    # either is copied into a component
+    holders = [p.stem for p in PACKAGE.rglob("*.mo") if fragment in _code(p)]
+    assert holders == [owner]
+    for locking, law in (("LockingWetClutch", "PartialWetClutch"),
+                         ("LockingCurveWetClutch", "PartialCurveWetClutch")):
+        bases = _bases(PACKAGE / "Components" / f"{locking}.mo")
+        assert PACKAGE / "Interfaces" / f"{law}.mo" in bases, locking
+        assert PACKAGE / "Interfaces" / "PartialLockingClutch.mo" in bases
 
 
 def _declarations(path, types):

@@ -169,18 +169,25 @@ def test_simulate_cli_json_and_outputs(tmp_path):
 
 
 def test_simulate_full_engagement_to_lock_up(tmp_path):
-    # TestBenchLockUp (test_fmu.py checks the class): outside the tongues
-    # (60 Hz) the gearbox side comes up from rest and the clutch locks up
-    # at 3.23 s, as the library documents, and stays locked; inside tongue
-    # 2 (102.9 Hz, 0.3 bar) the slip swings through zero, every lock-up
-    # breaks away, and the slipping engagement has forced judder
+    # --engagement full: TestBenchCurveLockUp (test_fmu.py checks its
+    # friction law is the held-slip bench's): outside the tongues (60 Hz)
+    # the gearbox side comes up from rest and the clutch locks up at 3.21
+    # s and stays locked; inside tongue 2 (102.9 Hz, 0.3 bar) the dither
+    # drives f2 while the slip passes its mode, 61 lock-ups break away
+    # (measured 61), and the last holds at 3.27 s: forced judder of 183
+    # rpm while slipping (the straight line of Eq. 5 gives 1094 rpm and
+    # never locks, test_simulate_full_linear_law_names_its_law)
     from pysim.bench_data._csv import read
     out = tmp_path / "run.csv"
     proc = _judder("simulate", "--engagement", "full", "--freq", "60,102.9",
                    "--pf", "0.3", "--duration", "3.5", "--out", str(out),
                    "--json")
     assert proc.returncode == 0, proc.stderr
-    outside, inside = json.loads(proc.stdout)["runs"]
+    data = json.loads(proc.stdout)
+    assert data["model"] == "TestBenchCurveLockUp"
+    assert data["run_kind"] == "engagement"
+    assert data["friction_law"] == "curve (mu0, mu_g at w_op, delta_mu)"
+    outside, inside = data["runs"]
     assert 3.2 < outside["lock_up_time_s"] < 3.25
     assert outside["lockups"] == 0
     assert abs(outside["final_slip_rad_s"]) < 1e-9
@@ -188,16 +195,80 @@ def test_simulate_full_engagement_to_lock_up(tmp_path):
     # the motor's 1000 rpm less what the gearbox side gained in the ramp
     assert 0.9 * np.pi * 1000 / 30 < outside["slip_at_ramp_end_rad_s"] \
         < np.pi * 1000 / 30
-    assert inside["lock_up_time_s"] is None and inside["lockups"] > 300
+    assert 3.25 < inside["lock_up_time_s"] < 3.3
+    assert 40 < inside["lockups"] < 80
     assert inside["judder"] and inside["mechanism"] == "forced"
+    assert inside["oscillation_rpm"] == pytest.approx(183, rel=0.05)
     # the run's CSV (the first run) read back as an acquisition: slipping
-    # until the lock-up time reported, then stuck
+    # until the lock-up time reported, then stuck; its header names the
+    # run's kind and friction law
     _, metadata, raws = read(out, ["slip", "clutch.lockups"])
     assert metadata["freq_hz"] == 60
+    assert metadata["run_kind"] == "engagement"
+    assert metadata["friction_law"] == "curve (mu0, mu_g at w_op, delta_mu)"
     time, slip, _ = raws["slip"]
     stuck = raws["clutch.lockups"][1] > 0.5
     assert time[stuck][0] == pytest.approx(outside["lock_up_time_s"])
     assert np.all(slip[time < outside["lock_up_time_s"] - 0.01] > 0.1)
+
+
+def test_simulate_full_linear_law_names_its_law():
+    # --engagement full-linear-law: TestBenchLockUp, the straight line of
+    # Eq. 5 over the whole slip. Inside tongue 2 its dither torque ((mu0 +
+    # mu_g slip) N_c R_m S p_f, 14-17 times the curve's at 85-105 rad/s)
+    # makes the slip swing through zero: every lock-up breaks away
+    # and the slipping engagement judders at 1094 rpm; the text and JSON
+    # say which law ran
+    proc = _judder("simulate", "--engagement", "full-linear-law", "--freq",
+                   "102.9", "--pf", "0.3", "--duration", "2", "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["model"] == "TestBenchLockUp"
+    assert (data["run_kind"], data["friction_law"]) == (
+        "engagement", "straight line, Eq. 5")
+    inside, = data["runs"]
+    assert inside["lock_up_time_s"] is None and inside["lockups"] > 300
+    assert inside["judder"] and inside["mechanism"] == "forced"
+    assert inside["oscillation_rpm"] > 500
+    text = _judder("simulate", "--engagement", "full-linear-law", "--freq",
+                   "60", "--pf", "0.05", "--duration", "1").stdout
+    head = text.splitlines()[0]
+    assert "full engagement to lock-up" in head
+    assert "straight line, Eq. 5" in head and "TestBenchLockUp" in head
+
+
+def test_simulate_names_the_held_slip_bench_run(tmp_path):
+    # the default run holds the slip and never engages: its text, JSON and
+    # figure title say "held-slip bench run" and its friction law, never
+    # "engagement"; a run without dither is titled by its label alone
+    from judder import api
+    from judder.commands.simulate import _run_title
+    result = api.simulate(104, 0.05, parameters=get_preset("paper-4dof"),
+                          duration=1.0, compare="none")
+    data = result.as_dict()
+    assert data["model"] == "TestBenchEngagement"
+    assert (data["run_kind"], data["friction_law"]) == (
+        "held_slip", "curve (mu0, mu_g at w_op, delta_mu)")
+    title = _run_title(result)
+    assert "held-slip bench run" in title and "engagement" not in title
+    assert "curve (mu0, mu_g at w_op, delta_mu)" in title
+    figure = result.figure(title=title)
+    texts = [ax.get_title() for ax in figure.axes]
+    assert "without dither" in texts and not any(
+        "no dither" in t for t in texts)
+    # the pressure's right-axis label ends inside the figure, with room
+    figure.canvas.draw()
+    renderer = figure.canvas.get_renderer()
+    right = max(ax.yaxis.label.get_window_extent(renderer).x1
+                for ax in figure.axes)
+    assert right < figure.bbox.x1 - 0.1 * figure.dpi
+    import matplotlib.pyplot as plt
+    plt.close(figure)
+    proc = _judder("simulate", "--freq", "104", "--pf", "0.05",
+                   "--duration", "1")
+    assert proc.returncode == 0, proc.stderr
+    head = proc.stdout.splitlines()[0]
+    assert head.startswith("held-slip bench run") and "curve" in head
 
 
 @pytest.mark.parametrize("args, words", [

@@ -529,15 +529,18 @@ def threshold_section(page, values, study):
 
 
 def engagement_section(page, run, paper):
-    """The engagement through the FMU at the configured dither (Fig. 7,
-    8), read as a chart reads a bench run; ``paper``: a registry
-    driveline (its bench model) rather than a Modelica class."""
+    """The held-slip bench run (or the class's run) through the FMU at
+    the configured dither (Fig. 7, 8), read as a chart reads a bench run;
+    ``paper``: a registry driveline (its bench model, held at a steady
+    slip: it never engages) rather than a Modelica class."""
     from pysim.simulation.engagement import judder_words
     first = run.summaries[0]
     return (
-        "<h2>The engagement "
-        + ("on the bench model" if paper else "of the class's FMU")
+        ("<h2>The held-slip bench run" if paper else
+         "<h2>The engagement of the class's FMU")
         + f"</h2><p>Through the {html.escape(run.model_class)} FMU"
+        + ("" if not paper else
+           f" (friction law: {html.escape(run.friction_law)})")
         + ("" if paper else " from its start values (a steady slip)")
         + ": upstream speed peak "
         f"{first['speed_peak_amplitude_rpm']:.3g} rpm at "
@@ -554,7 +557,8 @@ def engagement_section(page, run, paper):
         # one figure per run: side by side they were 13 in wide, printed
         # at half size
         + "".join(page.figure(
-            f"Engagement {label} (Fig. {7 if index == 0 else 8})",
+            f"{'Held-slip bench run' if paper else 'Engagement'} {label} "
+            f"(Fig. {7 if index == 0 else 8})",
             run.figure(title=f"time-domain run {label}, "
                        f"{page.description}", only=index))
             for index, (label, _) in enumerate(run.runs)))

@@ -1,5 +1,5 @@
-"""``judder simulate``: bench engagement with dither (Fig. 7, 8), run
-through the FMU.
+"""``judder simulate``: a held-slip bench run or a full engagement with
+dither (Fig. 7, 8), run through the FMU.
 """
 
 from dataclasses import dataclass, field
@@ -28,8 +28,11 @@ from ._words import nonlinear_words, orbit_words
 
 #: The command's --help text.
 DESCRIPTION = (
-    "Engagement of the EVEN clutch at 1000 rpm on the test-bench model "
-    "(TestBenchEngagement FMU, built if needed), run with fmpy. Writes "
+    "Held-slip bench run of the EVEN clutch at 1000 rpm on the test-bench "
+    "model (TestBenchEngagement FMU, built if needed: the start of an "
+    "engagement held at its slip, which never engages), run with fmpy; "
+    "its friction law is the bounded curve whose value and slope at the "
+    "slip w_op are mu0 and mu_g. Writes "
     "the time histories (SI units) and reports the spectrum peaks of "
     "the upstream speed and of the pressure, the judder verdict as "
     "judder chart reads it (the dither-related oscillation above --limit "
@@ -42,15 +45,38 @@ DESCRIPTION = (
     "(built by the project's compiler) from its start values, a steady "
     "slip, with the dither, and the Floquet verdict of its "
     "linearisation; --fmu is refused (its Jacobian is all the FMU path "
-    "reads). With --engagement full: an engagement that ends, the gearbox "
-    "side from rest until the EVEN clutch locks up (TestBenchLockUp), "
-    "with the lock-up time and the judder verdict while it slips.")
+    "reads). With --engagement full: an engagement that engages, the "
+    "gearbox side from rest until the EVEN clutch locks up "
+    "(TestBenchCurveLockUp, the same friction curve as the held-slip "
+    "run), with the lock-up time and the judder verdict while it slips; "
+    "--engagement full-linear-law: the same engagement with the straight "
+    "line of Eq. 5, another friction law (TestBenchLockUp). Each output "
+    "names its kind of run and its friction law.")
 OUTPUTS = (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
-#: Engagements of the bench: the class of the library each runs (None:
-#: the driveline's own bench, :attr:`drivelines.DrivelineModel.bench_class`).
-ENGAGEMENTS = {"steady": None, "full": "Judder.Examples.TestBenchLockUp"}
+#: The bench's friction laws, as each output names them.
+CURVE_LAW = "curve (mu0, mu_g at w_op, delta_mu)"
+LINEAR_LAW = "straight line, Eq. 5"
+
+#: Runs of the bench, by ``--engagement``: the class of the library each
+#: runs (None: the driveline's own held-slip bench,
+#: :attr:`drivelines.DrivelineModel.bench_class`), the kind of run
+#: (``held_slip``: held at a steady slip, never engaging; ``engagement``:
+#: the gearbox side brought up to lock-up) and its EVEN clutch's friction
+#: law. ``full`` runs the held-slip bench's law (its mu0, mu_g, delta_mu,
+#: w_op); ``full-linear-law`` the straight line over the whole slip.
+ENGAGEMENTS = {"steady": None,
+               "full": "Judder.Examples.TestBenchCurveLockUp",
+               "full-linear-law": "Judder.Examples.TestBenchLockUp"}
+RUN_KINDS = {"steady": "held_slip", "full": "engagement",
+             "full-linear-law": "engagement"}
+FRICTION_LAWS = {"steady": CURVE_LAW, "full": CURVE_LAW,
+                 "full-linear-law": LINEAR_LAW}
+#: What each kind of run is called in text and figures.
+RUN_NAMES = {"held_slip": "held-slip bench run",
+             "engagement": "full engagement to lock-up",
+             "class": "time-domain run with dither"}
 
 
 def add_arguments(p):
@@ -67,7 +93,7 @@ def add_arguments(p):
                         "StopTime, 4 s for the bench)")
     p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
                    type=OrNone("--compare", "Hz", *FREQ_RANGE_HZ),
-                   help="also run a correct engagement: without dither, or "
+                   help="also run the same kind of run without dither, or "
                         "with dither at HZ; plotted side by side (Fig. 7)")
     p.add_argument("--bench", action="append", default=[],
                    metavar="NAME=VALUE",
@@ -83,12 +109,18 @@ def add_arguments(p):
                         "the class's parameters with --set)")
     p.add_argument("--engagement", choices=tuple(ENGAGEMENTS),
                    default="steady",
-                   help="steady: the bench at a steady slip (default; "
-                        "TestBenchEngagement); full: the gearbox side from "
-                        "rest, the pressure ramped in 0.05 s, until the "
-                        "EVEN clutch locks up (TestBenchLockUp, its "
-                        "straight-line friction law Eq. 5); the verdict is "
-                        "that of the slipping part")
+                   help="steady: the held-slip bench run, the EVEN clutch "
+                        "held at a steady slip, never engaging (default; "
+                        "TestBenchEngagement, the friction curve whose "
+                        "value and slope at w_op are mu0 and mu_g); full: "
+                        "an engagement, the gearbox side from rest, the "
+                        "pressure ramped in 0.05 s, until the EVEN clutch "
+                        "locks up, with the same friction curve "
+                        "(TestBenchCurveLockUp); full-linear-law: that "
+                        "engagement with the straight line of Eq. 5 over "
+                        "the whole slip, another friction law than the "
+                        "bench's curve (TestBenchLockUp); an engagement's "
+                        "verdict is that of its slipping part")
     p.add_argument("--out", metavar="run.csv|run.mf4",
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
@@ -101,7 +133,8 @@ def add_arguments(p):
 
 
 def run(args):
-    """Engagement of the test-bench model with dither (Fig. 7, Fig. 8)."""
+    """A held-slip bench run or a full engagement of the test-bench model
+    with dither (Fig. 7, Fig. 8)."""
     freqs = args.freq
     params, changes = parameters_of(args)
     bench = parse_bench(args.bench, resolve(params, changes))
@@ -115,17 +148,26 @@ def run(args):
                       judder_limit_rpm=args.limit)
     files = write_outputs(
         args, result,
-        figure={"title": ("bench engagement of the EVEN clutch (Fig. 1, 7, "
-                "8)" if params.source_kind.is_chain and args.engagement
-                == "steady" else "full engagement of the EVEN clutch to "
-                "lock-up" if params.source_kind.is_chain else
-                "time-domain run with dither")
-                + f": {result.model_class.rsplit('.', 1)[-1]} FMU with the "
+        figure={"title": _run_title(result)
+                + f", {result.model_class.rsplit('.', 1)[-1]} FMU with the "
                   f"parameters of {model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
-         "\n".join(_engagement_line(s, params.source_kind.is_chain)
-                   for s in result.summaries)
+         "\n".join([_run_title(result)
+                    + f" ({result.model_class.rsplit('.', 1)[-1]} FMU)"]
+                   + [_engagement_line(s, params.source_kind.is_chain)
+                      for s in result.summaries])
          + written(args.out, args.plot))
+
+
+def _run_title(result):
+    """What ran, in words: ``held-slip bench run of the EVEN clutch
+    (Fig. 1, 7, 8), friction law: curve (...)``, or a full engagement to
+    lock-up, or a class's time-domain run."""
+    if result.run_kind == "class":
+        return RUN_NAMES["class"]
+    return (f"{RUN_NAMES[result.run_kind]} of the EVEN clutch"
+            + (" (Fig. 1, 7, 8)" if result.run_kind == "held_slip" else "")
+            + f", friction law: {result.friction_law}")
 
 
 def _engagement_line(s, bench=True):
@@ -161,10 +203,11 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
              parameters=None, changes=None, method=DEFAULT_METHOD,
              min_growth=DEFAULT_MIN_GROWTH_PER_S,
              judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, engagement="steady"):
-    """``judder simulate``: an engagement on the driveline's bench model
-    (Fig. 7, 8), run through its FMU, with the Floquet verdict of each
-    dither setting for the bench's linearisation (the damping its motor
-    control adds, :attr:`drivelines.DrivelineModel.bench_damping`).
+    """``judder simulate``: a held-slip bench run (the default) or a full
+    engagement on the driveline's bench model (Fig. 7, 8), run through
+    its FMU, with the Floquet verdict of each dither setting for the
+    bench's linearisation (the damping its motor control adds,
+    :attr:`drivelines.DrivelineModel.bench_damping`).
 
     A Modelica class (:class:`sources.modelica.ModelicaParameters`)
     runs instead through its own FMU (the one ``crosscheck`` runs, see
@@ -182,7 +225,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     duration : float, optional
         Simulated time, s (default: the model's).
     compare : 'none' or float, optional
-        Also run a correct engagement: ``'none'`` without dither, a number
+        Also run the same kind of run: ``'none'`` without dither, a number
         with dither at that frequency (Hz).
     bench : dict, optional
         Further parameters of the bench model (``w_motor``, ...), SI; not
@@ -192,14 +235,21 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     judder_limit_rpm : float
         NVH limit of the dither-related oscillation of the upstream
         speed, rpm: larger is judder, forced or parametric.
-    engagement : {'steady', 'full'}
+    engagement : {'steady', 'full', 'full-linear-law'}
+        ``'steady'``: the held-slip bench run (the EVEN clutch held at a
+        steady slip with the bench's friction curve; it never engages).
         ``'full'``: the engagement that ends in lock-up
-        (``TestBenchLockUp``: the gearbox side from rest, the EVEN clutch
-        with the straight-line law of Eq. 5, so the linearisation takes
-        the driveline's own ``mu0`` and ``mu_g``); each summary adds
-        ``lock_up_time_s`` (None: it slips at the end), ``lockups``,
-        ``slip_at_ramp_end_rad_s`` and ``duration_s``, and its verdict
-        and spectra are those of the run before the lock-up.
+        (``TestBenchCurveLockUp``: the gearbox side from rest, the EVEN
+        clutch with the held-slip bench's friction curve, locking by
+        events); ``'full-linear-law'``: the same engagement with the
+        straight line of Eq. 5 over the whole slip (``TestBenchLockUp``),
+        another friction law. The linearisation of either takes the
+        driveline's own ``mu0`` and ``mu_g`` (the curve's value and slope
+        at w_op, which the engagement passes; the straight line's at
+        every slip); each summary adds ``lock_up_time_s`` (None: it slips
+        at the end), ``lockups``, ``slip_at_ramp_end_rad_s`` and
+        ``duration_s``, and its verdict and spectra are those of the run
+        before the lock-up.
 
     Returns
     -------
@@ -219,7 +269,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         raise JudderError(f"`engagement` {engagement!r} is not allowed; "
                           f"allowed: {', '.join(ENGAGEMENTS)}")
     bench = dict(bench or {})
-    full = engagement == "full"
+    full = RUN_KINDS[engagement] == "engagement"
     if full and not values.source_kind.is_chain:
         bench_fmu(values)       # refuses a class or FMU, naming the bench
     if values.source_kind.is_chain:
@@ -227,15 +277,16 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         model_class, fmu = bench_fmu(values)
         if full:
             from pysim.simulation.fmus import ensure_fmu
-            model_class = ENGAGEMENTS["full"]
+            model_class = ENGAGEMENTS[engagement]
             fmu = ensure_fmu(model_class)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))
         run_params, extra = values, bench
         # the bench's linearisation: its motor control damps body 1, and
         # its friction curve has its own value and slope at the slip
-        # (the full engagement's clutch has the straight line of Eq. 5:
-        # the driveline's own mu0 and mu_g, at every slip)
+        # (a full engagement sweeps the slip: it is linearised where its
+        # law has the driveline's own mu0 and mu_g, the curve at w_op, the
+        # straight line of Eq. 5 at every slip)
         friction, linear_slip = ((({}, None)) if full else
                                  operating_friction(values, fmu, bench))
         driveline = build_driveline(values.replace(
@@ -291,8 +342,13 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           **linear_validity(driveline, run, linear_slip),
                           **_orbit_fields(orbit_model, run, min_growth,
                                           judder_limit_rpm)})
+    run_kind, friction_law = ((RUN_KINDS[engagement],
+                               FRICTION_LAWS[engagement])
+                              if values.source_kind.is_chain else
+                              ("class", "the class's own"))
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
                             model_class=model_class, start=ramp_end,
+                            run_kind=run_kind, friction_law=friction_law,
                             # (the lock counters are counts: unit 1)
                             signals={**SIGNALS, **dict.fromkeys(
                                 LOCK_VARIABLES if full else (), "1")},
@@ -335,7 +391,8 @@ def _orbit_fields(model, run, min_growth, judder_limit_rpm):
 
 @dataclass(frozen=True)
 class SimulationResult:
-    """``judder simulate``: bench engagements through the FMU.
+    """``judder simulate``: held-slip bench runs or full engagements
+    through the FMU.
 
     Attributes
     ----------
@@ -349,6 +406,13 @@ class SimulationResult:
     model_class : str
     start : float
         End of the pressure ramp, s.
+    run_kind : {'held_slip', 'engagement', 'class'}
+        What ran: the bench held at a steady slip (never engaging), an
+        engagement brought up to lock-up, or a Modelica class from its
+        start values.
+    friction_law : str
+        The EVEN clutch's friction law (:data:`CURVE_LAW`,
+        :data:`LINEAR_LAW`, or the class's own).
     slipping : list of Run, optional
         Of a full engagement, each run before its lock-up (what its
         verdict and spectra read).
@@ -359,11 +423,15 @@ class SimulationResult:
     fmu: object
     model_class: str
     start: float
+    run_kind: str = "held_slip"
+    friction_law: str = CURVE_LAW
     signals: dict = field(default_factory=dict)
     slipping: list = None
 
     def as_dict(self):
         return {"model": self.model_class.rsplit(".", 1)[-1],
+                "run_kind": self.run_kind,
+                "friction_law": self.friction_law,
                 "fmu": str(self.fmu), "runs": self.summaries}
 
     @keeps_foreign_files
@@ -372,7 +440,9 @@ class SimulationResult:
         from pysim.simulation.export import write_run
         run = self.runs[0][1]
         write_run(path, run.time, run.signals, self.signals,
-                  {"model": self.model_class, "freq_hz": run.freq_hz,
+                  {"model": self.model_class, "run_kind": self.run_kind,
+                   "friction_law": self.friction_law,
+                   "freq_hz": run.freq_hz,
                    "p_f_bar": run.p_f / PA_PER_BAR,
                    "start_values": run.start_values})
 

@@ -1,7 +1,8 @@
-"""What an engagement run shows: the judder and where it sits.
+"""What a bench run shows: the judder and where it sits.
 
-:func:`engagement_summary` reduces the time histories of one bench
-engagement (Fig. 7) to the numbers an engineer reads off it: the spectrum
+:func:`engagement_summary` reduces the time histories of one bench run
+(Fig. 7: a held-slip bench run, or the slipping part of a full
+engagement) to the numbers an engineer reads off it: the spectrum
 peaks of the upstream speed and of the pressure (Fig. 8), whether the
 speed peak sits at the dither frequency, and the judder verdict of
 :func:`pysim.analysis.verdict.analyse_run`: how fast the non-periodic part of
@@ -22,13 +23,15 @@ from ..analysis.signals import amplitude_spectrum
 __all__ = ["engagement_summary", "verdict_line", "judder_words",
            "display_spectra", "LOCK_VARIABLES", "lock_up", "until"]
 
-#: Variables of a locking clutch (``Components.LockingWetClutch``) a full
+#: Variables of a locking clutch (``Interfaces.PartialLockingClutch``:
+#: ``Components.LockingCurveWetClutch``, ``LockingWetClutch``) a full
 #: engagement records: how often it stuck, and broke away, by events.
 LOCK_VARIABLES = ("clutch.lockups", "clutch.breakaways")
 
 
 def lock_up(run):
-    """When a full engagement (``TestBenchLockUp``) locks up: the first
+    """When a full engagement (``TestBenchCurveLockUp``,
+    ``TestBenchLockUp``) locks up: the first
     sample from which its EVEN clutch stays stuck to the end of the run
     (``clutch.lockups - clutch.breakaways`` is 1), s; None if it slips at the
     end (inside a tongue the slip swings through zero and every lock-up
@@ -53,7 +56,8 @@ def until(run, end):
 
 def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
                        judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM):
-    """Spectrum peaks and judder verdict of one engagement after ``start``.
+    """Spectrum peaks and judder verdict of one bench run after ``start``
+    (a held-slip bench run, or a full engagement's slipping part).
 
     Parameters
     ----------

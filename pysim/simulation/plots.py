@@ -71,8 +71,11 @@ def plot_run(run, ax=None, title=None, legend=True, verdict=None,
                  ] if banded else []
         ax.legend(handles=artists + notes, loc="upper center", fontsize=7,
                   bbox_to_anchor=(0.5, -0.2), ncols=2, borderaxespad=0.0)
-    ax.set_title((f"{title}: " if title else "") + _dither_text(run)
-                 + (f"\n{verdict}" if verdict else ""), fontsize=9)
+    # a run without dither has its label alone ("without dither"), not
+    # the label and the setting's "no dither" again
+    heading = (title if title and run.p_f == 0 else
+               (f"{title}: " if title else "") + _dither_text(run))
+    ax.set_title(heading + (f"\n{verdict}" if verdict else ""), fontsize=9)
     return artists
 
 
@@ -170,6 +173,12 @@ def plot_spectra_overlay(runs, speed_spectra, ax=None, f_max=None):
     return artists
 
 
+#: Padding around each panel of :func:`run_figure`, in: the pressure's
+#: right-axis label ended within 0.04 in of the figure's edge (4/72 in,
+#: the constrained layout's default) and met the next column's.
+RIGHT_AXIS_PAD_IN = 0.15
+
+
 def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
     """Time histories (top) and spectra (middle), one column per run,
     every spectrum over the same frequencies; with more than one run with
@@ -190,6 +199,9 @@ def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
     rows = 3 if overlay else 2
     fig = plt.figure(figsize=(6.5 * len(runs), 3.6 * rows + 0.6),
                      layout="constrained")
+    # room around each panel's decorations: the right axis of pressure
+    # has its label at the figure's (or the next column's) edge otherwise
+    fig.get_layout_engine().set(w_pad=RIGHT_AXIS_PAD_IN, wspace=0.04)
     grid = fig.add_gridspec(rows, len(runs))
     for column, (label, run) in enumerate(runs):
         plot_run(run, ax=fig.add_subplot(grid[0, column]), title=label,

@@ -13,8 +13,11 @@ through zero slip (engagements). For drivelines beyond the paper's:
 <code>IdealGear</code> (a ratio, MSL equations) and
 <code>FrictionCurveClutch</code>, whose friction coefficient is a smooth
 saturating curve of the slip; its local slope at the operating slip is
-the paper's mu_g. Every wet clutch (also CurveWetClutch,
-LockingWetClutch and TableClutch) extends
+the paper's mu_g. <code>CurveWetClutch</code> has the bench's bounded
+friction curve; <code>LockingWetClutch</code> (the straight line of
+Eq. 5) and <code>LockingCurveWetClutch</code> (the bench's curve) stick
+at zero slip by events (Interfaces.PartialLockingClutch). Every wet
+clutch (also TableClutch) extends
 Interfaces.PartialPressureClutch, which declares the plate pack and the
 pressure input once and draws Icons.Clutch.</p>
 </html>"));

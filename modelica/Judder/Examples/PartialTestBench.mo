@@ -44,9 +44,10 @@ w_motor, with the REV clutch slipping against the housing as the load of
 body 3 and the EVEN clutch (<code>clutch</code>) engaging with the
 pressure ramp from t_engage over t_ramp. The extending models choose the
 EVEN clutch by <code>redeclare</code>: TestBenchEngagement (a bounded
-friction curve, steady slip), TestBenchFullEngagement (WetClutch, the
-straight line of Eq. 5) and TestBenchLockUp (an engagement ending in
-lock-up). See TestBenchEngagement for the
-bench.</p>
+friction curve, held at a steady slip: a held-slip bench run, which
+never engages), TestBenchCurveLockUp (the same curve, an engagement
+ending in lock-up), TestBenchFullEngagement (WetClutch, the straight
+line of Eq. 5) and TestBenchLockUp (the straight line, ending in
+lock-up). See TestBenchEngagement for the bench.</p>
 </html>"));
 end PartialTestBench;

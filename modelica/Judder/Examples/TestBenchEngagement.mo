@@ -1,6 +1,7 @@
 within Judder.Examples;
-model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clutch slipping steadily at 1000 rpm with a bounded friction curve, REV clutch as the load"
-  extends PartialTestBench(redeclare model Clutch = Components.CurveWetClutch,
+model TestBenchEngagement "Held-slip bench run of Fig. 5 and section 2.2: EVEN clutch held slipping steadily at 1000 rpm with a bounded friction curve, REV clutch as the load"
+  extends PartialTestBench(redeclare replaceable model Clutch = Components.CurveWetClutch
+      constrainedby Interfaces.PartialCurveWetClutch,
     clutch(mu_g=mu_g, delta_mu=delta_mu, w_op=w_op),
     S_load=load_share*(N_c*S*p_m - c3*w_gearbox/(mu0*R_m))/(N_c_load*p_load));
   parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.04
@@ -10,10 +11,11 @@ model TestBenchEngagement "Bench engagement of Fig. 5 and section 2.2: EVEN clut
   annotation (
     experiment(StopTime=4, Interval=1e-3),
     Documentation(info="<html>
-<p>An engagement on the test bench of section 2.2 (Fig. 5b): the 4-DOF
+<p>A held-slip bench run on the test bench of section 2.2 (Fig. 5b):
+the start of an engagement, held at its slip (it never engages). The 4-DOF
 driveline of Fig. 13 driven by the 81 kW DC motor under speed control
 at w_motor (SpeedDrive on body 1). The EVEN clutch (CurveWetClutch)
-between body 4 and body 3 engages: its pressure ramps from 0 at t_engage
+between body 4 and body 3 is pressed: its pressure ramps from 0 at t_engage
 to p_m in t_ramp, with the dither p_f cos(2 pi f_dither t) of Eq. (4) on
 top. Its friction coefficient is a bounded rising curve of the slip
 whose value and slope at the slip w_op are mu0 and mu_g. As on the
@@ -26,7 +28,9 @@ torque mu0 N_c R_m S p_m less the drag c3 w_gearbox of the gearbox side
 slip along the curve's steep part). The gearbox side then keeps its
 initial speed w_gearbox and the EVEN clutch slips steadily at w_motor -
 w_gearbox, the operating point of the stability model: the judder seen at the start of
-an engagement (Fig. 7b), held long enough to measure its growth.</p>
+an engagement (Fig. 7b), held long enough to measure its growth.
+TestBenchCurveLockUp redeclares the clutch as LockingCurveWetClutch (the
+same curve and parameters) and engages to lock-up.</p>
 <p>Linearised about that operating point, the bench is the driveline of
 Eq. (6) with mu0 and mu_g the curve's value and slope at the slip, and
 two additions: the motor's speed control, a damping d_control of body 1

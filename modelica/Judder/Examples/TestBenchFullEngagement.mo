@@ -15,6 +15,7 @@ where the steep slope of tanh(slip/w_small) holds the plates together
 (they creep at a few mrad/s). TestBenchLockUp is the same engagement with
 a clutch that sticks by events. The straight-line law gives a dither
 torque mu_g slip N_c R_m S p_f that is large at high slip; the steady
-slip bench with a bounded friction curve is TestBenchEngagement.</p>
+slip bench with a bounded friction curve is TestBenchEngagement, its
+engagement to lock-up TestBenchCurveLockUp.</p>
 </html>"));
 end TestBenchFullEngagement;

@@ -1,5 +1,5 @@
 within Judder.Examples;
-model TestBenchLockUp "Bench engagement of TestBenchFullEngagement ending in lock-up: the EVEN clutch sticks and breaks away by events"
+model TestBenchLockUp "Bench engagement of TestBenchFullEngagement ending in lock-up with the straight line of Eq. 5 (another friction law than the bench's curve): the EVEN clutch sticks and breaks away by events"
   extends PartialTestBench(S_load=0.006, w_gearbox=0, t_ramp=0.05,
     redeclare model Clutch = Components.LockingWetClutch, clutch(mu_g=mu_g));
   annotation (
@@ -13,6 +13,10 @@ clutch transmits the torque the load takes. Inside tongue 2 (the default
 102.9 Hz, 0.3 bar) the slip oscillates through zero; at each zero the
 torque needed to stay stuck exceeds mu0 N_c R_m S p, so the clutch
 breaks away in the same event and no lock holds. The mode is
-clutch.lockups - clutch.breakaways (1 stuck, 0 slipping).</p>
+clutch.lockups - clutch.breakaways (1 stuck, 0 slipping). The
+straight line holds over the whole slip, so its dither torque is 9-19
+times that of the held-slip bench's curve over the slip the engagement
+sweeps (17 at w_op);
+TestBenchCurveLockUp is the engagement with that curve.</p>
 </html>"));
 end TestBenchLockUp;

@@ -19,8 +19,16 @@ slip speed is a parameter.</li>
 <li><code>Driveline4DOFTwoClutches</code>: the 4-DOF model with the REV
 clutch as a second slipping clutch with dither (a rank-2
 modulation).</li>
-<li><code>TestBenchEngagement</code>: an EVEN clutch engagement on the
-bench of section 2.2 (Fig. 5b), with the REV clutch as the load.</li>
+<li><code>TestBenchEngagement</code>: a held-slip bench run on the
+bench of section 2.2 (Fig. 5b): the EVEN clutch held at a steady slip
+with its bounded friction curve, the REV clutch as the load.</li>
+<li><code>TestBenchCurveLockUp</code>: a full engagement on the same
+bench with the same friction curve, the gearbox side from rest until
+the EVEN clutch locks up by events.</li>
+<li><code>TestBenchFullEngagement</code>, <code>TestBenchLockUp</code>:
+full engagements with the straight line of Eq. 5 over the whole slip,
+another friction law than the bench's curve (smooth through zero slip,
+and locking by events).</li>
 </ul>
 </html>"));
 end Examples;

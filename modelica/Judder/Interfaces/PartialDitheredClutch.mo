@@ -19,8 +19,8 @@ multiplies the dither part p - (1 - mean_pressure_damping) p_mean
 only, which gives the paper's stability maps with the default
 mean_pressure_damping = 0 and Eq. (2)-(4) taken literally with 1. The
 slip-dependent law is left to the extending component:
-PartialWetClutch (the straight line of Eq. 5),
-Components.CurveWetClutch and Components.FrictionCurveClutch (bounded
-curves).</p>
+PartialWetClutch (the straight line of Eq. 5), PartialCurveWetClutch
+and Components.FrictionCurveClutch (bounded curves); the stuck and
+slipping modes of a clutch that locks, PartialLockingClutch.</p>
 </html>"));
 end PartialDitheredClutch;
