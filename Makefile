@@ -18,7 +18,7 @@ $(STAMP): requirements.lock pyproject.toml
 
 # Main job: the 4-DOF stability map with the paper's parameters (Fig. 14).
 run: setup
-	$(BIN)/judder map --preset paper-4dof --out out/map-4dof.npz --plot out/map-4dof.png
+	$(BIN)/judder map --preset paper-4dof --driveline chain --out out/map-4dof.npz --plot out/map-4dof.png
 
 # The suite on two processes (pytest-xdist), each test file whole on one
 # of them (its module fixtures, and the README's commands in their

@@ -50,6 +50,13 @@ GROWTH_LINE = {"colors": "k", "linewidths": 1.3,
                "linestyles": [(0, (7, 2, 1.5, 2))]}
 
 
+#: Line where the forced oscillation reaches the NVH limit: bluish green
+#: (Okabe-Ito), thick and dotted, apart from every boundary and the
+#: growth line.
+FORCED_LINE = {"color": "#009e73", "linewidth": 2.0,
+               "linestyle": (0, (1, 1))}
+
+
 #: Line style of each kind's boundary, so kinds differ without colour.
 KIND_LINESTYLES = ("-", "-", "--", (0, (1, 1.5)))
 

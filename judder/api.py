@@ -19,14 +19,16 @@ the user set explicitly (``--set``), applied on top. What needs a
 time-domain run (:func:`crosscheck`, :func:`simulate`) refuses an FMU,
 what needs the bench (``fit(bench=...)``) or the paper's chains
 (:func:`threshold`) refuses both, with a :class:`~infra.errors.JudderError`
-that says why. Monodromy engines (``method``) are the keys of
-:data:`stability.monodromy.METHODS`. ``progress`` is called as
+that says why. The Floquet views judge a preset's driveline on its
+test bench (the one :func:`simulate` runs) unless ``driveline='chain'``
+(:func:`judder.bench.driveline_view`). Monodromy engines (``method``)
+are the keys of :data:`stability.monodromy.METHODS`. ``progress`` is called as
 ``progress(done, total)`` on long work.
 
 Examples
 --------
 >>> from judder import api
->>> result = api.floquet(102.9, 0.3)
+>>> result = api.floquet(102.9, 0.3, driveline="chain")
 >>> result.result.kind, round(result.result.leading_abs, 4)
 ('single-period', 1.0261)
 """

@@ -346,14 +346,27 @@ def bench_linearisation(values, bench=None, fmu=None):
                           **friction)
 
 
-def driveline_view(values, driveline="chain"):
+def default_driveline(values):
+    """The driveline a view of ``values`` judges unless told:
+    ``'bench'`` where its registry driveline has a test bench (the one
+    ``simulate``, ``orbit`` and ``chart`` run), else ``'chain'``."""
+    has_bench = values.source_kind.is_chain and \
+        values.driveline.bench_class is not None
+    return "bench" if has_bench else "chain"
+
+
+def driveline_view(values, driveline=None):
     """``values`` as the driveline a Floquet view is of
-    (:data:`DRIVELINES`): ``'chain'`` as given, ``'bench'`` its bench's
-    linearisation (:func:`bench_linearisation`)."""
+    (:data:`DRIVELINES`; None: :func:`default_driveline`), and its name:
+    ``'chain'`` as given, ``'bench'`` its bench's linearisation
+    (:func:`bench_linearisation`)."""
+    if driveline is None:
+        driveline = default_driveline(values)
     if driveline not in DRIVELINES:
         raise JudderError(f"`driveline` {driveline!r} is not allowed; "
                           f"allowed: {', '.join(DRIVELINES)}")
-    return values if driveline == "chain" else bench_linearisation(values)
+    return (values if driveline == "chain" else
+            bench_linearisation(values)), driveline
 
 
 def driveline_words(values, driveline="chain"):

@@ -18,8 +18,10 @@ engagement (:mod:`pysim.analysis.verdict`) and its mechanism:
 
 Where the T-orbit loses stability through a complex pair (a combination
 tongue), the motion is quasi-periodic and no periodic orbit gives its
-amplitude: the point is marked (:attr:`OrbitChart.quasi_periodic`) and
-judged by the growth.
+amplitude: the point is marked (:attr:`OrbitChart.quasi_periodic`), the
+motion integrated until it settles (:mod:`stability.settle`), and its
+component at the combination frequency is the settled amplitude, judged
+with the T-orbit's growth.
 """
 
 from dataclasses import dataclass
@@ -44,13 +46,16 @@ class OrbitVerdict:
     half : float
         The 2T orbit's at ``f/2``, rad/s (0 without one).
     settled : float
-        The larger of the settled orbit's components at ``f`` and ``f/2``
-        (the 2T orbit where one exists), rad/s.
+        The larger of the settled motion's components at ``f`` and ``f/2``
+        (the 2T orbit where one exists) and, in a combination tongue, at
+        the combination frequency (the integrated motion,
+        :mod:`stability.settle`), rad/s.
     growth_rate : float
         Of the T-orbit, 1/s.
     quasi_periodic : bool
         The T-orbit is unstable through a complex pair: no periodic orbit
-        settles and ``settled`` is the unstable T-orbit's.
+        settles; ``settled`` is the integrated motion's where it was
+        given, else the unstable T-orbit's.
     judder : bool
     mechanism : int
         Index into :data:`infra.criteria.MECHANISMS`.
@@ -65,19 +70,23 @@ class OrbitVerdict:
     mechanism: int
 
 
-def orbit_verdict(orbit, doubled, limit, min_growth):
+def orbit_verdict(orbit, doubled, limit, min_growth, combination=0.0):
     """The verdict of one setting from its T-orbit ``orbit`` and the 2T
     orbit ``doubled`` grown out of it (None), as a bench engineer reads
     an engagement (module docstring): judder where the settled
     oscillation exceeds ``limit`` (rad/s) or the T-orbit grows at
-    ``min_growth`` (1/s) or faster."""
+    ``min_growth`` (1/s) or faster. ``combination``: in a combination
+    tongue, the settled motion's component at the combination frequency
+    (:attr:`stability.settle.SettledMotion.other`), rad/s; the dither
+    cannot force it, so above the limit it is parametric judder."""
     forced = orbit.dither_amplitude
     half = 0.0 if doubled is None else abs(doubled.upstream_harmonics[0])
     settled = forced if doubled is None else max(
         half, abs(doubled.upstream_harmonics[1]))
+    settled = max(settled, combination)
     is_forced = forced > limit
-    parametric = orbit.growth_rate >= min_growth or half > limit or (
-        settled > limit and not is_forced)
+    parametric = orbit.growth_rate >= min_growth or half > limit or \
+        combination > limit or (settled > limit and not is_forced)
     judder = settled > limit or parametric
     mechanism = 3 if parametric and is_forced else 2 if parametric else \
         1 if is_forced else 0
@@ -152,8 +161,25 @@ class OrbitChart:
         return out
 
 
+def settled_combinations(model, freq_hz, p_f, found, duration=4.0):
+    """The combination component of the settled motion
+    (:func:`stability.settle.settle`, one batch) at each grid point
+    ``(i, j)`` of ``found`` (``{(i, j): (T-orbit, 2T orbit)}``) whose
+    T-orbit is unstable through a complex pair, rad/s; ``duration`` None:
+    none integrated."""
+    quasi = [key for key, (orbit, _) in found.items()
+             if orbit.kind == "combination"]
+    if not quasi or duration is None:
+        return {}
+    from .settle import settle
+    motion = settle(model, [freq_hz[i] for i, _ in quasi],
+                    [p_f[j] for _, j in quasi], duration=duration)
+    return dict(zip(quasi, motion.other))
+
+
 def orbit_chart(model, freq_hz, p_f, limit, min_growth,
-                harmonics=DEFAULT_HARMONICS, callback=None):
+                harmonics=DEFAULT_HARMONICS, callback=None,
+                settle_duration=4.0):
     """Periodic orbits and verdicts over a dither grid.
 
     Parameters
@@ -169,6 +195,10 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
         Growth rate from which an instability is judder, 1/s.
     callback : callable, optional
         ``callback(done, total)`` after each frequency.
+    settle_duration : float or None
+        Time the points of combination tongues are integrated over before
+        their settled amplitude is read (:mod:`stability.settle`), s;
+        None: judged by the unstable T-orbit's amplitude and growth.
 
     Returns
     -------
@@ -187,26 +217,31 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
     offset = len(amplitudes) - len(p_f)
     judder = np.zeros(shape, dtype=bool)
     mechanism = np.zeros(shape, dtype=np.int8)
+    found = {}
     for i, f in enumerate(freq_hz):
         branch = continue_orbit(model, f, amplitudes, harmonics=harmonics)
         on_grid = [o for k, o in enumerate(branch.orbits)
                    if k not in branch.folds]
         for j, orbit in enumerate(on_grid[offset:]):
-            if not orbit.success:
-                continue
-            doubled = (double_period_orbit(model, orbit, harmonics=harmonics)
-                       if orbit.kind == "double-period" else None)
-            verdict = orbit_verdict(orbit, doubled, limit, min_growth)
-            forced[i, j] = verdict.forced
-            half[i, j] = verdict.half
-            settled[i, j] = verdict.settled
-            growth[i, j] = orbit.growth_rate
-            kind[i, j] = orbit.kind
-            drift[i, j] = orbit.drift_torque
-            judder[i, j] = verdict.judder
-            mechanism[i, j] = verdict.mechanism
+            if orbit.success:
+                found[i, j] = (orbit, double_period_orbit(
+                    model, orbit, harmonics=harmonics)
+                    if orbit.kind == "double-period" else None)
         if callback is not None:
             callback(i + 1, len(freq_hz))
+    combination = settled_combinations(model, freq_hz, p_f, found,
+                                       settle_duration)
+    for (i, j), (orbit, doubled) in found.items():
+        verdict = orbit_verdict(orbit, doubled, limit, min_growth,
+                                combination.get((i, j), 0.0))
+        forced[i, j] = verdict.forced
+        half[i, j] = verdict.half
+        settled[i, j] = verdict.settled
+        growth[i, j] = orbit.growth_rate
+        kind[i, j] = orbit.kind
+        drift[i, j] = orbit.drift_torque
+        judder[i, j] = verdict.judder
+        mechanism[i, j] = verdict.mechanism
     quasi = kind == "combination"
     return OrbitChart(freq_hz=freq_hz, p_f=p_f, forced_amplitude=forced,
                       half_amplitude=half, settled_amplitude=settled,

@@ -138,3 +138,13 @@ def judder_here(capsys):
         out, err = capsys.readouterr()
         return status, out, err
     return run
+
+
+@pytest.fixture
+def chain_by_default(monkeypatch):
+    """The views judge a preset's chain alone unless told (Eq. 6, free:
+    the paper's Fig. 12, 14-18 and the numbers its tests pin), where the
+    tool judges the preset on its test bench; for the in-process API and
+    ``main`` of a test module whose numbers are the chain's."""
+    monkeypatch.setattr("judder.bench.default_driveline",
+                        lambda values: "chain")

@@ -44,7 +44,8 @@ def test_eig_set_is_repeatable():
 
 
 def test_floquet_json():
-    data = judder_json("floquet", "--freq", "102.9", "--pf", "0.3")
+    data = judder_json("floquet", "--freq", "102.9", "--pf", "0.3",
+                       "--driveline", "chain")
     assert data["kind"] == "single-period"
     lead = data["leading"]
     assert (lead["re"], lead["im"], lead["abs"], lead["arg"]) == \
@@ -84,9 +85,11 @@ def test_map_npz_holds_the_threshold_boundaries_and_tongues(tmp_path):
     # --out alone computes the exact boundaries and stores them, with the
     # judder-relevant rate the map was shaded with
     out = tmp_path / "m.npz"
-    judder_json("map", "--freq", "10:220:40", "--pf", "0:1.5:4", "--out",
+    judder_json("map", "--driveline", "chain", "--freq", "10:220:40",
+                "--pf", "0:1.5:4", "--out",
                 str(out))
-    tongues = judder_json("tongues", "--freq", "10:220:40")["tongues"]
+    tongues = judder_json("tongues", "--driveline", "chain", "--freq",
+                          "10:220:40")["tongues"]
     with np.load(out) as npz:
         assert float(npz["min_growth_per_s"]) == 1.0
         assert list(npz["boundary_kinds"]) == ["single-period",
@@ -165,7 +168,8 @@ def test_ctrl_c_leaves_no_partial_file(tmp_path, markers):
 
 def test_tongues_json_and_csv(tmp_path):
     out = tmp_path / "b.csv"
-    data = judder_json("tongues", "--freq", "10:220:106", "--out", str(out))
+    data = judder_json("tongues", "--driveline", "chain", "--freq",
+                       "10:220:106", "--out", str(out))
     numbers = {t["number"]: t for t in data["tongues"]}
     assert set(numbers) == {1, 2, 3, 4, 5, 6}
     assert numbers[2]["tip_freq_hz"] == pytest.approx(102.88, rel=5e-3)
@@ -189,7 +193,8 @@ def test_compare_puts_two_sets_side_by_side(tmp_path):
     judder("params", "--preset", "paper-4dof", "--save", str(paper))
     fitted = str(Path(__file__).parents[1] / "examples" / "driveline.toml")
     plot = tmp_path / "compare.png"
-    data = judder_json("compare", fitted, str(paper), "--freq", "105",
+    data = judder_json("compare", "--driveline", "chain", fitted,
+                       str(paper), "--freq", "105",
                        "--pf", "0.2", "--grid", "10:220:106", "--plot",
                        str(plot))
     a, b = data["sets"]
@@ -197,10 +202,11 @@ def test_compare_puts_two_sets_side_by_side(tmp_path):
     # the same numbers as the single commands give for each set
     for side, source in ((a, ["--param-file", fitted]),
                          (b, ["--preset", "paper-4dof"])):
-        eig = judder_json("eig", *source)
+        eig = judder_json("eig", *source, "--driveline", "chain")
         assert side["natural_frequencies_hz"] == pytest.approx(
             eig["natural_frequencies_hz"], rel=1e-12)
-        tips = judder_json("tongues", *source, "--freq", "10:220:106")
+        tips = judder_json("tongues", *source, "--freq", "10:220:106",
+                           "--driveline", "chain")
         assert [t["tip_p_f_bar"] for t in side["tongues"]] == pytest.approx(
             [t["tip_p_f_bar"] for t in tips["tongues"]], rel=1e-9)
         assert [t["judder_tip_p_f_bar"] for t in side["tongues"]] == \
@@ -216,8 +222,9 @@ def test_compare_puts_two_sets_side_by_side(tmp_path):
     full = [[w for w in s["safe_windows"] if w["full_range"]] for s in (a, b)]
     assert len(full[0]) == 2 and len(full[1]) == 4
     assert plot.stat().st_size > 0
-    text = judder("compare", fitted, str(paper), "--freq", "105", "--pf",
-                  "0.2", "--grid", "10:220:106").stdout
+    text = judder("compare", "--driveline", "chain", fitted, str(paper),
+                  "--freq", "105", "--pf", "0.2", "--grid",
+                  "10:220:106").stdout
     assert "SLOW GROWTH (+0.563 1/s)" in text and "STABLE" in text
     assert "tongue 2 (f2) unstable from" in text
     assert "judder (>= 1 1/s) from" in text
@@ -243,7 +250,8 @@ def test_threshold_json():
 
 def test_fit_from_tongues_csv(tmp_path):
     boundary = tmp_path / "measured.csv"
-    judder("tongues", "--preset", "paper-4dof-fitted", "--freq", "70:140:8",
+    judder("tongues", "--driveline", "chain", "--preset",
+           "paper-4dof-fitted", "--freq", "70:140:8",
            "--out", str(boundary))
     saved = tmp_path / "fitted.toml"
     saved.write_text("# written by judder\nan older fit\n")
@@ -262,7 +270,8 @@ def test_fit_from_a_german_boundary_file(tmp_path):
     spreadsheet saves it (';' between fields, decimal commas), fitted
     with --decimal ',': the same values."""
     boundary = tmp_path / "measured.csv"
-    judder("tongues", "--preset", "paper-4dof-fitted", "--freq", "70:140:8",
+    judder("tongues", "--driveline", "chain", "--preset",
+           "paper-4dof-fitted", "--freq", "70:140:8",
            "--out", str(boundary))
     german = tmp_path / "gemessen.csv"
     german.write_text("".join(

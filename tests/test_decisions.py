@@ -37,6 +37,13 @@ FREQS = np.array([17.0, 19.0, 21.0, 37.0, 38.5, 81.0, 83.5, 86.0, 99.0,
                   102.5, 106.0, 119.0, 121.5, 124.0, 203.0, 207.0, 60.0])
 
 
+@pytest.fixture(autouse=True)
+def _chain(chain_by_default):
+    """This module pins the paper chain's and the example chain's
+    numbers (the tool judges a preset on its bench unless told)."""
+
+
+
 @pytest.mark.parametrize("preset", ["paper-4dof", "paper-4dof-fitted"])
 def test_hill_solver_equals_the_scan_solver(preset):
     # every kind, every frequency: same points found, same amplitudes
@@ -120,7 +127,11 @@ def test_map_text_names_unstable_and_judder_points_and_its_times():
         f"105 points: {counts['stable']} stable, {unstable} unstable "
         f"(|lambda| > 1: " + ", ".join(
             f"{k} {v}" for k, v in counts.items() if k != "stable")
-        + f"), of which {judder} judder (growth >= 1 1/s)")
+        + f"), of which {judder} judder (growth >= 1 1/s)"
+        # the chain's linear forced oscillation at 30 rpm and the union
+        + f"; forced oscillation above 30 rpm (linear harmonic response) "
+          f"at {int((result.forced_amplitude_rpm() > 30).sum())}; judder "
+          f"in all (grows or forced): {int(result.judder_points().sum())}")
     words = time_words(result, 9.5)
     assert words.startswith(f"time: Floquet map {result.seconds:.2f} s, "
                             "exact boundaries ")
@@ -341,7 +352,7 @@ def example_advice():
     once for the tests below."""
     from judder.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
-    return {case: api.advise(example, bounds=bounds)
+    return {case: api.advise(example, bounds=bounds, driveline="chain")
             for case, bounds in README_BOUNDS.items()}
 
 
@@ -477,9 +488,10 @@ def test_check_command_line(tmp_path):
     assert text.splitlines()[-1].startswith("# written by judder ")
     summary = _judder("check", "--freq", "102.9", "--pf", "0.3", "--params",
                       "none")
-    # the driveline judged, then one line a setting
+    # the driveline judged (a preset: on its test bench), then one line
+    # a setting
     assert summary.stdout.count("\n") == 2 and "JUDDER" in summary.stdout
-    assert "chain" in summary.stdout.splitlines()[0]
+    assert "test bench" in summary.stdout.splitlines()[0]
     proc = _judder("check", "--freq", "60", "--pf", "-1")
     assert proc.returncode == 2 and "--pf -1" in proc.stderr
     assert proc.stderr.count("\n") == 1

@@ -29,6 +29,12 @@ TOLERANCE = 1.0
 BAR = 1e5
 
 
+@pytest.fixture(autouse=True)
+def _chain(chain_by_default):
+    """This module pins the paper's figures, of the chain."""
+
+
+
 def _check(fig, name, tmp_path):
     import matplotlib.pyplot as plt
     actual = tmp_path / f"{name}.png"
@@ -227,7 +233,7 @@ def _text_problems(fig):
 @pytest.fixture(scope="module")
 def small_map():
     return api.stability_map(np.linspace(5, 250, 60), np.linspace(0, 1.5, 30),
-                             exact=True, min_growth=1.0)
+                             exact=True, min_growth=1.0, driveline="chain")
 
 
 def _figures(paper4, small_map):

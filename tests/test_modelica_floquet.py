@@ -281,11 +281,12 @@ def test_cli_modelica_keeps_the_json_fields():
     ours = _cli("floquet", "--freq", "102.9", "--pf", "0.3", "--modelica",
                 "Judder.Examples.Driveline4DOF", "--set", "c12=10", "--json")
     theirs = _cli("floquet", "--freq", "102.9", "--pf", "0.3", "--set",
-                  "c12=10", "--json")
+                  "c12=10", "--driveline", "chain", "--json")
     assert ours.returncode == theirs.returncode == 0, ours.stderr
     ours, theirs = json.loads(ours.stdout), json.loads(theirs.stdout)
     assert set(ours) == set(theirs)
     assert ours["model"] == "Judder.Examples.Driveline4DOF"
+    assert ours["driveline"] == theirs["driveline"] == "chain"
     assert ours["kind"] == theirs["kind"]
     assert ours["leading_abs"] == pytest.approx(theirs["leading_abs"],
                                                 rel=1e-12)

@@ -18,14 +18,15 @@ def test_bench_tip_1_is_the_bench_resonance_not_the_chains():
     # free chain's 18.94 Hz to 16.52 Hz; tongue 1's tip follows it
     from judder.bench import driveline_view
     params = get_preset(PRESET)
-    bench = driveline_view(params, "bench")
+    bench = driveline_view(params, "bench")[0]
     f1 = damped_modes(build_driveline(bench))[0][0]
     assert f1 == pytest.approx(16.52, abs=0.01)
     found = api.tongues(np.linspace(10, 30, 201), 1.0, params,
                         driveline="bench")
     tip_1 = next(t for t in found.tongues if t.number == 1)
     assert tip_1.tip_freq_hz == pytest.approx(f1, abs=0.1)
-    chain = api.tongues(np.linspace(10, 30, 201), 1.0, params)
+    chain = api.tongues(np.linspace(10, 30, 201), 1.0, params,
+                        driveline="chain")
     assert next(t for t in chain.tongues
                 if t.number == 1).tip_freq_hz == pytest.approx(18.94,
                                                                abs=0.1)
@@ -49,7 +50,8 @@ def test_check_of_the_bench_gives_simulates_verdict(freq_hz, p_f_bar):
 
 def test_check_names_the_settled_oscillation_and_the_driveline():
     params = get_preset(PRESET)
-    result = api.check([103.0], [0.3], params, sensitivity=())
+    result = api.check([103.0], [0.3], params, sensitivity=(),
+                       driveline="chain")
     record = result.records()[0]
     # the chain's linear forced response, in closed form (Eq. 6 with D)
     expected = forced_upstream_amplitude(build_driveline(params), 103.0,
@@ -74,3 +76,71 @@ def test_a_driveline_outside_the_list_is_refused():
     with pytest.raises(Exception) as error:
         api.check([100.0], [0.2], get_preset(PRESET), driveline="rig")
     assert "'rig'" in str(error.value) and "bench" in str(error.value)
+
+
+def test_a_preset_is_judged_on_its_bench_unless_told():
+    # with a preset and no other option, check and simulate judge the
+    # same driveline: the held-out settings of the issue (86.5 Hz, 0.5
+    # bar and 119.5 Hz, 0.6 bar lie in the bench's tongues 5 and 6, which
+    # the free chain puts at 83.9 and 121.8 Hz)
+    for freq_hz, p_f_bar in ((86.5, 0.5), (119.5, 0.6)):
+        record = api.check([freq_hz], [p_f_bar], sensitivity=()).records()[0]
+        run = api.simulate(freq_hz, p_f_bar).summaries[0]
+        assert record["verdict"] == run["verdict"] == "JUDDER"
+        assert record["mechanism"] == run["mechanism"] == "parametric"
+    chain = api.check([86.5], [0.5], sensitivity=(), driveline="chain")
+    assert chain.records()[0]["verdict"] == "STABLE"
+    assert chain.as_dict()["driveline"] == "chain"
+
+
+@pytest.mark.parametrize("freq_hz, p_f_bar", [(86.5, 0.5), (119.5, 0.6),
+                                              (85.0, 0.65)])
+def test_quasi_periodic_motion_settles_as_the_bench_run(freq_hz, p_f_bar):
+    # in a combination tongue no periodic orbit settles: the integrated
+    # motion's component at the combination frequency against the FMU
+    # run's (judged as a bench run), within 5 %; the unstable T-orbit's
+    # amplitude (4-9 rpm) is far from both
+    from judder.bench import engagement_model
+    from stability.orbit import periodic_orbit
+    from stability.settle import settle
+    model = engagement_model(get_preset(PRESET))[0]
+    motion = settle(model, [freq_hz], [p_f_bar * 1e5])
+    run = api.simulate(freq_hz, p_f_bar).summaries[0]
+    settled = motion.other[0] * 30 / np.pi
+    assert motion.settled[0]
+    assert settled == pytest.approx(run["oscillation_rpm"], rel=0.05)
+    orbit = periodic_orbit(model, freq_hz, p_f_bar * 1e5)
+    assert orbit.kind == "combination"
+    assert orbit.dither_amplitude * 30 / np.pi < 0.5 * settled
+    # the combination partner of f = f2 - f1 lies near the bench's f1
+    assert 15 < motion.other_hz[0] < 18.5
+
+
+def test_settled_motion_does_not_depend_on_the_step():
+    # the Runge-Kutta step halved: the settled component moves < 1 %
+    from judder.bench import engagement_model
+    from stability.settle import settle
+    model = engagement_model(get_preset(PRESET))[0]
+    coarse = settle(model, [86.5], [0.5e5])
+    fine = settle(model, [86.5], [0.5e5], steps_per_period=64)
+    assert fine.other[0] == pytest.approx(coarse.other[0], rel=0.01)
+
+
+def test_the_map_holds_the_forced_response_and_its_linear_range():
+    from judder.bench import driveline_view
+    params = get_preset(PRESET)
+    shown = api.stability_map(np.array([16.5, 60.0, 103.0]),
+                              np.array([0.05, 0.3]), params)
+    bench = build_driveline(driveline_view(params, "bench")[0])
+    forced = shown.forced_amplitude_rpm()
+    assert forced[2, 1] == pytest.approx(forced_upstream_amplitude(
+        bench, 103.0, 0.3e5) * 30 / np.pi, rel=1e-12)
+    judder, mechanism = shown.verdicts()
+    assert judder[2, 1] and not judder[1, 1]
+    assert mechanism[2, 1] in (1, 3)            # forced (and growing)
+    beyond = shown.beyond_linear_range()
+    assert beyond[2, 1] and not beyond[1, 1]    # 103 Hz swings +-28 rad/s
+    counts = shown.as_dict()
+    assert counts["beyond_linear_range_points"] == int(beyond.sum())
+    assert counts["friction_linear_range_rad_s"] == pytest.approx(1.13,
+                                                                  abs=0.01)

@@ -314,10 +314,11 @@ def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,
 
 
 def test_simulate_names_whose_linearisation_its_floquet_line_is():
-    # README: at 105 Hz, 0.2 bar the example driveline grows at 0.563 1/s
-    # (judder check); the bench's linearisation, with its speed control's
-    # damping and its friction curve at the slip, at +0.17 1/s: the line
-    # says which it gives (issue 33: "Floquet at this point")
+    # at 105 Hz, 0.2 bar the example driveline alone grows at 0.563 1/s
+    # (judder check --driveline chain); the bench's linearisation, with
+    # its speed control's damping and its friction curve at the slip, at
+    # +0.17 1/s, which judder check gives by default: the line says which
+    # it gives (issue 33: "Floquet at this point"; issue 41: one view)
     from judder import api
     from judder.commands.simulate import _engagement_line
     from judder.inputs import load_parameters
@@ -327,7 +328,12 @@ def test_simulate_names_whose_linearisation_its_floquet_line_is():
     summary = run.summaries[0]
     assert summary["floquet_exponent_per_s"] == pytest.approx(0.17,
                                                               abs=0.005)
+    chain = api.check([105], [0.2], example, sensitivity=(),
+                      driveline="chain").records()[0]
+    assert chain["growth_rate_per_s"] == pytest.approx(0.563, abs=5e-4)
     check = api.check([105], [0.2], example, sensitivity=()).records()[0]
-    assert check["growth_rate_per_s"] == pytest.approx(0.563, abs=5e-4)
-    assert ("; Floquet of the bench's linearisation (not judder check's): "
-            "single-period (+0.17 1/s)") in _engagement_line(summary)
+    assert check["growth_rate_per_s"] == pytest.approx(
+        summary["floquet_exponent_per_s"], rel=1e-9)
+    assert ("; Floquet of the bench's linearisation (judder check's view "
+            "of the bench): single-period (+0.17 1/s)") in \
+        _engagement_line(summary)

@@ -131,7 +131,7 @@ def test_cli_dither_wave():
     def floquet(*extra):
         proc = subprocess.run(
             [sys.executable, "-m", "judder", "floquet", "--freq", "34.2946",
-             "--pf", "0.07", "--json", *extra],
+             "--pf", "0.07", "--driveline", "chain", "--json", *extra],
             capture_output=True, text=True, timeout=120)
         assert proc.returncode == 0, proc.stderr
         return json.loads(proc.stdout)

@@ -178,14 +178,17 @@ def driveline_option(parser):
     """``--driveline``: the driveline a Floquet view is of
     (:data:`judder.bench.DRIVELINES`)."""
     parser.add_argument("--driveline", choices=("chain", "bench"),
-                        default="chain",
-                        help="chain: the preset's driveline alone (Eq. 6, "
-                             "free, the paper's Fig. 14; default); bench: "
-                             "the same driveline on its test bench, as "
-                             "simulate, orbit and chart run it (the motor's "
-                             "speed control damps body 1, the friction "
-                             "curve's value and slope at the bench's slip; "
-                             "its first resonance is 16.5 Hz, not 18.9)")
+                        default=None,
+                        help="bench: the preset's driveline on its test "
+                             "bench, as simulate, orbit and chart run it "
+                             "(the motor's speed control damps body 1, the "
+                             "friction curve's value and slope at the "
+                             "bench's slip; its first resonance is 16.5 "
+                             "Hz, not 18.9; default where the preset has a "
+                             "bench); chain: the driveline alone (Eq. 6, "
+                             "free, as the paper's Fig. 12 and 14; default "
+                             "for a model without a bench, a Modelica "
+                             "class or an FMU)")
 
 
 def limit_option(parser):

@@ -14,7 +14,7 @@ from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
 
-from ._arguments import (force_option, min_growth_option, model_options,
+from ._arguments import (driveline_option, force_option, min_growth_option, model_options,
                          window_options)
 from ._common import (at_dither_frequency, check_modes_up_to, check_names,
                       checked_values, structural_names)
@@ -79,6 +79,7 @@ def add_arguments(p):
                    help="safe amplitude per frequency and the map of the "
                         "advised design")
     model_options(p)
+    driveline_option(p)
     force_option(p)
 
 
@@ -144,7 +145,8 @@ def run(args):
                         min_growth=args.min_growth, names=names,
                         weights=weights, design=not args.no_design,
                         progress=progress, bounds=bounds,
-                        background=args.plot is not None)
+                        background=args.plot is not None,
+                        driveline=args.driveline)
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + written(args.out, args.plot))
@@ -153,7 +155,7 @@ def run(args):
 def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0),
            p_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
            names=None, weights=None, design=True, progress=None,
-           bounds=None, background=False):
+           bounds=None, background=False, driveline=None):
     """``judder advise``: safe dither windows, the ranking of the design
     parameters, and the smallest weighted change that clears the window.
 
@@ -199,7 +201,10 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
                             margin_bar=margin_bar, margin_hz=margin_hz,
                             min_growth=min_growth)
     values = at_dither_frequency(values, freq_range, argument="freq_range")
-    sets = [values, *extra_sets]
+    from ..bench import driveline_view
+    given = values
+    values, driveline = driveline_view(values, driveline)
+    sets = [values, *(driveline_view(s, driveline)[0] for s in extra_sets)]
     models = {p.model for p in sets}
     if len(models) > 1:
         raise JudderError(f"parameter sets of models {sorted(models)}; "
@@ -266,7 +271,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         ranking=order, advice=found, advised_windows=advised_windows or [],
         verification=verification, judder_points=judder_points,
         seconds=time.perf_counter() - started, unstable=unstable,
-        view=view)
+        view=view, given=given, driveline=driveline)
 
 
 def _wide_view(given, advised, operating):
@@ -328,14 +333,18 @@ class AdviceResult:
     seconds: float
     unstable: list = None
     view: dict = None
+    given: object = None
+    driveline: str = "chain"
 
     def advised_params(self):
-        """The advised parameter set (None if there is none)."""
+        """The advised parameter set (None if there is none): the given
+        driveline's, without what its bench adds."""
         a = self.advice
         if a is None or not a.success:
             return None
-        return self.params.replace(**{n: self.params[n] * f
-                                      for n, f in zip(a.names, a.factors)})
+        given = self.given if self.given is not None else self.params
+        return given.replace(**{n: given[n] * f
+                                for n, f in zip(a.names, a.factors)})
 
     def _max_growth(self):
         """Fastest growth of an unstable point of the recomputed map of
@@ -347,7 +356,10 @@ class AdviceResult:
 
     def as_dict(self):
         op = self.operating
-        out = {"model": self.params.model,
+        from ..bench import driveline_words
+        out = {"model": self.params.model, "driveline": self.driveline,
+               "driveline_description": driveline_words(self.params,
+                                                        self.driveline),
                "min_growth_per_s": self.min_growth,
                "parameter_sets": self.sets,
                "operating_range": {

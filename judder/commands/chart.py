@@ -15,7 +15,8 @@ from infra.files import (all_or_none, keeps_foreign_files, save_npz,
 from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (decimal_option, force_option, limit_option,
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         limit_option,
                          method_option, model_options, refuse_decimal,
                          workers_option)
 from ._flags import in_flags
@@ -39,8 +40,9 @@ DESCRIPTION = (
     "amplitude contour per oil temperature or engine speed, and writes "
     "the experimental boundary for `judder fit --boundary`. Give "
     "--model, --preset, --param-file or --set to draw the model's "
-    "tongue boundaries over it (with --bench-linearisation those of the "
-    "emulated bench: c1 + d_control).")
+    "tongue boundaries over it: those of the driveline on its test "
+    "bench where the preset has one (c1 + d_control, what a `judder "
+    "campaign` chart shows), else of the chain; --driveline chooses.")
 OUTPUTS = (("out", "--out", ("npz",)),
            ("plot", "--plot", None),
            ("boundary", "--boundary", ("csv",)))
@@ -87,11 +89,9 @@ def add_arguments(p):
                                        "(default 2)")
     limit_option(p)
     p.add_argument("--bench-linearisation", action="store_true",
-                   help="draw the tongues of the bench's linearisation "
-                        "(c1 + d_control: the motor's speed control damps "
-                        "body 1), the tongues a `judder campaign` chart "
-                        "shows (tongues 5, 6 at 86.4 and 119.4 Hz with "
-                        "the Appendix values, not 84 and 122)")
+                   help="the same as --driveline bench (kept for one "
+                        "release)")
+    driveline_option(p)
     p.add_argument("--out", metavar="FILE.npz",
                    help="per-run arrays and boundaries (NPZ)")
     p.add_argument("--boundary", metavar="FILE.csv",
@@ -121,6 +121,7 @@ def run(args):
                        judder_limit_rpm=args.limit,
                        model=overlay, parameters=params,
                        bench_linearisation=args.bench_linearisation,
+                       driveline=args.driveline,
                        changes=changes, method=args.method,
                        workers=args.workers, progress=progress)
     if not result.chart.read:
@@ -223,7 +224,8 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
           min_growth=None, min_amplitude_rpm=None,
           judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, model=False,
           parameters=None, changes=None, method=DEFAULT_METHOD,
-          workers=None, progress=None, bench_linearisation=False):
+          workers=None, progress=None, bench_linearisation=False,
+          driveline=None):
     """``judder chart``: experimental stability charts from bench
     acquisitions (section 3.2, Fig. 10 and 11).
 
@@ -254,8 +256,12 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
         Also compute the model's tongue boundaries (``parameters`` and
         ``changes``) over the chart's frequencies, drawn by ``figure()``.
     bench_linearisation : bool
-        Those of the bench's linearisation (:func:`judder.bench.
-        bench_damping`), as a chart of ``judder campaign`` runs has them.
+        The same as ``driveline='bench'`` (kept for one release).
+    driveline : {'chain', 'bench'}, optional
+        Whose tongues ``model`` draws (:func:`judder.bench.driveline_view`;
+        default the bench where the preset has one, as a chart of ``judder
+        campaign`` runs has them: tongues 5, 6 at 86.4 and 119.4 Hz with
+        the Appendix values, not 84 and 122).
 
     Returns
     -------
@@ -286,16 +292,11 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     if model and result.read:
         freqs = [r.analysis.freq_hz for r in result.read]
         top = max(r.analysis.p_f_bar for r in result.read)
-        if bench_linearisation:
-            from ..bench import bench_damping
-            from ._common import resolve
-            values = resolve(parameters, changes)
-            changes = {**dict(changes or {}), **{
-                name: values[name] + added for name, added in
-                bench_damping(values).items()}}
         overlay = tongues(np.linspace(min(freqs), max(freqs), 200),
                           max(1.5 * top, 0.1), parameters, changes,
-                          method=method)
+                          method=method,
+                          driveline="bench" if bench_linearisation
+                          else driveline)
     return ChartResult(chart=result, seconds=seconds, model=overlay)
 
 

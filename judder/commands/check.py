@@ -145,7 +145,7 @@ def _settings(args, parameters):
 
 def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
           p_max_bar=None, sensitivity=None, background=False,
-          progress=None, driveline="chain", judder_limit_rpm=None):
+          progress=None, driveline=None, judder_limit_rpm=None):
     """``judder check``: is each dither setting safe, and by how much.
 
     Parameters
@@ -166,10 +166,11 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         and JudderError if none).
     background : bool
         Also compute the map ``figure()`` marks the settings on.
-    driveline : {'chain', 'bench'}
+    driveline : {'chain', 'bench'}, optional
         The driveline judged (:data:`judder.bench.DRIVELINES`): the
         preset's chain, or the same on its test bench (what ``simulate``
-        runs).
+        runs); default the bench where the preset has one
+        (:func:`judder.bench.default_driveline`).
     judder_limit_rpm : float, optional
         NVH limit of the upstream speed's oscillation, rpm (default
         :data:`infra.criteria.DEFAULT_JUDDER_LIMIT_RPM`): a settled
@@ -199,7 +200,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
                            p_f_bar=p_f_bar, min_growth=min_growth,
                            p_max_bar=p_max_bar,
                            judder_limit_rpm=judder_limit_rpm)
-    values = driveline_view(given, driveline)
+    values, driveline = driveline_view(given, driveline)
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     if p_max_bar is None:
         p_max_bar = max(1.5, 2 * float(p_f_bar.max()))
@@ -260,7 +261,8 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
 AMPLITUDE_SOURCES = {
     "bench": "the bench's periodic orbit (harmonic balance of its "
              "friction curve and motor torque limit; the 2T orbit past "
-             "period doubling)",
+             "period doubling; in a combination tongue the motion "
+             "integrated until settled, stability.settle)",
     "chain": "the chain's linear harmonic response at the dither "
              "frequency (Eq. 6 driven by the column D of Eq. 9)"}
 
@@ -283,21 +285,27 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     if not given.source_kind.is_chain:
         return None     # a class's or an FMU's forced response: not here
     if driveline == "bench":
+        from stability.settle import settle_orbits
         from ..bench import engagement_model
         model = engagement_model(given)[0]
+        orbits = [periodic_orbit(model, f, p) for f, p in zip(freq_hz, p_f)]
+        motions = settle_orbits(model, orbits)
     else:
         system = build_driveline(values)
-    for f, p, rate in zip(freq_hz, p_f, growth_rates):
+    for k, (f, p, rate) in enumerate(zip(freq_hz, p_f, growth_rates)):
         if driveline == "bench":
-            orbit = periodic_orbit(model, f, p)
+            orbit, motion = orbits[k], motions[k]
             doubled = (double_period_orbit(model, orbit)
                        if orbit.success and orbit.kind == "double-period"
                        else None)
-            verdict = orbit_verdict(orbit, doubled, limit, min_growth)
+            verdict = orbit_verdict(
+                orbit, doubled, limit, min_growth,
+                0.0 if motion is None else motion["combination"])
             forced, settled, growth = (verdict.forced, verdict.settled,
                                        verdict.growth_rate)
             judder, mechanism = verdict.judder, verdict.mechanism
             converged, quasi = orbit.success, verdict.quasi_periodic
+            settled_s = None if motion is None else motion["duration"]
         else:
             forced = settled = forced_upstream_amplitude(system, f, p)
             growth = rate
@@ -305,13 +313,14 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             judder = parametric or is_forced
             mechanism = 3 if parametric and is_forced else 2 if parametric \
                 else 1 if is_forced else 0
-            converged, quasi = True, False
+            converged, quasi, settled_s = True, False, None
         rows.append({
             "forced_amplitude_rpm": forced * RPM_PER_RAD_S,
             "settled_amplitude_rpm": settled * RPM_PER_RAD_S,
             "amplitude_from": AMPLITUDE_SOURCES[driveline],
             "response_growth_per_s": growth,
             "quasi_periodic": bool(quasi), "converged": bool(converged),
+            "integrated_s": settled_s,
             "judder": bool(judder) and bool(converged),
             "mechanism": MECHANISMS[mechanism] if judder else None,
             "judder_limit_rpm": limit_rpm})
@@ -401,8 +410,9 @@ def response_words(record):
     """The settled oscillation and the mechanism, in words."""
     words = (f"settled oscillation {record['settled_amplitude_rpm']:.3g} "
              f"rpm (limit {record['judder_limit_rpm']:g} rpm"
-             + (", from the unstable T-orbit: the motion is "
-                "quasi-periodic" if record["quasi_periodic"] else "")
+             + (f", quasi-periodic, integrated over "
+                f"{record['integrated_s']:.1f} s" if record["quasi_periodic"]
+                and record["integrated_s"] else "")
              + ")")
     if not record["converged"]:
         words += " (the orbit did not converge: no verdict from it)"

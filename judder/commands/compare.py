@@ -8,7 +8,8 @@ import numpy as np
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
-from ._arguments import force_option, min_growth_option, window_options
+from ._arguments import (driveline_option, force_option, min_growth_option,
+                         window_options)
 from ._common import check_arguments
 from ._output import Progress, emit, make_parents, save_plot, written
 from ._values import PF_MAX, Grid, Settings
@@ -54,6 +55,7 @@ def add_arguments(p):
                    valve_note=", as judder advise --pf-max",
                    margin_words=("of the safe windows",) * 2)
     min_growth_option(p)
+    driveline_option(p)
     p.add_argument("--plot", metavar="FILE.png",
                    help="both maps on one figure")
     p.add_argument("--json", action="store_true",
@@ -95,7 +97,8 @@ def run(args):
                          margin_bar=args.margin_bar,
                          margin_hz=args.margin_hz,
                          min_growth=args.min_growth,
-                         maps=args.plot is not None, progress=progress)
+                         maps=args.plot is not None, progress=progress,
+                         driveline=args.driveline)
     if args.plot:
         save_plot(args.plot, result.figure())
     emit(args, {**result.as_dict(), "plot": args.plot},
@@ -105,7 +108,7 @@ def run(args):
 def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
             settings=(), freq_range=(60.0, 200.0), valve_max_bar=0.7,
             margin_bar=0.1, margin_hz=5.0, min_growth=None, maps=False,
-            progress=None):
+            progress=None, driveline=None):
     """``judder compare``: two parameter sets side by side.
 
     Parameters
@@ -132,6 +135,10 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     maps : bool
         Also compute both maps with their exact boundaries, for
         ``figure()``.
+    driveline : {'chain', 'bench'}, optional
+        The driveline both sets are judged as
+        (:func:`judder.bench.driveline_view`; default the bench where the
+        preset has one).
 
     Returns
     -------
@@ -156,21 +163,26 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     grid = window_grid(operating)
     started = time.perf_counter()
     sides = []
+    from ..bench import driveline_view
     for index, params in enumerate((first, second)):
-        found = tongues(freq_hz, p_max_bar, params, judder_growth=min_growth)
-        boundary = window_boundary([params], grid, min_growth,
+        viewed, view = driveline_view(params, driveline)
+        found = tongues(freq_hz, p_max_bar, params, judder_growth=min_growth,
+                        driveline=view)
+        boundary = window_boundary([viewed], grid, min_growth,
                                    max(1.5e5, 2 * operating.required_p_f))
         safe, windows = safe_windows(grid, boundary, operating)
         checked = (check([f for f, _ in settings], [p for _, p in settings],
                          params, min_growth=min_growth,
-                         p_max_bar=p_max_bar, sensitivity=())
+                         p_max_bar=p_max_bar, sensitivity=(),
+                         driveline=view)
                    if settings else None)
         shown = (stability_map(freq_hz, np.linspace(0, p_max_bar,
                                                     MAP_AMPLITUDES),
-                               params, min_growth=min_growth, exact=True)
+                               params, min_growth=min_growth, exact=True,
+                               driveline=view)
                  if maps else None)
         sides.append(Side(label=labels[index], params=params,
-                          modes=eig(params), tongues=found,
+                          modes=eig(params, driveline=view), tongues=found,
                           windows=windows, safe_p_f=safe, check=checked,
                           map=shown))
         if progress is not None:

@@ -33,7 +33,9 @@ def run(args):
     result = eig(*parameters_of(args), driveline=args.driveline)
     zeta = result.damping_factor_12
     words = mode_words(linearised_mode(result.params))
-    lines = [f"model {result.params.model}"
+    from ..bench import driveline_words
+    lines = [f"model {result.params.model}: "
+             f"{driveline_words(result.params, result.driveline)}"
              + (f", {words} (held over a period at the class's own "
                 "dither setting)"
                 if words else ""),
@@ -43,7 +45,7 @@ def run(args):
              + ("not defined (a formula of the paper's chains)"
                 if zeta is None else f"{100 * zeta:.2f} %"),
              ("damped modes of the bench (its speed control damps body "
-              "1) without dither: " if args.driveline == "bench" else
+              "1) without dither: " if result.driveline == "bench" else
               "damped modes without dither, rigid-body angles removed: ")
              + ", ".join(f"{f:.3f} Hz ({100 * r:.2f} %)" for f, r in
                          zip(result.damped_frequencies_hz,
@@ -51,7 +53,7 @@ def run(args):
     emit(args, result.as_dict(), "\n".join(lines))
 
 
-def eig(parameters=None, changes=None, driveline="chain"):
+def eig(parameters=None, changes=None, driveline=None):
     """``judder eig``: natural frequencies (Eq. 14-15) and the
     clutch-damper damping factor (Eq. 16), and the damped modes without
     dither.
@@ -76,7 +78,7 @@ def eig(parameters=None, changes=None, driveline="chain"):
     array([ 18.939, 102.884])
     """
     from ..bench import driveline_view
-    values = driveline_view(resolve(parameters, changes), driveline)
+    values, view = driveline_view(resolve(parameters, changes), driveline)
     driveline = build_driveline(values)
     damped_hz, ratio = modal.damped_modes(driveline)
     paper = values.source_kind.is_chain
@@ -87,7 +89,8 @@ def eig(parameters=None, changes=None, driveline="chain"):
                                     if paper else None),
         damping_factor_12=(float(modal.clutch_damper_damping_factor(values))
                            if paper else None),
-        damped_frequencies_hz=damped_hz, damping_ratio=ratio)
+        damped_frequencies_hz=damped_hz, damping_ratio=ratio,
+        driveline=view)
 
 
 @dataclass(frozen=True)
@@ -106,10 +109,14 @@ class EigResult:
     damping_factor_12: float
     damped_frequencies_hz: np.ndarray
     damping_ratio: np.ndarray
+    driveline: str = "chain"
 
     def as_dict(self):
         mode = linearised_mode(self.params)
-        return {"model": self.params.model,
+        from ..bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
                 **({"mode": mode} if mode else {}),
                 "natural_frequencies_hz": self.natural_frequencies_hz,
                 "closed_form_frequencies_hz": self.closed_form_frequencies_hz,

@@ -18,8 +18,9 @@ from stability.kinds import KINDS
 from stability.monodromy import DEFAULT_METHOD
 
 from ..envelope import checkpoint_path
-from ._arguments import (force_option, method_option, min_growth_option,
-                         model_options, pf_max_option, workers_option)
+from ._arguments import (driveline_option, force_option, method_option,
+                         min_growth_option, model_options, pf_max_option,
+                         workers_option)
 from ._common import (BACKGROUND_AMPLITUDES, checked_values,
                       linearised_mode, mode_words)
 from ._model import model_title, parameters_of
@@ -99,6 +100,7 @@ def add_arguments(p):
     method_option(p)
     workers_option(p)
     model_options(p)
+    driveline_option(p)
     force_option(p)
 
 
@@ -128,7 +130,8 @@ def run(args):
                           min_growth=growth, refine=args.refine,
                           parameters=params, changes=changes,
                           method=args.method, workers=args.workers,
-                          checkpoint=checkpoint, progress=progress)
+                          checkpoint=checkpoint, progress=progress,
+                          driveline=args.driveline)
     with all_or_none():
         if args.out:
             result.save(args.out, force=args.force)
@@ -166,7 +169,7 @@ def run(args):
 def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
              sampler="sobol", vertices=True, min_growth=None, refine=20,
              parameters=None, changes=None, method=DEFAULT_METHOD,
-             workers=None, checkpoint=None, progress=None):
+             workers=None, checkpoint=None, progress=None, driveline=None):
     """``judder envelope``: the broadest unstable region over uncertain
     parameters and the probability of instability (section 4.2, Fig. 16).
 
@@ -205,8 +208,11 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     from stability.uncertainty.ranges import Ranges
 
     from ..envelope import read_ranges, run_envelope
-    values = checked_values(parameters, changes, freq_hz=freq_hz,
-                            p_max_bar=p_max_bar, min_growth=min_growth)
+    from ..bench import driveline_view
+    values, driveline = driveline_view(
+        checked_values(parameters, changes, freq_hz=freq_hz,
+                       p_max_bar=p_max_bar, min_growth=min_growth),
+        driveline)
     _refuse_modes(values)
     if not isinstance(ranges, Ranges):
         ranges = read_ranges(ranges, values)
@@ -220,7 +226,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     return EnvelopeResult(params=values, ranges=ranges, envelope=result,
                           failures=failures, resumed=resumed,
                           seconds=time.perf_counter() - started,
-                          checkpoint=checkpoint)
+                          checkpoint=checkpoint, driveline=driveline)
 
 
 def _refuse_modes(values):
@@ -263,13 +269,18 @@ class EnvelopeResult:
     resumed: int
     seconds: float
     checkpoint: object = None
+    driveline: str = "chain"
 
     #: Probabilities whose boundaries the CSV lists.
     LEVELS = (0.1, 0.5, 0.9)
 
     def as_dict(self):
         e = self.envelope
-        return {"model": self.params.model, "method": e.method,
+        from ..bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
+                "method": e.method,
                 "min_growth_per_s": e.min_growth, "seconds": self.seconds,
                 "ranges": self.ranges.describe(),
                 "samples": int(len(e.ok)), "vertices": int(e.is_vertex.sum()),

@@ -7,7 +7,8 @@ from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, min_growth_option,
+from ._arguments import (driveline_option, force_option, method_option,
+                         min_growth_option,
                          model_options, waveform_option)
 from ._common import (check_modes, checked_values, dithered,
                       linearised_mode, mode_words)
@@ -37,6 +38,7 @@ def add_arguments(p):
     min_growth_option(p, "; the verdict line says which the point is")
     method_option(p)
     model_options(p)
+    driveline_option(p)
     waveform_option(p)
     force_option(p)
 
@@ -49,15 +51,19 @@ def run(args):
     point = floquet(args.freq, args.pf, params, changes,
                     method=args.method,
                     waveform=parse_waveform(args.dither_wave),
-                    min_growth=args.min_growth)
+                    min_growth=args.min_growth, driveline=args.driveline)
     if args.plot:
         save_plot(args.plot, point.figure(
             title=f"Floquet multipliers (Fig. 15), "
-                  f"{model_title(args, params)}"))
+                  f"{model_title(args, params)}"
+                  + (" on its test bench" if point.driveline == "bench"
+                     else "")))
     result = point.result
     lam = result.leading
+    from ..bench import driveline_words
     words = mode_words(linearised_mode(point.params))
-    text = ((words + "\n" if words else "")
+    text = (f"driveline: {driveline_words(point.params, point.driveline)}\n"
+            + (words + "\n" if words else "")
             + f"f = {args.freq:g} Hz, p_f = {args.pf:g} bar: {result.kind}\n"
             f"leading multiplier {lam.real:.6f}{lam.imag:+.6f}i "
             f"(|lambda| = {result.leading_abs:.6f}), growth rate "
@@ -68,7 +74,8 @@ def run(args):
 
 
 def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
-            method=DEFAULT_METHOD, waveform=None, min_growth=None):
+            method=DEFAULT_METHOD, waveform=None, min_growth=None,
+            driveline=None):
     """``judder floquet``: Floquet multipliers at one dither setting
     (Eq. 10-13), rigid-body angles removed.
 
@@ -84,6 +91,9 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     min_growth : float, optional
         Judder rate, 1/s, of the verdict (default
         :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
+    driveline : {'chain', 'bench'}, optional
+        The driveline linearised (:func:`judder.bench.driveline_view`);
+        default the bench where the preset has one.
 
     Returns
     -------
@@ -93,11 +103,13 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_f_bar=p_f_bar, min_growth=min_growth)
+    from ..bench import driveline_view
+    values, view = driveline_view(values, driveline)
     check_modes(values, freq_hz, p_f_bar * PA_PER_BAR)
     result = floquet_kernel(dithered(values, waveform), freq_hz,
                             p_f_bar * PA_PER_BAR, method=method)
     return FloquetPoint(params=values, method=method, result=result,
-                        min_growth=min_growth)
+                        min_growth=min_growth, driveline=view)
 
 
 def complex_record(value):
@@ -120,6 +132,7 @@ class FloquetPoint:
     method: str
     result: object
     min_growth: float = 1.0
+    driveline: str = "chain"
 
     def verdict(self):
         """One of :data:`stability.decisions.relevance.VERDICTS`."""
@@ -146,7 +159,10 @@ class FloquetPoint:
     def as_dict(self):
         r = self.result
         mode = linearised_mode(self.params)
-        return {"model": self.params.model,
+        from ..bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
                 **({"mode": mode} if mode else {}), "freq_hz": r.freq_hz,
                 "p_f_bar": self.p_f_bar, "p_f_pa": r.p_f,
                 "period_s": r.period, "method": self.method,

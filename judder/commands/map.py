@@ -9,13 +9,14 @@ import numpy as np
 
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
-from infra.units import PA_PER_BAR
+from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
 from ..bench import driveline_view
-from ._arguments import (driveline_option, force_option, method_option, min_growth_option,
+from ._arguments import (driveline_option, force_option, limit_option,
+                         method_option, min_growth_option,
                          model_options, waveform_option)
 from ._common import (check_modes_up_to, checked_values, dithered,
                       frequency_dependent, linearised_mode, mode_words,
@@ -63,6 +64,7 @@ def add_arguments(p):
                    help="save a plot of the map (PNG, SVG or PDF), with the "
                         "exact tongue boundaries and numbers")
     min_growth_option(p, "; the plot shades slower ones grey")
+    limit_option(p)
     method_option(p)
     model_options(p)
     driveline_option(p)
@@ -88,13 +90,14 @@ def run(args):
             freqs, amplitudes, params, changes, method=args.method,
             progress=progress,
             min_growth=args.min_growth,
-            exact=exact, waveform=waveform, driveline=args.driveline)
-    paper = {"3dof": "Fig. 12", "4dof": "Fig. 14"}.get(params.model)
-    if args.driveline == "bench":
-        paper = None
+            exact=exact, waveform=waveform, driveline=args.driveline,
+            judder_limit_rpm=args.limit)
+    bench = result.driveline == "bench"
+    paper = None if bench else {"3dof": "Fig. 12",
+                                "4dof": "Fig. 14"}.get(params.model)
     title = (f"stability map{f' ({paper})' if paper else ''}, "
              f"{model_title(args, params)}"
-             + (" on its test bench" if args.driveline == "bench" else ""))
+             + (" on its test bench" if bench else ""))
     files = write_outputs(args, result,
                            save={"meta": {"preset": args.preset,
                                           "set": args.set,
@@ -102,7 +105,8 @@ def run(args):
                            figure={"title": title})
     words = mode_words(linearised_mode(result.params),
                        float(np.max(amplitudes)))
-    text = ((words + "\n" if words else "") + count_words(result) + "\n"
+    text = (f"driveline: {result.as_dict()['driveline_description']}\n"
+            + (words + "\n" if words else "") + count_words(result) + "\n"
             + time_words(
         result, time.perf_counter() - started)
             + written(args.out, args.plot))
@@ -121,7 +125,26 @@ def count_words(result):
             "unstable (|lambda| > 1: "
             + ", ".join(f"{k} {v}" for k, v in counts.items()) + ")"
             + (f", of which {result.judder_relevant_points()} judder "
-               f"(growth >= {rate:g} 1/s)" if rate > 0 else ""))
+               f"(growth >= {rate:g} 1/s)" if rate > 0 else "")
+            + forced_words(result))
+
+
+def forced_words(result):
+    """The points whose linear forced oscillation exceeds the limit, and
+    the judder points in all; '' where the map has no forced response."""
+    counts = result._forced_counts()
+    if not counts:
+        return ""
+    beyond = counts["beyond_linear_range_points"]
+    return (f"; forced oscillation above {counts['judder_limit_rpm']:g} rpm "
+            f"(linear harmonic response) at {counts['forced_judder_points']}"
+            f"; judder in all (grows or forced): {counts['judder_points']}"
+            + ("" if not beyond else
+               f"\nbeyond the linear view at {beyond} points: the dither's "
+               "forced slip swing exceeds the friction curve's linear "
+               f"range (+-{counts['friction_linear_range_rad_s']:.2g} "
+               "rad/s); there the motion need not follow the map (judder "
+               "orbit and judder check give it)"))
 
 
 def time_words(result, total=None):
@@ -148,7 +171,8 @@ def check_map_grid(values, freqs, amplitudes, options, method, tongues):
 
 def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
                   method=DEFAULT_METHOD, progress=None, min_growth=None,
-                  exact=False, waveform=None, driveline="chain"):
+                  exact=False, waveform=None, driveline=None,
+                  judder_limit_rpm=None):
     """``judder map``: leading multiplier on a frequency x amplitude grid
     (Fig. 12, Fig. 14).
 
@@ -166,6 +190,14 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         ``figure()`` draws over the grid with the tongue numbers.
     waveform : object, optional
         Dither shape (:mod:`stability.waveforms`); default the cosine.
+    driveline : {'chain', 'bench'}, optional
+        The driveline mapped (:func:`judder.bench.driveline_view`);
+        default the bench where the preset has one.
+    judder_limit_rpm : float, optional
+        NVH limit of the upstream speed's oscillation, rpm (default
+        :data:`infra.criteria.DEFAULT_JUDDER_LIMIT_RPM`): for a preset's
+        driveline the map also holds its linear forced response at the
+        dither frequency, judder where it exceeds the limit (forced).
 
     Returns
     -------
@@ -176,9 +208,12 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         (not judder, :mod:`stability.decisions.relevance`) and the JSON
         counts the faster ones.
     """
-    values = checked_values(parameters, changes, followed=True,
-                            freq_hz=freq_hz, p_f_bar=p_f_bar)
-    values, view = driveline_view(values, driveline), driveline
+    given = checked_values(parameters, changes, followed=True,
+                           freq_hz=freq_hz, p_f_bar=p_f_bar)
+    values, view = driveline_view(given, driveline)
+    from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
+    judder_limit_rpm = (DEFAULT_JUDDER_LIMIT_RPM if judder_limit_rpm is None
+                        else judder_limit_rpm)
     check_modes_up_to(values, freq_hz, p_f_bar)
     driveline = dithered(values, waveform)
     amplitudes = np.asarray(p_f_bar, dtype=float) * PA_PER_BAR
@@ -202,10 +237,25 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     if boundaries is not None:
         from stability.tongues import find_tongues
         found = find_tongues(driveline, boundaries)
+    forced = slip = linear_slip = None
+    if values.source_kind.is_chain and waveform is None:
+        from stability.friction import (forced_slip_amplitude,
+                                        forced_upstream_amplitude)
+        forced = np.array([forced_upstream_amplitude(
+            driveline, f, PA_PER_BAR) for f in result.freq_hz]) \
+            * RPM_PER_RAD_S
+        slip = np.array([forced_slip_amplitude(driveline, f, PA_PER_BAR)
+                         for f in result.freq_hz])
+        if view == "bench":
+            from ..bench import bench_fmu, operating_friction
+            linear_slip = operating_friction(given, bench_fmu(given)[1],
+                                             {})[1]
     return MapResult(params=values, map=result, seconds=seconds,
                      boundaries=boundaries, tongues=found,
                      min_growth=min_growth, boundaries_seconds=exact_seconds,
-                     driveline=view)
+                     driveline=view, forced_rpm_per_bar=forced,
+                     judder_limit_rpm=judder_limit_rpm,
+                     forced_slip_per_bar=slip, linear_slip=linear_slip)
 
 
 def _followed(values, waveform, freq_hz, amplitudes, p_top, method,
@@ -263,6 +313,47 @@ class MapResult:
     min_growth: object = None
     boundaries_seconds: object = None
     driveline: str = "chain"
+    forced_rpm_per_bar: object = None
+    judder_limit_rpm: float = 30.0
+    forced_slip_per_bar: object = None
+    linear_slip: float = None
+
+    def beyond_linear_range(self):
+        """Points where the dither's forced slip swing exceeds the bench
+        friction curve's linear range (rad/s; bool grid, or None for a
+        view without the curve): there the motion need not follow the
+        linear view (``judder orbit`` gives it)."""
+        if self.forced_slip_per_bar is None or self.linear_slip is None:
+            return None
+        return np.outer(self.forced_slip_per_bar,
+                        self.map.p_f / PA_PER_BAR) > self.linear_slip
+
+    def verdicts(self):
+        """The verdict at each point as ``check`` gives it from the
+        linear view: ``judder`` (bool grid) and ``mechanism`` (index into
+        :data:`infra.criteria.MECHANISMS`: growth at ``min_growth`` or
+        faster is parametric, a forced oscillation above the limit
+        forced)."""
+        parametric = self._judder()
+        forced = self.forced_amplitude_rpm()
+        forced = np.zeros_like(parametric) if forced is None else \
+            forced > self.judder_limit_rpm
+        mechanism = np.where(parametric & forced, 3, np.where(
+            parametric, 2, np.where(forced, 1, 0))).astype(np.int8)
+        return parametric | forced, mechanism
+
+    def forced_amplitude_rpm(self):
+        """The linear forced oscillation of the upstream speed at the
+        dither frequency, rpm, shape (nf, np) (None: not computed, a
+        class, an FMU or another waveform)."""
+        if self.forced_rpm_per_bar is None:
+            return None
+        return np.outer(self.forced_rpm_per_bar,
+                        self.map.p_f / PA_PER_BAR)
+
+    def judder_points(self):
+        """Points that judder by growth or by the forced oscillation."""
+        return self.verdicts()[0]
 
     def judder_relevant_points(self):
         """Points growing faster than ``min_growth`` (all unstable ones if
@@ -285,8 +376,26 @@ class MapResult:
                 "counts": m.counts(),
                 "min_growth_per_s": self.min_growth,
                 "judder_relevant_points": self.judder_relevant_points(),
+                **self._forced_counts(),
                 "max_leading_abs": float(m.leading_abs.max()),
                 "natural_frequencies_hz": m.natural_frequencies_hz}
+
+    def _forced_counts(self):
+        forced = self.forced_amplitude_rpm()
+        if forced is None:
+            return {}
+        beyond = self.beyond_linear_range()
+        return {"judder_limit_rpm": self.judder_limit_rpm,
+                "forced_response": "linear harmonic response of the "
+                                   "upstream speed at the dither frequency",
+                "forced_judder_points": int(np.count_nonzero(
+                    forced > self.judder_limit_rpm)),
+                "judder_points": int(np.count_nonzero(
+                    self.judder_points())),
+                "friction_linear_range_rad_s": self.linear_slip,
+                "beyond_linear_range_points": (
+                    None if beyond is None else
+                    int(np.count_nonzero(beyond)))}
 
     def csv_text(self, meta=None):
         """The map as a long table, one row per grid point: ``freq_hz``,
@@ -357,6 +466,10 @@ class MapResult:
             "min_growth_per_s": np.array(float(self.min_growth or 0.0)),
             "parameters": np.array(json.dumps(info)),
         }
+        if self.forced_rpm_per_bar is not None:
+            arrays.update({
+                "forced_amplitude_rpm": self.forced_amplitude_rpm(),
+                "judder_limit_rpm": np.array(self.judder_limit_rpm)})
         if self.boundaries is not None:
             b, found = self.boundaries, self.tongues or []
             arrays.update({
@@ -377,6 +490,11 @@ class MapResult:
 
     def figure(self, title=None, stacked=False):
         from stability.plots import map_figure
+        forced = None if self.forced_rpm_per_bar is None else \
+            (self.map.freq_hz, self.judder_limit_rpm
+             / np.maximum(self.forced_rpm_per_bar, 1e-300),
+             self.judder_limit_rpm)
         return map_figure(self.map, title=title, tongues=self.tongues,
                           boundaries=self.boundaries,
-                          min_growth=self.min_growth, stacked=stacked)
+                          min_growth=self.min_growth, stacked=stacked,
+                          forced=forced)

@@ -159,22 +159,50 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
         doubled.append(double_period_orbit(model, found)
                        if found.success and found.kind == "double-period"
                        else None)
+    quasi = settled_motions(model, orbits)
     seconds = time.perf_counter() - started
     return OrbitResult(params=values, mode=mode, orbits=orbits,
-                       doubled=doubled, folds=folds, chart=chart,
+                       doubled=doubled, quasi=quasi, folds=folds,
+                       chart=chart,
                        limit_rpm=float(judder_limit_rpm),
                        min_growth=float(min_growth), seconds=seconds,
                        model=model, linear=linear)
 
 
-def orbit_row(found, doubled, limit_rpm, min_growth):
+def settled_motions(model, orbits):
+    """The settled motion (:func:`stability.settle.settle`, one batch) of
+    each orbit unstable through a complex pair, else None."""
+    from stability.settle import settle_orbits
+    return [None if m is None else {
+        "amplitude_at_combination_rpm": m["combination"] * RPM_PER_RAD_S,
+        "combination_freq_hz": m["combination_hz"],
+        "amplitude_at_dither_rpm": m["at_dither"] * RPM_PER_RAD_S,
+        "integrated_s": m["duration"], "settled": m["settled"]}
+        for m in settle_orbits(model, orbits)]
+
+
+def quasi_words(quasi):
+    """The settled quasi-periodic motion of a row, in words."""
+    return (f"; quasi-periodic motion "
+            f"{quasi['amplitude_at_combination_rpm']:.3g} rpm at "
+            f"{quasi['combination_freq_hz']:.1f} Hz, "
+            + ("settled" if quasi["settled"] else "not settled")
+            + f" after {quasi['integrated_s']:.1f} s of integration")
+
+
+def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
     """One orbit as a JSON row (Hz, bar, rpm, 1/s, N m), with the
     verdict of :mod:`stability.orbit_chart` (``verdict`` in the words of
-    :data:`pysim.analysis.verdict.RUN_VERDICTS`)."""
+    :data:`pysim.analysis.verdict.RUN_VERDICTS`); ``quasi``: the settled
+    quasi-periodic motion of an orbit unstable through a complex pair
+    (:func:`settled_motions`), its component at the combination frequency
+    taken as the settled amplitude."""
     from pysim.analysis.verdict import run_verdict
     from stability.orbit_chart import orbit_verdict
+    combination = 0.0 if quasi is None else \
+        quasi["amplitude_at_combination_rpm"] * RAD_S_PER_RPM
     verdict = orbit_verdict(found, doubled, limit_rpm * RAD_S_PER_RPM,
-                            min_growth)
+                            min_growth, combination)
     forced = verdict.forced * RPM_PER_RAD_S
     half = verdict.half * RPM_PER_RAD_S
     settled = verdict.settled * RPM_PER_RAD_S
@@ -195,6 +223,7 @@ def orbit_row(found, doubled, limit_rpm, min_growth):
                 "amplitude_at_half_rpm": half,
                 "growth_per_s": doubled.growth_rate,
                 "stable": doubled.stable},
+            "quasi_periodic": quasi,
             "settled_rpm": settled, "judder": bool(judder),
             "verdict": run_verdict(bool(judder)),
             "mechanism": mechanism, "judder_limit_rpm": limit_rpm}
@@ -216,6 +245,7 @@ class OrbitResult:
     mode: str
     orbits: list
     doubled: list
+    quasi: list
     folds: list
     chart: object
     limit_rpm: float
@@ -226,8 +256,9 @@ class OrbitResult:
 
     def rows(self):
         """The orbits as JSON rows."""
-        return [orbit_row(o, d, self.limit_rpm, self.min_growth)
-                for o, d in zip(self.orbits, self.doubled)]
+        quasi = self.quasi or [None] * len(self.orbits)
+        return [orbit_row(o, d, self.limit_rpm, self.min_growth, q)
+                for o, d, q in zip(self.orbits, self.doubled, quasi)]
 
     def as_dict(self):
         out = {"model": self.params.model, "mode": self.mode,
@@ -283,6 +314,8 @@ class OrbitResult:
                 + ("" if double is None else
                    f"; 2T orbit {double['amplitude_at_half_rpm']:.3g} rpm "
                    f"at f/2 ({double['growth_per_s']:+.3g} 1/s)")
+                + ("" if row["quasi_periodic"] is None else
+                   quasi_words(row["quasi_periodic"]))
                 + f"; slip {row['slip_range_rad_s'][0]:.1f}-"
                   f"{row['slip_range_rad_s'][1]:.1f} rad/s, rectified "
                   f"torque {row['drift_torque_nm']:+.2g} N m; {verdict}"

@@ -32,9 +32,9 @@ from infra.files import (atomic_write, keeps_foreign_files, mark_pdf,
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
-from ._arguments import (decimal_option, force_option, method_option,
-                         min_growth_option, model_options, refuse_decimal,
-                         workers_option)
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         method_option, min_growth_option, model_options,
+                         refuse_decimal, workers_option)
 from ._common import linearised_mode, mode_words
 from ._flags import in_flags
 from ._model import model_title, parameters_of
@@ -146,6 +146,7 @@ def add_arguments(p):
     workers_option(p)
     method_option(p)
     model_options(p)
+    driveline_option(p)
     force_option(p)
 
 
@@ -174,7 +175,7 @@ def run(args):
             p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
             method=args.method, workers=args.workers,
             engagement=args.engagement, min_growth=args.min_growth,
-            progress=progress)
+            progress=progress, driveline=args.driveline)
     result.save(args.out, force=args.force)
     if args.pdf:
         make_parents(args.pdf)
@@ -230,7 +231,7 @@ def report(parameters=None, changes=None, description=None,
            sensitivity_names=None, grid_freq=None, map_freq=None,
            map_pf=None, p_max_bar=1.5, method="dyson", workers=None,
            engagement=False, min_growth=DEFAULT_MIN_GROWTH_PER_S,
-           progress=None):
+           progress=None, driveline=None):
     """``judder report``: the figures and tables of the paper for one
     driveline.
 
@@ -285,12 +286,19 @@ def report(parameters=None, changes=None, description=None,
         saves on a few cores; an existing ``--scheduler`` is used anyway.
     progress : callable, optional
         ``progress(done, total)`` over the report's sections.
+    driveline : {'chain', 'bench'}, optional
+        The driveline every Floquet section (modes, tongues, map, verdict,
+        multipliers, advice, sensitivity) is of
+        (:func:`judder.bench.driveline_view`; default the bench where the
+        preset has one); Fig. 19 (no dither) and the fit stay the chain's.
 
     Returns
     -------
     ReportResult
     """
+    from ..bench import driveline_view
     values = params(parameters, changes).params
+    driveline = driveline_view(values, driveline)[1]
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
              if sensitivity_names or n in values.specs]
     # bench data first: a bad file is refused before any work
@@ -315,7 +323,8 @@ def report(parameters=None, changes=None, description=None,
     map_freq = np.linspace(5, 250, 246) if map_freq is None else map_freq
     map_pf = np.linspace(0, p_max_bar, 121) if map_pf is None else map_pf
     page = Page(description or values.model)
-    data = {"model": values.model, "description": page.description}
+    data = {"model": values.model, "description": page.description,
+            "driveline": driveline}
     mode = linearised_mode(values)
     if mode:
         # as judder map says it: the studies over amplitudes hold the mode
@@ -324,17 +333,17 @@ def report(parameters=None, changes=None, description=None,
     step = _Steps(7 + bool(bench), progress)
 
     # the driveline (its table closes the report, as an appendix)
-    modes = eig(values).as_dict()
+    modes = eig(values, driveline=driveline).as_dict()
     data["natural_frequencies_hz"] = list(modes["natural_frequencies_hz"])
     data["damping_factor_12_percent"] = modes["damping_factor_12_percent"]
     step()
 
     # tongues, and the map they are drawn over
     found = tongues(grid_freq, p_max_bar, values, method=method,
-                    judder_growth=min_growth)
+                    judder_growth=min_growth, driveline=driveline)
     stability = dataclasses.replace(
         stability_map(map_freq, map_pf, values, method=method,
-                      min_growth=min_growth),
+                      min_growth=min_growth, driveline=driveline),
         boundaries=found.boundaries, tongues=found.tongues)
     step()
     data["tongues"] = [
@@ -348,14 +357,15 @@ def report(parameters=None, changes=None, description=None,
     point = verdict = None
     if freq_hz is not None and p_f_bar is not None:
         point, verdict = _setting(values, freq_hz, p_f_bar, min_growth,
-                                  p_max_bar)
+                                  p_max_bar, driveline)
         data["verdict"] = verdict
     step()
     advice, advice_error = None, None
     try:
         # the wide view: where the advised design's tongues went, beyond
         # the operating range, as judder advise --plot draws it
-        advice = advise(values, min_growth=min_growth, background=True)
+        advice = advise(values, min_growth=min_growth, background=True,
+                        driveline=driveline)
     except JudderError as error:        # e.g. no design parameter
         advice_error = str(error)
     step()
@@ -369,13 +379,14 @@ def report(parameters=None, changes=None, description=None,
         page, stability, data["tongues"], min_growth, p_max_bar,
         (grid_freq.min(), grid_freq.max()), mode_words(mode, p_max_bar)))
     page.sections.append(kinds_section(page, _inside_each_kind(
-        found.tongues, values, p_max_bar, method)))
+        found.tongues, values, p_max_bar, method, driveline)))
     if advice is not None:
         page.sections.append(advice_section(page, advice))
 
     try:
         sens = sensitivity(names, grid_freq, p_max_bar, parameters=values,
-                           method=method, workers=workers)
+                           method=method, workers=workers,
+                           driveline=driveline)
     except JudderError as error:
         # a changed set that leaves a hybrid class's mode: the other
         # sections stand, this one says why it is missing
@@ -469,18 +480,20 @@ def _bench_data(chart, boundary, group, decimal):
     return None
 
 
-def _setting(values, freq_hz, p_f_bar, min_growth, p_max_bar):
+def _setting(values, freq_hz, p_f_bar, min_growth, p_max_bar,
+             driveline=None):
     """``judder check`` at the configured setting, at the growth rate
     that shades the map (the tongues are the stability boundaries of Fig.
     14): its Floquet result and its record with the leading ``|lambda|``."""
     checked = check([freq_hz], [p_f_bar], values, min_growth=min_growth,
-                    p_max_bar=max(p_max_bar, 2 * p_f_bar), sensitivity=())
+                    p_max_bar=max(p_max_bar, 2 * p_f_bar), sensitivity=(),
+                    driveline=driveline)
     point = checked.checks[0].floquet
     return point, {**checked.records()[0],
                    "leading_abs": float(point.leading_abs)}
 
 
-def _inside_each_kind(found, values, p_max_bar, method):
+def _inside_each_kind(found, values, p_max_bar, method, driveline=None):
     """Floquet results just inside (1.5 times the tip amplitude) the
     lowest tongue of each kind, in the order of :data:`_KIND_ORDER`
     (Fig. 15)."""
@@ -492,7 +505,7 @@ def _inside_each_kind(found, values, p_max_bar, method):
             inside.append(floquet(t.tip_freq_hz,
                                   min(1.5 * t.tip_p_f / PA_PER_BAR,
                                       p_max_bar), values,
-                                  method=method).result)
+                                  method=method, driveline=driveline).result)
     return inside
 
 

@@ -7,7 +7,7 @@ from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from stability.monodromy import DEFAULT_METHOD
 
-from ._arguments import (force_option, method_option, model_options,
+from ._arguments import (driveline_option, force_option, method_option, model_options,
                          pf_max_option, workers_option)
 from ._common import (check_modes_of_changes, check_modes_up_to,
                       checked_values, timed)
@@ -57,6 +57,7 @@ def add_arguments(p):
                         "boundaries")
     method_option(p)
     model_options(p)
+    driveline_option(p)
     force_option(p)
 
 
@@ -89,7 +90,8 @@ def run(args):
         result = sensitivity(names, freqs, p_max_bar, factors=factors,
                              values=values, parameters=params,
                              changes=changes, method=args.method,
-                             workers=args.workers, progress=progress)
+                             workers=args.workers, progress=progress,
+                             driveline=args.driveline)
     files = write_outputs(args, result, figure={
         "title": "sensitivity of the unstable boundary "
                  r"($|\lambda| = 1$; "
@@ -122,7 +124,8 @@ def run(args):
 
 def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
                 values=None, parameters=None, changes=None,
-                method=DEFAULT_METHOD, workers=None, progress=None):
+                method=DEFAULT_METHOD, workers=None, progress=None,
+                driveline=None):
     """``judder sensitivity``: tongue tips with parameters varied (Fig. 17,
     18), and the paper's conclusions of section 4.3 where the driveline is
     the paper's.
@@ -137,6 +140,9 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
         Absolute values instead, SI.
     workers : int, optional
         Processes (default all cores).
+    driveline : {'chain', 'bench'}, optional
+        The driveline whose tongues move (:func:`judder.bench.
+        driveline_view`; default the bench where the preset has one).
 
     Returns
     -------
@@ -144,8 +150,10 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     """
     from stability.sensitivity import (paper_conclusions, sensitivity_study,
                                        tip_shifts)
-    nominal = checked_values(parameters, changes, freq_hz=freq_hz,
-                             p_max_bar=p_max_bar)
+    from ..bench import driveline_view
+    nominal, driveline = driveline_view(
+        checked_values(parameters, changes, freq_hz=freq_hz,
+                       p_max_bar=p_max_bar), driveline)
     check_modes_up_to(nominal, freq_hz, p_max_bar)
     for name in names:
         if name not in nominal.specs:
@@ -170,7 +178,7 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     return SensitivityResult(params=nominal, study=study,
                              tip_shifts=tip_shifts(study),
                              conclusions=conclusions, seconds=seconds,
-                             method=method)
+                             method=method, driveline=driveline)
 
 
 @dataclass(frozen=True)
@@ -189,13 +197,18 @@ class SensitivityResult:
     conclusions: list
     seconds: float
     method: str
+    driveline: str = "chain"
 
     @property
     def cases(self):
         return 1 + len(self.study.cases)
 
     def as_dict(self):
-        return {"model": self.params.model, "method": self.method,
+        from ..bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
+                "method": self.method,
                 "seconds": self.seconds, "cases": self.cases,
                 "min_growth_per_s": 0.0,
                 "nominal_tongues": [tongue_record(t)

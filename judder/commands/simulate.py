@@ -188,13 +188,15 @@ def _engagement_line(s, bench=True):
                if s["peak_at_dither_frequency"] else "")
             + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
             + ("" if s["judder"] is None else "; " + judder_words(s))
-            + ("; Floquet of the bench's linearisation (not judder "
-               "check's): " if bench else
+            + ("; Floquet of the bench's linearisation (judder check's "
+               "view of the bench): " if bench else
                "; Floquet of the class's linearisation: ")
             + f"{s['floquet_kind']} "
               f"({s['floquet_exponent_per_s']:+.2f} 1/s)"
             + ("" if s.get("orbit_kind") is None else
-               "; periodic orbit: " + orbit_words(s))
+               "; settled motion (quasi-periodic, integrated): "
+               if s["orbit_kind"] == "combination" else "; periodic orbit: ")
+            + orbit_words(s)
             + ("" if s.get("linearisation_holds") is not False else
                "; nonlinear: " + nonlinear_words(s)))
 
@@ -370,7 +372,9 @@ def _lock_fields(run, lock, ramp_end):
 
 def _orbit_fields(model, run, min_growth, judder_limit_rpm):
     """The periodic orbit of the bench at the run's setting
-    (:mod:`stability.orbit`), what the engagement settles into: its
+    (:mod:`stability.orbit`; in a combination tongue the motion
+    integrated until settled, :mod:`stability.settle`), what the
+    engagement settles into: its
     settled amplitude (rpm), kind, growth (1/s) and judder mechanism, as
     ``orbit_*`` fields (None for a model without the bench, or without
     dither)."""
@@ -380,11 +384,12 @@ def _orbit_fields(model, run, min_growth, judder_limit_rpm):
         return dict.fromkeys(names)
     from stability.orbit import double_period_orbit, periodic_orbit
 
-    from .orbit import orbit_row
+    from .orbit import orbit_row, settled_motions
     found = periodic_orbit(model, run.freq_hz, run.p_f)
     doubled = (double_period_orbit(model, found)
                if found.kind == "double-period" else None)
-    row = orbit_row(found, doubled, judder_limit_rpm, min_growth)
+    row = orbit_row(found, doubled, judder_limit_rpm, min_growth,
+                    settled_motions(model, [found])[0])
     return dict(zip(names, (row["settled_rpm"], row["kind"],
                             row["growth_per_s"], row["mechanism"])))
 

@@ -12,8 +12,9 @@ from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
 from ..bench import driveline_view
-from ._arguments import (driveline_option, force_option, method_option, min_growth_option,
-                         model_options, pf_max_option, waveform_option)
+from ._arguments import (driveline_option, force_option, method_option,
+                         min_growth_option, model_options, pf_max_option,
+                         waveform_option)
 from ._common import (BACKGROUND_AMPLITUDES, check_modes_up_to,
                       checked_values, dithered, linearised_mode,
                       mode_words)
@@ -79,12 +80,19 @@ def run(args):
     data = {**result.as_dict(), **write_outputs(args, result, figure={
         "title": f"tongue boundaries over the map, "
                  f"{model_title(args, params)}"
-                 + (" on its test bench" if args.driveline == "bench"
+                 + (" on its test bench" if result.driveline == "bench"
                     else "")})}
     rows = tip_table(data)
     words = mode_words(linearised_mode(result.params), args.pf_max)
     if words:
         rows.insert(0, words)
+    rows.insert(0, f"driveline: {data['driveline_description']}")
+    if result.driveline == "bench":
+        rows.append("the resonances f1, f2 are the undamped natural "
+                    "frequencies of the chain; on the bench, whose speed "
+                    "control damps body 1, the damped modes are " + ", ".join(
+                        f"{f:.3f} Hz" for f in data["damped_frequencies_hz"])
+                    + " (judder eig --driveline bench)")
     missing = _missing_tongues(result, freqs, args.pf_max)
     if missing:
         rows.append(missing)
@@ -143,7 +151,7 @@ def _missing_tongues(result, freqs, p_max_bar):
 def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
             method=DEFAULT_METHOD, background=False, progress=None,
             min_growth=0.0, solver="hill", waveform=None,
-            judder_growth=None, driveline="chain"):
+            judder_growth=None, driveline=None):
     """``judder tongues``: exact tongue boundaries, tongue numbers (Fig.
     14) and tips.
 
@@ -168,6 +176,10 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
         Boundary solver, a key of :data:`stability.tongues.SOLVERS`.
     waveform : object, optional
         Dither shape (:mod:`stability.waveforms`); default the cosine.
+    driveline : {'chain', 'bench'}, optional
+        The driveline whose tongues these are
+        (:func:`judder.bench.driveline_view`); default the bench where the
+        preset has one.
 
     Returns
     -------
@@ -177,7 +189,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     from stability.tongues import find_tongues, tongue_boundaries
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_max_bar=p_max_bar)
-    values, view = driveline_view(values, driveline), driveline
+    values, view = driveline_view(values, driveline)
     check_modes_up_to(values, freq_hz, p_max_bar)
     judder_growth = (DEFAULT_MIN_GROWTH_PER_S if judder_growth is None
                      else float(MIN_GROWTH.check(judder_growth,
@@ -264,8 +276,19 @@ class TonguesResult:
                 "max_boundary_multiplier_error": b.max_multiplier_error,
                 "natural_frequencies_hz": b.natural_frequencies_hz,
                 "judder_min_growth_per_s": self.judder_growth,
+                "damped_frequencies_hz": self._damped_hz(),
                 "tongues": [tongue_record(t, self.judder_tongues or [])
                             for t in self.tongues]}
+
+    def _damped_hz(self):
+        """The damped modes of the driveline without dither, Hz (None for
+        a class or an FMU, whose modes ``judder eig`` gives)."""
+        if not self.params.source_kind.is_chain:
+            return None
+        from stability.modal import damped_modes
+        from stability.source import build_driveline
+        return [float(f) for f in
+                damped_modes(build_driveline(self.params))[0]]
 
     def csv_text(self):
         """Boundaries as CSV: freq_hz, p_f_bar (lowest, empty if none),

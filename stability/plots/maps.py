@@ -9,7 +9,8 @@ from matplotlib.colors import ListedColormap
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from infra.plotstyle import (CONTINUOUS_CMAP, GROWTH_LINE, KIND_COLORS,
+from infra.plotstyle import (CONTINUOUS_CMAP, FORCED_LINE, GROWTH_LINE,
+                             KIND_COLORS,
                              KIND_LINESTYLES, SLOW_COLOR, dither_axes,
                              figure_title, settle_labels)
 from infra.units import PA_PER_BAR
@@ -32,11 +33,12 @@ def _edges(centres):
 
 
 def kind_legend(ax, kinds=(1, 2, 3), stable=True, outside=True, lines=False,
-                min_growth=None):
+                min_growth=None, extra=()):
     """Legend of the kinds, outside the data (right of the axes) by
     default; with ``lines`` the boundary line style of each kind too; with
-    ``min_growth`` the grey of the slowly growing (not judder) points."""
-    handles = kind_handles(kinds, stable, lines, min_growth)
+    ``min_growth`` the grey of the slowly growing (not judder) points;
+    ``extra`` handles after them."""
+    handles = kind_handles(kinds, stable, lines, min_growth) + list(extra)
     where = ({"loc": "upper left", "bbox_to_anchor": (1.01, 1.0),
               "borderaxespad": 0.0} if outside else {"loc": "best"})
     return ax.legend(handles=handles, fontsize=7, **where)
@@ -69,7 +71,7 @@ def kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
 
 
 def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
-             boundaries=None, legend=True, min_growth=None):
+             boundaries=None, legend=True, min_growth=None, forced=None):
     """Regions of each kind of instability over frequency (Hz) and p_f (bar).
 
     Parameters
@@ -90,6 +92,9 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
         1/s: shade grey the unstable points growing slower than this (not
         judder, :mod:`stability.decisions.relevance`) and outline the
         judder-relevant region.
+    forced : (ndarray, ndarray, float), optional
+        ``(freq_hz, p_f_bar, limit_rpm)``: where the forced oscillation
+        reaches the NVH limit, drawn as a line (forced judder above it).
 
     Returns
     -------
@@ -127,6 +132,15 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
         if mark_resonances:
             artists += _resonance_marks(ax, m.resonances(),
                                         m.freq_hz.min(), m.freq_hz.max())
+    if forced is not None:
+        top = ax.get_ylim()[1]
+        freq, level, limit = forced
+        forced_line = ax.plot(freq, np.where(level <= top, level, np.nan),
+                              **FORCED_LINE,
+                              label=f"forced oscillation = {limit:g} rpm "
+                                    "(linear):\nforced judder above")
+        artists += forced_line
+        ax.set_ylim(top=top)
     dither_axes(ax)
     if legend:
         # the grey of slow growth and the judder line only where
@@ -135,7 +149,7 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
             ax, kinds=drawn_kinds(m, boundaries),
             lines=boundaries is not None,
             min_growth=min_growth if draws_instability(m, boundaries)
-            else None))
+            else None, extra=forced_line if forced is not None else ()))
     return artists
 
 
@@ -311,15 +325,18 @@ def _note(ax, text):
 
 
 def map_figure(stability_map, title=None, tongues=None, boundaries=None,
-               min_growth=None, stacked=False):
+               min_growth=None, stacked=False, forced=None):
     """Figure with the kinds (left, with the exact boundaries and tongue
     numbers when given, slowly growing points grey with ``min_growth``)
-    and the growth rate (right; below with ``stacked``, for a page)."""
+    and the growth rate (right; below with ``stacked``, for a page).
+    ``forced``: ``(freq_hz, p_f_bar, limit_rpm)``, the amplitude at which
+    the forced oscillation reaches the limit at each frequency, drawn on
+    the left (forced judder above it)."""
     fig, (left, right) = plt.subplots(
         *((2, 1) if stacked else (1, 2)),
         figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
-             min_growth=min_growth)
+             min_growth=min_growth, forced=forced)
     if not draws_instability(stability_map, boundaries):
         _set_extent(left, stability_map, boundaries)
         _note(left, "stable at every point: every multiplier inside the "
