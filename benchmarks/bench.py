@@ -214,7 +214,7 @@ def bench_engagement():
     (LockingWetClutch) against scipy on the smooth clutch's equations."""
     from fmu.backend import to_ode
     from fmu.frontend import load_flat_model
-    from pysim.simulation.fmus import LIBRARY, ensure_fmu
+    from fmu.store import LIBRARY, ensure_fmu
 
     bench_class = SMOOTH_BENCH_CLASS
     fmus = {"": str(ensure_fmu(bench_class)),
@@ -240,7 +240,7 @@ def _engagement_runs(fmus, ode, setting, label):
     DOP853 baseline, then fmpy Model Exchange and Co-Simulation of each
     FMU of ``fmus`` (clutch label -> path; '' is the smooth clutch, the
     others report their time against it too)."""
-    from fmpy import simulate_fmu
+    from fmu.store import simulate
     from scipy.integrate import solve_ivp
 
     f, outputs, start = ode.functions()
@@ -260,7 +260,7 @@ def _engagement_runs(fmus, ode, setting, label):
         for kind, options in (("ModelExchange", {"relative_tolerance": 1e-8}),
                               ("CoSimulation", {})):
             result, seconds = _timed(
-                simulate_fmu, fmu_path, fmi_type=kind, stop_time=2.0,
+                simulate, fmu_path, fmi_type=kind, stop_time=2.0,
                 output_interval=1e-3, start_values=setting,
                 output=["w_upstream"], **options)
             # the locking FMU adds a row before and after each event
@@ -348,7 +348,7 @@ def bench_fmu_map():
     symbolic one."""
     from sources.fmus import linearize_fmu
     from sources.modelica import linearize
-    from pysim.simulation.fmus import ensure_fmu
+    from fmu.store import ensure_fmu
 
     model_class = get_model("4dof").modelica_class
     path = ensure_fmu(model_class)
@@ -610,10 +610,10 @@ def bench_msl_compile():
     the rest (source check, back end, C code, gcc)."""
     import os
     import tempfile
-    from fmpy import simulate_fmu
     from fmu.build import build_fmu
     from fmu.frontend import find_class
     from fmu.rumoca_child import flatten_isolated
+    from fmu.store import simulate
     msl = _msl_folder()
     if msl is None:
         print("msl-compile: no MSL in ../shared/msl nor on MODELICAPATH; "
@@ -640,8 +640,8 @@ def bench_msl_compile():
                 os.environ.pop("JUDDER_FMU_CACHE")
             else:
                 os.environ["JUDDER_FMU_CACHE"] = saved
-        speeds = [simulate_fmu(str(Path(tmp) / f"{label}.fmu"), stop_time=1,
-                               output=["inertia3.w"])["inertia3.w"]
+        speeds = [simulate(Path(tmp) / f"{label}.fmu", stop_time=1,
+                           output=["inertia3.w"])["inertia3.w"]
                   for label in ("cold", "cached")]
     started = _cpu_seconds()
     flatten_isolated(source, MSL_CLASS, roots)

@@ -12,9 +12,9 @@ from infra.errors import EXIT_ERROR, EXIT_OK, JudderError
 
 from .build import DEFAULT_TOLERANCE, build_fmu
 from .frontend import FrontEndError, find_class, modelica_path
+from .store import LIBRARY
 from .units import UnitWarning
 
-LIBRARY = Path(__file__).resolve().parents[1] / "modelica"
 #: Package whose examples are built by default.
 EXAMPLES_PACKAGE = "Judder.Examples"
 

@@ -16,7 +16,9 @@ and absolute), landing exactly on each communication point.
 """
 
 from dataclasses import dataclass
+import functools
 import hashlib
+from importlib import metadata
 import json
 import os
 from pathlib import Path
@@ -34,13 +36,15 @@ import casadi
 from infra.files import atomic_write
 
 from .backend import Quantity, to_ode
+from .cache import sources_digest
 from .description import (SOURCES, Layout, build_description,
                           model_description)
 from .frontend import FrontEndError, load_flat_model, package_version
 from .limits import announce, check_compile, compile_estimate
 from .rumoca_child import memory_limit
 
-__all__ = ["BuildError", "BuildResult", "build_fmu", "fmi_headers"]
+__all__ = ["BuildError", "BuildResult", "build_fmu", "build_key",
+           "built_from", "fmi_headers"]
 
 C_SOURCES = Path(__file__).resolve().parent / "c"
 #: Relative (and absolute) tolerance of the co-simulation integrator.
@@ -51,6 +55,9 @@ _WINDOWS_PLATFORM = {"2.0": "win64", "3.0": "x86_64-windows"}
 _WINDOWS_CC = "x86_64-w64-mingw32-gcc"
 #: Headers of the FMI core shipped beside its sources (description.SOURCES).
 _HEADERS = ("model.h", "instance.h")
+#: Start of the zip comment of every FMU built here; the build key
+#: (:func:`build_key`) follows.
+_KEY_MARK = b"judder sources sha256 "
 
 
 class BuildError(FrontEndError):
@@ -88,6 +95,44 @@ def fmi_headers():
     if not (folder / "fmi2Functions.h").exists():
         raise BuildError(f"FMI headers not found in {folder}")
     return folder
+
+
+@functools.lru_cache(maxsize=1)
+def _compiler_digest():
+    """sha256 of the compiler: its Python and C sources, and the versions
+    of rumoca and CasADi it runs."""
+    digest = hashlib.sha256()
+    here = Path(__file__).resolve().parent
+    for source in sorted([*here.glob("*.py"), *C_SOURCES.glob("*.[ch]")]):
+        digest.update(source.name.encode() + b"\0" + source.read_bytes())
+    for package in ("rumoca", "casadi"):
+        digest.update(f"{package} {metadata.version(package)}\n".encode())
+    return digest.hexdigest()
+
+
+def build_key(model_name, version, roots, tolerance=DEFAULT_TOLERANCE):
+    """Hex sha256 naming the FMU that :func:`build_fmu` makes of
+    ``model_name`` from the sources under ``roots`` as they stand now:
+    their content (:func:`fmu.cache.sources_digest`), the compiler's
+    (its sources and the versions of rumoca and CasADi), the FMI version
+    and the tolerance; never a name or a modification time of a file."""
+    digest = hashlib.sha256()
+    for item in (model_name, version, repr(float(tolerance)),
+                 _compiler_digest(), sources_digest(roots)):
+        digest.update(item.encode() + b"\0")
+    return digest.hexdigest()
+
+
+def built_from(path):
+    """The build key an FMU of :func:`build_fmu` carries (its zip
+    comment), or None for another FMU or an unreadable file."""
+    try:
+        with zipfile.ZipFile(path) as fmu:
+            comment = fmu.comment
+    except (OSError, zipfile.BadZipFile):
+        return None
+    return comment[len(_KEY_MARK):].decode("ascii", "replace") \
+        if comment.startswith(_KEY_MARK) else None
 
 
 def _c_array(values):
@@ -362,6 +407,10 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
         raise BuildError(f"FMI version {version!r}; allowed: "
                          f"{', '.join(SOURCES)}")
     started = time.perf_counter()
+    # before the sources are read: an edit during the build makes the
+    # FMU stale, never a stale FMU look fresh
+    key = build_key(model_name, version, list(roots) or [Path(mo_file).parent],
+                    tolerance)
     with Stages(model_name) as stage:
         stage("flattening (rumoca)")
         flat = load_flat_model(mo_file, model_name, roots=roots, hybrid=True)
@@ -399,6 +448,7 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
 
         def write_zip(stream):
             with zipfile.ZipFile(stream, "w", zipfile.ZIP_DEFLATED) as fmu:
+                fmu.comment = _KEY_MARK + key.encode()
                 entry = zipfile.ZipInfo("modelDescription.xml",
                                         time.localtime()[:6])
                 entry.external_attr = 0o644 << 16   # not writestr's 0600

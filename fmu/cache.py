@@ -5,13 +5,16 @@ rumoca loads every file of the library roots it is given (the MSL is
 about 2,400 files): that costs 10-20 s on this project's machines, each
 time, even with rumoca's own cache of parsed files. The flat model of a
 class is kept here as JSON, keyed by the class, its file, rumoca's
-version and the path, size and modification time of every ``.mo`` file
-under the roots, so any edit, added or removed file in a library makes a
-new flattening. Only the source texts the flat model's spans point to
+version and the content of every ``.mo`` file under the roots
+(:func:`sources_digest`), so any edit, added or removed file in a library
+makes a new flattening, and a file only touched (its modification time
+changed) does not. Only the source texts the flat model's spans point to
 are kept (rumoca's source map holds the whole library, 15 MB for MSL).
 
 The folder is ``$JUDDER_FMU_CACHE``, else ``$XDG_CACHE_HOME/judder/flat``,
 else ``~/.cache/judder/flat``; ``JUDDER_FMU_CACHE=off`` disables it.
+The FMUs of :mod:`fmu.store` are kept by the same rules
+(:func:`cache_folder` of ``"fmu"``).
 """
 
 import hashlib
@@ -22,34 +25,55 @@ from pathlib import Path
 from infra.errors import JudderError
 from infra.files import atomic_write
 
-__all__ = ["cache_folder", "cache_key", "load", "store"]
+__all__ = ["cache_folder", "cache_key", "load", "sources_digest", "store"]
 
 
-def cache_folder():
-    """The cache folder, or None when the cache is off."""
+def cache_folder(kind="flat"):
+    """The cache folder of ``kind`` (``"flat"``: rumoca's flat models,
+    ``"fmu"``: the FMUs and unpacked FMUs of :mod:`fmu.store`), or None
+    when the cache is off.
+
+    ``$JUDDER_FMU_CACHE`` (one folder for both kinds: their entries do
+    not collide), else ``$XDG_CACHE_HOME/judder/KIND``, else
+    ``~/.cache/judder/KIND``; ``JUDDER_FMU_CACHE=off`` turns it off.
+    """
     chosen = os.environ.get("JUDDER_FMU_CACHE")
     if chosen == "off":
         return None
     if chosen:
         return Path(chosen)
     base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
-    return Path(base) / "judder" / "flat"
+    return Path(base) / "judder" / kind
+
+
+def sources_digest(roots):
+    """Hex sha256 of the Modelica sources under ``roots``: the path
+    (relative to its root) and the content of every ``.mo`` and
+    ``package.order`` file, root by root in their order (a root may be a
+    ``.mo`` file holding a whole package). Modification times do not
+    enter: a touched file keeps its digest, an edited one changes it."""
+    digest = hashlib.sha256()
+    for root in map(Path, roots):
+        files = sorted(p for p in root.rglob("*") if p.is_file() and (
+            p.suffix == ".mo" or p.name == "package.order")) \
+            if root.is_dir() else [root]
+        digest.update(f"root {len(files)}\n".encode())
+        for source in files:
+            name = source.relative_to(root) if root.is_dir() else source.name
+            digest.update(f"{name}\0".encode()
+                          + hashlib.sha256(source.read_bytes()).digest())
+    return digest.hexdigest()
 
 
 def cache_key(path, model_name, roots, version):
     """Hex digest naming the flat model of ``model_name`` as the sources
-    under ``roots`` stand now."""
+    under ``roots`` stand now (their content, :func:`sources_digest`)."""
     digest = hashlib.sha256()
-    for item in (version, model_name, str(Path(path).resolve())):
+    # the places too: a flat model's source map names its files
+    places = [str(Path(p).resolve()) for p in (path, *roots)]
+    for item in (version, model_name, *places,
+                 sources_digest([path, *roots])):
         digest.update(item.encode() + b"\0")
-    files = {Path(path).resolve()}
-    for root in roots:
-        root = Path(root).resolve()
-        files |= set(root.rglob("*.mo")) if root.is_dir() else {root}
-    for source in sorted(files):
-        stat = source.stat()
-        digest.update(f"{source}\0{stat.st_size}\0{stat.st_mtime_ns}\n"
-                      .encode())
     return digest.hexdigest()
 
 

@@ -73,7 +73,7 @@ class BenchParameter:
 def bench_fmu(values):
     """The driveline's bench engagement model and its FMU (built if
     needed)."""
-    from pysim.simulation.fmus import ensure_fmu
+    from fmu.store import ensure_fmu
     if not values.source_kind.is_chain:
         raise JudderError(f"{values.model} (a Modelica class or an FMU) "
                           "has no bench engagement model: the bench belongs "
@@ -118,7 +118,7 @@ def bench_parameters(values):
     dict of str -> BenchParameter
         In the order the class declares them.
     """
-    from pysim.simulation.runs import model_description
+    from fmu.store import model_description
     description = model_description(bench_fmu(values)[1])
     own = set(values.values) | set(DITHER_PARAMETERS)
     return {v.name: BenchParameter(
@@ -234,7 +234,7 @@ def bench_damping(values, bench=None):
 
 def added_damping(values, fmu, bench):
     """:func:`bench_damping` with the bench's FMU ``fmu`` known."""
-    from pysim.simulation.runs import parameter_default
+    from fmu.store import parameter_default
     bench = dict(bench or {})
     for name in bench:
         parameter_default(fmu, name)    # the bench model must have it
@@ -254,7 +254,7 @@ def operating_friction(values, fmu, bench):
     rad/s, over which the curve keeps that slope
     (:func:`stability.friction.linear_range`).
     """
-    from pysim.simulation.runs import parameter_default
+    from fmu.store import parameter_default
     from stability.friction import curve_at, linear_range
 
     def bench_value(name):
@@ -305,7 +305,7 @@ def engagement_model(values, bench=None, fmu=None):
         The model and the bench's linearisation at its slip (the Floquet
         view of the same bench, as ``simulate`` prints it).
     """
-    from pysim.simulation.runs import parameter_default
+    from fmu.store import parameter_default
     from stability.orbit import EngagementModel
     from stability.source import build_driveline
     bench = dict(bench or {})

@@ -16,9 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fmu.store import parameter_default
 from infra.errors import JudderError
 from infra.parallel import parallel_map
-from pysim.simulation.runs import parameter_default, run_fmu
+from pysim.simulation.runs import run_fmu
 from pysim.analysis.signals import free_response_growth
 from stability.multipliers import floquet
 from stability.source import build_driveline

@@ -5,14 +5,14 @@ the values a run sets.
 registry driveline runs through the FMU of its Modelica class
 (:attr:`drivelines.DrivelineModel.modelica_class`), its parameters set by
 the same names; a Modelica class (``--modelica``) through the FMU the
-project's compiler builds of it (:func:`pysim.simulation.fmus.ensure_fmu`), every
+project's compiler builds of it (:func:`fmu.store.ensure_fmu`), every
 tunable value set as an FMU parameter. An FMU given by ``--fmu`` is only
 linearised through its directional derivatives (docs/fmu-path.md): there
 is no time-domain model of it here, and these functions refuse it.
 """
 
 from infra.errors import JudderError
-from pysim.simulation.fmus import ensure_fmu
+from fmu.store import ensure_fmu
 
 __all__ = ["class_fmu", "fmu_refusal", "run_values"]
 

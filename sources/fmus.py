@@ -24,9 +24,11 @@ as for the Modelica path: the result is a
 :class:`~sources.modelica.LinearPeriodicModel` that
 :class:`stability.LinearDriveline` turns into every study.
 
-fmpy loads the FMU here (not in :mod:`pysim`, the time-domain runs),
+The FMU is read here (not in :mod:`pysim`, the time-domain runs),
 because the stability layer needs the matrices and may import only
-:mod:`drivelines`; its binary runs in a child process
+:mod:`drivelines`; its model description and its unpacked folder come
+from the one door to FMU files (:mod:`fmu.store`); its binary runs in a
+child process
 (:mod:`sources.fmu_host`), so that a crash, a hang or a non-finite
 Jacobian of a third-party FMU is one error naming the call.
 """
@@ -37,8 +39,8 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
-from fmpy import read_model_description
 
+from fmu.store import FmuFileError, digest, model_description
 from infra.errors import JudderError
 
 from .fmu_host import SampleJob, sample_isolated
@@ -116,20 +118,12 @@ def _number(text):
     return None if text is None else float(text)
 
 
-#: Characters of a reader's reason kept in a message.
-_REASON = 300
-
-
 @lru_cache(maxsize=8)
-def _described(path, mtime):
+def _described(path, content):
     try:
-        md = read_model_description(path)
-    except Exception as exc:           # fmpy raises zip, XML and schema errors
-        # all of it on one line: a validation error's first line is only
-        # "Failed to validate modelDescription.xml:"
-        reason = " ".join(str(exc).split())[:_REASON] or type(exc).__name__
-        raise FmuError(f"`path` {path}: not a readable FMU ({reason})") \
-            from None
+        md = model_description(path)
+    except FmuFileError as exc:
+        raise FmuError(f"`path` {exc}") from None
     _require(md.fmiVersion in FMI_VERSIONS,
              f"`path` {path}: fmiVersion {md.fmiVersion}; allowed: "
              f"{' or '.join(FMI_VERSIONS)}")
@@ -165,7 +159,7 @@ def _described(path, mtime):
 
 def fmu_description(path):
     """The :class:`FmuDescription` of an FMU file (cached per file
-    version).
+    content, :func:`fmu.store.digest`).
 
     Raises
     ------
@@ -176,7 +170,7 @@ def fmu_description(path):
     path = Path(path)
     _require(path.is_file(), f"`path` {path}: no such file; allowed: an "
              ".fmu file")
-    return _described(str(path.resolve()), path.stat().st_mtime_ns)
+    return _described(str(path.resolve()), digest(path))
 
 
 def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
@@ -225,7 +219,7 @@ def linearize_fmu(path, values=None, amplitude="p_f", frequency="f_dither"):
     # OTHER_FREQUENCY times its value (for _frequency_dependent)
     other = {**values, frequency: f0 * OTHER_FREQUENCY}
     sampled, at_other = _sampled(
-        d.path, Path(d.path).stat().st_mtime_ns, amplitude, step,
+        d.path, digest(d.path), amplitude, step,
         ((_without(values, amplitude), tuple(times)),
          (_without(other, amplitude), (0.0,))))
     A, Ja, J2a = sampled["jacobians"]
@@ -271,14 +265,14 @@ def _frequency_dependent(at_other, step, A0, B0, zero):
 
 
 @lru_cache(maxsize=8)
-def _sampled(path, mtime, amplitude, step, requests):
+def _sampled(path, content, amplitude, step, requests):
     """The Jacobians of :func:`sources.fmu_host.sample` (read-only) for
     each ``(values, times)`` of ``requests``, read in one child process,
-    once per FMU version and parameter set (a command asks for the same
+    once per FMU content and parameter set (a command asks for the same
     linearisation for its estimates and its work). The FMU's binary
     runs in a child process: a crash, a hang or a NaN of it becomes an
     :class:`FmuError` naming the call."""
-    d = _described(path, mtime)
+    d = _described(path, content)
     sampled = sample_isolated([SampleJob(
         path=d.path, folder="", guid=d.guid,
         model_identifier=d.model_identifier, fmi_version=d.fmi_version,
@@ -363,14 +357,14 @@ class FmuParameters(NamedParameters):
 
     def linear_model(self):
         """:func:`linearize_fmu` of the FMU at these values, once per FMU
-        version and values (the studies of one command share it)."""
-        return _linearized(self.path, Path(self.path).stat().st_mtime_ns,
+        content and values (the studies of one command share it)."""
+        return _linearized(self.path, digest(self.path),
                            tuple(self.values.items()), self.amplitude,
                            self.frequency)
 
 
 @lru_cache(maxsize=8)
-def _linearized(path, mtime, values, amplitude, frequency):
+def _linearized(path, content, values, amplitude, frequency):
     """:func:`linearize_fmu`, cached by its arguments and the FMU's
-    modification time."""
+    content (:func:`fmu.store.digest`)."""
     return linearize_fmu(path, dict(values), amplitude, frequency)

@@ -116,7 +116,7 @@ def test_crosscheck_takes_the_engine():
 
 
 def test_run_fmu_refuses_a_parameter_the_fmu_lacks():
-    from pysim.simulation.fmus import ensure_fmu
+    from fmu.store import ensure_fmu
     from pysim.simulation.runs import run_fmu
     fmu = ensure_fmu(get_model("4dof").modelica_class)
     with pytest.raises(JudderError, match="J24"):

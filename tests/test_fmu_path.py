@@ -16,7 +16,7 @@ from sources.fmus import FmuError, FmuParameters, linearize_fmu
 from sources.modelica import linearize
 from fmu.build import build_fmu
 from infra.errors import ParameterError
-from pysim.simulation.fmus import ensure_fmu
+from fmu.store import ensure_fmu
 from stability import LinearDriveline, build_driveline, floquet
 
 BAR = 1e5

@@ -19,7 +19,7 @@ from sources.modelica import ModelicaParameters
 from infra.errors import JudderError
 from judder import api
 from judder.cli import main
-from pysim.simulation.fmus import ensure_fmu
+from fmu.store import ensure_fmu
 from stability import build_driveline, floquet
 
 BAR = 1e5

@@ -23,6 +23,8 @@ from pathlib import Path
 import pytest
 from threadpoolctl import threadpool_limits
 
+from fmu.cache import cache_folder
+from fmu.store import BUILT
 from judder.cli import main
 from judder.cli import build_parser
 
@@ -33,8 +35,9 @@ README = ROOT / "README.md"
 NOT_RUN = {
     "make test": "it is this test suite",
     "make fmu": "it builds build/fmu/*.fmu, which the simulate commands "
-                "here build (the same ensure_fmu) and run, and "
-                "tests/test_fmu.py builds and validates",
+                "here build into the user's cache when build/fmu has none "
+                "of the sources as they stand (the same ensure_fmu) and "
+                "run, and tests/test_fmu.py builds and validates",
 }
 
 #: Options put on each command to keep the suite fast: smaller grids,
@@ -220,14 +223,18 @@ def _judder_commands():
 
 def _normalised(value, folder):
     """``value`` without wall-clock times and provenance, with the scratch
-    folder as ``<work>`` and the checkout as ``<root>`` (the FMUs are
-    built under it)."""
+    folder as ``<work>``, the checkout as ``<root>`` and the folder of an
+    FMU of the compiler as ``<fmu>`` (``build/fmu`` after ``make fmu``,
+    else its key's folder in the user's cache, fmu/store.py)."""
     if isinstance(value, dict):
         return {k: _normalised(v, folder) for k, v in value.items()
                 if k not in TIMES}
     if isinstance(value, list):
         return [_normalised(v, folder) for v in value]
     if isinstance(value, str):
+        value = re.sub(rf"^(?:{re.escape(str(BUILT))}|"
+                       rf"{re.escape(str(cache_folder('fmu')))}/[0-9a-f]{{64}})/",
+                       "<fmu>/", value)
         return value.replace(str(folder), "<work>").replace(str(ROOT),
                                                             "<root>")
     return value

@@ -152,7 +152,7 @@ def _sabotaged(tmp_path, kind):
     import zipfile
     from fmu.build import fmi_headers
     from fmu.description import SOURCES
-    from pysim.simulation.fmus import ensure_fmu
+    from fmu.store import ensure_fmu
     source = ensure_fmu(FOUR)
     work = tmp_path / kind
     with zipfile.ZipFile(source) as z:

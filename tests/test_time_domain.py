@@ -134,7 +134,7 @@ def _bench_jacobian(values, times):
     from fmpy import extract
     from sources.fmu_host import SampleJob, sample
     from sources.fmus import fmu_description
-    from pysim.simulation.fmus import ensure_fmu
+    from fmu.store import ensure_fmu
     path = ensure_fmu("Judder.Examples.TestBenchEngagement")
     d = fmu_description(path)
     order = [d.state_names.index(f"inertia{b}.{q}")
@@ -168,8 +168,8 @@ def test_bench_jacobian_is_the_linear_model(rpm):
     bench = {"t_engage": -1.0, "t_ramp": 0.0, "w_motor": w_motor,
              "f_dither": f, "p_f": p_f}
     jacobians = _bench_jacobian({**params.as_dict(), **bench}, times)
-    from pysim.simulation.fmus import ensure_fmu
-    from pysim.simulation.runs import parameter_default
+    from fmu.store import ensure_fmu
+    from fmu.store import parameter_default
     delta_mu = parameter_default(
         ensure_fmu("Judder.Examples.TestBenchEngagement"), "delta_mu")
     point = curve_at(w_motor - 20.0, params["mu0"], params["mu_g"],

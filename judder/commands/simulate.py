@@ -261,7 +261,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     from pysim.simulation.engagement import (LOCK_VARIABLES,
                                              engagement_summary, lock_up,
                                              until)
-    from pysim.simulation.runs import parameter_default, run_fmu
+    from fmu.store import parameter_default
+    from pysim.simulation.runs import run_fmu
 
     from ..timedomain import class_fmu, run_values
     values = checked_values(parameters, changes, freq_hz=freq_hz,
@@ -278,7 +279,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         bench = check_bench(values, bench)
         model_class, fmu = bench_fmu(values)
         if full:
-            from pysim.simulation.fmus import ensure_fmu
+            from fmu.store import ensure_fmu
             model_class = ENGAGEMENTS[engagement]
             fmu = ensure_fmu(model_class)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))

@@ -34,6 +34,7 @@ import time
 import numpy as np
 
 from drivelines.registry import MODELS
+from fmu.store import ensure_fmu
 from infra.errors import JudderError
 from infra.files import atomic_write
 from infra.lifecycle import FolderLock, die_with_parent
@@ -41,7 +42,6 @@ from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 
 from .export import write_csv, write_mdf
-from .fmus import ensure_fmu
 from .runs import run_fmu
 
 __all__ = ["Campaign", "pickup_samples", "run_campaign", "at_temperature",

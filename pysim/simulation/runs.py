@@ -2,25 +2,21 @@
 
 A run maps a :class:`~drivelines.Parameters` set (the names are the same
 in the FMUs, see :mod:`drivelines.registry`) plus the dither setting onto
-the FMU's start values, simulates it with fmpy and returns the time
-histories in SI units.
+the FMU's start values, simulates it with fmpy (through
+:func:`fmu.store.simulate`, which unpacks the FMU and reads its model
+description once) and returns the time histories in SI units.
 """
 
-import atexit
 from dataclasses import dataclass
-import functools
-import os
-from pathlib import Path
-import shutil
-import tempfile
 
 import numpy as np
 
 from drivelines.registry import SIGNALS
+from fmu.store import model_description, simulate
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
 
-__all__ = ["Run", "run_fmu", "parameter_default", "model_description"]
+__all__ = ["Run", "run_fmu"]
 
 
 @dataclass(frozen=True)
@@ -48,54 +44,6 @@ class Run:
 
     def __getitem__(self, name):
         return self.signals[name]
-
-
-@functools.lru_cache(maxsize=8)
-def _unpacked(fmu_path, mtime):
-    """Extracted FMU folder and model description, once per file version.
-
-    fmpy would otherwise unzip the FMU and parse its XML on every run
-    (measured: 12 ms against 7 ms a run of the 4-DOF FMU). The folder
-    lies beside the FMU, named after its version, and is shared by every
-    process (worker processes exit without running ``atexit``, so a
-    folder per process in /tmp would be left behind); where the FMU's
-    folder cannot be written, a temporary folder removed at exit.
-    """
-    from fmpy import extract, read_model_description
-    fmu = Path(fmu_path)
-    target = fmu.parent / f".{fmu.stem}-{int(mtime * 1e9)}.extracted"
-    if not target.is_dir():
-        try:
-            staging = tempfile.mkdtemp(prefix=f".{fmu.stem}-",
-                                       dir=fmu.parent)
-        except OSError:
-            folder = extract(fmu_path)
-            atexit.register(shutil.rmtree, folder, ignore_errors=True)
-            return folder, read_model_description(fmu_path)
-        try:
-            extract(fmu_path, unzipdir=staging)
-            os.rename(staging, target)
-        except OSError:         # another process was first
-            shutil.rmtree(staging, ignore_errors=True)
-        for stale in fmu.parent.glob(f".{fmu.stem}-*.extracted"):
-            if stale != target:
-                shutil.rmtree(stale, ignore_errors=True)
-    return str(target), read_model_description(fmu_path)
-
-
-def model_description(fmu_path):
-    """The FMU's model description (fmpy's), read once per file
-    version."""
-    return _unpacked(str(fmu_path), Path(fmu_path).stat().st_mtime)[1]
-
-
-def parameter_default(fmu_path, name):
-    """Default (start) value of an FMU parameter, SI."""
-    description = model_description(fmu_path)
-    for variable in description.modelVariables:
-        if variable.name == name:
-            return float(variable.start)
-    raise JudderError(f"{description.modelName} has no parameter {name!r}")
 
 
 def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
@@ -126,9 +74,7 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
         On a parameter (of ``params`` or ``extra``) or a recorded variable
         the FMU does not have, or a failed run.
     """
-    from fmpy import simulate_fmu
-    folder, description = _unpacked(str(fmu_path),
-                                    Path(fmu_path).stat().st_mtime)
+    description = model_description(fmu_path)
     tunable = {v.name for v in description.modelVariables
                if v.causality == "parameter"}
     values = {**(params.as_dict() if params is not None else {}),
@@ -150,8 +96,8 @@ def run_fmu(fmu_path, freq_hz, p_f, params=None, extra=None, duration=None,
                           f"outputs {', '.join(SIGNALS)} (a run records "
                           "them)")
     try:
-        result = simulate_fmu(
-            folder, model_description=description, fmi_type=fmi_type,
+        result = simulate(
+            fmu_path, fmi_type=fmi_type,
             start_values=start,
             stop_time=duration or experiment.stopTime,
             output_interval=output_interval or experiment.stepSize,
