@@ -13,6 +13,7 @@ Campaigns of bench runs written as acquisitions are
 :mod:`pysim.simulation.campaigns`.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 
@@ -296,8 +297,10 @@ def engagement_model(values, bench=None, fmu=None):
     orbit (:class:`stability.orbit.EngagementModel`): the driveline with
     the damping the bench adds (:func:`added_damping`), the EVEN clutch's
     friction curve (``mu0``, ``mu_g`` at ``w_op``, ``delta_mu``,
-    ``clutch.w_small``) and the slip ``w_motor - w_gearbox``, all read from
-    the bench model's FMU where ``bench`` does not set them.
+    ``clutch.w_small``), the slip ``w_motor - w_gearbox`` and the motor's
+    torque limit (``motor.tau_max``, 680 N m) with its steady torque
+    (:func:`drive_torque`), all read from the bench model's FMU where
+    ``bench`` does not set them.
 
     Returns
     -------
@@ -322,12 +325,14 @@ def engagement_model(values, bench=None, fmu=None):
         w_op=bench_value("w_op"),
         slip=bench_value("w_motor") - bench_value("w_gearbox"),
         w_small=float(parameter_default(fmu, "clutch.w_small")))
+    # the motor (body 1): its control's gain is in the damping, its
+    # torque limit is the orbit's second nonlinearity
     gain = sum(added.values())
-    drive = (0, gain, float(parameter_default(fmu, "motor.tau_max")),
-             *drive_torque(model, gain, bench_value("w_motor")))
-    model = EngagementModel.from_driveline(
-        driveline, delta_mu=model.delta_mu, w_op=model.w_op,
-        slip=model.slip, w_small=model.w_small, drive=drive)
+    torque, damping = drive_torque(model, gain, bench_value("w_motor"))
+    model = dataclasses.replace(
+        model, drive=0, drive_gain=gain,
+        drive_limit=float(parameter_default(fmu, "motor.tau_max")),
+        drive_torque=torque, drive_damping=damping)
     return model, build_driveline(bench_linearisation(values, bench, fmu))
 
 

@@ -137,16 +137,13 @@ class EngagementModel:
 
     @classmethod
     def from_driveline(cls, driveline, delta_mu, w_op, slip=None,
-                       w_small=0.01, drive=None):
+                       w_small=0.01):
         """The engagement of a :class:`stability.model.Driveline` whose
         ``mu0`` and ``mu_g`` are the curve's at ``w_op``, with its
         structural damping as the linear part (the bench's additions
         already in its parameters), at the slip ``slip`` (default
-        ``w_op``). ``drive``: ``(body, gain, limit, steady torque,
-        damping)`` of a torque-limited speed control, whose gain is in the
-        driveline's damping already (None: no limit)."""
-        body, gain, limit, torque, damping = drive or (-1, 0.0, np.inf,
-                                                       0.0, 0.0)
+        ``w_op``), without a limited drive (set its ``drive_*`` fields
+        with :func:`dataclasses.replace`)."""
         return cls(mass=driveline.mass_matrix(),
                    stiffness=driveline.stiffness_matrix(),
                    damping=driveline.structural_damping(),
@@ -158,9 +155,7 @@ class EngagementModel:
                    slip=w_op if slip is None else float(slip),
                    p_m=driveline.p_m,
                    mean_pressure_damping=driveline.mean_pressure_damping,
-                   w_small=w_small, drive=int(body), drive_gain=float(gain),
-                   drive_limit=float(limit), drive_torque=float(torque),
-                   drive_damping=float(damping))
+                   w_small=w_small)
 
     @property
     def limited_drive(self):

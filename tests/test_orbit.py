@@ -168,3 +168,34 @@ def test_orbit_command_gives_the_chart_and_a_branch(tmp_path):
         timeout=300)
     assert proc.returncode == 2
     assert "--limit" in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_a_drive_that_never_reaches_its_limit_leaves_the_orbit(bench):
+    # the balance with the drive's channel (its torque limit far away,
+    # 1e9 N m) is the slip-only balance but for the mean of the driven
+    # bodies, which the torque the dither rectifies shifts by -drift / D
+    # (closed form of the mean balance without the limit; 0.002 rad/s at
+    # 103 Hz, 0.3 bar): the orbit moves by that little
+    from dataclasses import replace as changed
+    model, _ = bench
+    free = changed(model, drive_limit=np.inf)
+    far = changed(model, drive_limit=1e9)
+    assert not free.limited_drive and far.limited_drive
+    for freq_hz, p_f_bar in ((103.0, 0.3), (206.0, 0.5), (60.0, 0.3)):
+        a = periodic_orbit(free, freq_hz, p_f_bar * BAR)
+        b = periodic_orbit(far, freq_hz, p_f_bar * BAR)
+        assert b.mean_shift == pytest.approx(
+            -b.drift_torque / model.drive_damping, rel=1e-6)
+        assert b.dither_amplitude == pytest.approx(a.dither_amplitude,
+                                                   rel=2e-5)
+        assert abs(b.multipliers[0]) == pytest.approx(abs(a.multipliers[0]),
+                                                      rel=1e-6)
+
+
+def test_the_limit_cuts_the_motor_torque_as_the_fmu_does(bench):
+    # at the bench's f1 the motor saturates at +680 N m: its mean torque
+    # is held by a slower drive (the orbit's mean shift, rad/s)
+    model, _ = bench
+    orbit = periodic_orbit(model, 16.5, 0.3 * BAR)
+    assert orbit.drive_saturated and orbit.mean_shift < -0.1
+    assert not periodic_orbit(model, 60.0, 0.3 * BAR).drive_saturated
