@@ -320,7 +320,7 @@ class _Balance:
         self.channels = model.channels()
         self.c = self.channels.shape[1]
         k = np.arange(1, self.h + 1)
-        samples = max(8 * self.h, 64) * (4 if model.limited_drive else 1)
+        samples = max(8 * self.h, 64)
         self.t = np.arange(samples) * (2 * np.pi / self.base) / samples
         phase = np.outer(k, self.base * self.t)
         self.cos, self.sin = np.cos(phase), np.sin(phase)
@@ -481,8 +481,7 @@ class _Balance:
         model = self.model
         n = len(model.clutch)
         period = 2 * np.pi / self.base
-        steps = _MONODROMY_STEPS * self.period_multiple * (
-            4 if model.limited_drive else 1)
+        steps = _MONODROMY_STEPS * self.period_multiple
         h = period / steps
         gauss = 0.5 + np.array([-1, 1]) * np.sqrt(3) / 6
         times = (np.arange(steps)[:, None] + gauss[None, :]) * h

@@ -23,21 +23,23 @@ from ._values import FREQ, LIMIT, MIN_GROWTH, PF, Settings
 
 #: The command's --help text.
 DESCRIPTION = (
-    "The steady motion an engagement settles into under the dither: the "
-    "periodic orbit of the bench's engagement model (the equations of "
-    "the TestBenchEngagement FMU: the driveline with the bench's speed "
-    "control and the EVEN clutch's friction curve, at the bench's slip), "
-    "by harmonic balance, with its own Floquet multipliers (judder as the "
-    "physicist defines it: the instability of the actual forced orbit). "
-    "One --freq and one --pf: the orbit (T-periodic, and the 2T orbit "
-    "where it loses stability through -1). One --freq and several --pf: "
-    "the orbit continued in p_f (pseudo-arclength, through folds). "
-    "Several --freq and one --pf: the orbit over f. Several of both "
-    "(the default, 60-200 Hz x 0.05-0.7 bar): the predicted judder chart, "
-    "each point judged as `judder chart` judges a bench run (the "
-    "oscillation above --limit or growing at --min-growth) with its "
-    "mechanism. The mean slip is held (the frozen-slip view); the mean "
-    "torque the dither rectifies is reported.")
+    "The steady motion the held-slip bench run settles into under the "
+    "dither: the periodic orbit of the bench's equations (those of the "
+    "TestBenchEngagement FMU: the driveline with the bench motor's speed "
+    "control and its 680 N m torque limit, and the EVEN clutch's friction "
+    "curve, at the bench's slip), by harmonic balance, with its own "
+    "Floquet multipliers (judder as the physicist defines it: the "
+    "instability of the actual forced orbit); in a combination tongue, "
+    "where no periodic orbit settles, the same equations integrated until "
+    "the motion settles. One --freq and one --pf: the orbit (T-periodic, "
+    "and the 2T orbit where it loses stability through -1). One --freq "
+    "and several --pf: the orbit continued in p_f (pseudo-arclength, "
+    "through folds). Several --freq and one --pf: the orbit over f. "
+    "Several of both (the default, 60-200 Hz x 0.05-0.7 bar): the "
+    "predicted judder chart, each point judged as `judder chart` judges a "
+    "bench run (the oscillation above --limit or growing at --min-growth) "
+    "with its mechanism. The mean slip is held (the frozen-slip view); "
+    "the mean torque the dither rectifies is reported.")
 OUTPUTS = (("out", "--out", ("csv", "npz")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
@@ -73,7 +75,7 @@ def add_arguments(p):
 
 
 def run(args):
-    """Periodic orbits of the bench engagement."""
+    """Periodic orbits of the held-slip bench run."""
     params, changes = parameters_of(args)
     freqs, amplitudes = list(args.freq), list(args.pf)
     check_orbit(len(freqs), len(amplitudes))
@@ -86,7 +88,7 @@ def run(args):
                        judder_limit_rpm=args.limit,
                        min_growth=args.min_growth, progress=progress)
     files = write_outputs(args, result, figure={
-        "title": f"periodic orbit of the bench engagement, "
+        "title": f"settled motion of the held-slip bench run, "
                  f"{model_title(args, params)}"})
     emit(args, {**result.as_dict(), **files},
          result.text() + written(args.out, args.plot))
@@ -95,7 +97,7 @@ def run(args):
 def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
           judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM,
           min_growth=DEFAULT_MIN_GROWTH_PER_S, progress=None):
-    """``judder orbit``: periodic orbits of the bench engagement.
+    """``judder orbit``: periodic orbits of the held-slip bench run.
 
     Parameters
     ----------
@@ -231,7 +233,7 @@ def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
 
 @dataclass(frozen=True)
 class OrbitResult:
-    """``judder orbit``: periodic orbits of the bench engagement.
+    """``judder orbit``: periodic orbits of the held-slip bench run.
 
     ``orbits`` (and ``doubled``: the 2T orbit of each, or None) for a
     point, a continuation in p_f (``folds``: where it turns back) or a
