@@ -22,7 +22,8 @@ from pathlib import Path
 from infra.errors import JudderError
 from infra.files import atomic_write
 
-__all__ = ["cache_folder", "cache_key", "load", "store"]
+__all__ = ["cache_folder", "cache_key", "load", "sources_stamp",
+           "store"]
 
 
 def cache_folder():
@@ -36,20 +37,31 @@ def cache_folder():
     return Path(base) / "judder" / "flat"
 
 
-def cache_key(path, model_name, roots, version):
-    """Hex digest naming the flat model of ``model_name`` as the sources
-    under ``roots`` stand now."""
-    digest = hashlib.sha256()
-    for item in (version, model_name, str(Path(path).resolve())):
-        digest.update(item.encode() + b"\0")
+def sources_stamp(path, roots):
+    """The path, size and modification time of ``path`` and of every
+    ``.mo`` file under ``roots``, as bytes: what the keys of the flat
+    models (:func:`cache_key`) and of the rewritten sources
+    (:func:`fmu.rewrite.prepare`) say of the sources, read with one
+    ``stat`` per file and not one read."""
     files = {Path(path).resolve()}
     for root in roots:
         root = Path(root).resolve()
         files |= set(root.rglob("*.mo")) if root.is_dir() else {root}
+    lines = []
     for source in sorted(files):
         stat = source.stat()
-        digest.update(f"{source}\0{stat.st_size}\0{stat.st_mtime_ns}\n"
-                      .encode())
+        lines.append(f"{source}\0{stat.st_size}\0{stat.st_mtime_ns}\n")
+    return "".join(lines).encode()
+
+
+def cache_key(path, model_name, roots, version, stamp=None):
+    """Hex digest naming the flat model of ``model_name`` as the sources
+    under ``roots`` stand now (``stamp``: their :func:`sources_stamp`,
+    when the caller has it)."""
+    digest = hashlib.sha256()
+    for item in (version, model_name, str(Path(path).resolve())):
+        digest.update(item.encode() + b"\0")
+    digest.update(sources_stamp(path, roots) if stamp is None else stamp)
     return digest.hexdigest()
 
 

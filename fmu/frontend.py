@@ -732,13 +732,15 @@ def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
     check_source_arrays(path, check_source_text(path))
     refuse_unsupported(path, model_name, roots, hybrid)
     with tempfile.TemporaryDirectory(prefix="judder-rewritten-") as scratch:
-        prepared = prepare(roots, path, scratch=scratch)
         if not use_cache:
+            prepared = prepare(roots, path, scratch=scratch, remember=False)
             return _named_back(_flatten_with_rumoca(
                 path, model_name, roots, use_cache=False,
                 prepared=prepared), prepared), prepared.rewrites
+        stamp = cache.sources_stamp(path, roots)
+        prepared = prepare(roots, path, scratch=scratch, stamp=stamp)
         key = cache.cache_key(path, model_name, roots, f"{rumoca.version()}"
-                              f"+rewrite{REWRITE_VERSION}")
+                              f"+rewrite{REWRITE_VERSION}", stamp=stamp)
         flat = cache.load(key)
         if flat is None:
             flat = _named_back(_flatten_with_rumoca(
