@@ -1006,9 +1006,9 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
             sections["initialization_equation_operations"].append(
                 v.symbol - v.start)
             places["initialization_equation_operations"].append(v.where)
+    _modified_rewritten_parameters(variables, sections, places, rewrites)
     _parameters_of_initial_equations(variables, sections, places)
-    declared = {(v.where, v.name.split("[")[0].rsplit(".", 1)[-1])
-                for v in variables}
+    declared = {(v.where, _last_name(v.name)) for v in variables}
     rewrites = [r for r in rewrites
                 if (f"{r.file}:{r.line}", r.name) in declared]
     assertions = _assertions(storage, convert, where)
@@ -1026,6 +1026,74 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         discrete_relations=discrete_relations, assertions=assertions,
         time=time, experiment=_experiment(path, model_name),
         rewrites=rewrites)
+
+
+def _last_name(name):
+    """``p`` of ``d[2].p``: the name a declaration gives."""
+    return re.sub(r"\[[^\]]*\]", "", name).rsplit(".", 1)[-1]
+
+
+def _modified_rewritten_parameters(variables, sections, places, rewrites):
+    """A parameter whose binding :mod:`fmu.rewrite` made an initial
+    equation, set by a modifier (``Rates d(p = 0.3)``, ``extends
+    Rates(p = 0.3)``): the modifier's binding replaces the declared one,
+    as in Modelica, so the initial equation of the declared binding is
+    dropped and the parameter is fixed (else the initialisation is
+    overdetermined: the modifier's binding and the equation).
+
+    The equations of a class's rewrites share a line (its ``end``,
+    :attr:`fmu.rewrite.Rewrite.at`); each is told apart as the one of its
+    line that names one rewritten variable not yet matched (a binding
+    may name another rewritten parameter of its class, never its own).
+
+    Raises
+    ------
+    FrontEndError
+        Where the equation cannot be told apart, naming the declaration.
+    """
+    rewritten = {(f"{r.file}:{r.line}", r.name): f"{r.file}:{r.at}"
+                 for r in rewrites if r.parameter and r.at}
+    if not rewritten:
+        return
+    at = {}   # the place of its equation -> the rewritten variables
+    for v in variables:
+        place = rewritten.get((v.where, _last_name(v.name)))
+        if place is not None and v.role == "parameter":
+            at.setdefault(place, []).append(v)
+    modified = [v for group in at.values() for v in group
+                if v.binding is not None]
+    if not modified:
+        return
+    residuals = sections["initialization_equation_operations"]
+    where = places["initialization_equation_operations"]
+    owner = {}   # variable name -> index of its equation
+    for place, group in at.items():
+        names = {v.name for v in group}
+        named = {k: {s.name() for s in casadi.symvar(casadi.SX(
+            residuals[k]))} & names for k in range(len(residuals))
+            if where[k] == place}
+        grown = True
+        while grown:
+            grown = False
+            for k, found in named.items():
+                left = found - set(owner)
+                if len(left) == 1 and k not in owner.values():
+                    owner[left.pop()] = k
+                    grown = True
+    dropped = []
+    for v in modified:
+        if v.name not in owner:
+            raise FrontEndError(
+                f"{v.where}: {v.name} is set by a modifier, and its "
+                "declared binding, rewritten as an initial equation "
+                "(fmu/rewrite.py, rumoca 0.10.2 miscounts it), cannot be "
+                "told apart from the other equations of its class; give "
+                "the binding without a function of an array, or do not "
+                "modify it")
+        dropped.append(owner[v.name])
+        v.fixed = True
+    for k in sorted(dropped, reverse=True):
+        del residuals[k], where[k]
 
 
 def _parameters_of_initial_equations(variables, sections, places):

@@ -43,7 +43,7 @@ __all__ = ["Rewrite", "Prepared", "prepare", "rewrite_text",
            "REWRITE_VERSION"]
 
 #: Changes with the rule: the flat-model cache and the copies are keyed by it.
-REWRITE_VERSION = "1"
+REWRITE_VERSION = "2"
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+)
@@ -98,12 +98,17 @@ class Rewrite:
     parameter : bool
         A parameter: its equation is an initial equation, ``fixed =
         false`` keeps it a parameter.
+    at : int
+        Line of its equation (its class's ``end`` or final annotation):
+        the front end tells the equation apart by it, to drop it where a
+        modifier sets the parameter (``d(p = 0.3)``).
     """
     file: str
     line: int
     name: str
     binding: str
     parameter: bool
+    at: int = 0
 
     def __str__(self):
         made = "an initial equation (fixed = false), still a parameter" \
@@ -261,7 +266,8 @@ def _dimensions(tokens):
 
 
 def rewrite_text(text, real_types=frozenset(), objects=frozenset()):
-    """``(text rewritten, [(line, name, binding, parameter)])``: each
+    """``(text rewritten, [(line, name, binding, parameter, line of its
+    equation)])``: each
     binding of the rule (module docstring) moved to an equation at the
     end of its class, every line kept at its number. ``real_types``: names
     of types that are Real; ``objects``: names of ExternalObject
@@ -406,7 +412,7 @@ def _finish(text, tokens, owner, end_at, edits, found):
     """The edits of ``owner``'s rewritten bindings: each ``= expr``
     blanked, ``fixed = false`` on a parameter, and the equations put
     before its final annotation or its ``end``."""
-    equations, initial = [], []
+    equations, initial, mine = [], [], []
     for part, parameter in owner.pending:
         where = _binding(part)
         if where is None:
@@ -435,7 +441,7 @@ def _finish(text, tokens, owner, end_at, edits, found):
                               "(fixed = false)"))
         (initial if parameter else equations).append(f"{name} = {binding};")
         line = text.count("\n", 0, part[0][2]) + 1
-        found.append((line, name, binding, parameter))
+        mine.append((line, name, binding, parameter))
     if not (equations or initial):
         return
     added = ""
@@ -446,6 +452,8 @@ def _finish(text, tokens, owner, end_at, edits, found):
     at = owner.last_annotation if owner.last_annotation is not None \
         else end_at
     edits.append((at, at, added))
+    line = text.count("\n", 0, at) + 1
+    found += [(*item, line) for item in mine]
 
 
 def _apply(text, edits):
@@ -569,8 +577,8 @@ def _store_prepared(record, prepared):
     text = json.dumps({
         "roots": [str(r) for r in prepared.roots],
         "path": str(prepared.path),
-        "rewrites": [[r.file, r.line, r.name, r.binding, r.parameter]
-                     for r in prepared.rewrites],
+        "rewrites": [[r.file, r.line, r.name, r.binding, r.parameter,
+                      r.at] for r in prepared.rewrites],
         "copies": [[str(c), str(b)] for c, b in prepared.copies.items()],
     }).encode()
     try:
@@ -600,9 +608,7 @@ def _prepare(roots, path, scratch):
             new, found = rewrite_text(text, reals, objects)
             if found:
                 changed[source] = new
-                rewrites += [Rewrite(str(source), line, name, binding,
-                                     parameter)
-                             for line, name, binding, parameter in found]
+                rewrites += [Rewrite(str(source), *item) for item in found]
         if not changed:
             new_roots.append(root)
             continue

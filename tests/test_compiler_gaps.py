@@ -502,3 +502,60 @@ def test_an_unchanged_library_is_not_read_again(tmp_path, monkeypatch):
         (copy.parent / "complete").unlink()
     assert rewrite.prepare([library], source) == again
     assert len(read) == 2
+
+
+_MODIFIED = _ARRAY_CALL_PACKAGE.replace("end Lib;\n", """  model Chain "q from p, both rewritten"
+    parameter Real rates[2] = {0.125, 2};
+    parameter Real p = first(rates);
+    parameter Real q = 2*first({p, 1});
+    Real v(start = 1, fixed = true);
+  equation
+    der(v) = -(p + q)*v;
+  end Chain;
+
+  model Modified "rewritten parameters set by modifiers"
+    extends Rates(p = 0.5);
+    Rates d(p = 0.3);
+    Chain c(q = 0.5);
+    Chain e(p = 0.0625);
+  end Modified;
+end Lib;
+""")
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_a_modifier_sets_a_rewritten_parameter(tmp_path, monkeypatch,
+                                               version):
+    """``Rates d(p = 0.3)`` where ``p = first(rates)`` was rewritten to
+    ``p(fixed = false)`` and an initial equation: the modifier's binding
+    replaces the declared one, as in Modelica (was: "1 initial
+    equation(s) but no state with fixed = false"); a rewritten binding
+    naming the modified parameter (``q = 2*first({p, 1})``) follows
+    it."""
+    monkeypatch.setenv("JUDDER_FMU_CACHE", str(tmp_path / "cache"))
+    library = tmp_path / "lib"
+    (library / "Lib").mkdir(parents=True)
+    (library / "Lib" / "package.mo").write_text(_MODIFIED)
+    result = build_fmu(library / "Lib" / "package.mo", "Lib.Modified",
+                       tmp_path / "Model.fmu", version=version,
+                       roots=[library])
+    # the parameters' values and the rates of v = exp(-rate t)
+    expected = {"p": 0.5, "k": 0.25, "d.p": 0.3, "d.k": 0.25,
+                "c.p": 0.125, "c.q": 0.5, "e.p": 0.0625, "e.q": 0.125}
+    rates = {"v": 0.75, "d.v": 0.55, "c.v": 0.625, "e.v": 0.1875}
+    run = _simulate(result.path, 2.0, [*expected, *rates])
+    for name, value in expected.items():
+        assert_allclose(run[name], value, rtol=1e-15, atol=0)
+    for name, rate in rates.items():
+        # CVode at 1e-10 relative
+        assert_allclose(run[name], np.exp(-rate * run["time"]), rtol=1e-8)
+    description = ET.fromstring(zipfile.ZipFile(result.path).read(
+        "modelDescription.xml"))
+    causality = {v.get("name"): v.get("causality") for v in
+                 description.iter() if v.get("name") in expected and
+                 v.get("name")[-1] in "pq"}
+    # set by a modifier: a parameter; calculated from a binding: as before
+    assert causality == {
+        "p": "parameter", "d.p": "parameter",
+        "c.p": "calculatedParameter", "c.q": "parameter",
+        "e.p": "parameter", "e.q": "calculatedParameter"}
