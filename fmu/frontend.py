@@ -731,6 +731,7 @@ def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
     from .rewrite import REWRITE_VERSION, prepare
     check_source_arrays(path, check_source_text(path))
     refuse_unsupported(path, model_name, roots, hybrid)
+    roots = _with_modelica_path(roots)
     with tempfile.TemporaryDirectory(prefix="judder-rewritten-") as scratch:
         if not use_cache:
             prepared = prepare(roots, path, scratch=scratch, remember=False)
@@ -747,6 +748,23 @@ def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
                 path, model_name, roots, prepared=prepared), prepared)
             cache.store(key, flat)
     return flat, prepared.rewrites
+
+
+def _with_modelica_path(roots):
+    """``roots`` and then the folders of ``MODELICAPATH``
+    (:func:`fmu.classes.modelica_path`), each folder once: rumoca is
+    given them all and does not read the variable itself
+    (:mod:`fmu.rumoca_child`), so the rewrite (:mod:`fmu.rewrite`) and
+    the flat-model cache's key cover the MSL a caller finds there
+    (pysim's FMUs pass only the user's folders and the project's)."""
+    from .classes import modelica_path
+    seen, found = set(), []
+    for root in modelica_path(roots):
+        key = Path(root).resolve()
+        if key not in seen:
+            seen.add(key)
+            found.append(root)
+    return found
 
 
 def _named_back(flat, prepared):
