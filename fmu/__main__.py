@@ -78,6 +78,11 @@ def _build(argv):
                              "with mingw-w64 (x86_64-w64-mingw32-gcc)")
     parser.add_argument("--json", action="store_true",
                         help="report as JSON lines")
+    parser.add_argument("--show-rewrites", action="store_true",
+                        help="list each binding rewritten as an equation "
+                             "before rumoca read it (file:line, the "
+                             "binding; see docs/compiler.md), in a cached "
+                             "copy of its library, never in its folder")
     args = parser.parse_args(argv)
     if not (math.isfinite(args.tolerance) and 0 < args.tolerance < 1):
         print(f"fmu: error: --tolerance {args.tolerance:g} is not allowed; "
@@ -125,11 +130,22 @@ def _build_all(args, names, versions, roots, said):
                       "outputs": result.outputs,
                       "seconds": round(result.seconds, 3),
                       "size_bytes": result.size_bytes}
+            report["rewrites"] = [
+                {"file": r.file, "line": r.line, "name": r.name,
+                 "binding": r.binding, "parameter": r.parameter}
+                for r in result.rewrites]
+            rewritten = f", {len(result.rewrites)} bindings rewritten " \
+                "(--show-rewrites lists them)" if result.rewrites and \
+                not args.show_rewrites else ""
             print(json.dumps(report) if args.json else
                   f"{result.path}: FMI {version}, {result.states} states,"
                   f" {result.parameters} parameters, {result.outputs} "
                   f"outputs, built in {result.seconds:.2f} s, "
-                  f"{result.size_bytes / 1024:.1f} KiB")
+                  f"{result.size_bytes / 1024:.1f} KiB{rewritten}")
+            if args.show_rewrites and not args.json and version == \
+                    versions[0]:
+                for rewrite in result.rewrites:
+                    print(f"  rewrote {rewrite}")
         for warning in said:
             text = str(warning.message)
             if not issubclass(warning.category, UnitWarning):

@@ -77,6 +77,9 @@ class BuildResult:
     seconds : float
         Build time.
     size_bytes : int
+    rewrites : tuple of fmu.rewrite.Rewrite
+        Bindings of the model rewritten as equations before rumoca read
+        them (:mod:`fmu.rewrite`), each with its file and line.
     """
 
     path: Path
@@ -86,6 +89,7 @@ class BuildResult:
     outputs: int
     seconds: float
     size_bytes: int
+    rewrites: tuple = ()
 
 
 def fmi_headers():
@@ -484,4 +488,5 @@ def build_fmu(mo_file, model_name, out_file, version="2.0", roots=(),
                        parameters=len(ode.parameters),
                        outputs=len(ode.outputs),
                        seconds=time.perf_counter() - started,
-                       size_bytes=out_file.stat().st_size)
+                       size_bytes=out_file.stat().st_size,
+                       rewrites=tuple(flat.rewrites))

@@ -25,7 +25,8 @@ from pathlib import Path
 from infra.errors import JudderError
 from infra.files import atomic_write
 
-__all__ = ["cache_folder", "cache_key", "load", "sources_digest", "store"]
+__all__ = ["cache_folder", "cache_key", "load", "sources_digest",
+           "sources_stamp", "store"]
 
 
 def cache_folder(kind="flat"):
@@ -65,15 +66,24 @@ def sources_digest(roots):
     return digest.hexdigest()
 
 
-def cache_key(path, model_name, roots, version):
+def sources_stamp(path, roots):
+    """What the keys of the flat models (:func:`cache_key`) and of the
+    rewritten sources (:func:`fmu.rewrite.prepare`) say of the sources:
+    the :func:`sources_digest` of ``path`` and ``roots``, as bytes,
+    computed once a build."""
+    return sources_digest([path, *roots]).encode()
+
+
+def cache_key(path, model_name, roots, version, stamp=None):
     """Hex digest naming the flat model of ``model_name`` as the sources
-    under ``roots`` stand now (their content, :func:`sources_digest`)."""
+    under ``roots`` stand now (their content, :func:`sources_digest`;
+    ``stamp``: their :func:`sources_stamp`, when the caller has it)."""
     digest = hashlib.sha256()
     # the places too: a flat model's source map names its files
     places = [str(Path(p).resolve()) for p in (path, *roots)]
-    for item in (version, model_name, *places,
-                 sources_digest([path, *roots])):
+    for item in (version, model_name, *places):
         digest.update(item.encode() + b"\0")
+    digest.update(sources_stamp(path, roots) if stamp is None else stamp)
     return digest.hexdigest()
 
 

@@ -113,6 +113,9 @@ class FlatModel:
         it 1), for the ODE of one mode (:func:`sources.modes.fixed_mode`).
     assertions : list of Assertion
         The ``assert(...)`` of the equations.
+    rewrites : list of fmu.rewrite.Rewrite
+        The bindings rewritten as equations before rumoca read them
+        (:mod:`fmu.rewrite`) that declare variables of this model.
     """
 
     name: str
@@ -131,6 +134,7 @@ class FlatModel:
     initial: object = None
     initial_value: float = None
     assertions: list = field(default_factory=list)
+    rewrites: list = field(default_factory=list)
 
     def by_role(self, role):
         """Variables of one role, in declaration order."""
@@ -355,6 +359,18 @@ class _Expressions:
             if isinstance(body, dict) and "operand_count" in body:
                 self._offsets[index] = offset
                 offset += body["operand_count"]
+        # index nodes likewise take their subscripts, in node order, from
+        # the flat subscript list: {'index': node}, 'whole' (``:``) or
+        # {'slice': range node} (``2:3``)
+        self._subscripts = {}
+        listed, offset = graph.get("subscripts") or [], 0
+        for index, node in enumerate(self._nodes):
+            kind, body = next(iter(node.items()))
+            if kind == "index":
+                count = body["subscript_count"]
+                self._subscripts[index] = [
+                    item["kind"] for item in listed[offset:offset + count]]
+                offset += count
 
     def __call__(self, index):
         """The expression of node ``index``.
@@ -390,8 +406,9 @@ class _Expressions:
         if kind == "unary":
             return (body["operand"],)
         if kind == "index":
-            return (body["base"], *range(index - body["subscript_count"],
-                                         index))
+            return (body["base"], *(
+                next(iter(item.values())) for item in self._subscripts[index]
+                if isinstance(item, dict) and "index" in item))
         if kind == "builtin" and body["builtin"] == "no_event":
             return ()
         if kind in ("array", "builtin", "conditional", "call") and \
@@ -496,19 +513,26 @@ class _Expressions:
                 isinstance(i, np.ndarray) for i in items) else _stack(items)
         if kind == "index":
             base = self(body["base"])
-            count = body["subscript_count"]
             try:
-                subscripts = tuple(_integer(self(i)) - 1
-                                   for i in range(index - count, index))
+                subscripts = tuple(self._subscript(item) for item in
+                                   self._subscripts[index])
                 if not isinstance(base, np.ndarray) or \
                         len(subscripts) != base.ndim or \
                         any(not 0 <= k < n for k, n in zip(subscripts,
-                                                           base.shape)):
+                                                           base.shape)
+                            if isinstance(k, int)) or \
+                        any(not all(0 <= j < n for j in k)
+                            for k, n in zip(subscripts, base.shape)
+                            if isinstance(k, list)):
                     raise FrontEndError(f"array index {subscripts} out of "
                                         f"range")
             except FrontEndError as exc:
                 raise FrontEndError(f"{self.where}: {exc}") from None
-            return base[subscripts]
+            picked = base[tuple(slice(None) if k is None else k
+                                for k in subscripts)]
+            return picked if isinstance(picked, np.ndarray) and \
+                picked.ndim else picked[()] if isinstance(
+                    picked, np.ndarray) else picked
         if kind == "builtin" and body["builtin"] in _ARRAY_BUILTIN:
             try:
                 return _ARRAY_BUILTIN[body["builtin"]](
@@ -535,6 +559,24 @@ class _Expressions:
             return self._comprehension(body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
+
+    def _subscript(self, item):
+        """A subscript, 0-based: an integer, None for ``:``, or the list
+        of a range ``2:3`` (``a:b:c``)."""
+        if item == "whole":
+            return None
+        kind, node = next(iter(item.items()))
+        if kind == "index":
+            return _integer(self(node)) - 1
+        span = next(iter(self._nodes[node].values()))
+        start = _integer(self(span["start_expression"]))
+        stop = _integer(self(span["stop_expression"]))
+        step = span.get("explicit_step_expression")
+        step = 1 if step is None else _integer(self(step))
+        if step == 0:
+            raise FrontEndError("a range subscript with step 0")
+        return [k - 1 for k in range(start, stop + (1 if step > 0 else -1),
+                                     step)]
 
     def _binder(self, reference):
         key = (reference["domain"], reference["ordinal"])
@@ -672,38 +714,86 @@ def package_version(model_name, roots):
 
 def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
     """rumoca's flat model of ``model_name``, from the cache
-    (:mod:`fmu.cache`) while no source under ``roots`` has changed.
+    (:mod:`fmu.cache`) while no source under ``roots`` has changed, and
+    the bindings rewritten for rumoca (:mod:`fmu.rewrite`).
 
     The source checks run before the cache is read: the flat model
     stored does not depend on ``hybrid``, the refusals do (a class
     flattened with its Integer variables read is refused all the same
-    where they are not)."""
+    where they are not). rumoca reads the libraries as
+    :func:`fmu.rewrite.prepare` rewrote them, in copies; the flat model's
+    files and rumoca's messages name the user's files."""
+    import tempfile
     import rumoca
     from . import cache
     from .limits import check_source_arrays
     from .precheck import refuse_unsupported
+    from .rewrite import REWRITE_VERSION, prepare
     check_source_arrays(path, check_source_text(path))
     refuse_unsupported(path, model_name, roots, hybrid)
-    if not use_cache:
-        return _flatten_with_rumoca(path, model_name, roots,
-                                    use_cache=False)
-    key = cache.cache_key(path, model_name, roots, rumoca.version())
-    flat = cache.load(key)
-    if flat is None:
-        flat = _flatten_with_rumoca(path, model_name, roots)
-        cache.store(key, flat)
+    roots = _with_modelica_path(roots)
+    with tempfile.TemporaryDirectory(prefix="judder-rewritten-") as scratch:
+        if not use_cache:
+            prepared = prepare(roots, path, scratch=scratch, remember=False)
+            return _named_back(_flatten_with_rumoca(
+                path, model_name, roots, use_cache=False,
+                prepared=prepared), prepared), prepared.rewrites
+        stamp = cache.sources_stamp(path, roots)
+        prepared = prepare(roots, path, scratch=scratch, stamp=stamp)
+        key = cache.cache_key(path, model_name, roots, f"{rumoca.version()}"
+                              f"+rewrite{REWRITE_VERSION}", stamp=stamp)
+        flat = cache.load(key)
+        if flat is None:
+            flat = _named_back(_flatten_with_rumoca(
+                path, model_name, roots, prepared=prepared), prepared)
+            cache.store(key, flat)
+    return flat, prepared.rewrites
+
+
+def _with_modelica_path(roots):
+    """``roots`` and then the folders of ``MODELICAPATH``
+    (:func:`fmu.classes.modelica_path`), each folder once: rumoca is
+    given them all and does not read the variable itself
+    (:mod:`fmu.rumoca_child`), so the rewrite (:mod:`fmu.rewrite`) and
+    the flat-model cache's key cover the MSL a caller finds there
+    (pysim's FMUs pass only the user's folders and the project's)."""
+    from .classes import modelica_path
+    seen, found = set(), []
+    for root in modelica_path(roots):
+        key = Path(root).resolve()
+        if key not in seen:
+            seen.add(key)
+            found.append(root)
+    return found
+
+
+def _named_back(flat, prepared):
+    """``flat`` with the files of rumoca's source map named as the
+    user's, not as their rewritten copies."""
+    if not prepared.copies:
+        return flat
+    source_map = flat.get("source_map", {})
+    source_map["files"] = [
+        [entry[0], prepared.named_back(entry[1]), *entry[2:]]
+        for entry in source_map.get("files", [])]
     return flat
 
 
-def _flatten_with_rumoca(path, model_name, roots, use_cache=True):
+def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
+                         prepared=None):
     """rumoca's flat model, flattened in a child process
     (:mod:`fmu.rumoca_child`): a crash, an abort or a hang of rumoca
-    becomes a :class:`FrontEndError`, never the end of this process."""
+    becomes a :class:`FrontEndError`, never the end of this process.
+    ``prepared`` (:func:`fmu.rewrite.prepare`) gives the rewritten
+    copies rumoca reads."""
     from .rumoca_child import flatten_isolated
     try:
-        return flatten_isolated(path, model_name, roots)
+        if prepared is None:
+            return flatten_isolated(path, model_name, roots)
+        return flatten_isolated(prepared.path, model_name, prepared.roots)
     except FrontEndError as exc:
-        message = str(exc)
+        message = str(exc) if prepared is None else \
+            prepared.named_back(str(exc))
     from .balance import explain_unbalanced   # scipy, on failure only
     if use_cache:
         message += explain_unbalanced(message, model_name, roots,
@@ -856,7 +946,8 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         place of a construct the back end does not compile.
     """
     path = Path(path)
-    flat = _flatten(path, model_name, roots or [path.parent], cache, hybrid)
+    flat, rewrites = _flatten(path, model_name, roots or [path.parent],
+                              cache, hybrid)
     storage = flat["storage"]
     where = _Locator(flat)
     _check_supported(storage, model_name, where, hybrid)
@@ -933,6 +1024,11 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
             sections["initialization_equation_operations"].append(
                 v.symbol - v.start)
             places["initialization_equation_operations"].append(v.where)
+    _modified_rewritten_parameters(variables, sections, places, rewrites)
+    _parameters_of_initial_equations(variables, sections, places)
+    declared = {(v.where, _last_name(v.name)) for v in variables}
+    rewrites = [r for r in rewrites
+                if (f"{r.file}:{r.line}", r.name) in declared]
     assertions = _assertions(storage, convert, where)
     whens = _whens(storage, convert, where, variables)
     discretes, discrete_relations = _discretes(
@@ -946,7 +1042,105 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         relations=[convert.relations[k] for k in sorted(convert.relations)],
         whens=whens, discretes=discretes, initial=convert.initial,
         discrete_relations=discrete_relations, assertions=assertions,
-        time=time, experiment=_experiment(path, model_name))
+        time=time, experiment=_experiment(path, model_name),
+        rewrites=rewrites)
+
+
+def _last_name(name):
+    """``p`` of ``d[2].p``: the name a declaration gives."""
+    return re.sub(r"\[[^\]]*\]", "", name).rsplit(".", 1)[-1]
+
+
+def _modified_rewritten_parameters(variables, sections, places, rewrites):
+    """A parameter whose binding :mod:`fmu.rewrite` made an initial
+    equation, set by a modifier (``Rates d(p = 0.3)``, ``extends
+    Rates(p = 0.3)``): the modifier's binding replaces the declared one,
+    as in Modelica, so the initial equation of the declared binding is
+    dropped and the parameter is fixed (else the initialisation is
+    overdetermined: the modifier's binding and the equation).
+
+    The equations of a class's rewrites share a line (its ``end``,
+    :attr:`fmu.rewrite.Rewrite.at`); each is told apart as the one of its
+    line that names one rewritten variable not yet matched (a binding
+    may name another rewritten parameter of its class, never its own).
+
+    Raises
+    ------
+    FrontEndError
+        Where the equation cannot be told apart, naming the declaration.
+    """
+    rewritten = {(f"{r.file}:{r.line}", r.name): f"{r.file}:{r.at}"
+                 for r in rewrites if r.parameter and r.at}
+    if not rewritten:
+        return
+    at = {}   # the place of its equation -> the rewritten variables
+    for v in variables:
+        place = rewritten.get((v.where, _last_name(v.name)))
+        if place is not None and v.role == "parameter":
+            at.setdefault(place, []).append(v)
+    modified = [v for group in at.values() for v in group
+                if v.binding is not None]
+    if not modified:
+        return
+    residuals = sections["initialization_equation_operations"]
+    where = places["initialization_equation_operations"]
+    owner = {}   # variable name -> index of its equation
+    for place, group in at.items():
+        names = {v.name for v in group}
+        named = {k: {s.name() for s in casadi.symvar(casadi.SX(
+            residuals[k]))} & names for k in range(len(residuals))
+            if where[k] == place}
+        grown = True
+        while grown:
+            grown = False
+            for k, found in named.items():
+                left = found - set(owner)
+                if len(left) == 1 and k not in owner.values():
+                    owner[left.pop()] = k
+                    grown = True
+    dropped = []
+    for v in modified:
+        if v.name not in owner:
+            raise FrontEndError(
+                f"{v.where}: {v.name} is set by a modifier, and its "
+                "declared binding, rewritten as an initial equation "
+                "(fmu/rewrite.py, rumoca 0.10.2 miscounts it), cannot be "
+                "told apart from the other equations of its class; give "
+                "the binding without a function of an array, or do not "
+                "modify it")
+        dropped.append(owner[v.name])
+        v.fixed = True
+    for k in sorted(dropped, reverse=True):
+        del residuals[k], where[k]
+
+
+def _parameters_of_initial_equations(variables, sections, places):
+    """Read ``parameter Real p(fixed = false); initial equation p =
+    f(...);`` as the calculated parameter ``p = f(...)``, where the
+    initial equation is linear in ``p`` and names parameters and
+    constants only: the form :mod:`fmu.rewrite` gives a parameter's
+    binding that rumoca cannot read (MSL's ``Clutch.mu0``). The initial
+    equation is removed; any other stays for the back end."""
+    known = {v.name for v in variables if v.role in ("parameter",
+                                                     "constant")}
+    residuals = sections["initialization_equation_operations"]
+    where = places["initialization_equation_operations"]
+    for v in variables:
+        if v.role != "parameter" or v.fixed or v.binding is not None:
+            continue
+        for k, residual in enumerate(residuals):
+            names = {s.name() for s in casadi.symvar(casadi.SX(residual))}
+            if v.name not in names or not names <= known:
+                continue
+            slope = casadi.jacobian(residual, v.symbol)
+            if casadi.depends_on(slope, v.symbol) or \
+                    casadi.SX(slope).is_zero():
+                continue
+            v.binding = casadi.simplify(-casadi.substitute(
+                residual, v.symbol, casadi.SX(0)) / slope)
+            v.fixed = True
+            del residuals[k], where[k]
+            break
 
 
 def _discretes(storage, convert, where, variables):

@@ -23,6 +23,7 @@ The parent turns each way the child can end into one
 :class:`~fmu.frontend.FrontEndError` naming the file and what happened.
 """
 
+import os
 import pickle
 import re
 import resource
@@ -185,6 +186,13 @@ def _library_errors(rumoca, roots, path):
 
 def _child():
     die_with_parent()
+    # rumoca also loads the folders of MODELICAPATH by itself: the
+    # parent gives every library folder in "roots" (MODELICAPATH's
+    # among them, fmu.classes), some as rewritten copies (fmu.rewrite),
+    # and the MSL read twice, once rewritten, is "Duplicate class
+    # 'Modelica.Blocks.Continuous.Integrator' ... with non-identical
+    # definition"
+    os.environ.pop("MODELICAPATH", None)
     job = pickle.load(sys.stdin.buffer)
     memory = job["memory"] + _BASE_BYTES
     _, hard = resource.getrlimit(resource.RLIMIT_AS)
