@@ -177,8 +177,11 @@ def test_report_states_the_verdict_tips_ranking_and_fit(report):
     # examples/driveline.toml --set mu_g=0.011` gives 1.000668, 0.0701 1/s
     # (one e-fold in 1 / 0.0701 = 14.3 s), slower than the judder-relevant
     # 1 1/s that `judder check` uses
+    # and its settled oscillation, the chain's linear forced response
+    # (26 rpm, under the 30 rpm limit)
     assert ("SLOW GROWTH at 105 Hz, 0.2 bar: single-period instability in "
-            "tongue 2 (|\u03bb| = 1.0007); grows at 0.0701 1/s, one e-fold "
+            "tongue 2 (|\u03bb| = 1.0007); settled oscillation 26 rpm "
+            "(limit 30 rpm); grows at 0.0701 1/s, one e-fold "
             "in 14.3 s (longer than a 1 s engagement), slower than the "
             "judder-relevant 1 1/s;" in text)
     assert "(judder check --min-growth 1)" in text
@@ -285,9 +288,10 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
     text = verdict_text(record)
     assert text.startswith("JUDDER at 105 Hz, 0.2 bar: single-period "
                            "instability in tongue 2 (|\u03bb| = 1.0007); "
-                           "grows at 0.0701 1/s, one e-fold in 14.3 s "
-                           "(longer than a 1 s engagement); ")
-    above = float(text.split("; ")[2].split(" bar above the judder "
+                           "settled oscillation 26 rpm (limit 30 rpm), "
+                           "parametric; grows at 0.0701 1/s, one e-fold in "
+                           "14.3 s (longer than a 1 s engagement); ")
+    above = float(text.split("; ")[3].split(" bar above the judder "
                                             "boundary")[0])
     assert 0.2 - above == pytest.approx(record["boundary_p_f_bar"],
                                         abs=5e-4)

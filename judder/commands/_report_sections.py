@@ -184,9 +184,13 @@ def verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
         growth += (f", slower than the judder-relevant "
                    f"{v['min_growth_per_s']:g} 1/s")
     amplitude, frequency = margin_words(v)
+    settled = ""
+    if "settled_amplitude_rpm" in v:
+        from .check import response_words
+        settled = response_words(v) + "; "
     return (f"{v['verdict']} at {v['freq_hz']:g} Hz, {v['p_f_bar']:g} bar: "
-            f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {growth}; "
-            f"{amplitude}; {frequency}.")
+            f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {settled}"
+            f"{growth}; {amplitude}; {frequency}.")
 
 
 def _window_text(advice):
@@ -231,10 +235,12 @@ def _design_text(advice):
                + ")" if dropped else "") + ".")
 
 
-def summary_section(verdict, advice, advice_error, min_growth):
+def summary_section(verdict, advice, advice_error, min_growth,
+                    driveline=""):
     """The first screen: the verdict of the configured dither (or why
     there is none), the safe dither window and the smallest design change
-    of ``judder advise``."""
+    of ``judder advise``, of ``driveline`` (words: which driveline the
+    report judges)."""
     if verdict is None:
         css, text = "none", (
             "No dither setting given (--freq, --pf): choose one in the safe "
@@ -253,10 +259,14 @@ def summary_section(verdict, advice, advice_error, min_growth):
                            ("Smallest design change", design)))
     return (
         "<h2>Verdict and advice</h2>"
-        f'<p class="verdict {css}">{html.escape(text)}</p>'
+        + (f'<p class="small">Judged: {html.escape(driveline)}.</p>'
+           if driveline else "")
+        + f'<p class="verdict {css}">{html.escape(text)}</p>'
         f'<table class="facts">{rows}</table>'
-        '<p class="small">JUDDER: an instability growing faster than '
-        f"{min_growth:g} 1/s, at least one e-fold within an engagement; "
+        '<p class="small">JUDDER: a settled oscillation of the upstream '
+        "speed above the NVH limit (30 rpm) or an instability growing "
+        f"faster than {min_growth:g} 1/s, at least one e-fold within an "
+        "engagement; "
         "SLOW GROWTH: unstable (inside a stability tongue) but growing "
         "slower, no judder within an engagement; STABLE: no instability. "
         "Sources: judder check and judder advise (valve range 60-200 Hz, "

@@ -371,8 +371,10 @@ def report(parameters=None, changes=None, description=None,
     step()
     if advice is not None:
         data["advice"] = advice.as_dict()
-    page.sections.append(summary_section(verdict, advice, advice_error,
-                                         min_growth))
+    from ..bench import driveline_words
+    page.sections.append(summary_section(
+        verdict, advice, advice_error, min_growth,
+        driveline_words(values, driveline)))
     if point is not None:
         page.sections.append(setting_section(page, point, freq_hz, p_f_bar))
     page.sections.append(map_section(
