@@ -292,7 +292,7 @@ def linear_validity(driveline, run, linear_slip):
             "linearisation_holds": bool(forced <= linear_slip)}
 
 
-def engagement_model(values, bench=None, fmu=None):
+def engagement_model(values, bench=None, fmu=None, duration=None):
     """The bench's engagement about its steady slip, for the periodic
     orbit (:class:`stability.orbit.EngagementModel`): the driveline with
     the damping the bench adds (:func:`added_damping`), the EVEN clutch's
@@ -300,7 +300,10 @@ def engagement_model(values, bench=None, fmu=None):
     ``clutch.w_small``), the slip ``w_motor - w_gearbox`` and the motor's
     torque limit (``motor.tau_max``, 680 N m) with its steady torque
     (:func:`drive_torque`), all read from the bench model's FMU where
-    ``bench`` does not set them.
+    ``bench`` does not set them; and the gearbox side's inertia with the
+    time the held slip drifts before a run of ``duration`` seconds (the
+    FMU's StopTime by default) is read, from the middle of the pressure
+    ramp (:func:`stability.orbit.drifted_orbit`).
 
     Returns
     -------
@@ -329,10 +332,17 @@ def engagement_model(values, bench=None, fmu=None):
     # torque limit is the orbit's second nonlinearity
     gain = sum(added.values())
     torque, damping = drive_torque(model, gain, bench_value("w_motor"))
+    if duration is None:
+        from fmu.store import model_description
+        duration = float(model_description(fmu).defaultExperiment.stopTime)
     model = dataclasses.replace(
         model, drive=0, drive_gain=gain,
         drive_limit=float(parameter_default(fmu, "motor.tau_max")),
-        drive_torque=torque, drive_damping=damping)
+        drive_torque=torque, drive_damping=damping,
+        load_inertia=float(np.diag(model.mass) @ _group(
+            model.stiffness, int(np.flatnonzero(model.clutch < 0)[0]))),
+        drift_time=max(duration - bench_value("t_engage")
+                       - 0.5 * bench_value("t_ramp"), 0.0))
     return model, build_driveline(bench_linearisation(values, bench, fmu))
 
 
@@ -393,17 +403,23 @@ def drive_torque(model, gain, w_ref):
     holds them at ``w_ref - T/gain``), ``T = (tau_s + c w_ref) / (1 +
     c/gain)`` with ``c`` their external damping without the control's
     ``gain``."""
-    stiffness = np.abs(model.stiffness) > 0
-    group = {0}
-    while True:
-        grown = group | {j for i in group for j in np.flatnonzero(
-            stiffness[i])}
-        if grown == group:
-            break
-        group = grown
-    ones = np.zeros(len(model.clutch))
-    ones[sorted(group)] = 1.0
+    ones = _group(model.stiffness, 0)
     external = float(ones @ model.damping @ ones) - gain
     torque = ((model.steady_torque() + external * w_ref)
               / (1.0 + external / gain))
     return torque, external + gain
+
+
+def _group(stiffness, body):
+    """Indicator (0 or 1 per body) of the bodies joined to ``body`` by
+    springs: those that turn with it on average."""
+    joined = np.abs(stiffness) > 0
+    group = {body}
+    while True:
+        grown = group | {j for i in group for j in np.flatnonzero(joined[i])}
+        if grown == group:
+            break
+        group = grown
+    ones = np.zeros(len(stiffness))
+    ones[sorted(group)] = 1.0
+    return ones

@@ -21,7 +21,8 @@ of the steady slip, which the motor and the load balance. The mean slip
 is held at :math:`w_s` (the frozen-slip view of an engagement, whose slip
 changes slowly against the dither period): the mean torque the dither
 rectifies, which would drift the slip on the bench, is reported
-(:attr:`Orbit.drift_torque`), not balanced.
+(:attr:`Orbit.drift_torque`), not balanced; :func:`drifted_orbit` follows
+that drift quasi-statically over a bench run.
 
 Only the slip speed enters the nonlinearity, so the balance condenses to
 the harmonics of the slip-speed deviation :math:`u = e^T\dot x` (the
@@ -58,7 +59,8 @@ import scipy.linalg
 from .kinds import KINDS, classify
 
 __all__ = ["EngagementModel", "Orbit", "OrbitBranch", "periodic_orbit",
-           "double_period_orbit", "continue_orbit", "DEFAULT_HARMONICS"]
+           "drifted_orbit", "double_period_orbit", "continue_orbit",
+           "DEFAULT_HARMONICS"]
 
 #: Harmonics of the base frequency kept in the balance (T-orbits; twice
 #: as many for 2T orbits).
@@ -113,6 +115,13 @@ class EngagementModel:
         upstream disc shares, settles where the motor's mean torque
         balances the clutch's and this damping's (the balance's mean
         unknown).
+    load_inertia : float
+        Inertia of the bodies the clutch's gearbox side turns, kg m^2
+        (0: the slip held, the frozen-slip view).
+    drift_time : float
+        Time over which the mean slip drifts under the torque the dither
+        rectifies before the motion is read, s (:func:`drifted_orbit`;
+        0: none).
     """
 
     mass: np.ndarray
@@ -134,6 +143,8 @@ class EngagementModel:
     drive_limit: float = np.inf
     drive_torque: float = 0.0
     drive_damping: float = 0.0
+    load_inertia: float = 0.0
+    drift_time: float = 0.0
 
     @classmethod
     def from_driveline(cls, driveline, delta_mu, w_op, slip=None,
@@ -583,6 +594,63 @@ def periodic_orbit(model, freq_hz, p_f, harmonics=DEFAULT_HARMONICS,
                                 harmonics=harmonics)
         return branch.orbits[-1]
     return balance.orbit(x, p_f, success, residual)
+
+
+#: Smallest drift of the held slip over a run that :func:`drifted_orbit`
+#: follows, rad/s: 5 % of the bench curve's linear range (about 1 rad/s),
+#: where its slope has changed by well under 1 %.
+_SMALLEST_DRIFT = 0.05
+
+
+def drifted_orbit(model, orbit, steps=2, harmonics=DEFAULT_HARMONICS):
+    """The T-orbit where the held slip has drifted to after
+    ``model.drift_time``, and its model.
+
+    The flat-friction load of the bench balances the clutch's steady
+    torque only: the torque the dither rectifies (``orbit.drift_torque``)
+    turns the gearbox side, and the mean slip moves slowly along the
+    friction curve, ``dw_s/dt = -drift(w_s) / J`` with ``J`` the
+    ``load_inertia`` (quasi-static: each instant's orbit at its slip).
+    Heun's method in ``steps`` steps, each orbit solved from the last
+    (4 steps moved the amplitudes of the fitted set's drifting settings by
+    under 1 % against 2).
+
+    Parameters
+    ----------
+    model : EngagementModel
+    orbit : Orbit
+        The T-orbit at ``model.slip``.
+
+    Returns
+    -------
+    (Orbit, EngagementModel)
+        ``orbit`` and ``model`` themselves where nothing drifts (no
+        ``drift_time`` or ``load_inertia``, a failed orbit, or a drift of
+        under :data:`_SMALLEST_DRIFT` over the run).
+    """
+    from dataclasses import replace
+    if model.drift_time <= 0 or model.load_inertia <= 0 or \
+            not orbit.success or orbit.period_multiple != 1:
+        return orbit, model
+    rate = -orbit.drift_torque / model.load_inertia
+    if abs(rate) * model.drift_time < _SMALLEST_DRIFT:
+        return orbit, model
+    h = model.drift_time / steps
+    at, here = model, orbit
+    for _ in range(steps):
+        trial_model = replace(at, slip=at.slip + h * rate)
+        trial = periodic_orbit(trial_model, here.freq_hz, here.p_f,
+                               harmonics, start=here)
+        if not trial.success:
+            return here, at
+        slope = -trial.drift_torque / model.load_inertia
+        at = replace(at, slip=at.slip + 0.5 * h * (rate + slope))
+        here = periodic_orbit(at, here.freq_hz, here.p_f, harmonics,
+                              start=trial)
+        if not here.success:
+            return trial, trial_model
+        rate = -here.drift_torque / model.load_inertia
+    return here, at
 
 
 def _seed(balance, orbit):

@@ -30,9 +30,21 @@ import numpy as np
 
 from infra.criteria import MECHANISMS
 
-from .orbit import DEFAULT_HARMONICS, continue_orbit, double_period_orbit
+from .orbit import (DEFAULT_HARMONICS, continue_orbit, double_period_orbit,
+                    drifted_orbit)
 
-__all__ = ["OrbitChart", "orbit_chart", "OrbitVerdict", "orbit_verdict"]
+__all__ = ["OrbitChart", "orbit_chart", "OrbitVerdict", "orbit_verdict",
+           "held_slip_motion"]
+
+
+def held_slip_motion(model, orbit, harmonics=DEFAULT_HARMONICS):
+    """The motion a held-slip run shows at the end: the T-orbit ``orbit``
+    carried along the slip's drift (:func:`stability.orbit.drifted_orbit`)
+    and the 2T orbit grown out of it where it doubles (None)."""
+    orbit, at = drifted_orbit(model, orbit, harmonics=harmonics)
+    doubled = (double_period_orbit(at, orbit, harmonics=harmonics)
+               if orbit.success and orbit.kind == "double-period" else None)
+    return orbit, doubled
 
 
 @dataclass(frozen=True)
@@ -224,9 +236,7 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
                    if k not in branch.folds]
         for j, orbit in enumerate(on_grid[offset:]):
             if orbit.success:
-                found[i, j] = (orbit, double_period_orbit(
-                    model, orbit, harmonics=harmonics)
-                    if orbit.kind == "double-period" else None)
+                found[i, j] = held_slip_motion(model, orbit, harmonics)
         if callback is not None:
             callback(i + 1, len(freq_hz))
     combination = settled_combinations(model, freq_hz, p_f, found,

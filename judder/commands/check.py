@@ -278,8 +278,8 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     from infra.criteria import MECHANISMS
     from infra.units import RAD_S_PER_RPM, RPM_PER_RAD_S
     from stability.friction import forced_upstream_amplitude
-    from stability.orbit import double_period_orbit, periodic_orbit
-    from stability.orbit_chart import orbit_verdict
+    from stability.orbit import periodic_orbit
+    from stability.orbit_chart import held_slip_motion, orbit_verdict
     limit = limit_rpm * RAD_S_PER_RPM
     rows = []
     if not given.source_kind.is_chain:
@@ -294,10 +294,8 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
         system = build_driveline(values)
     for k, (f, p, rate) in enumerate(zip(freq_hz, p_f, growth_rates)):
         if driveline == "bench":
-            orbit, motion = orbits[k], motions[k]
-            doubled = (double_period_orbit(model, orbit)
-                       if orbit.success and orbit.kind == "double-period"
-                       else None)
+            orbit, doubled = held_slip_motion(model, orbits[k])
+            motion = motions[k]
             verdict = orbit_verdict(
                 orbit, doubled, limit, min_growth,
                 0.0 if motion is None else motion["combination"])

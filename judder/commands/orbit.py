@@ -38,8 +38,9 @@ DESCRIPTION = (
     "Several of both (the default, 60-200 Hz x 0.05-0.7 bar): the "
     "predicted judder chart, each point judged as `judder chart` judges a "
     "bench run (the oscillation above --limit or growing at --min-growth) "
-    "with its mechanism. The mean slip is held (the frozen-slip view); "
-    "the mean torque the dither rectifies is reported.")
+    "with its mechanism. The torque the dither rectifies (reported) "
+    "moves the held slip during the bench's run: the orbit follows that "
+    "drift, quasi-statically, to the run's end.")
 OUTPUTS = (("out", "--out", ("csv", "npz")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
@@ -118,9 +119,8 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
         ``mode`` ``'point'``, ``'amplitude'`` (continued in p_f),
         ``'frequency'`` (over f) or ``'chart'``.
     """
-    from stability.orbit import (continue_orbit, double_period_orbit,
-                                 periodic_orbit)
-    from stability.orbit_chart import orbit_chart
+    from stability.orbit import continue_orbit, periodic_orbit
+    from stability.orbit_chart import held_slip_motion, orbit_chart
 
     from ..bench import check_bench, engagement_model
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
@@ -157,11 +157,11 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
         mode = "point" if len(freqs) == 1 else "frequency"
         orbits = [periodic_orbit(model, f, amplitudes[0] * PA_PER_BAR)
                   for f in freqs]
-    for found in orbits:
-        doubled.append(double_period_orbit(model, found)
-                       if found.success and found.kind == "double-period"
-                       else None)
     quasi = settled_motions(model, orbits)
+    # what the held-slip run shows at its end: the slip drifted
+    motions = [held_slip_motion(model, found) for found in orbits]
+    orbits = [found for found, _ in motions]
+    doubled = [grown for _, grown in motions]
     seconds = time.perf_counter() - started
     return OrbitResult(params=values, mode=mode, orbits=orbits,
                        doubled=doubled, quasi=quasi, folds=folds,

@@ -383,14 +383,14 @@ def _orbit_fields(model, run, min_growth, judder_limit_rpm):
              "orbit_mechanism")
     if model is None or run.p_f == 0:
         return dict.fromkeys(names)
-    from stability.orbit import double_period_orbit, periodic_orbit
+    from stability.orbit import periodic_orbit
+    from stability.orbit_chart import held_slip_motion
 
     from .orbit import orbit_row, settled_motions
     found = periodic_orbit(model, run.freq_hz, run.p_f)
-    doubled = (double_period_orbit(model, found)
-               if found.kind == "double-period" else None)
-    row = orbit_row(found, doubled, judder_limit_rpm, min_growth,
-                    settled_motions(model, [found])[0])
+    quasi = settled_motions(model, [found])[0]
+    found, doubled = held_slip_motion(model, found)
+    row = orbit_row(found, doubled, judder_limit_rpm, min_growth, quasi)
     return dict(zip(names, (row["settled_rpm"], row["kind"],
                             row["growth_per_s"], row["mechanism"])))
 
