@@ -27,7 +27,7 @@ from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
 from ._flags import in_flags
 from ._words import (growth_words, margin_words, nonlinear_words,
-                     orbit_words)
+                     orbit_words, response_words)
 
 _CSS = """
 @page{size:A4;margin:14mm 13mm}
@@ -186,7 +186,6 @@ def verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
     amplitude, frequency = margin_words(v)
     settled = ""
     if "settled_amplitude_rpm" in v:
-        from .check import response_words
         settled = response_words(v) + "; "
     return (f"{v['verdict']} at {v['freq_hz']:g} Hz, {v['p_f_bar']:g} bar: "
             f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {settled}"

@@ -88,3 +88,18 @@ def nonlinear_words(summary):
             f"the friction curve's linear range "
             f"(+-{summary['friction_linear_range_rad_s']:.2g} rad/s), so the "
             "run need not follow the Floquet verdict")
+
+
+def response_words(record):
+    """The settled oscillation and the mechanism, in words."""
+    words = (f"settled oscillation {record['settled_amplitude_rpm']:.3g} "
+             f"rpm (limit {record['judder_limit_rpm']:g} rpm"
+             + (f", quasi-periodic, integrated over "
+                f"{record['integrated_s']:.1f} s" if record["quasi_periodic"]
+                and record["integrated_s"] else "")
+             + ")")
+    if not record["converged"]:
+        words += " (the orbit did not converge: no verdict from it)"
+    if record["mechanism"]:
+        words += f", {record['mechanism']}"
+    return words

@@ -20,7 +20,7 @@ from ._arguments import (decimal_option, driveline_option, force_option,
 from ._common import (check_modes, check_modes_up_to, check_names,
                       checked_values, frequency_dependent, linearised_mode,
                       mode_words, structural_names)
-from ._words import growth_words, margin_words
+from ._words import growth_words, margin_words, response_words
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._preflight import check_settings_time, check_work
@@ -402,21 +402,6 @@ def sensitivity_words(record, count=3):
             parts.append(f"{entry['parameter']} {0.1 * bar:+.3f} bar")
     return "" if not parts else \
         "margin per +10 %: " + ", ".join(parts)
-
-
-def response_words(record):
-    """The settled oscillation and the mechanism, in words."""
-    words = (f"settled oscillation {record['settled_amplitude_rpm']:.3g} "
-             f"rpm (limit {record['judder_limit_rpm']:g} rpm"
-             + (f", quasi-periodic, integrated over "
-                f"{record['integrated_s']:.1f} s" if record["quasi_periodic"]
-                and record["integrated_s"] else "")
-             + ")")
-    if not record["converged"]:
-        words += " (the orbit did not converge: no verdict from it)"
-    if record["mechanism"]:
-        words += f", {record['mechanism']}"
-    return words
 
 
 def setting_summary(record, engagement_s=1.0):
