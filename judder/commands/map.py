@@ -333,8 +333,15 @@ class MapResult:
         linear view: ``judder`` (bool grid) and ``mechanism`` (index into
         :data:`infra.criteria.MECHANISMS`: growth at ``min_growth`` or
         faster is parametric, a forced oscillation above the limit
-        forced)."""
-        parametric = self._judder()
+        forced). Without ``min_growth`` the judder rate is ``check``'s
+        default (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`), not
+        every instability as the map's shading takes it."""
+        from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+        from stability.decisions.relevance import is_judder_relevant
+        rate = (DEFAULT_MIN_GROWTH_PER_S if self.min_growth is None
+                else self.min_growth)
+        parametric = (self.map.kind > 0) & is_judder_relevant(
+            self.map.growth_rate, rate)
         forced = self.forced_amplitude_rpm()
         forced = np.zeros_like(parametric) if forced is None else \
             forced > self.judder_limit_rpm
