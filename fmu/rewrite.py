@@ -265,6 +265,21 @@ def _dimensions(tokens):
     return 0
 
 
+def _section_keyword(tokens, k):
+    """``(section, tokens taken)`` where a statement at ``k`` opens a
+    section of a class (``equation``, ``initial algorithm``, ``public``,
+    ...), else None."""
+    word = tokens[k][1]
+    if word in ("equation", "algorithm"):
+        return "equations", 1
+    if word == "initial" and k + 1 < len(tokens) and \
+            tokens[k + 1][1] in ("equation", "algorithm"):
+        return "equations", 2
+    if word in ("public", "protected"):
+        return "elements", 1
+    return None
+
+
 def rewrite_text(text, real_types=frozenset(), objects=frozenset()):
     """``(text rewritten, [(line, name, binding, parameter, line of its
     equation)])``: each
@@ -289,18 +304,10 @@ def rewrite_text(text, real_types=frozenset(), objects=frozenset()):
             stack.pop()
             k = start = k + 3
             continue
-        if at_start and word in ("equation", "algorithm") and top:
-            top.section, top.last_annotation = "equations", None
-            k = start = k + 1
-            continue
-        if at_start and word == "initial" and k + 1 < len(tokens) and \
-                tokens[k + 1][1] in ("equation", "algorithm") and top:
-            top.section, top.last_annotation = "equations", None
-            k = start = k + 2
-            continue
-        if at_start and word in ("public", "protected") and top:
-            top.section, top.last_annotation = "elements", None
-            k = start = k + 1
+        opened = _section_keyword(tokens, k) if at_start and top else None
+        if opened:
+            top.section, top.last_annotation = opened[0], None
+            k = start = k + opened[1]
             continue
         if at_start and word == "external" and top:
             top.section = "external"

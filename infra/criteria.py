@@ -4,8 +4,10 @@ time-domain verdict of a run (:mod:`pysim.analysis.verdict`), defined once
 below both so the maps, ``judder check`` and the bench charts agree.
 """
 
+import numpy as np
+
 __all__ = ["ENGAGEMENT_DURATION_S", "DEFAULT_MIN_GROWTH_PER_S",
-           "DEFAULT_JUDDER_LIMIT_RPM", "MECHANISMS"]
+           "DEFAULT_JUDDER_LIMIT_RPM", "MECHANISMS", "mechanism_code"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -27,3 +29,11 @@ DEFAULT_JUDDER_LIMIT_RPM = 30.0
 #: (:mod:`stability.orbit_chart`): none (no judder), forced (the dither's
 #: forced oscillation above the limit), parametric (an instability), both.
 MECHANISMS = ("none", "forced", "parametric", "both")
+
+
+def mechanism_code(forced, parametric):
+    """Index into :data:`MECHANISMS` of an oscillation forced above the
+    limit (``forced``) and/or of an instability (``parametric``), bools
+    or arrays of bools: 1 + 2 = 3 is both."""
+    return np.asarray(forced, dtype=int) + 2 * np.asarray(parametric,
+                                                          dtype=int)

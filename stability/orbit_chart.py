@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from infra.criteria import MECHANISMS
+from infra.criteria import MECHANISMS, mechanism_code
 
 from .orbit import (DEFAULT_HARMONICS, continue_orbit, double_period_orbit,
                     drifted_orbit)
@@ -100,8 +100,7 @@ def orbit_verdict(orbit, doubled, limit, min_growth, combination=0.0):
     parametric = orbit.growth_rate >= min_growth or half > limit or \
         combination > limit or (settled > limit and not is_forced)
     judder = settled > limit or parametric
-    mechanism = 3 if parametric and is_forced else 2 if parametric else \
-        1 if is_forced else 0
+    mechanism = mechanism_code(is_forced, parametric)
     return OrbitVerdict(forced=float(forced), half=float(half),
                         settled=float(settled),
                         growth_rate=float(orbit.growth_rate),
@@ -173,20 +172,20 @@ class OrbitChart:
         return out
 
 
-def settled_combinations(model, freq_hz, p_f, found, duration=4.0):
+def settled_combinations(model, found, duration=4.0):
     """The combination component of the settled motion
-    (:func:`stability.settle.settle`, one batch) at each grid point
-    ``(i, j)`` of ``found`` (``{(i, j): (T-orbit, 2T orbit)}``) whose
-    T-orbit is unstable through a complex pair, rad/s; ``duration`` None:
-    none integrated."""
-    quasi = [key for key, (orbit, _) in found.items()
-             if orbit.kind == "combination"]
-    if not quasi or duration is None:
+    (:func:`stability.settle.settle_orbits`, one batch) at each grid
+    point ``(i, j)`` of ``found`` (``{(i, j): (T-orbit, 2T orbit)}``)
+    whose T-orbit is unstable through a complex pair, rad/s; ``duration``
+    None: none integrated."""
+    if duration is None:
         return {}
-    from .settle import settle
-    motion = settle(model, [freq_hz[i] for i, _ in quasi],
-                    [p_f[j] for _, j in quasi], duration=duration)
-    return dict(zip(quasi, motion.other))
+    from .settle import settle_orbits
+    keys = list(found)
+    motions = settle_orbits(model, [found[key][0] for key in keys],
+                            duration=duration)
+    return {key: motion["combination"]
+            for key, motion in zip(keys, motions) if motion is not None}
 
 
 def orbit_chart(model, freq_hz, p_f, limit, min_growth,
@@ -239,8 +238,7 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
                 found[i, j] = held_slip_motion(model, orbit, harmonics)
         if callback is not None:
             callback(i + 1, len(freq_hz))
-    combination = settled_combinations(model, freq_hz, p_f, found,
-                                       settle_duration)
+    combination = settled_combinations(model, found, settle_duration)
     for (i, j), (orbit, doubled) in found.items():
         verdict = orbit_verdict(orbit, doubled, limit, min_growth,
                                 combination.get((i, j), 0.0))

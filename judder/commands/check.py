@@ -275,7 +275,7 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     linearisation's growth (``growth_rates``, 1/s). Returns one dict per
     setting; None for a Modelica class or an FMU (its verdict is the
     growth's)."""
-    from infra.criteria import MECHANISMS
+    from infra.criteria import MECHANISMS, mechanism_code
     from infra.units import RAD_S_PER_RPM, RPM_PER_RAD_S
     from stability.friction import forced_upstream_amplitude
     from stability.orbit import periodic_orbit
@@ -309,8 +309,7 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             growth = rate
             parametric, is_forced = growth >= min_growth, forced > limit
             judder = parametric or is_forced
-            mechanism = 3 if parametric and is_forced else 2 if parametric \
-                else 1 if is_forced else 0
+            mechanism = mechanism_code(is_forced, parametric)
             converged, quasi, settled_s = True, False, None
         rows.append({
             "forced_amplitude_rpm": forced * RPM_PER_RAD_S,
@@ -320,7 +319,7 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             "quasi_periodic": bool(quasi), "converged": bool(converged),
             "integrated_s": settled_s,
             "judder": bool(judder) and bool(converged),
-            "mechanism": MECHANISMS[mechanism] if judder else None,
+            "mechanism": MECHANISMS[int(mechanism)] if judder else None,
             "judder_limit_rpm": limit_rpm})
     return rows
 

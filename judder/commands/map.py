@@ -132,7 +132,7 @@ def count_words(result):
 def forced_words(result):
     """The points whose linear forced oscillation exceeds the limit, and
     the judder points in all; '' where the map has no forced response."""
-    counts = result._forced_counts()
+    counts = result.forced_counts()
     if not counts:
         return ""
     beyond = counts["beyond_linear_range_points"]
@@ -336,7 +336,7 @@ class MapResult:
         forced). Without ``min_growth`` the judder rate is ``check``'s
         default (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`), not
         every instability as the map's shading takes it."""
-        from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+        from infra.criteria import DEFAULT_MIN_GROWTH_PER_S, mechanism_code
         from stability.decisions.relevance import is_judder_relevant
         rate = (DEFAULT_MIN_GROWTH_PER_S if self.min_growth is None
                 else self.min_growth)
@@ -345,8 +345,7 @@ class MapResult:
         forced = self.forced_amplitude_rpm()
         forced = np.zeros_like(parametric) if forced is None else \
             forced > self.judder_limit_rpm
-        mechanism = np.where(parametric & forced, 3, np.where(
-            parametric, 2, np.where(forced, 1, 0))).astype(np.int8)
+        mechanism = mechanism_code(forced, parametric).astype(np.int8)
         return parametric | forced, mechanism
 
     def forced_amplitude_rpm(self):
@@ -383,11 +382,14 @@ class MapResult:
                 "counts": m.counts(),
                 "min_growth_per_s": self.min_growth,
                 "judder_relevant_points": self.judder_relevant_points(),
-                **self._forced_counts(),
+                **self.forced_counts(),
                 "max_leading_abs": float(m.leading_abs.max()),
                 "natural_frequencies_hz": m.natural_frequencies_hz}
 
-    def _forced_counts(self):
+    def forced_counts(self):
+        """The JSON fields of the forced response: the limit, the points
+        above it, the judder points in all and those beyond the linear
+        range ({} where the map has no forced response)."""
         forced = self.forced_amplitude_rpm()
         if forced is None:
             return {}
