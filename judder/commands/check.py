@@ -30,8 +30,11 @@ from ._values import (FREQ, FREQ_RANGE_HZ, PF, PF_MAX, NameList, Settings,
 
 #: The command's --help text.
 DESCRIPTION = (
-    "Verdict of each dither setting (judder if it grows faster than "
-    "--min-growth), its growth rate and e-folding time against the "
+    "Verdict of each dither setting, of a preset's driveline on its test "
+    "bench unless --driveline chain (judder if its settled oscillation "
+    "exceeds --limit, from the bench's periodic orbit or the chain's "
+    "linear forced response, or if it grows faster than --min-growth; "
+    "with the mechanism), its growth rate and e-folding time against the "
     "engagement, the margin to the nearest judder-relevant tongue "
     "boundary in bar (at the same frequency) and in Hz (at the same "
     "amplitude), exact from the boundary curves, which tongue that is, "

@@ -32,8 +32,12 @@ DESCRIPTION = (
     "amplitude (bar), classified single-period, double-period or "
     "combination (Fig. 14): unstable where |lambda| > 1; judder where it "
     "grows at --min-growth (1 1/s) or faster, the rest of the unstable "
-    "region shaded grey. Ctrl-C stops it without writing a partial "
-    "file.")
+    "region shaded grey; a line where the linear forced oscillation at "
+    "the dither frequency reaches --limit (forced judder above it), and "
+    "a count of the points where the forced slip swing leaves the "
+    "friction curve's linear range. A preset's driveline is mapped on its "
+    "test bench unless --driveline chain (the paper's Fig. 14). Ctrl-C "
+    "stops it without writing a partial file.")
 OUTPUTS = (("out", "--out", ("npz", "csv")), ("plot", "--plot", None))
 AMPLITUDE = "pf"
 
