@@ -529,7 +529,7 @@ def bench_fit():
     from unittest import mock
     sys.path.insert(0, str(Path(__file__).parent))
     from fit_coverage import noisy_boundary
-    from judder.inputs import read_boundary
+    from studies.inputs import read_boundary
     from stability.fit import _common, fit_boundary
     truth = get_preset("paper-4dof-fitted")
     freq15 = np.linspace(60.0, 200.0, 15)

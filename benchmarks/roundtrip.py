@@ -42,8 +42,8 @@ from infra.errors import JudderError
 from infra.files import write_text
 from infra.units import PA_PER_BAR
 from judder import api
-from judder.bench import bench_damping
-from judder.inputs import (read_chart_below, read_chart_boundary,
+from studies.bench import bench_damping
+from studies.inputs import (read_chart_below, read_chart_boundary,
                            read_chart_limit, read_chart_min_growth)
 from stability import build_driveline, floquet
 from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
@@ -92,7 +92,7 @@ def verdict_agreement(runs, bench_driveline, min_growth, margin=0.25):
 
 def orbit_agreement(runs, truth, limit_rpm, min_growth):
     """Chart verdicts against the periodic orbit's verdict and mechanism
-    at each run's setting (:func:`judder.commands.orbit.orbit`): how many
+    at each run's setting (:func:`studies.orbit.orbit`): how many
     agree, and the runs that do not."""
     agree, disagree = 0, []
     for run in runs:

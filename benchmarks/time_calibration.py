@@ -4,7 +4,7 @@ Run ``.venv/bin/python benchmarks/time_calibration.py``: it times, in CPU
 seconds of one thread (``time.process_time`` under
 ``threadpool_limits(1)``, so other users of the machine do not enter the
 numbers), the pieces the estimate adds up, and prints one JSON object
-with the constants to copy into :mod:`judder.commands._preflight`:
+with the constants to copy into :mod:`studies._preflight`:
 
 ``frequency_s``
     the fixed cost of one frequency of a Dyson map (node exponentials,
@@ -21,7 +21,7 @@ with the constants to copy into :mod:`judder.commands._preflight`:
     frequencies at 10-220 Hz.
 
 The FMU costs of ``crosscheck`` and ``campaign`` are taken from the user
-time of those commands (see :mod:`judder.commands._preflight`).
+time of those commands (see :mod:`studies._preflight`).
 """
 
 import json

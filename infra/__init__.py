@@ -32,6 +32,8 @@
 :mod:`infra.criteria`
     When an oscillation is judder: the growth rate, the NVH limit and the
     mechanisms.
+:mod:`infra.pdf`
+    An HTML file printed to PDF by a headless Chromium.
 :mod:`infra.plotstyle`
     The look every plot shares (imports matplotlib; only plotting modules
     import it).

@@ -3,8 +3,8 @@
 :mod:`judder.commands` holds one module per command (its options, its
 work, its API function and its result), registered in one table from
 which :mod:`judder.cli` makes the command line and :mod:`judder.api` the
-Python API. :mod:`judder.inputs` reads what the user gives
-(parameter files, measured boundaries); :mod:`judder.crosscheck` holds the
+Python API. :mod:`studies.inputs` reads what the user gives
+(parameter files, measured boundaries); :mod:`studies.crosscheck` holds the
 time-domain and Floquet views of one model against each other.
 
 Beneath this layer: :mod:`stability` (Floquet kernels and their plots),

@@ -92,6 +92,7 @@ def build_parser(commands=None):
                            description=module.DESCRIPTION)
         module.add_arguments(p)
         p.set_defaults(handler=module.run, outputs=module.OUTPUTS,
+                       flags=getattr(module, "FLAGS", None),
                        output_check=getattr(module, "check_outputs", None),
                        amplitude=getattr(module, "AMPLITUDE", None))
     return parser
@@ -145,7 +146,7 @@ def main(argv=None):
                 args.handler(args)
         except JudderError as exc:
             # the library's messages name its arguments: say the options
-            raise JudderError(in_flags(str(exc))) from None
+            raise JudderError(in_flags(str(exc), getattr(args, "flags", None))) from None
     return run_guarded("judder", command, whole_process=argv is None,
                        words=_in_flags)
 

@@ -10,8 +10,10 @@ each kind has one module:
 - :mod:`sources.fmus`: a third-party FMU, linearised from its Jacobian
   (``FMU``), whose calls run in a child process (:mod:`sources.fmu_host`).
 
-The studies (:mod:`stability`) and the time-domain runs (:mod:`pysim`)
-take a parameter set of any kind and ask it what it offers.
+The kernels (:mod:`stability`), the time-domain runs (:mod:`pysim`)
+and the studies (:mod:`studies`) take a parameter set of any kind and
+ask it what it offers; whether a dither keeps a hybrid class in the mode
+it is linearised in is each source's check (:mod:`sources.dither_modes`).
 """
 
 from .kinds import SourceKind

@@ -26,8 +26,10 @@ ALLOWED = {
     "sources": {"infra", "fmu", "drivelines"},
     "stability": {"infra", "drivelines", "sources"},
     "pysim": {"infra", "drivelines", "sources", "fmu"},
+    "studies": {"infra", "drivelines", "sources", "stability", "pysim",
+                "fmu"},
     "judder": {"infra", "drivelines", "sources", "stability", "pysim",
-               "fmu"},
+               "fmu", "studies"},
 }
 
 #: What each subpackage of pysim may import of the others: running FMUs
@@ -149,7 +151,7 @@ def test_stability_does_not_import_matplotlib():
 PLOT_IMPORTS = {"stability/plots": ("infra", "stability.kinds",
                                     "stability.decisions.relevance",
                                     "stability.plots"),
-                "judder/figures": ("infra", "stability.plots")}
+                "studies/figures": ("infra", "stability.plots")}
 
 
 def _absolute_imports(path):
@@ -177,8 +179,8 @@ def test_plots_import_no_kernel(folder):
                 f"{path.relative_to(ROOT)} imports {name}"
 
 
-#: Calls that make a figure or axes: a command delegates them to
-#: judder/figures or stability/plots.
+#: Calls that make a figure or axes: a command or a study delegates them
+#: to studies/figures or stability/plots.
 DRAWING_CALLS = {"subplots", "subplot", "figure", "add_subplot", "add_axes",
                  "subplot_mosaic"}
 
@@ -199,13 +201,13 @@ def _drawing_calls(path):
     return found
 
 
-def test_no_command_draws_its_own_figure():
-    drawn = [call for path in sorted((ROOT / "judder" / "commands")
-                                     .glob("*.py"))
+def test_no_command_or_study_draws_its_own_figure():
+    drawn = [call for folder in ("judder/commands", "studies")
+             for path in sorted((ROOT / folder).glob("*.py"))
              for call in _drawing_calls(path)]
     assert not drawn
     # the check sees a figure drawn where figures live
-    assert _drawing_calls(ROOT / "judder" / "figures" / "threshold.py")
+    assert _drawing_calls(ROOT / "studies" / "figures" / "threshold.py")
 
 
 @pytest.mark.parametrize("folder, mention", [
@@ -277,20 +279,14 @@ def test_registry_topology_is_the_modelica_one(model):
 # -- the application layer: one room per command ------------------------
 
 #: Who may import whom inside judder (module prefixes): the command line
-#: and the API facade over the registry, the commands over their shared
-#: private modules and the services, the services over nothing of judder's.
+#: over the registry, the commands over their shared private modules and
+#: the studies, the API facade over the studies alone.
 JUDDER_ROOMS = {
     "judder.__main__": {"judder.cli"},
     "judder.cli": {"judder.commands"},     # and, lazily, its _-modules
-    "judder.api": {"judder.commands"},
-    "judder.commands._": {"judder.commands._", "judder.inputs",
-                          "judder.envelope", "judder.crosscheck",
-                          "judder.timedomain", "judder.figures", "judder.bench"},
-    "judder.commands.": {"judder.commands.", "judder.inputs",
-                         "judder.envelope", "judder.crosscheck",
-                         "judder.timedomain", "judder.figures", "judder.bench"},
-    "judder.": {"judder.inputs", "judder.envelope", "judder.crosscheck",
-                "judder.timedomain", "judder.figures", "judder.bench"},
+    "judder.api": {"studies"},
+    "judder.commands._": {"judder.commands._", "studies."},
+    "judder.commands.": {"judder.commands.", "studies."},
 }
 
 
@@ -319,6 +315,8 @@ def test_judder_modules_import_only_the_rooms_below_them():
 OPTION = re.compile(r"(?<![\w-])--[a-z][a-z0-9-]*")
 #: Library modules that are command lines themselves.
 COMMAND_LINES = {"fmu/__main__.py"}
+#: Modules that call another program with its own command line (Chromium).
+OTHER_PROGRAMS = {"infra/pdf.py"}
 
 
 def _strings_outside_docstrings(path):
@@ -352,7 +350,7 @@ def test_no_library_module_names_a_command_line_option(package):
     # maps them to the options of the command line
     for path in sorted((ROOT / package).rglob("*.py")):
         relative = path.relative_to(ROOT).as_posix()
-        if relative in COMMAND_LINES:
+        if relative in COMMAND_LINES | OTHER_PROGRAMS:
             continue
         for line, text in _strings_outside_docstrings(path):
             assert not OPTION.search(text), f"{relative}:{line}: {text!r}"
@@ -370,6 +368,7 @@ def test_the_registry_is_the_one_place_a_command_is_added():
     from judder import api
     from judder.cli import build_parser
     from judder.commands import COMMANDS, command_module
+    from studies import study
     modules = {p.stem for p in (ROOT / "judder" / "commands").glob("*.py")
                if not p.stem.startswith("_")}
     assert modules == set(COMMANDS)
@@ -378,8 +377,7 @@ def test_the_registry_is_the_one_place_a_command_is_added():
         assert isinstance(module.DESCRIPTION, str) and module.DESCRIPTION
         assert all(len(output) == 3 for output in module.OUTPUTS)
         assert callable(module.add_arguments) and callable(module.run)
-        assert getattr(api, command.function) is \
-            getattr(module, command.function)
+        assert getattr(api, command.function) is study(command.function)
     parser = build_parser()
     sub = next(a for a in parser._actions if a.dest == "command")
     assert list(sub.choices) == list(COMMANDS)
@@ -399,3 +397,46 @@ def test_help_imports_no_command_and_nothing_numerical():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True,
                          text=True, check=True, cwd=ROOT).stdout
     assert out.strip() == "[]"
+
+
+def test_only_command_lines_import_argparse():
+    # the studies and everything below them take Python arguments: no
+    # module outside judder/commands, judder/cli and fmu's own command
+    # line parses options
+    for package in ALLOWED:
+        for path in sorted((ROOT / package).rglob("*.py")):
+            relative = path.relative_to(ROOT).as_posix()
+            if relative in COMMAND_LINES or relative == "judder/cli.py" \
+                    or relative.startswith("judder/commands/"):
+                continue
+            assert "argparse" not in _absolute_imports(path), relative
+
+
+def test_the_api_runs_without_the_command_line():
+    # scipy.linalg and matplotlib load argparse themselves (through
+    # unittest.main), so it is imported first and then barred: a project
+    # module that imported it now would fail
+    code = (
+        "import sys, importlib.abc\n"
+        "import scipy.linalg, scipy.optimize, scipy.integrate\n"
+        "import matplotlib.pyplot\n"
+        "class Bar(importlib.abc.MetaPathFinder):\n"
+        "    def find_spec(self, name, path, target=None):\n"
+        "        if name.split('.')[0] in ('argparse', 'judder.commands'):\n"
+        "            raise ImportError(name + ' barred')\n"
+        "sys.modules.pop('argparse')\n"
+        "sys.meta_path.insert(0, Bar())\n"
+        "from judder import api\n"
+        "check = api.check([102.9], [0.3], driveline='chain')\n"
+        "grid = api.stability_map([100.0, 102.9], [0.0, 0.3])\n"
+        "freqs = [100.0, 102.9, 106.0]\n"
+        "onset = api.tongues(freqs, 1.0).boundaries.stability_boundary\n"
+        "fit = api.fit(freqs, onset / 1e5, 1.0, names=['mu_g'], "
+        "min_growth=0.0, starts=1, uncertainty='jacobian')\n"
+        "print(check.records()[0]['kind'], fit.fit.success, sorted(\n"
+        "    m for m in sys.modules if m == 'argparse'\n"
+        "    or m.startswith(('judder.commands', 'judder.cli'))))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True,
+                         text=True, cwd=ROOT)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["single-period", "True", "[]"]

@@ -6,7 +6,8 @@ import math
 import pytest
 
 from infra.errors import JudderError
-from judder.bench import bench_parameters, check_bench, parse_bench
+from judder.commands._model import parse_bench
+from studies.bench import bench_parameters, check_bench
 from sources import get_preset
 
 PAPER = get_preset("paper-4dof")

@@ -349,7 +349,7 @@ def test_unknown_plot_format_is_refused_before_any_work(tmp_path):
 
 
 def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path, judder_here):
-    from judder.inputs import read_chart_boundary
+    from studies.inputs import read_chart_boundary
     out = tmp_path / "c.npz"
     _, made, _ = judder_here("chart", campaign, "--out", out, "--json")
     boundary = json.loads(made)["boundary"]
@@ -619,7 +619,7 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
 def test_boundary_files_of_groups_are_named_without_a_trailing_zero(tmp_path):
     # a chart grouped by engine speed (values read from an index as
     # 1000.0) and oil temperature: one boundary file per group
-    from judder.commands.chart import ChartResult
+    from studies.chart import ChartResult
 
     class TwoGroups:
         def groups(self):
@@ -1022,8 +1022,8 @@ def _report_lists_the_estimated_amplitude(out, arrays, estimate):
     standard uncertainty; a chart written before they were stored reads,
     without the list."""
     from infra.numbers import format_uncertain
-    from judder.commands._report_sections import _estimated_dithers
-    from judder.inputs import read_chart_runs
+    from studies._report_sections import _estimated_dithers
+    from studies.inputs import read_chart_runs
     runs, _ = read_chart_runs(out)
     html = _estimated_dithers(runs)
     assert "run01.csv" in html and "1 of the 1 runs" in html
@@ -1091,8 +1091,8 @@ def test_a_given_dither_value_is_told_from_the_estimated_one(tmp_path,
     value as given or estimated, the frequency with its uncertainty."""
     from infra.numbers import format_uncertain
     from judder.cli import main
-    from judder.commands._report_sections import _estimated_dithers
-    from judder.inputs import read_chart_runs
+    from studies._report_sections import _estimated_dithers
+    from studies.inputs import read_chart_runs
     channels = _engagement(lambda t: 0 * t, 103.0, 0.2)
     for name in ("wrong", "right", "freq"):
         _write_run_mf4(tmp_path / f"{name}.mf4", *channels)
@@ -1215,7 +1215,7 @@ def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
     import matplotlib.pyplot as plt
 
     from judder.cli import main
-    from judder.inputs import read_chart_runs
+    from studies.inputs import read_chart_runs
     from pysim.bench_data.plots import ALIASED_LABEL, runs_figure
     examples = Path(__file__).parents[1] / "examples" / "bench"
     for source in examples.glob("run0*.csv"):

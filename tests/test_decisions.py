@@ -236,7 +236,7 @@ def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
 
 
 def test_floquet_names_the_threshold_its_point_passes():
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     slow = api.floquet(105, 0.2, example)      # README: growing at 0.56 1/s
     assert slow.result.growth_rate == pytest.approx(0.5625, abs=5e-5)
@@ -251,7 +251,7 @@ def test_floquet_names_the_threshold_its_point_passes():
 
 
 def test_tongues_give_where_each_tongue_becomes_unstable_and_judder():
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     result = api.tongues(np.linspace(10, 220, 211), parameters=example)
     data = result.as_dict()
@@ -285,7 +285,7 @@ def test_tongues_check_floquet_and_sensitivity_agree_between_thresholds():
     whose unstable tip tongues and sensitivity give; above the judder tip
     both say JUDDER, below the unstable tip STABLE. check's tongue tip is
     the judder tip of tongues, named so in both JSONs."""
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     freqs = np.linspace(10, 220, 211)
     tips = api.tongues(freqs, parameters=example).as_dict()
@@ -350,7 +350,7 @@ README_BOUNDS = {"default": {}, "J4 and c12 bounded": {"J4": (0.8, 1.25),
 def example_advice():
     """``{case: AdviceResult}`` of :data:`README_BOUNDS`, each computed
     once for the tests below."""
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     return {case: api.advise(example, bounds=bounds, driveline="chain")
             for case, bounds in README_BOUNDS.items()}

@@ -15,7 +15,7 @@ from scipy.stats import norm
 from sources import get_preset
 from infra.errors import JudderError
 from judder import api
-from judder.envelope import read_ranges
+from studies.envelope import read_ranges
 from stability.uncertainty import (Correlated, Normal, Ranges, Uniform,
                                    build_envelope, design_points,
                                    sample_boundary)

@@ -19,7 +19,7 @@ from threadpoolctl import threadpool_limits
 from sources import get_preset
 from judder import api
 from judder.cli import main
-from judder.commands import _preflight as estimates
+from studies import _preflight as estimates
 from stability import build_driveline
 from stability.maps import stability_map
 from stability.monodromy import DysonPropagator

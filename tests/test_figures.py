@@ -238,7 +238,7 @@ def small_map():
 
 def _figures(paper4, small_map):
     """One of each figure the commands draw, from small computations."""
-    from judder.figures.check import check_figure
+    from studies.figures.check import check_figure
     yield "map", small_map.figure(title="stability map (Fig. 14), 4dof "
                                   "driveline, paper preset, c12=0.5")
     yield "tongues", tongues_figure(small_map.boundaries, small_map.tongues,
@@ -304,7 +304,7 @@ def test_advice_legend_lists_only_the_kinds_its_map_draws(rc):
     # (1.13 and 1.12 bar, `judder tongues`): no double-period or
     # combination patch or boundary in the legend (issue 33)
     import matplotlib.pyplot as plt
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     advice = api.advise(example, freq_range=(90, 120), p_max_bar=0.5,
                         background=True)

@@ -5,7 +5,7 @@ import pytest
 
 from sources import get_preset
 from infra.errors import JudderError
-from judder.inputs import read_boundary_csv, read_boundary_table
+from studies.inputs import read_boundary_csv, read_boundary_table
 from stability.fit import fit_boundary, model_boundary
 
 BAR = 1e5
@@ -360,7 +360,7 @@ def test_the_default_threshold_is_the_verdicts():
 
 
 def test_fit_text_has_the_digits_the_interval_supports():
-    from judder.commands.fit import FitReport
+    from studies.fit import FitReport
     truth = get_preset("paper-4dof-fitted")
     freqs = np.linspace(96.0, 112.0, 5)
     measured = model_boundary(truth, freqs, 1.5 * BAR, **STABILITY) \
@@ -552,7 +552,7 @@ def test_boundary_file_keeps_the_tested_range(tmp_path, capsys):
     import json
 
     from judder.cli import main
-    from judder.commands.chart import ChartResult
+    from studies.chart import ChartResult
     truth = get_preset("paper-4dof-fitted").replace(mu_g=0.020)
     # a sweep refined about tongue 2, as a test engineer does
     freqs = np.concatenate([np.arange(60.0, 101.0, 10.0),
@@ -646,7 +646,7 @@ def test_the_comments_of_a_german_boundary_file_read_as_its_cells(
     """``# min_growth_per_s: 0,5`` in a file of decimal commas is 0.5
     (float() refused it); the same comment with a decimal point in that
     file is refused as two decimal separators, naming both cells."""
-    from judder.inputs import read_boundary_limit, read_boundary_min_growth
+    from studies.inputs import read_boundary_limit, read_boundary_min_growth
     path = tmp_path / "b.csv"
     path.write_text("# min_growth_per_s: 0,5\n# judder_limit_rpm: 30,5\n"
                     + GERMAN_BOUNDARY)
@@ -681,7 +681,7 @@ def test_a_stated_threshold_with_a_thousands_separator_is_refused(
     decimal point by a program, so a reading that differs by a factor
     1000 between the two conventions is refused, naming the line and the
     number as written; 0,5 there still reads as 0.5."""
-    from judder.inputs import read_boundary_min_growth
+    from studies.inputs import read_boundary_min_growth
     path = tmp_path / "b.csv"
     path.write_text(boundary + f"# min_growth_per_s: {comment}\n")
     with pytest.raises(JudderError) as info:

@@ -63,9 +63,9 @@ def test_a_study_reads_the_model_at_its_own_dither_frequency(library):
     # class or the user's --set held; a map over frequencies has no one
     # linearisation and is refused, naming the parameter
     from infra.errors import JudderError
-    from judder.commands.check import check
-    from judder.commands.map import stability_map
-    from judder.commands.sensitivity import sensitivity
+    from studies.check import check
+    from studies.map import stability_map
+    from studies.sensitivity import sensitivity
     from sources.modelica import ModelicaParameters
     params = ModelicaParameters("RollLib.Rolloff", str(library),
                                 {"tau": 0.05})
@@ -90,7 +90,7 @@ def test_a_study_reads_the_model_at_its_own_dither_frequency(library):
 
 def test_a_map_of_a_frequency_dependent_model_follows_its_frequency(library):
     # the acceptance: the same map as a loop of --set f_dither
-    from judder.commands.map import stability_map
+    from studies.map import stability_map
     from sources.modelica import ModelicaParameters
     params = ModelicaParameters("RollLib.Rolloff", str(library),
                                 {"tau": 0.05})

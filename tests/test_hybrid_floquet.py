@@ -167,8 +167,8 @@ def test_a_point_whose_mode_changes_within_a_dither_period_is_refused(
 def test_check_and_floquet_say_the_mode_they_used(msl_path):
     """`judder check --modelica` names the mode in its text and JSON,
     `floquet` in its JSON; both refuse a setting that leaves it."""
-    from judder.commands.check import check
-    from judder.commands.floquet import floquet
+    from studies.check import check
+    from studies.floquet import floquet
     from sources.modelica import ModelicaError, ModelicaParameters
     command = [sys.executable, "-m", "judder", "check", "--modelica", CLASS,
                "--library", str(MODELS), "--freq", "102.9", "--pf", "0.3"]
@@ -327,7 +327,7 @@ def test_check_refuses_margins_searched_beyond_the_mode(msl_path,
     slip leaves Forward from 0.7257 bar), the check is refused naming the
     amplitude and the way out, instead of vouching "stable up to 1.5
     bar"; below the grazing amplitude it answers."""
-    from judder.commands.check import check
+    from studies.check import check
     from infra.errors import JudderError
     from sources.modelica import ModelicaParameters
     params = ModelicaParameters(CLASS, str(MODELS)).replace(**{
@@ -362,7 +362,7 @@ def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
     advised design's map list only what they draw."""
     import html
     import json
-    from judder.commands import _report_sections as sections
+    from studies import _report_sections as sections
     from sources.modelica import ModelicaParameters
     drawn = []
     embed = sections._png
@@ -458,7 +458,7 @@ def test_sensitivity_checks_the_mode_at_each_changed_set(msl_path):
     bar. The sensitivity study is refused naming that change, where it
     checked the nominal set only and compared tongues the changed set
     does not have."""
-    from judder.commands.sensitivity import sensitivity
+    from studies.sensitivity import sensitivity
     from sources.modelica import ModelicaError, ModelicaParameters
     params = ModelicaParameters(CLASS, str(MODELS)).replace(**{
         "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
@@ -477,7 +477,7 @@ def test_a_changed_set_in_another_mode_is_refused():
     one is refused naming the variable and both values (the mode is read
     from the linearisation; the checks of the dither pass here)."""
     from dataclasses import dataclass, replace
-    from judder.commands._common import check_modes_of_changes
+    from sources.dither_modes import check_modes_of_changes
     from sources.modelica import ModelicaError
 
     @dataclass(frozen=True)
@@ -589,8 +589,8 @@ def test_simulate_and_crosscheck_check_the_mode_at_their_settings(
     at 1 bar leaves Forward (its own p_f of 0.3 bar keeps it), and both
     are refused naming that setting, where simulate ended in the FMU's
     'fmi2DoStep failed' and crosscheck ran every point."""
-    from judder.commands.crosscheck import crosscheck
-    from judder.commands.simulate import simulate
+    from studies.crosscheck import crosscheck
+    from studies.simulate import simulate
     from sources.modelica import ModelicaError, ModelicaParameters
     params = ModelicaParameters("MslDrivelines.ModeClutchBench",
                                 str(MODELS)).replace(**GRAZING)
@@ -614,7 +614,7 @@ def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
     the amplitude (the fit itself is stood in for: the class has no
     tongue to fit)."""
     import stability.fit
-    from judder.commands.fit import fit
+    from studies.fit import fit
     from sources.modelica import ModelicaError, ModelicaParameters
     params = ModelicaParameters(CLASS, str(MODELS))
     fitted = params.replace(**GRAZING)
@@ -680,7 +680,7 @@ def test_advise_checks_the_mode_where_it_decides_its_windows(msl_path):
     there and the advice is refused, naming the first setting (it
     answered from the Forward linearisation, checked at the class's own
     p_f and f_dither only). The nominal class holds there."""
-    from judder.commands.advise import advise
+    from studies.advise import advise
     from sources.modelica import ModelicaError, ModelicaParameters
     params = ModelicaParameters(CLASS, str(MODELS))
     with pytest.raises(ModelicaError, match=(

@@ -357,7 +357,7 @@ def test_crosscheck_fmu_of_the_rank_two_class_against_its_floquet_rates():
     # runs, w_in 1 rad/s apart) grows at the Floquet exponent of the
     # system linearised from the same class
     from sources.modelica import ModelicaParameters
-    from judder.crosscheck import crosscheck_study
+    from studies.crosscheck import crosscheck_study
     params = ModelicaParameters("Judder.Examples.Driveline4DOFTwoClutches")
     check = crosscheck_study(params, [105.0], [0.1 * BAR, 0.5 * BAR],
                              workers=1)

@@ -25,7 +25,7 @@ BAR = PA_PER_BAR
 def bench():
     """The bench engagement of the Appendix set and its linearisation."""
     pytest.importorskip("fmpy")
-    from judder.bench import engagement_model
+    from studies.bench import engagement_model
     return engagement_model(get_preset("paper-4dof"))
 
 
@@ -94,7 +94,7 @@ def test_orbit_is_the_long_engagement_steady_state(bench, freq_hz, p_f_bar,
     # the bench FMU run for 8 s; over its last 1.5 s the upstream speed's
     # Fourier amplitude at f (or f/2) against the orbit's at the run's
     # mean slip (the dither's rectified torque moves it at 103 Hz)
-    from judder.bench import bench_fmu
+    from studies.bench import bench_fmu
     from pysim.simulation.runs import run_fmu
     model, _ = bench
     params = get_preset("paper-4dof")

@@ -12,7 +12,7 @@ import pytest
 from infra.files import written_by_us
 from infra.provenance import input_digest, tool_version
 from judder.cli import main
-from judder.inputs import read_boundary, read_boundary_min_growth
+from studies.inputs import read_boundary, read_boundary_min_growth
 
 MAP = ["map", "--freq", "95:110:4", "--pf", "0:0.6:3", "--preset",
        "paper-4dof"]

@@ -93,7 +93,7 @@ def test_dither_envelope_growth():
 # --- the FMU against the Floquet layer ------------------------------------
 
 def test_crosscheck_on_tongues_2_5_6():
-    from judder.crosscheck import crosscheck_study
+    from studies.crosscheck import crosscheck_study
     # grid spanning tongue 5 (84 Hz), tongue 2 (103 Hz), tongue 6 (122 Hz)
     check = crosscheck_study(get_preset("paper-4dof"),
                              np.linspace(80, 126, 24),
@@ -321,7 +321,7 @@ def test_simulate_names_whose_linearisation_its_floquet_line_is():
     # it gives (issue 33: "Floquet at this point"; issue 41: one view)
     from judder import api
     from judder.commands.simulate import _engagement_line
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=Path(__file__).parents[1]
                               / "examples" / "driveline.toml")
     run = api.simulate(105, 0.2, parameters=example, duration=1.0)

@@ -546,7 +546,7 @@ def test_a_typo_cannot_take_the_machine(hours, argv, words, capsys,
 def test_advise_memory_estimate_names_the_option(monkeypatch, capsys):
     """20 000 Hz at 0.5 Hz steps: 39 901 frequencies x 12.5 kB = 0.465 GiB,
     refused when only 0.5 GiB is left (80 % of it is the bound)."""
-    from judder.commands import _preflight
+    from studies import _preflight
     monkeypatch.setattr(_preflight, "available_memory", lambda: 2 ** 29)
     status, err = _in_process(["advise", "--no-design",
                                "--freq-range=60:20000"], capsys)
@@ -560,7 +560,7 @@ def test_advise_memory_estimate_names_the_option(monkeypatch, capsys):
 def test_available_memory_follows_ulimit():
     """``ulimit -v`` is what a batch system sets: the estimate uses what
     is left of it."""
-    script = ("import resource; from judder.commands._preflight "
+    script = ("import resource; from studies._preflight "
               "import available_memory as a; print(a())")
     done = subprocess.run(
         ["bash", "-c", f"ulimit -v 3000000; {sys.executable} -c '{script}'"],

@@ -17,7 +17,7 @@ from infra.errors import JudderError
 from matplotlib.image import imread
 
 from judder.cli import main
-from judder.inputs import load_parameters
+from studies.inputs import load_parameters
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -63,7 +63,7 @@ def _recording_figures(monkeypatch, drawn, clashes=None):
     sys.path.insert(0, str(ROOT / "tests"))
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from test_figures import _text_problems
-    from judder.commands import _report_sections as sections
+    from studies import _report_sections as sections
     embed = sections._png
 
     def recording(fig, *args, **kwargs):
@@ -86,7 +86,7 @@ def report(tmp_path_factory):
     CLASHES.clear()
     with pytest.MonkeyPatch.context() as patch:
         _recording_figures(patch, DRAWN, CLASHES)
-        patch.setattr("judder.bench.default_driveline",
+        patch.setattr("studies.bench.default_driveline",
                       lambda values: "chain")
         status = _run_report(folder, out)
     assert status == 0
@@ -247,7 +247,7 @@ def test_report_opens_with_verdict_window_and_design(report):
     design = first.index("Smallest design change")
     assert verdict < window < design
     from judder import api
-    from judder.inputs import load_parameters
+    from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     advice = api.advise(example, {"mu_g": 0.011})
     for w in advice.windows:
@@ -278,8 +278,8 @@ def test_report_verdict_is_judder_check_at_its_growth_rate():
     # the same setting against the stability boundary (--min-growth 0):
     # judder, 0.2 bar above the boundary that `judder check` computes
     from judder import api
-    from judder.inputs import load_parameters
-    from judder.commands._report_sections import verdict_text
+    from studies.inputs import load_parameters
+    from studies._report_sections import verdict_text
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     check = api.check([105.0], [0.2], example, {"mu_g": 0.011},
                       min_growth=0.0, sensitivity=())
@@ -408,13 +408,13 @@ def _printed_image_widths_in(pdf):
 
 def test_report_shows_no_fit_the_data_cannot_determine():
     # the README's chart: three onsets cannot give c12, mu_g and k24
-    from judder.inputs import load_parameters
-    from judder.commands._report_sections import fit_section
+    from studies.inputs import load_parameters
+    from studies._report_sections import fit_section
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
     bench = (np.array([210.0, 212.0, 214.0]),
              np.array([0.8, 0.6, 0.8]) * 1e5, 0.8, 1.0,
              np.array([0.6, 0.4, 0.6]), 0.25)
-    from judder.commands.fit import fit
+    from studies.fit import fit
     freqs, measured, tried, growth, below, spread = bench
     with pytest.raises(JudderError) as refused:
         fit(freqs, measured / 1e5, tried, names=["c12", "mu_g", "k24"],
@@ -447,8 +447,8 @@ def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):
     import sys
     sys.path.insert(0, str(ROOT / "tests"))
     from test_fitting import _synthetic_chart
-    from judder.commands.chart import ChartResult
-    from judder.inputs import read_chart_runs
+    from studies.chart import ChartResult
+    from studies.inputs import read_chart_runs
     from sources import get_preset
     chart, _ = _synthetic_chart(get_preset("paper-4dof-fitted"),
                                 np.array([100.0, 105.0, 160.0]),

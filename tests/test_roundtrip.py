@@ -148,7 +148,7 @@ def test_bad_comparison_options_are_refused(truth, options, words):
     ({"scatter": 0.0, "error_model": "absolute"}, "scatter = 0 bar"),
     ({"judder_limit_rpm": -3.0}, "judder_limit_rpm = -3 rpm")])
 def test_the_api_checks_the_numbers_where_they_enter(truth, options, words):
-    # the rules of the options (judder.commands._values.RULES), before any
+    # the rules of the options (studies.rules.RULES), before any
     # work; the kernel below trusts them
     from infra.errors import JudderError
     with pytest.raises(JudderError, match=words):

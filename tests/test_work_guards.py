@@ -108,9 +108,9 @@ def test_a_threshold_grid_follows_the_time_limit(capsys, monkeypatch):
 
 
 def test_the_threshold_estimate_is_within_a_factor_3_of_the_work():
-    from judder.commands._preflight import (THRESHOLD_DAMPING_S,
+    from studies._preflight import (THRESHOLD_DAMPING_S,
                                             THRESHOLD_MU_S)
-    from judder.commands.threshold import threshold
+    from studies.threshold import threshold
     import numpy as np
     threshold([0.0], [1.0])          # imports and caches out of the clock
     started = time.process_time()

@@ -1,37 +1,32 @@
 """The ``judder`` commands, one module each, registered in :data:`COMMANDS`.
 
-A command module holds everything of its command: ``DESCRIPTION`` (its
+A command module holds its command line: ``DESCRIPTION`` (its
 ``--help`` text), ``OUTPUTS`` (the files it writes: option attribute,
 option, suffixes; ``None`` for a figure; checked before any work),
 optionally ``AMPLITUDE`` (the option holding its largest dither
 amplitude, checked against the mean pressure) and ``check_outputs(args,
 seen)`` (checks of its own outputs), ``add_arguments(parser)`` (its
 options, parsed once with their units by argparse ``type=``), ``run(args)``
-(preflight checks, the API call, ``--out``/``--plot`` and the text or JSON
-printed), the API function and the result it returns (``as_dict()``,
-``save()``, ``figure()``).
+(the options turned into a study's arguments, the study called, its
+``--out``/``--plot`` written and its text or JSON printed). The study
+itself, the function and the result it returns, is :mod:`studies`.
 
 :data:`COMMANDS` is the one place a command is added: the command line
-(:mod:`judder.cli`) makes its subcommands and ``--help`` from it, the
-Python API (:mod:`judder.api`) its functions. Nothing here imports a
+(:mod:`judder.cli`) makes its subcommands and ``--help`` from it. Nothing here imports a
 command module: ``judder --help`` lists the commands from this table
 alone, and ``judder map`` imports the map's module only.
 
 Modules whose names start with ``_`` are shared by the commands: option
 groups and value parsers (``_arguments``, ``_values``), the options that
-carry the library's arguments in its messages (``_flags``), the parameter set
-the model options select (``_model``), what the API functions share (the
-set with its changes and the dithered driveline, ``_common``), preflight
-estimates (``_preflight``), outputs (``_output``) and records
-(``_records``), a check's verdict in words (``_words``), and the
-sections of ``judder report`` (``_report_sections``). The bench (its model, parameters and
-linearisation) is :mod:`judder.bench`.
+carry the studies' arguments in their messages (``_flags``), the
+parameter set the model options select (``_model``) and outputs
+(``_output``).
 """
 
 from dataclasses import dataclass
 from importlib import import_module
 
-__all__ = ["Command", "COMMANDS", "API_FUNCTIONS", "command_module"]
+__all__ = ["Command", "COMMANDS", "command_module"]
 
 
 @dataclass(frozen=True)
@@ -43,7 +38,7 @@ class Command:
     name : str
         The subcommand, and the module ``judder.commands.<name>``.
     function : str
-        Its API function in that module (and in :mod:`judder.api`).
+        The study it runs (a key of :data:`studies.STUDIES`).
     summary : str
         One line for ``judder --help``.
     """
@@ -88,8 +83,6 @@ COMMANDS = {c.name: c for c in (
                                     "uncertain parameters (Fig. 16)"),
 )}
 
-#: API function name -> command name.
-API_FUNCTIONS = {c.function: c.name for c in COMMANDS.values()}
 
 
 def command_module(name):

@@ -11,7 +11,6 @@ import argparse
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
 from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
                             ENGAGEMENT_DURATION_S)
-from infra.errors import JudderError
 from stability.monodromy import DEFAULT_METHOD, METHODS
 
 from ._values import (FREQ_RANGE_HZ, LIMIT, MARGIN_BAR, MARGIN_HZ,
@@ -176,7 +175,7 @@ def min_growth_option(parser, extra=""):
 
 def driveline_option(parser):
     """``--driveline``: the driveline a Floquet view is of
-    (:data:`judder.bench.DRIVELINES`)."""
+    (:data:`studies.bench.DRIVELINES`)."""
     parser.add_argument("--driveline", choices=("chain", "bench"),
                         default=None,
                         help="bench: the preset's driveline on its test "
@@ -213,15 +212,6 @@ def decimal_option(parser, files):
                              "whose cells cannot tell it (integers with "
                              "1,000); a cell written otherwise is refused "
                              "(default: decided per file from its cells)")
-
-
-def refuse_decimal(decimal, files, instead):
-    """Refuse ``--decimal`` where no CSV is read: it is for the CSV
-    ``files`` (in words), and not allowed ``instead`` (the inputs given,
-    in words)."""
-    if decimal:
-        raise JudderError(f"--decimal is for {files}; allowed: no "
-                          f"--decimal {instead}")
 
 
 def force_option(parser):

@@ -9,9 +9,11 @@ the warning when the dither amplitude reaches the mean pressure.
 import numpy as np
 
 from infra.errors import JudderError
+from infra.quantities import parse_quantity
 from infra.units import PA_PER_BAR
 
-from ..inputs import load_parameters, read_input
+from studies.inputs import load_parameters, read_input
+from studies.bench import bench_parameters, refuse_bench_of_class
 from ._values import check_file_pressure, check_plain_pressure, check_pressures
 
 
@@ -59,7 +61,7 @@ def own_driveline(args, path=None, option="--param-file", dithered=True):
     before the flatten."""
     refused = getattr(args, "refused_fmu", None)
     if refused is not None:     # a command that runs the time domain
-        from ..timedomain import fmu_refusal
+        from studies.timedomain import fmu_refusal
         raise fmu_refusal(args.fmu_refused_by, refused)
     fmu, modelica = getattr(args, "fmu", None), getattr(args, "modelica", None)
     for flag, given, allowed in (
@@ -167,3 +169,26 @@ def check_plausible(args):
     params, _ = parameters_of(args)
     check_pressures(p_max_bar * PA_PER_BAR, params,
                     "--pf" if args.amplitude == "pf" else "--pf-max")
+
+
+def parse_bench(assignments, values):
+    """The ``--bench NAME=VALUE`` texts as SI numbers, by the units the
+    bench declares (``w_motor=1000rpm``, ``p_load=9.8bar``).
+
+    The ranges are checked by :func:`check_bench`, where the API takes
+    the values.
+    """
+    names = [text.partition("=")[0].strip() for text in assignments]
+    if assignments and not values.source_kind.is_chain:
+        refuse_bench_of_class(values, names)
+    parameters = bench_parameters(values) if assignments else {}
+    bench = {}
+    for text, name in zip(assignments, names):
+        _, sep, value = text.partition("=")
+        if not sep or name not in parameters:
+            raise JudderError(f"--bench {text!r} is not allowed; allowed: "
+                              "NAME=VALUE with NAME one of "
+                              f"{', '.join(parameters)}")
+        bench[name] = parse_quantity(value.strip(), parameters[name].unit,
+                                     f"--bench {name}")
+    return bench

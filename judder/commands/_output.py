@@ -13,7 +13,7 @@ from infra.provenance import Provenance, current, input_digest, tool_version
 #: Options that do not change a result: how it is shown, where it is
 #: written (``out`` also of a folder, a checkpoint resumed or not), how
 #: the work is spread; the outputs' own options are added.
-NOT_INPUTS = {"handler", "outputs", "output_check", "amplitude",
+NOT_INPUTS = {"handler", "outputs", "output_check", "amplitude", "flags",
               "version", "json", "force", "workers", "scheduler", "out",
               "checkpoint"}
 
@@ -92,10 +92,13 @@ def provenance_of(args):
 
 def emit(args, data, text):
     """Print ``data`` as JSON with --json (with ``provenance``: the
-    version and the input digest), else ``text``."""
+    version and the input digest), else ``text``, its arguments in the
+    command's options (:func:`judder.commands._flags.in_flags`)."""
+    from ._flags import in_flags
     if args.json and isinstance(data, dict):
         data = {**data, "provenance": current().as_dict()}
-    print(to_json(data) if args.json else text)
+    print(to_json(data) if args.json
+          else in_flags(text, getattr(args, "flags", None)))
 
 
 def make_parents(*paths):

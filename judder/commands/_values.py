@@ -1,18 +1,6 @@
-"""Values of the command-line options: numbers with or without a unit,
-checked against what is allowed and plausible before any work.
-
-A plain number is in the option's unit (frequencies Hz, amplitudes bar,
-times s, speeds rpm, parameters SI); a number may carry a unit instead
-(``--freq 1.2kHz``, ``--pf 300mbar``, ``--duration 50ms``), read by
-:func:`infra.quantities.parse_quantity`. A plain number far outside what
-its unit makes plausible is refused with the likely slip
-(``--pf 30000``: Pa given for bar; ``--set p_m=10``: bar given for Pa).
-
-Grids (``START:STOP:N``), lists and dither waveforms are parsed here too.
-The argparse ``type=`` parsers (:class:`Quantity`, :class:`Grid`,
-:class:`Listed`, ...) parse each option once, with its unit; the API
-functions check a Python caller's arguments with the same rule objects
-(:data:`RULES`, :meth:`Quantity.check`). Nothing here knows a command.
+"""The options' parsers: argparse ``type=`` objects that read an
+option's text once, with its unit, by the rule of :mod:`studies.rules`
+(a refusal names the option), and the options every command reads alike.
 """
 
 import argparse
@@ -22,129 +10,30 @@ import numpy as np
 
 from infra.contract import warn
 from infra.errors import JudderError
-from infra.quantities import has_unit, parse_quantity
+from infra.quantities import has_unit
 from infra.units import PA_PER_BAR
-
-from ..inputs import read_input
-
-#: Dither frequencies allowed, Hz: below, the period needs more
-#: sub-intervals than any engine takes; above, no hydraulic valve
-#: dithers and the multipliers round to 1.
-FREQ_RANGE_HZ = (1e-3, 1e5)
-
-
-#: A plain --pf above this (bar) is taken for a slip of unit (Pa for bar).
-MAX_PLAIN_PF_BAR = 100.0
-
-
-#: A plain p_m below this (Pa, i.e. 1 bar) is taken for bar given as Pa.
-MIN_PLAIN_P_M_PA = 1e5
-
-
-#: Most worker processes (a request for more is a typo).
-MAX_WORKERS = 256
-
-
-#: Longest simulated time of one run, s.
-MAX_DURATION_S = 3600.0
-
-
-def option_value(text, option, unit, low=-math.inf, high=math.inf,
-                 low_open=False, amplitude=True):
-    """A number of an option, in ``unit`` (plain, or with a unit).
-
-    Raises
-    ------
-    JudderError
-        Naming the option, the value and the allowed range.
-    """
-    value = parse_quantity(text, unit, option)
-    if _outside(value, low, high, low_open).any():
-        raise JudderError(f"{option} {text} is not allowed; allowed: "
-                          f"{_allowed(unit, low, high, low_open)}")
-    if amplitude and unit == "bar" and not has_unit(text):
-        check_amplitudes([value], option, f": write {text}Pa, or give the "
-                                          "unit")
-    return value
-
-
-def check_amplitudes(values_bar, option, fix=""):
-    """Refuse a dither amplitude above :data:`MAX_PLAIN_PF_BAR`: Pa given
-    where bar is meant (an option, a list, a grid or a table column);
-    ``fix`` says how to write it."""
-    for value in values_bar:
-        if value is not None and value > MAX_PLAIN_PF_BAR:
-            raise JudderError(
-                f"{option} {value:g} bar is not plausible for a dither "
-                f"amplitude (a plain number is in bar); did you give Pa? "
-                f"{value:g} Pa = {value / PA_PER_BAR:g} bar{fix} (allowed: "
-                f"at most {MAX_PLAIN_PF_BAR:g} bar)")
-
-
-def _outside(values, low, high, low_open):
-    """Where ``values`` are not finite or not in the range, as a boolean
-    array."""
-    values = np.atleast_1d(np.asarray(values, dtype=float))
-    below = values <= low if low_open else values < low
-    return ~np.isfinite(values) | below | (values > high)
-
-
-def _allowed(unit, low, high, low_open, hint=True):
-    parts = []
-    if low > -math.inf:
-        parts.append(f"{'>' if low_open else '>='} {low:g}")
-    if high < math.inf:
-        parts.append(f"<= {high:g}")
-    unit_text = "" if unit == "1" else f" {unit}"     # a plain ratio
-    return (" and ".join(parts) or "a finite number") + unit_text + (
-        " (a plain number; or with a unit, e.g. 1.2kHz)"
-        if hint and unit == "Hz" else "")
+from studies.inputs import read_input
+from studies.rules import (FREQ_RANGE_HZ, MIN_PLAIN_P_M_PA, MAX_WORKERS, RULES,
+                           SCATTER as SCATTER_RULES, Rule, parse_grid,
+                           parse_list)
 
 
 class Quantity:
-    """An argparse ``type=``: one number of an option, in ``unit`` (plain)
-    or with a unit of its own (:func:`option_value`), within the allowed
-    range.
+    """An argparse ``type=``: one number of ``option``, in ``unit``
+    (plain) or with a unit of its own, by :class:`studies.rules.Rule`
+    (its arguments after ``unit``); or by the ``rule`` given."""
 
-    Parameters
-    ----------
-    option : str
-        The option, named in the error message.
-    unit : str
-        The unit of a plain number (Hz, bar, s, rpm, 1/s).
-    low, high : float
-        The allowed range; ``low_open`` excludes ``low`` itself.
-    amplitude : bool
-        A plain number in bar is a dither amplitude: one above
-        :data:`MAX_PLAIN_PF_BAR` is taken for Pa (False for a margin).
-    """
-
-    def __init__(self, option, unit, low=-math.inf, high=math.inf,
-                 low_open=False, amplitude=True):
-        self.option, self.unit = option, unit
-        self.low, self.high, self.low_open = low, high, low_open
-        self.amplitude = amplitude
+    def __init__(self, option, unit=None, *limits, rule=None, **options):
+        self.option = option
+        self.rule = rule if rule is not None else Rule(unit, *limits,
+                                                       **options)
+        self.unit = self.rule.unit
 
     def __call__(self, text):
         try:
-            return option_value(text, self.option, self.unit, self.low,
-                                self.high, self.low_open, self.amplitude)
+            return self.rule.parse(text, self.option)
         except JudderError as exc:
             raise argparse.ArgumentTypeError(str(exc)) from None
-
-    def check(self, value, name):
-        """``value`` (a number or an array, in ``unit``) if every element
-        is finite and allowed, else a :class:`JudderError` naming
-        ``name``: the same rule at the API as on the command line."""
-        values = np.atleast_1d(np.asarray(value, dtype=float))
-        bad = _outside(values, self.low, self.high, self.low_open)
-        if bad.any():
-            allowed = _allowed(self.unit, self.low, self.high, self.low_open,
-                               hint=False)
-            unit = "" if self.unit == "1" else f" {self.unit}"
-            raise JudderError(f"{name} = {values[bad][0]:g}{unit} is not "
-                              f"allowed; allowed: {allowed}")
-        return value
 
 
 class QuantityList(Quantity):
@@ -265,34 +154,24 @@ class OrNone(Quantity):
 
 
 #: The options every command reads alike, as argparse ``type=``.
-FREQ = Quantity("--freq", "Hz", *FREQ_RANGE_HZ)
-PF = Quantity("--pf", "bar", 0.0)
-PF_MAX = Quantity("--pf-max", "bar", 0.0, low_open=True)
-DURATION = Quantity("--duration", "s", 0.0, MAX_DURATION_S, low_open=True)
-MIN_GROWTH = Quantity("--min-growth", "1/s", 0.0)
-THRESHOLD_SPREAD = Quantity("--threshold-spread", "1/s", 0.0)
-#: The bench's known scatter of the onsets, by error model: a share of
-#: the amplitude, or bar.
-SCATTER = {"relative": Quantity("--scatter", "1", 0.0, 1.0, low_open=True),
-           "absolute": Quantity("--scatter", "bar", 0.0, low_open=True,
-                                amplitude=False)}
-LIMIT = Quantity("--limit", "rpm", 0.0, low_open=True)
+FREQ = Quantity("--freq", rule=RULES["freq_hz"])
+PF = Quantity("--pf", rule=RULES["p_f_bar"])
+PF_MAX = Quantity("--pf-max", rule=RULES["p_max_bar"])
+DURATION = Quantity("--duration", rule=RULES["duration"])
+MIN_GROWTH = Quantity("--min-growth", rule=RULES["min_growth"])
+THRESHOLD_SPREAD = Quantity("--threshold-spread",
+                            rule=RULES["threshold_spread"])
+SCATTER = {model: Quantity("--scatter", rule=rule)
+           for model, rule in SCATTER_RULES.items()}
+LIMIT = Quantity("--limit", rule=RULES["judder_limit_rpm"])
 WORKERS = WholeNumber("--workers", 1, MAX_WORKERS)
 SEED = WholeNumber("--seed", 0, 2 ** 63 - 1)
 
 #: The margins of the safe dither windows (advise, compare) and the
 #: valve's largest amplitude (compare --valve-max, as advise --pf-max).
-MARGIN_BAR = Quantity("--margin-bar", "bar", 0.0, amplitude=False)
-MARGIN_HZ = Quantity("--margin-hz", "Hz", 0.0)
-VALVE_MAX = Quantity("--valve-max", "bar", 0.0, low_open=True)
-
-#: The rule of each argument of the API functions that an option above
-#: carries: a Python caller's value is checked by the same rule as the
-#: option's (:func:`judder.commands._common.checked_values`).
-RULES = {"freq_hz": FREQ, "p_f_bar": PF, "p_max_bar": PF_MAX,
-         "min_growth": MIN_GROWTH, "threshold_spread": THRESHOLD_SPREAD,
-         "judder_limit_rpm": LIMIT, "margin_bar": MARGIN_BAR,
-         "margin_hz": MARGIN_HZ, "valve_max_bar": VALVE_MAX}
+MARGIN_BAR = Quantity("--margin-bar", rule=RULES["margin_bar"])
+MARGIN_HZ = Quantity("--margin-hz", rule=RULES["margin_hz"])
+VALVE_MAX = Quantity("--valve-max", rule=RULES["valve_max_bar"])
 
 
 def check_pressures(p_f_max_pa, params, option="--pf"):
@@ -356,54 +235,9 @@ def _bar_hint(number, fix, keep=""):
             f"{MAX_PLAUSIBLE_BAR:g} bar){keep}")
 
 
-#: Most values of one grid axis (a typo like N = 100000000000 would
-#: otherwise allocate hundreds of GiB).
-MAX_GRID_VALUES = 100_000
-
-
 #: Forms of --dither-wave, for its help and its error message.
 WAVEFORMS = ("cosine", "square[:TAU_MS]", "fourier:A1,A2,...[/B1,B2,...]",
              "period:FILE.csv")
-
-
-def parse_grid(text, option, unit, allow_negative=False):
-    """Parse ``START:STOP:N`` (or a single value) into a linspace.
-
-    START and STOP are plain numbers in ``unit`` or carry a unit
-    (``0:300mbar:10``); see :func:`option_value`.
-
-    Raises
-    ------
-    JudderError
-        Naming ``option`` and saying what is allowed.
-    """
-    parts = text.split(":")
-    lowest = "" if allow_negative else "0 <= "
-    allowed = (f"allowed: START:STOP:N with {lowest}START <= STOP in {unit} "
-               f"and N a whole number from 1 to {MAX_GRID_VALUES} (1 only "
-               f"when START = STOP), or one value (e.g. {option} 10:220:300)")
-    low, high = (-math.inf, math.inf) if allow_negative else (0.0, math.inf)
-    if unit == "Hz":
-        low, high = FREQ_RANGE_HZ
-    try:
-        if len(parts) == 1:
-            start = stop = option_value(parts[0], option, unit, low, high)
-            count = 1
-        elif len(parts) == 3:
-            start = option_value(parts[0], option, unit, low, high)
-            stop = option_value(parts[1], option, unit, low, high)
-            count = int(parts[2])
-        else:
-            raise ValueError
-    except JudderError:
-        raise
-    except ValueError:
-        raise JudderError(f"{option} {text!r} is not a grid; {allowed}") \
-            from None
-    if start > stop or count < 1 or count > MAX_GRID_VALUES \
-            or (count == 1 and start != stop):
-        raise JudderError(f"{option} {text!r} is not allowed; {allowed}")
-    return np.linspace(start, stop, count)
 
 
 def parse_waveform(text):
@@ -422,7 +256,7 @@ def parse_waveform(text):
         return None
     if kind == "square":
         tau = parse_list(rest, "--dither-wave square:")[0] if rest else 0.0
-        Quantity("--dither-wave square:", "ms", 0.0).check(
+        Rule("ms", 0.0).check(
             tau, "--dither-wave square: TAU_MS")
         return FilteredSquare(tau * 1e-3)
     if kind == "fourier" and rest:
@@ -458,22 +292,3 @@ def _is_float(text):
     except ValueError:
         return False
     return True
-
-
-def parse_list(text, option, convert=float):
-    """Comma-separated values of ``option``."""
-    items = [item.strip() for item in text.split(",")]
-    if len(items) > 1 and not all(items):
-        raise JudderError(f"{option} {text!r} has an empty item; allowed: "
-                          "values separated by single commas")
-    items = [item for item in items if item]
-    try:
-        values = [convert(item) for item in items]
-    except JudderError:          # a value out of range, or its unit
-        raise
-    except ValueError:
-        raise JudderError(f"{option} {text!r} is not a comma-separated list "
-                          "of numbers") from None
-    if not values:
-        raise JudderError(f"{option} is empty")
-    return values

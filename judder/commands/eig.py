@@ -1,16 +1,11 @@
 """``judder eig``: natural frequencies and damping factor."""
 
-from dataclasses import dataclass
-
-import numpy as np
-
-from stability import modal
-from stability.source import build_driveline
-
 from ._arguments import driveline_option, model_options
-from ._common import linearised_mode, mode_words, resolve
+from sources.dither_modes import linearised_mode, mode_words
 from ._model import parameters_of
 from ._output import emit
+from studies.eig import eig
+
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -19,6 +14,8 @@ DESCRIPTION = (
     "rigid-body angles removed. For --modelica or --fmu: the "
     "frequencies of its Jacobian's stiffness part and its damped modes; "
     "Eq. 15-16 are the paper's chains' formulas (null in --json).")
+
+
 OUTPUTS = ()
 
 
@@ -33,7 +30,7 @@ def run(args):
     result = eig(*parameters_of(args), driveline=args.driveline)
     zeta = result.damping_factor_12
     words = mode_words(linearised_mode(result.params))
-    from ..bench import driveline_words
+    from studies.bench import driveline_words
     lines = [f"model {result.params.model}: "
              f"{driveline_words(result.params, result.driveline)}"
              + (f", {words} (held over a period at the class's own "
@@ -51,79 +48,3 @@ def run(args):
                          zip(result.damped_frequencies_hz,
                              result.damping_ratio))]
     emit(args, result.as_dict(), "\n".join(lines))
-
-
-def eig(parameters=None, changes=None, driveline=None):
-    """``judder eig``: natural frequencies (Eq. 14-15) and the
-    clutch-damper damping factor (Eq. 16), and the damped modes without
-    dither.
-
-    For a Modelica class or an FMU the natural frequencies are those of
-    its Jacobian's stiffness part and the damped modes those of its
-    system without dither, rigid-body angles removed; the closed forms
-    (Eq. 15) and the clutch-damper factor (Eq. 16) belong to the paper's
-    chains, so they are None there.
-
-    ``driveline='bench'``: of the driveline on its test bench
-    (:func:`judder.bench.driveline_view`), whose first damped mode is its
-    resonance (16.5 Hz for the paper's set, 18.9 Hz on the free chain).
-
-    Returns
-    -------
-    EigResult
-
-    Examples
-    --------
-    >>> eig().natural_frequencies_hz.round(3)
-    array([ 18.939, 102.884])
-    """
-    from ..bench import driveline_view
-    values, view = driveline_view(resolve(parameters, changes), driveline)
-    driveline = build_driveline(values)
-    damped_hz, ratio = modal.damped_modes(driveline)
-    paper = values.source_kind.is_chain
-    return EigResult(
-        params=values,
-        natural_frequencies_hz=modal.natural_frequencies(driveline),
-        closed_form_frequencies_hz=(modal.closed_form_frequencies(values)
-                                    if paper else None),
-        damping_factor_12=(float(modal.clutch_damper_damping_factor(values))
-                           if paper else None),
-        damped_frequencies_hz=damped_hz, damping_ratio=ratio,
-        driveline=view)
-
-
-@dataclass(frozen=True)
-class EigResult:
-    """``judder eig``: natural frequencies (Eq. 15) and damping (Eq. 16).
-
-    Frequencies in Hz; ``damping_factor_12`` and ``damping_ratio`` as
-    fractions. ``closed_form_frequencies_hz`` and ``damping_factor_12``
-    are None for a Modelica class or an FMU (they are the paper's
-    formulas for its chains).
-    """
-
-    params: object
-    natural_frequencies_hz: np.ndarray
-    closed_form_frequencies_hz: np.ndarray
-    damping_factor_12: float
-    damped_frequencies_hz: np.ndarray
-    damping_ratio: np.ndarray
-    driveline: str = "chain"
-
-    def as_dict(self):
-        mode = linearised_mode(self.params)
-        from ..bench import driveline_words
-        return {"model": self.params.model, "driveline": self.driveline,
-                "driveline_description": driveline_words(self.params,
-                                                         self.driveline),
-                **({"mode": mode} if mode else {}),
-                "natural_frequencies_hz": self.natural_frequencies_hz,
-                "closed_form_frequencies_hz": self.closed_form_frequencies_hz,
-                "damping_factor_12": self.damping_factor_12,
-                "damping_factor_12_percent": (
-                    None if self.damping_factor_12 is None
-                    else 100 * self.damping_factor_12),
-                "damped_modes": [{"frequency_hz": f, "damping_ratio": r}
-                                 for f, r in zip(self.damped_frequencies_hz,
-                                                 self.damping_ratio)]}

@@ -1,19 +1,17 @@
 """``judder params``: show, or save as TOML, a parameter set."""
 
-from dataclasses import dataclass
-
-from sources import dumps_toml
-from infra.files import write_text
-
 from ._arguments import model_options
-from ._common import resolve
 from ._model import parameters_of
 from ._output import emit, make_parents
+from studies.params import params
+
 
 #: The command's --help text.
 DESCRIPTION = (
     "Show a parameter set with units, or save it (--save FILE.toml) to "
     "edit and load with --param-file.")
+
+
 OUTPUTS = (("save", "--save", ("toml",)),)
 
 
@@ -42,34 +40,3 @@ def run(args):
     emit(args, {**result.as_dict(), "saved": args.save},
          f"model {result.params.model}\n" + "\n".join(rows)
          + (f"\nsaved to {args.save}" if args.save else ""))
-
-
-def params(parameters=None, changes=None):
-    """``judder params``: a parameter set with units and meanings.
-
-    Returns
-    -------
-    ParamsResult
-        ``save(path)`` writes it as TOML.
-    """
-    return ParamsResult(resolve(parameters, changes))
-
-
-@dataclass(frozen=True)
-class ParamsResult:
-    """``judder params``: a parameter set with units and meanings."""
-
-    params: object
-
-    def as_dict(self):
-        specs = self.params.specs
-        return {"model": self.params.model,
-                "parameters": {name: {"value": self.params[name],
-                                      "unit": spec.unit,
-                                      "allowed": spec.allowed(),
-                                      "description": spec.description}
-                               for name, spec in specs.items()}}
-
-    def save(self, path, overwrite=False):
-        """Write the set as TOML (refuses to replace a file by default)."""
-        write_text(path, dumps_toml(self.params), overwrite=overwrite)

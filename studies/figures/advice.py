@@ -28,7 +28,7 @@ def advice_figure(advice, title=None, stacked=False):
 
     Parameters
     ----------
-    advice : judder.commands.advise.AdviceResult
+    advice : studies.advise.AdviceResult
     stacked : bool
         The map below the safe amplitude rather than beside it (a page's
         width, as in the report).
@@ -48,7 +48,7 @@ def advice_figure(advice, title=None, stacked=False):
                       advice.safe_p_f[inside] / PA_PER_BAR, color="#2ca02c",
                       alpha=0.5, label="safe (with margins)")
     left.axhline(top, color="k", linestyle="--", linewidth=0.8,
-                 label="valve's highest amplitude (--pf-max)")
+                 label="valve's highest amplitude")
     for edge in op.freq_hz:
         left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
     left.set_xlabel("dither frequency [Hz]")

@@ -10,7 +10,6 @@ import numpy as np
 from drivelines import DEFAULT_MODEL
 from sources import default_preset, get_preset
 from infra.errors import JudderError
-from infra.units import PA_PER_BAR
 from stability.source import build_driveline
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).
@@ -20,7 +19,7 @@ BACKGROUND_AMPLITUDES = 150
 def check_arguments(**arguments):
     """Refuse any of ``arguments`` (``freq_hz=...``, ``p_f_bar=...``) its
     rule does not allow: the rule of its name,
-    :data:`judder.commands._values.RULES`, the option's own (None: not
+    :data:`studies.rules.RULES`, the option's own (None: not
     given).
 
     The API functions check a Python caller's values here, where they
@@ -32,7 +31,7 @@ def check_arguments(**arguments):
     JudderError
         Naming the argument, its value and what is allowed.
     """
-    from ._values import RULES
+    from .rules import RULES
     for name, value in arguments.items():
         if value is not None:
             RULES[name].check(value, name)
@@ -48,91 +47,6 @@ def checked_values(parameters, changes, followed=False, **arguments):
     if arguments.get("freq_hz") is not None:
         values = at_dither_frequency(values, arguments["freq_hz"], followed)
     return values
-
-
-def check_modes(values, freq_hz, p_f):
-    """Refuse the dither settings (Hz, Pa; pairs) at which a hybrid
-    Modelica class (a clutch with MSL's friction modes) leaves the mode
-    it is linearised in within a dither period
-    (:meth:`sources.modelica.ModelicaParameters.check_mode`); nothing for
-    other models."""
-    check = getattr(values, "check_mode", None)
-    if check is not None:
-        check(np.atleast_1d(freq_hz), np.atleast_1d(p_f))
-
-
-def check_modes_up_to(values, freq_hz, p_max_bar):
-    """:func:`check_modes` at each frequency of ``freq_hz`` with the
-    largest amplitude ``p_max_bar`` (bar) of a study over amplitudes (a
-    map, tongue boundaries): what leaves a friction clutch's mode, a slip
-    through zero or a normal force to zero, is the excursion from the
-    operating point, which grows with the amplitude."""
-    p_max = float(np.max(p_max_bar)) * PA_PER_BAR
-    check_modes(values, freq_hz, np.full(np.size(freq_hz), p_max))
-
-
-def check_modes_of_changes(values, changes, freq_hz, p_max_bar):
-    """:func:`check_modes_up_to` at each parameter set a study uses
-    beside ``values`` (``changes``: one ``{name: value}`` a set), each
-    linearised in the mode ``values`` is: a study comparing its sets
-    (sensitivity's tip shifts) compares them in one mode. Nothing for
-    other models.
-
-    Raises
-    ------
-    JudderError
-        Naming the change: a set in another mode, or one whose mode the
-        dither leaves (:class:`sources.modelica.ModelicaError`'s words).
-    """
-    if getattr(values, "check_mode", None) is None:
-        return
-    from sources.modelica import ModelicaError
-    nominal = linearised_mode(values)
-    for change in changes:
-        words = ", ".join(f"{name} = {value:g}"
-                          for name, value in change.items())
-        changed = values.replace(**change)
-        try:
-            mode = linearised_mode(changed)
-            if mode != nominal:
-                raise ModelicaError(
-                    f"{values.model} is linearised in another mode: "
-                    + ", ".join(f"{name} = {value} (nominal "
-                                f"{nominal.get(name)})"
-                                for name, value in mode.items()
-                                if nominal.get(name) != value)
-                    + ", so its boundaries do not compare with the "
-                    "nominal ones; allowed: changes that keep the mode")
-            check_modes_up_to(changed, freq_hz, p_max_bar)
-        except ModelicaError as error:
-            raise ModelicaError(f"with {words}: {error}") from None
-
-
-def linearised_mode(values):
-    """``{name: value}`` of the Integer and Boolean variables of a hybrid
-    Modelica class in the mode it is linearised in
-    (:attr:`sources.modelica.LinearPeriodicModel.mode`); empty for other
-    models."""
-    if not getattr(values, "check_mode", None):
-        return {}
-    return dict(values.linear_model().mode)
-
-
-def mode_words(mode, checked_at_bar=None):
-    """``linearised in the mode clutch.mode = 1 (clutch.Forward), ...``
-    (Integer variables first), or ``""`` without a mode; with
-    ``checked_at_bar``, the amplitude (bar) at which each frequency of a
-    study over amplitudes was checked (:func:`check_modes_up_to`)."""
-    if not mode:
-        return ""
-    ordered = sorted(mode.items(), key=lambda item: item[1] in
-                     ("true", "false"))
-    return "linearised in the mode " + ", ".join(
-        f"{name} = {value}" for name, value in ordered) + (
-        "" if checked_at_bar is None else
-        f"; held at each frequency's largest amplitude, {checked_at_bar:g} "
-        "bar (what leaves it, a slip through zero or a normal force to "
-        "zero, grows with the amplitude)")
 
 
 def frequency_dependent(values):
@@ -222,7 +136,7 @@ def timed(function, *args, **kwargs):
     return result, time.perf_counter() - started
 
 
-def structural_names(values, preferred, extra=()):
+def structural_names(values, preferred, extra=(), argument="names"):
     """``preferred`` if the model has them all, else its inertias,
     stiffnesses and coupling dampings (from the registry), plus ``extra``.
 
@@ -235,7 +149,7 @@ def structural_names(values, preferred, extra=()):
         names = tuple(n for n in preferred if n in values.specs)
         if not names:
             raise JudderError(
-                f"--params is required for {values.model}: it has none of "
+                f"`{argument}` is required for {values.model}: it has none of "
                 f"the default names {','.join(preferred)}; allowed: its "
                 f"tunable parameters: {', '.join(values.specs)}")
         return names

@@ -15,7 +15,7 @@ def threshold_figure(result, title=None, stacked=False):
 
     Parameters
     ----------
-    result : judder.commands.threshold.ThresholdResult
+    result : studies.threshold.ThresholdResult
     title : str, optional
         The model, after "Fig. 19 without dither" (default: the model's
         name).

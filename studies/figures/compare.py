@@ -25,7 +25,7 @@ def compare_figure(result, title=None):
 
     Parameters
     ----------
-    result : judder.commands.compare.CompareResult
+    result : studies.compare.CompareResult
         Computed with ``maps=True``.
     """
     fig, axes = plt.subplots(1, 2, figsize=(14, 5.4), layout="constrained",

@@ -40,6 +40,16 @@ from stability.uncertainty.ranges import (DEFAULT_COVERAGE, Correlated,
 from stability.tongues import lowest_of_kinds
 
 from .inputs import read_input
+from dataclasses import dataclass
+from infra.files import (keeps_foreign_files, save_npz,
+                         write_text)
+from infra.units import PA_PER_BAR
+from stability.kinds import KINDS
+from stability.monodromy import DEFAULT_METHOD
+#X checkpoint_path
+from ._common import BACKGROUND_AMPLITUDES, checked_values
+from sources.dither_modes import linearised_mode, mode_words
+from ._records import finite_or_none, rows_to_csv
 
 __all__ = ["read_ranges", "run_envelope", "checkpoint_path"]
 
@@ -96,7 +106,7 @@ def _fit(path, spec):
     """A :class:`Correlated` from the JSON of ``judder fit --json``."""
     if not isinstance(spec, dict) or "file" not in spec:
         raise JudderError(f"{path}: [fit] needs file = \"FIT.json\" (the "
-                          "output of judder fit --json)")
+                          "JSON judder fit prints)")
     unknown = sorted(set(spec) - {"file", "names"})
     if unknown:
         raise JudderError(f"{path}: [fit] has unknown key {unknown[0]!r}; "
@@ -107,12 +117,12 @@ def _fit(path, spec):
         fitted = data["fitted"]
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise JudderError(f"{path}: [fit] file {source}: not the JSON of "
-                          f"judder fit --json ({exc})") from None
+                          f"judder fit ({exc})") from None
     if not isinstance(fitted, dict) or not all(
             isinstance(entry, dict) for entry in fitted.values()):
         raise JudderError(f"{path}: [fit] file {source}: 'fitted' is not "
                           "a table of parameters; allowed: the JSON of "
-                          "judder fit --json")
+                          "judder fit")
     names = spec.get("names", list(fitted))
     if not isinstance(names, list) or not names or not all(
             isinstance(n, str) for n in names):
@@ -127,7 +137,7 @@ def _fit(path, spec):
         if "value" not in fitted[n] or "std" not in fitted[n]:
             missing = "value" if "value" not in fitted[n] else "std"
             raise JudderError(f"{path}: {where}.{n} has no {missing}; "
-                              "allowed: the JSON of judder fit --json")
+                              "allowed: the JSON judder fit prints")
     mean = np.array([_number(path, f"{where}.{n}.value",
                              fitted[n]["value"]) for n in names])
     std = [None if fitted[n]["std"] is None else
@@ -152,7 +162,7 @@ def _covariance(path, source, covariance, names):
     the fit has, a square matrix of their number, numbers (null: an
     undetermined entry, infinite)."""
     where = f"{path}: [fit] file {source}: covariance"
-    allowed = "allowed: the JSON of judder fit --json"
+    allowed = "allowed: the JSON judder fit prints"
     if not isinstance(covariance, dict) or not isinstance(
             covariance.get("names"), list) or not isinstance(
             covariance.get("matrix"), list):
@@ -202,9 +212,9 @@ def read_ranges(path, params):
     """
     path = Path(path)
     try:
-        data = tomllib.loads(read_input(path, "--ranges"))
+        data = tomllib.loads(read_input(path, "`ranges`"))
     except tomllib.TOMLDecodeError as exc:
-        raise JudderError(f"--ranges {path}: not TOML ({exc})") from None
+        raise JudderError(f"`ranges` {path}: not TOML ({exc})") from None
     unknown = sorted(set(data) - _TOP_KEYS)
     if unknown:
         raise JudderError(f"{path}: unknown key {unknown[0]!r}; allowed: "
@@ -421,3 +431,191 @@ def _run(params, ranges, names, values, is_vertex, unit, rows, freq_hz,
         method=method, coverage=ranges.coverage, refined=refined,
         refined_values=refined_values)
     return envelope, failures, resumed
+
+
+def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
+             sampler="sobol", vertices=True, min_growth=None, refine=20,
+             parameters=None, changes=None, method=DEFAULT_METHOD,
+             workers=None, checkpoint=None, progress=None, driveline=None):
+    """``judder envelope``: the broadest unstable region over uncertain
+    parameters and the probability of instability (section 4.2, Fig. 16).
+
+    Parameters
+    ----------
+    ranges : path or stability.uncertainty.ranges.Ranges
+        A ranges file (:func:`studies.envelope.read_ranges`) or the ranges.
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_max_bar : float
+        Largest amplitude searched, bar.
+    samples, seed, sampler, vertices
+        Space-filling samples after the vertices, as
+        :func:`stability.uncertainty.ranges.design_points` takes them.
+    min_growth : float, optional
+        1/s: count only judder growing at least this fast (default
+        :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`; 0: every
+        instability).
+    refine : int
+        Boundary evaluations per uncertain parameter spent at each
+        frequency searching the lowest boundary between the samples
+        (:func:`stability.uncertainty.envelope.refine_at`); 0: the union of the
+        samples only.
+    workers : int, optional
+        Local Dask worker processes (see :mod:`infra.parallel`).
+    checkpoint : path, optional
+        Resume from / save to this NPZ (see
+        :func:`studies.envelope.run_envelope`).
+
+    Returns
+    -------
+    EnvelopeResult
+        ``failures`` lists the samples that failed (left out).
+    """
+    from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from stability.uncertainty.ranges import Ranges
+
+    from .bench import driveline_view
+    values, driveline = driveline_view(
+        checked_values(parameters, changes, freq_hz=freq_hz,
+                       p_max_bar=p_max_bar, min_growth=min_growth),
+        driveline)
+    _refuse_modes(values)
+    if not isinstance(ranges, Ranges):
+        ranges = read_ranges(ranges, values)
+    growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
+    started = time.perf_counter()
+    result, failures, resumed = run_envelope(
+        values, ranges, freq_hz, p_max_bar * PA_PER_BAR, samples=samples,
+        seed=seed, sampler=sampler, vertices=vertices, method=method,
+        min_growth=growth, amplitudes=BACKGROUND_AMPLITUDES, refine=refine,
+        workers=workers, checkpoint=checkpoint, progress=progress)
+    return EnvelopeResult(params=values, ranges=ranges, envelope=result,
+                          failures=failures, resumed=resumed,
+                          seconds=time.perf_counter() - started,
+                          checkpoint=checkpoint, driveline=driveline)
+
+
+def _refuse_modes(values):
+    """Refuse a hybrid Modelica class (:func:`linearised_mode`): its
+    linearisation holds in one mode, which would have to be checked at
+    each of the envelope's parameter sets (its samples, the corners of
+    the ranges, the refinement's) and each frequency (about 6 ms a
+    setting checked in batches: 256 samples over 100 frequencies take
+    2.5 minutes), and was
+    checked at the nominal set only."""
+    mode = linearised_mode(values)
+    if mode:
+        raise JudderError(
+            f"{values.model} is {mode_words(mode)}, checked at the "
+            "nominal parameters only: each of the envelope's parameter "
+            "sets (its samples, the corners of the ranges and those the "
+            "refinement searches) would need it checked at every "
+            "frequency, about 6 ms a setting, so the envelope is not run "
+            "on a class with modes; allowed: judder sensitivity, which "
+            "checks the mode at each parameter set it uses, or a class "
+            "without Integer and Boolean modes")
+
+
+def _bar_or_none(values):
+    return [finite_or_none(v / PA_PER_BAR) for v in values]
+
+
+@dataclass(frozen=True)
+class EnvelopeResult:
+    """``judder envelope``: a
+    :class:`stability.uncertainty.envelope.Envelope`, the
+    ranges it was sampled from, the failed samples (each an
+    :class:`infra.parallel.TaskFailure`) and how many samples came from the
+    checkpoint."""
+
+    params: object
+    ranges: object
+    envelope: object
+    failures: list
+    resumed: int
+    seconds: float
+    checkpoint: object = None
+    driveline: str = "chain"
+
+    #: Probabilities whose boundaries the CSV lists.
+    LEVELS = (0.1, 0.5, 0.9)
+
+    def as_dict(self):
+        e = self.envelope
+        from .bench import driveline_words
+        return {"model": self.params.model, "driveline": self.driveline,
+                "driveline_description": driveline_words(self.params,
+                                                         self.driveline),
+                "method": e.method,
+                "min_growth_per_s": e.min_growth, "seconds": self.seconds,
+                "ranges": self.ranges.describe(),
+                "samples": int(len(e.ok)), "vertices": int(e.is_vertex.sum()),
+                "computed": int(e.ok.sum()), "resumed": self.resumed,
+                "failures": [{"index": f.index, "inputs": f.inputs,
+                              "message": f.message} for f in self.failures],
+                "convergence": e.convergence,
+                "freq_hz": e.freq_hz, "p_max_bar": e.p_max / PA_PER_BAR,
+                "nominal_p_f_bar": _bar_or_none(e.nominal_boundary),
+                "broadest_p_f_bar": _bar_or_none(e.broadest),
+                "unstable_share_at_p_max":
+                    [finite_or_none(v) for v in e.probability[:, -1]]}
+
+    def csv_text(self):
+        """Per frequency: nominal and broadest boundary, and the amplitude
+        from which 10, 50, 90 % of the samples are unstable (bar; empty:
+        none up to p_max)."""
+        e = self.envelope
+        columns = [e.nominal_boundary, e.broadest] + [
+            e.quantile_boundary(q) for q in self.LEVELS]
+        rows = [{"freq_hz": f"{f:.9g}", **{
+            name: (None if not math.isfinite(c[i]) else
+                   f"{c[i] / PA_PER_BAR:.9g}")
+            for name, c in zip(["nominal_p_f_bar", "broadest_p_f_bar"] + [
+                f"p_f_bar_{round(100 * q)}pct_unstable" for q in self.LEVELS],
+                columns)}} for i, f in enumerate(e.freq_hz)]
+        return rows_to_csv(rows)
+
+    @keeps_foreign_files
+    def save_csv(self, path):
+        write_text(path, self.csv_text())
+
+    @keeps_foreign_files
+    def save(self, path):
+        """NPZ: every sample's values and boundaries, the nominal, the
+        broadest edge, the probability grid (bar where named so).
+
+        ``amplitude_bar`` is (samples, frequencies, kinds) and
+        ``nominal_bar`` (frequencies, kinds): the lowest boundary of each
+        kind, the kinds named by ``amplitude_bar_axes`` and
+        ``kind_columns`` (NaN: none up to ``p_max_bar``); ``probability``
+        is (frequencies, amplitudes)."""
+        e = self.envelope
+        arrays = {"freq_hz": e.freq_hz, "p_f_bar": e.p_f / PA_PER_BAR,
+                  "p_max_bar": e.p_max / PA_PER_BAR,
+                  "names": np.array(e.names), "values": e.values,
+                  "is_vertex": e.is_vertex, "ok": e.ok,
+                  "amplitude_bar": e.amplitude / PA_PER_BAR,
+                  "amplitude_bar_axes": np.array(["sample", "freq_hz",
+                                                  "kind"]),
+                  "kind_columns": np.array(KINDS[1:]),
+                  "nominal_bar": e.nominal / PA_PER_BAR,
+                  "broadest_bar": e.broadest / PA_PER_BAR,
+                  "probability": e.probability,
+                  "area_history_bar_hz": e.area_history / PA_PER_BAR,
+                  "min_growth_per_s": e.min_growth,
+                  "meta": json.dumps({
+                      "model": self.params.model,
+                      "ranges": self.ranges.describe(),
+                      "convergence": e.convergence, "method": e.method,
+                      "failures": [str(f) for f in self.failures]})}
+        save_npz(path, arrays)
+
+    def discard_checkpoint(self):
+        """Delete the checkpoint once the outputs are written (kept while
+        samples failed, so a new run retries only those)."""
+        if self.checkpoint is not None and not self.failures:
+            Path(self.checkpoint).unlink(missing_ok=True)
+
+    def figure(self, title=None):
+        from stability.plots import envelope_figure
+        return envelope_figure(self.envelope, title=title)

@@ -21,10 +21,10 @@ def fmu_refusal(command, path):
     """The error for ``command --fmu path``: a command that runs the
     driveline in the time domain has no model of a third-party FMU."""
     return JudderError(
-        f"{command} --fmu {path} is not possible: {command} runs the "
-        "driveline in the time domain, and the FMU path reads only the "
-        "FMU's Jacobian at its start values; allowed: --modelica CLASS "
-        "(its FMU is built and run) or a preset")
+        f"{command} of `path` {path} is not possible: {command} runs the "
+        "driveline in the time domain, and an FMU is read only for its "
+        "Jacobian at its start values; allowed: `class_name` CLASS (a "
+        "Modelica class: its FMU is built and run) or a preset")
 
 
 def class_fmu(params, command):
@@ -48,8 +48,8 @@ def class_fmu(params, command):
         raise fmu_refusal(command, params.path)
     if (params.amplitude, params.frequency) != ("p_f", "f_dither"):
         raise JudderError(f"{command} runs the FMU with the dither in p_f "
-                          "and f_dither; allowed: --dither-amplitude p_f "
-                          "--dither-frequency f_dither")
+                          "and f_dither; allowed: `amplitude` p_f "
+                          "`frequency` f_dither")
     return ensure_fmu(params.class_name, library=params.library)
 
 

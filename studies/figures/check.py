@@ -29,7 +29,7 @@ def check_figure(records, background=None, min_growth=None, title=None):
     Parameters
     ----------
     records : list of dict
-        :func:`judder.commands.check.setting_record` fields (Hz, bar).
+        :func:`studies.check.setting_record` fields (Hz, bar).
     background : stability.maps.StabilityMap, optional
     min_growth : float, optional
         Passed to :func:`plot_map`.

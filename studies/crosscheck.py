@@ -26,6 +26,11 @@ from stability.source import build_driveline
 from stability.monodromy import DEFAULT_METHOD, get_method
 
 from .timedomain import class_fmu, run_values
+from infra.files import keeps_foreign_files, write_text
+from infra.units import PA_PER_BAR
+from ._common import checked_values, timed
+from sources.dither_modes import check_modes
+from ._records import rows_to_csv
 
 __all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck_study"]
 
@@ -189,3 +194,78 @@ def crosscheck_study(params, freq_hz, p_f, duration=3.0,
         if callback is not None:
             callback(len(points), len(jobs))
     return Crosscheck(points=points, duration=float(duration))
+
+
+def crosscheck(freq_hz, p_f_bar, duration=3.0, parameters=None,
+               changes=None, method=DEFAULT_METHOD, workers=None,
+               progress=None, perturb="w_in"):
+    """``judder crosscheck``: growth rates of the driveline's FMU against
+    the Floquet exponents on a grid (the two views of one model).
+
+    Parameters
+    ----------
+    freq_hz : array_like
+        Dither frequencies, Hz.
+    p_f_bar : array_like
+        Dither amplitudes, bar.
+    duration : float
+        Length of each run, s.
+    perturb : str
+        Start-speed parameter raised in the second run of each point.
+
+    Returns
+    -------
+    CrosscheckResult
+    """
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar)
+    # the Floquet side is a linearisation in one mode: each setting of the
+    # grid compared must hold it over a dither period
+    grid = np.meshgrid(np.atleast_1d(freq_hz),
+                       np.asarray(p_f_bar, dtype=float) * PA_PER_BAR,
+                       indexing="ij")   # in the order the points run
+    check_modes(values, grid[0].ravel(), grid[1].ravel())
+    check, seconds = timed(
+        crosscheck_study, values, freq_hz,
+        np.asarray(p_f_bar, dtype=float) * PA_PER_BAR, duration=duration,
+        method=method, workers=workers, callback=progress, perturb=perturb)
+    return CrosscheckResult(params=values, check=check, seconds=seconds,
+                            method=method)
+
+
+@dataclass(frozen=True)
+class CrosscheckResult:
+    """``judder crosscheck``: a :class:`studies.crosscheck.Crosscheck`."""
+
+    params: object
+    check: object
+    seconds: float
+    method: str
+
+    def rows(self):
+        """One dict per grid point (Hz, bar, 1/s)."""
+        return [{"freq_hz": p.freq_hz, "p_f_bar": p.p_f / PA_PER_BAR,
+                 "floquet_kind": p.floquet_kind,
+                 "floquet_rate_per_s": p.floquet_rate,
+                 "fitted_rate_per_s": p.fitted_rate,
+                 "floquet_unstable": p.floquet_unstable,
+                 "time_unstable": p.time_unstable, "agree": p.agree,
+                 "reason": p.reason} for p in self.check.points]
+
+    def as_dict(self):
+        rows = self.rows()
+        return {"model": self.params.model, "method": self.method,
+                "points": len(rows), "seconds": self.seconds,
+                "duration_s": self.check.duration,
+                "agreement": self.check.agreement,
+                "max_rate_error_above_1_per_s":
+                    self.check.max_rate_error(above=1.0),
+                "disagreements": [r for r in rows if not r["agree"]]}
+
+    @keeps_foreign_files
+    def save(self, path):
+        write_text(path, rows_to_csv(self.rows()))
+
+    def figure(self, title=None):
+        from .figures.crosscheck import crosscheck_figure
+        return crosscheck_figure(self.check, title=title)

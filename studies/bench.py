@@ -20,10 +20,9 @@ import math
 import numpy as np
 
 from infra.errors import JudderError
-from infra.quantities import parse_quantity
 from infra.units import UNITS
 
-__all__ = ["BenchParameter", "bench_fmu", "bench_parameters", "parse_bench",
+__all__ = ["BenchParameter", "bench_fmu", "bench_parameters",
            "check_bench", "refuse_bench_of_class", "bench_damping",
            "added_damping", "operating_friction", "linear_validity",
            "engagement_model", "DRIVELINES", "bench_linearisation",
@@ -80,7 +79,7 @@ def bench_fmu(values):
                           "has no bench engagement model: the bench belongs "
                           "to the registry's 4-DOF driveline; allowed: a "
                           "preset or its parameter file (or add the bench's "
-                          "damping to the class with --set)")
+                          "damping to the class with `changes`)")
     model_class = values.driveline.bench_class
     if model_class is None:
         raise JudderError(f"the {values.model} driveline has no bench "
@@ -135,33 +134,11 @@ def bench_parameters(values):
 def refuse_bench_of_class(values, names):
     """Bench parameters given with a Modelica class or an FMU, which has
     no bench model: refused, saying where its parameters go."""
-    raise JudderError(f"--bench {', '.join(names)} is not allowed with the "
+    raise JudderError(f"`bench` {', '.join(names)} is not allowed with the "
                       f"class {values.model}; allowed: its parameters with "
-                      "--set (the bench parameters belong to the bench "
+                      "`changes` (the bench parameters belong to the bench "
                       "model)")
 
-
-def parse_bench(assignments, values):
-    """The ``--bench NAME=VALUE`` texts as SI numbers, by the units the
-    bench declares (``w_motor=1000rpm``, ``p_load=9.8bar``).
-
-    The ranges are checked by :func:`check_bench`, where the API takes
-    the values.
-    """
-    names = [text.partition("=")[0].strip() for text in assignments]
-    if assignments and not values.source_kind.is_chain:
-        refuse_bench_of_class(values, names)
-    parameters = bench_parameters(values) if assignments else {}
-    bench = {}
-    for text, name in zip(assignments, names):
-        _, sep, value = text.partition("=")
-        if not sep or name not in parameters:
-            raise JudderError(f"--bench {text!r} is not allowed; allowed: "
-                              "NAME=VALUE with NAME one of "
-                              f"{', '.join(parameters)}")
-        bench[name] = parse_quantity(value.strip(), parameters[name].unit,
-                                     f"--bench {name}")
-    return bench
 
 
 def check_bench(values, bench):
@@ -223,12 +200,12 @@ def bench_damping(values, bench=None):
     friction, _ = operating_friction(values, fmu, dict(bench or {}))
     if not np.isclose(friction["mu_g"], values["mu_g"], rtol=1e-9):
         raise JudderError(
-            "--bench: the bench's slip w_motor - w_gearbox is not its "
+            "`bench`: the bench's slip w_motor - w_gearbox is not its "
             "friction curve's w_op, where mu0 and mu_g are the curve's; "
             "its linearisation there has the slope "
             f"{friction['mu_g']:.3g} s/rad, not a fitted mu_g; allowed: "
             "a chart at the curve's operating slip (1000 rpm by default), "
-            "or --bench w_op set to that chart's slip")
+            "or `bench` w_op set to that chart's slip")
     return added_damping(values, fmu, bench)
 
 
@@ -262,7 +239,7 @@ def operating_friction(values, fmu, bench):
         return float(bench.get(name, parameter_default(fmu, name)))
     if bench_value("w_gearbox") >= bench_value("w_motor"):
         raise JudderError(
-            f"--bench w_gearbox {bench_value('w_gearbox'):g} rad/s is not "
+            f"`bench` w_gearbox {bench_value('w_gearbox'):g} rad/s is not "
             f"allowed with w_motor {bench_value('w_motor'):g} rad/s; "
             "allowed: below w_motor (the EVEN clutch slips forwards, "
             "at w_motor - w_gearbox)")

@@ -30,7 +30,7 @@ from infra.errors import JudderError
 from infra.memory import available_memory
 
 from ._common import BACKGROUND_AMPLITUDES
-from ._values import MAX_GRID_VALUES
+from .rules import MAX_GRID_VALUES
 
 #: Longest work allowed without ``JUDDER_MAX_HOURS``, hours.
 MAX_HOURS = 24.0
@@ -218,7 +218,7 @@ def check_map(params, freq_hz, amplitudes, method, tongues=False):
         f"{len(freq_hz)} frequencies x {steps.mean():.4g} sub-intervals per "
         f"period on average (from {steps.max():.4g} at {np.min(freq_hz):g} "
         f"Hz) x {len(amplitudes)} amplitudes",
-        "fewer or higher frequencies (--freq), or fewer amplitudes (--pf)")
+        "fewer or higher frequencies (`freq_hz`), or fewer amplitudes (`p_f_bar`)")
 
 
 def check_floquet(params, freq_hz, method):
@@ -228,7 +228,7 @@ def check_floquet(params, freq_hz, method):
     steps, _ = subintervals(params, [freq_hz])
     return check_time(map_seconds(params, [freq_hz], [0.0]),
                       f"{steps[0]:.4g} sub-intervals per period at "
-                      f"{freq_hz:g} Hz", "a higher --freq")
+                      f"{freq_hz:g} Hz", "higher `freq_hz`")
 
 
 def check_tongues(params, freq_hz, background=False):
@@ -237,14 +237,14 @@ def check_tongues(params, freq_hz, background=False):
         map_seconds(params, freq_hz, range(BACKGROUND_AMPLITUDES))
         if background else 0.0)
     return check_time(seconds, f"{len(freq_hz)} frequencies",
-                      "fewer or higher frequencies (--freq)")
+                      "fewer or higher frequencies (`freq_hz`)")
 
 
 def check_sensitivity(params, freq_hz, cases, workers):
     """``sensitivity``: cases x the tongues of one case."""
     return check_time(cases * tongues_seconds(params, freq_hz),
                       f"{cases} cases x {len(freq_hz)} frequencies",
-                      "fewer --params, --factors/--values or --freq",
+                      "fewer `names`, `factors` or `freq_hz`",
                       _workers(workers, cases))
 
 
@@ -253,14 +253,14 @@ def check_settings_time(settings, parameters):
     return check_time(
         settings * (CHECK_SETTING_S + parameters * CHECK_PARAMETER_S),
         f"{settings} settings x {parameters} sensitivity parameters",
-        "fewer --freq x --pf settings, or --params none")
+        "fewer `freq_hz` x `p_f_bar` settings, or `sensitivity` none")
 
 
 def check_threshold(mu_g, damping):
     """``threshold``: the mu_g of Fig. 19a and the c_i of Fig. 19b."""
     return check_time(mu_g * THRESHOLD_MU_S + damping * THRESHOLD_DAMPING_S,
                       f"{mu_g} mu_g x {damping} c_i values",
-                      "fewer --mu-g or --c-ext values")
+                      "fewer `mu_g` or `c_ext` values")
 
 
 def check_fit(points, fits, option):
@@ -268,21 +268,21 @@ def check_fit(points, fits, option):
     refits, the fits at the threshold's spread)."""
     return check_time(FIT_FIXED_S + points * fits * FIT_POINT_START_S,
                       f"{points} measured points x {fits} local fits",
-                      f"fewer points in {option}, or fewer --starts")
+                      f"fewer points in {option}, or fewer `starts`")
 
 
 def check_orbit(frequencies, amplitudes):
     """``orbit``: frequencies x amplitudes, one orbit each."""
     return check_time(frequencies * amplitudes * ORBIT_S,
                       f"{frequencies} frequencies x {amplitudes} amplitudes",
-                      "fewer --freq or --pf values")
+                      "fewer `freq_hz` or `p_f_bar` values")
 
 
 def check_crosscheck(runs, duration, workers):
     """``crosscheck``: FMU runs x simulated seconds."""
     return check_time(runs * duration * FMU_SECOND_S,
                       f"{runs} FMU runs x {duration:g} s simulated",
-                      "fewer --freq x --pf points or a shorter --duration",
+                      "fewer `freq_hz` x `p_f_bar` points or a shorter `duration`",
                       _workers(workers, runs))
 
 
@@ -291,8 +291,8 @@ def check_campaign(runs, duration, rpm_max, workers):
     return check_time(
         runs * duration * max(rpm_max, 1000.0) / 1000.0 * CAMPAIGN_SECOND_S,
         f"{runs} runs x {duration:g} s simulated up to {rpm_max:g} rpm",
-        "fewer --freq x --pf x --rpm x --temperatures runs or a shorter "
-        "--duration", _workers(workers, runs))
+        "fewer `freq_hz` x `p_f_bar` x `engine_rpm` x `temperatures` runs "
+        "or a shorter `duration`", _workers(workers, runs))
 
 
 def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
@@ -306,10 +306,10 @@ def check_envelope(params, freq_hz, ranges, samples, vertices, refine,
     refining = refine * names * len(freq_hz) * TONGUE_FREQUENCY_S
     seconds = jobs * per_job + refining
     return check_time(seconds, f"{jobs} samples x {len(freq_hz)} "
-                      f"frequencies, and --refine {refine} x {names} "
+                      f"frequencies, and `refine` {refine} x {names} "
                       f"parameters x {len(freq_hz)} frequencies",
-                      "fewer --samples, "
-                      "uncertain parameters or --freq, or a smaller --refine",
+                      "fewer `samples`, "
+                      "uncertain parameters or `freq_hz`, or a smaller `refine`",
                       _workers(workers, jobs))
 
 
@@ -399,14 +399,14 @@ def check_map_memory(params, freq_hz, p_f_bar):
     needed = 3 * len(p_f_bar) * steps * size * size * 8 \
         + 64 * len(freq_hz) * len(p_f_bar)
     return check_memory(
-        needed, "--freq x --pf", f"{len(p_f_bar)} amplitudes x {steps} "
+        needed, "`freq_hz` x `p_f_bar`", f"{len(p_f_bar)} amplitudes x {steps} "
         f"sub-intervals at {f:g} Hz", "fewer amplitudes per frequency, or "
         "higher frequencies", bound="at least")
 
 
 def check_advise_grid(low, high, margin_hz):
     """Refuse an ``advise`` frequency range whose 0.5 Hz grid has more
-    than :data:`judder.commands._values.MAX_GRID_VALUES` frequencies or would
+    than :data:`studies.rules.MAX_GRID_VALUES` frequencies or would
     not fit in memory, naming ``--freq-range``; returns the number of
     frequencies."""
     text = f"{low:g}:{high:g}"
@@ -414,10 +414,10 @@ def check_advise_grid(low, high, margin_hz):
     widest = (MAX_GRID_VALUES - 1) / 2 - 2 * margin_hz
     if points > MAX_GRID_VALUES:
         raise JudderError(
-            f"--freq-range {text} makes {points} frequencies (0.5 Hz "
+            f"`freq_range` {text} makes {points} frequencies (0.5 Hz "
             f"apart); allowed: at most {MAX_GRID_VALUES}, i.e. a range of "
-            f"at most {widest:g} Hz (--margin-hz {margin_hz:g})")
-    check_memory(points * ADVISE_BYTES_PER_FREQUENCY, f"--freq-range {text}",
+            f"at most {widest:g} Hz (`margin_hz` {margin_hz:g})")
+    check_memory(points * ADVISE_BYTES_PER_FREQUENCY, f"`freq_range` {text}",
                  f"{points} frequencies 0.5 Hz apart", "a narrower range")
     return points
 

@@ -2,7 +2,7 @@
 around them.
 
 Each section function takes the results of the studies it shows (computed
-by :func:`judder.commands.report.report`) and returns its HTML; its
+by :func:`studies.report.report`) and returns its HTML; its
 figures go through :meth:`Page.figure`, which embeds them and keeps
 their titles in order. Nothing here computes a study, except
 :func:`fit_section`, whose fit decides what the section says.
@@ -25,7 +25,6 @@ from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
-from ._flags import in_flags
 from ._words import (growth_words, margin_words, nonlinear_words,
                      orbit_words, response_words)
 
@@ -242,7 +241,7 @@ def summary_section(verdict, advice, advice_error, min_growth,
     report judges)."""
     if verdict is None:
         css, text = "none", (
-            "No dither setting given (--freq, --pf): choose one in the safe "
+            "No dither setting given: choose one in the safe "
             "window below, or check one with judder check.")
     else:
         css = {JUDDER: "judder", SLOW_GROWTH: "slow"}.get(verdict["verdict"],
@@ -291,14 +290,14 @@ def map_section(page, stability, tongue_records, min_growth, p_max_bar,
     each becomes unstable and where it judders (up to ``p_max_bar``); a
     sentence instead of the table where no tongue reaches ``p_max_bar``
     over the frequencies searched (``searched_hz``: lowest, highest).
-    ``mode``: the words of :func:`judder.commands._common.mode_words` for
+    ``mode``: the words of :func:`sources.dither_modes.mode_words` for
     a hybrid Modelica class, whose linearisation holds in one mode."""
     return (_keep(
         "<h2>Where it judders: the stability map</h2>"
         + (f"<p>{html.escape(stability.params.model)} is "
            f"{html.escape(mode)}.</p>" if mode else "")
         + f'<p class="small">Judder-relevant: growing faster than '
-        f"{min_growth:g} 1/s (judder check --min-growth {min_growth:g}); "
+        f"{min_growth:g} 1/s; "
         "slower growth is shaded grey; the lines are the exact stability "
         "boundaries (Fig. 14).</p>"
         + page.figure("Stability map with the exact tongue boundaries and "
@@ -483,7 +482,7 @@ def sensitivity_refused(error):
     class)."""
     return _keep("<h2>What moves the tongues: sensitivity</h2>"
                  "<p><b>Not computed</b>: "
-                 f"{html.escape(in_flags(error))}.</p>")
+                 f"{html.escape(str(error))}.</p>")
 
 
 def _no_focus_section(page, sens):
@@ -598,7 +597,7 @@ def fit_section(bench, names, values, source, fitted, error):
         status = f"no fit: {error}"
         # the page, as the sensitivity section's, in the options typed
         return (head + "<p><b>No fit is shown</b>: "
-                f"{html.escape(in_flags(error))}"
+                f"{html.escape(str(error))}"
                 ".</p>", {"fit": None, "fit_determined": False,
                           "fit_status": status, "fit_problems": [str(error)]},
                 None)
@@ -642,7 +641,7 @@ def chart_figure(page, chart, group):
     from pathlib import Path
 
     from pysim.bench_data.plots import runs_figure
-    from ..inputs import read_chart_runs
+    from .inputs import read_chart_runs
     title = Path(chart).name + (f", group {group}" if group else "")
     runs, boundary = read_chart_runs(chart, group)
     return page.figure("Experimental stability chart (Fig. 10)",
@@ -656,7 +655,7 @@ ESTIMATED_RUNS_LISTED = 10
 
 
 def _estimated_dithers(runs):
-    """The runs (:func:`judder.inputs.read_chart_runs`) whose dither
+    """The runs (:func:`studies.inputs.read_chart_runs`) whose dither
     frequency or amplitude was estimated from the pressure, the least
     certain amplitude first: the frequency and the amplitude each as
     estimated, with its standard uncertainty, or as given (an amplitude

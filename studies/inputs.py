@@ -63,14 +63,14 @@ def load_parameters(preset=None, model=None, param_file=None):
     """
     if param_file is not None:
         if preset is not None:
-            raise JudderError("give either --param-file FILE or --preset "
-                              "NAME, not both")
-        params = load_toml(read_input(param_file, "--param-file"),
+            raise JudderError("give either `param_file` or `preset`, not "
+                              "both")
+        params = load_toml(read_input(param_file, "`param_file`"),
                            source=str(param_file))
     else:
         params = get_preset(preset or default_preset(model or DEFAULT_MODEL))
     if model is not None and model != params.model:
-        raise JudderError(f"--model {model} does not match the "
+        raise JudderError(f"`model` {model} does not match the "
                           f"{params.model} parameter set given")
     return params
 
@@ -304,19 +304,19 @@ def _boundary_columns(cells, source, number, line):
                           + "; allowed: freq_hz and p_f_bar once each, in "
                           "any order, optionally "
                           + " and ".join(BOUNDARY_TESTED_COLUMNS)
-                          + ", and the columns of judder tongues "
-                          "--out (" + ", ".join(BOUNDARY_EXTRA_COLUMNS) + ")")
+                          + ", and the columns judder tongues "
+                          "writes (" + ", ".join(BOUNDARY_EXTRA_COLUMNS) + ")")
     return {**{name: cells.index(name) for name in cells
                if name not in BOUNDARY_EXTRA_COLUMNS}, "width": len(cells)}
 
 
-def read_boundary(path, option="--boundary", decimal=None):
+def read_boundary(path, option="`boundary`", decimal=None):
     """A measured boundary file (see :func:`read_boundary_csv`)."""
     return read_boundary_csv(read_input(path, option), source=str(path),
                              decimal=decimal)
 
 
-def read_boundary_tested(path, option="--boundary", decimal=None):
+def read_boundary_tested(path, option="`boundary`", decimal=None):
     """A measured boundary file with its tested range (see
     :func:`read_boundary_table`; ``decimal``, its decimal separator where
     its cells cannot tell it)."""
@@ -324,8 +324,8 @@ def read_boundary_tested(path, option="--boundary", decimal=None):
                                decimal=decimal)
 
 
-def boundary_p_max(table, pf_max_bar, path, option="--boundary",
-                   pf_option="--pf-max"):
+def boundary_p_max(table, pf_max_bar, path, option="`boundary`",
+                   pf_option="`p_max_bar`"):
     """The largest amplitude tried (bar) that a boundary's censored points
     mean "no judder up to".
 
@@ -347,8 +347,8 @@ def boundary_p_max(table, pf_max_bar, path, option="--boundary",
         raise JudderError(
             f"{option} {path}: {int(unknown.sum())} point(s) without judder "
             f"({freqs} Hz) do not say up to which amplitude they were "
-            "tried; allowed: a tried_bar column (judder chart --boundary "
-            "writes it)" + ("" if pf_option is None else
+            "tried; allowed: a tried_bar column (a chart's boundary file "
+            "has it)" + ("" if pf_option is None else
                             f" or {pf_option} BAR, the largest amplitude "
                             "tried"))
     return float(np.nanmax(np.concatenate(
@@ -371,7 +371,7 @@ def _boundary_comment(path, option, name, unit, positive, decimal=None):
     return value
 
 
-def read_boundary_min_growth(path, option="--boundary", decimal=None):
+def read_boundary_min_growth(path, option="`boundary`", decimal=None):
     r"""The growth rate (1/s) a boundary file says its onsets were called
     judder from (a comment ``# min_growth_per_s: 1``, which ``judder chart
     --boundary`` writes), or None; read as the file's cells are read
@@ -392,7 +392,7 @@ def read_boundary_min_growth(path, option="--boundary", decimal=None):
                              decimal)
 
 
-def read_boundary_limit(path, option="--boundary", decimal=None):
+def read_boundary_limit(path, option="`boundary`", decimal=None):
     """The NVH limit (rpm) a boundary file says its onsets were called
     judder from (a comment ``# judder_limit_rpm: 30``, which ``judder
     chart --boundary`` writes), or None (onsets of an instability alone);
@@ -416,7 +416,7 @@ def _chart_scalar(path, key, option, positive):
         raise _damaged(option, path) from None
     except (ValueError, TypeError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file)") from None
+                          "chart (an NPZ file)") from None
     if not (np.isfinite(value) and (value > 0 if positive else value >= 0)):
         raise JudderError(f"{option} {path}: its {key} = {value!r} is not "
                           "allowed; allowed: a finite number "
@@ -424,13 +424,13 @@ def _chart_scalar(path, key, option, positive):
     return value
 
 
-def read_chart_limit(path, option="--chart"):
+def read_chart_limit(path, option="`chart`"):
     """The NVH limit (rpm) of the chart's verdict (``judder chart
     --limit``), or None for a chart written before it had one."""
     return _chart_scalar(path, "judder_limit_rpm", option, True)
 
 
-def read_chart_boundary(path, group=None, option="--chart"):
+def read_chart_boundary(path, group=None, option="`chart`"):
     """The experimental boundary of a chart written by ``judder chart
     --out``.
 
@@ -459,7 +459,7 @@ def read_chart_boundary(path, group=None, option="--chart"):
                 "a chart with runs whose frequency is given (freq_hz in "
                 "the index)" if len(aliased) and aliased.all() else
                 "no run could be read into it"))
-    chosen = _chosen_group(path, group, names)
+    chosen = _chosen_group(path, group, names, option)
     keep = groups == chosen
     return (freq[keep].astype(float), p_bar[keep] * PA_PER_BAR,
             float(tried[keep].max()))
@@ -483,28 +483,28 @@ def _boundary_arrays(path, option):
         raise _damaged(option, path) from None
     except (ValueError, KeyError):
         raise JudderError(f"{option} {path}: not a chart written by judder "
-                          "chart --out (an NPZ file)") from None
+                          "chart (an NPZ file)") from None
     return groups, freq, p_bar, tried, aliased
 
 
-def _chosen_group(path, group, names):
+def _chosen_group(path, group, names, option):
     """The group of a chart to read (``names``, its groups): ``group``, or
     its one group."""
     if group is None and len(names) > 1:
         raise JudderError(f"{option} {path} has {len(names)} groups; give "
-                          f"--group, one of {', '.join(names)}")
+                          f"`group`, one of {', '.join(names)}")
     chosen = names[0] if group is None else group
     if chosen not in names:
         if names == [""]:        # judder chart without --group-by
-            raise JudderError(f"--group {group!r}: {path} has one group of "
-                              "runs (charted without --group-by); allowed: "
-                              "no --group")
-        raise JudderError(f"--group {group!r} is not in {path}; allowed: "
+            raise JudderError(f"`group` {group!r}: {path} has one group of "
+                              "runs (charted without `group_by`); allowed: "
+                              "no `group`")
+        raise JudderError(f"`group` {group!r} is not in {path}; allowed: "
                           f"{', '.join(names)}")
     return chosen
 
 
-def read_chart_below(path, group=None, option="--chart"):
+def read_chart_below(path, group=None, option="`chart`"):
     """Per point of :func:`read_chart_boundary`: the highest amplitude
     run without judder below the onset, Pa (NaN: none, or a chart written
     before this was stored). The boundary lies between it and the onset.
@@ -520,7 +520,7 @@ def read_chart_below(path, group=None, option="--chart"):
     return below[groups == chosen] * PA_PER_BAR
 
 
-def read_chart_runs(path, group=None, option="--chart"):
+def read_chart_runs(path, group=None, option="`chart`"):
     """The runs of one group of a chart written by ``judder chart --out``,
     to draw it again (:func:`pysim.bench_data.plots.runs_figure`).
 
@@ -549,7 +549,7 @@ def read_chart_runs(path, group=None, option="--chart"):
         # a group whose every run may be at an alias has no boundary
         names = list(dict.fromkeys(groups.tolist()
                                    + npz["group"].tolist()))
-        chosen = _chosen_group(path, group, names)
+        chosen = _chosen_group(path, group, names, option)
         keep = npz["group"] == chosen
         runs = {key: npz[key][keep] for key in (
             "source_file", "freq_hz", "p_f_bar", "amplitude_rpm", "judder",
@@ -596,10 +596,10 @@ def _damaged(option, path):
     member cut short: numpy raises BadZipFile or EOFError."""
     return JudderError(f"{option} {path}: a truncated or damaged NPZ file "
                        "(its zip archive is incomplete); allowed: a chart "
-                       "written by judder chart --out")
+                       "judder chart wrote")
 
 
-def read_chart_min_growth(path, option="--chart"):
+def read_chart_min_growth(path, option="`chart`"):
     """The growth rate (1/s) from which the chart's verdict called a run
     judder (``judder chart --min-growth``); 0 for a chart without it."""
     value = _chart_scalar(path, "min_growth_per_s", option, False)

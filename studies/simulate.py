@@ -1,0 +1,319 @@
+"""``judder simulate``: a held-slip bench run or a full engagement with
+dither (Fig. 7, 8), run through the FMU.
+"""
+
+from dataclasses import dataclass, field
+import numpy as np
+from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.errors import JudderError
+from infra.files import keeps_foreign_files
+from infra.units import PA_PER_BAR
+from stability import floquet as floquet_kernel
+from stability.monodromy import DEFAULT_METHOD
+from stability.source import build_driveline
+from .bench import (added_damping, bench_fmu, check_bench, engagement_model,
+                     linear_validity, operating_friction, refuse_bench_of_class)
+from ._common import checked_values
+from sources.dither_modes import check_modes
+
+
+#: The bench's friction laws, as each output names them.
+CURVE_LAW = "curve (mu0, mu_g at w_op, delta_mu)"
+
+
+LINEAR_LAW = "straight line, Eq. 5"
+
+
+#: Runs of the bench, by ``--engagement``: the class of the library each
+#: runs (None: the driveline's own held-slip bench,
+#: :attr:`drivelines.DrivelineModel.bench_class`), the kind of run
+#: (``held_slip``: held at a steady slip, never engaging; ``engagement``:
+#: the gearbox side brought up to lock-up) and its EVEN clutch's friction
+#: law. ``full`` runs the held-slip bench's law (its mu0, mu_g, delta_mu,
+#: w_op); ``full-linear-law`` the straight line over the whole slip.
+ENGAGEMENTS = {"steady": None,
+               "full": "Judder.Examples.TestBenchCurveLockUp",
+               "full-linear-law": "Judder.Examples.TestBenchLockUp"}
+
+
+RUN_KINDS = {"steady": "held_slip", "full": "engagement",
+             "full-linear-law": "engagement"}
+
+
+FRICTION_LAWS = {"steady": CURVE_LAW, "full": CURVE_LAW,
+                 "full-linear-law": LINEAR_LAW}
+
+
+def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
+             parameters=None, changes=None, method=DEFAULT_METHOD,
+             min_growth=DEFAULT_MIN_GROWTH_PER_S,
+             judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, engagement="steady"):
+    """``judder simulate``: a held-slip bench run (the default) or a full
+    engagement on the driveline's bench model (Fig. 7, 8), run through
+    its FMU, with the Floquet verdict of each dither setting for the
+    bench's linearisation (the damping its motor control adds,
+    :attr:`drivelines.DrivelineModel.bench_damping`).
+
+    A Modelica class (:class:`sources.modelica.ModelicaParameters`)
+    runs instead through its own FMU (the one ``crosscheck`` runs, see
+    :mod:`studies.timedomain`) from its start values, a steady slip, with
+    the dither; the Floquet verdict is that of its linearisation. An FMU
+    of ``--fmu`` is refused: it has no time-domain model here.
+
+    Parameters
+    ----------
+    freq_hz : float or sequence of float
+        Dither frequency, Hz; several give one engagement each (Fig. 1,
+        Fig. 8).
+    p_f_bar : float
+        Dither amplitude, bar.
+    duration : float, optional
+        Simulated time, s (default: the model's).
+    compare : 'none' or float, optional
+        Also run the same kind of run: ``'none'`` without dither, a number
+        with dither at that frequency (Hz).
+    bench : dict, optional
+        Further parameters of the bench model (``w_motor``, ...), SI; not
+        for a Modelica class (its parameters are ``changes``).
+    min_growth : float
+        Growth rate from which an instability is judder, 1/s.
+    judder_limit_rpm : float
+        NVH limit of the dither-related oscillation of the upstream
+        speed, rpm: larger is judder, forced or parametric.
+    engagement : {'steady', 'full', 'full-linear-law'}
+        ``'steady'``: the held-slip bench run (the EVEN clutch held at a
+        steady slip with the bench's friction curve; it never engages).
+        ``'full'``: the engagement that ends in lock-up
+        (``TestBenchCurveLockUp``: the gearbox side from rest, the EVEN
+        clutch with the held-slip bench's friction curve, locking by
+        events); ``'full-linear-law'``: the same engagement with the
+        straight line of Eq. 5 over the whole slip (``TestBenchLockUp``),
+        another friction law. The linearisation of either takes the
+        driveline's own ``mu0`` and ``mu_g`` (the curve's value and slope
+        at w_op, which the engagement passes; the straight line's at
+        every slip); each summary adds ``lock_up_time_s`` (None: it slips
+        at the end), ``lockups``, ``slip_at_ramp_end_rad_s`` and
+        ``duration_s``, and its verdict and spectra are those of the run
+        before the lock-up.
+
+    Returns
+    -------
+    SimulationResult
+    """
+    from drivelines.registry import SIGNALS
+    from pysim.simulation.engagement import (LOCK_VARIABLES,
+                                             engagement_summary, lock_up,
+                                             until)
+    from fmu.store import parameter_default
+    from pysim.simulation.runs import run_fmu
+
+    from .timedomain import class_fmu, run_values
+    values = checked_values(parameters, changes, freq_hz=freq_hz,
+                            p_f_bar=p_f_bar, min_growth=min_growth,
+                            judder_limit_rpm=judder_limit_rpm)
+    if engagement not in ENGAGEMENTS:
+        raise JudderError(f"`engagement` {engagement!r} is not allowed; "
+                          f"allowed: {', '.join(ENGAGEMENTS)}")
+    bench = dict(bench or {})
+    full = RUN_KINDS[engagement] == "engagement"
+    if full and not values.source_kind.is_chain:
+        bench_fmu(values)       # refuses a class or FMU, naming the bench
+    if values.source_kind.is_chain:
+        bench = check_bench(values, bench)
+        model_class, fmu = bench_fmu(values)
+        if full:
+            from fmu.store import ensure_fmu
+            model_class = ENGAGEMENTS[engagement]
+            fmu = ensure_fmu(model_class)
+        ramp_end = sum(bench.get(name, parameter_default(fmu, name))
+                       for name in ("t_engage", "t_ramp"))
+        run_params, extra = values, bench
+        # the bench's linearisation: its motor control damps body 1, and
+        # its friction curve has its own value and slope at the slip
+        # (a full engagement sweeps the slip: it is linearised where its
+        # law has the driveline's own mu0 and mu_g, the curve at w_op, the
+        # straight line of Eq. 5 at every slip)
+        friction, linear_slip = ((({}, None)) if full else
+                                 operating_friction(values, fmu, bench))
+        driveline = build_driveline(values.replace(
+            **{name: values[name] + value for name, value in
+               added_damping(values, fmu, bench).items()}, **friction))
+        orbit_model = None if full else engagement_model(values, bench,
+                                                         fmu)[0]
+    else:
+        fmu = class_fmu(values, "simulate")
+        if bench:
+            refuse_bench_of_class(values, bench)
+        model_class, ramp_end = values.model, 0.0   # starts slipping
+        run_params, extra = run_values(values)
+        driveline, linear_slip = build_driveline(values), None
+        orbit_model = None
+    if duration is not None and duration <= ramp_end:
+        raise JudderError(f"duration {duration:g} s ends before the "
+                          f"engagement (its pressure ramp ends at "
+                          f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
+    freqs = [float(f) for f in np.atleast_1d(freq_hz)]
+    settings = ([("with dither" if p_f_bar > 0 else "without dither",
+                  freqs[0], p_f_bar * PA_PER_BAR)]
+                if len(freqs) == 1 else
+                [(f"dither at {f:g} Hz", f, p_f_bar * PA_PER_BAR)
+                 for f in freqs])
+    freq_hz = freqs[0]
+    if compare is not None:
+        settings.append(("without dither", freq_hz, 0.0)
+                        if compare == "none" else
+                        (f"dither at {float(compare):g} Hz", float(compare),
+                         p_f_bar * PA_PER_BAR))
+    # each run's Floquet verdict is the linearisation's, in one mode
+    check_modes(values, [f for _, f, _ in settings],
+                [p for _, _, p in settings])
+    interval = min(1e-3, 1.0 / (20 * max(f for _, f, _ in settings)))
+    runs = [(label, run_fmu(fmu, freq, p_f, params=run_params, extra=extra,
+                            duration=duration, output_interval=interval,
+                            variables=LOCK_VARIABLES if full else ()))
+            for label, freq, p_f in settings]
+    summaries, slipping = [], []
+    for label, run in runs:
+        lock = lock_up(run) if full else None
+        slipping.append(until(run, lock))
+        linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
+                                method=method)
+        summaries.append({"label": label,
+                          **engagement_summary(slipping[-1], ramp_end,
+                                               min_growth, judder_limit_rpm),
+                          **(_lock_fields(run, lock, ramp_end) if full
+                             else {}),
+                          "floquet_kind": linear.kind,
+                          "floquet_exponent_per_s": linear.growth_rate,
+                          **linear_validity(driveline, run, linear_slip),
+                          **_orbit_fields(orbit_model, run, min_growth,
+                                          judder_limit_rpm)})
+    run_kind, friction_law = ((RUN_KINDS[engagement],
+                               FRICTION_LAWS[engagement])
+                              if values.source_kind.is_chain else
+                              ("class", "the class's own"))
+    return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
+                            model_class=model_class, start=ramp_end,
+                            run_kind=run_kind, friction_law=friction_law,
+                            # (the lock counters are counts: unit 1)
+                            signals={**SIGNALS, **dict.fromkeys(
+                                LOCK_VARIABLES if full else (), "1")},
+                            slipping=slipping if full else None)
+
+
+def _lock_fields(run, lock, ramp_end):
+    """How a full engagement ends: its lock-up time (s, None: none), the
+    lock-ups that broke away, the slip at the ramp's end (rad/s), the
+    run's length and its last slip."""
+    at_ramp_end = int(np.searchsorted(run.time, ramp_end))
+    return {"lock_up_time_s": lock,
+            "lockups": int(round(run["clutch.lockups"][-1]))
+            - (lock is not None),
+            "slip_at_ramp_end_rad_s": float(run["slip"][at_ramp_end]),
+            "duration_s": float(run.time[-1]),
+            "final_slip_rad_s": float(run["slip"][-1])}
+
+
+def _orbit_fields(model, run, min_growth, judder_limit_rpm):
+    """The periodic orbit of the bench at the run's setting
+    (:mod:`stability.orbit`; in a combination tongue the motion
+    integrated until settled, :mod:`stability.settle`), what the
+    engagement settles into: its
+    settled amplitude (rpm), kind, growth (1/s) and judder mechanism, as
+    ``orbit_*`` fields (None for a model without the bench, or without
+    dither)."""
+    names = ("orbit_settled_rpm", "orbit_kind", "orbit_growth_per_s",
+             "orbit_mechanism")
+    if model is None or run.p_f == 0:
+        return dict.fromkeys(names)
+    from stability.orbit import periodic_orbit
+    from stability.orbit_chart import held_slip_motion
+
+    from .orbit import orbit_row, settled_motions
+    found = periodic_orbit(model, run.freq_hz, run.p_f)
+    quasi = settled_motions(model, [found])[0]
+    found, doubled = held_slip_motion(model, found)
+    row = orbit_row(found, doubled, judder_limit_rpm, min_growth, quasi)
+    return dict(zip(names, (row["settled_rpm"], row["kind"],
+                            row["growth_per_s"], row["mechanism"])))
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """``judder simulate``: held-slip bench runs or full engagements
+    through the FMU.
+
+    Attributes
+    ----------
+    runs : list of (str, pysim.simulation.runs.Run)
+        Labelled runs: the setting asked for first, then the comparison.
+    summaries : list of dict
+        Per run, :func:`pysim.simulation.engagement.engagement_summary` plus its
+        ``label`` and the Floquet verdict of its dither setting
+        (``floquet_kind``, ``floquet_exponent_per_s``).
+    fmu : path
+    model_class : str
+    start : float
+        End of the pressure ramp, s.
+    run_kind : {'held_slip', 'engagement', 'class'}
+        What ran: the bench held at a steady slip (never engaging), an
+        engagement brought up to lock-up, or a Modelica class from its
+        start values.
+    friction_law : str
+        The EVEN clutch's friction law (:data:`CURVE_LAW`,
+        :data:`LINEAR_LAW`, or the class's own).
+    slipping : list of Run, optional
+        Of a full engagement, each run before its lock-up (what its
+        verdict and spectra read).
+    """
+
+    runs: list
+    summaries: list
+    fmu: object
+    model_class: str
+    start: float
+    run_kind: str = "held_slip"
+    friction_law: str = CURVE_LAW
+    signals: dict = field(default_factory=dict)
+    slipping: list = None
+
+    def as_dict(self):
+        return {"model": self.model_class.rsplit(".", 1)[-1],
+                "run_kind": self.run_kind,
+                "friction_law": self.friction_law,
+                "fmu": str(self.fmu), "runs": self.summaries}
+
+    @keeps_foreign_files
+    def save(self, path):
+        """Time histories of the first run as CSV or MF4 (by suffix)."""
+        from pysim.simulation.export import write_run
+        run = self.runs[0][1]
+        write_run(path, run.time, run.signals, self.signals,
+                  {"model": self.model_class, "run_kind": self.run_kind,
+                   "friction_law": self.friction_law,
+                   "freq_hz": run.freq_hz,
+                   "p_f_bar": run.p_f / PA_PER_BAR,
+                   "start_values": run.start_values})
+
+    def spectra(self):
+        """The ``(speed, pressure)`` amplitude spectra of each run after
+        ``start`` (:func:`pysim.simulation.engagement.display_spectra`), as
+        ``--plot`` draws them."""
+        from pysim.simulation.engagement import display_spectra
+        runs = self.slipping or [run for _, run in self.runs]
+        return [display_spectra(run, self.start) for run in runs]
+
+    def figure(self, title=None, only=None):
+        """The runs' time histories and spectra, one column each; with
+        ``only`` (an index of ``runs``) that run's column alone (6.5 in
+        wide: a page's width, as in the report)."""
+        from pysim.simulation.engagement import verdict_line
+        from pysim.simulation.plots import run_figure
+        shown = range(len(self.runs)) if only is None else [only]
+        spectra = self.spectra()
+        return run_figure([self.runs[i] for i in shown],
+                          [spectra[i] for i in shown], title=title,
+                          verdicts=[verdict_line(self.summaries[i])
+                                    for i in shown],
+                          lock_ups=[self.summaries[i].get("lock_up_time_s")
+                                    for i in shown])
