@@ -134,7 +134,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     below : array_like, shape (n,), optional
         Pa: the highest amplitude tried without judder below each onset
         (NaN where none is known), as a chart's grid of amplitudes gives
-        it (:func:`judder.inputs.read_chart_below`). The boundary lies
+        it (:func:`studies.inputs.read_chart_below`). The boundary lies
         between it and the onset, not at the onset: the fit compares with
         the interval's midpoint (a grid step of 0.2 bar otherwise puts
         every onset 0.1 bar high on average and biases the fit), and the
