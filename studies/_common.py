@@ -8,8 +8,8 @@ import time
 import numpy as np
 
 from drivelines import DEFAULT_MODEL
-from sources import default_preset, get_preset
 from infra.errors import JudderError
+from sources import default_preset, get_preset
 from stability.source import build_driveline
 
 #: Amplitudes of the map drawn under tongue boundaries (0 to p_max).

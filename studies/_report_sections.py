@@ -25,8 +25,13 @@ from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
-from ._words import (growth_words, margin_words, nonlinear_words,
-                     orbit_words, response_words)
+from ._words import (
+    growth_words,
+    margin_words,
+    nonlinear_words,
+    orbit_words,
+    response_words,
+)
 
 _CSS = """
 @page{size:A4;margin:14mm 13mm}
@@ -129,6 +134,7 @@ def _png(fig, dpi=150):
     constrained) at :func:`printed_size` and shown at that size in
     inches, on screen and on paper; closes the figure."""
     import matplotlib.pyplot as plt
+
     from infra.plotstyle import redraw_at
     width, height = printed_size(*fig.get_size_inches())
     redraw_at(fig, width, height)
@@ -641,6 +647,7 @@ def chart_figure(page, chart, group):
     from pathlib import Path
 
     from pysim.bench_data.plots import runs_figure
+
     from .inputs import read_chart_runs
     title = Path(chart).name + (f", group {group}" if group else "")
     runs, boundary = read_chart_runs(chart, group)

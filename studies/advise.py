@@ -4,13 +4,16 @@ the dither range.
 
 from dataclasses import dataclass
 import time
+
 import numpy as np
+
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
-from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
-from ._common import at_dither_frequency, check_names, checked_values, structural_names
 from sources.dither_modes import check_modes_up_to
+from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
+
+from ._common import at_dither_frequency, check_names, checked_values, structural_names
 from ._records import rows_to_csv
 
 

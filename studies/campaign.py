@@ -4,8 +4,9 @@ dither grid.
 
 from dataclasses import dataclass
 from pathlib import Path
-from .bench import bench_fmu
+
 from ._common import checked_values, timed
+from .bench import bench_fmu
 
 
 def campaign(folder, freq_hz, p_f_bar, engine_rpm=(1000.0,),

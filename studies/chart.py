@@ -4,13 +4,15 @@
 
 from dataclasses import dataclass
 import time
+
 import numpy as np
+
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
-from infra.files import (keeps_foreign_files, save_npz,
-                         write_text)
+from infra.files import keeps_foreign_files, save_npz, write_text
 from stability.monodromy import DEFAULT_METHOD
-from .rules import refuse_decimal
+
 from ._preflight import check_acquisitions
+from .rules import refuse_decimal
 from .tongues import tongues
 
 
@@ -62,9 +64,9 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     ChartResult
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+    from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     from pysim.bench_data.charts import build_chart, gather_sources
     from pysim.bench_data.readers import TEXT_SUFFIXES
-    from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
     runs = gather_sources(sources, index, decimal)
     if index is None and not any(run.path.suffix.lower() in TEXT_SUFFIXES

@@ -3,18 +3,25 @@
 import dataclasses
 from dataclasses import dataclass
 import time
+
 import numpy as np
+
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
+from sources.dither_modes import (
+    check_modes,
+    check_modes_up_to,
+    linearised_mode,
+    mode_words,
+)
 from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
-from ._common import check_names, checked_values, frequency_dependent, structural_names
-from sources.dither_modes import check_modes, check_modes_up_to, linearised_mode, mode_words
-from ._words import growth_words, margin_words, response_words
-from ._records import finite_or_none, rows_to_csv
 
+from ._common import check_names, checked_values, frequency_dependent, structural_names
+from ._records import finite_or_none, rows_to_csv
+from ._words import growth_words, margin_words, response_words
 
 #: Parameters whose effect on the margins ``check`` reports by default
 #: (4-DOF model; other models: see :func:`structural_names`).
@@ -71,6 +78,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         raise JudderError(f"freq and p_f have {freq_hz.size} and "
                           f"{p_f_bar.size} values; allowed: as many of each")
     from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
+
     from .bench import driveline_view
     judder_limit_rpm = (DEFAULT_JUDDER_LIMIT_RPM if judder_limit_rpm is None
                         else judder_limit_rpm)
@@ -164,6 +172,7 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
         return None     # a class's or an FMU's forced response: not here
     if driveline == "bench":
         from stability.settle import settle_orbits
+
         from .bench import engagement_model
         model = engagement_model(given)[0]
         orbits = [periodic_orbit(model, f, p) for f, p in zip(freq_hz, p_f)]

@@ -2,10 +2,12 @@
 
 from dataclasses import dataclass
 import time
-import numpy as np
-from infra.units import PA_PER_BAR
-from ._common import check_arguments
 
+import numpy as np
+
+from infra.units import PA_PER_BAR
+
+from ._common import check_arguments
 
 #: Amplitudes of each map (0 to --pf-max).
 MAP_AMPLITUDES = 80
@@ -51,8 +53,13 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     CompareResult
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
-    from stability.decisions.advice import (OperatingRange, safe_windows,
-                                            window_boundary, window_grid)
+    from stability.decisions.advice import (
+        OperatingRange,
+        safe_windows,
+        window_boundary,
+        window_grid,
+    )
+
     from .check import check
     from .eig import eig
     from .map import stability_map

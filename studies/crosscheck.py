@@ -18,19 +18,19 @@ import numpy as np
 
 from fmu.store import parameter_default
 from infra.errors import JudderError
+from infra.files import keeps_foreign_files, write_text
 from infra.parallel import parallel_map
-from pysim.simulation.runs import run_fmu
+from infra.units import PA_PER_BAR
 from pysim.analysis.signals import free_response_growth
+from pysim.simulation.runs import run_fmu
+from sources.dither_modes import check_modes
+from stability.monodromy import DEFAULT_METHOD, get_method
 from stability.multipliers import floquet
 from stability.source import build_driveline
-from stability.monodromy import DEFAULT_METHOD, get_method
 
-from .timedomain import class_fmu, run_values
-from infra.files import keeps_foreign_files, write_text
-from infra.units import PA_PER_BAR
 from ._common import checked_values, timed
-from sources.dither_modes import check_modes
 from ._records import rows_to_csv
+from .timedomain import class_fmu, run_values
 
 __all__ = ["CrosscheckPoint", "Crosscheck", "crosscheck_study"]
 

@@ -1,11 +1,14 @@
 """``judder eig``: natural frequencies and damping factor."""
 
 from dataclasses import dataclass
+
 import numpy as np
+
+from sources.dither_modes import linearised_mode
 from stability import modal
 from stability.source import build_driveline
+
 from ._common import resolve
-from sources.dither_modes import linearised_mode
 
 
 def eig(parameters=None, changes=None, driveline=None):

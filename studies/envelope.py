@@ -17,39 +17,47 @@ The kernels are in :mod:`stability.uncertainty.envelope`; this module only reads
 files and keeps the checkpoint.
 """
 
+from dataclasses import dataclass
 import hashlib
 import io
 import json
 import math
+from pathlib import Path
 import time
 import tomllib
 import zipfile
-from pathlib import Path
 
 import numpy as np
 
 from infra.errors import JudderError
-from infra.files import atomic_write
+from infra.files import atomic_write, keeps_foreign_files, save_npz, write_text
 from infra.parallel import cluster
-from stability.uncertainty.envelope import (REFINE_EVALUATIONS,
-                                            build_envelope, compute_samples,
-                                            refine_union, refinement_starts)
-from stability.uncertainty.ranges import (DEFAULT_COVERAGE, Correlated,
-                                          Normal, Ranges, Uniform,
-                                          check_values, design_points)
-from stability.tongues import lowest_of_kinds
-
-from .inputs import read_input
-from dataclasses import dataclass
-from infra.files import (keeps_foreign_files, save_npz,
-                         write_text)
 from infra.units import PA_PER_BAR
+from sources.dither_modes import linearised_mode, mode_words
 from stability.kinds import KINDS
 from stability.monodromy import DEFAULT_METHOD
+from stability.tongues import lowest_of_kinds
+from stability.uncertainty.envelope import (
+    REFINE_EVALUATIONS,
+    build_envelope,
+    compute_samples,
+    refine_union,
+    refinement_starts,
+)
+from stability.uncertainty.ranges import (
+    DEFAULT_COVERAGE,
+    Correlated,
+    Normal,
+    Ranges,
+    Uniform,
+    check_values,
+    design_points,
+)
+
 #X checkpoint_path
 from ._common import BACKGROUND_AMPLITUDES, checked_values
-from sources.dither_modes import linearised_mode, mode_words
 from ._records import finite_or_none, rows_to_csv
+from .inputs import read_input
 
 __all__ = ["read_ranges", "run_envelope", "checkpoint_path"]
 

@@ -1,17 +1,20 @@
 """``judder fit``: fit parameters to a measured boundary (section 4.2)."""
 
 from dataclasses import dataclass
+
 import numpy as np
-from sources import dumps_toml
+
 from infra.files import keeps_foreign_files, write_text
 from infra.numbers import format_interval, format_uncertain
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
-from stability.monodromy import DEFAULT_METHOD
-from .bench import bench_damping, check_bench
-from ._common import at_dither_frequency, checked_values, timed
+from sources import dumps_toml
 from sources.dither_modes import check_modes_up_to
+from stability.monodromy import DEFAULT_METHOD
+
+from ._common import at_dither_frequency, checked_values, timed
 from ._records import finite_or_none
-from .rules import (SCATTER)
+from .bench import bench_damping, check_bench
+from .rules import SCATTER
 
 
 def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,

@@ -2,11 +2,13 @@
 
 from dataclasses import dataclass
 import math
+
 from infra.units import PA_PER_BAR
+from sources.dither_modes import check_modes, linearised_mode
 from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
+
 from ._common import checked_values, dithered
-from sources.dither_modes import check_modes, linearised_mode
 
 
 def floquet(freq_hz, p_f_bar, parameters=None, changes=None,

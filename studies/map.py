@@ -3,18 +3,20 @@
 import dataclasses
 from dataclasses import dataclass
 import json
+
 import numpy as np
+
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
+from sources.dither_modes import check_modes_up_to, linearised_mode
 from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
-from .bench import driveline_view
-from ._common import checked_values, dithered, frequency_dependent, per_frequency, timed
-from sources.dither_modes import check_modes_up_to, linearised_mode
-from ._preflight import check_map, check_map_memory
 
+from ._common import checked_values, dithered, frequency_dependent, per_frequency, timed
+from ._preflight import check_map, check_map_memory
+from .bench import driveline_view
 
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
@@ -100,8 +102,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         found = find_tongues(driveline, boundaries)
     forced = slip = linear_slip = None
     if values.source_kind.is_chain and waveform is None:
-        from stability.friction import (forced_slip_amplitude,
-                                        forced_upstream_amplitude)
+        from stability.friction import forced_slip_amplitude, forced_upstream_amplitude
         forced = np.array([forced_upstream_amplitude(
             driveline, f, PA_PER_BAR) for f in result.freq_hz]) \
             * RPM_PER_RAD_S

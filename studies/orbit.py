@@ -3,12 +3,18 @@ stability, its continuation, and the predicted judder chart."""
 
 from dataclasses import dataclass
 import time
+
 import numpy as np
-from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
-                            MECHANISMS)
+
+from infra.criteria import (
+    DEFAULT_JUDDER_LIMIT_RPM,
+    DEFAULT_MIN_GROWTH_PER_S,
+    MECHANISMS,
+)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
+
 from ._common import checked_values
 
 
@@ -298,8 +304,7 @@ class OrbitResult:
                 for j, p in enumerate(c.p_f)]
 
     def figure(self, title=None):
-        from stability.plots.orbit import (orbit_chart_figure,
-                                           orbit_curve_figure)
+        from stability.plots.orbit import orbit_chart_figure, orbit_curve_figure
         if self.chart is not None:
             return orbit_chart_figure(self.chart, title=title,
                                       boundaries=self._tongues())

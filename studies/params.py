@@ -1,8 +1,10 @@
 """``judder params``: show, or save as TOML, a parameter set."""
 
 from dataclasses import dataclass
-from sources import dumps_toml
+
 from infra.files import write_text
+from sources import dumps_toml
+
 from ._common import resolve
 
 

@@ -18,34 +18,45 @@ functions and lays their results out.
 import dataclasses
 from dataclasses import dataclass, field
 import html
+
 import numpy as np
+
 from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
-from infra.files import (keeps_foreign_files, write_text)
+from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
-from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
-from .rules import refuse_decimal
 from sources.dither_modes import linearised_mode, mode_words
-from ._report_sections import (Page, advice_section, chart_figure,
-                               driveline_section,
-                               engagement_section, fit_section, focus_tongue,
-                               kinds_section, map_section,
-                               sensitivity_refused, sensitivity_section,
-                               setting_section,
-                               summary_section, threshold_section,
-                               tip_ranking)
+from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
+
+from ._report_sections import (
+    Page,
+    advice_section,
+    chart_figure,
+    driveline_section,
+    engagement_section,
+    fit_section,
+    focus_tongue,
+    kinds_section,
+    map_section,
+    sensitivity_refused,
+    sensitivity_section,
+    setting_section,
+    summary_section,
+    threshold_section,
+    tip_ranking,
+)
 from .advise import advise
 from .check import check
-from .fit import fit
 from .eig import eig
+from .fit import fit
 from .floquet import floquet
 from .map import stability_map
 from .params import params
+from .rules import refuse_decimal
 from .sensitivity import sensitivity
 from .simulate import simulate
 from .threshold import threshold
 from .tongues import tongue_record, tongues
-
 
 #: Parameters varied in the report's sensitivity study, per model: those
 #: of Fig. 17 and 18 where the model has them.
@@ -327,9 +338,14 @@ def _bench_data(chart, boundary, group, decimal):
     chart's boundary (with its tried points, growth rate, amplitudes
     below and threshold spread) or a measured boundary CSV (censored at
     the amplitudes it says were tried); None without either."""
-    from .inputs import (boundary_p_max, read_boundary_min_growth,
-                          read_boundary_tested, read_chart_below,
-                          read_chart_boundary, read_chart_min_growth)
+    from .inputs import (
+        boundary_p_max,
+        read_boundary_min_growth,
+        read_boundary_tested,
+        read_chart_below,
+        read_chart_boundary,
+        read_chart_min_growth,
+    )
     if not boundary:
         refuse_decimal(decimal, "a `boundary` file (CSV)",
                        "with `chart` (an NPZ)" if chart else

@@ -24,7 +24,6 @@ from infra.errors import JudderError
 from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
 
-
 #: Dither frequencies allowed, Hz: below, the period needs more
 #: sub-intervals than any engine takes; above, no hydraulic valve
 #: dithers and the multipliers round to 1.

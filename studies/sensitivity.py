@@ -1,12 +1,14 @@
 """``judder sensitivity``: tongue shifts per parameter (Fig. 17, 18)."""
 
 from dataclasses import dataclass
+
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
-from stability.monodromy import DEFAULT_METHOD
-from ._common import checked_values, timed
 from sources.dither_modes import check_modes_of_changes, check_modes_up_to
+from stability.monodromy import DEFAULT_METHOD
+
+from ._common import checked_values, timed
 from ._records import rows_to_csv
 from .tongues import tongue_record
 
@@ -37,8 +39,8 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     -------
     SensitivityResult
     """
-    from stability.sensitivity import (paper_conclusions, sensitivity_study,
-                                       tip_shifts)
+    from stability.sensitivity import paper_conclusions, sensitivity_study, tip_shifts
+
     from .bench import driveline_view
     nominal, driveline = driveline_view(
         checked_values(parameters, changes, freq_hz=freq_hz,

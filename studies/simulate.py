@@ -3,19 +3,28 @@ dither (Fig. 7, 8), run through the FMU.
 """
 
 from dataclasses import dataclass, field
+
 import numpy as np
+
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files
 from infra.units import PA_PER_BAR
+from sources.dither_modes import check_modes
 from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
-from .bench import (added_damping, bench_fmu, check_bench, engagement_model,
-                     linear_validity, operating_friction, refuse_bench_of_class)
-from ._common import checked_values
-from sources.dither_modes import check_modes
 
+from ._common import checked_values
+from .bench import (
+    added_damping,
+    bench_fmu,
+    check_bench,
+    engagement_model,
+    linear_validity,
+    operating_friction,
+    refuse_bench_of_class,
+)
 
 #: The bench's friction laws, as each output names them.
 CURVE_LAW = "curve (mu0, mu_g at w_op, delta_mu)"
@@ -101,10 +110,13 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     SimulationResult
     """
     from drivelines.registry import SIGNALS
-    from pysim.simulation.engagement import (LOCK_VARIABLES,
-                                             engagement_summary, lock_up,
-                                             until)
     from fmu.store import parameter_default
+    from pysim.simulation.engagement import (
+        LOCK_VARIABLES,
+        engagement_summary,
+        lock_up,
+        until,
+    )
     from pysim.simulation.runs import run_fmu
 
     from .timedomain import class_fmu, run_values

@@ -2,11 +2,14 @@
 """
 
 from dataclasses import dataclass
+
 import numpy as np
+
 from drivelines.specs import MEAN_PRESSURE_DAMPING
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from stability.source import build_driveline
+
 from ._common import resolve
 
 

@@ -3,14 +3,17 @@
 from dataclasses import dataclass
 import math
 import time
+
 import numpy as np
+
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
+from sources.dither_modes import check_modes_up_to, linearised_mode
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
-from .bench import driveline_view
+
 from ._common import BACKGROUND_AMPLITUDES, checked_values, dithered
-from sources.dither_modes import check_modes_up_to, linearised_mode
+from .bench import driveline_view
 from .rules import RULES
 
 

@@ -11,9 +11,9 @@ import numpy as np
 from infra.errors import JudderError
 from infra.quantities import parse_quantity
 from infra.units import PA_PER_BAR
-
-from studies.inputs import load_parameters, read_input
 from studies.bench import bench_parameters, refuse_bench_of_class
+from studies.inputs import load_parameters, read_input
+
 from ._values import check_file_pressure, check_plain_pressure, check_pressures
 
 

@@ -4,13 +4,13 @@ dither grid.
 
 from infra.errors import JudderError
 from infra.files import check_folder_writable
+from studies._preflight import check_campaign, check_campaign_disk, check_work
+from studies.campaign import campaign
+
 from ._arguments import model_options, workers_option
 from ._model import parameters_of
 from ._output import Progress, emit
-from studies._preflight import check_campaign, check_campaign_disk, check_work
 from ._values import DURATION, SEED, Grid, Listed, Quantity
-from studies.campaign import campaign
-
 
 #: The command's --help text.
 DESCRIPTION = (

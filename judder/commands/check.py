@@ -1,19 +1,24 @@
 """``judder check``: is a dither setting safe, and by how much."""
 
 import math
+
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR
-from ._arguments import (decimal_option, driveline_option, force_option,
-                         limit_option, min_growth_option,
-                         model_options)
+from studies._preflight import check_settings_time, check_work
+from studies.check import DEFAULT_CHECK_PARAMETERS, check
+from studies.rules import FREQ_RANGE_HZ, check_amplitudes, refuse_decimal
+
+from ._arguments import (
+    decimal_option,
+    driveline_option,
+    force_option,
+    limit_option,
+    min_growth_option,
+    model_options,
+)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
-from studies._preflight import check_settings_time, check_work
 from ._values import PF_MAX, NameList, Settings
-from studies.rules import FREQ_RANGE_HZ, check_amplitudes
-from studies.check import DEFAULT_CHECK_PARAMETERS, check
-from studies.rules import refuse_decimal
-
 
 #: The command's --help text.
 DESCRIPTION = (

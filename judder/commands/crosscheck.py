@@ -1,14 +1,13 @@
 """``judder crosscheck``: FMU growth rates against Floquet exponents."""
 
 from infra.errors import JudderError
-from ._arguments import (force_option, method_option, model_options,
-                         workers_option)
-from ._model import model_title, parameters_of
-from ._output import Progress, emit, make_parents, write_outputs, written
 from studies._preflight import check_crosscheck, check_work
-from ._values import DURATION, Grid
 from studies.crosscheck import crosscheck
 
+from ._arguments import force_option, method_option, model_options, workers_option
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import DURATION, Grid
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -1,11 +1,11 @@
 """``judder eig``: natural frequencies and damping factor."""
 
-from ._arguments import driveline_option, model_options
 from sources.dither_modes import linearised_mode, mode_words
-from ._model import parameters_of
-from ._output import emit
 from studies.eig import eig
 
+from ._arguments import driveline_option, model_options
+from ._model import parameters_of
+from ._output import emit
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -3,21 +3,27 @@
 """
 
 from pathlib import Path
-import numpy as np
-from infra.errors import JudderError
-from infra.files import (all_or_none)
-from infra.units import PA_PER_BAR
-from studies.envelope import checkpoint_path
-from ._arguments import (driveline_option, force_option, method_option,
-                         min_growth_option, model_options, pf_max_option,
-                         workers_option)
-from ._model import model_title, parameters_of
-from ._output import (Progress, emit, make_parents, output_files, save_plot,
-                      written)
-from studies._preflight import check_envelope
-from ._values import SEED, Grid
-from studies.envelope import envelope
 
+import numpy as np
+
+from infra.errors import JudderError
+from infra.files import all_or_none
+from infra.units import PA_PER_BAR
+from studies._preflight import check_envelope
+from studies.envelope import checkpoint_path, envelope
+
+from ._arguments import (
+    driveline_option,
+    force_option,
+    method_option,
+    min_growth_option,
+    model_options,
+    pf_max_option,
+    workers_option,
+)
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, output_files, save_plot, written
+from ._values import SEED, Grid
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -1,28 +1,46 @@
 """``judder fit``: fit parameters to a measured boundary (section 4.2)."""
 
 from contextlib import contextmanager
+
 import numpy as np
+
 from infra.errors import JudderError
 from infra.files import all_or_none
 from infra.units import PA_PER_BAR
-from ._model import parse_bench
-from studies.inputs import (boundary_p_max, read_boundary_limit,
-                      read_boundary_min_growth, read_boundary_tested,
-                      read_chart_below,
-                      read_chart_boundary, read_chart_limit,
-                      read_chart_min_growth)
-from ._arguments import (decimal_option, force_option, method_option,
-                         model_options, workers_option)
-from studies._common import (resolve)
-from ._model import parameters_of
-from ._output import (Progress, emit, make_parents, output_files, save_plot,
-                      written)
+from studies._common import resolve
 from studies._preflight import check_fit
-from ._values import LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED, THRESHOLD_SPREAD, Listed, WholeNumber
-from studies.rules import option_value
 from studies.fit import _fitted
-from studies.rules import refuse_decimal
+from studies.inputs import (
+    boundary_p_max,
+    read_boundary_limit,
+    read_boundary_min_growth,
+    read_boundary_tested,
+    read_chart_below,
+    read_chart_boundary,
+    read_chart_limit,
+    read_chart_min_growth,
+)
+from studies.rules import option_value, refuse_decimal
 
+from ._arguments import (
+    decimal_option,
+    force_option,
+    method_option,
+    model_options,
+    workers_option,
+)
+from ._model import parameters_of, parse_bench
+from ._output import Progress, emit, make_parents, output_files, save_plot, written
+from ._values import (
+    LIMIT,
+    MIN_GROWTH,
+    PF_MAX,
+    SCATTER,
+    SEED,
+    THRESHOLD_SPREAD,
+    Listed,
+    WholeNumber,
+)
 
 #: The command's --help text.
 DESCRIPTION = (

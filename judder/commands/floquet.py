@@ -1,16 +1,20 @@
 """``judder floquet``: Floquet multipliers at one point."""
 
-from ._arguments import (driveline_option, force_option, method_option,
-                         min_growth_option,
-                         model_options, waveform_option)
 from sources.dither_modes import linearised_mode, mode_words
-from ._model import model_title, parameters_of
-from ._output import emit, make_parents, output_files, save_plot, written
 from studies._preflight import check_floquet
-from ._values import FREQ, PF
-from ._values import parse_waveform
 from studies.floquet import floquet
 
+from ._arguments import (
+    driveline_option,
+    force_option,
+    method_option,
+    min_growth_option,
+    model_options,
+    waveform_option,
+)
+from ._model import model_title, parameters_of
+from ._output import emit, make_parents, output_files, save_plot, written
+from ._values import FREQ, PF, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (

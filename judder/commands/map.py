@@ -1,18 +1,25 @@
 """``judder map``: stability map over frequency x amplitude."""
 
 import time
+
 import numpy as np
-from stability.kinds import KINDS
-from ._arguments import (driveline_option, force_option, limit_option,
-                         method_option, min_growth_option,
-                         model_options, waveform_option)
+
 from sources.dither_modes import linearised_mode, mode_words
-from ._model import model_title, parameters_of
-from ._output import Progress, emit, make_parents, write_outputs, written
-from ._values import Grid
-from ._values import parse_waveform
+from stability.kinds import KINDS
 from studies.map import check_map_grid, stability_map
 
+from ._arguments import (
+    driveline_option,
+    force_option,
+    limit_option,
+    method_option,
+    min_growth_option,
+    model_options,
+    waveform_option,
+)
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import Grid, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -1,16 +1,14 @@
 """``judder orbit``: the periodic orbit of a dithered engagement, its
 stability, its continuation, and the predicted judder chart."""
 
-from ._arguments import (force_option, limit_option, min_growth_option,
-                         model_options)
-from ._model import parse_bench
 from studies._common import resolve
-from ._model import model_title, parameters_of
-from ._output import Progress, emit, make_parents, write_outputs, written
 from studies._preflight import check_orbit
-from ._values import Settings
 from studies.orbit import orbit
 
+from ._arguments import force_option, limit_option, min_growth_option, model_options
+from ._model import model_title, parameters_of, parse_bench
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import Settings
 
 #: The command's --help text.
 DESCRIPTION = (

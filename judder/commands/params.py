@@ -1,10 +1,10 @@
 """``judder params``: show, or save as TOML, a parameter set."""
 
+from studies.params import params
+
 from ._arguments import model_options
 from ._model import parameters_of
 from ._output import emit, make_parents
-from studies.params import params
-
 
 #: The command's --help text.
 DESCRIPTION = (

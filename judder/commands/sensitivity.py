@@ -1,14 +1,20 @@
 """``judder sensitivity``: tongue shifts per parameter (Fig. 17, 18)."""
 
 from infra.errors import JudderError
-from ._arguments import (driveline_option, force_option, method_option, model_options,
-                         pf_max_option, workers_option)
-from ._model import model_title, parameters_of
-from ._output import Progress, emit, make_parents, write_outputs, written
 from studies._preflight import check_sensitivity, check_work
-from ._values import Grid, Listed, Quantity
 from studies.sensitivity import sensitivity
 
+from ._arguments import (
+    driveline_option,
+    force_option,
+    method_option,
+    model_options,
+    pf_max_option,
+    workers_option,
+)
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import Grid, Listed, Quantity
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -2,17 +2,20 @@
 dither (Fig. 7, 8), run through the FMU.
 """
 
-from ._model import parse_bench
-from ._arguments import (force_option, limit_option, method_option,
-                         min_growth_option, model_options)
 from studies._common import resolve
-from ._model import model_title, parameters_of
-from ._output import emit, make_parents, write_outputs, written
-from ._values import (DURATION, FREQ_RANGE_HZ, PF,
-                      OrNone, QuantityList)
 from studies._words import nonlinear_words, orbit_words
 from studies.simulate import ENGAGEMENTS, simulate
 
+from ._arguments import (
+    force_option,
+    limit_option,
+    method_option,
+    min_growth_option,
+    model_options,
+)
+from ._model import model_title, parameters_of, parse_bench
+from ._output import emit, make_parents, write_outputs, written
+from ._values import DURATION, FREQ_RANGE_HZ, PF, OrNone, QuantityList
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -149,8 +152,7 @@ def _engagement_line(s, bench=True):
     """One run's line; ``bench``: it ran on the bench model, whose
     linearisation (its speed control's damping, its friction curve at the
     slip) is not the driveline's that ``judder check`` judges."""
-    from pysim.simulation.engagement import judder_words
-    from pysim.simulation.engagement import lock_words
+    from pysim.simulation.engagement import judder_words, lock_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
             f"{s['p_f_bar']:g} bar; "
             + ("" if "lock_up_time_s" not in s else

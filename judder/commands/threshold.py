@@ -1,13 +1,13 @@
 """``judder threshold``: friction-gradient threshold without dither (Fig. 19).
 """
 
+from studies._preflight import check_threshold
+from studies.threshold import threshold
+
 from ._arguments import force_option, model_options
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
-from studies._preflight import check_threshold
 from ._values import Grid
-from studies.threshold import threshold
-
 
 #: The command's --help text.
 DESCRIPTION = (

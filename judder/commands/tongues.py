@@ -1,16 +1,21 @@
 """``judder tongues``: tongue boundaries, labels and tips."""
 
-from ._arguments import (driveline_option, force_option, method_option,
-                         min_growth_option, model_options, pf_max_option,
-                         waveform_option)
 from sources.dither_modes import linearised_mode, mode_words
-from ._model import model_title, parameters_of
-from ._output import Progress, emit, make_parents, write_outputs, written
 from studies._preflight import check_tongues
-from ._values import Grid
-from ._values import parse_waveform
 from studies.tongues import tongues
 
+from ._arguments import (
+    driveline_option,
+    force_option,
+    method_option,
+    min_growth_option,
+    model_options,
+    pf_max_option,
+    waveform_option,
+)
+from ._model import model_title, parameters_of
+from ._output import Progress, emit, make_parents, write_outputs, written
+from ._values import Grid, parse_waveform
 
 #: The command's --help text.
 DESCRIPTION = (
