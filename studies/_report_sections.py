@@ -25,13 +25,8 @@ from infra.provenance import current
 from infra.units import PA_PER_BAR
 from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
-from ._words import (
-    growth_words,
-    margin_words,
-    nonlinear_words,
-    orbit_words,
-    response_words,
-)
+from ._words import (growth_words, margin_words, nonlinear_words, orbit_words,
+                     response_words)
 
 _CSS = """
 @page{size:A4;margin:14mm 13mm}

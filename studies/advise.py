@@ -13,7 +13,8 @@ from infra.units import PA_PER_BAR
 from sources.dither_modes import check_modes_up_to
 from stability.decisions.advice import DEFAULT_BOUNDS, PRUNE_BELOW
 
-from ._common import at_dither_frequency, check_names, checked_values, structural_names
+from ._common import (at_dither_frequency, check_names, checked_values,
+                      structural_names)
 from ._records import rows_to_csv
 
 

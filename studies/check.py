@@ -9,17 +9,14 @@ import numpy as np
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
-from sources.dither_modes import (
-    check_modes,
-    check_modes_up_to,
-    linearised_mode,
-    mode_words,
-)
+from sources.dither_modes import (check_modes, check_modes_up_to,
+                                  linearised_mode, mode_words)
 from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.source import build_driveline
 
-from ._common import check_names, checked_values, frequency_dependent, structural_names
+from ._common import (check_names, checked_values, frequency_dependent,
+                      structural_names)
 from ._records import finite_or_none, rows_to_csv
 from ._words import growth_words, margin_words, response_words
 

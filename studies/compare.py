@@ -53,12 +53,8 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     CompareResult
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
-    from stability.decisions.advice import (
-        OperatingRange,
-        safe_windows,
-        window_boundary,
-        window_grid,
-    )
+    from stability.decisions.advice import (OperatingRange, safe_windows,
+                                            window_boundary, window_grid)
 
     from .check import check
     from .eig import eig

@@ -37,22 +37,12 @@ from sources.dither_modes import linearised_mode, mode_words
 from stability.kinds import KINDS
 from stability.monodromy import DEFAULT_METHOD
 from stability.tongues import lowest_of_kinds
-from stability.uncertainty.envelope import (
-    REFINE_EVALUATIONS,
-    build_envelope,
-    compute_samples,
-    refine_union,
-    refinement_starts,
-)
-from stability.uncertainty.ranges import (
-    DEFAULT_COVERAGE,
-    Correlated,
-    Normal,
-    Ranges,
-    Uniform,
-    check_values,
-    design_points,
-)
+from stability.uncertainty.envelope import (REFINE_EVALUATIONS, build_envelope,
+                                            compute_samples, refine_union,
+                                            refinement_starts)
+from stability.uncertainty.ranges import (DEFAULT_COVERAGE, Correlated, Normal,
+                                          Ranges, Uniform, check_values,
+                                          design_points)
 
 #X checkpoint_path
 from ._common import BACKGROUND_AMPLITUDES, checked_values

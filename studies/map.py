@@ -14,7 +14,8 @@ from stability.kinds import KINDS
 from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
-from ._common import checked_values, dithered, frequency_dependent, per_frequency, timed
+from ._common import (checked_values, dithered, frequency_dependent,
+                      per_frequency, timed)
 from ._preflight import check_map, check_map_memory
 from .bench import driveline_view
 
@@ -102,7 +103,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         found = find_tongues(driveline, boundaries)
     forced = slip = linear_slip = None
     if values.source_kind.is_chain and waveform is None:
-        from stability.friction import forced_slip_amplitude, forced_upstream_amplitude
+        from stability.friction import (forced_slip_amplitude,
+                                        forced_upstream_amplitude)
         forced = np.array([forced_upstream_amplitude(
             driveline, f, PA_PER_BAR) for f in result.freq_hz]) \
             * RPM_PER_RAD_S

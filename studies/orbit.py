@@ -6,11 +6,8 @@ import time
 
 import numpy as np
 
-from infra.criteria import (
-    DEFAULT_JUDDER_LIMIT_RPM,
-    DEFAULT_MIN_GROWTH_PER_S,
-    MECHANISMS,
-)
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
+                            MECHANISMS)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
@@ -304,7 +301,8 @@ class OrbitResult:
                 for j, p in enumerate(c.p_f)]
 
     def figure(self, title=None):
-        from stability.plots.orbit import orbit_chart_figure, orbit_curve_figure
+        from stability.plots.orbit import (orbit_chart_figure,
+                                           orbit_curve_figure)
         if self.chart is not None:
             return orbit_chart_figure(self.chart, title=title,
                                       boundaries=self._tongues())

@@ -28,23 +28,12 @@ from infra.units import PA_PER_BAR
 from sources.dither_modes import linearised_mode, mode_words
 from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
-from ._report_sections import (
-    Page,
-    advice_section,
-    chart_figure,
-    driveline_section,
-    engagement_section,
-    fit_section,
-    focus_tongue,
-    kinds_section,
-    map_section,
-    sensitivity_refused,
-    sensitivity_section,
-    setting_section,
-    summary_section,
-    threshold_section,
-    tip_ranking,
-)
+from ._report_sections import (Page, advice_section, chart_figure,
+                               driveline_section, engagement_section,
+                               fit_section, focus_tongue, kinds_section,
+                               map_section, sensitivity_refused,
+                               sensitivity_section, setting_section,
+                               summary_section, threshold_section, tip_ranking)
 from .advise import advise
 from .check import check
 from .eig import eig
@@ -338,14 +327,9 @@ def _bench_data(chart, boundary, group, decimal):
     chart's boundary (with its tried points, growth rate, amplitudes
     below and threshold spread) or a measured boundary CSV (censored at
     the amplitudes it says were tried); None without either."""
-    from .inputs import (
-        boundary_p_max,
-        read_boundary_min_growth,
-        read_boundary_tested,
-        read_chart_below,
-        read_chart_boundary,
-        read_chart_min_growth,
-    )
+    from .inputs import (boundary_p_max, read_boundary_min_growth,
+                         read_boundary_tested, read_chart_below,
+                         read_chart_boundary, read_chart_min_growth)
     if not boundary:
         refuse_decimal(decimal, "a `boundary` file (CSV)",
                        "with `chart` (an NPZ)" if chart else

@@ -39,7 +39,8 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     -------
     SensitivityResult
     """
-    from stability.sensitivity import paper_conclusions, sensitivity_study, tip_shifts
+    from stability.sensitivity import (paper_conclusions, sensitivity_study,
+                                       tip_shifts)
 
     from .bench import driveline_view
     nominal, driveline = driveline_view(

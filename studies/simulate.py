@@ -16,15 +16,8 @@ from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
 from ._common import checked_values
-from .bench import (
-    added_damping,
-    bench_fmu,
-    check_bench,
-    engagement_model,
-    linear_validity,
-    operating_friction,
-    refuse_bench_of_class,
-)
+from .bench import (added_damping, bench_fmu, check_bench, engagement_model,
+                    linear_validity, operating_friction, refuse_bench_of_class)
 
 #: The bench's friction laws, as each output names them.
 CURVE_LAW = "curve (mu0, mu_g at w_op, delta_mu)"
@@ -111,12 +104,9 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     """
     from drivelines.registry import SIGNALS
     from fmu.store import parameter_default
-    from pysim.simulation.engagement import (
-        LOCK_VARIABLES,
-        engagement_summary,
-        lock_up,
-        until,
-    )
+    from pysim.simulation.engagement import (LOCK_VARIABLES,
+                                             engagement_summary, lock_up,
+                                             until)
     from pysim.simulation.runs import run_fmu
 
     from .timedomain import class_fmu, run_values

@@ -9,24 +9,12 @@ registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 import argparse
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
-from infra.criteria import (
-    DEFAULT_JUDDER_LIMIT_RPM,
-    DEFAULT_MIN_GROWTH_PER_S,
-    ENGAGEMENT_DURATION_S,
-)
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
+                            ENGAGEMENT_DURATION_S)
 from stability.monodromy import DEFAULT_METHOD, METHODS
 
-from ._values import (
-    FREQ_RANGE_HZ,
-    LIMIT,
-    MARGIN_BAR,
-    MARGIN_HZ,
-    MIN_GROWTH,
-    PF_MAX,
-    VALVE_MAX,
-    WORKERS,
-    Interval,
-)
+from ._values import (FREQ_RANGE_HZ, LIMIT, MARGIN_BAR, MARGIN_HZ, MIN_GROWTH,
+                      PF_MAX, VALVE_MAX, WORKERS, Interval)
 
 MIN_GROWTH_HELP = (
     "judder-relevant growth rate, 1/s: an instability growing slower "

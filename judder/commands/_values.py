@@ -13,15 +13,8 @@ from infra.errors import JudderError
 from infra.quantities import has_unit
 from infra.units import PA_PER_BAR
 from studies.inputs import read_input
-from studies.rules import (
-    FREQ_RANGE_HZ,
-    MAX_WORKERS,
-    MIN_PLAIN_P_M_PA,
-    RULES,
-    Rule,
-    parse_grid,
-    parse_list,
-)
+from studies.rules import (FREQ_RANGE_HZ, MAX_WORKERS, MIN_PLAIN_P_M_PA, RULES,
+                           Rule, parse_grid, parse_list)
 from studies.rules import SCATTER as SCATTER_RULES
 
 

@@ -10,13 +10,8 @@ from stability.decisions.advice import DEFAULT_BOUNDS
 from studies._preflight import check_advise_grid
 from studies.advise import advise
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    min_growth_option,
-    model_options,
-    window_options,
-)
+from ._arguments import (driveline_option, force_option, min_growth_option,
+                         model_options, window_options)
 from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Listed

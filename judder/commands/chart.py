@@ -8,15 +8,9 @@ from infra.files import all_or_none
 from infra.units import PA_PER_BAR
 from studies.chart import chart
 
-from ._arguments import (
-    decimal_option,
-    driveline_option,
-    force_option,
-    limit_option,
-    method_option,
-    model_options,
-    workers_option,
-)
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         limit_option, method_option, model_options,
+                         workers_option)
 from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written

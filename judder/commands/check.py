@@ -8,14 +8,8 @@ from studies._preflight import check_settings_time, check_work
 from studies.check import DEFAULT_CHECK_PARAMETERS, check
 from studies.rules import FREQ_RANGE_HZ, check_amplitudes, refuse_decimal
 
-from ._arguments import (
-    decimal_option,
-    driveline_option,
-    force_option,
-    limit_option,
-    min_growth_option,
-    model_options,
-)
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         limit_option, min_growth_option, model_options)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import PF_MAX, NameList, Settings

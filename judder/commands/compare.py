@@ -3,12 +3,8 @@
 from infra.errors import JudderError
 from studies.compare import compare
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    min_growth_option,
-    window_options,
-)
+from ._arguments import (driveline_option, force_option, min_growth_option,
+                         window_options)
 from ._output import Progress, emit, make_parents, save_plot, written
 from ._values import PF_MAX, Grid, Settings
 
@@ -64,7 +60,8 @@ def add_arguments(p):
 
 def run(args):
     """Two parameter sets side by side."""
-    from studies._preflight import check_advise_grid, check_settings_time, check_tongues
+    from studies._preflight import (check_advise_grid, check_settings_time,
+                                    check_tongues)
     from studies.inputs import load_parameters
     if bool(args.freq) != bool(args.pf):
         raise JudderError("--freq and --pf: allowed: both (every pair is a "

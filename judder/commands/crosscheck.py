@@ -4,7 +4,8 @@ from infra.errors import JudderError
 from studies._preflight import check_crosscheck, check_work
 from studies.crosscheck import crosscheck
 
-from ._arguments import force_option, method_option, model_options, workers_option
+from ._arguments import (force_option, method_option, model_options,
+                         workers_option)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import DURATION, Grid

@@ -12,17 +12,12 @@ from infra.units import PA_PER_BAR
 from studies._preflight import check_envelope
 from studies.envelope import checkpoint_path, envelope
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    method_option,
-    min_growth_option,
-    model_options,
-    pf_max_option,
-    workers_option,
-)
+from ._arguments import (driveline_option, force_option, method_option,
+                         min_growth_option, model_options, pf_max_option,
+                         workers_option)
 from ._model import model_title, parameters_of
-from ._output import Progress, emit, make_parents, output_files, save_plot, written
+from ._output import (Progress, emit, make_parents, output_files, save_plot,
+                      written)
 from ._values import SEED, Grid
 
 #: The command's --help text.

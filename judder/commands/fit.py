@@ -10,37 +10,19 @@ from infra.units import PA_PER_BAR
 from studies._common import resolve
 from studies._preflight import check_fit
 from studies.fit import _fitted
-from studies.inputs import (
-    boundary_p_max,
-    read_boundary_limit,
-    read_boundary_min_growth,
-    read_boundary_tested,
-    read_chart_below,
-    read_chart_boundary,
-    read_chart_limit,
-    read_chart_min_growth,
-)
+from studies.inputs import (boundary_p_max, read_boundary_limit,
+                            read_boundary_min_growth, read_boundary_tested,
+                            read_chart_below, read_chart_boundary,
+                            read_chart_limit, read_chart_min_growth)
 from studies.rules import option_value, refuse_decimal
 
-from ._arguments import (
-    decimal_option,
-    force_option,
-    method_option,
-    model_options,
-    workers_option,
-)
+from ._arguments import (decimal_option, force_option, method_option,
+                         model_options, workers_option)
 from ._model import parameters_of, parse_bench
-from ._output import Progress, emit, make_parents, output_files, save_plot, written
-from ._values import (
-    LIMIT,
-    MIN_GROWTH,
-    PF_MAX,
-    SCATTER,
-    SEED,
-    THRESHOLD_SPREAD,
-    Listed,
-    WholeNumber,
-)
+from ._output import (Progress, emit, make_parents, output_files, save_plot,
+                      written)
+from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED,
+                      THRESHOLD_SPREAD, Listed, WholeNumber)
 
 #: The command's --help text.
 DESCRIPTION = (

@@ -4,14 +4,8 @@ from sources.dither_modes import linearised_mode, mode_words
 from studies._preflight import check_floquet
 from studies.floquet import floquet
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    method_option,
-    min_growth_option,
-    model_options,
-    waveform_option,
-)
+from ._arguments import (driveline_option, force_option, method_option,
+                         min_growth_option, model_options, waveform_option)
 from ._model import model_title, parameters_of
 from ._output import emit, make_parents, output_files, save_plot, written
 from ._values import FREQ, PF, parse_waveform

@@ -8,15 +8,9 @@ from sources.dither_modes import linearised_mode, mode_words
 from stability.kinds import KINDS
 from studies.map import check_map_grid, stability_map
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    limit_option,
-    method_option,
-    min_growth_option,
-    model_options,
-    waveform_option,
-)
+from ._arguments import (driveline_option, force_option, limit_option,
+                         method_option, min_growth_option, model_options,
+                         waveform_option)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Grid, parse_waveform

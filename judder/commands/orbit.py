@@ -5,7 +5,8 @@ from studies._common import resolve
 from studies._preflight import check_orbit
 from studies.orbit import orbit
 
-from ._arguments import force_option, limit_option, min_growth_option, model_options
+from ._arguments import (force_option, limit_option, min_growth_option,
+                         model_options)
 from ._model import model_title, parameters_of, parse_bench
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Settings

@@ -19,15 +19,9 @@ from infra.errors import JudderError
 from studies.map import check_map_grid
 from studies.report import report
 
-from ._arguments import (
-    decimal_option,
-    driveline_option,
-    force_option,
-    method_option,
-    min_growth_option,
-    model_options,
-    workers_option,
-)
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         method_option, min_growth_option, model_options,
+                         workers_option)
 from ._flags import in_flags
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, output_files, written

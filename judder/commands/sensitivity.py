@@ -4,14 +4,8 @@ from infra.errors import JudderError
 from studies._preflight import check_sensitivity, check_work
 from studies.sensitivity import sensitivity
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    method_option,
-    model_options,
-    pf_max_option,
-    workers_option,
-)
+from ._arguments import (driveline_option, force_option, method_option,
+                         model_options, pf_max_option, workers_option)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Grid, Listed, Quantity

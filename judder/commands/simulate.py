@@ -6,13 +6,8 @@ from studies._common import resolve
 from studies._words import nonlinear_words, orbit_words
 from studies.simulate import ENGAGEMENTS, simulate
 
-from ._arguments import (
-    force_option,
-    limit_option,
-    method_option,
-    min_growth_option,
-    model_options,
-)
+from ._arguments import (force_option, limit_option, method_option,
+                         min_growth_option, model_options)
 from ._model import model_title, parameters_of, parse_bench
 from ._output import emit, make_parents, write_outputs, written
 from ._values import DURATION, FREQ_RANGE_HZ, PF, OrNone, QuantityList

@@ -4,15 +4,9 @@ from sources.dither_modes import linearised_mode, mode_words
 from studies._preflight import check_tongues
 from studies.tongues import tongues
 
-from ._arguments import (
-    driveline_option,
-    force_option,
-    method_option,
-    min_growth_option,
-    model_options,
-    pf_max_option,
-    waveform_option,
-)
+from ._arguments import (driveline_option, force_option, method_option,
+                         min_growth_option, model_options, pf_max_option,
+                         waveform_option)
 from ._model import model_title, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
 from ._values import Grid, parse_waveform
