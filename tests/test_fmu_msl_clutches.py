@@ -1,0 +1,246 @@
+"""MSL's own friction clutches, from the user's unmodified MSL (issue 43).
+
+``Modelica.Mechanics.Rotational.Examples.CoupledClutches`` is built from
+the MSL as it is: its ``Clutch`` reads ``mu_pos`` through the external
+table object ``ExternalCombiTable1D``, which :func:`fmu.rewrite.inline_tables`
+replaces by the same lookup written in Modelica in the cached copy, and
+``table_signs[2]`` is an array equation (:meth:`fmu.frontend._Expressions.structured`).
+Its FMU is compared with an event-driven scipy model written here from
+the example's parameters and the MSL's friction law (below), not from
+the FMU: four unit inertias, a torque ``10 sin(2 pi 5 t)`` on the first,
+three Coulomb clutches with ``mu = 0.5`` (``mu_pos = [0, 0.5]``),
+``peak = 1.1``, ``fn_max = 20`` under normal forces ``cos(2 pi 0.2 t)``,
+a step at 0.4 s and a step at 0.9 s. The MSL is read as in
+``tests/test_fmu_msl.py``; without it the tests skip and say so.
+"""
+
+from itertools import product
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+
+from fmu.build import build_fmu
+from fmu.frontend import find_class
+
+ROOT = Path(__file__).resolve().parents[1]
+LIBRARY = ROOT / "modelica"
+
+
+def _msl():
+    """The MSL folder (holding ``Modelica/package.mo``), or None: beside
+    the repository (``../shared/msl``) or on MODELICAPATH."""
+    candidates = [ROOT.parent / "shared" / "msl"] + [
+        Path(p) for p in os.environ.get("MODELICAPATH", "").split(os.pathsep)
+        if p]
+    return next((f for f in candidates
+                 if (f / "Modelica" / "package.mo").is_file()), None)
+
+
+MSL = _msl()
+
+pytestmark = pytest.mark.skipif(
+    MSL is None, reason="the Modelica Standard Library 4.x is not in "
+    "../shared/msl nor on MODELICAPATH")
+
+NAME = "Modelica.Mechanics.Rotational.Examples.CoupledClutches"
+MU, PEAK, FN_MAX = 0.5, 1.1, 20.0
+STOP = 1.5   # the example's experiment(StopTime=1.5)
+
+
+def _normal_forces(t):
+    """fn of clutch1..3 (N): fn_max times sin2 (amplitude 1, f = 0.2 Hz,
+    phase pi/2), step1 (at T2 = 0.4 s) and step2 (at T3 = 0.9 s)."""
+    return FN_MAX * np.array([np.sin(2 * np.pi * 0.2 * t + np.pi / 2),
+                              1.0 if t >= 0.4 else 0.0,
+                              1.0 if t >= 0.9 else 0.0])
+
+
+def _accelerations(t, w, modes):
+    """Accelerations of the four inertias and each clutch's torque (N m)
+    for ``modes`` (per clutch: +1/-1 sliding forward/backward, 0 stuck,
+    None free). Clutch c joins inertias c (flange_a) and c+1 (flange_b);
+    its torque tau acts +tau on inertia c and -tau on c+1 (MSL's
+    ``flange_b.tau = tau``, ``flange_a.tau = -tau``); sliding: tau =
+    mu fn sign(w_rel), w_rel = w_b - w_a; stuck: w_rel'' = 0 and tau
+    whatever that needs (unknowns solved in one linear system)."""
+    fn = _normal_forces(t)
+    drive = 10 * np.sin(2 * np.pi * 5 * t)
+    stuck = [c for c, m in enumerate(modes) if m == 0]
+    size = 4 + len(stuck)
+    a, b = np.zeros((size, size)), np.zeros(size)
+    for i in range(4):
+        a[i, i] = 1.0   # J = 1
+    b[0] = drive
+    tau = np.zeros(3)
+    for c, m in enumerate(modes):
+        if m in (1, -1):
+            tau[c] = m * MU * fn[c]
+            b[c] += tau[c]
+            b[c + 1] -= tau[c]
+    for row, c in enumerate(stuck, start=4):
+        a[c, row] -= 1.0       # J_a a_a - tau = ...
+        a[c + 1, row] += 1.0   # J_b a_b + tau = ...
+        a[row, c + 1], a[row, c] = 1.0, -1.0
+    x = np.linalg.solve(a, b)
+    for row, c in enumerate(stuck, start=4):
+        tau[c] = x[row]
+    return x[:4], tau
+
+
+def _settle(t, w, modes, broke=()):
+    """The modes at an event: a clutch with zero slip and a normal force
+    is stuck where its torque fits in peak mu fn, else slides the way
+    its relative acceleration goes (MSL's PartialFriction); the
+    combination of all such clutches that is consistent, stuck first.
+    A clutch in ``broke`` has just reached its capacity: it slides."""
+    fn = _normal_forces(t + 1e-9)   # the force after the event
+    modes = [None if fn[c] <= 0 else m for c, m in enumerate(modes)]
+    open_ = [c for c in range(3) if fn[c] > 0 and
+             abs(w[c + 1] - w[c]) < 1e-9]
+    for c in range(3):
+        if fn[c] > 0 and c not in open_ and modes[c] in (None, 0):
+            modes[c] = int(np.sign(w[c + 1] - w[c]))
+    for choice in sorted(product((0, 1, -1), repeat=len(open_)),
+                         key=lambda ch: sum(m != 0 for m in ch)):
+        if any(m == 0 and c in broke for c, m in zip(open_, choice)):
+            continue
+        trial = list(modes)
+        for c, m in zip(open_, choice):
+            trial[c] = m
+        acc, tau = _accelerations(t, w, trial)
+        if all(abs(tau[c]) <= PEAK * MU * fn[c] * (1 + 1e-12)
+               if m == 0 else m * (acc[c + 1] - acc[c]) >= -1e-12
+               for c, m in zip(open_, choice)):
+            return trial
+    raise AssertionError(f"no consistent mode at t = {t}")
+
+
+def coupled_clutches_reference():
+    """Event-driven solution (DOP853 at 1e-12, events located by scipy):
+    ``(times, speeds (n, 4) rad/s, events)``, events ``[(t, clutch 1..3,
+    new mode)]`` with mode 1/-1 sliding forward/backward, 0 stuck, 2 free
+    (MSL's Forward, Backward, Stuck, Free)."""
+    w, t = np.array([10.0, 0.0, 0.0, 0.0]), 0.0
+    modes = _settle(0.0, w, [None, None, None])
+    times, speeds, events = [0.0], [w.copy()], []
+    switches = [0.4, 0.9, 1.25]   # the steps, cos(0.4 pi t) = 0
+    for _ in range(200):
+        if t >= STOP - 1e-12:
+            break
+        functions, owners = [], []
+        for c, m in enumerate(modes):
+            if m in (1, -1):
+                def f(s, y, c=c):
+                    return y[c + 1] - y[c]
+                f.direction = -m   # back through zero, not off it
+            elif m == 0:
+                def f(s, y, c=c, modes=modes):
+                    return PEAK * MU * _normal_forces(s)[c] - \
+                        abs(_accelerations(s, y, modes)[1][c])
+            else:
+                continue
+            f.terminal = True
+            functions.append(f)
+            owners.append(c)
+        end = min([s for s in switches if s > t + 1e-12] + [STOP])
+        grid = np.arange(np.ceil(t / 1e-3 + 1e-9), np.floor(
+            end / 1e-3 + 1e-9) + 1) * 1e-3
+        grid = np.unique(np.append(grid[(grid > t) & (grid < end)], end))
+        sol = solve_ivp(lambda s, y, modes=modes:
+                        _accelerations(s, y, modes)[0], (t, end), w,
+                        method="DOP853", rtol=1e-12, atol=1e-12,
+                        events=functions, t_eval=grid, first_step=1e-6)
+        if len(sol.t):
+            times += list(sol.t)
+            speeds += list(np.asarray(sol.y).T)
+        broke = set()
+        if sol.status == 1:
+            hits = [(e[0], ye[0], c) for e, ye, c in
+                    zip(sol.t_events, sol.y_events, owners) if len(e)]
+            t, w, c = min(hits, key=lambda h: h[0])
+            w = w.copy()
+            if modes[c] == 0:
+                broke = {c}
+            else:
+                w[c] = w[c + 1] = (w[c] + w[c + 1]) / 2   # slip exactly 0
+        else:
+            t, w = end, sol.y[:, -1].copy()
+        new = _settle(t, w, modes, broke)
+        for c in range(3):
+            if new[c] != modes[c]:
+                events.append((t, c + 1, 2 if new[c] is None else new[c]))
+        modes = new
+    order = np.argsort(times, kind="stable")
+    return np.array(times)[order], np.array(speeds)[order], events
+
+
+@pytest.fixture(scope="module")
+def coupled_clutches(tmp_path_factory):
+    source, _ = find_class(NAME, [MSL, LIBRARY])
+    out = tmp_path_factory.mktemp("coupled") / "CoupledClutches.fmu"
+    result = build_fmu(source, NAME, out, version="2.0",
+                       roots=[MSL, LIBRARY])
+    return out, result
+
+
+def test_coupled_clutches_builds_from_the_unmodified_msl(coupled_clutches):
+    """The table object is replaced in the cached copy (listed as a
+    rewrite of Clutch.mo:29), not refused; the clutches' mode variables
+    are in the FMU."""
+    _, result = coupled_clutches
+    tables = [r for r in result.rewrites if r.kind == "table"]
+    assert [(r.file.endswith("Components/Clutch.mo"), r.line, r.name)
+            for r in tables] == [(True, 29, "tableID")]
+    assert result.states == 8
+
+
+@pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
+def test_coupled_clutches_matches_event_driven_reference(coupled_clutches,
+                                                         kind):
+    """Speeds of J1..J4 on the 1 ms grid, and each mode change of the
+    three clutches, against :func:`coupled_clutches_reference`.
+    Tolerances: speeds 1e-5 rad/s (CVode at 1e-10 in Model Exchange; the
+    embedded Dormand-Prince at 1e-10 in Co-Simulation; measured 6e-8 and
+    6e-9), event times 1e-6 s (Co-Simulation reports a change at the
+    next 1 ms point: its tolerance is the step), slip of a stuck clutch
+    1e-9 rad/s."""
+    from fmpy import simulate_fmu
+    path, _ = coupled_clutches
+    times, speeds, events = coupled_clutches_reference()
+    names = ["J1.w", "J2.w", "J3.w", "J4.w",
+             "clutch1.mode", "clutch2.mode", "clutch3.mode"]
+    run = simulate_fmu(str(path), stop_time=STOP, fmi_type=kind,
+                       output_interval=1e-3, relative_tolerance=1e-10,
+                       output=names)
+    grid = np.round(np.arange(1, 1500) * 1e-3, 9)
+    got = np.array([np.interp(grid, run["time"], run[n])
+                    for n in names[:4]]).T
+    want = np.array([np.interp(grid, times, speeds[:, i])
+                     for i in range(4)]).T
+    # a 1 ms point within 1 ms of a mode change is compared only where
+    # both runs are in the same mode (interpolation across a kink)
+    near = np.zeros(len(grid), dtype=bool)
+    for t, _, _ in events:
+        near |= np.abs(grid - t) < 2e-3
+    assert_allclose(got[~near], want[~near], rtol=0, atol=1e-5)
+    # every mode change, in order and at its time
+    modes = np.array([run[n] for n in names[4:]]).T
+    seen = []
+    for k in range(1, len(run)):
+        for c in range(3):
+            if modes[k, c] != modes[k - 1, c]:
+                seen.append((run["time"][k], c + 1, int(modes[k, c])))
+    reference = [(t, c, m) for t, c, m in events if t > 0]
+    step = 1e-6 if kind == "ModelExchange" else 1e-3 + 1e-9
+    assert [(c, m) for _, c, m in seen] == [(c, m) for _, c, m in reference]
+    for (t_got, _, _), (t_want, _, _) in zip(seen, reference):
+        assert t_want - 1e-6 <= t_got <= t_want + step, (t_got, t_want)
+    # stuck clutches do not slip
+    for c in range(3):
+        stuck = modes[:, c] == 0
+        slip = np.abs(run[f"J{c + 2}.w"] - run[f"J{c + 1}.w"])[stuck]
+        assert slip.max(initial=0) < 1e-9
