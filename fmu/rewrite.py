@@ -648,8 +648,8 @@ def inline_tables(text, objects):
         while start > 0 and (tokens[start - 1][1] in _PREFIXES or
                              tokens[start - 1][1] == "." or
                              (tokens[start - 1][0] == "ident" and
-                              start > 1 and tokens[start - 2][1] == ".")):
-            start -= 1
+                              tokens[start][1] == ".")):
+            start -= 1   # prefixes and the type's package path
         end = close
         while end < len(tokens) and tokens[end][1] != ";":
             end += 1

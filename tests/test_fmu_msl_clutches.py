@@ -17,6 +17,7 @@ a step at 0.4 s and a step at 0.9 s. The MSL is read as in
 from itertools import product
 import os
 from pathlib import Path
+import re
 
 import numpy as np
 import pytest
@@ -244,3 +245,112 @@ def test_coupled_clutches_matches_event_driven_reference(coupled_clutches,
         stuck = modes[:, c] == 0
         slip = np.abs(run[f"J{c + 2}.w"] - run[f"J{c + 1}.w"])[stuck]
         assert slip.max(initial=0) < 1e-9
+
+
+def test_a_table_read_from_a_file_is_still_refused(tmp_path):
+    """Only a table given in the model is computed in Modelica: one read
+    from a file (``tableName`` other than "NoName") keeps its object and
+    is refused before rumoca runs, naming it and its line."""
+    from fmu.errors import FrontEndError
+    from fmu.precheck import refuse_unsupported
+    from fmu.rewrite import inline_tables
+    model = tmp_path / "FileTable.mo"
+    model.write_text(
+        "model FileTable\n"
+        "  parameter Modelica.Blocks.Types.ExternalCombiTable1D tab =\n"
+        "    Modelica.Blocks.Types.ExternalCombiTable1D(tableName=\"mu\",\n"
+        "    fileName=\"mu.txt\", table=fill(0.0, 0, 2), columns={2},\n"
+        "    smoothness=Modelica.Blocks.Types.Smoothness.LinearSegments,\n"
+        "    extrapolation=Modelica.Blocks.Types.Extrapolation."
+        "LastTwoPoints, verboseRead=false);\n"
+        "  Real x(start = 1, fixed = true);\n"
+        "equation\n"
+        "  der(x) = -Modelica.Blocks.Tables.Internal.getTable1DValueNoDer2("
+        "tab, 1, x);\n"
+        "end FileTable;\n")
+    text = model.read_text()
+    assert inline_tables(text, {"ExternalCombiTable1D"}) == (text, [])
+    with pytest.raises(FrontEndError) as refused:
+        refuse_unsupported(model, "FileTable", [tmp_path, MSL], hybrid=True)
+    assert "FileTable.mo:2: tab: an external object" in str(refused.value)
+
+
+def test_inlined_lookup_keeps_every_line():
+    """The rewrite of MSL's Clutch keeps its line count and every line
+    number (messages name the user's file and line), leaves no call of
+    the table functions and no construction of the object."""
+    from fmu.rewrite import inline_tables
+    text = (MSL / "Modelica/Mechanics/Rotational/Components/Clutch.mo"
+            ).read_text()
+    new, found = inline_tables(text, {"ExternalCombiTable1D"})
+    assert [(line, name) for line, name, _ in found] == [(29, "tableID")]
+    assert new.count("\n") == text.count("\n")
+    assert not re.search(r"getTable1DValue\w*\s*\(", new)
+    assert not re.search(r"ExternalCombiTable1D\s*\(", new)
+
+
+LOOKUP = """model TableLookup "MSL's table object given in the model"
+  parameter Real T[3, 3] = [0, 0.5, 1; 1, 0.3, 2; 3, 0.4, 5];
+  final parameter Modelica.Blocks.Types.ExternalCombiTable1D lin =
+    Modelica.Blocks.Types.ExternalCombiTable1D(tableName="NoName",
+    fileName="NoName", table=T, columns={2, 3},
+    smoothness=Modelica.Blocks.Types.Smoothness.LinearSegments,
+    extrapolation=Modelica.Blocks.Types.Extrapolation.LastTwoPoints,
+    verboseRead=false);
+  final parameter Modelica.Blocks.Types.ExternalCombiTable1D steps =
+    Modelica.Blocks.Types.ExternalCombiTable1D(tableName="NoName",
+    fileName="NoName", table=T, columns=2:3,
+    smoothness=Modelica.Blocks.Types.Smoothness.ConstantSegments,
+    extrapolation=Modelica.Blocks.Types.Extrapolation.LastTwoPoints,
+    verboseRead=false);
+  Real y1, y2, y3, y4;
+equation
+  y1 = Modelica.Blocks.Tables.Internal.getTable1DValueNoDer2(lin, 1, time - 1);
+  y2 = Modelica.Blocks.Tables.Internal.getTable1DValue(lin, 2, time - 1);
+  y3 = Modelica.Blocks.Tables.Internal.getTable1DValueNoDer(steps, 1, time - 1);
+  y4 = Modelica.Blocks.Tables.Internal.getTable1DValueNoDer(steps, 2, time - 1);
+end TableLookup;
+"""
+
+
+def _msl_lookup(table, column, u, constant):
+    """ModelicaStandardTables' 1-D lookup with LastTwoPoints: linear
+    interpolation extrapolated through the end segments, or the value of
+    the last row at or below u (the first row below the table)."""
+    x, y = table[:, 0], table[:, column]
+    if constant:
+        return y[np.clip(np.searchsorted(x, u, side="right") - 1, 0, None)]
+    inside = np.interp(u, x, y)
+    low = y[0] + (u - x[0]) * (y[1] - y[0]) / (x[1] - x[0])
+    high = y[-1] + (u - x[-1]) * (y[-1] - y[-2]) / (x[-1] - x[-2])
+    return np.where(u < x[0], low, np.where(u > x[-1], high, inside))
+
+
+def test_table_lookups_match_the_standard_tables(tmp_path):
+    """Linear and constant segments, columns as {2, 3} and 2:3, from
+    below the table through it to beyond it (u = time - 1 in [-1, 4]):
+    equal to the lookup of ModelicaStandardTables.c to 1e-12 away from
+    the steps of the constant segments. A parameter change (T set in the
+    FMU) is followed."""
+    from fmpy import simulate_fmu
+    model = tmp_path / "TableLookup.mo"
+    model.write_text(LOOKUP)
+    out = tmp_path / "TableLookup.fmu"
+    build_fmu(model, "TableLookup", out, version="2.0",
+              roots=[tmp_path, MSL])
+    table = np.array([[0, 0.5, 1], [1, 0.3, 2], [3, 0.4, 5]], float)
+    for start in ({}, {"T[3,2]": 0.9, "T[2,1]": 2.0}):
+        for name, value in start.items():
+            i, j = (int(k) - 1 for k in name[2:-1].split(","))
+            table[i, j] = value
+        run = simulate_fmu(str(out), stop_time=5, output_interval=0.01,
+                           start_values=start,
+                           output=["y1", "y2", "y3", "y4"])
+        u = run["time"] - 1
+        off_steps = np.all(np.abs(u[:, None] - table[None, :, 0]) > 1e-6,
+                           axis=1)
+        for name, column, constant in (("y1", 1, False), ("y2", 2, False),
+                                       ("y3", 1, True), ("y4", 2, True)):
+            assert_allclose(run[name][off_steps],
+                            _msl_lookup(table, column, u, constant)[off_steps],
+                            rtol=0, atol=1e-12, err_msg=f"{name} {start}")
