@@ -354,3 +354,36 @@ def test_table_lookups_match_the_standard_tables(tmp_path):
             assert_allclose(run[name][off_steps],
                             _msl_lookup(table, column, u, constant)[off_steps],
                             rtol=0, atol=1e-12, err_msg=f"{name} {start}")
+
+
+MODELS = ROOT / "tests" / "msl_models"
+#: A falling friction characteristic in the slip's segment (negative slip
+#: damping: judder prone), as tests/test_hybrid_floquet.py uses.
+FALLING = {"mu_pos[2,2]": 0.13, "mu_pos[3,2]": 0.03}
+
+
+@pytest.mark.parametrize("changes, freq_hz, p_f", [
+    ({}, 102.9, 0.3e5), (FALLING, 102.9, 0.3e5), (FALLING, 60.0, 0.8e5)])
+def test_msl_clutch_driveline_equals_the_projects(monkeypatch, changes,
+                                                  freq_hz, p_f):
+    """The 4-DOF driveline on MSL's own Clutch (MslClutchDriveline: the
+    ExternalCombiTable1D table object as the user's MSL has it) is
+    linearised slipping forward to the Floquet multipliers of the same
+    driveline on the project's FrictionModeClutch (ModeClutchDriveline,
+    whose multipliers tests/test_hybrid_floquet.py checks against a
+    hand-written driveline to 1e-6) to 1e-8 (issue 43)."""
+    monkeypatch.setenv("MODELICAPATH", str(MSL))
+    from sources.modelica import ModelicaParameters
+    from stability.multipliers import floquet
+    from stability.source import build_driveline
+    found = []
+    for name in ("MslDrivelines.MslClutchDriveline",
+                 "MslDrivelines.ModeClutchDriveline"):
+        params = ModelicaParameters(name, str(MODELS)).replace(**changes)
+        assert dict(params.linear_model().mode)["clutch.mode"] == \
+            "1 (clutch.Forward)"
+        found.append(np.sort_complex(floquet(
+            build_driveline(params), freq_hz, p_f,
+            form="full").multipliers))
+    assert_allclose(found[0], found[1], rtol=0, atol=1e-8)
+    assert np.abs(found[0]).max() > 0.5   # not a trivial spectrum
