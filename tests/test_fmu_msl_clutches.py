@@ -387,3 +387,28 @@ def test_msl_clutch_driveline_equals_the_projects(monkeypatch, changes,
             form="full").multipliers))
     assert_allclose(found[0], found[1], rtol=0, atol=1e-8)
     assert np.abs(found[0]).max() > 0.5   # not a trivial spectrum
+
+
+def test_a_smoothness_the_lookup_does_not_compute_is_an_error(tmp_path):
+    """A table object with a smoothness other than linear or constant
+    segments (here ContinuousDerivative, MSL's Akima) is not computed as
+    another: the FMU's initialisation fails with an error that names the
+    object, the value and what is allowed."""
+    from fmpy import simulate_fmu
+    model = tmp_path / "TableLookup.mo"
+    model.write_text(LOOKUP.replace(
+        "Smoothness.LinearSegments", "Smoothness.ContinuousDerivative"))
+    out = tmp_path / "TableLookup.fmu"
+    build_fmu(model, "TableLookup", out, version="2.0",
+              roots=[tmp_path, MSL])
+    said = []
+
+    def logger(*args):
+        said.append(args[-1].decode() if isinstance(args[-1], bytes)
+                    else str(args[-1]))
+
+    with pytest.raises(Exception):
+        simulate_fmu(str(out), stop_time=1, output=["y1"], logger=logger)
+    text = " ".join(said)
+    assert "lin: smoothness 2 of Modelica.Blocks.Types.Smoothness" in text
+    assert "allowed: LinearSegments (1), ConstantSegments (3)" in text
