@@ -132,9 +132,10 @@ def _build_all(args, names, versions, roots, said):
                       "size_bytes": result.size_bytes}
             report["rewrites"] = [
                 {"file": r.file, "line": r.line, "name": r.name,
-                 "binding": r.binding, "parameter": r.parameter}
+                 "binding": r.binding, "parameter": r.parameter,
+                 "kind": r.kind}
                 for r in result.rewrites]
-            rewritten = f", {len(result.rewrites)} bindings rewritten " \
+            rewritten = f", {len(result.rewrites)} rewrites " \
                 "(--show-rewrites lists them)" if result.rewrites and \
                 not args.show_rewrites else ""
             print(json.dumps(report) if args.json else

@@ -232,7 +232,7 @@ _BUILTIN = {
     "log10": casadi.log10, "sqrt": casadi.sqrt, "abs": casadi.fabs,
     "min": lambda *a: _extremum(casadi.fmin, "min", a),
     "max": lambda *a: _extremum(casadi.fmax, "max", a),
-    "sign": casadi.sign,
+    "sign": casadi.sign, "integer": casadi.floor,
 }
 #: Builtins on arrays (parameter tables): matrix and vector constructors,
 #: sum and size, evaluated when the model is read. ``[a, b; c, d]`` is
@@ -552,7 +552,10 @@ class _Expressions:
             return _BUILTIN[name](*args)
         if kind == "conditional":
             args = self._args(index, body["operand_count"])
-            return _conditional(args)
+            try:
+                return _conditional(args)
+            except FrontEndError as exc:
+                raise FrontEndError(f"{self.where}: {exc}") from None
         if kind == "call":
             return self._call(index, body)
         if kind == "comprehension":
@@ -625,6 +628,56 @@ class _Expressions:
             return np.stack([np.asarray(i, dtype=object) for i in items])
         return np.array(items, dtype=object)
 
+    def structured(self, body):
+        """The scalar residuals of an array equation, rumoca's structured
+        equation over a domain of element indices (``__array_i1`` in
+        ``1:2``), in row-major order: each body converted whole where it
+        does not name the indices (``s - (if c then {1, 1} else {-1,
+        -1})``, its elements taken), else once per element."""
+        domain = self._domains[body["domain"]]["domain"]
+        binders = domain.get("binders") or []
+        ranges = []
+        for binder in binders:
+            lower, upper, step = (binder.get(k) for k in
+                                  ("lower", "upper", "step"))
+            if not all(isinstance(v, (int, float)) and v == int(v)
+                       for v in (lower, upper, step)) or not step:
+                raise FrontEndError(
+                    f"{self.where}: the range of {binder.get('display_name')}"
+                    f" ({binder}) is not supported; allowed: a range a:b or "
+                    "a:step:b of integers known when the model is read")
+            ranges.append(list(range(int(lower), int(upper) + (
+                1 if step > 0 else -1), int(step))))
+        shape = tuple(len(r) for r in ranges)
+        residuals = []
+        for node in body.get("bodies") or []:
+            try:
+                whole = self(node)
+            except FrontEndError as exc:
+                if "used outside it" not in str(exc):
+                    raise
+                whole = None
+            if whole is not None:
+                value = np.asarray(whole, dtype=object)
+                if value.shape != shape:
+                    raise FrontEndError(
+                        f"{self.where}: this array equation has shape "
+                        f"{value.shape}, not that of its elements {shape}")
+                residuals.extend(value[p] for p in np.ndindex(shape))
+                continue
+            saved, self._cache = self._cache, {}
+            try:
+                for position in product(*ranges):
+                    for ordinal, value in enumerate(position):
+                        self._binders[(body["domain"], ordinal)] = value
+                    self._cache = {}
+                    residuals.append(self(node))
+            finally:
+                for ordinal in range(len(ranges)):
+                    self._binders.pop((body["domain"], ordinal), None)
+                self._cache = saved
+        return residuals
+
     def _function_variable(self, role, reference):
         """A parameter, output or local of the function being inlined."""
         key = (role, reference.get("ordinal"))
@@ -679,6 +732,20 @@ class _Expressions:
 def _conditional(args):
     """``if c1 then v1 elseif c2 then v2 ... else v`` as nested if_else."""
     *pairs, otherwise = args
+    if any(isinstance(a, np.ndarray) for a in args[1::2] + [otherwise]):
+        # array branches ({1, 1} of MSL's Clutch table_signs): element-wise
+        shapes = {np.shape(a) for a in args[1::2] + [otherwise]}
+        if len(shapes) != 1:
+            raise FrontEndError(f"the branches of an if-expression have "
+                                f"shapes {sorted(shapes)}; allowed: one shape")
+        shape = shapes.pop()
+        result = np.empty(shape, dtype=object)
+        for position in np.ndindex(shape):
+            result[position] = _conditional(
+                [c for pair in zip(pairs[::2], pairs[1::2]) for c in
+                 (pair[0], np.asarray(pair[1], dtype=object)[position])] +
+                [np.asarray(otherwise, dtype=object)[position]])
+        return result
     result = otherwise
     for condition, value in reversed(list(zip(pairs[::2], pairs[1::2]))):
         result = casadi.if_else(condition, value, result, True)
@@ -886,10 +953,11 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 "supported by the FMU back end")
         value_type = storage["value_types"][raw["value_type"]]
         if value_type.get("dimensions") and \
-                raw["role"] not in ("parameter", "constant"):
+                raw["role"] not in ("parameter", "constant", "algebraic"):
             raise FrontEndError(f"{place}: {raw['name']}: arrays of "
                                 "variables are not supported by the FMU back "
-                                "end (arrays of parameters are)")
+                                "end (arrays of parameters and of algebraic "
+                                "variables are)")
         if value_type.get("scalar") != "real" and \
                 raw["role"] not in ("parameter", "constant"):
             raise FrontEndError(f"{place}: {raw['name']}: "
@@ -899,9 +967,10 @@ def _check_supported(storage, model_name, where, hybrid=False):
         items = storage.get(key) or []
         if hybrid and key == "discrete_value_owners":
             continue
-        if key == "domains":   # those of for-expressions are compiled
+        if key == "domains":   # for-expressions, array equations: compiled
             items = [d for k, d in enumerate(items)
-                     if k not in _comprehension_domains(storage)]
+                     if k not in _comprehension_domains(storage)
+                     and k not in _equation_domains(storage)]
         if items:
             place = where(items[0]) if isinstance(items[0], dict) else \
                 model_name
@@ -916,6 +985,17 @@ def _comprehension_domains(storage):
     return {next(iter(node.values()))["domain"]
             for node in storage["expressions"]["nodes"]
             if "comprehension" in node}
+
+
+def _equation_domains(storage):
+    """The domains of array equations (``s = if c then {1, 1} else {-1,
+    -1}`` of MSL's ``Clutch``), which rumoca keeps as one structured
+    equation over the elements instead of unrolling it."""
+    return {body["domain"]
+            for section in ("continuous_equation_operations",
+                            "initialization_equation_operations")
+            for operation in storage.get(section) or []
+            for kind, body in operation.items() if kind == "structured"}
 
 
 def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
@@ -1010,6 +1090,11 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         for operation in storage.get(section) or []:
             kind, body = next(iter(operation.items()))
             convert.where = where(body)
+            if kind == "structured":
+                for residual in convert.structured(body):
+                    sections[section].append(residual)
+                    places[section].append(convert.where)
+                continue
             if kind != "residual":
                 raise FrontEndError(f"{convert.where}: equations of kind "
                                     f"{kind!r} are not supported by the FMU "
@@ -1027,8 +1112,10 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     _modified_rewritten_parameters(variables, sections, places, rewrites)
     _parameters_of_initial_equations(variables, sections, places)
     declared = {(v.where, _last_name(v.name)) for v in variables}
+    used = {v.where.rsplit(":", 1)[0] for v in variables}
     rewrites = [r for r in rewrites
-                if (f"{r.file}:{r.line}", r.name) in declared]
+                if (f"{r.file}:{r.line}", r.name) in declared or
+                (r.kind == "table" and r.file in used)]
     assertions = _assertions(storage, convert, where)
     whens = _whens(storage, convert, where, variables)
     discretes, discrete_relations = _discretes(

@@ -15,7 +15,7 @@ friction elements, the project library's replacement.
 It refuses only what the back end certainly refuses later (the checks of
 :func:`fmu.frontend._check_supported` remain for what this reading
 misses): variables of type Integer, Boolean or an enumeration,
-``discrete`` variables, arrays of Real variables, parameters of an
+``discrete`` variables, parameters of an
 ``ExternalObject`` type (MSL's table objects), ``edge``, ``change``,
 ``sample``, ``initial()`` and ``pre`` outside a when-clause.
 Conditional components (``... if useHeatPort``) are not followed:
@@ -40,6 +40,7 @@ import re
 
 from .errors import FrontEndError
 from .classes import blank, class_spans, find_class
+from .rewrite import inlinable_table
 
 __all__ = ["refuse_unsupported", "refuse_undeclared", "refuse_bound",
            "REPLACEMENTS"]
@@ -309,6 +310,7 @@ class _Walker:
                                statement)
             where = _place(path, text, begin + at + len(statement)
                            - len(statement.lstrip()))
+            self.raw = text[begin + at:begin + at + len(statement)]
             result += self._statement(statement, name, where)
         if cut:
             result += self._equations(body[cut.start():], path, text,
@@ -331,6 +333,8 @@ class _Walker:
                 "replaceable" in prefixes:
             return []     # may not exist, or be redeclared another type
         full, base, external = self.kind(type_name, scope)
+        if external and inlinable_table(getattr(self, "raw", statement)):
+            return []   # its lookups are computed in Modelica (fmu.rewrite)
         if external:
             return [_Finding(where, f"{component}: an external object "
                              f"({full}) is not supported", (), (scope,))]
@@ -341,9 +345,6 @@ class _Walker:
             return [_Finding(where, f"{component}: Integer, Boolean and "
                              f"discrete variables are not supported ({what})",
                              (), (scope,))]
-        if base == "Real" and (dims or more):
-            return [_Finding(where, f"{component}: arrays of variables are "
-                             "not supported", (), (scope,))]
         if base is None and full is not None:
             return [dataclasses.replace(
                 f, chain=((component, full, where),) + f.chain)

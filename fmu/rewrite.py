@@ -39,11 +39,12 @@ import tempfile
 from infra.errors import JudderError
 from infra.files import atomic_write
 
-__all__ = ["Rewrite", "Prepared", "prepare", "rewrite_text",
+__all__ = ["Rewrite", "Prepared", "prepare", "rewrite_text", "inline_tables",
+           "inlinable_table",
            "REWRITE_VERSION"]
 
 #: Changes with the rule: the flat-model cache and the copies are keyed by it.
-REWRITE_VERSION = "2"
+REWRITE_VERSION = "4"
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+)
@@ -76,6 +77,9 @@ _BUILTIN = {
     "Boolean", "Real", "sin", "cos", "tan", "asin", "acos", "atan", "atan2",
     "sinh", "cosh", "tanh", "exp", "log", "log10", "assert", "reinit",
     "getInstanceName", "spatialDistribution", "if"}
+#: Keywords a bracket may follow (``then (a + b)``): not calls.
+_KEYWORDS = {"then", "else", "elseif", "and", "or", "not", "in", "for",
+             "loop", "while", "return", "equation", "algorithm"}
 #: Types whose components are scalars of Real (a ``type X = Real(...)``
 #: of the libraries adds its name, :func:`_real_types`).
 _REAL = {"Real"}
@@ -109,8 +113,16 @@ class Rewrite:
     binding: str
     parameter: bool
     at: int = 0
+    kind: str = "binding"
 
     def __str__(self):
+        if self.kind == "table":
+            return f"{self.file}:{self.line}: {self.name} = " \
+                f"{self.binding}: a table given in the model, its " \
+                f"getTable1DValue* lookups computed in Modelica (linear or " \
+                f"constant segments, extrapolated through the last two " \
+                f"points) and the object left out (rumoca 0.10.2 " \
+                f"miscounts its binding)"
         made = "an initial equation (fixed = false), still a parameter" \
             if self.parameter else "an equation"
         return f"{self.file}:{self.line}: {self.name} = {self.binding}: " \
@@ -237,7 +249,7 @@ def _calls_with_array(tokens, arrays):
         while start >= 2 and tokens[start - 1][1] == "." and \
                 tokens[start - 2][0] == "ident":
             start -= 2
-        if start == k and token[1] in _BUILTIN:
+        if start == k and token[1] in _BUILTIN | _KEYWORDS:
             continue
         end = _closing(tokens, k + 1)
         if any(_is_array(argument, arrays)
@@ -474,6 +486,220 @@ def _apply(text, edits):
     return "".join(out)
 
 
+#: MSL's lookups of a 1-D table object (``Modelica.Blocks.Tables.Internal``):
+#: their value does not depend on which one is called, only on the
+#: object's ``smoothness`` (the name says which derivatives it provides).
+_TABLE_LOOKUPS = {"getTable1DValue", "getTable1DValueNoDer",
+                  "getTable1DValueNoDer2"}
+#: The only extrapolation the Modelica expression implements.
+_EXTRAPOLATION = "LastTwoPoints"
+_SMOOTHNESS = "Modelica.Blocks.Types.Smoothness"
+
+
+def _named_arguments(tokens):
+    """``{name: tokens}`` of a call's named arguments."""
+    named = {}
+    for argument in _split(tokens, ","):
+        if len(argument) > 2 and argument[0][0] == "ident" and \
+                argument[1][1] == "=":
+            named[argument[0][1]] = argument[2:]
+    return named
+
+
+def _table_constructor(tokens, k, objects):
+    """``(object name, named arguments, index of the closing bracket)``
+    where ``tokens[k]`` starts ``ExternalCombiTable1D tableID =
+    ExternalCombiTable1D(...)`` (the type's last name in ``objects``),
+    with a table given in the model (``tableName = "NoName"``) and
+    extrapolation through the last two points; else None."""
+    if not (k + 3 < len(tokens) and tokens[k][0] == "ident" and
+            tokens[k][1] in objects and tokens[k + 1][0] == "ident" and
+            tokens[k + 2][1] == "="):
+        return None
+    j = k + 3
+    while j + 1 < len(tokens) and tokens[j][0] == "ident" and \
+            tokens[j + 1][1] == ".":
+        j += 2
+    if not (j + 1 < len(tokens) and tokens[j][1] == tokens[k][1] and
+            tokens[j + 1][1] == "("):
+        return None
+    close = _closing(tokens, j + 1)
+    named = _named_arguments(tokens[j + 2:close])
+    name = named.get("tableName")
+    extrapolation = named.get("extrapolation")
+    if "table" not in named or "columns" not in named or not name or \
+            _one_line(name) != '"NoName"' or not extrapolation or \
+            extrapolation[-1][1] != _EXTRAPOLATION:
+        return None
+    return tokens[k + 1][1], named, close
+
+
+def inlinable_table(statement):
+    """Whether the declaration ``statement`` (its source text) is a table
+    object :func:`inline_tables` replaces (used by the source check,
+    :mod:`fmu.precheck`, to let it pass)."""
+    tokens = _tokens(statement)
+    for k, token in enumerate(tokens):
+        if token[0] == "ident" and k + 2 < len(tokens) and \
+                tokens[k + 1][0] == "ident" and tokens[k + 2][1] == "=":
+            return _table_constructor(tokens, k, {token[1]}) is not None
+    return False
+
+
+def _column(columns, icol):
+    """The text of the table column of lookup ``icol`` (its text) for the
+    ``columns`` argument: ``{2}``, ``{2, 3, 4, 5}`` (an arithmetic
+    progression of integers) or ``a:b``; None otherwise."""
+    text = _one_line(columns)
+    icol = _one_line(icol)
+    if columns[0][1] == "{":
+        items = [_one_line(part) for part in _split(columns[1:-1], ",")]
+        if not all(re.fullmatch(r"\d+", item) for item in items):
+            return None
+        values = [int(item) for item in items]
+        if re.fullmatch(r"\d+", icol):
+            picked = int(icol)
+            return str(values[picked - 1]) if 1 <= picked <= len(values) \
+                else None
+        step = values[1] - values[0] if len(values) > 1 else 0
+        if any(b - a != step for a, b in zip(values, values[1:])):
+            return None
+        return f"({values[0]} + ({icol} - 1)*{step})"
+    parts = _split(columns, ":")
+    if len(parts) == 2:
+        return f"({_one_line(parts[0])} + ({icol}) - 1)"
+    return None if "{" in text else None
+
+
+def _lookup(table, column, smoothness, u):
+    """A Modelica expression of MSL's 1-D table lookup of ``table`` (text)
+    at ``u`` in ``column``, as ``ModelicaStandardTables.c`` computes it
+    for extrapolation ``LastTwoPoints``: with linear segments ``y =
+    T[1,c] + sum_k (s_k - s_(k-1)) r_k``, the slopes ``s_k`` of the
+    segments and the ramps ``r_1 = u - T[1,1]``, ``r_k = max(u - T[k,1],
+    0)``; with constant segments ``y = T[1,c] + sum_k (T[k,c] -
+    T[k-1,c]) [u >= T[k,1]]``. A one-row table is its value. The
+    indices are clipped so that every subscript stays in range (rumoca
+    evaluates the expression for each ``k``) and no range is empty."""
+    n = f"size({table}, 1)"
+    k2 = f"min(k + 1, {n})"
+    j = "max(k - 1, 1)"
+    j2 = f"min({j} + 1, {n})"
+    slope = f"({table}[{k2}, {column}] - {table}[k, {column}])/" \
+        f"({table}[{k2}, 1] - {table}[k, 1] + 1 + k - {k2})"
+    before = f"({table}[{j2}, {column}] - {table}[{j}, {column}])/" \
+        f"({table}[{j2}, 1] - {table}[{j}, 1] + 1 + {j} - {j2})"
+    ramp = f"(({u}) - {table}[k, 1] + min(k - 1, 1)*noEvent(max(" \
+        f"{table}[k, 1] - ({u}), 0)))"
+    linear = f"{table}[1, {column}] + sum(({slope} - min(k - 1, 1)*" \
+        f"{before})*{ramp} for k in 1:max({n} - 1, 1))"
+    steps = f"{table}[1, {column}] + sum(min(k - 1, 1)*({table}[k, " \
+        f"{column}] - {table}[{j}, {column}])*noEvent(if ({u}) >= " \
+        f"{table}[k, 1] then 1 else 0) for k in 1:{n})"
+    return f"(if {smoothness} == {_SMOOTHNESS}.ConstantSegments then " \
+        f"{steps} else {linear})"
+
+
+def _class_ranges(tokens):
+    """``[(first token, its end token)]`` of each long class definition."""
+    ranges, stack = [], []
+    for k, token in enumerate(tokens):
+        if token[0] != "ident":
+            continue
+        if token[1] == "end" and k + 2 < len(tokens) and stack and \
+                tokens[k + 1][1] == stack[-1][0] and tokens[k + 2][1] == ";":
+            name, first = stack.pop()
+            ranges.append((first, k))
+        elif token[1] in _CLASSES and k + 2 < len(tokens) and \
+                tokens[k + 1][0] == "ident" and tokens[k + 2][1] != "=" and \
+                (k == 0 or tokens[k - 1][1] != "end"):
+            stack.append((tokens[k + 1][1], k))
+    return ranges
+
+
+def inline_tables(text, objects):
+    """``(text, [(line, object, constructor)])``: each table object
+    declared with its table in the model (MSL's ``tableID =
+    ExternalCombiTable1D(tableName="NoName", ..., table=mu_pos, columns={2},
+    smoothness=smoothness, extrapolation=Extrapolation.LastTwoPoints)``)
+    left out, and each ``getTable1DValue*(tableID, icol, u)`` of its class
+    replaced by the lookup in Modelica (:func:`_lookup`), every line kept
+    at its number. A smoothness other than linear or constant segments is
+    an ``assert`` that fails, naming the object and what is allowed.
+    rumoca 0.10.2 counts the object's binding as an equation ("115
+    equations, 112 unknowns" in MSL's ``CoupledClutches``, one per
+    clutch); the table itself is a parameter array, so the lookup is
+    compiled like any expression and follows the parameters."""
+    if not objects or not any(o in text for o in objects):
+        return text, []
+    tokens = _tokens(text)
+    ranges = _class_ranges(tokens)
+    edits, found = [], []
+    for k in range(len(tokens)):
+        table = _table_constructor(tokens, k, objects)
+        if table is None:
+            continue
+        name, named, close = table
+        inside = [r for r in ranges if r[0] < k < r[1]]
+        if not inside:
+            continue
+        first, last = max(inside)
+        start = k
+        while start > 0 and (tokens[start - 1][1] in _PREFIXES or
+                             tokens[start - 1][1] == "." or
+                             (tokens[start - 1][0] == "ident" and
+                              tokens[start][1] == ".")):
+            start -= 1   # prefixes and the type's package path
+        end = close
+        while end < len(tokens) and tokens[end][1] != ";":
+            end += 1
+        smoothness = _one_line(named.get("smoothness") or []) or \
+            f"{_SMOOTHNESS}.LinearSegments"
+        calls = []
+        for c in range(first, last):
+            if not (tokens[c][0] == "ident" and tokens[c][1] in
+                    _TABLE_LOOKUPS and c + 1 < len(tokens) and
+                    tokens[c + 1][1] == "("):
+                continue
+            shut = _closing(tokens, c + 1)
+            arguments = _split(tokens[c + 2:shut], ",")
+            if len(arguments) != 3 or _one_line(arguments[0]) != name:
+                continue
+            column = _column(named["columns"], arguments[1])
+            if column is None:
+                calls = None
+                break
+            begin = c
+            while begin >= 2 and tokens[begin - 1][1] == "." and \
+                    tokens[begin - 2][0] == "ident":
+                begin -= 2
+            calls.append((tokens[begin][2], tokens[shut][3], _lookup(
+                _one_line(named["table"]), column, smoothness,
+                _one_line(arguments[2]))))
+        if calls is None:
+            continue   # columns it cannot read: the object stays (refused)
+        blank = text[tokens[start][2]:tokens[end][3]]
+        edits.append((tokens[start][2], tokens[end][3],
+                      re.sub(r"[^\n]", " ", blank)))
+        edits += calls
+        check = next((e for e in range(first, last)
+                      if tokens[e][1] == "equation" and
+                      tokens[e - 1][1] != "initial" and
+                      tokens[e][0] == "ident"), None)
+        if check is not None:
+            edits.append((tokens[check][3], tokens[check][3],
+                          f" assert({smoothness} == {_SMOOTHNESS}."
+                          f"LinearSegments or {smoothness} == {_SMOOTHNESS}."
+                          f"ConstantSegments, \"{name}: smoothness \" + "
+                          f"String(Integer({smoothness})) + \" of "
+                          f"{_SMOOTHNESS} is not supported by the FMU "
+                          f"compiler; allowed: LinearSegments (1), "
+                          f"ConstantSegments (3)\");"))
+        found.append((text.count("\n", 0, tokens[k][2]) + 1, name,
+                      _one_line(tokens[k + 3:close + 1])))
+    return _apply(text, edits), found
+
+
 _REAL_TYPE = re.compile(r"\btype\s+(\w+)\s*=\s*(?:[\w.]*\.)?(\w+)\b")
 
 
@@ -585,7 +811,7 @@ def _store_prepared(record, prepared):
         "roots": [str(r) for r in prepared.roots],
         "path": str(prepared.path),
         "rewrites": [[r.file, r.line, r.name, r.binding, r.parameter,
-                      r.at] for r in prepared.rewrites],
+                      r.at, r.kind] for r in prepared.rewrites],
         "copies": [[str(c), str(b)] for c, b in prepared.copies.items()],
     }).encode()
     try:
@@ -612,9 +838,13 @@ def _prepare(roots, path, scratch):
                 if (s == root if root.is_file() else s.is_relative_to(root))}
         changed = {}
         for source, text in mine.items():
-            new, found = rewrite_text(text, reals, objects)
-            if found:
+            inlined, tables = inline_tables(text, objects)
+            new, found = rewrite_text(inlined, reals, objects)
+            if found or tables:
                 changed[source] = new
+                rewrites += [Rewrite(str(source), line, name, binding, False,
+                                     0, "table")
+                             for line, name, binding in tables]
                 rewrites += [Rewrite(str(source), *item) for item in found]
         if not changed:
             new_roots.append(root)
