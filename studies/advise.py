@@ -31,7 +31,7 @@ def _bounds_of(names, given):
 
 
 def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0),
-           p_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
+           valve_max_bar=0.7, margin_bar=0.1, margin_hz=5.0, min_growth=None,
            names=None, weights=None, design=True, progress=None,
            bounds=None, background=False, driveline=None):
     """``judder advise``: safe dither windows, the ranking of the design
@@ -45,8 +45,9 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
         every set (each gets the same relative change).
     freq_range : (float, float)
         Dither operating frequencies, Hz (default the paper's 60-200).
-    p_max_bar : float
-        Highest dither amplitude, bar (default 0.7).
+    valve_max_bar : float
+        The valve's highest dither amplitude, the top of the operating
+        range, bar (default 0.7).
     margin_bar, margin_hz : float
         Margins kept from every judder-relevant tongue, bar and Hz.
     min_growth : float, optional
@@ -75,7 +76,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.decisions import advice as kernel
-    values = checked_values(parameters, changes, p_max_bar=p_max_bar,
+    values = checked_values(parameters, changes, valve_max_bar=valve_max_bar,
                             margin_bar=margin_bar, margin_hz=margin_hz,
                             min_growth=min_growth)
     values = at_dither_frequency(values, freq_range, argument="freq_range")
@@ -110,7 +111,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
     kernel.check_weights(names, weights)
     bounds = kernel.check_bounds(names, _bounds_of(names, bounds or {}))
     operating = kernel.OperatingRange(
-        freq_hz=(low, high), p_max=p_max_bar * PA_PER_BAR,
+        freq_hz=(low, high), p_max=valve_max_bar * PA_PER_BAR,
         margin_p_f=margin_bar * PA_PER_BAR, margin_hz=margin_hz)
     p_search = max(1.5e5, 2 * operating.required_p_f)
     started = time.perf_counter()
@@ -319,7 +320,7 @@ class AdviceResult:
         if not a.success:
             return [f"design: none: {a.message}",
                     "  to find one: widen `bounds`, add `names`, or "
-                    "narrow the operating range (`freq_range`, `p_max_bar`)"]
+                    "narrow the operating range (`freq_range`, `valve_max_bar`)"]
         advised = self.advised_params()
         changed = [(n, f) for n, f in zip(a.names, a.factors)
                    if abs(f - 1) > 5e-4]

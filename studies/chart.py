@@ -20,8 +20,7 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
           min_growth=None, min_amplitude_rpm=None,
           judder_limit_rpm=DEFAULT_JUDDER_LIMIT_RPM, model=False,
           parameters=None, changes=None, method=DEFAULT_METHOD,
-          workers=None, progress=None, bench_linearisation=False,
-          driveline=None):
+          workers=None, progress=None, driveline=None):
     """``judder chart``: experimental stability charts from bench
     acquisitions (section 3.2, Fig. 10 and 11).
 
@@ -51,8 +50,6 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     model : bool
         Also compute the model's tongue boundaries (``parameters`` and
         ``changes``) over the chart's frequencies, drawn by ``figure()``.
-    bench_linearisation : bool
-        The same as ``driveline='bench'`` (kept for one release).
     driveline : {'chain', 'bench'}, optional
         Whose tongues ``model`` draws (:func:`studies.bench.driveline_view`;
         default the bench where the preset has one, as a chart of ``judder
@@ -91,8 +88,7 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
         overlay = tongues(np.linspace(min(freqs), max(freqs), 200),
                           max(1.5 * top, 0.1), parameters, changes,
                           method=method,
-                          driveline="bench" if bench_linearisation
-                          else driveline)
+                          driveline=driveline)
     return ChartResult(chart=result, seconds=seconds, model=overlay)
 
 

@@ -460,14 +460,35 @@ def test_advise_lists_only_the_changes_the_design_needs(example_advice):
 
 
 @pytest.mark.parametrize("bound, words", [
-    ("J4=2:3", "0 < LOW <= 1 <= HIGH"), ("J4", "NAME=LOW:HIGH"),
-    ("J4=0.8:x", "NAME=LOW:HIGH"), ("mu_g=0.5:2", "not a design parameter"),
-    ("J4=1:1", "held at its nominal value is one left out of --params")])
+    ("J4=2x:3x", "LOW <= 1x <= HIGH"), ("J4", "NAME=LOW:HIGH"),
+    ("J4=0.8x:x", "followed by x"), ("mu_g=0.5x:2x", "--params"),
+    ("J4=1x:1x", "LOW < HIGH"), ("J4=0.1:0.2", "LOW <= 1x <= HIGH")])
 def test_advise_refuses_bad_bounds(bound, words):
     proc = _judder("advise", "--bounds", bound, "--no-design")
     assert proc.returncode == 2
-    assert words in proc.stderr and "--bounds" in proc.stderr
-    assert proc.stderr.count("\n") == 1
+    error = proc.stderr.splitlines()[-1]
+    assert words in error and "--bounds" in error
+
+
+def test_advise_bounds_are_values_or_factors_as_in_fit(capsys):
+    # J4 = 0.122 kg m^2 nominal: 0.8x:1.25x and the same range in kg m^2
+    # (with its unit: a plain number in advise is still the former factor
+    # for this release, with a warning naming the new spelling) are one
+    # range; fit reads the same text alike
+    from judder.commands.advise import _factors
+    from judder.commands._values import parse_bounds
+    values = get_preset("paper-4dof")
+    given = ("J4=0.8x:1.25x", "J4=0.0976kg*m^2:0.1525kg*m^2", "J4=0.8:1.25")
+    factors = [_factors([text], values)["J4"] for text in given]
+    assert factors[0] == pytest.approx((0.8, 1.25), rel=1e-12)
+    assert factors[1] == pytest.approx((0.8, 1.25), rel=1e-12)
+    assert factors[2] == pytest.approx((0.8, 1.25), rel=1e-12)
+    assert "J4=0.8x:1.25x" in capsys.readouterr().err
+    fitted = parse_bounds([given[0]], values, ["J4"], "--fit")
+    assert fitted["J4"] == pytest.approx((0.8 * 0.122, 1.25 * 0.122))
+    # in fit a plain number was and is a value, kg m^2
+    assert parse_bounds([given[2]], values, ["J4"], "--fit")["J4"] == (
+        0.8, 1.25)
 
 
 def _judder(*args):

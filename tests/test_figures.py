@@ -306,7 +306,7 @@ def test_advice_legend_lists_only_the_kinds_its_map_draws(rc):
     import matplotlib.pyplot as plt
     from studies.inputs import load_parameters
     example = load_parameters(param_file=EXAMPLES / "driveline.toml")
-    advice = api.advise(example, freq_range=(90, 120), p_max_bar=0.5,
+    advice = api.advise(example, freq_range=(90, 120), valve_max_bar=0.5,
                         background=True)
     assert advice.advice.success
     fig = advice.figure()

@@ -297,7 +297,7 @@ def test_params_of_an_fmu_round_trip(capsys, tmp_path, four_fmu):
     (["report", "--fmu", "FMU", "--freq", "100", "--pf", "0.1",
       "--engagement", "--out", "OUT"], ["report --engagement --fmu"]),
     (["fit", "--modelica", FOUR, "--boundary", "BOUNDARY", "--fit", "mu_g",
-      "--bench-linearisation"], [FOUR, "no bench engagement model"]),
+      "--driveline", "bench"], [FOUR, "no bench engagement model"]),
     (["simulate", "--modelica", FOUR, "--freq", "100", "--pf", "0.1",
       "--bench", "w_motor=100"], ["--bench w_motor", "--set"]),
     (["check", "--modelica", FOUR, "--freq", "100", "--pf", "0.1",

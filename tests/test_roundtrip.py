@@ -86,7 +86,7 @@ def test_fit_to_the_chart_brackets_the_truth(chart, truth, boundary_bar,
     _, npz = chart
     status, stdout, stderr = judder_here(
         "fit", "--chart", npz, "--fit", "mu_g", "--set", "mu_g=0.02",
-        "--bench-linearisation", "--starts", "1", "--workers", "1", "--json")
+        "--driveline", "bench", "--starts", "1", "--workers", "1", "--json")
     assert status == 0, stderr
     data = json.loads(stdout)
     assert data["min_growth_per_s"] == MIN_GROWTH
@@ -156,12 +156,12 @@ def test_the_api_checks_the_numbers_where_they_enter(truth, options, words):
                 **{"p_max_bar": 1.0, **options})
 
 
-def test_bench_option_needs_the_bench_linearisation(tmp_path, judder_here):
+def test_bench_option_needs_the_bench_driveline(tmp_path, judder_here):
     boundary = tmp_path / "b.csv"
     boundary.write_text("freq_hz,p_f_bar\n205,0.3\n206,0.2\n")
     status, _, stderr = judder_here("fit", "--boundary", boundary, "--fit",
                                     "mu_g", "--bench", "d_control=1000")
-    assert status == 2 and "--bench-linearisation" in stderr
+    assert status == 2 and "--driveline bench" in stderr
     assert "Traceback" not in stderr
 
 
@@ -172,7 +172,7 @@ def test_fit_to_a_bench_off_its_operating_slip_is_refused(judder_here):
     examples = Path(__file__).resolve().parents[1] / "examples"
     status, _, stderr = judder_here(
         "fit", "--boundary", examples / "measured_boundary.csv", "--fit",
-        "mu_g", "--bench-linearisation", "--bench", "w_motor=1500rpm")
+        "mu_g", "--driveline", "bench", "--bench", "w_motor=1500rpm")
     assert status == 2 and "Traceback" not in stderr
     assert "is not its friction curve's w_op" in stderr
     assert "--bench w_op" in stderr

@@ -9,6 +9,7 @@ registries (:mod:`drivelines.registry`, :data:`stability.monodromy.METHODS`).
 import argparse
 
 from drivelines import DEFAULT_MODEL, MODELS, PRESETS
+from infra.contract import warn
 from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
                             ENGAGEMENT_DURATION_S)
 from stability.monodromy import DEFAULT_METHOD, METHODS
@@ -114,26 +115,23 @@ def pf_max_option(parser, meaning):
 
 
 #: The argparse ``type=`` of the valve's highest amplitude, by option.
-_VALVE_TYPES = {"--pf-max": PF_MAX, "--valve-max": VALVE_MAX}
 
 
-def window_options(parser, valve, subject="", freq_note="", valve_note="",
+
+def window_options(parser, subject="", freq_note="", valve_note="",
                    margin_words=("below every tongue",
                                  "from every tongue edge")):
     """The operating range and margins of the safe dither windows
-    (``judder advise``, ``judder compare``): --freq-range, the valve's
-    highest amplitude, --margin-bar and --margin-hz.
+    (``judder advise``, ``judder compare``): --freq-range, --valve-max
+    (the valve's highest amplitude), --margin-bar and --margin-hz.
 
     Parameters
     ----------
-    valve : str
-        The option of the valve's highest amplitude, ``--pf-max`` or
-        ``--valve-max`` (where --pf-max means the maps' top).
     subject : str
         Words after "dither operating frequencies" (e.g. " of the safe
         windows").
     freq_note, valve_note : str
-        Words after the default of --freq-range and of ``valve``.
+        Words after the default of --freq-range and of --valve-max.
     margin_words : (str, str)
         What the amplitude and the frequency margin are of.
     """
@@ -142,7 +140,7 @@ def window_options(parser, valve, subject="", freq_note="", valve_note="",
                         default="60:200", metavar="LOW:HIGH",
                         help=f"dither operating frequencies{subject}, Hz "
                              f"(default %(default)s{freq_note})")
-    parser.add_argument(valve, type=_VALVE_TYPES[valve], default=0.7,
+    parser.add_argument("--valve-max", type=VALVE_MAX, default=0.7,
                         metavar="BAR",
                         help="the valve's highest dither amplitude, the top "
                              "of the operating range, bar (default "
@@ -173,21 +171,23 @@ def min_growth_option(parser, extra=""):
                         help=MIN_GROWTH_HELP + extra)
 
 
-def driveline_option(parser):
+def driveline_option(parser, default=None, default_words=None):
     """``--driveline``: the driveline a Floquet view is of
-    (:data:`studies.bench.DRIVELINES`)."""
+    (:data:`studies.bench.DRIVELINES`); ``default`` and the words saying
+    it where a command's default is not the preset's bench."""
     parser.add_argument("--driveline", choices=("chain", "bench"),
-                        default=None,
+                        default=default,
                         help="bench: the preset's driveline on its test "
                              "bench, as simulate, orbit and chart run it "
                              "(the motor's speed control damps body 1, the "
                              "friction curve's value and slope at the "
                              "bench's slip; its first resonance is 16.5 "
-                             "Hz, not 18.9; default where the preset has a "
-                             "bench); chain: the driveline alone (Eq. 6, "
-                             "free, as the paper's Fig. 12 and 14; default "
-                             "for a model without a bench, a Modelica "
-                             "class or an FMU)")
+                             "Hz, not 18.9); chain: the driveline alone "
+                             "(Eq. 6, free, as the paper's Fig. 12 and 14); "
+                             + (default_words or "default: bench where the "
+                                "preset has one, else chain (a model "
+                                "without a bench, a Modelica class or an "
+                                "FMU)"))
 
 
 def limit_option(parser):
@@ -225,3 +225,29 @@ def method_option(parser):
                         choices=tuple(METHODS),
                         help="monodromy engine: dyson (fast, default) or "
                              "solve_ivp (per-point reference)")
+
+
+class Renamed(argparse.Action):
+    """An option's old spelling, kept for one release: it sets the new
+    option's value (``const`` for a flag, else its value parsed by
+    ``type``) and says once, on stderr, what it is called now."""
+
+    def __init__(self, option_strings, dest, new, **kwargs):
+        super().__init__(option_strings, dest, **kwargs)
+        self.new = new
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        warn(f"{option_string} is {self.new} now (the old spelling works "
+             "for this release)")
+        setattr(namespace, self.dest, self.const if self.nargs == 0
+                else values)
+
+
+def renamed_option(parser, old, new, dest, const=None, type=None,
+                   metavar=None):
+    """``old``, the former spelling of ``new`` (a flag setting ``dest`` to
+    ``const``, or an option parsed by ``type``), for one release."""
+    parser.add_argument(old, action=Renamed, new=new, dest=dest,
+                        nargs=0 if type is None else None, const=const,
+                        type=type, metavar=metavar,
+                        help=f"former spelling of {new}, for this release")

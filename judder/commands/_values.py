@@ -10,7 +10,7 @@ import numpy as np
 
 from infra.contract import warn
 from infra.errors import JudderError
-from infra.quantities import has_unit
+from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
 from studies.inputs import read_input
 from studies.rules import (FREQ_RANGE_HZ, MAX_WORKERS, MIN_PLAIN_P_M_PA, RULES,
@@ -292,3 +292,66 @@ def _is_float(text):
     except ValueError:
         return False
     return True
+
+
+#: How --bounds is written, in every command that takes it.
+BOUNDS_FORM = ("NAME=LOW:HIGH, each end a value (SI, or with a unit: "
+               "J4=0.09:0.12) or a factor of the nominal value written "
+               "with x (J4=0.8x:1.25x)")
+
+
+def parse_bounds(items, params, names, names_option, plain_factors=False):
+    """The ``--bounds NAME=LOW:HIGH`` texts ``items`` as ``{name: (low,
+    high)}`` in SI, each name one of ``names`` (the parameters of
+    ``names_option``; None: any of ``params``) given once, each end a value or a factor of the
+    nominal value (``0.8x``) allowed for the parameter, LOW < HIGH.
+
+    ``plain_factors``: a plain number is read as a factor, the meaning
+    ``advise --bounds`` had (kept for one release, with a warning).
+
+    Raises
+    ------
+    JudderError
+        Naming the item, what is wrong and :data:`BOUNDS_FORM`.
+    """
+    bounds, warned = {}, False
+    for item in items:
+        name, _, span = item.partition("=")
+        name, parts = name.strip(), span.split(":")
+        allowed = list(params.specs) if names is None else names
+        if name not in allowed or len(parts) != 2:
+            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
+                              f"{BOUNDS_FORM}, NAME "
+                              + ("a parameter" if names is None else
+                                 f"one of {names_option}")
+                              + f" ({', '.join(allowed)})")
+        if name in bounds:
+            raise JudderError(f"--bounds {name} is given twice; allowed: "
+                              "one range per parameter")
+        spec, nominal = params.specs[name], params[name]
+        ends = []
+        for part in (p.strip() for p in parts):
+            factor = part[:-1] if part.endswith("x") else None
+            if factor is None and plain_factors and _is_float(part):
+                factor = part
+                if not warned:
+                    warn(f"--bounds {item}: a plain number is read as a "
+                         "factor of the nominal value for this release; "
+                         f"write {name}={parts[0].strip()}x:"
+                         f"{parts[1].strip()}x")
+                    warned = True
+            if factor is None:
+                ends.append(spec.check(parse_quantity(
+                    part, spec.unit, f"--bounds {name}")))
+            elif _is_float(factor) and float(factor) > 0:
+                ends.append(spec.check(float(factor) * nominal))
+            else:
+                raise JudderError(f"--bounds {item!r}: factor {part!r} is "
+                                  "not allowed; allowed: a number > 0 "
+                                  "followed by x")
+        if not ends[0] < ends[1]:
+            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
+                              f"LOW < HIGH, each {spec.allowed()} "
+                              f"[{spec.unit}]")
+        bounds[name] = tuple(ends)
+    return bounds

@@ -2,7 +2,6 @@
 the dither range.
 """
 
-import argparse
 import math
 
 from infra.errors import JudderError
@@ -11,10 +10,10 @@ from studies._preflight import check_advise_grid
 from studies.advise import advise
 
 from ._arguments import (driveline_option, force_option, min_growth_option,
-                         model_options, window_options)
+                         model_options, renamed_option, window_options)
 from ._model import model_title, parameter_file, parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
-from ._values import Listed
+from ._values import BOUNDS_FORM, VALVE_MAX, Listed, parse_bounds
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -39,7 +38,9 @@ FLAGS = {"names": "--params"}
 
 def add_arguments(p):
     """The options of ``judder advise``."""
-    window_options(p, "--pf-max", freq_note=", the paper's valve")
+    window_options(p, freq_note=", the paper's valve")
+    renamed_option(p, "--pf-max", "--valve-max", "valve_max", type=VALVE_MAX,
+                   metavar="BAR")
     min_growth_option(p)
     p.add_argument("--params", type=Listed("--params", str),
                    default=None, metavar="NAMES",
@@ -55,12 +56,13 @@ def add_arguments(p):
                         "parameter, in the order of --params (default 1 "
                         "each)")
     p.add_argument("--bounds", action="append", default=[],
-                   type=_bound, metavar="NAME=LOW:HIGH",
-                   help="factors of its nominal value a design parameter "
-                        "may take, e.g. J4=0.8:1.25 (LOW <= 1 <= HIGH); "
-                        "repeatable; default %g:%g for each, halved to "
-                        "doubled, the range of the paper's sensitivity "
-                        "study (Fig. 17, 18)" % DEFAULT_BOUNDS)
+                   metavar="NAME=LOW:HIGH",
+                   help="range a design parameter may take, around its "
+                        "nominal value: " + BOUNDS_FORM + "; repeatable; "
+                        "default %gx:%gx for each, halved to doubled, the "
+                        "range of the paper's sensitivity study (Fig. 17, "
+                        "18); a plain number is still read as a factor "
+                        "for this release" % DEFAULT_BOUNDS)
     p.add_argument("--also", action="append", default=[],
                    metavar="FILE.toml",
                    help="another parameter set the advice must hold for "
@@ -80,51 +82,24 @@ def add_arguments(p):
     force_option(p)
 
 
-def _bound(text):
-    """``NAME=LOW:HIGH`` of --bounds as ``(name, low, high)``."""
-    name, sep, span = text.partition("=")
-    low, colon, high = span.partition(":")
-    allowed = ("allowed: NAME=LOW:HIGH, factors of the nominal value with "
-               "0 < LOW <= 1 <= HIGH and LOW < HIGH, e.g. J4=0.8:1.25")
-    try:
-        low, high = float(low), float(high)
-    except ValueError:
-        low = high = math.nan
-    if low == high == 1:
-        raise argparse.ArgumentTypeError(
-            f"--bounds {text} is not allowed: a parameter held at its "
-            "nominal value is one left out of --params; allowed: LOW < HIGH")
-    if not (sep and colon and name.strip() and math.isfinite(low)
-            and math.isfinite(high) and 0 < low <= 1 <= high
-            and low < high):
-        raise argparse.ArgumentTypeError(
-            f"--bounds {text} is not allowed; {allowed}")
-    return name.strip(), low, high
-
-
 def run(args):
     """Safe dither windows, parameter ranking and design change."""
     low, high = args.freq_range
     names, weights = args.params, args.weights
     check_advise_grid(low, high, args.margin_hz)
-    if math.isfinite(args.margin_bar) and math.isfinite(args.pf_max) and \
-            args.margin_bar >= args.pf_max:
+    if math.isfinite(args.margin_bar) and math.isfinite(args.valve_max) \
+            and args.margin_bar >= args.valve_max:
         raise JudderError(f"--margin-bar {args.margin_bar:g} bar is not "
-                          "allowed; allowed: below --pf-max "
-                          f"({args.pf_max:g} bar), the top of the operating "
-                          "range")
-    bounds = {}
-    for name, lo, hi in args.bounds:
-        if name in bounds:
-            raise JudderError(f"--bounds {name} is given twice; allowed: "
-                              "one bound per parameter")
-        bounds[name] = (lo, hi)
+                          "allowed; allowed: below --valve-max "
+                          f"({args.valve_max:g} bar), the top of the "
+                          "operating range")
     params, changes = parameters_of(args)
+    bounds = _factors(args.bounds, params.replace(**changes))
     extra = [parameter_file(args, path, "--also") for path in args.also]
     make_parents(args.out, args.plot)
     with Progress(8, "advise") as progress:
         result = advise(params, changes, extra_sets=extra,
-                        freq_range=(low, high), p_max_bar=args.pf_max,
+                        freq_range=(low, high), valve_max_bar=args.valve_max,
                         margin_bar=args.margin_bar,
                         margin_hz=args.margin_hz,
                         min_growth=args.min_growth, names=names,
@@ -135,3 +110,20 @@ def run(args):
     data = {**result.as_dict(), **write_outputs(
         args, result, figure={"title": model_title(args, params)})}
     emit(args, data, result.summary() + written(args.out, args.plot))
+
+
+def _factors(items, values):
+    """``--bounds`` as factors of the nominal values ``{name: (low,
+    high)}``, each range around its nominal value (the design starts
+    there)."""
+    factors = {}
+    for name, (low, high) in parse_bounds(items, values, None, "--params",
+                                          plain_factors=True).items():
+        low, high = low / values[name], high / values[name]
+        if not low <= 1 <= high:
+            raise JudderError(
+                f"--bounds {name}: {low:g}x:{high:g}x of its nominal value "
+                f"{values[name]:g} is not allowed; allowed: a range "
+                "around the nominal value (LOW <= 1x <= HIGH)")
+        factors[name] = (low, high)
+    return factors

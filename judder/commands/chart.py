@@ -10,7 +10,7 @@ from studies.chart import chart
 
 from ._arguments import (decimal_option, driveline_option, force_option,
                          limit_option, method_option, model_options,
-                         workers_option)
+                         renamed_option, workers_option)
 from ._flags import in_flags
 from ._model import parameters_of
 from ._output import Progress, emit, make_parents, write_outputs, written
@@ -80,10 +80,9 @@ def add_arguments(p):
                    metavar="RPM", help="smallest judder amplitude, rpm "
                                        "(default 2)")
     limit_option(p)
-    p.add_argument("--bench-linearisation", action="store_true",
-                   help="the same as --driveline bench (kept for one "
-                        "release)")
     driveline_option(p)
+    renamed_option(p, "--bench-linearisation", "--driveline bench",
+                   "driveline", const="bench")
     p.add_argument("--out", metavar="FILE.npz",
                    help="per-run arrays and boundaries (NPZ)")
     p.add_argument("--boundary", metavar="FILE.csv",
@@ -112,7 +111,6 @@ def run(args):
                        min_amplitude_rpm=args.min_amplitude,
                        judder_limit_rpm=args.limit,
                        model=overlay, parameters=params,
-                       bench_linearisation=args.bench_linearisation,
                        driveline=args.driveline,
                        changes=changes, method=args.method,
                        workers=args.workers, progress=progress)

@@ -45,7 +45,7 @@ def add_arguments(p):
     p.add_argument("--pf-max", type=PF_MAX, default=1.5, metavar="BAR",
                    help="largest amplitude of the tongues and maps, bar "
                         "(default %(default)g)")
-    window_options(p, "--valve-max", subject=" of the safe windows",
+    window_options(p, subject=" of the safe windows",
                    freq_note=", as judder advise",
                    valve_note=", as judder advise --pf-max",
                    margin_words=("of the safe windows",) * 2)

@@ -16,13 +16,14 @@ from studies.inputs import (boundary_p_max, read_boundary_limit,
                             read_chart_limit, read_chart_min_growth)
 from studies.rules import option_value, refuse_decimal
 
-from ._arguments import (decimal_option, force_option, method_option,
-                         model_options, workers_option)
+from ._arguments import (decimal_option, driveline_option, force_option,
+                         method_option, model_options, renamed_option,
+                         workers_option)
 from ._model import parameters_of, parse_bench
 from ._output import (Progress, emit, make_parents, output_files, save_plot,
                       written)
-from ._values import (LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED,
-                      THRESHOLD_SPREAD, Listed, WholeNumber)
+from ._values import (BOUNDS_FORM, LIMIT, MIN_GROWTH, PF_MAX, SCATTER, SEED,
+                      THRESHOLD_SPREAD, Listed, WholeNumber, parse_bounds)
 
 #: The command's --help text.
 DESCRIPTION = (
@@ -62,8 +63,9 @@ def add_arguments(p):
                    help="parameters to fit (default c12,mu_g,k24)")
     p.add_argument("--bounds", action="append", default=[],
                    metavar="NAME=LOW:HIGH",
-                   help="search range of a fitted parameter, SI; repeatable "
-                        "(default a factor 100 either way of the start)")
+                   help="search range of a fitted parameter: "
+                        + BOUNDS_FORM + "; repeatable (default a factor "
+                        "100 either way of the start)")
     p.add_argument("--pf-max", type=PF_MAX, default=None, metavar="BAR",
                    help="largest amplitude tried on the bench (and searched "
                         "in the model), bar (default: the chart's, or the "
@@ -124,14 +126,16 @@ def add_arguments(p):
                         "0.25 with --chart, as a 3 s run's growth is read "
                         "to about that, docs/fitting.md; 0 with "
                         "--boundary)")
-    p.add_argument("--bench-linearisation", action="store_true",
-                   help="compare with the bench's linearisation (c1 + "
-                        "d_control: its motor speed control damps body 1), "
-                        "as for a chart of `judder campaign` runs; the "
-                        "fitted values stay the driveline's")
+    driveline_option(p, "chain", "default chain; bench compares with the "
+                                 "bench's linearisation (c1 + d_control), "
+                                 "as for a chart of `judder campaign` runs, "
+                                 "and the fitted values stay the "
+                                 "driveline's")
+    renamed_option(p, "--bench-linearisation", "--driveline bench",
+                   "driveline", const="bench")
     p.add_argument("--bench", action="append", default=[],
                    metavar="NAME=VALUE",
-                   help="bench parameter for --bench-linearisation (SI), "
+                   help="bench parameter for --driveline bench (SI), "
                         "e.g. d_control=2000; repeatable (default: the "
                         "bench model's)")
     method_option(p)
@@ -144,7 +148,8 @@ def run(args):
     from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
     params, changes = parameters_of(args)
     names = _fit_names(args.fit, params)
-    bounds = _bounds(args.bounds, params, names)
+    bounds = parse_bounds(args.bounds, params.replace(**changes), names,
+                          "--fit")
     default_growth = DEFAULT_MIN_GROWTH_PER_S
     default_spread = CHART_THRESHOLD_SPREAD_PER_S if args.chart else 0.0
     # where the growth threshold comes from, for a refusal that depends on
@@ -173,10 +178,10 @@ def run(args):
                          f"{text}")
         default_limit = read_boundary_limit(args.boundary,
                                             decimal=args.decimal)
-    if args.bench and not args.bench_linearisation:
-        raise JudderError("--bench is for --bench-linearisation; give both")
+    if args.bench and args.driveline != "bench":
+        raise JudderError("--bench is for --driveline bench; give both")
     bench = parse_bench(args.bench, resolve(params, changes)) \
-        if args.bench_linearisation else None
+        if args.driveline == "bench" else None
     p_max_bar = default_p_max if args.pf_max is None else args.pf_max
     spread = default_spread if args.threshold_spread is None \
         else args.threshold_spread
@@ -248,32 +253,6 @@ def _local_fits(starts, uncertainty, spread):
     from stability.fit._uncertainty import DEFAULT_BOOTSTRAP
     refits = DEFAULT_BOOTSTRAP if uncertainty == "bootstrap" else 0
     return (starts + refits) * (3 if spread > 0 else 1)
-
-
-def _bounds(items, params, names):
-    """``NAME=LOW:HIGH`` strings of --bounds as ``{name: (low, high)}``,
-    each a fitted parameter with LOW < HIGH both allowed for it (SI, or
-    with units)."""
-    from infra.quantities import parse_quantity
-    bounds = {}
-    for item in items:
-        name, _, rng = item.partition("=")
-        name = name.strip()
-        parts = rng.split(":")
-        if name not in names or len(parts) != 2:
-            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
-                              "NAME=LOW:HIGH with NAME one of --fit ("
-                              f"{', '.join(names)})")
-        spec = params.specs[name]
-        low, high = (spec.check(parse_quantity(part, spec.unit,
-                                               f"--bounds {name}"))
-                     for part in parts)
-        if not low < high:
-            raise JudderError(f"--bounds {item!r} is not allowed; allowed: "
-                              f"LOW < HIGH, each {spec.allowed()} "
-                              f"[{spec.unit}]")
-        bounds[name] = (low, high)
-    return bounds
 
 
 def _fit_names(names, params):

@@ -56,9 +56,12 @@ def add_arguments(p):
                    help="the report")
     p.add_argument("--pdf", metavar="FILE.pdf",
                    help="also print it to PDF (needs Debian's chromium)")
-    p.add_argument("--engagement", action="store_true",
-                   help="with --freq and --pf: also run the bench "
-                        "engagement through the FMU (Fig. 7, 8)")
+    p.add_argument("--engagement", nargs="?", const="steady", default=None,
+                   choices=("steady",),
+                   help="with --freq and --pf: also run the bench's "
+                        "engagement through the FMU (Fig. 7, 8), as "
+                        "simulate --engagement runs it: steady, the "
+                        "held-slip run (the default when given alone)")
     p.add_argument("--freq", type=FREQ, metavar="HZ",
                    help="dither frequency of the configured setting, Hz")
     p.add_argument("--pf", type=PF, metavar="BAR",
@@ -124,7 +127,8 @@ def run(args):
             grid_freq=grid, map_freq=map_freq, map_pf=map_pf,
             p_max_bar=float(map_pf[-1]) if map_pf[-1] > 0 else 1.5,
             method=args.method, workers=args.workers,
-            engagement=args.engagement, min_growth=args.min_growth,
+            engagement=args.engagement is not None,
+            min_growth=args.min_growth,
             progress=progress, driveline=args.driveline)
     result.save(args.out, force=args.force)
     if args.pdf:
