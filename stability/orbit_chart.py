@@ -31,10 +31,10 @@ import numpy as np
 from infra.criteria import MECHANISMS, mechanism_code
 
 from .orbit import (DEFAULT_HARMONICS, continue_orbit, double_period_orbit,
-                    drifted_orbit)
+                    drifted_orbit, periodic_orbit)
 
 __all__ = ["OrbitChart", "orbit_chart", "OrbitVerdict", "orbit_verdict",
-           "held_slip_motion"]
+           "held_slip_motion", "forced_limit_amplitude"]
 
 
 def held_slip_motion(model, orbit, harmonics=DEFAULT_HARMONICS):
@@ -45,6 +45,45 @@ def held_slip_motion(model, orbit, harmonics=DEFAULT_HARMONICS):
     doubled = (double_period_orbit(at, orbit, harmonics=harmonics)
                if orbit.success and orbit.kind == "double-period" else None)
     return orbit, doubled
+
+
+def forced_limit_amplitude(model, freq_hz, p_f, forced, limit, p_max,
+                           tolerance=0.01, steps=8):
+    """The dither amplitude (Pa) at which the held slip's forced
+    oscillation at ``freq_hz`` reaches ``limit`` (rad/s), from the
+    setting ``p_f`` whose forced oscillation is ``forced`` (rad/s).
+
+    The secant method on the drifted T-orbit's amplitude
+    (:func:`held_slip_motion`), which grows nearly in proportion to the
+    dither amplitude, to ``tolerance`` times the limit.
+
+    Returns
+    -------
+    float
+        Pa; ``inf`` where the oscillation stays below the limit up to
+        ``p_max`` (Pa), NaN where the orbit is lost on the way (the
+        harmonic balance does not converge).
+    """
+    def excess(p):
+        orbit = held_slip_motion(model, periodic_orbit(model, freq_hz,
+                                                       p))[0]
+        return orbit.dither_amplitude - limit if orbit.success else np.nan
+    points = [(0.0, -limit), (float(p_f), forced - limit)]
+    for _ in range(steps):
+        (p0, e0), (p1, e1) = points[-2:]
+        if abs(e1) <= tolerance * limit:
+            return p1
+        guess = p1 - e1 * (p1 - p0) / (e1 - e0) if e1 != e0 else p_max
+        if guess >= p_max:
+            at_top = excess(p_max)
+            if not at_top >= 0:        # below the limit, or lost (NaN)
+                return np.inf if at_top < 0 else np.nan
+            guess = p_max
+        value = excess(max(guess, 0.0))
+        if np.isnan(value):
+            return np.nan
+        points.append((max(guess, 0.0), value))
+    return points[-1][0]
 
 
 @dataclass(frozen=True)

@@ -48,18 +48,18 @@ def margin_words(record):
     hz = record["margin_hz"]
     if hz is None:
         search = record["frequency_search_hz"]
-        frequency = (f"no dither frequency judders at {record['p_f_bar']:g} "
-                     "bar" + ("" if search is None else
+        frequency = (f"no dither frequency has parametric judder at "
+                     f"{record['p_f_bar']:g} bar" + ("" if search is None else
                               f" in the range searched, {search[0]:.3g} to "
                               f"{search[1]:.3g} Hz (from a quarter of the "
                               "lowest to four times the highest setting)"))
     elif hz > 0:
-        frequency = (f"nearest judder {hz:.2f} Hz away, at "
+        frequency = (f"parametric judder begins {hz:.2f} Hz away, at "
                      f"{record['crossing_hz']:.2f} Hz"
                      + _named(record["margin_hz_tongue"]))
     else:
-        frequency = (f"judder up to {-hz:.2f} Hz away, to "
-                     f"{record['crossing_hz']:.2f} Hz"
+        frequency = (f"inside a band of parametric judder that ends "
+                     f"{-hz:.2f} Hz away, at {record['crossing_hz']:.2f} Hz"
                      + _named(record["margin_hz_tongue"]))
     return amplitude, frequency
 

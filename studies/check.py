@@ -122,7 +122,8 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     responses = settled_responses(given, values, driveline, freq_hz,
                                   p_f_bar * PA_PER_BAR, judder_limit_rpm,
                                   min_growth,
-                                  [c.floquet.growth_rate for c in checks])
+                                  [c.floquet.growth_rate for c in checks],
+                                  p_max_bar * PA_PER_BAR)
     seconds = time.perf_counter() - started
     result = CheckResult(params=values, checks=checks, min_growth=min_growth,
                          engagement_s=ENGAGEMENT_DURATION_S,
@@ -151,18 +152,22 @@ AMPLITUDE_SOURCES = {
 
 
 def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
-                      min_growth, growth_rates):
+                      min_growth, growth_rates, p_max):
     """The settled oscillation at each setting (Hz, Pa) and the verdict it
     gives (:func:`stability.orbit_chart.orbit_verdict`): for the bench,
     its periodic orbit; for a chain, its linear forced response with the
-    linearisation's growth (``growth_rates``, 1/s). Returns one dict per
-    setting; None for a Modelica class or an FMU (its verdict is the
-    growth's)."""
+    linearisation's growth (``growth_rates``, 1/s). With it, the amplitude
+    at which the forced oscillation reaches the limit at the setting's
+    frequency, up to ``p_max`` (Pa;
+    :func:`stability.orbit_chart.forced_limit_amplitude`, in proportion
+    for the chain's linear response). Returns one dict per setting; None
+    for a Modelica class or an FMU (its verdict is the growth's)."""
     from infra.criteria import MECHANISMS, mechanism_code
     from infra.units import RAD_S_PER_RPM, RPM_PER_RAD_S
     from stability.friction import forced_upstream_amplitude
     from stability.orbit import periodic_orbit
-    from stability.orbit_chart import held_slip_motion, orbit_verdict
+    from stability.orbit_chart import (forced_limit_amplitude,
+                                       held_slip_motion, orbit_verdict)
     limit = limit_rpm * RAD_S_PER_RPM
     rows = []
     if not given.source_kind.is_chain:
@@ -188,6 +193,8 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             judder, mechanism = verdict.judder, verdict.mechanism
             converged, quasi = orbit.success, verdict.quasi_periodic
             settled_s = None if motion is None else motion["duration"]
+            forced_limit = forced_limit_amplitude(model, f, p, forced, limit,
+                                                  p_max)
         else:
             forced = settled = forced_upstream_amplitude(system, f, p)
             growth = rate
@@ -195,6 +202,8 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             judder = parametric or is_forced
             mechanism = mechanism_code(is_forced, parametric)
             converged, quasi, settled_s = True, False, None
+            forced_limit = p * limit / forced if forced > 0 else np.inf
+            forced_limit = forced_limit if forced_limit <= p_max else np.inf
         rows.append({
             "forced_amplitude_rpm": forced * RPM_PER_RAD_S,
             "settled_amplitude_rpm": settled * RPM_PER_RAD_S,
@@ -204,7 +213,12 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             "integrated_s": settled_s,
             "judder": bool(judder) and bool(converged),
             "mechanism": MECHANISMS[int(mechanism)] if judder else None,
-            "judder_limit_rpm": limit_rpm})
+            "judder_limit_rpm": limit_rpm,
+            # None: below the limit up to the largest amplitude searched;
+            # NaN (JSON null with forced_limit_found False): orbit lost
+            "forced_limit_p_f_bar": (None if not np.isfinite(forced_limit)
+                                     else forced_limit / PA_PER_BAR),
+            "forced_limit_found": not np.isnan(forced_limit)})
     return rows
 
 
@@ -269,7 +283,51 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None,
             "margin_hz_tongue": tongue(check.hz_tongue),
             "frequency_search_hz": (None if search_hz is None else
                                     [float(f) for f in search_hz]),
+            **highest_safe(m.boundary_p_f, response, p_max),
             "sensitivity": sensitivity}
+
+
+def highest_safe(judder_boundary, response, p_max):
+    """The highest safe amplitude at a setting's frequency (bar): the
+    lower of the judder-relevant boundary (``judder_boundary``, Pa) and
+    the amplitude at which the settled forced oscillation of
+    ``response`` reaches the limit; what limits it (``parametric``,
+    ``forced``; None: safe up to ``p_max``, Pa, the largest amplitude
+    searched; ``unknown`` where the orbit was lost before the limit)."""
+    limits = {"parametric": judder_boundary}
+    if response is not None:
+        if not response["forced_limit_found"]:
+            return {"highest_safe_p_f_bar": None,
+                    "highest_safe_limited_by": "unknown",
+                    "highest_safe_searched_to_bar": p_max / PA_PER_BAR}
+        if response["forced_limit_p_f_bar"] is not None:
+            limits["forced"] = response["forced_limit_p_f_bar"] * PA_PER_BAR
+    finite = {k: v for k, v in limits.items() if np.isfinite(v)}
+    by = min(finite, key=finite.get) if finite else None
+    return {"highest_safe_p_f_bar": (None if by is None
+                                     else finite[by] / PA_PER_BAR),
+            "highest_safe_limited_by": by,
+            "highest_safe_searched_to_bar": p_max / PA_PER_BAR}
+
+
+def highest_safe_words(record):
+    """``highest safe amplitude at F Hz: X bar (why)`` of a record."""
+    at = f"highest safe amplitude at {record['freq_hz']:g} Hz"
+    by, top = record["highest_safe_limited_by"], record["highest_safe_p_f_bar"]
+    if by is None:
+        return (f"{at}: above the {record['highest_safe_searched_to_bar']:g}"
+                " bar searched")
+    if by == "unknown":
+        return f"{at}: unknown (the periodic orbit was lost below the limit)"
+    why = (f"the forced oscillation reaches the "
+           f"{record['judder_limit_rpm']:g} rpm limit" if by == "forced"
+           else "parametric judder"
+           + _tongue_words(record["margin_bar_tongue"]))
+    return f"{at}: {top:.3f} bar ({why})"
+
+
+def _tongue_words(tongue):
+    return "" if tongue is None else f" in tongue {tongue['number'] or '?'}"
 
 
 def sensitivity_words(record, count=3):
@@ -299,7 +357,8 @@ def setting_summary(record, engagement_s=1.0):
     parts = [head]
     if "settled_amplitude_rpm" in record:
         parts.append(response_words(record))
-    parts += [growth_words(record, engagement_s), *margin_words(record)]
+    parts += [growth_words(record, engagement_s), highest_safe_words(record),
+              *margin_words(record)]
     sensitive = sensitivity_words(record)
     if sensitive:
         parts.append(sensitive)

@@ -218,8 +218,7 @@ def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
     low, high = slow["frequency_search_hz"]
     assert (low, high) == pytest.approx((60.0 / 4, 102.9 * 4))
     assert slow["margin_hz"] is None
-    assert (f"no dither frequency judders at 0.05 bar in the range "
-            f"searched, {low:.3g} to {high:.3g} Hz") in lines[2]
+    assert "0.05 bar" in lines[2] and f"{low:.3g} to {high:.3g} Hz" in lines[2]
     paper4 = build_driveline(get_preset("paper-4dof"))
     rates = [floquet(paper4, f, 0.05e5).growth_rate
              for f in np.geomspace(low, high, 400)]

@@ -168,3 +168,27 @@ def test_the_held_slip_drifts_as_in_the_run():
     # at 87.0: the quasi-static path lags by about a third)
     climbed, ran = at.slip - model.slip, run["final_slip_rad_s"] - model.slip
     assert 0.5 * ran < climbed < ran
+
+
+def test_check_states_the_highest_safe_amplitude_with_its_reason():
+    # at 105 Hz on the fitted preset's bench tongue 2 forces the upstream
+    # speed: the highest safe amplitude is where the held slip's settled
+    # oscillation reaches the 30 rpm limit, below the parametric boundary;
+    # an independent run of the orbit there gives the limit to 1 %
+    from stability.orbit import periodic_orbit
+    from stability.orbit_chart import held_slip_motion
+    from studies.bench import engagement_model
+    result = api.check([105.0, 150.0], [0.3, 0.3],
+                       get_preset("paper-4dof-fitted"), sensitivity=())
+    forced, free = result.records()
+    assert forced["highest_safe_limited_by"] == "forced"
+    assert forced["highest_safe_p_f_bar"] < forced["boundary_p_f_bar"]
+    model = engagement_model(get_preset("paper-4dof-fitted"))[0]
+    at = held_slip_motion(model, periodic_orbit(
+        model, 105.0, forced["highest_safe_p_f_bar"] * 1e5))[0]
+    assert at.dither_amplitude * 60 / (2 * np.pi) == pytest.approx(30.0,
+                                                                   rel=0.01)
+    # 150 Hz: neither mechanism up to the 1.5 bar searched
+    assert free["highest_safe_limited_by"] is None
+    assert free["highest_safe_p_f_bar"] is None
+    assert free["highest_safe_searched_to_bar"] == 1.5
