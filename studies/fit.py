@@ -202,6 +202,9 @@ class FitReport:
                 rows.append(f"{n:>8} = {format_uncertain(v, s, unit)} (1 "
                             f"sigma), 95 % interval "
                             f"{format_interval(lo, hi, s)}  (start {s0:.6g})")
+        why = interval_words(r)
+        if why:
+            rows.append(why)
         pairs = [(a, b, r.correlation[i, j])
                  for i, a in enumerate(r.names)
                  for j, b in enumerate(r.names) if j > i]
@@ -262,3 +265,35 @@ def _starts_text(r):
     others = r.starts_tried - r.starts_agreeing
     return (text + f": {r.starts_agreeing} reached this minimum"
             + (f", {others} stopped at a worse one" if others else ""))
+
+
+#: Where the 95 % intervals come from, by :attr:`stability.fit.FitResult.
+#: uncertainty`, when they are not the value +- 1.96 sigma.
+INTERVAL_SOURCES = {
+    "profile": "the profile of the residual (the fit refitted with the "
+               "parameter held along its range)",
+    "jacobian+profile": "the profile of the residual where the linearised "
+                        "interval failed its check, the Jacobian elsewhere",
+    "bootstrap": "refits to resampled onsets (the bootstrap)"}
+
+
+def interval_words(result):
+    """Why a fit's 95 % intervals are not its value +- 1.96 sigma (they
+    follow the residual's shape, or end at a search bound), or ''."""
+    fitted = [k for k, n in enumerate(result.names)
+              if n not in result.held and n not in result.undetermined]
+    lopsided = [result.names[k] for k in fitted
+                if np.isfinite(result.std[k]) and result.std[k] > 0
+                and abs((result.ci_high[k] - result.values[k])
+                        - (result.values[k] - result.ci_low[k]))
+                > 0.1 * result.std[k]]
+    if not lopsided:
+        return ""
+    source = INTERVAL_SOURCES.get(result.uncertainty,
+                                  "the linearised fit, cut at the search "
+                                  "bounds")
+    at_bound = [n for n in lopsided if n in result.at_bound]
+    return ("the 95 % intervals of " + ", ".join(lopsided) + " are not "
+            "value +- 1.96 sigma: they come from " + source
+            + ("" if not at_bound else
+               "; " + ", ".join(at_bound) + " ends at its search bound"))

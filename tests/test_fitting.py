@@ -734,3 +734,24 @@ def test_an_excel_boundary_file_with_its_separator_line(tmp_path):
     assert str(info.value).startswith(
         "b.csv, line 1: header 'freq_hz;p_f;tried_bar' is not allowed "
         "(unknown column 'p_f')")
+
+
+def test_the_fit_says_why_an_interval_is_not_symmetric():
+    # the case: 0.0205 +- 0.0014 next to [0.0158, 0.0283]; a
+    # symmetric interval gets no note
+    from types import SimpleNamespace
+    from studies.fit import interval_words
+    fit = SimpleNamespace(names=("mu_g", "k24"), held=(), undetermined=(),
+                          values=np.array([0.0205, 3.0e4]),
+                          std=np.array([0.0014, 100.0]),
+                          ci_low=np.array([0.0158, 3.0e4 - 196.0]),
+                          ci_high=np.array([0.0283, 3.0e4 + 196.0]),
+                          uncertainty="profile", at_bound=())
+    words = interval_words(fit)
+    assert "mu_g" in words and "k24" not in words and "profile" in words
+    symmetric = SimpleNamespace(**{**vars(fit), "names": ("k24",),
+                                   "values": fit.values[1:],
+                                   "std": fit.std[1:],
+                                   "ci_low": fit.ci_low[1:],
+                                   "ci_high": fit.ci_high[1:]})
+    assert interval_words(symmetric) == ""
