@@ -714,7 +714,7 @@ def driveline_section(values, modes):
     # left most of a page empty before this appendix
     return (_keep(
         "<h2>The driveline and its parameters</h2>"
-        "<p>Natural frequencies (Eq. 15): "
+        f"<p>Natural frequencies ({modes['natural_frequencies_from']}): "
         + ", ".join(f"{f:.3f} Hz" for f in modes["natural_frequencies_hz"])
         + ("" if modes["damping_factor_12"] is None else
            "; clutch-damper damping factor zeta_12 (Eq. 16): "

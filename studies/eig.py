@@ -69,6 +69,15 @@ class EigResult:
     damping_ratio: np.ndarray
     driveline: str = "chain"
 
+    @property
+    def frequencies_from(self):
+        """Where the natural frequencies come from: the stiffness and
+        inertias of a registry chain (Eq. 14; Eq. 15 is their closed form
+        for the paper's 4-DOF chain), else a Jacobian's stiffness part."""
+        return ("stiffnesses and inertias, Eq. 14"
+                if self.closed_form_frequencies_hz is not None
+                else "the Jacobian's stiffness part")
+
     def as_dict(self):
         mode = linearised_mode(self.params)
         from .bench import driveline_words
@@ -77,6 +86,7 @@ class EigResult:
                                                          self.driveline),
                 **({"mode": mode} if mode else {}),
                 "natural_frequencies_hz": self.natural_frequencies_hz,
+                "natural_frequencies_from": self.frequencies_from,
                 "closed_form_frequencies_hz": self.closed_form_frequencies_hz,
                 "damping_factor_12": self.damping_factor_12,
                 "damping_factor_12_percent": (

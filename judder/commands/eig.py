@@ -36,7 +36,7 @@ def run(args):
              + (f", {words} (held over a period at the class's own "
                 "dither setting)"
                 if words else ""),
-             "undamped natural frequencies (Eq. 15): "
+             f"undamped natural frequencies ({result.frequencies_from}): "
              + ", ".join(f"{f:.3f} Hz" for f in result.natural_frequencies_hz),
              "clutch-damper damping factor (Eq. 16): "
              + ("not defined (a formula of the paper's chains)"
