@@ -372,8 +372,10 @@ def advice_section(page, advice):
            "<p>No judder-relevant tongue is in the window, so no design "
            "parameter is ranked: there is nothing to move out of it.</p>")
     ) + page.figure(
-        "Safe dither amplitude per frequency, and the map of the advised "
-        "design (judder advise)",
+        "Safe dither amplitude per frequency"
+        + (", and the map of the advised design" if advice.verification
+           is not None else " (no design change was found, so no map of "
+           "one)") + " (judder advise)",
         advice.figure(title=page.description, stacked=True))
 
 
