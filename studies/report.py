@@ -290,7 +290,7 @@ def report(parameters=None, changes=None, description=None,
         try:
             fitted, error = fit(freqs, measured / PA_PER_BAR, tried,
                                 names=list(fit_names), parameters=values,
-                                method=method, starts=1, workers=workers,
+                                method=method, workers=workers,
                                 min_growth=bench_growth, below_bar=below_bar,
                                 threshold_spread=spread), None
         except JudderError as refused:
