@@ -22,6 +22,7 @@ __all__ = ["read_input", "load_parameters", "read_boundary_csv",
            "read_boundary_table", "read_boundary", "read_boundary_tested",
            "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
+           "read_chart_onset_kinds",
            "read_chart_min_growth", "read_chart_limit", "read_chart_runs",
            "empty_cell"]
 
@@ -518,6 +519,31 @@ def read_chart_below(path, group=None, option="`chart`"):
     chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
         else group
     return below[groups == chosen] * PA_PER_BAR
+
+
+def read_chart_onset_kinds(path, group=None, option="`chart`"):
+    """Per point of :func:`read_chart_boundary`: the kind of judder its
+    onset run showed (``'single-period'``, ``'double-period'`` or
+    ``'combination'``, as the chart labelled it; None where the point has
+    no judder, or its run's kind is not one of the three), for the fit
+    to match each onset to the model's tongue of that kind."""
+    from stability.tongues import TONGUE_KINDS
+    labels = {kind.label for kind in TONGUE_KINDS}
+    freq, onset, _ = read_chart_boundary(path, group, option)
+    groups, *_ = _boundary_arrays(path, option)
+    chosen = list(dict.fromkeys(groups.tolist()))[0] if group is None \
+        else group
+    with np.load(path, allow_pickle=False) as npz:
+        keep = (npz["group"] == chosen) & npz["judder"].astype(bool)
+        runs_f = npz["freq_hz"][keep].astype(float)
+        runs_p = npz["p_f_bar"][keep].astype(float)
+        kinds = npz["kind"][keep].tolist()
+    found = []
+    for f, p in zip(freq, onset / PA_PER_BAR):
+        at = np.flatnonzero(np.isclose(runs_f, f) & np.isclose(runs_p, p))
+        kind = kinds[at[0]] if np.isfinite(p) and len(at) else None
+        found.append(kind if kind in labels else None)
+    return found
 
 
 def read_chart_runs(path, group=None, option="`chart`"):

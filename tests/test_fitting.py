@@ -517,10 +517,12 @@ def test_the_fit_reads_the_checked_boundaries_without_their_check():
     assert checked.max_multiplier_error < 1e-6
 
 
-def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0):
+def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0,
+                     kind="single-period"):
     """A chart of runs on a grid of amplitudes at each frequency, each
     judder where the project's Floquet boundary of ``truth`` (growth 1
-    1/s, forced oscillation at ``limit_rpm``) lies at or below it."""
+    1/s, forced oscillation at ``limit_rpm``) lies at or below it, its
+    judder runs labelled ``kind``."""
     from types import SimpleNamespace
 
     from infra.units import RAD_S_PER_RPM
@@ -535,8 +537,7 @@ def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0):
             analysis = SimpleNamespace(
                 freq_hz=float(f), p_f_bar=float(p), judder=judder,
                 estimated=False, window_s=(0.0, 3.0), amplitude_rpm=0.0,
-                growth_per_s=None, kind="single-period" if judder
-                else "stable", mechanism=None, oscillation_rpm=0.0,
+                growth_per_s=None, kind=kind if judder else "stable", mechanism=None, oscillation_rpm=0.0,
                 forced_rpm=0.0, dither=None, given=("freq_hz", "p_f_bar"),
                 frequency_aliased=False)
             runs.append(ChartRun(f"run_{f:g}_{p:g}.mf4", {}, analysis))
@@ -755,3 +756,40 @@ def test_the_fit_says_why_an_interval_is_not_symmetric():
                                    "ci_low": fit.ci_low[1:],
                                    "ci_high": fit.ci_high[1:]})
     assert interval_words(symmetric) == ""
+
+
+def test_a_chart_fit_matches_the_onsets_to_the_kind_the_chart_saw(
+        tmp_path, capsys):
+    """Issue 44, 1: double-period onsets at 195-207 Hz of a driveline with
+    mu_g 0.0242, k24 31 372, fitted from the fitted preset. Matched by
+    nearness, the onsets went to the combination tongue f1 + f2 (k24
+    103 500, residual 0.084 bar); matched to the kind the chart labelled,
+    the 95 % intervals cover the truth."""
+    import json
+
+    from judder.cli import main
+    from stability.tongues import TONGUE_KINDS, tongue_boundaries
+    from studies.chart import ChartResult
+    truth = get_preset("paper-4dof-fitted").replace(mu_g=0.0242,
+                                                    k24=31372.0)
+    freqs = np.arange(193.0, 210.0, 1.0)
+    found = tongue_boundaries(build_driveline(truth), freqs, 2.4 * BAR)
+    lowest = np.nanargmin(np.where(np.isnan(found.amplitude), np.inf,
+                                   found.amplitude), axis=1)
+    inside = np.isfinite(found.amplitude).any(axis=1)
+    assert {TONGUE_KINDS[k].label for k in lowest[inside]} == {
+        "double-period"}        # the truth's onsets are double-period
+    chart, onset = _synthetic_chart(truth, freqs,
+                                    np.round(np.arange(0.3, 1.21, 0.1), 2),
+                                    kind="double-period")
+    assert np.isfinite(onset).sum() >= 10
+    npz = tmp_path / "chart.npz"
+    ChartResult(chart=chart, seconds=0.0).save(npz)
+    status = main(["fit", "--chart", str(npz), "--preset",
+                   "paper-4dof-fitted", "--fit", "mu_g,k24", "--json"])
+    out, err = capsys.readouterr()
+    assert status == 0, err
+    data = json.loads(out)
+    for name, value in (("mu_g", 0.0242), ("k24", 31372.0)):
+        low, high = data["fitted"][name]["ci95"]
+        assert low < value < high, (name, low, high)

@@ -13,6 +13,7 @@ from studies.fit import _fitted
 from studies.inputs import (boundary_p_max, read_boundary_limit,
                             read_boundary_min_growth, read_boundary_tested,
                             read_chart_below, read_chart_boundary,
+                            read_chart_onset_kinds,
                             read_chart_limit, read_chart_min_growth)
 from studies.rules import option_value, refuse_decimal
 
@@ -164,7 +165,9 @@ def run(args):
         threshold = f"the chart's min_growth_per_s ({args.chart})"
         default_limit = read_chart_limit(args.chart)
         below = read_chart_below(args.chart, args.group)
+        kinds = read_chart_onset_kinds(args.chart, args.group)
     else:
+        kinds = None
         table = read_boundary_tested(args.boundary, decimal=args.decimal)
         freqs, measured = table["freq_hz"], table["p_f"]
         below = np.where(np.isnan(measured), np.nan, table["no_judder"])
@@ -201,7 +204,7 @@ def run(args):
             method=args.method, starts=args.starts,
             uncertainty=args.uncertainty, error_model=args.error_model,
             seed=args.seed, workers=args.workers, progress=progress,
-            min_growth=min_growth, bench=bench,
+            min_growth=min_growth, bench=bench, kinds=kinds,
             scatter=_scatter(args.scatter, args.error_model),
             threshold_spread=spread,
             judder_limit_rpm=default_limit if args.limit is None
