@@ -1,19 +1,5 @@
-"""``judder report``: the paper's figure set and tables for one driveline,
-in one self-contained HTML file.
-
-The report runs the API functions a user would run one by one
-(:func:`judder.api.eig`, :func:`~judder.api.stability_map`,
-:func:`~judder.api.tongues`, :func:`~judder.api.floquet`,
-:func:`~judder.api.sensitivity`, :func:`~judder.api.fit`) and lays their
-numbers and figures out for a reader who was not at the computer: what
-the driveline is, where it judders, whether the configured dither is
-safe and by how much, what moves the tongues most, and how well the model
-matches the bench. Figures are embedded as base64 PNG, so the file opens
-anywhere without its neighbours.
-
-The report is a composer above the other commands: it calls their API
-functions and lays their results out.
-"""
+"""``judder report``: the options of the report (:mod:`studies.report`)
+and the HTML and PDF files it writes."""
 
 from infra.errors import JudderError
 from studies.map import check_map_grid
