@@ -5,11 +5,11 @@ The report runs the studies a user would run one by one
 (:func:`studies.eig.eig`, :func:`studies.map.stability_map`,
 :func:`studies.tongues.tongues`, :func:`studies.floquet.floquet`,
 :func:`studies.sensitivity.sensitivity`, :func:`studies.fit.fit`) and
-lays their numbers and figures out for a reader who was not at the computer: what
-the driveline is, where it judders, whether the configured dither is
-safe and by how much, what moves the tongues most, and how well the model
-matches the bench. Figures are embedded as base64 PNG, so the file opens
-anywhere without its neighbours.
+lays their numbers and figures out for a reader who was not at the
+computer: what the driveline is, where it judders, whether the
+configured dither is safe and by how much, what moves the tongues most,
+and how well the model matches the bench. Figures are embedded as base64
+PNG, so the file opens anywhere without its neighbours.
 
 The report is a composer above the other studies: it calls them and
 lays their results out.
