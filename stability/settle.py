@@ -34,6 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from infra.spectrum import hann_amplitude, hann_spectrum
+
 __all__ = ["SettledMotion", "settle", "settle_orbits", "STEPS_PER_PERIOD",
            "WINDOW_S", "TOLERANCE"]
 
@@ -144,26 +146,19 @@ def _components(time, speed, freq_hz, window):
     late = time >= time[-1] - window
     t, y = time[late], speed[late]
     y = y - y.mean()
-    taper = np.hanning(len(t))
-    scale = 2.0 / taper.sum()
-
-    def at(f):
-        return scale * np.abs(np.exp(-2j * np.pi * np.multiply.outer(
-            np.atleast_1d(f), t)) @ (taper * y))
-    spectrum = scale * np.abs(np.fft.rfft(taper * y))
-    bins = np.fft.rfftfreq(len(t), t[1] - t[0])
+    bins, spectrum = hann_spectrum(y, t[1] - t[0])
+    at_dither, at_half = hann_amplitude(t, y, [freq_hz, freq_hz / 2])
     resolution = bins[1]
     below = (bins >= _LOWEST_PEAK_HZ) & (bins < freq_hz / 2 - 2 * resolution)
     if not below.any():
-        return at(freq_hz)[0], at(freq_hz / 2)[0], 0.0, np.nan
+        return at_dither, at_half, 0.0, np.nan
     k = np.flatnonzero(below)[np.argmax(spectrum[below])]
     # the peak between the bins (the Hann window's scalloping is up to
     # 15 % at a bin's edge)
     near = bins[k] + np.linspace(-1, 1, 41) * resolution
-    amplitudes = at(near)
+    amplitudes = hann_amplitude(t, y, near)
     best = int(np.argmax(amplitudes))
-    return (at(freq_hz)[0], at(freq_hz / 2)[0], float(amplitudes[best]),
-            float(near[best]))
+    return at_dither, at_half, float(amplitudes[best]), float(near[best])
 
 
 def settle(model, freq_hz, p_f, duration=4.0, max_duration=8.0,

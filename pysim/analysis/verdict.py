@@ -123,6 +123,7 @@ from scipy.optimize import minimize_scalar
 
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.errors import JudderError
+from infra.spectrum import hann_amplitude, hann_spectrum
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .dither import disagreement, fit_sinusoid
@@ -446,13 +447,6 @@ def engagement_window(speed, pressure=None, downstream=None):
     return float(t[start]), float(t[stop - 1])
 
 
-def _fourier_amplitude(time, values, freq):
-    """Amplitude of a sine at ``freq`` (Hann-windowed Fourier sum)."""
-    window = np.hanning(len(values))
-    phasor = np.exp(-2j * np.pi * freq * time)
-    return 2 * abs(np.sum(window * values * phasor)) / window.sum()
-
-
 def estimate_dither(time, pressure, window, freq_hz=None):
     """Dither frequency, amplitude and phase, with their standard
     uncertainties, from the pressure channel.
@@ -498,8 +492,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
         return fit_sinusoid(time, pressure, freq_hz)
     t, p = _uniform(time, pressure)
     p = scipy.signal.detrend(p)
-    freq = np.fft.rfftfreq(len(p), t[1] - t[0])
-    spectrum = np.abs(np.fft.rfft(p * np.hanning(len(p))))
+    freq, spectrum = hann_spectrum(p, t[1] - t[0])
     band = freq >= _LOWEST_HZ
     peak = freq[band][np.argmax(spectrum[band])]
     return fit_sinusoid(time, pressure, peak,
@@ -693,15 +686,10 @@ def _other_peak(freq, spectrum, dither_hz, resolution):
     return float(freq[away][np.argmax(spectrum[away])])
 
 
-def _spectrum(values, fs):
-    freq = np.fft.rfftfreq(len(values), 1.0 / fs)
-    return freq, np.abs(np.fft.rfft(values * np.hanning(len(values))))
-
-
 def _difference_spectrum(difference, fs):
     """Spectrum of the non-periodic part in speed terms (the angle
     difference's spectrum times the frequency)."""
-    freq, spectrum = _spectrum(difference, fs)
+    freq, spectrum = hann_spectrum(difference, 1.0 / fs)
     return freq, spectrum * freq
 
 
@@ -970,7 +958,7 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
         raise JudderError(f"the engagement window {window[0]:.3g}-"
                           f"{window[1]:.3g} s is too short to read judder at "
                           f"{freq_hz:g} Hz")
-    freq, spectrum = _spectrum(y[inside], fs)
+    freq, spectrum = hann_spectrum(y[inside], 1.0 / fs)
     targets = {"dither": freq_hz, "half": freq_hz / 2,
                "other": _other_peak(freq, spectrum, freq_hz, freq[1])}
     envelopes = {fc: component_envelope(t, y, fc) for fc in targets.values()
@@ -1082,7 +1070,7 @@ def _forced_level(time, speed, freq_hz, unstable, phase, dither_envelope):
     """
     if unstable != "single-period":
         late = time >= time[-1] - (time[-1] - time[0]) / 3
-        return float(_fourier_amplitude(time[late], speed[late], freq_hz))
+        return float(hann_amplitude(time[late], speed[late], freq_hz)[0])
     if phase is None:
         return 0.0
     return float(dither_envelope[np.searchsorted(time, phase[0])])
