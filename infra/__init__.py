@@ -32,6 +32,9 @@
 :mod:`infra.criteria`
     When an oscillation is judder: the growth rate, the NVH limit and the
     mechanisms.
+:mod:`infra.spectrum`
+    The amplitude spectrum both views read (Hann window,
+    amplitude-corrected), on the bins or at given frequencies.
 :mod:`infra.plotstyle`
     The look every plot shares (imports matplotlib; only plotting modules
     import it).
