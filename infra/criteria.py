@@ -1,6 +1,6 @@
 """When a growing oscillation counts as judder: the criteria shared by the
 Floquet analysis (:mod:`stability.decisions.relevance`) and the
-time-domain verdict of a run (:mod:`pysim.analysis.verdict`), defined once
+time-domain verdict of a run (:mod:`pysim.bench.verdict`), defined once
 below both so the maps, ``judder check`` and the bench charts agree.
 """
 

@@ -5,7 +5,7 @@ gain ``sum(w)/n`` divided out, both sides of the spectrum summed); off
 the bins the Hann window's scalloping loses up to 15 %, so where a
 frequency is known its amplitude is read there (:func:`hann_amplitude`)
 rather than on the nearest bin. The time-domain verdict of a run
-(:mod:`pysim.analysis.verdict`) and the settled orbit of a simulation
+(:mod:`pysim.bench.verdict`) and the settled orbit of a simulation
 (:mod:`stability.settle`) read one spectrum through this module.
 """
 

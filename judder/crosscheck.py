@@ -20,7 +20,7 @@ from fmu.store import parameter_default
 from infra.errors import JudderError
 from infra.parallel import parallel_map
 from pysim.simulation.runs import run_fmu
-from pysim.analysis.signals import free_response_growth
+from pysim.bench.signals import free_response_growth
 from stability.multipliers import floquet
 from stability.source import build_driveline
 from stability.monodromy import DEFAULT_METHOD, get_method

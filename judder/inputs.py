@@ -169,7 +169,7 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     >>> (t["p_f"] / 1e5).tolist()
     [0.3]
     """
-    from pysim.bench_data.tables import numbers, split_rows
+    from pysim.bench.tables import numbers, split_rows
     names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
     stated = {}
     for number, line in enumerate(text.splitlines(), start=1):
@@ -256,7 +256,7 @@ def _check_stated(source, number, name, text, read):
     """Refuse a stated number (``text``, read as ``read`` with the file's
     separators) that reads with a thousands separator under the file's
     convention and as another number under the other one."""
-    from pysim.bench_data._numbers import CONVENTIONS, readings, value
+    from pysim.bench._numbers import CONVENTIONS, readings, value
     if len(readings(text)) < 2:
         return
     both = {name: value(text, name) for name in CONVENTIONS}
@@ -289,7 +289,7 @@ def _check_tested(amps, source, number, line):
 def _boundary_columns(cells, source, number, line):
     """Column indices of a boundary header line (its ``cells``, the
     ``line`` as written), or None if the line is data."""
-    from pysim.bench_data.tables import is_number
+    from pysim.bench.tables import is_number
     if is_number(cells[0]):
         return None
     allowed = (("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS

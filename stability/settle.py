@@ -23,7 +23,7 @@ the slip's mean is free here, as on the bench.
 Settled, stated: the largest dither-related component of the upstream
 speed (at ``f``, at ``f/2``, and the largest spectral peak below ``f/2``,
 where every combination response has a frequency: the components
-:mod:`pysim.analysis.verdict` reads off a run), over the last
+:mod:`pysim.bench.verdict` reads off a run), over the last
 :data:`WINDOW_S` of the run, differs from the same over the window before
 by less than :data:`TOLERANCE` of it. A setting that has not settled after
 ``duration`` is integrated on, up to ``max_duration``, and reported with

@@ -368,7 +368,7 @@ def check_acquisitions(paths, workers):
     int
         The largest memory one run takes (bytes), for the worker count.
     """
-    from pysim.bench_data.readers import MEMORY_PER_BYTE, read_cost
+    from pysim.bench.readers import MEMORY_PER_BYTE, read_cost
     costs = [read_cost(path) for path in paths]
     largest = max(range(len(paths)), key=lambda i: costs[i][0])
     memory = costs[largest][0]

@@ -542,7 +542,7 @@ def engagement_section(page, run, paper):
     the configured dither (Fig. 7, 8), read as a chart reads a bench run;
     ``paper``: a registry driveline (its bench model, held at a steady
     slip: it never engages) rather than a Modelica class."""
-    from pysim.simulation.engagement import judder_words
+    from pysim.bench.engagement import judder_words
     first = run.summaries[0]
     return (
         ("<h2>The held-slip bench run" if paper else
@@ -641,7 +641,7 @@ def chart_figure(page, chart, group):
     (``judder chart --out``) read back, as the fit's section shows it."""
     from pathlib import Path
 
-    from pysim.bench_data.plots import runs_figure
+    from pysim.bench.plots import runs_figure
     from ..inputs import read_chart_runs
     title = Path(chart).name + (f", group {group}" if group else "")
     runs, boundary = read_chart_runs(chart, group)

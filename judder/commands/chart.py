@@ -203,7 +203,7 @@ def _unread(failed):
 def _channels(items):
     """``ROLE=NAME[:UNIT]`` strings as ``{role: ChannelSpec}`` (None if
     none given: the names judder campaign writes)."""
-    from pysim.bench_data.channels import parse_channel_option
+    from pysim.bench.channels import parse_channel_option
     if not items:
         return None
     channels, given = {}, {}
@@ -268,9 +268,9 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     ChartResult
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
-    from pysim.bench_data.charts import build_chart, gather_sources
-    from pysim.bench_data.readers import TEXT_SUFFIXES
-    from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
+    from pysim.bench.charts import build_chart, gather_sources
+    from pysim.bench.readers import TEXT_SUFFIXES
+    from pysim.bench.verdict import MIN_AMPLITUDE_RPM
     started = time.perf_counter()
     runs = gather_sources(sources, index, decimal)
     if index is None and not any(run.path.suffix.lower() in TEXT_SUFFIXES
@@ -318,7 +318,7 @@ class ChartResult:
                 for group in self.chart.groups()}
 
     def as_dict(self):
-        from pysim.analysis.verdict import dither_estimate_dict
+        from pysim.bench.verdict import dither_estimate_dict
         chart = self.chart
         runs = []
         for run in chart.read:
@@ -408,7 +408,7 @@ class ChartResult:
         return [str(target) for target in targets]
 
     def figure(self, title=None):
-        from pysim.bench_data.plots import chart_figure
+        from pysim.bench.plots import chart_figure
         fig, panels = chart_figure(self.chart, title=title)
         if self.model is not None:
             from stability.plots import plot_boundaries

@@ -199,7 +199,7 @@ def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
     quasi-periodic motion of an orbit unstable through a complex pair
     (:func:`settled_motions`), its component at the combination frequency
     taken as the settled amplitude."""
-    from pysim.analysis.verdict import run_verdict
+    from pysim.bench.verdict import run_verdict
     from stability.orbit_chart import orbit_verdict
     combination = 0.0 if quasi is None else \
         quasi["amplitude_at_combination_rpm"] * RAD_S_PER_RPM
@@ -366,7 +366,7 @@ class OrbitResult:
         return self.chart
 
     def _chart_rows(self):
-        from pysim.analysis.verdict import run_verdict
+        from pysim.bench.verdict import run_verdict
         c = self.chart
         return [{"freq_hz": f, "p_f_bar": p / PA_PER_BAR,
                  "amplitude_at_dither_rpm":

@@ -174,8 +174,8 @@ def _engagement_line(s, bench=True):
     """One run's line; ``bench``: it ran on the bench model, whose
     linearisation (its speed control's damping, its friction curve at the
     slip) is not the driveline's that ``judder check`` judges."""
-    from pysim.simulation.engagement import judder_words
-    from pysim.simulation.engagement import lock_words
+    from pysim.bench.engagement import judder_words
+    from pysim.bench.engagement import lock_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
             f"{s['p_f_bar']:g} bar; "
             + ("" if "lock_up_time_s" not in s else
@@ -258,9 +258,9 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     SimulationResult
     """
     from drivelines.registry import SIGNALS
-    from pysim.simulation.engagement import (LOCK_VARIABLES,
-                                             engagement_summary, lock_up,
-                                             until)
+    from pysim.bench.engagement import (LOCK_VARIABLES,
+                                        engagement_summary, lock_up,
+                                        until)
     from fmu.store import parameter_default
     from pysim.simulation.runs import run_fmu
 
@@ -456,7 +456,7 @@ class SimulationResult:
         """The ``(speed, pressure)`` amplitude spectra of each run after
         ``start`` (:func:`pysim.simulation.engagement.display_spectra`), as
         ``--plot`` draws them."""
-        from pysim.simulation.engagement import display_spectra
+        from pysim.bench.engagement import display_spectra
         runs = self.slipping or [run for _, run in self.runs]
         return [display_spectra(run, self.start) for run in runs]
 
@@ -464,8 +464,8 @@ class SimulationResult:
         """The runs' time histories and spectra, one column each; with
         ``only`` (an index of ``runs``) that run's column alone (6.5 in
         wide: a page's width, as in the report)."""
-        from pysim.simulation.engagement import verdict_line
-        from pysim.simulation.plots import run_figure
+        from pysim.bench.engagement import verdict_line
+        from pysim.bench.run_plots import run_figure
         shown = range(len(self.runs)) if only is None else [only]
         spectra = self.spectra()
         return run_figure([self.runs[i] for i in shown],

@@ -1,14 +1,22 @@
-"""Bench data: acquisitions read from the files benches write, and the
-experimental stability charts drawn from them (section 3.2).
+"""Runs read and judged, measured or simulated alike: the files benches
+write, the judder verdict of one run, and the charts of many (section 3.2).
 
-:mod:`~pysim.bench_data.readers` reads a file through the reader its
-suffix names in :data:`~pysim.bench_data.readers.READERS` (one private
+Bench files: :mod:`~pysim.bench.readers` reads a file through the reader
+its suffix names in :data:`~pysim.bench.readers.READERS` (one private
 module per format: ``_csv``, ``_mdf``, ``_tdms``, ``_mat``);
-:mod:`~pysim.bench_data.acquisition` holds what is read (channel specs,
-channels, acquisitions); :mod:`~pysim.bench_data.channels` picks the
+:mod:`~pysim.bench.acquisition` holds what is read (channel specs,
+channels, acquisitions); :mod:`~pysim.bench.channels` picks the
 channels by role and brings each into SI, in the units
-:mod:`~pysim.bench_data.units` knows; :mod:`~pysim.bench_data.speed_channels`
-tells what a speed channel's samples are; :mod:`~pysim.bench_data.charts`
-makes experimental stability charts of many runs, and
-:mod:`~pysim.bench_data.plots` draws them.
+:mod:`~pysim.bench.units` knows; :mod:`~pysim.bench.speed_channels`
+tells what a speed channel's samples are.
+
+Judging a run: :mod:`~pysim.bench.signals` (spectra, growth rates,
+free-response fits), :mod:`~pysim.bench.dither` (the dither in a
+pressure channel), :mod:`~pysim.bench.verdict` (the judder verdict of
+one run) and :mod:`~pysim.bench.engagement` (what an engagement shows:
+spectrum peaks, verdict, lock-up).
+
+Charts: :mod:`~pysim.bench.charts` makes experimental stability charts
+of many runs and :mod:`~pysim.bench.plots` draws them;
+:mod:`~pysim.bench.run_plots` draws single runs (Fig. 7, 8).
 """

@@ -5,7 +5,7 @@
 engagement) to the numbers an engineer reads off it: the spectrum
 peaks of the upstream speed and of the pressure (Fig. 8), whether the
 speed peak sits at the dither frequency, and the judder verdict of
-:func:`pysim.analysis.verdict.analyse_run`: how fast the non-periodic part of
+:func:`pysim.bench.verdict.analyse_run`: how fast the non-periodic part of
 the speed grows (whichever the kind: at ``f``, ``f/2`` or a combination
 frequency), and which kind it is.
 """
@@ -17,8 +17,8 @@ import numpy as np
 from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
-from ..analysis.verdict import analyse_run
-from ..analysis.signals import amplitude_spectrum
+from .verdict import analyse_run
+from .signals import amplitude_spectrum
 
 __all__ = ["engagement_summary", "verdict_line", "judder_words",
            "display_spectra", "LOCK_VARIABLES", "lock_up", "until"]
@@ -83,7 +83,7 @@ def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
         ``mechanism``, ``judder_limit_rpm``, ``oscillation_rpm``,
         ``forced_rpm``: the verdict, its kind, the growth rate of the
         non-periodic part (1/s), why it judders and the oscillation
-        compared with the limit, as :func:`pysim.analysis.verdict.analyse_run`
+        compared with the limit, as :func:`pysim.bench.verdict.analyse_run`
         reads them (None without dither); ``dither_envelope_max_rpm``: the
         largest envelope at the dither frequency; ``final_slip_rad_s``.
     """
@@ -207,7 +207,7 @@ def judder_words(summary):
 def display_spectra(run, start):
     """Amplitude spectra of an engagement after ``start`` (s), as Fig. 8
     shows them: the upstream speed in rpm and the actuation pressure in
-    bar (each a :class:`pysim.analysis.signals.Spectrum`)."""
+    bar (each a :class:`pysim.bench.signals.Spectrum`)."""
     keep = run.time >= start
     speed = amplitude_spectrum(run.time[keep],
                                run["w_upstream"][keep] * RPM_PER_RAD_S)

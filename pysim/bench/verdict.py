@@ -14,10 +14,10 @@ own time base. :func:`analyse_run` does, in order:
    fitted to the pressure samples as taken (:func:`estimate_dither`); the
    amplitude is that sinusoid's. Frequency, amplitude and phase come with
    their standard uncertainties, and with warnings where the sampling
-   cannot support them (:mod:`pysim.analysis.dither`). Where one value of
+   cannot support them (:mod:`pysim.bench.dither`). Where one value of
    the setting is given and the other estimated, the run is read at the
    value given, and a given amplitude the pressure's estimate contradicts
-   is warned of (:func:`pysim.analysis.dither.disagreement`).
+   is warned of (:func:`pysim.bench.dither.disagreement`).
 3. **Components** of the upstream speed, resampled uniformly over the
    whole run and high-passed above 5 Hz (the engagement itself is
    slower), by complex demodulation,
@@ -54,7 +54,7 @@ resonance above the limit). ``kind`` names the parametric kind, or
 
 What separates the two is periodicity: the forced response repeats every
 dither period ``T``, the free response does not. So growth is read on
-the **non-periodic part** (as :func:`pysim.analysis.signals.stroboscopic_growth`
+the **non-periodic part** (as :func:`pysim.bench.signals.stroboscopic_growth`
 does for simulations),
 
 .. math:: d(t) = y(t + L) - y(t), \qquad
@@ -277,7 +277,7 @@ class RunAnalysis:
         Why the run judders (None without judder).
     judder_limit_rpm : float
         The NVH limit the oscillation was compared with, rpm.
-    dither : pysim.analysis.dither.SinusoidFit or None
+    dither : pysim.bench.dither.SinusoidFit or None
         The sinusoid fitted to the pressure where the dither setting was
         estimated (amplitude in Pa, with standard uncertainties and the
         sampling's warnings, and a given value it contradicts), else None.
@@ -313,7 +313,7 @@ class RunAnalysis:
     def frequency_aliased(self):
         """The dither frequency was estimated from the pressure, and the
         sampling cannot tell it from its aliases
-        (:attr:`pysim.analysis.dither.SinusoidFit.aliased`): the run may
+        (:attr:`pysim.bench.dither.SinusoidFit.aliased`): the run may
         belong at another frequency."""
         return (SETTING[0] not in self.given and self.dither is not None
                 and self.dither.aliased)
@@ -350,7 +350,7 @@ def dither_estimate_dict(fit, given=()):
     given), the time the phase refers to, the sampling and its warnings,
     the aliases that fit as well (Hz) and ``frequency_aliased``: the
     frequency was estimated and may be an alias, so the run is on no
-    boundary (:meth:`pysim.bench_data.charts.Chart.set_points`)."""
+    boundary (:meth:`pysim.bench.charts.Chart.set_points`)."""
     if fit is None:
         return None
     return {"given": [name for name in SETTING if name in given],
@@ -453,7 +453,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
 
     The least-squares sinusoid (over a line, the engagement's trend) is
     fitted to the pressure samples in ``window`` as they were taken
-    (:func:`pysim.analysis.dither.fit_sinusoid`). Resampling them first
+    (:func:`pysim.bench.dither.fit_sinusoid`). Resampling them first
     would not do: a pressure sampled at a pick-up's tooth passages has
     about 3.3 samples per dither period, and linear interpolation between
     them loses 7 to 36 % of the amplitude (issue 31). The frequency,
@@ -474,7 +474,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
 
     Returns
     -------
-    pysim.analysis.dither.SinusoidFit
+    pysim.bench.dither.SinusoidFit
         Amplitude in Pa; ``warnings`` where the sampling cannot support
         the estimate.
 
@@ -502,7 +502,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
 def _given_frequency_contradicted(pressure, window, freq_hz):
     """Words where the pressure's own frequency (:func:`estimate_dither`
     with the frequency free) contradicts the one given
-    (:func:`pysim.analysis.dither.disagreement`); None where they agree,
+    (:func:`pysim.bench.dither.disagreement`); None where they agree,
     or where the sampling cannot tell the frequency from its aliases (the
     estimate's own warnings)."""
     own = estimate_dither(np.asarray(pressure[0], dtype=float),

@@ -6,7 +6,7 @@ smallest design change that clears them (:mod:`~stability.decisions.advice`,
 section 4.3 and 5 of the paper).
 
 The growth-rate threshold itself is :mod:`infra.criteria`'s, shared with
-the time-domain verdict of :mod:`pysim.analysis.verdict`.
+the time-domain verdict of :mod:`pysim.bench.verdict`.
 """
 
 from .advice import Advice, OperatingRange, advise_design, safe_windows

@@ -13,7 +13,7 @@ over it stays at the size of whatever started it. So an instability is *judder-r
           \sigma_{min} = 1 / t_{engagement} = 1\ \text{1/s}
 
 by default (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`). This is
-the same 1/s the time-domain verdict of :mod:`pysim.analysis.verdict` uses
+the same 1/s the time-domain verdict of :mod:`pysim.bench.verdict` uses
 (defined once, in :mod:`infra.criteria`), so the maps, the
 tongue boundaries, ``judder check`` and ``judder envelope`` agree with the
 bench charts. The slow slip-speed mode of a stiffly damped clutch damper
