@@ -1188,8 +1188,7 @@ def test_every_run_record_carries_the_verdict_as_the_tool_words_it(
     NO JUDDER otherwise (a run cannot tell check's SLOW GROWTH from
     STABLE)."""
     from judder.cli import main
-    from pysim.bench.verdict import RUN_VERDICTS, run_verdict
-    from stability.decisions.relevance import JUDDER, VERDICTS
+    from infra.criteria import JUDDER, RUN_VERDICTS, VERDICTS, run_verdict
     assert RUN_VERDICTS == (JUDDER, "NO JUDDER")
     assert RUN_VERDICTS[1] not in VERDICTS
     assert [run_verdict(j) for j in (True, False, None)] == \

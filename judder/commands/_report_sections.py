@@ -17,13 +17,13 @@ import re
 
 import numpy as np
 
-from infra.criteria import ENGAGEMENT_DURATION_S
+from infra.criteria import (ENGAGEMENT_DURATION_S, JUDDER, NO_JUDDER,
+                            SLOW_GROWTH)
 from infra.errors import in_options
 from infra.files import MARK
 from infra.numbers import format_interval, format_uncertain, readable_number
 from infra.provenance import current
 from infra.units import PA_PER_BAR
-from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
 from ._flags import in_flags
 from ._words import (growth_words, margin_words, nonlinear_words,
@@ -682,7 +682,7 @@ def _estimated_dithers(runs):
         return (f"{runs['p_f_bar'][i]:.4g} bar (given; the pressure's "
                 f"{read})" if runs["p_f_given"][i] else read)
     rows = [(Path(str(runs["source_file"][i])).name, frequency(i),
-             amplitude(i), "judder" if runs["judder"][i] else "no judder",
+             amplitude(i), JUDDER.lower() if runs["judder"][i] else NO_JUDDER.lower(),
              str(runs["dither_warnings"][i]) or "-")
             for i in order]
     given = {name: int(np.count_nonzero(runs[key][estimated]))

@@ -335,7 +335,8 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None,
     ``search_hz`` the (low, high) frequencies the Hz margin was searched
     over (``frequency_search_hz``).
     """
-    from stability.decisions.relevance import JUDDER, verdict
+    from infra.criteria import JUDDER
+    from stability.decisions.relevance import verdict
     m, point = check.margin, check.floquet
     rate = point.growth_rate
     unstable = point.kind != KINDS[0]

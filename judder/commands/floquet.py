@@ -3,6 +3,7 @@
 from dataclasses import dataclass
 import math
 
+from infra.criteria import SLOW_GROWTH, STABLE
 from infra.units import PA_PER_BAR
 from stability import floquet as floquet_kernel
 from stability.monodromy import DEFAULT_METHOD
@@ -145,9 +146,9 @@ class FloquetPoint:
         """The verdict with both thresholds named."""
         word, rate = self.verdict(), self.result.growth_rate
         judder = f"judder (growth >= {self.min_growth:g} 1/s)"
-        if word == "STABLE":
+        if word == STABLE:
             return f"{word}: every multiplier inside the unit circle"
-        if word == "SLOW GROWTH":
+        if word == SLOW_GROWTH:
             return (f"{word}: unstable (|lambda| > 1), growing at "
                     f"{rate:.4g} 1/s, slower than {judder}")
         return f"{word}: unstable (|lambda| > 1) and {judder}"

@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
-                            MECHANISMS)
+                            MECHANISMS, NO_JUDDER, run_verdict)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
@@ -199,7 +199,6 @@ def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
     quasi-periodic motion of an orbit unstable through a complex pair
     (:func:`settled_motions`), its component at the combination frequency
     taken as the settled amplitude."""
-    from pysim.bench.verdict import run_verdict
     from stability.orbit_chart import orbit_verdict
     combination = 0.0 if quasi is None else \
         quasi["amplitude_at_combination_rpm"] * RAD_S_PER_RPM
@@ -306,7 +305,7 @@ class OrbitResult:
             return "\n".join(lines)
         lines = []
         for row in self.rows():
-            verdict = ("no judder" if not row["judder"] else
+            verdict = (NO_JUDDER.lower() if not row["judder"] else
                        f"judder ({row['mechanism']})")
             double = row["double_period"]
             lines.append(
@@ -366,7 +365,6 @@ class OrbitResult:
         return self.chart
 
     def _chart_rows(self):
-        from pysim.bench.verdict import run_verdict
         c = self.chart
         return [{"freq_hz": f, "p_f_bar": p / PA_PER_BAR,
                  "amplitude_at_dither_rpm":

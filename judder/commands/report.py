@@ -25,12 +25,12 @@ import tempfile
 
 import numpy as np
 
-from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (CHART_THRESHOLD_SPREAD_PER_S,
+                            DEFAULT_MIN_GROWTH_PER_S)
 from infra.errors import JudderError
 from infra.files import (atomic_write, keeps_foreign_files, mark_pdf,
                          write_text)
 from infra.units import PA_PER_BAR
-from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
 
 from ._arguments import (decimal_option, driveline_option, force_option,
                          method_option, min_growth_option, model_options,

@@ -14,7 +14,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM,
+                            DEFAULT_MIN_GROWTH_PER_S, JUDDER, NO_JUDDER)
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .verdict import analyse_run
@@ -143,10 +144,10 @@ def verdict_line(summary):
         return ("" if "lock_up_time_s" not in summary else
                 lock_words(summary))
     if not summary["judder"]:
-        run = f"no judder, {summary['oscillation_rpm']:.3g} rpm"
+        run = f"{NO_JUDDER.lower()}, {summary['oscillation_rpm']:.3g} rpm"
     else:
         growth = summary["judder_growth_per_s"]
-        run = (f"judder, {summary['mechanism']}, "
+        run = (f"{JUDDER.lower()}, {summary['mechanism']}, "
                f"{summary['oscillation_rpm']:.3g} rpm"
                + ("" if summary["mechanism"] == "forced" else
                   f" ({summary['judder_kind']}"
@@ -163,7 +164,8 @@ def verdict_line(summary):
                      f"{exponent:+.2f} 1/s"
                      + ("" if summary.get("orbit_kind") is None else
                         f"; orbit: {summary['orbit_settled_rpm']:.3g} rpm, "
-                        + (summary["orbit_mechanism"] or "no judder")))
+                        + (summary["orbit_mechanism"]
+                           or NO_JUDDER.lower())))
     if summary.get("linearisation_holds") is False:
         lines.append(f"slip swing \u00b1"
                      f"{summary['forced_slip_amplitude_rad_s']:.1f} rad/s, "
@@ -190,18 +192,19 @@ def judder_words(summary):
     limit = f"(limit {summary['judder_limit_rpm']:.3g} rpm)"
     amplitude = f"{summary['oscillation_rpm']:.3g} rpm"
     if not summary["judder"]:
-        return f"no judder: {amplitude} {limit}"
+        return f"{NO_JUDDER.lower()}: {amplitude} {limit}"
     mechanism = summary["mechanism"]
     if mechanism == "forced":
-        return (f"judder, forced: {amplitude} at the dither frequency "
-                + limit)
+        return (f"{JUDDER.lower()}, forced: {amplitude} at the dither "
+                f"frequency {limit}")
     growth = summary["judder_growth_per_s"]
     instability = summary["judder_kind"] + (
         f", grows at {growth:.2f} 1/s" if growth is not None else "")
     if mechanism == "both":
         instability += (f", over a forced {summary['forced_rpm']:.3g} rpm "
                         "at the dither frequency")
-    return f"judder, {mechanism}: {instability}; {amplitude} {limit}"
+    return (f"{JUDDER.lower()}, {mechanism}: {instability}; {amplitude} "
+            + limit)
 
 
 def display_spectra(run, start):

@@ -9,6 +9,7 @@ artists; :func:`chart_figure` returns the figure. They draw what the
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.criteria import JUDDER, NO_JUDDER
 from infra.plotstyle import dither_axes, log_levels
 
 __all__ = ["plot_chart", "plot_runs", "chart_figure", "runs_figure",
@@ -138,11 +139,12 @@ def plot_runs(ax, runs, boundary, levels=None):
         if these.any():
             artists.append(ax.scatter(f[these], p[these], marker=marker,
                                       color=colour, zorder=3, clip_on=False,
-                                      label=f"judder, {name}"))
+                                      label=f"{JUDDER.lower()}, {name}"))
     quiet = placed & ~judder
     artists.append(ax.scatter(f[quiet], p[quiet], marker="o",
                               facecolors="none", edgecolors="black",
-                              zorder=3, clip_on=False, label="no judder"))
+                              zorder=3, clip_on=False,
+                              label=NO_JUDDER.lower()))
     if aliased.any():
         artists.append(ax.scatter(f[aliased], p[aliased], marker="X", s=70,
                                   color="#e377c2", zorder=3, clip_on=False,

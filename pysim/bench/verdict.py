@@ -121,7 +121,8 @@ import scipy.signal
 from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
-from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM,
+                            DEFAULT_MIN_GROWTH_PER_S, run_verdict)
 from infra.errors import JudderError
 from infra.spectrum import hann_amplitude, hann_spectrum
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
@@ -129,8 +130,8 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 from .dither import disagreement, fit_sinusoid
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
-           "dither_estimate_dict", "SETTING", "RUN_VERDICTS", "run_verdict",
-           "engagement_window", "component_envelope", "component_phasor",
+           "dither_estimate_dict", "SETTING", "engagement_window",
+           "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
            "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
@@ -217,22 +218,6 @@ class Component:
     sustained_rpm: float
 
 
-#: The verdict of a run (a bench's, a simulated engagement's, a periodic
-#: orbit's), as every output writes it: ``JUDDER``, the word ``judder
-#: check`` gives a setting whose judder grows at ``min_growth`` or faster
-#: (:data:`stability.decisions.relevance.JUDDER`), here also where the
-#: dither-related oscillation exceeds the NVH limit (as ``judder fit
-#: --limit`` compares); else ``NO JUDDER``: a run cannot tell check's
-#: SLOW GROWTH (an instability slower than judder) from STABLE.
-RUN_VERDICTS = ("JUDDER", "NO JUDDER")
-
-
-def run_verdict(judder):
-    """A run's verdict word (:data:`RUN_VERDICTS`) from whether it
-    judders; None where it was not read (None)."""
-    return None if judder is None else RUN_VERDICTS[0 if judder else 1]
-
-
 @dataclass(frozen=True)
 class RunAnalysis:
     """The reading of one engagement run.
@@ -306,7 +291,8 @@ class RunAnalysis:
 
     @property
     def verdict(self):
-        """The run's verdict word (:data:`RUN_VERDICTS`)."""
+        """The run's verdict word
+        (:data:`infra.criteria.RUN_VERDICTS`)."""
         return run_verdict(self.judder)
 
     @property
