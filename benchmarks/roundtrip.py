@@ -46,7 +46,7 @@ from studies.bench import bench_damping
 from studies.inputs import (read_chart_below, read_chart_boundary,
                            read_chart_limit, read_chart_min_growth)
 from stability import build_driveline, floquet
-from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
+from infra.criteria import CHART_THRESHOLD_SPREAD_PER_S
 
 #: Start of the fit: the truth moved by these factors.
 START_FACTORS = {"c12": 2.0, "mu_g": 1.25, "k24": 1.015}

@@ -34,6 +34,9 @@
     mechanisms.
 :mod:`infra.pdf`
     An HTML file printed to PDF by a headless Chromium.
+:mod:`infra.spectrum`
+    The amplitude spectrum both views read (Hann window,
+    amplitude-corrected), on the bins or at given frequencies.
 :mod:`infra.plotstyle`
     The look every plot shares (imports matplotlib; only plotting modules
     import it).

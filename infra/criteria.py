@@ -1,13 +1,17 @@
-"""When a growing oscillation counts as judder: the criteria shared by the
-Floquet analysis (:mod:`stability.decisions.relevance`) and the
-time-domain verdict of a run (:mod:`pysim.analysis.verdict`), defined once
-below both so the maps, ``judder check`` and the bench charts agree.
+"""When a growing oscillation counts as judder: the criteria and the
+verdict words shared by the Floquet analysis
+(:mod:`stability.decisions.relevance`) and the time-domain verdict of a
+run (:mod:`pysim.bench.verdict`), defined once below both so the maps,
+``judder check`` and the bench charts agree, and say so in the same
+words.
 """
 
 import numpy as np
 
 __all__ = ["ENGAGEMENT_DURATION_S", "DEFAULT_MIN_GROWTH_PER_S",
-           "DEFAULT_JUDDER_LIMIT_RPM", "MECHANISMS", "mechanism_code"]
+           "DEFAULT_JUDDER_LIMIT_RPM", "CHART_THRESHOLD_SPREAD_PER_S",
+           "JUDDER", "SLOW_GROWTH", "STABLE", "NO_JUDDER", "VERDICTS",
+           "RUN_VERDICTS", "run_verdict", "MECHANISMS", "mechanism_code"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -24,6 +28,44 @@ DEFAULT_MIN_GROWTH_PER_S = 1.0 / ENGAGEMENT_DURATION_S
 #: the 1000 rpm of the paper's bench: a vibration a driver feels and a
 #: bench engineer reads as judder in a peak-amplitude chart (Fig. 10).
 DEFAULT_JUDDER_LIMIT_RPM = 30.0
+
+#: How far the growth rate a chart's verdict calls judder from may lie
+#: from its threshold, 1/s: on the tongue-4 round trip (docs/roundtrip.md)
+#: runs of 3 s whose Floquet exponent lay within this of the threshold
+#: were called either way. ``judder fit --chart`` widens its intervals by
+#: the values this spread gives (:func:`stability.fit.fit_boundary`,
+#: ``threshold_spread``).
+CHART_THRESHOLD_SPREAD_PER_S = 0.25
+
+#: The verdict words, written the same in every output (text, JSON,
+#: figures, the report). A dither setting's, from its Floquet multipliers
+#: (:func:`stability.decisions.relevance.verdict`), most severe first:
+#: ``JUDDER`` (an instability growing at the minimum growth rate or
+#: faster), ``SLOW GROWTH`` (an instability slower than that), ``STABLE``.
+JUDDER, SLOW_GROWTH, STABLE = "JUDDER", "SLOW GROWTH", "STABLE"
+VERDICTS = (JUDDER, SLOW_GROWTH, STABLE)
+
+#: A run's verdict (a bench's, a simulated engagement's, a periodic
+#: orbit's): ``JUDDER`` where an instability grows at the minimum growth
+#: rate or faster or the dither-related oscillation exceeds the NVH limit
+#: (as ``judder fit --limit`` compares); else ``NO JUDDER``: a run cannot
+#: tell a setting's SLOW GROWTH from STABLE. In running text the words are
+#: lower case (``NO_JUDDER.lower()``).
+NO_JUDDER = "NO JUDDER"
+RUN_VERDICTS = (JUDDER, NO_JUDDER)
+
+
+def run_verdict(judder):
+    """A run's verdict word (:data:`RUN_VERDICTS`) from whether it
+    judders; None where it was not read (None).
+
+    Examples
+    --------
+    >>> run_verdict(True), run_verdict(False), run_verdict(None)
+    ('JUDDER', 'NO JUDDER', None)
+    """
+    return None if judder is None else (JUDDER if judder else NO_JUDDER)
+
 
 #: Why a setting judders, as codes of the predicted chart
 #: (:mod:`stability.orbit_chart`): none (no judder), forced (the dither's

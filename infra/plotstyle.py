@@ -2,8 +2,9 @@
 of the kinds of instability, the colour map of continuous quantities, the
 axis labels of the dither plane, and the titles and labels of a figure.
 
-One module below :mod:`stability.plots`, :mod:`pysim.simulation.plots`,
-:mod:`pysim.bench_data.plots` and :mod:`studies.figures`, so a colour means the same in every figure.
+One module below :mod:`stability.plots`, :mod:`pysim.bench.run_plots`,
+:mod:`pysim.bench.plots` and :mod:`studies.figures`, so a colour means the
+same in every figure.
 Importing it imports matplotlib; nothing imports it but plotting modules.
 """
 

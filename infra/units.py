@@ -9,7 +9,7 @@ radian is a base unit of its own. The other vocabularies draw on it:
   table and declares the FMU's display units from it;
 * :mod:`infra.quantities` parses the numbers users type: pint converts,
   the table names the tool's units and the dimension of each;
-* :mod:`pysim.bench_data.units` accepts the spellings benches write, each
+* :mod:`pysim.bench.units` accepts the spellings benches write, each
   one a unit of the table.
 
 Two readings of ``Hz`` are deliberate. Here, as in Modelica and FMI, Hz is
@@ -17,7 +17,7 @@ Two readings of ``Hz`` are deliberate. Here, as in Modelica and FMI, Hz is
 dimension, so the command line does not convert a frequency into an
 angular speed (pint, reading the radian as 1, would make 1 Hz 1 rad/s).
 A bench's speed channel in Hz counts revolutions (a tachometer's Hz,
-1 Hz = 2 pi rad/s): :mod:`pysim.bench_data.units` reads it as ``rev/s``.
+1 Hz = 2 pi rad/s): :mod:`pysim.bench.units` reads it as ``rev/s``.
 
 Examples
 --------

@@ -1,17 +1,14 @@
-"""Time-domain simulation with fmpy, and bench data.
+"""Time histories: FMUs run in the time domain, and runs read and judged.
 
-Three subpackages, each with one job:
+Two subpackages, each with one job, neither importing the other:
 
-- :mod:`pysim.simulation` runs FMUs: builds the FMU of a library class
-  when it is stale (``fmus``), runs it at a dither setting (``runs``),
-  sums up an engagement (``engagement``), emulates bench campaigns
-  (``campaigns``), writes CSV and MF4 (``export``) and draws runs
-  (``plots``);
-- :mod:`pysim.bench_data` reads the files benches write (MF4, CSV, TDMS,
-  MAT) and makes experimental stability charts of many runs;
-- :mod:`pysim.analysis` reads a time history, simulated or measured:
-  spectra and growth rates (``signals``) and the judder verdict of one
-  run (``verdict``). Both of the others use it; it uses neither.
+- :mod:`pysim.simulation` runs FMUs: runs one at a dither setting
+  (``runs``; the FMUs are built, read and unpacked by :mod:`fmu.store`),
+  emulates bench campaigns (``campaigns``) and writes their runs as CSV
+  and MF4 (``export``), as a bench would;
+- :mod:`pysim.bench` reads runs, measured or simulated, and judges them:
+  the files benches write, the judder verdict of one run and the
+  summary of an engagement, and the charts and figures of runs.
 
 Which FMU belongs to which driveline is the registry's knowledge
 (:mod:`drivelines.registry`).

@@ -21,8 +21,8 @@ import numpy as np
 
 from infra.errors import JudderError
 
-__all__ = ["FrictionPoint", "curve_at", "curve_from_table", "linear_range",
-           "forced_slip_amplitude", "forced_speed_per_pa", "forced_onset",
+__all__ = ["FrictionPoint", "curve", "curve_value", "curve_at", "curve_from_table",
+           "linear_range", "forced_slip_amplitude", "forced_speed_per_pa", "forced_onset",
            "SLOPE_LOSS"]
 
 
@@ -40,6 +40,50 @@ class FrictionPoint:
 
     mu: float
     slope: float
+
+
+def curve(slip, mu0, mu_g, delta_mu, w_op):
+    """Value and slope of the friction curve at many slips (the kernel
+    :func:`curve_at` and :meth:`stability.orbit.EngagementModel.friction`
+    share).
+
+    Parameters
+    ----------
+    slip : array_like
+        Slip speeds ``w``, rad/s, any shape.
+    mu0, mu_g, delta_mu, w_op : float
+        As for :func:`curve_at`.
+
+    Returns
+    -------
+    mu : ndarray, shape of ``slip``
+        Friction coefficient, 1.
+    slope : ndarray, shape of ``slip``
+        ``d mu / d|w|``, s/rad (times ``sign(w)`` for ``d mu / d w``).
+
+    Examples
+    --------
+    >>> mu, slope = curve([84.7, -84.7], 0.09, 0.022, 0.09, 84.7)
+    >>> mu.round(3).tolist(), slope.round(4).tolist()
+    ([0.09, 0.09], [0.022, 0.022])
+    """
+    # 1/cosh^2, not 1 - tanh^2: on the flat tails (slope 1e-10) the
+    # difference would lose every digit; cosh overflows to inf only where
+    # the slope is 0 anyway
+    with np.errstate(over="ignore"):
+        return (curve_value(slip, mu0, mu_g, delta_mu, w_op),
+                mu_g / np.cosh(_rise(slip, mu_g, delta_mu, w_op)) ** 2)
+
+
+def curve_value(slip, mu0, mu_g, delta_mu, w_op):
+    """The friction coefficient alone, 1, shape of ``slip`` (:func:`curve`
+    without the slope, for a right-hand side that needs no Jacobian)."""
+    return mu0 + delta_mu * np.tanh(_rise(slip, mu_g, delta_mu, w_op))
+
+
+def _rise(slip, mu_g, delta_mu, w_op):
+    """The argument of the curve's tanh."""
+    return mu_g * (np.abs(slip) - w_op) / delta_mu
 
 
 def curve_at(slip, mu0, mu_g, delta_mu, w_op):
@@ -66,9 +110,8 @@ def curve_at(slip, mu0, mu_g, delta_mu, w_op):
     >>> round(p.mu, 3), round(p.slope, 4)
     (0.09, 0.022)
     """
-    x = mu_g * (abs(slip) - w_op) / delta_mu
-    return FrictionPoint(mu=float(mu0 + delta_mu * np.tanh(x)),
-                         slope=float(mu_g / np.cosh(x) ** 2))
+    mu, slope = curve(slip, mu0, mu_g, delta_mu, w_op)
+    return FrictionPoint(mu=float(mu), slope=float(slope))
 
 
 def curve_from_table(slip, mu, w_op):

@@ -56,6 +56,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
+from .friction import curve
 from .kinds import KINDS, classify
 
 __all__ = ["EngagementModel", "Orbit", "OrbitBranch", "periodic_orbit",
@@ -193,10 +194,10 @@ class EngagementModel:
                 np.where(limited != linear, self.drive_gain, 0.0))
 
     def friction(self, w):
-        """``mu(w)`` and ``d mu/d w`` of the curve."""
-        x = self.mu_g * (np.abs(w) - self.w_op) / self.delta_mu
-        return (self.mu0 + self.delta_mu * np.tanh(x),
-                np.sign(w) * self.mu_g * (1.0 - np.tanh(x) ** 2))
+        """``mu(w)`` and ``d mu/d w`` of the curve
+        (:func:`stability.friction.curve`)."""
+        mu, slope = curve(w, self.mu0, self.mu_g, self.delta_mu, self.w_op)
+        return mu, np.sign(w) * slope
 
     def torque(self, w, t, omega, p_f):
         """Clutch torque ``tau(w, t)`` (N m) and ``d tau/d w``

@@ -4,7 +4,7 @@ For each dither frequency the T-periodic orbit of the engagement
 (:mod:`stability.orbit`) is continued in ``p_f`` over the grid; where it
 loses stability through -1, the 2T orbit that grows out of it is
 computed. Each point then gets the verdict a bench engineer reads off an
-engagement (:mod:`pysim.analysis.verdict`) and its mechanism:
+engagement (:mod:`pysim.bench.verdict`) and its mechanism:
 
 * judder: the settled oscillation of the upstream speed at ``f`` or
   ``f/2`` exceeds the NVH limit, or the T-orbit is unstable and grows at

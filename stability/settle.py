@@ -23,7 +23,7 @@ the slip's mean is free here, as on the bench.
 Settled, stated: the largest dither-related component of the upstream
 speed (at ``f``, at ``f/2``, and the largest spectral peak below ``f/2``,
 where every combination response has a frequency: the components
-:mod:`pysim.analysis.verdict` reads off a run), over the last
+:mod:`pysim.bench.verdict` reads off a run), over the last
 :data:`WINDOW_S` of the run, differs from the same over the window before
 by less than :data:`TOLERANCE` of it. A setting that has not settled after
 ``duration`` is integrated on, up to ``max_duration``, and reported with
@@ -33,6 +33,10 @@ by less than :data:`TOLERANCE` of it. A setting that has not settled after
 from dataclasses import dataclass
 
 import numpy as np
+
+from infra.spectrum import hann_amplitude, hann_spectrum
+
+from .friction import curve_value
 
 __all__ = ["SettledMotion", "settle", "settle_orbits", "STEPS_PER_PERIOD",
            "WINDOW_S", "TOLERANCE"]
@@ -97,7 +101,8 @@ class SettledMotion:
 
 class _Equations:
     """The right-hand side of the engagement's equations for a batch:
-    :meth:`stability.orbit.EngagementModel.torque` and
+    :meth:`stability.orbit.EngagementModel.torque` (its friction curve
+    :func:`stability.friction.curve_value`) and
     :meth:`~stability.orbit.EngagementModel.drive_excess` written out for
     speed (the integration calls it four times a step)."""
 
@@ -124,8 +129,8 @@ class _Equations:
         """``dither``: ``p_f cos(omega t)`` of each setting, Pa."""
         model = self.model
         w = model.slip + state @ self.e
-        mu = model.mu0 + model.delta_mu * np.tanh(
-            model.mu_g * (np.abs(w) - model.w_op) / model.delta_mu)
+        mu = curve_value(w, model.mu0, model.mu_g, model.delta_mu,
+                         model.w_op)
         tau = model.clutch_factor * np.tanh(w / model.w_small) * (
             mu * (self.mean_load + dither) + self.fixed)
         rate = state @ self.transposed
@@ -144,26 +149,19 @@ def _components(time, speed, freq_hz, window):
     late = time >= time[-1] - window
     t, y = time[late], speed[late]
     y = y - y.mean()
-    taper = np.hanning(len(t))
-    scale = 2.0 / taper.sum()
-
-    def at(f):
-        return scale * np.abs(np.exp(-2j * np.pi * np.multiply.outer(
-            np.atleast_1d(f), t)) @ (taper * y))
-    spectrum = scale * np.abs(np.fft.rfft(taper * y))
-    bins = np.fft.rfftfreq(len(t), t[1] - t[0])
+    bins, spectrum = hann_spectrum(y, t[1] - t[0])
+    at_dither, at_half = hann_amplitude(t, y, [freq_hz, freq_hz / 2])
     resolution = bins[1]
     below = (bins >= _LOWEST_PEAK_HZ) & (bins < freq_hz / 2 - 2 * resolution)
     if not below.any():
-        return at(freq_hz)[0], at(freq_hz / 2)[0], 0.0, np.nan
+        return at_dither, at_half, 0.0, np.nan
     k = np.flatnonzero(below)[np.argmax(spectrum[below])]
     # the peak between the bins (the Hann window's scalloping is up to
     # 15 % at a bin's edge)
     near = bins[k] + np.linspace(-1, 1, 41) * resolution
-    amplitudes = at(near)
+    amplitudes = hann_amplitude(t, y, near)
     best = int(np.argmax(amplitudes))
-    return (at(freq_hz)[0], at(freq_hz / 2)[0], float(amplitudes[best]),
-            float(near[best]))
+    return at_dither, at_half, float(amplitudes[best]), float(near[best])
 
 
 def settle(model, freq_hz, p_f, duration=4.0, max_duration=8.0,

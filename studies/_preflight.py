@@ -361,14 +361,14 @@ def check_memory(needed, what, drivers, change, bound="about"):
 def check_acquisitions(paths, workers):
     """``chart``: each acquisition's memory, and the time of reading and
     analysing all of them, from their sizes
-    (:func:`pysim.bench_data.readers.read_cost`), before any is read.
+    (:func:`pysim.bench.readers.read_cost`), before any is read.
 
     Returns
     -------
     int
         The largest memory one run takes (bytes), for the worker count.
     """
-    from pysim.bench_data.readers import MEMORY_PER_BYTE, read_cost
+    from pysim.bench.readers import MEMORY_PER_BYTE, read_cost
     costs = [read_cost(path) for path in paths]
     largest = max(range(len(paths)), key=lambda i: costs[i][0])
     memory = costs[largest][0]

@@ -17,13 +17,13 @@ import re
 
 import numpy as np
 
-from infra.criteria import ENGAGEMENT_DURATION_S
+from infra.criteria import (ENGAGEMENT_DURATION_S, JUDDER, NO_JUDDER,
+                            SLOW_GROWTH)
 from infra.errors import in_options
 from infra.files import MARK
 from infra.numbers import format_interval, format_uncertain, readable_number
 from infra.provenance import current
 from infra.units import PA_PER_BAR
-from stability.decisions.relevance import JUDDER, SLOW_GROWTH
 
 from ._words import (growth_words, margin_words, nonlinear_words, orbit_words,
                      response_words)
@@ -544,7 +544,7 @@ def engagement_section(page, run, paper):
     the configured dither (Fig. 7, 8), read as a chart reads a bench run;
     ``paper``: a registry driveline (its bench model, held at a steady
     slip: it never engages) rather than a Modelica class."""
-    from pysim.simulation.engagement import judder_words
+    from pysim.bench.engagement import judder_words
     first = run.summaries[0]
     return (
         ("<h2>The held-slip bench run" if paper else
@@ -643,7 +643,7 @@ def chart_figure(page, chart, group):
     (``judder chart --out``) read back, as the fit's section shows it."""
     from pathlib import Path
 
-    from pysim.bench_data.plots import runs_figure
+    from pysim.bench.plots import runs_figure
 
     from .inputs import read_chart_runs
     title = Path(chart).name + (f", group {group}" if group else "")
@@ -685,7 +685,8 @@ def _estimated_dithers(runs):
         return (f"{runs['p_f_bar'][i]:.4g} bar (given; the pressure's "
                 f"{read})" if runs["p_f_given"][i] else read)
     rows = [(Path(str(runs["source_file"][i])).name, frequency(i),
-             amplitude(i), "judder" if runs["judder"][i] else "no judder",
+             amplitude(i),
+             JUDDER.lower() if runs["judder"][i] else NO_JUDDER.lower(),
              str(runs["dither_warnings"][i]) or "-")
             for i in order]
     given = {name: int(np.count_nonzero(runs[key][estimated]))

@@ -2,6 +2,8 @@
 them: a check's growth against an engagement and both margins, and an
 engagement's periodic orbit and nonlinearity."""
 
+from infra.criteria import NO_JUDDER
+
 
 def _named(tongue):
     """`` (tongue N)`` of a record's tongue, or nothing."""
@@ -74,7 +76,7 @@ def orbit_words(summary):
             f"{summary['orbit_kind']} "
             f"({summary['orbit_growth_per_s']:+.2f} 1/s), "
             + (f"judder ({summary['orbit_mechanism']})"
-               if summary["orbit_mechanism"] else "no judder"))
+               if summary["orbit_mechanism"] else NO_JUDDER.lower()))
 
 
 def nonlinear_words(summary):

@@ -33,7 +33,7 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
         CSV with a ``file`` column and the runs' settings.
     channels : dict, optional
         Role (``upstream_speed``, ``pressure``, ``downstream_speed``) ->
-        :class:`pysim.bench_data.acquisition.ChannelSpec`; default the names
+        :class:`pysim.bench.acquisition.ChannelSpec`; default the names
         ``judder campaign`` writes.
     group_by : sequence of str, optional
         Columns making the panels (default: oil temperature and engine
@@ -61,9 +61,9 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
     ChartResult
     """
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
-    from pysim.analysis.verdict import MIN_AMPLITUDE_RPM
-    from pysim.bench_data.charts import build_chart, gather_sources
-    from pysim.bench_data.readers import TEXT_SUFFIXES
+    from pysim.bench.verdict import MIN_AMPLITUDE_RPM
+    from pysim.bench.charts import build_chart, gather_sources
+    from pysim.bench.readers import TEXT_SUFFIXES
     started = time.perf_counter()
     runs = gather_sources(sources, index, decimal)
     if index is None and not any(run.path.suffix.lower() in TEXT_SUFFIXES
@@ -96,7 +96,7 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
 class ChartResult:
     """``judder chart``: an experimental stability chart (Fig. 10, 11).
 
-    ``chart`` is the :class:`pysim.bench_data.charts.Chart`; ``model`` the
+    ``chart`` is the :class:`pysim.bench.charts.Chart`; ``model`` the
     :class:`TonguesResult` of the model drawn over it (None unless asked
     for).
     """
@@ -110,7 +110,7 @@ class ChartResult:
                 for group in self.chart.groups()}
 
     def as_dict(self):
-        from pysim.analysis.verdict import dither_estimate_dict
+        from pysim.bench.verdict import dither_estimate_dict
         chart = self.chart
         runs = []
         for run in chart.read:
@@ -153,7 +153,7 @@ class ChartResult:
     @keeps_foreign_files
     def save(self, path):
         """Save the chart as NPZ: the per-run arrays of
-        :meth:`pysim.bench_data.charts.Chart.arrays` and, per group, the
+        :meth:`pysim.bench.charts.Chart.arrays` and, per group, the
         boundary (``boundary_group``, ``boundary_freq_hz``, ``boundary_p_f_bar``
         with NaN where censored, ``boundary_tried_bar``, and
         ``boundary_below_bar``: the highest amplitude without judder below
@@ -200,7 +200,7 @@ class ChartResult:
         return [str(target) for target in targets]
 
     def figure(self, title=None):
-        from pysim.bench_data.plots import chart_figure
+        from pysim.bench.plots import chart_figure
         fig, panels = chart_figure(self.chart, title=title)
         if self.model is not None:
             from stability.plots import plot_boundaries

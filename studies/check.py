@@ -226,11 +226,12 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None,
                    response=None):
     """One :class:`stability.decisions.margins.SettingCheck` as JSON fields.
 
-    ``verdict`` is one of :data:`stability.decisions.relevance.VERDICTS`;
+    ``verdict`` is one of :data:`infra.criteria.VERDICTS`;
     ``search_hz`` the (low, high) frequencies the Hz margin was searched
     over (``frequency_search_hz``).
     """
-    from stability.decisions.relevance import JUDDER, verdict
+    from stability.decisions.relevance import verdict
+    from infra.criteria import JUDDER
     m, point = check.margin, check.floquet
     rate = point.growth_rate
     unstable = point.kind != KINDS[0]

@@ -6,7 +6,7 @@ layer. For each (frequency, amplitude) point the driveline's FMU (Eq. 1,
 ``SlippingClutch``: linear) is run twice, the second time with the initial
 speed ``w_in`` raised by :data:`SPEED_STEP`. The difference of the two
 runs is the free response (the forced response cancels), and its growth
-rate is fitted (:func:`pysim.analysis.signals.free_response_growth`); the
+rate is fitted (:func:`pysim.bench.signals.free_response_growth`); the
 Floquet exponent ``ln|lambda| / T`` of the same point comes from the
 stability layer. The two verdicts and rates are compared, and every
 disagreement gets a reason.
@@ -21,7 +21,7 @@ from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
-from pysim.analysis.signals import free_response_growth
+from pysim.bench.signals import free_response_growth
 from pysim.simulation.runs import run_fmu
 from sources.dither_modes import check_modes
 from stability.monodromy import DEFAULT_METHOD, get_method

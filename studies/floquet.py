@@ -3,6 +3,7 @@
 from dataclasses import dataclass
 import math
 
+from infra.criteria import SLOW_GROWTH, STABLE
 from infra.units import PA_PER_BAR
 from sources.dither_modes import check_modes, linearised_mode
 from stability import floquet as floquet_kernel
@@ -73,7 +74,7 @@ class FloquetPoint:
     driveline: str = "chain"
 
     def verdict(self):
-        """One of :data:`stability.decisions.relevance.VERDICTS`."""
+        """One of :data:`infra.criteria.VERDICTS`."""
         from stability.decisions.relevance import verdict
         from stability.kinds import KINDS
         r = self.result
@@ -83,9 +84,9 @@ class FloquetPoint:
         """The verdict with both thresholds named."""
         word, rate = self.verdict(), self.result.growth_rate
         judder = f"judder (growth >= {self.min_growth:g} 1/s)"
-        if word == "STABLE":
+        if word == STABLE:
             return f"{word}: every multiplier inside the unit circle"
-        if word == "SLOW GROWTH":
+        if word == SLOW_GROWTH:
             return (f"{word}: unstable (|lambda| > 1), growing at "
                     f"{rate:.4g} 1/s, slower than {judder}")
         return f"{word}: unstable (|lambda| > 1) and {judder}"

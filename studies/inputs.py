@@ -135,7 +135,7 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     tried), bar, empty where unknown. Fields are separated by ``,``, or
     by ``;`` or tab where the first line has one; numbers are read as
     written, as a bench export's are
-    (:func:`pysim.bench_data.tables.numbers`): the decimal and thousands
+    (:func:`pysim.bench.tables.numbers`): the decimal and thousands
     separators decided from every cell read (``0,3`` in a
     ``;``-separated file is 0.3), or given as ``decimal`` (``'.'`` or
     ``','``), and a file no cell decides is refused naming a cell.
@@ -170,7 +170,7 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     >>> (t["p_f"] / 1e5).tolist()
     [0.3]
     """
-    from pysim.bench_data.tables import numbers, split_rows
+    from pysim.bench.tables import numbers, split_rows
     names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
     stated = {}
     for number, line in enumerate(text.splitlines(), start=1):
@@ -257,7 +257,7 @@ def _check_stated(source, number, name, text, read):
     """Refuse a stated number (``text``, read as ``read`` with the file's
     separators) that reads with a thousands separator under the file's
     convention and as another number under the other one."""
-    from pysim.bench_data._numbers import CONVENTIONS, readings, value
+    from pysim.bench._numbers import CONVENTIONS, readings, value
     if len(readings(text)) < 2:
         return
     both = {name: value(text, name) for name in CONVENTIONS}
@@ -290,7 +290,7 @@ def _check_tested(amps, source, number, line):
 def _boundary_columns(cells, source, number, line):
     """Column indices of a boundary header line (its ``cells``, the
     ``line`` as written), or None if the line is data."""
-    from pysim.bench_data.tables import is_number
+    from pysim.bench.tables import is_number
     if is_number(cells[0]):
         return None
     allowed = (("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
@@ -548,7 +548,7 @@ def read_chart_onset_kinds(path, group=None, option="`chart`"):
 
 def read_chart_runs(path, group=None, option="`chart`"):
     """The runs of one group of a chart written by ``judder chart --out``,
-    to draw it again (:func:`pysim.bench_data.plots.runs_figure`).
+    to draw it again (:func:`pysim.bench.plots.runs_figure`).
 
     Returns
     -------

@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
-                            MECHANISMS)
+                            MECHANISMS, NO_JUDDER)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
@@ -115,11 +115,11 @@ def quasi_words(quasi):
 def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
     """One orbit as a JSON row (Hz, bar, rpm, 1/s, N m), with the
     verdict of :mod:`stability.orbit_chart` (``verdict`` in the words of
-    :data:`pysim.analysis.verdict.RUN_VERDICTS`); ``quasi``: the settled
+    :data:`pysim.bench.verdict.RUN_VERDICTS`); ``quasi``: the settled
     quasi-periodic motion of an orbit unstable through a complex pair
     (:func:`settled_motions`), its component at the combination frequency
     taken as the settled amplitude."""
-    from pysim.analysis.verdict import run_verdict
+    from pysim.bench.verdict import run_verdict
     from stability.orbit_chart import orbit_verdict
     combination = 0.0 if quasi is None else \
         quasi["amplitude_at_combination_rpm"] * RAD_S_PER_RPM
@@ -226,7 +226,7 @@ class OrbitResult:
             return "\n".join(lines)
         lines = []
         for row in self.rows():
-            verdict = ("no judder" if not row["judder"] else
+            verdict = (NO_JUDDER.lower() if not row["judder"] else
                        f"judder ({row['mechanism']})")
             double = row["double_period"]
             lines.append(
@@ -286,7 +286,7 @@ class OrbitResult:
         return self.chart
 
     def _chart_rows(self):
-        from pysim.analysis.verdict import run_verdict
+        from pysim.bench.verdict import run_verdict
         c = self.chart
         return [{"freq_hz": f, "p_f_bar": p / PA_PER_BAR,
                  "amplitude_at_dither_rpm":

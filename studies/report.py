@@ -26,7 +26,7 @@ from infra.errors import JudderError
 from infra.files import keeps_foreign_files, write_text
 from infra.units import PA_PER_BAR
 from sources.dither_modes import linearised_mode, mode_words
-from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
+from infra.criteria import CHART_THRESHOLD_SPREAD_PER_S
 
 from ._report_sections import (Page, advice_section, chart_figure,
                                driveline_section, engagement_section,

@@ -104,7 +104,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     """
     from drivelines.registry import SIGNALS
     from fmu.store import parameter_default
-    from pysim.simulation.engagement import (LOCK_VARIABLES,
+    from pysim.bench.engagement import (LOCK_VARIABLES,
                                              engagement_summary, lock_up,
                                              until)
     from pysim.simulation.runs import run_fmu
@@ -250,7 +250,7 @@ class SimulationResult:
     runs : list of (str, pysim.simulation.runs.Run)
         Labelled runs: the setting asked for first, then the comparison.
     summaries : list of dict
-        Per run, :func:`pysim.simulation.engagement.engagement_summary` plus its
+        Per run, :func:`pysim.bench.engagement.engagement_summary` plus its
         ``label`` and the Floquet verdict of its dither setting
         (``floquet_kind``, ``floquet_exponent_per_s``).
     fmu : path
@@ -299,9 +299,9 @@ class SimulationResult:
 
     def spectra(self):
         """The ``(speed, pressure)`` amplitude spectra of each run after
-        ``start`` (:func:`pysim.simulation.engagement.display_spectra`), as
+        ``start`` (:func:`pysim.bench.engagement.display_spectra`), as
         ``--plot`` draws them."""
-        from pysim.simulation.engagement import display_spectra
+        from pysim.bench.engagement import display_spectra
         runs = self.slipping or [run for _, run in self.runs]
         return [display_spectra(run, self.start) for run in runs]
 
@@ -309,8 +309,8 @@ class SimulationResult:
         """The runs' time histories and spectra, one column each; with
         ``only`` (an index of ``runs``) that run's column alone (6.5 in
         wide: a page's width, as in the report)."""
-        from pysim.simulation.engagement import verdict_line
-        from pysim.simulation.plots import run_figure
+        from pysim.bench.engagement import verdict_line
+        from pysim.bench.run_plots import run_figure
         shown = range(len(self.runs)) if only is None else [only]
         spectra = self.spectra()
         return run_figure([self.runs[i] for i in shown],

@@ -1,4 +1,4 @@
-"""Bench acquisition readers (pysim.bench_data): every format written by
+"""Bench acquisition readers (pysim.bench): every format written by
 the library that owns it, read back in SI on its own time bases; the bad
 inputs; and the files of the bench emulator."""
 
@@ -15,10 +15,10 @@ import pytest
 import scipy.io
 
 from infra.errors import JudderError
-from pysim.bench_data.acquisition import Acquisition, ChannelSpec
-from pysim.bench_data.channels import parse_channel_option
-from pysim.bench_data.readers import FORMATS, READERS, read_acquisition
-from pysim.bench_data.units import unit_factor
+from pysim.bench.acquisition import Acquisition, ChannelSpec
+from pysim.bench.channels import parse_channel_option
+from pysim.bench.readers import FORMATS, READERS, read_acquisition
+from pysim.bench.units import unit_factor
 from pysim.simulation.export import write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -298,7 +298,7 @@ def test_channel_option():
         parse_channel_option("upstream_speed=EngSpd_up:bar")
     with pytest.raises(JudderError, match="ROLE=NAME"):
         parse_channel_option("upstream_speed")
-    # what a speed channel's samples are (pysim.bench_data.speed_channels)
+    # what a speed channel's samples are (pysim.bench.speed_channels)
     assert parse_channel_option("upstream_speed=Enc:deg:angle") == (
         "upstream_speed", ChannelSpec("Enc", "deg", "angle"))
     assert parse_channel_option("upstream_speed=CAN:N:rpm:sampled") == (
@@ -469,9 +469,9 @@ def test_tdms_channel_without_time(tmp_path):
 
 
 def test_module_does_not_import_matplotlib(mf4):
-    code = ("import sys; from pysim.bench_data.readers import "
+    code = ("import sys; from pysim.bench.readers import "
             "read_acquisition\n"
-            "from pysim.bench_data.acquisition import ChannelSpec\n"
+            "from pysim.bench.acquisition import ChannelSpec\n"
             f"read_acquisition({str(mf4)!r}, "
             "{'upstream_speed': ChannelSpec('EngSpd_up')})\n"
             "print('matplotlib' in sys.modules)")

@@ -33,10 +33,9 @@ ALLOWED = {
 }
 
 #: What each subpackage of pysim may import of the others: running FMUs
-#: and reading bench files both read time histories, and neither knows
-#: the other.
-PYSIM_ALLOWED = {"analysis": set(), "simulation": {"analysis"},
-                 "bench_data": {"analysis"}}
+#: makes runs, reading and judging runs (measured or simulated) takes
+#: them, and neither knows the other.
+PYSIM_ALLOWED = {"simulation": set(), "bench": set()}
 
 
 def _imported_packages(path):

@@ -15,7 +15,7 @@ from sources import get_preset
 from infra.errors import JudderError
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
-from pysim.analysis.verdict import analyse_run, engagement_window, estimate_dither
+from pysim.bench.verdict import analyse_run, engagement_window, estimate_dither
 from stability import build_driveline, floquet
 
 RPM = RAD_S_PER_RPM
@@ -381,8 +381,8 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path, judder_here):
 
 
 def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
-    from pysim.bench_data.charts import ChartRun
-    from pysim.analysis.verdict import RunAnalysis
+    from pysim.bench.charts import ChartRun
+    from pysim.bench.verdict import RunAnalysis
     return ChartRun(path=f"run-{freq_hz}-{p_f_bar}.mf4", settings={},
                     analysis=RunAnalysis(
                         window_s=window, freq_hz=freq_hz, p_f_bar=p_f_bar,
@@ -401,7 +401,7 @@ def test_estimated_frequencies_of_one_set_point_are_one_boundary_row():
     # from the pressure scatter by far less than the spectral resolution
     # (1/2.4 s = 0.42 Hz), and are one set point (issue 19: 248 rows for
     # 248 runs before); given frequencies 0.5 Hz apart stay apart
-    from pysim.bench_data.charts import Chart
+    from pysim.bench.charts import Chart
     runs = [_read_run(69.999345, 0.1, False, True),
             _read_run(69.999904, 0.3, True, True),
             _read_run(70.000310, 0.2, True, True),
@@ -423,8 +423,8 @@ def test_channels_on_the_union_of_their_time_bases_read_as_recorded(tmp_path):
     # apart, which made the speed's resampling ask for 9.6 PiB; the
     # reading equals that of the channels on their own time bases
     from asammdf import MDF, Signal
-    from pysim.bench_data.acquisition import ChannelSpec
-    from pysim.bench_data.readers import read_acquisition
+    from pysim.bench.acquisition import ChannelSpec
+    from pysim.bench.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     union = np.union1d(np.union1d(t_up, t_p), t_dn + 1e-18)
@@ -454,8 +454,8 @@ def test_a_european_daq_csv_reads_as_the_tools_own(tmp_path, delimiter,
     # a growth 9 % apart, seen) depended on which tests ran before it
     monkeypatch.setattr(sys.modules[__name__], "RNG",
                         np.random.default_rng(446))
-    from pysim.bench_data.acquisition import ChannelSpec
-    from pysim.bench_data.readers import read_acquisition
+    from pysim.bench.acquisition import ChannelSpec
+    from pysim.bench.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
     own = analyse_run((t_up, up), (t_p, p), (t_dn, dn), freq_hz=f,
@@ -498,8 +498,8 @@ def test_one_engagement_recorded_every_way_reads_the_same(tmp_path, kind,
     # and the
     # verdict, growth and amplitude are those of the pick-up
     from asammdf import MDF, Signal
-    from pysim.bench_data.acquisition import ChannelSpec
-    from pysim.bench_data.readers import read_acquisition
+    from pysim.bench.acquisition import ChannelSpec
+    from pysim.bench.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     fine = np.arange(0.0, 1.5, 2e-5)
     omega = (1000 + speed(fine)) * RPM
@@ -545,8 +545,8 @@ def test_pickup_times_rounded_to_10_us_read_the_same(tmp_path):
     # a CSV whose times carry 9 significant digits after a 1234.5 s offset
     # (10 us): the channel is still told to be a pick-up's, and the
     # verdict and growth are those of the exact times
-    from pysim.bench_data.acquisition import ChannelSpec
-    from pysim.bench_data.readers import read_acquisition
+    from pysim.bench.acquisition import ChannelSpec
+    from pysim.bench.readers import read_acquisition
     from pysim.simulation.export import write_csv
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), (t_dn, dn) = _engagement(speed, f)
@@ -571,8 +571,8 @@ def test_tdms_speeds_as_2_khz_waveforms_read_as_the_pickup(tmp_path):
     # speed sampled at 2 kHz, told from its uniform time track, read as
     # the pick-up of the same engagement
     from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
-    from pysim.bench_data.acquisition import ChannelSpec
-    from pysim.bench_data.readers import read_acquisition
+    from pysim.bench.acquisition import ChannelSpec
+    from pysim.bench.readers import read_acquisition
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), (t_p, p), _ = _engagement(speed, f)
     pickup = analyse_run((t_up, up), (t_p, p), freq_hz=f, p_f_bar=0.3)
@@ -600,7 +600,7 @@ def test_lost_pickup_samples_do_not_change_the_reading(tmp_path, lost):
     # every third NaN in the file, which the reader drops): each interval
     # then spans several teeth while its speed is that of one, and the
     # angle rebuilt from it must not lose them
-    from pysim.bench_data.speed_channels import interval_means
+    from pysim.bench.speed_channels import interval_means
     f, speed = TONGUE_4_HZ, _double_period_judder
     (t_up, up), pressure, downstream = _engagement(speed, f)
     whole = analyse_run((t_up, up), pressure, downstream, freq_hz=f,
@@ -746,7 +746,7 @@ AMBIGUOUS_INDEX = "file\tfreq_hz\tengine_rpm\nrun01.csv\t210\t1,500\n"
 
 
 def test_a_german_index_reads_as_written(tmp_path):
-    from pysim.bench_data.charts import sources_from_index
+    from pysim.bench.charts import sources_from_index
     index = tmp_path / "runs.csv"
     index.write_text(GERMAN_INDEX)
     for decimal in (None, ","):
@@ -761,7 +761,7 @@ def test_a_german_index_reads_as_written(tmp_path):
 
 
 def test_an_ambiguous_index_is_refused_naming_the_cell(tmp_path):
-    from pysim.bench_data.charts import sources_from_index
+    from pysim.bench.charts import sources_from_index
     index = tmp_path / "runs.csv"
     index.write_text(AMBIGUOUS_INDEX)
     with pytest.raises(JudderError) as info:
@@ -785,7 +785,7 @@ def test_an_ambiguous_index_is_refused_naming_the_cell(tmp_path):
      "allowed; allowed: a dither amplitude >= 0 bar"),
     (";210;0,4", "line 3: column 'file' is empty")])
 def test_an_index_row_no_bench_runs_is_refused(tmp_path, row, words):
-    from pysim.bench_data.charts import sources_from_index
+    from pysim.bench.charts import sources_from_index
     index = tmp_path / "runs.csv"
     index.write_text(f"sep=;\nfile;freq_hz;p_f_bar\n{row}\n")
     with pytest.raises(JudderError) as info:
@@ -800,7 +800,7 @@ def test_a_file_listed_twice_is_refused_naming_both_places(tmp_path,
     point); it is refused, naming both lines, whether written alike or
     as ./run01.csv, and so is a file given as SOURCE and in the index."""
     from judder.cli import main
-    from pysim.bench_data.charts import gather_sources
+    from pysim.bench.charts import gather_sources
     index = tmp_path / "runs.csv"
     index.write_text("file,freq_hz,p_f_bar\nrun01.csv,210,0.4\n"
                      "run02.csv,210,0.6\n# again\n./run01.csv,210,0.8\n")
@@ -1188,8 +1188,7 @@ def test_every_run_record_carries_the_verdict_as_the_tool_words_it(
     NO JUDDER otherwise (a run cannot tell check's SLOW GROWTH from
     STABLE)."""
     from judder.cli import main
-    from pysim.analysis.verdict import RUN_VERDICTS, run_verdict
-    from stability.decisions.relevance import JUDDER, VERDICTS
+    from infra.criteria import JUDDER, RUN_VERDICTS, VERDICTS, run_verdict
     assert RUN_VERDICTS == (JUDDER, "NO JUDDER")
     assert RUN_VERDICTS[1] not in VERDICTS
     assert [run_verdict(j) for j in (True, False, None)] == \
@@ -1216,7 +1215,7 @@ def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
 
     from judder.cli import main
     from studies.inputs import read_chart_runs
-    from pysim.bench_data.plots import ALIASED_LABEL, runs_figure
+    from pysim.bench.plots import ALIASED_LABEL, runs_figure
     examples = Path(__file__).parents[1] / "examples" / "bench"
     for source in examples.glob("run0*.csv"):
         (tmp_path / source.name).write_text(source.read_text())
@@ -1344,7 +1343,7 @@ def test_an_index_with_excel_s_separator_line_reads(tmp_path):
     """An index saved by a German Excel (``sep=;`` first, decimal
     commas): its runs and settings, not a refusal for want of a 'file'
     column."""
-    from pysim.bench_data.charts import sources_from_index
+    from pysim.bench.charts import sources_from_index
     (tmp_path / "runs.csv").write_text(
         "sep=;\nfile;freq_hz;p_f_bar\nrun01.csv;210;0,4\nrun02.csv;;0,6\n")
     sources = sources_from_index(tmp_path / "runs.csv")

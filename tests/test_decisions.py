@@ -185,7 +185,7 @@ def test_check_reports_verdict_margins_and_the_strongest_parameters():
 
 
 def test_check_speaks_one_vocabulary_with_fields_that_say_what_they_mean():
-    from stability.decisions.relevance import VERDICTS
+    from infra.criteria import VERDICTS
     # the growth's words apart from the forced response's: a limit no
     # forced oscillation here reaches (the chain's resonance forces 102.9
     # Hz, 0.05 bar to judder at the default 30 rpm, below)

@@ -526,7 +526,7 @@ def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0,
     from types import SimpleNamespace
 
     from infra.units import RAD_S_PER_RPM
-    from pysim.bench_data.charts import Chart, ChartRun
+    from pysim.bench.charts import Chart, ChartRun
     onset = model_boundary(truth, freqs, 2 * grid_bar[-1] * BAR,
                            min_growth=1.0,
                            forced_limit=limit_rpm * RAD_S_PER_RPM) / BAR

@@ -52,8 +52,8 @@ def test_an_rpm_column_given_an_angle_unit_is_refused(capsys, tmp_path):
 def test_an_encoder_angle_still_reads(tmp_path):
     import numpy as np
 
-    from pysim.bench_data.acquisition import ChannelSpec
-    from pysim.bench_data.readers import read_acquisition
+    from pysim.bench.acquisition import ChannelSpec
+    from pysim.bench.readers import read_acquisition
     t = np.arange(0, 1, 1e-3)
     # 1000 rpm with a 5 % judder at 30 Hz, as degrees
     angle = np.degrees(104.72 * t + 0.05 * 104.72 / (2 * np.pi * 30)
@@ -119,7 +119,7 @@ def test_unreadable_runs_give_every_reason_on_stderr(capsys, tmp_path):
 
 
 def test_a_bug_in_a_job_is_a_bug_naming_the_job(capsys, monkeypatch):
-    import pysim.bench_data.charts as charts
+    import pysim.bench.charts as charts
 
     def broken(*args, **kwargs):
         raise ValueError("operands could not be broadcast together")

@@ -12,7 +12,7 @@ import pytest
 
 from sources import get_preset
 from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
-from pysim.analysis.signals import (amplitude_spectrum, dither_envelope,
+from pysim.bench.signals import (amplitude_spectrum, dither_envelope,
                            free_response_growth, per_period,
                            stroboscopic_growth)
 
@@ -177,7 +177,7 @@ def test_simulate_full_engagement_to_lock_up(tmp_path):
     # (measured 61), and the last holds at 3.27 s: forced judder of 183
     # rpm while slipping (the straight line of Eq. 5 gives 1094 rpm and
     # never locks, test_simulate_full_linear_law_names_its_law)
-    from pysim.bench_data._csv import read
+    from pysim.bench._csv import read
     out = tmp_path / "run.csv"
     proc = _judder("simulate", "--engagement", "full", "--freq", "60,102.9",
                    "--pf", "0.3", "--duration", "3.5", "--out", str(out),

@@ -117,7 +117,7 @@ def test_a_judder_that_runs_away_keeps_the_whole_engagement_window():
     # up to 30 000 rpm late in the run. The clutch slips while the slip
     # exceeds 10 % of its value as the engagement begins (800-1000 rpm),
     # not of its largest value, which left only the runaway to read.
-    from pysim.analysis.verdict import engagement_window
+    from pysim.bench.verdict import engagement_window
     t = np.arange(0.0, 2.5, 1e-3)
     rpm = 2 * np.pi / 60
     swing = np.where(t > 1.6, 3e4 * np.sin(2 * np.pi * 102 * t) ** 2, 0.0)

@@ -1,12 +1,12 @@
 """What a speed channel's samples are, and the angle they carry
-(pysim.bench_data.speed_channels), against closed forms."""
+(pysim.bench.speed_channels), against closed forms."""
 
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
 from pysim.simulation.campaigns import pickup_samples
-from pysim.bench_data.speed_channels import detect_speed_kind, interval_means
+from pysim.bench.speed_channels import detect_speed_kind, interval_means
 
 #: A shaft at 1000 rpm with a 20 rpm oscillation at 103 Hz, rad and s.
 OMEGA, AMPLITUDE, NU = 1000 * np.pi / 30, 20 * np.pi / 30, 2 * np.pi * 103

@@ -10,7 +10,7 @@ from fmu.units import DISPLAY_UNITS, base_exponents
 from infra.errors import JudderError
 from infra.quantities import parse_quantity
 from infra.units import BASE_UNITS, UNITS
-from pysim.bench_data.units import SPEED_UNITS, unit_factor
+from pysim.bench.units import SPEED_UNITS, unit_factor
 
 # SI per unit, written independently of the table (closed forms)
 REFERENCE = [("bar", 1e5), ("mbar", 100.0), ("kPa", 1e3),

@@ -30,7 +30,7 @@ FLAGS = {
     # sources: Parameters.with_overrides, FmuParameters, ModelicaParameters
     "assignments": "--set", "path": "--fmu", "library": "--library",
     "amplitude": "--dither-amplitude", "frequency": "--dither-frequency",
-    # pysim.bench_data: the chart's sources, channels and groups
+    # pysim.bench: the chart's sources, channels and groups
     "paths": "SOURCE", "index": "--index", "channels": "--channel",
     "group_by": "--group-by", "decimal": "--decimal",
     # studies._common.at_dither_frequency

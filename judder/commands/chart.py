@@ -193,7 +193,7 @@ def _unread(failed):
 def _channels(items):
     """``ROLE=NAME[:UNIT]`` strings as ``{role: ChannelSpec}`` (None if
     none given: the names judder campaign writes)."""
-    from pysim.bench_data.channels import parse_channel_option
+    from pysim.bench.channels import parse_channel_option
     if not items:
         return None
     channels, given = {}, {}

@@ -146,7 +146,7 @@ def add_arguments(p):
 def run(args):
     """Fit parameters to a measured boundary (section 4.2, Fig. 16a)."""
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
-    from stability.decisions.relevance import CHART_THRESHOLD_SPREAD_PER_S
+    from infra.criteria import CHART_THRESHOLD_SPREAD_PER_S
     params, changes = parameters_of(args)
     names = _fit_names(args.fit, params)
     bounds = parse_bounds(args.bounds, params.replace(**changes), names,

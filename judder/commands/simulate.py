@@ -147,7 +147,7 @@ def _engagement_line(s, bench=True):
     """One run's line; ``bench``: it ran on the bench model, whose
     linearisation (its speed control's damping, its friction curve at the
     slip) is not the driveline's that ``judder check`` judges."""
-    from pysim.simulation.engagement import judder_words, lock_words
+    from pysim.bench.engagement import judder_words, lock_words
     return (f"{s['label']}: f = {s['freq_hz']:g} Hz, p_f = "
             f"{s['p_f_bar']:g} bar; "
             + ("" if "lock_up_time_s" not in s else

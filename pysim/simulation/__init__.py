@@ -1,7 +1,6 @@
-"""FMU runs with fmpy: run at a dither setting
+"""FMU runs with fmpy: a run at a dither setting
 (:mod:`~pysim.simulation.runs`; the FMUs are built, read and unpacked
-by :mod:`fmu.store`), engagement summaries
-(:mod:`~pysim.simulation.engagement`), emulated bench campaigns
-(:mod:`~pysim.simulation.campaigns`), CSV and MF4 export
-(:mod:`~pysim.simulation.export`) and plots of runs
-(:mod:`~pysim.simulation.plots`)."""
+by :mod:`fmu.store`), emulated bench campaigns
+(:mod:`~pysim.simulation.campaigns`) and their CSV and MF4 files
+(:mod:`~pysim.simulation.export`). What a run shows is read by
+:mod:`pysim.bench`, as a measured one is."""

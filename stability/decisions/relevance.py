@@ -13,7 +13,7 @@ over it stays at the size of whatever started it. So an instability is *judder-r
           \sigma_{min} = 1 / t_{engagement} = 1\ \text{1/s}
 
 by default (:data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`). This is
-the same 1/s the time-domain verdict of :mod:`pysim.analysis.verdict` uses
+the same 1/s the time-domain verdict of :mod:`pysim.bench.verdict` uses
 (defined once, in :mod:`infra.criteria`), so the maps, the
 tongue boundaries, ``judder check`` and ``judder envelope`` agree with the
 bench charts. The slow slip-speed mode of a stiffly damped clutch damper
@@ -24,7 +24,7 @@ judder-relevant: it needs 50 s for one e-fold.
 
 The verdict of a dither setting is one of three words, written the same
 in every output (``judder check``'s text and JSON, the figures, the
-report), :data:`VERDICTS`:
+report), :data:`infra.criteria.VERDICTS`:
 
 * ``JUDDER``: a multiplier outside the unit circle whose growth rate
   exceeds ``min_growth`` (inside a stability tongue and judder-relevant);
@@ -32,23 +32,18 @@ report), :data:`VERDICTS`:
   stability tongue) growing slower than that: less than one e-fold over
   an engagement, no judder;
 * ``STABLE``: every non-rigid-body multiplier inside the unit circle.
+
+The words themselves are :mod:`infra.criteria`'s, shared with the
+verdict of a run.
 """
 
 import numpy as np
 
-from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_MIN_GROWTH_PER_S, JUDDER, SLOW_GROWTH,
+                            STABLE)
 from infra.errors import JudderError
 
-__all__ = ["CHART_THRESHOLD_SPREAD_PER_S", "is_judder_relevant", "JUDDER",
-           "SLOW_GROWTH", "STABLE", "VERDICTS", "verdict"]
-
-#: How far the growth rate a chart's verdict calls judder from may lie
-#: from its threshold, 1/s: on the tongue-4 round trip (docs/roundtrip.md)
-#: runs of 3 s whose Floquet exponent lay within this of the threshold
-#: were called either way. ``judder fit --chart`` widens its intervals by
-#: the values this spread gives (:func:`stability.fit.fit_boundary`,
-#: ``threshold_spread``).
-CHART_THRESHOLD_SPREAD_PER_S = 0.25
+__all__ = ["is_judder_relevant", "verdict"]
 
 
 def is_judder_relevant(growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):
@@ -88,11 +83,6 @@ def is_judder_relevant(growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):
         return rate > min_growth
 
 
-#: The verdict words (module docstring), most severe first.
-JUDDER, SLOW_GROWTH, STABLE = "JUDDER", "SLOW GROWTH", "STABLE"
-VERDICTS = (JUDDER, SLOW_GROWTH, STABLE)
-
-
 def verdict(unstable, growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):
     """The verdict word of one setting.
 
@@ -109,7 +99,7 @@ def verdict(unstable, growth_rate_per_s, min_growth=DEFAULT_MIN_GROWTH_PER_S):
     Returns
     -------
     str
-        One of :data:`VERDICTS`.
+        One of :data:`infra.criteria.VERDICTS`.
 
     Examples
     --------

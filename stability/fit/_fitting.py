@@ -151,7 +151,7 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
     forced_limit : float, optional
         rad/s: the onsets are judder as a bench reads it, where the
         oscillation of the upstream speed exceeds this NVH limit or an
-        instability grows at ``min_growth`` (:mod:`pysim.analysis.verdict`);
+        instability grows at ``min_growth`` (:mod:`pysim.bench.verdict`);
         the model's single-period boundary is then the lower of the
         Floquet one and the amplitude at which the dither's forced
         response reaches the limit (:func:`stability.friction.

@@ -5,7 +5,7 @@ chart (:class:`stability.orbit_chart.OrbitChart`)."""
 import matplotlib.pyplot as plt
 import numpy as np
 
-from infra.criteria import MECHANISMS
+from infra.criteria import JUDDER, MECHANISMS
 from infra.plotstyle import dither_axes, log_levels
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
@@ -114,7 +114,7 @@ def plot_orbit_chart(chart, ax=None, levels=None):
         if these.any():
             artists.append(ax.scatter(f[these], p[these], marker=marker,
                                       s=10, color=colour, zorder=3,
-                                      label=f"judder, {name}"))
+                                      label=f"{JUDDER.lower()}, {name}"))
     onsets = chart.onsets() / PA_PER_BAR
     artists += ax.plot(chart.freq_hz, onsets, color="#1f77b4", lw=1.5,
                        label="predicted boundary")

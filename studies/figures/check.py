@@ -4,6 +4,7 @@ over the map when there is one."""
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
+from infra.criteria import JUDDER, SLOW_GROWTH, STABLE
 from infra.plotstyle import LABEL_GID, dither_axes, settle_labels
 from stability.plots import drawn_kinds, kind_handles, plot_map
 
@@ -11,12 +12,12 @@ __all__ = ["check_figure", "VERDICT_MARKERS"]
 
 
 #: Marker and colour of each verdict word
-#: (:data:`stability.decisions.relevance.VERDICTS`): shape tells them
+#: (:data:`infra.criteria.VERDICTS`): shape tells them
 #: apart without colour; the colours are dark enough to read on every
 #: kind's fill.
-VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
-                   "SLOW GROWTH": ("s", "#404040"),
-                   "STABLE": ("o", "#1b7837")}
+VERDICT_MARKERS = {JUDDER: ("X", "#b2182b"),
+                   SLOW_GROWTH: ("s", "#404040"),
+                   STABLE: ("o", "#1b7837")}
 
 
 def check_figure(records, background=None, min_growth=None, title=None):

@@ -18,7 +18,7 @@ def read(path, wanted, time=None):
     """NI TDMS: waveform time tracks or a time channel of the group, laid
     on one time base where the channels record when their clocks started
     (``wf_start_time``, a date-time time channel):
-    :func:`pysim.bench_data._common.on_one_clock`."""
+    :func:`pysim.bench._common.on_one_clock`."""
     try:
         from nptdms import TdmsFile
     except ImportError:

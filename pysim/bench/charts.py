@@ -2,7 +2,7 @@
 
 A chart is a set of engagement runs, each at a dither frequency and
 amplitude and in a group (an oil temperature, an engine speed, ...), read
-by :func:`pysim.analysis.verdict.analyse_run`. Contoured over (frequency,
+by :func:`pysim.bench.verdict.analyse_run`. Contoured over (frequency,
 amplitude) per group it is Fig. 10 and Fig. 11 of the paper; per
 frequency the lowest amplitude with judder is the experimental stability
 boundary that section 4.2 fits the model to.
@@ -29,7 +29,7 @@ from infra.errors import JudderError
 from infra.parallel import parallel_map
 from infra.units import PA_PER_BAR
 
-from ..analysis.verdict import MIN_AMPLITUDE_RPM, SETTING, analyse_run
+from .verdict import MIN_AMPLITUDE_RPM, SETTING, analyse_run
 from .acquisition import ChannelSpec
 from ._csv import _csv_lines
 from .readers import read_acquisition
@@ -73,10 +73,10 @@ class RunSource:
 class ChartRun:
     """One run of a chart: where it came from, its settings, its reading.
 
-    ``analysis`` is a :class:`pysim.analysis.verdict.RunAnalysis`, or None
+    ``analysis`` is a :class:`pysim.bench.verdict.RunAnalysis`, or None
     when the run could not be read (``error`` says why); ``speed_kind``
     what the upstream speed's samples were
-    (:data:`pysim.bench_data.speed_channels.SPEED_KINDS`); ``warnings``
+    (:data:`pysim.bench.speed_channels.SPEED_KINDS`); ``warnings``
     what the run was read with but cannot support, in words naming the
     file and the channel (a dither estimated from a pressure sampled too
     sparsely, or a dither amplitude given that the pressure contradicts).
@@ -103,7 +103,7 @@ class ChartRun:
 def _read_csv(path, option, decimal=None):
     """The rows of an index CSV as ``(line, {column: value})``: the columns of
     :data:`_NUMBER_COLUMNS` as numbers read as the file writes them (NaN
-    where empty; :mod:`pysim.bench_data.tables`, ``decimal`` the file's
+    where empty; :mod:`pysim.bench.tables`, ``decimal`` the file's
     decimal separator where given), the others as text. Fields are
     separated by ``,``, or by ``;`` or tab where the header has one."""
     try:
@@ -337,7 +337,7 @@ class Chart:
         given frequency, are one set point, at the given frequency or
         their median. A run whose frequency was estimated where the
         sampling cannot tell it from its aliases
-        (:attr:`pysim.analysis.verdict.RunAnalysis.frequency_aliased`) is
+        (:attr:`pysim.bench.verdict.RunAnalysis.frequency_aliased`) is
         at no set point, so on no boundary: which frequency it was run at
         is not known (:meth:`aliased` lists them).
 
@@ -481,7 +481,7 @@ DITHER_ARRAYS = {"dither_freq_std_hz": ("freq_std_hz", 1.0),
 
 def _dither_arrays(fits):
     """The standard uncertainties (and the phase) of the runs' dither
-    estimates (:class:`pysim.analysis.dither.SinusoidFit`, None where the
+    estimates (:class:`pysim.bench.dither.SinusoidFit`, None where the
     setting was given), as :data:`DITHER_ARRAYS`, and ``dither_warnings``:
     what the sampling cannot support, in words joined by ``'; '`` (empty
     where nothing, or the setting was given)."""
@@ -504,13 +504,13 @@ def build_chart(sources, channels=None, group_by=None,
     ----------
     sources : sequence of RunSource
     channels : dict, optional
-        Role -> :class:`pysim.bench_data.acquisition.ChannelSpec`; default
+        Role -> :class:`pysim.bench.acquisition.ChannelSpec`; default
         :data:`DEFAULT_CHANNELS` (the names ``judder campaign`` writes).
     group_by : sequence of str, optional
         Group columns; default those of :data:`GROUP_COLUMNS` that take
         more than one value.
     min_growth, min_amplitude_rpm, judder_limit_rpm : float
-        The verdict's thresholds (:mod:`pysim.analysis.verdict`).
+        The verdict's thresholds (:mod:`pysim.bench.verdict`).
     workers : int, optional
     callback : callable, optional
         ``callback(done, total)`` after each run.
@@ -519,7 +519,7 @@ def build_chart(sources, channels=None, group_by=None,
         :func:`infra.parallel.worker_count`).
     decimal : {'.', ','}, optional
         Decimal separator of the text (CSV) acquisitions
-        (:func:`pysim.bench_data.readers.read_acquisition`); default
+        (:func:`pysim.bench.readers.read_acquisition`); default
         decided per file from its cells.
 
     Returns

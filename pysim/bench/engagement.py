@@ -5,7 +5,7 @@
 engagement) to the numbers an engineer reads off it: the spectrum
 peaks of the upstream speed and of the pressure (Fig. 8), whether the
 speed peak sits at the dither frequency, and the judder verdict of
-:func:`pysim.analysis.verdict.analyse_run`: how fast the non-periodic part of
+:func:`pysim.bench.verdict.analyse_run`: how fast the non-periodic part of
 the speed grows (whichever the kind: at ``f``, ``f/2`` or a combination
 frequency), and which kind it is.
 """
@@ -14,11 +14,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM,
+                            DEFAULT_MIN_GROWTH_PER_S, JUDDER, NO_JUDDER)
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
-from ..analysis.verdict import analyse_run
-from ..analysis.signals import amplitude_spectrum
+from .verdict import analyse_run
+from .signals import amplitude_spectrum
 
 __all__ = ["engagement_summary", "verdict_line", "judder_words",
            "display_spectra", "LOCK_VARIABLES", "lock_up", "until"]
@@ -83,7 +84,7 @@ def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
         ``mechanism``, ``judder_limit_rpm``, ``oscillation_rpm``,
         ``forced_rpm``: the verdict, its kind, the growth rate of the
         non-periodic part (1/s), why it judders and the oscillation
-        compared with the limit, as :func:`pysim.analysis.verdict.analyse_run`
+        compared with the limit, as :func:`pysim.bench.verdict.analyse_run`
         reads them (None without dither); ``dither_envelope_max_rpm``: the
         largest envelope at the dither frequency; ``final_slip_rad_s``.
     """
@@ -143,10 +144,10 @@ def verdict_line(summary):
         return ("" if "lock_up_time_s" not in summary else
                 lock_words(summary))
     if not summary["judder"]:
-        run = f"no judder, {summary['oscillation_rpm']:.3g} rpm"
+        run = f"{NO_JUDDER.lower()}, {summary['oscillation_rpm']:.3g} rpm"
     else:
         growth = summary["judder_growth_per_s"]
-        run = (f"judder, {summary['mechanism']}, "
+        run = (f"{JUDDER.lower()}, {summary['mechanism']}, "
                f"{summary['oscillation_rpm']:.3g} rpm"
                + ("" if summary["mechanism"] == "forced" else
                   f" ({summary['judder_kind']}"
@@ -163,7 +164,8 @@ def verdict_line(summary):
                      f"{exponent:+.2f} 1/s"
                      + ("" if summary.get("orbit_kind") is None else
                         f"; orbit: {summary['orbit_settled_rpm']:.3g} rpm, "
-                        + (summary["orbit_mechanism"] or "no judder")))
+                        + (summary["orbit_mechanism"]
+                           or NO_JUDDER.lower())))
     if summary.get("linearisation_holds") is False:
         lines.append(f"slip swing \u00b1"
                      f"{summary['forced_slip_amplitude_rad_s']:.1f} rad/s, "
@@ -190,24 +192,25 @@ def judder_words(summary):
     limit = f"(limit {summary['judder_limit_rpm']:.3g} rpm)"
     amplitude = f"{summary['oscillation_rpm']:.3g} rpm"
     if not summary["judder"]:
-        return f"no judder: {amplitude} {limit}"
+        return f"{NO_JUDDER.lower()}: {amplitude} {limit}"
     mechanism = summary["mechanism"]
     if mechanism == "forced":
-        return (f"judder, forced: {amplitude} at the dither frequency "
-                + limit)
+        return (f"{JUDDER.lower()}, forced: {amplitude} at the dither "
+                f"frequency {limit}")
     growth = summary["judder_growth_per_s"]
     instability = summary["judder_kind"] + (
         f", grows at {growth:.2f} 1/s" if growth is not None else "")
     if mechanism == "both":
         instability += (f", over a forced {summary['forced_rpm']:.3g} rpm "
                         "at the dither frequency")
-    return f"judder, {mechanism}: {instability}; {amplitude} {limit}"
+    return (f"{JUDDER.lower()}, {mechanism}: {instability}; {amplitude} "
+            + limit)
 
 
 def display_spectra(run, start):
     """Amplitude spectra of an engagement after ``start`` (s), as Fig. 8
     shows them: the upstream speed in rpm and the actuation pressure in
-    bar (each a :class:`pysim.analysis.signals.Spectrum`)."""
+    bar (each a :class:`pysim.bench.signals.Spectrum`)."""
     keep = run.time >= start
     speed = amplitude_spectrum(run.time[keep],
                                run["w_upstream"][keep] * RPM_PER_RAD_S)

@@ -31,7 +31,7 @@ def read(path, wanted, time=None, decimal=None):
     exports it: ``,``, ``;`` or tab between fields, a decimal point or
     comma and thousands separators as the file's cells show them, or as
     ``decimal`` (``'.'`` or ``','``) says where given
-    (:mod:`pysim.bench_data._numbers`), a time column of numbers or of
+    (:mod:`pysim.bench._numbers`), a time column of numbers or of
     date-times (s from the first), a header block before the column names
     (``key;value`` lines, kept as metadata), a units row under them."""
     lines = _csv_lines(path)
@@ -116,7 +116,7 @@ def _csv_header_row(path, rows, body, time):
 def _is_units_row(row, width):
     """A row under the names that holds units, not numbers: a row with a
     cell that reads as a number under either decimal separator
-    (:func:`pysim.bench_data._numbers.is_number`: ``1 000``, ``1.000,5``,
+    (:func:`pysim.bench._numbers.is_number`: ``1 000``, ``1.000,5``,
     ``1'000.5`` too) is data."""
     cells = [cell.strip() for cell in row]
     if len(cells) != width or not any(cells):

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.signal
 
+from infra.spectrum import hann_spectrum
+
 __all__ = ["Spectrum", "amplitude_spectrum", "GrowthFit",
            "stroboscopic_growth", "free_response_growth", "dither_envelope",
            "per_period"]
@@ -34,17 +36,15 @@ class Spectrum:
 
 
 def amplitude_spectrum(time, signal, f_min=2.0):
-    """Amplitude spectrum of a uniformly sampled signal (Fig. 8).
+    """Amplitude spectrum of a uniformly sampled signal (Fig. 8;
+    :func:`infra.spectrum.hann_spectrum`).
 
     The linear trend (the engagement itself) is removed first; the peak is
     searched above ``f_min`` Hz.
     """
     time = np.asarray(time, dtype=float)
     y = scipy.signal.detrend(np.asarray(signal, dtype=float))
-    dt = np.median(np.diff(time))
-    window = np.hanning(len(y))
-    amplitude = 2 * np.abs(np.fft.rfft(y * window)) / window.sum()
-    freq = np.fft.rfftfreq(len(y), dt)
+    freq, amplitude = hann_spectrum(y, np.median(np.diff(time)))
     band = freq >= f_min
     i = np.flatnonzero(band)[np.argmax(amplitude[band])]
     return Spectrum(freq_hz=freq, amplitude=amplitude,

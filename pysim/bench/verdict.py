@@ -14,10 +14,10 @@ own time base. :func:`analyse_run` does, in order:
    fitted to the pressure samples as taken (:func:`estimate_dither`); the
    amplitude is that sinusoid's. Frequency, amplitude and phase come with
    their standard uncertainties, and with warnings where the sampling
-   cannot support them (:mod:`pysim.analysis.dither`). Where one value of
+   cannot support them (:mod:`pysim.bench.dither`). Where one value of
    the setting is given and the other estimated, the run is read at the
    value given, and a given amplitude the pressure's estimate contradicts
-   is warned of (:func:`pysim.analysis.dither.disagreement`).
+   is warned of (:func:`pysim.bench.dither.disagreement`).
 3. **Components** of the upstream speed, resampled uniformly over the
    whole run and high-passed above 5 Hz (the engagement itself is
    slower), by complex demodulation,
@@ -54,7 +54,7 @@ resonance above the limit). ``kind`` names the parametric kind, or
 
 What separates the two is periodicity: the forced response repeats every
 dither period ``T``, the free response does not. So growth is read on
-the **non-periodic part** (as :func:`pysim.analysis.signals.stroboscopic_growth`
+the **non-periodic part** (as :func:`pysim.bench.signals.stroboscopic_growth`
 does for simulations),
 
 .. math:: d(t) = y(t + L) - y(t), \qquad
@@ -121,15 +121,17 @@ import scipy.signal
 from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
-from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM,
+                            DEFAULT_MIN_GROWTH_PER_S, run_verdict)
 from infra.errors import JudderError
+from infra.spectrum import hann_amplitude, hann_spectrum
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .dither import disagreement, fit_sinusoid
 
 __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
-           "dither_estimate_dict", "SETTING", "RUN_VERDICTS", "run_verdict",
-           "engagement_window", "component_envelope", "component_phasor",
+           "dither_estimate_dict", "SETTING", "engagement_window",
+           "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
            "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
@@ -216,22 +218,6 @@ class Component:
     sustained_rpm: float
 
 
-#: The verdict of a run (a bench's, a simulated engagement's, a periodic
-#: orbit's), as every output writes it: ``JUDDER``, the word ``judder
-#: check`` gives a setting whose judder grows at ``min_growth`` or faster
-#: (:data:`stability.decisions.relevance.JUDDER`), here also where the
-#: dither-related oscillation exceeds the NVH limit (as ``judder fit
-#: --limit`` compares); else ``NO JUDDER``: a run cannot tell check's
-#: SLOW GROWTH (an instability slower than judder) from STABLE.
-RUN_VERDICTS = ("JUDDER", "NO JUDDER")
-
-
-def run_verdict(judder):
-    """A run's verdict word (:data:`RUN_VERDICTS`) from whether it
-    judders; None where it was not read (None)."""
-    return None if judder is None else RUN_VERDICTS[0 if judder else 1]
-
-
 @dataclass(frozen=True)
 class RunAnalysis:
     """The reading of one engagement run.
@@ -276,7 +262,7 @@ class RunAnalysis:
         Why the run judders (None without judder).
     judder_limit_rpm : float
         The NVH limit the oscillation was compared with, rpm.
-    dither : pysim.analysis.dither.SinusoidFit or None
+    dither : pysim.bench.dither.SinusoidFit or None
         The sinusoid fitted to the pressure where the dither setting was
         estimated (amplitude in Pa, with standard uncertainties and the
         sampling's warnings, and a given value it contradicts), else None.
@@ -305,14 +291,15 @@ class RunAnalysis:
 
     @property
     def verdict(self):
-        """The run's verdict word (:data:`RUN_VERDICTS`)."""
+        """The run's verdict word
+        (:data:`infra.criteria.RUN_VERDICTS`)."""
         return run_verdict(self.judder)
 
     @property
     def frequency_aliased(self):
         """The dither frequency was estimated from the pressure, and the
         sampling cannot tell it from its aliases
-        (:attr:`pysim.analysis.dither.SinusoidFit.aliased`): the run may
+        (:attr:`pysim.bench.dither.SinusoidFit.aliased`): the run may
         belong at another frequency."""
         return (SETTING[0] not in self.given and self.dither is not None
                 and self.dither.aliased)
@@ -349,7 +336,7 @@ def dither_estimate_dict(fit, given=()):
     given), the time the phase refers to, the sampling and its warnings,
     the aliases that fit as well (Hz) and ``frequency_aliased``: the
     frequency was estimated and may be an alias, so the run is on no
-    boundary (:meth:`pysim.bench_data.charts.Chart.set_points`)."""
+    boundary (:meth:`pysim.bench.charts.Chart.set_points`)."""
     if fit is None:
         return None
     return {"given": [name for name in SETTING if name in given],
@@ -446,20 +433,13 @@ def engagement_window(speed, pressure=None, downstream=None):
     return float(t[start]), float(t[stop - 1])
 
 
-def _fourier_amplitude(time, values, freq):
-    """Amplitude of a sine at ``freq`` (Hann-windowed Fourier sum)."""
-    window = np.hanning(len(values))
-    phasor = np.exp(-2j * np.pi * freq * time)
-    return 2 * abs(np.sum(window * values * phasor)) / window.sum()
-
-
 def estimate_dither(time, pressure, window, freq_hz=None):
     """Dither frequency, amplitude and phase, with their standard
     uncertainties, from the pressure channel.
 
     The least-squares sinusoid (over a line, the engagement's trend) is
     fitted to the pressure samples in ``window`` as they were taken
-    (:func:`pysim.analysis.dither.fit_sinusoid`). Resampling them first
+    (:func:`pysim.bench.dither.fit_sinusoid`). Resampling them first
     would not do: a pressure sampled at a pick-up's tooth passages has
     about 3.3 samples per dither period, and linear interpolation between
     them loses 7 to 36 % of the amplitude (issue 31). The frequency,
@@ -480,7 +460,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
 
     Returns
     -------
-    pysim.analysis.dither.SinusoidFit
+    pysim.bench.dither.SinusoidFit
         Amplitude in Pa; ``warnings`` where the sampling cannot support
         the estimate.
 
@@ -498,8 +478,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
         return fit_sinusoid(time, pressure, freq_hz)
     t, p = _uniform(time, pressure)
     p = scipy.signal.detrend(p)
-    freq = np.fft.rfftfreq(len(p), t[1] - t[0])
-    spectrum = np.abs(np.fft.rfft(p * np.hanning(len(p))))
+    freq, spectrum = hann_spectrum(p, t[1] - t[0])
     band = freq >= _LOWEST_HZ
     peak = freq[band][np.argmax(spectrum[band])]
     return fit_sinusoid(time, pressure, peak,
@@ -509,7 +488,7 @@ def estimate_dither(time, pressure, window, freq_hz=None):
 def _given_frequency_contradicted(pressure, window, freq_hz):
     """Words where the pressure's own frequency (:func:`estimate_dither`
     with the frequency free) contradicts the one given
-    (:func:`pysim.analysis.dither.disagreement`); None where they agree,
+    (:func:`pysim.bench.dither.disagreement`); None where they agree,
     or where the sampling cannot tell the frequency from its aliases (the
     estimate's own warnings)."""
     own = estimate_dither(np.asarray(pressure[0], dtype=float),
@@ -693,15 +672,10 @@ def _other_peak(freq, spectrum, dither_hz, resolution):
     return float(freq[away][np.argmax(spectrum[away])])
 
 
-def _spectrum(values, fs):
-    freq = np.fft.rfftfreq(len(values), 1.0 / fs)
-    return freq, np.abs(np.fft.rfft(values * np.hanning(len(values))))
-
-
 def _difference_spectrum(difference, fs):
     """Spectrum of the non-periodic part in speed terms (the angle
     difference's spectrum times the frequency)."""
-    freq, spectrum = _spectrum(difference, fs)
+    freq, spectrum = hann_spectrum(difference, 1.0 / fs)
     return freq, spectrum * freq
 
 
@@ -970,7 +944,7 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
         raise JudderError(f"the engagement window {window[0]:.3g}-"
                           f"{window[1]:.3g} s is too short to read judder at "
                           f"{freq_hz:g} Hz")
-    freq, spectrum = _spectrum(y[inside], fs)
+    freq, spectrum = hann_spectrum(y[inside], 1.0 / fs)
     targets = {"dither": freq_hz, "half": freq_hz / 2,
                "other": _other_peak(freq, spectrum, freq_hz, freq[1])}
     envelopes = {fc: component_envelope(t, y, fc) for fc in targets.values()
@@ -1082,7 +1056,7 @@ def _forced_level(time, speed, freq_hz, unstable, phase, dither_envelope):
     """
     if unstable != "single-period":
         late = time >= time[-1] - (time[-1] - time[0]) / 3
-        return float(_fourier_amplitude(time[late], speed[late], freq_hz))
+        return float(hann_amplitude(time[late], speed[late], freq_hz)[0])
     if phase is None:
         return 0.0
     return float(dither_envelope[np.searchsorted(time, phase[0])])

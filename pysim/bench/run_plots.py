@@ -2,9 +2,9 @@
 
 Functions take ``ax`` where they draw one panel and return the artists;
 :func:`run_figure` returns the figure. They draw what they are given:
-spectra come computed (:func:`pysim.simulation.engagement.display_spectra`), a
+spectra come computed (:func:`pysim.bench.engagement.display_spectra`), a
 long run's time history is banded per dither period for display
-(:func:`pysim.analysis.signals.per_period`); nothing calls ``plt.show()``.
+(:func:`pysim.bench.signals.per_period`); nothing calls ``plt.show()``.
 """
 
 import matplotlib.pyplot as plt
@@ -13,7 +13,7 @@ import numpy as np
 from infra.plotstyle import BLUE, VERMILLION, figure_title
 from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
-from ..analysis.signals import per_period
+from .signals import per_period
 
 __all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure"]
 
@@ -96,7 +96,7 @@ def plot_spectrum(run, spectra, ax=None, f_max=None):
     run : pysim.simulation.runs.RunResult
     spectra : tuple
         ``(speed, pressure)`` spectra of the run, as
-        :func:`pysim.simulation.engagement.display_spectra` gives them.
+        :func:`pysim.bench.engagement.display_spectra` gives them.
     f_max : float, optional
         Upper end of the frequency axis, Hz (default 3 f): give every
         panel of a figure the same one.
@@ -138,7 +138,7 @@ def plot_spectra_overlay(runs, speed_spectra, ax=None, f_max=None):
     a combination one at natural frequencies of the driveline.
 
     ``runs`` are ``(label, run)`` pairs, ``speed_spectra`` their speed
-    spectra (:func:`pysim.simulation.engagement.display_spectra`)."""
+    spectra (:func:`pysim.bench.engagement.display_spectra`)."""
     if ax is None:
         _, ax = plt.subplots()
     colours = plt.get_cmap("cividis")(np.linspace(0.0, 0.75, len(runs)))
@@ -185,7 +185,7 @@ def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
     dither, their speed spectra overlaid (bottom).
 
     ``runs`` are ``(label, run)`` pairs, ``spectra`` their ``(speed,
-    pressure)`` spectra (:func:`pysim.simulation.engagement.display_spectra`),
+    pressure)`` spectra (:func:`pysim.bench.engagement.display_spectra`),
     ``verdicts`` one line of text per run, printed over its time
     histories, ``lock_ups`` per run the time its clutch locks up (s, or
     None)."""

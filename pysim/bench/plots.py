@@ -2,13 +2,14 @@
 
 :func:`plot_chart` draws one group's panel on ``ax`` and returns the
 artists; :func:`chart_figure` returns the figure. They draw what the
-:class:`~pysim.bench_data.charts.Chart` holds; nothing calls
+:class:`~pysim.bench.charts.Chart` holds; nothing calls
 ``plt.show()``.
 """
 
 import matplotlib.pyplot as plt
 import numpy as np
 
+from infra.criteria import JUDDER, NO_JUDDER
 from infra.plotstyle import dither_axes, log_levels
 
 __all__ = ["plot_chart", "plot_runs", "chart_figure", "runs_figure",
@@ -21,7 +22,7 @@ _GROUP_TITLES = {"oil_temperature": "oil {} degC",
 
 
 #: Marker and colour of a judder run by its mechanism
-#: (:attr:`pysim.analysis.verdict.RunAnalysis.mechanism`).
+#: (:attr:`pysim.bench.verdict.RunAnalysis.mechanism`).
 _MECHANISM_MARKERS = {"parametric": ("^", "#d62728"),
                       "forced": ("s", "#ff7f0e"),
                       "both": ("D", "#9467bd")}
@@ -44,7 +45,7 @@ def plot_chart(chart, group, ax=None, levels=None):
 
     Parameters
     ----------
-    chart : pysim.bench_data.charts.Chart
+    chart : pysim.bench.charts.Chart
     group : tuple of str
         A key of ``chart.groups()``.
     levels : ndarray, optional
@@ -73,7 +74,7 @@ def plot_chart(chart, group, ax=None, levels=None):
 
 #: The colour bar's words: what the contour shows, the largest envelope
 #: of the speed's oscillation at the dither frequency or the judder
-#: component's (:attr:`pysim.analysis.verdict.RunAnalysis.amplitude_rpm`),
+#: component's (:attr:`pysim.bench.verdict.RunAnalysis.amplitude_rpm`),
 #: forced or grown.
 AMPLITUDE_LABEL = "oscillation at the dither frequencies [rpm]"
 
@@ -90,7 +91,7 @@ def plot_runs(ax, runs, boundary, levels=None):
 
     A run whose frequency was estimated and may be an alias is drawn
     apart (:data:`ALIASED_LABEL`), out of the contour, as it is out of the
-    boundary (:meth:`pysim.bench_data.charts.Chart.set_points`): where
+    boundary (:meth:`pysim.bench.charts.Chart.set_points`): where
     it belongs is not known.
 
     Parameters
@@ -99,11 +100,11 @@ def plot_runs(ax, runs, boundary, levels=None):
     runs : dict
         Arrays ``freq_hz``, ``p_f_bar``, ``amplitude_rpm``, ``judder``,
         ``mechanism`` and, optionally, ``dither_aliased`` (as
-        :meth:`pysim.bench_data.charts.Chart.arrays` and a chart's NPZ
+        :meth:`pysim.bench.charts.Chart.arrays` and a chart's NPZ
         hold them).
     boundary : list of (float, float or None, float)
         Per set point: Hz, the onset (bar, None: no judder) and the largest
-        amplitude tried (:meth:`pysim.bench_data.charts.Chart.boundary`).
+        amplitude tried (:meth:`pysim.bench.charts.Chart.boundary`).
     levels : ndarray, optional
         As :func:`plot_chart`'s.
     """
@@ -138,11 +139,12 @@ def plot_runs(ax, runs, boundary, levels=None):
         if these.any():
             artists.append(ax.scatter(f[these], p[these], marker=marker,
                                       color=colour, zorder=3, clip_on=False,
-                                      label=f"judder, {name}"))
+                                      label=f"{JUDDER.lower()}, {name}"))
     quiet = placed & ~judder
     artists.append(ax.scatter(f[quiet], p[quiet], marker="o",
                               facecolors="none", edgecolors="black",
-                              zorder=3, clip_on=False, label="no judder"))
+                              zorder=3, clip_on=False,
+                              label=NO_JUDDER.lower()))
     if aliased.any():
         artists.append(ax.scatter(f[aliased], p[aliased], marker="X", s=70,
                                   color="#e377c2", zorder=3, clip_on=False,

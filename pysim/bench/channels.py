@@ -1,6 +1,6 @@
 """Channels of an acquisition: which file channel plays which role (the
 ``--channel`` option), and one file channel turned into a checked
-:class:`~pysim.bench_data.acquisition.Channel` in SI.
+:class:`~pysim.bench.acquisition.Channel` in SI.
 
 Every channel keeps its own time base: a pick-up speed is sampled at tooth
 passages (non-uniform), the pressure at its own rate. NaN samples are
@@ -42,9 +42,9 @@ SAME_INSTANT = 1e-6
 def parse_channel_option(text):
     """``ROLE=NAME``, ``ROLE=NAME:UNIT`` or ``ROLE=NAME:UNIT:KIND`` (the
     ``--channel`` option); KIND, for a speed, is a key of
-    :data:`pysim.bench_data.speed_channels.SPEED_KINDS`. UNIT may be a
+    :data:`pysim.bench.speed_channels.SPEED_KINDS`. UNIT may be a
     sensor's linear scale, ``4..20mA=0..25bar``
-    (:func:`pysim.bench_data.units.parse_scale`); ROLE ``time`` names a
+    (:func:`pysim.bench.units.parse_scale`); ROLE ``time`` names a
     file's time column of another name.
 
     A name containing ``:`` needs its unit appended.

@@ -17,7 +17,7 @@ TIME_NAMES = ("time", "t", "zeit", "timestamp")
 def is_time_name(name, time=None):
     """Whether a column, channel or variable ``name`` (its name without a
     ``[unit]``) is the file's time: the one ``time`` names (the ``time``
-    role's :class:`~pysim.bench_data.acquisition.ChannelSpec`), else one
+    role's :class:`~pysim.bench.acquisition.ChannelSpec`), else one
     of :data:`TIME_NAMES`."""
     name = split_header(name)[0]
     if time is not None:

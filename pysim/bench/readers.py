@@ -9,7 +9,7 @@ the reader :data:`READERS` holds for the file's suffix:
 * ``.mf4`` / ``.mdf``: ASAM MDF 4 (and 3) with asammdf; every channel
   keeps the time base of its channel group, its unit is the file's; a
   name in several groups is named ``GROUP/NAME`` (the group's
-  acquisition name or index) (:mod:`pysim.bench_data._mdf`);
+  acquisition name or index) (:mod:`pysim.bench._mdf`);
 * ``.csv``: a ``time [s]`` (or ``time``, ``t``, ``Zeit``, ``timestamp``)
   column, headers ``name [unit]`` or plain names with a units row under
   them, ``# key: json-value`` metadata lines (what
@@ -17,21 +17,21 @@ the reader :data:`READERS` holds for the file's suffix:
   ``key;value`` lines before the names; ``,``, ``;`` or tab between
   fields; decimal and thousands separators decided from all the cells
   read, never cell by cell, or given by the caller (``decimal``)
-  (:mod:`pysim.bench_data._numbers`); a time
-  column of numbers or date-times; a BOM (:mod:`pysim.bench_data._csv`);
+  (:mod:`pysim.bench._numbers`); a time
+  column of numbers or date-times; a BOM (:mod:`pysim.bench._csv`);
 * ``.tdms``: NI TDMS with npTDMS; a waveform channel
   (``wf_increment``, ``wf_start_offset``) has its time track, any other
   takes the ``time`` channel of its group; channels whose clocks record
   their start (``wf_start_time``, date-time time channels) are laid on one
   time base, and a file where some do and others do not is refused;
   units from ``unit_string``; a channel is named ``channel`` or
-  ``group/channel`` (:mod:`pysim.bench_data._tdms`);
+  ``group/channel`` (:mod:`pysim.bench._tdms`);
 * ``.mat``: MATLAB with scipy (up to v7) or h5py (v7.3, HDF5); each
   signal is a variable (or a field of a struct, ``struct.field``) with a
   time vector ``NAME_time``, ``t_NAME`` or a shared ``time`` / ``t``;
-  units from a ``units`` struct (:mod:`pysim.bench_data._mat`).
+  units from a ``units`` struct (:mod:`pysim.bench._mat`).
 
-A reader returns the raw channels; :mod:`pysim.bench_data.channels` turns
+A reader returns the raw channels; :mod:`pysim.bench.channels` turns
 each into SI on its own time base, and checks it.
 
 Every bad input raises :class:`infra.errors.JudderError` with a one-line
@@ -97,13 +97,13 @@ def read_acquisition(path, channels, decimal=None):
         Role (``upstream_speed`` required, ``pressure`` and
         ``downstream_speed`` optional; ``time`` the file's time column,
         channel or vector where it has another name than those of
-        :data:`pysim.bench_data._common.TIME_NAMES`) ->
-        :class:`~pysim.bench_data.acquisition.ChannelSpec` (or a channel
+        :data:`pysim.bench._common.TIME_NAMES`) ->
+        :class:`~pysim.bench.acquisition.ChannelSpec` (or a channel
         name).
     decimal : {'.', ','}, optional
         The decimal separator of a text file (CSV) whose cells cannot
         tell it (integers with ``1,000``); the thousands separator
-        follows (:mod:`pysim.bench_data._numbers`). Default: decided from
+        follows (:mod:`pysim.bench._numbers`). Default: decided from
         the file's cells. Binary formats store numbers and ignore it.
 
     Returns

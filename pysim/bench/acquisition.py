@@ -19,7 +19,7 @@ __all__ = ["ChannelSpec", "Channel", "Acquisition", "ROLES",
 
 #: Roles a channel plays, and the kind of quantity of each; ``time``
 #: names the time column, channel or vector of a file whose time is not
-#: called one of :data:`pysim.bench_data._common.TIME_NAMES` (catman's
+#: called one of :data:`pysim.bench._common.TIME_NAMES` (catman's
 #: ``Zeit  1 - Standardmessrate``), and is no channel of the acquisition.
 ROLES = {"upstream_speed": "speed", "pressure": "pressure",
          "downstream_speed": "speed", "time": "time"}
@@ -41,10 +41,10 @@ class ChannelSpec:
         needed where the file has none. Or a linear sensor scale
         ``LOW..HIGH UNIT=LOW..HIGH UNIT`` (``4..20mA=0..25bar``: a
         transmitter's current for its pressure range;
-        :func:`pysim.bench_data.units.parse_scale`).
+        :func:`pysim.bench.units.parse_scale`).
     kind : str, optional
         For a speed: what its samples are, a key of
-        :data:`pysim.bench_data.speed_channels.SPEED_KINDS`; default:
+        :data:`pysim.bench.speed_channels.SPEED_KINDS`; default:
         ``angle`` for an angle unit, else told from the time stamps.
     """
 
@@ -69,7 +69,7 @@ class Channel:
         Channel name in the file.
     kind : str
         For a speed role, what the samples are (a key of
-        :data:`pysim.bench_data.speed_channels.SPEED_KINDS`): ``values``
+        :data:`pysim.bench.speed_channels.SPEED_KINDS`): ``values``
         are rad for ``angle``; :meth:`interval_means` gives the speed as the
         analysis reads it. None for a pressure.
     """
@@ -83,7 +83,7 @@ class Channel:
     def interval_means(self):
         """``(time, speed)``: the mean speed over each sample interval
         (rad/s), a pick-up's convention, whatever the kind
-        (:func:`pysim.bench_data.speed_channels.interval_means`)."""
+        (:func:`pysim.bench.speed_channels.interval_means`)."""
         if self.kind is None:
             return self.time, self.values
         return interval_means(self.time, self.values, self.kind)

@@ -12,7 +12,7 @@ A bench records a shaft's rotation in one of three ways:
   revolution) at the DAQ's times; one that restarts every revolution is
   unwrapped, a counter that overflows elsewhere is not read.
 
-The judder analysis (:mod:`pysim.analysis.verdict`) rebuilds the angle from
+The judder analysis (:mod:`pysim.bench.verdict`) rebuilds the angle from
 mean speeds over the sample intervals, the pick-up's convention.
 :func:`interval_means` turns each kind into it: a passage channel as it
 is, a sampled speed through the exact integral of its cubic spline (which

@@ -5,7 +5,7 @@ separator (the one a first line ``sep=;`` declares, as Excel writes it,
 else ``;`` or tab where the first line has one, else ``,``), and
 the numbers read as written, their decimal and thousands separators
 decided once per file from every cell read, or given (``decimal``), by
-:mod:`pysim.bench_data._numbers`.
+:mod:`pysim.bench._numbers`.
 
 Examples
 --------
@@ -70,7 +70,7 @@ def numbers(source, columns, decimal=None):
         Column name -> list of (line number, cell as written).
     decimal : {'.', ','}, optional
         The file's decimal separator, where the caller knows it
-        (:func:`pysim.bench_data._numbers.decide`).
+        (:func:`pysim.bench._numbers.decide`).
 
     Returns
     -------
