@@ -1,13 +1,19 @@
 """Shared fixtures: the paper's drivelines, and a user's Modelica class
-that is not a driveline."""
+that is not a driveline. The tests' own helpers (``facts``: what a
+message must name) are importable from here on."""
 
+from pathlib import Path
 import signal
+import sys
 import time
 
 import pytest
 
 from sources import get_preset
 from stability import build_driveline
+
+# --import-mode=importlib puts no test folder on sys.path: the helpers
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 
 @pytest.fixture(scope="session")

@@ -17,6 +17,7 @@ from infra.units import PA_PER_BAR, RAD_S_PER_RPM
 from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
 from pysim.bench.verdict import analyse_run, engagement_window, estimate_dither
 from stability import build_driveline, floquet
+from facts import names
 
 RPM = RAD_S_PER_RPM
 RNG = np.random.default_rng(7)
@@ -364,8 +365,7 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path, judder_here):
     # one onset cannot give mu_g and the scatter of the onsets: refused
     status, _, stderr = judder_here(*fit)
     assert status == 2 and "Traceback" not in stderr
-    assert "1 point with judder: fitting 1 parameter (mu_g) needs at " \
-        "least 3" in stderr
+    names(stderr, "1 point", "(mu_g)", "at least 3")
     # with the bench's scatter known, one onset is enough for one value
     status, stdout, stderr = judder_here(*fit, "--scatter", "3%")
     assert status == 0, stderr
@@ -806,10 +806,9 @@ def test_a_file_listed_twice_is_refused_naming_both_places(tmp_path,
                      "run02.csv,210,0.6\n# again\n./run01.csv,210,0.8\n")
     with pytest.raises(JudderError) as info:
         gather_sources([], index)
-    assert str(info.value) == (
-        f"`index` {index}, line 2 and `index` {index}, line 5 both list "
-        f"{tmp_path / 'run01.csv'}; allowed: each acquisition once (one run "
-        "per file)")
+    # both places, the file, what is allowed
+    names(info.value, f"`index` {index}, line 2", f"`index` {index}, line 5",
+          str(tmp_path / "run01.csv"), "allowed")
     index.write_text("file,freq_hz\nrun01.csv,210\n")
     (tmp_path / "run01.csv").write_text("time,n\n0,1\n")
     with pytest.raises(JudderError, match=re.escape(
@@ -1073,11 +1072,8 @@ def test_a_given_frequency_the_pressure_contradicts_is_warned_of(tmp_path,
     words = [w for w in wrong["dither_estimate"]["warnings"]
              if "the frequency given" in w]
     assert len(words) == 1
-    assert words[0].startswith(
-        f"{tmp_path / 'wrong.mf4'}: pressure channel 'PressEVEN': dither "
-        "estimated from it: the frequency given, 90 Hz, and the pressure's, "
-        "103 ")
-    assert "differ by 14%" in words[0]
+    names(words[0], str(tmp_path / "wrong.mf4"), "'PressEVEN'", "90 Hz",
+          "103", "14%")
 
 
 def test_a_given_dither_value_is_told_from_the_estimated_one(tmp_path,
@@ -1233,10 +1229,9 @@ def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
     np.testing.assert_allclose(estimate["aliases_hz"], [73.7, 198.9, 210],
                                atol=0.2)
     assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
-    assert ("  run01.csv: on no boundary and in no contour: its dither "
-            "frequency, estimated at 62.59 Hz, may be an alias (see its "
-            "warning); give freq_hz in the index") in \
-        capsys.readouterr().out.splitlines()
+    line = next(line for line in capsys.readouterr().out.splitlines()
+                if line.startswith("  run01.csv: "))
+    names(line, "62.59 Hz", "alias", "freq_hz")
     runs, boundary = read_chart_runs(out)
     assert runs["dither_aliased"].tolist() == [True] + [False] * 8
     assert [f for f, _, _ in boundary] == [210.0, 212.0, 214.0]
@@ -1258,11 +1253,10 @@ def test_a_run_found_at_an_alias_is_drawn_apart_and_on_no_boundary(
                  "--out", str(out)]) == 0
     capsys.readouterr()
     assert main(["fit", "--chart", str(out), "--fit", "mu_g"]) == 2
-    assert capsys.readouterr().err.strip() == (
-        f"judder: error: --chart {out}: the chart has no boundary: each of "
-        "its 1 run(s) has a dither frequency estimated that may be an "
-        "alias (on no boundary); allowed: a chart with runs whose "
-        "frequency is given (freq_hz in the index)")
+    err = capsys.readouterr().err
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, f"--chart {out}", "no boundary", "1 run", "alias", "allowed",
+          "freq_hz")
 
 
 @pytest.mark.parametrize("rate, found, alias", [
@@ -1281,10 +1275,7 @@ def test_an_alias_above_250_hz_is_named(rate, found, alias):
     fit = estimate_dither(time, pressure, (0.1, 1.4))
     assert fit.freq_hz == pytest.approx(found, abs=0.01)
     (warning,) = fit.warnings
-    assert warning.startswith(f"the sinusoids at {alias:g} Hz fit the "
-                              f"samples as well as the one found at "
-                              f"{found:g} Hz")
-    assert f"plausible dither frequencies 5-{3 * found:.4g} Hz" in warning
+    names(warning, f"{alias:g} Hz", f"{found:g} Hz", f"5-{3 * found:.4g} Hz")
 
 
 def test_chart_warns_of_the_frequencies_a_thinned_pressure_hides(tmp_path,
@@ -1323,19 +1314,17 @@ def test_decimal_is_refused_where_no_csv_is_read(tmp_path, capsys):
     for sources in ([str(tmp_path / "run.mf4")], [str(campaign)]):
         assert main(["chart", *sources, *channels, "--decimal", ","]) == 2
         err = capsys.readouterr().err
-        assert err.strip() == (
-            "judder: error: --decimal is for CSV acquisitions and a --index "
-            "file; allowed: no --decimal where every acquisition is binary "
-            "(MF4, TDMS, MAT) and no --index is given")
+        assert err.startswith("judder: error: ") and err.count("\n") == 1
+        names(err, "--decimal", "--index", "allowed")
     # the same MF4 without --decimal is read
     assert main(["chart", str(tmp_path / "run.mf4"), *channels,
                  "--workers", "1"]) == 0
     assert "all runs: 1 run, 0 with judder" in capsys.readouterr().out
     assert main(["report", "--decimal", ",", "--out",
                  str(tmp_path / "r.html")]) == 2
-    assert capsys.readouterr().err.strip() == (
-        "judder: error: --decimal is for a --boundary file (CSV); allowed: "
-        "no --decimal without a --boundary file")
+    err = capsys.readouterr().err
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, "--decimal", "--boundary", "allowed")
     assert not (tmp_path / "r.html").exists()
 
 

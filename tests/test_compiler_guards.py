@@ -31,6 +31,7 @@ from fmu.build import _run, build_fmu  # noqa: E402
 from fmu.classes import blank, class_spans  # noqa: E402
 from fmu.frontend import (FrontEndError, _experiment,  # noqa: E402
                           load_flat_model)
+from facts import names  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -139,16 +140,18 @@ def test_a_hanging_rumoca_is_stopped(tmp_path, monkeypatch):
         "sys.stderr.write('judder-rumoca: loading the libraries\\n')\n"
         "sys.stderr.flush(); signal.pause()\n"))
     monkeypatch.setenv("JUDDER_FLATTEN_TIMEOUT", "1")
-    with pytest.raises(FrontEndError, match=r"rumoca did not finish M within "
-                       r"1 s \(it was loading the libraries\); allowed: "):
+    with pytest.raises(FrontEndError) as stopped:
         rumoca_child.flatten_isolated(path, "M", [path.parent])
+    names(stopped.value, "rumoca", "M", "1 s", "loading the libraries",
+          "allowed")
 
 
 def test_the_flatten_time_limit_is_checked(monkeypatch):
     monkeypatch.setenv("JUDDER_FLATTEN_TIMEOUT", "-3")
-    with pytest.raises(FrontEndError, match="JUDDER_FLATTEN_TIMEOUT=-3 is "
-                       "not allowed; allowed: seconds > 0"):
+    with pytest.raises(FrontEndError) as refused:
         rumoca_child.time_limit()
+    names(refused.value, "JUDDER_FLATTEN_TIMEOUT", "-3", "allowed",
+          "seconds > 0")
 
 
 # -- arrays beyond the limit, refused before allocating ----------------
@@ -399,9 +402,9 @@ def test_the_sparse_jacobian_gives_the_directional_derivatives(tmp_path):
 
 def test_a_compile_beyond_the_time_limit_is_refused(monkeypatch):
     monkeypatch.setenv("JUDDER_MAX_HOURS", "0.001")
-    with pytest.raises(FrontEndError, match=r"would take about 0\.0111 h, "
-                       r"more than the limit of 0\.001 h"):
+    with pytest.raises(FrontEndError) as refused:
         limits.check_compile("M", 300, (98_400, 40.0, 1e8), memory=1e10)
+    names(refused.value, "0.0111 h", "0.001 h")
 
 
 class _Terminal:
@@ -423,9 +426,11 @@ def test_a_long_compile_is_announced_on_a_terminal_only():
     estimate = (44_995, 0.77 * 44.995 ** 1.22, 40e6 + 10e3 * 44_995)
     terminal, pipe = _Terminal(True), _Terminal(False)
     assert limits.announce("Chain750", 1500, estimate, terminal)
-    assert terminal.text == ("fmu: compiling Chain750 (1500 states, 44,995 "
-                             "operations of C) takes about 80 s and 0.49 GB "
-                             "with gcc\n")
+    # one line, naming the model, its size and the estimate
+    assert terminal.text.startswith("fmu: ") and \
+        terminal.text.count("\n") == 1
+    names(terminal.text, "Chain750", "1500 states", "44,995", "80 s",
+          "0.49 GB", "gcc")
     assert not limits.announce("Chain750", 1500, estimate, pipe)
     assert pipe.text == ""
     assert not limits.announce("Small", 2, (500, 0.2, 4e7), terminal)
@@ -633,10 +638,10 @@ def test_a_name_the_class_does_not_declare_is_refused_from_the_source(
     refuse_undeclared("Lib.Parts.Swappable", [tmp_path],
                       {"amplitude": "counter.q"})
     for name in ("p_f", "counter.y"):
-        with pytest.raises(FrontEndError, match=(
-                rf"\S*Rig\.mo:2: `amplitude` '{re.escape(name)}' is not "
-                r"declared in Lib\.Rig \(read with the classes it extends")):
+        with pytest.raises(FrontEndError) as undeclared:
             refuse_undeclared("Lib.Rig", [tmp_path], {"amplitude": name})
+        names(undeclared.value, "Rig.mo:2", "`amplitude`", repr(name),
+              "Lib.Rig")
 
 
 @pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
@@ -673,8 +678,7 @@ def test_msl_examples_without_a_dither_are_refused_before_flattening(
     missing = dither[-1] if dither else "p_f"
     option = "--dither-frequency" if dither else "--dither-amplitude"
     assert status == 2, err
-    assert f"{line}: {option} {missing!r} is not declared in {cls}" in err, \
-        err
+    names(err, f"{line}:", option, repr(missing), cls)
 
 
 @pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
@@ -703,10 +707,8 @@ def test_a_dither_name_the_class_binds_is_refused_before_flattening(
         amplitude, "--dither-frequency", frequency)
     assert time.monotonic() - started < 10
     assert status == 2, err
-    assert (f"Rotational/Examples/First.mo:34: {option} {name!r} is bound to "
-            f"{bound} in {cls}, so it is calculated from {bound} and not a "
-            f"tunable parameter (read before flattening); allowed: a tunable "
-            f"parameter, here {bound!r}") in err, err
+    names(err, "Rotational/Examples/First.mo:34:", option, repr(name),
+          cls, "allowed", repr(bound))
 
 
 def test_bindings_to_the_class_parameters_are_read_from_the_source(
@@ -735,22 +737,22 @@ end Rig;
     roots = [tmp_path / "Rig"]
     for passes in ("a", "c", "p.k", "q.k", "q.d", "x", "p.k.z"):
         refuse_bound("Rig", roots, {"frequency": passes})
-    with pytest.raises(FrontEndError, match=(
-            r"Rig\.mo:8: `amplitude` 'b' is bound to 2\*a \+ sin\(a\) in "
-            r"Rig, so it is calculated from a and not a tunable parameter "
-            r"\(read before flattening\); allowed: a tunable parameter$")):
+    with pytest.raises(FrontEndError) as bound:
         refuse_bound("Rig", roots, {"amplitude": "b"})
-    with pytest.raises(FrontEndError, match=(
-            r"Rig\.mo:10: `frequency` 'p\.d' is bound to b/2 in Rig, so it "
-            r"is calculated from b ")):
+    names(bound.value, "Rig.mo:8", "`amplitude`", "'b'", "2*a + sin(a)",
+          "allowed")
+    with pytest.raises(FrontEndError) as bound:
         refuse_bound("Rig", roots, {"amplitude": "a", "frequency": "p.d"})
+    names(bound.value, "Rig.mo:10", "`frequency`", "'p.d'", "b/2")
 
 
-_USE_BRAKE = ("; use Judder.Components.LockingWetClutch with its flange_b "
-              "connected to a Judder.Components.Fixed (a brake is a clutch "
-              "with one flange held in the housing")
-_USE_CLUTCH = ("use Judder.Components.LockingWetClutch (locks and breaks "
-               "away by events) or Judder.Components.SlippingClutch")
+#: What a refusal of an MSL brake must name: the library's locking clutch
+#: with one flange on a Fixed.
+_USE_BRAKE = ("Judder.Components.LockingWetClutch", "flange_b",
+              "Judder.Components.Fixed")
+_USE_CLUTCH = ("Judder.Components.LockingWetClutch",
+               "Judder.Components.SlippingClutch")
+_NONE = "no replacement"
 
 
 @pytest.mark.skipif(_msl() is None, reason="the Modelica Standard Library "
@@ -780,8 +782,7 @@ def test_msl_refusals_name_the_replacement_or_say_there_is_none(
     source, _ = find_class(name, [_msl()])
     with pytest.raises(FrontEndError) as refused:
         refuse_unsupported(source, name, [_msl()], hybrid=hybrid)
-    message = str(refused.value)
-    assert words in message, message
+    names(refused.value, *words)
 
 
 def test_every_replacement_named_is_in_the_judder_library():

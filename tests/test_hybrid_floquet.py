@@ -22,6 +22,7 @@ import time
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+from facts import names
 
 ROOT = Path(__file__).resolve().parents[1]
 MODELS = ROOT / "tests" / "msl_models"
@@ -148,20 +149,26 @@ def test_a_point_whose_mode_changes_within_a_dither_period_is_refused(
     forward sliding: both refused, naming the variable, its file:line,
     the two values and the time."""
     from sources.modelica import ModelicaError, linearize
-    with pytest.raises(ModelicaError, match=(
-            r"clutch\.free \(\S*FrictionModeClutch\.mo:23\) changes from "
-            r"false to true at t = 0\.00\d+ s within a dither period")):
+    with pytest.raises(ModelicaError) as freed:
         linearize(CLASS, str(MODELS), {"p_f": 1.2e6})
-    with pytest.raises(ModelicaError, match=(
-            r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
-            r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = ")):
+    names(freed.value, "clutch.free", "FrictionModeClutch.mo:23", "false",
+          "true")
+    assert 0 < _time_of(freed.value) < 1 / 100.0    # within the period
+    with pytest.raises(ModelicaError) as stuck:
         linearize(CLASS, str(MODELS), {"mu_pos[2,1]": 0.01,
                                        "w_out": 104.66975511965977,
                                        "p_f": 3e5})
+    names(stuck.value, "clutch.mode", "PartialFriction.mo:69",
+          "1 (clutch.Forward)", "0 (clutch.Stuck)")
     # the dither's names are checked before the mode is looked for
-    with pytest.raises(ModelicaError, match=r"frequency = 'f' is not a "
-                       "parameter of MslDrivelines.ModeClutchDriveline"):
+    with pytest.raises(ModelicaError) as unknown:
         linearize(CLASS, str(MODELS), frequency="f")
+    names(unknown.value, "frequency", "'f'", CLASS)
+
+
+def _time_of(message):
+    """The time a mode change is said to happen at, s."""
+    return float(re.search(r"t = ([-+.\de]+) s", str(message)).group(1))
 
 
 def test_check_and_floquet_say_the_mode_they_used(msl_path):
@@ -175,8 +182,8 @@ def test_check_and_floquet_say_the_mode_they_used(msl_path):
     done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT,
                           env={**os.environ, "MODELICAPATH": str(MSL)})
     assert done.returncode == 0, done.stderr
-    assert "linearised in the mode clutch.mode = 1 (clutch.Forward), " \
-        "clutch.startForward = false" in done.stdout
+    names(done.stdout, "clutch.mode = 1 (clutch.Forward)",
+          "clutch.startForward = false")
     params = ModelicaParameters(CLASS, str(MODELS))
     assert check([102.9], [0.3], params).as_dict()["mode"]["clutch.mode"] \
         == "1 (clutch.Forward)"
@@ -185,9 +192,9 @@ def test_check_and_floquet_say_the_mode_they_used(msl_path):
     # a setting whose dither frees the clutch is refused, not analysed
     for study in (lambda: check([102.9], [12.0], params),
                   lambda: floquet(102.9, 12.0, params)):
-        with pytest.raises(ModelicaError, match=r"clutch\.free \(\S+\) "
-                           "changes from false to true"):
+        with pytest.raises(ModelicaError) as refused:
             study()
+        names(refused.value, "clutch.free", "false", "true")
 
 
 def test_every_library_given_is_searched_in_order():
@@ -202,14 +209,12 @@ def test_every_library_given_is_searched_in_order():
     done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT,
                           env=env)
     assert done.returncode == 0, done.stderr
-    assert "linearised in the mode clutch.mode = 1 (clutch.Forward)" in \
-        done.stdout
+    names(done.stdout, "clutch.mode = 1 (clutch.Forward)")
     missing = ROOT / "tests" / "no such library"
     done = subprocess.run(command[:-1] + [str(missing)], capture_output=True,
                           text=True, cwd=ROOT, env=env)
     assert done.returncode == 2
-    assert f"--library '{missing}' is neither a folder nor a .mo file" \
-        in done.stderr
+    names(done.stderr, "--library", str(missing), "folder", ".mo file")
 
 
 def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):
@@ -228,10 +233,12 @@ def test_msl_friction_and_backlash_examples_are_refused_in_words(msl_path):
             r"CoupledClutches\.mo:2: `amplitude` 'p_f' is not declared")):
         linearize("Modelica.Mechanics.Rotational.Examples.CoupledClutches")
     assert time.monotonic() - started < 30
-    with pytest.raises(ModelicaError, match=(
-            r"the relation at \S*ElastoBacklash2?\.mo:\d+ changes at t = ")):
+    with pytest.raises(ModelicaError) as relation:
         linearize("Modelica.Mechanics.Rotational.Examples.Backlash",
                   amplitude="elastoBacklash.c", frequency="inertia1.J")
+    assert re.search(r"ElastoBacklash2?\.mo:\d+", str(relation.value))
+    names(relation.value, "relation")
+    assert _time_of(relation.value) >= 0
 
 
 def test_a_step_is_held_in_the_mode(msl_path):
@@ -246,10 +253,11 @@ def test_a_step_is_held_in_the_mode(msl_path):
     assert stepped.mode == plain.mode
     assert np.array_equal(stepped.A0, plain.A0)
     assert np.array_equal(stepped.B, plain.B)
-    with pytest.raises(ModelicaError, match=r"relation at \S*Sources\.mo:\d+ "
-                       r"changes at t = 0\.005\d* s"):
+    with pytest.raises(ModelicaError) as step:
         linearize("MslDrivelines.SteppedModeClutchDriveline", str(MODELS),
                   {"t_step": 0.005})
+    assert re.search(r"Sources\.mo:\d+", str(step.value))
+    assert _time_of(step.value) == pytest.approx(0.005, abs=1e-3)
 
 
 def test_studies_over_amplitudes_check_their_own_largest_amplitude(
@@ -266,13 +274,11 @@ def test_studies_over_amplitudes_check_their_own_largest_amplitude(
     status, _, err = judder_here("tongues", *model, "--freq", "100:110:3",
                                  "--pf-max", 12)
     assert status == 2
-    assert re.search(r"clutch\.free \(\S*FrictionModeClutch\.mo:23\) "
-                     "changes from false to true", err), err
+    names(err, "clutch.free", "FrictionModeClutch.mo:23", "false", "true")
     status, out, err = judder_here("map", *model, "--freq", "100:110:2",
                                    "--pf", "0.1:0.3:2")
     assert status == 0, err
-    assert "clutch.mode = 1 (clutch.Forward)" in out
-    assert "held at each frequency's largest amplitude, 0.3 bar" in out
+    names(out, "clutch.mode = 1 (clutch.Forward)", "0.3 bar")
     status, out, err = judder_here("map", *model, "--freq", "100:110:2",
                                    "--pf", "0.1:0.3:2", "--json")
     assert json.loads(out)["mode_checked_at_p_f_bar"] == 0.3
@@ -294,10 +300,11 @@ def test_a_slip_that_grazes_zero_is_caught_between_samples(msl_path,
         "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
     grazing = 0.72600e5
     params.check_mode(params["f_dither"], 0.99 * grazing)
-    with pytest.raises(modelica.ModelicaError, match=(
-            r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
-            r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = 0\.008")):
+    with pytest.raises(modelica.ModelicaError) as grazed:
         params.check_mode(params["f_dither"], grazing)
+    names(grazed.value, "clutch.mode", "PartialFriction.mo:69",
+          "1 (clutch.Forward)", "0 (clutch.Stuck)")
+    assert _time_of(grazed.value) == pytest.approx(0.0085, abs=5e-4)
 
     def no_events(ode):
         return casadi.Function("none", [casadi.SX.sym("t"), casadi.SX.sym(
@@ -315,10 +322,10 @@ def test_a_mode_check_without_the_dither_parameter_is_refused_in_words(
     import sources.modelica as modelica
     params = modelica.ModelicaParameters(CLASS, str(MODELS),
                                          frequency="f_valve")
-    with pytest.raises(modelica.ModelicaError, match=(
-            r"frequency = 'f_valve' is not a parameter of "
-            r"MslDrivelines\.ModeClutchDriveline; allowed: .*f_dither")):
+    with pytest.raises(modelica.ModelicaError) as unknown:
         params.check_mode(100.0, 0.3e5)
+    names(unknown.value, "frequency", "'f_valve'", CLASS, "allowed",
+          "f_dither")
 
 
 def test_check_refuses_margins_searched_beyond_the_mode(msl_path,
@@ -334,20 +341,18 @@ def test_check_refuses_margins_searched_beyond_the_mode(msl_path,
     params = ModelicaParameters(CLASS, str(MODELS)).replace(**{
         "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
     f = params["f_dither"]
-    with pytest.raises(JudderError, match=(
-            rf"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
-            rf"t = \S+ s within a dither period of the dither setting "
-            rf"f_dither = {f:g} Hz, p_f = 150000 Pa: the margins are searched "
-            r"up to `p_max_bar` = 1\.5 bar on the linearisation in one mode; "
-            r"allowed: a smaller `p_max_bar`")):
+    with pytest.raises(JudderError) as beyond:
         check([f], [0.3], params)
+    names(beyond.value, "1 (clutch.Forward)", "0 (clutch.Stuck)",
+          f"{f:g} Hz", "150000 Pa", "`p_max_bar`", "1.5 bar", "allowed")
     assert check([f], [0.3], params, p_max_bar=0.7).as_dict()[
         "mode"]["clutch.mode"] == "1 (clutch.Forward)"
     status, _, err = judder_here(
         "check", "--modelica", CLASS, "--library", MODELS, "--set",
         "mu_pos[2,1]=0.01", "--set", "w_out=104.66975511965977", "--freq",
         f"{f:g}", "--pf", "0.3")
-    assert status == 2 and "allowed: a smaller --pf-max" in err
+    assert status == 2
+    names(err, "--pf-max", "allowed")
 
 
 def test_report_of_a_class_without_tongues_says_so_and_names_its_mode(
@@ -438,17 +443,17 @@ def test_a_start_that_is_not_a_steady_slip_names_the_acceleration(
     mu = np.interp(slip, [v[f"mu_pos[{k},1]"] for k in range(1, 5)],
                    [v[f"mu_pos[{k},2]"] for k in range(1, 5)])
     accel = (T_c - mu * v["N_c"] * v["R_m"] * v["S"] * v["p_m"]) / v["J4"]
-    with pytest.raises(ModelicaError, match=(
-            r"the start values are not a steady slip \(der\(inertia4\.w\) = "
-            rf"{accel:.3g} at the start, not 0\)")):
+    with pytest.raises(ModelicaError) as accelerating:
         linearize(CLASS, str(MODELS), {"w_in": 200.0})
+    names(accelerating.value, "steady slip", "der(inertia4.w)",
+          f"{accel:.3g}")
     # an oscillator [phi, w] started at phi = 0 with speed 2: der(w) is 0
     # at the start but changes at -k 2 = -8 per second
     A0 = np.array([[0.0, 1.0], [-4.0, -0.5]])
-    with pytest.raises(ModelicaError, match=(
-            r"\(der\(w\) changes at -8 per second\)")):
+    with pytest.raises(ModelicaError) as changing:
         check_no_acceleration("m", ["phi", "w"], A0, np.array([2.0, 0.0]),
                               ModelicaError)
+    names(changing.value, "der(w)", "-8")
     check_no_acceleration("m", ["phi", "w"], A0, np.zeros(2), ModelicaError)
 
 
@@ -465,12 +470,11 @@ def test_sensitivity_checks_the_mode_at_each_changed_set(msl_path):
         "mu_pos[2,1]": 0.01, "w_out": 104.66975511965977})
     f = params["f_dither"]
     assert sensitivity(["J1"], [f], 0.7, parameters=params).cases == 3
-    with pytest.raises(ModelicaError, match=(
-            rf"^with k24 = {params['k24'] / 2:g}: {CLASS}: clutch\.mode "
-            r"\(\S*PartialFriction\.mo:69\) changes from 1 \(clutch\.Forward\) "
-            r"to 0 \(clutch\.Stuck\) at t = \S+ s within a dither period of "
-            rf"the dither setting f_dither = {f:g} Hz, p_f = 70000 Pa")):
+    with pytest.raises(ModelicaError) as changed:
         sensitivity(["J1", "k24"], [f], 0.7, parameters=params)
+    names(changed.value, f"k24 = {params['k24'] / 2:g}", CLASS,
+          "clutch.mode", "PartialFriction.mo:69", "1 (clutch.Forward)",
+          "0 (clutch.Stuck)", f"{f:g} Hz", "70000 Pa")
 
 
 def test_a_changed_set_in_another_mode_is_refused():
@@ -498,12 +502,11 @@ def test_a_changed_set_in_another_mode_is_refused():
         def linear_model(self):
             return self
     check_modes_of_changes(Values(), [{"J1": 2.0}], [100.0], 1.0)
-    with pytest.raises(ModelicaError, match=(
-            r"^with w_out = 300: Rig is linearised in another mode: "
-            r"clutch\.mode = -1 \(clutch\.Backward\) \(nominal 1 "
-            r"\(clutch\.Forward\)\), so its boundaries do not compare")):
+    with pytest.raises(ModelicaError) as other:
         check_modes_of_changes(Values(), [{"J1": 2.0}, {"w_out": 300.0}],
                                [100.0], 1.0)
+    names(other.value, "w_out = 300", "Rig", "clutch.mode",
+          "-1 (clutch.Backward)", "1 (clutch.Forward)")
 
 
 def test_envelope_of_a_class_with_modes_is_refused_saying_why(
@@ -517,11 +520,8 @@ def test_envelope_of_a_class_with_modes_is_refused_saying_why(
         "envelope", "--modelica", CLASS, "--library", MODELS, "--ranges",
         ranges, "--freq", "95:110:4")
     assert status == 2
-    assert f"{CLASS} is linearised in the mode clutch.mode = 1 " \
-        "(clutch.Forward)" in err
-    assert "checked at the nominal parameters only" in err
-    assert "allowed: judder sensitivity, which checks the mode at each " \
-        "parameter set it uses" in err
+    names(err, CLASS, "clutch.mode = 1 (clutch.Forward)", "allowed",
+          "judder sensitivity")
 
 
 def test_report_says_why_its_sensitivity_is_missing(msl_path, judder_here,
@@ -596,15 +596,15 @@ def test_simulate_and_crosscheck_check_the_mode_at_their_settings(
     params = ModelicaParameters("MslDrivelines.ModeClutchBench",
                                 str(MODELS)).replace(**GRAZING)
     f = params["f_dither"]
-    leaves = (r"clutch\.mode \(\S*PartialFriction\.mo:69\) changes from 1 "
-              r"\(clutch\.Forward\) to 0 \(clutch\.Stuck\) at t = \S+ s "
-              rf"within a dither period of the dither setting f_dither = "
-              rf"{f:g} Hz, p_f = 100000 Pa")
-    with pytest.raises(ModelicaError, match=leaves):
+    leaves = ("clutch.mode", "PartialFriction.mo:69", "1 (clutch.Forward)",
+              "0 (clutch.Stuck)", f"{f:g} Hz", "100000 Pa")
+    with pytest.raises(ModelicaError) as run:
         simulate(f, 1.0, parameters=params, duration=0.2)
-    with pytest.raises(ModelicaError, match=leaves):
+    names(run.value, *leaves)
+    with pytest.raises(ModelicaError) as crossed:
         crosscheck([f], [0.3, 1.0], parameters=params, duration=0.2,
                    workers=1)
+    names(crossed.value, *leaves)
 
 
 def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
@@ -626,12 +626,11 @@ def test_fit_checks_the_mode_of_the_fitted_set_at_each_frequency(
     monkeypatch.setattr(stability.fit, "fit_boundary",
                         lambda *args, **kwargs: Fitted())
     f = params["f_dither"]
-    with pytest.raises(ModelicaError, match=(
-            r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
-            rf"t = \S+ s within a dither period of the dither setting "
-            rf"f_dither = {f:g} Hz, p_f = 80000 Pa")):
+    with pytest.raises(ModelicaError) as fitted_set:
         fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.4,
             parameters=params)
+    names(fitted_set.value, "1 (clutch.Forward)", "0 (clutch.Stuck)",
+          f"{f:g} Hz", "80000 Pa")
     fit([f, 110.0, 120.0], [0.2, 0.25, 0.3], p_max_bar=0.3,
         parameters=params)
 
@@ -648,31 +647,26 @@ def test_an_operating_point_on_a_switching_surface_is_refused(msl_path):
     where it was refused as a mode change at t = 1e-11 s."""
     from sources.modelica import ModelicaError, ModelicaParameters, linearize
     relay = "MslDrivelines.RelaySurface"
-    with pytest.raises(ModelicaError, match=(
-            r"on the switching surface of the relation \(phi_switch<phi\) "
-            r"in the discrete equations \(past, \S*RelaySurface\.mo:16\): "
-            r"both its sides are 0, and past is true on one side, false on "
-            r"the other")):
+    with pytest.raises(ModelicaError) as surface:
         linearize(relay, str(MODELS))
+    names(surface.value, "switching surface", "(phi_switch<phi)", "past",
+          "RelaySurface.mo:16", "true", "false")
     past = linearize(relay, str(MODELS), {"phi_switch": -0.1})
     assert dict(past.mode) == {"past": "true"}
     assert past.A0[1, 0] == -2 * 1000 / 0.1
     # the relay written in the torque (a relation held between events)
-    with pytest.raises(ModelicaError, match=(
-            r"on the switching surface of the relation at "
-            r"\S*RelayTorque\.mo:16, \(phi_switch<phi\): both its sides are "
-            r"0")):
+    with pytest.raises(ModelicaError) as torque:
         linearize("MslDrivelines.RelayTorque", str(MODELS))
+    names(torque.value, "switching surface", "RelayTorque.mo:16",
+          "(phi_switch<phi)")
     held = linearize("MslDrivelines.RelayTorque", str(MODELS),
                      {"phi_switch": -0.1})
     assert held.A0[1, 0] == -2 * 1000 / 0.1
     w_in = ModelicaParameters(CLASS, str(MODELS))["w_in"]
-    with pytest.raises(ModelicaError, match=(
-            r"relation \(0<\(inertia4\.w-inertia3\.w\)\) in the discrete "
-            r"equations \(clutch\.mode, \S*PartialFriction\.mo:69\): both "
-            r"its sides are 0, and clutch\.mode is 1 \(clutch\.Forward\) on "
-            r"one side, 0 \(clutch\.Stuck\) on the other")):
+    with pytest.raises(ModelicaError) as no_slip:
         linearize(CLASS, str(MODELS), {"w_out": w_in})
+    names(no_slip.value, "(0<(inertia4.w-inertia3.w))", "clutch.mode",
+          "PartialFriction.mo:69", "1 (clutch.Forward)", "0 (clutch.Stuck)")
 
 
 def test_advise_checks_the_mode_where_it_decides_its_windows(msl_path):
@@ -684,9 +678,8 @@ def test_advise_checks_the_mode_where_it_decides_its_windows(msl_path):
     from studies.advise import advise
     from sources.modelica import ModelicaError, ModelicaParameters
     params = ModelicaParameters(CLASS, str(MODELS))
-    with pytest.raises(ModelicaError, match=(
-            r"changes from 1 \(clutch\.Forward\) to 0 \(clutch\.Stuck\) at "
-            r"t = \S+ s within a dither period of the dither setting "
-            r"f_dither = 55 Hz, p_f = 160000 Pa")):
+    with pytest.raises(ModelicaError) as windows:
         advise(params.replace(**GRAZING), design=False)
+    names(windows.value, "1 (clutch.Forward)", "0 (clutch.Stuck)",
+          "55 Hz", "160000 Pa")
     assert advise(params, design=False).sets == 1

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from judder.cli import main
+from facts import names
 
 BENCH = Path(__file__).resolve().parents[1] / "examples" / "bench"
 CHANNELS = ["--channel", "upstream_speed=EngSpd_up",
@@ -26,10 +27,10 @@ def test_a_role_given_twice_is_refused_naming_both(capsys):
          "--channel", "upstream_speed=OutSpd",
          "--channel", "upstream_speed=EngSpd_up"], capsys)
     assert status == 2 and out == ""
-    assert err.strip() == (
-        "judder: error: --channel upstream_speed=OutSpd and --channel "
-        "upstream_speed=EngSpd_up both give upstream_speed; allowed: one "
-        "channel per role")
+    # both options as given, the role, what is allowed
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, "--channel upstream_speed=OutSpd",
+          "--channel upstream_speed=EngSpd_up", "allowed", "one channel")
 
 
 def test_an_rpm_column_given_an_angle_unit_is_refused(capsys, tmp_path):
@@ -42,9 +43,8 @@ def test_an_rpm_column_given_an_angle_unit_is_refused(capsys, tmp_path):
     assert "amplitude" not in out
     # the rpm values (about 1000) read as rad go back and forth: 2 % of
     # their path is net travel
-    assert "upstream_speed channel 'EngSpd_up': read as an angle in rad, " \
-           "it does not turn one way" in err
-    assert "(2%)" in err and "give its speed unit" in err
+    names(err, "upstream_speed", "'EngSpd_up'", "rad", "(2%)",
+          "speed unit")
     assert err.count(str(BENCH / "run01.csv")) == 1
     assert list(tmp_path.iterdir()) == []
 
@@ -74,10 +74,9 @@ def test_a_nan_onset_in_a_boundary_is_refused_naming_file_and_line(
     status, out, err = run(["fit", "--boundary", str(boundary),
                             "--fit", "mu_g"], capsys)
     assert status == 2
-    assert err.strip() == (
-        f"judder: error: {boundary}, line 3: p_f_bar is 'nan'; allowed: a "
-        "number >= 0 bar, or empty for no judder up to the largest "
-        "amplitude tried")
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, str(boundary), "line 3", "p_f_bar", "'nan'", "allowed",
+          ">= 0 bar", "empty")
 
 
 def _head(tmp_path, name, rows, header=None):
@@ -99,10 +98,9 @@ def test_a_run_too_short_to_read_is_an_input_error(capsys, tmp_path, rows,
     status, out, err = run(["chart", str(path), *CHANNELS, "--workers", "1",
                             "--out", str(tmp_path / "c.npz")], capsys)
     assert status == 2 and out == ""
-    assert err.strip() == (
-        f"judder: error: no run could be read: {path}: the run lasts "
-        f"{lasts} s ({samples} samples of the upstream speed); allowed: an "
-        "engagement of at least 0.2 s (check the time column's unit)")
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, str(path), f"{lasts} s", f"{samples} samples", "allowed",
+          "0.2 s", "unit")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["short.csv"]
 
 
@@ -113,9 +111,8 @@ def test_unreadable_runs_give_every_reason_on_stderr(capsys, tmp_path):
     status, out, err = run(["chart", str(short), str(empty), *CHANNELS,
                             "--workers", "1"], capsys)
     assert status == 2 and out == ""
-    assert err.startswith("judder: error: none of the 2 runs could be read: "
-                          f"{short}: the run lasts 0.0279 s")
-    assert f"; {empty}: " in err
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, "2 runs", f"{short}: ", "0.0279 s", f"{empty}: ")
 
 
 def test_a_bug_in_a_job_is_a_bug_naming_the_job(capsys, monkeypatch):
@@ -127,7 +124,7 @@ def test_a_bug_in_a_job_is_a_bug_naming_the_job(capsys, monkeypatch):
     status, out, err = run(["chart", str(BENCH / "run01.csv"), *CHANNELS,
                             "--workers", "1"], capsys)
     assert status == 1
-    assert err.startswith(
-        "judder: internal error: TaskFailures: 1 of 1 jobs failed: job 0 "
-        f"({BENCH / 'run01.csv'}): ValueError: operands could not be "
-        "broadcast together; this is a bug in judder")
+    assert err.startswith("judder: internal error: ")
+    # the job and its input, the exception whole, that it is a bug
+    names(err, "1 of 1", "job 0", str(BENCH / "run01.csv"),
+          "ValueError: operands could not be broadcast together", "bug")

@@ -14,6 +14,7 @@ import pytest
 
 from infra.parallel import WORKER_BYTES, worker_count
 from judder.cli import main
+from facts import names
 
 ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "examples" / "bench"
@@ -41,10 +42,9 @@ def test_an_acquisition_beyond_the_memory_is_refused_before_reading(
          "--channel", "upstream_speed=speed", "--workers", "1"],
         capture_output=True, text=True, preexec_fn=limit, timeout=120)
     assert done.returncode == 2, done.stderr
-    assert done.stderr.startswith(f"judder: error: {sparse} needs about "
-                                  "36 GiB (2048 MB of file x 18 to read")
-    assert "GiB are available; allowed: a shorter acquisition" \
-        in done.stderr
+    assert done.stderr.startswith("judder: error: ")
+    names(done.stderr, str(sparse), "36 GiB", "2048 MB", "x 18",
+          "available", "allowed")
     assert time.monotonic() - started < 60
 
 
@@ -57,9 +57,8 @@ def test_a_binary_file_named_csv_is_refused_from_its_first_block(capsys,
                             "upstream_speed=speed", "--workers", "1"],
                            capsys)
     assert status == 2
-    assert err.strip() == (f"judder: error: no run could be read: {sparse}: "
-                           "not a text file (NUL bytes); allowed: UTF-8 "
-                           "text")
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, str(sparse), "NUL", "allowed", "UTF-8")
 
 
 def test_the_acquisitions_work_is_estimated_from_their_sizes(capsys,
@@ -72,9 +71,9 @@ def test_the_acquisitions_work_is_estimated_from_their_sizes(capsys,
                             "--channel", "upstream_speed=EngSpd_up",
                             "--workers", "1"], capsys)
     assert status == 2 and out == ""
-    assert err.startswith(f"judder: error: the work is estimated at "
-                          f"{seconds:.3g} s (9 acquisitions, "
-                          f"{size / 2**20:.4g} MB), above the limit")
+    assert err.startswith("judder: error: ")
+    names(err, f"{seconds:.3g} s", "9 acquisitions",
+          f"{size / 2**20:.4g} MB", "limit")
 
 
 def test_a_large_boundary_is_refused_beyond_the_time_limit(capsys, tmp_path,
@@ -88,11 +87,10 @@ def test_a_large_boundary_is_refused_beyond_the_time_limit(capsys, tmp_path,
                             "--fit", "mu_g"], capsys)
     assert status == 2
     # 0.5 s + 100 000 points x 3 starts x 0.1 s
-    assert err.strip() == (
-        "judder: error: the work is estimated at 8.33 h (100000 measured "
-        "points x 3 local fits), above the limit of 60 min; allowed: fewer "
-        "points in --boundary, or fewer --starts, or raise the limit with "
-        "JUDDER_MAX_HOURS=HOURS")
+    # the estimate and what drives it, the limit, the options to change
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    names(err, "8.33 h", "100000 measured points", "3 local fits", "60 min",
+          "allowed", "--boundary", "--starts", "JUDDER_MAX_HOURS")
     assert time.monotonic() - started < 30
 
 
@@ -102,9 +100,8 @@ def test_a_threshold_grid_follows_the_time_limit(capsys, monkeypatch):
                             "--c-ext", "0:2:100000"], capsys)
     assert status == 2
     # 1e5 x 0.26 ms + 1e5 x 4.4 ms
-    assert err.startswith("judder: error: the work is estimated at 7.77 min "
-                          "(100000 mu_g x 100000 c_i values), above the "
-                          "limit of 36 s")
+    assert err.startswith("judder: error: ")
+    names(err, "7.77 min", "100000 mu_g", "100000 c_i", "36 s")
 
 
 def test_the_threshold_estimate_is_within_a_factor_3_of_the_work():
@@ -150,8 +147,10 @@ def test_a_chart_with_48_workers_starts_no_more_than_the_cores(tmp_path):
         capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
     cores = os.cpu_count()
-    assert done.stderr == (f"judder: warning: --workers 48 reduced to "
-                           f"{cores}: {cores} cores\n")
+    # one warning line: the option, what it was cut to and why
+    assert done.stderr.startswith("judder: warning: ")
+    assert done.stderr.count("\n") == 1
+    names(done.stderr, "--workers 48", f"{cores}: {cores} cores")
     assert "9 runs" in done.stdout
 
 

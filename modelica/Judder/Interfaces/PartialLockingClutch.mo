@@ -50,9 +50,9 @@ exactly; instead of a steep slope of the torque through zero slip
 (tanh(slip/w_small)), the plates stick, and the slip stays at its value
 at the lock event (zero to the precision of the event location). The
 mode is <code>locked = lockups - breakaways</code>, two Real states
-counted up by one when-clause each (Boolean and Integer variables are
-not compiled, and one variable takes its reinit from one clause only;
-see docs/compiler.md); they count the stick-slip cycles.
+counted up by one when-clause each (one variable takes its reinit from
+one clause only, in rumoca; Boolean and Integer variables are compiled
+too, see docs/compiler.md); they count the stick-slip cycles.
 Components: LockingWetClutch (the straight line of Eq. 5),
 LockingCurveWetClutch (the bounded curve of the held-slip bench).</p>
 </html>"));
