@@ -375,9 +375,9 @@ def test_fit_reads_the_boundary_of_a_chart(campaign, tmp_path, judder_here):
     with pytest.raises(JudderError, match="missing.npz: cannot read it"):
         read_chart_boundary(tmp_path / "missing.npz")
     (tmp_path / "table.csv").write_text("freq_hz,p_f_bar\n100,0.3\n")
-    with pytest.raises(JudderError, match=r"not a chart written by judder "
-                       r"chart --out \(an NPZ file\)$"):
+    with pytest.raises(JudderError) as refused:
         read_chart_boundary(tmp_path / "table.csv")
+    names(refused.value, "table.csv", "not a chart", "judder chart", "NPZ")
 
 
 def _read_run(freq_hz, p_f_bar, judder, estimated, window=(0.6, 3.0)):
