@@ -17,7 +17,8 @@ __all__ = ["DARK_BLUE", "VERMILLION", "ORANGE", "BLUE", "KIND_COLORS",
            "SLOW_COLOR", "GROWTH_LINE", "KIND_LINESTYLES", "CONTINUOUS_CMAP",
            "FREQUENCY_LABEL", "AMPLITUDE_LABEL", "dither_axes",
            "figure_title", "LABEL_GID", "settle_labels", "log_levels",
-           "layout_problems", "significant_digits", "TITLE_DIGITS"]
+           "layout_problems", "significant_digits", "TITLE_DIGITS",
+           "UNLISTED"]
 
 #: Dark blue of single-period judder and of "stable" marks.
 DARK_BLUE = "#1f4e99"
@@ -162,13 +163,20 @@ def settle_labels(fig):
         placed = []
         for note in notes:
             for _ in range(20):
-                box = note.get_window_extent(renderer)
+                box = _text_box(note, renderer)
                 if not any(_overlap(box, other, -gap)
                            for other in placed):
                     break
                 dx, dy = note.xyann
                 note.xyann = (dx, dy + box.height * 72.0 / fig.dpi + 2)
-            placed.append(note.get_window_extent(renderer))
+            placed.append(_text_box(note, renderer))
+
+
+def _text_box(text, renderer):
+    """The box of a text's letters (pixels): of an annotation without its
+    leader arrow, which grows as the text moves away."""
+    from matplotlib.text import Text
+    return Text.get_window_extent(text, renderer)
 
 
 def _overlap(one, other, slack):
@@ -236,7 +244,7 @@ def _text_problems(drawn, page, renderer):
     for text in dict.fromkeys(drawn):
         if not text.get_visible() or not text.get_text().strip():
             continue
-        box = text.get_window_extent(renderer)
+        box = _text_box(text, renderer)
         if box.width == 0 or box.height == 0:
             continue
         boxes.append((text.get_text(), box))
@@ -254,6 +262,8 @@ def _artists(fig):
     """Every artist drawn in ``fig``'s axes (lines, collections, patches,
     images), with the axes it is in."""
     for ax in fig.axes:
+        if hasattr(ax, "_colorbar"):     # its own scale, not in a legend
+            continue
         for artist in (*ax.lines, *ax.collections, *ax.patches, *ax.images):
             if artist.get_visible():
                 yield ax, artist
@@ -263,7 +273,11 @@ def _has_data(artist):
     from matplotlib.lines import Line2D
     if isinstance(artist, Line2D):
         x, y = (np.asarray(v, dtype=float) for v in artist.get_data())
-        return bool((np.isfinite(x) & np.isfinite(y)).any())
+        finite = np.isfinite(x) & np.isfinite(y)
+        if artist.get_marker() in (None, "None", "none", ""):
+            # a line without markers shows only between two finite points
+            return bool((finite[1:] & finite[:-1]).any())
+        return bool(finite.any())
     return True
 
 

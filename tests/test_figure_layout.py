@@ -137,11 +137,7 @@ FIGURES = {"check": _check, "check-six": _check_six, "map": _map, "tongues": _to
 
 
 #: Figures the checker still flags, and why (issue 46).
-KNOWN = {"floquet": "unit circle not in the legend",
-         "threshold": "zero line not in the legend",
-         "tongues": "tip markers not in the legend",
-         "sensitivity": "tip markers not in the legend",
-         "orbit-chart": "a black contour not in the legend"}
+KNOWN = {}
 
 
 @pytest.mark.parametrize("name", [

@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from infra.plotstyle import (KIND_COLORS, KIND_LINESTYLES, LABEL_GID,
-                             dither_axes)
+                             UNLISTED, dither_axes)
 from infra.units import PA_PER_BAR
 
 from ..kinds import KINDS
@@ -208,7 +208,8 @@ def number_tips(ax, tongues, color):
         xy = (tongue.tip_freq_hz, tongue.tip_p_f / PA_PER_BAR)
         artists.append(ax.plot(*xy, marker="v", color=color,
                                markeredgecolor="k", markersize=4,
-                               linestyle="none")[0])
+                               linestyle="none",
+                               label=UNLISTED)[0])   # its number says it
         numbers.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
             xytext=(4, 1), ha="left", va="bottom", fontsize=8,
