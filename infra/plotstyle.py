@@ -18,6 +18,7 @@ __all__ = ["DARK_BLUE", "VERMILLION", "ORANGE", "BLUE", "KIND_COLORS",
            "FREQUENCY_LABEL", "AMPLITUDE_LABEL", "dither_axes",
            "figure_title", "LABEL_GID", "settle_labels", "log_levels",
            "layout_problems", "significant_digits", "TITLE_DIGITS",
+           "setting_text", "VERDICT_MARKERS",
            "UNLISTED"]
 
 #: Dark blue of single-period judder and of "stable" marks.
@@ -57,6 +58,15 @@ GROWTH_LINE = {"colors": "k", "linewidths": 1.3,
 #: growth line.
 FORCED_LINE = {"color": "#009e73", "linewidth": 2.0,
                "linestyle": (0, (1, 1))}
+
+
+#: Marker and colour of each verdict word
+#: (:data:`stability.decisions.relevance.VERDICTS`): shape tells them
+#: apart without colour; the colours are dark enough to read on every
+#: kind's fill.
+VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
+                   "SLOW GROWTH": ("s", "#404040"),
+                   "STABLE": ("o", "#1b7837")}
 
 
 #: Line style of each kind's boundary, so kinds differ without colour.
@@ -191,6 +201,20 @@ def _overlap(one, other, slack):
 #: Most significant digits a number in a title may print ("0.081 bar",
 #: not "0.0812726 bar"): engineering precision.
 TITLE_DIGITS = 4
+
+
+def setting_text(freq_hz=None, p_f_bar=None):
+    """A dither setting in a title, in engineering precision: frequency
+    to 4 significant digits, amplitude to the millibar (``'f = 102.9 Hz,
+    $p_f$ = 0.081 bar'``, not 0.0812726 bar)."""
+    from infra.numbers import readable_number
+    parts = []
+    if freq_hz is not None:
+        parts.append(f"f = {readable_number(freq_hz)} Hz")
+    if p_f_bar is not None:
+        amplitude = f"{p_f_bar:.3f}".rstrip("0").rstrip(".")
+        parts.append(f"$p_f$ = {amplitude} bar")
+    return ", ".join(parts)
 
 
 def significant_digits(number):

@@ -10,7 +10,6 @@ from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
                             MECHANISMS)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files, save_npz, write_text
-from infra.numbers import readable_number
 from infra.units import PA_PER_BAR, RAD_S_PER_RPM, RPM_PER_RAD_S
 
 from ._common import checked_values
@@ -302,6 +301,7 @@ class OrbitResult:
                 for j, p in enumerate(c.p_f)]
 
     def figure(self, title=None):
+        from infra.plotstyle import setting_text
         from stability.plots.orbit import (orbit_chart_figure,
                                            orbit_curve_figure)
         if self.chart is not None:
@@ -311,11 +311,11 @@ class OrbitResult:
         if self.mode == "amplitude":
             x = np.array([r["p_f_bar"] for r in rows])
             xlabel = "dither amplitude $p_f$ [bar]"
-            setting = f"f = {readable_number(rows[0]['freq_hz'])} Hz"
+            setting = setting_text(freq_hz=rows[0]["freq_hz"])
         else:
             x = np.array([r["freq_hz"] for r in rows])
             xlabel = "dither frequency $f$ [Hz]"
-            setting = f"p_f = {readable_number(rows[0]['p_f_bar'], 3)} bar"
+            setting = setting_text(p_f_bar=rows[0]["p_f_bar"])
         # the setting held along the branch, in engineering precision
         title = f"{setting}, " + (title or "periodic orbits")
         curves = [(x, np.array([r["amplitude_at_dither_rpm"] for r in rows]),

@@ -3,7 +3,8 @@
 import matplotlib.pyplot as plt
 import numpy as np
 
-from infra.plotstyle import UNLISTED, KIND_COLORS, figure_title
+from infra.plotstyle import (UNLISTED, KIND_COLORS, figure_title,
+                             setting_text)
 from infra.units import PA_PER_BAR
 
 from ..kinds import KINDS
@@ -86,8 +87,8 @@ def multipliers_figure(results, title=None):
         plot_multipliers(result, ax=axes[0, column])
         plot_multipliers(result, ax=axes[1, column], zoom=True)
         axes[0, column].set_title(
-            f"f = {result.freq_hz:g} Hz, $p_f$ = "
-            f"{result.p_f / PA_PER_BAR:g} bar: {result.kind}", fontsize=9)
+            f"{setting_text(result.freq_hz, result.p_f / PA_PER_BAR)}: "
+            f"{result.kind}", fontsize=9)
         axes[1, column].set_title("near the leading multiplier",
                                   fontsize=8)
     handles, labels = [], []

@@ -4,19 +4,15 @@ over the map when there is one."""
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from infra.plotstyle import LABEL_GID, dither_axes, settle_labels
+from infra.plotstyle import (LABEL_GID, VERDICT_MARKERS, dither_axes,
+                             settle_labels)
 from stability.plots import drawn_kinds, kind_handles, plot_map
+from stability.plots.boundaries import BURIED_TIP
 
 __all__ = ["check_figure", "VERDICT_MARKERS"]
 
 
-#: Marker and colour of each verdict word
-#: (:data:`stability.decisions.relevance.VERDICTS`): shape tells them
-#: apart without colour; the colours are dark enough to read on every
-#: kind's fill.
-VERDICT_MARKERS = {"JUDDER": ("X", "#b2182b"),
-                   "SLOW GROWTH": ("s", "#404040"),
-                   "STABLE": ("o", "#1b7837")}
+# VERDICT_MARKERS lives in infra.plotstyle (compare marks settings too)
 
 
 def check_figure(records, background=None, min_growth=None, title=None,
@@ -51,6 +47,7 @@ def check_figure(records, background=None, min_growth=None, title=None,
         handles = kind_handles(drawn_kinds(background, boundaries),
                                lines=boundaries is not None,
                                min_growth=min_growth)
+        handles += [a for a in ax.lines if a.get_label() == BURIED_TIP]
         if boundaries is None:
             # the map's black line: where the grid's |lambda| reaches 1
             handles.append(Line2D([], [], color="k", linewidth=0.8,
