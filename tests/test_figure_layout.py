@@ -17,8 +17,9 @@ matplotlib.use("Agg")
 
 EXAMPLES = Path(__file__).parents[1] / "examples"
 #: The title the commands give the example driveline
-#: (judder.commands._model.model_title).
-EXAMPLE_TITLE = "4dof driveline, examples/driveline.toml"
+#: (judder.commands._model.model_title), with the file as a user may name
+#: it: a long path (the check figure's title was clipped by one).
+EXAMPLE_TITLE = f"4dof driveline, {EXAMPLES.resolve() / 'driveline.toml'}"
 
 
 @pytest.fixture(scope="module")
@@ -84,6 +85,13 @@ def _orbit_chart(example):
                      parameters=example).figure(title=EXAMPLE_TITLE)
 
 
+def _orbit_chart_fine(example):
+    # 0.125 Hz apart: the judder points are shaded as a region, not
+    # markers that merge into bars (issue 46)
+    return api.orbit(np.linspace(100, 112, 97), np.linspace(0.1, 0.7, 7),
+                     parameters=example).figure(title=EXAMPLE_TITLE)
+
+
 def _orbit_branch(example):
     return api.orbit(206.0, np.linspace(0.01, 0.8, 12)).figure(
         title="4dof driveline, paper preset")
@@ -131,7 +139,8 @@ def _threshold(example):
 
 FIGURES = {"check": _check, "check-six": _check_six, "map": _map, "tongues": _tongues,
            "sensitivity": _sensitivity, "floquet": _floquet,
-           "orbit-chart": _orbit_chart, "orbit-branch": _orbit_branch,
+           "orbit-chart": _orbit_chart,
+           "orbit-chart-fine": _orbit_chart_fine, "orbit-branch": _orbit_branch,
            "advice": _advice, "compare": _compare, "fit": _fit,
            "envelope": _envelope, "threshold": _threshold}
 

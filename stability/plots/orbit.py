@@ -88,10 +88,14 @@ def orbit_curve_figure(curves, limit_rpm, xlabel, title=None, folds=()):
 
 
 #: The predicted boundary (where the periodic orbit reaches the NVH limit
-#: or grows): thick vermillion, apart from the Floquet lines, a dot at
-#: each frequency (an onset at one frequency alone is a dot).
+#: or grows): thick vermillion, apart from the Floquet lines; an onset at
+#: one frequency alone (no neighbour to join) is a dot.
 _PREDICTED = {"color": VERMILLION, "linewidth": 2.4, "marker": "o",
-              "markersize": 3.5}
+              "markersize": 4}
+
+#: Smallest marker side (pt) at which the judder points of the grid stay
+#: apart; on a finer grid they are shaded as a region instead.
+_SMALLEST_MARKER_PT = 3.5
 
 #: The Floquet boundaries over the chart: sky blue (Okabe-Ito), visible on
 #: the light and the dark greys, each kind in its line style.
@@ -112,7 +116,7 @@ def _marker_size(ax, chart):
     if len(bar) > 1:
         spacing.append(height * np.min(np.diff(bar)) / np.ptp(bar))
     side = 0.55 * min(spacing) if spacing else 6.0
-    return float(np.clip(side, 2.5, 7.0) ** 2)
+    return float(min(side, 7.0) ** 2)
 
 
 def plot_orbit_chart(chart, ax=None, levels=None):
@@ -145,18 +149,34 @@ def plot_orbit_chart(chart, ax=None, levels=None):
             linestyles=[FORCED_LINE["linestyle"]]))
     f, p = np.meshgrid(chart.freq_hz, bar, indexing="ij")
     size = _marker_size(ax, chart)
-    for code, name in enumerate(MECHANISMS):
-        if name not in _MECHANISM_STYLE:
-            continue
-        marker, colour = _MECHANISM_STYLE[name]
-        these = chart.judder & (chart.mechanism == code)
-        if these.any():
-            artists.append(ax.scatter(f[these], p[these], marker=marker,
-                                      s=size, color=colour, zorder=3,
-                                      edgecolors="k", linewidths=0.4,
-                                      label=f"judder, {name}"))
     onsets = chart.onsets() / PA_PER_BAR
+    found = [(name, (chart.judder & (chart.mechanism == code)).sum())
+             for code, name in enumerate(MECHANISMS)
+             if name in _MECHANISM_STYLE]
+    found = [(name, count) for name, count in found if count]
+    if found and size < _SMALLEST_MARKER_PT ** 2 and min(f.shape) > 1:
+        # markers this close merge into bars: judder shaded from the
+        # predicted boundary up, in the colour of its commonest mechanism
+        colour = _MECHANISM_STYLE[max(found, key=lambda x: x[1])[0]][1]
+        artists.append(ax.fill_between(
+            chart.freq_hz, np.where(np.isfinite(onsets), onsets, bar[-1]),
+            bar[-1], where=np.isfinite(onsets), color=colour, alpha=0.5,
+            linewidth=0, zorder=3,
+            label="judder: " + ", ".join(name for name, _ in found)))
+        found = []
+    for name, _ in found:
+        marker, colour = _MECHANISM_STYLE[name]
+        these = chart.judder & (chart.mechanism == MECHANISMS.index(name))
+        artists.append(ax.scatter(f[these], p[these], marker=marker,
+                                  s=size, color=colour, zorder=3,
+                                  edgecolors="k", linewidths=0.4,
+                                  label=f"judder, {name}"))
+    finite = np.isfinite(onsets)
+    joined = np.zeros_like(finite)
+    joined[1:] |= finite[1:] & finite[:-1]
+    joined[:-1] |= finite[1:] & finite[:-1]
     artists += ax.plot(chart.freq_hz, onsets, **_PREDICTED, zorder=4,
+                       markevery=list(np.flatnonzero(finite & ~joined)),
                        label="predicted boundary (periodic orbit)")
     dither_axes(ax)
     return artists

@@ -5,7 +5,7 @@ import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
 from infra.plotstyle import (LABEL_GID, VERDICT_MARKERS, dither_axes,
-                             settle_labels)
+                             figure_title, settle_labels)
 from stability.plots import drawn_kinds, kind_handles, plot_map
 from stability.plots.boundaries import BURIED_TIP
 
@@ -81,8 +81,10 @@ def check_figure(records, background=None, min_growth=None, title=None,
               loc="upper left", bbox_to_anchor=(1.01, 1.0),
               borderaxespad=0.0)
     rate = "" if not min_growth else f" (>= {min_growth:g} 1/s)"
-    ax.set_title(f"dither settings: verdict and margins to judder{rate}"
-                 + (f", {title}" if title else ""),
-                 fontsize=10, pad=16 if background is not None else 6)
+    # the figure's title, wrapped to its width: a long model path is not
+    # clipped (issue 46)
+    figure_title(fig, f"dither settings: verdict and margins to "
+                      f"judder{rate}" + (f", {title}" if title else ""),
+                 fontsize=10)
     settle_labels(fig)
     return fig
