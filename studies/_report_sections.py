@@ -242,7 +242,7 @@ def summary_section(verdict, advice, advice_error, min_growth,
     report judges)."""
     if verdict is None:
         css, text = "none", (
-            "No dither setting given: choose one in the safe "
+            "No dither setting given (`freq_hz`, `p_f_bar`): choose one in the safe "
             "window below, or check one with judder check.")
     else:
         css = {JUDDER: "judder", SLOW_GROWTH: "slow"}.get(verdict["verdict"],
@@ -298,7 +298,7 @@ def map_section(page, stability, tongue_records, min_growth, p_max_bar,
         + (f"<p>{html.escape(stability.params.model)} is "
            f"{html.escape(mode)}.</p>" if mode else "")
         + f'<p class="small">Judder-relevant: growing faster than '
-        f"{min_growth:g} 1/s; "
+        f"{min_growth:g} 1/s (judder check `min_growth` {min_growth:g}); "
         "slower growth is shaded grey; the lines are the exact stability "
         "boundaries (Fig. 14).</p>"
         + page.figure("Stability map with the exact tongue boundaries and "

@@ -134,10 +134,18 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
         low, high = freq_hz.min(), freq_hz.max()
         grid = np.linspace(max(low - 0.5 * (high - low) - 20, 1.0),
                            high + 0.5 * (high - low) + 20, 200)
-        under = map_kernel(build_driveline(values), grid,
-                           np.linspace(0, max(2 * p_f_bar.max(), 0.5), 100)
-                           * PA_PER_BAR)
-        result = dataclasses.replace(result, background=under)
+        system = build_driveline(values)
+        p_top = max(2 * p_f_bar.max(), 0.5) * PA_PER_BAR
+        under = map_kernel(system, grid, np.linspace(0, p_top, 100))
+        exact = {}
+        if not frequency_dependent(values):
+            # the fills clipped to the exact boundaries, as the map draws
+            # them: not the grid's cells (issue 46)
+            from stability.tongues import find_tongues, tongue_boundaries
+            boundaries = tongue_boundaries(system, grid, p_top)
+            exact = {"background_boundaries": boundaries,
+                     "background_tongues": find_tongues(system, boundaries)}
+        result = dataclasses.replace(result, background=under, **exact)
     return result
 
 
@@ -382,6 +390,8 @@ class CheckResult:
     p_max: float
     seconds: float
     background: object = None
+    background_boundaries: object = None
+    background_tongues: list = None
     responses: list = None
     driveline: str = "chain"
     judder_limit_rpm: float = None
@@ -434,4 +444,6 @@ class CheckResult:
     def figure(self, title=None):
         from .figures.check import check_figure
         return check_figure(self.records(), self.background,
-                            min_growth=self.min_growth, title=title)
+                            min_growth=self.min_growth, title=title,
+                            boundaries=self.background_boundaries,
+                            tongues=self.background_tongues)

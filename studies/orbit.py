@@ -301,6 +301,7 @@ class OrbitResult:
                 for j, p in enumerate(c.p_f)]
 
     def figure(self, title=None):
+        from infra.plotstyle import setting_text
         from stability.plots.orbit import (orbit_chart_figure,
                                            orbit_curve_figure)
         if self.chart is not None:
@@ -310,9 +311,13 @@ class OrbitResult:
         if self.mode == "amplitude":
             x = np.array([r["p_f_bar"] for r in rows])
             xlabel = "dither amplitude $p_f$ [bar]"
+            setting = setting_text(freq_hz=rows[0]["freq_hz"])
         else:
             x = np.array([r["freq_hz"] for r in rows])
             xlabel = "dither frequency $f$ [Hz]"
+            setting = setting_text(p_f_bar=rows[0]["p_f_bar"])
+        # the setting held along the branch, in engineering precision
+        title = f"{setting}, " + (title or "periodic orbits")
         curves = [(x, np.array([r["amplitude_at_dither_rpm"] for r in rows]),
                    np.array([r["growth_per_s"] < 0 for r in rows]),
                    "T-orbit at f", "black")]

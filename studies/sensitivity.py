@@ -115,5 +115,5 @@ class SensitivityResult:
     def figure(self, title=None):
         return self.study.plot(
             title=title or f"{self.params.model}: sensitivity of the "
-                           "unstable boundary (|lambda| = 1)",
+                           "unstable boundary ($|\\lambda| = 1$)",
             params=self.params)

@@ -194,40 +194,13 @@ def test_kind_colours_stay_apart_for_colour_blind_readers(kind):
 # --- no clipped or colliding text -----------------------------------------
 
 def _text_problems(fig):
-    """Texts of ``fig`` that leave the figure or overlap another text, as
-    strings (empty: none). Tick labels, titles, axis labels, legends,
-    annotations and colour-bar labels all count."""
-    from matplotlib.text import Text
-    drawn, draw = [], Text.draw
-
-    def recording(text, renderer):       # the texts a draw really draws
-        draw(text, renderer)
-        drawn.append(text)
-    Text.draw = recording
-    try:
-        fig.canvas.draw()
-    finally:
-        Text.draw = draw
-    renderer = fig.canvas.get_renderer()
-    page = fig.bbox
-    boxes = []
-    for text in dict.fromkeys(drawn):
-        if not text.get_visible() or not text.get_text().strip():
-            continue
-        box = text.get_window_extent(renderer)
-        if box.width == 0 or box.height == 0:
-            continue
-        boxes.append((text.get_text(), box))
-    problems = [f"{t!r} leaves the figure" for t, b in boxes
-                if b.x0 < page.x0 - 1 or b.y0 < page.y0 - 1
-                or b.x1 > page.x1 + 1 or b.y1 > page.y1 + 1]
-    for i, (t1, b1) in enumerate(boxes):
-        for t2, b2 in boxes[i + 1:]:
-            dx = min(b1.x1, b2.x1) - max(b1.x0, b2.x0)
-            dy = min(b1.y1, b2.y1) - max(b1.y0, b2.y0)
-            if dx > 1 and dy > 1:
-                problems.append(f"{t1!r} overlaps {t2!r}")
-    return problems
+    """What :func:`infra.plotstyle.layout_problems` finds in ``fig``:
+    texts that leave the figure or overlap another (tick labels, titles,
+    axis labels, legends, annotations without their leaders, colour-bar
+    labels), legends that do not list what is drawn, titles in more than
+    engineering precision (empty: none)."""
+    from infra.plotstyle import layout_problems
+    return layout_problems(fig)
 
 
 @pytest.fixture(scope="module")

@@ -224,7 +224,7 @@ CASES = [
     (["check", "--freq", "105,", "--pf", "0.2"], 2, ["empty item"]),
     (["threshold", "--mu-g", "-1e300:0.1:10"], 2, ["mu_g = -1e+300 is"]),
     (["advise", "--no-design", "--margin-bar", "1e300"], 2,
-     ["--margin-bar 1e+300 bar", "below --pf-max"]),
+     ["--margin-bar 1e+300 bar", "below --valve-max"]),
     (["check", "--freq", "100", "--pf", "0.3", "--pf-max", "0.2"], 2,
      ["--pf-max 0.2 bar", "above the largest setting, 0.3 bar"]),
     (["advise", "--no-design", "--margin-hz", "-1"], 2,

@@ -431,10 +431,12 @@ def test_report_shows_no_fit_the_data_cannot_determine():
     assert "fit fewer parameters (`fit_names`)" in data["fit_status"]
     assert "(`scatter` of judder fit)" in data["fit_status"]
     assert "fit fewer parameters (--fit)" in in_flags(data["fit_status"])
-    # the page in the options typed, as its sensitivity section (it
-    # showed `fit_names`, an argument of the Python function)
-    assert "fit fewer parameters (--fit)" in text
-    assert "(--scatter of judder fit)" in text and "`" not in text
+    # the section names the study's arguments; the page judder report
+    # writes speaks in the options typed (judder.commands.report)
+    assert "fit fewer parameters (`fit_names`)" in text
+    page = in_flags(text)
+    assert "fit fewer parameters (--fit)" in page
+    assert "(--scatter of judder fit)" in page and "`" not in page
 
 
 def test_report_shows_the_experimental_chart_beside_the_fit(tmp_path):

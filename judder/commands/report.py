@@ -1,6 +1,8 @@
 """``judder report``: the options of the report (:mod:`studies.report`)
 and the HTML and PDF files it writes."""
 
+import dataclasses
+
 from infra.errors import JudderError
 from studies.map import check_map_grid
 from studies.report import report
@@ -116,6 +118,9 @@ def run(args):
             engagement=args.engagement is not None,
             min_growth=args.min_growth,
             progress=progress, driveline=args.driveline)
+    # the page speaks of the options its reader typed
+    result = dataclasses.replace(result, html=in_flags(result.html,
+                                                       args.flags))
     result.save(args.out, force=args.force)
     if args.pdf:
         make_parents(args.pdf)
@@ -124,7 +129,8 @@ def run(args):
     text = (f"{len(result.figures)} figures"
             + (f"; dither {args.freq:g} Hz, {args.pf:g} bar: "
                f"{verdict['verdict']}" if verdict else "")
-            + (f"\nbench data: {in_flags(result.data['fit_status'])}"
+            + ("\nbench data: "
+               + in_flags(result.data["fit_status"], args.flags)
                if "fit_status" in result.data else "")
             + written(args.out, args.pdf))
     emit(args, {**result.as_dict(),

@@ -12,13 +12,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from infra.plotstyle import (KIND_COLORS, KIND_LINESTYLES, LABEL_GID,
-                             dither_axes)
+                             UNLISTED, dither_axes)
 from infra.units import PA_PER_BAR
 
 from ..kinds import KINDS
 
 __all__ = ["boundary_curve", "boundary_at", "plot_boundaries",
-           "number_tips"]
+           "number_tips", "BURIED_TIP"]
 
 #: Steps a boundary is cut into, per axis length, to find where it enters
 #: another kind's tongue (1/2000 of the frequency range, 1/1000 of the
@@ -189,26 +189,48 @@ def plot_boundaries(boundaries, ax=None, tongues=(), style=None, label=None,
         first = False
         artists.append(line)
     if numbers:
+        # a tip inside another kind's tongue: that tongue's edge is not
+        # drawn there (nothing changes across it), its marker is open
+        buried = {id(t) for t in tongues if t.kind in KINDS
+                  and any(t.tip_p_f / PA_PER_BAR > boundary_at(
+                      t.tip_freq_hz, boundaries, other, tips[other])
+                      * (1 + 1e-6)
+                      for other in range(3)
+                      if other != KINDS.index(t.kind) - 1)}
         artists += number_tips(ax, tongues, props.get("color", "k")
-                                if style and "color" in style else "k")
+                                if style and "color" in style else "k",
+                                buried=buried)
     ax.set_xlim(boundaries.freq_hz.min(), boundaries.freq_hz.max())
     ax.set_ylim(0, p_max_bar)
     dither_axes(ax)
     return artists
 
 
-def number_tips(ax, tongues, color):
+#: Legend label of an open tip marker (:func:`number_tips`).
+BURIED_TIP = "tip inside another tongue\n(its edge is not drawn there)"
+
+
+def number_tips(ax, tongues, color, buried=()):
     """A marker at each numbered tip and its number beside it (right),
     clear of the frequency axis; :func:`settle_labels` moves a number that
-    would overlap another."""
+    would overlap another. A tongue whose ``id`` is in ``buried`` has its
+    tip inside another kind's tongue: its marker is open and labelled
+    :data:`BURIED_TIP` (once) for the legend."""
     artists, numbers = [], []
+    labelled = False
     for tongue in tongues:
         if tongue.number is None:
             continue
         xy = (tongue.tip_freq_hz, tongue.tip_p_f / PA_PER_BAR)
+        inside = id(tongue) in buried
+        label = UNLISTED        # the number says what it is
+        if inside and not labelled:
+            label, labelled = BURIED_TIP, True
         artists.append(ax.plot(*xy, marker="v", color=color,
-                               markeredgecolor="k", markersize=4,
-                               linestyle="none")[0])
+                               markerfacecolor="w" if inside else color,
+                               markeredgecolor="k",
+                               markersize=6 if inside else 4,
+                               linestyle="none", label=label)[0])
         numbers.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
             xytext=(4, 1), ha="left", va="bottom", fontsize=8,

@@ -84,7 +84,9 @@ def plot_envelope(envelope, ax=None):
                            color="k", linestyle=(0, (5, 2.5)), linewidth=1.4,
                            path_effects=[withStroke(linewidth=3.2,
                                                     foreground="w")],
-                           label="50 % of the samples unstable")
+                           label="50 % of the samples "
+                                 + ("with judder" if e.min_growth
+                                    else "unstable"))
     artists += ax.plot(*closed_edge(f, e.broadest / PA_PER_BAR, top),
                        color="k", linewidth=1.8,
                        label="broadest region (samples, refined)")
@@ -104,12 +106,16 @@ def envelope_figure(envelope, title=None):
     model) follows the description of the envelope."""
     fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
     artists = plot_envelope(envelope, ax=ax)
+    # one word in the title, the colour bar and the legend: judder where
+    # only growth above min_growth counts, instability where every does
+    growth = envelope.min_growth
+    judder = f"judder (growth > {growth:g} 1/s)" if growth else "instability"
     if isinstance(artists[0], ContourSet):
-        fig.colorbar(artists[0], ax=ax, label="probability of instability",
+        fig.colorbar(artists[0], ax=ax, label=f"probability of {judder}",
                      ticks=PROBABILITY_LEVELS)
-    growth = (f", growth > {envelope.min_growth:g} 1/s"
-              if envelope.min_growth else "")
-    ax.set_title(f"unstable region over {len(envelope.names)} uncertain "
-                 f"parameters{growth}" + (f"\n{title}" if title else ""),
+    region = (f"judder region (growth > {growth:g} 1/s)" if growth
+              else "unstable region")
+    ax.set_title(f"{region} over {len(envelope.names)} uncertain "
+                 "parameters" + (f"\n{title}" if title else ""),
                  fontsize=10)
     return fig

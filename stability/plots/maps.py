@@ -17,7 +17,7 @@ from infra.units import PA_PER_BAR
 
 from ..decisions.relevance import is_judder_relevant
 from ..kinds import KINDS
-from .boundaries import boundary_at, plot_boundaries
+from .boundaries import BURIED_TIP, boundary_at, plot_boundaries
 
 __all__ = ["plot_map", "plot_growth_rate", "map_figure", "kind_legend",
            "kind_handles", "drawn_kinds", "draws_instability"]
@@ -119,9 +119,12 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
                                  shading="flat", rasterized=True)]
         if slow:
             artists += _shade_slow(m, ax, min_growth)
+    buried = []
     if boundaries is not None:
-        artists += plot_boundaries(boundaries, ax=ax, tongues=tongues or (),
-                                   style={"color": "k"})
+        drawn = plot_boundaries(boundaries, ax=ax, tongues=tongues or (),
+                                style={"color": "k"})
+        artists += drawn
+        buried = [a for a in drawn if a.get_label() == BURIED_TIP]
         ax.set_xlim(_edges(m.freq_hz)[0], _edges(m.freq_hz)[-1])
         ax.set_ylim(0, max(bar.max(), boundaries.p_max / PA_PER_BAR))
     else:
@@ -149,7 +152,8 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
             ax, kinds=drawn_kinds(m, boundaries),
             lines=boundaries is not None,
             min_growth=min_growth if draws_instability(m, boundaries)
-            else None, extra=forced_line if forced is not None else ()))
+            else None, extra=[*buried, *(forced_line if forced is not None
+                                         else ())]))
     return artists
 
 

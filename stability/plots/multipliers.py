@@ -3,7 +3,8 @@
 import matplotlib.pyplot as plt
 import numpy as np
 
-from infra.plotstyle import KIND_COLORS, figure_title
+from infra.plotstyle import (UNLISTED, KIND_COLORS, figure_title,
+                             setting_text)
 from infra.units import PA_PER_BAR
 
 from ..kinds import KINDS
@@ -36,8 +37,9 @@ def plot_multipliers(result, ax=None, zoom=False):
     theta = np.linspace(0, 2 * np.pi, 721)
     artists = [ax.plot(np.cos(theta), np.sin(theta), color="0.35", lw=0.9,
                        label="unit circle")[0],
-               ax.axhline(0, color="0.7", lw=0.6),
-               ax.axvline(0, color="0.7", lw=0.6)]
+               # the axes of the complex plane: no legend entry
+               ax.axhline(0, color="0.7", lw=0.6, label=UNLISTED),
+               ax.axvline(0, color="0.7", lw=0.6, label=UNLISTED)]
     leading = np.isclose(lam, lead) | np.isclose(lam, np.conj(lead))
     artists.append(ax.plot(lam.real[~leading], lam.imag[~leading], "o",
                            mfc="w", mec="k", ms=5,
@@ -85,8 +87,8 @@ def multipliers_figure(results, title=None):
         plot_multipliers(result, ax=axes[0, column])
         plot_multipliers(result, ax=axes[1, column], zoom=True)
         axes[0, column].set_title(
-            f"f = {result.freq_hz:g} Hz, $p_f$ = "
-            f"{result.p_f / PA_PER_BAR:g} bar: {result.kind}", fontsize=9)
+            f"{setting_text(result.freq_hz, result.p_f / PA_PER_BAR)}: "
+            f"{result.kind}", fontsize=9)
         axes[1, column].set_title("near the leading multiplier",
                                   fontsize=8)
     handles, labels = [], []

@@ -29,19 +29,27 @@ def sensitivity_figure(study, title=None, params=None):
     case (Eq. 16, ``damper_zeta``) to the labels of c12.
     """
     names = list(dict.fromkeys(c.parameter for c in study.cases))
-    # two columns at most: each panel's legend stands on its right, and
-    # three columns narrowed to a page left the panels a sliver wide
+    # a case at the nominal value is the nominal line: drawn once
+    varied = {name: [c for c in study.cases if c.parameter == name
+                     and not np.isclose(c.factor, 1.0, rtol=1e-9, atol=0)]
+              for name in names}
+    factors = {tuple(np.round([c.factor for c in cases], 9))
+               for cases in varied.values()}
+    # the same factors in every panel (Fig. 17: halved, doubled): one
+    # legend above the panels says the line styles, each panel's title its
+    # values, and the panels take the whole width (issue 46); otherwise
+    # (Fig. 18b's values of c12) each panel its legend on its right
+    shared = len(names) > 1 and len(factors) == 1
     columns = min(2, len(names))
     rows = -(-len(names) // columns)
-    fig = plt.figure(figsize=(5.2 * columns, 3.3 * rows + 0.8),
+    fig = plt.figure(figsize=((4.6 if shared else 5.2) * columns,
+                              (3.6 if shared else 3.3) * rows + 0.9),
                      layout="constrained")
     axes = fig.subplots(rows, columns, squeeze=False)
     for ax in list(axes.flat)[len(names):]:
         ax.remove()
     for ax, name in zip(axes.flat, names):
-        # a case at the nominal value is the nominal line: drawn once
-        cases = [c for c in study.cases if c.parameter == name
-                 and not np.isclose(c.factor, 1.0, rtol=1e-9, atol=0)]
+        cases = varied[name]
         colours = plt.get_cmap(CONTINUOUS_CMAP)(
             np.linspace(0.15, 0.8, max(len(cases), 1)))
         _plot_lowest(study.nominal, ax, "k", "-", "nominal", lw=1.6)
@@ -50,14 +58,45 @@ def sensitivity_figure(study, title=None, params=None):
         for index, case in enumerate(cases):
             _plot_lowest(case, ax, colours[index],
                          CASE_STYLES[index % len(CASE_STYLES)],
+                         _factor_word(case.factor) if shared else
                          _case_label(name, case, params), lw=1.3)
-        ax.set_title(_panel_title(name, params, study.nominal), fontsize=9)
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
-                  borderaxespad=0.2, handlelength=3)
+        if shared:
+            ax.set_title(_shared_title(name, params, study.nominal, cases),
+                         fontsize=9)
+        else:
+            ax.set_title(_panel_title(name, params, study.nominal),
+                         fontsize=9)
+            ax.legend(fontsize=7, loc="upper left",
+                      bbox_to_anchor=(1.0, 1.0), borderaxespad=0.2,
+                      handlelength=3)
+    if shared:
+        handles, labels = axes.flat[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="outside lower center",
+            ncols=len(handles), fontsize=9, handlelength=3.5,
+            frameon=False)
     if title:
         figure_title(fig, title)
     settle_labels(fig)
     return fig
+
+
+def _factor_word(factor):
+    """``'halved'``, ``'doubled'``, or ``'x0.8'``."""
+    return {0.5: "halved", 2.0: "doubled"}.get(round(float(factor), 9),
+                                               f"x{factor:.3g}")
+
+
+def _shared_title(name, params, nominal, cases):
+    """A panel's title when the legend is shared: the parameter, its unit
+    and its values, nominal first (``k24 [N m/rad]: 34 860; x0.5 17 430,
+    x2 69 720``)."""
+    text = _panel_title(name, params, nominal)
+    def zeta(case):
+        return (rf" ($\zeta_{{12}}$ = {100 * case.damper_zeta:.2g} %)"
+                if _is_damper(name, params) else "")
+    values = ", ".join(f"x{c.factor:.3g} {readable_number(c.value)}"
+                       f"{zeta(c)}" for c in cases)
+    return f"{text};\n{values}" if values else text
 
 
 def _is_damper(name, params):

@@ -2,7 +2,7 @@
 
 import matplotlib.pyplot as plt
 
-from infra.plotstyle import DARK_BLUE, VERMILLION
+from infra.plotstyle import DARK_BLUE, UNLISTED, VERMILLION
 
 __all__ = ["plot_threshold"]
 
@@ -19,7 +19,8 @@ def plot_threshold(study, axes=None, own=None):
         _, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     left, right = axes
     artists = [left.plot(study.mu_g, study.max_real_part, "k-")[0],
-               left.axhline(0, color="0.5", linewidth=0.8),
+               left.axhline(0, color="0.5", linewidth=0.8,
+                           label=UNLISTED),   # the axis, not a result
                left.axvline(study.threshold, color="k", linestyle="--",
                             label=rf"threshold $\mu_g^*$ = "
                                   f"{study.threshold:.3g} s/rad")]

@@ -49,8 +49,9 @@ def advice_figure(advice, title=None, stacked=False):
                       alpha=0.5, label="safe (with margins)")
     left.axhline(top, color="k", linestyle="--", linewidth=0.8,
                  label="valve's highest amplitude")
-    for edge in op.freq_hz:
-        left.axvline(edge, color="k", linestyle=":", linewidth=0.8)
+    for index, edge in enumerate(op.freq_hz):
+        left.axvline(edge, color="k", linestyle=":", linewidth=0.8,
+                     label=None if index else "operating range's ends")
     left.set_xlabel("dither frequency [Hz]")
     left.set_ylabel("safe dither amplitude $p_f$ [bar]")
     left.set_title("safe dither windows, given design", fontsize=10)

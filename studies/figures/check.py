@@ -4,23 +4,19 @@ over the map when there is one."""
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from infra.criteria import JUDDER, SLOW_GROWTH, STABLE
-from infra.plotstyle import LABEL_GID, dither_axes, settle_labels
+from infra.plotstyle import (LABEL_GID, VERDICT_MARKERS, dither_axes,
+                             figure_title, settle_labels)
 from stability.plots import drawn_kinds, kind_handles, plot_map
+from stability.plots.boundaries import BURIED_TIP
 
 __all__ = ["check_figure", "VERDICT_MARKERS"]
 
 
-#: Marker and colour of each verdict word
-#: (:data:`infra.criteria.VERDICTS`): shape tells them
-#: apart without colour; the colours are dark enough to read on every
-#: kind's fill.
-VERDICT_MARKERS = {JUDDER: ("X", "#b2182b"),
-                   SLOW_GROWTH: ("s", "#404040"),
-                   STABLE: ("o", "#1b7837")}
+# VERDICT_MARKERS lives in infra.plotstyle (compare marks settings too)
 
 
-def check_figure(records, background=None, min_growth=None, title=None):
+def check_figure(records, background=None, min_growth=None, title=None,
+                 boundaries=None, tongues=None):
     """Settings of ``judder check`` marked on the map (or alone).
 
     Each setting is a marker of its verdict (:data:`VERDICT_MARKERS`, in
@@ -34,24 +30,37 @@ def check_figure(records, background=None, min_growth=None, title=None):
     background : stability.maps.StabilityMap, optional
     min_growth : float, optional
         Passed to :func:`plot_map`.
+    boundaries, tongues : optional
+        The exact boundaries and tongues of ``background``
+        (:func:`stability.tongues.tongue_boundaries`,
+        :func:`stability.tongues.find_tongues`): the fills are clipped to
+        them and the tongues numbered at their tips, as the map draws
+        them; without them the grid's cells and its unit-modulus contour.
     title : str, optional
         The model, after "dither settings: verdict and margins".
     """
     fig, ax = plt.subplots(figsize=(9, 5), layout="constrained")
     handles = []
     if background is not None:
-        plot_map(background, ax=ax, min_growth=min_growth, legend=False)
-        # the map's black line: where the grid's |lambda| reaches 1
-        handles = kind_handles(drawn_kinds(background),
-                               min_growth=min_growth) + [
-            Line2D([], [], color="k", linewidth=0.8,
-                   label=r"unstable from here ($|\lambda| = 1$)")]
+        plot_map(background, ax=ax, min_growth=min_growth, legend=False,
+                 boundaries=boundaries, tongues=tongues)
+        handles = kind_handles(drawn_kinds(background, boundaries),
+                               lines=boundaries is not None,
+                               min_growth=min_growth)
+        handles += [a for a in ax.lines if a.get_label() == BURIED_TIP]
+        if boundaries is None:
+            # the map's black line: where the grid's |lambda| reaches 1
+            handles.append(Line2D([], [], color="k", linewidth=0.8,
+                                  label=r"unstable from here "
+                                        r"($|\lambda| = 1$)"))
     seen = {}
     for r in records:
         marker, color = VERDICT_MARKERS[r["verdict"]]
+        # a large marker with a black rim: apart from every fill and from
+        # the small triangles of the tongue tips (issue 46)
         line, = ax.plot(r["freq_hz"], r["p_f_bar"], marker=marker,
-                        color=color, markeredgecolor="w", markersize=10,
-                        markeredgewidth=1.2, linestyle="none",
+                        color=color, markeredgecolor="k", markersize=11,
+                        markeredgewidth=1.0, linestyle="none", zorder=5,
                         label=f"setting: {r['verdict']}", clip_on=False)
         seen.setdefault(r["verdict"], line)
         hz, bar = r["margin_hz"], r["margin_bar"]
@@ -59,17 +68,23 @@ def check_figure(records, background=None, min_growth=None, title=None):
                 + ("" if hz is None else f"{hz:+.2f} Hz"))
         if text:
             ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
-                        xytext=(7, 7), textcoords="offset points", fontsize=7,
-                        gid=LABEL_GID, bbox={"boxstyle": "round,pad=0.15",
-                                             "fc": "w", "ec": "none",
-                                             "alpha": 0.8})
+                        xytext=(8, 8), textcoords="offset points", fontsize=7,
+                        gid=LABEL_GID, zorder=6,
+                        bbox={"boxstyle": "round,pad=0.15", "fc": "w",
+                              "ec": color, "lw": 0.6, "alpha": 0.9},
+                        # a leader to its setting, also when moved up
+                        arrowprops={"arrowstyle": "-", "color": color,
+                                    "lw": 0.6, "shrinkA": 0,
+                                    "shrinkB": 6})
     dither_axes(ax)
     ax.legend(handles=handles + list(seen.values()), fontsize=7,
               loc="upper left", bbox_to_anchor=(1.01, 1.0),
               borderaxespad=0.0)
     rate = "" if not min_growth else f" (>= {min_growth:g} 1/s)"
-    ax.set_title(f"dither settings: verdict and margins to judder{rate}"
-                 + (f", {title}" if title else ""),
-                 fontsize=10, pad=16 if background is not None else 6)
+    # the figure's title, wrapped to its width: a long model path is not
+    # clipped (issue 46)
+    figure_title(fig, f"dither settings: verdict and margins to "
+                      f"judder{rate}" + (f", {title}" if title else ""),
+                 fontsize=10)
     settle_labels(fig)
     return fig
