@@ -206,6 +206,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                               ("class", "the class's own"))
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
                             model_class=model_class, start=ramp_end,
+                            asked=len(freqs),
                             run_kind=run_kind, friction_law=friction_law,
                             # (the lock counters are counts: unit 1)
                             signals={**SIGNALS, **dict.fromkeys(
@@ -277,6 +278,9 @@ class SimulationResult:
     slipping : list of Run, optional
         Of a full engagement, each run before its lock-up (what its
         verdict and spectra read).
+    asked : int
+        How many of ``runs`` are the dither settings asked for (the
+        first ones; the comparison follows).
     """
 
     runs: list
@@ -288,6 +292,7 @@ class SimulationResult:
     friction_law: str = CURVE_LAW
     signals: dict = field(default_factory=dict)
     slipping: list = None
+    asked: int = 1
 
     def as_dict(self):
         return {"model": self.model_class.rsplit(".", 1)[-1],
@@ -296,10 +301,26 @@ class SimulationResult:
                 "fmu": str(self.fmu), "runs": self.summaries}
 
     @keeps_foreign_files
-    def save(self, path):
-        """Time histories of the first run as CSV or MF4 (by suffix)."""
+    def save(self, path, run=None):
+        """Time histories of one run as CSV or MF4 (by suffix): ``run``
+        (an index of ``runs``), or the only setting asked for (the
+        comparison is not written); several settings without ``run``
+        are refused rather than one written for all."""
         from pysim.simulation.export import write_run
-        run = self.runs[0][1]
+        if run is None:
+            if self.asked > 1:
+                raise JudderError(
+                    f"{path} holds the time histories of one run; "
+                    f"`freq_hz` gave {self.asked} runs ("
+                    + ", ".join(f"{r.freq_hz:g}" for _, r in
+                                self.runs[:self.asked])
+                    + " Hz); allowed: one `freq_hz`, or `run` naming "
+                      "which to write")
+            run = 0
+        if not 0 <= run < len(self.runs):
+            raise JudderError(f"`run` {run!r} is not a run; allowed: 0 to "
+                              f"{len(self.runs) - 1}")
+        run = self.runs[run][1]
         write_run(path, run.time, run.signals, self.signals,
                   {"model": self.model_class, "run_kind": self.run_kind,
                    "friction_law": self.friction_law,
