@@ -171,11 +171,13 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     """
     from pysim.bench_data.tables import numbers, split_rows
     names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
-    stated = {}
+    stated, said = {}, {}
     for number, line in enumerate(text.splitlines(), start=1):
         match = _STATED.match(line.strip())
         if match:
             stated.setdefault(match.group(1), (number, match.group(2)))
+            said.setdefault(match.group(1), []).append(
+                (number, match.group(2)))
     # not stripped: Excel's "sep=" line may declare a tab
     lines = [(number, line.split("#")[0])
              for number, line in enumerate(text.splitlines(), start=1)]
@@ -203,10 +205,25 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     values = numbers(source, {**{name: [(number, cells[columns[name]])
                                         for number, cells in rows]
                                  for name in read},
-                              **{name: [cell] for name, cell in
-                                 stated.items()}}, decimal)
-    for name, (number, text) in stated.items():
-        _check_stated(source, number, name, text, float(values[name][0]))
+                              **{name: cells for name, cells in
+                                 said.items()}}, decimal)
+    for name, cells in said.items():
+        # each threshold once: a NaN is no threshold, and two lines that
+        # differ leave the file's own verdict unknown
+        for (number, text), read in zip(cells, values[name]):
+            if not math.isfinite(float(read)):
+                raise JudderError(f"{source}, line {number}: {name} "
+                                  f"{text!r} is not allowed; allowed: a "
+                                  "finite number")
+            _check_stated(source, number, name, text, float(read))
+        differ = [(number, text) for (number, text), read in
+                  zip(cells, values[name])
+                  if float(read) != float(values[name][0])]
+        if differ:
+            raise JudderError(
+                f"{source}: {name} is {cells[0][1]} on line {cells[0][0]} "
+                f"and {differ[0][1]} on line {differ[0][0]}; allowed: one "
+                f"{name} comment (or the same number on each)")
     table = {name: [] for name in names}
     for index, (number, cells) in enumerate(rows):
         line = written[number]
