@@ -43,6 +43,73 @@ def read_input(path, option):
     return decode_text(data, f"{option} {path}")
 
 
+def read_period(path, option="`period`", decimal=None):
+    """One measured period of pressure: the last column of each row,
+    equally spaced (``--dither-wave period:FILE.csv``).
+
+    Read as the project's other small tables are
+    (:mod:`pysim.bench_data.tables`): ``#`` starts a comment, the fields
+    split by the separator a first line ``sep=;`` declares, else ``;`` or
+    tab where the first line has one, else ``,``; the numbers read as
+    written, the decimal separator decided from every cell or given as
+    ``decimal``. A first row whose last cell is no number names the
+    columns. Every row has the first row's number of cells, and a
+    ``,``-separated file cannot hold decimal commas (``1,49759`` would be
+    two cells): both refused, naming the line.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        The samples as written (any unit).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "p.csv")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("t_s;p_bar\n0;1,5\n0,0025;1\n0,005;0,5\n"
+    ...                 "0,0075;1\n")
+    >>> read_period(path).tolist()
+    [1.5, 1.0, 0.5, 1.0]
+    """
+    from pysim.bench_data.tables import is_number, numbers, split_rows
+    source = f"{option}{path}" if option.endswith(":") else \
+        f"{option} {path}"
+    lines = [(number, line.split("#")[0]) for number, line in
+             enumerate(read_input(path, option).splitlines(), start=1)]
+    lines = [(number, line) for number, line in lines if line.strip()]
+    rows = split_rows(lines, source)
+    if rows and not is_number(rows[0][1][-1]):
+        width, rows = len(rows[0][1]), rows[1:]
+    else:
+        width = len(rows[0][1]) if rows else 0
+    written = dict(lines)
+    for number, cells in rows:
+        if len(cells) != width:
+            raise JudderError(f"{source}, line {number}: "
+                              f"{written[number].strip()!r} has "
+                              f"{len(cells)} cells; allowed: {width}, as "
+                              "the first line (with decimal commas, "
+                              "fields separated by ';' or tab)")
+    comma_separated = bool(rows) and all(
+        "," not in cell for _, cells in rows for cell in cells) and any(
+        "," in written[number] for number, _ in rows)
+    if comma_separated and decimal == ",":
+        raise JudderError(f"{source}: its fields are separated by ',', so "
+                          "it cannot hold decimal commas; allowed: `decimal` "
+                          "'.', or fields separated by ';' or tab")
+    values = numbers(source, {"pressure": [(number, cells[-1])
+                                           for number, cells in rows]},
+                     decimal)["pressure"]
+    bad = [i for i, v in enumerate(values) if not math.isfinite(v)]
+    if bad:
+        raise JudderError(f"{source}: sample {bad[0] + 1} of {len(values)} "
+                          f"is {rows[bad[0]][1][-1]} (line "
+                          f"{rows[bad[0]][0]}); allowed: finite pressures, "
+                          "at least 4")
+    return np.asarray(values, dtype=float)
+
+
 def load_parameters(preset=None, model=None, param_file=None):
     """The parameter set named by a preset, a model or a TOML file.
 
