@@ -97,6 +97,7 @@ def _content(value):
     text = str(value)
     head = "period:" if text.startswith("period:") else ""
     path = Path(text[len(head):])
+    # a device or a pipe (/dev/zero) has no end to hash: its name stands
     if path.is_file() or path.is_dir():
         return head + "sha256:" + _bytes_digest(path)
     return value
@@ -105,7 +106,8 @@ def _content(value):
 def _bytes_digest(path):
     digest = hashlib.sha256()
     files = ([path] if path.is_file() else
-             sorted(p for p in path.rglob("*") if p.is_file()))
+             sorted(p for p in path.rglob("*") if p.is_file()
+                    and not p.is_symlink()))
     for file in files:
         if file != path:
             digest.update(str(file.relative_to(path)).encode() + b"\0")

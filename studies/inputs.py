@@ -18,7 +18,7 @@ from infra.errors import JudderError
 from infra.files import decode_text
 from infra.units import PA_PER_BAR
 
-__all__ = ["read_input", "load_parameters", "read_boundary_csv",
+__all__ = ["read_input", "check_input", "read_period", "load_parameters", "read_boundary_csv",
            "read_boundary_table", "read_boundary", "read_boundary_tested",
            "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
@@ -29,13 +29,36 @@ __all__ = ["read_input", "load_parameters", "read_boundary_csv",
 MAX_INPUT_BYTES = 64 * 2**20
 
 
-def read_input(path, option):
-    """Text of a file the user named, or JudderError naming ``option``."""
+#: The arguments that name a small text file of the user's (a parameter
+#: set, a boundary, a table, ranges, a measured period): each is a
+#: regular file of at most :data:`MAX_INPUT_BYTES`, checked by its size
+#: and type (:func:`check_input`) before anything reads or hashes it.
+TEXT_INPUTS = ("param_file", "boundary", "table", "ranges", "also",
+               "files")
+
+
+def check_input(path, option):
+    """Refuse, from its size and type alone, a path that is no regular
+    file of at most :data:`MAX_INPUT_BYTES` (a folder, a device, a file
+    of 16 GB), naming ``option``; nothing of it is read."""
     try:
         info = Path(path).stat()
-        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INPUT_BYTES:
-            raise JudderError(f"{option} {path}: allowed: a regular file of "
-                              f"at most {MAX_INPUT_BYTES // 2**20} MiB")
+    except OSError as exc:
+        raise JudderError(f"{option} {path}: cannot read it "
+                          f"({exc.strerror})") from None
+    if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INPUT_BYTES:
+        what = ("a folder" if stat.S_ISDIR(info.st_mode) else
+                f"{info.st_size / 2**20:.0f} MiB"
+                if stat.S_ISREG(info.st_mode) else "not a regular file")
+        raise JudderError(f"{option} {path} is {what}; allowed: a regular "
+                          f"file of at most {MAX_INPUT_BYTES // 2**20} MiB")
+
+
+def read_input(path, option):
+    """Text of a file the user named, or JudderError naming ``option``
+    (:func:`check_input` first)."""
+    check_input(path, option)
+    try:
         data = Path(path).read_bytes()
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
