@@ -8,12 +8,19 @@ import sys
 
 from infra.errors import JudderError
 from infra.files import all_or_none, check_output, save_figure, to_json
-from infra.provenance import Provenance, current, input_digest, tool_version
+from infra.provenance import (
+    Provenance,
+    current,
+    file_digest,
+    input_digest,
+    tool_version,
+)
 
 #: Options that do not change a result: how it is shown, where it is
 #: written (``out`` also of a folder, a checkpoint resumed or not), how
 #: the work is spread; the outputs' own options are added.
-NOT_INPUTS = {"handler", "outputs", "output_check", "amplitude", "flags",
+NOT_INPUTS = {"handler", "outputs", "output_check", "read_too", "amplitude",
+              "flags",
               "version", "json", "force", "workers", "scheduler", "out",
               "checkpoint"}
 
@@ -89,6 +96,11 @@ def provenance_of(args):
     options = {name: value for name, value in vars(args).items()
                if name not in skip}
     _check_text_inputs(options)
+    if getattr(args, "read_too", None) is not None:
+        # the files the command reads that no option names (an index's
+        # acquisitions): their bytes, under the names that list them
+        options["read_too"] = {name: file_digest(path) for name, path in
+                               args.read_too(args).items()}
     # the command's name is an input like its options
     return Provenance(tool_version(),
                       input_digest(options.pop("command"), options))
