@@ -117,8 +117,7 @@ def file_digest(path):
 def _bytes_digest(path):
     digest = hashlib.sha256()
     files = ([path] if path.is_file() else
-             sorted(p for p in path.rglob("*") if p.is_file()
-                    and not p.is_symlink()))
+             sorted(p for p in path.rglob("*") if p.is_file()))
     for file in files:
         if file != path:
             digest.update(str(file.relative_to(path)).encode() + b"\0")
