@@ -3,6 +3,7 @@ dither (Fig. 7, 8), run through the FMU.
 """
 
 from dataclasses import dataclass, field
+import math
 
 import numpy as np
 
@@ -164,6 +165,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         raise JudderError(f"duration {duration:g} s ends before the "
                           f"engagement (its pressure ramp ends at "
                           f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
+    if duration is None and ramp_end >= _stop_time(fmu):
+        raise JudderError(
+            f"`bench` t_engage + t_ramp = {ramp_end:g} s ends after the "
+            f"run ({_stop_time(fmu):g} s, the model's StopTime); allowed: "
+            f"t_engage + t_ramp < {_stop_time(fmu):g} s, or a `duration` "
+            f"> {ramp_end:g} s")
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     settings = ([("with dither" if p_f_bar > 0 else "without dither",
                   freqs[0], p_f_bar * PA_PER_BAR)]
@@ -212,6 +219,15 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                             signals={**SIGNALS, **dict.fromkeys(
                                 LOCK_VARIABLES if full else (), "1")},
                             slipping=slipping if full else None)
+
+
+def _stop_time(fmu):
+    """The run's length when no ``duration`` is given: the model's
+    StopTime, s (inf where it declares none)."""
+    from fmu.store import model_description
+    experiment = model_description(fmu).defaultExperiment
+    stop = None if experiment is None else experiment.stopTime
+    return math.inf if stop is None else float(stop)
 
 
 def _lock_fields(run, lock, ramp_end):

@@ -285,6 +285,14 @@ def test_simulate_names_the_held_slip_bench_run(tmp_path):
      [".csv", ".mf4"]),
     (["simulate", "--freq", "100", "--pf", "0.1", "--model", "3dof"],
      ["4-DOF"]),
+    # the bench's times have allowed ranges: t_engage = -1 was run from
+    # -0.5 s (issue 44, item 12); a ramp that ends after the run is refused
+    (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "t_engage=-1"],
+     ["--bench", "t_engage", "-1", "at least 0 s"]),
+    (["orbit", "--freq", "100", "--pf", "0.1", "--bench", "t_ramp=-0.1"],
+     ["--bench", "t_ramp", "-0.1", "at least 0 s"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "t_engage=5"],
+     ["--bench", "t_engage + t_ramp", "5.5 s", "4 s", "--duration"]),
     # one --out file for two runs kept the first only, silently (issue 44,
     # item 5): refused before any run, naming both options and the runs
     (["simulate", "--freq", "19,105", "--pf", "0.3", "--out", "e.csv"],
