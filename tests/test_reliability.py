@@ -789,3 +789,32 @@ def test_an_input_is_checked_by_size_and_type_before_it_is_hashed(
     assert "internal error" not in err
     for fact in facts + [str(path)]:
         assert fact in err
+
+
+@pytest.mark.parametrize("argv, facts", [
+    # check --table and report --boundary of 1e5 rows ran for an hour
+    # (issue 44, item 12): estimated before any work, refused above the
+    # limit naming the file to shorten (not --freq x --pf, not --starts)
+    (["check", "--table"], ["3.58 h", "100000 settings", "fewer rows in "
+                            "--table", "JUDDER_MAX_HOURS"]),
+    (["report", "--out", "r.html", "--boundary"],
+     ["2.78 h", "100000 measured points", "fewer points in --boundary",
+      "JUDDER_MAX_HOURS"]),
+])
+def test_a_long_table_is_estimated_before_any_work(tmp_path, capsys,
+                                                   monkeypatch, argv, facts):
+    from judder.cli import main
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("JUDDER_MAX_HOURS", "0.5")
+    table = tmp_path / "t.csv"
+    table.write_text("freq_hz,p_f_bar,tried_bar\n" + "".join(
+        f"{50 + i * 0.0015:.4f},{0.3 + (i % 7) * 0.1:.1f},1.5\n"
+        for i in range(100_000)))
+    started = time.perf_counter()
+    assert main(argv + [str(table)]) == 2
+    assert time.perf_counter() - started < 120
+    err = capsys.readouterr().err
+    for fact in facts:
+        assert fact in err
+    assert "--starts" not in err and "--freq x --pf" not in err
+    assert not (tmp_path / "r.html").exists()
