@@ -89,9 +89,9 @@ def read_period(path, option="`period`", decimal=None):
     --------
     >>> import os, tempfile
     >>> path = os.path.join(tempfile.mkdtemp(), "p.csv")
+    >>> rows = ["t_s;p_bar", "0;1,5", "0,0025;1", "0,005;0,5", "0,0075;1"]
     >>> with open(path, "w") as f:
-    ...     _ = f.write("t_s;p_bar\n0;1,5\n0,0025;1\n0,005;0,5\n"
-    ...                 "0,0075;1\n")
+    ...     _ = f.write(chr(10).join(rows))
     >>> read_period(path).tolist()
     [1.5, 1.0, 0.5, 1.0]
     """
