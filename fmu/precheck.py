@@ -351,15 +351,27 @@ class _Walker:
                 for f in self.findings(full)]
         return []
 
-    def declares(self, name, parts):
+    def declares(self, name, parts, _extending=()):
         """Whether class ``name`` (or a class it extends) declares the
         component ``parts`` (``("clutch", "p_f")`` for ``clutch.p_f``):
         False only when every class on the way was read and none has it,
         None when that is not known from the source (a class not found,
-        a replaceable or conditional component, a redeclaration)."""
+        a replaceable or conditional component, a redeclaration).
+        ``_extending``: the classes whose ``extends`` led here; a class
+        met again among them extends itself, refused in words
+        (:class:`FrontEndError`, at its definition) rather than followed
+        until Python's recursion limit."""
         found = self.source.long(name)
         if found is None:
             return None
+        if name in _extending:
+            path, text, _, begin, _ = found
+            chain = " extends ".join(_extending[_extending.index(name):]
+                                     + (name,))
+            raise FrontEndError(
+                f"{_place(path, text, begin)}: {name} extends itself "
+                f"({chain}); allowed: classes whose extends clauses end "
+                "in a class that extends none of them")
         body = found[4]
         cut = _SECTION.search(body)
         head = body[:cut.start()] if cut else body
@@ -372,7 +384,8 @@ class _Walker:
                                     and "redeclare" in extends.group(2)):
                     unknown = True
                     continue
-                inherited = self.declares(full, parts)
+                inherited = self.declares(full, parts,
+                                          _extending + (name,))
                 if inherited:
                     return True
                 unknown = unknown or inherited is None

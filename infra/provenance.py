@@ -24,8 +24,8 @@ import hashlib
 import json
 from pathlib import Path
 
-__all__ = ["Provenance", "tool_version", "input_digest", "recorded",
-           "current"]
+__all__ = ["Provenance", "tool_version", "input_digest", "file_digest",
+           "recorded", "current"]
 
 
 @dataclass(frozen=True)
@@ -97,9 +97,21 @@ def _content(value):
     text = str(value)
     head = "period:" if text.startswith("period:") else ""
     path = Path(text[len(head):])
+    # a device or a pipe (/dev/zero) has no end to hash: its name stands
     if path.is_file() or path.is_dir():
         return head + "sha256:" + _bytes_digest(path)
     return value
+
+
+def file_digest(path):
+    """``'sha256:...'`` of a file's or folder's bytes (as
+    :func:`input_digest` takes an option's file), or None where there is
+    no such file or folder: what a command read beside the files its
+    options name (the acquisitions an index lists)."""
+    path = Path(path)
+    if path.is_file() or path.is_dir():
+        return "sha256:" + _bytes_digest(path)
+    return None
 
 
 def _bytes_digest(path):

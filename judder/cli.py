@@ -94,6 +94,7 @@ def build_parser(commands=None):
         p.set_defaults(handler=module.run, outputs=module.OUTPUTS,
                        flags=getattr(module, "FLAGS", None),
                        output_check=getattr(module, "check_outputs", None),
+                       read_too=getattr(module, "read_too", None),
                        amplitude=getattr(module, "AMPLITUDE", None))
     return parser
 

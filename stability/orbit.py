@@ -56,6 +56,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
+from infra.errors import JudderError
+
 from .friction import curve
 from .kinds import KINDS, classify
 
@@ -521,8 +523,18 @@ class _Balance:
         magnus = 0.5 * h * (A1 + A2) + (np.sqrt(3) / 12) * h ** 2 * (
             A2 @ A1 - A1 @ A2)
         phi = np.eye(2 * n)
-        for step in _batched_expm(magnus):
-            phi = step @ phi
+        with np.errstate(over="ignore", invalid="ignore"):
+            for step in _batched_expm(magnus):
+                phi = step @ phi
+        if not np.all(np.isfinite(phi)):
+            # a period so long that the variational equation's growth
+            # over it exceeds floating point: no multipliers to give
+            freq = self.base / (2 * np.pi)
+            raise JudderError(
+                f"the orbit's monodromy over one period ({period:.4g} s) "
+                f"overflows at `freq_hz` {freq:g} Hz, so its stability "
+                "cannot be computed; allowed: a higher `freq_hz` (a "
+                "shorter period)")
         rigid = _rigid_directions(model.stiffness, n)
         if rigid.shape[1]:
             q = scipy.linalg.null_space(rigid.T)

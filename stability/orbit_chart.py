@@ -173,8 +173,14 @@ class OrbitChart:
     drift_torque : ndarray, shape (nf, np)
         Mean torque the dither rectifies on the T-orbit, N m.
     judder : ndarray of bool, shape (nf, np)
+        False where the balance did not converge (no verdict there: see
+        ``converged``).
     mechanism : ndarray of int8, shape (nf, np)
         Index into :data:`infra.criteria.MECHANISMS`.
+    converged : ndarray of bool, shape (nf, np)
+        The harmonic balance converged: only there are ``kind``,
+        ``judder`` and ``mechanism`` a verdict (elsewhere ``kind`` is
+        ``''``).
     limit : float
         NVH limit, rad/s.
     min_growth : float
@@ -194,12 +200,23 @@ class OrbitChart:
     mechanism: np.ndarray
     limit: float
     min_growth: float
+    converged: np.ndarray = None
+
+    def _converged(self):
+        return (np.ones(self.judder.shape, dtype=bool)
+                if self.converged is None else self.converged)
 
     def counts(self):
-        """Points per mechanism, ``{name: count}`` (``none``: no
-        judder)."""
-        return {name: int(np.count_nonzero(self.mechanism == code))
+        """Converged points per mechanism, ``{name: count}`` (``none``:
+        no judder); the others are :meth:`not_converged`, no verdict."""
+        converged = self._converged()
+        return {name: int(np.count_nonzero(converged
+                                           & (self.mechanism == code)))
                 for code, name in enumerate(MECHANISMS)}
+
+    def not_converged(self):
+        """Points where the balance did not converge: no verdict."""
+        return int(np.count_nonzero(~self._converged()))
 
     def onsets(self):
         """Per frequency the lowest amplitude of the grid with judder, Pa
@@ -290,9 +307,14 @@ def orbit_chart(model, freq_hz, p_f, limit, min_growth,
         judder[i, j] = verdict.judder
         mechanism[i, j] = verdict.mechanism
     quasi = kind == "combination"
+    converged = np.zeros(shape, dtype=bool)
+    for key in found:
+        converged[key] = True
+    kind[~converged] = ""
     return OrbitChart(freq_hz=freq_hz, p_f=p_f, forced_amplitude=forced,
                       half_amplitude=half, settled_amplitude=settled,
                       growth_rate=growth, kind=kind.astype(str),
                       quasi_periodic=quasi, drift_torque=drift,
                       judder=judder, mechanism=mechanism,
-                      limit=float(limit), min_growth=float(min_growth))
+                      limit=float(limit), min_growth=float(min_growth),
+                      converged=converged)

@@ -248,12 +248,15 @@ def check_sensitivity(params, freq_hz, cases, workers):
                       _workers(workers, cases))
 
 
-def check_settings_time(settings, parameters):
-    """``check``: settings x (one point + the sensitivity parameters)."""
+def check_settings_time(settings, parameters, source=None):
+    """``check``: settings x (one point + the sensitivity parameters);
+    ``source``: the table the settings came from (named as what to
+    shorten), else the grid of ``freq_hz`` x ``p_f_bar``."""
     return check_time(
         settings * (CHECK_SETTING_S + parameters * CHECK_PARAMETER_S),
         f"{settings} settings x {parameters} sensitivity parameters",
-        "fewer `freq_hz` x `p_f_bar` settings, or `sensitivity` none")
+        ("fewer `freq_hz` x `p_f_bar` settings" if source is None else
+         f"fewer rows in {source}") + ", or `sensitivity` none")
 
 
 def check_threshold(mu_g, damping):
@@ -263,12 +266,14 @@ def check_threshold(mu_g, damping):
                       "fewer `mu_g` or `c_ext` values")
 
 
-def check_fit(points, fits, option):
+def check_fit(points, fits, option, starts=True):
     """``fit``: measured points x local fits (the starts, the bootstrap's
-    refits, the fits at the threshold's spread)."""
+    refits, the fits at the threshold's spread); ``starts`` False where
+    their number is no argument (the report fits from one start)."""
     return check_time(FIT_FIXED_S + points * fits * FIT_POINT_START_S,
                       f"{points} measured points x {fits} local fits",
-                      f"fewer points in {option}, or fewer `starts`")
+                      f"fewer points in {option}"
+                      + (", or fewer `starts`" if starts else ""))
 
 
 def check_orbit(frequencies, amplitudes):

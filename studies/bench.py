@@ -121,14 +121,20 @@ def bench_parameters(values):
     from fmu.store import model_description
     description = model_description(bench_fmu(values)[1])
     own = set(values.values) | set(DITHER_PARAMETERS)
-    return {v.name: BenchParameter(
-                v.name, _unit(v.unit),
-                -math.inf if v.min is None else float(v.min),
-                math.inf if v.max is None else float(v.max),
-                float(v.start), v.description or "")
-            for v in description.modelVariables
-            if v.causality == "parameter" and "." not in v.name
-            and v.name not in own}
+    parameters = {v.name: BenchParameter(
+                      v.name, _unit(v.unit),
+                      -math.inf if v.min is None else float(v.min),
+                      math.inf if v.max is None else float(v.max),
+                      float(v.start), v.description or "")
+                  for v in description.modelVariables
+                  if v.causality == "parameter" and "." not in v.name
+                  and v.name not in own}
+    # a time of the bench (the ramp's start, its duration) is no earlier
+    # than the run's start: t_engage = -1 s was run from -0.5 s
+    return {name: p if p.unit != "s" or p.low >= 0 else
+            BenchParameter(p.name, p.unit, 0.0, p.high, p.default,
+                           p.description)
+            for name, p in parameters.items()}
 
 
 def refuse_bench_of_class(values, names):
@@ -154,7 +160,7 @@ def check_bench(values, bench):
     parameters = bench_parameters(values) if bench else {}
     for name, value in bench.items():
         if name not in parameters:
-            raise JudderError(f"bench parameter {name!r} is not allowed; "
+            raise JudderError(f"`bench` parameter {name!r} is not allowed; "
                               f"allowed: {', '.join(parameters)}")
         parameter = parameters[name]
         try:
@@ -162,7 +168,7 @@ def check_bench(values, bench):
         except (TypeError, ValueError):
             number = math.nan
         if not parameter.low <= number <= parameter.high:
-            raise JudderError(f"bench parameter {name} {value!r} "
+            raise JudderError(f"`bench` parameter {name} {value!r} "
                               f"{parameter.unit} is not allowed; allowed: "
                               f"{parameter.allowed()}")
         bench[name] = number

@@ -18,7 +18,7 @@ from infra.errors import JudderError
 from infra.files import decode_text
 from infra.units import PA_PER_BAR
 
-__all__ = ["read_input", "load_parameters", "read_boundary_csv",
+__all__ = ["read_input", "check_input", "read_period", "load_parameters", "read_boundary_csv",
            "read_boundary_table", "read_boundary", "read_boundary_tested",
            "boundary_p_max", "read_boundary_min_growth",
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
@@ -30,18 +30,108 @@ __all__ = ["read_input", "load_parameters", "read_boundary_csv",
 MAX_INPUT_BYTES = 64 * 2**20
 
 
-def read_input(path, option):
-    """Text of a file the user named, or JudderError naming ``option``."""
+#: The arguments that name a small text file of the user's (a parameter
+#: set, a boundary, a table, ranges, a measured period): each is a
+#: regular file of at most :data:`MAX_INPUT_BYTES`, checked by its size
+#: and type (:func:`check_input`) before anything reads or hashes it.
+TEXT_INPUTS = ("param_file", "boundary", "table", "ranges", "also",
+               "files")
+
+
+def check_input(path, option):
+    """Refuse, from its size and type alone, a path that is no regular
+    file of at most :data:`MAX_INPUT_BYTES` (a folder, a device, a file
+    of 16 GB), naming ``option``; nothing of it is read."""
     try:
         info = Path(path).stat()
-        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INPUT_BYTES:
-            raise JudderError(f"{option} {path}: allowed: a regular file of "
-                              f"at most {MAX_INPUT_BYTES // 2**20} MiB")
+    except OSError as exc:
+        raise JudderError(f"{option} {path}: cannot read it "
+                          f"({exc.strerror})") from None
+    if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INPUT_BYTES:
+        what = ("a folder" if stat.S_ISDIR(info.st_mode) else
+                f"{info.st_size / 2**20:.0f} MiB"
+                if stat.S_ISREG(info.st_mode) else "not a regular file")
+        raise JudderError(f"{option} {path} is {what}; allowed: a regular "
+                          f"file of at most {MAX_INPUT_BYTES // 2**20} MiB")
+
+
+def read_input(path, option):
+    """Text of a file the user named, or JudderError naming ``option``
+    (:func:`check_input` first)."""
+    check_input(path, option)
+    try:
         data = Path(path).read_bytes()
     except OSError as exc:
         raise JudderError(f"{option} {path}: cannot read it "
                           f"({exc.strerror})") from None
     return decode_text(data, f"{option} {path}")
+
+
+def read_period(path, option="`period`", decimal=None):
+    """One measured period of pressure: the last column of each row,
+    equally spaced (``--dither-wave period:FILE.csv``).
+
+    Read as the project's other small tables are
+    (:mod:`pysim.bench_data.tables`): ``#`` starts a comment, the fields
+    split by the separator a first line ``sep=;`` declares, else ``;`` or
+    tab where the first line has one, else ``,``; the numbers read as
+    written, the decimal separator decided from every cell or given as
+    ``decimal``. A first row whose last cell is no number names the
+    columns. Every row has the first row's number of cells, and a
+    ``,``-separated file cannot hold decimal commas (``1,49759`` would be
+    two cells): both refused, naming the line.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        The samples as written (any unit).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "p.csv")
+    >>> rows = ["t_s;p_bar", "0;1,5", "0,0025;1", "0,005;0,5", "0,0075;1"]
+    >>> with open(path, "w") as f:
+    ...     _ = f.write(chr(10).join(rows))
+    >>> read_period(path).tolist()
+    [1.5, 1.0, 0.5, 1.0]
+    """
+    from pysim.bench_data.tables import is_number, numbers, split_rows
+    source = f"{option}{path}" if option.endswith(":") else \
+        f"{option} {path}"
+    lines = [(number, line.split("#")[0]) for number, line in
+             enumerate(read_input(path, option).splitlines(), start=1)]
+    lines = [(number, line) for number, line in lines if line.strip()]
+    rows = split_rows(lines, source)
+    if rows and not is_number(rows[0][1][-1]):
+        width, rows = len(rows[0][1]), rows[1:]
+    else:
+        width = len(rows[0][1]) if rows else 0
+    written = dict(lines)
+    for number, cells in rows:
+        if len(cells) != width:
+            raise JudderError(f"{source}, line {number}: "
+                              f"{written[number].strip()!r} has "
+                              f"{len(cells)} cells; allowed: {width}, as "
+                              "the first line (with decimal commas, "
+                              "fields separated by ';' or tab)")
+    comma_separated = bool(rows) and all(
+        "," not in cell for _, cells in rows for cell in cells) and any(
+        "," in written[number] for number, _ in rows)
+    if comma_separated and decimal == ",":
+        raise JudderError(f"{source}: its fields are separated by ',', so "
+                          "it cannot hold decimal commas; allowed: `decimal` "
+                          "'.', or fields separated by ';' or tab")
+    values = numbers(source, {"pressure": [(number, cells[-1])
+                                           for number, cells in rows]},
+                     decimal)["pressure"]
+    bad = [i for i, v in enumerate(values) if not math.isfinite(v)]
+    if bad:
+        raise JudderError(f"{source}: sample {bad[0] + 1} of {len(values)} "
+                          f"is {rows[bad[0]][1][-1]} (line "
+                          f"{rows[bad[0]][0]}); allowed: finite pressures, "
+                          "at least 4")
+    return np.asarray(values, dtype=float)
 
 
 def load_parameters(preset=None, model=None, param_file=None):
@@ -172,11 +262,13 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     """
     from pysim.bench.tables import numbers, split_rows
     names = ("freq_hz", "p_f_bar") + BOUNDARY_TESTED_COLUMNS
-    stated = {}
+    stated, said = {}, {}
     for number, line in enumerate(text.splitlines(), start=1):
         match = _STATED.match(line.strip())
         if match:
             stated.setdefault(match.group(1), (number, match.group(2)))
+            said.setdefault(match.group(1), []).append(
+                (number, match.group(2)))
     # not stripped: Excel's "sep=" line may declare a tab
     lines = [(number, line.split("#")[0])
              for number, line in enumerate(text.splitlines(), start=1)]
@@ -204,10 +296,25 @@ def read_boundary_table(text, source="boundary file", decimal=None):
     values = numbers(source, {**{name: [(number, cells[columns[name]])
                                         for number, cells in rows]
                                  for name in read},
-                              **{name: [cell] for name, cell in
-                                 stated.items()}}, decimal)
-    for name, (number, text) in stated.items():
-        _check_stated(source, number, name, text, float(values[name][0]))
+                              **{name: cells for name, cells in
+                                 said.items()}}, decimal)
+    for name, cells in said.items():
+        # each threshold once: a NaN is no threshold, and two lines that
+        # differ leave the file's own verdict unknown
+        for (number, text), read in zip(cells, values[name]):
+            if not math.isfinite(float(read)):
+                raise JudderError(f"{source}, line {number}: {name} "
+                                  f"{text!r} is not allowed; allowed: a "
+                                  "finite number")
+            _check_stated(source, number, name, text, float(read))
+        differ = [(number, text) for (number, text), read in
+                  zip(cells, values[name])
+                  if float(read) != float(values[name][0])]
+        if differ:
+            raise JudderError(
+                f"{source}: {name} is {cells[0][1]} on line {cells[0][0]} "
+                f"and {differ[0][1]} on line {differ[0][0]}; allowed: one "
+                f"{name} comment (or the same number on each)")
     table = {name: [] for name in names}
     for index, (number, cells) in enumerate(rows):
         line = written[number]

@@ -128,16 +128,21 @@ def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
     forced = verdict.forced * RPM_PER_RAD_S
     half = verdict.half * RPM_PER_RAD_S
     settled = verdict.settled * RPM_PER_RAD_S
-    judder = verdict.judder
+    # where the balance did not converge its numbers are an iterate's:
+    # no kind, no verdict, no mechanism (``converged`` False)
+    converged = bool(found.success)
+    judder = bool(verdict.judder) if converged else None
     mechanism = None if not judder else MECHANISMS[verdict.mechanism]
     lead = found.multipliers[0] if len(found.multipliers) else 1.0
     return {"freq_hz": found.freq_hz, "p_f_bar": found.p_f / PA_PER_BAR,
-            "success": found.success, "message": found.message,
+            "success": found.success, "converged": converged,
+            "message": found.message,
             "amplitude_at_dither_rpm": forced,
             "upstream_swing_rpm": found.upstream_amplitude * RPM_PER_RAD_S,
             "slip_range_rad_s": list(found.slip_range),
             "drift_torque_nm": found.drift_torque,
-            "kind": found.kind, "growth_per_s": found.growth_rate,
+            "kind": found.kind if converged else None,
+            "growth_per_s": found.growth_rate,
             "leading_multiplier": {"re": float(np.real(lead)),
                                    "im": float(np.imag(lead)),
                                    "abs": float(abs(lead))},
@@ -146,8 +151,8 @@ def orbit_row(found, doubled, limit_rpm, min_growth, quasi=None):
                 "growth_per_s": doubled.growth_rate,
                 "stable": doubled.stable},
             "quasi_periodic": quasi,
-            "settled_rpm": settled, "judder": bool(judder),
-            "verdict": run_verdict(bool(judder)),
+            "settled_rpm": settled, "judder": judder,
+            "verdict": run_verdict(judder),
             "mechanism": mechanism, "judder_limit_rpm": limit_rpm}
 
 
@@ -204,6 +209,8 @@ class OrbitResult:
             "p_f_bar": [float(c.p_f[0] / PA_PER_BAR),
                         float(c.p_f[-1] / PA_PER_BAR), len(c.p_f)],
             "counts": c.counts(),
+            # no verdict where the balance did not converge
+            "not_converged": c.not_converged(),
             "boundary": [[float(f), None if not np.isfinite(p) else
                           float(p)] for f, p in zip(c.freq_hz, onsets)]})
         return out
@@ -216,8 +223,11 @@ class OrbitResult:
                      f"{self.seconds:.1f} s: "
                      + ", ".join(f"{counts[m]} {m}" for m in
                                  ("forced", "parametric", "both"))
-                     + f" judder, {counts['none']} without (limit "
-                       f"{self.limit_rpm:g} rpm, growth "
+                     + f" judder, {counts['none']} without"
+                     + ("" if not self.chart.not_converged() else
+                        f", {self.chart.not_converged()} without a "
+                        "verdict (the balance did not converge)")
+                     + f" (limit {self.limit_rpm:g} rpm, growth "
                        f"{self.min_growth:g} 1/s)"]
             onsets = self.chart.onsets() / PA_PER_BAR
             runs = _judder_ranges(self.chart.freq_hz, onsets)
@@ -226,13 +236,15 @@ class OrbitResult:
             return "\n".join(lines)
         lines = []
         for row in self.rows():
-            verdict = (NO_JUDDER.lower() if not row["judder"] else
+            verdict = ("no verdict" if row["judder"] is None else
+                       NO_JUDDER.lower() if not row["judder"] else
                        f"judder ({row['mechanism']})")
             double = row["double_period"]
             lines.append(
                 f"f = {row['freq_hz']:g} Hz, p_f = {row['p_f_bar']:.4g} "
                 f"bar: T-orbit {row['amplitude_at_dither_rpm']:.3g} rpm at "
-                f"f, {row['kind']} ({row['growth_per_s']:+.3g} 1/s)"
+                f"f, {row['kind'] or 'not converged'} "
+                f"({row['growth_per_s']:+.3g} 1/s)"
                 + ("" if double is None else
                    f"; 2T orbit {double['amplitude_at_half_rpm']:.3g} rpm "
                    f"at f/2 ({double['growth_per_s']:+.3g} 1/s)")
@@ -253,7 +265,8 @@ class OrbitResult:
         (``freq_hz`` (nf,), ``p_f_bar`` (np,), ``forced_rpm``,
         ``half_rpm``, ``settled_rpm``, ``growth_rate_per_s``, ``kind``,
         ``quasi_periodic``, ``drift_torque_nm``, ``judder``,
-        ``mechanism`` (index into ``mechanism_names``), all (nf, np);
+        ``mechanism`` (index into ``mechanism_names``), ``converged``
+        (False: the balance did not converge, no verdict), all (nf, np);
         ``judder_limit_rpm``, ``min_growth_per_s``)."""
         from pathlib import Path
         if Path(path).suffix.lower() == ".npz":
@@ -266,15 +279,15 @@ class OrbitResult:
                 "growth_rate_per_s": c.growth_rate, "kind": c.kind,
                 "quasi_periodic": c.quasi_periodic,
                 "drift_torque_nm": c.drift_torque, "judder": c.judder,
-                "mechanism": c.mechanism,
+                "mechanism": c.mechanism, "converged": c._converged(),
                 "mechanism_names": np.array(MECHANISMS),
                 "judder_limit_rpm": np.array(self.limit_rpm),
                 "min_growth_per_s": np.array(self.min_growth)})
             return
         rows = self.rows() if self.chart is None else self._chart_rows()
         columns = ["freq_hz", "p_f_bar", "amplitude_at_dither_rpm",
-                   "settled_rpm", "kind", "growth_per_s", "judder",
-                   "mechanism", "drift_torque_nm"]
+                   "settled_rpm", "kind", "growth_per_s", "converged",
+                   "judder", "mechanism", "drift_torque_nm"]
         write_text(path, ",".join(columns) + "\n" + "".join(
             ",".join("" if row.get(c) is None else f"{row[c]}"
                      for c in columns) + "\n" for row in rows))
@@ -288,14 +301,20 @@ class OrbitResult:
     def _chart_rows(self):
         from pysim.bench.verdict import run_verdict
         c = self.chart
+        converged = c._converged()
+
+        def verdict(i, j, value):
+            return value if converged[i, j] else None
         return [{"freq_hz": f, "p_f_bar": p / PA_PER_BAR,
                  "amplitude_at_dither_rpm":
                      c.forced_amplitude[i, j] * RPM_PER_RAD_S,
                  "settled_rpm": c.settled_amplitude[i, j] * RPM_PER_RAD_S,
-                 "kind": c.kind[i, j], "growth_per_s": c.growth_rate[i, j],
-                 "judder": bool(c.judder[i, j]),
-                 "verdict": run_verdict(bool(c.judder[i, j])),
-                 "mechanism": MECHANISMS[c.mechanism[i, j]],
+                 "kind": verdict(i, j, c.kind[i, j]),
+                 "growth_per_s": c.growth_rate[i, j],
+                 "converged": bool(converged[i, j]),
+                 "judder": verdict(i, j, bool(c.judder[i, j])),
+                 "verdict": verdict(i, j, run_verdict(bool(c.judder[i, j]))),
+                 "mechanism": verdict(i, j, MECHANISMS[c.mechanism[i, j]]),
                  "drift_torque_nm": c.drift_torque[i, j]}
                 for i, f in enumerate(c.freq_hz)
                 for j, p in enumerate(c.p_f)]

@@ -171,6 +171,13 @@ def report(parameters=None, changes=None, description=None,
              if sensitivity_names or n in values.specs]
     # bench data first: a bad file is refused before any work
     bench = _bench_data(chart, boundary, group, decimal)
+    if bench is not None:
+        # the fit's time, estimated as judder fit estimates it (one start,
+        # three fits with a threshold spread): refused above the limit,
+        # announced before the work
+        from ._preflight import check_fit
+        check_fit(len(bench[0]), 3 if bench[5] > 0 else 1,
+                  "`chart`" if chart else "`boundary`", starts=False)
     for option, given in (("`sensitivity_names`", names),
                           ("`fit_names`", fit_names if bench else ())):
         unknown = [n for n in given if n not in values.specs]

@@ -3,6 +3,7 @@ dither (Fig. 7, 8), run through the FMU.
 """
 
 from dataclasses import dataclass, field
+import math
 
 import numpy as np
 
@@ -154,6 +155,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         raise JudderError(f"duration {duration:g} s ends before the "
                           f"engagement (its pressure ramp ends at "
                           f"{ramp_end:g} s); allowed: > {ramp_end:g} s")
+    if duration is None and ramp_end >= _stop_time(fmu):
+        raise JudderError(
+            f"`bench` t_engage + t_ramp = {ramp_end:g} s ends after the "
+            f"run ({_stop_time(fmu):g} s, the model's StopTime); allowed: "
+            f"t_engage + t_ramp < {_stop_time(fmu):g} s, or a `duration` "
+            f"> {ramp_end:g} s")
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     settings = ([("with dither" if p_f_bar > 0 else "without dither",
                   freqs[0], p_f_bar * PA_PER_BAR)]
@@ -196,11 +203,21 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                               ("class", "the class's own"))
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,
                             model_class=model_class, start=ramp_end,
+                            asked=len(freqs),
                             run_kind=run_kind, friction_law=friction_law,
                             # (the lock counters are counts: unit 1)
                             signals={**SIGNALS, **dict.fromkeys(
                                 LOCK_VARIABLES if full else (), "1")},
                             slipping=slipping if full else None)
+
+
+def _stop_time(fmu):
+    """The run's length when no ``duration`` is given: the model's
+    StopTime, s (inf where it declares none)."""
+    from fmu.store import model_description
+    experiment = model_description(fmu).defaultExperiment
+    stop = None if experiment is None else experiment.stopTime
+    return math.inf if stop is None else float(stop)
 
 
 def _lock_fields(run, lock, ramp_end):
@@ -267,6 +284,9 @@ class SimulationResult:
     slipping : list of Run, optional
         Of a full engagement, each run before its lock-up (what its
         verdict and spectra read).
+    asked : int
+        How many of ``runs`` are the dither settings asked for (the
+        first ones; the comparison follows).
     """
 
     runs: list
@@ -278,6 +298,7 @@ class SimulationResult:
     friction_law: str = CURVE_LAW
     signals: dict = field(default_factory=dict)
     slipping: list = None
+    asked: int = 1
 
     def as_dict(self):
         return {"model": self.model_class.rsplit(".", 1)[-1],
@@ -286,10 +307,26 @@ class SimulationResult:
                 "fmu": str(self.fmu), "runs": self.summaries}
 
     @keeps_foreign_files
-    def save(self, path):
-        """Time histories of the first run as CSV or MF4 (by suffix)."""
+    def save(self, path, run=None):
+        """Time histories of one run as CSV or MF4 (by suffix): ``run``
+        (an index of ``runs``), or the only setting asked for (the
+        comparison is not written); several settings without ``run``
+        are refused rather than one written for all."""
         from pysim.simulation.export import write_run
-        run = self.runs[0][1]
+        if run is None:
+            if self.asked > 1:
+                raise JudderError(
+                    f"{path} holds the time histories of one run; "
+                    f"`freq_hz` gave {self.asked} runs ("
+                    + ", ".join(f"{r.freq_hz:g}" for _, r in
+                                self.runs[:self.asked])
+                    + " Hz); allowed: one `freq_hz`, or `run` naming "
+                      "which to write")
+            run = 0
+        if not 0 <= run < len(self.runs):
+            raise JudderError(f"`run` {run!r} is not a run; allowed: 0 to "
+                              f"{len(self.runs) - 1}")
+        run = self.runs[run][1]
         write_run(path, run.time, run.signals, self.signals,
                   {"model": self.model_class, "run_kind": self.run_kind,
                    "friction_law": self.friction_law,

@@ -828,3 +828,26 @@ def test_msl_clutch_with_its_table_passes_the_source_check(tmp_path, model):
     started = time.monotonic()
     refuse_unsupported(path, model, roots, hybrid=True)
     assert time.monotonic() - started < 10
+
+
+@pytest.mark.parametrize("files, name, chain", [
+    ({"Recursive.mo": "model Recursive extends Recursive; end Recursive;\n"},
+     "Recursive", "Recursive extends Recursive"),
+    ({"A.mo": "model A extends B; end A;\n",
+      "B.mo": "model B extends A; end B;\n"}, "A", "A extends B extends A"),
+])
+def test_a_class_that_extends_itself_is_refused_in_words(
+        tmp_path, capsys, files, name, chain):
+    # judder ... --modelica Recursive ended in an internal RecursionError,
+    # exit 1 (issue 44, item 12); python -m fmu already refused it
+    from judder.cli import main
+    for file, text in files.items():
+        (tmp_path / file).write_text(text)
+    for command in (["eig"], ["simulate", "--freq", "100", "--pf", "0.1"]):
+        status = main(command + ["--modelica", name, "--library",
+                                 str(tmp_path)])
+        err = capsys.readouterr().err
+        assert status == 2, err
+        assert "internal error" not in err
+        for fact in (f"{name}.mo:1", "extends itself", chain, "allowed"):
+            assert fact in err

@@ -794,3 +794,45 @@ def test_a_chart_fit_matches_the_onsets_to_the_kind_the_chart_saw(
     for name, value in (("mu_g", 0.0242), ("k24", 31372.0)):
         low, high = data["fitted"][name]["ci95"]
         assert low < value < high, (name, low, high)
+
+
+BOUNDARY = "freq_hz,p_f_bar,tried_bar\n100,0.3,0.6\n120,0.42,0.6\n"
+
+
+@pytest.mark.parametrize("command", [
+    ["fit", "--fit", "mu_g", "--starts", "1", "--boundary"],
+    ["check", "--table"], ["report", "--boundary"]])
+@pytest.mark.parametrize("comments, facts", [
+    # a NaN threshold ended each command in StopIteration, exit 1
+    ("# min_growth_per_s: nan\n", ["line 1", "min_growth_per_s", "'nan'",
+                                   "finite"]),
+    # two thresholds that differ: the first was taken without a word
+    ("# min_growth_per_s: 1\n# min_growth_per_s: 2\n",
+     ["min_growth_per_s", "line 1", "line 2", "1", "2"]),
+    ("# judder_limit_rpm: 30\n" + BOUNDARY + "# judder_limit_rpm: 40\n",
+     ["judder_limit_rpm", "line 1", "line 5", "30", "40"])])
+def test_a_threshold_comment_is_finite_and_said_once(tmp_path, capsys,
+                                                     command, comments,
+                                                     facts):
+    # issue 44, item 8: refused before any work, naming the line(s)
+    from judder.cli import main
+    path = tmp_path / "b.csv"
+    path.write_text(comments if BOUNDARY in comments else
+                    comments + BOUNDARY)
+    argv = command + [str(path)]
+    if command[0] == "report":
+        argv += ["--out", str(tmp_path / "r.html")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "internal error" not in err
+    for fact in facts + [str(path)]:
+        assert fact in err
+    assert not (tmp_path / "r.html").exists()
+
+
+def test_the_same_threshold_said_twice_is_one(tmp_path):
+    from studies.inputs import read_boundary_min_growth
+    path = tmp_path / "b.csv"
+    path.write_text("# min_growth_per_s: 0.5\n" + BOUNDARY
+                    + "# min_growth_per_s: 0.50\n")
+    assert read_boundary_min_growth(path) == 0.5

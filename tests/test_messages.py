@@ -2,6 +2,7 @@
 value and what is allowed, in one line on stderr."""
 
 from pathlib import Path
+import json
 import subprocess
 import sys
 import zipfile
@@ -67,20 +68,53 @@ def test_a_users_file_as_checkpoint_is_no_pickle_advice(capsys, tmp_path):
     assert "pickle" not in err and mine.read_bytes() == b"my own data\n"
 
 
-@pytest.mark.parametrize("rows, words", [
-    # the sample, the value, what is allowed
-    ("p\n1\nnan\n3\n2\n", ("sample 2 of 4", "nan", "allowed", "finite",
-                            "at least 4")),
-    # how many are needed, how many were given
-    ("p\n1\n3\n", ("at least 4", "2")),
+@pytest.mark.parametrize("rows, facts", [
+    ("p\n1\nnan\n3\n2\n", ["sample 2 of 4 is nan", "line 3",
+                            "allowed: finite pressures, at least 4"]),
+    ("p\n1\n3\n", ["at least 4 finite samples", "got 2"]),
+    # issue 44, item 9: decimal commas were cut at the comma (1,49759 read
+    # as 49759, exit 0): the cells of a ';' file are read with them, and a
+    # file that cannot hold them is refused naming the line or the option
+    ("p\n1,5\n1\n0,5\n1\n", ["line 2", "'1,5' has 2 cells",
+                             "allowed: 1", "';' or tab"]),
+    ("t;p\n0;1,5\n1;1\n2;0.5\n3;1\n", ["'0.5'", "line 4", "'1,5'"]),
 ])
-def test_a_bad_period_file_is_named(capsys, tmp_path, rows, words):
+def test_a_bad_period_file_is_named(capsys, tmp_path, rows, facts):
     period = tmp_path / "period.csv"
     period.write_text(rows)
     status, out, err = run(["floquet", "--freq", "100", "--pf", "0.2",
                             "--dither-wave", f"period:{period}"], capsys)
     assert status == 2
-    names(one_error(err), f"--dither-wave period:{period}", *words)
+    names(one_error(err), f"--dither-wave period:{period}", *facts)
+
+
+def test_a_period_of_decimal_commas_is_the_period_of_decimal_points(
+        capsys, tmp_path):
+    # issue 44, item 9: the same samples written with decimal commas (';'
+    # separated, as a German Excel writes them) give the same multipliers
+    import math
+    samples = [1 + 0.5 * math.cos(2 * math.pi * i / 16)
+               + 0.1 * math.cos(4 * math.pi * i / 16) for i in range(16)]
+    point = tmp_path / "point.csv"
+    point.write_text("t_s,p_bar\n" + "".join(
+        f"{i / 1600:.6f},{p:.5f}\n" for i, p in enumerate(samples)))
+    comma = tmp_path / "comma.csv"
+    comma.write_text(point.read_text().replace(",", ";").replace(".", ","))
+    outs = []
+    for period, decimal in ((point, []), (comma, []), (comma,
+                                                       ["--decimal", ","])):
+        status, out, err = run(["floquet", "--freq", "100", "--pf", "0.2",
+                                "--json", "--dither-wave",
+                                f"period:{period}"] + decimal, capsys)
+        assert status == 0, err
+        outs.append(json.loads(out)["growth_rate_per_s"])
+    assert outs[1] == outs[0] and outs[2] == outs[0]
+    status, out, err = run(["floquet", "--freq", "100", "--pf", "0.2",
+                            "--dither-wave", f"period:{point}",
+                            "--decimal", ","], capsys)
+    assert status == 2
+    for fact in ("--decimal", "','", "';' or tab"):
+        assert fact in err
 
 
 def test_a_schema_error_of_an_fmu_is_given_whole(capsys, tmp_path):

@@ -199,3 +199,89 @@ def test_the_limit_cuts_the_motor_torque_as_the_fmu_does(bench):
     orbit = periodic_orbit(model, 16.5, 0.3 * BAR)
     assert orbit.drive_saturated and orbit.mean_shift < -0.1
     assert not periodic_orbit(model, 60.0, 0.3 * BAR).drive_saturated
+
+
+def test_a_point_that_did_not_converge_has_no_verdict(tmp_path):
+    # orbit --freq 103 --pf 2:9:4: the balance at 6.67 bar does not
+    # converge (an iterate of 8 124 rpm) and was a normal CSV row, stable,
+    # judder True (issue 44, item 6): marked, with no kind and no verdict
+    import csv
+    import json
+    import subprocess
+    import sys
+    pytest.importorskip("fmpy")
+    out = tmp_path / "o.csv"
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "orbit", "--freq", "103", "--pf",
+         "2:9:4", "--out", str(out), "--json"],
+        capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    rows = json.loads(proc.stdout)["orbits"]
+    lost = [r for r in rows if not r["success"]]
+    assert lost, "the grid no longer holds a point that does not converge"
+    for row in lost:
+        assert row["converged"] is False
+        assert row["judder"] is None and row["verdict"] is None
+        assert row["kind"] is None and row["mechanism"] is None
+    table = list(csv.DictReader(line for line in out.read_text()
+                                .splitlines() if not line.startswith("#")))
+    assert [r["converged"] for r in table] == [
+        str(r["success"]) for r in rows]
+    for row in table:
+        if row["converged"] == "False":
+            assert row["judder"] == "" and row["kind"] == ""
+
+
+def test_a_chart_counts_no_verdict_where_the_balance_did_not_converge(
+        tmp_path):
+    # orbit --freq 100:106:4 --pf 2:8:4 counted its non-converged points
+    # as "none" (no judder) in the JSON and the NPZ (issue 44, item 6)
+    from studies.orbit import OrbitResult
+    from stability.orbit_chart import OrbitChart
+    shape = (2, 2)
+    converged = np.array([[True, True], [True, False]])
+    chart = OrbitChart(
+        freq_hz=np.array([100.0, 102.0]), p_f=np.array([2.0, 4.0]) * BAR,
+        forced_amplitude=np.array([[50.0, 60.0], [1.0, np.nan]]),
+        half_amplitude=np.zeros(shape),
+        settled_amplitude=np.array([[50.0, 60.0], [1.0, np.nan]]),
+        growth_rate=np.full(shape, -0.1),
+        kind=np.array([["stable", "stable"], ["stable", ""]]),
+        quasi_periodic=np.zeros(shape, dtype=bool),
+        drift_torque=np.zeros(shape),
+        judder=np.array([[True, True], [False, False]]),
+        mechanism=np.array([[1, 1], [0, 0]], dtype=np.int8),
+        limit=30 / RPM_PER_RAD_S, min_growth=1.0, converged=converged)
+    assert chart.counts() == {"none": 1, "forced": 2, "parametric": 0,
+                              "both": 0}
+    assert chart.not_converged() == 1
+    result = OrbitResult(params=get_preset("paper-4dof"), mode="chart",
+                         orbits=[], doubled=[], quasi=[], folds=[],
+                         chart=chart, limit_rpm=30.0, min_growth=1.0,
+                         seconds=1.0, model=type("M", (), {"slip": 84.7}))
+    assert result.as_dict()["not_converged"] == 1
+    assert "1 without a verdict" in result.text()
+    result.save(tmp_path / "c.npz")
+    with np.load(tmp_path / "c.npz") as npz:
+        assert_allclose(npz["converged"], converged)
+    result.save(tmp_path / "c.csv")
+    lines = (tmp_path / "c.csv").read_text().splitlines()
+    last = dict(zip(lines[0].split(","), lines[4].split(",")))
+    assert last["converged"] == "False"
+    assert last["judder"] == last["mechanism"] == last["kind"] == ""
+
+
+def test_a_period_too_long_for_the_monodromy_is_refused_in_words():
+    # orbit --freq 0.001 (the lower bound of --freq): the monodromy over
+    # 1000 s overflows; it ended in an internal LinAlgError, exit 1
+    # (issue 44, item 7)
+    import subprocess
+    import sys
+    pytest.importorskip("fmpy")
+    proc = subprocess.run(
+        [sys.executable, "-m", "judder", "orbit", "--freq", "0.001", "--pf",
+         "0.1"], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 2, proc.stderr
+    assert "internal error" not in proc.stderr
+    assert "--freq" in proc.stderr and "0.001" in proc.stderr
+    assert "allowed" in proc.stderr

@@ -102,6 +102,31 @@ def test_input_digest_hashes_folders_by_relative_names(tmp_path):
     assert a != input_digest("chart", {"sources": [str(tmp_path / "b")]})
 
 
+def test_the_digest_of_an_index_covers_every_acquisition_it_lists(
+        tmp_path, capsys):
+    # chart --index hashed the index alone: two data sets that differ in
+    # one acquisition shared one input_sha256 (issue 44, item 11)
+    from pathlib import Path
+    bench = Path(__file__).resolve().parents[1] / "examples" / "bench"
+    copies = [tmp_path / name for name in ("a", "b", "c")]
+    for copy in copies:
+        shutil.copytree(bench, copy)
+    run = copies[1] / "run03.csv"
+    lines = run.read_text().splitlines()
+    time, speed, *rest = lines[4].split(",")
+    lines[4] = ",".join([time, f"{float(speed) + 0.5:.6f}", *rest])
+    run.write_text("\n".join(lines) + "\n")
+
+    def digest(folder):
+        return _json(capsys, ["chart", "--index", str(folder / "runs.csv"),
+                              "--channel", "upstream_speed=EngSpd_up:rpm",
+                              "--channel", "pressure=PressEVEN:bar"]
+                     )["provenance"]["input_sha256"]
+    same = digest(copies[0])
+    assert digest(copies[2]) == same        # equal data, another place
+    assert digest(copies[1]) != same        # one acquisition differs
+
+
 def test_boundary_csv_is_read_back_and_replaced(tmp_path, capsys):
     out = tmp_path / "b.csv"
     _json(capsys, ["tongues", "--freq", "95:110:6", "--out", str(out)])

@@ -10,6 +10,7 @@ import sys
 import numpy as np
 import pytest
 
+from infra.errors import JudderError
 from sources import get_preset
 from pysim.simulation.campaigns import Campaign, pickup_samples, run_campaign
 from pysim.bench.signals import (amplitude_spectrum, dither_envelope,
@@ -177,11 +178,12 @@ def test_simulate_full_engagement_to_lock_up(tmp_path):
     # (measured 61), and the last holds at 3.27 s: forced judder of 183
     # rpm while slipping (the straight line of Eq. 5 gives 1094 rpm and
     # never locks, test_simulate_full_linear_law_names_its_law)
+    # (one --out holds one run: the 60 Hz run, 102.9 Hz as its comparison)
     from pysim.bench._csv import read
     out = tmp_path / "run.csv"
-    proc = _judder("simulate", "--engagement", "full", "--freq", "60,102.9",
-                   "--pf", "0.3", "--duration", "3.5", "--out", str(out),
-                   "--json")
+    proc = _judder("simulate", "--engagement", "full", "--freq", "60",
+                   "--compare", "102.9", "--pf", "0.3", "--duration", "3.5",
+                   "--out", str(out), "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert data["model"] == "TestBenchCurveLockUp"
@@ -283,6 +285,18 @@ def test_simulate_names_the_held_slip_bench_run(tmp_path):
      [".csv", ".mf4"]),
     (["simulate", "--freq", "100", "--pf", "0.1", "--model", "3dof"],
      ["4-DOF"]),
+    # the bench's times have allowed ranges: t_engage = -1 was run from
+    # -0.5 s (issue 44, item 12); a ramp that ends after the run is refused
+    (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "t_engage=-1"],
+     ["--bench", "t_engage", "-1", "at least 0 s"]),
+    (["orbit", "--freq", "100", "--pf", "0.1", "--bench", "t_ramp=-0.1"],
+     ["--bench", "t_ramp", "-0.1", "at least 0 s"]),
+    (["simulate", "--freq", "100", "--pf", "0.1", "--bench", "t_engage=5"],
+     ["--bench", "t_engage + t_ramp", "5.5 s", "4 s", "--duration"]),
+    # one --out file for two runs kept the first only, silently (issue 44,
+    # item 5): refused before any run, naming both options and the runs
+    (["simulate", "--freq", "19,105", "--pf", "0.3", "--out", "e.csv"],
+     ["--out", "--freq", "19", "105"]),
     (["campaign", "--out", "x", "--temperatures", "99-100"], ["99-100"]),
 ])
 def test_time_domain_commands_refuse_bad_input(args, words):
@@ -291,6 +305,30 @@ def test_time_domain_commands_refuse_bad_input(args, words):
     assert "Traceback" not in proc.stderr
     for word in words:
         assert word in proc.stderr
+
+
+def test_a_simulation_of_several_runs_writes_none_without_naming_one(
+        tmp_path):
+    # SimulationResult.save of two settings asked for wrote the first one
+    # as if it were all (issue 44, item 5): refused, or the run named
+    from types import SimpleNamespace
+
+    from studies.simulate import SimulationResult
+    time = np.linspace(0.0, 1.0, 5)
+    runs = [(f"dither at {f} Hz",
+             SimpleNamespace(freq_hz=f, p_f=3e4, time=time,
+                             signals={"slip": time * f}, start_values={}))
+            for f in (19.0, 105.0)]
+    result = SimulationResult(runs=runs, summaries=[{}, {}], fmu="x.fmu",
+                              model_class="Judder.Examples.Bench", start=0.0,
+                              signals={"slip": "rad/s"}, asked=2)
+    with pytest.raises(JudderError) as refused:
+        result.save(tmp_path / "both.csv")
+    for fact in ("`freq_hz`", "2 runs", "19", "105", "`run`"):
+        assert fact in str(refused.value)
+    assert not (tmp_path / "both.csv").exists()
+    result.save(tmp_path / "second.csv", run=1)
+    assert "105" in (tmp_path / "second.csv").read_text()
 
 
 def test_a_failed_run_is_recorded_and_the_campaign_goes_on(tmp_path,

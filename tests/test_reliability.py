@@ -749,3 +749,72 @@ def test_a_flat_measured_period_says_so(tmp_path, capsys):
                               "has no fundamental (its first harmonic is 0, "
                               "e.g. a constant); allowed: a period with a "
                               "fundamental")
+
+
+@pytest.mark.parametrize("make, argv, facts", [
+    # a folder as a parameter file: the digest walked all of /usr first,
+    # no answer in 60 s (issue 44, item 10)
+    (lambda tmp: tmp, ["eig", "--param-file"], ["--param-file", "folder",
+                                                "64 MiB"]),
+    (lambda tmp: tmp, ["check", "--table"], ["--table", "folder"]),
+    # a sparse 16 GB file: hashed in full before its size was checked
+    ("sparse", ["fit", "--fit", "mu_g", "--boundary"],
+     ["--boundary", "16384 MiB", "64 MiB"]),
+    ("sparse", ["report", "--out", "r.html", "--boundary"],
+     ["--boundary", "16384 MiB"]),
+    ("sparse", ["map", "--freq", "100:110:3", "--pf", "0.1:0.3:3",
+                "--dither-wave"], ["--dither-wave period:", "16384 MiB"]),
+])
+def test_an_input_is_checked_by_size_and_type_before_it_is_hashed(
+        tmp_path, capsys, monkeypatch, make, argv, facts):
+    import infra.provenance
+    from judder.cli import main
+
+    def hashed(path):
+        raise AssertionError(f"{path} hashed before it was checked")
+    monkeypatch.setattr(infra.provenance, "_bytes_digest", hashed)
+    monkeypatch.chdir(tmp_path)
+    if make == "sparse":
+        path = tmp_path / "huge.csv"
+        with open(path, "wb") as stream:
+            stream.truncate(16 * 2**30)
+    else:
+        path = make(tmp_path / "folder")
+        path.mkdir()
+    value = (f"period:{path}" if argv[-1] == "--dither-wave" else str(path))
+    started = time.perf_counter()
+    assert main(argv + [value]) == 2
+    assert time.perf_counter() - started < 30
+    err = capsys.readouterr().err
+    assert "internal error" not in err
+    for fact in facts + [str(path)]:
+        assert fact in err
+
+
+@pytest.mark.parametrize("argv, facts", [
+    # check --table and report --boundary of 1e5 rows ran for an hour
+    # (issue 44, item 12): estimated before any work, refused above the
+    # limit naming the file to shorten (not --freq x --pf, not --starts)
+    (["check", "--table"], ["3.58 h", "100000 settings", "fewer rows in "
+                            "--table", "JUDDER_MAX_HOURS"]),
+    (["report", "--out", "r.html", "--boundary"],
+     ["2.78 h", "100000 measured points", "fewer points in --boundary",
+      "JUDDER_MAX_HOURS"]),
+])
+def test_a_long_table_is_estimated_before_any_work(tmp_path, capsys,
+                                                   monkeypatch, argv, facts):
+    from judder.cli import main
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("JUDDER_MAX_HOURS", "0.5")
+    table = tmp_path / "t.csv"
+    table.write_text("freq_hz,p_f_bar,tried_bar\n" + "".join(
+        f"{50 + i * 0.0015:.4f},{0.3 + (i % 7) * 0.1:.1f},1.5\n"
+        for i in range(100_000)))
+    started = time.perf_counter()
+    assert main(argv + [str(table)]) == 2
+    assert time.perf_counter() - started < 120
+    err = capsys.readouterr().err
+    for fact in facts:
+        assert fact in err
+    assert "--starts" not in err and "--freq x --pf" not in err
+    assert not (tmp_path / "r.html").exists()

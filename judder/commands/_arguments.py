@@ -107,6 +107,7 @@ def waveform_option(parser):
              "B2,...], cosine and sine coefficients of the harmonics; "
              "period:FILE.csv, one measured period of pressure (last column, "
              "equally spaced; --pf then scales its fundamental)")
+    decimal_option(parser, "the --dither-wave period: file")
 
 
 def pf_max_option(parser, meaning):

@@ -8,12 +8,19 @@ import sys
 
 from infra.errors import JudderError
 from infra.files import all_or_none, check_output, save_figure, to_json
-from infra.provenance import Provenance, current, input_digest, tool_version
+from infra.provenance import (
+    Provenance,
+    current,
+    file_digest,
+    input_digest,
+    tool_version,
+)
 
 #: Options that do not change a result: how it is shown, where it is
 #: written (``out`` also of a folder, a checkpoint resumed or not), how
 #: the work is spread; the outputs' own options are added.
-NOT_INPUTS = {"handler", "outputs", "output_check", "amplitude", "flags",
+NOT_INPUTS = {"handler", "outputs", "output_check", "read_too", "amplitude",
+              "flags",
               "version", "json", "force", "workers", "scheduler", "out",
               "checkpoint"}
 
@@ -81,13 +88,38 @@ def check_outputs(args):
 def provenance_of(args):
     """The tool's version and the digest of a command's inputs
     (:func:`infra.provenance.input_digest`): its options but those of
-    :data:`NOT_INPUTS` and its outputs."""
+    :data:`NOT_INPUTS` and its outputs. The small text files the options
+    name (:data:`studies.inputs.TEXT_INPUTS`, a ``period:`` file) are
+    checked by size and type first (:func:`studies.inputs.check_input`):
+    a folder or a huge file is refused before any of it is hashed."""
     skip = NOT_INPUTS | {attribute for attribute, _, _ in args.outputs}
     options = {name: value for name, value in vars(args).items()
                if name not in skip}
+    _check_text_inputs(options)
+    if getattr(args, "read_too", None) is not None:
+        # the files the command reads that no option names (an index's
+        # acquisitions): their bytes, under the names that list them
+        options["read_too"] = {name: file_digest(path) for name, path in
+                               args.read_too(args).items()}
     # the command's name is an input like its options
     return Provenance(tool_version(),
                       input_digest(options.pop("command"), options))
+
+
+def _check_text_inputs(options):
+    """Refuse a text input that is no small regular file, by its size
+    and type, before the digest reads it."""
+    from studies.inputs import TEXT_INPUTS, check_input
+    for name, value in options.items():
+        values = value if isinstance(value, (list, tuple)) else [value]
+        for one in values:
+            if not isinstance(one, (str, Path)) or not str(one):
+                continue
+            if name in TEXT_INPUTS:
+                check_input(one, "FILE" if name == "files" else
+                            "--" + name.replace("_", "-"))
+            elif str(one).startswith("period:") and str(one)[7:]:
+                check_input(str(one)[7:], "--dither-wave period:")
 
 
 def emit(args, data, text):

@@ -12,7 +12,6 @@ from infra.contract import warn
 from infra.errors import JudderError
 from infra.quantities import has_unit, parse_quantity
 from infra.units import PA_PER_BAR
-from studies.inputs import read_input
 from studies.rules import (FREQ_RANGE_HZ, MAX_WORKERS, MIN_PLAIN_P_M_PA, RULES,
                            Rule, parse_grid, parse_list)
 from studies.rules import SCATTER as SCATTER_RULES
@@ -240,18 +239,24 @@ WAVEFORMS = ("cosine", "square[:TAU_MS]", "fourier:A1,A2,...[/B1,B2,...]",
              "period:FILE.csv")
 
 
-def parse_waveform(text):
+def parse_waveform(text, decimal=None):
     """The dither waveform of ``--dither-wave`` (None: the cosine).
 
     ``square:TAU_MS`` is a square wave through a first-order valve lag of
     time constant TAU_MS (ms, default 0); ``fourier:A/B`` the cosine and
     sine coefficients of the harmonics 1, 2, ...; ``period:FILE.csv`` one
     measured period of pressure, equally spaced, the last column of each
-    numeric row (a header line is skipped).
+    numeric row (a header line is skipped), read with the project's CSV
+    rules (:func:`studies.inputs.read_period`; ``decimal``, its decimal
+    separator where its cells cannot tell it, from ``--decimal``).
     """
     from stability.waveforms import FilteredSquare, FourierSeries, from_samples
     kind, _, rest = (text or "cosine").partition(":")
     option = f"--dither-wave {text!r}"
+    if decimal is not None and not (kind == "period" and rest):
+        raise JudderError(f"--decimal {decimal} is for the file of "
+                          "--dither-wave period:FILE.csv; allowed: no "
+                          f"--decimal with {option}")
     if kind == "cosine" and not rest:
         return None
     if kind == "square":
@@ -265,18 +270,8 @@ def parse_waveform(text):
             cos=tuple(parse_list(cos, option)) if cos.strip() else (),
             sin=tuple(parse_list(sin, option)) if sin.strip() else ())
     if kind == "period" and rest:
-        rows = [line.split(",")[-1].strip()
-                for line in read_input(rest, "--dither-wave period:")
-                .splitlines() if line.strip()]
-        if rows and not _is_float(rows[0]):
-            rows = rows[1:]
-        samples = parse_list(",".join(rows), option)
-        bad = [i for i, v in enumerate(samples) if not math.isfinite(v)]
-        if bad:
-            raise JudderError(f"--dither-wave period:{rest}: sample "
-                              f"{bad[0] + 1} of {len(samples)} is "
-                              f"{samples[bad[0]]:g}; allowed: finite "
-                              "pressures, at least 4")
+        from studies.inputs import read_period
+        samples = read_period(rest, "--dither-wave period:", decimal)
         try:
             return from_samples(samples)
         except JudderError as exc:

@@ -40,6 +40,18 @@ OUTPUTS = (("out", "--out", ("npz",)),
            ("boundary", "--boundary", ("csv",)))
 
 
+def read_too(args):
+    """The acquisitions the --index file lists, by the index's line ->
+    path: the input digest covers their bytes, not the
+    index's alone (two data sets that differ in one acquisition differ in
+    their digest; a campaign folder given as SOURCE is hashed whole)."""
+    if args.index is None:
+        return {}
+    from pysim.bench_data.charts import sources_from_index
+    return {source.origin.rsplit(",", 1)[-1].strip(): source.path
+            for source in sources_from_index(args.index, args.decimal)}
+
+
 def add_arguments(p):
     """The options of ``judder chart``."""
     p.add_argument("sources", nargs="*", metavar="SOURCE",

@@ -107,7 +107,7 @@ def _settings(args, parameters):
                              "to check)")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"{source}: p_f_bar")
-        check_settings_time(len(freqs), parameters)
+        check_settings_time(len(freqs), parameters, source)
         check_work(source, len(freqs), "settings")
         low, high = FREQ_RANGE_HZ
         for line, f in zip(lines, freqs):

@@ -47,7 +47,7 @@ def run(args):
     make_parents(args.plot)
     point = floquet(args.freq, args.pf, params, changes,
                     method=args.method,
-                    waveform=parse_waveform(args.dither_wave),
+                    waveform=parse_waveform(args.dither_wave, args.decimal),
                     min_growth=args.min_growth, driveline=args.driveline)
     if args.plot:
         save_plot(args.plot, point.figure(

@@ -71,7 +71,7 @@ def run(args):
     freqs = args.freq
     amplitudes = args.pf
     params, changes = parameters_of(args)
-    waveform = parse_waveform(args.dither_wave)
+    waveform = parse_waveform(args.dither_wave, args.decimal)
     # the exact boundaries are drawn on --plot and stored in --out (NPZ)
     exact = args.plot is not None or (
         args.out is not None and not str(args.out).lower().endswith(".csv"))

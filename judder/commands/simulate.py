@@ -2,6 +2,7 @@
 dither (Fig. 7, 8), run through the FMU.
 """
 
+from infra.errors import JudderError
 from studies._common import resolve
 from studies._words import nonlinear_words, orbit_words
 from studies.simulate import ENGAGEMENTS, simulate
@@ -44,6 +45,19 @@ OUTPUTS = (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None))
 
 
 AMPLITUDE = "pf"
+
+
+def check_outputs(args, seen):
+    """--out holds the time histories of one run: several --freq with one
+    file are refused before any work (it would keep the first run only,
+    without a word)."""
+    if args.out and len(args.freq) > 1:
+        raise JudderError(
+            f"--out {args.out} holds the time histories of one run; --freq "
+            f"gives {len(args.freq)} runs ("
+            + ", ".join(f"{f:g}" for f in args.freq) + " Hz); allowed: one "
+            "--freq with --out (one simulate per frequency to write each), "
+            "or several --freq without --out (--plot shows them all)")
 
 
 #: What each kind of run is called in text and figures.
@@ -129,7 +143,8 @@ def run(args):
                     + f" ({result.model_class.rsplit('.', 1)[-1]} FMU)"]
                    + [_engagement_line(s, params.source_kind.is_chain)
                       for s in result.summaries])
-         + written(args.out, args.plot))
+         + written(args.out and f"{args.out} (the run "
+                   f"{result.summaries[0]['label']})", args.plot))
 
 
 def _run_title(result):

@@ -58,7 +58,7 @@ def run(args):
     """Tongue boundaries, labels and tips."""
     freqs = args.freq
     params, changes = parameters_of(args)
-    waveform = parse_waveform(args.dither_wave)
+    waveform = parse_waveform(args.dither_wave, args.decimal)
     check_tongues(params.replace(**changes), freqs,
                   background=args.plot is not None)
     make_parents(args.out, args.plot)
