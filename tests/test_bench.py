@@ -56,6 +56,7 @@ def test_values_outside_the_declared_range_are_refused(bench, words):
 def test_a_class_without_a_bench_takes_no_bench_parameter():
     from sources.modelica import ModelicaParameters
     values = ModelicaParameters("Judder.Examples.Driveline4DOF")
-    with pytest.raises(JudderError, match="--bench w_motor is not allowed "
+    # the study's words (`bench`), which the command line says as --bench
+    with pytest.raises(JudderError, match="`bench` w_motor is not allowed "
                                           "with the class"):
         parse_bench(["w_motor=100"], values)

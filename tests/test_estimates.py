@@ -42,7 +42,7 @@ REFUSED = [
      ["60000 FMU runs", "--duration"]),
     # a lowered limit (0.36 s)
     (["floquet", "--freq", "0.01", "--pf", "0.1"], "0.0001",
-     ["sub-intervals per period at 0.01 Hz", "a higher --freq"]),
+     ["sub-intervals per period at 0.01 Hz", "higher --freq"]),
     (["tongues", "--freq", "5:250:1000"], "0.0001",
      ["1000 frequencies"]),
     (["campaign", "--out", "{d}/c", "--freq", "40:60:10", "--pf", "0.5",

@@ -27,6 +27,7 @@ FLAGS = {
     "starts": "--starts", "samples": "--samples", "refine": "--refine",
     "engine_rpm": "--rpm", "temperatures": "--temperatures",
     "margin_hz": "--margin-hz", "p_f_bar": "--pf",
+    "min_growth": "--min-growth", "factors": "--factors",
     # sources: Parameters.with_overrides, FmuParameters, ModelicaParameters
     "assignments": "--set", "path": "--fmu", "library": "--library",
     "amplitude": "--dither-amplitude", "frequency": "--dither-frequency",
