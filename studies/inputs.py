@@ -72,7 +72,7 @@ def read_period(path, option="`period`", decimal=None):
     equally spaced (``--dither-wave period:FILE.csv``).
 
     Read as the project's other small tables are
-    (:mod:`pysim.bench_data.tables`): ``#`` starts a comment, the fields
+    (:mod:`pysim.bench.tables`): ``#`` starts a comment, the fields
     split by the separator a first line ``sep=;`` declares, else ``;`` or
     tab where the first line has one, else ``,``; the numbers read as
     written, the decimal separator decided from every cell or given as
@@ -96,7 +96,7 @@ def read_period(path, option="`period`", decimal=None):
     >>> read_period(path).tolist()
     [1.5, 1.0, 0.5, 1.0]
     """
-    from pysim.bench_data.tables import is_number, numbers, split_rows
+    from pysim.bench.tables import is_number, numbers, split_rows
     source = f"{option}{path}" if option.endswith(":") else \
         f"{option} {path}"
     lines = [(number, line.split("#")[0]) for number, line in

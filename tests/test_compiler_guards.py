@@ -760,15 +760,12 @@ _NONE = "no replacement"
 @pytest.mark.parametrize("model, hybrid, words", [
     ("Rotational.Components.Brake", False, _USE_BRAKE),
     ("Rotational.Examples.Friction", False,
-     f"; for Clutch: {_USE_CLUTCH} (always slipping); for Brake: "
-     + _USE_BRAKE[2:]),
-    ("Rotational.Components.LossyGear", False, "; the Judder library has no "
-     "replacement with losses: its Judder.Components.IdealGear is lossless"),
-    ("Rotational.Examples.Backlash", False, "; for ElastoBacklash, "
-     "ElastoBacklash2: the Judder library has no replacement: it has no "
-     "backlash element"),
-    ("Translational.Examples.Brake", False, "; the Judder library has no "
-     "replacement: it models rotational drivelines only")])
+     ("for Clutch", "for Brake") + _USE_CLUTCH + _USE_BRAKE),
+    ("Rotational.Components.LossyGear", False,
+     (_NONE, "Judder.Components.IdealGear", "lossless")),
+    ("Rotational.Examples.Backlash", False,
+     ("ElastoBacklash", "ElastoBacklash2", _NONE, "backlash")),
+    ("Translational.Examples.Brake", False, (_NONE, "rotational"))])
 def test_msl_refusals_name_the_replacement_or_say_there_is_none(
         model, hybrid, words):
     """A refused MSL friction, gear or backlash component names what the

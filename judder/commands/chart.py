@@ -47,7 +47,7 @@ def read_too(args):
     their digest; a campaign folder given as SOURCE is hashed whole)."""
     if args.index is None:
         return {}
-    from pysim.bench_data.charts import sources_from_index
+    from pysim.bench.charts import sources_from_index
     return {source.origin.rsplit(",", 1)[-1].strip(): source.path
             for source in sources_from_index(args.index, args.decimal)}
 

@@ -46,13 +46,14 @@ def plot_run(run, ax=None, title=None, legend=True, verdict=None,
     period = 1.0 / run.freq_hz if run.p_f > 0 else None
     banded = period is not None and (run.time[-1] - run.time[0]) \
         > BANDED_PERIODS * period
-    artists = []
+    artists, bands = [], []
     for axis, values, style, color, label in traces:
         if banded:
             # unresolved at this scale: the band the dither swings over,
             # and its mean per period
             t, low, high, mean = per_period(run.time, values, period)
-            axis.fill_between(t, low, high, color=color, alpha=0.3, lw=0)
+            bands.append(axis.fill_between(t, low, high, color=color,
+                                           alpha=0.3, lw=0))
             artists.append(axis.plot(t, mean, ls=style, color=color, lw=1.0,
                                      label=label)[0])
         else:
@@ -65,10 +66,10 @@ def plot_run(run, ax=None, title=None, legend=True, verdict=None,
     ax.set_ylabel("speed [rpm]")
     right.set_ylabel("actuation pressure [bar]")
     if legend:
-        from matplotlib.patches import Patch
-        notes = [Patch(facecolor="0.6", alpha=0.3,
-                       label="shaded: swing per dither period, line: mean")
-                 ] if banded else []
+        # the first band stands for all: what a shade and a line mean
+        notes = bands[:1]
+        for band in notes:
+            band.set_label("shaded: swing per dither period, line: mean")
         ax.legend(handles=artists + notes, loc="upper center", fontsize=7,
                   bbox_to_anchor=(0.5, -0.2), ncols=2, borderaxespad=0.0)
     # a run without dither has its label alone ("without dither"), not
