@@ -588,16 +588,12 @@ class _Expressions:
                                 "expression is used outside it")
         return casadi.SX(float(self._binders[key]))
 
-    def _comprehension(self, body):
-        """``{expr for k in a:b}`` (and the operand of ``sum(expr for k in
-        a:b)``, ``product``, ``min``, ``max``): the vector of ``expr`` at
-        each value of the iterator, its range constant (rumoca evaluates
-        it). The body is converted once per value, in a cache of its
-        own, as an inlined function's is."""
-        domain = self._domains[body["domain"]]["domain"]
-        binders = domain.get("binders") or []
+    def _ranges(self, body):
+        """The integer range of each iterator of a comprehension's or a
+        structured equation's domain (rumoca evaluates the bounds)."""
         ranges = []
-        for binder in binders:
+        for binder in self._domains[body["domain"]]["domain"].get(
+                "binders") or []:
             lower, upper, step = (binder.get(k) for k in
                                   ("lower", "upper", "step"))
             if not all(isinstance(v, (int, float)) and v == int(v)
@@ -609,9 +605,18 @@ class _Expressions:
             ranges.append(range(int(lower), int(upper) + (1 if step > 0
                                                           else -1),
                                 int(step)))
-        if len(binders) != 1:
+        return ranges
+
+    def _comprehension(self, body):
+        """``{expr for k in a:b}`` (and the operand of ``sum(expr for k in
+        a:b)``, ``product``, ``min``, ``max``): the vector of ``expr`` at
+        each value of the iterator, its range constant (rumoca evaluates
+        it). The body is converted once per value, in a cache of its
+        own, as an inlined function's is."""
+        ranges = self._ranges(body)
+        if len(ranges) != 1:
             raise FrontEndError(f"{self.where}: a for-expression with "
-                                f"{len(binders)} iterators is not supported;"
+                                f"{len(ranges)} iterators is not supported;"
                                 " allowed: one iterator (sum(a[k] for k in "
                                 "1:n))")
         items = []
@@ -634,20 +639,7 @@ class _Expressions:
         ``1:2``), in row-major order: each body converted whole where it
         does not name the indices (``s - (if c then {1, 1} else {-1,
         -1})``, its elements taken), else once per element."""
-        domain = self._domains[body["domain"]]["domain"]
-        binders = domain.get("binders") or []
-        ranges = []
-        for binder in binders:
-            lower, upper, step = (binder.get(k) for k in
-                                  ("lower", "upper", "step"))
-            if not all(isinstance(v, (int, float)) and v == int(v)
-                       for v in (lower, upper, step)) or not step:
-                raise FrontEndError(
-                    f"{self.where}: the range of {binder.get('display_name')}"
-                    f" ({binder}) is not supported; allowed: a range a:b or "
-                    "a:step:b of integers known when the model is read")
-            ranges.append(list(range(int(lower), int(upper) + (
-                1 if step > 0 else -1), int(step))))
+        ranges = self._ranges(body)
         shape = tuple(len(r) for r in ranges)
         residuals = []
         for node in body.get("bodies") or []:
