@@ -48,7 +48,7 @@ def held_slip_motion(model, orbit, harmonics=DEFAULT_HARMONICS):
 
 
 def forced_limit_amplitude(model, freq_hz, p_f, forced, limit, p_max,
-                           tolerance=0.01, steps=8):
+                           tolerance=0.001, steps=8):
     """The dither amplitude (Pa) at which the held slip's forced
     oscillation at ``freq_hz`` reaches ``limit`` (rad/s), from the
     setting ``p_f`` whose forced oscillation is ``forced`` (rad/s).

@@ -64,8 +64,14 @@ def check_figure(records, background=None, min_growth=None, title=None,
                         label=f"setting: {r['verdict']}", clip_on=False)
         seen.setdefault(r["verdict"], line)
         hz, bar = r["margin_hz"], r["margin_bar"]
-        text = (("" if bar is None else f"{bar:+.3f} bar\n")
-                + ("" if hz is None else f"{hz:+.2f} Hz"))
+        if r.get("highest_safe_limited_by") == "forced":
+            # the forced oscillation reaches the limit below the tongue:
+            # that, not the parametric margin, is how far one can go
+            bar_text = (f"safe to {r['highest_safe_p_f_bar']:.3f} bar "
+                        "(forced)\n")
+        else:
+            bar_text = "" if bar is None else f"{bar:+.3f} bar\n"
+        text = bar_text + ("" if hz is None else f"{hz:+.2f} Hz")
         if text:
             ax.annotate(text.strip(), (r["freq_hz"], r["p_f_bar"]),
                         xytext=(8, 8), textcoords="offset points", fontsize=7,
