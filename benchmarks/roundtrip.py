@@ -42,7 +42,7 @@ from infra.errors import JudderError
 from infra.files import write_text
 from infra.units import PA_PER_BAR
 from judder import api
-from studies.bench import bench_damping
+from stability.bench import bench_damping
 from studies.inputs import (read_chart_below, read_chart_boundary,
                            read_chart_limit, read_chart_min_growth)
 from stability import build_driveline, floquet

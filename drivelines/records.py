@@ -14,12 +14,15 @@ Modelica compiler), so that the registry, which every command imports,
 stays fast; each record is read once per process.
 """
 
+from dataclasses import dataclass, replace
 from functools import cache
+import math
 from pathlib import Path
 import re
 from types import MappingProxyType
 
-__all__ = ["DATA", "RecordError", "record_values"]
+__all__ = ["DATA", "RecordError", "RecordParameter", "record_values",
+           "record_parameters", "experiment_stop_time"]
 
 #: Folder of the library's parameter records (package ``Judder.Data``).
 DATA = Path(__file__).resolve().parents[1] / "modelica" / "Judder" / "Data"
@@ -32,8 +35,9 @@ _STRING = re.compile(r'"(?:[^"\\]|\\.)*"', re.S)
 _COMMENT = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
 _CLASS = re.compile(r"\brecord\s+(\w+)\b(.*?)\bend\s+\1\s*;", re.S)
 _EXTENDS = re.compile(r"\bextends\s+(\w+)\s*(?:\((.*?)\))?\s*;", re.S)
-_PARAMETER = re.compile(r"\bparameter\s+[\w.]+\s+(\w+)\s*(?:\([^()]*\))?"
-                        r'\s*=\s*([^;"]*?)\s*(?:"")?\s*;')
+_PARAMETER = re.compile(r"\bparameter\s+([\w.]+)\s+(\w+)\s*(?:\(([^()]*)\))?"
+                        r'\s*=\s*([^;"]*?)\s*(?:"(\d+)")?\s*;')
+_TYPE = re.compile(r"\btype\s+(\w+)\s*=\s*Real\s*\(([^;]*)\)[^;]*;")
 
 
 class RecordError(ValueError):
@@ -97,28 +101,115 @@ def record_values(name, folder=DATA):
     >>> record_values("Driveline4DOFFitted")["c12"]
     10.0
     """
+    return MappingProxyType({parameter: declared.value for parameter, declared
+                             in record_parameters(name, folder).items()})
+
+
+@dataclass(frozen=True)
+class RecordParameter:
+    """One parameter of a record, as declared.
+
+    Attributes
+    ----------
+    value : float
+        Its value (SI), with the modifiers of the extends clauses applied.
+    unit : str
+        The Modelica unit of its type (``'N.m.s/rad'``; ``'1'`` for
+        ``Real``), from the library's ``Units`` package.
+    low, high : float
+        Its ``min`` and ``max``, or its type's (infinite where neither
+        declares one).
+    description : str
+    """
+
+    value: float
+    unit: str
+    low: float
+    high: float
+    description: str
+
+
+@cache
+def record_parameters(name, folder=DATA):
+    """The parameters of the record ``name`` of ``folder`` with their
+    units, bounds and descriptions (:class:`RecordParameter`), in the
+    order of :func:`record_values`."""
     path = Path(folder) / f"{name}.mo"
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise RecordError(f"record {name!r}: {path} cannot be read "
                           f"({exc.strerror})") from None
-    text = _COMMENT.sub("", _STRING.sub('""', text))
+    strings = []
+
+    def keep(string):
+        strings.append(string.group(0)[1:-1])
+        return f'"{len(strings) - 1}"'
+    text = _COMMENT.sub("", _STRING.sub(keep, text))
     body = _CLASS.search(text)
     if body is None:
         raise RecordError(f"{path}: no 'record {name} ... end {name};'")
     body = re.sub(r"\bannotation\s*\(.*", "", body.group(2), flags=re.S)
-    values = {parameter: _number(value, f"{path}: {parameter}")
-              for parameter, value in _PARAMETER.findall(body)}
+    units = _unit_types(Path(folder).parent / "Units.mo")
+    parameters = {}
+    for kind, parameter, attributes, value, text_index in \
+            _PARAMETER.findall(body):
+        where = f"{path}: {parameter}"
+        unit, low, high = units.get(kind.rsplit(".", 1)[-1],
+                                    ("1", -math.inf, math.inf))
+        bounds = _modifiers(",".join(
+            item for item in attributes.split(",")
+            if item.strip().startswith(("min", "max"))), where)
+        parameters[parameter] = RecordParameter(
+            _number(value, where), unit, bounds.get("min", low),
+            bounds.get("max", high),
+            strings[int(text_index)] if text_index else "")
     for base, modifiers in _EXTENDS.findall(body):
-        inherited = record_values(base, folder)
+        inherited = record_parameters(base, folder)
         changed = _modifiers(modifiers, f"{path}: extends {base}")
         unknown = sorted(set(changed) - set(inherited))
         if unknown:
             raise RecordError(f"{path}: extends {base}: {unknown[0]!r} is not "
                               f"a parameter of {base}; allowed: "
                               f"{', '.join(inherited)}")
-        values.update({key: changed.get(key, value)
-                       for key, value in inherited.items()
-                       if key not in values})
-    return MappingProxyType(values)
+        parameters.update({
+            key: replace(declared, value=changed.get(key, declared.value))
+            for key, declared in inherited.items() if key not in parameters})
+    return MappingProxyType(parameters)
+
+
+@cache
+def _unit_types(path):
+    """``{type name: (Modelica unit, min, max)}`` of the library's
+    ``Units`` package (``Judder/Units.mo``); empty where it is absent."""
+    try:
+        text = _COMMENT.sub("", Path(path).read_text(encoding="utf-8"))
+    except OSError:
+        return {}
+    types = {}
+    for kind, attributes in _TYPE.findall(text):
+        unit = re.search(r'\bunit\s*=\s*"([^"]*)"', attributes)
+        bounds = {bound: float(number) for bound, number in re.findall(
+            rf"\b(min|max)\s*=\s*([-+]?{_NUMBER})", attributes)}
+        types[kind] = (unit.group(1) if unit else "1",
+                       bounds.get("min", -math.inf),
+                       bounds.get("max", math.inf))
+    return types
+
+
+@cache
+def experiment_stop_time(modelica_class, library=DATA.parent.parent):
+    """The ``StopTime`` of the ``experiment`` annotation of a class of
+    the library (``'Judder.Examples.TestBenchEngagement'``), s."""
+    path = Path(library).joinpath(*modelica_class.split(".")).with_suffix(
+        ".mo")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise RecordError(f"class {modelica_class}: {path} cannot be read "
+                          f"({exc.strerror})") from None
+    found = re.search(rf"\bexperiment\s*\([^)]*\bStopTime\s*=\s*"
+                      rf"({_NUMBER})", text)
+    if found is None:
+        raise RecordError(f"{path}: no experiment(StopTime=...) annotation")
+    return float(found.group(1))

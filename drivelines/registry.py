@@ -117,6 +117,10 @@ class DrivelineModel:
         The example model of the same driveline and parameter names.
     bench_class : str or None
         The test-bench engagement model of this driveline, if any.
+    bench_records : tuple of str
+        The ``Judder.Data`` records the bench class extends for its own
+        parameters (motor, load clutch, ramp, friction curve): their
+        defaults, units and allowed ranges are the bench's.
     bench_damping : tuple of (str, str)
         ``(parameter, bench parameter)``: damping the bench adds to a
         parameter of the driveline in its linearisation (the motor's
@@ -145,6 +149,7 @@ class DrivelineModel:
     default_preset: str
     modelica_class: str
     bench_class: object
+    bench_records: tuple
     bench_damping: tuple
     free_response_speeds: tuple
     paper_sensitivity: bool
@@ -240,6 +245,7 @@ FOUR_DOF = DrivelineModel(
     default_preset="paper-4dof",
     modelica_class="Judder.Examples.Driveline4DOF",
     bench_class="Judder.Examples.TestBenchEngagement",
+    bench_records=("TestBenchData", "BoundedCurveData"),
     bench_damping=(("c1", "d_control"),),
     free_response_speeds=("w_upstream", "w_downstream", "inertia1.w",
                           "inertia2.w"),
@@ -273,6 +279,7 @@ THREE_DOF = DrivelineModel(
     default_preset="paper-3dof",
     modelica_class="Judder.Examples.Driveline3DOF",
     bench_class=None,
+    bench_records=(),
     bench_damping=(),
     free_response_speeds=("w_upstream", "w_downstream", "inertia1.w"),
     paper_sensitivity=False,

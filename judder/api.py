@@ -21,7 +21,7 @@ what needs the bench (``fit(bench=...)``) or the paper's chains
 (:func:`threshold`) refuses both, with a :class:`~infra.errors.JudderError`
 that says why. The Floquet views judge a preset's driveline on its
 test bench (the one :func:`simulate` runs) unless ``driveline='chain'``
-(:func:`studies.bench.driveline_view`). Monodromy engines (``method``)
+(:func:`stability.bench.driveline_view`). Monodromy engines (``method``)
 are the keys of :data:`stability.monodromy.METHODS`. ``progress`` is called as
 ``progress(done, total)`` on long work.
 

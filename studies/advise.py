@@ -80,7 +80,7 @@ def advise(parameters=None, changes=None, extra_sets=(), freq_range=(60.0, 200.0
                             margin_bar=margin_bar, margin_hz=margin_hz,
                             min_growth=min_growth)
     values = at_dither_frequency(values, freq_range, argument="freq_range")
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     given = values
     values, driveline = driveline_view(values, driveline)
     sets = [values, *(driveline_view(s, driveline)[0] for s in extra_sets)]
@@ -235,7 +235,7 @@ class AdviceResult:
 
     def as_dict(self):
         op = self.operating
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         out = {"model": self.params.model, "driveline": self.driveline,
                "driveline_description": driveline_words(self.params,
                                                         self.driveline),

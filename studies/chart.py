@@ -51,7 +51,7 @@ def chart(sources, index=None, channels=None, group_by=None, decimal=None,
         Also compute the model's tongue boundaries (``parameters`` and
         ``changes``) over the chart's frequencies, drawn by ``figure()``.
     driveline : {'chain', 'bench'}, optional
-        Whose tongues ``model`` draws (:func:`studies.bench.driveline_view`;
+        Whose tongues ``model`` draws (:func:`stability.bench.driveline_view`;
         default the bench where the preset has one, as a chart of ``judder
         campaign`` runs has them: tongues 5, 6 at 86.4 and 119.4 Hz with
         the Appendix values, not 84 and 122).

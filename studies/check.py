@@ -49,10 +49,10 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
     background : bool
         Also compute the map ``figure()`` marks the settings on.
     driveline : {'chain', 'bench'}, optional
-        The driveline judged (:data:`studies.bench.DRIVELINES`): the
+        The driveline judged (:data:`stability.bench.DRIVELINES`): the
         preset's chain, or the same on its test bench (what ``simulate``
         runs); default the bench where the preset has one
-        (:func:`studies.bench.default_driveline`).
+        (:func:`stability.bench.default_driveline`).
     judder_limit_rpm : float, optional
         NVH limit of the upstream speed's oscillation, rpm (default
         :data:`infra.criteria.DEFAULT_JUDDER_LIMIT_RPM`): a settled
@@ -76,7 +76,7 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
                           f"{p_f_bar.size} values; allowed: as many of each")
     from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM
 
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     judder_limit_rpm = (DEFAULT_JUDDER_LIMIT_RPM if judder_limit_rpm is None
                         else judder_limit_rpm)
     given = checked_values(parameters, changes, freq_hz=freq_hz,
@@ -183,7 +183,7 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     if driveline == "bench":
         from stability.settle import settle_orbits
 
-        from .bench import engagement_model
+        from stability.bench import engagement_model
         model = engagement_model(given)[0]
         orbits = [periodic_orbit(model, f, p) for f, p in zip(freq_hz, p_f)]
         motions = settle_orbits(model, orbits)
@@ -408,7 +408,7 @@ class CheckResult:
 
     def as_dict(self):
         mode = linearised_mode(self.params)
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model,
                 "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
@@ -420,7 +420,7 @@ class CheckResult:
                 "seconds": self.seconds, "settings": self.records()}
 
     def summary(self):
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         words = mode_words(linearised_mode(self.params))
         return "\n".join([f"driveline: {driveline_words(self.params, self.driveline)}"]
                          + ([words] if words else [])

@@ -45,7 +45,7 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
         ``figure()``.
     driveline : {'chain', 'bench'}, optional
         The driveline both sets are judged as
-        (:func:`studies.bench.driveline_view`; default the bench where the
+        (:func:`stability.bench.driveline_view`; default the bench where the
         preset has one).
 
     Returns
@@ -72,7 +72,7 @@ def compare(first, second, labels=("A", "B"), freq_hz=None, p_max_bar=1.5,
     grid = window_grid(operating)
     started = time.perf_counter()
     sides = []
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     for index, params in enumerate((first, second)):
         viewed, view = driveline_view(params, driveline)
         found = tongues(freq_hz, p_max_bar, params, judder_growth=min_growth,

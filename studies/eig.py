@@ -23,7 +23,7 @@ def eig(parameters=None, changes=None, driveline=None):
     chains, so they are None there.
 
     ``driveline='bench'``: of the driveline on its test bench
-    (:func:`studies.bench.driveline_view`), whose first damped mode is its
+    (:func:`stability.bench.driveline_view`), whose first damped mode is its
     resonance (16.5 Hz for the paper's set, 18.9 Hz on the free chain).
 
     Returns
@@ -35,7 +35,7 @@ def eig(parameters=None, changes=None, driveline=None):
     >>> eig().natural_frequencies_hz.round(3)
     array([ 18.939, 102.884])
     """
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     values, view = driveline_view(resolve(parameters, changes), driveline)
     driveline = build_driveline(values)
     damped_hz, ratio = modal.damped_modes(driveline)
@@ -80,7 +80,7 @@ class EigResult:
 
     def as_dict(self):
         mode = linearised_mode(self.params)
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model, "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
                                                          self.driveline),

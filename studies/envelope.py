@@ -472,7 +472,7 @@ def envelope(ranges, freq_hz, p_max_bar=1.5, samples=256, seed=0,
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.uncertainty.ranges import Ranges
 
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     values, driveline = driveline_view(
         checked_values(parameters, changes, freq_hz=freq_hz,
                        p_max_bar=p_max_bar, min_growth=min_growth),
@@ -540,7 +540,7 @@ class EnvelopeResult:
 
     def as_dict(self):
         e = self.envelope
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model, "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
                                                          self.driveline),

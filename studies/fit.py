@@ -13,7 +13,7 @@ from stability.monodromy import DEFAULT_METHOD
 
 from ._common import at_dither_frequency, checked_values, timed
 from ._records import finite_or_none
-from .bench import bench_damping, check_bench
+from stability.bench import bench_damping, check_bench
 from .rules import SCATTER
 
 

@@ -31,7 +31,7 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
         Judder rate, 1/s, of the verdict (default
         :data:`infra.criteria.DEFAULT_MIN_GROWTH_PER_S`).
     driveline : {'chain', 'bench'}, optional
-        The driveline linearised (:func:`studies.bench.driveline_view`);
+        The driveline linearised (:func:`stability.bench.driveline_view`);
         default the bench where the preset has one.
 
     Returns
@@ -42,7 +42,7 @@ def floquet(freq_hz, p_f_bar, parameters=None, changes=None,
     min_growth = DEFAULT_MIN_GROWTH_PER_S if min_growth is None else min_growth
     values = checked_values(parameters, changes, freq_hz=freq_hz,
                             p_f_bar=p_f_bar, min_growth=min_growth)
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     values, view = driveline_view(values, driveline)
     check_modes(values, freq_hz, p_f_bar * PA_PER_BAR)
     result = floquet_kernel(dithered(values, waveform), freq_hz,
@@ -98,7 +98,7 @@ class FloquetPoint:
     def as_dict(self):
         r = self.result
         mode = linearised_mode(self.params)
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model, "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
                                                          self.driveline),

@@ -17,7 +17,7 @@ from stability.monodromy import DEFAULT_METHOD
 from ._common import (checked_values, dithered, frequency_dependent,
                       per_frequency, timed)
 from ._preflight import check_map, check_map_memory
-from .bench import driveline_view
+from stability.bench import driveline_view
 
 #: Largest grid a map accepts, in points.
 MAX_MAP_POINTS = 2_000_000
@@ -55,7 +55,7 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
     waveform : object, optional
         Dither shape (:mod:`stability.waveforms`); default the cosine.
     driveline : {'chain', 'bench'}, optional
-        The driveline mapped (:func:`studies.bench.driveline_view`);
+        The driveline mapped (:func:`stability.bench.driveline_view`);
         default the bench where the preset has one.
     judder_limit_rpm : float, optional
         NVH limit of the upstream speed's oscillation, rpm (default
@@ -111,9 +111,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
         slip = np.array([forced_slip_amplitude(driveline, f, PA_PER_BAR)
                          for f in result.freq_hz])
         if view == "bench":
-            from .bench import bench_fmu, operating_friction
-            linear_slip = operating_friction(given, bench_fmu(given)[1],
-                                             {})[1]
+            from stability.bench import operating_friction
+            linear_slip = operating_friction(given)[1]
     return MapResult(params=values, map=result, seconds=seconds,
                      boundaries=boundaries, tongues=found,
                      min_growth=min_growth, boundaries_seconds=exact_seconds,
@@ -234,7 +233,7 @@ class MapResult:
         m = self.map
         bar = m.p_f / PA_PER_BAR
         mode = linearised_mode(self.params)
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model, "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
                                                          self.driveline),

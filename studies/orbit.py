@@ -42,7 +42,7 @@ def orbit(freq_hz, p_f_bar, parameters=None, changes=None, bench=None,
     from stability.orbit import continue_orbit, periodic_orbit
     from stability.orbit_chart import held_slip_motion, orbit_chart
 
-    from .bench import check_bench, engagement_model
+    from stability.bench import check_bench, engagement_model
     freqs = [float(f) for f in np.atleast_1d(freq_hz)]
     amplitudes = sorted(float(p) for p in np.atleast_1d(p_f_bar))
     values = checked_values(parameters, changes, freq_hz=freqs,

@@ -157,14 +157,14 @@ def report(parameters=None, changes=None, description=None,
     driveline : {'chain', 'bench'}, optional
         The driveline every Floquet section (modes, tongues, map, verdict,
         multipliers, advice, sensitivity) is of
-        (:func:`studies.bench.driveline_view`; default the bench where the
+        (:func:`stability.bench.driveline_view`; default the bench where the
         preset has one); Fig. 19 (no dither) and the fit stay the chain's.
 
     Returns
     -------
     ReportResult
     """
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     values = params(parameters, changes).params
     driveline = driveline_view(values, driveline)[1]
     names = [n for n in (sensitivity_names or DEFAULT_SENSITIVITY)
@@ -246,7 +246,7 @@ def report(parameters=None, changes=None, description=None,
     step()
     if advice is not None:
         data["advice"] = advice.as_dict()
-    from .bench import driveline_words
+    from stability.bench import driveline_words
     page.sections.append(summary_section(
         verdict, advice, advice_error, min_growth,
         driveline_words(values, driveline)))

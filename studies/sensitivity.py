@@ -42,7 +42,7 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     from stability.sensitivity import (paper_conclusions, sensitivity_study,
                                        tip_shifts)
 
-    from .bench import driveline_view
+    from stability.bench import driveline_view
     nominal, driveline = driveline_view(
         checked_values(parameters, changes, freq_hz=freq_hz,
                        p_max_bar=p_max_bar), driveline)
@@ -96,7 +96,7 @@ class SensitivityResult:
         return 1 + len(self.study.cases)
 
     def as_dict(self):
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model, "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
                                                          self.driveline),

@@ -13,12 +13,13 @@ from infra.files import keeps_foreign_files
 from infra.units import PA_PER_BAR
 from sources.dither_modes import check_modes
 from stability import floquet as floquet_kernel
+from stability.bench import (added_damping, check_bench, engagement_model,
+                             linear_validity, operating_friction)
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
 from ._common import checked_values
-from .bench import (added_damping, bench_fmu, check_bench, engagement_model,
-                    linear_validity, operating_friction, refuse_bench_of_class)
+from .bench import bench_fmu, refuse_bench_of_class
 
 #: The bench's friction laws, as each output names them.
 CURVE_LAW = "curve (mu0, mu_g at w_op, delta_mu)"
@@ -137,12 +138,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
         # law has the driveline's own mu0 and mu_g, the curve at w_op, the
         # straight line of Eq. 5 at every slip)
         friction, linear_slip = ((({}, None)) if full else
-                                 operating_friction(values, fmu, bench))
+                                 operating_friction(values, bench))
         driveline = build_driveline(values.replace(
             **{name: values[name] + value for name, value in
-               added_damping(values, fmu, bench).items()}, **friction))
-        orbit_model = None if full else engagement_model(values, bench,
-                                                         fmu)[0]
+               added_damping(values, bench).items()}, **friction))
+        orbit_model = None if full else engagement_model(
+            values, bench, duration)[0]
     else:
         fmu = class_fmu(values, "simulate")
         if bench:

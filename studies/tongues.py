@@ -13,7 +13,7 @@ from stability.maps import stability_map as map_kernel
 from stability.monodromy import DEFAULT_METHOD
 
 from ._common import BACKGROUND_AMPLITUDES, checked_values, dithered
-from .bench import driveline_view
+from stability.bench import driveline_view
 from .rules import RULES
 
 
@@ -47,7 +47,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
         Dither shape (:mod:`stability.waveforms`); default the cosine.
     driveline : {'chain', 'bench'}, optional
         The driveline whose tongues these are
-        (:func:`studies.bench.driveline_view`); default the bench where the
+        (:func:`stability.bench.driveline_view`); default the bench where the
         preset has one.
 
     Returns
@@ -132,7 +132,7 @@ class TonguesResult:
     def as_dict(self):
         b = self.boundaries
         mode = linearised_mode(self.params)
-        from .bench import driveline_words
+        from stability.bench import driveline_words
         return {"model": self.params.model, "driveline": self.driveline,
                 "driveline_description": driveline_words(self.params,
                                                          self.driveline),

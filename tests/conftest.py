@@ -152,5 +152,5 @@ def chain_by_default(monkeypatch):
     the paper's Fig. 12, 14-18 and the numbers its tests pin), where the
     tool judges the preset on its test bench; for the in-process API and
     ``main`` of a test module whose numbers are the chain's."""
-    monkeypatch.setattr("studies.bench.default_driveline",
+    monkeypatch.setattr("stability.bench.default_driveline",
                         lambda values: "chain")

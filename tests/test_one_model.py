@@ -16,7 +16,7 @@ PRESET = "paper-4dof"
 def test_bench_tip_1_is_the_bench_resonance_not_the_chains():
     # the bench's speed control (d_control on body 1) moves f1 from the
     # free chain's 18.94 Hz to 16.52 Hz; tongue 1's tip follows it
-    from studies.bench import driveline_view
+    from stability.bench import driveline_view
     params = get_preset(PRESET)
     bench = driveline_view(params, "bench")[0]
     f1 = damped_modes(build_driveline(bench))[0][0]
@@ -100,7 +100,7 @@ def test_quasi_periodic_motion_settles_as_the_bench_run(freq_hz, p_f_bar):
     # motion's component at the combination frequency against the FMU
     # run's (judged as a bench run), within 5 %; the unstable T-orbit's
     # amplitude (4-9 rpm) is far from both
-    from studies.bench import engagement_model
+    from stability.bench import engagement_model
     from stability.orbit import periodic_orbit
     from stability.settle import settle
     model = engagement_model(get_preset(PRESET))[0]
@@ -118,7 +118,7 @@ def test_quasi_periodic_motion_settles_as_the_bench_run(freq_hz, p_f_bar):
 
 def test_settled_motion_does_not_depend_on_the_step():
     # the Runge-Kutta step halved: the settled component moves < 1 %
-    from studies.bench import engagement_model
+    from stability.bench import engagement_model
     from stability.settle import settle
     model = engagement_model(get_preset(PRESET))[0]
     coarse = settle(model, [86.5], [0.5e5])
@@ -127,7 +127,7 @@ def test_settled_motion_does_not_depend_on_the_step():
 
 
 def test_the_map_holds_the_forced_response_and_its_linear_range():
-    from studies.bench import driveline_view
+    from stability.bench import driveline_view
     params = get_preset(PRESET)
     shown = api.stability_map(np.array([16.5, 60.0, 103.0]),
                               np.array([0.05, 0.3]), params)
@@ -152,7 +152,7 @@ def test_the_held_slip_drifts_as_in_the_run():
     # the forced oscillation with it; the orbit carried along that drift
     # (quasi-static, dw/dt = -drift / J3) meets the run where the frozen
     # slip's orbit was 11 % low
-    from studies.bench import engagement_model
+    from stability.bench import engagement_model
     from stability.orbit import drifted_orbit, periodic_orbit
     params = get_preset("paper-4dof-fitted")
     model = engagement_model(params)[0]
@@ -177,7 +177,7 @@ def test_check_states_the_highest_safe_amplitude_with_its_reason():
     # an independent run of the orbit there gives the limit to 1 %
     from stability.orbit import periodic_orbit
     from stability.orbit_chart import held_slip_motion
-    from studies.bench import engagement_model
+    from stability.bench import engagement_model
     result = api.check([105.0, 150.0], [0.3, 0.3],
                        get_preset("paper-4dof-fitted"), sensitivity=())
     forced, free = result.records()

@@ -25,7 +25,7 @@ BAR = PA_PER_BAR
 def bench():
     """The bench engagement of the Appendix set and its linearisation."""
     pytest.importorskip("fmpy")
-    from studies.bench import engagement_model
+    from stability.bench import engagement_model
     return engagement_model(get_preset("paper-4dof"))
 
 

@@ -87,7 +87,7 @@ def report(tmp_path_factory):
     CLASHES.clear()
     with pytest.MonkeyPatch.context() as patch:
         _recording_figures(patch, DRAWN, CLASHES)
-        patch.setattr("studies.bench.default_driveline",
+        patch.setattr("stability.bench.default_driveline",
                       lambda values: "chain")
         status = _run_report(folder, out)
     assert status == 0

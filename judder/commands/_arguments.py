@@ -174,7 +174,7 @@ def min_growth_option(parser, extra=""):
 
 def driveline_option(parser, default=None, default_words=None):
     """``--driveline``: the driveline a Floquet view is of
-    (:data:`studies.bench.DRIVELINES`); ``default`` and the words saying
+    (:data:`stability.bench.DRIVELINES`); ``default`` and the words saying
     it where a command's default is not the preset's bench."""
     parser.add_argument("--driveline", choices=("chain", "bench"),
                         default=default,

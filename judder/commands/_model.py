@@ -11,7 +11,7 @@ import numpy as np
 from infra.errors import JudderError
 from infra.quantities import parse_quantity
 from infra.units import PA_PER_BAR
-from studies.bench import bench_parameters, refuse_bench_of_class
+from studies.bench import refuse_bench_of_class
 from studies.inputs import load_parameters, read_input
 
 from ._values import check_file_pressure, check_plain_pressure, check_pressures
@@ -181,6 +181,7 @@ def parse_bench(assignments, values):
     names = [text.partition("=")[0].strip() for text in assignments]
     if assignments and not values.source_kind.is_chain:
         refuse_bench_of_class(values, names)
+    from stability.bench import bench_parameters
     parameters = bench_parameters(values) if assignments else {}
     bench = {}
     for text, name in zip(assignments, names):

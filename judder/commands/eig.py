@@ -30,7 +30,7 @@ def run(args):
     result = eig(*parameters_of(args), driveline=args.driveline)
     zeta = result.damping_factor_12
     words = mode_words(linearised_mode(result.params))
-    from studies.bench import driveline_words
+    from stability.bench import driveline_words
     lines = [f"model {result.params.model}: "
              f"{driveline_words(result.params, result.driveline)}"
              + (f", {words} (held over a period at the class's own "

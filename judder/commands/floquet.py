@@ -57,7 +57,7 @@ def run(args):
                      else "")))
     result = point.result
     lam = result.leading
-    from studies.bench import driveline_words
+    from stability.bench import driveline_words
     words = mode_words(linearised_mode(point.params))
     text = (f"driveline: {driveline_words(point.params, point.driveline)}\n"
             + (words + "\n" if words else "")

@@ -6,21 +6,13 @@ partial model PartialTestBench "Test bench of Fig. 5 and section 2.2 without the
     inertia2(w(start=w_motor, fixed=true)),
     inertia4(w(start=w_motor, fixed=true)),
     inertia3(w(start=w_gearbox, fixed=true)));
-  parameter Units.Time t_engage=0.1 "Start of the EVEN pressure ramp";
-  parameter Units.Time t_ramp(min=0)=0.5 "Duration of the EVEN and REV pressure ramps (clutch fill)";
-  parameter Real N_c_load(min=1)=10 "Plate pairs of the REV clutch (two more than EVEN)";
-  parameter Units.Pressure p_load(min=0)=0.98e6 "REV pressure (670 mA, about 9.8 bar)";
-  parameter Real load_share(min=0)=1
-    "REV torque over the EVEN clutch's mean torque mu0 N_c R_m S p_m (1: the slip stays steady; below 1 the gearbox side speeds up)";
+  extends Data.TestBenchData;
   parameter Units.Area S_load=load_share*N_c*S*p_m/(N_c_load*p_load)
     "Piston area of the REV clutch";
-  parameter Units.AngularVelocity w_motor(min=0)=104.71975511965977 "Motor speed (1000 rpm)";
-  parameter Units.AngularVelocity w_gearbox(min=0)=20 "Initial speed of the gearbox side, at which the REV clutch slips";
-  parameter Units.RotationalDampingConstant d_control=2000 "Gain of the motor speed controller";
   Components.WetClutch rev(mu0=mu0, mu_g=0, N_c=N_c_load, R_m=R_m, S=S_load)
     "REV clutch, slipping against the housing as the load (flat friction curve)"
     annotation (Placement(transformation(extent={{170,-10},{190,10}})));
-  Sources.SpeedDrive motor(w_ref=w_motor, d_control=d_control) "81 kW DC motor with speed control"
+  Sources.SpeedDrive motor(w_ref=w_motor, d_control=d_control, tau_max=tau_max) "81 kW DC motor with speed control"
     annotation (Placement(transformation(extent={{-190,-10},{-170,10}})));
   Sources.DitherPressure revPressure(p_m=p_load, p_f=0, f=0, t_start=t_engage, t_ramp=t_ramp)
     annotation (Placement(transformation(extent={{-10,-10},{10,10}}, rotation=270, origin={180,40})));

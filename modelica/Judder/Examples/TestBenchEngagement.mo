@@ -4,10 +4,7 @@ model TestBenchEngagement "Held-slip bench run of Fig. 5 and section 2.2: EVEN c
       constrainedby Interfaces.PartialCurveWetClutch,
     clutch(mu_g=mu_g, delta_mu=delta_mu, w_op=w_op),
     S_load=load_share*(N_c*S*p_m - c3*w_gearbox/(mu0*R_m))/(N_c_load*p_load));
-  parameter Units.FrictionCoefficient delta_mu(min=1e-6)=0.04
-    "Half the rise of the EVEN friction curve (mu within mu0 +- delta_mu)";
-  parameter Units.AngularVelocity w_op(min=0)=84.71975511965977
-    "Slip at which the EVEN curve has the value mu0 and the slope mu_g (w_motor - w_gearbox at 1000 rpm)";
+  extends Data.BoundedCurveData;
   annotation (
     experiment(StopTime=4, Interval=1e-3),
     Documentation(info="<html>
