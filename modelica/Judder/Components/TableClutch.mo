@@ -1,21 +1,12 @@
 within Judder.Components;
 model TableClutch "Wet clutch whose friction coefficient is a table of the slip speed (as MSL Clutch mu_pos)"
   extends Interfaces.PartialPressureClutch;
-  parameter Real mu_pos[:, 2]={{0, 0.09}, {50, 0.1}, {100, 0.11}, {200, 0.115}}
-    "Friction coefficient (column 2, 1) against the absolute slip speed (column 1, rad/s, increasing)";
+  extends Interfaces.PartialFrictionTable;
   parameter Units.AngularVelocity w_small(min=0)=0.01
     "Slip speed over which the friction torque changes sign smoothly";
-  Units.FrictionCoefficient mu "Friction coefficient at the present slip speed";
 equation
   direction = noEvent(tanh(slip/w_small));
-  // linear interpolation in mu_pos at |slip|, the end values held outside
-  mu = noEvent(if abs(slip) < mu_pos[1, 1] then mu_pos[1, 2] else 0)
-    + sum(noEvent(if abs(slip) >= mu_pos[i, 1] and abs(slip) < mu_pos[i + 1, 1]
-      then mu_pos[i, 2] + (mu_pos[i + 1, 2] - mu_pos[i, 2])
-        *(abs(slip) - mu_pos[i, 1])/(mu_pos[i + 1, 1] - mu_pos[i, 1])
-      else 0) for i in 1:size(mu_pos, 1) - 1)
-    + noEvent(if abs(slip) >= mu_pos[size(mu_pos, 1), 1]
-      then mu_pos[size(mu_pos, 1), 2] else 0);
+  w_table = noEvent(abs(slip));
   tau_c = N_c*R_m*S*mu*direction*p;
   annotation (
     Icon(coordinateSystem(preserveAspectRatio=true, extent={{-100,-100},{100,100}}),
