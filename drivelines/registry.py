@@ -121,6 +121,11 @@ class DrivelineModel:
         The ``Judder.Data`` records the bench class extends for its own
         parameters (motor, load clutch, ramp, friction curve): their
         defaults, units and allowed ranges are the bench's.
+    bench_table_class : str or None
+        The same bench with the EVEN clutch's friction characteristic as
+        a table (``--friction``), if any.
+    bench_table_records : tuple of str
+        Its records (the bench's without the curve's).
     bench_damping : tuple of (str, str)
         ``(parameter, bench parameter)``: damping the bench adds to a
         parameter of the driveline in its linearisation (the motor's
@@ -150,6 +155,8 @@ class DrivelineModel:
     modelica_class: str
     bench_class: object
     bench_records: tuple
+    bench_table_class: object
+    bench_table_records: tuple
     bench_damping: tuple
     free_response_speeds: tuple
     paper_sensitivity: bool
@@ -246,6 +253,8 @@ FOUR_DOF = DrivelineModel(
     modelica_class="Judder.Examples.Driveline4DOF",
     bench_class="Judder.Examples.TestBenchEngagement",
     bench_records=("TestBenchData", "BoundedCurveData"),
+    bench_table_class="Judder.Examples.TestBenchTable",
+    bench_table_records=("TestBenchData",),
     bench_damping=(("c1", "d_control"),),
     free_response_speeds=("w_upstream", "w_downstream", "inertia1.w",
                           "inertia2.w"),
@@ -280,6 +289,8 @@ THREE_DOF = DrivelineModel(
     modelica_class="Judder.Examples.Driveline3DOF",
     bench_class=None,
     bench_records=(),
+    bench_table_class=None,
+    bench_table_records=(),
     bench_damping=(),
     free_response_speeds=("w_upstream", "w_downstream", "inertia1.w"),
     paper_sensitivity=False,

@@ -50,6 +50,10 @@ class Parameters:
 
     model: str
     values: MappingProxyType = field(repr=False)
+    #: The clutch's friction characteristic
+    #: (:class:`drivelines.friction.FrictionTable`), or None: the bench's
+    #: bounded curve (see :meth:`with_friction`).
+    friction: object = None
     #: A registry chain (:mod:`drivelines.registry`).
     source_kind: ClassVar[SourceKind] = SourceKind.CHAIN
 
@@ -73,11 +77,23 @@ class Parameters:
 
     def __reduce__(self):
         # MappingProxyType does not pickle; worker processes need copies
-        return (Parameters, (self.model, dict(self.values)))
+        return (Parameters, (self.model, dict(self.values), self.friction))
 
     def replace(self, **changes):
         """Return a copy with some values changed (validated)."""
-        return Parameters(self.model, {**self.values, **changes})
+        return Parameters(self.model, {**self.values, **changes},
+                          self.friction)
+
+    def with_friction(self, table, slip):
+        """A copy whose clutch has the friction characteristic ``table``
+        (:class:`drivelines.friction.FrictionTable`): ``mu0`` and
+        ``mu_g`` become its value and slope at ``slip`` (rad/s, the
+        operating slip the linearisation of the chain is taken at), and
+        every view that follows the slip (the bench's linearisation at
+        its own slip, the orbit, the bench FMU) reads the table."""
+        mu, slope = table.at(slip)
+        return Parameters(self.model, {**self.values, "mu0": mu,
+                                       "mu_g": slope}, table)
 
     def with_overrides(self, assignments):
         """Apply ``NAME=VALUE`` strings, as given to ``--set``.

@@ -31,7 +31,8 @@ from .source import build_driveline
 
 __all__ = ["DRIVELINES", "BenchParameter", "bench_class", "bench_parameters",
            "check_bench", "bench_damping", "added_damping",
-           "operating_friction", "linear_validity", "engagement_model",
+           "operating_friction", "operating_slip", "linear_validity",
+           "engagement_model",
            "bench_linearisation", "default_driveline", "driveline_view",
            "driveline_words", "drive_torque"]
 
@@ -93,7 +94,15 @@ def bench_class(values):
         raise JudderError(f"the {values.model} driveline has no bench "
                           "engagement model; give a parameter set of a "
                           "driveline that has one (4-DOF)")
-    return values.driveline.bench_class
+    return (values.driveline.bench_class if values.friction is None
+            else values.driveline.bench_table_class)
+
+
+def _bench_records(values):
+    """The ``Judder.Data`` records of the bench :func:`bench_class`
+    names."""
+    return (values.driveline.bench_records if values.friction is None
+            else values.driveline.bench_table_records)
 
 
 def _unit(modelica_unit):
@@ -125,7 +134,7 @@ def bench_parameters(values):
     return {name: BenchParameter(name, _unit(declared.unit), declared.low,
                                  declared.high, declared.value,
                                  declared.description)
-            for record in values.driveline.bench_records
+            for record in _bench_records(values)
             for name, declared in record_parameters(record).items()}
 
 
@@ -155,6 +164,18 @@ def check_bench(values, bench):
                               f"{parameter.allowed()}")
         bench[name] = number
     return bench
+
+
+def operating_slip(values):
+    """The slip the chain is linearised at where its clutch has a
+    friction characteristic, rad/s: the bench's steady slip ``w_motor -
+    w_gearbox`` by its records' defaults (the paper's 1000 rpm operating
+    point), for a driveline with or without a bench."""
+    from drivelines.records import record_values
+    bench = record_values(values.driveline.bench_table_records[0]
+                          if values.driveline.bench_table_records
+                          else "TestBenchData")
+    return bench["w_motor"] - bench["w_gearbox"]
 
 
 def _bench_values(values, bench):
@@ -231,6 +252,10 @@ def operating_friction(values, bench=None):
             "allowed: below w_motor (the EVEN clutch slips forwards, "
             "at w_motor - w_gearbox)")
     slip = given["w_motor"] - given["w_gearbox"]
+    if values.friction is not None:
+        mu, slope = values.friction.at(slip)
+        return ({"mu0": mu, "mu_g": slope},
+                values.friction.linear_range(slip))
     point = curve_at(slip, values["mu0"], values["mu_g"], given["delta_mu"],
                      given["w_op"])
     return ({"mu0": point.mu, "mu_g": point.slope},
@@ -276,9 +301,17 @@ def engagement_model(values, bench=None, duration=None):
     added = added_damping(values, bench)
     damped = values.replace(**{name: values[name] + value
                                for name, value in added.items()})
-    model = EngagementModel.from_driveline(
-        build_driveline(damped), delta_mu=given["delta_mu"],
-        w_op=given["w_op"], slip=given["w_motor"] - given["w_gearbox"])
+    slip = given["w_motor"] - given["w_gearbox"]
+    if values.friction is not None:
+        # mu0: the characteristic's value at the steady slip, the friction
+        # of the mean load (the table bench's clutch.mu0 is values' mu0)
+        model = EngagementModel.from_driveline(
+            build_driveline(damped), delta_mu=math.nan, w_op=slip,
+            slip=slip, table=values.friction)
+    else:
+        model = EngagementModel.from_driveline(
+            build_driveline(damped), delta_mu=given["delta_mu"],
+            w_op=given["w_op"], slip=slip)
     # the motor (body 1): its control's gain is in the damping, its
     # torque limit is the orbit's second nonlinearity
     gain = sum(added.values())
@@ -332,13 +365,20 @@ def driveline_view(values, driveline=None):
 
 
 def driveline_words(values, driveline="chain"):
-    """Which driveline a view is of, in words."""
+    """Which driveline a view is of, in words: with a friction
+    characteristic (:meth:`sources.Parameters.with_friction`), which one
+    and the share ``m`` of the clamping load that feels its slope."""
+    friction = "" if getattr(values, "friction", None) is None else (
+        f"; {values.friction.words()}, m = "
+        f"{values['mean_pressure_damping']:g} of the clamping load on its "
+        "slope")
     if driveline == "bench":
         return (f"the {values.model} driveline on its test bench (motor "
                 "speed control on body 1, friction curve's value and "
-                "slope at the bench's slip)")
+                f"slope at the bench's slip{friction})")
     if values.source_kind.is_chain:
-        return f"the {values.model} chain alone (Eq. 6, free, as Fig. 14)"
+        return (f"the {values.model} chain alone (Eq. 6, free, as Fig. 14"
+                f"{friction})")
     return f"{values.model}"
 
 

@@ -361,7 +361,10 @@ def _combination_seeds(transfer, omega):
                 pair = (transfer(1j * nu)
                         * transfer(1j * (nu + side * omega)))[..., 0, 0]
                 nus.append(nu)
-                amps.append(2.0 / np.sqrt(np.abs(pair)))
+                # no slip damping (a flat friction characteristic): no
+                # tongue, an infinite seed
+                with np.errstate(divide="ignore"):
+                    amps.append(2.0 / np.sqrt(np.abs(pair)))
     if not nus:
         return np.empty((len(omega), 0)), np.empty((len(omega), 0))
     return np.stack(nus, axis=1), np.stack(amps, axis=1)

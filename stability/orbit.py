@@ -58,7 +58,7 @@ import scipy.linalg
 
 from infra.errors import JudderError
 
-from .friction import curve
+from .friction import curve, curve_value
 from .kinds import KINDS, classify
 
 __all__ = ["EngagementModel", "Orbit", "OrbitBranch", "periodic_orbit",
@@ -125,6 +125,11 @@ class EngagementModel:
         Time over which the mean slip drifts under the torque the dither
         rectifies before the motion is read, s (:func:`drifted_orbit`;
         0: none).
+    table : drivelines.friction.FrictionTable or None
+        The clutch's friction characteristic, read in place of the curve
+        (``mu0`` is then its value at the steady slip, the friction of
+        the mean load's share ``1 - m``; ``delta_mu`` and ``w_op`` are
+        unused).
     """
 
     mass: np.ndarray
@@ -148,10 +153,11 @@ class EngagementModel:
     drive_damping: float = 0.0
     load_inertia: float = 0.0
     drift_time: float = 0.0
+    table: object = None
 
     @classmethod
     def from_driveline(cls, driveline, delta_mu, w_op, slip=None,
-                       w_small=0.01):
+                       w_small=0.01, table=None):
         """The engagement of a :class:`stability.model.Driveline` whose
         ``mu0`` and ``mu_g`` are the curve's at ``w_op``, with its
         structural damping as the linear part (the bench's additions
@@ -169,7 +175,7 @@ class EngagementModel:
                    slip=w_op if slip is None else float(slip),
                    p_m=driveline.p_m,
                    mean_pressure_damping=driveline.mean_pressure_damping,
-                   w_small=w_small)
+                   w_small=w_small, table=table)
 
     @property
     def limited_drive(self):
@@ -196,10 +202,22 @@ class EngagementModel:
                 np.where(limited != linear, self.drive_gain, 0.0))
 
     def friction(self, w):
-        """``mu(w)`` and ``d mu/d w`` of the curve
-        (:func:`stability.friction.curve`)."""
-        mu, slope = curve(w, self.mu0, self.mu_g, self.delta_mu, self.w_op)
+        """``mu(w)`` and ``d mu/d w`` of the clutch's characteristic: its
+        table where it has one (:meth:`drivelines.friction.FrictionTable.
+        curve`), else the curve (:func:`stability.friction.curve`)."""
+        if self.table is not None:
+            mu, slope = self.table.curve(w)
+        else:
+            mu, slope = curve(w, self.mu0, self.mu_g, self.delta_mu,
+                              self.w_op)
         return mu, np.sign(w) * slope
+
+    def friction_value(self, w):
+        """``mu(w)`` alone (:meth:`friction` without the slope, for a
+        right-hand side that needs no Jacobian)."""
+        if self.table is not None:
+            return np.interp(np.abs(w), self.table.slip, self.table.mu)
+        return curve_value(w, self.mu0, self.mu_g, self.delta_mu, self.w_op)
 
     def torque(self, w, t, omega, p_f):
         """Clutch torque ``tau(w, t)`` (N m) and ``d tau/d w``

@@ -36,7 +36,6 @@ import numpy as np
 
 from infra.spectrum import hann_amplitude, hann_spectrum
 
-from .friction import curve_value
 
 __all__ = ["SettledMotion", "settle", "settle_orbits", "STEPS_PER_PERIOD",
            "WINDOW_S", "TOLERANCE"]
@@ -101,8 +100,8 @@ class SettledMotion:
 
 class _Equations:
     """The right-hand side of the engagement's equations for a batch:
-    :meth:`stability.orbit.EngagementModel.torque` (its friction curve
-    :func:`stability.friction.curve_value`) and
+    :meth:`stability.orbit.EngagementModel.torque` (its friction
+    :meth:`~stability.orbit.EngagementModel.friction_value`) and
     :meth:`~stability.orbit.EngagementModel.drive_excess` written out for
     speed (the integration calls it four times a step)."""
 
@@ -129,8 +128,7 @@ class _Equations:
         """``dither``: ``p_f cos(omega t)`` of each setting, Pa."""
         model = self.model
         w = model.slip + state @ self.e
-        mu = curve_value(w, model.mu0, model.mu_g, model.delta_mu,
-                         model.w_op)
+        mu = model.friction_value(w)
         tau = model.clutch_factor * np.tanh(w / model.w_small) * (
             mu * (self.mean_load + dither) + self.fixed)
         rate = state @ self.transposed

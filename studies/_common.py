@@ -138,11 +138,20 @@ def timed(function, *args, **kwargs):
 
 def structural_names(values, preferred, extra=(), argument="names"):
     """``preferred`` if the model has them all, else its inertias,
-    stiffnesses and coupling dampings (from the registry), plus ``extra``.
+    stiffnesses and coupling dampings (from the registry), plus ``extra``;
+    without those whose value is 0 (a relative change of them is none:
+    ``mu_g`` of a flat friction characteristic).
 
     A Modelica class or an FMU has no registry entry: those of
     ``preferred`` it has (its names follow the paper's where it is the
     paper's chain), and if it has none the names must be given."""
+    return tuple(name for name in _structural_names(values, preferred, extra,
+                                                    argument)
+                 if values[name] != 0)
+
+
+def _structural_names(values, preferred, extra, argument):
+    """:func:`structural_names` with the zero values kept."""
     if all(name in values.specs for name in preferred):
         return tuple(preferred)
     if not values.source_kind.is_chain:

@@ -24,7 +24,7 @@ __all__ = ["read_input", "check_input", "read_period", "load_parameters", "read_
            "read_boundary_limit", "read_chart_boundary", "read_chart_below",
            "read_chart_onset_kinds",
            "read_chart_min_growth", "read_chart_limit", "read_chart_runs",
-           "empty_cell"]
+           "empty_cell", "read_friction_table", "friction_of"]
 
 #: Largest parameter or boundary file read, bytes.
 MAX_INPUT_BYTES = 64 * 2**20
@@ -35,7 +35,7 @@ MAX_INPUT_BYTES = 64 * 2**20
 #: regular file of at most :data:`MAX_INPUT_BYTES`, checked by its size
 #: and type (:func:`check_input`) before anything reads or hashes it.
 TEXT_INPUTS = ("param_file", "boundary", "table", "ranges", "also",
-               "files")
+               "files", "friction")
 
 
 def check_input(path, option):
@@ -132,6 +132,132 @@ def read_period(path, option="`period`", decimal=None):
                           f"{rows[bad[0]][0]}); allowed: finite pressures, "
                           "at least 4")
     return np.asarray(values, dtype=float)
+
+
+#: A friction table's slip column: ``slip_rpm``, ``slip [rad/s]``, ...
+_SLIP_HEADER = re.compile(r"\s*(?:slip|w|omega)[\s_\[\(]*(rpm|rad/s|rad_s)"
+                          r"[\]\)]?\s*", re.I)
+#: A friction coefficient column: ``mu``, or ``mu_40C``, ``mu at 40 C``,
+#: ``mu@40degC`` at one oil temperature.
+_MU_HEADER = re.compile(r"\s*mu(?:[\s_@]*(?:at)?[\s_]*(-?\d+(?:[.,]\d+)?)"
+                        r"\s*(?:°\s*C|degC|C))?\s*", re.I)
+
+
+def read_friction_table(path, option="`friction`", decimal=None):
+    """A clutch's friction characteristic from a friction rig's CSV
+    (``--friction FILE.csv``).
+
+    The first row names the columns: the absolute slip speed
+    (``slip_rpm`` or ``slip_rad_s``, also written ``slip [rpm]``), then
+    either one friction coefficient column ``mu`` or one per oil
+    temperature (``mu_40C``, ``mu at 80 C``), in increasing temperature.
+    The rest is read as the project's small tables are
+    (:func:`read_period`: ``#`` comments, ``sep=;``, ``;`` or tab, the
+    decimal separator from every cell or ``decimal``).
+
+    Returns
+    -------
+    drivelines.friction.FrictionTable
+        The slip in rad/s; with several temperatures, ``family`` holds
+        them and ``mu`` is the first's (choose one with
+        :meth:`~drivelines.friction.FrictionTable.at_oil_temperature`).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "mu.csv")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("slip_rpm;mu_40C;mu_80C" + chr(10) + "0;0,12;0,10"
+    ...                 + chr(10) + "1000;0,13;0,12" + chr(10))
+    >>> table = read_friction_table(path).at_oil_temperature(60)
+    >>> [round(w, 3) for w in table.slip], [round(m, 3) for m in table.mu]
+    ([0.0, 104.72], [0.11, 0.125])
+    """
+    from drivelines.friction import FrictionTable
+    from infra.units import RAD_S_PER_RPM
+    from pysim.bench.tables import numbers, split_rows
+    source = f"{option} {path}"
+    lines = [(number, line.split("#")[0]) for number, line in
+             enumerate(read_input(path, option).splitlines(), start=1)]
+    rows = split_rows([(n, line) for n, line in lines if line.strip()],
+                      source)
+    if len(rows) < 3:
+        raise JudderError(f"{source}: {max(len(rows) - 1, 0)} rows of "
+                          "numbers; allowed: a row naming the columns "
+                          "(slip_rpm or slip_rad_s, then mu or mu_<T>C per "
+                          "oil temperature) and at least 2 rows")
+    (header_line, header), body = rows[0], rows[1:]
+    slip_unit = _SLIP_HEADER.fullmatch(header[0])
+    temperatures = [_MU_HEADER.fullmatch(cell) for cell in header[1:]]
+    if slip_unit is None or not temperatures or None in temperatures or (
+            len(temperatures) > 1 and any(t.group(1) is None
+                                          for t in temperatures)):
+        raise JudderError(f"{source}, line {header_line}: columns "
+                          f"{', '.join(map(repr, header))} are not allowed; "
+                          "allowed: slip_rpm or slip_rad_s, then mu, or "
+                          "mu_<T>C for each oil temperature T (e.g. "
+                          "slip_rpm,mu_40C,mu_80C)")
+    for number, cells in body:
+        if len(cells) != len(header):
+            raise JudderError(f"{source}, line {number}: {len(cells)} cells; "
+                              f"allowed: {len(header)}, as the names row")
+    columns = numbers(source, {name: [(number, cells[i])
+                                      for number, cells in body]
+                               for i, name in enumerate(header)}, decimal)
+    slip = columns[header[0]] * (RAD_S_PER_RPM if slip_unit.group(1).lower()
+                                 == "rpm" else 1.0)
+    mus = [tuple(columns[name]) for name in header[1:]]
+    family = () if len(mus) == 1 else tuple(
+        (float(t.group(1).replace(",", ".")), mu)
+        for t, mu in zip(temperatures, mus))
+    return FrictionTable(tuple(slip), mus[0], str(path),
+                         family[0][0] if family else None, family)
+
+
+def friction_of(values, friction, oil_temperature_c=None, decimal=None):
+    """``values`` with the clutch's friction characteristic ``friction``:
+    a built-in name (:data:`drivelines.friction.BUILT_INS`; ``bounded``,
+    the default, leaves ``values`` as they are) or a friction table file
+    (:func:`read_friction_table`), at the oil temperature
+    ``oil_temperature_c`` (C) where the table has several. The chain's
+    ``mu0`` and ``mu_g`` become the characteristic's value and slope at
+    the bench's slip (:func:`stability.bench.operating_slip`)."""
+    from drivelines.friction import BUILT_INS, straight_line
+    from stability.bench import operating_slip
+    if friction is None or friction == "bounded":
+        if oil_temperature_c is not None:
+            raise JudderError("`oil_temperature_c` is for a friction table "
+                              "with a column per oil temperature; allowed: "
+                              "with `friction` FILE.csv")
+        return values
+    if not values.source_kind.is_chain:
+        raise JudderError(f"`friction` {friction} is not allowed with the "
+                          f"class {values.model}; allowed: a preset or its "
+                          "parameter file (a class of your own takes its "
+                          "characteristic in Modelica, e.g. "
+                          "Judder.Components.TableWetClutch)")
+    slip = operating_slip(values)
+    if friction == "straight":
+        table = straight_line(values["mu0"], values["mu_g"], slip)
+    elif friction in BUILT_INS:
+        raise JudderError(f"`friction` {friction!r} is not allowed; "
+                          f"allowed: {', '.join(BUILT_INS)} or FILE.csv")
+    else:
+        table = read_friction_table(friction, "`friction`", decimal)
+    if oil_temperature_c is not None:
+        table = table.at_oil_temperature(oil_temperature_c)
+    elif table.family:
+        from pysim.simulation.campaigns import REFERENCE_TEMPERATURE_C
+        measured = [t for t, _ in table.family]
+        if not measured[0] <= REFERENCE_TEMPERATURE_C <= measured[-1]:
+            raise JudderError(
+                f"`friction` {friction} has a column per oil temperature "
+                f"({', '.join(f'{t:g}' for t in measured)} C) and no "
+                "`oil_temperature_c` was given; allowed: an "
+                f"`oil_temperature_c` from {measured[0]:g} to "
+                f"{measured[-1]:g} C")
+        table = table.at_oil_temperature(REFERENCE_TEMPERATURE_C)
+    return values.with_friction(table, slip)
 
 
 def load_parameters(preset=None, model=None, param_file=None):

@@ -122,6 +122,12 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
     full = RUN_KINDS[engagement] == "engagement"
     if full and not values.source_kind.is_chain:
         bench_fmu(values)       # refuses a class or FMU, naming the bench
+    if full and values.friction is not None:
+        raise JudderError(f"`engagement` {engagement} is not allowed with "
+                          f"the {values.friction.words()}; allowed: steady "
+                          "(the held-slip bench reads the table; the "
+                          "engagements to lock-up run the bench's curve or "
+                          "the straight line)")
     if values.source_kind.is_chain:
         bench = check_bench(values, bench)
         model_class, fmu = bench_fmu(values)
@@ -131,7 +137,9 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
             fmu = ensure_fmu(model_class)
         ramp_end = sum(bench.get(name, parameter_default(fmu, name))
                        for name in ("t_engage", "t_ramp"))
-        run_params, extra = values, bench
+        run_params, extra = values, dict(bench)
+        if values.friction is not None:
+            extra.update(values.friction.start_values())
         # the bench's linearisation: its motor control damps body 1, and
         # its friction curve has its own value and slope at the slip
         # (a full engagement sweeps the slip: it is linearised where its
@@ -199,7 +207,9 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           **_orbit_fields(orbit_model, run, min_growth,
                                           judder_limit_rpm)})
     run_kind, friction_law = ((RUN_KINDS[engagement],
-                               FRICTION_LAWS[engagement])
+                               FRICTION_LAWS[engagement]
+                               if values.friction is None else
+                               values.friction.words())
                               if values.source_kind.is_chain else
                               ("class", "the class's own"))
     return SimulationResult(runs=runs, summaries=summaries, fmu=fmu,

@@ -164,8 +164,9 @@ def test_bench_jacobian_is_the_linear_model(rpm):
     params = get_preset("paper-4dof-fitted")
     w_motor = rpm * np.pi / 30
     f, p_f = 212.0, 0.7 * BAR
-    times = np.arange(8) / (8 * f)
-    bench = {"t_engage": -1.0, "t_ramp": 0.0, "w_motor": w_motor,
+    # one second in (212 periods): the pressure ramp from t = 0 is done
+    times = (212 + np.arange(8) / 8) / f
+    bench = {"t_engage": 0.0, "t_ramp": 0.0, "w_motor": w_motor,
              "f_dither": f, "p_f": p_f}
     jacobians = _bench_jacobian({**params.as_dict(), **bench}, times)
     from fmu.store import ensure_fmu

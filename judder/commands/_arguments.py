@@ -51,6 +51,24 @@ def model_options(parser, modelica=True, fmu=True):
                        help="override one parameter, SI units; repeatable "
                             "(e.g. --set c12=10 --set "
                             "mean_pressure_damping=1)")
+    group.add_argument("--friction", metavar="bounded|straight|FILE.csv",
+                       help="the EVEN clutch's friction characteristic "
+                            "mu(slip): bounded (default: the bench's "
+                            "bounded rising curve, mu0 and mu_g at its "
+                            "slip), straight (the straight line of Eq. 5 "
+                            "there), or a friction rig's table: a CSV with "
+                            "slip_rpm or slip_rad_s, then mu or mu_<T>C "
+                            "per oil temperature (up to 64 rows). mu0 and "
+                            "mu_g become its value and slope at the bench's "
+                            "slip (1000 rpm); the bench, the orbit and "
+                            "simulate read the whole table. The share of "
+                            "the clamping load that feels it stays "
+                            "mean_pressure_damping (0 by default)")
+    group.add_argument("--oil-temp", type=float, metavar="C",
+                       help="oil temperature, C, at which a --friction "
+                            "table with a column per temperature is read "
+                            "(linear between its columns; default 67.5 C, "
+                            "the paper's 65-70 C)")
     parser.add_argument("--json", action="store_true",
                         help="print the result as JSON")
     if modelica:

@@ -27,6 +27,8 @@ FLAGS = {
     "starts": "--starts", "samples": "--samples", "refine": "--refine",
     "engine_rpm": "--rpm", "temperatures": "--temperatures",
     "margin_hz": "--margin-hz", "p_f_bar": "--pf",
+    "friction": "--friction", "oil_temperature_c": "--oil-temp",
+    "engagement": "--engagement",
     "min_growth": "--min-growth", "factors": "--factors",
     # sources: Parameters.with_overrides, FmuParameters, ModelicaParameters
     "assignments": "--set", "path": "--fmu", "library": "--library",

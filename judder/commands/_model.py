@@ -12,7 +12,7 @@ from infra.errors import JudderError
 from infra.quantities import parse_quantity
 from infra.units import PA_PER_BAR
 from studies.bench import refuse_bench_of_class
-from studies.inputs import load_parameters, read_input
+from studies.inputs import friction_of, load_parameters, read_input
 
 from ._values import check_file_pressure, check_plain_pressure, check_pressures
 
@@ -39,6 +39,18 @@ def parameters_of(args, dithered=True):
         check_file_pressure(params, args.param_file)
     for text in args.set:
         check_plain_pressure(text)
+    if args.friction not in (None, "bounded"):
+        fixed = sorted({"mu0", "mu_g"} & set(names))
+        if fixed and args.friction != "straight":
+            raise JudderError(f"--set {fixed[0]} is not allowed with "
+                              f"--friction {args.friction}; allowed: the "
+                              "table's own value and slope at the bench's "
+                              "slip (give another table)")
+        friction = friction_of(changed, args.friction, args.oil_temp,
+                               getattr(args, "decimal", None))
+        return friction, {name: friction[name] for name in names}
+    if args.oil_temp is not None:
+        friction_of(params, args.friction, args.oil_temp)   # refuses
     return params, {name: changed[name] for name in names}
 
 
