@@ -31,7 +31,8 @@ from .source import build_driveline
 
 __all__ = ["DRIVELINES", "BenchParameter", "bench_class", "bench_parameters",
            "check_bench", "bench_damping", "added_damping",
-           "operating_friction", "operating_slip", "linear_validity",
+           "operating_friction", "operating_slip", "friction_at",
+           "linearisation_at", "linear_validity",
            "engagement_model",
            "bench_linearisation", "default_driveline", "driveline_view",
            "driveline_words", "drive_torque"]
@@ -253,14 +254,43 @@ def operating_friction(values, bench=None):
             "at w_motor - w_gearbox)")
     slip = given["w_motor"] - given["w_gearbox"]
     if values.friction is not None:
-        mu, slope = values.friction.at(slip)
-        return ({"mu0": mu, "mu_g": slope},
+        return (friction_at(values, slip, bench),
                 values.friction.linear_range(slip))
-    point = curve_at(slip, values["mu0"], values["mu_g"], given["delta_mu"],
-                     given["w_op"])
-    return ({"mu0": point.mu, "mu_g": point.slope},
+    return (friction_at(values, slip, bench),
             linear_range(slip, values["mu_g"], given["delta_mu"],
                          given["w_op"]))
+
+
+def friction_at(values, slip, bench=None):
+    """``{'mu0': ..., 'mu_g': ...}``: the value and slope of the bench's
+    EVEN clutch's friction characteristic at the slip ``slip`` (rad/s):
+    its table's (:meth:`drivelines.friction.FrictionTable.at`) where
+    ``values`` carry one, else the bounded curve's
+    (:func:`stability.friction.curve_at`, ``values``' ``mu0`` and ``mu_g``
+    at the bench's ``w_op``)."""
+    if values.friction is not None:
+        mu, slope = values.friction.at(slip)
+        return {"mu0": mu, "mu_g": slope}
+    given = _bench_values(values, bench)
+    point = curve_at(slip, values["mu0"], values["mu_g"], given["delta_mu"],
+                     given["w_op"])
+    return {"mu0": point.mu, "mu_g": point.slope}
+
+
+def linearisation_at(values, bench=None):
+    """``slip -> stability.model.Driveline``: the bench linearised at a
+    steady slip (rad/s), the friction characteristic's value and slope
+    there and the motor control's damping
+    (:func:`stability.engagement_path.engagement_path` follows an
+    engagement with it). The value ``mu0`` of the mean load's share (1 -
+    m) stays ``values``' own, as in the bench's clutch."""
+    damped = values.replace(**{name: values[name] + value for name, value
+                               in added_damping(values, bench).items()})
+
+    def at(slip):
+        return build_driveline(damped.replace(
+            mu_g=friction_at(values, slip, bench)["mu_g"]))
+    return at
 
 
 def linear_validity(driveline, run, linear_slip):

@@ -14,7 +14,8 @@ from infra.units import PA_PER_BAR
 from sources.dither_modes import check_modes
 from stability import floquet as floquet_kernel
 from stability.bench import (added_damping, check_bench, engagement_model,
-                             linear_validity, operating_friction)
+                             linear_validity, linearisation_at,
+                             operating_friction)
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
@@ -190,10 +191,15 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                             duration=duration, output_interval=interval,
                             variables=LOCK_VARIABLES if full else ()))
             for label, freq, p_f in settings]
-    summaries, slipping = [], []
+    summaries, slipping, paths = [], [], []
+    linearised = (None if not values.source_kind.is_chain else
+                  (lambda slip: driveline)
+                  if FRICTION_LAWS[engagement] == LINEAR_LAW else
+                  linearisation_at(values, bench))
     for label, run in runs:
         lock = lock_up(run) if full else None
         slipping.append(until(run, lock))
+        paths.append(_path(linearised, slipping[-1], ramp_end))
         linear = floquet_kernel(driveline, run.freq_hz, run.p_f,
                                 method=method)
         summaries.append({"label": label,
@@ -205,7 +211,8 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           "floquet_exponent_per_s": linear.growth_rate,
                           **linear_validity(driveline, run, linear_slip),
                           **_orbit_fields(orbit_model, run, min_growth,
-                                          judder_limit_rpm)})
+                                          judder_limit_rpm),
+                          **_path_fields(paths[-1], min_growth)})
     run_kind, friction_law = ((RUN_KINDS[engagement],
                                FRICTION_LAWS[engagement]
                                if values.friction is None else
@@ -216,6 +223,7 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                             model_class=model_class, start=ramp_end,
                             asked=len(freqs),
                             run_kind=run_kind, friction_law=friction_law,
+                            paths=paths, min_growth=min_growth,
                             # (the lock counters are counts: unit 1)
                             signals={**SIGNALS, **dict.fromkeys(
                                 LOCK_VARIABLES if full else (), "1")},
@@ -268,6 +276,49 @@ def _orbit_fields(model, run, min_growth, judder_limit_rpm):
                             row["growth_per_s"], row["mechanism"])))
 
 
+#: Window over which the run's slip is averaged for its path through the
+#: map, s: longer than the slowest mode's period (16.5 Hz on the bench),
+#: short against an engagement.
+PATH_WINDOW_S = 0.1
+
+
+def _path(linearised, run, start):
+    """The run's path through the map after ``start`` (the end of the
+    pressure ramp): the quasi-static Floquet exponent along its mean slip
+    (:func:`stability.engagement_path.engagement_path`), sampled every 2
+    ms; None without dither, without a bench linearisation, or without
+    a slipping part after ``start``."""
+    from stability.engagement_path import engagement_path, mean_slip
+    after = run.time >= start
+    if linearised is None or run.p_f == 0 or after.sum() < 2:
+        return None
+    time = run.time[after]
+    slip = mean_slip(run.time, run["slip"], 1.0 / PATH_WINDOW_S)[after]
+    samples = np.arange(time[0], time[-1], 2e-3)
+    return engagement_path(linearised, run.freq_hz, run.p_f, samples,
+                           np.interp(samples, time, slip))
+
+
+def _path_fields(path, min_growth):
+    """The path's summary as ``path_*`` fields: the mean slip at its
+    start and end (rad/s), its largest exponent (1/s), the e-folds it
+    accumulates and the predicted amplitude gain over the whole run, and
+    each span in which it grows faster than ``min_growth`` (start and
+    stop s, slips, kind, e-folds)."""
+    names = ("path_slip_start_rad_s", "path_slip_end_rad_s",
+             "path_max_growth_per_s", "path_efolds", "path_gain",
+             "path_spans")
+    if path is None:
+        return dict.fromkeys(names)
+    spans = [dict(zip(("start_s", "stop_s", "slip_start_rad_s",
+                       "slip_stop_rad_s", "kind", "efolds"), span))
+             for span in path.spans(min_growth)]
+    return dict(zip(names, (float(path.slip[0]), float(path.slip[-1]),
+                            float(path.growth_per_s.max()),
+                            float(path.accumulated[-1]), path.gain(),
+                            spans)))
+
+
 @dataclass(frozen=True)
 class SimulationResult:
     """``judder simulate``: held-slip bench runs or full engagements
@@ -295,6 +346,10 @@ class SimulationResult:
     slipping : list of Run, optional
         Of a full engagement, each run before its lock-up (what its
         verdict and spectra read).
+    paths : list of stability.engagement_path.EngagementPath or None
+        Per run, its path through the map (None without dither or bench).
+    min_growth : float
+        1/s, the growth the paths' spans are judged by.
     asked : int
         How many of ``runs`` are the dither settings asked for (the
         first ones; the comparison follows).
@@ -310,6 +365,8 @@ class SimulationResult:
     signals: dict = field(default_factory=dict)
     slipping: list = None
     asked: int = 1
+    paths: list = None
+    min_growth: float = None
 
     def as_dict(self):
         return {"model": self.model_class.rsplit(".", 1)[-1],
@@ -366,4 +423,14 @@ class SimulationResult:
                           verdicts=[verdict_line(self.summaries[i])
                                     for i in shown],
                           lock_ups=[self.summaries[i].get("lock_up_time_s")
-                                    for i in shown])
+                                    for i in shown],
+                          paths=None if not any(self.paths or ()) else
+                          [_path_curves(self.paths[i]) for i in shown],
+                          min_growth=self.min_growth)
+
+
+def _path_curves(path):
+    """``(time s, exponent 1/s, mean slip rad/s)`` of a path, for the
+    run figure (None without one)."""
+    return None if path is None else (path.time, path.growth_per_s,
+                                      path.slip)

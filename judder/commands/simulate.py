@@ -2,6 +2,8 @@
 dither (Fig. 7, 8), run through the FMU.
 """
 
+import math
+
 from infra.errors import JudderError
 from studies._common import resolve
 from studies._words import nonlinear_words, orbit_words
@@ -185,4 +187,24 @@ def _engagement_line(s, bench=True):
                if s["orbit_kind"] == "combination" else "; periodic orbit: ")
             + orbit_words(s)
             + ("" if s.get("linearisation_holds") is not False else
-               "; nonlinear: " + nonlinear_words(s)))
+               "; nonlinear: " + nonlinear_words(s))
+            + path_words(s))
+
+
+def path_words(s):
+    """The run's path through the map, where its slip moved: the mean
+    slip from the ramp's end to the run's end, each span inside a tongue
+    (exponent over --min-growth) with its times, slips, kind and the
+    amplitude gain it predicts, and the gain over the whole run."""
+    if s.get("path_efolds") is None or abs(
+            s["path_slip_start_rad_s"] - s["path_slip_end_rad_s"]) < 0.5:
+        return ""
+    spans = "; ".join(
+        f"inside a {span['kind']} tongue {span['start_s']:.2f}-"
+        f"{span['stop_s']:.2f} s at {span['slip_start_rad_s']:.1f}-"
+        f"{span['slip_stop_rad_s']:.1f} rad/s, x{math.exp(span['efolds']):.3g}"
+        for span in s["path_spans"]) or "never inside a tongue"
+    return (f"; path through the map (quasi-static): mean slip "
+            f"{s['path_slip_start_rad_s']:.1f} -> "
+            f"{s['path_slip_end_rad_s']:.1f} rad/s, {spans}; amplitude gain "
+            f"over the run x{s['path_gain']:.3g}")

@@ -15,7 +15,8 @@ from infra.units import PA_PER_BAR, RPM_PER_RAD_S
 
 from .signals import per_period
 
-__all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "run_figure"]
+__all__ = ["plot_run", "plot_spectrum", "plot_spectra_overlay", "plot_path",
+           "run_figure"]
 
 
 #: Line styles of the speeds, so they differ without colour.
@@ -180,10 +181,46 @@ def plot_spectra_overlay(runs, speed_spectra, ax=None, f_max=None):
 RIGHT_AXIS_PAD_IN = 0.15
 
 
-def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
+def plot_path(path, ax=None, min_growth=None):
+    """The run's path through the stability map against time: the
+    Floquet exponent of its linearisation at its mean slip (1/s, left;
+    shaded where it exceeds ``min_growth``) and that slip (rpm, right).
+
+    ``path`` is ``(time s, exponent 1/s, mean slip rad/s)``
+    (:mod:`stability.engagement_path`)."""
+    if ax is None:
+        _, ax = plt.subplots()
+    time, growth, slip = (np.asarray(a) for a in path)
+    artists = [ax.plot(time, growth, color=BLUE, lw=1.2,
+                       label="Floquet exponent at the mean slip")[0]]
+    if min_growth is not None:
+        artists.append(ax.axhline(min_growth, ls="--", color="0.3", lw=0.8,
+                                  label=f"judder growth, {min_growth:g} 1/s"))
+        artists.append(ax.fill_between(
+            time, min_growth, growth, where=growth > min_growth,
+            color=BLUE, alpha=0.25, lw=0, label="inside a tongue"))
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    right = ax.twinx()
+    artists.append(right.plot(time, slip * RPM_PER_RAD_S, ls=":",
+                              color=VERMILLION, lw=1.2,
+                              label="mean slip (right axis)")[0])
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("growth rate [1/s]")
+    right.set_ylabel("mean slip [rpm]")
+    ax.set_title("path through the stability map (quasi-static)",
+                 fontsize=9)
+    ax.legend(handles=artists, loc="upper center", fontsize=7,
+              bbox_to_anchor=(0.5, -0.2), ncols=2, borderaxespad=0.0)
+    return artists
+
+
+def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None,
+               paths=None, min_growth=None):
     """Time histories (top) and spectra (middle), one column per run,
     every spectrum over the same frequencies; with more than one run with
-    dither, their speed spectra overlaid (bottom).
+    dither, their speed spectra overlaid (bottom); with ``paths`` (per
+    run ``(time, exponent, mean slip)`` or None), each run's path through
+    the map under its spectrum (:func:`plot_path`).
 
     ``runs`` are ``(label, run)`` pairs, ``spectra`` their ``(speed,
     pressure)`` spectra (:func:`pysim.bench.engagement.display_spectra`),
@@ -197,7 +234,8 @@ def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
     f_max = min(f_max, min(0.5 / np.median(np.diff(run.time))
                            for _, run in runs))
     overlay = len(dithered) > 1
-    rows = 3 if overlay else 2
+    with_paths = paths is not None and any(p is not None for p in paths)
+    rows = 2 + overlay + with_paths
     fig = plt.figure(figsize=(6.5 * len(runs), 3.6 * rows + 0.6),
                      layout="constrained")
     # room around each panel's decorations: the right axis of pressure
@@ -210,9 +248,13 @@ def run_figure(runs, spectra, title=None, verdicts=None, lock_ups=None):
                  lock_up=None if lock_ups is None else lock_ups[column])
         plot_spectrum(run, spectra[column],
                       ax=fig.add_subplot(grid[1, column]), f_max=f_max)
+        if with_paths and paths[column] is not None:
+            plot_path(paths[column], ax=fig.add_subplot(grid[2, column]),
+                      min_growth=min_growth)
     if overlay:
         plot_spectra_overlay(dithered, dithered_speeds,
-                             ax=fig.add_subplot(grid[2, :]), f_max=f_max)
+                             ax=fig.add_subplot(grid[rows - 1, :]),
+                             f_max=f_max)
     if title:
         figure_title(fig, title)
     return fig
