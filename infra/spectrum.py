@@ -11,7 +11,7 @@ rather than on the nearest bin. The time-domain verdict of a run
 
 import numpy as np
 
-__all__ = ["hann_spectrum", "hann_amplitude"]
+__all__ = ["hann_spectrum", "hann_amplitude", "sliding_amplitude"]
 
 
 def _hann(n):
@@ -82,3 +82,45 @@ def hann_amplitude(time, values, freq_hz):
     phasors = np.exp(-2j * np.pi * np.multiply.outer(
         np.atleast_1d(freq_hz), np.asarray(time, dtype=float)))
     return scale * np.abs(phasors @ (window * values))
+
+
+def sliding_amplitude(time, values, freq_hz, width, step):
+    """Amplitudes at given frequencies in Hann windows sliding along a
+    record (:func:`hann_amplitude` per window, its linear trend removed):
+    the envelope of a burst that a whole-record spectrum averages away.
+
+    Parameters
+    ----------
+    time, values : array_like, shape (n,)
+        Uniform samples (s; any unit).
+    freq_hz : array_like, shape (m,)
+        Frequencies, Hz.
+    width, step : float
+        Window length and the step between window centres, s.
+
+    Returns
+    -------
+    centres : ndarray, shape (k,)
+        The windows' centres, s.
+    amplitudes : ndarray, shape (k, m)
+        In the unit of ``values``.
+
+    Examples
+    --------
+    >>> t = np.arange(0.0, 2.0, 1e-3)
+    >>> burst = np.exp(-((t - 1.0) / 0.2) ** 2) * np.cos(2 * np.pi * 50 * t)
+    >>> centres, a = sliding_amplitude(t, burst, [50.0], 0.2, 0.1)
+    >>> round(float(centres[a[:, 0].argmax()]), 1)
+    1.0
+    """
+    time = np.asarray(time, dtype=float)
+    values = np.asarray(values, dtype=float)
+    centres = np.arange(time[0] + width / 2, time[-1] - width / 2 + 1e-12,
+                        step)
+    rows = []
+    for centre in centres:
+        keep = np.abs(time - centre) <= width / 2
+        t, v = time[keep], values[keep]
+        trend = np.polyval(np.polyfit(t - centre, v, 1), t - centre)
+        rows.append(hann_amplitude(t, v - trend, freq_hz))
+    return centres, np.array(rows).reshape(len(centres), -1)

@@ -60,12 +60,22 @@ class EngagementPath:
                        self.time, self.accumulated)
         return float(np.exp(at[1] - at[0]))
 
-    def spans(self, min_growth):
+    def spans(self, min_growth, gap_s=0.05):
         """The intervals in which the exponent exceeds ``min_growth``
-        (1/s): ``[(t_start, t_stop, slip_start, slip_stop, kind,
-        e-folds)]``, the kind the one at the interval's largest
-        exponent."""
+        (1/s), those closer than ``gap_s`` joined: ``[(t_start, t_stop,
+        slip_start, slip_stop, kind, e-folds)]``, the kind the one at the
+        interval's largest exponent."""
         above = self.growth_per_s > min_growth
+        # a dip shorter than gap_s (the mean slip's ripple at a tongue's
+        # edge) does not end a span
+        below = np.flatnonzero(~above)
+        if len(below):
+            runs = np.split(below, np.flatnonzero(np.diff(below) > 1) + 1)
+            for run in runs:
+                inside = run[0] > 0 and run[-1] < len(above) - 1
+                if inside and (self.time[run[-1] + 1]
+                               - self.time[run[0] - 1]) < gap_s:
+                    above[run] = True
         edges = np.flatnonzero(np.diff(above.astype(int)))
         starts = ([0] if above[0] else []) + [e + 1 for e in edges
                                               if not above[e]]
@@ -135,7 +145,12 @@ def engagement_path(linearisation_at, freq_hz, p_f, time, slip,
     kinds = np.array([r.kind for r in results])
     growth = (np.full(len(slip), rates[0]) if len(grid) == 1 else
               np.interp(slip, grid, rates))
-    nearest = np.abs(slip[:, None] - grid[None, :]).argmin(axis=1)
+    # the kind of the bracketing grid slip with the larger exponent: the
+    # motion that grows fastest there
+    right = np.clip(np.searchsorted(grid, slip), 1, len(grid) - 1) \
+        if len(grid) > 1 else np.zeros(len(slip), dtype=int)
+    left = np.maximum(right - 1, 0)
+    nearest = np.where(rates[left] >= rates[right], left, right)
     accumulated = np.concatenate([[0.0], np.cumsum(
         0.5 * (growth[1:] + growth[:-1]) * np.diff(time))])
     return EngagementPath(time=time, slip=slip, growth_per_s=growth,

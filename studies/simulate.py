@@ -7,15 +7,16 @@ import math
 
 import numpy as np
 
-from infra.criteria import DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S
+from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM, DEFAULT_MIN_GROWTH_PER_S,
+                            JUDDER)
 from infra.errors import JudderError
 from infra.files import keeps_foreign_files
 from infra.units import PA_PER_BAR
 from sources.dither_modes import check_modes
 from stability import floquet as floquet_kernel
-from stability.bench import (added_damping, check_bench, engagement_model,
-                             linear_validity, linearisation_at,
-                             operating_friction)
+from stability.bench import (added_damping, bench_parameters, check_bench,
+                             engagement_model, linear_validity,
+                             linearisation_at, operating_friction)
 from stability.monodromy import DEFAULT_METHOD
 from stability.source import build_driveline
 
@@ -192,6 +193,10 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                             variables=LOCK_VARIABLES if full else ()))
             for label, freq, p_f in settings]
     summaries, slipping, paths = [], [], []
+    # the bench's load clutch takes less than the EVEN clutch's torque:
+    # the slip falls, and the run is an engagement judged by its envelope
+    falling = (values.source_kind.is_chain and not full and bench.get(
+        "load_share", bench_parameters(values)["load_share"].default) < 1)
     linearised = (None if not values.source_kind.is_chain else
                   (lambda slip: driveline)
                   if FRICTION_LAWS[engagement] == LINEAR_LAW else
@@ -213,7 +218,10 @@ def simulate(freq_hz, p_f_bar, duration=None, compare=None, bench=None,
                           **_orbit_fields(orbit_model, run, min_growth,
                                           judder_limit_rpm),
                           **_path_fields(paths[-1], min_growth)})
-    run_kind, friction_law = ((RUN_KINDS[engagement],
+        _judge_burst(summaries[-1], slipping[-1], ramp_end,
+                     paths[-1] if falling else None, judder_limit_rpm)
+    run_kind, friction_law = ((RUN_KINDS[engagement] if not falling
+                               else "falling_slip",
                                FRICTION_LAWS[engagement]
                                if values.friction is None else
                                values.friction.words())
@@ -319,6 +327,63 @@ def _path_fields(path, min_growth):
                             spans)))
 
 
+#: Window (s) and step of the envelope a run whose slip moves is judged
+#: by: 12 periods of the bench's 103 Hz mode, short against a burst.
+ENVELOPE_WINDOW_S, ENVELOPE_STEP_S = 0.12, 0.02
+def _judge_burst(summary, run, start, path, limit_rpm):
+    """Judge a run whose slip falls by the envelope of its upstream
+    speed, in place: the largest amplitude at the dither-related
+    frequencies (f, f/2 and the spectrum's peak) in windows sliding over
+    the run (:func:`infra.spectrum.sliding_amplitude`), where and when it
+    is above the limit. A burst the whole run's spectrum averages below
+    the limit (a tongue crossed for a few tenths of a second) is judder
+    of the engagement: ``judder`` True, ``oscillation_rpm`` the burst's
+    peak (the spectrum's in ``spectrum_oscillation_rpm``), its mechanism
+    from the burst's frequency (f/2: double-period, another than f:
+    combination, parametric; f: forced). Adds ``envelope_peak_rpm``,
+    ``envelope_peak_s``, ``envelope_peak_hz``, ``envelope_peak_slip_rad_s``
+    and ``judder_from_s``/``judder_to_s`` (None for a held slip: ``path``
+    None)."""
+    names = ("envelope_peak_rpm", "envelope_peak_s", "envelope_peak_hz",
+             "envelope_peak_slip_rad_s", "judder_from_s", "judder_to_s")
+    summary.update(dict.fromkeys(names))
+    if path is None:
+        return
+    from infra.spectrum import sliding_amplitude
+    from infra.units import RPM_PER_RAD_S
+    after = run.time >= start
+    if run.time[after][-1] - run.time[after][0] < 2 * ENVELOPE_WINDOW_S:
+        return
+    freqs = sorted({run.freq_hz, run.freq_hz / 2,
+                    summary["speed_peak_freq_hz"]})
+    centres, amplitudes = sliding_amplitude(
+        run.time[after], run["w_upstream"][after] * RPM_PER_RAD_S, freqs,
+        ENVELOPE_WINDOW_S, ENVELOPE_STEP_S)
+    envelope = amplitudes.max(axis=1)
+    peak = int(np.argmax(envelope))
+    at = float(centres[peak])
+    frequency = freqs[int(np.argmax(amplitudes[peak]))]
+    above = centres[envelope > limit_rpm]
+    summary.update(dict(zip(names, (
+        float(envelope[peak]), at, frequency,
+        float(np.interp(at, path.time, path.slip)),
+        float(above[0]) if len(above) else None,
+        float(above[-1]) if len(above) else None))))
+    if len(above) and not summary["judder"]:
+        kind = ("double-period" if frequency == run.freq_hz / 2 else
+                "single-period" if frequency == run.freq_hz else
+                "combination")
+        # the oscillation compared with the limit is the burst's; the
+        # whole run's spectrum is kept beside it
+        summary.update(judder=True, verdict=JUDDER,
+                       spectrum_oscillation_rpm=summary["oscillation_rpm"],
+                       oscillation_rpm=float(envelope[peak]),
+                       mechanism="forced" if kind == "single-period" and
+                       float(np.interp(at, path.time, path.growth_per_s))
+                       <= 0 else "parametric",
+                       judder_kind=kind, judder_in_burst=True)
+
+
 @dataclass(frozen=True)
 class SimulationResult:
     """``judder simulate``: held-slip bench runs or full engagements
@@ -336,10 +401,11 @@ class SimulationResult:
     model_class : str
     start : float
         End of the pressure ramp, s.
-    run_kind : {'held_slip', 'engagement', 'class'}
-        What ran: the bench held at a steady slip (never engaging), an
-        engagement brought up to lock-up, or a Modelica class from its
-        start values.
+    run_kind : {'held_slip', 'falling_slip', 'engagement', 'class'}
+        What ran: the bench held at a steady slip (never engaging), the
+        bench whose slip falls (``load_share`` below 1), an engagement
+        brought up to lock-up, or a Modelica class from its start
+        values.
     friction_law : str
         The EVEN clutch's friction law (:data:`CURVE_LAW`,
         :data:`LINEAR_LAW`, or the class's own).

@@ -176,3 +176,31 @@ def test_the_command_line_refuses_what_the_table_decides(tmp_path, capsys):
     for argv, facts in cases:
         assert main(argv) != 0
         names(capsys.readouterr().err, *facts)
+
+
+def test_a_campaign_runs_the_table_at_each_temperature_and_speed(tmp_path):
+    """The campaign's bench reads the table at each run's oil
+    temperature, with mu0 at its slip; its runs are told apart from the
+    curve's by their digests."""
+    from judder import api
+    from pysim.simulation.campaigns import TEMPERATURES, at_temperature
+    rig = _write(tmp_path, "rig.csv",
+                 "slip_rad_s,mu_50C,mu_90C\n0,0.1,0.08\n84.72,0.09,0.09\n"
+                 "160,0.12,0.095\n")
+    values = friction_of(PAPER, rig)
+    hot = at_temperature(values, "85-90", 1500.0)
+    slip = 1500 * np.pi / 30 - 20.0
+    table = values.friction.at_oil_temperature(TEMPERATURES["85-90"])
+    assert hot.friction == table
+    assert (hot["mu0"], hot["mu_g"]) == pytest.approx(table.at(slip))
+    result = api.campaign(tmp_path / "camp", [100.0], [0.2],
+                          engine_rpm=(1000.0, 1500.0),
+                          temperatures=("55-60", "85-90"), duration=1.0,
+                          formats=("csv",), parameters=values, workers=1)
+    assert [row["status"] for row in result.rows] == ["ok"] * 4
+    curve = api.campaign(tmp_path / "camp", [100.0], [0.2],
+                         engine_rpm=(1000.0,), temperatures=("55-60",),
+                         duration=1.0, formats=("csv",),
+                         parameters=PAPER, workers=1)
+    assert not curve.rows[0].get("reused")
+    assert curve.rows[0]["run_id"] not in {r["run_id"] for r in result.rows}

@@ -64,6 +64,8 @@ def check_outputs(args, seen):
 
 #: What each kind of run is called in text and figures.
 RUN_NAMES = {"held_slip": "held-slip bench run",
+             "falling_slip": "bench run with a falling slip (--bench "
+                             "load_share below 1)",
              "engagement": "full engagement to lock-up",
              "class": "time-domain run with dither"}
 
@@ -176,7 +178,9 @@ def _engagement_line(s, bench=True):
             + (" (the dither frequency)"
                if s["peak_at_dither_frequency"] else "")
             + f"; pressure peak at {s['pressure_peak_freq_hz']:.2f} Hz"
-            + ("" if s["judder"] is None else "; " + judder_words(s))
+            + ("" if s["judder"] is None else "; " + (
+                burst_words(s) if s.get("judder_in_burst") else
+                judder_words(s)))
             + ("; Floquet of the bench's linearisation (judder check's "
                "view of the bench): " if bench else
                "; Floquet of the class's linearisation: ")
@@ -189,6 +193,18 @@ def _engagement_line(s, bench=True):
             + ("" if s.get("linearisation_holds") is not False else
                "; nonlinear: " + nonlinear_words(s))
             + path_words(s))
+
+
+def burst_words(s):
+    """A run judged by its envelope: judder in a burst the whole run's
+    spectrum averages below the limit, when and where."""
+    return (f"judder in a burst, {s['mechanism']} ({s['judder_kind']}): "
+            f"{s['envelope_peak_rpm']:.3g} rpm at {s['envelope_peak_hz']:.2f}"
+            f" Hz, {s['envelope_peak_s']:.2f} s, slip "
+            f"{s['envelope_peak_slip_rad_s']:.1f} rad/s; above "
+            f"{s['judder_limit_rpm']:.3g} rpm from {s['judder_from_s']:.2f} "
+            f"to {s['judder_to_s']:.2f} s (the whole run's spectrum: "
+            f"{s['spectrum_oscillation_rpm']:.3g} rpm)")
 
 
 def path_words(s):

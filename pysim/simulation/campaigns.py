@@ -81,19 +81,41 @@ def oil_viscosity(temperature_c, oil=None):
     return float(10 ** 10 ** (a - b * np.log10(kelvin)) - 0.7)
 
 
-def at_temperature(params, temperature):
+def at_temperature(params, temperature, engine_rpm=None):
     """The parameter set at one oil temperature of :data:`TEMPERATURES`.
 
-    The one physical path modelled: the external damping of every body
-    (drag of the bodies and bearings in the oil) is proportional to the
-    oil's viscosity, relative to its value at
-    :data:`REFERENCE_TEMPERATURE_C`. The friction curve is kept: the
-    paper gives no data on its change with temperature.
+    The external damping of every body (drag of the bodies and bearings
+    in the oil) is proportional to the oil's viscosity, relative to its
+    value at :data:`REFERENCE_TEMPERATURE_C`. The bench's bounded friction
+    curve is kept (the paper gives no data on its change with
+    temperature); a friction table with a column per oil temperature
+    (``params.friction``, :class:`drivelines.friction.FrictionTable`) is
+    read at the temperature, and its value at the slip of
+    ``engine_rpm`` (the motor's speed less the gearbox side's) is the
+    ``mu0`` of the mean load (the table bench's REV clutch balances it).
     """
     ratio = oil_viscosity(TEMPERATURES[temperature]) \
         / oil_viscosity(REFERENCE_TEMPERATURE_C)
-    return params.replace(**{name: params[name] * ratio for name in
-                             params.driveline.external_damping_names()})
+    changed = params.replace(**{name: params[name] * ratio for name in
+                                params.driveline.external_damping_names()})
+    table = params.friction
+    if table is None:
+        return changed
+    if table.family:
+        table = table.at_oil_temperature(TEMPERATURES[temperature])
+    if engine_rpm is None:
+        return changed.with_friction(table, table_slip(params, 1000.0))
+    return changed.with_friction(table, table_slip(params, engine_rpm))
+
+
+def table_slip(params, engine_rpm):
+    """The bench's steady slip at the motor speed ``engine_rpm``, rad/s:
+    the speed less the gearbox side's (its ``Judder.Data`` record's
+    ``w_gearbox``)."""
+    from drivelines.records import record_values
+    gearbox = record_values(params.driveline.bench_table_records[0])[
+        "w_gearbox"]
+    return engine_rpm * RAD_S_PER_RPM - gearbox
 
 
 INDEX_COLUMNS = ("run_id", "status", "freq_hz", "p_f_bar", "engine_rpm",
@@ -203,7 +225,10 @@ class Campaign:
                     "model": None if params is None else params.model,
                     "parameters": None if params is None else {
                         k: float(v).hex() for k, v in
-                        sorted(params.as_dict().items())}}
+                        sorted(params.as_dict().items())},
+                    # the clutch's friction table, every column of it
+                    "friction": None if getattr(params, "friction", None)
+                    is None else repr(params.friction)}
         text = json.dumps(identity, sort_keys=True)
         return hashlib.sha256(text.encode()).hexdigest()[:RUN_DIGEST_LENGTH]
 
@@ -216,9 +241,11 @@ def _acquire(job):
            "p_f_bar": p, "engine_rpm": rpm, "oil_temperature": temp,
            "files": "", "message": ""}
     try:
-        case = at_temperature(params, temp)
+        case = at_temperature(params, temp, rpm)
         run = run_fmu(fmu_path, f, p * PA_PER_BAR, params=case,
-                      extra={"w_motor": rpm * RAD_S_PER_RPM},
+                      extra={"w_motor": rpm * RAD_S_PER_RPM,
+                             **({} if case.friction is None else
+                                case.friction.start_values())},
                       duration=campaign.duration, output_interval=1e-4,
                       variables=("inertia4.phi", "inertia3.phi"))
         # the noise follows the run's identity, not its place in the grid
@@ -327,7 +354,8 @@ def run_campaign(campaign, params, folder, workers=None, callback=None):
         runs, in run order; a run found done in the folder has
         ``reused`` True.
     """
-    bench_class = params.driveline.bench_class
+    bench_class = (params.driveline.bench_class if params.friction is None
+                   else params.driveline.bench_table_class)
     if bench_class is None:
         raise JudderError(f"the {params.model} driveline has no bench "
                           "model; drivelines with one: " + ", ".join(
