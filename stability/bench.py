@@ -396,20 +396,28 @@ def driveline_view(values, driveline=None):
 
 def driveline_words(values, driveline="chain"):
     """Which driveline a view is of, in words: with a friction
-    characteristic (:meth:`sources.Parameters.with_friction`), which one
-    and the share ``m`` of the clamping load that feels its slope."""
-    friction = "" if getattr(values, "friction", None) is None else (
-        f"; {values.friction.words()}, m = "
-        f"{values['mean_pressure_damping']:g} of the clamping load on its "
-        "slope")
+    characteristic (:meth:`sources.Parameters.with_friction`), which one;
+    for the registry's chains, the share ``m`` of the clamping load that
+    feels the friction's slope, and what it means for the tongues
+    (docs/theory.md: with ``m = 1`` and a rising characteristic the
+    damping stays positive semi-definite below ``p_f = p_m``)."""
+    if not values.source_kind.is_chain:
+        return f"{values.model}"
+    share = values["mean_pressure_damping"]
+    friction = ("" if values.friction is None else
+                f"; {values.friction.words()}")
+    friction += (f"; m = {share:g} of the clamping load on the friction's "
+                 "slope" + (" (the paper's maps; with m = 1 and a rising "
+                            "curve no tongue exists below p_f = p_m)"
+                            if share < 1 else
+                            ": with a rising curve no tongue exists below "
+                            "p_f = p_m"))
     if driveline == "bench":
         return (f"the {values.model} driveline on its test bench (motor "
                 "speed control on body 1, friction curve's value and "
                 f"slope at the bench's slip{friction})")
-    if values.source_kind.is_chain:
-        return (f"the {values.model} chain alone (Eq. 6, free, as Fig. 14"
-                f"{friction})")
-    return f"{values.model}"
+    return (f"the {values.model} chain alone (Eq. 6, free, as Fig. 14"
+            f"{friction})")
 
 
 def drive_torque(model, gain, w_ref):
