@@ -137,12 +137,21 @@ def _threshold(example):
         title="4dof driveline, paper preset")
 
 
+def _engagement_path(example):
+    # a falling slip: the run, its spectrum and its path through the map
+    from sources import get_preset
+    return api.simulate(205.0, 0.4, parameters=get_preset("paper-4dof"),
+                        bench={"load_share": 0.99}).figure(
+        title="4dof driveline, paper preset, load_share 0.99")
+
+
 FIGURES = {"check": _check, "check-six": _check_six, "map": _map, "tongues": _tongues,
            "sensitivity": _sensitivity, "floquet": _floquet,
            "orbit-chart": _orbit_chart,
            "orbit-chart-fine": _orbit_chart_fine, "orbit-branch": _orbit_branch,
            "advice": _advice, "compare": _compare, "fit": _fit,
-           "envelope": _envelope, "threshold": _threshold}
+           "envelope": _envelope, "threshold": _threshold,
+           "engagement-path": _engagement_path}
 
 
 #: Figures the checker still flags, and why (issue 46).

@@ -199,7 +199,8 @@ def plot_path(path, ax=None, min_growth=None):
         artists.append(ax.fill_between(
             time, min_growth, growth, where=growth > min_growth,
             color=BLUE, alpha=0.25, lw=0, label="inside a tongue"))
-    ax.axhline(0.0, color="0.6", lw=0.6)
+    artists.append(ax.axhline(0.0, color="0.6", lw=0.6,
+                              label="no growth, |$\\lambda$| = 1"))
     right = ax.twinx()
     artists.append(right.plot(time, slip * RPM_PER_RAD_S, ls=":",
                               color=VERMILLION, lw=1.2,
