@@ -186,6 +186,13 @@ def dumps_toml(params):
     """Serialise ``params`` to TOML text, with units, meanings and
     allowed ranges as comments."""
     lines = [f'model = "{params.model}"', "", "[parameters]"]
+    if params.friction is not None:
+        # the table is data of its own file: say where mu0 and mu_g
+        # come from, so that the file is not read as the curve's
+        lines[1:1] = ["", f"# mu0 and mu_g: the value and slope of the "
+                      f"{params.friction.words()} at the operating slip; "
+                      "give it again with --friction for the bench, the "
+                      "orbit and simulate to read the whole table"]
     for name, spec in params.specs.items():
         lines.append(f"{name} = {params[name]!r}  # [{spec.unit}] "
                      f"{spec.description} (allowed: {spec.allowed()})")

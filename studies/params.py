@@ -32,7 +32,9 @@ class ParamsResult:
                                       "unit": spec.unit,
                                       "allowed": spec.allowed(),
                                       "description": spec.description}
-                               for name, spec in specs.items()}}
+                               for name, spec in specs.items()},
+                "friction": None if getattr(self.params, "friction", None)
+                is None else self.params.friction.words()}
 
     def save(self, path, overwrite=False):
         """Write the set as TOML (refuses to replace a file by default)."""

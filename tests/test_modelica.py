@@ -279,7 +279,7 @@ def test_every_pressure_clutch_extends_one_partial_and_one_icon():
     # and the input, and only Icons.Clutch draws the plates
     clutches = [p for p in sorted((PACKAGE / "Components").glob("*.mo"))
                 if "Clutch" in p.stem]
-    assert len(clutches) == 7
+    assert len(clutches) == 8
     partial = PACKAGE / "Interfaces" / "PartialPressureClutch.mo"
     icon = PACKAGE / "Icons" / "Clutch.mo"
     for path in clutches:
@@ -302,7 +302,9 @@ WRITTEN_ONCE = {
     "delta_mu*tanh(mu_g*(noEvent(abs(slip)) - w_op)/delta_mu)":
         "PartialCurveWetClutch",
     "reinit(lockups, pre(lockups) + 1)": "PartialLockingClutch",
-    "reinit(breakaways, pre(breakaways) + 1)": "PartialLockingClutch"}
+    "reinit(breakaways, pre(breakaways) + 1)": "PartialLockingClutch",
+    "*(w_table - mu_pos[i, 1])/(mu_pos[i + 1, 1] - mu_pos[i, 1])":
+        "PartialFrictionTable"}
 
 
 @pytest.mark.parametrize("fragment, owner", WRITTEN_ONCE.items())

@@ -38,5 +38,9 @@ def run(args):
             f"{spec.allowed():24s} {spec.description}"
             for name, spec in specs.items()]
     emit(args, {**result.as_dict(), "saved": args.save},
-         f"model {result.params.model}\n" + "\n".join(rows)
+         f"model {result.params.model}\n"
+         + ("" if result.as_dict()["friction"] is None else
+            f"friction: {result.as_dict()['friction']}; mu0 and mu_g are "
+            "its value and slope at the bench's slip\n")
+         + "\n".join(rows)
          + (f"\nsaved to {args.save}" if args.save else ""))
