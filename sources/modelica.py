@@ -280,6 +280,10 @@ class NamedParameters:
     from a model (a Modelica class, an FMU): the subclass gives
     ``values``, ``specs``, ``model`` and ``replace``."""
 
+    #: A class or an FMU carries its friction law in its own equations:
+    #: no friction table (:attr:`sources.Parameters.friction`).
+    friction = None
+
     def __getitem__(self, name):
         try:
             return self.values[name]

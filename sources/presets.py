@@ -191,8 +191,8 @@ def dumps_toml(params):
         # come from, so that the file is not read as the curve's
         lines[1:1] = ["", f"# mu0 and mu_g: the value and slope of the "
                       f"{params.friction.words()} at the operating slip; "
-                      "give it again with --friction for the bench, the "
-                      "orbit and simulate to read the whole table"]
+                      "the table is not in this file: give it again for "
+                      "the bench, the orbit and the runs to read it"]
     for name, spec in params.specs.items():
         lines.append(f"{name} = {params[name]!r}  # [{spec.unit}] "
                      f"{spec.description} (allowed: {spec.allowed()})")

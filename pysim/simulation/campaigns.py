@@ -225,10 +225,11 @@ class Campaign:
                     "model": None if params is None else params.model,
                     "parameters": None if params is None else {
                         k: float(v).hex() for k, v in
-                        sorted(params.as_dict().items())},
-                    # the clutch's friction table, every column of it
-                    "friction": None if getattr(params, "friction", None)
-                    is None else repr(params.friction)}
+                        sorted(params.as_dict().items())}}
+        if getattr(params, "friction", None) is not None:
+            # the clutch's friction table, every column of it (a run of
+            # the bench's curve keeps the digest it had before tables)
+            identity["friction"] = repr(params.friction)
         text = json.dumps(identity, sort_keys=True)
         return hashlib.sha256(text.encode()).hexdigest()[:RUN_DIGEST_LENGTH]
 
