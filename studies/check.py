@@ -547,7 +547,8 @@ class CheckResult:
     @keeps_foreign_files
     def save(self, path):
         """CSV: one row per setting (the scalar fields; tongues by
-        number)."""
+        number; the safe band as ``safe_band_low_hz``,
+        ``safe_band_high_hz``)."""
         rows = []
         for r in self.records():
             row = {k: v for k, v in r.items()
@@ -555,6 +556,8 @@ class CheckResult:
                    ("tongue", "margin_bar_tongue", "margin_hz_tongue")}
             for key in ("tongue", "margin_bar_tongue", "margin_hz_tongue"):
                 row[key] = None if r[key] is None else r[key]["number"]
+            band = r.get("safe_band_hz") or (None, None)
+            row["safe_band_low_hz"], row["safe_band_high_hz"] = band
             rows.append(row)
         write_text(path, rows_to_csv(rows))
 
