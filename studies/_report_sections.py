@@ -44,6 +44,8 @@ img{max-width:100%;height:auto;display:block;margin:0.8em auto}
 figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
 figcaption{font-size:0.85em;color:#444;text-align:center}
 tr,.keep{break-inside:avoid;page-break-inside:avoid}
+table{break-inside:avoid;page-break-inside:avoid}
+p:has(+ table){break-after:avoid;page-break-after:avoid}
 .verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
 .judder{border-color:#b00;background:#fee}
 .slow{border-color:#a60;background:#fff6e0}
