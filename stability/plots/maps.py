@@ -219,21 +219,40 @@ def _fine_grid(m, boundaries, tongues):
     return (freq[0], freq[-1], amp[0], amp[-1]), index, inside, low
 
 
+def _pixel_rate(m, extent):
+    """The growth rate (1/s) at each pixel of :func:`_fine_grid`'s image,
+    shape ``(nP, nF)``: linear between the map's points (as the contour
+    of ``min_growth`` is drawn), not the nearest point's, so the edge of
+    slow growth follows that contour instead of the grid's staircase."""
+    from scipy.interpolate import RegularGridInterpolator
+    freq = np.linspace(extent[0], extent[1], FILL_PIXELS[0])
+    amp = np.linspace(extent[2], extent[3], FILL_PIXELS[1])
+    bar = m.p_f / PA_PER_BAR
+    rate = np.nan_to_num(np.asarray(m.growth_rate, dtype=float), nan=0.0)
+    interpolate = RegularGridInterpolator((m.freq_hz, bar), rate,
+                                          bounds_error=False,
+                                          fill_value=None)
+    f, p = np.meshgrid(np.clip(freq, m.freq_hz[0], m.freq_hz[-1]),
+                       np.clip(amp, bar[0], bar[-1]))
+    return interpolate(np.stack([f, p], axis=-1))
+
+
 def _exact_fill(m, boundaries, tongues, ax, min_growth=None):
     """The kinds as an image clipped to the exact boundaries: inside them
     the grid's kind (nearest point), or that of the lowest boundary where
     the grid point is stable; outside them white. With ``min_growth``,
-    the slowly growing points grey (a stable grid point inside the exact
-    boundaries counts as slow: it grows at about 0 there)."""
+    grey where the growth rate, linear between the map's points
+    (:func:`_pixel_rate`), is below it: the edge of the judder-relevant
+    region is the contour drawn at ``min_growth``, not the grid's cells
+    (issue 46)."""
     extent, index, inside, low = _fine_grid(m, boundaries, tongues)
     unstable = inside.any(axis=0)
     lowest = 1 + np.argmin(np.where(inside, low[:, None, :], np.inf), axis=0)
     grid = m.kind[index]
     code = np.where(unstable, np.where(grid > 0, grid, lowest), 0)
     if min_growth is not None:
-        slow = ~is_judder_relevant(m.growth_rate, min_growth)
-        code = np.where(unstable & (slow[index] | (grid == 0)),
-                        len(KINDS), code)
+        slow = ~is_judder_relevant(_pixel_rate(m, extent), min_growth)
+        code = np.where(unstable & slow, len(KINDS), code)
     colours = ListedColormap([*KIND_COLORS, SLOW_COLOR])
     return ax.imshow(code, origin="lower", aspect="auto",
                      interpolation="nearest", cmap=colours, vmin=-0.5,
@@ -276,9 +295,10 @@ def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
     if boundaries is not None and boundaries.min_growth == 0 \
             and len(m.freq_hz) > 1 and len(m.p_f) > 1:
         extent, index, inside, _ = _fine_grid(m, boundaries, tongues)
-        # inside the exact boundaries, a stable grid point grows at ~0
+        # inside the exact boundaries, linear between the map's points
+        # (no grid staircase) and at least 0 (it grows there)
         image = np.where(inside.any(axis=0),
-                         np.nan_to_num(rate[index], nan=0.0), np.nan)
+                         np.maximum(_pixel_rate(m, extent), 0.0), np.nan)
         mesh = ax.imshow(image, origin="lower", aspect="auto",
                          interpolation="nearest", cmap=CONTINUOUS_CMAP,
                          extent=extent)
