@@ -146,6 +146,14 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
             boundaries = tongue_boundaries(system, grid, p_top)
             exact = {"background_boundaries": boundaries,
                      "background_tongues": find_tongues(system, boundaries)}
+            if min_growth:
+                # the judder line and its grey from the exact boundaries
+                # of growth at min_growth, not the grid
+                judder = tongue_boundaries(system, grid, p_top,
+                                           min_growth=min_growth,
+                                           check=False)
+                exact["background_judder"] = (judder,
+                                              find_tongues(system, judder))
         result = dataclasses.replace(result, background=under, **exact)
     return result
 
@@ -512,6 +520,7 @@ class CheckResult:
     responses: list = None
     driveline: str = "chain"
     judder_limit_rpm: float = None
+    background_judder: object = None
 
     def records(self):
         from stability.decisions.margins import search_grid
@@ -566,4 +575,5 @@ class CheckResult:
         return check_figure(self.records(), self.background,
                             min_growth=self.min_growth, title=title,
                             boundaries=self.background_boundaries,
-                            tongues=self.background_tongues)
+                            tongues=self.background_tongues,
+                            judder=self.background_judder)

@@ -42,7 +42,7 @@ def band_text(record):
 
 
 def check_figure(records, background=None, min_growth=None, title=None,
-                 boundaries=None, tongues=None):
+                 boundaries=None, tongues=None, judder=None):
     """Settings of ``judder check`` marked on the map (or alone).
 
     Each setting is a marker of its verdict (:data:`VERDICT_MARKERS`, in
@@ -64,6 +64,10 @@ def check_figure(records, background=None, min_growth=None, title=None,
         :func:`stability.tongues.find_tongues`): the fills are clipped to
         them and the tongues numbered at their tips, as the map draws
         them; without them the grid's cells and its unit-modulus contour.
+    judder : (Boundaries, list), optional
+        The exact boundaries of growth at ``min_growth`` and their
+        tongues: the judder line and the grey follow them
+        (:func:`stability.plots.plot_map`).
     title : str, optional
         The model, after "dither settings: verdict and margins".
     """
@@ -71,7 +75,7 @@ def check_figure(records, background=None, min_growth=None, title=None,
     handles = []
     if background is not None:
         plot_map(background, ax=ax, min_growth=min_growth, legend=False,
-                 boundaries=boundaries, tongues=tongues)
+                 boundaries=boundaries, tongues=tongues, judder=judder)
         handles = kind_handles(drawn_kinds(background, boundaries),
                                lines=boundaries is not None,
                                min_growth=min_growth)
