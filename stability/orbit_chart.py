@@ -105,17 +105,15 @@ def forced_limit_frequencies(amplitude, freq_hz, limit, low, high,
     forced oscillation at one dither amplitude reaches ``limit``.
 
     Walks from ``freq_hz`` outwards to ``low`` and to ``high`` (Hz) in
-    relative steps between ``step`` and ``widest`` times it, then refines
-    the first step that crosses the limit by Brent's method. Where the
-    amplitude rises, a step is 0.3 of the distance (in log frequency) at
-    which its present log slope would reach the limit: off a resonance
-    the amplitude grows as the inverse of the detuning, so that distance
-    shrinks faster than the step and the step stays short of the limit
-    down to a tenth of it. Where it falls, the step is ``step`` times the
-    ratio of the limit to the amplitude. A resonance whose peak rises
-    from far below the limit to above it within ``step`` is missed; the
-    bench's are wider (at 105 Hz and 0.3 bar the forced oscillation goes
-    from 17.5 to 45 rpm over 5 %).
+    relative steps between a tenth of ``step`` and ``widest`` times it,
+    then refines the first step that crosses the limit by Brent's method.
+    Where the amplitude rises, it is read as a resonance's ``C /
+    detuning`` (the last two amplitudes give the detuning), and a step
+    goes half of the way to where that reaches the limit; where it falls,
+    the step is ``step`` times the ratio of the limit to the amplitude. A
+    peak that stays above the limit over less than a tenth of ``step``
+    can be stepped over; the bench's are far wider (at 105 Hz and 0.3
+    bar the forced oscillation goes from 17.5 to 45 rpm over 5 %).
 
     Parameters
     ----------
@@ -145,24 +143,28 @@ def forced_limit_frequencies(amplitude, freq_hz, limit, low, high,
         return amplitude(f) - limit
     start = amplitude(freq_hz)
     if not start <= limit:
-        return [(float(freq_hz), "unknown" if np.isnan(start) else "forced")] * 2
+        reason = "unknown" if np.isnan(start) else "forced"
+        return [(float(freq_hz), reason)] * 2
     out = []
     for end in (low, high):
         previous, f, value = freq_hz, freq_hz, start - limit
-        slope = 0.0
+        distance = None     # to the pole the last rise points at, log Hz
         found = (end, "end")
         while f != end:
             now = max(value + limit, 1e-12 * limit)
-            if slope > 0:
-                wide = 0.3 * np.log(limit / now) / slope
+            if distance is not None:
+                wide = 0.5 * distance * (1.0 - now / limit)
             else:
                 wide = step * limit / now
-            grow = np.exp(min(max(wide, step), widest * step))
+            grow = np.exp(min(max(wide, step / 10), widest * step))
             f = min(f * grow, end) if end > freq_hz else max(f / grow, end)
             value = excess(f)
-            if not np.isnan(value):
-                slope = (np.log(max(value + limit, 1e-12 * limit) / now)
-                         / abs(np.log(f / previous)))
+            if not np.isnan(value) and value + limit > now:
+                # a rise from a to b over d (log Hz), read as a pole's
+                # C / distance: distance = d a / (b - a)
+                distance = np.log(grow) * now / (value + limit - now)
+            else:
+                distance = None
             if np.isnan(value):
                 found = (previous, "unknown")
                 break
