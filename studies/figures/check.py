@@ -26,7 +26,7 @@ def band_text(record):
         return "" if hz is None else f"{hz:+.2f} Hz"
     band = record["safe_band_hz"]
     if band is None:
-        return "no safe band"
+        return f"no safe frequency at {record['p_f_bar']:g} bar"
     if None in band:
         return ""
     low, high = band
