@@ -89,6 +89,13 @@ CAMPAIGN_SECOND_S = 0.5
 #: default parameters (14.4 s).
 CHECK_SETTING_S = 0.045
 
+#: One setting of ``check`` on a preset's test bench (its periodic orbit,
+#: the forced limit in amplitude and the safe band's walk in frequency
+#: added), CPU seconds: ``judder check --freq 60:200:10 --pf 0:0.7:10
+#: --params none`` on the paper preset, 22.4 s user for 100 settings with
+#: the 1.5 s start-up (5.4 s with ``--driveline chain``), 2026-12-08.
+CHECK_BENCH_SETTING_S = 0.21
+
 
 CHECK_PARAMETER_S = 0.014
 
@@ -248,12 +255,14 @@ def check_sensitivity(params, freq_hz, cases, workers):
                       _workers(workers, cases))
 
 
-def check_settings_time(settings, parameters, source=None):
+def check_settings_time(settings, parameters, source=None, bench=False):
     """``check``: settings x (one point + the sensitivity parameters);
     ``source``: the table the settings came from (named as what to
-    shorten), else the grid of ``freq_hz`` x ``p_f_bar``."""
+    shorten), else the grid of ``freq_hz`` x ``p_f_bar``; ``bench``: the
+    settings are judged on a test bench (its orbits cost more)."""
+    one = CHECK_BENCH_SETTING_S if bench else CHECK_SETTING_S
     return check_time(
-        settings * (CHECK_SETTING_S + parameters * CHECK_PARAMETER_S),
+        settings * (one + parameters * CHECK_PARAMETER_S),
         f"{settings} settings x {parameters} sensitivity parameters",
         ("fewer `freq_hz` x `p_f_bar` settings" if source is None else
          f"fewer rows in {source}") + ", or `sensitivity` none")

@@ -44,6 +44,8 @@ img{max-width:100%;height:auto;display:block;margin:0.8em auto}
 figure{margin:0.5em 0;break-inside:avoid;page-break-inside:avoid}
 figcaption{font-size:0.85em;color:#444;text-align:center}
 tr,.keep{break-inside:avoid;page-break-inside:avoid}
+table{break-inside:avoid;page-break-inside:avoid}
+p:has(+ table){break-after:avoid;page-break-after:avoid}
 .verdict{font-size:1.1em;padding:0.6em;border:2px solid #333}
 .judder{border-color:#b00;background:#fee}
 .slow{border-color:#a60;background:#fff6e0}
@@ -170,8 +172,9 @@ def verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
     """The configured dither's verdict in words, from a record of
     ``judder check`` (:func:`setting_record`) with the
     leading ``|lambda|`` added: the verdict word, what the multiplier
-    does, the growth against an engagement of ``engagement_s`` seconds
-    and both margins to judder."""
+    does, the growth against an engagement of ``engagement_s`` seconds,
+    the highest safe amplitude and the safe band, and both margins to
+    judder."""
     tongue = v["tongue"]
     if not v["inside_stability_tongue"]:
         what = "every multiplier inside the unit circle"
@@ -187,9 +190,14 @@ def verdict_text(v, engagement_s=ENGAGEMENT_DURATION_S):
     settled = ""
     if "settled_amplitude_rpm" in v:
         settled = response_words(v) + "; "
+    # how far it may go, in check's words: the highest safe amplitude at
+    # its frequency and the safe band at its amplitude
+    from .check import highest_safe_words, safe_band_words
+    far = ("" if "safe_band_hz" not in v else
+           f"{highest_safe_words(v)}; {safe_band_words(v)}; ")
     return (f"{v['verdict']} at {v['freq_hz']:g} Hz, {v['p_f_bar']:g} bar: "
             f"{what} (|\u03bb| = {v['leading_abs']:.4f}); {settled}"
-            f"{growth}; {amplitude}; {frequency}.")
+            f"{growth}; {far}{amplitude}; {frequency}.")
 
 
 def _window_text(advice):

@@ -123,7 +123,8 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
                                   p_f_bar * PA_PER_BAR, judder_limit_rpm,
                                   min_growth,
                                   [c.floquet.growth_rate for c in checks],
-                                  p_max_bar * PA_PER_BAR)
+                                  p_max_bar * PA_PER_BAR,
+                                  parametric_bands(checks, freq_hz))
     seconds = time.perf_counter() - started
     result = CheckResult(params=values, checks=checks, min_growth=min_growth,
                          engagement_s=ENGAGEMENT_DURATION_S,
@@ -145,6 +146,14 @@ def check(freq_hz, p_f_bar, parameters=None, changes=None, min_growth=None,
             boundaries = tongue_boundaries(system, grid, p_top)
             exact = {"background_boundaries": boundaries,
                      "background_tongues": find_tongues(system, boundaries)}
+            if min_growth:
+                # the judder line and its grey from the exact boundaries
+                # of growth at min_growth, not the grid
+                judder = tongue_boundaries(system, grid, p_top,
+                                           min_growth=min_growth,
+                                           check=False)
+                exact["background_judder"] = (judder,
+                                              find_tongues(system, judder))
         result = dataclasses.replace(result, background=under, **exact)
     return result
 
@@ -159,8 +168,25 @@ AMPLITUDE_SOURCES = {
              "frequency (Eq. 6 driven by the column D of Eq. 9)"}
 
 
+def parametric_bands(checks, freq_hz):
+    """Per setting the band of frequencies around it free of parametric
+    judder at its amplitude, ``(low, high)`` Hz, each end the nearest
+    crossing of the judder-relevant boundary or else the end of the range
+    searched (:func:`stability.decisions.margins.search_grid`); None for
+    a setting inside a tongue of judder."""
+    from stability.decisions.margins import search_grid
+    grid = search_grid(freq_hz)
+    out = []
+    for c in checks:
+        m = c.margin
+        out.append(None if m.inside else (
+            grid[0] if m.band_low_hz is None else m.band_low_hz,
+            grid[-1] if m.band_high_hz is None else m.band_high_hz))
+    return out
+
+
 def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
-                      min_growth, growth_rates, p_max):
+                      min_growth, growth_rates, p_max, bands=None):
     """The settled oscillation at each setting (Hz, Pa) and the verdict it
     gives (:func:`stability.orbit_chart.orbit_verdict`): for the bench,
     its periodic orbit; for a chain, its linear forced response with the
@@ -168,14 +194,22 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
     at which the forced oscillation reaches the limit at the setting's
     frequency, up to ``p_max`` (Pa;
     :func:`stability.orbit_chart.forced_limit_amplitude`, in proportion
-    for the chain's linear response). Returns one dict per setting; None
-    for a Modelica class or an FMU (its verdict is the growth's)."""
+    for the chain's linear response), and, within each setting's band
+    free of parametric judder (``bands``, :func:`parametric_bands`), the
+    nearest frequencies at which the forced oscillation at the setting's
+    amplitude reaches the limit
+    (:func:`stability.orbit_chart.forced_limit_frequencies`). Returns one
+    dict per setting; None for a Modelica class or an FMU (its verdict
+    is the growth's)."""
     from infra.criteria import MECHANISMS, mechanism_code
     from infra.units import RAD_S_PER_RPM, RPM_PER_RAD_S
     from stability.friction import forced_upstream_amplitude
     from stability.orbit import periodic_orbit
     from stability.orbit_chart import (forced_limit_amplitude,
+                                       forced_limit_frequencies,
+                                       held_slip_forced_amplitude,
                                        held_slip_motion, orbit_verdict)
+    bands = bands or [None] * len(freq_hz)
     limit = limit_rpm * RAD_S_PER_RPM
     rows = []
     if not given.source_kind.is_chain:
@@ -212,6 +246,14 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             converged, quasi, settled_s = True, False, None
             forced_limit = p * limit / forced if forced > 0 else np.inf
             forced_limit = forced_limit if forced_limit <= p_max else np.inf
+        forced_band = None
+        if bands[k] is not None and not judder:
+            amplitude = (held_slip_forced_amplitude(model, p)
+                         if driveline == "bench" else
+                         lambda at, p=p: forced_upstream_amplitude(system,
+                                                                   at, p))
+            forced_band = forced_limit_frequencies(amplitude, f, limit,
+                                                   *bands[k])
         rows.append({
             "forced_amplitude_rpm": forced * RPM_PER_RAD_S,
             "settled_amplitude_rpm": settled * RPM_PER_RAD_S,
@@ -226,7 +268,10 @@ def settled_responses(given, values, driveline, freq_hz, p_f, limit_rpm,
             # NaN (JSON null with forced_limit_found False): orbit lost
             "forced_limit_p_f_bar": (None if not np.isfinite(forced_limit)
                                      else forced_limit / PA_PER_BAR),
-            "forced_limit_found": not np.isnan(forced_limit)})
+            "forced_limit_found": not np.isnan(forced_limit),
+            # around the setting, at its amplitude, within the band free
+            # of parametric judder: [(Hz, 'forced'|'end'|'unknown')] * 2
+            "forced_band": forced_band})
     return rows
 
 
@@ -267,9 +312,11 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None,
          if np.isfinite(bar) or np.isfinite(hz)),
         key=lambda r: -abs(r["margin_hz_per_unit_log"] or 0.0)
         - abs(r["margin_bar_per_unit_log"] or 0.0) * 1e-6)
+    response = dict(response or {})
+    forced_band = response.pop("forced_band", None)
     return {"freq_hz": m.freq_hz, "p_f_bar": m.p_f / PA_PER_BAR,
             "verdict": word,
-            **(response or {}),
+            **response,
             "kind": point.kind,
             "inside_stability_tongue": bool(unstable),
             "judder_relevant": bool(check.judder),
@@ -292,8 +339,51 @@ def setting_record(check, min_growth, engagement_s, p_max, search_hz=None,
             "margin_hz_tongue": tongue(check.hz_tongue),
             "frequency_search_hz": (None if search_hz is None else
                                     [float(f) for f in search_hz]),
-            **highest_safe(m.boundary_p_f, response, p_max),
+            **highest_safe(m.boundary_p_f, response or None, p_max),
+            **safe_band(check, response or None, forced_band, search_hz),
             "sensitivity": sensitivity}
+
+
+def safe_band(check, response, forced_band, search_hz):
+    """The band of dither frequencies around a setting, at its amplitude,
+    with neither parametric judder (growth >= min_growth) nor a forced
+    oscillation over the limit: ``safe_band_hz`` [low, high] Hz (None
+    where the setting judders) and what ends it on each side,
+    ``safe_band_low_limited_by`` and ``safe_band_high_limited_by``:
+    ``parametric`` (the judder-relevant boundary, its tongue in
+    ``safe_band_*_tongue``), ``forced`` (the settled oscillation at the
+    dither frequency reaches the limit), ``unknown`` (the orbit was lost
+    there) or None (the end of the range searched, ``search_hz``: the
+    band reaches at least that far). Where the setting judders, both
+    name its mechanism. ``forced_band``: the forced crossings
+    (:func:`stability.orbit_chart.forced_limit_frequencies`) within the
+    band free of parametric judder; None for a Modelica class or an FMU
+    (the band is the parametric one)."""
+    m = check.margin
+    if m.inside or (response is not None and response["judder"]):
+        # the verdict's mechanism where the settled oscillation judders
+        # (the bench at 103 Hz, 0.3 bar: forced, though its steady
+        # slip's linearisation grows), else the linearisation's
+        judders = response is not None and response["judder"]
+        why = response["mechanism"] if judders else "parametric"
+        return {"safe_band_hz": None, "safe_band_low_limited_by": why,
+                "safe_band_high_limited_by": why,
+                "safe_band_low_tongue": None, "safe_band_high_tongue": None}
+    out, edges = {}, []
+    parametric = ((m.band_low_hz, check.band_low_tongue),
+                  (m.band_high_hz, check.band_high_tongue))
+    for side, (at, tongue), end in zip(("low", "high"), parametric,
+                                       search_hz or (None, None)):
+        by = None if at is None else "parametric"
+        edge = end if at is None else at
+        if forced_band is not None and forced_band[len(edges)][1] != "end":
+            edge, by = forced_band[len(edges)]
+            tongue = None
+        edges.append(None if edge is None else float(edge))
+        out[f"safe_band_{side}_limited_by"] = by
+        out[f"safe_band_{side}_tongue"] = (None if by != "parametric" or
+                                           tongue is None else tongue.number)
+    return {"safe_band_hz": edges, **out}
 
 
 def highest_safe(judder_boundary, response, p_max):
@@ -335,6 +425,41 @@ def highest_safe_words(record):
     return f"{at}: {top:.3f} bar ({why})"
 
 
+def safe_band_words(record):
+    """``at P bar safe from A to B Hz around the setting (below A Hz ...;
+    above B Hz ...)``, or why there is no such band."""
+    at = f"at {record['p_f_bar']:g} bar"
+    band = record["safe_band_hz"]
+    if band is None:
+        why = record["safe_band_low_limited_by"]
+        return (f"{at} no safe dither frequency around the setting: it "
+                f"judders ({why})")
+    ends, whys = [], []
+    for side, edge, beyond in (("low", band[0], "below"),
+                               ("high", band[1], "above")):
+        by = record[f"safe_band_{side}_limited_by"]
+        if edge is None:        # no range known: a record without one
+            ends.append("the end searched")
+            continue
+        if by is None:
+            ends.append(f"{edge:.3g} Hz or {'lower' if side == 'low' else 'higher'}")
+            whys.append(f"the range searched ends at {edge:.3g} Hz")
+            continue
+        ends.append(f"{edge:.2f} Hz")
+        if by == "forced":
+            why = (f"the forced oscillation exceeds the "
+                   f"{record['judder_limit_rpm']:g} rpm limit")
+        elif by == "unknown":
+            why = "the periodic orbit is lost"
+        else:
+            number = record[f"safe_band_{side}_tongue"]
+            why = "parametric judder" + ("" if number is None
+                                         else f", tongue {number}")
+        whys.append(f"{beyond} {edge:.2f} Hz {why}")
+    return (f"{at} safe from {ends[0]} to {ends[1]} around the setting "
+            f"({'; '.join(whys)})")
+
+
 def _tongue_words(tongue):
     return "" if tongue is None else f" in tongue {tongue['number'] or '?'}"
 
@@ -367,7 +492,7 @@ def setting_summary(record, engagement_s=1.0):
     if "settled_amplitude_rpm" in record:
         parts.append(response_words(record))
     parts += [growth_words(record, engagement_s), highest_safe_words(record),
-              *margin_words(record)]
+              safe_band_words(record), *margin_words(record)]
     sensitive = sensitivity_words(record)
     if sensitive:
         parts.append(sensitive)
@@ -395,6 +520,7 @@ class CheckResult:
     responses: list = None
     driveline: str = "chain"
     judder_limit_rpm: float = None
+    background_judder: object = None
 
     def records(self):
         from stability.decisions.margins import search_grid
@@ -430,7 +556,8 @@ class CheckResult:
     @keeps_foreign_files
     def save(self, path):
         """CSV: one row per setting (the scalar fields; tongues by
-        number)."""
+        number; the safe band as ``safe_band_low_hz``,
+        ``safe_band_high_hz``)."""
         rows = []
         for r in self.records():
             row = {k: v for k, v in r.items()
@@ -438,6 +565,8 @@ class CheckResult:
                    ("tongue", "margin_bar_tongue", "margin_hz_tongue")}
             for key in ("tongue", "margin_bar_tongue", "margin_hz_tongue"):
                 row[key] = None if r[key] is None else r[key]["number"]
+            band = r.get("safe_band_hz") or (None, None)
+            row["safe_band_low_hz"], row["safe_band_high_hz"] = band
             rows.append(row)
         write_text(path, rows_to_csv(rows))
 
@@ -446,4 +575,5 @@ class CheckResult:
         return check_figure(self.records(), self.background,
                             min_growth=self.min_growth, title=title,
                             boundaries=self.background_boundaries,
-                            tongues=self.background_tongues)
+                            tongues=self.background_tongues,
+                            judder=self.background_judder)

@@ -98,9 +98,20 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
             from stability.tongues import tongue_boundaries
             boundaries, exact_seconds = timed(
                 tongue_boundaries, driveline, result.freq_hz, p_top, method)
+    judder = None
     if boundaries is not None:
         from stability.tongues import find_tongues
         found = find_tongues(driveline, boundaries)
+        if min_growth and not frequency_dependent(values):
+            # the exact boundaries of judder too: the figure's judder
+            # line and its grey follow them, not the grid (issue 46)
+            from stability.tongues import tongue_boundaries
+            judder_boundaries, spent = timed(
+                tongue_boundaries, driveline, result.freq_hz, p_top, method,
+                min_growth=min_growth, check=False)
+            exact_seconds += spent
+            judder = (judder_boundaries,
+                      find_tongues(driveline, judder_boundaries))
     forced = slip = linear_slip = None
     if values.source_kind.is_chain and waveform is None:
         from stability.friction import (forced_slip_amplitude,
@@ -118,7 +129,8 @@ def stability_map(freq_hz, p_f_bar, parameters=None, changes=None,
                      min_growth=min_growth, boundaries_seconds=exact_seconds,
                      driveline=view, forced_rpm_per_bar=forced,
                      judder_limit_rpm=judder_limit_rpm,
-                     forced_slip_per_bar=slip, linear_slip=linear_slip)
+                     forced_slip_per_bar=slip, linear_slip=linear_slip,
+                     judder=judder)
 
 
 def _followed(values, waveform, freq_hz, amplitudes, p_top, method,
@@ -180,6 +192,9 @@ class MapResult:
     judder_limit_rpm: float = 30.0
     forced_slip_per_bar: object = None
     linear_slip: float = None
+    #: (Boundaries, tongues) of growth at ``min_growth``, exact (None:
+    #: not computed; the figure then contours the map's growth rate)
+    judder: object = None
 
     def beyond_linear_range(self):
         """Points where the dither's forced slip swing exceeds the bench
@@ -369,4 +384,4 @@ class MapResult:
         return map_figure(self.map, title=title, tongues=self.tongues,
                           boundaries=self.boundaries,
                           min_growth=self.min_growth, stacked=stacked,
-                          forced=forced)
+                          forced=forced, judder=self.judder)

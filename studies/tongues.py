@@ -71,11 +71,12 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
                                    solver=solver)
     found = find_tongues(driveline, boundaries)
     if judder_growth == boundaries.min_growth:
-        judder = found
+        judder, judder_boundaries = found, boundaries
     else:
-        judder = find_tongues(driveline, tongue_boundaries(
+        judder_boundaries = tongue_boundaries(
             driveline, freq_hz, p_max, method, min_growth=judder_growth,
-            solver=solver, check=False))
+            solver=solver, check=False)
+        judder = find_tongues(driveline, judder_boundaries)
     seconds = time.perf_counter() - started
     under = (map_kernel(driveline, freq_hz,
                         np.linspace(0, p_max, BACKGROUND_AMPLITUDES),
@@ -83,7 +84,7 @@ def tongues(freq_hz, p_max_bar=1.5, parameters=None, changes=None,
     return TonguesResult(params=values, boundaries=boundaries,
                          tongues=found, seconds=seconds, background=under,
                          judder_tongues=judder, judder_growth=judder_growth,
-                         driveline=view)
+                         driveline=view, judder_boundaries=judder_boundaries)
 
 
 def tongue_record(tongue, judder=None):
@@ -128,6 +129,7 @@ class TonguesResult:
     judder_tongues: list = None
     judder_growth: float = None
     driveline: str = "chain"
+    judder_boundaries: object = None
 
     def as_dict(self):
         b = self.boundaries
@@ -196,4 +198,11 @@ class TonguesResult:
             title=title or f"{self.params.model}: tongue boundaries over "
                            "the map",
             min_growth=(self.judder_growth or self.boundaries.min_growth
-                        or DEFAULT_MIN_GROWTH_PER_S))
+                        or DEFAULT_MIN_GROWTH_PER_S),
+            # the judder line and the grey from the exact boundaries of
+            # that growth (issue 46), when the figure's boundaries are
+            # the stability boundaries
+            judder=(None if self.judder_boundaries is None
+                    or self.boundaries.min_growth
+                    or not self.judder_growth else
+                    (self.judder_boundaries, self.judder_tongues)))

@@ -114,6 +114,26 @@ def test_held_back_samples_lie_inside_the_broadest_region(serial):
         assert e.contains(tongue, tolerance=1e-3), row     # 1e-3 Pa
 
 
+def test_the_drawn_bands_follow_each_samples_boundary(serial):
+    # the figure's bands (issue 46: stair-stepped before) come from each
+    # sample's boundary, linear between the study's frequencies: at those
+    # frequencies they are the grid's probability, halfway between two
+    # they count the samples whose two neighbouring values average below
+    e = serial.envelope
+    p = e.p_f
+    assert np.allclose(e.probability_at(e.freq_hz, p), e.probability)
+    low = e.lowest[e.random]
+    i = int(np.argmax(np.isfinite(low).all(axis=0)[:-1]
+                      & np.isfinite(low).all(axis=0)[1:]))
+    assert np.isfinite(low[:, i:i + 2]).all()     # a pair was found
+    middle = 0.5 * (e.freq_hz[i] + e.freq_hz[i + 1])
+    expected = (0.5 * (low[:, i] + low[:, i + 1])[:, None]
+                <= p[None, :]).mean(axis=0)
+    assert np.allclose(e.probability_at([middle], p)[0], expected)
+    assert np.allclose(e.quantile_at(e.freq_hz, 0.5),
+                       e.quantile_boundary(0.5), equal_nan=True)
+
+
 def test_an_interrupted_envelope_resumes_from_its_checkpoint(tmp_path,
                                                               serial):
     checkpoint = tmp_path / "e.checkpoint.npz"

@@ -62,6 +62,23 @@ def _map(example):
                              exact=True).figure(title=EXAMPLE_TITLE)
 
 
+def _map_judder(example):
+    # the judder line and the grey from the exact boundaries of growth at
+    # min_growth (issue 46), as `judder map` draws them
+    result = api.stability_map(np.linspace(5, 250, 60),
+                               np.linspace(0, 1.5, 30), parameters=example,
+                               exact=True, min_growth=1.0)
+    assert result.judder is not None
+    return result.figure(title=EXAMPLE_TITLE)
+
+
+def _tongues_over_map(example):
+    result = api.tongues(np.linspace(10, 220, 60), parameters=example,
+                         background=True)
+    assert result.judder_boundaries is not None
+    return result.figure(title=EXAMPLE_TITLE)
+
+
 def _tongues(example):
     return api.tongues(np.linspace(10, 220, 60), parameters=example
                        ).figure(title=EXAMPLE_TITLE)
@@ -145,7 +162,9 @@ def _engagement_path(example):
         title="4dof driveline, paper preset, load_share 0.99")
 
 
-FIGURES = {"check": _check, "check-six": _check_six, "map": _map, "tongues": _tongues,
+FIGURES = {"check": _check, "check-six": _check_six, "map": _map,
+           "map-judder": _map_judder, "tongues": _tongues,
+           "tongues-over-map": _tongues_over_map,
            "sensitivity": _sensitivity, "floquet": _floquet,
            "orbit-chart": _orbit_chart,
            "orbit-chart-fine": _orbit_chart_fine, "orbit-branch": _orbit_branch,

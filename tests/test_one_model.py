@@ -192,3 +192,35 @@ def test_check_states_the_highest_safe_amplitude_with_its_reason():
     assert free["highest_safe_limited_by"] is None
     assert free["highest_safe_p_f_bar"] is None
     assert free["highest_safe_searched_to_bar"] == 1.5
+
+
+def test_check_states_the_safe_band_at_the_settings_amplitude():
+    # 100 Hz, 0.3 bar on the paper preset's bench: below, tongue 5's
+    # judder boundary (growth = min_growth) ends the band; above, the
+    # forced oscillation of tongue 2's resonance reaches the 30 rpm limit
+    # first. Each edge checked independently: Floquet growth on either
+    # side of the parametric one, the orbit at the forced one.
+    from stability.multipliers import floquet
+    from stability.orbit import periodic_orbit
+    from stability.orbit_chart import held_slip_motion
+    from studies.bench import driveline_view, engagement_model
+    params = get_preset(PRESET)
+    record, = api.check([100.0], [0.3], params, sensitivity=()).records()
+    low, high = record["safe_band_hz"]
+    assert record["safe_band_low_limited_by"] == "parametric"
+    assert record["safe_band_low_tongue"] == 5
+    assert record["safe_band_high_limited_by"] == "forced"
+    assert low < 100.0 < high
+    bench = build_driveline(driveline_view(params, "bench")[0])
+    rate = record["min_growth_per_s"]
+    assert floquet(bench, low - 0.05, 0.3e5).growth_rate > rate
+    assert floquet(bench, low + 0.05, 0.3e5).growth_rate < rate
+    model = engagement_model(params)[0]
+    at = held_slip_motion(model, periodic_orbit(model, high, 0.3e5))[0]
+    assert at.dither_amplitude * 60 / (2 * np.pi) == pytest.approx(30.0,
+                                                                   rel=0.01)
+    # a setting that judders has no band, and says why
+    judders, = api.check([103.0], [0.3], params, sensitivity=()).records()
+    assert judders["verdict"] == "JUDDER"
+    assert judders["safe_band_hz"] is None
+    assert judders["safe_band_low_limited_by"] == "forced"

@@ -98,3 +98,76 @@ def test_a_former_spelling_still_works_and_says_the_new_one(args, new):
     for data in (old, now):
         del data["seconds"], data["provenance"]
     assert old == now
+
+
+#: A value the parser reads as a word (a choice, `none`, a preset, a
+#: wave's name), not a number, a file, a name of the user's or a list.
+KEYWORD = r"[a-z][a-z_]*(?:-[a-z0-9]+)*"
+#: Values that are the user's, not the tool's words: parameter names,
+#: Modelica classes, files, addresses, channels.
+USERS = ("NAMES", "NAME=VALUE", "CLASS", "DIR", "ADDRESS", "FILE")
+
+
+def _readme_option_values():
+    """``(command or None, option, value)`` for every option the README
+    gives a word value: in its ``sh`` blocks and in its inline code
+    (``judder simulate --compare none``; an inline ``--opt value``
+    without its command counts for every command with that option)."""
+    import re
+    import shlex
+    from pathlib import Path
+    text = (Path(__file__).parents[1] / "README.md").read_text()
+    lines = []
+    for block in re.findall(r"^```sh\n(.*?)^```", text, re.S | re.M):
+        lines += [line for line in block.splitlines()
+                  if line.startswith("judder ")]
+    lines += re.findall(r"`([^`\n]*--[a-z][^`\n]*)`", text)
+    found = set()
+    for line in lines:
+        try:
+            words = shlex.split(line, comments=True)
+        except ValueError:
+            continue
+        command = words[1] if words[:1] == ["judder"] and len(words) > 1 \
+            else None
+        for option, value in zip(words, words[1:]):
+            if not option.startswith("--"):
+                continue
+            # square[:TAU_MS], dyson|solve_ivp: each word
+            for word in re.split(r"[|:\[\]]", value):
+                if re.fullmatch(KEYWORD, word):
+                    found.add((command, option, word))
+    return found
+
+
+def test_help_lists_every_option_value_the_readme_uses():
+    # `--compare none` in the README must be findable in simulate --help;
+    # only the tool's own words count, not a user's names or files
+    import re
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command")
+    uses = _readme_option_values()
+    assert ("simulate", "--compare", "none") in uses    # the README was read
+    missing = []
+    checked = 0
+    for command, option, value in sorted(uses, key=str):
+        commands = [command] if command else list(sub.choices)
+        for name in commands:
+            subparser = sub.choices.get(name)
+            action = None if subparser is None else next(
+                (a for a in subparser._actions if option in a.option_strings),
+                None)
+            if action is None or isinstance(action, Renamed):
+                continue
+            metavar = action.metavar or ""
+            if action.nargs == 0 or any(u in metavar for u in USERS):
+                continue
+            if _meaning(action)[0] in ("names", "file"):
+                continue
+            checked += 1
+            if not re.search(rf"(?<![\w-]){re.escape(value)}(?![\w-])",
+                             subparser.format_help()):
+                missing.append(f"judder {name} {option} {value}")
+    assert checked > 10
+    assert not missing, "values the README uses, not in --help:\n" + \
+        "\n".join(missing)

@@ -285,3 +285,30 @@ def test_a_period_too_long_for_the_monodromy_is_refused_in_words():
     assert "internal error" not in proc.stderr
     assert "--freq" in proc.stderr and "0.001" in proc.stderr
     assert "allowed" in proc.stderr
+
+
+@pytest.mark.parametrize("setting, side, zeta, limit", [
+    (60.0, 1, 0.02, 5.0), (140.0, 0, 0.02, 5.0),
+    # a peak 0.1 % wide, the limit 0.09 % from its top: the walk's steps
+    # shrink with the slope and do not step over it
+    (60.0, 1, 0.0005, 500.0), (140.0, 0, 0.0005, 500.0)])
+def test_forced_limit_frequencies_finds_a_resonance_from_either_side(
+        setting, side, zeta, limit):
+    # closed form: a damped oscillator's response |H| = 1 / sqrt((1 -
+    # r^2)^2 + (2 zeta r)^2), r = f / 100 Hz; walking away from the
+    # resonance it never reaches the limit
+    from scipy.optimize import brentq
+    from stability.orbit_chart import forced_limit_frequencies
+
+    def amplitude(f):
+        r = f / 100.0
+        return 1.0 / np.hypot(1 - r * r, 2 * zeta * r)
+    exact = (brentq(lambda f: amplitude(f) - limit, 60.0, 100.0)
+             if side else brentq(lambda f: amplitude(f) - limit, 100.0,
+                                 140.0))
+    found = forced_limit_frequencies(amplitude, setting, limit,
+                                     setting / 2, setting * 4)
+    assert found[side][1] == "forced"
+    assert found[side][0] == pytest.approx(exact, abs=1e-3)   # xtol, Hz
+    away = found[1 - side]
+    assert away == (setting / 2 if side else setting * 4, "end")

@@ -110,10 +110,25 @@ def test_check_of_a_class_and_of_its_fmu_is_the_presets(capsys, four_fmu):
         ours = _json(capsys, "check", *source, *setting)
         # margins are roots of the boundary: round-off of Eq. (6) plus the
         # finite differences of the sensitivities
-        # the highest safe amplitude weighs the preset's forced response
+        # the highest safe amplitude and the safe band weigh the preset's
+        # forced response: the class's band is the parametric one, and
+        # the preset's lies within it (the forced response only narrows)
+        skip = ("highest_safe_p_f_bar", "highest_safe_limited_by",
+                "safe_band_hz", "safe_band_low_limited_by",
+                "safe_band_high_limited_by", "safe_band_low_tongue",
+                "safe_band_high_tongue")
         _same_numbers(ours, preset, 1e-8, skip=(
             "model", "seconds", "provenance", "driveline_description",
-            "highest_safe_p_f_bar", "highest_safe_limited_by"))
+            *skip))
+        stable_ours, stable_preset = ours["settings"][1], preset["settings"][1]
+        assert {stable_ours["safe_band_low_limited_by"],
+                stable_ours["safe_band_high_limited_by"]} <= {"parametric",
+                                                               None}
+        low, high = stable_ours["safe_band_hz"]
+        narrower = stable_preset["safe_band_hz"]
+        # (a parametric edge of both is the same root to round-off)
+        assert low * (1 - 1e-8) <= narrower[0] < 60.0 < narrower[1] \
+            <= high * (1 + 1e-8)
 
 
 def test_check_of_the_geared_class_puts_its_margin_on_the_growth_boundary():
@@ -237,7 +252,9 @@ def test_report_of_a_class_is_the_presets(tmp_path, capsys):
                if key in ours["verdict"]}
     _same_numbers(ours["verdict"], verdict, 1e-8, skip=(
         "model", "seconds", "provenance", "highest_safe_p_f_bar",
-        "highest_safe_limited_by"))
+        "highest_safe_limited_by", "safe_band_hz",
+        "safe_band_low_limited_by", "safe_band_high_limited_by",
+        "safe_band_low_tongue", "safe_band_high_tongue"))
     # Fig. 19 is a study of the paper's chains; the class's run is its FMU
     assert "mu_g_threshold" in preset and "mu_g_threshold" not in ours
     assert ours["engagement"]["floquet_kind"] == ours["verdict"]["kind"]

@@ -166,3 +166,17 @@ def test_an_orbit_grid_is_refused_before_it_is_made(capsys):
         "allowed: fewer --freq or --pf values, or raise the limit with "
         "JUDDER_MAX_HOURS=HOURS")
     assert time.monotonic() - started < 30
+
+
+def test_a_check_on_the_bench_is_estimated_at_the_benchs_cost(capsys,
+                                                              monkeypatch):
+    # 36 s allowed: 200 settings cost 9 s on the chain (0.045 s each) but
+    # 42 s on the preset's bench (0.21 s each: its orbits and the safe
+    # band's walk), where it is refused before the work
+    monkeypatch.setenv("JUDDER_MAX_HOURS", "0.01")
+    grid = ["--freq", "60:200:20", "--pf", "0.05:0.5:10", "--params", "none"]
+    status, out, err = run(["check", *grid], capsys)
+    assert status == 2
+    names(err, "42 s", "200 settings")
+    from studies._preflight import check_settings_time
+    assert check_settings_time(200, 0) == pytest.approx(9.0)

@@ -23,7 +23,10 @@ DESCRIPTION = (
     "with the mechanism), its growth rate and e-folding time against the "
     "engagement, the highest safe amplitude at its frequency (the lower of "
     "the parametric boundary and the amplitude whose settled forced "
-    "oscillation reaches --limit, and which it is), the margin to the "
+    "oscillation reaches --limit, and which it is), the safe band of "
+    "frequencies around it at its amplitude (from where to where neither "
+    "parametric judder nor a forced oscillation over --limit occurs, and "
+    "what ends each side), the margin to the "
     "nearest judder-relevant tongue "
     "boundary in bar (at the same frequency) and in Hz (at the same "
     "amplitude), exact from the boundary curves, which tongue that is, "
@@ -74,9 +77,11 @@ def add_arguments(p):
 def run(args):
     """Verdict, growth and margins of dither settings."""
     names = args.params
-    freqs, amplitudes = _settings(args, len(
-        DEFAULT_CHECK_PARAMETERS if names is None else names))
     params, changes = parameters_of(args)
+    from studies.bench import default_driveline
+    bench = (args.driveline or default_driveline(params)) == "bench"
+    freqs, amplitudes = _settings(args, len(
+        DEFAULT_CHECK_PARAMETERS if names is None else names), bench)
     make_parents(args.out, args.plot)
     with Progress(len(freqs), "check") as progress:
         result = check(freqs, amplitudes, params, changes,
@@ -89,11 +94,11 @@ def run(args):
     emit(args, data, result.summary() + written(args.out, args.plot))
 
 
-def _settings(args, parameters):
+def _settings(args, parameters, bench=False):
     """Frequencies (Hz) and amplitudes (bar) of ``judder check``; the
-    time of ``parameters`` sensitivity parameters per setting is estimated
-    before the settings are made (a grid x grid of 1e10 would fill the
-    memory first)."""
+    time of ``parameters`` sensitivity parameters per setting (on a test
+    bench with ``bench``) is estimated before the settings are made (a
+    grid x grid of 1e10 would fill the memory first)."""
     from studies.inputs import empty_cell, read_boundary_table, read_input
     if args.table:
         if args.freq or args.pf:
@@ -110,7 +115,7 @@ def _settings(args, parameters):
                              "to check)")
         amplitudes = [p / PA_PER_BAR for p in p_f]
         check_amplitudes(amplitudes, f"{source}: p_f_bar")
-        check_settings_time(len(freqs), parameters, source)
+        check_settings_time(len(freqs), parameters, source, bench)
         check_work(source, len(freqs), "settings")
         low, high = FREQ_RANGE_HZ
         for line, f in zip(lines, freqs):
@@ -125,7 +130,8 @@ def _settings(args, parameters):
     freqs, amplitudes = args.freq, args.pf
     # the time first (it says what to change); then, with the time limit
     # raised, the count (the pairs of 1e10 settings would not fit)
-    check_settings_time(len(freqs) * len(amplitudes), parameters)
+    check_settings_time(len(freqs) * len(amplitudes), parameters,
+                        bench=bench)
     check_work("--freq x --pf", len(freqs) * len(amplitudes), "settings")
     pairs = [(f, p) for f in freqs for p in amplitudes]
     return [f for f, _ in pairs], [p for _, p in pairs]

@@ -82,10 +82,11 @@ def add_arguments(p):
     p.add_argument("--duration", type=DURATION, metavar="S",
                    help="simulated time, s (default: the model's "
                         "StopTime, 4 s for the bench)")
-    p.add_argument("--compare", nargs="?", const="none", metavar="HZ",
+    p.add_argument("--compare", nargs="?", const="none", metavar="HZ|none",
                    type=OrNone("--compare", "Hz", *FREQ_RANGE_HZ),
-                   help="also run the same kind of run without dither, or "
-                        "with dither at HZ; plotted side by side (Fig. 7)")
+                   help="also run the same kind of run without dither "
+                        "(--compare or --compare none), or with dither at "
+                        "HZ; plotted side by side (Fig. 7)")
     p.add_argument("--bench", action="append", default=[],
                    metavar="NAME=VALUE",
                    help="bench parameter of the model (SI, or with a "

@@ -80,6 +80,13 @@ class Margin:
         the grid step that holds it (:func:`_crossing`), Hz.
     inside : bool
         ``p0 >= B(f0)``: the setting lies in a judder-relevant tongue.
+    band_low_hz, band_high_hz : float or None
+        The nearest frequencies below and above ``f0`` where ``B(f) =
+        p0``, Hz (None: none in the search range): outside a tongue, the
+        band of frequencies around ``f0`` free of parametric judder at
+        ``p0``.
+    band_low_kind, band_high_kind : str or None
+        Kind of tongue whose boundary ends the band there.
     """
 
     freq_hz: float
@@ -92,6 +99,10 @@ class Margin:
     margin_hz: float
     crossing_tolerance_hz: float
     inside: bool
+    band_low_hz: object = None
+    band_low_kind: object = None
+    band_high_hz: object = None
+    band_high_kind: object = None
 
 
 def _crossing(curves, column, p0, low, high):
@@ -147,6 +158,9 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
     # unstable at p0 on the grid: some kind below p0
     low_curve = np.where(np.isfinite(amplitude), amplitude, np.inf)
     best = (np.inf, None, None, 0.0)
+    # the nearest crossing on each side: the band free of parametric
+    # judder at p0 (of any kind) around f0
+    sides = {-1: (np.inf, None, None), 1: (np.inf, None, None)}
     for kind_col in range(3):
         below = low_curve[:, kind_col] <= p_f
         flips = np.flatnonzero(below[1:] != below[:-1])
@@ -156,6 +170,10 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
             distance = abs(root - freq_hz)
             if distance < best[0]:
                 best = (distance, root, kind_col, tolerance)
+            side = 1 if root > freq_hz else -1
+            if distance < sides[side][0]:
+                sides[side] = (distance, float(root),
+                               KINDS[TONGUE_KINDS[kind_col]])
     if inside and best[1] is None:
         raise JudderError(f"freq = {freq_hz:g} Hz, p_f = {p_f / 1e5:g} bar "
                           "lies in a tongue wider than the search range; "
@@ -169,7 +187,9 @@ def setting_margin(system, freq_hz, p_f, p_max, grid, amplitude=None):
         crossing_hz=None if root is None else float(root),
         hz_kind=None if hz_col is None else KINDS[TONGUE_KINDS[hz_col]],
         margin_hz=(-distance if inside else distance),
-        crossing_tolerance_hz=float(tolerance), inside=bool(inside))
+        crossing_tolerance_hz=float(tolerance), inside=bool(inside),
+        band_low_hz=sides[-1][1], band_low_kind=sides[-1][2],
+        band_high_hz=sides[1][1], band_high_kind=sides[1][2])
 
 
 def margin_sensitivity(params, names, freq_hz, p_f, margin, min_growth,
@@ -261,6 +281,10 @@ class SettingCheck:
         resonance as in Fig. 14.
     sensitivity : dict
         :func:`margin_sensitivity` (empty if not asked for).
+    band_low_tongue, band_high_tongue : stability.tongues.Tongue or None
+        The judder-relevant tongues whose boundaries end the band free of
+        parametric judder at the setting's amplitude
+        (``margin.band_low_hz``, ``margin.band_high_hz``).
     unstable_p_f : float
         The stability boundary at the setting's frequency: the lowest
         amplitude at which a multiplier leaves the unit circle
@@ -277,6 +301,8 @@ class SettingCheck:
     sensitivity: dict
     tongue: object = None
     unstable_p_f: float = np.inf
+    band_low_tongue: object = None
+    band_high_tongue: object = None
 
 
 def _tongue_at(tongues, kind, freq_hz):
@@ -337,7 +363,11 @@ def check_settings(params, freq_hz, p_f, min_growth, p_max, names=(),
             sensitivity=sens,
             tongue=(None if point.kind == KINDS[0] else
                     _tongue_at(tongues, point.kind, f0)),
-            unstable_p_f=unstable))
+            unstable_p_f=unstable,
+            band_low_tongue=_tongue_at(tongues, margin.band_low_kind,
+                                       margin.band_low_hz),
+            band_high_tongue=_tongue_at(tongues, margin.band_high_kind,
+                                        margin.band_high_hz)))
         if callback is not None:
             callback(index + 1, len(freq_hz))
     return out

@@ -211,17 +211,26 @@ BURIED_TIP = "tip inside another tongue\n(its edge is not drawn there)"
 
 
 def number_tips(ax, tongues, color, buried=()):
-    """A marker at each numbered tip and its number beside it (right),
-    clear of the frequency axis; :func:`settle_labels` moves a number that
+    """A marker at each numbered tip and its number beside it (on the
+    side with more room to the next tip), clear of the frequency axis; :func:`settle_labels` moves a number that
     would overlap another. A tongue whose ``id`` is in ``buried`` has its
     tip inside another kind's tongue: its marker is open and labelled
     :data:`BURIED_TIP` (once) for the legend."""
     artists, numbers = [], []
     labelled = False
+    tips = sorted(t.tip_freq_hz for t in tongues if t.number is not None)
     for tongue in tongues:
         if tongue.number is None:
             continue
         xy = (tongue.tip_freq_hz, tongue.tip_p_f / PA_PER_BAR)
+        # right of the tip, or left where the next tip to the right is
+        # close and the left has more room: on the 6-DOF map of the
+        # README tip 9 lies 2.5 Hz left of tip 2, and a number right of
+        # it sat on tongue 2's edge (issue 46)
+        others = [f - xy[0] for f in tips if f != xy[0]]
+        right = min([d for d in others if d > 0], default=np.inf)
+        left = min([-d for d in others if d < 0], default=np.inf)
+        on_left = right < 0.03 * np.ptp(ax.get_xlim()) and left > right
         inside = id(tongue) in buried
         label = UNLISTED        # the number says what it is
         if inside and not labelled:
@@ -233,8 +242,13 @@ def number_tips(ax, tongues, color, buried=()):
                                linestyle="none", label=label)[0])
         numbers.append(ax.annotate(
             str(tongue.number), xy, textcoords="offset points",
-            xytext=(4, 1), ha="left", va="bottom", fontsize=8,
+            xytext=(-4 if on_left else 4, 1),
+            ha="right" if on_left else "left", va="bottom", fontsize=8,
             fontweight="bold", color="k", gid=LABEL_GID,
             bbox={"boxstyle": "round,pad=0.1", "fc": "w", "ec": "none",
-                  "alpha": 0.7}))
+                  "alpha": 0.7},
+            # a leader to its tip, seen once settle_labels moves the
+            # number up away from a neighbour's
+            arrowprops={"arrowstyle": "-", "color": "k", "lw": 0.5,
+                        "shrinkA": 0, "shrinkB": 2}))
     return artists + numbers

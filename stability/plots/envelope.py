@@ -17,6 +17,10 @@ __all__ = ["plot_envelope", "envelope_figure", "closed_edge",
 PROBABILITY_LEVELS = (0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0)
 
 
+#: Points (frequency, amplitude) of the grid the bands are drawn on.
+FINE_POINTS = (1000, 400)
+
+
 def closed_edge(freq_hz, edge, top):
     """The outline of the region above ``edge`` (NaN: none up to ``top``):
     each stretch of finite values joined at both ends to ``top`` at the
@@ -49,9 +53,11 @@ def plot_envelope(envelope, ax=None):
     """Probability shading in bands (:data:`PROBABILITY_LEVELS`),
     broadest edge (black, solid), 50 % line (black dashed on white) and
     nominal boundary (blue, dotted), p_f in bar, each closed on the top
-    of the axes (:func:`closed_edge`); the legend below. The shading
-    covers only cells whose corners all have a sample unstable, so it
-    lies within the broadest region, as that region holds every sample's.
+    of the axes (:func:`closed_edge`); the legend below. The shading and
+    the 50 % line come from each sample's boundary, linear between the
+    study's frequencies, on a fine grid
+    (:meth:`~stability.uncertainty.Envelope.probability_at`), so they lie
+    within the broadest region, as that region holds every sample's.
 
     Parameters
     ----------
@@ -69,17 +75,22 @@ def plot_envelope(envelope, ax=None):
     f, bar = e.freq_hz, e.p_f / PA_PER_BAR
     top = e.p_max / PA_PER_BAR
     artists = []
-    probability = e.probability
-    if np.isfinite(probability).any() and min(probability.shape) > 1:
-        # bands of probability (not grid cells), from 1 % unstable up; a
-        # point no sample finds unstable is left out, not interpolated to
-        # (the shading would spread half a cell beyond every sample)
-        artists.append(ax.contourf(f, bar, np.where(probability > 0,
-                                                    probability, np.nan).T,
+    # the bands from each sample's boundary, linear between the study's
+    # frequencies, on a fine grid: their edges follow the samples'
+    # boundaries, not the staircase of the probability grid (issue 46)
+    fine = np.linspace(f.min(), f.max(), FINE_POINTS[0])
+    fine_bar = np.linspace(0.0, top, FINE_POINTS[1])
+    probability = e.probability_at(fine, fine_bar * PA_PER_BAR)
+    if np.isfinite(probability).any() and len(f) > 1:
+        # from 1 % unstable up; a point no sample finds unstable is left
+        # out, not interpolated to
+        artists.append(ax.contourf(fine, fine_bar,
+                                   np.where(probability > 0,
+                                            probability, np.nan).T,
                                    levels=PROBABILITY_LEVELS,
                                    cmap="Oranges", extend="neither"))
         # dashed black on a white halo: readable over every band
-        artists += ax.plot(*closed_edge(f, e.quantile_boundary(0.5)
+        artists += ax.plot(*closed_edge(fine, e.quantile_at(fine, 0.5)
                                         / PA_PER_BAR, top),
                            color="k", linestyle=(0, (5, 2.5)), linewidth=1.4,
                            path_effects=[withStroke(linewidth=3.2,

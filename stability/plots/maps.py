@@ -71,7 +71,8 @@ def kind_handles(kinds=(1, 2, 3), stable=True, lines=False, min_growth=None):
 
 
 def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
-             boundaries=None, legend=True, min_growth=None, forced=None):
+             boundaries=None, legend=True, min_growth=None, forced=None,
+             judder=None):
     """Regions of each kind of instability over frequency (Hz) and p_f (bar).
 
     Parameters
@@ -95,6 +96,13 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
     forced : (ndarray, ndarray, float), optional
         ``(freq_hz, p_f_bar, limit_rpm)``: where the forced oscillation
         reaches the NVH limit, drawn as a line (forced judder above it).
+    judder : (Boundaries, list of Tongue), optional
+        With ``boundaries`` and ``min_growth``: the exact boundaries of
+        growth at ``min_growth`` and their tongues
+        (:func:`stability.tongues.tongue_boundaries` with ``min_growth``),
+        drawn as the judder line and shading what lies above them as
+        judder, the rest of the unstable region grey; without them, the
+        map's growth rate decides, linear between its points.
 
     Returns
     -------
@@ -107,9 +115,17 @@ def plot_map(stability_map, ax=None, mark_resonances=True, tongues=None,
     slow = min_growth is not None and min_growth > 0
     if boundaries is not None and boundaries.min_growth == 0 \
             and len(m.freq_hz) > 1 and len(bar) > 1:
+        exact = judder if slow and judder is not None else None
         artists = [_exact_fill(m, boundaries, tongues or (), ax,
-                               min_growth if slow else None)]
-        if slow:
+                               min_growth if slow else None, exact)]
+        if exact is not None:
+            # the judder line from the exact boundaries of growth at
+            # min_growth, not a contour of the grid (issue 46)
+            artists += plot_boundaries(
+                exact[0], ax=ax, tongues=exact[1], numbers=False,
+                style={"color": "k", "linewidth": GROWTH_LINE["linewidths"],
+                       "linestyle": GROWTH_LINE["linestyles"][0]})
+        elif slow:
             artists.append(ax.contour(m.freq_hz, bar, m.growth_rate.T,
                                       levels=[min_growth], **GROWTH_LINE))
     else:
@@ -219,21 +235,44 @@ def _fine_grid(m, boundaries, tongues):
     return (freq[0], freq[-1], amp[0], amp[-1]), index, inside, low
 
 
-def _exact_fill(m, boundaries, tongues, ax, min_growth=None):
+def _pixel_rate(m, extent):
+    """The growth rate (1/s) at each pixel of :func:`_fine_grid`'s image,
+    shape ``(nP, nF)``: linear between the map's points (as the contour
+    of ``min_growth`` is drawn), not the nearest point's, so the edge of
+    slow growth follows that contour instead of the grid's staircase."""
+    from scipy.interpolate import RegularGridInterpolator
+    freq = np.linspace(extent[0], extent[1], FILL_PIXELS[0])
+    amp = np.linspace(extent[2], extent[3], FILL_PIXELS[1])
+    bar = m.p_f / PA_PER_BAR
+    rate = np.nan_to_num(np.asarray(m.growth_rate, dtype=float), nan=0.0)
+    interpolate = RegularGridInterpolator((m.freq_hz, bar), rate,
+                                          bounds_error=False,
+                                          fill_value=None)
+    f, p = np.meshgrid(np.clip(freq, m.freq_hz[0], m.freq_hz[-1]),
+                       np.clip(amp, bar[0], bar[-1]))
+    return interpolate(np.stack([f, p], axis=-1))
+
+
+def _exact_fill(m, boundaries, tongues, ax, min_growth=None, judder=None):
     """The kinds as an image clipped to the exact boundaries: inside them
     the grid's kind (nearest point), or that of the lowest boundary where
     the grid point is stable; outside them white. With ``min_growth``,
-    the slowly growing points grey (a stable grid point inside the exact
-    boundaries counts as slow: it grows at about 0 there)."""
+    grey where the growth rate, linear between the map's points
+    (:func:`_pixel_rate`), is below it: the edge of the judder-relevant
+    region is the contour drawn at ``min_growth``, not the grid's cells
+    (issue 46); with ``judder`` (the exact boundaries of growth at
+    ``min_growth`` and their tongues), grey below those instead."""
     extent, index, inside, low = _fine_grid(m, boundaries, tongues)
     unstable = inside.any(axis=0)
     lowest = 1 + np.argmin(np.where(inside, low[:, None, :], np.inf), axis=0)
     grid = m.kind[index]
     code = np.where(unstable, np.where(grid > 0, grid, lowest), 0)
-    if min_growth is not None:
-        slow = ~is_judder_relevant(m.growth_rate, min_growth)
-        code = np.where(unstable & (slow[index] | (grid == 0)),
-                        len(KINDS), code)
+    if min_growth is not None and judder is not None:
+        above = _fine_grid(m, judder[0], judder[1])[2].any(axis=0)
+        code = np.where(unstable & ~above, len(KINDS), code)
+    elif min_growth is not None:
+        slow = ~is_judder_relevant(_pixel_rate(m, extent), min_growth)
+        code = np.where(unstable & slow, len(KINDS), code)
     colours = ListedColormap([*KIND_COLORS, SLOW_COLOR])
     return ax.imshow(code, origin="lower", aspect="auto",
                      interpolation="nearest", cmap=colours, vmin=-0.5,
@@ -276,9 +315,10 @@ def plot_growth_rate(stability_map, ax=None, boundaries=None, tongues=()):
     if boundaries is not None and boundaries.min_growth == 0 \
             and len(m.freq_hz) > 1 and len(m.p_f) > 1:
         extent, index, inside, _ = _fine_grid(m, boundaries, tongues)
-        # inside the exact boundaries, a stable grid point grows at ~0
+        # inside the exact boundaries, linear between the map's points
+        # (no grid staircase) and at least 0 (it grows there)
         image = np.where(inside.any(axis=0),
-                         np.nan_to_num(rate[index], nan=0.0), np.nan)
+                         np.maximum(_pixel_rate(m, extent), 0.0), np.nan)
         mesh = ax.imshow(image, origin="lower", aspect="auto",
                          interpolation="nearest", cmap=CONTINUOUS_CMAP,
                          extent=extent)
@@ -329,18 +369,19 @@ def _note(ax, text):
 
 
 def map_figure(stability_map, title=None, tongues=None, boundaries=None,
-               min_growth=None, stacked=False, forced=None):
+               min_growth=None, stacked=False, forced=None, judder=None):
     """Figure with the kinds (left, with the exact boundaries and tongue
     numbers when given, slowly growing points grey with ``min_growth``)
     and the growth rate (right; below with ``stacked``, for a page).
     ``forced``: ``(freq_hz, p_f_bar, limit_rpm)``, the amplitude at which
     the forced oscillation reaches the limit at each frequency, drawn on
-    the left (forced judder above it)."""
+    the left (forced judder above it); ``judder``: the exact boundaries of
+    growth at ``min_growth`` and their tongues (:func:`plot_map`)."""
     fig, (left, right) = plt.subplots(
         *((2, 1) if stacked else (1, 2)),
         figsize=(9, 8.6) if stacked else (14, 5), layout="constrained")
     plot_map(stability_map, ax=left, tongues=tongues, boundaries=boundaries,
-             min_growth=min_growth, forced=forced)
+             min_growth=min_growth, forced=forced, judder=judder)
     if not draws_instability(stability_map, boundaries):
         _set_extent(left, stability_map, boundaries)
         _note(left, "stable at every point: every multiplier inside the "

@@ -13,13 +13,16 @@ __all__ = ["tongues_figure"]
 
 
 def tongues_figure(boundaries, tongues, stability_map=None, title=None,
-                   min_growth=None):
+                   min_growth=None, judder=None):
     """Boundaries and numbered tips, over the map when one is given (its
-    points growing slower than ``min_growth``, 1/s, grey)."""
+    points growing slower than ``min_growth``, 1/s, grey; below the exact
+    boundaries of that growth, ``judder`` = (Boundaries, tongues), where
+    given)."""
     fig, ax = plt.subplots(figsize=(10, 5), layout="constrained")
     if stability_map is not None:
         plot_map(stability_map, ax=ax, tongues=tongues,
-                 boundaries=boundaries, min_growth=min_growth)
+                 boundaries=boundaries, min_growth=min_growth,
+                 judder=judder)
     else:
         drawn = plot_boundaries(boundaries, ax=ax, tongues=tongues)
         handles = [Line2D([], [], color=KIND_COLORS[k],

@@ -192,6 +192,44 @@ class Envelope:
             return np.full((len(self.freq_hz), len(self.p_f)), np.nan)
         return (low[:, :, None] <= self.p_f[None, None, :]).mean(axis=0)
 
+    def lowest_at(self, freq_hz):
+        """Each random sample's lowest boundary at ``freq_hz`` (Hz, shape
+        (n,)), Pa, shape (n_random, n): linear between the study's
+        frequencies, as its outline is drawn; next to a frequency where
+        the sample has none, it rises to ``p_max`` there (the outline
+        closes on the top), and ``inf`` where it reaches ``p_max``."""
+        low = self.lowest[self.random]
+        closed = np.where(np.isfinite(low), low, self.p_max)
+        freq_hz = np.asarray(freq_hz, dtype=float)
+        out = np.array([np.interp(freq_hz, self.freq_hz, row)
+                        for row in closed]).reshape(len(low), len(freq_hz))
+        return np.where(out < self.p_max, out, np.inf)
+
+    def probability_at(self, freq_hz, p_f):
+        """Share of the random samples unstable at each (f, p_f) of the
+        given frequencies (Hz, shape (n,)) and amplitudes (Pa, shape
+        (m,)), shape (n, m), each sample's boundary linear between the
+        study's frequencies (:meth:`lowest_at`): the bands of a figure
+        follow the samples' boundaries, not the cells of
+        :attr:`probability`'s grid; NaN without random samples."""
+        freq_hz = np.asarray(freq_hz, dtype=float)
+        p_f = np.asarray(p_f, dtype=float)
+        if not self.random.any():
+            return np.full((len(freq_hz), len(p_f)), np.nan)
+        low = self.lowest_at(freq_hz)
+        return (low[:, :, None] <= p_f[None, None, :]).mean(axis=0)
+
+    def quantile_at(self, freq_hz, probability):
+        """:meth:`quantile_boundary` at the given frequencies (Hz), from
+        :meth:`lowest_at`, Pa; NaN where fewer are unstable up to
+        ``p_max``."""
+        freq_hz = np.asarray(freq_hz, dtype=float)
+        if not self.random.any():
+            return np.full(len(freq_hz), np.nan)
+        q = np.quantile(self.lowest_at(freq_hz), probability, axis=0,
+                        method="inverted_cdf")
+        return np.where(np.isfinite(q), q, np.nan)
+
     def quantile_boundary(self, probability):
         """Amplitude (Pa, shape (nf,)) from which at least ``probability``
         of the random samples are unstable; NaN where fewer are up to
