@@ -1185,10 +1185,11 @@ def test_every_run_record_carries_the_verdict_as_the_tool_words_it(
     STABLE)."""
     from judder.cli import main
     from infra.criteria import JUDDER, RUN_VERDICTS, VERDICTS, run_verdict
-    assert RUN_VERDICTS == (JUDDER, "NO JUDDER")
-    assert RUN_VERDICTS[1] not in VERDICTS
+    assert RUN_VERDICTS == (JUDDER, "NO JUDDER", "CANNOT TELL")
+    assert not set(RUN_VERDICTS[1:]) & set(VERDICTS)
     assert [run_verdict(j) for j in (True, False, None)] == \
         ["JUDDER", "NO JUDDER", None]
+    assert run_verdict(True, told=False) == "CANNOT TELL"
     examples = Path(__file__).parents[1] / "examples" / "bench"
     assert main(["chart", "--index", str(examples / "runs.csv"),
                  *EXAMPLE_CHANNELS, "--json"]) == 0
@@ -1339,3 +1340,64 @@ def test_an_index_with_excel_s_separator_line_reads(tmp_path):
     assert [(s.path.name, s.settings) for s in sources] == [
         ("run01.csv", {"freq_hz": 210.0, "p_f_bar": 0.4}),
         ("run02.csv", {"p_f_bar": 0.6})]
+
+
+def _examples_with_pressure_at(folder, rate, index_rows):
+    """The nine example runs with their pressure kept at ``rate``
+    samples/s (the other rows emptied) and an index of ``index_rows``
+    (its text after the header ``file,freq_hz``); the index's path."""
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    for source in sorted(examples.glob("run0*.csv")):
+        header, *lines = source.read_text().splitlines()
+        kept, rows = -1.0, []
+        for line in lines:
+            cells = line.split(",")
+            if float(cells[0]) >= kept + 1 / rate:
+                kept = float(cells[0])
+            else:
+                cells[3] = "nan"
+            rows.append(",".join(cells))
+        (folder / source.name).write_text("\n".join([header] + rows) + "\n")
+    (folder / "runs.csv").write_text("file,freq_hz\n" + index_rows)
+    return folder / "runs.csv"
+
+
+def test_a_run_whose_dither_may_be_an_alias_cannot_be_told(tmp_path,
+                                                           capsys):
+    """Issue 44, item 2: the example runs with their pressure at 250
+    samples/s and no dither frequency in the index (found at 13-17 Hz,
+    aliases of their 210-214 Hz) came out NO JUDDER, kind stable, "0 with
+    judder", beside an alias warning, though run03, 06 and 09 judder. A
+    run whose frequency cannot be known is now CANNOT TELL, with why and
+    what to give, and counted as no verdict; the runs whose frequency
+    the index gives keep theirs."""
+    from judder.cli import main
+    index = _examples_with_pressure_at(
+        tmp_path, 250.0, "run01.csv,\nrun02.csv,\nrun03.csv,\n"
+        + "".join(f"run0{i}.csv,{f}\n" for i, f in
+                  zip(range(4, 10), [212] * 3 + [214] * 3)))
+    out = tmp_path / "chart.npz"
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--json", "--out", str(out)]) == 0
+    runs = json.loads(capsys.readouterr().out)["runs"]
+    assert [r["verdict"] for r in runs] == ["CANNOT TELL"] * 3 + \
+        ["NO JUDDER", "NO JUDDER", "JUDDER"] * 2
+    for run in runs[:3]:
+        assert run["judder"] is None and run["kind"] is None
+        names(run["cannot_tell"], "alias", "210",
+              "freq_hz")
+    assert all(r["cannot_tell"] is None for r in runs[3:])
+    with np.load(out) as npz:
+        assert npz["verdict"].tolist()[:3] == ["CANNOT TELL"] * 3
+        assert npz["kind"].tolist()[:3] == [""] * 3
+        assert npz["judder"].tolist() == [False] * 5 + [True, False,
+                                                         False, True]
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 0
+    text = capsys.readouterr().out
+    summary = next(line for line in text.splitlines()
+                   if line.startswith("all runs:"))
+    names(summary, "9 runs", "2 with judder", "4 without", "3 cannot tell")
+    for name in ("run01.csv", "run02.csv", "run03.csv"):
+        line = next(line for line in text.splitlines()
+                    if line.startswith(f"  {name}: CANNOT TELL"))
+        names(line, "alias", "freq_hz")

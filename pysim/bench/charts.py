@@ -431,9 +431,20 @@ class Chart:
             f"# judder_limit_rpm: {self.judder_limit_rpm:g}"]
         return "\n".join(lines) + "\n"
 
+    def told(self, group):
+        """The runs of one group whose reading is a verdict (not
+        :attr:`pysim.bench.verdict.RunAnalysis.cannot_tell`)."""
+        return [r for r in self.groups().get(group, [])
+                if r.analysis.cannot_tell is None]
+
     def arrays(self):
-        """Per-run arrays (NaN where unknown), for NPZ files and plots."""
+        """Per-run arrays (NaN where unknown), for NPZ files and plots;
+        ``verdict`` the run's word, and a run that cannot be told is
+        neither ``judder`` nor of a ``kind`` or ``mechanism``."""
         runs = self.read
+
+        def told(run):
+            return run.analysis.cannot_tell is None
         return {
             "source_file": np.array([str(r.path) for r in runs]),
             "group": np.array(["/".join(r.group(self.group_by))
@@ -445,10 +456,15 @@ class Chart:
             "growth_per_s": np.array([np.nan if r.analysis.growth_per_s
                                       is None else r.analysis.growth_per_s
                                       for r in runs]),
-            "judder": np.array([r.analysis.judder for r in runs]),
-            "kind": np.array([r.analysis.kind for r in runs]),
-            "mechanism": np.array([r.analysis.mechanism or ""
-                                   for r in runs]),
+            # a run that cannot be told is no verdict: not judder, of
+            # no kind (``verdict`` says CANNOT TELL)
+            "judder": np.array([r.analysis.judder and told(r)
+                                for r in runs], dtype=bool),
+            "verdict": np.array([r.analysis.verdict for r in runs]),
+            "kind": np.array([r.analysis.kind if told(r) else ""
+                              for r in runs]),
+            "mechanism": np.array([(r.analysis.mechanism or "") if told(r)
+                                   else "" for r in runs]),
             "oscillation_rpm": np.array([r.analysis.oscillation_rpm
                                          for r in runs]),
             "forced_rpm": np.array([r.analysis.forced_rpm for r in runs]),

@@ -291,9 +291,30 @@ class RunAnalysis:
 
     @property
     def verdict(self):
-        """The run's verdict word
-        (:data:`infra.criteria.RUN_VERDICTS`)."""
-        return run_verdict(self.judder)
+        """The run's verdict word (:data:`infra.criteria.RUN_VERDICTS`):
+        ``CANNOT TELL`` where :attr:`cannot_tell` says why."""
+        return run_verdict(self.judder, told=self.cannot_tell is None)
+
+    @property
+    def cannot_tell(self):
+        """Why the run's reading is no verdict, in words naming what to
+        give; None where it is one.
+
+        A dither frequency estimated from a pressure that cannot tell it
+        from its aliases (:attr:`frequency_aliased`) leaves the speed read
+        at frequencies the run may not have had: its components at ``f``
+        and ``f/2``, its growth and its kind are those of a guess (a run
+        growing to 49 rpm at 210 Hz read at its 17 Hz alias came out
+        stable)."""
+        if not self.frequency_aliased:
+            return None
+        others = ", ".join(f"{f:.4g}" for f in self.dither.aliases)
+        return (f"the dither frequency, estimated from the pressure at "
+                f"{self.freq_hz:.4g} Hz, cannot be told from its aliases"
+                + (f" ({others} Hz)" if others else "")
+                + " and no dither frequency was given; give it (a freq_hz "
+                "column in the index, or the file's dither_frequency_hz "
+                "metadata)")
 
     @property
     def frequency_aliased(self):
@@ -305,19 +326,24 @@ class RunAnalysis:
                 and self.dither.aliased)
 
     def as_dict(self):
-        """JSON fields (Hz, bar, rpm, 1/s)."""
+        """JSON fields (Hz, bar, rpm, 1/s); where the run cannot be told
+        (:attr:`cannot_tell`, its words), ``judder``, ``kind`` and
+        ``mechanism`` are None: no verdict."""
+        told = self.cannot_tell is None
         return {"window_s": list(self.window_s), "freq_hz": self.freq_hz,
                 "p_f_bar": self.p_f_bar,
-                "dither_estimated": self.estimated, "judder": self.judder,
-                "verdict": self.verdict,
-                "kind": self.kind, "growth_per_s": self.growth_per_s,
+                "dither_estimated": self.estimated,
+                "judder": self.judder if told else None,
+                "verdict": self.verdict, "cannot_tell": self.cannot_tell,
+                "kind": self.kind if told else None,
+                "growth_per_s": self.growth_per_s,
                 "growth_phase_s": None if self.growth_phase_s is None
                 else list(self.growth_phase_s),
                 "nonperiodic_rpm": self.nonperiodic_rpm,
                 "amplitude_rpm": self.amplitude_rpm,
                 "oscillation_rpm": self.oscillation_rpm,
                 "forced_rpm": self.forced_rpm,
-                "mechanism": self.mechanism,
+                "mechanism": self.mechanism if told else None,
                 "judder_limit_rpm": self.judder_limit_rpm,
                 "components": [c.__dict__ for c in self.components],
                 "dither_estimate": dither_estimate_dict(self.dither,
