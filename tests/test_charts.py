@@ -1401,3 +1401,65 @@ def test_a_run_whose_dither_may_be_an_alias_cannot_be_told(tmp_path,
         line = next(line for line in text.splitlines()
                     if line.startswith(f"  {name}: CANNOT TELL"))
         names(line, "alias", "freq_hz")
+
+
+def test_the_readme_says_where_the_example_bench_judders():
+    """Issue 44, item 4: the README said the example bench "judders at 212
+    Hz from 0.6 bar"; its chart finds 0.8 bar at every frequency. The
+    sentence's frequencies, onset and quiet amplitudes are the chart's."""
+    from studies.chart import chart
+    from pysim.bench.acquisition import ChannelSpec
+    text = " ".join((Path(__file__).parents[1] / "README.md")
+                    .read_text().split())
+    found = re.search(r"The emulated bench judders at ([\d, and]+) Hz from "
+                      r"([\d.]+) bar \(not at ([\d., or]+) bar\)", text)
+    assert found, "the README's sentence on the example bench"
+    said = [float(f) for f in re.findall(r"[\d.]+", found[1])]
+    quiet = [float(p) for p in re.findall(r"[\d.]+", found[3])]
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    result = chart([], index=examples / "runs.csv", workers=1, channels={
+        "upstream_speed": ChannelSpec("EngSpd_up"),
+        "pressure": ChannelSpec("PressEVEN", "bar"),
+        "downstream_speed": ChannelSpec("OutSpd")}).chart
+    (group,) = result.groups()
+    assert [(f, p) for f, p, _ in result.boundary(group)] == \
+        [(f, float(found[2])) for f in said]
+    assert sorted({r.analysis.p_f_bar for r in result.read
+                   if not r.analysis.judder}) == quiet
+
+
+def test_an_index_written_on_windows_finds_its_files(tmp_path, capsys):
+    """Issue 44, item 4: an index listing ``..\\data\\run03.csv`` failed
+    that run with "no such file" (exit 0); the backslashes are now read
+    as the separators they are, and the run reads as listed with
+    slashes."""
+    from judder.cli import main
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    (tmp_path / "data").mkdir()
+    (tmp_path / "index").mkdir()
+    (tmp_path / "data" / "run03.csv").write_text(
+        (examples / "run03.csv").read_text())
+    index = tmp_path / "index" / "runs.csv"
+    index.write_text("file,freq_hz,p_f_bar\r\n..\\data\\run03.csv,210,0.8\r\n")
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["failed"] == []
+    assert [r["verdict"] for r in data["runs"]] == ["JUDDER"]
+    assert Path(data["runs"][0]["file"]).resolve() == \
+        (tmp_path / "data" / "run03.csv").resolve()
+
+
+def test_a_folder_without_an_index_says_what_to_give(capsys):
+    """Issue 44, item 4: ``judder chart examples/bench`` (a folder of a
+    bench's files, no campaign's index.csv) answered with an Errno; it
+    now names --index (with the index CSV the folder holds) and
+    --channel."""
+    from judder.cli import main
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    assert main(["chart", str(examples)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("judder: error: ") and err.count("\n") == 1
+    assert "Errno" not in err
+    names(err, str(examples), "index.csv", "--index",
+          str(examples / "runs.csv"), "--channel", "upstream_speed=NAME")
