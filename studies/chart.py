@@ -131,6 +131,7 @@ class ChartResult:
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
                 "growth_per_s": a.growth_per_s,
+                "growth_std_per_s": a.growth_std_per_s,
                 "judder": a.judder if told else None,
                 "verdict": a.verdict, "cannot_tell": a.cannot_tell,
                 "kind": a.kind if told else None,

@@ -502,6 +502,10 @@ class Chart:
                                       for r in runs]),
             # a run that cannot be told is no verdict: not judder, of
             # no kind (``verdict`` says CANNOT TELL)
+            "growth_std_per_s": np.array([
+                np.nan if r.analysis.growth_std_per_s is None
+                else r.analysis.growth_std_per_s for r in runs],
+                dtype=float),
             "judder": np.array([r.analysis.judder and told(r)
                                 for r in runs], dtype=bool),
             "verdict": np.array([r.analysis.verdict for r in runs]),
