@@ -836,3 +836,39 @@ def test_the_same_threshold_said_twice_is_one(tmp_path):
     path.write_text("# min_growth_per_s: 0.5\n" + BOUNDARY
                     + "# min_growth_per_s: 0.50\n")
     assert read_boundary_min_growth(path) == 0.5
+
+
+def test_a_deliberately_wrong_start_is_reported_not_returned(capsys):
+    """Issue 44, acceptance: a start far from the truth (mu_g 0.05, k24
+    90 000 against the README's boundary, fitted at mu_g 0.0221, k24
+    34 870) ends at another, worse minimum (mu_g 0.17, k24 87 500); the
+    fit returns the better one another start found, and says so in words
+    with both minima (before, only "2 stopped at a worse one")."""
+    import json
+    from pathlib import Path
+    from judder.cli import main
+    boundary = Path(__file__).parents[1] / "examples" / "measured_boundary.csv"
+    common = ["fit", "--boundary", str(boundary), "--set", "c12=10",
+              "--fit", "mu_g,k24"]
+    wrong = ["--set", "mu_g=0.05", "--set", "k24=90000"]
+    assert main([*common, *wrong, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    outcome = data["given_start"]
+    assert outcome["worse"]
+    assert outcome["start"] == {"mu_g": 0.05, "k24": 90000.0}
+    fitted = {n: v["value"] for n, v in data["fitted"].items()}
+    assert fitted["mu_g"] == pytest.approx(0.0221, rel=0.02)
+    assert fitted["k24"] == pytest.approx(34870, rel=0.01)
+    # the given start's own minimum is elsewhere, and worse
+    assert abs(outcome["minimum"]["k24"] - fitted["k24"]) > 1e4
+    assert outcome["sum_of_squares"] > 10 * outcome[
+        "returned_sum_of_squares"]
+    assert main([*common, *wrong]) == 0
+    line = next(line for line in capsys.readouterr().out.splitlines()
+                if line.startswith("the given start"))
+    names(line, "mu_g = 0.05", "k24 = 9e+04", "worse",
+          f"k24 = {outcome['minimum']['k24']:.4g}",
+          f"mu_g = {fitted['mu_g']:.4g}", f"k24 = {fitted['k24']:.4g}")
+    # a start that reaches the answer is not reported
+    assert main([*common, "--json"]) == 0
+    assert not json.loads(capsys.readouterr().out)["given_start"]["worse"]
