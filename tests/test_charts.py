@@ -1542,3 +1542,18 @@ def test_the_stated_growth_uncertainty_matches_the_scatter():
     scatter = rates.std(ddof=1)
     assert 0.5 * scatter < np.median(stds) < 2 * scatter
     assert np.sqrt(np.mean(((rates - 2.6) / stds) ** 2)) < 2.0
+
+
+def test_a_run_without_dither_setting_or_pressure_says_what_to_give(capsys):
+    """Issue 44 ("a refusal that names what to give"): a run with no
+    dither setting and no pressure channel was refused without saying
+    what would read it; the refusal names the index's columns, the
+    files' metadata and the pressure channel."""
+    from judder.cli import main
+    examples = Path(__file__).parents[1] / "examples" / "bench"
+    assert main(["chart", str(examples / "run03.csv"), "--channel",
+                 "upstream_speed=EngSpd_up", "--channel",
+                 "downstream_speed=OutSpd"]) == 2
+    err = capsys.readouterr().err
+    names(err, "run03.csv", "freq_hz", "p_f_bar", "dither_frequency_hz",
+          "--channel pressure=NAME")

@@ -1071,8 +1071,16 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                   if value is not None)
     if freq_hz is None or p_f_bar is None:
         if pressure is None:
-            raise JudderError("the dither setting is not given and there is "
-                              "no pressure channel to estimate it from")
+            missing = [column for column, value in
+                       (("freq_hz", freq_hz), ("p_f_bar", p_f_bar))
+                       if value is None]
+            raise JudderError(
+                "the dither setting is not given and there is no pressure "
+                "channel to estimate it from; give "
+                + " and ".join(missing) + " (columns of the index, or the "
+                "file's dither_frequency_hz and dither_amplitude_bar "
+                "metadata) or the pressure channel (`channels` "
+                "pressure=NAME)")
         dither = estimate_dither(np.asarray(pressure[0], dtype=float),
                                  np.asarray(pressure[1], dtype=float),
                                  window, freq_hz)
