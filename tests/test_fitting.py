@@ -541,7 +541,9 @@ def _synthetic_chart(truth, freqs, grid_bar, limit_rpm=30.0,
                 estimated=False, window_s=(0.0, 3.0), amplitude_rpm=0.0,
                 growth_per_s=None, kind=kind if judder else "stable", mechanism=None, oscillation_rpm=0.0,
                 forced_rpm=0.0, dither=None, given=("freq_hz", "p_f_bar"),
-                frequency_aliased=False)
+                frequency_aliased=False, cannot_tell=None,
+                growth_std_per_s=None,
+                verdict="JUDDER" if judder else "NO JUDDER")
             runs.append(ChartRun(f"run_{f:g}_{p:g}.mf4", {}, analysis))
     return Chart(runs=runs, group_by=(), min_growth=1.0,
                  judder_limit_rpm=limit_rpm), onset
