@@ -1557,3 +1557,27 @@ def test_a_run_without_dither_setting_or_pressure_says_what_to_give(capsys):
     err = capsys.readouterr().err
     names(err, "run03.csv", "freq_hz", "p_f_bar", "dither_frequency_hz",
           "--channel pressure=NAME")
+
+
+def test_a_growth_not_told_from_noise_is_no_judder(tmp_path, capsys):
+    """Issue 44, a held-out round trip (mu_g 0.028, k24 29 000): the run
+    at 195 Hz and 0.4286 bar, below its tongue (the bench's
+    linearisation has judder there from 0.51 bar), was called a
+    single-period JUDDER growing at 18.5 1/s, read over the last 0.1 s of
+    its window at 2 rpm; matched to a single-period tongue, it drove
+    the fit to k24 57 600. Its rate is 18.5 +- 10.8 1/s: a growth no
+    more than GROWTH_SIGNIFICANCE standard uncertainties above zero is
+    none the reading can tell from noise, and the run is NO JUDDER."""
+    from judder.cli import main
+    from pysim.bench.verdict import GROWTH_SIGNIFICANCE
+    assert GROWTH_SIGNIFICANCE == 2.0
+    folder = tmp_path / "campaign"
+    assert main(["campaign", "--preset", "paper-4dof-fitted", "--set",
+                 "mu_g=0.028", "--set", "k24=29000", "--freq", "195",
+                 "--pf", repr(0.3 + 0.9 / 7), "--format", "mf4",
+                 "--workers", "1", "--out", str(folder)]) == 0
+    capsys.readouterr()
+    assert main(["chart", str(folder), "--workers", "1", "--json"]) == 0
+    (run,) = json.loads(capsys.readouterr().out)["runs"]
+    assert run["verdict"] == "NO JUDDER" and run["kind"] == "stable"
+    assert run["growth_per_s"] is None

@@ -88,7 +88,9 @@ shorter than :data:`MIN_PHASE_S`: noise makes short rises), reaches
 (a beat of decaying free modes rising from a null dies away again; a
 single-period judder that saturates is periodic again, and the speed's
 own component stays), while the speed's own component there reaches
-``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`). The largest
+``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`), and its rate is
+at least :data:`GROWTH_SIGNIFICANCE` standard uncertainties above zero
+(a rise read over a tenth of a second at 2 rpm is noise). The largest
 growing component gives the growth rate; its kind is that of its
 frequency (``f``: single-period, ``f/2``: double-period), or read from
 the spectrum of ``d`` within its band: within :data:`_KIND_BAND` of a
@@ -141,7 +143,8 @@ __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "single_period_growth", "nonperiodic_part",
            "growth_phase", "rise_rate", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
-           "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
+           "SATURATED_SHARE", "SLIP_SHARE", "GROWTH_SIGNIFICANCE",
+           "REFERENCE_S", "PRESSURE_ON",
            "LONG_LAG_S", "SINGLE_PERIOD_BAND_HZ",
            "SMOOTHING_S"]
 
@@ -939,9 +942,24 @@ def _single_period_phase(time, envelope, freq_hz, min_growth, speed,
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and size[-1] >= NOISE_FLOOR_RPM and rate >= min_growth \
             and efolds >= 1.0 and stays:
-        return rate, (start, float(stop)), _phasor_rate_std(
-            time[rise], phasor[rise], rate)
+        rate_std = _phasor_rate_std(time[rise], phasor[rise], rate)
+        if _significant(rate, rate_std):
+            return rate, (start, float(stop)), rate_std
     return None
+
+
+#: A growth counts only where its rate is this many standard
+#: uncertainties above zero: a rate read to 18 +- 11 1/s over the last
+#: 0.1 s of a window, at 2 rpm (a run 0.08 bar below the tongue of its
+#: campaign, issue 44), is none the reading can tell from noise.
+GROWTH_SIGNIFICANCE = 2.0
+
+
+def _significant(rate, rate_std):
+    """Whether a growth rate is told from none: ``rate`` at least
+    :data:`GROWTH_SIGNIFICANCE` standard uncertainties above zero (an
+    uncertainty that cannot be told, NaN, does not refuse it)."""
+    return not rate_std > rate / GROWTH_SIGNIFICANCE
 
 
 def _phasor_rate_std(time, phasor, rate):
@@ -1017,7 +1035,8 @@ def _judder_phase(time, envelope, freq_hz, min_growth, component_hz=None,
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and envelope.max() / gain >= NOISE_FLOOR_RPM \
-            and rate >= min_growth and efolds >= 1.0 and stays:
+            and rate >= min_growth and efolds >= 1.0 and stays \
+            and _significant(rate, rate_std):
         return rate, (start, stop), rate_std
     return None
 
