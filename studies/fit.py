@@ -304,12 +304,16 @@ def _starts_text(r):
     sampled = origins.count("sampled")
     rematched = origins.count("rematched")
     continued = origins.count("continued")
+    placed = origins.count("placed")
     where = ["the given values"]
     if sampled:
         where.append(f"{sampled} sampled within a factor 3 of them")
     if rematched:
         where.append(f"{rematched} with ambiguous points matched to the "
                      "other kind of tongue")
+    if placed:
+        where.append(f"{placed} placed so that a tongue of the kind the "
+                     "data saw lies at its onsets")
     if continued:
         where.append("the best one continued after its budget")
     text = (f"{r.starts_tried} local fit{'s' if r.starts_tried > 1 else ''} "
