@@ -12,8 +12,9 @@ in parallel (skipped when the given start fits the data to round-off:
 nothing can fit better). Where the data give the kind of their onsets,
 starts are also placed so that a tongue of that kind lies at them
 (:func:`placed_starts`): a start whose tongues lie elsewhere compares
-with nothing the parameters move. The best minimum is kept (and continued if its
-budget stopped it); the result says how many starts reached it, and
+with nothing the parameters move. The best minimum is kept (and
+continued if its budget stopped it); the result says how many starts
+reached it, and
 warns when another minimum fits almost as well (its sum of squares within
 ``t^2 s^2`` of the best, its values outside the intervals).
 """
@@ -249,8 +250,8 @@ def placed_starts(problem, given):
             try:
                 frequency, _ = damped_modes(build_driveline(evaluated(
                     problem.params_at(z), problem.added)))
-            except Exception:       # a value the model cannot build
-                frequency = np.array([])
+            except (JudderError, ValueError, np.linalg.LinAlgError):
+                frequency = np.array([])    # a value the model refuses
             modes.append(frequency)
         count = min(len(m) for m in modes)
         if count == 0:
