@@ -1428,11 +1428,13 @@ def test_the_readme_says_where_the_example_bench_judders():
                    if not r.analysis.judder}) == quiet
 
 
-def test_an_index_written_on_windows_finds_its_files(tmp_path, capsys):
+@pytest.mark.parametrize("encoding", ["utf-8", "utf-16"])
+def test_an_index_written_on_windows_finds_its_files(tmp_path, capsys,
+                                                     encoding):
     """Issue 44, item 4: an index listing ``..\\data\\run03.csv`` failed
     that run with "no such file" (exit 0); the backslashes are now read
     as the separators they are, and the run reads as listed with
-    slashes."""
+    slashes. Excel's UTF-16 (with its BOM) reads as UTF-8 does."""
     from judder.cli import main
     examples = Path(__file__).parents[1] / "examples" / "bench"
     (tmp_path / "data").mkdir()
@@ -1440,7 +1442,8 @@ def test_an_index_written_on_windows_finds_its_files(tmp_path, capsys):
     (tmp_path / "data" / "run03.csv").write_text(
         (examples / "run03.csv").read_text())
     index = tmp_path / "index" / "runs.csv"
-    index.write_text("file,freq_hz,p_f_bar\r\n..\\data\\run03.csv,210,0.8\r\n")
+    index.write_bytes("file,freq_hz,p_f_bar\r\n..\\data\\run03.csv,210,"
+                      "0.8\r\n".encode(encoding))
     assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
                  "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
