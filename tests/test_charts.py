@@ -1584,3 +1584,27 @@ def test_a_growth_not_told_from_noise_is_no_judder(tmp_path, capsys):
     (run,) = json.loads(capsys.readouterr().out)["runs"]
     assert run["verdict"] == "NO JUDDER" and run["kind"] == "stable"
     assert run["growth_per_s"] is None
+
+
+def test_an_alias_of_irregular_samples_off_their_mean_rate_is_found(
+        tmp_path, capsys):
+    """Issue 44, item 2: the example runs with their pressure kept at
+    350 samples/s off the pick-up's passages (irregular, 2.6 samples per
+    period) and no dither frequency given: run03's 210 Hz dither was
+    found at 130.7 Hz with no alias named (its mean rate put the alias
+    at 205 Hz, 4.7 Hz off), so it was a JUDDER at 130.7 Hz, a boundary
+    point where the bench never ran. Every frequency of the plausible
+    range that fits as well is now an alias: all nine cannot be told,
+    210-214 Hz named."""
+    from judder.cli import main
+    index = _examples_with_pressure_at(
+        tmp_path, 350.0, "".join(f"run0{i}.csv,\n" for i in range(1, 10)))
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS,
+                 "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [r["verdict"] for r in data["runs"]] == ["CANNOT TELL"] * 9
+    assert data["boundary"] is None or data["boundary"] == []
+    for run, true in zip(data["runs"], [210.0] * 3 + [212.0] * 3
+                         + [214.0] * 3):
+        assert min(abs(np.array(run["dither_estimate"]["aliases_hz"])
+                       - true)) < 0.3, run["dither_estimate"]["aliases_hz"]
