@@ -1038,3 +1038,14 @@ def test_a_catman_refusal_quotes_the_line_naming_the_columns(tmp_path):
     names(message, "line 4", "'Zeit  1 - Standardmessrate'", "'EngSpd_up'",
           "`channels` time=NAME")
     assert "catman Export" not in message
+
+
+@pytest.mark.parametrize("encoding", ["utf-16-le", "utf-16-be"])
+def test_utf16_without_its_bom_is_refused_naming_it(tmp_path, encoding):
+    """UTF-16 without a byte-order mark cannot be told from a binary file
+    for certain: it was refused as "not a text file (NUL bytes)"; the
+    refusal now says what it is and what to save it as."""
+    path = tmp_path / "run03.csv"
+    path.write_bytes((_EXAMPLES / "run03.csv").read_text().encode(encoding))
+    names(_message(path, _EXAMPLE_ROLES), str(path), "UTF-16",
+          "byte-order mark", "UTF-8")

@@ -171,8 +171,26 @@ def _decoded(data, path):
         except UnicodeDecodeError:
             text = None
         if text is None or "\0" in text:
+            if _utf16_without_bom(data):
+                raise JudderError(
+                    f"{path}: UTF-16 text without its byte-order mark (every "
+                    "other byte NUL), which cannot be told from binary; save "
+                    "the CSV as UTF-8, or as UTF-16 with its byte-order mark "
+                    "(Excel's \"Unicode text\")") from None
             raise
         return text
+
+
+def _utf16_without_bom(data):
+    """Whether bytes look like ASCII text in UTF-16 without a BOM: of the
+    first 1024 byte pairs, nearly all have one NUL byte, always on the
+    same side."""
+    head = np.frombuffer(data[:2048][:len(data[:2048]) // 2 * 2],
+                         dtype=np.uint8).reshape(-1, 2)
+    if len(head) < 4:
+        return False
+    return any(np.mean((head[:, side] == 0) & (head[:, 1 - side] != 0))
+               > 0.95 for side in (0, 1))
 
 
 def _csv_metadata(lines):
