@@ -1608,3 +1608,19 @@ def test_an_alias_of_irregular_samples_off_their_mean_rate_is_found(
                          + [214.0] * 3):
         assert min(abs(np.array(run["dither_estimate"]["aliases_hz"])
                        - true)) < 0.3, run["dither_estimate"]["aliases_hz"]
+
+
+def test_an_index_of_windows_drive_paths_says_what_to_give(tmp_path,
+                                                           capsys):
+    """An index written on Windows with absolute paths (``C:\\bench\\data\\
+    run03.csv``) failed each run with "no such file"; it is refused
+    naming the line, the drive and what reads here: the path relative to
+    the index."""
+    from judder.cli import main
+    index = tmp_path / "runs.csv"
+    index.write_text("file,freq_hz,p_f_bar\r\n"
+                     "C:\\bench\\data\\run03.csv,210,0.8\r\n")
+    assert main(["chart", "--index", str(index), *EXAMPLE_CHANNELS]) == 2
+    err = capsys.readouterr().err
+    names(err, "--index", "line 2", "C:\\bench\\data\\run03.csv", "C:",
+          "relative to the index", "data\\run03.csv")

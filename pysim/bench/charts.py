@@ -236,6 +236,15 @@ def _check_index_row(row, where):
     if not row["file"].strip():
         raise JudderError(f"{where}: column 'file' is empty; allowed: the "
                           "acquisition's file, relative to the index")
+    windows = PureWindowsPath(row["file"])
+    if os.sep != "\\" and windows.drive and not Path(row["file"]).exists():
+        # C:\data\run.csv names a drive this machine does not have
+        raise JudderError(
+            f"{where}: column 'file' = '{row['file']}' is a Windows path "
+            f"on drive {windows.drive}, which is not here; allowed: the "
+            "acquisition's file relative to the index (such as "
+            f"{PureWindowsPath(*windows.parts[-2:])}, backslashes read as "
+            "separators) or a path on this machine")
     for name, (above, allowed) in _SETTING_RANGES.items():
         value = row.get(name, float("nan"))
         if np.isnan(value):
