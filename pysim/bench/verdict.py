@@ -318,7 +318,7 @@ class RunAnalysis:
         from its aliases (:attr:`frequency_aliased`) leaves the speed read
         at frequencies the run may not have had: its components at ``f``
         and ``f/2``, its growth and its kind are those of a guess (a run
-        growing to 49 rpm at 210 Hz read at its 17 Hz alias came out
+        growing to 39 rpm at 210 Hz read at its 17 Hz alias came out
         stable)."""
         if not self.frequency_aliased:
             return None
