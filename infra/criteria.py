@@ -11,7 +11,8 @@ import numpy as np
 __all__ = ["ENGAGEMENT_DURATION_S", "DEFAULT_MIN_GROWTH_PER_S",
            "DEFAULT_JUDDER_LIMIT_RPM", "CHART_THRESHOLD_SPREAD_PER_S",
            "JUDDER", "SLOW_GROWTH", "STABLE", "NO_JUDDER", "VERDICTS",
-           "RUN_VERDICTS", "run_verdict", "MECHANISMS", "mechanism_code"]
+           "RUN_VERDICTS", "CANNOT_TELL", "run_verdict", "MECHANISMS",
+           "mechanism_code"]
 
 #: Typical duration of the slipping phase of one engagement, s.
 ENGAGEMENT_DURATION_S = 1.0
@@ -49,22 +50,33 @@ VERDICTS = (JUDDER, SLOW_GROWTH, STABLE)
 #: orbit's): ``JUDDER`` where an instability grows at the minimum growth
 #: rate or faster or the dither-related oscillation exceeds the NVH limit
 #: (as ``judder fit --limit`` compares); else ``NO JUDDER``: a run cannot
-#: tell a setting's SLOW GROWTH from STABLE. In running text the words are
-#: lower case (``NO_JUDDER.lower()``).
+#: tell a setting's SLOW GROWTH from STABLE; ``CANNOT TELL`` where the run
+#: was read but what it was run at is not known (a bench run whose dither
+#: frequency, estimated from an aliasing pressure, may be any of its
+#: aliases): such a run is no verdict and is counted as none. In running
+#: text the words are lower case (``NO_JUDDER.lower()``).
 NO_JUDDER = "NO JUDDER"
-RUN_VERDICTS = (JUDDER, NO_JUDDER)
+CANNOT_TELL = "CANNOT TELL"
+RUN_VERDICTS = (JUDDER, NO_JUDDER, CANNOT_TELL)
 
 
-def run_verdict(judder):
+def run_verdict(judder, told=True):
     """A run's verdict word (:data:`RUN_VERDICTS`) from whether it
-    judders; None where it was not read (None).
+    judders; None where it was not read (None); ``CANNOT TELL`` where it
+    was read but its reading cannot be told (``told`` False).
 
     Examples
     --------
     >>> run_verdict(True), run_verdict(False), run_verdict(None)
     ('JUDDER', 'NO JUDDER', None)
+    >>> run_verdict(False, told=False)
+    'CANNOT TELL'
     """
-    return None if judder is None else (JUDDER if judder else NO_JUDDER)
+    if judder is None:
+        return None
+    if not told:
+        return CANNOT_TELL
+    return JUDDER if judder else NO_JUDDER
 
 
 #: Why a setting judders, as codes of the predicted chart

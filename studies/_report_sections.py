@@ -17,8 +17,8 @@ import re
 
 import numpy as np
 
-from infra.criteria import (ENGAGEMENT_DURATION_S, JUDDER, NO_JUDDER,
-                            SLOW_GROWTH)
+from infra.criteria import (CANNOT_TELL, ENGAGEMENT_DURATION_S, JUDDER,
+                            NO_JUDDER, SLOW_GROWTH)
 from infra.errors import in_options
 from infra.files import MARK
 from infra.numbers import format_interval, format_uncertain, readable_number
@@ -694,6 +694,8 @@ def _estimated_dithers(runs):
                 f"{read})" if runs["p_f_given"][i] else read)
     rows = [(Path(str(runs["source_file"][i])).name, frequency(i),
              amplitude(i),
+             # a frequency that may be an alias gives no verdict
+             CANNOT_TELL.lower() if runs["dither_aliased"][i] else
              JUDDER.lower() if runs["judder"][i] else NO_JUDDER.lower(),
              str(runs["dither_warnings"][i]) or "-")
             for i in order]

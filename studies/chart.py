@@ -115,6 +115,9 @@ class ChartResult:
         runs = []
         for run in chart.read:
             a = run.analysis
+            # a run that cannot be told is no verdict: no judder, kind or
+            # mechanism, and why (``cannot_tell``)
+            told = a.cannot_tell is None
             estimate = dither_estimate_dict(a.dither, a.given)
             if estimate is not None:
                 # the warnings as the command prints them: the file and
@@ -127,9 +130,12 @@ class ChartResult:
                 "dither_estimate": estimate,
                 "speed_kind": run.speed_kind,
                 "amplitude_rpm": a.amplitude_rpm,
-                "growth_per_s": a.growth_per_s, "judder": a.judder,
-                "verdict": a.verdict,
-                "kind": a.kind, "mechanism": a.mechanism,
+                "growth_per_s": a.growth_per_s,
+                "growth_std_per_s": a.growth_std_per_s,
+                "judder": a.judder if told else None,
+                "verdict": a.verdict, "cannot_tell": a.cannot_tell,
+                "kind": a.kind if told else None,
+                "mechanism": a.mechanism if told else None,
                 "oscillation_rpm": a.oscillation_rpm,
                 "forced_rpm": a.forced_rpm})
         boundaries = self._boundaries()

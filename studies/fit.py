@@ -156,6 +156,7 @@ class FitReport:
                 "undetermined": list(r.undetermined),
                 "starts_tried": r.starts_tried,
                 "starts_agreeing": r.starts_agreeing,
+                "given_start": given_start(r),
                 "kinds": list(r.kinds),
                 "residual_rms_bar": r.residual_rms_bar,
                 "evaluations": r.evaluations, "freq_hz": r.freq_hz,
@@ -232,6 +233,9 @@ class FitReport:
                 + " (the intervals cover these shifts)")
         rows.append(f"{_starts_text(r)}; intervals by {r.uncertainty}; "
                     f"{r.evaluations} model boundaries in {self.seconds:.1f} s")
+        wrong = given_start(r)
+        if wrong is not None and wrong["worse"]:
+            rows.append(_given_start_words(r, wrong))
         return rows
 
     @keeps_foreign_files
@@ -244,18 +248,72 @@ class FitReport:
         return self.fit.plot()[0].figure
 
 
+def given_start(r):
+    """Where the local fit from the given values ended, against the
+    minimum returned: ``{'start': {name: value}, 'minimum': {name:
+    value}, 'sum_of_squares': ..., 'returned_sum_of_squares': ...,
+    'worse': bool}`` (SI; the weighted sums of squares), None where no
+    start was the given values (or the starts were not kept).
+
+    ``worse``: it stopped at another minimum (farther than a tenth of a
+    standard uncertainty from the one returned, or 1e-4 of its value
+    where that is not finite, as the fit counts its starts) whose sum of
+    squares is larger: the given values lead to a worse answer, which
+    the fit did not return."""
+    origins = list(r.start_origins)
+    if "given" not in origins or r.start_minima is None \
+            or r.start_costs is None:
+        return None
+    i = origins.index("given")
+    minimum = np.asarray(r.start_minima[i], dtype=float)
+    costs = np.asarray(r.start_costs, dtype=float)
+    best = float(np.nanmin(costs)) if np.isfinite(costs).any() else np.nan
+    values = np.asarray(r.values, dtype=float)
+    std = np.asarray(r.std, dtype=float)
+    tolerance = np.where(np.isfinite(std) & (std > 0), 0.1 * std,
+                         1e-4 * np.abs(values))
+    apart = bool(np.any(np.abs(minimum - values) > np.maximum(
+        tolerance, 1e-6 * np.abs(values))))
+    cost = float(costs[i])
+    return {"start": {n: float(v) for n, v in zip(r.names,
+                                                   r.start_points[i])},
+            "minimum": {n: float(v) for n, v in zip(r.names, minimum)},
+            "sum_of_squares": finite_or_none(2 * cost),
+            "returned_sum_of_squares": finite_or_none(2 * best),
+            "worse": apart and np.isfinite(cost) and cost > best}
+
+
+def _given_start_words(r, outcome):
+    """The given start that stopped at a worse minimum, in words with
+    both minima."""
+    def values(point):
+        return ", ".join(f"{n} = {v:.4g}" for n, v in point.items())
+    ratio = outcome["sum_of_squares"] / outcome["returned_sum_of_squares"] \
+        if outcome["returned_sum_of_squares"] else float("inf")
+    returned = dict(zip(r.names, r.values))
+    return (f"the given start ({values(outcome['start'])}) stopped at a "
+            f"worse minimum ({values(outcome['minimum'])}; sum of squares "
+            f"{ratio:.3g} times the returned one's) than the one returned "
+            f"({values(returned)}), which another start reached: the answer "
+            "is that minimum, not the one the given values lead to")
+
+
 def _starts_text(r):
     """What the starts of a fit did, in words."""
     origins = list(r.start_origins)
     sampled = origins.count("sampled")
     rematched = origins.count("rematched")
     continued = origins.count("continued")
+    placed = origins.count("placed")
     where = ["the given values"]
     if sampled:
         where.append(f"{sampled} sampled within a factor 3 of them")
     if rematched:
         where.append(f"{rematched} with ambiguous points matched to the "
                      "other kind of tongue")
+    if placed:
+        where.append(f"{placed} placed so that a tongue of the kind the "
+                     "data saw lies at its onsets")
     if continued:
         where.append("the best one continued after its budget")
     text = (f"{r.starts_tried} local fit{'s' if r.starts_tried > 1 else ''} "

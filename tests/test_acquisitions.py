@@ -14,6 +14,7 @@ from numpy.testing import assert_allclose
 import pytest
 import scipy.io
 
+from facts import names
 from infra.errors import JudderError
 from pysim.bench.acquisition import Acquisition, ChannelSpec
 from pysim.bench.channels import parse_channel_option
@@ -969,3 +970,82 @@ def test_excel_separator_line_declares_the_separator(tmp_path):
     assert _message(path, roles) == (
         f"{path}, line 1: 'sep=|' declares the field separator '|'; "
         "allowed: ',', ';' or tab")
+
+
+# --- held-out exports (issue 44, item 4) ------------------------------------
+
+_EXAMPLES = Path(__file__).parents[1] / "examples" / "bench"
+_EXAMPLE_ROLES = {"upstream_speed": ChannelSpec("EngSpd_up"),
+                  "pressure": ChannelSpec("PressEVEN", "bar"),
+                  "downstream_speed": ChannelSpec("OutSpd")}
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-16-be"])
+def test_a_utf16_export_with_its_bom_reads_as_the_utf8_one(tmp_path,
+                                                           encoding):
+    """Excel's "Unicode text" is UTF-16 with a byte-order mark (every
+    other byte of its ASCII NUL): it was refused as "not a text file";
+    it now reads as the same file in UTF-8, lines ending in CR LF."""
+    import codecs
+    text = (_EXAMPLES / "run03.csv").read_text()
+    bom = {"utf-16": b"", "utf-16-le": codecs.BOM_UTF16_LE,
+           "utf-16-be": codecs.BOM_UTF16_BE}[encoding]
+    path = tmp_path / "run03.csv"
+    path.write_bytes(bom + text.replace("\n", "\r\n").encode(encoding))
+    read = read_acquisition(path, _EXAMPLE_ROLES)
+    clean = read_acquisition(_EXAMPLES / "run03.csv", _EXAMPLE_ROLES)
+    for role in _EXAMPLE_ROLES:
+        assert_allclose(read.channels[role].values,
+                        clean.channels[role].values, rtol=0, atol=0)
+
+
+def test_a_milliampere_channel_without_its_scale_names_the_scale(tmp_path):
+    """A pressure recorded in mA (a 4-20 mA transmitter) with no scale was
+    refused as an unknown unit, with the pressure units only: the
+    refusal now names the scale's syntax and an example of it."""
+    header, *lines = (_EXAMPLES / "run03.csv").read_text().splitlines()
+    path = tmp_path / "run03.csv"
+    rows = [line.split(",") for line in lines]
+    for cells in rows:     # 4-20 mA for 0-25 bar
+        cells[3] = repr(4 + 16 * float(cells[3]) / 25)
+    path.write_text("\n".join([header.replace("PressEVEN", "PressEVEN [mA]")]
+                              + [",".join(cells) for cells in rows]))
+    message = _message(path, {**_EXAMPLE_ROLES,
+                              "pressure": ChannelSpec("PressEVEN")})
+    names(message, str(path), "'PressEVEN'", "'mA'",
+          "LOW..HIGH UNIT=LOW..HIGH UNIT", "`channels`", "4..20mA=0..25bar",
+          "bar")
+    # the scale it names reads the file
+    role, spec = parse_channel_option("pressure=PressEVEN:4..20mA=0..25bar")
+    scaled = read_acquisition(path, {**_EXAMPLE_ROLES, role: spec})
+    clean = read_acquisition(_EXAMPLES / "run03.csv", _EXAMPLE_ROLES)
+    assert_allclose(scaled.channels["pressure"].values,
+                    clean.channels["pressure"].values, rtol=1e-9,
+                    atol=1e-6)
+
+
+def test_a_catman_refusal_quotes_the_line_naming_the_columns(tmp_path):
+    """A catman export (a header block of key;value lines, then the names
+    line) with no time column the tool knows: the refusal quoted line 1
+    (``'catman Export', 'V5.0'``) as "the columns"; it now quotes the
+    names line, line 4."""
+    path = tmp_path / "catman.csv"
+    path.write_text("catman Export;V5.0\nKommentar;Pruefstand 3\n\n"
+                    "Zeit  1 - Standardmessrate [s];EngSpd_up [rpm];"
+                    "PressEVEN [bar]\n0,000;1000,0;1,0\n0,001;1001,0;1,1\n"
+                    "0,002;1002,0;1,2\n")
+    message = _message(path, {"upstream_speed": ChannelSpec("EngSpd_up")})
+    names(message, "line 4", "'Zeit  1 - Standardmessrate'", "'EngSpd_up'",
+          "`channels` time=NAME")
+    assert "catman Export" not in message
+
+
+@pytest.mark.parametrize("encoding", ["utf-16-le", "utf-16-be"])
+def test_utf16_without_its_bom_is_refused_naming_it(tmp_path, encoding):
+    """UTF-16 without a byte-order mark cannot be told from a binary file
+    for certain: it was refused as "not a text file (NUL bytes)"; the
+    refusal now says what it is and what to save it as."""
+    path = tmp_path / "run03.csv"
+    path.write_bytes((_EXAMPLES / "run03.csv").read_text().encode(encoding))
+    names(_message(path, _EXAMPLE_ROLES), str(path), "UTF-16",
+          "byte-order mark", "UTF-8")

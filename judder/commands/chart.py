@@ -3,6 +3,7 @@
 """
 
 from infra.contract import warn
+from infra.criteria import CANNOT_TELL
 from infra.errors import JudderError
 from infra.files import all_or_none
 from infra.units import PA_PER_BAR
@@ -145,24 +146,29 @@ def run(args):
     for group, runs in result.chart.groups().items():
         label = ", ".join(f"{c} {v}" for c, v in
                           zip(result.chart.group_by, group)) or "all runs"
-        judder = sum(r.analysis.judder for r in runs)
+        # a run that cannot be told is counted as no verdict
+        told = result.chart.told(group)
+        judder = sum(r.analysis.judder for r in told)
         estimated = sum(r.analysis.estimated for r in runs)
         mechanisms = ", ".join(
             f"{n} {m}" for m in ("forced", "parametric", "both")
-            if (n := sum(r.analysis.mechanism == m for r in runs)))
+            if (n := sum(r.analysis.mechanism == m for r in told)))
+        untold = len(runs) - len(told)
         rows.append(f"{label}: {len(runs)} run{'s' * (len(runs) != 1)}, "
                     f"{judder} with judder"
                     + (f" ({mechanisms})" if mechanisms else "")
+                    + (f", {len(told) - judder} without, {untold} cannot "
+                       "tell (no verdict)" if untold else "")
                     + (f" ({estimated} with the dither estimated from the "
                        "pressure)" if estimated else ""))
         for f, p, top in result.chart.boundary(group):
             rows.append(f"  {f:8.2f} Hz: " + (
                 f"judder from {p:.3g} bar" if p is not None else
                 f"no judder up to {top:.3g} bar"))
-        rows += [f"  {run.path.name}: on no boundary and in no contour: "
-                 f"its dither frequency, estimated at "
-                 f"{run.analysis.freq_hz:.4g} Hz, may be an alias (see its "
-                 "warning); give freq_hz in the index"
+        rows += [f"  {run.path.name}: {CANNOT_TELL}, on no boundary and "
+                 f"in no contour: {run.analysis.cannot_tell}"
+                 + ("" if args.index else "; or list the runs in an "
+                    "--index with a freq_hz column")
                  for run in result.chart.aliased(group)]
         rows += [_estimate_line(run) for run in runs
                  if run.analysis.dither is not None]

@@ -1,6 +1,7 @@
 """CSV acquisitions, as :func:`pysim.simulation.export.write_csv` writes them and as
 DAQ software exports them."""
 
+import codecs
 import csv
 import json
 import re
@@ -102,14 +103,19 @@ def _csv_header_row(path, rows, body, time):
                                           for cell in row):
             return index
     _check_one_separator(path, body)
-    names = [split_header(cell)[0] for cell in rows[0]]
-    raise JudderError(f"{path}: no time column "
-                      + (f"{time.name!r}" if time else "")
+    # the names line: the first as wide as the data with a cell that is
+    # no number (a header block's key;value lines come before it)
+    named = next((index for index, row in enumerate(rows)
+                  if len(row) == data_width and not all(
+                      is_number(cell) for cell in row if cell.strip())), 0)
+    names = [split_header(cell)[0] for cell in rows[named]]
+    raise JudderError(f"{path}: no time column"
+                      + (f" {time.name!r}" if time else "")
                       + "; the line naming the columns must name one "
                       + ("" if time else "'time [s]' (or 'time' with a "
                          "units row under it), or give its name with "
                          "`channels` time=NAME[:UNIT]")
-                      + f"; columns of line {body[0][0]}: "
+                      + f"; columns of line {body[named][0]}: "
                       f"{listing(names)}")
 
 
@@ -124,13 +130,18 @@ def _is_units_row(row, width):
     return not any(is_number(cell) for cell in cells)
 
 
+#: Byte-order marks of UTF-16, as Excel's "Unicode text" and some DAQ
+#: software write it (every other byte of ASCII text NUL).
+_UTF16_BOMS = (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)
+
+
 def _csv_lines(path):
-    """The lines of a CSV file: UTF-8 (with or without BOM), else
-    Windows-1252, the encoding European DAQ software writes (``°C``,
-    ``µs``)."""
+    """The lines of a CSV file: UTF-8 (with or without BOM), UTF-16 with
+    its BOM (Excel's "Unicode text"), else Windows-1252, the encoding
+    European DAQ software writes (``°C``, ``µs``)."""
     with open(path, "rb") as stream:
         head = stream.read(HEAD_BYTES)
-        if b"\0" in head:
+        if b"\0" in head and not head.startswith(_UTF16_BOMS):
             # a binary file is refused from its first block (with the
             # words the whole would get), before it is read whole
             _decoded(head, path)
@@ -139,8 +150,19 @@ def _csv_lines(path):
 
 
 def _decoded(data, path):
-    """The text of a CSV file's bytes: UTF-8, else Windows-1252 without
-    NUL bytes, else the UTF-8 reader's error."""
+    """The text of a CSV file's bytes: UTF-16 where it starts with its
+    BOM, else UTF-8, else Windows-1252 without NUL bytes, else the UTF-8
+    reader's error."""
+    if data.startswith(_UTF16_BOMS):
+        try:
+            text = data.decode("utf-16")
+        except UnicodeDecodeError as exc:
+            raise JudderError(
+                f"{path}: not UTF-8 text, and not the UTF-16 text its "
+                f"byte-order mark announces (offset {exc.start}); save the "
+                "CSV as UTF-8 (or UTF-16 with its byte-order mark)") from None
+        if "\0" not in text:
+            return text
     try:
         return decode_text(data, str(path), "CSV")
     except JudderError:
@@ -149,8 +171,26 @@ def _decoded(data, path):
         except UnicodeDecodeError:
             text = None
         if text is None or "\0" in text:
+            if _utf16_without_bom(data):
+                raise JudderError(
+                    f"{path}: UTF-16 text without its byte-order mark (every "
+                    "other byte NUL), which cannot be told from binary; save "
+                    "the CSV as UTF-8, or as UTF-16 with its byte-order mark "
+                    "(Excel's \"Unicode text\")") from None
             raise
         return text
+
+
+def _utf16_without_bom(data):
+    """Whether bytes look like ASCII text in UTF-16 without a BOM: of the
+    first 1024 byte pairs, nearly all have one NUL byte, always on the
+    same side."""
+    head = np.frombuffer(data[:2048][:len(data[:2048]) // 2 * 2],
+                         dtype=np.uint8).reshape(-1, 2)
+    if len(head) < 4:
+        return False
+    return any(np.mean((head[:, side] == 0) & (head[:, 1 - side] != 0))
+               > 0.95 for side in (0, 1))
 
 
 def _csv_metadata(lines):

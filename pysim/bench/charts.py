@@ -20,7 +20,7 @@ Where runs come from:
 from dataclasses import dataclass
 import csv
 import os
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 
 import numpy as np
 
@@ -142,6 +142,8 @@ def sources_from_campaign(folder):
     else its CSV.
     """
     folder = Path(folder)
+    if not (folder / "index.csv").is_file():
+        raise JudderError(_no_campaign(folder))
     rows = _read_csv(folder / "index.csv", "campaign")
     sources = []
     for number, row in rows:
@@ -164,6 +166,36 @@ def sources_from_campaign(folder):
     return sources
 
 
+def _no_campaign(folder):
+    """Words for a folder given as a source that is no campaign (no
+    ``index.csv``): what to give instead, naming the index CSVs it holds
+    (a ``file`` column in their first line) and the channels a bench's
+    own files need."""
+    indexes = []
+    for path in sorted(folder.glob("*.csv"))[:_INDEX_LOOKS]:
+        try:
+            with open(path, encoding="utf-8-sig", errors="replace") as f:
+                first = f.readline()
+        except OSError:
+            continue
+        if "file" in [cell.strip().strip('"').lower() for cell in
+                      first.replace(";", ",").replace("\t", ",").split(",")]:
+            indexes.append(path)
+    return (f"`paths` {folder}: a folder without a campaign's index.csv "
+            "(as judder campaign writes it); allowed: an index CSV of its "
+            "runs as `index` FILE.csv (a 'file' column and optionally "
+            "freq_hz, p_f_bar, oil_temperature, engine_rpm)"
+            + (f", such as `index` {indexes[0]}" if indexes else "")
+            + ", or its acquisition files as `paths`, with their channels "
+            "as `channels` upstream_speed=NAME (and pressure=NAME, "
+            "downstream_speed=NAME) where they are not the names judder "
+            "campaign writes")
+
+
+#: CSV files of a folder looked into for an index's ``file`` column.
+_INDEX_LOOKS = 50
+
+
 def sources_from_index(index, decimal=None):
     """Runs listed in an index CSV with a ``file`` column (its numbers
     read as written, or with the decimal separator ``decimal``, as
@@ -176,9 +208,21 @@ def sources_from_index(index, decimal=None):
                           "engine_rpm)")
     for number, row in rows:
         _check_index_row(row, f"`index` {index}, line {number}")
-    return [RunSource(index.parent / row["file"], _settings(row),
-                      f"`index` {index}, line {number}")
+    return [RunSource(index.parent / _listed_path(row["file"]),
+                      _settings(row), f"`index` {index}, line {number}")
             for number, row in rows]
+
+
+def _listed_path(name):
+    """A file as an index lists it, as a path here: a relative Windows
+    path (``..\\data\\run.csv``, as an index written on Windows has it)
+    read with its backslashes as separators where they are none
+    (elsewhere a backslash is a letter of a file name, and no bench
+    names a file with one)."""
+    windows = PureWindowsPath(name)
+    if "\\" in name and os.sep != "\\" and not windows.anchor:
+        return Path(*windows.parts)
+    return Path(name)
 
 
 #: Index columns of a dither setting -> (lowest allowed, its words).
@@ -192,6 +236,15 @@ def _check_index_row(row, where):
     if not row["file"].strip():
         raise JudderError(f"{where}: column 'file' is empty; allowed: the "
                           "acquisition's file, relative to the index")
+    windows = PureWindowsPath(row["file"])
+    if os.sep != "\\" and windows.drive and not Path(row["file"]).exists():
+        # C:\data\run.csv names a drive this machine does not have
+        raise JudderError(
+            f"{where}: column 'file' = '{row['file']}' is a Windows path "
+            f"on drive {windows.drive}, which is not here; allowed: the "
+            "acquisition's file relative to the index (such as "
+            f"{PureWindowsPath(*windows.parts[-2:])}, backslashes read as "
+            "separators) or a path on this machine")
     for name, (above, allowed) in _SETTING_RANGES.items():
         value = row.get(name, float("nan"))
         if np.isnan(value):
@@ -431,9 +484,20 @@ class Chart:
             f"# judder_limit_rpm: {self.judder_limit_rpm:g}"]
         return "\n".join(lines) + "\n"
 
+    def told(self, group):
+        """The runs of one group whose reading is a verdict (not
+        :attr:`pysim.bench.verdict.RunAnalysis.cannot_tell`)."""
+        return [r for r in self.groups().get(group, [])
+                if r.analysis.cannot_tell is None]
+
     def arrays(self):
-        """Per-run arrays (NaN where unknown), for NPZ files and plots."""
+        """Per-run arrays (NaN where unknown), for NPZ files and plots;
+        ``verdict`` the run's word, and a run that cannot be told is
+        neither ``judder`` nor of a ``kind`` or ``mechanism``."""
         runs = self.read
+
+        def told(run):
+            return run.analysis.cannot_tell is None
         return {
             "source_file": np.array([str(r.path) for r in runs]),
             "group": np.array(["/".join(r.group(self.group_by))
@@ -445,10 +509,19 @@ class Chart:
             "growth_per_s": np.array([np.nan if r.analysis.growth_per_s
                                       is None else r.analysis.growth_per_s
                                       for r in runs]),
-            "judder": np.array([r.analysis.judder for r in runs]),
-            "kind": np.array([r.analysis.kind for r in runs]),
-            "mechanism": np.array([r.analysis.mechanism or ""
-                                   for r in runs]),
+            # a run that cannot be told is no verdict: not judder, of
+            # no kind (``verdict`` says CANNOT TELL)
+            "growth_std_per_s": np.array([
+                np.nan if r.analysis.growth_std_per_s is None
+                else r.analysis.growth_std_per_s for r in runs],
+                dtype=float),
+            "judder": np.array([r.analysis.judder and told(r)
+                                for r in runs], dtype=bool),
+            "verdict": np.array([r.analysis.verdict for r in runs]),
+            "kind": np.array([r.analysis.kind if told(r) else ""
+                              for r in runs]),
+            "mechanism": np.array([(r.analysis.mechanism or "") if told(r)
+                                   else "" for r in runs]),
             "oscillation_rpm": np.array([r.analysis.oscillation_rpm
                                          for r in runs]),
             "forced_rpm": np.array([r.analysis.forced_rpm for r in runs]),

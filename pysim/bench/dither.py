@@ -28,7 +28,9 @@ frequency found where that is higher, :func:`plausible_range`) that fit
 as well as the frequency found,
 ``|f + k f_s|`` for the samples' mean rate ``f_s`` (all of them fit as
 well where the samples are uniform and ``f_s`` is below twice the range's
-top; irregular samples may tell some apart), fewer than
+top; irregular samples may tell some apart), and any other frequency of
+that range that fits as well (irregular samples alias about no one
+rate: a scan of the range, :func:`_scanned`), fewer than
 :data:`MIN_SAMPLES_PER_PERIOD` samples per period at a frequency given,
 fewer than :data:`MIN_PERIODS` periods, or an amplitude uncertain by more
 than :data:`MAX_RELATIVE_UNCERTAINTY`. A value given for the dither that
@@ -303,7 +305,57 @@ def _aliases(tau, values, fit, rss, dither_range_hz):
         best = int(np.argmin(sums))
         if about_line - sums[best] > ALIAS_SHARE * (about_line - rss):
             found.append(float(grid[best]))
-    return found
+    # irregular samples alias about no one rate (a pressure kept at 350
+    # samples/s off a pick-up's passages had its 210 Hz dither found at
+    # 130.7 Hz, 4.7 Hz from the nominal alias of its mean rate): every
+    # frequency of the plausible range that fits as well is one
+    for other in _scanned(tau, values, dither_range_hz, span,
+                          ALIAS_SHARE * (about_line - rss)):
+        if abs(other - fit.freq_hz) >= 3.0 / span and all(
+                abs(other - known) >= 2.0 / span for known in found):
+            found.append(other)
+    return sorted(found)
+
+
+#: Frequencies a scan for aliases computes at once (bounds its memory).
+_SCAN_CHUNK = 512
+
+
+def _scanned(tau, values, dither_range_hz, span, least):
+    """The frequencies of ``dither_range_hz``, on a grid of a third of a
+    frequency bin ``1/span``, whose sinusoid over the line explains more
+    than ``least`` of the samples' sum of squares about the line, at each
+    local maximum of what it explains, Hz.
+
+    With ``Q`` an orthonormal basis of the line, the cosine and sine
+    less their parts along the line have the Gram entries ``sum cos^2 -
+    |Q^T cos|^2`` (``sum sin^2 = n - sum cos^2``), ``sum cos sin - (Q^T
+    cos).(Q^T sin)``, and the products ``cos . r``, ``sin . r`` with the
+    samples' residual ``r`` about the line (orthogonal to it)."""
+    q, _ = np.linalg.qr(np.column_stack([np.ones_like(tau), tau]))
+    rest = values - q @ (q.T @ values)
+    grid = np.arange(max(dither_range_hz[0], 1.0 / (3 * span)),
+                     dither_range_hz[1], 1.0 / (3 * span))
+    half = 0.5 * len(tau)
+    explained = np.empty(len(grid))
+    for start in range(0, len(grid), _SCAN_CHUNK):
+        phase = 2 * np.pi * np.outer(grid[start:start + _SCAN_CHUNK], tau)
+        cos, sin = np.cos(phase), np.sin(phase)
+        cq, sq = cos @ q, sin @ q
+        cc = np.einsum("ij,ij->i", cos, cos) - np.sum(cq ** 2, axis=1)
+        dd = 2 * half - cc - np.sum(cq ** 2, axis=1) - np.sum(sq ** 2,
+                                                               axis=1)
+        cd = np.einsum("ij,ij->i", cos, sin) - np.sum(cq * sq, axis=1)
+        a, b = cos @ rest, sin @ rest
+        det = cc * dd - cd ** 2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            explained[start:start + _SCAN_CHUNK] = np.where(
+                det > 1e-12 * half ** 2,
+                (dd * a ** 2 - 2 * cd * a * b + cc * b ** 2) / det, 0.0)
+    peak = np.flatnonzero((explained[1:-1] >= explained[:-2])
+                          & (explained[1:-1] >= explained[2:])
+                          & (explained[1:-1] > least)) + 1
+    return [float(grid[i]) for i in peak]
 
 
 def _listing(freqs):

@@ -81,9 +81,10 @@ def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
         ``peak_at_dither_frequency``: the speed peak is within two
         frequency bins of the dither frequency;
         ``judder``, ``judder_kind``, ``judder_growth_per_s``,
-        ``mechanism``, ``judder_limit_rpm``, ``oscillation_rpm``,
-        ``forced_rpm``: the verdict, its kind, the growth rate of the
-        non-periodic part (1/s), why it judders and the oscillation
+        ``judder_growth_std_per_s``, ``mechanism``, ``judder_limit_rpm``,
+        ``oscillation_rpm``, ``forced_rpm``: the verdict, its kind, the
+        growth rate of the non-periodic part and its standard
+        uncertainty (1/s), why it judders and the oscillation
         compared with the limit, as :func:`pysim.bench.verdict.analyse_run`
         reads them (None without dither); ``dither_envelope_max_rpm``: the
         largest envelope at the dither frequency; ``final_slip_rad_s``.
@@ -120,6 +121,8 @@ def engagement_summary(run, start, min_growth=DEFAULT_MIN_GROWTH_PER_S,
             "judder_kind": None if reading is None else reading.kind,
             "judder_growth_per_s": None if reading is None
             else reading.growth_per_s,
+            "judder_growth_std_per_s": None if reading is None
+            else reading.growth_std_per_s,
             "mechanism": None if reading is None else reading.mechanism,
             "judder_limit_rpm": float(judder_limit_rpm),
             "oscillation_rpm": None if reading is None

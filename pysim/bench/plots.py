@@ -63,7 +63,8 @@ def plot_chart(chart, group, ax=None, levels=None):
     arrays = {"freq_hz": [r.analysis.freq_hz for r in runs],
               "p_f_bar": [r.analysis.p_f_bar for r in runs],
               "amplitude_rpm": [r.analysis.amplitude_rpm for r in runs],
-              "judder": [r.analysis.judder for r in runs],
+              "judder": [r.analysis.judder
+                         and r.analysis.cannot_tell is None for r in runs],
               "mechanism": [r.analysis.mechanism or "" for r in runs],
               "dither_aliased": [r.analysis.frequency_aliased
                                  for r in runs]}
@@ -81,8 +82,8 @@ AMPLITUDE_LABEL = "oscillation at the dither frequencies [rpm]"
 
 #: The legend of a run whose dither frequency, estimated from the
 #: pressure, may be an alias (drawn at the frequency found).
-ALIASED_LABEL = ("frequency estimated, may be an alias:\n"
-                 "not contoured, not on the boundary")
+ALIASED_LABEL = ("cannot tell: frequency estimated, may be\n"
+                 "an alias; not contoured, not on the boundary")
 
 
 def plot_runs(ax, runs, boundary, levels=None):

@@ -109,8 +109,22 @@ def unit_factor(unit, kind):
                               f"{kind} unit; allowed: "
                               f"{allowed_units(kind)}")
         return factor
+    if text.lower() in _RAW_SIGNAL_UNITS:
+        # a transmitter's current or voltage: only its scale tells the
+        # quantity
+        raise JudderError(
+            f"unit {unit!r} is a sensor's raw signal, not a {kind} unit; "
+            "give the sensor's linear scale LOW..HIGH UNIT=LOW..HIGH UNIT "
+            f"after the channel's name, such as `channels` "
+            f"ROLE=NAME:4..20{text}=0..25bar (4-20 {text} recorded for 0-25 "
+            f"bar); allowed for a {kind}: {allowed_units(kind)}")
     raise JudderError(f"unit {unit!r} is unknown; allowed for a {kind}: "
                       f"{allowed_units(kind)}")
+
+
+#: Units of a sensor's raw signal (a transmitter's current loop, a
+#: voltage), in lower case: a channel in them needs its linear scale.
+_RAW_SIGNAL_UNITS = {"a", "ma", "ua", "µa", "v", "mv"}
 
 
 def _lookup(table, text):

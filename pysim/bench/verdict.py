@@ -70,11 +70,17 @@ judder grows by only ``exp(g T) - 1`` per period (1.5 % at 1.5 1/s and
 phasor as a forced part plus a growing one (:func:`single_period_growth`).
 The band around ``f`` is also read with ``L = T`` and the wide band,
 where a combination response near ``f`` grows. In each envelope (and in
-``r``) the growth rate is the least-squares log-slope from the lowest
-value before the maximum up to where the envelope last rises through
-:data:`READ_SHARE` of the maximum, or over its first e-fold
-(:func:`growth_phase`): the rise before the nonlinear limit (the
-friction curve's flattening) bends it. A growth counts when its linear
+``r``) the growth rate is read from the lowest value before the maximum
+up to where the envelope last rises through :data:`READ_SHARE` of the
+maximum, or over its first e-fold (:func:`growth_phase`): the rise
+before the nonlinear limit (the friction curve's flattening) bends it.
+It is the rate of an exponential over a floor fitted to the log of that
+rise, with its standard uncertainty (:func:`rise_rate`): a pick-up's
+noise or an integer export's rounding (speeds to 1 or 0.1 rpm) lies
+under the start of the rise, and a straight line through the log read
+the example run06 at 3.47 1/s recorded and 4.71 1/s rounded, where the
+floor's fit reads 4.93 +- 0.26 and 4.71 +- 0.17 1/s (its exponent on
+the bench's linearisation: 5.0 1/s). A growth counts when its linear
 rise lasts :data:`MIN_GROWTH_PERIODS` periods, grows at ``min_growth``
 or more over at least one e-fold to the maximum (two if the rise is
 shorter than :data:`MIN_PHASE_S`: noise makes short rises), reaches
@@ -82,7 +88,9 @@ shorter than :data:`MIN_PHASE_S`: noise makes short rises), reaches
 (a beat of decaying free modes rising from a null dies away again; a
 single-period judder that saturates is periodic again, and the speed's
 own component stays), while the speed's own component there reaches
-``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`). The largest
+``min_amplitude`` (default :data:`MIN_AMPLITUDE_RPM`), and its rate is
+at least :data:`GROWTH_SIGNIFICANCE` standard uncertainties above zero
+(a rise read over a tenth of a second at 2 rpm is noise). The largest
 growing component gives the growth rate; its kind is that of its
 frequency (``f``: single-period, ``f/2``: double-period), or read from
 the spectrum of ``d`` within its band: within :data:`_KIND_BAND` of a
@@ -119,7 +127,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.signal
 from scipy.interpolate import CubicSpline
-from scipy.optimize import minimize_scalar
+from scipy.optimize import least_squares, minimize_scalar
 
 from infra.criteria import (DEFAULT_JUDDER_LIMIT_RPM,
                             DEFAULT_MIN_GROWTH_PER_S, run_verdict)
@@ -133,9 +141,11 @@ __all__ = ["Component", "RunAnalysis", "analyse_run", "estimate_dither",
            "dither_estimate_dict", "SETTING", "engagement_window",
            "component_envelope", "component_phasor",
            "single_period_growth", "nonperiodic_part",
-           "growth_phase", "LINEAR_SHARE", "READ_SHARE", "MIN_AMPLITUDE_RPM",
+           "growth_phase", "rise_rate", "LINEAR_SHARE", "READ_SHARE",
+           "MIN_AMPLITUDE_RPM",
            "MIN_GROWTH_PERIODS", "MIN_PHASE_S", "NOISE_FLOOR_RPM",
-           "SATURATED_SHARE", "SLIP_SHARE", "REFERENCE_S", "PRESSURE_ON",
+           "SATURATED_SHARE", "SLIP_SHARE", "GROWTH_SIGNIFICANCE",
+           "REFERENCE_S", "PRESSURE_ON",
            "LONG_LAG_S", "SINGLE_PERIOD_BAND_HZ",
            "SMOOTHING_S"]
 
@@ -244,6 +254,9 @@ class RunAnalysis:
         (None when there is no growth phase of :data:`MIN_GROWTH_PERIODS`
         periods).
     growth_phase_s : (float, float) or None
+    growth_std_per_s : float or None
+        Standard uncertainty of ``growth_per_s``, 1/s
+        (:func:`rise_rate`; NaN where it cannot be told).
     nonperiodic_rpm : float
         Largest non-periodic part ``r``, rpm.
     amplitude_rpm : float
@@ -288,12 +301,34 @@ class RunAnalysis:
     judder_limit_rpm: float
     dither: object = None
     given: tuple = ("freq_hz", "p_f_bar")
+    growth_std_per_s: object = None
 
     @property
     def verdict(self):
-        """The run's verdict word
-        (:data:`infra.criteria.RUN_VERDICTS`)."""
-        return run_verdict(self.judder)
+        """The run's verdict word (:data:`infra.criteria.RUN_VERDICTS`):
+        ``CANNOT TELL`` where :attr:`cannot_tell` says why."""
+        return run_verdict(self.judder, told=self.cannot_tell is None)
+
+    @property
+    def cannot_tell(self):
+        """Why the run's reading is no verdict, in words naming what to
+        give; None where it is one.
+
+        A dither frequency estimated from a pressure that cannot tell it
+        from its aliases (:attr:`frequency_aliased`) leaves the speed read
+        at frequencies the run may not have had: its components at ``f``
+        and ``f/2``, its growth and its kind are those of a guess (a run
+        growing to 39 rpm at 210 Hz read at its 17 Hz alias came out
+        stable)."""
+        if not self.frequency_aliased:
+            return None
+        others = ", ".join(f"{f:.4g}" for f in self.dither.aliases)
+        return (f"the dither frequency, estimated from the pressure at "
+                f"{self.freq_hz:.4g} Hz, cannot be told from its aliases"
+                + (f" ({others} Hz)" if others else "")
+                + " and no dither frequency was given; give it (a freq_hz "
+                "column in the index, or the file's dither_frequency_hz "
+                "metadata)")
 
     @property
     def frequency_aliased(self):
@@ -305,19 +340,25 @@ class RunAnalysis:
                 and self.dither.aliased)
 
     def as_dict(self):
-        """JSON fields (Hz, bar, rpm, 1/s)."""
+        """JSON fields (Hz, bar, rpm, 1/s); where the run cannot be told
+        (:attr:`cannot_tell`, its words), ``judder``, ``kind`` and
+        ``mechanism`` are None: no verdict."""
+        told = self.cannot_tell is None
         return {"window_s": list(self.window_s), "freq_hz": self.freq_hz,
                 "p_f_bar": self.p_f_bar,
-                "dither_estimated": self.estimated, "judder": self.judder,
-                "verdict": self.verdict,
-                "kind": self.kind, "growth_per_s": self.growth_per_s,
+                "dither_estimated": self.estimated,
+                "judder": self.judder if told else None,
+                "verdict": self.verdict, "cannot_tell": self.cannot_tell,
+                "kind": self.kind if told else None,
+                "growth_per_s": self.growth_per_s,
+                "growth_std_per_s": self.growth_std_per_s,
                 "growth_phase_s": None if self.growth_phase_s is None
                 else list(self.growth_phase_s),
                 "nonperiodic_rpm": self.nonperiodic_rpm,
                 "amplitude_rpm": self.amplitude_rpm,
                 "oscillation_rpm": self.oscillation_rpm,
                 "forced_rpm": self.forced_rpm,
-                "mechanism": self.mechanism,
+                "mechanism": self.mechanism if told else None,
                 "judder_limit_rpm": self.judder_limit_rpm,
                 "components": [c.__dict__ for c in self.components],
                 "dither_estimate": dither_estimate_dict(self.dither,
@@ -624,14 +665,23 @@ def growth_phase(time, rms):
     else over its first e-fold (a judder that saturates gradually bends
     before it), or up to the maximum where it never grows by one.
 
+    The rate is that of an exponential over a floor fitted to the rise
+    (:func:`rise_rate`): the noise a pick-up, an integer export's
+    rounding or a decaying transient leaves under the judder bends the
+    log of the envelope at the start of the rise, and a straight line
+    through it read a run growing at 4.9 1/s at 3.47 1/s (4.7 1/s once
+    its speeds were rounded to 0.1 rpm: issue 44).
+
     Returns
     -------
     (start, stop) : (float, float)
         The part of the rise the rate is read over, s.
     rate : float
-        Least-squares log-slope over it, 1/s.
+        Growth rate over it, 1/s (:func:`rise_rate`).
     peak : float
         Time of the maximum, s.
+    rate_std : float
+        Standard uncertainty of ``rate``, 1/s.
 
     Returns None when the maximum comes first.
     """
@@ -649,9 +699,92 @@ def growth_phase(time, rms):
         end = low + int(efold[0]) if efold.size else top
         if end - low < 4:
             end = top
-    rate = float(np.polyfit(time[low:end + 1], np.log(rms[low:end + 1]),
-                            1)[0])
-    return (float(time[low]), float(time[end])), rate, float(time[top])
+    rate, rate_std = rise_rate(time[low:end + 1], rms[low:end + 1])
+    return (float(time[low]), float(time[end])), rate, float(time[top]), \
+        rate_std
+
+
+#: The floor under a rise is at most this many e-folds below its end:
+#: the exponential carries at least its last e-fold (a floor as high as
+#: the end would leave a rate fitted to the last few samples alone).
+_FLOOR_EFOLDS_BELOW_END = 1.0
+
+
+def rise_rate(time, envelope):
+    r"""Growth rate of a rising envelope over the floor under it, with
+    its standard uncertainty.
+
+    The envelope is taken as a growth over a floor that adds in power
+    (noise, the rounding of an integer export, a transient's remains),
+
+    .. math:: \ln r(t) = \tfrac12 \ln\left(c^2 + a^2 e^{2 g (t -
+              t_1)}\right),
+
+    fitted in the log by least squares (``g``, ``ln a``, ``ln c``; the
+    floor at least :data:`_FLOOR_EFOLDS_BELOW_END` e-fold below the end).
+    A floor can only flatten the start of the rise, so ``g`` is at least
+    the straight line's log-slope, which it is where there is no floor.
+
+    The uncertainty is the Gauss-Newton one, ``s^2 (J^T J)^{-1}``, times
+    the residuals' integrated autocorrelation time in samples (the
+    envelope is a smoothed signal: its samples are not independent), so
+    it counts the rise's independent stretches, not its samples.
+
+    Parameters
+    ----------
+    time, envelope : ndarray
+        The rise, s and any unit (> 0).
+
+    Returns
+    -------
+    rate, rate_std : float
+        1/s.
+    """
+    time = np.asarray(time, dtype=float)
+    y = np.log(np.asarray(envelope, dtype=float))
+    tau = time - time[-1]
+    line = np.polyfit(tau, y, 1)
+    slope = float(line[0])
+
+    def residual(p):
+        g, log_a, log_c = p
+        return 0.5 * np.logaddexp(2 * log_c, 2 * (log_a + g * tau)) - y
+    span = max(float(-tau[0]), 1e-12)
+    top_c = y[-1] - _FLOOR_EFOLDS_BELOW_END
+    lower = [slope, y[-1] - 10.0, y.min() - 30.0]
+    upper = [max(10 * abs(slope) + 10 / span, slope + 1e-6), y[-1] + 10.0,
+             top_c]
+    start = np.clip([slope, y[-1], min(y.min(), top_c) - 1e-3], lower,
+                    upper)
+    try:
+        fit = least_squares(residual, start, bounds=(lower, upper),
+                            x_scale=[1 / span, 1.0, 1.0])
+        rate, res, jac = float(fit.x[0]), fit.fun, fit.jac
+    except (ValueError, np.linalg.LinAlgError):
+        rate, res = slope, np.polyval(line, tau) - y
+        jac = np.column_stack([tau, np.ones_like(tau)])
+    dof = len(y) - jac.shape[1]
+    if dof <= 0:
+        return rate, float("nan")
+    variance = float(res @ res) / dof * _correlation_time(res)
+    try:
+        cov = variance * np.linalg.pinv(jac.T @ jac)
+    except np.linalg.LinAlgError:
+        return rate, float("nan")
+    return rate, float(np.sqrt(max(cov[0, 0], 0.0)))
+
+
+def _correlation_time(residual):
+    """Integrated autocorrelation time of a residual, in samples:
+    ``1 + 2 sum rho_k`` up to the first negative ``rho_k`` (at least 1)."""
+    r = residual - residual.mean()
+    power = float(r @ r)
+    if power <= 0:
+        return 1.0
+    rho = np.correlate(r, r, mode="full")[len(r) - 1:] / power
+    negative = np.flatnonzero(rho < 0)
+    stop = int(negative[0]) if negative.size else len(rho)
+    return max(1.0, 1.0 + 2.0 * float(rho[1:stop].sum()))
 
 
 def _other_peak(freq, spectrum, dither_hz, resolution):
@@ -726,7 +859,7 @@ def _growing_components(time, difference, freq_hz, min_growth,
     Returns
     -------
     list of (rate, (start, stop), largest speed envelope in rpm,
-    frequency, kind name or None)
+    frequency, kind name or None, the rate's standard uncertainty)
     """
     fs = 1.0 / (time[1] - time[0])
     late = time >= time[-1] - LATE_SHARE * (time[-1] - time[0])
@@ -763,7 +896,9 @@ def _growing_components(time, difference, freq_hz, min_growth,
                                   component_hz=fc, speed_envelope=speed,
                                   lag=lag)
         if phase is not None and speed.max() >= min_amplitude_rpm:
-            found.append((*phase, float(speed.max()), fc, hint))
+            rate, span, rate_std = phase
+            found.append((rate, span, float(speed.max()), fc, hint,
+                          rate_std))
     return found
 
 
@@ -778,7 +913,8 @@ def _difference_gain(rate, component_hz, lag):
 
 def _single_period_phase(time, envelope, freq_hz, min_growth, speed,
                          phasor):
-    """``(rate, (start, stop))`` of a single-period judder, or None.
+    """``(rate, (start, stop), rate_std)`` of a single-period judder, or
+    None (``rate_std``: :func:`_phasor_rate_std`).
 
     Where the long difference's envelope rises (:func:`growth_phase`),
     the rate is fitted to the speed's phasor from the window's start to
@@ -789,7 +925,7 @@ def _single_period_phase(time, envelope, freq_hz, min_growth, speed,
     phase = growth_phase(time, envelope)
     if phase is None:
         return None
-    (_, stop), _, peak = phase
+    (_, stop), _, peak, _ = phase
     rise = time <= stop
     if np.count_nonzero(rise) < 8:
         return None
@@ -807,13 +943,58 @@ def _single_period_phase(time, envelope, freq_hz, min_growth, speed,
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and size[-1] >= NOISE_FLOOR_RPM and rate >= min_growth \
             and efolds >= 1.0 and stays:
-        return rate, (start, float(stop))
+        rate_std = _phasor_rate_std(time[rise], phasor[rise], rate)
+        if _significant(rate, rate_std):
+            return rate, (start, float(stop)), rate_std
     return None
+
+
+#: A growth counts only where its rate is this many standard
+#: uncertainties above zero: a rate read to 18 +- 11 1/s over the last
+#: 0.1 s of a window, at 2 rpm (a run 0.08 bar below the tongue of its
+#: campaign, issue 44), is none the reading can tell from noise.
+GROWTH_SIGNIFICANCE = 2.0
+
+
+def _significant(rate, rate_std):
+    """Whether a growth rate is told from none: ``rate`` at least
+    :data:`GROWTH_SIGNIFICANCE` standard uncertainties above zero (an
+    uncertainty that cannot be told, NaN, does not refuse it)."""
+    return not rate_std > rate / GROWTH_SIGNIFICANCE
+
+
+def _phasor_rate_std(time, phasor, rate):
+    """Standard uncertainty of the rate :func:`single_period_growth`
+    fitted (1/s): from the curvature of its sum of squares at the
+    minimum, ``2 s^2 / E''(g)``, with ``s^2`` the residual variance per
+    real value times the residuals' correlation time in samples
+    (:func:`_correlation_time`; the phasor is low-passed)."""
+    tau = time - time[0]
+
+    def error(g):
+        basis = np.column_stack([np.ones_like(tau), np.exp(g * tau)])
+        coef, *_ = np.linalg.lstsq(basis.astype(complex), phasor,
+                                   rcond=None)
+        return basis @ coef - phasor
+    res = error(rate)
+    dof = 2 * len(tau) - 5
+    if dof <= 0:
+        return float("nan")
+    total = float(np.sum(np.abs(res) ** 2))
+    step = max(1e-3 * abs(rate), 1e-3 / max(tau[-1], 1e-9))
+    curvature = (float(np.sum(np.abs(error(rate + step)) ** 2))
+                 - 2 * total + float(np.sum(np.abs(error(rate - step)) ** 2))
+                 ) / step ** 2
+    if curvature <= 0:
+        return float("nan")
+    variance = total / dof * _correlation_time(res.real)
+    return float(np.sqrt(2 * variance / curvature))
 
 
 def _judder_phase(time, envelope, freq_hz, min_growth, component_hz=None,
                   speed_envelope=None, lag=None):
-    """``(rate, (start, stop))`` of a growth phase that counts as judder:
+    """``(rate, (start, stop), rate_std)`` of a growth phase that counts
+    as judder (the rate and its uncertainty of :func:`growth_phase`):
     its linear part (:func:`growth_phase`) :data:`MIN_GROWTH_PERIODS`
     periods long, at least ``min_growth`` over at least one e-fold to the
     maximum (and two, or a linear part of :data:`MIN_PHASE_S`: noise makes
@@ -834,7 +1015,7 @@ def _judder_phase(time, envelope, freq_hz, min_growth, component_hz=None,
     phase = growth_phase(time, envelope)
     if phase is None:
         return None
-    (start, stop), rate, peak = phase
+    (start, stop), rate, peak, rate_std = phase
     gain = (1.0 if component_hz is None else max(_difference_gain(
         rate, component_hz, lag or 1.0 / freq_hz), 1e-12))
     # e-folds at that rate up to the maximum (a rise that bent after half
@@ -855,8 +1036,9 @@ def _judder_phase(time, envelope, freq_hz, min_growth, component_hz=None,
     if stop - start >= MIN_GROWTH_PERIODS / freq_hz \
             and (stop - start >= MIN_PHASE_S or efolds >= 2.0) \
             and envelope.max() / gain >= NOISE_FLOOR_RPM \
-            and rate >= min_growth and efolds >= 1.0 and stays:
-        return rate, (start, stop)
+            and rate >= min_growth and efolds >= 1.0 and stays \
+            and _significant(rate, rate_std):
+        return rate, (start, stop), rate_std
     return None
 
 
@@ -909,8 +1091,16 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
                   if value is not None)
     if freq_hz is None or p_f_bar is None:
         if pressure is None:
-            raise JudderError("the dither setting is not given and there is "
-                              "no pressure channel to estimate it from")
+            missing = [column for column, value in
+                       (("freq_hz", freq_hz), ("p_f_bar", p_f_bar))
+                       if value is None]
+            raise JudderError(
+                "the dither setting is not given and there is no pressure "
+                "channel to estimate it from; give "
+                + " and ".join(missing) + " (columns of the index, or the "
+                "file's dither_frequency_hz and dither_amplitude_bar "
+                "metadata) or the pressure channel (`channels` "
+                "pressure=NAME)")
         dither = estimate_dither(np.asarray(pressure[0], dtype=float),
                                  np.asarray(pressure[1], dtype=float),
                                  window, freq_hz)
@@ -978,10 +1168,12 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     whole = _judder_phase(t_r, rms, freq_hz, min_growth)
     if not growing and whole is not None and \
             max(c.amplitude_rpm for c in components) >= min_amplitude_rpm:
-        growing = [(*whole, float(rms.max()), None, None)]
-    growth = phase = during = centre = hint = None
+        growing = [(whole[0], whole[1], float(rms.max()), None, None,
+                    whole[2])]
+    growth = phase = during = centre = hint = growth_std = None
     if growing:
-        growth, phase, _, centre, hint = max(growing, key=lambda g: g[2])
+        growth, phase, _, centre, hint, growth_std = max(
+            growing, key=lambda g: g[2])
         during = (t_r >= phase[0]) & (t_r <= phase[1])
     else:
         by_kind = {c.kind: c for c in components}
@@ -1022,7 +1214,8 @@ def analyse_run(speed, pressure=None, downstream=None, freq_hz=None,
     return RunAnalysis(window_s=window, freq_hz=float(freq_hz),
                        p_f_bar=float(p_f_bar), estimated=dither is not None,
                        components=components, judder=mechanism is not None,
-                       kind=kind, growth_per_s=growth, growth_phase_s=phase,
+                       kind=kind, growth_per_s=growth,
+                       growth_std_per_s=growth_std, growth_phase_s=phase,
                        nonperiodic_rpm=float(rms.max()),
                        amplitude_rpm=lead.amplitude_rpm,
                        oscillation_rpm=oscillation, forced_rpm=forced_rpm,

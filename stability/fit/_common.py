@@ -356,5 +356,6 @@ def _run(function, jobs, workers, progress):
     for item in parallel_map(function, jobs, min(workers, len(jobs)),
                              ordered=False):
         out.append(item)
-        progress.step()
+        if progress is not None:
+            progress.step()
     return out

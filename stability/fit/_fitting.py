@@ -24,6 +24,7 @@ from ._matching import parse_kinds
 from ._model import CURVE_POINTS
 from ._result import FitResult, problem_sentences, undetermined_names
 from ._starts import (ALTERNATIVE_ROUNDS, DEFAULT_STARTS, extra_starts,
+                      placed_starts,
                       run_starts)
 from ._uncertainty import (DEFAULT_BOOTSTRAP, UNCERTAINTY_METHODS,
                            intervals, threshold_shifts, uncertainty_steps)
@@ -233,6 +234,13 @@ def fit_boundary(params, freq_hz, measured_p_f, p_max, names=DEFAULT_FIT,
         workers = (os.cpu_count() or 1) if uncertainty == "bootstrap" else 1
     with threadpool_limits(limits=1):
         held = without_effect(problem, given)
+        # a parameter without effect at the start may place a tongue at
+        # the onsets from elsewhere (placed_starts): held only where it
+        # moves nothing from there either
+        for z in placed_starts(problem, given) if held else ():
+            there = dict(without_effect(dataclasses.replace(
+                problem, x0=z * problem.scale), given))
+            held = [(j, effect) for j, effect in held if j in there]
         if len(held) == len(names):
             raise JudderError(
                 f"none of {', '.join(names)} moves the measured boundary: "

@@ -9,8 +9,12 @@ decade or more), each sample is screened by one model boundary, and local
 fits (of at most :data:`EXTRA_START_EVALUATIONS` model boundaries each)
 are run from the ``m - 1`` samples that match the measured boundary best,
 in parallel (skipped when the given start fits the data to round-off:
-nothing can fit better). The best minimum is kept (and continued if its
-budget stopped it); the result says how many starts reached it, and
+nothing can fit better). Where the data give the kind of their onsets,
+starts are also placed so that a tongue of that kind lies at them
+(:func:`placed_starts`): a start whose tongues lie elsewhere compares
+with nothing the parameters move. The best minimum is kept (and
+continued if its budget stopped it); the result says how many starts
+reached it, and
 warns when another minimum fits almost as well (its sum of squares within
 ``t^2 s^2`` of the best, its values outside the intervals).
 """
@@ -20,6 +24,7 @@ from scipy.stats import qmc
 
 from infra.errors import JudderError
 
+from ..source import build_driveline
 from ._common import (_alternative, _Evaluator, _exact, _least_squares,
                       _nearest, _residuals, _run)
 from ._matching import MATCH_ROUNDS
@@ -109,6 +114,16 @@ def run_starts(problem, given, extra, seed, workers, progress):
         for r in sorted(sampled, key=lambda r: r["index"]):
             r["origin"] = "sampled"
             runs.append(r)
+    placed = [] if _exact(problem, first) else \
+        placed_starts(problem, given)
+    if placed:
+        found = _run(fit_start, [(problem, z, given, len(runs) + i, None,
+                                  EXTRA_START_EVALUATIONS)
+                                 for i, z in enumerate(placed)], workers,
+                     None)
+        for r in sorted(found, key=lambda r: r["index"]):
+            r["origin"] = "placed"
+            runs.append(r)
     progress.until(1 + n_extra)
     best = min(runs, key=lambda r: r["cost"])
     # the ambiguous points matched the other way, from the best minimum
@@ -176,6 +191,86 @@ def fit_start(job):
             "success": bool(fit.success) and fit.status > 0,
             "message": fit.message, "evaluations": evaluator.count,
             "failed": amplitude is None}
+
+
+#: Values of a fitted parameter scanned (log-spaced over its bounds) for
+#: the one that puts a tongue's resonance at the measured onsets.
+PLACING_SCAN = 41
+
+#: Resonance of a tongue kind (column of
+#: :data:`stability.tongues.TONGUE_KINDS`) as a multiple of the
+#: natural frequency it grows from: single-period at ``f_i``,
+#: double-period at ``2 f_i``; a combination (``f_i +- f_j``) is placed
+#: by no one frequency.
+_RESONANCE_MULTIPLE = {0: 1.0, 1: 2.0}
+
+
+def placed_starts(problem, given):
+    """Starts that put a tongue of the kind the data saw onto its onsets.
+
+    A start whose tongues lie away from the measured onsets (a preset's
+    tongue 4 at 209 Hz, onsets at 187-199 Hz) compares with no boundary
+    there: no parameter moves the residual, and the local fits, given or
+    sampled, stay where nothing fits (issue 44's held-out round trips).
+    For each kind the data give (``given``, columns of
+    :data:`stability.tongues.TONGUE_KINDS`; single- and double-period),
+    the tongue's resonance belongs at the lowest onset of that kind
+    (the tip); for each fitted parameter, the others at the start, the
+    value within its bounds at which a damped natural frequency of the
+    model (:func:`stability.modal.damped_modes`) times the kind's
+    multiple crosses that frequency is a start (linear between the
+    :data:`PLACING_SCAN` values scanned). Parameters that move no
+    natural frequency give none.
+
+    Returns
+    -------
+    list of ndarray, shape (k,)
+        Scaled starts, none within 1e-3 of the given one.
+    """
+    from ..modal import damped_modes
+    from ._common import evaluated
+    given = np.asarray(given)
+    z0 = problem.x0 / problem.scale
+    targets = []
+    for column, multiple in _RESONANCE_MULTIPLE.items():
+        onsets = (given == column) & ~problem.censored
+        if onsets.any():
+            lowest = np.argmin(np.where(onsets, problem.measured, np.inf))
+            targets.append(problem.freq_hz[lowest] / multiple)
+    out = []
+    for j in range(len(z0)):
+        low, high = problem.low[j], problem.high[j]
+        if not (low > 0 and high > low):
+            continue
+        values = np.geomspace(low, high, PLACING_SCAN)
+        modes = []
+        for value in values:
+            z = z0.copy()
+            z[j] = value
+            try:
+                frequency, _ = damped_modes(build_driveline(evaluated(
+                    problem.params_at(z), problem.added)))
+            except (JudderError, ValueError, np.linalg.LinAlgError):
+                frequency = np.array([])    # a value the model refuses
+            modes.append(frequency)
+        count = min(len(m) for m in modes)
+        if count == 0:
+            continue
+        modes = np.array([m[:count] for m in modes])
+        for target in targets:
+            for mode in range(count):
+                gap = modes[:, mode] - target
+                cross = np.flatnonzero(np.sign(gap[:-1]) * np.sign(gap[1:])
+                                       < 0)
+                for i in cross:
+                    share = gap[i] / (gap[i] - gap[i + 1])
+                    z = z0.copy()
+                    z[j] = np.exp(np.log(values[i]) + share * (
+                        np.log(values[i + 1]) - np.log(values[i])))
+                    if all(np.max(np.abs(z / other - 1)) > 1e-3
+                           for other in [z0, *out]):
+                        out.append(z)
+    return out
 
 
 def _transform(low, high):
