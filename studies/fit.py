@@ -90,7 +90,7 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
     if bench is not None:
         bench = check_bench(start, bench)
     with cluster(workers):
-        return _fitted(
+        return fit_checked(
             start, freq_hz, np.asarray(measured_p_f_bar, dtype=float)
             * PA_PER_BAR, p_max_bar * PA_PER_BAR, None if below_bar is None
             else np.asarray(below_bar, dtype=float) * PA_PER_BAR,
@@ -102,12 +102,13 @@ def fit(freq_hz, measured_p_f_bar, p_max_bar=1.5, names=None, bounds=None,
             judder_limit_rpm=judder_limit_rpm)
 
 
-def _fitted(start, freq_hz, measured, p_max, below, names=None,
-            bench=None, min_growth=None, judder_limit_rpm=None,
-            progress=None, **options):
-    """:func:`fit` of the parameter set ``start``, amplitudes in Pa
-    (``scatter`` too with the absolute error model), its arguments
-    checked where they entered; ``options`` as
+def fit_checked(start, freq_hz, measured, p_max, below, names=None,
+                bench=None, min_growth=None, judder_limit_rpm=None,
+                progress=None, **options):
+    """:func:`fit` of the parameter set ``start`` whose arguments were
+    checked where they entered (by :func:`fit`, or by the command line's
+    option parsers and file readers: a value is checked once), amplitudes
+    in Pa (``scatter`` too with the absolute error model); ``options`` as
     :func:`stability.fit.fit_boundary` takes them."""
     from infra.criteria import DEFAULT_MIN_GROWTH_PER_S
     from stability.fit import DEFAULT_FIT, fit_boundary

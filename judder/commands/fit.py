@@ -9,7 +9,7 @@ from infra.files import all_or_none
 from infra.units import PA_PER_BAR
 from studies._common import resolve
 from studies._preflight import check_fit
-from studies.fit import _fitted
+from studies.fit import fit_checked
 from studies.inputs import (boundary_p_max, read_boundary_limit,
                             read_boundary_min_growth, read_boundary_tested,
                             read_chart_below, read_chart_boundary,
@@ -198,7 +198,7 @@ def run(args):
     # the options were checked by their parsers, the files by their
     # readers: the fit itself, in Pa, without the API's checks
     with Progress(None, "fit") as progress, _naming(compared):
-        report = _fitted(
+        report = fit_checked(
             params.replace(**changes), freqs, measured,
             p_max_bar * PA_PER_BAR, below, names=names, bounds=bounds,
             method=args.method, starts=args.starts,
