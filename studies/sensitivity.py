@@ -32,7 +32,7 @@ def sensitivity(names, freq_hz, p_max_bar=1.5, factors=(0.5, 2.0),
     workers : int, optional
         Processes (default all cores).
     driveline : {'chain', 'bench'}, optional
-        The driveline whose tongues move (:func:`studies.bench.
+        The driveline whose tongues move (:func:`stability.bench.
         driveline_view`; default the bench where the preset has one).
 
     Returns

@@ -203,7 +203,7 @@ def test_check_states_the_safe_band_at_the_settings_amplitude():
     from stability.multipliers import floquet
     from stability.orbit import periodic_orbit
     from stability.orbit_chart import held_slip_motion
-    from studies.bench import driveline_view, engagement_model
+    from stability.bench import driveline_view, engagement_model
     params = get_preset(PRESET)
     record, = api.check([100.0], [0.3], params, sensitivity=()).records()
     low, high = record["safe_band_hz"]

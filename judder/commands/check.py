@@ -78,7 +78,7 @@ def run(args):
     """Verdict, growth and margins of dither settings."""
     names = args.params
     params, changes = parameters_of(args)
-    from studies.bench import default_driveline
+    from stability.bench import default_driveline
     bench = (args.driveline or default_driveline(params)) == "bench"
     freqs, amplitudes = _settings(args, len(
         DEFAULT_CHECK_PARAMETERS if names is None else names), bench)
