@@ -795,7 +795,7 @@ def test_an_input_is_checked_by_size_and_type_before_it_is_hashed(
     # check --table and report --boundary of 1e5 rows ran for an hour
     # (issue 44, item 12): estimated before any work, refused above the
     # limit naming the file to shorten (not --freq x --pf, not --starts)
-    (["check", "--table"], ["3.58 h", "100000 settings", "fewer rows in "
+    (["check", "--table"], ["8.17 h", "100000 settings", "fewer rows in "
                             "--table", "JUDDER_MAX_HOURS"]),
     (["report", "--out", "r.html", "--boundary"],
      ["2.78 h", "100000 measured points", "fewer points in --boundary",
