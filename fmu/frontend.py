@@ -516,6 +516,8 @@ class _Expressions:
             try:
                 subscripts = tuple(self._subscript(item) for item in
                                    self._subscripts[index])
+                if any(isinstance(k, casadi.SX) for k in subscripts):
+                    return _select(base, subscripts)
                 if not isinstance(base, np.ndarray) or \
                         len(subscripts) != base.ndim or \
                         any(not 0 <= k < n for k, n in zip(subscripts,
@@ -560,6 +562,8 @@ class _Expressions:
             return self._call(index, body)
         if kind == "comprehension":
             return self._comprehension(body)
+        if kind == "function_value":
+            return self._definition(body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
 
@@ -570,7 +574,11 @@ class _Expressions:
             return None
         kind, node = next(iter(item.items()))
         if kind == "index":
-            return _integer(self(node)) - 1
+            value = self(node)
+            if self._frames and not isinstance(value, np.ndarray) and \
+                    casadi.symvar(casadi.SX(value)):
+                return casadi.SX(value) - 1   # a function's loop index
+            return _integer(value) - 1
         span = next(iter(self._nodes[node].values()))
         start = _integer(self(span["start_expression"]))
         stop = _integer(self(span["stop_expression"]))
@@ -701,16 +709,8 @@ class _Expressions:
         saved, self._cache = self._cache, {}
         self._frames.append(frame)
         try:
-            for statement in function.get("statements") or []:
-                kind, step = next(iter(statement.items()))
-                if kind != "assignment":
-                    raise FrontEndError(
-                        f"{self.where}: {name}(): {kind} statements in a "
-                        "function are not supported by the FMU back end "
-                        "(assignments are)")
-                frame[("function_output", step["target"])] = \
-                    self(step["rhs"])
-                self._cache = {}
+            self._statements(name, function.get("statements") or [], frame,
+                             [0])
         finally:
             self._frames.pop()
             self._cache = saved
@@ -719,6 +719,116 @@ class _Expressions:
             raise FrontEndError(f"{self.where}: {name}(): output "
                                 f"{body['output'] + 1} is never assigned")
         return frame[key]
+
+    def _statements(self, name, statements, frame, counter):
+        """Run a function's statements as rumoca writes them, in single
+        assignment form: each assignment is a new definition of its
+        target (``function_value`` nodes read a definition by its
+        ordinal, numbered in the order the statements are written); an
+        ``if`` is an ``assignment_group`` of conditional values; a
+        ``while`` or ``for`` loop whose trips rumoca bounds is a ``for``
+        over a domain whose targets are carried from one trip to the next
+        (definitions at its start, the fold parameters, and after it, the
+        fold outputs). ``counter`` holds the next ordinal."""
+        for statement in statements:
+            kind, step = next(iter(statement.items()))
+            if kind in ("assignment", "assignment_group"):
+                items = [step] if kind == "assignment" else \
+                    step["assignments"]
+                values = [self(item["rhs"]) for item in items]
+                for item, value in zip(items, values):
+                    frame[("function_output", item["target"])] = value
+                    frame[("definition", counter[0])] = value
+                    counter[0] += 1
+                self._cache = {}
+            elif kind == "for" and not step.get("iteration_locals"):
+                self._loop(name, step, frame, counter)
+            else:
+                raise FrontEndError(
+                    f"{self.where}: {name}(): {kind} statements in a "
+                    "function are not supported by the FMU back end "
+                    "(assignments, if and for loops are)")
+
+    def _loop(self, name, step, frame, counter):
+        """A ``for`` statement of :meth:`_statements`."""
+        targets = step["targets"]
+        folded = counter[0]
+        first = folded + len(targets)
+        after = first + _definitions(step["statements"])
+        (values,) = self._ranges(step)
+        for value in values:
+            for k, target in enumerate(targets):
+                frame[("definition", folded + k)] = \
+                    frame.get(("function_output", target))
+            self._binders[(step["domain"], 0)] = value
+            self._cache = {}
+            counter[0] = first
+            try:
+                self._statements(name, step["statements"], frame, counter)
+            finally:
+                self._binders.pop((step["domain"], 0), None)
+        for k, target in enumerate(targets):
+            if not values:
+                frame[("definition", folded + k)] = \
+                    frame.get(("function_output", target))
+            frame[("definition", after + k)] = \
+                frame.get(("function_output", target))
+        counter[0] = after + len(targets)
+        self._cache = {}
+
+    def _definition(self, body):
+        """The value of a ``function_value`` node: a definition of the
+        function being inlined (:meth:`_statements`)."""
+        key = ("definition", body["definition_ordinal"])
+        if not self._frames or self._frames[-1].get(key) is None:
+            raise FrontEndError(f"{self.where}: a local of a function is "
+                                "used before it has a value")
+        return self._frames[-1][key]
+
+
+def _select(base, subscripts):
+    """``base[subscripts]`` where some subscripts are expressions (0-based,
+    known only when the model runs: a function's loop index that a
+    condition on parameters sets, as ``i := nrow`` of MSL's
+    ``Matrices.isEqual``): the element picked by a chain of if_else over
+    the positions they may take; an index outside the array is an
+    error, as in Modelica."""
+    if not isinstance(base, np.ndarray) or len(subscripts) != base.ndim or \
+            any(not isinstance(k, (int, casadi.SX)) for k in subscripts):
+        raise FrontEndError("an array subscript that is not a constant "
+                            "integer is allowed on an element of an array "
+                            "only (a[i, j])")
+    if base.size > 10000:
+        raise FrontEndError(f"an array subscript that is not a constant "
+                            f"integer on an array of {base.size} elements; "
+                            f"allowed: up to 10,000")
+    result = casadi.SX(np.nan)   # out of range: not a number
+    for position in np.ndindex(base.shape):
+        if any(isinstance(k, int) and k != p
+               for k, p in zip(subscripts, position)):
+            continue
+        here = casadi.SX(1)
+        for k, p in zip(subscripts, position):
+            if isinstance(k, casadi.SX):
+                here = casadi.logic_and(here, k == p)
+        result = casadi.if_else(here, base[position], result)
+    return result
+
+
+def _definitions(statements):
+    """How many definitions :meth:`_Expressions._statements` numbers in
+    ``statements``."""
+    count = 0
+    for statement in statements:
+        kind, step = next(iter(statement.items()))
+        if kind == "assignment":
+            count += 1
+        elif kind == "assignment_group":
+            count += len(step["assignments"])
+        elif kind == "for":
+            count += 2 * len(step["targets"]) + _definitions(
+                step["statements"])
+    return count
 
 
 def _conditional(args):
@@ -962,7 +1072,8 @@ def _check_supported(storage, model_name, where, hybrid=False):
         if key == "domains":   # for-expressions, array equations: compiled
             items = [d for k, d in enumerate(items)
                      if k not in _comprehension_domains(storage)
-                     and k not in _equation_domains(storage)]
+                     and k not in _equation_domains(storage)
+                     and k not in _function_domains(storage)]
         if items:
             place = where(items[0]) if isinstance(items[0], dict) else \
                 model_name
@@ -977,6 +1088,21 @@ def _comprehension_domains(storage):
     return {next(iter(node.values()))["domain"]
             for node in storage["expressions"]["nodes"]
             if "comprehension" in node}
+
+
+def _function_domains(storage):
+    """The domains of the loops of functions (rumoca writes a ``while``
+    whose trips it bounds as a ``for``), run when a call is inlined."""
+    found, pending = set(), [statement for function in
+                             storage.get("functions") or []
+                             for statement in function.get("statements")
+                             or []]
+    while pending:
+        kind, step = next(iter(pending.pop().items()))
+        if kind == "for":
+            found.add(step["domain"])
+            pending.extend(step.get("statements") or [])
+    return found
 
 
 def _equation_domains(storage):
@@ -1107,7 +1233,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     used = {v.where.rsplit(":", 1)[0] for v in variables}
     rewrites = [r for r in rewrites
                 if (f"{r.file}:{r.line}", r.name) in declared or
-                (r.kind == "table" and r.file in used)]
+                (r.kind in ("table", "for") and r.file in used)]
     assertions = _assertions(storage, convert, where)
     whens = _whens(storage, convert, where, variables)
     discretes, discrete_relations = _discretes(
