@@ -156,6 +156,12 @@ class Relation:
     value: object
     indicator: object
     where: str = ""
+    #: The symbol of the relation's rounding band, 0 until the FMU finds
+    #: the relation on its zero within rounding (``fmu/c/model.c``,
+    #: ``P_ZEROS``): added to ``indicator`` for ``>=`` and ``<=``,
+    #: subtracted for ``>`` and ``<``; ``value`` is ``indicator >= 0``
+    #: or ``> 0``.
+    zero: object = None
 
 
 @dataclass
@@ -431,11 +437,19 @@ class _Expressions:
                                     "continuous variables is not supported "
                                     "(use <, <=, > or >=)")
             lhs, rhs = self(body["lhs"]), self(body["rhs"])
+            zero = casadi.SX.sym(f"zero{position + 1}")
+            difference = lhs - rhs if op in ("greater", "greater_equal") \
+                else rhs - lhs
+            if op in ("greater_equal", "less_equal"):
+                indicator = difference + zero
+                value = indicator >= 0
+            else:
+                indicator = difference - zero
+                value = indicator > 0
             self.relations[position] = Relation(
                 symbol=casadi.SX.sym(f"relation{position + 1}"),
-                value=_BINARY[op](lhs, rhs),
-                indicator=lhs - rhs if op in ("greater", "greater_equal")
-                else rhs - lhs, where=self.where)
+                value=value, indicator=indicator, where=self.where,
+                zero=zero)
         return self.relations[position].symbol
 
     def _is_time_event(self, body):
@@ -466,9 +480,10 @@ class _Expressions:
                 return self._derivatives[position]
             if role == "pre_state" and self.pre_is_state:
                 return self._symbols[position]
-            if role == "pre_discrete_value" and position in self.previous:
+            if role in ("pre_discrete_value", "pre_discrete_real") and \
+                    position in self.previous:
                 return self.previous[position]
-            if role == "discrete_value" and self.previous:
+            if role in _DISCRETE_ROLES and self.previous:
                 return self._symbols[position]
             if role == "condition" and self.initial is not None and \
                     self._conditions[position].get("node") == "initial":
@@ -985,6 +1000,10 @@ def check_source_text(path):
             "Modelica requires (save the file as UTF-8)") from None
 
 
+#: rumoca's roles of Integer and Boolean variables (``discrete_value``)
+#: and of Real variables assigned in when-clauses (``discrete_real``,
+#: MSL's ``Pulse.T_start``): held between events, read with ``hybrid``.
+_DISCRETE_ROLES = ("discrete_value", "discrete_real")
 #: Roles of rumoca's flat variables that the back end compiles.
 _ROLES = ("state", "algebraic", "parameter", "constant", "input", "output")
 #: Sections of rumoca's flat model the back end does not compile (yet),
@@ -1042,7 +1061,7 @@ def _check_supported(storage, model_name, where, hybrid=False):
     are read)."""
     for raw in storage["variables"]:
         place = where({"span": raw.get("declaration", {}).get("span")})
-        if hybrid and raw["role"] == "discrete_value" and not \
+        if hybrid and raw["role"] in _DISCRETE_ROLES and not \
                 storage["value_types"][raw["value_type"]].get("dimensions"):
             continue
         if raw["role"] not in _ROLES:
@@ -1067,7 +1086,9 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 "not supported by the FMU back end")
     for key, construct in _REFUSED.items():
         items = storage.get(key) or []
-        if hybrid and key == "discrete_value_owners":
+        if hybrid and key in ("discrete_value_owners",
+                              "discrete_real_equations",
+                              "initial_discrete_values"):
             continue
         if key == "domains":   # for-expressions, array equations: compiled
             items = [d for k, d in enumerate(items)
@@ -1164,7 +1185,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         convert.previous = {
             index: casadi.SX.sym(f"pre({raw['name']})")
             for index, raw in enumerate(storage["variables"])
-            if raw["role"] == "discrete_value"}
+            if raw["role"] in _DISCRETE_ROLES}
     types = _declared_types(roots or [path.parent], path)
     files = {entry[0]: entry[2] for entry in
              flat.get("source_map", {}).get("files", [])}
@@ -1181,7 +1202,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
             elements, values = np.array([elements], dtype=object), \
                 {k: np.array([v], dtype=object) for k, v in values.items()}
         quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
-        role = "discrete" if raw["role"] == "discrete_value" else raw["role"]
+        role = "discrete" if raw["role"] in _DISCRETE_ROLES else raw["role"]
         if role == "parameter" and \
                 storage["value_types"][raw["value_type"]].get("scalar") \
                 != "real":
@@ -1416,12 +1437,80 @@ def _discretes(storage, convert, where, variables):
             start=float(casadi.evalf(start)), where=convert.where,
             boolean=storage["value_types"][storage["variables"][index][
                 "value_type"]].get("scalar") == "boolean"))
+    found += _discrete_reals(storage, convert, where, by_name, conditions)
+    initial = {item["target"]: item for item in
+               storage.get("initial_discrete_values") or []}
+    for discrete in found:
+        index = next((k for k, raw in enumerate(storage["variables"])
+                      if raw["name"] == discrete.name), None)
+        if index in initial:
+            # an initial algorithm's (or initial equation's) value: the
+            # discrete equation while initial() holds
+            convert.where = where(initial[index])
+            discrete.value = casadi.if_else(
+                convert.initial, convert(initial[index]["value"]),
+                discrete.value)
+    relations.update({r.symbol.name(): r.value
+                      for r in convert.relations.values()})
+    for discrete in found:
+        discrete.value = _with_values(discrete.value, relations)
     for condition in conditions.found:
         condition.value = _with_values(condition.value, relations)
     found += conditions.found
     extra = [r for k, r in sorted(convert.relations.items()) if k not in held]
     convert.relations = held
     return found, extra
+
+
+def _discrete_reals(storage, convert, where, by_name, conditions):
+    """The Real variables assigned in when-clauses (rumoca's
+    ``discrete_real_equations``, MSL ``Pulse``'s ``T_start = time``), as
+    :class:`Discrete` of their own, held like an Integer: ``v = if fires1
+    then v1 else ... else pre(v)``, each ``v_k`` solved from its
+    equation's residual (linear in ``v``)."""
+    clauses = {}
+    for equation in storage.get("discrete_real_equations") or []:
+        convert.where = where(equation)
+        residual = convert(equation["residual"])
+        targets = [index for index in convert.previous
+                   if storage["variables"][index]["role"] == "discrete_real"
+                   and casadi.depends_on(casadi.SX(residual),
+                                         convert._symbols[index])]
+        if len(targets) != 1:
+            raise FrontEndError(f"{convert.where}: this equation of discrete "
+                                "Real variables is not supported; allowed: "
+                                "one variable assigned in a when-clause "
+                                "(v = expression)")
+        symbol = convert._symbols[targets[0]]
+        slope = casadi.jacobian(residual, symbol)
+        if casadi.depends_on(slope, symbol) or casadi.is_equal(slope, 0):
+            raise FrontEndError(f"{convert.where}: this equation of a "
+                                "discrete Real variable is not linear in it; "
+                                "allowed: v = expression")
+        value = casadi.substitute(symbol - residual / slope, symbol,
+                                  casadi.SX(0))
+        clauses.setdefault(targets[0], []).append(
+            (conditions.fires(equation.get("activation"), convert.where),
+             value, convert.where))
+    found = []
+    for index, branches in clauses.items():
+        variable = by_name[storage["variables"][index]["name"]]
+        value = convert.previous[index]
+        for fires, branch, _ in reversed(branches):
+            value = casadi.if_else(fires, branch, value)
+        start = variable.start if variable.start is not None else 0.0
+        try:
+            start = float(casadi.evalf(casadi.SX(start)))
+        except RuntimeError:
+            raise FrontEndError(f"{variable.where}: {variable.name}: a start "
+                                "value that is not a constant expression is "
+                                "not supported (discrete Real variables)"
+                                ) from None
+        found.append(Discrete(
+            name=variable.name, symbol=variable.symbol,
+            previous=convert.previous[index], value=value, start=start,
+            where=branches[0][2], boolean=False))
+    return found
 
 
 class _WhenConditions:
