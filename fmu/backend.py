@@ -379,6 +379,16 @@ def to_ode(model):
 def _to_ode(model):
     tunable, calculated, parameter_symbols, parameter_values = \
         _split_parameters(model)
+    if not model.discretes:
+        # the relations' rounding bands act in the event iteration of
+        # discrete variables only; without them (a model fixed in one
+        # mode, sources.modes.fixed_mode) they are 0 in every formula
+        bands = [r.zero for r in model.relations + model.discrete_relations
+                 if r.zero is not None]
+        if bands:
+            parameter_symbols = casadi.vertcat(parameter_symbols, *bands)
+            parameter_values = casadi.vertcat(parameter_values,
+                                              casadi.SX.zeros(len(bands)))
     inputs = [_quantity(v, v.symbol, start=_input_start(v),
                         minimum=v.minimum, maximum=v.maximum)
               for v in model.by_role("input")]

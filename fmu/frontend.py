@@ -927,9 +927,17 @@ def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
         key = cache.cache_key(path, model_name, roots, f"{rumoca.version()}"
                               f"+rewrite{REWRITE_VERSION}", stamp=stamp)
         flat = cache.load(key)
+        if flat is not None and "refused" in flat:
+            raise FrontEndError(flat["refused"] + " (refused before, "
+                                "from the flat-model cache)")
         if flat is None:
-            flat = _named_back(_flatten_with_rumoca(
-                path, model_name, roots, prepared=prepared), prepared)
+            try:
+                flat = _named_back(_flatten_with_rumoca(
+                    path, model_name, roots, prepared=prepared), prepared)
+            except FrontEndError as exc:
+                if _RUMOCA_OWN in str(exc):
+                    cache.store(key, {"refused": str(exc)})
+                raise
             cache.store(key, flat)
     return flat, prepared.rewrites
 
@@ -982,7 +990,59 @@ def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
     if use_cache:
         message += explain_unbalanced(message, model_name, roots,
                                       load_flat_model)
+    if "function shape proof" in message:
+        message += _shape_proof_words(message, roots)
     raise FrontEndError(message)
+
+
+#: rumoca's refusal of a model in its DAE stage: it depends on the
+#: sources and rumoca's version only (kept by the flat-model cache).
+_RUMOCA_OWN = "todae failed"
+
+
+def _shape_proof_words(message, roots):
+    """What rumoca 0.10.2's "function shape proof: `q`: axis 1 requires
+    extent 2 but the call site proves 3" means, with the functions whose
+    array input ``q`` it confused: it takes functions of one short name
+    declared in different classes (MSL's ``position`` of
+    ``Sources.Move`` and of ``AngleToTorqueAdaptor.Move_w``) for one,
+    and the sizes of their array inputs then disagree
+    (docs/compiler.md)."""
+    import re
+    found = re.search(r"function shape proof`?: `?(\w+)`?", message)
+    if not found:
+        return ""
+    argument = found.group(1)
+    declared = re.compile(rf"\binput\s+Real\s+{argument}\s*\[")
+    function = re.compile(r"\bfunction\s+(\w+)")
+    texts = {}
+    for root in map(Path, roots):
+        files = [root] if root.is_file() else sorted(root.rglob("*.mo"))
+        for source in files:
+            try:
+                texts[source] = source.read_text(encoding="utf-8",
+                                                 errors="replace")
+            except OSError:
+                continue
+    names = set()
+    for text in texts.values():
+        for hit in declared.finditer(text):
+            owners = list(function.finditer(text, 0, hit.start()))
+            if owners:
+                names.add(owners[-1].group(1))
+    places = [f"{hit.group(1)}() at {source}:"
+              f"{text.count(chr(10), 0, hit.start()) + 1}"
+              for source, text in texts.items() for hit in function.finditer(
+                  text) if hit.group(1) in names]
+    words = (f"; rumoca 0.10.2 takes functions of one name declared in "
+             f"different classes for one function, and their array input "
+             f"{argument} then has two sizes (a minimal model is in "
+             f"docs/compiler.md); allowed: functions of distinct names")
+    if places:
+        words += (f"; the functions of these names: {', '.join(places[:6])}"
+                  + (f" and {len(places) - 6} more" if len(places) > 6
+                     else ""))
+    return words
 
 
 def check_source_text(path):

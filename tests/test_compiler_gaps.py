@@ -717,3 +717,73 @@ def test_a_real_assigned_in_a_when_clause_and_an_initial_algorithm(
     full, part = np.divmod(np.maximum(t - 0.3, 0.0), 1.0)
     assert_allclose(result["x"], 0.4 * full + np.minimum(part, 0.4),
                     atol=1e-7)
+
+
+# -- 10. rumoca's "function shape proof" (MSL GenerationOfFMUs) -----------
+# rumoca 0.10.2 takes two functions of one name declared in different
+# classes for one (MSL's position() of Sources.Move and of
+# AngleToTorqueAdaptor.Move_w); not worked round: refused in words, and
+# from the flat-model cache at once the next time
+
+_SHAPES = """package Shapes
+  model A
+    function position
+      input Real q[2];
+      input Real d;
+      output Real y;
+    algorithm
+      y := q[1];
+    end position;
+    Real u[2] = {time, 1};
+    Real y;
+  equation
+    y = position(u, time);
+  end A;
+  model B
+    function position
+      input Real q[3];
+      input Real d;
+      output Real y;
+    algorithm
+      y := q[1];
+    end position;
+    Real u[3] = {time, 1, 0};
+    Real y;
+  equation
+    y = position(u, time);
+  end B;
+  model Both
+    A a;
+    B b;
+  end Both;
+end Shapes;
+"""
+
+
+def test_functions_of_one_name_are_refused_naming_them(tmp_path,
+                                                       monkeypatch):
+    # was: "todae failed: ... unsupported Flat semantic owner `function
+    # shape proof`: `q`: ..." and nothing more, after rumoca's 37 s on
+    # GenerationOfFMUs, every time
+    import time
+    from fmu.errors import FrontEndError
+    monkeypatch.setenv("JUDDER_FMU_CACHE", str(tmp_path / "cache"))
+    folder = tmp_path / "lib"
+    (folder / "Shapes").mkdir(parents=True)
+    path = folder / "Shapes" / "package.mo"
+    path.write_text(_SHAPES)
+    messages = []
+    for _ in range(2):
+        start = time.perf_counter()
+        with pytest.raises(FrontEndError) as refused:
+            build_fmu(path, "Shapes.Both", tmp_path / "Both.fmu",
+                      roots=[folder])
+        messages.append((str(refused.value), time.perf_counter() - start))
+    for message, _ in messages:
+        assert "functions of one name declared in different classes" in \
+            message
+        assert f"position() at {path}:3" in message
+        assert f"position() at {path}:16" in message
+        assert "docs/compiler.md" in message
+    assert "from the flat-model cache" in messages[1][0]
+    assert messages[1][1] < 5.0
