@@ -587,9 +587,11 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
                                         for name, value in clause.reinits]))
     values = _discrete_equations(model.discretes)
     described = {v.name: v.description for v in model.variables}
+    kinds = {(True, False): "(Boolean, 1 for true)",
+             (False, True): "(discrete Real)", (False, False): "(Integer)"}
     discretes = [Quantity(d.name, "", " ".join(filter(None, (
-                     described.get(d.name), "(Boolean, 1 for true)"
-                     if d.boolean else "(Integer)"))), d.symbol,
+                     described.get(d.name), kinds[d.boolean, d.real]))),
+                          d.symbol,
                           start=d.start, minimum=formula(value),
                           maximum=1.0 if d.boolean else None)
                  for d, value in zip(model.discretes, values)]

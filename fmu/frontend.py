@@ -183,6 +183,9 @@ class Discrete:
     start: float
     where: str = ""
     boolean: bool = False
+    #: A Real assigned in when-clauses (MSL Pulse's ``T_start``), not an
+    #: Integer
+    real: bool = False
 
 
 @dataclass
@@ -1569,7 +1572,7 @@ def _discrete_reals(storage, convert, where, by_name, conditions):
         found.append(Discrete(
             name=variable.name, symbol=variable.symbol,
             previous=convert.previous[index], value=value, start=start,
-            where=branches[0][2], boolean=False))
+            where=branches[0][2], boolean=False, real=True))
     return found
 
 

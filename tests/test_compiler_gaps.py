@@ -717,6 +717,10 @@ def test_a_real_assigned_in_a_when_clause_and_an_initial_algorithm(
     full, part = np.divmod(np.maximum(t - 0.3, 0.0), 1.0)
     assert_allclose(result["x"], 0.4 * full + np.minimum(part, 0.4),
                     atol=1e-7)
+    described = {v.name: v.description for v in
+                 fmpy.read_model_description(str(fmu)).modelVariables}
+    assert described["T_start"].endswith("(discrete Real)")
+    assert described["count"].endswith("(Integer)")
 
 
 # -- 10. rumoca's "function shape proof" (MSL GenerationOfFMUs) -----------
