@@ -1153,6 +1153,14 @@ def _check_supported(storage, model_name, where, hybrid=False):
                               "discrete_real_equations",
                               "initial_discrete_values"):
             continue
+        if hybrid and key == "clocks" and all(
+                isinstance(c.get("kind"), dict) and
+                "lattice" in c["kind"].get("periodic", {})
+                for c in items):
+            continue   # sample(start, interval): _WhenConditions._sample
+        if hybrid and key == "clock_ownerships" and not any(
+                o.get("sampled") for o in items):
+            continue   # the variables assigned in when sample(...) clauses
         if key == "domains":   # for-expressions, array equations: compiled
             items = [d for k, d in enumerate(items)
                      if k not in _comprehension_domains(storage)
@@ -1602,18 +1610,62 @@ class _WhenConditions:
         trigger = when["trigger"]
         if trigger not in self._by_trigger:
             name = f"'when {len(self.found) + 1}'"
+            node = self._storage["conditions"][trigger]["node"]
+            if isinstance(node, dict) and set(node) == {"clock"}:
+                value = self._sample(node["clock"], trigger, place)
+            else:
+                value = _condition(self._storage, self._convert, trigger,
+                                   place)
             self.found.append(Discrete(
                 name=name, symbol=casadi.SX.sym(name),
                 previous=casadi.SX.sym(f"pre({name})"),
-                value=_condition(self._storage, self._convert, trigger,
-                                 place), start=0.0,
-                where=place, boolean=True))
+                value=value, start=0.0, where=place, boolean=True))
             self._by_trigger[trigger] = self.found[-1]
         condition = self._by_trigger[trigger]
         return casadi.logic_and(casadi.logic_not(self._convert.initial),
                                 casadi.logic_and(condition.symbol,
                                                  casadi.logic_not(
                                                      condition.previous)))
+
+
+    def _sample(self, clock, trigger, place):
+        """The condition of ``when sample(start, interval)`` (rumoca's
+        periodic clock of phase ``start`` and period ``interval``, both
+        numbers): a relation ``time >= start + pre(k) interval`` that
+        becomes true at each tick, where ``k`` counts the ticks (an
+        Integer of its own, ``'sample N'``, one more at each tick after
+        the initialisation): a time event, located by its indicator."""
+        kind = (self._storage.get("clocks") or [{}])[clock].get("kind", {})
+        lattice = kind.get("periodic", {}).get("lattice") if isinstance(
+            kind, dict) else None
+        if not lattice or kind["periodic"].get("anchor") != "absolute":
+            raise FrontEndError(f"{place}: this clock ({kind}) is not "
+                                "supported; allowed: when sample(start, "
+                                "interval) with numbers")
+        period = lattice["period"]["num"] / lattice["period"]["den"]
+        phase = lattice["phase"]["num"] / lattice["phase"]["den"]
+        if period <= 0:
+            raise FrontEndError(f"{place}: sample(): an interval of "
+                                f"{period} s; allowed: an interval > 0")
+        name = f"'sample {clock + 1}'"
+        ticks = Discrete(name=name, symbol=casadi.SX.sym(name),
+                         previous=casadi.SX.sym(f"pre({name})"), value=None,
+                         start=0.0, where=place)
+        convert = self._convert
+        position = len(self._storage.get("relations") or []) + \
+            len(self._storage.get("conditions") or []) + clock
+        zero = casadi.SX.sym(f"zero{position + 1}")
+        indicator = convert._time - (phase + ticks.previous * period) + zero
+        relation = Relation(symbol=casadi.SX.sym(f"relation{position + 1}"),
+                            value=indicator >= 0, indicator=indicator,
+                            where=place, zero=zero)
+        convert.relations[position] = relation
+        ticks.value = casadi.if_else(
+            casadi.logic_and(casadi.logic_not(convert.initial),
+                             relation.symbol),
+            ticks.previous + 1, ticks.previous)
+        self.found.append(ticks)
+        return relation.symbol
 
 
 def _condition(storage, convert, index, place):
@@ -1657,6 +1709,12 @@ def _when_relation(storage, convert, trigger, place):
     values, and whose indicator is 1: it changes only where the relations
     and discrete variables in it do, at their events."""
     node = storage["conditions"][trigger]["node"]
+    if isinstance(node, dict) and set(node) == {"clock"}:
+        raise FrontEndError(f"{place}: reinit in a when sample(...) clause: "
+                            "clocked equations are not supported; allowed: "
+                            "when sample(start, interval) assigning "
+                            "Integer, Boolean or Real variables, or reinit "
+                            "in a when-clause of relations")
     if isinstance(node, dict) and set(node) == {"relation"}:
         expression = storage["relations"][node["relation"]]["relation"][
             "expression"]
@@ -1750,6 +1808,9 @@ def _whens(storage, convert, where, variables):
                                 "the FMU back end; allowed: when-clauses "
                                 "with reinit on relations and Boolean "
                                 "expressions")
+        node = conditions[action["trigger"]]["node"]
+        if isinstance(node, dict) and set(node) == {"clock"}:
+            convert.where = where(conditions[action["trigger"]])   # sample
         relation = _when_relation(storage, convert, action["trigger"],
                                   convert.where)
         convert.pre_is_state = True

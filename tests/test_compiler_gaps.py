@@ -791,3 +791,38 @@ def test_functions_of_one_name_are_refused_naming_them(tmp_path,
         assert "docs/compiler.md" in message
     assert "from the flat-model cache" in messages[1][0]
     assert messages[1][1] < 5.0
+
+
+# -- 11. when sample(start, interval) --------------------------------------
+
+_SAMPLED = """model Sampled
+  Integer n(start = 0, fixed = true) "ticks seen";
+  discrete Real held(start = -1, fixed = true) "x at the last tick";
+  Real x(start = 0, fixed = true);
+equation
+  der(x) = 2;
+  when sample(0.05, 0.1) then
+    n = pre(n) + 1;
+    held = x;
+  end when;
+end Sampled;
+"""
+
+
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_when_sample_fires_at_each_tick(tmp_path, fmi_type):
+    # was: "sample(): clocked equations are not supported"
+    path = _model(tmp_path, "Sampled", _SAMPLED)
+    fmu = build_fmu(path, "Sampled", tmp_path / "Sampled.fmu").path
+    result = fmpy.simulate_fmu(str(fmu), stop_time=0.5, output=[
+        "n", "held", "x"], relative_tolerance=1e-10, fmi_type=fmi_type,
+        output_interval=0.01)
+    t = result["time"]
+    # ticks at 0.05 + 0.1 k (time events): n of them so far, held = x =
+    # 2 t at the last one; points within 1e-6 s of a tick may show either
+    ticks = np.floor((t - 0.05) / 0.1 + 1e-9) + 1
+    away = np.abs((t - 0.05) / 0.1 - np.round((t - 0.05) / 0.1)) > 1e-5
+    assert_allclose(result["n"][away], np.maximum(ticks, 0)[away])
+    last = 0.05 + 0.1 * (ticks - 1)
+    assert_allclose(result["held"][away],
+                    np.where(ticks > 0, 2 * last, -1)[away], atol=1e-9)
