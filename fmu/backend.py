@@ -140,8 +140,9 @@ class OdeModel:
         the FMU initialises) if the discrete equations use it; in ``p``
         after :attr:`discretes`.
     zeros : list of Quantity
-        The rounding band of each relation (:attr:`fmu.frontend.Relation.zero`),
-        0 until the FMU finds the relation on its zero; last in ``p``.
+        The rounding band of each relation
+        (:attr:`fmu.frontend.Relation.zero`), 0 until the FMU finds the
+        relation on its zero; last in ``p``.
     assertions : list of fmu.frontend.Assertion
         The model's ``assert(...)``, ``violated`` and ``values`` as
         formulas in ``t, x, p``.

@@ -1090,7 +1090,9 @@ def _unroll_once(text):
             continue
         copies = " ".join(_one_line([
             (t[0], f"({value})" if t[0] == "ident" and t[1] == name and
-             (j == 0 or body[j - 1][1] != ".") else t[1], t[2], t[3])
+             (j == 0 or body[j - 1][1] != ".") and
+             (j + 1 == len(body) or body[j + 1][1] != "=")   # f(i = 1)
+             else t[1], t[2], t[3])
             for j, t in enumerate(body)]) for value in values)
         begin, end = token[2], tokens[stop + 2][3]
         lines = text.count("\n", begin, end)
