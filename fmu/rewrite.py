@@ -44,7 +44,7 @@ __all__ = ["Rewrite", "Prepared", "prepare", "rewrite_text", "inline_tables",
            "REWRITE_VERSION"]
 
 #: Changes with the rule: the flat-model cache and the copies are keyed by it.
-REWRITE_VERSION = "5"
+REWRITE_VERSION = "6"
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+)
