@@ -139,6 +139,10 @@ class OdeModel:
         ``pre()`` of each discrete variable, then ``initial()`` (1 while
         the FMU initialises) if the discrete equations use it; in ``p``
         after :attr:`discretes`.
+    zeros : list of Quantity
+        The rounding band of each relation
+        (:attr:`fmu.frontend.Relation.zero`), 0 until the FMU finds the
+        relation on its zero; last in ``p``.
     assertions : list of fmu.frontend.Assertion
         The model's ``assert(...)``, ``violated`` and ``values`` as
         formulas in ``t, x, p``.
@@ -164,13 +168,14 @@ class OdeModel:
     discretes: list = field(default_factory=list)
     previous: list = field(default_factory=list)
     assertions: list = field(default_factory=list)
+    zeros: list = field(default_factory=list)
 
     def held(self):
         """Everything in ``p``: the tunable parameters, the inputs, the
         relations' values, the discrete variables and their ``pre()``
         (with ``initial()``)."""
         return self.parameters + self.inputs + self.relations + \
-            self.discretes + self.previous
+            self.discretes + self.previous + self.zeros
 
     def _symbols(self):
         x = _column(*[s.expression for s in self.states])
@@ -209,7 +214,7 @@ class OdeModel:
                 i = names.index(name)
                 after[i] = casadi.if_else(fired[k] > 0.5, value, after[i])
         return (casadi.Function("indicators", [self.time, x, p], [
-                    _with_hysteresis(self.relations, self.time, x)]),
+                    _with_hysteresis(self.relations, self.time, x, p)]),
                 casadi.Function("relations", [self.time, x, p], [_column(
                     *[q.minimum for q in self.relations])]),
                 casadi.Function("reinit", [self.time, x, p, fired],
@@ -375,6 +380,16 @@ def to_ode(model):
 def _to_ode(model):
     tunable, calculated, parameter_symbols, parameter_values = \
         _split_parameters(model)
+    if not model.discretes:
+        # the relations' rounding bands act in the event iteration of
+        # discrete variables only; without them (a model fixed in one
+        # mode, sources.modes.fixed_mode) they are 0 in every formula
+        bands = [r.zero for r in model.relations + model.discrete_relations
+                 if r.zero is not None]
+        if bands:
+            parameter_symbols = casadi.vertcat(parameter_symbols, *bands)
+            parameter_values = casadi.vertcat(parameter_values,
+                                              casadi.SX.zeros(len(bands)))
     inputs = [_quantity(v, v.symbol, start=_input_start(v),
                         minimum=v.minimum, maximum=v.maximum)
               for v in model.by_role("input")]
@@ -426,7 +441,7 @@ def _to_ode(model):
                         for v, start in zip(order, starts)]
     _check_at_start(system, model, order, starts, tunable, inputs,
                     derivatives)
-    relations, whens, discretes, previous = _events(
+    relations, whens, discretes, previous, zeros = _events(
         model, order, derivatives, system.eliminated, parameter_symbols,
         parameter_values)
     outputs = []
@@ -456,7 +471,7 @@ def _to_ode(model):
         experiment=model.experiment, eliminated=system.eliminated,
         inputs=inputs, relations=relations, whens=whens,
         locals=locals_, aliases=aliases, discretes=discretes,
-        previous=previous, assertions=assertions)
+        previous=previous, assertions=assertions, zeros=zeros)
 
 
 def _check_at_start(system, model, order, starts, tunable, inputs,
@@ -551,11 +566,16 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
         expression = casadi.substitute(expression, parameter_symbols,
                                        parameter_values)
         return _in_states(expression, order, derivatives, eliminated)
+    held = model.relations + (model.discrete_relations
+                              if model.discretes else [])
     relations = [Quantity(r.symbol.name(), "", f"relation at {r.where}",
                           r.symbol, start=0.0, minimum=formula(r.value),
                           maximum=formula(r.indicator))
-                 for r in model.relations + (model.discrete_relations
-                                             if model.discretes else [])]
+                 for r in held]
+    zeros = [Quantity(f"zero({r.symbol.name()})", "", "rounding band of "
+                      f"the relation at {r.where}", r.zero if r.zero is not
+                      None else casadi.SX.sym(f"zero_{r.symbol.name()}"),
+                      start=0.0) for r in held]
     kept = {v.name for v in order}
     whens = []
     for clause in model.whens:
@@ -568,9 +588,11 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
                                         for name, value in clause.reinits]))
     values = _discrete_equations(model.discretes)
     described = {v.name: v.description for v in model.variables}
+    kinds = {(True, False): "(Boolean, 1 for true)",
+             (False, True): "(discrete Real)", (False, False): "(Integer)"}
     discretes = [Quantity(d.name, "", " ".join(filter(None, (
-                     described.get(d.name), "(Boolean, 1 for true)"
-                     if d.boolean else "(Integer)"))), d.symbol,
+                     described.get(d.name), kinds[d.boolean, d.real]))),
+                          d.symbol,
                           start=d.start, minimum=formula(value),
                           maximum=1.0 if d.boolean else None)
                  for d, value in zip(model.discretes, values)]
@@ -579,7 +601,7 @@ def _events(model, order, derivatives, eliminated, parameter_symbols,
     if _uses_initial(model) and model.initial_value is None:
         previous.append(Quantity("initial()", "", "1 while initialising",
                                  model.initial, start=0.0))
-    return relations, whens, discretes, previous
+    return relations, whens, discretes, previous, zeros
 
 
 def _held_discretes(model):
@@ -638,15 +660,17 @@ def _input_start(variable):
     return _value(variable.start)
 
 
-def _with_hysteresis(relations, time, x):
+def _with_hysteresis(relations, time, x, p=None):
     """The event indicators of ``relations`` (:attr:`OdeModel.relations`)
     in ``t, x, p``, each shifted by its hysteresis ``h`` away from the
     value held since the last event: ``d - h`` while the relation is
     false, ``d + h`` while it holds (``d`` positive where it holds).
 
     ``h`` is :data:`HYSTERESIS_ROUNDINGS` times the rounding of ``d``
-    to first order in that of its states and time, ``eps (sum_i |dd/dx_i|
-    |x_i| + |dd/dt| |t|)``, and at least :data:`HYSTERESIS_FLOOR`: in the
+    to first order in that of its states, time and parameters (``p``,
+    with the values held at events), ``eps (sum_i |dd/dx_i| |x_i| +
+    |dd/dt| |t| + sum_j |dd/dp_j| |p_j|)``, and at least
+    :data:`HYSTERESIS_FLOOR`: in the
     unit of the relation and the scale of its variables, so the state
     at a located root makes the relation change. Without it fmpy's CVode
     located roots exactly on an indicator's zero, where a strict
@@ -654,13 +678,23 @@ def _with_hysteresis(relations, time, x):
     slip that is the difference of two speeds near 105 rad/s moves in
     steps of 1.4e-14 rad/s and rose from exactly zero after a
     break-away, and MSL's friction ``mode`` stayed ``Stuck`` while the
-    clutch slid at 1.9 rad/s (docs/compiler.md)."""
+    clutch slid at 1.9 rad/s (docs/compiler.md). Without the
+    parameters' share, a relation of terms that cancel to a rounding
+    error whose sign follows the Booleans it decides (LossyGearDemo3's
+    ``tau_eta >= 0`` at w = 0) changed at every round of the event
+    iteration."""
     indicators = []
     for relation in relations:
         difference = casadi.SX(relation.maximum)
         rounding = casadi.dot(casadi.fabs(casadi.jacobian(difference, x)).T,
                               casadi.fabs(x)) + casadi.fabs(
             casadi.jacobian(difference, time)) * casadi.fabs(time)
+        if p is not None:
+            # terms of parameters that cancel (MSL LossyGear's driving
+            # side tau_eta = flange_a.tau - tau_bf_a, exactly zero in
+            # LossyGearDemo3) round as those of states do
+            rounding += casadi.dot(casadi.fabs(casadi.jacobian(
+                difference, p)).T, casadi.fabs(p))
         hysteresis = casadi.fmax(
             HYSTERESIS_ROUNDINGS * np.finfo(float).eps * rounding,
             HYSTERESIS_FLOOR)

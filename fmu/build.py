@@ -159,7 +159,7 @@ def _c_bounds(quantities, which, infinite):
 def _config(ode, guid, tolerance):
     layout = Layout(ode)
     tunable = layout.parameters + layout.inputs
-    held = ode.relations + ode.discretes + ode.previous
+    held = ode.relations + ode.discretes + ode.previous + ode.zeros
     defaults = [q.start for q in tunable + held]
     # relation values, discrete variables and their pre() (held between
     # events) follow in p, unbounded

@@ -100,9 +100,19 @@ def load(key):
 
 def store(key, flat):
     """Keep ``flat`` under ``key`` (best effort: a cache that cannot be
-    written is no error)."""
+    written is no error). ``{"refused": message}`` keeps rumoca's own
+    refusal of the sources (it depends on them and rumoca's version
+    only), so the same build is refused again in about a second."""
     folder = cache_folder()
     if folder is None:
+        return
+    if "refused" in flat:   # rumoca's own refusal of these sources
+        text = json.dumps(flat).encode()
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            atomic_write(folder / f"{key}.json", lambda out: out.write(text))
+        except (OSError, JudderError):
+            pass
         return
     used = _sources_used(flat["storage"])
     trimmed = dict(flat, source_map=dict(

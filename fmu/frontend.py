@@ -156,6 +156,12 @@ class Relation:
     value: object
     indicator: object
     where: str = ""
+    #: The symbol of the relation's rounding band, 0 until the FMU finds
+    #: the relation on its zero within rounding (``fmu/c/model.c``,
+    #: ``P_ZEROS``): added to ``indicator`` for ``>=`` and ``<=``,
+    #: subtracted for ``>`` and ``<``; ``value`` is ``indicator >= 0``
+    #: or ``> 0``.
+    zero: object = None
 
 
 @dataclass
@@ -177,6 +183,9 @@ class Discrete:
     start: float
     where: str = ""
     boolean: bool = False
+    #: A Real assigned in when-clauses (MSL Pulse's ``T_start``), not an
+    #: Integer
+    real: bool = False
 
 
 @dataclass
@@ -431,11 +440,19 @@ class _Expressions:
                                     "continuous variables is not supported "
                                     "(use <, <=, > or >=)")
             lhs, rhs = self(body["lhs"]), self(body["rhs"])
+            zero = casadi.SX.sym(f"zero{position + 1}")
+            difference = lhs - rhs if op in ("greater", "greater_equal") \
+                else rhs - lhs
+            if op in ("greater_equal", "less_equal"):
+                indicator = difference + zero
+                value = indicator >= 0
+            else:
+                indicator = difference - zero
+                value = indicator > 0
             self.relations[position] = Relation(
                 symbol=casadi.SX.sym(f"relation{position + 1}"),
-                value=_BINARY[op](lhs, rhs),
-                indicator=lhs - rhs if op in ("greater", "greater_equal")
-                else rhs - lhs, where=self.where)
+                value=value, indicator=indicator, where=self.where,
+                zero=zero)
         return self.relations[position].symbol
 
     def _is_time_event(self, body):
@@ -466,9 +483,10 @@ class _Expressions:
                 return self._derivatives[position]
             if role == "pre_state" and self.pre_is_state:
                 return self._symbols[position]
-            if role == "pre_discrete_value" and position in self.previous:
+            if role in ("pre_discrete_value", "pre_discrete_real") and \
+                    position in self.previous:
                 return self.previous[position]
-            if role == "discrete_value" and self.previous:
+            if role in _DISCRETE_ROLES and self.previous:
                 return self._symbols[position]
             if role == "condition" and self.initial is not None and \
                     self._conditions[position].get("node") == "initial":
@@ -516,6 +534,8 @@ class _Expressions:
             try:
                 subscripts = tuple(self._subscript(item) for item in
                                    self._subscripts[index])
+                if any(isinstance(k, casadi.SX) for k in subscripts):
+                    return _select(base, subscripts)
                 if not isinstance(base, np.ndarray) or \
                         len(subscripts) != base.ndim or \
                         any(not 0 <= k < n for k, n in zip(subscripts,
@@ -560,6 +580,8 @@ class _Expressions:
             return self._call(index, body)
         if kind == "comprehension":
             return self._comprehension(body)
+        if kind == "function_value":
+            return self._definition(body)
         raise FrontEndError(f"{self.where}: {_KINDS.get(kind, kind)} is not "
                             "supported by the FMU back end")
 
@@ -570,7 +592,11 @@ class _Expressions:
             return None
         kind, node = next(iter(item.items()))
         if kind == "index":
-            return _integer(self(node)) - 1
+            value = self(node)
+            if self._frames and not isinstance(value, np.ndarray) and \
+                    casadi.symvar(casadi.SX(value)):
+                return casadi.SX(value) - 1   # a function's loop index
+            return _integer(value) - 1
         span = next(iter(self._nodes[node].values()))
         start = _integer(self(span["start_expression"]))
         stop = _integer(self(span["stop_expression"]))
@@ -701,16 +727,8 @@ class _Expressions:
         saved, self._cache = self._cache, {}
         self._frames.append(frame)
         try:
-            for statement in function.get("statements") or []:
-                kind, step = next(iter(statement.items()))
-                if kind != "assignment":
-                    raise FrontEndError(
-                        f"{self.where}: {name}(): {kind} statements in a "
-                        "function are not supported by the FMU back end "
-                        "(assignments are)")
-                frame[("function_output", step["target"])] = \
-                    self(step["rhs"])
-                self._cache = {}
+            self._statements(name, function.get("statements") or [], frame,
+                             [0])
         finally:
             self._frames.pop()
             self._cache = saved
@@ -719,6 +737,116 @@ class _Expressions:
             raise FrontEndError(f"{self.where}: {name}(): output "
                                 f"{body['output'] + 1} is never assigned")
         return frame[key]
+
+    def _statements(self, name, statements, frame, counter):
+        """Run a function's statements as rumoca writes them, in single
+        assignment form: each assignment is a new definition of its
+        target (``function_value`` nodes read a definition by its
+        ordinal, numbered in the order the statements are written); an
+        ``if`` is an ``assignment_group`` of conditional values; a
+        ``while`` or ``for`` loop whose trips rumoca bounds is a ``for``
+        over a domain whose targets are carried from one trip to the next
+        (definitions at its start, the fold parameters, and after it, the
+        fold outputs). ``counter`` holds the next ordinal."""
+        for statement in statements:
+            kind, step = next(iter(statement.items()))
+            if kind in ("assignment", "assignment_group"):
+                items = [step] if kind == "assignment" else \
+                    step["assignments"]
+                values = [self(item["rhs"]) for item in items]
+                for item, value in zip(items, values):
+                    frame[("function_output", item["target"])] = value
+                    frame[("definition", counter[0])] = value
+                    counter[0] += 1
+                self._cache = {}
+            elif kind == "for" and not step.get("iteration_locals"):
+                self._loop(name, step, frame, counter)
+            else:
+                raise FrontEndError(
+                    f"{self.where}: {name}(): {kind} statements in a "
+                    "function are not supported by the FMU back end "
+                    "(assignments, if and for loops are)")
+
+    def _loop(self, name, step, frame, counter):
+        """A ``for`` statement of :meth:`_statements`."""
+        targets = step["targets"]
+        folded = counter[0]
+        first = folded + len(targets)
+        after = first + _definitions(step["statements"])
+        (values,) = self._ranges(step)
+        for value in values:
+            for k, target in enumerate(targets):
+                frame[("definition", folded + k)] = \
+                    frame.get(("function_output", target))
+            self._binders[(step["domain"], 0)] = value
+            self._cache = {}
+            counter[0] = first
+            try:
+                self._statements(name, step["statements"], frame, counter)
+            finally:
+                self._binders.pop((step["domain"], 0), None)
+        for k, target in enumerate(targets):
+            if not values:
+                frame[("definition", folded + k)] = \
+                    frame.get(("function_output", target))
+            frame[("definition", after + k)] = \
+                frame.get(("function_output", target))
+        counter[0] = after + len(targets)
+        self._cache = {}
+
+    def _definition(self, body):
+        """The value of a ``function_value`` node: a definition of the
+        function being inlined (:meth:`_statements`)."""
+        key = ("definition", body["definition_ordinal"])
+        if not self._frames or self._frames[-1].get(key) is None:
+            raise FrontEndError(f"{self.where}: a local of a function is "
+                                "used before it has a value")
+        return self._frames[-1][key]
+
+
+def _select(base, subscripts):
+    """``base[subscripts]`` where some subscripts are expressions (0-based,
+    known only when the model runs: a function's loop index that a
+    condition on parameters sets, as ``i := nrow`` of MSL's
+    ``Matrices.isEqual``): the element picked by a chain of if_else over
+    the positions they may take; an index outside the array is an
+    error, as in Modelica."""
+    if not isinstance(base, np.ndarray) or len(subscripts) != base.ndim or \
+            any(not isinstance(k, (int, casadi.SX)) for k in subscripts):
+        raise FrontEndError("an array subscript that is not a constant "
+                            "integer is allowed on an element of an array "
+                            "only (a[i, j])")
+    if base.size > 10000:
+        raise FrontEndError(f"an array subscript that is not a constant "
+                            f"integer on an array of {base.size} elements; "
+                            f"allowed: up to 10,000")
+    result = casadi.SX(np.nan)   # out of range: not a number
+    for position in np.ndindex(base.shape):
+        if any(isinstance(k, int) and k != p
+               for k, p in zip(subscripts, position)):
+            continue
+        here = casadi.SX(1)
+        for k, p in zip(subscripts, position):
+            if isinstance(k, casadi.SX):
+                here = casadi.logic_and(here, k == p)
+        result = casadi.if_else(here, base[position], result)
+    return result
+
+
+def _definitions(statements):
+    """How many definitions :meth:`_Expressions._statements` numbers in
+    ``statements``."""
+    count = 0
+    for statement in statements:
+        kind, step = next(iter(statement.items()))
+        if kind == "assignment":
+            count += 1
+        elif kind == "assignment_group":
+            count += len(step["assignments"])
+        elif kind == "for":
+            count += 2 * len(step["targets"]) + _definitions(
+                step["statements"])
+    return count
 
 
 def _conditional(args):
@@ -802,9 +930,17 @@ def _flatten(path, model_name, roots, use_cache=True, hybrid=False):
         key = cache.cache_key(path, model_name, roots, f"{rumoca.version()}"
                               f"+rewrite{REWRITE_VERSION}", stamp=stamp)
         flat = cache.load(key)
+        if flat is not None and "refused" in flat:
+            raise FrontEndError(flat["refused"] + " (refused before, "
+                                "from the flat-model cache)")
         if flat is None:
-            flat = _named_back(_flatten_with_rumoca(
-                path, model_name, roots, prepared=prepared), prepared)
+            try:
+                flat = _named_back(_flatten_with_rumoca(
+                    path, model_name, roots, prepared=prepared), prepared)
+            except FrontEndError as exc:
+                if _RUMOCA_OWN in str(exc):
+                    cache.store(key, {"refused": str(exc)})
+                raise
             cache.store(key, flat)
     return flat, prepared.rewrites
 
@@ -857,7 +993,59 @@ def _flatten_with_rumoca(path, model_name, roots, use_cache=True,
     if use_cache:
         message += explain_unbalanced(message, model_name, roots,
                                       load_flat_model)
+    if "function shape proof" in message:
+        message += _shape_proof_words(message, roots)
     raise FrontEndError(message)
+
+
+#: rumoca's refusal of a model in its DAE stage: it depends on the
+#: sources and rumoca's version only (kept by the flat-model cache).
+_RUMOCA_OWN = "todae failed"
+
+
+def _shape_proof_words(message, roots):
+    """What rumoca 0.10.2's "function shape proof: `q`: axis 1 requires
+    extent 2 but the call site proves 3" means, with the functions whose
+    array input ``q`` it confused: it takes functions of one short name
+    declared in different classes (MSL's ``position`` of
+    ``Sources.Move`` and of ``AngleToTorqueAdaptor.Move_w``) for one,
+    and the sizes of their array inputs then disagree
+    (docs/compiler.md)."""
+    import re
+    found = re.search(r"function shape proof`?: `?(\w+)`?", message)
+    if not found:
+        return ""
+    argument = found.group(1)
+    declared = re.compile(rf"\binput\s+Real\s+{argument}\s*\[")
+    function = re.compile(r"\bfunction\s+(\w+)")
+    texts = {}
+    for root in map(Path, roots):
+        files = [root] if root.is_file() else sorted(root.rglob("*.mo"))
+        for source in files:
+            try:
+                texts[source] = source.read_text(encoding="utf-8",
+                                                 errors="replace")
+            except OSError:
+                continue
+    names = set()
+    for text in texts.values():
+        for hit in declared.finditer(text):
+            owners = list(function.finditer(text, 0, hit.start()))
+            if owners:
+                names.add(owners[-1].group(1))
+    places = [f"{hit.group(1)}() at {source}:"
+              f"{text.count(chr(10), 0, hit.start()) + 1}"
+              for source, text in texts.items() for hit in function.finditer(
+                  text) if hit.group(1) in names]
+    words = (f"; rumoca 0.10.2 takes functions of one name declared in "
+             f"different classes for one function, and their array input "
+             f"{argument} then has two sizes (a minimal model is in "
+             f"docs/compiler.md); allowed: functions of distinct names")
+    if places:
+        words += (f"; the functions of these names: {', '.join(places[:6])}"
+                  + (f" and {len(places) - 6} more" if len(places) > 6
+                     else ""))
+    return words
 
 
 def check_source_text(path):
@@ -875,6 +1063,10 @@ def check_source_text(path):
             "Modelica requires (save the file as UTF-8)") from None
 
 
+#: rumoca's roles of Integer and Boolean variables (``discrete_value``)
+#: and of Real variables assigned in when-clauses (``discrete_real``,
+#: MSL's ``Pulse.T_start``): held between events, read with ``hybrid``.
+_DISCRETE_ROLES = ("discrete_value", "discrete_real")
 #: Roles of rumoca's flat variables that the back end compiles.
 _ROLES = ("state", "algebraic", "parameter", "constant", "input", "output")
 #: Sections of rumoca's flat model the back end does not compile (yet),
@@ -932,7 +1124,7 @@ def _check_supported(storage, model_name, where, hybrid=False):
     are read)."""
     for raw in storage["variables"]:
         place = where({"span": raw.get("declaration", {}).get("span")})
-        if hybrid and raw["role"] == "discrete_value" and not \
+        if hybrid and raw["role"] in _DISCRETE_ROLES and not \
                 storage["value_types"][raw["value_type"]].get("dimensions"):
             continue
         if raw["role"] not in _ROLES:
@@ -957,12 +1149,23 @@ def _check_supported(storage, model_name, where, hybrid=False):
                                 "not supported by the FMU back end")
     for key, construct in _REFUSED.items():
         items = storage.get(key) or []
-        if hybrid and key == "discrete_value_owners":
+        if hybrid and key in ("discrete_value_owners",
+                              "discrete_real_equations",
+                              "initial_discrete_values"):
             continue
+        if hybrid and key == "clocks" and all(
+                isinstance(c.get("kind"), dict) and
+                "lattice" in c["kind"].get("periodic", {})
+                for c in items):
+            continue   # sample(start, interval): _WhenConditions._sample
+        if hybrid and key == "clock_ownerships" and not any(
+                o.get("sampled") for o in items):
+            continue   # the variables assigned in when sample(...) clauses
         if key == "domains":   # for-expressions, array equations: compiled
             items = [d for k, d in enumerate(items)
                      if k not in _comprehension_domains(storage)
-                     and k not in _equation_domains(storage)]
+                     and k not in _equation_domains(storage)
+                     and k not in _function_domains(storage)]
         if items:
             place = where(items[0]) if isinstance(items[0], dict) else \
                 model_name
@@ -977,6 +1180,21 @@ def _comprehension_domains(storage):
     return {next(iter(node.values()))["domain"]
             for node in storage["expressions"]["nodes"]
             if "comprehension" in node}
+
+
+def _function_domains(storage):
+    """The domains of the loops of functions (rumoca writes a ``while``
+    whose trips it bounds as a ``for``), run when a call is inlined."""
+    found, pending = set(), [statement for function in
+                             storage.get("functions") or []
+                             for statement in function.get("statements")
+                             or []]
+    while pending:
+        kind, step = next(iter(pending.pop().items()))
+        if kind == "for":
+            found.add(step["domain"])
+            pending.extend(step.get("statements") or [])
+    return found
 
 
 def _equation_domains(storage):
@@ -1038,7 +1256,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
         convert.previous = {
             index: casadi.SX.sym(f"pre({raw['name']})")
             for index, raw in enumerate(storage["variables"])
-            if raw["role"] == "discrete_value"}
+            if raw["role"] in _DISCRETE_ROLES}
     types = _declared_types(roots or [path.parent], path)
     files = {entry[0]: entry[2] for entry in
              flat.get("source_map", {}).get("files", [])}
@@ -1055,7 +1273,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
             elements, values = np.array([elements], dtype=object), \
                 {k: np.array([v], dtype=object) for k, v in values.items()}
         quantity, display_unit = types.get(_type_of(raw, files), ("", ""))
-        role = "discrete" if raw["role"] == "discrete_value" else raw["role"]
+        role = "discrete" if raw["role"] in _DISCRETE_ROLES else raw["role"]
         if role == "parameter" and \
                 storage["value_types"][raw["value_type"]].get("scalar") \
                 != "real":
@@ -1107,7 +1325,7 @@ def load_flat_model(path, model_name, roots=(), cache=True, hybrid=False):
     used = {v.where.rsplit(":", 1)[0] for v in variables}
     rewrites = [r for r in rewrites
                 if (f"{r.file}:{r.line}", r.name) in declared or
-                (r.kind == "table" and r.file in used)]
+                (r.kind in ("table", "for") and r.file in used)]
     assertions = _assertions(storage, convert, where)
     whens = _whens(storage, convert, where, variables)
     discretes, discrete_relations = _discretes(
@@ -1290,12 +1508,80 @@ def _discretes(storage, convert, where, variables):
             start=float(casadi.evalf(start)), where=convert.where,
             boolean=storage["value_types"][storage["variables"][index][
                 "value_type"]].get("scalar") == "boolean"))
+    found += _discrete_reals(storage, convert, where, by_name, conditions)
+    initial = {item["target"]: item for item in
+               storage.get("initial_discrete_values") or []}
+    for discrete in found:
+        index = next((k for k, raw in enumerate(storage["variables"])
+                      if raw["name"] == discrete.name), None)
+        if index in initial:
+            # an initial algorithm's (or initial equation's) value: the
+            # discrete equation while initial() holds
+            convert.where = where(initial[index])
+            discrete.value = casadi.if_else(
+                convert.initial, convert(initial[index]["value"]),
+                discrete.value)
+    relations.update({r.symbol.name(): r.value
+                      for r in convert.relations.values()})
+    for discrete in found:
+        discrete.value = _with_values(discrete.value, relations)
     for condition in conditions.found:
         condition.value = _with_values(condition.value, relations)
     found += conditions.found
     extra = [r for k, r in sorted(convert.relations.items()) if k not in held]
     convert.relations = held
     return found, extra
+
+
+def _discrete_reals(storage, convert, where, by_name, conditions):
+    """The Real variables assigned in when-clauses (rumoca's
+    ``discrete_real_equations``, MSL ``Pulse``'s ``T_start = time``), as
+    :class:`Discrete` of their own, held like an Integer: ``v = if fires1
+    then v1 else ... else pre(v)``, each ``v_k`` solved from its
+    equation's residual (linear in ``v``)."""
+    clauses = {}
+    for equation in storage.get("discrete_real_equations") or []:
+        convert.where = where(equation)
+        residual = convert(equation["residual"])
+        targets = [index for index in convert.previous
+                   if storage["variables"][index]["role"] == "discrete_real"
+                   and casadi.depends_on(casadi.SX(residual),
+                                         convert._symbols[index])]
+        if len(targets) != 1:
+            raise FrontEndError(f"{convert.where}: this equation of discrete "
+                                "Real variables is not supported; allowed: "
+                                "one variable assigned in a when-clause "
+                                "(v = expression)")
+        symbol = convert._symbols[targets[0]]
+        slope = casadi.jacobian(residual, symbol)
+        if casadi.depends_on(slope, symbol) or casadi.is_equal(slope, 0):
+            raise FrontEndError(f"{convert.where}: this equation of a "
+                                "discrete Real variable is not linear in it; "
+                                "allowed: v = expression")
+        value = casadi.substitute(symbol - residual / slope, symbol,
+                                  casadi.SX(0))
+        clauses.setdefault(targets[0], []).append(
+            (conditions.fires(equation.get("activation"), convert.where),
+             value, convert.where))
+    found = []
+    for index, branches in clauses.items():
+        variable = by_name[storage["variables"][index]["name"]]
+        value = convert.previous[index]
+        for fires, branch, _ in reversed(branches):
+            value = casadi.if_else(fires, branch, value)
+        start = variable.start if variable.start is not None else 0.0
+        try:
+            start = float(casadi.evalf(casadi.SX(start)))
+        except RuntimeError:
+            raise FrontEndError(f"{variable.where}: {variable.name}: a start "
+                                "value that is not a constant expression is "
+                                "not supported (discrete Real variables)"
+                                ) from None
+        found.append(Discrete(
+            name=variable.name, symbol=variable.symbol,
+            previous=convert.previous[index], value=value, start=start,
+            where=branches[0][2], boolean=False, real=True))
+    return found
 
 
 class _WhenConditions:
@@ -1324,18 +1610,62 @@ class _WhenConditions:
         trigger = when["trigger"]
         if trigger not in self._by_trigger:
             name = f"'when {len(self.found) + 1}'"
+            node = self._storage["conditions"][trigger]["node"]
+            if isinstance(node, dict) and set(node) == {"clock"}:
+                value = self._sample(node["clock"], trigger, place)
+            else:
+                value = _condition(self._storage, self._convert, trigger,
+                                   place)
             self.found.append(Discrete(
                 name=name, symbol=casadi.SX.sym(name),
                 previous=casadi.SX.sym(f"pre({name})"),
-                value=_condition(self._storage, self._convert, trigger,
-                                 place), start=0.0,
-                where=place, boolean=True))
+                value=value, start=0.0, where=place, boolean=True))
             self._by_trigger[trigger] = self.found[-1]
         condition = self._by_trigger[trigger]
         return casadi.logic_and(casadi.logic_not(self._convert.initial),
                                 casadi.logic_and(condition.symbol,
                                                  casadi.logic_not(
                                                      condition.previous)))
+
+
+    def _sample(self, clock, trigger, place):
+        """The condition of ``when sample(start, interval)`` (rumoca's
+        periodic clock of phase ``start`` and period ``interval``, both
+        numbers): a relation ``time >= start + pre(k) interval`` that
+        becomes true at each tick, where ``k`` counts the ticks (an
+        Integer of its own, ``'sample N'``, one more at each tick after
+        the initialisation): a time event, located by its indicator."""
+        kind = (self._storage.get("clocks") or [{}])[clock].get("kind", {})
+        lattice = kind.get("periodic", {}).get("lattice") if isinstance(
+            kind, dict) else None
+        if not lattice or kind["periodic"].get("anchor") != "absolute":
+            raise FrontEndError(f"{place}: this clock ({kind}) is not "
+                                "supported; allowed: when sample(start, "
+                                "interval) with numbers")
+        period = lattice["period"]["num"] / lattice["period"]["den"]
+        phase = lattice["phase"]["num"] / lattice["phase"]["den"]
+        if period <= 0:
+            raise FrontEndError(f"{place}: sample(): an interval of "
+                                f"{period} s; allowed: an interval > 0")
+        name = f"'sample {clock + 1}'"
+        ticks = Discrete(name=name, symbol=casadi.SX.sym(name),
+                         previous=casadi.SX.sym(f"pre({name})"), value=None,
+                         start=0.0, where=place)
+        convert = self._convert
+        position = len(self._storage.get("relations") or []) + \
+            len(self._storage.get("conditions") or []) + clock
+        zero = casadi.SX.sym(f"zero{position + 1}")
+        indicator = convert._time - (phase + ticks.previous * period) + zero
+        relation = Relation(symbol=casadi.SX.sym(f"relation{position + 1}"),
+                            value=indicator >= 0, indicator=indicator,
+                            where=place, zero=zero)
+        convert.relations[position] = relation
+        ticks.value = casadi.if_else(
+            casadi.logic_and(casadi.logic_not(convert.initial),
+                             relation.symbol),
+            ticks.previous + 1, ticks.previous)
+        self.found.append(ticks)
+        return relation.symbol
 
 
 def _condition(storage, convert, index, place):
@@ -1379,6 +1709,12 @@ def _when_relation(storage, convert, trigger, place):
     values, and whose indicator is 1: it changes only where the relations
     and discrete variables in it do, at their events."""
     node = storage["conditions"][trigger]["node"]
+    if isinstance(node, dict) and set(node) == {"clock"}:
+        raise FrontEndError(f"{place}: reinit in a when sample(...) clause: "
+                            "clocked equations are not supported; allowed: "
+                            "when sample(start, interval) assigning "
+                            "Integer, Boolean or Real variables, or reinit "
+                            "in a when-clause of relations")
     if isinstance(node, dict) and set(node) == {"relation"}:
         expression = storage["relations"][node["relation"]]["relation"][
             "expression"]
@@ -1472,6 +1808,9 @@ def _whens(storage, convert, where, variables):
                                 "the FMU back end; allowed: when-clauses "
                                 "with reinit on relations and Boolean "
                                 "expressions")
+        node = conditions[action["trigger"]]["node"]
+        if isinstance(node, dict) and set(node) == {"clock"}:
+            convert.where = where(conditions[action["trigger"]])   # sample
         relation = _when_relation(storage, convert, action["trigger"],
                                   convert.where)
         convert.pre_is_state = True

@@ -93,7 +93,8 @@ _HYBRID = tuple(f"({what})" for what in (*list(_DISCRETE.values())[:2],
                                           "a discrete variable")) + (
     "outside a when-clause's reinit is not supported",
     "initialisation) is not supported", "edge() is not supported",
-    "change() is not supported")
+    "change() is not supported",
+    "sample(): clocked equations are not supported")
 _SECTION = re.compile(r"\b(?:initial\s+)?(?:equation|algorithm)\b")
 _DECLARATION = re.compile(
     r"^\s*((?:(?:" + "|".join(_PREFIXES) + r")\s+)*)"

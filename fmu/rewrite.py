@@ -40,11 +40,11 @@ from infra.errors import JudderError
 from infra.files import atomic_write
 
 __all__ = ["Rewrite", "Prepared", "prepare", "rewrite_text", "inline_tables",
-           "inlinable_table",
+           "inlinable_table", "unroll_reductions",
            "REWRITE_VERSION"]
 
 #: Changes with the rule: the flat-model cache and the copies are keyed by it.
-REWRITE_VERSION = "4"
+REWRITE_VERSION = "6"
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+)
@@ -106,6 +106,12 @@ class Rewrite:
         Line of its equation (its class's ``end`` or final annotation):
         the front end tells the equation apart by it, to drop it where a
         modifier sets the parameter (``d(p = 0.3)``).
+    kind : str
+        ``"binding"`` (above), ``"table"`` (a table object left out,
+        :func:`inline_tables`: ``name`` the object, ``binding`` its
+        constructor) or ``"for"`` (a for-equation unrolled,
+        :func:`unroll_reductions`: ``name`` its iterator, ``binding`` its
+        range, ``at`` the number of copies).
     """
     file: str
     line: int
@@ -116,6 +122,11 @@ class Rewrite:
     kind: str = "binding"
 
     def __str__(self):
+        if self.kind == "for":
+            return f"{self.file}:{self.line}: for {self.name} in " \
+                f"{self.binding}: a for-equation with a reduction in its " \
+                f"body, unrolled into {self.at} copies of it (rumoca " \
+                f"0.10.2 panics on a reduction inside a for-equation)"
         if self.kind == "table":
             return f"{self.file}:{self.line}: {self.name} = " \
                 f"{self.binding}: a table given in the model, its " \
@@ -839,12 +850,16 @@ def _prepare(roots, path, scratch):
         changed = {}
         for source, text in mine.items():
             inlined, tables = inline_tables(text, objects)
-            new, found = rewrite_text(inlined, reals, objects)
-            if found or tables:
+            unrolled, loops = unroll_reductions(inlined)
+            new, found = rewrite_text(unrolled, reals, objects)
+            if found or tables or loops:
                 changed[source] = new
                 rewrites += [Rewrite(str(source), line, name, binding, False,
                                      0, "table")
                              for line, name, binding in tables]
+                rewrites += [Rewrite(str(source), line, name, span, False,
+                                     copies, "for")
+                             for line, name, span, copies in loops]
                 rewrites += [Rewrite(str(source), *item) for item in found]
         if not changed:
             new_roots.append(root)
@@ -886,3 +901,245 @@ def _copy(base, root, texts, changed, digest, scratch):
     done.write_text("")
     os.utime(copy)
     return copy
+
+
+#: At most this many copies of a for-equation's body are written.
+UNROLL_LIMIT = 256
+
+
+def _sections(tokens):
+    """For each token, the section of its class it stands in:
+    ``"equation"``, ``"algorithm"`` or ``"elements"`` (read from the
+    section keywords outside brackets)."""
+    sections, section, depth = [], "elements", 0
+    for k, token in enumerate(tokens):
+        if token[0] == "op" and token[1] in "([{":
+            depth += 1
+        elif token[0] == "op" and token[1] in ")]}":
+            depth -= 1
+        elif depth == 0 and token[0] == "ident":
+            if token[1] in ("equation", "algorithm"):
+                section = token[1]
+            elif token[1] in ("public", "protected") or (
+                    token[1] in _CLASSES and k + 1 < len(tokens) and
+                    tokens[k + 1][0] == "ident" and
+                    (k == 0 or tokens[k - 1][1] != "end")):
+                section = "elements"
+        sections.append(section)
+    return sections
+
+
+def _declared_dimensions(tokens, first, last, name):
+    """The dimensions of ``name`` as declared in the class spanning
+    ``tokens[first:last]`` (``Real y[1, 4]``: ``[1, 4]``; None for a
+    dimension that is not an integer literal), or None where no
+    ``TYPE name[...]`` is seen."""
+    for k in range(first + 1, last - 1):
+        if tokens[k][0] != "ident" or tokens[k][1] != name or \
+                tokens[k + 1][1] != "[":
+            continue
+        before = tokens[k - 1]
+        if before[0] != "ident" or before[1] in _KEYWORDS | _PREFIXES | {
+                "end", "if", "elseif", "when", "elsewhen", "initial"}:
+            continue   # a use of name, not its declaration
+        shut = _closing(tokens, k + 1)
+        return [int(_one_line(part)) if re.fullmatch(r"\d+", _one_line(part))
+                else None for part in _split(tokens[k + 2:shut], ",")]
+    return None
+
+
+def _integer(expression, tokens, first, last):
+    """The value of ``expression`` (tokens): integer literals and
+    ``size(x, d)`` of an array the class (``tokens[first:last]``)
+    declares with literal dimensions, joined by ``+``, ``-`` and ``*``;
+    None for anything else."""
+    terms, signs, sign = [], [], 1
+    for part in _split_terms(expression):
+        if part in ("+", "-"):
+            sign = 1 if part == "+" else -1
+            continue
+        product = 1
+        for factor in _split(part, "*"):
+            value = _factor(factor, tokens, first, last)
+            if value is None:
+                return None
+            product *= value
+        terms.append(product)
+        signs.append(sign)
+        sign = 1
+    if not terms:
+        return None
+    return sum(s * t for s, t in zip(signs, terms))
+
+
+def _split_terms(expression):
+    """``expression`` split into terms and the ``+``/``-`` between them
+    (outside brackets)."""
+    out, current, depth = [], [], 0
+    for token in expression:
+        if token[0] == "op" and token[1] in "([{":
+            depth += 1
+        elif token[0] == "op" and token[1] in ")]}":
+            depth -= 1
+        if depth == 0 and token[0] == "op" and token[1] in "+-":
+            if current:
+                out.append(current)
+            out.append(token[1])
+            current = []
+        else:
+            current.append(token)
+    if current:
+        out.append(current)
+    return out
+
+
+def _factor(factor, tokens, first, last):
+    """The value of one factor of :func:`_integer`, or None."""
+    text = _one_line(factor)
+    if re.fullmatch(r"\d+", text):
+        return int(text)
+    if len(factor) > 2 and factor[0][1] == "size" and factor[1][1] == "(" \
+            and _closing(factor, 1) == len(factor) - 1:
+        arguments = _split(factor[2:-1], ",")
+        if len(arguments) != 2 or len(arguments[0]) != 1 or \
+                not re.fullmatch(r"\d+", _one_line(arguments[1])):
+            return None
+        dims = _declared_dimensions(tokens, first, last, arguments[0][0][1])
+        d = int(_one_line(arguments[1]))
+        if dims and 1 <= d <= len(dims):
+            return dims[d - 1]
+    return None
+
+
+def _range(expression, tokens, first, last):
+    """The integers of a for-equation's range ``a:b`` or ``a:s:b`` whose
+    bounds :func:`_integer` reads, or None."""
+    parts = _split(expression, ":")
+    if len(parts) not in (2, 3):
+        return None
+    values = [_integer(p, tokens, first, last) for p in parts]
+    if any(v is None for v in values):
+        return None
+    start, stop = values[0], values[-1]
+    step = values[1] if len(values) == 3 else 1
+    if step == 0:
+        return None
+    return list(range(start, stop + (1 if step > 0 else -1), step))
+
+
+def unroll_reductions(text):
+    """``(text, [(line, iterator, range, copies)])``: each for-equation
+    whose body holds a reduction or comprehension with an iterator
+    (``sum(t[k, i]*x for k in 1:3)``) written as one copy of its body per
+    value of its iterator, the iterator replaced by the value, all on
+    the line of its ``for`` and every later line kept at its number.
+    rumoca 0.10.2 panics on such a for-equation ("analysis proves the
+    exact comprehension occurrence"), MSL's ``LossyGear`` among them once
+    its table lookups are written in Modelica (:func:`inline_tables`);
+    the unrolled equations flatten. A range is unrolled where it is
+    known from the source: integer literals and ``size(x, d)`` of an
+    array the class declares with literal dimensions (``Real
+    interpolation_result[1, 4]``), at most :data:`UNROLL_LIMIT` values;
+    other for-equations are left as written."""
+    found = []
+    for _ in range(8):   # nested for-equations: the outer one first
+        text, more = _unroll_once(text)
+        found += more
+        if not more:
+            break
+    return text, found
+
+
+def _unroll_once(text):
+    """One pass of :func:`unroll_reductions` over the outermost
+    for-equations."""
+    if "for" not in text:
+        return text, []
+    tokens = _tokens(text)
+    sections = _sections(tokens)
+    ranges = _class_ranges(tokens)
+    edits, found, depth, k = [], [], 0, 0
+    while k < len(tokens):
+        token = tokens[k]
+        if token[0] == "op" and token[1] in "([{":
+            depth += 1
+        elif token[0] == "op" and token[1] in ")]}":
+            depth -= 1
+        if not (depth == 0 and token[1] == "for" and
+                token[0] == "ident" and sections[k] == "equation" and
+                tokens[k - 1][1] != "end"):
+            k += 1
+            continue
+        loop = _loop_end(tokens, k)
+        if loop is None:
+            k += 1
+            continue
+        body_start, stop = loop   # tokens of the body; 'end for ;' after
+        head = tokens[k + 1:body_start - 1]   # i in a:b
+        body = tokens[body_start:stop]
+        if len(head) < 3 or head[0][0] != "ident" or head[1][1] != "in" or \
+                not _has_iterator(body):
+            k = stop + 3
+            continue
+        name = head[0][1]
+        inside = [r for r in ranges if r[0] < k < r[1]]
+        values = _range(head[2:], tokens, *max(inside)) if inside else None
+        if values is None or len(values) > UNROLL_LIMIT or \
+                _shadows(body, name):
+            k = stop + 3
+            continue
+        copies = " ".join(_one_line([
+            (t[0], f"({value})" if t[0] == "ident" and t[1] == name and
+             (j == 0 or body[j - 1][1] != ".") and
+             (j + 1 == len(body) or body[j + 1][1] != "=")   # f(i = 1)
+             else t[1], t[2], t[3])
+            for j, t in enumerate(body)]) for value in values)
+        begin, end = token[2], tokens[stop + 2][3]
+        lines = text.count("\n", begin, end)
+        edits.append((begin, end, copies + "\n" * lines))
+        found.append((text.count("\n", 0, begin) + 1, name,
+                      _one_line(head[2:]), len(values)))
+        k = stop + 3
+    return _apply(text, edits), found
+
+
+def _loop_end(tokens, k):
+    """``(first token of the body, index of its 'end')`` of the
+    for-equation at ``tokens[k]``, or None."""
+    depth, j = 0, k + 1
+    while j < len(tokens) and not (depth == 0 and tokens[j][1] == "loop"):
+        if tokens[j][0] == "op" and tokens[j][1] in "([{":
+            depth += 1
+        elif tokens[j][0] == "op" and tokens[j][1] in ")]}":
+            depth -= 1
+        j += 1
+    body, nested = j + 1, 0
+    for j in range(body, len(tokens) - 2):
+        if tokens[j][1] == "loop" and tokens[j][0] == "ident":
+            nested += 1   # a nested for-equation (or while) opens
+        elif tokens[j][1] == "end" and tokens[j + 1][1] in ("for", "while") \
+                and tokens[j + 2][1] == ";":
+            if nested == 0:
+                return body, j
+            nested -= 1
+    return None
+
+
+def _has_iterator(body):
+    """Whether ``body`` holds a ``for`` inside brackets (a reduction or
+    comprehension with an iterator)."""
+    depth = 0
+    for token in body:
+        if token[0] == "op" and token[1] in "([{":
+            depth += 1
+        elif token[0] == "op" and token[1] in ")]}":
+            depth -= 1
+        elif depth > 0 and token[1] == "for" and token[0] == "ident":
+            return True
+    return False
+
+
+def _shadows(body, name):
+    """Whether an iterator inside ``body`` has the name ``name``."""
+    return any(t[1] == "for" and j + 1 < len(body) and
+               body[j + 1][1] == name for j, t in enumerate(body))

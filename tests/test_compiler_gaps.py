@@ -559,3 +559,270 @@ def test_a_modifier_sets_a_rewritten_parameter(tmp_path, monkeypatch,
         "p": "parameter", "d.p": "parameter",
         "c.p": "calculatedParameter", "c.q": "parameter",
         "e.p": "parameter", "e.q": "calculatedParameter"}
+
+
+# -- 7. a reduction inside a for-equation (rumoca 0.10.2 panics) ---------
+# MSL's LossyGear once its table lookups are written in Modelica: the
+# for-equation is unrolled in the cached copy before rumoca reads it
+
+_FOR_REDUCTION = """model ForReduction
+  parameter Real t[3, 2] = [0, 1; 1, 2; 2, 4];
+  Real y[2];
+  Real x(start = 0, fixed = true);
+equation
+  der(x) = 1;
+  for i in 1:size(y, 1) loop
+    y[i] = sum(t[k, i]*x for k in 1:3);
+  end for;
+end ForReduction;
+"""
+
+
+def test_a_reduction_inside_a_for_equation_builds(tmp_path):
+    # was: "rumoca failed ... (PanicException: analysis proves the exact
+    # comprehension occurrence)"
+    path = _model(tmp_path, "ForReduction", _FOR_REDUCTION)
+    fmu = build_fmu(path, "ForReduction", tmp_path / "ForReduction.fmu",
+                    roots=[path.parent])
+    loops = [r for r in fmu.rewrites if r.kind == "for"]
+    assert [(r.line, r.name, r.binding, r.at) for r in loops] == [
+        (7, "i", "1:size(y, 1)", 2)]
+    assert "unrolled into 2 copies" in str(loops[0])
+    assert str(path) in str(loops[0])   # named in the user's file
+    result = _simulate(fmu.path, 1.0, ["x", "y[1]", "y[2]"])
+    # y[i] = x (t[1,i] + t[2,i] + t[3,i]): 3 x and 7 x, x = t
+    assert_allclose(result["y[1]"], 3 * result["time"], atol=1e-9)
+    assert_allclose(result["y[2]"], 7 * result["time"], atol=1e-9)
+
+
+def test_a_for_equation_of_unknown_range_is_left_as_written():
+    from fmu.rewrite import unroll_reductions
+    text = _FOR_REDUCTION.replace("size(y, 1)", "n")
+    assert unroll_reductions(text) == (text, [])
+    # without a reduction in its body it is rumoca's to read
+    plain = _FOR_REDUCTION.replace("sum(t[k, i]*x for k in 1:3)", "x")
+    assert unroll_reductions(plain) == (plain, [])
+
+
+# -- 8. functions with while loops and ifs (MSL Matrices.isEqual) ---------
+
+_WHILE_FUNCTION = """package Loops
+  function allClose "whether a and b agree within eps (MSL isEqual's loop)"
+    input Real a[:, :];
+    input Real b[:, :];
+    input Real eps = 0;
+    output Boolean result;
+  protected
+    Integer i = 1;
+    Integer j;
+  algorithm
+    result := false;
+    if size(b, 1) == size(a, 1) and size(b, 2) == size(a, 2) then
+      result := true;
+      while i <= size(a, 1) loop
+        j := 1;
+        while j <= size(a, 2) loop
+          if abs(a[i, j] - b[i, j]) > eps then
+            result := false;
+            i := size(a, 1);
+            j := size(a, 2);
+          end if;
+          j := j + 1;
+        end while;
+        i := i + 1;
+      end while;
+    end if;
+  end allClose;
+
+  model UseIt
+    parameter Real table[1, 3] = [0, 1, 1];
+    parameter Real other[1, 3] = [0, 1, 2];
+    Boolean same;
+    Boolean different;
+    Real x(start = 1, fixed = true);
+  equation
+    same = allClose(table, [0, 1, 1], 1e-12);
+    different = allClose(other, [0, 1, 1], 1e-12);
+    der(x) = if same and not different then -x else x;
+  end UseIt;
+end Loops;
+"""
+
+
+def test_a_function_with_while_loops_and_ifs_builds(tmp_path):
+    # was: "for-equations and array equations are not supported" (rumoca
+    # writes the bounded while as a for loop), then "an array subscript
+    # that is not a constant integer" (i := nrow inside the if)
+    folder = tmp_path / "lib"
+    (folder / "Loops").mkdir(parents=True)
+    (folder / "Loops" / "package.mo").write_text(_WHILE_FUNCTION)
+    fmu = build_fmu(folder / "Loops" / "package.mo", "Loops.UseIt",
+                    tmp_path / "UseIt.fmu", roots=[folder]).path
+    result = _simulate(fmu, 1.0, ["x", "same", "different"])
+    assert (result["same"] == 1).all() and (result["different"] == 0).all()
+    assert_allclose(result["x"], np.exp(-result["time"]), rtol=1e-7)
+
+
+# -- 9. Real variables assigned in when-clauses, initial algorithms ------
+# MSL 4's Blocks.Sources.Pulse: T_start = time at a time event, count
+# from an initial algorithm
+
+_PULSE = """model Pulses "MSL 4's Pulse, its equations"
+  parameter Real width = 0.4 "s";
+  parameter Real period = 1 "s";
+  parameter Real startTime = 0.3 "s";
+  discrete Real T_start "start of the current period";
+  Integer count "periods";
+  Real y;
+  Real x(start = 0, fixed = true) "integral of y";
+initial algorithm
+  count := integer((time - startTime)/period);
+  T_start := startTime + count*period;
+equation
+  when time >= (pre(count) + 1)*period + startTime then
+    count = pre(count) + 1;
+    T_start = time;
+  end when;
+  y = if time < startTime then 0 else if time < T_start + width then 1 else 0;
+  der(x) = y;
+end Pulses;
+"""
+
+
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_a_real_assigned_in_a_when_clause_and_an_initial_algorithm(
+        tmp_path, fmi_type):
+    # was: "T_start: Integer, Boolean and discrete variables are not
+    # supported by the FMU back end"
+    path = _model(tmp_path, "Pulses", _PULSE)
+    fmu = build_fmu(path, "Pulses", tmp_path / "Pulses.fmu").path
+    result = fmpy.simulate_fmu(str(fmu), stop_time=2.5, output=[
+        "x", "y", "T_start", "count"], relative_tolerance=1e-10,
+        fmi_type=fmi_type, output_interval=0.01)
+    t = result["time"]
+    phase = (t - 0.3) % 1.0
+    # a point on an edge (an event's time, listed before and after it)
+    # may show either value
+    edges = (np.minimum(phase, 1.0 - phase) < 1e-6) | \
+        (np.abs(phase - 0.4) < 1e-6)
+    # count = integer((0 - 0.3)/1) = -1 at the start, T_start = -0.7;
+    # then each period starts at 0.3 + k
+    count = np.where(t < 0.3, -1, np.floor(t - 0.3 + 1e-9))
+    assert_allclose(result["count"][~edges], count[~edges])
+    assert_allclose(result["T_start"][~edges],
+                    np.where(count < 0, -0.7, 0.3 + count)[~edges])
+    # the pulse: on for 0.4 s from 0.3, 1.3, 2.3; its integral closed form
+    on = (t >= 0.3) & (phase < 0.4)
+    assert_allclose(result["y"][~edges], on[~edges].astype(float))
+    full, part = np.divmod(np.maximum(t - 0.3, 0.0), 1.0)
+    assert_allclose(result["x"], 0.4 * full + np.minimum(part, 0.4),
+                    atol=1e-7)
+    described = {v.name: v.description for v in
+                 fmpy.read_model_description(str(fmu)).modelVariables}
+    assert described["T_start"].endswith("(discrete Real)")
+    assert described["count"].endswith("(Integer)")
+
+
+# -- 10. rumoca's "function shape proof" (MSL GenerationOfFMUs) -----------
+# rumoca 0.10.2 takes two functions of one name declared in different
+# classes for one (MSL's position() of Sources.Move and of
+# AngleToTorqueAdaptor.Move_w); not worked round: refused in words, and
+# from the flat-model cache at once the next time
+
+_SHAPES = """package Shapes
+  model A
+    function position
+      input Real q[2];
+      input Real d;
+      output Real y;
+    algorithm
+      y := q[1];
+    end position;
+    Real u[2] = {time, 1};
+    Real y;
+  equation
+    y = position(u, time);
+  end A;
+  model B
+    function position
+      input Real q[3];
+      input Real d;
+      output Real y;
+    algorithm
+      y := q[1];
+    end position;
+    Real u[3] = {time, 1, 0};
+    Real y;
+  equation
+    y = position(u, time);
+  end B;
+  model Both
+    A a;
+    B b;
+  end Both;
+end Shapes;
+"""
+
+
+def test_functions_of_one_name_are_refused_naming_them(tmp_path,
+                                                       monkeypatch):
+    # was: "todae failed: ... unsupported Flat semantic owner `function
+    # shape proof`: `q`: ..." and nothing more, after rumoca's 37 s on
+    # GenerationOfFMUs, every time
+    import time
+    from fmu.errors import FrontEndError
+    monkeypatch.setenv("JUDDER_FMU_CACHE", str(tmp_path / "cache"))
+    folder = tmp_path / "lib"
+    (folder / "Shapes").mkdir(parents=True)
+    path = folder / "Shapes" / "package.mo"
+    path.write_text(_SHAPES)
+    messages = []
+    for _ in range(2):
+        start = time.perf_counter()
+        with pytest.raises(FrontEndError) as refused:
+            build_fmu(path, "Shapes.Both", tmp_path / "Both.fmu",
+                      roots=[folder])
+        messages.append((str(refused.value), time.perf_counter() - start))
+    for message, _ in messages:
+        assert "functions of one name declared in different classes" in \
+            message
+        assert f"position() at {path}:3" in message
+        assert f"position() at {path}:16" in message
+        assert "docs/compiler.md" in message
+    assert "from the flat-model cache" in messages[1][0]
+    assert messages[1][1] < 5.0
+
+
+# -- 11. when sample(start, interval) --------------------------------------
+
+_SAMPLED = """model Sampled
+  Integer n(start = 0, fixed = true) "ticks seen";
+  discrete Real held(start = -1, fixed = true) "x at the last tick";
+  Real x(start = 0, fixed = true);
+equation
+  der(x) = 2;
+  when sample(0.05, 0.1) then
+    n = pre(n) + 1;
+    held = x;
+  end when;
+end Sampled;
+"""
+
+
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_when_sample_fires_at_each_tick(tmp_path, fmi_type):
+    # was: "sample(): clocked equations are not supported"
+    path = _model(tmp_path, "Sampled", _SAMPLED)
+    fmu = build_fmu(path, "Sampled", tmp_path / "Sampled.fmu").path
+    result = fmpy.simulate_fmu(str(fmu), stop_time=0.5, output=[
+        "n", "held", "x"], relative_tolerance=1e-10, fmi_type=fmi_type,
+        output_interval=0.01)
+    t = result["time"]
+    # ticks at 0.05 + 0.1 k (time events): n of them so far, held = x =
+    # 2 t at the last one; points within 1e-6 s of a tick may show either
+    ticks = np.floor((t - 0.05) / 0.1 + 1e-9) + 1
+    away = np.abs((t - 0.05) / 0.1 - np.round((t - 0.05) / 0.1)) > 1e-5
+    assert_allclose(result["n"][away], np.maximum(ticks, 0)[away])
+    last = 0.05 + 0.1 * (ticks - 1)
+    assert_allclose(result["held"][away],
+                    np.where(ticks > 0, 2 * last, -1)[away], atol=1e-9)

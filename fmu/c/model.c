@@ -18,6 +18,8 @@ static const int assert_error[MODEL_NA + 1] = MODEL_ASSERT_ERROR;
 static const char *const assert_messages[MODEL_NA + 1] =
     MODEL_ASSERT_MESSAGES;
 
+static void at_zero(Model *m, const double *before, const double *r);
+
 typedef int (*WorkSizes)(casadi_int *, casadi_int *, casadi_int *, casadi_int *);
 
 int model_init(Model *m) {
@@ -84,16 +86,37 @@ static int update_discretes(Model *m) {
 
 /* Rounds of the relations and the discrete equations at the present t,
  * x and pre(), at most `rounds`; 1 if they reach values that one more
- * round leaves unchanged */
+ * round leaves unchanged. Where the discrete values hold and only
+ * relations on their zero within rounding disagree with them (their
+ * indicators within MODEL_ZERO_SCALE of zero, relative to 1 + the
+ * largest), those relations' bands grow to cover their indicators, as
+ * in at_zero, and the rounds go on: each then takes the value its
+ * operator has at zero */
 static int settle(Model *m, int rounds) {
-    double r[MODEL_NR + 1];
-    int k, j, changed = 1;
+    double r[MODEL_NR + 1], z[MODEL_NR + 1], largest;
+    int k, j, changed = 1, discrete, rounding;
     for (j = 0; j < rounds && changed; j++) {
         relations_at(m, m->time, m->x, m->p + P_RELATIONS);
-        changed = update_discretes(m);
+        discrete = update_discretes(m);
         relations_at(m, m->time, m->x, r);
+        changed = discrete;
         for (k = 0; k < MODEL_NR; k++)
             if (r[k] != m->p[P_RELATIONS + k]) changed = 1;
+        if (!changed || discrete) continue;
+        model_indicators(m, z);
+        largest = 0.0;
+        for (k = 0; k < MODEL_NR; k++)
+            if (fabs(z[k]) > largest) largest = fabs(z[k]);
+        rounding = 1;
+        for (k = 0; k < MODEL_NR; k++)
+            if (r[k] != m->p[P_RELATIONS + k] &&
+                    fabs(z[k]) > MODEL_ZERO_SCALE * (1.0 + largest))
+                rounding = 0;
+        if (!rounding) continue;
+        for (k = 0; k < MODEL_NR; k++)
+            if (r[k] != m->p[P_RELATIONS + k])
+                m->p[P_ZEROS + k] += MODEL_ZERO_WIDEN * fabs(z[k]);
+        m->stale = 1;
     }
     return !changed;
 }
@@ -114,20 +137,29 @@ static int bits_set(unsigned long v) {
  * system); 1 if one settles (its discrete values held), 0 if none does
  * (they are restored). The relations held are restored either way, so
  * that the event iteration sees those that changed (and fires their
- * when-clauses) in its next round */
-static int search_mixed(Model *m) {
+ * when-clauses) in its next round. The Booleans searched are first
+ * those the rounds of this instant changed (a model of many friction
+ * elements, MSL's HeatLosses, has 21 Booleans), then all of them (the
+ * stuck state of LossyGearDemo3 needs `locked`, which the cycle of
+ * startForward and startBackward never changes) */
+static int search_among(Model *m, int only_moved) {
     double reached[MODEL_ND + 1], relations[MODEL_NR + 1];
+    double zeros[MODEL_NR + 1];
     int position[MODEL_ND + 1];
     int nb = 0, k, flips;
     unsigned long seed;
-    for (k = 0; k < MODEL_ND; k++) if (discrete_boolean[k]) position[nb++] = k;
+    for (k = 0; k < MODEL_ND; k++)
+        if (discrete_boolean[k] && (m->moved[k] || !only_moved))
+            position[nb++] = k;
     if (nb == 0 || nb > MODEL_SEARCH_BOOLEANS) return 0;
     memcpy(reached, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     memcpy(relations, m->p + P_RELATIONS, sizeof(double) * MODEL_NR);
+    memcpy(zeros, m->p + P_ZEROS, sizeof(double) * MODEL_NR);
     for (flips = 0; flips <= nb; flips++)
         for (seed = 0; seed < (1UL << nb); seed++) {
             if (bits_set(seed) != flips) continue;
             memcpy(m->p + P_DISCRETES, reached, sizeof(double) * MODEL_ND);
+            memcpy(m->p + P_ZEROS, zeros, sizeof(double) * MODEL_NR);
             for (k = 0; k < nb; k++)
                 if (seed >> k & 1)
                     m->p[P_DISCRETES + position[k]] =
@@ -141,11 +173,17 @@ static int search_mixed(Model *m) {
         }
     memcpy(m->p + P_DISCRETES, reached, sizeof(double) * MODEL_ND);
     memcpy(m->p + P_RELATIONS, relations, sizeof(double) * MODEL_NR);
+    memcpy(m->p + P_ZEROS, zeros, sizeof(double) * MODEL_NR);
     m->stale = 1;
     return 0;
 }
 
+static int search_mixed(Model *m) {
+    return search_among(m, 1) || search_among(m, 0);
+}
+
 int model_initialize(Model *m) {
+    double before[MODEL_NR + 1], after[MODEL_NR + 1];
     int k, again = 0;
     m->arg[0] = m->p;
     m->res[0] = m->x;
@@ -157,8 +195,16 @@ int model_initialize(Model *m) {
     memcpy(m->p + P_DISCRETES, parameter_defaults + P_DISCRETES,
            sizeof(double) * 2 * MODEL_ND);
     again = 1;
-    for (k = 0; k < MODEL_MAX_EVENT_ITERATIONS && again; k++)
+    memset(m->flips, 0, sizeof(m->flips));
+    memset(m->swing, 0, sizeof(m->swing));
+    relations_at(m, m->time, m->x, before);
+    for (k = 0; k < MODEL_MAX_EVENT_ITERATIONS && again; k++) {
         again = update_discretes(m);
+        relations_at(m, m->time, m->x, after);
+        at_zero(m, before, after);
+        relations_at(m, m->time, m->x, before);
+    }
+    memset(m->flips, 0, sizeof(m->flips));
     return again;
 }
 
@@ -182,12 +228,47 @@ void model_indicators(Model *m, double *z) {
     MODEL_INDICATORS(m->arg, m->res, m->iw, m->w, 0);
 }
 
+/* The relations that keep changing at this instant while their
+ * indicators stay on zero within rounding at every round (a driving
+ * torque that is exactly zero in MSL's LossyGear, computed +-1e-15 as
+ * the Booleans it decides change the linear solve): each one's band in
+ * p grows to cover its indicator, so it takes the value its operator
+ * has at zero and keeps it. A relation whose indicator is large at one
+ * of the rounds changes for a reason (the mixed systems of friction,
+ * search_mixed) and is left alone. Constants in model.h */
+static void at_zero(Model *m, const double *before, const double *r) {
+    double z[MODEL_NR + 1], largest = 0.0;
+    int k, changed = 0, grown = 0;
+    for (k = 0; k < MODEL_NR; k++)
+        if (r[k] != before[k]) { m->flips[k]++; changed = 1; }
+    if (!changed) return;
+    model_indicators(m, z);
+    for (k = 0; k < MODEL_NR; k++) {
+        if (fabs(z[k]) > largest) largest = fabs(z[k]);
+        if (m->flips[k] && fabs(z[k]) > m->swing[k]) m->swing[k] = fabs(z[k]);
+        if (m->flips[k] >= MODEL_ZERO_FLIPS) grown = 1;
+    }
+    if (!grown) return;
+    for (k = 0; k < MODEL_NR; k++)
+        if (m->flips[k] >= MODEL_ZERO_FLIPS &&
+                m->swing[k] <= MODEL_ZERO_SCALE * (1.0 + largest)) {
+            m->p[P_ZEROS + k] += MODEL_ZERO_WIDEN * m->swing[k];
+            m->flips[k] = 0;
+            m->swing[k] = 0.0;
+            m->stale = 1;
+        }
+}
+
 int model_event(Model *m, int *again) {
     double r[MODEL_NR + 1], fired[MODEL_NW + 1], x[MODEL_NX + 1];
+    double d[MODEL_ND + 1];
     double *held = m->p + P_RELATIONS;
     int k, any = 0;
     if (m->iterations == 0) {   /* a new instant: one more of its burst */
         m->searched = 0;
+        memset(m->flips, 0, sizeof(m->flips));
+        memset(m->swing, 0, sizeof(m->swing));
+        memset(m->moved, 0, sizeof(m->moved));
         if (m->time - m->burst_start >
                 MODEL_ZENO_SPAN * (fabs(m->time) + 1.0)) {
             m->burst_start = m->time;
@@ -195,6 +276,8 @@ int model_event(Model *m, int *again) {
         }
         m->burst_events++;
     }
+    relations_at(m, m->time, m->x, r);
+    at_zero(m, held, r);
     relations_at(m, m->time, m->x, r);
     for (k = 0; k < MODEL_NW; k++) {
         fired[k] = r[when_relation[k]] > 0.5 && held[when_relation[k]] < 0.5;
@@ -208,7 +291,10 @@ int model_event(Model *m, int *again) {
         MODEL_REINIT(m->arg, m->res, m->iw, m->w, 0);
         memcpy(m->x, x, sizeof(double) * MODEL_NX);
     }
+    memcpy(d, m->p + P_DISCRETES, sizeof(double) * MODEL_ND);
     *again = update_discretes(m);
+    for (k = 0; k < MODEL_ND; k++)
+        if (d[k] != m->p[P_DISCRETES + k]) m->moved[k] = 1;
     if (*again && m->iterations >= MODEL_SEARCH_AFTER && !m->searched) {
         m->searched = 1;   /* once an instant: a failed search is final */
         if (search_mixed(m)) *again = 0;

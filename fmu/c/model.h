@@ -31,7 +31,10 @@
 #define P_DISCRETES (P_RELATIONS + MODEL_NR)
 #define P_PREVIOUS (P_DISCRETES + MODEL_ND)
 #define P_INITIAL (P_PREVIOUS + MODEL_ND)
-#define MODEL_NPAR (P_INITIAL + MODEL_NI)
+/* then each relation's rounding band, 0 until the relation is found on
+ * its zero (model.c, at_zero) */
+#define P_ZEROS (P_INITIAL + MODEL_NI)
+#define MODEL_NPAR (P_ZEROS + MODEL_NR)
 /* Event iterations allowed at one instant */
 #define MODEL_MAX_EVENT_ITERATIONS 100
 /* Rounds at one instant after which a round that changes the discrete
@@ -41,6 +44,14 @@
 #define MODEL_SEARCH_AFTER 10
 #define MODEL_SEARCH_BOOLEANS 12
 #define MODEL_SEARCH_ROUNDS 20
+/* A relation that changes at MODEL_ZERO_FLIPS rounds of one instant
+ * while its indicator stays within MODEL_ZERO_SCALE of zero (relative to
+ * 1 + the largest indicator) is on its zero within rounding: its band
+ * grows to MODEL_ZERO_WIDEN times the indicator, and it keeps the value
+ * its operator has at zero (>= and <= true, > and < false) */
+#define MODEL_ZERO_FLIPS 3
+#define MODEL_ZERO_SCALE 1e-12
+#define MODEL_ZERO_WIDEN 4.0
 /* A model chatters (Zeno) when more than MODEL_ZENO_EVENTS events come
  * within MODEL_ZENO_SPAN * (|t| + 1) seconds: a relation that switches
  * back at once (a relay on its own output) would otherwise hold the
@@ -63,6 +74,9 @@ typedef struct {
     double burst_start;        /* time of the first event of a burst */
     long burst_events;         /* events since (see MODEL_ZENO_EVENTS) */
     int warned[MODEL_NA + 1];  /* a warning assert said, not yet holding */
+    int flips[MODEL_NR + 1];   /* changes of each relation at this instant */
+    double swing[MODEL_NR + 1]; /* the largest |indicator| since it changed */
+    int moved[MODEL_ND + 1];   /* discrete values changed at this instant */
     /* CasADi work arrays */
     const double **arg;
     double **res;
