@@ -14,10 +14,14 @@ friction elements, the project library's replacement.
 
 It refuses only what the back end certainly refuses later (the checks of
 :func:`fmu.frontend._check_supported` remain for what this reading
-misses): variables of type Integer, Boolean or an enumeration,
-``discrete`` variables, parameters of an
-``ExternalObject`` type (MSL's table objects), ``edge``, ``change``,
-``sample``, ``initial()`` and ``pre`` outside a when-clause.
+misses). Always: String and enumeration variables, and parameters of an
+``ExternalObject`` type that :mod:`fmu.rewrite` cannot inline
+(:func:`fmu.rewrite.inlinable_table`: MSL's table objects). Without
+``hybrid`` also Integer, Boolean and ``discrete`` variables, ``edge``,
+``change``, ``sample``, and ``initial()`` and ``pre`` outside a
+when-clause; with ``hybrid`` (every FMU build and a class's Floquet
+view) the front end compiles those (docs/compiler.md).
+
 Conditional components (``... if useHeatPort``) are not followed:
 whether they exist is known only after the parameters are evaluated;
 nor are replaceable components and classes, which a modifier may
