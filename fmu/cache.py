@@ -106,20 +106,14 @@ def store(key, flat):
     folder = cache_folder()
     if folder is None:
         return
-    if "refused" in flat:   # rumoca's own refusal of these sources
-        text = json.dumps(flat).encode()
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            atomic_write(folder / f"{key}.json", lambda out: out.write(text))
-        except (OSError, JudderError):
-            pass
-        return
-    used = _sources_used(flat["storage"])
-    trimmed = dict(flat, source_map=dict(
-        flat.get("source_map", {}), files=[
-            entry for entry in flat.get("source_map", {}).get("files", [])
-            if entry[0] in used]))
-    text = json.dumps(trimmed).encode()
+    if "refused" not in flat:   # else rumoca's own refusal, kept whole
+        used = _sources_used(flat["storage"])
+        flat = dict(flat, source_map=dict(
+            flat.get("source_map", {}), files=[
+                entry for entry in flat.get("source_map", {}).get("files",
+                                                                   [])
+                if entry[0] in used]))
+    text = json.dumps(flat).encode()
     try:
         folder.mkdir(parents=True, exist_ok=True)
         atomic_write(folder / f"{key}.json", lambda out: out.write(text))

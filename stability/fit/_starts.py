@@ -107,23 +107,13 @@ def run_starts(problem, given, extra, seed, workers, progress):
             starts = list(candidates[np.argsort(costs)[:extra]])
         else:
             starts = list(extra / problem.scale)
-        sampled = _run(fit_start, [(problem, z, given, i + 1, None,
-                                     EXTRA_START_EVALUATIONS)
-                                    for i, z in enumerate(starts)], workers,
-                       progress)
-        for r in sorted(sampled, key=lambda r: r["index"]):
-            r["origin"] = "sampled"
-            runs.append(r)
+        runs += _fitted_from(problem, given, starts, len(runs), workers,
+                             progress, "sampled")
     placed = [] if _exact(problem, first) else \
         placed_starts(problem, given)
     if placed:
-        found = _run(fit_start, [(problem, z, given, len(runs) + i, None,
-                                  EXTRA_START_EVALUATIONS)
-                                 for i, z in enumerate(placed)], workers,
-                     None)
-        for r in sorted(found, key=lambda r: r["index"]):
-            r["origin"] = "placed"
-            runs.append(r)
+        runs += _fitted_from(problem, given, placed, len(runs), workers, None,
+                             "placed")
     progress.until(1 + n_extra)
     best = min(runs, key=lambda r: r["cost"])
     # the ambiguous points matched the other way, from the best minimum
@@ -203,6 +193,21 @@ PLACING_SCAN = 41
 #: double-period at ``2 f_i``; a combination (``f_i +- f_j``) is placed
 #: by no one frequency.
 _RESONANCE_MULTIPLE = {0: 1.0, 1: 2.0}
+
+
+def _fitted_from(problem, given, starts, first_index, workers, progress,
+                 origin):
+    """Local fits from ``starts`` (scaled), numbered from
+    ``first_index``, in that order, each marked with its ``origin``
+    (``'sampled'``, ``'placed'``)."""
+    found = _run(fit_start, [(problem, z, given, first_index + i, None,
+                              EXTRA_START_EVALUATIONS)
+                             for i, z in enumerate(starts)], workers,
+                 progress)
+    found = sorted(found, key=lambda r: r["index"])
+    for r in found:
+        r["origin"] = origin
+    return found
 
 
 def placed_starts(problem, given):
