@@ -761,6 +761,26 @@ def test_the_fit_says_why_an_interval_is_not_symmetric():
     assert interval_words(symmetric) == ""
 
 
+def _fit_double_period_chart(truth, freqs, tmp_path, capsys):
+    """``judder fit --chart`` from the fitted preset of a synthetic chart
+    of ``truth``'s double-period onsets at ``freqs`` (0.3-1.2 bar):
+    ``(number of onsets, the fit's JSON)``."""
+    import json
+
+    from judder.cli import main
+    from studies.chart import ChartResult
+    chart, onset = _synthetic_chart(truth, freqs,
+                                    np.round(np.arange(0.3, 1.21, 0.1), 2),
+                                    kind="double-period")
+    npz = tmp_path / "chart.npz"
+    ChartResult(chart=chart, seconds=0.0).save(npz)
+    status = main(["fit", "--chart", str(npz), "--preset",
+                   "paper-4dof-fitted", "--fit", "mu_g,k24", "--json"])
+    out, err = capsys.readouterr()
+    assert status == 0, err
+    return int(np.isfinite(onset).sum()), json.loads(out)
+
+
 def test_a_chart_fit_matches_the_onsets_to_the_kind_the_chart_saw(
         tmp_path, capsys):
     """Issue 44, 1: double-period onsets at 195-207 Hz of a driveline with
@@ -768,11 +788,7 @@ def test_a_chart_fit_matches_the_onsets_to_the_kind_the_chart_saw(
     nearness, the onsets went to the combination tongue f1 + f2 (k24
     103 500, residual 0.084 bar); matched to the kind the chart labelled,
     the 95 % intervals cover the truth."""
-    import json
-
-    from judder.cli import main
     from stability.tongues import TONGUE_KINDS, tongue_boundaries
-    from studies.chart import ChartResult
     truth = get_preset("paper-4dof-fitted").replace(mu_g=0.0242,
                                                     k24=31372.0)
     freqs = np.arange(193.0, 210.0, 1.0)
@@ -782,17 +798,8 @@ def test_a_chart_fit_matches_the_onsets_to_the_kind_the_chart_saw(
     inside = np.isfinite(found.amplitude).any(axis=1)
     assert {TONGUE_KINDS[k].label for k in lowest[inside]} == {
         "double-period"}        # the truth's onsets are double-period
-    chart, onset = _synthetic_chart(truth, freqs,
-                                    np.round(np.arange(0.3, 1.21, 0.1), 2),
-                                    kind="double-period")
-    assert np.isfinite(onset).sum() >= 10
-    npz = tmp_path / "chart.npz"
-    ChartResult(chart=chart, seconds=0.0).save(npz)
-    status = main(["fit", "--chart", str(npz), "--preset",
-                   "paper-4dof-fitted", "--fit", "mu_g,k24", "--json"])
-    out, err = capsys.readouterr()
-    assert status == 0, err
-    data = json.loads(out)
+    onsets, data = _fit_double_period_chart(truth, freqs, tmp_path, capsys)
+    assert onsets >= 10
     for name, value in (("mu_g", 0.0242), ("k24", 31372.0)):
         low, high = data["fitted"][name]["ci95"]
         assert low < value < high, (name, low, high)
@@ -891,23 +898,11 @@ def test_a_chart_fit_finds_a_tongue_the_start_has_elsewhere(
     start placed so that the kind the chart saw lies at its lowest onset
     (stability.fit._starts.placed_starts) reaches the truth, inside the
     95 % intervals, in all three."""
-    import json
 
-    from judder.cli import main
-    from studies.chart import ChartResult
     truth = get_preset("paper-4dof-fitted").replace(mu_g=mu_g, k24=k24)
     freqs = np.arange(round(tip_hz) - 8.0, round(tip_hz) + 9.0, 2.0)
-    chart, onset = _synthetic_chart(truth, freqs,
-                                    np.round(np.arange(0.3, 1.21, 0.1), 2),
-                                    kind="double-period")
-    assert np.isfinite(onset).sum() >= 4
-    npz = tmp_path / "chart.npz"
-    ChartResult(chart=chart, seconds=0.0).save(npz)
-    status = main(["fit", "--chart", str(npz), "--preset",
-                   "paper-4dof-fitted", "--fit", "mu_g,k24", "--json"])
-    out, err = capsys.readouterr()
-    assert status == 0, err
-    data = json.loads(out)
+    onsets, data = _fit_double_period_chart(truth, freqs, tmp_path, capsys)
+    assert onsets >= 4
     for name, value in (("mu_g", mu_g), ("k24", k24)):
         low, high = data["fitted"][name]["ci95"]
         assert low < value < high, (name, low, high)
