@@ -898,7 +898,6 @@ def test_a_chart_fit_finds_a_tongue_the_start_has_elsewhere(
     start placed so that the kind the chart saw lies at its lowest onset
     (stability.fit._starts.placed_starts) reaches the truth, inside the
     95 % intervals, in all three."""
-
     truth = get_preset("paper-4dof-fitted").replace(mu_g=mu_g, k24=k24)
     freqs = np.arange(round(tip_hz) - 8.0, round(tip_hz) + 9.0, 2.0)
     onsets, data = _fit_double_period_chart(truth, freqs, tmp_path, capsys)
