@@ -31,6 +31,14 @@ ROOT = Path(__file__).resolve().parents[1]
 LIBRARY = ROOT / "modelica"
 
 
+def _output_grid(t, end):
+    """The 1 ms output grid of an FMU run strictly between ``t`` and
+    ``end``, then ``end``: where a reference's segment is sampled."""
+    grid = np.arange(np.ceil(t / 1e-3 + 1e-9),
+                     np.floor(end / 1e-3 + 1e-9) + 1) * 1e-3
+    return np.unique(np.append(grid[(grid > t) & (grid < end)], end))
+
+
 def _msl():
     """The MSL folder (holding ``Modelica/package.mo``), or None: beside
     the repository (``../shared/msl``) or on MODELICAPATH."""
@@ -148,9 +156,7 @@ def coupled_clutches_reference():
             functions.append(f)
             owners.append(c)
         end = min([s for s in switches if s > t + 1e-12] + [STOP])
-        grid = np.arange(np.ceil(t / 1e-3 + 1e-9), np.floor(
-            end / 1e-3 + 1e-9) + 1) * 1e-3
-        grid = np.unique(np.append(grid[(grid > t) & (grid < end)], end))
+        grid = _output_grid(t, end)
         sol = solve_ivp(lambda s, y, modes=modes:
                         _accelerations(s, y, modes)[0], (t, end), w,
                         method="DOP853", rtol=1e-12, atol=1e-12,
@@ -513,9 +519,7 @@ def friction_reference(stop=3.0):
             functions.append(f)
             owners.append(e)
         end = min([s for s in (0.5,) if s > t + 1e-12] + [stop])
-        grid = np.arange(np.ceil(t / 1e-3 + 1e-9), np.floor(
-            end / 1e-3 + 1e-9) + 1) * 1e-3
-        grid = np.unique(np.append(grid[(grid > t) & (grid < end)], end))
+        grid = _output_grid(t, end)
         sol = solve_ivp(lambda s, y, modes=modes: rhs(s, y, modes),
                         (t, end), x, method="DOP853", rtol=1e-12,
                         atol=1e-12, events=functions, t_eval=grid,
@@ -688,9 +692,7 @@ def lossy_gear_reference(ratio, inertias, loss, drive, load, w0, stop,
                 return y[0]
             f.direction = -mode
         f.terminal = True
-        grid = np.arange(np.ceil(t / 1e-3 + 1e-9), np.floor(
-            end / 1e-3 + 1e-9) + 1) * 1e-3
-        grid = np.unique(np.append(grid[(grid > t) & (grid < end)], end))
+        grid = _output_grid(t, end)
         sol = solve_ivp(lambda s, y, mode=mode: [0.0 if mode == 0 else
                                                  rolling(s, mode)[0]],
                         (t, end), [w], method="DOP853", rtol=1e-12,
@@ -858,9 +860,7 @@ def one_way_clutch_reference(stop=2.0):
                 return y[1] - y[0]
             f.direction = -1
         f.terminal = True
-        grid = np.arange(np.ceil(t / 1e-3 + 1e-9), np.floor(
-            end / 1e-3 + 1e-9) + 1) * 1e-3
-        grid = np.unique(np.append(grid[(grid > t) & (grid < end)], end))
+        grid = _output_grid(t, end)
         sol = solve_ivp(lambda s, y: rhs(s, y, locked), (t, end), w,
                         method="DOP853", rtol=1e-12, atol=1e-12, events=f,
                         t_eval=grid, first_step=1e-6, max_step=1e-3)
@@ -985,9 +985,7 @@ def lossy_gear_demo2_reference(stop=0.5):
                 return y[0]
             f.direction = -mode
         f.terminal = True
-        grid = np.arange(np.ceil(t / 1e-3 + 1e-9), np.floor(
-            stop / 1e-3 + 1e-9) + 1) * 1e-3
-        grid = np.unique(np.append(grid[(grid > t) & (grid < stop)], stop))
+        grid = _output_grid(t, stop)
         sol = solve_ivp(lambda s, y, mode=mode: [
                             0.0 if mode == 0 else acceleration(s, y[0], mode)],
                         (t, stop), [w], method="DOP853", rtol=1e-12,
