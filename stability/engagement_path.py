@@ -26,6 +26,11 @@ from .multipliers import floquet
 
 __all__ = ["EngagementPath", "engagement_path", "mean_slip"]
 
+#: Finest spacing of the slips the exponent is computed at, rad/s: well
+#: inside the bounded curve's linear range (+-1.1 rad/s at the paper's
+#: slope), so a tongue's edge is not stepped over.
+GRID_STEP_RAD_S = 0.25
+
 
 @dataclass(frozen=True)
 class EngagementPath:
@@ -125,8 +130,10 @@ def engagement_path(linearisation_at, freq_hz, p_f, time, slip,
     time, slip : array_like, shape (n,)
         The run's times (s) and mean slip (rad/s; :func:`mean_slip`).
     grid_points : int
-        Slips at which the exponent is computed, spread over the range
-        the run covers; interpolated linearly between them.
+        At most this many slips at which the exponent is computed, spread
+        over the range the run covers (one every
+        :data:`GRID_STEP_RAD_S` where fewer suffice); interpolated
+        linearly between them.
     method : str, optional
         Monodromy engine (:func:`stability.multipliers.floquet`).
 
@@ -137,8 +144,12 @@ def engagement_path(linearisation_at, freq_hz, p_f, time, slip,
     time = np.asarray(time, dtype=float)
     slip = np.asarray(slip, dtype=float)
     low, high = float(slip.min()), float(slip.max())
+    # a grid slip every GRID_STEP_RAD_S at the finest, at most
+    # grid_points: a held slip needs two, not 48
+    count = int(np.clip(np.ceil((high - low) / GRID_STEP_RAD_S) + 1, 2,
+                        grid_points))
     grid = (np.array([low]) if high - low < 1e-9 else
-            np.linspace(low, high, grid_points))
+            np.linspace(low, high, count))
     results = [floquet(linearisation_at(w), freq_hz, p_f, method=method)
                for w in grid]
     rates = np.array([r.growth_rate for r in results])
