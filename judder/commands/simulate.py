@@ -39,8 +39,15 @@ DESCRIPTION = (
     "(TestBenchCurveLockUp, the same friction curve as the held-slip "
     "run), with the lock-up time and the judder verdict while it slips; "
     "--engagement full-linear-law: the same engagement with the straight "
-    "line of Eq. 5, another friction law (TestBenchLockUp). Each output "
-    "names its kind of run and its friction law.")
+    "line of Eq. 5, another friction law (TestBenchLockUp). With "
+    "--friction FILE.csv the held-slip run reads the clutch's own "
+    "characteristic (TestBenchTable). With --bench load_share below 1 "
+    "the slip falls: the run is followed through the map (the Floquet "
+    "exponent of the bench linearised at each mean slip, the spans "
+    "inside a tongue and the amplitude gain they predict) and judged by "
+    "the envelope of its upstream speed, so a burst through a tongue is "
+    "judder with its time and slip. Each output names its kind of run "
+    "and its friction law.")
 
 
 OUTPUTS = (("out", "--out", ("csv", "mf4")), ("plot", "--plot", None))
@@ -96,8 +103,9 @@ def add_arguments(p):
                         "are its value and slope at the slip w_op, mu stays "
                         "within mu0 +- delta_mu), t_engage, t_ramp, "
                         "p_load, load_share (REV torque over the EVEN "
-                        "mean torque: 1 keeps the slip steady), N_c_load, "
-                        "d_control; repeatable (not with --modelica: set "
+                        "mean torque: 1 keeps the slip steady, below 1 it "
+                        "falls), N_c_load, d_control, tau_max (the motor's "
+                        "torque limit); repeatable (not with --modelica: set "
                         "the class's parameters with --set)")
     p.add_argument("--engagement", choices=tuple(ENGAGEMENTS),
                    default="steady",
@@ -116,7 +124,9 @@ def add_arguments(p):
     p.add_argument("--out", metavar="run.csv|run.mf4",
                    help="time histories as CSV or ASAM MDF4")
     p.add_argument("--plot", metavar="FILE.png",
-                   help="time histories and spectra")
+                   help="time histories and spectra; with a bench, "
+                        "each run's path through the map (Floquet exponent "
+                        "and mean slip against time)")
     limit_option(p)
     min_growth_option(p)
     method_option(p)
