@@ -490,8 +490,10 @@ class SimulationResult:
                                     for i in shown],
                           lock_ups=[self.summaries[i].get("lock_up_time_s")
                                     for i in shown],
-                          paths=None if not any(self.paths or ()) else
-                          [_path_curves(self.paths[i]) for i in shown],
+                          # a held slip's path is one point of the map:
+                          # the row is drawn where the slip falls
+                          paths=None if self.run_kind != "falling_slip"
+                          else [_path_curves(self.paths[i]) for i in shown],
                           min_growth=self.min_growth)
 
 

@@ -196,9 +196,10 @@ def plot_path(path, ax=None, min_growth=None):
     if min_growth is not None:
         artists.append(ax.axhline(min_growth, ls="--", color="0.3", lw=0.8,
                                   label=f"judder growth, {min_growth:g} 1/s"))
-        artists.append(ax.fill_between(
-            time, min_growth, growth, where=growth > min_growth,
-            color=BLUE, alpha=0.25, lw=0, label="inside a tongue"))
+        if (growth > min_growth).any():    # a legend entry only if drawn
+            artists.append(ax.fill_between(
+                time, min_growth, growth, where=growth > min_growth,
+                color=BLUE, alpha=0.25, lw=0, label="inside a tongue"))
     artists.append(ax.axhline(0.0, color="0.6", lw=0.6,
                               label="no growth, |$\\lambda$| = 1"))
     right = ax.twinx()
